@@ -1,0 +1,246 @@
+"""Engine input model (TOML) -> ``fe_crank.model.Engine``.
+
+An engine file looks like::
+
+    name = "Single-cylinder four-stroke (seed 001)"
+    strokes = 4
+
+    [[throws]]
+    name = "1"
+    angle = "0 deg"
+    crank_radius = "64 mm"          # or: stroke = "128 mm"
+
+    [cylinder_defaults]              # merged into every [[cylinders]] entry
+    bore = "92 mm"
+    rod_length = "307 mm"
+
+    [[cylinders]]
+    name = "1"
+    throw = "1"
+    ...
+
+``[[shafts]]`` may be omitted (one shaft called "main").  ``firing_order`` (names,
+evenly spaced over the cycle) and per-cylinder ``firing_offset`` are exclusive.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from fe_crank import model
+from fe_crank.errors import InputError
+from fe_crank.io.base import Strict, read_toml, resolve_reference, validate
+from fe_crank.io.gas import GasTableInput
+from fe_crank.io.units import Angle, Inertia, Length, Mass
+
+
+class ShaftInput(Strict):
+    name: str = Field(min_length=1)
+    sense: Literal[1, -1] = 1
+    phase: Angle = 0.0
+    centre_x: Length = 0.0
+    centre_y: Length = 0.0
+    speed_ratio: float = Field(default=1.0, gt=0)
+
+
+class ThrowInput(Strict):
+    name: str = Field(min_length=1)
+    shaft: str = "main"
+    angle: Angle = 0.0
+    crank_radius: Length | None = None
+    stroke: Length | None = None
+    axial_position: Length = 0.0
+    rotating_mass: Mass = 0.0
+
+    @model_validator(mode="after")
+    def _radius(self):
+        if (self.crank_radius is None) == (self.stroke is None):
+            raise ValueError("give exactly one of crank_radius and stroke")
+        r = self.crank_radius if self.crank_radius is not None else self.stroke / 2.0
+        if not r > 0:
+            raise ValueError(f"crank radius must be positive (got {r} m)")
+        if self.rotating_mass < 0:
+            raise ValueError("rotating_mass cannot be negative")
+        return self
+
+    @property
+    def radius(self) -> float:
+        return self.crank_radius if self.crank_radius is not None else self.stroke / 2.0
+
+
+class ArticulationInput(Strict):
+    master: str
+    link_radius: Length
+    link_angle: Angle
+
+
+class CylinderInput(Strict):
+    name: str = Field(min_length=1)
+    throw: str
+    bore: Length
+    rod_length: Length
+    rod_mass: Mass
+    rod_cg_from_big_end: Length
+    rod_inertia: Inertia | None = None
+    piston_mass: Mass
+    bank_angle: Angle = 0.0
+    pin_offset: Length = 0.0
+    firing_offset: Angle | None = None
+    articulation: ArticulationInput | None = None
+
+    @model_validator(mode="after")
+    def _sizes(self):
+        for key in ("bore", "rod_length"):
+            if not getattr(self, key) > 0:
+                raise ValueError(f"{key} must be positive (got {getattr(self, key)} m)")
+        for key in ("rod_mass", "piston_mass"):
+            if getattr(self, key) < 0:
+                raise ValueError(f"{key} cannot be negative")
+        if not 0.0 <= self.rod_cg_from_big_end <= self.rod_length:
+            raise ValueError("rod_cg_from_big_end must lie between the big and small ends")
+        if self.rod_inertia is not None and self.rod_inertia < 0:
+            raise ValueError("rod_inertia cannot be negative")
+        return self
+
+
+class EngineInput(Strict):
+    name: str = Field(min_length=1)
+    strokes: Literal[2, 4]
+    source: str = ""
+    shafts: list[ShaftInput] = Field(default_factory=lambda: [ShaftInput(name="main")])
+    throws: list[ThrowInput] = Field(min_length=1)
+    cylinder_defaults: dict = Field(default_factory=dict)
+    cylinders: list[dict] = Field(min_length=1)
+    firing_order: list[str] | None = None
+    gas: GasTableInput | None = None
+
+
+def _check_names(kind: str, names: list[str], file) -> None:
+    seen = set()
+    for i, n in enumerate(names):
+        if n in seen:
+            raise InputError(f"duplicate name {n!r}", file=str(file), key=f"{kind}[{i}].name")
+        seen.add(n)
+
+
+def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine:
+    """Validate an engine table and return the frozen engine (SI)."""
+    pre = f"{prefix}." if prefix else ""
+    raw = validate(EngineInput, data, file, prefix)
+    cylinders: list[CylinderInput] = []
+    for i, c in enumerate(raw.cylinders):
+        if not isinstance(c, dict):
+            raise InputError("each [[cylinders]] entry must be a table", file=str(file), key=f"{pre}cylinders[{i}]")
+        merged = {**raw.cylinder_defaults, **c}
+        cylinders.append(validate(CylinderInput, merged, file, f"{pre}cylinders[{i}]"))
+    _check_names(f"{pre}shafts", [s.name for s in raw.shafts], file)
+    _check_names(f"{pre}throws", [t.name for t in raw.throws], file)
+    _check_names(f"{pre}cylinders", [c.name for c in cylinders], file)
+    shaft_names = {s.name for s in raw.shafts}
+    throws = {t.name: t for t in raw.throws}
+    for i, t in enumerate(raw.throws):
+        if t.shaft not in shaft_names:
+            raise InputError(
+                f"names shaft {t.shaft!r}, which is not defined (shafts: {sorted(shaft_names)})",
+                file=str(file), key=f"{pre}throws[{i}].shaft",
+            )
+    names = [c.name for c in cylinders]
+    for i, c in enumerate(cylinders):
+        if c.throw not in throws:
+            raise InputError(
+                f"names throw {c.throw!r}, which is not defined (throws: {sorted(throws)})",
+                file=str(file), key=f"{pre}cylinders[{i}].throw",
+            )
+        r = throws[c.throw].radius
+        if c.rod_length <= r + abs(c.pin_offset):
+            raise InputError(
+                f"rod length {c.rod_length * 1e3:.4g} mm must exceed crank radius {r * 1e3:.4g} mm "
+                f"plus pin offset {abs(c.pin_offset) * 1e3:.4g} mm: the mechanism cannot turn",
+                file=str(file), key=f"{pre}cylinders[{i}].rod_length",
+            )
+        if c.articulation is not None and c.articulation.master not in names:
+            raise InputError(
+                f"articulated rod names master {c.articulation.master!r}, which is not a cylinder",
+                file=str(file), key=f"{pre}cylinders[{i}].articulation.master",
+            )
+    cycle = 4.0 * math.pi if raw.strokes == 4 else 2.0 * math.pi
+    offsets: dict[str, float] = {}
+    if raw.firing_order is not None:
+        if any(c.firing_offset is not None for c in cylinders):
+            raise InputError(
+                "give either firing_order or a firing_offset for each cylinder, not both",
+                file=str(file), key=f"{pre}firing_order",
+            )
+        for j, n in enumerate(raw.firing_order):
+            if n not in names:
+                raise InputError(
+                    f"names cylinder {n!r}, which does not exist (cylinders: {names})",
+                    file=str(file), key=f"{pre}firing_order[{j}]",
+                )
+        if sorted(raw.firing_order) != sorted(names):
+            missing = sorted(set(names) - set(raw.firing_order))
+            raise InputError(
+                f"must name every cylinder exactly once (missing: {missing})",
+                file=str(file), key=f"{pre}firing_order",
+            )
+        for j, n in enumerate(raw.firing_order):
+            offsets[n] = j * cycle / len(names)
+    else:
+        for c in cylinders:
+            offsets[c.name] = c.firing_offset or 0.0
+    gas = None
+    if raw.gas is not None:
+        ang, prs = raw.gas.arrays_si()
+        gas = model.GasPressure(ang, prs, raw.gas.crankcase_pressure, raw.gas.source)
+    return model.Engine(
+        name=raw.name,
+        strokes=raw.strokes,
+        source=raw.source,
+        shafts=tuple(
+            model.Shaft(s.name, s.sense, s.phase, (s.centre_x, s.centre_y), s.speed_ratio) for s in raw.shafts
+        ),
+        throws=tuple(
+            model.Throw(t.name, t.shaft, t.angle, t.radius, t.axial_position, t.rotating_mass)
+            for t in raw.throws
+        ),
+        cylinders=tuple(
+            model.Cylinder(
+                name=c.name,
+                throw=c.throw,
+                bore=c.bore,
+                rod=model.Rod(c.rod_length, c.rod_mass, c.rod_cg_from_big_end, c.rod_inertia),
+                piston_mass=c.piston_mass,
+                bank_angle=c.bank_angle,
+                pin_offset=c.pin_offset,
+                firing_offset=offsets[c.name],
+                articulation=(
+                    model.Articulation(c.articulation.master, c.articulation.link_radius, c.articulation.link_angle)
+                    if c.articulation
+                    else None
+                ),
+            )
+            for c in cylinders
+        ),
+        gas=gas,
+    )
+
+
+def load_engine(path: str | Path) -> model.Engine:
+    return build_engine(read_toml(path), path)
+
+
+def engine_from_reference(value: object, file: str | Path, key: str = "engine") -> model.Engine:
+    """``engine = "../engines/x.toml"`` (a path relative to ``file``) or an inline table."""
+    if isinstance(value, str):
+        return load_engine(resolve_reference(value, file))
+    if isinstance(value, dict):
+        return build_engine(value, file, key)
+    raise InputError("must be a path to an engine file or an inline [engine] table", file=str(file), key=key)
+
+
+__all__ = ["build_engine", "load_engine", "engine_from_reference", "EngineInput", "CylinderInput", "np"]

@@ -1,0 +1,106 @@
+"""Load-case files: engine + operating point (+ geometry, material, criteria, FE, balance).
+
+::
+
+    name = "single-cylinder at rated speed"
+    engine = "../engines/single_cylinder_seed001.toml"   # or an inline [engine] table
+
+    [operating]
+    speed = "2800 rpm"
+    overspeed = "3360 rpm"
+
+Sections handled by later stages are parsed by the functions registered in
+``SECTIONS`` (key -> callable(value, file, key) -> frozen object).  A top-level key
+that no stage knows is an error.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Callable
+
+from pydantic import Field, model_validator
+
+from fe_crank import model
+from fe_crank.errors import InputError
+from fe_crank.io.base import Strict, read_toml, validate
+from fe_crank.io.engine import engine_from_reference
+from fe_crank.io.units import Speed
+
+
+class OperatingInput(Strict):
+    speed: Speed
+    overspeed: Speed | None = None
+
+    @model_validator(mode="after")
+    def _check(self):
+        if not self.speed > 0:
+            raise ValueError(f"speed must be positive (got {self.speed} rad/s)")
+        if self.overspeed is not None and self.overspeed < self.speed:
+            raise ValueError("overspeed must not be below the operating speed")
+        return self
+
+
+class LoadCaseHead(Strict):
+    name: str = Field(min_length=1)
+    description: str = ""
+    schema_version: int = 1
+
+
+SectionParser = Callable[[Any, Path, str], object]
+
+#: section key -> parser.  Stages register their own section here.
+SECTIONS: dict[str, SectionParser] = {}
+
+
+def _register_builtin_sections() -> None:
+    """Import the stage modules that own load-case sections (they add to SECTIONS)."""
+    import importlib
+
+    for mod in ("fe_crank.io.sections",):
+        try:
+            importlib.import_module(mod)
+        except ModuleNotFoundError as exc:  # only the module itself may be missing
+            if exc.name != mod:
+                raise
+
+
+def load_loadcase(path: str | Path) -> model.LoadCase:
+    """Read, validate and convert one load-case file.  Raises InputError."""
+    _register_builtin_sections()
+    path = Path(path)
+    data = read_toml(path)
+    if not isinstance(data, dict):  # pragma: no cover - tomllib always returns a dict
+        raise InputError("top level must be a table", file=str(path))
+    head_keys = set(LoadCaseHead.model_fields)
+    known = head_keys | {"engine", "operating"} | set(SECTIONS)
+    for key in data:
+        if key not in known:
+            raise InputError(
+                f"unknown key; known keys are {sorted(known)}", file=str(path), key=key
+            )
+    head = validate(LoadCaseHead, {k: v for k, v in data.items() if k in head_keys}, path)
+    if "engine" not in data:
+        raise InputError("required key is missing", file=str(path), key="engine")
+    if "operating" not in data:
+        raise InputError("required key is missing", file=str(path), key="operating")
+    engine = engine_from_reference(data["engine"], path)
+    op = validate(OperatingInput, data["operating"], path, "operating")
+    sections = {}
+    for key, parser in SECTIONS.items():
+        if key in data:
+            sections[key] = parser(data[key], path, key)
+    extras = {k: v for k, v in sections.items() if k not in ("geometry", "material", "criteria", "fe", "balance")}
+    return model.LoadCase(
+        name=head.name,
+        source_file=str(path),
+        description=head.description,
+        engine=engine,
+        operating=model.OperatingPoint(op.speed, op.overspeed),
+        geometry=sections.get("geometry"),
+        material=sections.get("material"),
+        criteria=sections.get("criteria"),
+        fe=sections.get("fe"),
+        balance=sections.get("balance"),
+        extras=extras,
+    )

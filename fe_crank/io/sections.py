@@ -1,0 +1,16 @@
+"""Registers the load-case sections owned by later stages.
+
+Each stage keeps its own input model in its own module; this file only wires the
+section key to the parser.  Add one line per section.
+"""
+
+from __future__ import annotations
+
+from fe_crank.io.loadcase import SECTIONS
+
+# SECTIONS["geometry"] = ...   (geometry stage)
+# SECTIONS["material"] = ...   (assessment stage)
+# SECTIONS["criteria"] = ...   (assessment stage)
+# SECTIONS["fe"] = ...         (FE stage)
+# SECTIONS["balance"] = ...    (balance stage)
+_ = SECTIONS

@@ -1,0 +1,154 @@
+"""Frozen data the numerical core works on: SI floats only, no units, no files.
+
+Conventions (DESIGN.md):
+
+* Global frame: ``z`` along the crank axis (positive from the front/free end to the
+  flywheel end), ``y`` up, ``x`` completing a right-handed frame.  Looking along
+  ``-z`` (from the front), positive angles turn from ``+y`` towards ``+x``, i.e.
+  clockwise seen from the front: the usual engine-builder's view.  A shaft with
+  ``sense = +1`` rotates in this positive direction.
+* A cylinder's axis points from the crank axis to its cylinder head; its direction
+  is given by ``bank_angle`` measured like the crank angles above, from ``+y``.
+* A throw's ``angle`` is the angular position of its crankpin relative to the
+  shaft's reference throw, measured in the shaft's sense of rotation.
+* The crank angle of a cylinder, ``phi``, is measured from that cylinder's TDC in
+  the direction of rotation; piston displacement ``s`` from TDC towards the axis.
+* The engine cycle angle ``theta`` is the angle of the reference shaft: at
+  ``theta = 0`` the shaft's reference throw (angle 0) points along ``+y``.
+* ``firing_offset`` is the cycle angle at which the cylinder is at TDC firing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Shaft:
+    """One crankshaft.  Several shafts (opposed-piston, Deltic) may be geared together."""
+
+    name: str
+    sense: int = 1  # +1 or -1: direction of rotation in the global frame
+    phase: float = 0.0  # rad: angle of the reference throw at theta = 0, from +y
+    centre: tuple[float, float] = (0.0, 0.0)  # m: (x, y) of the shaft axis
+    speed_ratio: float = 1.0  # shaft speed / reference speed
+
+
+@dataclass(frozen=True)
+class Throw:
+    """A crankpin: its shaft, angular position, axial position and rotating mass."""
+
+    name: str
+    shaft: str
+    angle: float  # rad, in the shaft's sense of rotation from its reference throw
+    crank_radius: float  # m
+    axial_position: float = 0.0  # m, along z
+    rotating_mass: float = 0.0  # kg: unbalanced crank mass (pin + webs) reduced to crank_radius
+
+
+@dataclass(frozen=True)
+class Rod:
+    """Connecting rod: mass, centre of mass measured from the big-end centre, inertia."""
+
+    length: float  # m, big-end to small-end centres
+    mass: float  # kg
+    cg_from_big_end: float  # m
+    inertia_cg: float | None = None  # kg m^2 about the centre of mass; None -> two-mass model
+
+    @property
+    def reciprocating_fraction(self) -> float:
+        """Share of the rod mass put at the small end by the static two-mass split."""
+        return self.cg_from_big_end / self.length
+
+
+@dataclass(frozen=True)
+class Articulation:
+    """An articulated (link) rod pinned to a master rod (radial engines)."""
+
+    master: str  # name of the master cylinder
+    link_radius: float  # m: distance of the link pin from the master big-end centre
+    link_angle: float  # rad: angle of the link pin on the master rod from its axis
+
+
+@dataclass(frozen=True)
+class GasPressure:
+    """Cylinder pressure over the cycle as a table (absolute pressure, SI).
+
+    ``angle`` is the cylinder's own crank angle from TDC firing, over one cycle
+    (0 .. 4 pi for a four-stroke, 0 .. 2 pi for a two-stroke), increasing.
+    The pressure acting on the piston's underside is ``crankcase_pressure``.
+    """
+
+    angle: np.ndarray
+    pressure: np.ndarray
+    crankcase_pressure: float = 101325.0
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    name: str
+    throw: str
+    bore: float  # m
+    rod: Rod
+    piston_mass: float  # kg: piston group (piston, rings, pin, clips)
+    bank_angle: float = 0.0  # rad from +y, see module docstring
+    pin_offset: float = 0.0  # m, desaxe: positive towards the side the crankpin moves to on the power stroke
+    firing_offset: float = 0.0  # rad of cycle angle
+    articulation: Articulation | None = None
+
+    @property
+    def piston_area(self) -> float:
+        return float(np.pi * self.bore**2 / 4.0)
+
+
+@dataclass(frozen=True)
+class Engine:
+    name: str
+    strokes: Literal[2, 4]
+    shafts: tuple[Shaft, ...]
+    throws: tuple[Throw, ...]
+    cylinders: tuple[Cylinder, ...]
+    gas: GasPressure | None = None  # same pressure curve for every cylinder, shifted by firing offset
+    source: str = ""
+
+    @property
+    def cycle_angle(self) -> float:
+        return 4.0 * np.pi if self.strokes == 4 else 2.0 * np.pi
+
+    def shaft(self, name: str) -> Shaft:
+        return next(s for s in self.shafts if s.name == name)
+
+    def throw(self, name: str) -> Throw:
+        return next(t for t in self.throws if t.name == name)
+
+    def cylinder(self, name: str) -> Cylinder:
+        return next(c for c in self.cylinders if c.name == name)
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    speed: float  # rad/s, of the reference shaft
+    overspeed: float | None = None  # rad/s, for static/centrifugal checks
+
+
+@dataclass(frozen=True)
+class LoadCase:
+    """A whole load case as the core sees it.  Sections owned by later stages are
+    kept as their own frozen objects (``geometry``, ``material``, ``criteria``, ``fe``,
+    ``balance``); ``None`` where the file does not give them."""
+
+    name: str
+    source_file: str
+    engine: Engine
+    operating: OperatingPoint
+    description: str = ""
+    geometry: object | None = None
+    material: object | None = None
+    criteria: object | None = None
+    fe: object | None = None
+    balance: object | None = None
+    extras: dict = field(default_factory=dict)
