@@ -1,0 +1,87 @@
+"""Case reports: ``results.json``, ``report.html`` with PNGs beside it, ``.vtu`` fields.
+
+``write_case_report(folder, result, stage_out, *, options, trace)`` writes into a
+folder that the pipeline later renames into place (see ``fe_crank.pipeline``).
+Pictures: matplotlib for curves (``fe_crank.report.plots``), pyvista offscreen for
+the stress fields (``fe_crank.report.render``, imported lazily).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+from fe_crank.pipeline import CaseResult, write_atomic
+from fe_crank.report.html import Page, criteria_table, esc, header_html, table, timings_table
+
+
+def _engine_rows(lc) -> list[list[object]]:
+    e = lc.engine
+    rows = [["engine", e.name], ["strokes", e.strokes], ["cylinders", len(e.cylinders)], ["throws", len(e.throws)]]
+    if e.source:
+        rows.append(["engine source", e.source])
+    c0 = e.cylinders[0]
+    t0 = e.throw(c0.throw)
+    rows += [
+        ["bore", f"{1e3 * c0.bore:.1f} mm"],
+        ["crank radius", f"{1e3 * t0.crank_radius:.1f} mm (stroke {2e3 * t0.crank_radius:.1f} mm)"],
+        ["rod length", f"{1e3 * c0.rod.length:.1f} mm"],
+        ["rod mass", f"{c0.rod.mass:.3f} kg"],
+        ["piston group mass", f"{c0.piston_mass:.3f} kg"],
+        ["speed", f"{lc.operating.speed * 30 / math.pi:.0f} rpm"],
+    ]
+    if lc.operating.overspeed:
+        rows.append(["overspeed", f"{lc.operating.overspeed * 30 / math.pi:.0f} rpm"])
+    if e.gas is not None:
+        rows.append(["peak cylinder pressure", f"{e.gas.pressure.max() / 1e6:.2f} MPa (abs.)"
+                     + (f", source: {e.gas.source}" if e.gas.source else "")])
+    return rows
+
+
+def _section_rows(obj) -> list[list[object]]:
+    """Fields of a frozen section object (material, criteria, FE options) as rows."""
+    from dataclasses import fields, is_dataclass
+
+    if obj is None:
+        return []
+    if is_dataclass(obj):
+        return [[f.name, getattr(obj, f.name)] for f in fields(obj) if not f.name.startswith("_")]
+    return [["value", obj]]
+
+
+def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *, options=None, trace: str = "") -> None:
+    """Write ``results.json``, pictures, fields and ``report.html`` into ``folder``."""
+    folder = Path(folder)
+    page = Page(f"fe-crank: {result.name}")
+    if result.criteria:
+        page.section("Verdict: safety factors and criteria").append(criteria_table(result))
+    lc = stage_out.get("loadcase")
+    if lc is not None:
+        inputs = page.section("Inputs and assumptions")
+        if lc.description:
+            inputs.append(f"<p>{esc(lc.description)}</p>")
+        inputs.append(table(["quantity", "value"], _engine_rows(lc)))
+        for title, obj in (("material", lc.material), ("acceptance criteria", lc.criteria), ("FE model and bearings", lc.fe)):
+            rows = _section_rows(obj)
+            if rows:
+                inputs.append(f"<h3>{esc(title)}</h3>" + table(["key", "value"], rows))
+    from fe_crank.report import sections
+
+    for heading, builder in sections.BUILDERS:
+        parts = builder(folder, stage_out, options)
+        if parts:
+            page.section(heading).extend(parts)
+    if trace:
+        page.section("Traceback (internal error)").append(f"<pre>{esc(trace)}</pre>")
+        write_atomic(folder / "error.txt", trace)
+    page.section("Stage timings").append(timings_table(result))
+    write_atomic(folder / "results.json", results_json(result, stage_out))
+    write_atomic(folder / "report.html", page.html(header_html(result)))
+
+
+def results_json(result: CaseResult, stage_out: dict) -> str:
+    """The case's results document: the assessment's own JSON when there is one,
+    with the pipeline's status; otherwise the pipeline's record of the case."""
+    doc = result.to_dict()
+    return json.dumps(doc, indent=2, default=str)
