@@ -57,7 +57,13 @@ def tet_grid(points: np.ndarray, tets: np.ndarray, point_data: dict[str, np.ndar
     t = np.asarray(tets)
     if t.shape[0] == 4 and t.shape[1] != 4:
         t = t.T
-    cells = np.hstack([np.full((t.shape[0], 1), 4), t[:, :4]]).ravel()
+    t = np.array(t[:, :4], dtype=np.int64)
+    # VTK wants positively oriented tetrahedra ((b-a) x (c-a) . (d-a) > 0); swap two
+    # corners of the others so cell volumes (and normals) come out right
+    a, b, c, d = (pts[t[:, k]] for k in range(4))
+    neg = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a) < 0
+    t[neg, 1], t[neg, 2] = t[neg, 2], t[neg, 1].copy()
+    cells = np.hstack([np.full((t.shape[0], 1), 4), t]).ravel()
     grid = pv.UnstructuredGrid(cells, np.full(t.shape[0], pv.CellType.TETRA, dtype=np.uint8), pts)
     for k, v in (point_data or {}).items():
         grid.point_data[k] = np.asarray(v)
