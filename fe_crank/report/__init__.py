@@ -45,6 +45,19 @@ def _section_rows(obj) -> list[list[object]]:
 
     if obj is None:
         return []
+    if hasattr(obj, "limits"):  # acceptance criteria: one row per limit, with its meaning
+        try:
+            from fe_crank.io.criteria import QUANTITIES
+        except ModuleNotFoundError:  # pragma: no cover - the criteria parser is part of the package
+            QUANTITIES = {}
+        rows = []
+        for lim in obj.limits:
+            q = QUANTITIES.get(lim.quantity)
+            unit = "MPa" if q is not None and q.unit_kind == "pressure" else ""
+            val = lim.value / 1e6 if unit else lim.value
+            rows.append([lim.key.split(".")[-1], f"{'>=' if lim.sense == 'min' else '<='} {val:.4g} {unit}".strip()
+                         + (f"  ({q.meaning})" if q is not None else "")])
+        return rows
     if is_dataclass(obj):
         return [[f.name, getattr(obj, f.name)] for f in fields(obj) if not f.name.startswith("_")]
     return [["value", obj]]
