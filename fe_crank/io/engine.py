@@ -35,7 +35,7 @@ from pydantic import Field, model_validator
 from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.io.base import Strict, read_toml, resolve_reference, validate
-from fe_crank.io.gas import GasTableInput
+from fe_crank.io.gas import build_gas
 from fe_crank.io.units import Angle, Inertia, Length, Mass
 
 
@@ -117,7 +117,7 @@ class EngineInput(Strict):
     cylinder_defaults: dict = Field(default_factory=dict)
     cylinders: list[dict] = Field(min_length=1)
     firing_order: list[str] | None = None
-    gas: GasTableInput | None = None
+    gas: dict | None = None  # validated by fe_crank.io.gas.build_gas (model = table | csv | wiebe)
 
 
 def _check_names(kind: str, names: list[str], file) -> None:
@@ -195,8 +195,11 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
             offsets[c.name] = c.firing_offset or 0.0
     gas = None
     if raw.gas is not None:
-        ang, prs = raw.gas.arrays_si()
-        gas = model.GasPressure(ang, prs, raw.gas.crankcase_pressure, raw.gas.source)
+        c0 = cylinders[0]
+        gas = build_gas(
+            raw.gas, file, f"{pre}gas", strokes=raw.strokes, bore=c0.bore,
+            crank_radius=throws[c0.throw].radius, rod_length=c0.rod_length,
+        )
     return model.Engine(
         name=raw.name,
         strokes=raw.strokes,

@@ -1,5 +1,7 @@
 """Gas-pressure input: a p(phi) table inline, or a CSV file beside the input file.
 
+Three forms (``model`` key): ``"table"`` (default, inline points), ``"csv"`` (a file
+beside the input file) and ``"wiebe"`` (the parametric cycle of ``fe_crank.gas``).
 Units are explicit: the table states its angle and pressure units
 (``angle_unit = "deg"``, ``pressure_unit = "MPa"``); a CSV states them in its
 header (``angle [deg], pressure [MPa]``).  Pressures are absolute.
@@ -7,13 +9,16 @@ header (``angle [deg], pressure [MPa]``).  Pressures are absolute.
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Literal
 
 import numpy as np
-from pydantic import Field, model_validator
+from pydantic import Field, ValidationError, model_validator
 
-from fe_crank.io.base import Strict
-from fe_crank.io.units import Pressure, ureg
+from fe_crank import model
+from fe_crank.errors import InputError
+from fe_crank.io.base import Strict, resolve_reference, validate, validation_to_input_error
+from fe_crank.io.units import Angle, Energy, Pressure, ureg
 
 
 class GasTableInput(Strict):
@@ -51,3 +56,116 @@ class GasTableInput(Strict):
         ang = ureg.Quantity(ang, self.angle_unit).to("rad").magnitude
         prs = ureg.Quantity(prs, self.pressure_unit).to("Pa").magnitude
         return np.asarray(ang, float), np.asarray(prs, float)
+
+
+class GasCsvInput(Strict):
+    """``model = "csv"``: a CSV file beside the input file, header ``angle [deg], pressure [MPa]``."""
+
+    model: Literal["csv"]
+    file: str = Field(min_length=1)
+    crankcase_pressure: Pressure = 101325.0
+    source: str = ""
+
+
+class GasWiebeInput(Strict):
+    """``model = "wiebe"``: closed-cycle polytropes with Wiebe heat release (fe_crank.gas.wiebe_cycle)."""
+
+    model: Literal["wiebe"]
+    compression_ratio: float = Field(gt=1.0)
+    intake_pressure: Pressure
+    exhaust_pressure: Pressure
+    heat_released: Energy
+    combustion_start: Angle
+    combustion_duration: Angle
+    k: float = Field(default=1.35, gt=1.0, lt=2.0)
+    wiebe_a: float = Field(default=5.0, gt=0)
+    wiebe_m: float = Field(default=2.0, ge=0)
+    crankcase_pressure: Pressure = 101325.0
+    source: str = ""
+
+    @model_validator(mode="after")
+    def _check(self):
+        for key in ("intake_pressure", "exhaust_pressure"):
+            if not getattr(self, key) > 0:
+                raise ValueError(f"{key} must be a positive absolute pressure")
+        if self.heat_released < 0:
+            raise ValueError("heat_released cannot be negative")
+        if not self.combustion_duration > 0:
+            raise ValueError("combustion_duration must be positive")
+        return self
+
+
+def _split_header(cell: str, file, key: str) -> str:
+    cell = cell.strip()
+    if "[" not in cell or not cell.endswith("]"):
+        raise InputError(
+            f"CSV header cell {cell!r} must state its unit as 'name [unit]', e.g. 'angle [deg], pressure [MPa]'",
+            file=str(file), key=key,
+        )
+    return cell[cell.index("[") + 1:-1].strip()
+
+
+def read_gas_csv(path, *, crankcase_pressure: float = 101325.0, source: str = "") -> model.GasPressure:
+    """Read ``angle [unit], pressure [unit]`` CSV (absolute pressure) into a table."""
+    path = Path(path)
+    try:
+        lines = path.read_text(encoding="utf-8").splitlines()
+    except FileNotFoundError:
+        raise InputError("gas pressure CSV not found", file=str(path)) from None
+    rows = [ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")]
+    if len(rows) < 3:
+        raise InputError("needs a header and at least two rows", file=str(path))
+    head = rows[0].split(",")
+    if len(head) != 2:
+        raise InputError("header must have two columns: 'angle [deg], pressure [MPa]'", file=str(path), key="header")
+    au, pu = _split_header(head[0], path, "header"), _split_header(head[1], path, "header")
+    points = []
+    for i, ln in enumerate(rows[1:], start=2):
+        cells = ln.split(",")
+        try:
+            points.append((float(cells[0]), float(cells[1])))
+        except (ValueError, IndexError):
+            raise InputError(f"row {ln!r} is not two numbers", file=str(path), key=f"row {i}") from None
+    try:
+        table = GasTableInput(angle_unit=au, pressure_unit=pu, points=points,
+                              crankcase_pressure=crankcase_pressure, source=source or str(path.name))
+    except ValidationError as exc:
+        raise validation_to_input_error(exc, path) from None
+    ang, prs = table.arrays_si()
+    return model.GasPressure(ang, prs, crankcase_pressure, table.source)
+
+
+def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: float, rod_length: float) -> model.GasPressure:
+    """Validate a ``[gas]`` table (``model`` = table | csv | wiebe) and return the p(phi) table.
+
+    The Wiebe model needs the cylinder geometry (first cylinder of the engine)."""
+    if not isinstance(data, dict):
+        raise InputError("must be a table", file=str(file), key=key)
+    kind = data.get("model", "table")
+    if kind == "table":
+        raw = validate(GasTableInput, data, file, key)
+        ang, prs = raw.arrays_si()
+        cycle = 4.0 * np.pi if strokes == 4 else 2.0 * np.pi
+        if ang[0] < -1e-9 or ang[-1] > cycle + 1e-9:
+            raise InputError(
+                f"angles must lie within one cycle, 0 .. {np.degrees(cycle):.0f} deg from TDC firing",
+                file=str(file), key=f"{key}.points",
+            )
+        return model.GasPressure(ang, prs, raw.crankcase_pressure, raw.source)
+    if kind == "csv":
+        raw = validate(GasCsvInput, data, file, key)
+        return read_gas_csv(resolve_reference(raw.file, file), crankcase_pressure=raw.crankcase_pressure,
+                            source=raw.source)
+    if kind == "wiebe":
+        from fe_crank.gas import wiebe_cycle
+
+        raw = validate(GasWiebeInput, data, file, key)
+        g = wiebe_cycle(
+            bore=bore, r=crank_radius, l=rod_length, compression_ratio=raw.compression_ratio,
+            intake_pressure=raw.intake_pressure, exhaust_pressure=raw.exhaust_pressure,
+            heat_released=raw.heat_released, combustion_start=raw.combustion_start,
+            combustion_duration=raw.combustion_duration, k=raw.k, wiebe_a=raw.wiebe_a, wiebe_m=raw.wiebe_m,
+            strokes=strokes, crankcase_pressure=raw.crankcase_pressure,
+        )
+        return model.GasPressure(g.angle, g.pressure, g.crankcase_pressure, raw.source or g.source)
+    raise InputError(f"unknown gas model {kind!r}; use 'table', 'csv' or 'wiebe'", file=str(file), key=f"{key}.model")

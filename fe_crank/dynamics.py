@@ -1,0 +1,326 @@
+"""Engine dynamics over one working cycle: forces, torque, crankpin and bearing loads.
+
+Model (Kolchin & Demidov, *Design of automotive engines*, ch. 4-5; Heywood,
+*Internal Combustion Engine Fundamentals*, sec. 2.2 and 13.2), per cylinder at
+constant crank speed:
+
+* piston: gas force ``F_g = (p - p_cc) A`` towards the crank axis, mass ``m_p``;
+* rod: a rigid body of mass ``m``, centre of mass at ``c`` from the big end and
+  moment of inertia ``J`` about it.  Without a given ``J`` the dynamically
+  equivalent two-mass value ``J = m c (l - c)`` is used, which makes the result
+  identical to the classical two-mass split (``m c/l`` reciprocating at the small
+  end, ``m (l-c)/l`` rotating at the big end);
+* the piston equation along the axis and the rod's three equations give the force
+  of the rod on the piston pin, the side thrust and the force of the rod on the
+  crankpin exactly (no lambda series).
+
+All angles and frames as in ``fe_crank/model.py``.  A cylinder's frame has ``u``
+along its axis towards the head and ``w`` towards the side its crankpin moves to
+just after TDC.  Reported per cylinder (arrays over the cycle grid):
+
+* ``gas``: ``F_g``, N, positive towards the crank axis;
+* ``inertia``: classical reciprocating inertia force ``-m_j a`` with
+  ``m_j = m_p + m c / l``, N, positive towards the crank axis (for reference: the
+  exact solution below does not use the split);
+* ``rod_force``: force of the rod on the piston pin along the rod, compression
+  positive, N;
+* ``side_thrust``: force of the piston on the cylinder wall along ``w``, N;
+* ``tangential``, ``radial``: force of the rod on the crankpin, tangential in the
+  sense of rotation and radial outward from the shaft axis, N;
+* ``torque``: ``tangential * r``, N m, positive driving.
+
+Per throw: the crankpin load in the throw frame (x tangential for sense +1, y
+radially outward; all rods on the pin summed, crank's own rotating mass excluded),
+the journal torques either side (cumulative from the free end, the front, of each
+shaft, statically determinate as in IACS UR M53) and the main-bearing loads from
+the simply supported split (the pin at mid-span between its two bearings, each
+taking half of the pin load plus the centrifugal force of the throw's rotating
+mass; counterweights are not included here: the balance stage adds them).
+
+Engine totals: torque reduced to the reference shaft (``sum T_s * speed_ratio_s``,
+power-equivalent), mean indicated torque and power, torque non-uniformity
+``(T_max - T_min) / T_mean`` and the flywheel inertia
+``J = dE_max / (delta omega^2)`` for a coefficient of speed fluctuation
+``delta = (omega_max - omega_min) / omega_mean`` (Kolchin & Demidov, ch. 5).
+
+Articulated (link) rods are treated as plain rods on the crankpin here; their exact
+kinematics belong to the balance stage.  Gravity is neglected (it is below 0.1 % of
+the inertia forces at running speed).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fe_crank import model
+from fe_crank.errors import InputError
+from fe_crank.gas import pressure_at
+from fe_crank.kinematics import PistonMotion, piston_motion
+
+__all__ = [
+    "CylinderForces",
+    "ThrowLoads",
+    "DynamicsResult",
+    "analyse",
+    "solve_cylinder",
+    "cylinder_angle",
+]
+
+
+@dataclass(frozen=True)
+class CylinderForces:
+    """Forces of one cylinder over the cycle grid (see module docstring)."""
+
+    name: str
+    throw: str
+    phi: np.ndarray  # rad: crank angle from the cylinder axis, in the shaft's sense
+    gas_angle: np.ndarray  # rad: angle from TDC firing, 0 .. cycle
+    pressure: np.ndarray  # Pa absolute
+    motion: PistonMotion
+    gas: np.ndarray
+    inertia: np.ndarray
+    rod_force: np.ndarray
+    side_thrust: np.ndarray
+    tangential: np.ndarray
+    radial: np.ndarray
+    torque: np.ndarray
+    volume_swept: np.ndarray  # m^3: A s, the displaced volume from TDC
+
+
+@dataclass(frozen=True)
+class ThrowLoads:
+    name: str
+    shaft: str
+    angle_global: np.ndarray  # rad: crankpin direction in the engine frame, from +y
+    pin_force: np.ndarray  # (n, 2) throw frame: rods on the crankpin
+    torque: np.ndarray  # N m: torque of the cylinders on this throw
+    torque_front: np.ndarray
+    torque_rear: np.ndarray
+    bearing_front: np.ndarray  # (n, 2) engine frame (x, y): force of the shaft on the bearing
+    bearing_rear: np.ndarray
+
+    @property
+    def pin_force_magnitude(self) -> np.ndarray:
+        return np.hypot(self.pin_force[:, 0], self.pin_force[:, 1])
+
+
+@dataclass(frozen=True)
+class DynamicsResult:
+    engine: str
+    speed: float  # rad/s of the reference shaft
+    theta: np.ndarray  # rad: cycle angle grid, uniform, 0 <= theta < cycle
+    cycle: float
+    cylinders: dict[str, CylinderForces]
+    throws: dict[str, ThrowLoads]
+    shaft_torque: dict[str, np.ndarray]  # N m: per shaft, in that shaft's sense
+    torque: np.ndarray  # N m: reduced to the reference shaft
+    mean_torque: float
+    power: float  # W
+    torque_nonuniformity: float
+    indicated_work: float  # J per cycle: sum of the closed integrals p dV
+    speed_fluctuation: float
+    excess_energy: float  # J: max - min of the cumulative excess work
+    flywheel_inertia: float  # kg m^2 for speed_fluctuation
+    warnings: tuple[str, ...] = field(default_factory=tuple)
+
+
+def cylinder_angle(engine: model.Engine, cyl: model.Cylinder, theta) -> np.ndarray:
+    """Crank angle ``phi`` of a cylinder (from its axis, in its shaft's sense) at cycle
+    angle ``theta``: the crankpin lies at the global angle
+    ``gamma = phase + sense (ratio theta + throw.angle)`` and
+    ``phi = sense (gamma - bank_angle)``."""
+    throw = engine.throw(cyl.throw)
+    shaft = engine.shaft(throw.shaft)
+    theta = np.asarray(theta, dtype=float)
+    return shaft.sense * (shaft.phase - cyl.bank_angle) + shaft.speed_ratio * theta + throw.angle
+
+
+def _crankpin_global_angle(shaft: model.Shaft, throw: model.Throw, theta):
+    return shaft.phase + shaft.sense * (shaft.speed_ratio * theta + throw.angle)
+
+
+def solve_cylinder(
+    phi,
+    *,
+    r: float,
+    l: float,
+    omega: float,
+    gas_force,
+    piston_mass: float,
+    rod_mass: float,
+    rod_cg: float,
+    rod_inertia: float | None = None,
+    offset: float = 0.0,
+):
+    """Exact planar dynamics of one slider-crank at constant ``omega``.
+
+    Piston along ``u`` (Newton): ``m_p (-a) = -F_g + P_u``; rod (Newton-Euler about the
+    big end ``A``, rod vector ``d = B - A = l (cos b, -sin b)``, angular acceleration
+    ``-b''`` in the u-w orientation)::
+
+        d x (-P) = -J b'' + (G - A) x (m a_G)
+        Q = m a_G + P
+
+    ``P`` is the force of the rod on the piston, ``Q`` the force of the crankpin on the
+    rod.  Returns a dict with ``motion``, ``P`` (n, 2), ``Q`` (n, 2), ``rod_force``,
+    ``side_thrust``, ``tangential``, ``radial``, ``torque`` (see module docstring).
+    """
+    J = rod_mass * rod_cg * (l - rod_cg) if rod_inertia is None else rod_inertia
+    m = piston_motion(phi, r, l, omega, offset=offset, rod_cg=rod_cg)
+    phi = m.phi
+    fg = np.broadcast_to(np.asarray(gas_force, dtype=float), phi.shape)
+    sb, cb = np.sin(m.beta), np.cos(m.beta)
+    pu = fg - piston_mass * m.a
+    # G - A in (u, w)
+    k = rod_cg / l
+    gu, gw = k * l * cb, -k * l * sb
+    ag = m.rod_cg_acceleration
+    cross_g = gu * rod_mass * ag[..., 1] - gw * rod_mass * ag[..., 0]
+    pw = (J * m.beta_ddot - cross_g - l * sb * pu) / (l * cb)
+    P = np.stack([pu, pw], axis=-1)
+    Q = rod_mass * ag + P
+    F = -Q  # force of the rod on the crankpin
+    sphi, cphi = np.sin(phi), np.cos(phi)
+    tangential = -F[..., 0] * sphi + F[..., 1] * cphi
+    radial = F[..., 0] * cphi + F[..., 1] * sphi
+    return {
+        "motion": m,
+        "P": P,
+        "Q": Q,
+        "rod_force": pu * cb - pw * sb,
+        "side_thrust": pw,
+        "tangential": tangential,
+        "radial": radial,
+        "torque": tangential * r,
+    }
+
+
+def _grid(cycle: float, step: float) -> np.ndarray:
+    if not step > 0:
+        raise InputError(f"angle step must be positive (got {step} rad)", key="step")
+    n = int(round(cycle / step))
+    if n < 8:
+        raise InputError(f"angle step {np.degrees(step):.4g} deg is too coarse for the cycle", key="step")
+    return cycle * np.arange(n) / n
+
+
+def analyse(
+    engine: model.Engine,
+    operating: model.OperatingPoint,
+    *,
+    step: float = np.radians(1.0),
+    speed_fluctuation: float = 0.01,
+) -> DynamicsResult:
+    """Forces and torques of the whole engine over one cycle (module docstring).
+
+    Parameters
+    ----------
+    engine, operating
+        Frozen engine and operating point (SI).
+    step : float
+        Cycle-angle step, rad; the cycle is split into ``round(cycle / step)`` equal steps.
+    speed_fluctuation : float
+        Target coefficient ``delta`` for the flywheel inertia.
+    """
+    cycle = engine.cycle_angle
+    theta = _grid(cycle, step)
+    omega = operating.speed
+    warnings: list[str] = []
+    if engine.gas is None:
+        warnings.append("engine has no gas pressure: inertia forces only")
+    cylinders: dict[str, CylinderForces] = {}
+    work = 0.0
+    for cyl in engine.cylinders:
+        throw = engine.throw(cyl.throw)
+        shaft = engine.shaft(throw.shaft)
+        phi = cylinder_angle(engine, cyl, theta)
+        # firing TDC: phi at the firing offset, rounded to its revolution
+        phi_f = float(cylinder_angle(engine, cyl, cyl.firing_offset))
+        turns = np.round(phi_f / (2 * np.pi))
+        if abs(phi_f - 2 * np.pi * turns) > 1e-6:
+            warnings.append(
+                f"cylinder {cyl.name}: firing_offset {np.degrees(cyl.firing_offset):.6g} deg is not at its TDC "
+                f"(crank {np.degrees(phi_f - 2 * np.pi * turns):.6g} deg from the axis); the gas table is "
+                "applied from the nearest TDC"
+            )
+        gas_angle = np.mod(phi - 2 * np.pi * turns, cycle)
+        if engine.gas is not None:
+            p = pressure_at(engine.gas, gas_angle, cycle)
+            pcc = engine.gas.crankcase_pressure
+        else:
+            p = np.full_like(theta, 101325.0)
+            pcc = 101325.0
+        area = cyl.piston_area
+        fg = (p - pcc) * area
+        rod = cyl.rod
+        sol = solve_cylinder(
+            phi, r=throw.crank_radius, l=rod.length, omega=omega * shaft.speed_ratio, gas_force=fg,
+            piston_mass=cyl.piston_mass, rod_mass=rod.mass, rod_cg=rod.cg_from_big_end,
+            rod_inertia=rod.inertia_cg, offset=cyl.pin_offset,
+        )
+        m = sol["motion"]
+        m_j = cyl.piston_mass + rod.mass * rod.reciprocating_fraction
+        vol = area * m.s
+        # closed integral of p dV over the cycle (periodic trapezoid)
+        dv = np.roll(vol, -1) - vol
+        pm = 0.5 * (p + np.roll(p, -1))
+        work += float(np.sum(pm * dv))
+        cylinders[cyl.name] = CylinderForces(
+            name=cyl.name, throw=cyl.throw, phi=phi, gas_angle=gas_angle, pressure=p, motion=m,
+            gas=fg, inertia=-m_j * m.a, rod_force=sol["rod_force"], side_thrust=sol["side_thrust"],
+            tangential=sol["tangential"], radial=sol["radial"], torque=sol["torque"], volume_swept=vol,
+        )
+
+    throws: dict[str, ThrowLoads] = {}
+    shaft_torque: dict[str, np.ndarray] = {}
+    for shaft in engine.shafts:
+        on_shaft = sorted(
+            (t for t in engine.throws if t.shaft == shaft.name), key=lambda t: t.axial_position
+        )
+        cumulative = np.zeros_like(theta)
+        for t in on_shaft:
+            cyls = [c for c in engine.cylinders if c.throw == t.name]
+            tq = np.zeros_like(theta)
+            pin = np.zeros((theta.size, 2))
+            for c in cyls:
+                cf = cylinders[c.name]
+                tq = tq + cf.torque
+                pin[:, 0] += shaft.sense * cf.tangential
+                pin[:, 1] += cf.radial
+            gamma = _crankpin_global_angle(shaft, t, theta)
+            ey = np.stack([np.sin(gamma), np.cos(gamma)], axis=-1)
+            ex = np.stack([np.cos(gamma), -np.sin(gamma)], axis=-1)
+            w = omega * shaft.speed_ratio
+            centrifugal = t.rotating_mass * t.crank_radius * w**2
+            total_global = pin[:, :1] * ex + (pin[:, 1:] + centrifugal) * ey
+            front = cumulative.copy()
+            cumulative = cumulative + tq
+            throws[t.name] = ThrowLoads(
+                name=t.name, shaft=shaft.name, angle_global=gamma, pin_force=pin, torque=tq,
+                torque_front=front, torque_rear=cumulative.copy(),
+                bearing_front=0.5 * total_global, bearing_rear=0.5 * total_global,
+            )
+        shaft_torque[shaft.name] = cumulative
+
+    torque = sum(shaft_torque[s.name] * s.speed_ratio for s in engine.shafts)
+    mean_torque = float(np.mean(torque))
+    power = mean_torque * omega
+    if abs(mean_torque) > 0:
+        nonuni = float((torque.max() - torque.min()) / mean_torque)
+    else:
+        nonuni = float("inf")
+    # excess work E(theta) = int (T - T_mean) dtheta (trapezoid, periodic)
+    dtheta = cycle / theta.size
+    excess = np.concatenate([[0.0], np.cumsum(0.5 * ((torque - mean_torque) + np.roll(torque - mean_torque, -1)) * dtheta)])
+    de = float(excess.max() - excess.min())
+    if not speed_fluctuation > 0:
+        raise InputError(f"speed_fluctuation must be positive (got {speed_fluctuation})", key="speed_fluctuation")
+    j_fly = de / (speed_fluctuation * omega**2)
+    return DynamicsResult(
+        engine=engine.name, speed=omega, theta=theta, cycle=cycle, cylinders=cylinders, throws=throws,
+        shaft_torque=shaft_torque, torque=torque, mean_torque=mean_torque, power=power,
+        torque_nonuniformity=nonuni, indicated_work=work, speed_fluctuation=speed_fluctuation,
+        excess_energy=de, flywheel_inertia=j_fly, warnings=tuple(warnings),
+    )
