@@ -106,6 +106,22 @@ class Cylinder:
 
 
 @dataclass(frozen=True)
+class Yoke:
+    """Synchronising yoke of a Nordberg radial engine (seed 000, sec. 21, eqs. 162-166).
+
+    Its centre of mass circles at ``orbit_radius`` with the crank and oscillates along its
+    axis (direction ``axis_angle``) with half-stroke ``arm * sin(beta_max)``.
+    """
+
+    mass: float  # kg
+    orbit_radius: float  # m: mean radius R_cp of the circular motion
+    arm: float  # m: rocker arm l_ya
+    beta_max: float  # rad: largest rod deflection
+    axis_angle: float = 0.0  # rad: direction of the yoke's oscillation (engine convention)
+    axial_position: float = 0.0  # m
+
+
+@dataclass(frozen=True)
 class Engine:
     name: str
     strokes: Literal[2, 4]
@@ -114,6 +130,7 @@ class Engine:
     cylinders: tuple[Cylinder, ...]
     gas: GasPressure | None = None  # same pressure curve for every cylinder, shifted by firing offset
     source: str = ""
+    yoke: Yoke | None = None  # Nordberg synchronising yoke (balance stage), optional
 
     @property
     def cycle_angle(self) -> float:

@@ -108,6 +108,23 @@ class CylinderInput(Strict):
         return self
 
 
+class YokeInput(Strict):
+    """Nordberg synchronising yoke (seed 000, example 16); see ``fe_crank.model.Yoke``."""
+
+    mass: Mass
+    orbit_radius: Length
+    arm: Length
+    beta_max: Angle
+    axis_angle: Angle = 0.0
+    axial_position: Length = 0.0
+
+    @model_validator(mode="after")
+    def _positive(self):
+        if not (self.mass > 0 and self.orbit_radius >= 0 and self.arm > 0):
+            raise ValueError("yoke mass and arm must be positive, orbit_radius >= 0")
+        return self
+
+
 class EngineInput(Strict):
     name: str = Field(min_length=1)
     strokes: Literal[2, 4]
@@ -118,6 +135,7 @@ class EngineInput(Strict):
     cylinders: list[dict] = Field(min_length=1)
     firing_order: list[str] | None = None
     gas: dict | None = None  # validated by fe_crank.io.gas.build_gas (model = table | csv | wiebe)
+    yoke: YokeInput | None = None  # Nordberg synchronising yoke (balance stage)
 
 
 def _check_names(kind: str, names: list[str], file) -> None:
@@ -230,6 +248,12 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
             for c in cylinders
         ),
         gas=gas,
+        yoke=(
+            model.Yoke(raw.yoke.mass, raw.yoke.orbit_radius, raw.yoke.arm, raw.yoke.beta_max,
+                       raw.yoke.axis_angle, raw.yoke.axial_position)
+            if raw.yoke is not None
+            else None
+        ),
     )
 
 
