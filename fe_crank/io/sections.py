@@ -9,8 +9,8 @@ from __future__ import annotations
 from fe_crank.io.loadcase import SECTIONS
 
 # SECTIONS["geometry"] = ...   (geometry stage)
-# SECTIONS["material"] = ...   (assessment stage)
-# SECTIONS["criteria"] = ...   (assessment stage)
+SECTIONS["material"] = __import__("fe_crank.io.material", fromlist=["_"]).parse_material  # assessment stage
+SECTIONS["criteria"] = __import__("fe_crank.io.criteria", fromlist=["_"]).parse_criteria  # assessment stage
 # SECTIONS["fe"] = ...         (FE stage)
 # SECTIONS["balance"] = ...    (balance stage)
 _ = SECTIONS

@@ -1,0 +1,142 @@
+"""One load case: every throw's groups, UR M53, counterweights, criteria -> ``Assessment``."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fe_crank.assess import m53
+from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
+from fe_crank.assess.superpose import UnitStresses, load_coefficients
+from fe_crank.assess.throw import STATIC_ONLY_PREFIXES, GroupResult, assess_group
+from fe_crank.assess.verdict import CriterionResult, judge
+from fe_crank.errors import InputError
+
+SCHEMA_VERSION = "1.0"
+
+
+@dataclass(frozen=True)
+class ThrowAssessment:
+    name: str
+    groups: tuple[GroupResult, ...]
+    m53: tuple[m53.M53Fillet, ...] = ()
+    m53_nominal: m53.NominalStresses | None = None
+    counterweights: tuple[CounterweightCheck, ...] = ()
+    n_angles: int = 0
+
+
+@dataclass(frozen=True)
+class Assessment:
+    """Everything the assessment found for one load case."""
+
+    case: str
+    source_file: str
+    speed: float  # rad/s
+    overspeed: float | None
+    material: object
+    throws: tuple[ThrowAssessment, ...]
+    criteria: tuple[CriterionResult, ...]
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.criteria)
+
+
+def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np.ndarray, torque: np.ndarray,
+                 *, omega: float, sense: int = 1, overspeed: float | None, material, crank_radius: float,
+                 m53_geometry: m53.M53Geometry | None = None, m53_additional: float = 10e6,
+                 fe_scf: dict[str, dict[str, float]] | None = None,
+                 counterweights: tuple[CounterweightData, ...] = ()) -> ThrowAssessment:
+    """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
+    throw frame and the torque through the throw (n,) over the cycle angles ``theta``."""
+    coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense)
+    groups = tuple(
+        assess_group(unit, g, coeffs, np.asarray(theta), material, crank_radius=crank_radius, overspeed=overspeed)
+        for g in sorted(unit.groups) if len(unit.groups[g])
+    )
+    fillets, nominal = (), None
+    if m53_geometry is not None and material.tensile_strength is not None and material.m53_k is not None:
+        nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], torque)
+        fillets = tuple(
+            m53.assess_fillet(m53_geometry, nominal, f, tensile=material.tensile_strength, k=material.m53_k,
+                              additional=m53_additional, fe_scf=(fe_scf or {}).get(f))
+            for f in ("pin", "journal")
+        )
+    cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
+    return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)))
+
+
+def _where(throw: str, ext) -> str:
+    if ext is None:
+        return ""
+    p = ", ".join(f"{c * 1e3:.1f}" for c in ext.point)
+    s = f"throw {throw}, {ext.group}, node {ext.node} at ({p}) mm"
+    if ext.angle is not None:
+        s += f", {math.degrees(ext.angle):.0f} deg"
+    return s
+
+
+def _pick(throws, getter, worst):
+    """(value, location) of the worst non-None value of getter(throw, group) over all groups."""
+    best = None
+    for t in throws:
+        for g in t.groups:
+            got = getter(g)
+            if got is None:
+                continue
+            value, ext = got
+            if best is None or (value < best[0] if worst == "min" else value > best[0]):
+                best = (value, _where(t.name, ext))
+    return best
+
+
+def evaluate_criteria(criteria, throws: tuple[ThrowAssessment, ...], *, file: str = "",
+                      overspeed: float | None = None) -> tuple[CriterionResult, ...]:
+    """Each limit of ``criteria`` -> a verdict.  A criterion that cannot be evaluated
+    (no data for it) is an InputError naming its key: it never passes silently."""
+    from fe_crank.io.criteria import QUANTITIES
+
+    out = []
+    for lim in criteria.limits:
+        q = lim.quantity
+        got = None
+        unit = ""
+        if q == "static_safety":
+            got = _pick(throws, lambda g: (g.static_safety, g.max_von_mises), "min")
+        elif q == "overspeed_safety":
+            if overspeed is None:
+                raise InputError("needs operating.overspeed", file=file, key=lim.key)
+            got = _pick(throws, lambda g: (g.overspeed_safety, g.max_von_mises_overspeed), "min")
+        elif q == "fatigue_safety":
+            got = _pick(throws, lambda g: None if g.fatigue_safety is None else
+                        (g.fatigue_safety.value, g.fatigue_safety), "min")
+        elif q == "gough_pollard_safety":
+            got = _pick(throws, lambda g: None if g.gough_pollard_safety is None else
+                        (g.gough_pollard_safety.value, g.gough_pollard_safety), "min")
+        elif q in ("counterweight_stress", "counterweight_overspeed_stress"):
+            unit = "Pa"
+            if q == "counterweight_overspeed_stress" and overspeed is None:
+                raise InputError("needs operating.overspeed", file=file, key=lim.key)
+            attr = "max_von_mises" if q == "counterweight_stress" else "max_von_mises_overspeed"
+            got = _pick(throws, lambda g: (getattr(g, attr).value, getattr(g, attr))
+                        if g.group.startswith(STATIC_ONLY_PREFIXES) else None, "max")
+        elif q == "m53_acceptability":
+            vals = [(f.acceptability, f"throw {t.name}, {f.fillet} fillet ({f.scf_source})")
+                    for t in throws for f in t.m53]
+            got = min(vals) if vals else None
+        elif q in ("unbalance_error", "bolt_utilisation"):
+            attr = q
+            vals = [(getattr(c, attr), f"throw {t.name}, {c.name}") for t in throws for c in t.counterweights
+                    if getattr(c, attr) is not None]
+            got = max(vals) if vals else None
+        if got is None:
+            raise InputError(f"cannot be evaluated: the model gives no {q.replace('_', ' ')} "
+                             "(missing geometry, mesh group, balance requirement or bolt data)",
+                             file=file, key=lim.key)
+        value, where = got
+        out.append(judge(lim.key, q, lim.sense, value, lim.value, unit=unit, location=where,
+                         description=QUANTITIES[q].meaning))
+    return tuple(out)

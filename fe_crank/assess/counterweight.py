@@ -1,0 +1,54 @@
+"""Counterweight checks: stress (from the group results), built m r against the
+balance requirement, and the bolt load of a bolted counterweight.
+
+Bolt load: the counterweight's centrifugal force F = m r_c omega^2 (m its mass, r_c
+the radius of its centre of mass), carried by the bolts; utilisation F / capacity.
+Unbalance error: |m r_built - m r_required| / m r_required.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class CounterweightData:
+    """What the geometry and balance stages say about one counterweight (SI)."""
+
+    name: str
+    mass: float  # kg
+    centroid_radius: float  # m
+    required_unbalance: float | None = None  # kg m, from the balance stage
+    bolted: bool = False
+    bolt_capacity: float | None = None  # N, total over the counterweight's bolts
+
+    @property
+    def built_unbalance(self) -> float:
+        return self.mass * self.centroid_radius
+
+
+@dataclass(frozen=True)
+class CounterweightCheck:
+    name: str
+    built_unbalance: float  # kg m
+    required_unbalance: float | None
+    unbalance_error: float | None  # relative
+    bolt_load: float | None  # N at overspeed (or speed when none is given)
+    bolt_utilisation: float | None
+
+
+def centrifugal_force(mass: float, radius: float, omega: float) -> float:
+    """F = m r omega^2."""
+    return mass * radius * omega**2
+
+
+def check_counterweight(cw: CounterweightData, omega: float, overspeed: float | None) -> CounterweightCheck:
+    err = None
+    if cw.required_unbalance is not None and cw.required_unbalance > 0:
+        err = abs(cw.built_unbalance - cw.required_unbalance) / cw.required_unbalance
+    load = util = None
+    if cw.bolted:
+        load = centrifugal_force(cw.mass, cw.centroid_radius, overspeed if overspeed is not None else omega)
+        if cw.bolt_capacity:
+            util = load / cw.bolt_capacity
+    return CounterweightCheck(cw.name, cw.built_unbalance, cw.required_unbalance, err, load, util)

@@ -1,0 +1,243 @@
+"""IACS UR M53 "Calculation of crankshafts for I.C. engines", Rev.1 (Dec 2004).
+
+The empirical route beside the FE one: nominal alternating stresses from the statically
+determinate model of one throw (supports at the main-bearing centres), empirical stress
+concentration factors (section 3, valid inside a stated range), the equivalent
+alternating stress (section 5), the fatigue strength (section 6) and the acceptability
+factor Q (section 7, Q >= 1.15).  The empirical formulas are unchanged in Rev.2
+(Jan 2011), which only adds the FE alternative for the SCFs (its Appendix III); that is
+what ``fe_crank`` uses outside the validity range.
+
+The formulas are in the rule's units: lengths in mm, stresses in N/mm^2 (MPa).  The
+public functions here take and return SI (m, Pa) and convert inside.
+
+Related dimensions (section 3.1, all divided by the crankpin diameter D):
+r = R_H/D (pin fillet) or R_G/D (journal fillet), s = S/D (S: pin/journal overlap,
+S = (D + D_G)/2 - crank radius), w = W/D (web thickness), b = B/D (web width),
+d_G = D_BG/D, d_H = D_BH/D (bores), t_H = T_H/D, t_G = T_G/D (fillet recesses).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+#: (low, high) of each related dimension, UR M53 Rev.1 section 3.1
+VALIDITY = {
+    "s": (-math.inf, 0.5),  # below -0.5: evaluated at s = -0.5 (3.1)
+    "w": (0.2, 0.8),
+    "b": (1.1, 2.2),
+    "r": (0.03, 0.13),
+    "dG": (0.0, 0.8),
+    "dH": (0.0, 0.8),
+    "tH": (-0.3, 0.3),
+    "tG": (-0.3, 0.3),
+}
+
+
+@dataclass(frozen=True)
+class M53Geometry:
+    """Throw dimensions for UR M53, SI (m).  ``bearing_to_web`` is the axial distance
+    from a main-bearing centre to the web centre line (for the web bending moment)."""
+
+    pin_diameter: float  # D
+    journal_diameter: float  # D_G
+    crank_radius: float
+    web_thickness: float  # W (axial)
+    web_width: float  # B (at the pin/journal overlap)
+    pin_fillet_radius: float  # R_H
+    journal_fillet_radius: float  # R_G
+    bearing_to_web: float
+    pin_bore: float = 0.0  # D_BH
+    journal_bore: float = 0.0  # D_BG
+    pin_recess: float = 0.0  # T_H
+    journal_recess: float = 0.0  # T_G
+
+    @property
+    def overlap(self) -> float:
+        """S = (D + D_G)/2 - R (UR M53 3.1)."""
+        return 0.5 * (self.pin_diameter + self.journal_diameter) - self.crank_radius
+
+    def related(self, fillet: str) -> dict[str, float]:
+        """Related dimensions of UR M53 3.1 for ``fillet`` in ("pin", "journal")."""
+        d = self.pin_diameter
+        rad = self.pin_fillet_radius if fillet == "pin" else self.journal_fillet_radius
+        return {
+            "r": rad / d,
+            "s": max(self.overlap / d, -0.5),
+            "w": self.web_thickness / d,
+            "b": self.web_width / d,
+            "dG": self.journal_bore / d,
+            "dH": self.pin_bore / d,
+            "tH": self.pin_recess / d,
+            "tG": self.journal_recess / d,
+        }
+
+
+def out_of_range(rel: dict[str, float]) -> list[str]:
+    """Related dimensions outside the validity range, as readable strings."""
+    bad = []
+    for k, (lo, hi) in VALIDITY.items():
+        v = rel[k]
+        if not lo - 1e-12 <= v <= hi + 1e-12:
+            bad.append(f"{k} = {v:.4g} not in [{lo}, {hi}]")
+    return bad
+
+
+def _recess(rel: dict[str, float]) -> float:
+    """f(recess) = 1 + (t_H + t_G)(1.8 + 3.2 s), not below 1 (3.2, 3.3)."""
+    return max(1.0, 1.0 + (rel["tH"] + rel["tG"]) * (1.8 + 3.2 * rel["s"]))
+
+
+def alpha_b(rel: dict[str, float]) -> float:
+    """Crankpin fillet bending SCF alpha_B = 2.6914 f(s,w) f(w) f(b) f(r) f(d_G) f(d_H) f(recess) (3.2)."""
+    s, w, b, r, dg, dh = (rel[k] for k in ("s", "w", "b", "r", "dG", "dH"))
+    u = 1.0 - s
+    fsw = (-4.1883 + 29.2004 * w - 77.5925 * w**2 + 91.9454 * w**3 - 40.0416 * w**4
+           + u * (9.5440 - 58.3480 * w + 159.3415 * w**2 - 192.5846 * w**3 + 85.2916 * w**4)
+           + u**2 * (-3.8399 + 25.0444 * w - 70.5571 * w**2 + 87.0328 * w**3 - 39.1832 * w**4))
+    fw = 2.1790 * w**0.7171
+    fb = 0.6840 - 0.0077 * b + 0.1473 * b**2
+    fr = 0.2081 * r ** (-0.5231)
+    fdg = 0.9993 + 0.27 * dg - 1.0211 * dg**2 + 0.5306 * dg**3
+    fdh = 0.9978 + 0.3145 * dh - 1.5241 * dh**2 + 2.4147 * dh**3
+    return 2.6914 * fsw * fw * fb * fr * fdg * fdh * _recess(rel)
+
+
+def alpha_t(rel: dict[str, float]) -> float:
+    """Torsional SCF alpha_T = 0.8 f(r,s) f(b) f(w) (3.2; with r = R_G/D it is beta_T of 3.3)."""
+    s, w, b, r = (rel[k] for k in ("s", "w", "b", "r"))
+    frs = r ** (-0.322 + 0.1015 * (1.0 - s))
+    fb = 7.8955 - 10.654 * b + 5.3482 * b**2 - 0.857 * b**3
+    fw = w ** (-0.145)
+    return 0.8 * frs * fb * fw
+
+
+def beta_b(rel: dict[str, float]) -> float:
+    """Journal fillet bending SCF beta_B = 2.7146 f_B(s,w) f_B(w) f_B(b) f_B(r) f_B(d_G) f_B(d_H) f(recess) (3.3)."""
+    s, w, b, r, dg, dh = (rel[k] for k in ("s", "w", "b", "r", "dG", "dH"))
+    u = 1.0 - s
+    fsw = (-1.7625 + 2.9821 * w - 1.5276 * w**2 + u * (5.1169 - 5.8089 * w + 3.1391 * w**2)
+           + u**2 * (-2.1567 + 2.3297 * w - 1.2952 * w**2))
+    fw = 2.2422 * w**0.7548
+    fb = 0.5616 + 0.1197 * b + 0.1176 * b**2
+    fr = 0.1908 * r ** (-0.5568)
+    fdg = 1.0012 - 0.6441 * dg + 1.2265 * dg**2
+    fdh = 1.0022 - 0.1903 * dh + 0.0073 * dh**2
+    return 2.7146 * fsw * fw * fb * fr * fdg * fdh * _recess(rel)
+
+
+def beta_q(rel: dict[str, float]) -> float:
+    """Journal fillet SCF for the radial (shear) force beta_Q = 3.0128 f_Q(s) f_Q(w) f_Q(b) f_Q(r) f_Q(d_H) f(recess) (3.3)."""
+    s, w, b, r, dh = (rel[k] for k in ("s", "w", "b", "r", "dH"))
+    u = 1.0 - s
+    fs = 0.4368 + 2.1630 * u - 1.5212 * u**2
+    fw = w / (0.0637 + 0.9369 * w)
+    fb = -0.5 + b
+    fr = 0.5331 * r ** (-0.2038)
+    fdh = 0.9937 - 1.1949 * dh + 1.7373 * dh**2
+    return 3.0128 * fs * fw * fb * fr * fdh * _recess(rel)
+
+
+def fatigue_strength(tensile: float, diameter: float, fillet_radius: float, k: float) -> float:
+    """sigma_DW = K (0.42 R_m + 39.3) [0.264 + 1.073 D^-0.2 + (785 - R_m)/4900 + (196/R_m) sqrt(1/R_X)].
+
+    UR M53 Rev.1 section 6, fillets: D the pin (or journal) diameter, R_X the fillet
+    radius (not taken below 2 mm), R_m in MPa, lengths in mm inside.  SI in and out.
+    """
+    rm = tensile / 1e6
+    d = diameter * 1e3
+    rx = max(fillet_radius * 1e3, 2.0)
+    return 1e6 * k * (0.42 * rm + 39.3) * (0.264 + 1.073 * d**-0.2 + (785.0 - rm) / 4900.0
+                                           + (196.0 / rm) * math.sqrt(1.0 / rx))
+
+
+def equivalent_stress(bending: float, torsion: float, additional: float) -> float:
+    """sigma_V = sqrt((sigma_B + sigma_add)^2 + 3 tau^2) (UR M53 Rev.1 section 5.2)."""
+    return math.sqrt((abs(bending) + additional) ** 2 + 3.0 * torsion**2)
+
+
+@dataclass(frozen=True)
+class NominalStresses:
+    """Nominal alternating stresses (amplitudes, Pa) of UR M53 section 2."""
+
+    bending: float  # sigma_BN = M_BN / W_eqw, web section W_eqw = B W^2 / 6
+    shear: float  # sigma_QN = Q_N / F, web section F = B W
+    torsion_pin: float  # tau_N = M_TN / W_P, W_P = pi/16 (D^4 - D_BH^4)/D
+    torsion_journal: float  # same with D_G, D_BG
+
+
+def half_range(x) -> float:
+    x = np.asarray(x, float)
+    return 0.5 * float(x.max() - x.min())
+
+
+def nominal_stresses(geo: M53Geometry, radial_force, torque) -> NominalStresses:
+    """Nominal alternating stresses from the cycle of the radial pin force and the torque.
+
+    Statically determinate throw (UR M53 2.1.1): supports at the main-bearing centres,
+    each carries half of the radial force; the web bending moment at the web centre
+    line is M_BR = (F_R/2) a (a = ``bearing_to_web``) and the web shear force
+    Q_R = F_R/2.  Amplitudes are half the range over the cycle (2.1.2):
+    sigma_BN = M_BRN / (B W^2/6), sigma_QN = Q_RN / (B W); tau_N = M_TN / W_P (2.2.2).
+    The torque is the one through the throw from the dynamics stage; torsional
+    vibration is NOT included (UR M53 asks for it from a forced-vibration calculation).
+    """
+    a = geo.bearing_to_web
+    m_bn = half_range(0.5 * a * np.asarray(radial_force, float))
+    q_n = half_range(0.5 * np.asarray(radial_force, float))
+    m_tn = half_range(torque)
+    w_eq = geo.web_width * geo.web_thickness**2 / 6.0
+    area = geo.web_width * geo.web_thickness
+    wp_pin = math.pi / 16.0 * (geo.pin_diameter**4 - geo.pin_bore**4) / geo.pin_diameter
+    wp_jou = math.pi / 16.0 * (geo.journal_diameter**4 - geo.journal_bore**4) / geo.journal_diameter
+    return NominalStresses(m_bn / w_eq, q_n / area, m_tn / wp_pin, m_tn / wp_jou)
+
+
+@dataclass(frozen=True)
+class M53Fillet:
+    """UR M53 result for one fillet."""
+
+    fillet: str  # "pin" or "journal"
+    scf_source: str  # "empirical (UR M53 3.2/3.3)" or "FE (...)"
+    scf_bending: float
+    scf_shear: float  # journal only (beta_Q); 0 for the pin
+    scf_torsion: float
+    bending: float  # Pa, alternating
+    torsion: float  # Pa, alternating
+    equivalent: float  # sigma_V, Pa
+    fatigue_strength: float  # sigma_DW, Pa
+    acceptability: float  # Q
+    out_of_range: tuple[str, ...] = ()
+
+
+def assess_fillet(geo: M53Geometry, nominal: NominalStresses, fillet: str, *, tensile: float, k: float,
+                  additional: float = 10e6, fe_scf: dict[str, float] | None = None) -> M53Fillet:
+    """UR M53 for one fillet.  Outside the validity range the FE SCFs ``fe_scf``
+    (keys ``bending``, ``shear``, ``torsion``) are used and the result says so; if they
+    are not given either, a ValueError names the out-of-range dimensions."""
+    rel = geo.related(fillet)
+    bad = out_of_range(rel)
+    if not bad:
+        if fillet == "pin":
+            scf = {"bending": alpha_b(rel), "shear": 0.0, "torsion": alpha_t(rel)}
+        else:
+            scf = {"bending": beta_b(rel), "shear": beta_q(rel), "torsion": alpha_t(rel)}
+        source = f"empirical, UR M53 Rev.1 {'3.2' if fillet == 'pin' else '3.3'}"
+    elif fe_scf is not None:
+        scf = {"bending": fe_scf["bending"], "shear": fe_scf.get("shear", 0.0), "torsion": fe_scf["torsion"]}
+        source = "FE (geometry outside the UR M53 validity range: " + "; ".join(bad) + ")"
+    else:
+        raise ValueError(f"{fillet} fillet outside the UR M53 validity range ({'; '.join(bad)}) "
+                         "and no FE stress concentration factors given")
+    tau_n = nominal.torsion_pin if fillet == "pin" else nominal.torsion_journal
+    bending = scf["bending"] * nominal.bending + scf["shear"] * nominal.shear
+    torsion = scf["torsion"] * tau_n
+    sv = equivalent_stress(bending, torsion, additional)
+    diameter = geo.pin_diameter if fillet == "pin" else geo.journal_diameter
+    radius = geo.pin_fillet_radius if fillet == "pin" else geo.journal_fillet_radius
+    sdw = fatigue_strength(tensile, diameter, radius, k)
+    return M53Fillet(fillet, source, scf["bending"], scf["shear"], scf["torsion"], bending, torsion, sv, sdw,
+                     sdw / sv if sv > 0 else math.inf, tuple(bad))

@@ -1,0 +1,56 @@
+"""Stress-tensor helpers on stacked 6-component arrays.
+
+Component order along axis -2 (or 0 for a single state): ``COMPONENTS =
+(xx, yy, zz, xy, yz, xz)``.  Arrays may carry leading axes (time) and a trailing node
+axis: shape ``(..., 6, n)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+COMPONENTS = ("xx", "yy", "zz", "xy", "yz", "xz")
+
+
+def von_mises(s: np.ndarray) -> np.ndarray:
+    """sigma_v = sqrt(((s11-s22)^2 + (s22-s33)^2 + (s33-s11)^2)/2 + 3 (s12^2 + s23^2 + s13^2)).
+
+    Source: von Mises (1913); any strength-of-materials text, e.g. Shigley eq. 5-13.
+    """
+    xx, yy, zz, xy, yz, xz = (s[..., i, :] for i in range(6))
+    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2) + 3.0 * (xy**2 + yz**2 + xz**2))
+
+
+def to_matrix(s: np.ndarray) -> np.ndarray:
+    """(..., 6, n) -> (..., n, 3, 3) symmetric tensors."""
+    xx, yy, zz, xy, yz, xz = (s[..., i, :] for i in range(6))
+    m = np.stack(
+        [np.stack([xx, xy, xz], -1), np.stack([xy, yy, yz], -1), np.stack([xz, yz, zz], -1)], -2
+    )
+    return m
+
+
+def principal(s: np.ndarray) -> np.ndarray:
+    """Principal stresses, ascending, shape (..., 3, n)."""
+    return np.moveaxis(np.linalg.eigvalsh(to_matrix(s)), -1, -2)
+
+
+def cylindrical(s: np.ndarray, points: np.ndarray, axis_point: tuple[float, float]) -> dict[str, np.ndarray]:
+    """Components in the cylindrical frame (r, theta, z) of an axis parallel to z.
+
+    ``points`` (3, n) are the node coordinates; ``axis_point`` (x, y) a point of the
+    axis.  Returns ``rr, tt, zz, rt, tz, rz`` each of shape (..., n).  Rotation
+    sigma' = Q sigma Q^T with e_r = (cos a, sin a, 0), e_t = (-sin a, cos a, 0).
+    """
+    dx = points[0] - axis_point[0]
+    dy = points[1] - axis_point[1]
+    rad = np.hypot(dx, dy)
+    c = np.where(rad > 0, dx / np.where(rad > 0, rad, 1.0), 1.0)
+    sn = np.where(rad > 0, dy / np.where(rad > 0, rad, 1.0), 0.0)
+    xx, yy, zz, xy, yz, xz = (s[..., i, :] for i in range(6))
+    rr = c * c * xx + sn * sn * yy + 2 * c * sn * xy
+    tt = sn * sn * xx + c * c * yy - 2 * c * sn * xy
+    rt = (yy - xx) * c * sn + xy * (c * c - sn * sn)
+    rz = c * xz + sn * yz
+    tz = -sn * xz + c * yz
+    return {"rr": rr, "tt": tt, "zz": zz, "rt": rt, "tz": tz, "rz": rz}

@@ -1,0 +1,110 @@
+"""Unit-load superposition over the cycle.
+
+Linear elasticity makes the stress at crank angle theta an exact linear combination of
+the unit solutions (DESIGN.md, "FE")::
+
+    sigma(theta) = omega^2 S_c + F_x(theta) S_px + F_y(theta) S_py + T(theta) S_t
+
+(with F_x split into the pin_x / pin_-x cases by its sign, the same for F_y: see
+``load_coefficients``)
+
+with ``S_c`` the stress of the centrifugal case at omega = 1 rad/s (body force
+rho omega^2 r scales with omega^2), ``S_px``, ``S_py`` the stresses of 1 N on the
+crankpin in the throw frame (x tangential, y radial outward), ``S_t`` that of 1 N m
+through the throw, and ``F_x, F_y, T`` the crankpin force and the torque entering the
+throw at its front journal (``torque_front``) from the dynamics stage.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Iterator
+
+import numpy as np
+
+UNIT_CASES = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque")
+
+
+@dataclass(frozen=True)
+class UnitStresses:
+    """Nodal stresses of the unit cases at the assessed nodes of one throw.
+
+    ``stress`` (n_cases, 6, n): components ``stress.COMPONENTS``, Pa per unit load;
+    ``points`` (3, n) node coordinates (throw frame, m); ``groups`` name -> indices
+    into the n assessed nodes (fillets, oil bore, counterweights, junctions);
+    ``node_ids`` the mesh node numbers of the assessed nodes.
+    """
+
+    stress: np.ndarray
+    points: np.ndarray
+    groups: dict[str, np.ndarray] = field(default_factory=dict)
+    node_ids: np.ndarray | None = None
+    cases: tuple[str, ...] = UNIT_CASES
+
+    @property
+    def n_nodes(self) -> int:
+        return self.stress.shape[-1]
+
+
+def load_coefficients(pin_force: np.ndarray, torque: np.ndarray, omega: float, *,
+                      cases: tuple[str, ...] = UNIT_CASES, sense: int = 1) -> np.ndarray:
+    """Coefficients (n_angles, len(cases)) of the unit cases over the cycle.
+
+    ``pin_force`` (n, 2) in the throw frame [N]; ``torque`` (n,) the torque through the
+    front journal (``ThrowLoads.torque_front``) in the shaft's sense of rotation [N m];
+    ``omega`` [rad/s]; ``sense`` the shaft's sense (+1 turns about -z, model.py).
+    Centrifugal: omega^2.  Pin: the case whose pressure arc is on the loaded side carries
+    each component's magnitude (pin_x for F_x > 0, pin_-x for F_x < 0; the FE stage's
+    ``UnitSolutions.pin_weights``); without the negative cases the positive one takes the
+    signed component.  Torque: the FE case is 1 N m about +z entering at the front face,
+    and a driving torque in the shaft's sense acts about -sense z, so its coefficient is
+    -sense * torque_front.
+    """
+    pin_force = np.asarray(pin_force, float)
+    torque = np.asarray(torque, float)
+    n = pin_force.shape[0]
+    if pin_force.shape != (n, 2) or torque.shape != (n,):
+        raise ValueError(f"pin_force must be (n, 2) and torque (n,); got {pin_force.shape}, {torque.shape}")
+    fx, fy = pin_force[:, 0], pin_force[:, 1]
+    cols = []
+    for name in cases:
+        if name == "centrifugal":
+            cols.append(np.full(n, omega**2))
+        elif name == "torque":
+            cols.append(-sense * torque)
+        elif name in ("pin_x", "pin_y"):
+            f = fx if name == "pin_x" else fy
+            has_neg = ("pin_-x" if name == "pin_x" else "pin_-y") in cases
+            cols.append(np.maximum(f, 0.0) if has_neg else f)
+        elif name in ("pin_-x", "pin_-y"):
+            f = fx if name == "pin_-x" else fy
+            cols.append(np.maximum(-f, 0.0))
+        else:
+            raise ValueError(f"unknown unit case {name!r}")
+    return np.column_stack(cols)
+
+
+def combine(unit: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
+    """sum_c coefficients[t, c] unit[c, ...] for every t: shape (n_t, ...).
+
+    Works for nodal stresses (n_cases, 6, n) and displacement vectors (n_cases, n_dof).
+    """
+    unit = np.asarray(unit)
+    c = np.atleast_2d(np.asarray(coefficients, float))
+    if c.shape[1] != unit.shape[0]:
+        raise ValueError(f"{c.shape[1]} coefficients for {unit.shape[0]} unit cases")
+    return np.tensordot(c, unit, axes=(1, 0))
+
+
+def stress_history(unit: UnitStresses, coefficients: np.ndarray, nodes=slice(None)) -> np.ndarray:
+    """Stress tensors (n_t, 6, n_selected) over the cycle at ``nodes``."""
+    return combine(unit.stress[:, :, nodes], coefficients)
+
+
+def iter_histories(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray,
+                   chunk: int = 2048) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """Yield (node indices, history (n_t, 6, k)) in chunks, to bound memory."""
+    nodes = np.asarray(nodes)
+    for start in range(0, nodes.size, chunk):
+        idx = nodes[start:start + chunk]
+        yield idx, stress_history(unit, coefficients, idx)

@@ -1,0 +1,124 @@
+"""Assessment of one throw from its unit stresses and its load history (plain arrays).
+
+Static: sigma_v,max over the cycle at every assessed node, and at overspeed the
+centrifugal case alone scaled by omega_os^2 (the crank's and counterweights' body
+force; the rod forces at overspeed are not known to this stage).  Safety
+n_s = R_e / sigma_v,max.  Fatigue: ``fatigue.py``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fe_crank.assess import fatigue
+from fe_crank.assess.stress import von_mises
+from fe_crank.assess.superpose import UnitStresses, iter_histories
+
+#: groups assessed for fatigue with Gough-Pollard need a local axis: these prefixes use
+#: the crankpin axis (x, y) = (0, R); the journal fillets the crank axis (0, 0).
+PIN_AXIS_GROUPS = ("crankpin_fillet", "oil_bore", "crankpin")
+JOURNAL_AXIS_GROUPS = ("journal_fillet",)
+#: groups not assessed for fatigue (their own stress criteria apply)
+STATIC_ONLY_PREFIXES = ("counterweight", "junction")
+
+
+@dataclass(frozen=True)
+class Extreme:
+    """A worst value and where it occurs."""
+
+    value: float
+    group: str
+    node: int  # mesh node id
+    point: tuple[float, float, float]
+    angle: float | None = None  # rad, cycle angle where it occurs (None: not angle-bound)
+
+
+@dataclass(frozen=True)
+class GroupResult:
+    """Results of one node group (fillet, oil bore, counterweight, junction)."""
+
+    group: str
+    n_nodes: int
+    max_von_mises: Extreme  # over the cycle
+    max_von_mises_overspeed: Extreme | None
+    static_safety: float
+    overspeed_safety: float | None
+    fatigue_safety: Extreme | None  # von Mises + Goodman (min over the group)
+    gough_pollard_safety: Extreme | None
+    amplitude_at_critical: float | None = None  # sigma_a' at the fatigue-critical node, Pa
+    mean_at_critical: float | None = None  # sigma_m' there, Pa
+
+
+def _axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
+    if group.startswith(PIN_AXIS_GROUPS):
+        return (0.0, crank_radius)
+    if group.startswith(JOURNAL_AXIS_GROUPS):
+        return (0.0, 0.0)
+    return None
+
+
+def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str, *, worst: str,
+             angles: np.ndarray | None = None) -> Extreme:
+    k = int(np.argmax(values) if worst == "max" else np.argmin(values))
+    node = int(unit.node_ids[idx[k]]) if unit.node_ids is not None else int(idx[k])
+    pt = tuple(float(c) for c in unit.points[:, idx[k]])
+    ang = float(angles[k]) if angles is not None else None
+    return Extreme(float(values[k]), group, node, pt, ang)
+
+
+def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta: np.ndarray, material, *,
+                 crank_radius: float, overspeed: float | None, chunk: int = 2048) -> GroupResult:
+    """Static and fatigue results of one node group.  ``material`` needs yield strength
+    for the static part and the fatigue properties for the fatigue part (None skips)."""
+    nodes = np.asarray(unit.groups[group])
+    if nodes.size == 0:
+        raise ValueError(f"node group {group!r} is empty")
+    do_fatigue = not group.startswith(STATIC_ONLY_PREFIXES) and material.fatigue_limit_bending is not None \
+        and material.tensile_strength is not None
+    axis = _axis_for(group, crank_radius)
+    do_gp = do_fatigue and axis is not None and material.fatigue_limit_torsion is not None
+    k = material.fatigue_factor
+    vm_max = np.empty(nodes.size)
+    vm_arg = np.empty(nodes.size, dtype=int)
+    good = np.full(nodes.size, np.inf)
+    sa_eq = np.zeros(nodes.size)
+    sm_eq = np.zeros(nodes.size)
+    gp = np.full(nodes.size, np.inf)
+    pos = 0
+    for idx, hist in iter_histories(unit, coefficients, nodes, chunk):
+        sl = slice(pos, pos + idx.size)
+        vm = von_mises(hist)  # (n_t, k)
+        vm_arg[sl] = np.argmax(vm, axis=0)
+        vm_max[sl] = vm.max(axis=0)
+        if do_fatigue:
+            a, m = fatigue.equivalent_amplitude_mean(hist)
+            sa_eq[sl], sm_eq[sl] = a, m
+            good[sl] = fatigue.goodman_safety(a, m, k * material.fatigue_limit_bending, material.tensile_strength)
+        if do_gp:
+            sig, tau = fatigue.bending_torsion(hist, unit.points[:, idx], axis)
+            s_a, s_m = fatigue.half_range(sig)
+            t_a, t_m = fatigue.half_range(tau)
+            gp[sl] = fatigue.gough_pollard_safety(s_a, s_m, t_a, t_m, k * material.fatigue_limit_bending,
+                                                  k * material.fatigue_limit_torsion, material.tensile_strength)
+        pos += idx.size
+    worst = _extreme(vm_max, nodes, unit, group, worst="max", angles=theta[vm_arg])
+    ys = material.yield_strength
+    static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf
+    os_ext, os_safety = None, None
+    if overspeed is not None:
+        ci = unit.cases.index("centrifugal")
+        vm_os = von_mises(overspeed**2 * unit.stress[ci][:, nodes])
+        os_ext = _extreme(vm_os, nodes, unit, group, worst="max")
+        os_safety = ys / os_ext.value if (ys is not None and os_ext.value > 0) else np.inf
+    fat = gpe = None
+    amp = mean = None
+    if do_fatigue:
+        fat = _extreme(good, nodes, unit, group, worst="min")
+        j = int(np.argmin(good))
+        amp, mean = float(sa_eq[j]), float(sm_eq[j])
+    if do_gp:
+        gpe = _extreme(gp, nodes, unit, group, worst="min")
+    return GroupResult(group, int(nodes.size), worst, os_ext, float(static),
+                       None if os_safety is None else float(os_safety), fat, gpe, amp, mean)

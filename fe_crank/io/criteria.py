@@ -1,0 +1,168 @@
+"""The load case's ``[criteria]`` section -> frozen ``Criteria``.
+
+Each limit is a key ``min_<quantity>`` or ``max_<quantity>``; the quantity must be one
+of ``QUANTITIES`` (a misspelt or unknown quantity is an error naming the key)::
+
+    [criteria]
+    min_static_safety = 1.5
+    min_fatigue_safety = 1.3            # von Mises equivalent + Goodman
+    min_gough_pollard_safety = 1.3      # bending/torsion ellipse quadrant + Goodman
+    min_m53_acceptability = 1.15        # IACS UR M53 Q
+    max_counterweight_stress = "150 MPa"
+    max_unbalance_error = 0.05          # |built m r - required m r| / required
+    m53_additional_bending = "10 MPa"   # option: UR M53 sigma_add (trunk piston engines)
+
+A criterion that needs a material property the load case's material does not give
+(e.g. the M53 factor K of a cast iron) is an error naming the criterion and the
+property.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from fe_crank.errors import InputError
+from fe_crank.io.base import read_toml
+from fe_crank.io.units import to_si
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A quantity a criterion may limit: its sense, unit kind (None: pure number), the
+    material properties it needs and what it means."""
+
+    sense: str  # "min" or "max"
+    unit_kind: str | None
+    needs: tuple[str, ...]
+    meaning: str
+
+
+QUANTITIES: dict[str, Quantity] = {
+    "static_safety": Quantity("min", None, ("yield_strength",),
+                              "yield strength / max von Mises over the cycle"),
+    "overspeed_safety": Quantity("min", None, ("yield_strength",),
+                                 "yield strength / max von Mises at overspeed (centrifugal only)"),
+    "fatigue_safety": Quantity("min", None, ("fatigue_limit_bending", "tensile_strength"),
+                               "equivalent (von Mises) amplitude and signed mean, modified Goodman"),
+    "gough_pollard_safety": Quantity(
+        "min", None, ("fatigue_limit_bending", "fatigue_limit_torsion", "tensile_strength"),
+        "Gough-Pollard ellipse quadrant of bending and torsion amplitudes, Goodman-corrected limits"),
+    "m53_acceptability": Quantity("min", None, ("tensile_strength", "m53_k"),
+                                  "IACS UR M53 acceptability factor Q = sigma_DW / sigma_V"),
+    "counterweight_stress": Quantity("max", "pressure", (),
+                                     "max von Mises in a counterweight and its junction over the cycle"),
+    "counterweight_overspeed_stress": Quantity("max", "pressure", (),
+                                               "max von Mises in a counterweight at overspeed"),
+    "unbalance_error": Quantity("max", None, (),
+                                "|built m r - required m r| / required m r per counterweight plane"),
+    "bolt_utilisation": Quantity("max", None, (),
+                                 "counterweight bolt load m r omega^2 at overspeed / bolt capacity"),
+}
+
+#: option key -> unit kind
+OPTIONS: dict[str, str] = {"m53_additional_bending": "pressure"}
+
+
+@dataclass(frozen=True)
+class Limit:
+    quantity: str
+    sense: str  # "min" or "max"
+    value: float  # SI or pure number
+    key: str  # the key in the file, for messages
+
+
+@dataclass(frozen=True)
+class Criteria:
+    limits: tuple[Limit, ...]
+    m53_additional_bending: float = 10e6  # Pa: UR M53 section 4, trunk piston engines
+
+    def limit(self, quantity: str) -> Limit | None:
+        return next((lim for lim in self.limits if lim.quantity == quantity), None)
+
+    def needed_properties(self) -> dict[str, tuple[str, ...]]:
+        """Criterion key -> material properties it needs."""
+        return {lim.key: QUANTITIES[lim.quantity].needs for lim in self.limits}
+
+
+def _number(value: object, file, key: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(f"must be a pure number (got {value!r})", file=str(file), key=key)
+    v = float(value)
+    if not v >= 0:
+        raise InputError(f"must not be negative (got {v:g})", file=str(file), key=key)
+    return v
+
+
+def build_criteria(value: object, file: str | Path, key: str = "criteria") -> Criteria:
+    """Validate a ``[criteria]`` table (without the cross-check against the material)."""
+    if not isinstance(value, dict):
+        raise InputError("must be a table of min_<quantity>/max_<quantity> keys", file=str(file), key=key)
+    limits = []
+    options = {}
+    for k, v in value.items():
+        full = f"{key}.{k}"
+        if k in OPTIONS:
+            try:
+                options[k] = to_si(v, OPTIONS[k])
+            except ValueError as exc:
+                raise InputError(str(exc), file=str(file), key=full) from None
+            continue
+        sense, _, quantity = k.partition("_")
+        if sense not in ("min", "max") or not quantity:
+            raise InputError(
+                f"not a criterion: write min_<quantity> or max_<quantity> (quantities: {sorted(QUANTITIES)}) "
+                f"or an option ({sorted(OPTIONS)})",
+                file=str(file), key=full,
+            )
+        q = QUANTITIES.get(quantity)
+        if q is None:
+            raise InputError(f"unknown quantity {quantity!r}; known quantities are {sorted(QUANTITIES)}",
+                             file=str(file), key=full)
+        if q.sense != sense:
+            raise InputError(f"{quantity} takes a {q.sense}imum, not a {sense}imum: write {q.sense}_{quantity}",
+                             file=str(file), key=full)
+        if q.unit_kind is None:
+            val = _number(v, file, full)
+        else:
+            try:
+                val = to_si(v, q.unit_kind)
+            except ValueError as exc:
+                raise InputError(str(exc), file=str(file), key=full) from None
+            if not val > 0:
+                raise InputError(f"must be positive (got {v!r})", file=str(file), key=full)
+        limits.append(Limit(quantity, sense, val, full))
+    return Criteria(tuple(limits), **options)
+
+
+def check_material(criteria: Criteria, material, file: str | Path) -> None:
+    """Every criterion's material properties must be given.  Raises InputError."""
+    for ckey, needs in criteria.needed_properties().items():
+        if not needs:
+            continue
+        if material is None:
+            raise InputError(f"needs a [material] section (properties {list(needs)})", file=str(file), key=ckey)
+        missing = material.missing(needs)
+        if missing:
+            raise InputError(
+                f"needs material property {', '.join(missing)}, which material {material.name!r} does not give; "
+                f"set material.{missing[0]} in the load case or drop the criterion",
+                file=str(file), key=ckey,
+            )
+
+
+def parse_criteria(value: object, file: str | Path, key: str = "criteria") -> Criteria:
+    """Section parser registered as ``SECTIONS["criteria"]``: builds the criteria and
+    checks them against the same file's ``[material]`` section."""
+    crit = build_criteria(value, file, key)
+    if any(crit.needed_properties().values()):
+        from fe_crank.io.material import parse_material
+
+        data = read_toml(file) if Path(file).is_file() else {}
+        mat = parse_material(data["material"], file, "material") if "material" in data else None
+        check_material(crit, mat, file)
+    return crit
+
+
+__all__ = ["Criteria", "Limit", "Quantity", "QUANTITIES", "OPTIONS", "build_criteria", "check_material",
+           "parse_criteria"]

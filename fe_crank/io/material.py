@@ -1,0 +1,166 @@
+"""The load case's ``[material]`` section -> frozen ``Material`` (SI floats).
+
+::
+
+    [material]
+    name = "42CrMo4"                 # an entry of fe_crank/data/materials.toml
+    yield_strength = "700 MPa"        # any property may be overridden, with its unit
+    surface_factor = 0.9              # part-dependent factors are pure numbers
+
+Without ``name`` every property the assessment needs must be given inline.  The
+library itself is read with the same model, so a library entry with a bare number
+where a unit is needed is as much an error as one in a load case.
+"""
+
+from __future__ import annotations
+
+import importlib.resources
+from dataclasses import dataclass, fields
+from functools import lru_cache
+from pathlib import Path
+
+from pydantic import Field
+
+from fe_crank.errors import InputError
+from fe_crank.io.base import Strict, read_toml, validate
+from fe_crank.io.units import Density, Pressure
+
+LIBRARY_NAME = "materials.toml"
+
+
+@dataclass(frozen=True)
+class Material:
+    """Material properties, SI.  ``None`` marks a property the source does not give.
+
+    ``fatigue_factor`` is the product of the surface, size and treatment factors that
+    multiplies the specimen fatigue limits (Marin factors, Shigley eq. 6-18).
+    """
+
+    name: str
+    youngs_modulus: float  # Pa
+    poisson_ratio: float
+    density: float  # kg/m^3
+    yield_strength: float | None = None  # Pa
+    tensile_strength: float | None = None  # Pa
+    fatigue_limit_bending: float | None = None  # Pa, fully reversed
+    fatigue_limit_torsion: float | None = None  # Pa, fully reversed
+    surface_factor: float = 1.0
+    size_factor: float = 1.0
+    treatment_factor: float = 1.0
+    m53_k: float | None = None  # IACS UR M53 factor K
+    description: str = ""
+    source: str = ""
+
+    @property
+    def fatigue_factor(self) -> float:
+        return self.surface_factor * self.size_factor * self.treatment_factor
+
+    def missing(self, names: tuple[str, ...] | list[str]) -> list[str]:
+        """The properties among ``names`` that this material does not give."""
+        return [n for n in names if getattr(self, n) is None]
+
+
+PROPERTY_NAMES = tuple(f.name for f in fields(Material) if f.name not in ("name", "description", "source"))
+
+
+class MaterialInput(Strict):
+    name: str | None = Field(default=None, min_length=1)
+    description: str | None = None
+    youngs_modulus: Pressure | None = None
+    poisson_ratio: float | None = Field(default=None, gt=-1.0, lt=0.5)
+    density: Density | None = None
+    yield_strength: Pressure | None = None
+    tensile_strength: Pressure | None = None
+    fatigue_limit_bending: Pressure | None = None
+    fatigue_limit_torsion: Pressure | None = None
+    surface_factor: float | None = Field(default=None, gt=0.0, le=2.0)
+    size_factor: float | None = Field(default=None, gt=0.0, le=2.0)
+    treatment_factor: float | None = Field(default=None, gt=0.0, le=3.0)
+    m53_k: float | None = Field(default=None, gt=0.0, le=2.0)
+    source: str | None = None
+
+    def given(self) -> dict:
+        return {k: v for k, v in self.model_dump().items() if v is not None and k != "name"}
+
+
+def library_path() -> Path:
+    return Path(str(importlib.resources.files("fe_crank") / "data" / LIBRARY_NAME))
+
+
+@lru_cache(maxsize=4)
+def _library(path: str) -> dict[str, dict]:
+    data = read_toml(path)
+    out = {}
+    for name, entry in data.items():
+        if not isinstance(entry, dict):
+            raise InputError("each material must be a table", file=path, key=name)
+        out[name] = validate(MaterialInput, entry, path, name).given()
+    return out
+
+
+def library() -> dict[str, dict]:
+    """Name -> validated properties (SI) of every material in the library."""
+    return dict(_library(str(library_path())))
+
+
+def _check_positive(props: dict, file, key: str) -> None:
+    for k in ("youngs_modulus", "density", "yield_strength", "tensile_strength",
+              "fatigue_limit_bending", "fatigue_limit_torsion"):
+        v = props.get(k)
+        if v is not None and not v > 0:
+            raise InputError(f"must be positive (got {v:g} SI)", file=str(file), key=f"{key}.{k}")
+    ys, ts = props.get("yield_strength"), props.get("tensile_strength")
+    if ys is not None and ts is not None and ys > ts:
+        raise InputError(
+            f"yield strength {ys / 1e6:g} MPa exceeds tensile strength {ts / 1e6:g} MPa",
+            file=str(file), key=f"{key}.yield_strength",
+        )
+
+
+def parse_material(value: object, file: str | Path, key: str = "material") -> Material:
+    """Section parser registered as ``SECTIONS["material"]``."""
+    if isinstance(value, str):
+        value = {"name": value}
+    if not isinstance(value, dict):
+        raise InputError("must be a table, e.g. [material] name = \"42CrMo4\"", file=str(file), key=key)
+    raw = validate(MaterialInput, value, file, key)
+    props: dict = {}
+    source_parts = []
+    if raw.name is not None:
+        lib = library()
+        if raw.name not in lib:
+            raise InputError(
+                f"unknown material {raw.name!r}; the library ({library_path().name}) has {sorted(lib)}",
+                file=str(file), key=f"{key}.name",
+            )
+        props.update(lib[raw.name])
+        source_parts.append(props.pop("source", ""))
+    overrides = raw.given()
+    overrides.pop("source", None)
+    props.update(overrides)
+    if raw.source:
+        source_parts.append(raw.source)
+    changed = sorted(k for k in overrides if k != "description")
+    if raw.name is not None and changed:
+        source_parts.append(f"overridden in {Path(file).name}: {', '.join(changed)}")
+    for k in ("youngs_modulus", "poisson_ratio", "density"):
+        if props.get(k) is None:
+            raise InputError(
+                "required (give name = a library material, or the value with its unit)",
+                file=str(file), key=f"{key}.{k}",
+            )
+    _check_positive(props, file, key)
+    return Material(
+        name=raw.name or "custom",
+        description=props.pop("description", ""),
+        source="; ".join(p for p in source_parts if p),
+        **{k: props.get(k) for k in PROPERTY_NAMES if props.get(k) is not None},
+    )
+
+
+def load_material(name: str, **overrides: object) -> Material:
+    """A library material by name, overrides given as input strings (``"700 MPa"``)."""
+    return parse_material({"name": name, **overrides}, library_path(), "material")
+
+
+__all__ = ["Material", "parse_material", "load_material", "library", "library_path", "PROPERTY_NAMES"]

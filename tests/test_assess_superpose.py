@@ -1,0 +1,77 @@
+"""Superposition of the FE stage's unit cases over the cycle equals a direct FE solve
+with the combined load at the same crank angle (linear elasticity), to 1e-9 relative."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from skfem import MeshTet, MeshTet2
+
+from fe_crank.assess import unit_stresses
+from fe_crank.assess.superpose import combine, load_coefficients, stress_history
+from fe_crank.io.material import load_material
+
+fe = pytest.importorskip("fe_crank.fe.unit_cases")
+from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load  # noqa: E402
+
+RADIUS, LENGTH = 0.02, 0.12
+
+
+def _bar_throw():
+    """A round bar standing in for a throw: journals at the ends, 'crankpin' in the middle."""
+    m = MeshTet.init_tensor(np.linspace(-1, 1, 5), np.linspace(-1, 1, 5), np.linspace(0, 1, 13))
+    x, y, z = m.p
+    p = np.array([RADIUS * x * np.sqrt(1 - y**2 / 2), RADIUS * y * np.sqrt(1 - x**2 / 2), LENGTH * z])
+    m2 = MeshTet2.from_mesh(MeshTet(p, m.t))
+    eps = 1e-9
+    lateral = lambda x: (x[2] > eps) & (x[2] < LENGTH - eps)  # noqa: E731
+    return m2.with_boundaries({
+        "end_1": lambda x: np.abs(x[2]) < eps,
+        "end_2": lambda x: np.abs(x[2] - LENGTH) < eps,
+        "journal_1": lambda x: lateral(x) & (x[2] < LENGTH / 3),
+        "journal_2": lambda x: lateral(x) & (x[2] > 2 * LENGTH / 3),
+        "crankpin": lambda x: lateral(x) & (x[2] > LENGTH / 3) & (x[2] < 2 * LENGTH / 3),
+    })
+
+
+@pytest.fixture(scope="module")
+def solved():
+    mesh = _bar_throw()
+    mat = load_material("42CrMo4")
+    units = fe.solve_unit_cases(mesh, mat, fe.FeOptions(solver="superlu"))
+    return mesh, mat, units
+
+
+def test_superposition_equals_direct_solve(solved):
+    mesh, mat, units = solved
+    basis = units.system.basis
+    nodes = np.unique(basis.get_dofs(facets=mesh.boundaries["crankpin"]).all())
+    groups = {"crankpin_fillet_1": nodes, "journal_fillet_1": np.unique(
+        basis.get_dofs(facets=mesh.boundaries["journal_1"]).all())}
+    unit = unit_stresses(units, groups)
+    loads = {"centrifugal": centrifugal_load(basis, mat.density, 1.0),
+             "torque": face_torque_load(basis, 1.0, boundary="end_1")}
+    for name, force in fe.PIN_FORCES.items():
+        loads[name] = pin_pressure_load(basis, force)[0]
+    omega = 300.0
+    # a load history with every sign of F_x, F_y and the torque
+    theta = np.deg2rad(np.arange(0, 720))
+    pin = np.column_stack([8e3 * np.sin(theta) + 1e3, -2e4 * np.cos(theta / 2) + 3e3])
+    torque = 400.0 * np.sin(theta) - 50.0
+    coeffs = load_coefficients(pin, torque, omega, cases=unit.cases, sense=1)
+    hist = stress_history(unit, coeffs)
+    for deg in (0, 37, 181, 400, 719):
+        f = combine(np.stack([loads[c] for c in unit.cases]), coeffs[deg])[0]
+        u = units.system.solve(f)
+        direct = units.stress_at_nodes(u)[:, unit.node_ids]
+        err = np.max(np.abs(hist[deg] - direct)) / np.max(np.abs(direct))
+        assert err < 1e-9, (deg, err)
+
+
+def test_coefficients_split_by_sign_and_torque_sense():
+    pin = np.array([[3.0, -4.0], [-1.0, 2.0]])
+    c = load_coefficients(pin, np.array([10.0, -5.0]), 2.0, sense=1)
+    # cases: centrifugal, pin_x, pin_y, pin_-x, pin_-y, torque
+    np.testing.assert_array_equal(c, [[4.0, 3.0, 0.0, 0.0, 4.0, -10.0], [4.0, 0.0, 2.0, 1.0, 0.0, 5.0]])
+    c2 = load_coefficients(pin, np.array([10.0, -5.0]), 2.0, cases=("pin_x", "pin_y", "torque"), sense=-1)
+    np.testing.assert_array_equal(c2, [[3.0, -4.0, 10.0], [-1.0, 2.0, -5.0]])
