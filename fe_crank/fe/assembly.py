@@ -1,0 +1,117 @@
+"""Vectorised assembly of vector-P2 forms from the scalar P2 basis (no element loops).
+
+Degrees of freedom are interleaved like scikit-fem's ``ElementVector``: the vector dof
+of component ``i`` at scalar dof ``s`` is ``3 s + i``.  Element matrices are contracted
+with ``numpy.einsum`` in chunks of elements and summed into CSR through COO.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import Basis, FacetBasis
+
+from fe_crank.fe.forms import lame_parameters
+
+CHUNK = 20000  # elements per einsum chunk: ~60 MB of element matrices
+
+
+def _gradients(basis) -> np.ndarray:
+    """Scalar basis gradients, shape (n_local, 3, n_elements, n_qp)."""
+    return np.stack([b[0].grad for b in basis.basis])
+
+
+def _values(basis) -> np.ndarray:
+    """Scalar basis values, shape (n_local, n_elements, n_qp)."""
+    return np.stack([np.asarray(b[0]) for b in basis.basis])
+
+
+def vector_dofs(scalar_dofs: np.ndarray) -> np.ndarray:
+    """Vector dofs (..., 3) of scalar dofs, interleaved 3 s + i."""
+    s = np.asarray(scalar_dofs)
+    return 3 * s[..., None] + np.arange(3)
+
+
+def _coo_to_csr(ke: np.ndarray, edofs: np.ndarray, n: int) -> sp.csr_matrix:
+    """Sum element matrices ke (ne, m, m) with local-to-global map edofs (ne, m)."""
+    ne, m = edofs.shape
+    rows = np.broadcast_to(edofs[:, :, None], (ne, m, m)).ravel()
+    cols = np.broadcast_to(edofs[:, None, :], (ne, m, m)).ravel()
+    return sp.coo_matrix((ke.ravel(), (rows, cols)), shape=(n, n)).tocsr()
+
+
+def assemble_stiffness(basis: Basis, youngs_modulus: float, poisson_ratio: float,
+                       *, chunk: int = CHUNK) -> sp.csr_matrix:
+    """Stiffness matrix of isotropic linear elasticity on a scalar ``basis``.
+
+    K_(a i)(b j) = sum_q w_q [ lambda g_a,i g_b,j + mu (delta_ij g_a . g_b + g_a,j g_b,i) ]
+    with g_a the physical gradient of scalar shape function a at quadrature point q:
+    the Galerkin form of sigma(u) : eps(v) (Zienkiewicz & Taylor, The Finite Element
+    Method, vol. 1, ch. 6).  Equal to scikit-fem's ``asm(linear_elasticity(...))`` on
+    ``ElementVector(basis.elem)`` (tested).
+    """
+    lam, mu = lame_parameters(youngs_modulus, poisson_ratio)
+    g_all = _gradients(basis)                     # (m, 3, ne, nq)
+    dx_all = basis.dx                             # (ne, nq)
+    edofs_all = basis.element_dofs                # (m, ne)
+    m, _, ne, _ = g_all.shape
+    n = 3 * basis.N
+    eye3 = np.eye(3)
+    K = None
+    for start in range(0, ne, chunk):
+        sl = slice(start, min(start + chunk, ne))
+        g = g_all[:, :, sl, :]
+        gw = g * dx_all[None, None, sl, :]
+        gg = np.einsum("akeq,bkeq->eab", gw, g, optimize=True)       # g_a . g_b
+        ab = np.einsum("aieq,bjeq->eaibj", gw, g, optimize=True)     # g_a,i g_b,j
+        ke = lam * ab + mu * ab.transpose(0, 1, 4, 3, 2)  # [e,a,i,b,j] <- g_a,j g_b,i
+        ke += mu * gg[:, :, None, :, None] * eye3[None, None, :, None, :]
+        edofs = vector_dofs(edofs_all[:, sl].T).reshape(-1, 3 * m)
+        part = _coo_to_csr(ke.reshape(-1, 3 * m, 3 * m), edofs, n)
+        K = part if K is None else K + part
+    return K
+
+
+def assemble_body_load(basis: Basis, force_density) -> np.ndarray:
+    """Load vector of a body force f(x) (N/m^3): F_(a i) = sum_q w_q N_a f_i(x_q).
+
+    ``force_density`` maps global coordinates (3, ne, nq) to (3, ne, nq).
+    """
+    x = np.asarray(basis.global_coordinates())
+    f = np.asarray(force_density(x), float)
+    N = _values(basis)                                    # (m, ne, nq)
+    fe = np.einsum("aeq,ieq,eq->eai", N, f, basis.dx)
+    dofs = vector_dofs(basis.element_dofs.T)              # (ne, m, 3)
+    return np.bincount(dofs.ravel(), fe.ravel(), minlength=3 * basis.N)
+
+
+def assemble_surface_load(fbasis: FacetBasis, traction) -> np.ndarray:
+    """Load vector of a surface traction t(x, n) (N/m^2) on the facets of ``fbasis``.
+
+    ``traction`` maps (x, n), each (3, nf, nq), to (3, nf, nq).  Because the P2 shape
+    functions sum to one, the entries sum to int t dA under the same quadrature.
+    """
+    x = np.asarray(fbasis.global_coordinates())
+    n = np.asarray(fbasis.normals)
+    t = np.asarray(traction(x, n), float)
+    N = _values(fbasis)
+    fe = np.einsum("aeq,ieq,eq->eai", N, t, fbasis.dx)
+    dofs = vector_dofs(fbasis.element_dofs.T)
+    return np.bincount(dofs.ravel(), fe.ravel(), minlength=3 * fbasis.N)
+
+
+def assemble_foundation(fbasis: FacetBasis, stiffness: float, direction) -> sp.csr_matrix:
+    """Matrix of an elastic foundation k int (u . d)(v . d) dA on the facets of ``fbasis``.
+
+    ``stiffness`` is in N/m^3 (scalar or array (nf, nq)); ``direction`` maps (x, n) to a
+    unit vector field (3, nf, nq) (Winkler foundation).
+    """
+    x = np.asarray(fbasis.global_coordinates())
+    n = np.asarray(fbasis.normals)
+    d = np.asarray(direction(x, n), float)
+    N = _values(fbasis)                                   # (m, nf, nq)
+    m = N.shape[0]
+    w = fbasis.dx * stiffness
+    ke = np.einsum("aeq,beq,ieq,jeq,eq->eaibj", N, N, d, d, w, optimize=True)
+    edofs = vector_dofs(fbasis.element_dofs.T).reshape(-1, 3 * m)
+    return _coo_to_csr(ke.reshape(-1, 3 * m, 3 * m), edofs, 3 * fbasis.N)

@@ -1,0 +1,237 @@
+"""One assembled, supported elastic system: stiffness, constraints, reduction, reactions.
+
+The full vector of nodal displacements u (interleaved, 3 per P2 node) is written as
+u = P q, where q holds the free nodal dofs and the free dofs of each coupling's reference
+point; held dofs are simply absent from q.  The reduced stiffness is K_r = P^T (K + K_s) P
+(K elastic, K_s foundations), symmetric positive definite when the supports remove every
+rigid-body mode.  Loads: f_r = P^T f + (generalised loads at reference dofs).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import Basis, ElementTetP2
+
+from fe_crank.errors import MeshError, SolverError
+from fe_crank.fe.assembly import assemble_stiffness
+from fe_crank.fe.solvers import Factorisation, choose_method, factorise
+from fe_crank.fe.supports import (REF_DOFS, Coupling, Dirichlet, Foundation, assemble_foundation_matrix,
+                                  boundary_facets, coupling_rows, face_centroid, rigid_body_modes)
+
+EQUILIBRIUM_TOL = 1e-6
+
+
+@dataclass
+class System:
+    """Assembled and factorised system; see module docstring.  Build with :func:`build_system`."""
+
+    mesh: object
+    basis: Basis
+    K: sp.csr_matrix                  # elastic stiffness (full)
+    Ks: sp.csr_matrix                 # foundations (full)
+    P: sp.csr_matrix                  # full <- reduced
+    foundations: tuple[Foundation, ...]
+    couplings: tuple[Coupling, ...]
+    ref_points: dict[str, np.ndarray]
+    ref_columns: dict[str, dict[str, int]]   # coupling -> ref dof name -> reduced column (free only)
+    slave_dofs: dict[str, np.ndarray]        # coupling -> scalar dofs
+    dirichlet_dofs: np.ndarray               # full vector dofs held at zero
+    foundation_dofs: dict[str, np.ndarray]   # foundation boundary -> scalar dofs
+    factorisation: Factorisation
+    timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def n_dof(self) -> int:
+        """Number of unknowns actually solved for."""
+        return self.P.shape[1]
+
+    @property
+    def points(self) -> np.ndarray:
+        """Coordinates (3, N) of the P2 nodes (scalar dofs)."""
+        return self.basis.doflocs
+
+    def reduce(self, f: np.ndarray, ref_loads: dict[str, np.ndarray] | None = None) -> np.ndarray:
+        """Reduced load vector P^T f plus generalised loads at free reference dofs."""
+        fr = self.P.T @ f
+        for name, load in (ref_loads or {}).items():
+            cols = self.ref_columns[name]
+            for k, dof in enumerate(REF_DOFS):
+                if load[k] != 0.0:
+                    if dof not in cols:
+                        raise SolverError(f"load component {dof} applied at coupling {name!r} where it is held")
+                    fr[cols[dof]] += load[k]
+        return fr
+
+    def solve(self, f: np.ndarray, ref_loads: list[dict] | None = None) -> np.ndarray:
+        """Full displacement vectors for load vectors f (n_full,) or (n_full, k)."""
+        F = f[:, None] if f.ndim == 1 else f
+        refs = ref_loads or [None] * F.shape[1]
+        Fr = np.column_stack([self.reduce(F[:, k], refs[k]) for k in range(F.shape[1])])
+        Q = self.factorisation.solve(Fr)
+        U = self.P @ Q
+        return U[:, 0] if f.ndim == 1 else U
+
+    def reactions(self, u: np.ndarray, f: np.ndarray, ref_loads: dict | None = None) -> dict[str, np.ndarray]:
+        """Resultant reaction on the body of each support, (Fx, Fy, Fz, Mx, My, Mz) about the origin.
+
+        Foundations: the spring forces -K_s u.  Couplings and Dirichlet sets: the nodal
+        residual K u + K_s u - f on their nodes, less the loads applied at the reference point.
+        """
+        x = self.points
+        out = {}
+        rs = -(self.Ks @ u)
+        for name, sdofs in self.foundation_dofs.items():
+            out[name] = _resultant(rs, x, sdofs)
+        resid = self.K @ u + self.Ks @ u - f
+        for c in self.couplings:
+            r = _resultant(resid, x, self.slave_dofs[c.boundary])
+            if ref_loads and c.boundary in ref_loads:
+                r = r - _generalised_at_origin(ref_loads[c.boundary], self.ref_points[c.boundary])
+            out[c.boundary] = r
+        if self.dirichlet_dofs.size:
+            mask = np.zeros(resid.size, bool)
+            mask[self.dirichlet_dofs] = True
+            out["dirichlet"] = _resultant(np.where(mask, resid, 0.0), x, np.arange(x.shape[1]))
+        return out
+
+    def applied(self, f: np.ndarray, ref_loads: dict | None = None) -> tuple[np.ndarray, float, float]:
+        """Resultant of the applied loads and the force and moment scales used for errors."""
+        x = self.points
+        fn = f.reshape(-1, 3)
+        res = _resultant(f, x, np.arange(x.shape[1]))
+        fscale = np.linalg.norm(fn, axis=1).sum()
+        mscale = np.linalg.norm(np.cross(x.T, fn), axis=1).sum()
+        for name, load in (ref_loads or {}).items():
+            g = _generalised_at_origin(load, self.ref_points[name])
+            res = res + g
+            fscale += np.linalg.norm(load[:3])
+            mscale += np.linalg.norm(g[3:])
+        return res, fscale, mscale
+
+    def equilibrium_error(self, u, f, ref_loads=None) -> tuple[float, dict[str, np.ndarray]]:
+        """max(|sum F|/F_scale, |sum M|/M_scale) of applied loads plus reactions, and the reactions.
+
+        F_scale is the sum of the magnitudes of the nodal loads, M_scale the sum of the
+        magnitudes of their moments about the origin.
+        """
+        reac = self.reactions(u, f, ref_loads)
+        total, fs, ms = self.applied(f, ref_loads)
+        for r in reac.values():
+            total = total + r
+        ef = np.linalg.norm(total[:3]) / fs if fs > 0 else np.linalg.norm(total[:3])
+        em = np.linalg.norm(total[3:]) / ms if ms > 0 else np.linalg.norm(total[3:])
+        return float(max(ef, em)), reac
+
+
+def _resultant(v: np.ndarray, x: np.ndarray, sdofs: np.ndarray) -> np.ndarray:
+    fn = v.reshape(-1, 3)[sdofs]
+    xs = x[:, sdofs].T
+    return np.concatenate([fn.sum(axis=0), np.cross(xs, fn).sum(axis=0)])
+
+
+def _generalised_at_origin(load, x0) -> np.ndarray:
+    load = np.asarray(load, float)
+    return np.concatenate([load[:3], load[3:] + np.cross(x0, load[:3])])
+
+
+def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
+                 foundations=(), couplings=(), dirichlet=(), solver: str = "auto",
+                 intorder: int = 2, basis: Basis | None = None) -> System:
+    """Assemble K (vectorised), the supports and the transformation; factorise once.
+
+    Raises MeshError for a missing named boundary or a node claimed by two constraints,
+    SolverError when the factorisation fails (e.g. a rigid-body mode left free).
+    """
+    timings = {}
+    t0 = time.perf_counter()
+    if basis is None:
+        basis = Basis(mesh, ElementTetP2(), intorder=intorder)
+    K = assemble_stiffness(basis, youngs_modulus, poisson_ratio)
+    n = K.shape[0]
+    N = basis.N
+    Ks = sp.csr_matrix((n, n))
+    fdofs = {}
+    for fd in foundations:
+        Ks = Ks + assemble_foundation_matrix(mesh, fd)
+        fdofs[fd.boundary] = basis.get_dofs(boundary_facets(mesh, fd.boundary, "a bearing support")).all()
+    timings["assembly"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    owner = np.full(N, -1)
+    held = np.zeros(n, bool)
+    ddofs = []
+    for d in dirichlet:
+        s = basis.get_dofs(boundary_facets(mesh, d.boundary, "a fixed support")).all()
+        vd = (3 * s[:, None] + np.array(d.components)[None, :]).ravel()
+        held[vd] = True
+        ddofs.append(vd)
+    slave, refp = {}, {}
+    for ci, c in enumerate(couplings):
+        facets = boundary_facets(mesh, c.boundary, "an end-face coupling")
+        s = basis.get_dofs(facets).all()
+        if np.any(owner[s] >= 0) or np.any(held.reshape(-1, 3)[s]):
+            raise MeshError(f"boundary {c.boundary!r}: nodes already belong to another coupling or fixed set")
+        owner[s] = ci
+        slave[c.boundary] = s
+        refp[c.boundary] = (np.asarray(c.ref_point, float) if c.ref_point is not None
+                            else face_centroid(mesh, facets))
+        bad = set(c.fixed) - set(REF_DOFS)
+        if bad:
+            raise MeshError(f"coupling {c.boundary!r}: unknown dofs {sorted(bad)}; pick from {REF_DOFS}")
+    is_slave = np.repeat(owner >= 0, 3)
+    free = np.flatnonzero(~is_slave & ~held)
+    rows = [free]
+    cols = [np.arange(free.size)]
+    vals = [np.ones(free.size)]
+    ncol = free.size
+    refcols = {}
+    for c in couplings:
+        s = slave[c.boundary]
+        T = coupling_rows(basis.doflocs[:, s] - refp[c.boundary][:, None])   # (ns, 3, 6)
+        cmap = {}
+        for k, dof in enumerate(REF_DOFS):
+            if dof in c.fixed:
+                continue
+            cmap[dof] = ncol
+            r = (3 * s[:, None] + np.arange(3)).ravel()
+            v = T[:, :, k].ravel()
+            nz = v != 0.0
+            rows.append(r[nz])
+            cols.append(np.full(nz.sum(), ncol))
+            vals.append(v[nz])
+            ncol += 1
+        refcols[c.boundary] = cmap
+    P = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, ncol))
+    Kr = (P.T @ (K + Ks) @ P).tocsr()
+    timings["constraints"] = time.perf_counter() - t0
+
+    near_null = None
+    if choose_method(solver, ncol) == "amg":
+        B = rigid_body_modes(basis.doflocs)
+        near_null = _reduce_modes(B, free, refcols, refp)
+    t0 = time.perf_counter()
+    fac = factorise(Kr, solver, near_nullspace=near_null)
+    timings["factorisation"] = time.perf_counter() - t0
+    return System(mesh=mesh, basis=basis, K=K, Ks=Ks.tocsr(), P=P, foundations=tuple(foundations),
+                  couplings=tuple(couplings), ref_points=refp, ref_columns=refcols, slave_dofs=slave,
+                  dirichlet_dofs=np.concatenate(ddofs) if ddofs else np.zeros(0, int),
+                  foundation_dofs=fdofs, factorisation=fac, timings=timings)
+
+
+def _reduce_modes(B, free, refcols, refp) -> np.ndarray:
+    """Rigid-body modes in reduced coordinates: free nodal rows, and (u0, theta) at references."""
+    Br = np.zeros((free.size + sum(len(c) for c in refcols.values()), 6))
+    Br[: free.size] = B[free]
+    for name, cmap in refcols.items():
+        at_ref = rigid_body_modes(refp[name][:, None])     # (3, 6): u0 of each mode
+        for dof, col in cmap.items():
+            k = REF_DOFS.index(dof)
+            if k < 3:
+                Br[col] = at_ref[k]
+            else:
+                Br[col, k] = 1.0
+    return Br

@@ -1,0 +1,262 @@
+"""Unit load cases of a crank throw on one stiffness matrix and one support model.
+
+``solve_unit_cases(throw_mesh, material, options)`` assembles and factorises once and
+solves every unit case against the same factorisation, so that any load of the cycle is
+an exact linear combination:  u = omega^2 u_centrifugal + |Fx| u_pin_(+-)x + |Fy| u_pin_(+-)y
++ T u_torque.
+
+Support model (default ``"elastic"``): both journal surfaces (``journal_1``,
+``journal_2``) on a radial Winkler foundation of stiffness per area k (default
+E / d_journal, a steel bearing housing one journal diameter deep; oil film plus shell is
+of the same order, ~1e12 N/m^3), which carries the radial forces and bending moments
+with smooth, load-direction-independent reactions and no singular points at the journal
+fillets; the face ``end_2`` coupled rigidly to a point on the axis held in uz and rz,
+which carries the torque and any axial force (and is the "output" end of the throw).
+``"rigid"`` uses the same model with a penalty stiffness 1000 E / d_journal.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+from skfem import FacetBasis, ElementTetP2
+
+from fe_crank.errors import InputError, MeshError, SolverError
+from fe_crank.fe import stress as _stress
+from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load
+from fe_crank.fe.supports import Coupling, Foundation, boundary_facets
+from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
+
+CASES = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque")
+PIN_FORCES = {"pin_x": (1.0, 0.0), "pin_y": (0.0, 1.0), "pin_-x": (-1.0, 0.0), "pin_-y": (0.0, -1.0)}
+
+
+class Material(Protocol):
+    """What the FE stage reads from a material (SI)."""
+
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float
+
+
+@dataclass(frozen=True)
+class FeOptions:
+    """Options of :func:`solve_unit_cases` (all SI).
+
+    support: "elastic" (default) or "rigid" radial journal support, see module doc.
+    bearing_stiffness: N/m^3, overrides the default E / d_journal for "elastic".
+    solver: "auto" | "pardiso" | "amg" | "superlu".
+    cases: which unit cases to solve (subset of CASES).
+    pin_half_angle: rad, half width of the cosine pressure arc.
+    """
+
+    support: str = "elastic"
+    bearing_stiffness: float | None = None
+    solver: str = "auto"
+    cases: tuple[str, ...] = CASES
+    pin_half_angle: float = float(np.deg2rad(60.0))
+    journals: tuple[str, str] = ("journal_1", "journal_2")
+    torque_face: str = "end_1"
+    reaction_face: str = "end_2"
+    pin_boundary: str = "crankpin"
+    intorder: int = 2
+
+
+@dataclass(frozen=True)
+class UnitCase:
+    """One solved unit case: displacement (3 N,), reactions per support (Fx..Mz), equilibrium error."""
+
+    name: str
+    description: str
+    displacement: np.ndarray
+    applied: np.ndarray
+    reactions: dict[str, np.ndarray]
+    equilibrium_error: float
+
+
+@dataclass(frozen=True)
+class UnitSolutions:
+    """All unit cases of one throw on one factorisation (see module doc)."""
+
+    system: System
+    material: object
+    options: FeOptions
+    cases: dict[str, UnitCase]
+    pin: dict[str, PinPressure]
+    bearing_stiffness: float
+    timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def mesh(self):
+        return self.system.mesh
+
+    @property
+    def n_dof(self) -> int:
+        return self.system.n_dof
+
+    @property
+    def solver(self) -> str:
+        return self.system.factorisation.method
+
+    @property
+    def points(self) -> np.ndarray:
+        """P2 node coordinates (3, n_nodes), the nodes of every nodal field."""
+        return self.system.points
+
+    def displacement(self, name: str) -> np.ndarray:
+        return self.cases[name].displacement
+
+    def combine(self, weights: dict[str, float]) -> np.ndarray:
+        """Displacement sum_k w_k u_k (exact by linearity)."""
+        u = np.zeros_like(next(iter(self.cases.values())).displacement)
+        for name, w in weights.items():
+            if name not in self.cases:
+                raise InputError(f"unknown unit case {name!r}; solved: {', '.join(self.cases)}")
+            u += w * self.cases[name].displacement
+        return u
+
+    def pin_weights(self, fx: float, fy: float) -> dict[str, float]:
+        """Weights of the pin unit cases for a pin force (Fx, Fy), N, throw frame.
+
+        The case whose pressure arc is on the loaded side is used for each component
+        (pin_x for Fx > 0, pin_-x for Fx < 0 ...); far from the pin surface this equals
+        a single cosine arc centred on the resultant (Saint-Venant).
+        """
+        w = {}
+        for comp, pos, neg in ((fx, "pin_x", "pin_-x"), (fy, "pin_y", "pin_-y")):
+            if comp != 0.0:
+                name = pos if comp > 0 or neg not in self.cases else neg
+                w[name] = w.get(name, 0.0) + (comp if name == pos else -comp)
+        return w
+
+    def stress_at_nodes(self, u: np.ndarray) -> np.ndarray:
+        """Averaged nodal stress (6, n_nodes), Voigt order xx yy zz xy yz zx, Pa."""
+        return _stress.stress_at_nodes(self.mesh, u, self.material.youngs_modulus,
+                                       self.material.poisson_ratio, basis=self._node_basis)
+
+    def element_nodal_stress(self, u: np.ndarray):
+        """Unaveraged stress at element nodes (6, 10, ne) and node numbers (10, ne)."""
+        return _stress.element_nodal_stress(self.mesh, u, self.material.youngs_modulus,
+                                            self.material.poisson_ratio, basis=self._node_basis)
+
+    def averaging_indicator(self, u: np.ndarray, groups) -> dict[str, float]:
+        """M53 averaged-vs-unaveraged check per fillet group (see stress.averaging_indicator)."""
+        return _stress.averaging_indicator(self.mesh, u, self.material.youngs_modulus,
+                                           self.material.poisson_ratio, groups, basis=self._node_basis)
+
+    @property
+    def _node_basis(self):
+        nb = self.__dict__.get("_nb")
+        if nb is None:
+            nb = _stress.node_basis(self.mesh)
+            object.__setattr__(self, "_nb", nb)
+        return nb
+
+    von_mises = staticmethod(_stress.von_mises)
+    principal = staticmethod(_stress.principal)
+    max_shear = staticmethod(_stress.max_shear)
+
+
+def journal_diameter(mesh, boundary: str) -> float:
+    """2 x the mean distance of the journal surface from the crank axis."""
+    fb = FacetBasis(mesh, ElementTetP2(), facets=boundary_facets(mesh, boundary, "the bearing support"),
+                    intorder=2)
+    x = np.asarray(fb.global_coordinates())
+    return float(2.0 * np.sum(np.hypot(x[0], x[1]) * fb.dx) / fb.dx.sum())
+
+
+def support_model(mesh, material, options: FeOptions) -> tuple[list[Foundation], list[Coupling], float]:
+    """Foundations and couplings of the chosen support model and the stiffness used."""
+    if options.support not in ("elastic", "rigid"):
+        raise InputError(f"unknown support {options.support!r}; pick 'elastic' or 'rigid'", key="fe.support")
+    d = min(journal_diameter(mesh, j) for j in options.journals)
+    E = material.youngs_modulus
+    if options.support == "rigid":
+        k = 1000.0 * E / d
+    else:
+        k = options.bearing_stiffness if options.bearing_stiffness is not None else E / d
+        if not k > 0:
+            raise InputError(f"bearing stiffness must be > 0 N/m^3, got {k!r}", key="fe.bearing_stiffness")
+    found = [Foundation(j, k) for j in options.journals]
+    coup = [Coupling(options.reaction_face, fixed=("uz", "rz"), ref_point=None)]
+    return found, coup, k
+
+
+def _throw_mesh(throw_mesh):
+    mesh = getattr(throw_mesh, "mesh", throw_mesh)
+    if mesh.t.shape[0] != 4 or mesh.p.shape[0] != 3:
+        raise MeshError(f"unsupported body: FE needs a 3D tetrahedral mesh, got {type(mesh).__name__}")
+    return mesh
+
+
+def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None = None) -> UnitSolutions:
+    """Assemble once, factorise once, solve the unit cases of ``options.cases``.
+
+    Cases: ``centrifugal`` (omega = 1 rad/s about z; scale by omega^2), ``pin_x``,
+    ``pin_y``, ``pin_-x``, ``pin_-y`` (1 N on the crankpin in the throw frame as a cosine
+    pressure, scale by the force component's magnitude, see ``UnitSolutions.pin_weights``),
+    ``torque`` (1 N m in the positive sense of rotation, i.e. about -z, M_z = -1 N m,
+    entering at ``end_1`` and reacted at ``end_2``; a tangential pin force +Fx drives the
+    shaft in the same sense, M_z = -R Fx).  Reactions are (Fx, Fy, Fz, Mx, My, Mz) about
+    the origin in the throw frame (right-handed moments).
+    Every case's reactions are checked against its loads: an equilibrium error above 1e-6
+    raises SolverError.
+    """
+    options = options or FeOptions()
+    unknown = set(options.cases) - set(CASES)
+    if unknown:
+        raise InputError(f"unknown unit cases {sorted(unknown)}; pick from {', '.join(CASES)}", key="fe.cases")
+    mesh = _throw_mesh(throw_mesh)
+    for attr in ("youngs_modulus", "poisson_ratio", "density"):
+        if not hasattr(material, attr):
+            raise InputError(f"material has no {attr!r}", key=f"material.{attr}")
+    t_all = time.perf_counter()
+    needed = list(options.journals) + [options.reaction_face]
+    if any(c.startswith("pin") for c in options.cases):
+        needed.append(options.pin_boundary)
+    if "torque" in options.cases:
+        needed.append(options.torque_face)
+    for name in needed:
+        boundary_facets(mesh, name, "the unit load cases")
+    found, coup, k = support_model(mesh, material, options)
+    system = build_system(mesh, material.youngs_modulus, material.poisson_ratio, foundations=found,
+                          couplings=coup, solver=options.solver, intorder=options.intorder)
+    basis = system.basis
+    t0 = time.perf_counter()
+    loads, desc, pins = {}, {}, {}
+    for name in options.cases:
+        if name == "centrifugal":
+            loads[name] = centrifugal_load(basis, material.density, 1.0)
+            desc[name] = "centrifugal body force rho omega^2 r about z, omega = 1 rad/s"
+        elif name == "torque":
+            # +1 N m in the positive sense of rotation (from +y towards +x), i.e. M_z = -1 N m
+            loads[name] = face_torque_load(basis, -1.0, boundary=options.torque_face)
+            desc[name] = (f"1 N m in the sense of rotation (M_z = -1 N m) on {options.torque_face}, "
+                          f"reacted at {options.reaction_face}")
+        else:
+            loads[name], pins[name] = pin_pressure_load(basis, PIN_FORCES[name], boundary=options.pin_boundary,
+                                                        half_angle=options.pin_half_angle)
+            desc[name] = f"1 N on {options.pin_boundary} along {name[4:]}, cosine pressure +-" \
+                         f"{np.rad2deg(options.pin_half_angle):.0f} deg"
+    names = list(loads)
+    t_loads = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    U = system.solve(np.column_stack([loads[n] for n in names]))
+    t_solve = time.perf_counter() - t0
+    cases = {}
+    for i, name in enumerate(names):
+        err, reac = system.equilibrium_error(U[:, i], loads[name])
+        if not err < EQUILIBRIUM_TOL:
+            raise SolverError(f"unit case {name!r}: reactions do not balance the loads "
+                              f"(relative error {err:.2e} > {EQUILIBRIUM_TOL:g})")
+        applied = system.applied(loads[name])[0]
+        cases[name] = UnitCase(name=name, description=desc[name], displacement=U[:, i], applied=applied,
+                               reactions=reac, equilibrium_error=err)
+    timings = dict(system.timings)
+    timings.update(loads=t_loads, solve=t_solve, solve_per_case=t_solve / max(len(names), 1),
+                   total=time.perf_counter() - t_all)
+    return UnitSolutions(system=system, material=material, options=options, cases=cases, pin=pins,
+                         bearing_stiffness=k, timings=timings)

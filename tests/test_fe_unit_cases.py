@@ -1,0 +1,120 @@
+"""FE stage (issue 5): unit load cases on a simple throw -- equilibrium, load integrals, errors."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from fe_crank.errors import InputError, MeshError, SolverError
+from fe_crank.fe import FeOptions, solve_unit_cases
+from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
+from fe_crank.fe.solvers import factorise
+from fe_crank.fe.verification_meshes import simple_throw
+
+
+@dataclass(frozen=True)
+class Steel:
+    youngs_modulus: float = 210e9
+    poisson_ratio: float = 0.3
+    density: float = 7850.0
+
+
+@pytest.fixture(scope="module")
+def throw():
+    return simple_throw(size=0.01)
+
+
+@pytest.fixture(scope="module")
+def unit(throw):
+    return solve_unit_cases(throw, Steel())
+
+
+def test_every_unit_case_balances_its_reactions(unit):
+    assert set(unit.cases) == {"centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque"}
+    for case in unit.cases.values():
+        assert case.equilibrium_error < 1e-6
+        total = case.applied + sum(case.reactions.values())
+        assert np.linalg.norm(total[:3]) < 1e-6 * max(1.0, np.linalg.norm(case.applied[:3]))
+
+
+def test_pin_pressure_integrates_exactly_to_the_force(throw, unit):
+    basis = unit.system.basis
+    for force in [(1.0, 0.0), (0.0, -1.0), (3.0e4, -5.0e4), (-2.0, 7.0)]:
+        f, info = pin_pressure_load(basis, force)
+        res = f.reshape(-1, 3).sum(axis=0)
+        np.testing.assert_allclose(res[:2], force, rtol=1e-12, atol=1e-12 * np.linalg.norm(force))
+        assert abs(res[2]) < 1e-12 * np.linalg.norm(force)
+        # the pressure arc lies on the side of the pin facing away from the force
+        away = np.arctan2(-force[0], -force[1])
+        assert abs(np.angle(np.exp(1j * (info.arc_centre - away)))) < 0.02
+    # closed form: F = p0 L (d/2) int_{-psi0}^{psi0} cos(pi psi / (2 psi0)) cos(psi) dpsi,
+    # pin d = 45 mm, L = 30 mm (the faceted mesh surface gives ~0.1 % less area)
+    psi0 = np.deg2rad(60.0)
+    a = np.pi / (2 * psi0)
+    integral = (np.sin((a - 1) * psi0) / (a - 1) + np.sin((a + 1) * psi0) / (a + 1))
+    p0_expected = 1.0 / (0.03 * 0.0225 * integral)
+    assert unit.pin["pin_y"].peak_pressure == pytest.approx(p0_expected, rel=0.01)
+
+
+def test_centrifugal_resultant_is_mass_times_centroid_radius(throw, unit):
+    """Sum of the centrifugal nodal loads = m omega^2 r_G (omega = 1) with m, r_G by quadrature."""
+    basis = unit.system.basis
+    f = centrifugal_load(basis, 7850.0, 1.0).reshape(-1, 3).sum(axis=0)
+    x = np.asarray(basis.global_coordinates())
+    m_rg = 7850.0 * np.einsum("ieq,eq->i", x, basis.dx)
+    np.testing.assert_allclose(f[:2], m_rg[:2], rtol=0, atol=1e-12 * abs(m_rg[1]))
+    # throw is symmetric about x = 0 (up to the unstructured mesh): no x force, +y force
+    assert abs(f[0]) < 1e-5 * abs(f[1]) and f[1] > 0
+
+
+def test_torque_reaction_and_pin_torque(unit):
+    # the radial journal springs take a trace of torque (facet normals not exactly radial)
+    # torque case: M_z = -1 N m (positive sense of rotation) applied, +1 N m reacted at end_2
+    assert unit.cases["torque"].applied[5] == pytest.approx(-1.0, rel=1e-12)
+    assert unit.cases["torque"].reactions["end_2"][5] == pytest.approx(1.0, rel=1e-4)
+    # 1 N along +x at the pin (R = 45 mm): M_z = x Fy - y Fx = -0.045 N m, reacted at end_2
+    assert unit.cases["pin_x"].applied[5] == pytest.approx(-0.045, rel=1e-6)
+    assert unit.cases["pin_x"].reactions["end_2"][5] == pytest.approx(0.045, rel=1e-3)
+
+
+def test_solvers_agree(throw, unit):
+    other = solve_unit_cases(throw, Steel(), FeOptions(solver="superlu", cases=("pin_y", "torque")))
+    for name in other.cases:
+        u0, u1 = unit.displacement(name), other.displacement(name)
+        assert np.abs(u0 - u1).max() < 1e-8 * np.abs(u0).max()
+
+
+def test_superposition_of_pin_cases(unit):
+    w = unit.pin_weights(3.0, -2.0)
+    assert w == {"pin_x": 3.0, "pin_-y": 2.0}
+    u = unit.combine(w)
+    np.testing.assert_allclose(u, 3.0 * unit.displacement("pin_x") + 2.0 * unit.displacement("pin_-y"))
+
+
+def test_missing_boundary_is_a_clear_error(throw):
+    mesh = type(throw)(throw.doflocs, throw.t)   # no named groups
+    with pytest.raises(MeshError, match="no boundary 'journal_1'"):
+        solve_unit_cases(mesh, Steel())
+
+
+def test_zero_speed_centrifugal_is_an_input_error(unit):
+    with pytest.raises(InputError, match="speed > 0"):
+        centrifugal_load(unit.system.basis, 7850.0, 0.0)
+
+
+def test_unsupported_rigid_mode_is_a_solver_error(unit):
+    K = unit.system.K                              # elastic stiffness alone: six rigid-body modes
+    with pytest.raises(SolverError):
+        fac = factorise(K, "superlu")
+        f = np.zeros(K.shape[0])
+        f[0] = 1.0                                 # unbalanced load
+        fac.solve(f)
+
+
+def test_bad_options_are_input_errors(throw):
+    with pytest.raises(InputError, match="unknown solver"):
+        solve_unit_cases(throw, Steel(), FeOptions(solver="mumps"))
+    with pytest.raises(InputError, match="unknown unit cases"):
+        solve_unit_cases(throw, Steel(), FeOptions(cases=("gravity",)))
