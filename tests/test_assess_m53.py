@@ -1,0 +1,79 @@
+"""IACS UR M53 Rev.1: SCFs, fatigue strength, nominal stresses and Q against hand values
+for one geometry inside the validity range; the range is enforced (FE SCFs outside)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from fe_crank.assess import m53
+
+# D = 100, D_G = 120, crank radius 90 -> S = 20 mm; W = 30, B = 150, R_H = 5, R_G = 6 mm, no bores:
+# s = 0.2, w = 0.3, b = 1.5, r = 0.05 (pin) / 0.06 (journal) -- all inside UR M53 3.1
+GEO = m53.M53Geometry(pin_diameter=0.1, journal_diameter=0.12, crank_radius=0.09, web_thickness=0.03,
+                      web_width=0.15, pin_fillet_radius=0.005, journal_fillet_radius=0.006, bearing_to_web=0.06)
+
+
+def test_related_dimensions_and_range():
+    rel = GEO.related("pin")
+    assert rel["s"] == pytest.approx(0.2) and rel["w"] == pytest.approx(0.3) and rel["b"] == pytest.approx(1.5)
+    assert m53.out_of_range(rel) == [] and m53.out_of_range(GEO.related("journal")) == []
+
+
+def test_torsion_scf_by_hand():
+    # alpha_T = 0.8 r^(-0.322 + 0.1015 (1 - s)) f(b) w^-0.145
+    #   r^(-0.2408) = 0.05^-0.2408 = 2.05725;  f(b) = 7.8955 - 15.981 + 12.03345 - 2.892375 = 1.055575
+    #   w^-0.145 = 0.3^-0.145 = 1.190741;      alpha_T = 0.8 * 2.05725 * 1.055575 * 1.190741 = 2.06864
+    assert m53.alpha_t(GEO.related("pin")) == pytest.approx(2.06864, rel=2e-5)
+
+
+def test_bending_scfs_pinned():
+    # evaluated term by term from UR M53 Rev.1 3.2 / 3.3 (f(s,w), f(w), f(b), f(r), f(d)...)
+    # e.g. crankpin f(b) = 0.6840 - 0.0077*1.5 + 0.1473*2.25 = 1.003875, f(r) = 0.2081 * 0.05^-0.5231 = 0.99656
+    assert m53.alpha_b(GEO.related("pin")) == pytest.approx(2.05310, rel=2e-5)
+    assert m53.beta_b(GEO.related("journal")) == pytest.approx(2.06439, rel=2e-5)
+    assert m53.beta_q(GEO.related("journal")) == pytest.approx(2.94110, rel=2e-5)
+
+
+def test_fatigue_strength_by_hand():
+    # R_m = 800 MPa, D = 100 mm, R_X = 5 mm, K = 1.05:
+    # (0.42*800 + 39.3) = 375.3;  0.264 + 1.073*100^-0.2 (0.427169) + (785-800)/4900 (-0.003061)
+    #   + 196/800*sqrt(1/5) (0.109567) = 0.797675;  sigma_DW = 1.05 * 375.3 * 0.797675 = 314.336 MPa
+    assert m53.fatigue_strength(800e6, 0.1, 0.005, 1.05) == pytest.approx(314.336e6, rel=1e-5)
+    # fillet radius below 2 mm is taken as 2 mm (UR M53 6)
+    assert m53.fatigue_strength(800e6, 0.1, 0.001, 1.0) == m53.fatigue_strength(800e6, 0.1, 0.002, 1.0)
+
+
+def test_nominal_stresses_and_q_by_hand():
+    theta = np.deg2rad(np.arange(720.0))
+    fr = 50e3 * np.cos(theta) - 10e3  # radial force: amplitude 50 kN
+    tq = 2e3 * np.sin(2 * theta)  # torque amplitude 2 kN m
+    nom = m53.nominal_stresses(GEO, fr, tq)
+    # M_BN = 0.5 * 0.06 * 50e3 = 1500 N m;  W_eq = 0.15 * 0.03^2 / 6 = 2.25e-5 m^3 -> 66.667 MPa
+    assert nom.bending == pytest.approx(1500 / 2.25e-5, rel=1e-9)
+    # Q_N = 25 kN over B W = 4.5e-3 m^2 -> 5.5556 MPa
+    assert nom.shear == pytest.approx(25e3 / 4.5e-3, rel=1e-9)
+    # tau_N = 2000 / (pi/16 * 0.1^3) = 10.186 MPa
+    assert nom.torsion_pin == pytest.approx(2000 / (math.pi / 16 * 0.1**3), rel=1e-9)
+    r = m53.assess_fillet(GEO, nom, "pin", tensile=800e6, k=1.05, additional=10e6)
+    sb = 2.05310 * 1500 / 2.25e-5
+    tt = 2.06864 * 2000 / (math.pi / 16 * 0.1**3)
+    sv = math.sqrt((sb + 10e6) ** 2 + 3 * tt**2)
+    assert r.equivalent == pytest.approx(sv, rel=5e-5)
+    assert r.acceptability == pytest.approx(314.336e6 / sv, rel=5e-5)
+    assert "empirical" in r.scf_source and r.out_of_range == ()
+    j = m53.assess_fillet(GEO, nom, "journal", tensile=800e6, k=1.05, additional=10e6)
+    assert j.bending == pytest.approx(2.06439 * nom.bending + 2.94110 * nom.shear, rel=5e-5)
+
+
+def test_validity_range_enforced_fe_scfs_used_outside():
+    thin = m53.M53Geometry(**{**GEO.__dict__, "web_thickness": 0.015})  # w = 0.15 < 0.2
+    nom = m53.nominal_stresses(thin, [0.0, 1e4], [0.0, 100.0])
+    with pytest.raises(ValueError, match=r"w = 0.15 not in \[0.2, 0.8\]"):
+        m53.assess_fillet(thin, nom, "pin", tensile=800e6, k=1.05)
+    r = m53.assess_fillet(thin, nom, "pin", tensile=800e6, k=1.05,
+                          fe_scf={"bending": 3.0, "torsion": 2.0})
+    assert r.scf_source.startswith("FE") and "w = 0.15" in r.scf_source and r.scf_bending == 3.0
+    assert r.bending == pytest.approx(3.0 * nom.bending)
