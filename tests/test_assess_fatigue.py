@@ -42,7 +42,7 @@ def _bar_units(n=36):
     s[2, 4] = tau * np.cos(phi)  # yz
     pts = np.vstack([x, y, np.zeros(n)])
     return UnitStresses(stress=s, points=pts, groups={"journal_fillet_1": np.arange(n)},
-                        node_ids=np.arange(n) + 100, cases=("pin_x", "pin_y", "torque"))
+                        node_ids=np.arange(n) + 100, cases=("pin_x", "pin_y", "torque"), torque_mz=1.0)
 
 
 def test_bar_bending_plus_mean_torsion_closed_form():
@@ -50,7 +50,7 @@ def test_bar_bending_plus_mean_torsion_closed_form():
     k = 0.9 * 0.95
     theta = np.deg2rad(np.arange(720.0))
     pin = np.column_stack([M_A * np.sin(theta), np.zeros_like(theta)])
-    # torque coefficient is -sense * torque_front: sense -1 gives +T_m in the unit case
+    # torque coefficient is -sense * torque_front / torque_mz: sense -1 gives +T_m on the unit case
     t = assess_throw("1", _bar_units(), theta, pin, np.full(theta.size, T_M), omega=0.0, sense=-1,
                      overspeed=None, material=mat, crank_radius=0.0)
     g = t.groups[0]

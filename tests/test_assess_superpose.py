@@ -44,13 +44,14 @@ def solved():
 
 def test_superposition_equals_direct_solve(solved):
     mesh, mat, units = solved
+    assert units.cases["torque"].applied[5] == pytest.approx(-1.0)  # the FE stage's convention
     basis = units.system.basis
     nodes = np.unique(basis.get_dofs(facets=mesh.boundaries["crankpin"]).all())
     groups = {"crankpin_fillet_1": nodes, "journal_fillet_1": np.unique(
         basis.get_dofs(facets=mesh.boundaries["journal_1"]).all())}
     unit = unit_stresses(units, groups)
     loads = {"centrifugal": centrifugal_load(basis, mat.density, 1.0),
-             "torque": face_torque_load(basis, 1.0, boundary="end_1")}
+             "torque": face_torque_load(basis, unit.torque_mz, boundary="end_1")}
     for name, force in fe.PIN_FORCES.items():
         loads[name] = pin_pressure_load(basis, force)[0]
     omega = 300.0
@@ -58,7 +59,7 @@ def test_superposition_equals_direct_solve(solved):
     theta = np.deg2rad(np.arange(0, 720))
     pin = np.column_stack([8e3 * np.sin(theta) + 1e3, -2e4 * np.cos(theta / 2) + 3e3])
     torque = 400.0 * np.sin(theta) - 50.0
-    coeffs = load_coefficients(pin, torque, omega, cases=unit.cases, sense=1)
+    coeffs = load_coefficients(pin, torque, omega, cases=unit.cases, sense=1, torque_mz=unit.torque_mz)
     hist = stress_history(unit, coeffs)
     for deg in (0, 37, 181, 400, 719):
         f = combine(np.stack([loads[c] for c in unit.cases]), coeffs[deg])[0]
@@ -72,6 +73,8 @@ def test_coefficients_split_by_sign_and_torque_sense():
     pin = np.array([[3.0, -4.0], [-1.0, 2.0]])
     c = load_coefficients(pin, np.array([10.0, -5.0]), 2.0, sense=1)
     # cases: centrifugal, pin_x, pin_y, pin_-x, pin_-y, torque
-    np.testing.assert_array_equal(c, [[4.0, 3.0, 0.0, 0.0, 4.0, -10.0], [4.0, 0.0, 2.0, 1.0, 0.0, 5.0]])
-    c2 = load_coefficients(pin, np.array([10.0, -5.0]), 2.0, cases=("pin_x", "pin_y", "torque"), sense=-1)
-    np.testing.assert_array_equal(c2, [[3.0, -4.0, 10.0], [-1.0, 2.0, -5.0]])
+    # FE torque case: M_z = -1 N m (sense of rotation of a sense +1 shaft) -> coefficient = torque_front
+    np.testing.assert_array_equal(c, [[4.0, 3.0, 0.0, 0.0, 4.0, 10.0], [4.0, 0.0, 2.0, 1.0, 0.0, -5.0]])
+    c2 = load_coefficients(pin, np.array([10.0, -5.0]), 2.0, cases=("pin_x", "pin_y", "torque"), sense=-1,
+                           torque_mz=2.0)
+    np.testing.assert_array_equal(c2, [[3.0, -4.0, 5.0], [-1.0, 2.0, -2.5]])

@@ -59,8 +59,9 @@ def unit_stresses(units, groups: dict[str, np.ndarray] | None = None) -> UnitStr
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
     cases = tuple(c for c in UNIT_CASES if c in units.cases)
     stress = np.stack([units.stress_at_nodes(units.displacement(c))[:, ids] for c in cases])
+    mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
     return UnitStresses(stress=stress, points=np.asarray(units.points)[:, ids], groups=local, node_ids=ids,
-                        cases=cases)
+                        cases=cases, torque_mz=mz)
 
 
 def _hook(obj, name, *args):

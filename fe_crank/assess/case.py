@@ -52,7 +52,8 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
                  counterweights: tuple[CounterweightData, ...] = ()) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the throw (n,) over the cycle angles ``theta``."""
-    coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense)
+    coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense,
+                               torque_mz=unit.torque_mz)
     groups = tuple(
         assess_group(unit, g, coeffs, np.asarray(theta), material, crank_radius=crank_radius, overspeed=overspeed)
         for g in sorted(unit.groups) if len(unit.groups[g])

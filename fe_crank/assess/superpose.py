@@ -40,6 +40,7 @@ class UnitStresses:
     groups: dict[str, np.ndarray] = field(default_factory=dict)
     node_ids: np.ndarray | None = None
     cases: tuple[str, ...] = UNIT_CASES
+    torque_mz: float = -1.0  # M_z of the unit torque case (FE stage: 1 N m in the sense of rotation)
 
     @property
     def n_nodes(self) -> int:
@@ -47,7 +48,8 @@ class UnitStresses:
 
 
 def load_coefficients(pin_force: np.ndarray, torque: np.ndarray, omega: float, *,
-                      cases: tuple[str, ...] = UNIT_CASES, sense: int = 1) -> np.ndarray:
+                      cases: tuple[str, ...] = UNIT_CASES, sense: int = 1,
+                      torque_mz: float = -1.0) -> np.ndarray:
     """Coefficients (n_angles, len(cases)) of the unit cases over the cycle.
 
     ``pin_force`` (n, 2) in the throw frame [N]; ``torque`` (n,) the torque through the
@@ -56,9 +58,10 @@ def load_coefficients(pin_force: np.ndarray, torque: np.ndarray, omega: float, *
     Centrifugal: omega^2.  Pin: the case whose pressure arc is on the loaded side carries
     each component's magnitude (pin_x for F_x > 0, pin_-x for F_x < 0; the FE stage's
     ``UnitSolutions.pin_weights``); without the negative cases the positive one takes the
-    signed component.  Torque: the FE case is 1 N m about +z entering at the front face,
-    and a driving torque in the shaft's sense acts about -sense z, so its coefficient is
-    -sense * torque_front.
+    signed component.  Torque: the FE case applies a moment ``torque_mz`` about +z at the
+    front face (the FE stage's case is 1 N m in the sense of rotation of a sense +1 shaft,
+    M_z = -1 N m); the torque through the front journal acts about -sense z, so its
+    coefficient is -sense * torque_front / torque_mz.
     """
     pin_force = np.asarray(pin_force, float)
     torque = np.asarray(torque, float)
@@ -71,7 +74,7 @@ def load_coefficients(pin_force: np.ndarray, torque: np.ndarray, omega: float, *
         if name == "centrifugal":
             cols.append(np.full(n, omega**2))
         elif name == "torque":
-            cols.append(-sense * torque)
+            cols.append(-sense * torque / torque_mz)
         elif name in ("pin_x", "pin_y"):
             f = fx if name == "pin_x" else fy
             has_neg = ("pin_-x" if name == "pin_x" else "pin_-y") in cases
