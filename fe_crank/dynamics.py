@@ -22,8 +22,9 @@ just after TDC.  Reported per cylinder (arrays over the cycle grid):
 * ``inertia``: classical reciprocating inertia force ``-m_j a`` with
   ``m_j = m_p + m c / l``, N, positive towards the crank axis (for reference: the
   exact solution below does not use the split);
-* ``rod_force``: force of the rod on the piston pin along the rod, compression
-  positive, N;
+* ``rod_force``: component along the rod (compression positive) of the force the rod
+  exerts on the piston pin, N (with the two-mass model this is the link force
+  ``(F_g - m_j a)/cos(beta)`` less the small-end mass's own inertia);
 * ``side_thrust``: force of the piston on the cylinder wall along ``w``, N;
 * ``tangential``, ``radial``: force of the rod on the crankpin, tangential in the
   sense of rotation and radial outward from the shaft axis, N;

@@ -165,6 +165,10 @@ def harmonic_coefficients(lam: float, orders=(1, 2, 4, 6), *, method: str = "exa
         A_4 = -(lam^3/4 + 3 lam^5/16)
         A_6 =   9 lam^5/128
 
+    With ``method="leading"`` only the leading power of each coefficient
+    (``A_2 = lam``, ``A_4 = -lam^3/4``, ``A_6 = 9 lam^5/128``): the usual
+    "first + second harmonic" engineering approximation (seed 001, eqs. 33-38).
+
     With ``method="exact"`` (default) the true Fourier coefficients of the exact
     acceleration, ``A_k = (1/pi) int_0^2pi a/(r omega^2) cos(k phi) dphi``, by the
     trapezoidal rule on 512 points (exponentially convergent for this periodic
@@ -176,7 +180,7 @@ def harmonic_coefficients(lam: float, orders=(1, 2, 4, 6), *, method: str = "exa
         Crank ratio ``r / l``, 0 < lam < 1.
     orders : iterable of int
         Orders wanted.
-    method : {"exact", "series"}
+    method : {"exact", "series", "leading"}
 
     Returns
     -------
@@ -190,8 +194,11 @@ def harmonic_coefficients(lam: float, orders=(1, 2, 4, 6), *, method: str = "exa
     if method == "series":
         ser = _series_coefficients(lam)
         return {k: ser.get(k, 0.0) for k in orders}
+    if method == "leading":
+        lead = {1: 1.0, 2: lam, 4: -(lam**3) / 4.0, 6: 9.0 * lam**5 / 128.0}
+        return {k: lead.get(k, 0.0) for k in orders}
     if method != "exact":
-        raise ValueError(f"method must be 'exact' or 'series', got {method!r}")
+        raise ValueError(f"method must be 'exact', 'series' or 'leading', got {method!r}")
     n = 512
     phi = 2.0 * np.pi * np.arange(n) / n
     a = piston_motion(phi, 1.0, 1.0 / lam, 1.0).a
