@@ -1,0 +1,123 @@
+"""assess_case end to end on a small bar 'throw': load case -> dynamics -> FE unit cases
+-> assessment; verdicts, counterweight junction groups, JSON schema, clear errors."""
+
+from __future__ import annotations
+
+import json
+import textwrap
+
+import jsonschema
+import numpy as np
+import pytest
+from skfem import MeshTet, MeshTet2
+
+from fe_crank.assess import assess_case, assessed_groups, to_json
+from fe_crank.assess.results import load_schema
+from fe_crank.errors import InputError
+from fe_crank.io.loadcase import load_loadcase
+
+fe = pytest.importorskip("fe_crank.fe.unit_cases")
+dynamics = pytest.importorskip("fe_crank.dynamics")
+
+R, L = 0.02, 0.12
+
+
+def _bar():
+    m = MeshTet.init_tensor(np.linspace(-1, 1, 5), np.linspace(-1, 1, 5), np.linspace(0, 1, 13))
+    x, y, z = m.p
+    p = np.array([R * x * np.sqrt(1 - y**2 / 2), R * y * np.sqrt(1 - x**2 / 2), L * z])
+    m2 = MeshTet2.from_mesh(MeshTet(p, m.t))
+    e = 1e-9
+    side = lambda x: (x[2] > e) & (x[2] < L - e)  # noqa: E731
+    m2 = m2.with_boundaries({
+        "end_1": lambda x: np.abs(x[2]) < e, "end_2": lambda x: np.abs(x[2] - L) < e,
+        "journal_1": lambda x: side(x) & (x[2] < L / 3), "journal_2": lambda x: side(x) & (x[2] > 2 * L / 3),
+        "crankpin": lambda x: side(x) & (x[2] > L / 3) & (x[2] < 2 * L / 3),
+        "crankpin_fillet_1": lambda x: side(x) & (np.abs(x[2] - L / 3) < L / 12),
+        "journal_fillet_2": lambda x: side(x) & (np.abs(x[2] - 2 * L / 3) < L / 12),
+    })
+    return m2.with_subdomains({"counterweight_1": lambda x: x[2] < L / 6,
+                               "web_1": lambda x: (x[2] > L / 6) & (x[2] < L / 3)})
+
+
+CASE = """
+name = "bar"
+[operating]
+speed = "3000 rpm"
+overspeed = "3600 rpm"
+[material]
+name = "42CrMo4"
+surface_factor = 0.9
+[criteria]
+{criteria}
+[engine]
+name = "single"
+strokes = 4
+[[engine.throws]]
+name = "1"
+crank_radius = "20 mm"
+[[engine.cylinders]]
+name = "1"
+throw = "1"
+bore = "60 mm"
+rod_length = "110 mm"
+rod_mass = "0.4 kg"
+rod_cg_from_big_end = "30 mm"
+piston_mass = "0.3 kg"
+"""
+
+
+@pytest.fixture(scope="module")
+def solved():
+    mesh = _bar()
+    from fe_crank.io.material import load_material
+
+    return mesh, fe.solve_unit_cases(mesh, load_material("42CrMo4"), fe.FeOptions(solver="superlu"))
+
+
+def _run(tmp_path, solved, criteria):
+    p = tmp_path / "c.toml"
+    p.write_text(CASE.format(criteria=textwrap.dedent(criteria)))
+    lc = load_loadcase(p)
+    dyn = dynamics.analyse(lc.engine, lc.operating)
+    mesh, units = solved
+    return lc, dyn, assess_case(lc, dyn, {}, {"throw": mesh}, {"throw": units})
+
+
+def test_groups_include_junction(solved):
+    mesh, units = solved
+    g = assessed_groups(units)
+    assert {"crankpin_fillet_1", "journal_fillet_2", "counterweight_1", "junction_1"} <= set(g)
+    # the junction of a bar cut at z = L/6 is the node layer of that cross-section
+    z = units.points[2, g["junction_1"]]
+    np.testing.assert_allclose(z, L / 6, atol=1e-12)
+
+
+def test_assess_case_verdicts_and_json(tmp_path, solved):
+    lc, dyn, a = _run(tmp_path, solved, """
+        min_static_safety = 1.5
+        min_overspeed_safety = 1.5
+        min_fatigue_safety = 1.2
+        min_gough_pollard_safety = 1.2
+        max_counterweight_stress = "1 kPa"
+        """)
+    names = [c.quantity for c in a.criteria]
+    assert names == ["static_safety", "overspeed_safety", "fatigue_safety", "gough_pollard_safety",
+                     "counterweight_stress"]
+    cw = a.criteria[-1]
+    assert not cw.passed and cw.margin < 0
+    assert "counterweight_1" in cw.location or "junction_1" in cw.location
+    assert a.passed is False
+    # static safety = R_e / max over the groups of the max von Mises over the cycle
+    worst = max(g.max_von_mises.value for g in a.throws[0].groups)
+    assert a.criteria[0].value == pytest.approx(650e6 / worst)
+    doc = json.loads(json.dumps(to_json(a)))
+    jsonschema.validate(doc, load_schema())
+    assert doc["throws"][0]["n_angles"] == dyn.theta.size == 720
+    assert doc["speed_rpm"] == pytest.approx(3000.0)
+
+
+def test_criterion_that_cannot_be_evaluated_is_an_error(tmp_path, solved):
+    with pytest.raises(InputError) as e:
+        _run(tmp_path, solved, "min_m53_acceptability = 1.15")
+    assert e.value.key == "criteria.min_m53_acceptability" and "cannot be evaluated" in str(e.value)
