@@ -76,9 +76,8 @@ def bearing_support(stiffness: float) -> BilinearForm:
 
     @BilinearForm
     def form(u, v, w):
-        n = w.n.copy()
-        n[2] = 0.0
-        n = n / np.sqrt(n[0] ** 2 + n[1] ** 2)
-        return stiffness * dot(u, n) * dot(v, n)
+        nx, ny = np.asarray(w.n[0]), np.asarray(w.n[1])
+        nr2 = nx**2 + ny**2
+        return stiffness * (u[0] * nx + u[1] * ny) * (v[0] * nx + v[1] * ny) / nr2
 
     return form

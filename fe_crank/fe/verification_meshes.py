@@ -103,3 +103,61 @@ def simple_throw(*, journal_d=0.05, pin_d=0.045, radius=0.045, journal_len=0.03,
 
         _name_surfaces(gmsh, classify)
         return _mesh(gmsh, size * 0.5, size)
+
+
+def _mapped_tensor_mesh(u, v, w, mapping, boundaries):
+    """A P2 tensor-product tetrahedral mesh on (u, v, w), its nodes mapped by ``mapping``.
+
+    Mapping every P2 node (vertices and mid-edges) makes the geometry quadratic along
+    curved coordinate lines (isoparametric).  ``boundaries``: name -> predicate on the
+    parameter coordinates (3, n_facets) of the facet midpoints.
+    """
+    from dataclasses import replace
+
+    from skfem import MeshTet1, MeshTet2
+
+    m1 = MeshTet1.init_tensor(u, v, w)
+    m1 = m1.with_boundaries(boundaries)
+    m2 = MeshTet2.from_mesh(m1)
+    m2 = m2.with_boundaries(dict(m1.boundaries))
+    return replace(m2, doflocs=mapping(m2.doflocs))
+
+
+def annulus_sector(r_inner=0.05, r_outer=0.15, thickness=0.005, angle=np.pi / 2, *, nr=8, nt=12, nz=1):
+    """Quarter (by default) of a flat annular disk, 0 <= z <= thickness, theta from +x.
+
+    Radial spacing is geometric (equal steps in log r), the natural grading of the
+    Lamé stress field.  Boundaries: ``bore`` (r = r_inner), ``rim``, ``sym_x`` (theta = 0: the plane y = 0),
+    ``sym_y`` (theta = angle: x = 0 for a quarter), ``bottom`` (z = 0), ``top``.
+    """
+    r = r_inner * (r_outer / r_inner) ** np.linspace(0.0, 1.0, nr + 1)   # geometric: fine at the bore
+    t = np.linspace(0.0, angle, nt + 1)
+    z = np.linspace(0.0, thickness, nz + 1)
+    tol = 1e-12
+
+    def mapping(p):
+        return np.vstack([p[0] * np.cos(p[1]), p[0] * np.sin(p[1]), p[2]])
+
+    return _mapped_tensor_mesh(r, t, z, mapping, {
+        "bore": lambda x: np.abs(x[0] - r_inner) < tol,
+        "rim": lambda x: np.abs(x[0] - r_outer) < tol,
+        "sym_x": lambda x: np.abs(x[1]) < tol,
+        "sym_y": lambda x: np.abs(x[1] - angle) < tol,
+        "bottom": lambda x: np.abs(x[2]) < tol,
+        "top": lambda x: np.abs(x[2] - thickness) < tol,
+    })
+
+
+def box_beam(length=0.2, height=0.02, width=0.02, *, nx=20, ny=2, nz=2):
+    """Straight beam 0 <= x <= length, 0 <= y <= width, 0 <= z <= height.
+
+    Boundaries: ``root`` (x = 0), ``tip`` (x = length), ``top`` (z = height), ``bottom``.
+    """
+    tol = 1e-12
+    return _mapped_tensor_mesh(np.linspace(0, length, nx + 1), np.linspace(0, width, ny + 1),
+                               np.linspace(0, height, nz + 1), lambda p: p, {
+                                   "root": lambda x: np.abs(x[0]) < tol,
+                                   "tip": lambda x: np.abs(x[0] - length) < tol,
+                                   "top": lambda x: np.abs(x[2] - height) < tol,
+                                   "bottom": lambda x: np.abs(x[2]) < tol,
+                               })
