@@ -208,3 +208,27 @@ def test_inconsistent_firing_offset_is_reported(seed):
     cyl = replace(seed.engine.cylinders[0], firing_offset=np.radians(90))
     res = analyse(replace(seed.engine, cylinders=(cyl,)), seed.operating, step=np.radians(5))
     assert any("not at its TDC" in w for w in res.warnings)
+
+
+def test_wiebe_cycle_without_heat_is_the_polytrope():
+    g = wiebe_cycle(bore=0.092, r=0.064, l=0.307, compression_ratio=8.5, intake_pressure=1e5, exhaust_pressure=1e5,
+                    heat_released=0.0, combustion_start=0.0, combustion_duration=1.0, k=1.35)
+    closed = (g.angle <= np.pi) | (g.angle >= 3 * np.pi)
+    V = cylinder_volume(g.angle, 0.092, 0.064, 0.307, 8.5)
+    pv = g.pressure[closed] * V[closed] ** 1.35
+    vbdc = cylinder_volume(np.pi, 0.092, 0.064, 0.307, 8.5)
+    np.testing.assert_allclose(pv, 1e5 * vbdc**1.35, rtol=1e-6)
+    assert g.pressure.max() == pytest.approx(1e5 * 8.5**1.35, rel=1e-6)
+
+
+def test_wiebe_cycle_with_fast_combustion_at_tdc_gives_otto_efficiency():
+    """Heat released in 1 deg at TDC, no pumping loop: work = Q (1 - eps^(1-k)) (Otto cycle)."""
+    Q, eps, k = 1000.0, 8.5, 1.35
+    g = wiebe_cycle(bore=0.092, r=0.064, l=0.307, compression_ratio=eps, intake_pressure=1e5, exhaust_pressure=1e5,
+                    heat_released=Q, combustion_start=np.radians(-0.5), combustion_duration=np.radians(1.0),
+                    k=k, n=3601)
+    phi = np.linspace(0, 4 * np.pi, 400001)
+    V = cylinder_volume(phi, 0.092, 0.064, 0.307, eps)
+    p = pressure_at(g, phi, 4 * np.pi)
+    work = np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(V))
+    assert work == pytest.approx(Q * (1 - eps ** (1 - k)), rel=5e-3)

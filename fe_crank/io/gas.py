@@ -127,8 +127,7 @@ def read_gas_csv(path, *, crankcase_pressure: float = 101325.0, source: str = ""
         except (ValueError, IndexError):
             raise InputError(f"row {ln!r} is not two numbers", file=str(path), key=f"row {i}") from None
     try:
-        table = GasTableInput(angle_unit=au, pressure_unit=pu, points=points,
-                              crankcase_pressure=crankcase_pressure, source=source or str(path.name))
+        table = GasTableInput(angle_unit=au, pressure_unit=pu, points=points, source=source or str(path.name))
     except ValidationError as exc:
         raise validation_to_input_error(exc, path) from None
     ang, prs = table.arrays_si()
