@@ -11,6 +11,6 @@ from fe_crank.io.loadcase import SECTIONS
 # SECTIONS["geometry"] = ...   (geometry stage)
 SECTIONS["material"] = __import__("fe_crank.io.material", fromlist=["_"]).parse_material  # assessment stage
 SECTIONS["criteria"] = __import__("fe_crank.io.criteria", fromlist=["_"]).parse_criteria  # assessment stage
-# SECTIONS["fe"] = ...         (FE stage)
+SECTIONS["fe"] = __import__("fe_crank.fe.input", fromlist=["_"]).parse_fe  # FE stage
 SECTIONS["balance"] = __import__("fe_crank.io.balance", fromlist=["_"]).parse_balance  # balance stage
 _ = SECTIONS

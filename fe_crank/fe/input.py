@@ -1,0 +1,48 @@
+"""The load case's ``[fe]`` section -> frozen :class:`~fe_crank.fe.unit_cases.FeOptions`.
+
+::
+
+    [fe]
+    support = "elastic"                 # or "rigid": radial support of the journals
+    bearing_stiffness = "5e12 N/m^3"    # elastic support only; default E / d_journal
+    solver = "auto"                     # "pardiso" | "amg" | "superlu"
+    pin_half_angle = "60 deg"           # cosine pressure arc on the crankpin
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from fe_crank.errors import InputError
+from fe_crank.fe.unit_cases import CASES, FeOptions
+from fe_crank.io.base import Strict, validate
+from fe_crank.io.units import Angle, StiffnessPerArea
+
+
+class FeInput(Strict):
+    support: Literal["elastic", "rigid"] = "elastic"
+    bearing_stiffness: StiffnessPerArea | None = Field(default=None, gt=0)
+    solver: Literal["auto", "pardiso", "amg", "superlu"] = "auto"
+    pin_half_angle: Angle = Field(default=FeOptions.pin_half_angle, gt=0, le=1.5707963267948966)
+    cases: tuple[str, ...] = CASES
+
+    @model_validator(mode="after")
+    def _check(self):
+        bad = [c for c in self.cases if c not in CASES]
+        if bad:
+            raise ValueError(f"unknown unit cases {bad}; pick from {', '.join(CASES)}")
+        if self.support == "rigid" and self.bearing_stiffness is not None:
+            raise ValueError("bearing_stiffness applies to support = \"elastic\" only")
+        return self
+
+
+def parse_fe(value: object, file: str | Path, key: str = "fe") -> FeOptions:
+    """Section parser registered as ``SECTIONS["fe"]``."""
+    if not isinstance(value, dict):
+        raise InputError("must be a table, e.g. [fe] support = \"elastic\"", file=str(file), key=key)
+    raw = validate(FeInput, value, file, key)
+    return FeOptions(support=raw.support, bearing_stiffness=raw.bearing_stiffness, solver=raw.solver,
+                     pin_half_angle=raw.pin_half_angle, cases=tuple(raw.cases))

@@ -1,0 +1,37 @@
+"""FE stage (issue 5): the [fe] load-case section (units at the edge, strict keys)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from fe_crank.errors import InputError
+from fe_crank.fe.input import parse_fe
+from fe_crank.fe.unit_cases import FeOptions
+
+
+def test_fe_section_parses_units_to_si():
+    opt = parse_fe({"support": "elastic", "bearing_stiffness": "5e3 N/mm^3", "pin_half_angle": "45 deg",
+                    "solver": "superlu"}, "case.toml")
+    assert isinstance(opt, FeOptions)
+    assert opt.bearing_stiffness == pytest.approx(5e12)
+    assert opt.pin_half_angle == pytest.approx(np.pi / 4)
+    assert opt.solver == "superlu"
+
+
+def test_fe_section_defaults():
+    assert parse_fe({}, "case.toml") == FeOptions()
+
+
+@pytest.mark.parametrize("value, match", [
+    ({"bearing_stiffnes": "1e12 N/m^3"}, "fe.bearing_stiffnes: unknown key"),
+    ({"bearing_stiffness": 1e12}, "fe.bearing_stiffness"),
+    ({"bearing_stiffness": "1e12 Pa"}, "fe.bearing_stiffness"),
+    ({"solver": "mumps"}, "fe.solver"),
+    ({"cases": ["gravity"]}, "unknown unit cases"),
+    ({"support": "rigid", "bearing_stiffness": "1e12 N/m^3"}, "applies to support"),
+])
+def test_fe_section_errors_name_file_and_key(value, match):
+    with pytest.raises(InputError, match=match) as exc:
+        parse_fe(value, "case.toml")
+    assert "case.toml" in str(exc.value)
