@@ -112,11 +112,22 @@ class CaseResult:
         return min(self.criteria, key=lambda c: (c.margin, c.name))
 
     def to_dict(self) -> dict:
-        d = asdict(self)
+        d = _finite(asdict(self))
         d["exit_code"] = self.exit_code
         w = self.worst
         d["worst"] = w.name if w else None
         return d
+
+
+def _finite(x):
+    """Non-finite floats (an unloaded part's infinite safety) -> None, for strict JSON."""
+    if isinstance(x, float):
+        return x if x == x and x not in (float("inf"), float("-inf")) else None
+    if isinstance(x, dict):
+        return {k: _finite(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_finite(v) for v in x]
+    return x
 
 
 # --------------------------------------------------------------------------- files
@@ -287,12 +298,12 @@ class _Run:
             self.timings.append(StageTime(stage, time.perf_counter() - t0))
 
 
-def _compute(run: _Run, options: CheckOptions):
-    """Run the computational stages; returns a dict of stage outputs."""
+def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
+    """Run the computational stages, filling ``out`` with each stage's output as it
+    finishes (so that a report of a case that stopped shows what did run)."""
     from fe_crank.io.loadcase import load_loadcase
 
-    lc = run.timed("load", load_loadcase, run.path)
-    out = {"loadcase": lc}
+    lc = out["loadcase"] = run.timed("load", load_loadcase, run.path)
     out["dynamics"] = run.timed("dynamics", _dynamics_stage, lc)
     out["balance"] = run.timed("balance", _balance_stage, lc)
     out["meshes"] = run.timed("mesh", _mesh_stage, lc, options)
@@ -314,9 +325,10 @@ def _assess_stage(lc, out):
 
 
 def _balance_stage(lc):
-    """Free forces by order and the counterweight design of the load case."""
-    free_forces = stage_function("fe_crank.balance", "free_forces", "balance")
-    return {"free_forces": free_forces(lc.engine, lc.operating.speed)}
+    """Free forces by order, counterweights sized by the ``[balance]`` strategy,
+    balance shafts, residual (``fe_crank.balance.analysis.analyse_balance``)."""
+    analyse_balance = stage_function("fe_crank.balance.analysis", "analyse_balance", "balance")
+    return analyse_balance(lc.engine, lc.operating.speed, lc.balance)
 
 
 def _mesh_stage(lc, options: CheckOptions):
@@ -380,7 +392,7 @@ def run_case(
     name, status, message, criteria, trace, stage_out = path.stem, STATUS_ERROR, "", (), "", {}
     try:
         try:
-            stage_out = _compute(run, options)
+            _compute(run, options, stage_out)
             name = stage_out["loadcase"].name
             criteria = _criteria_of(stage_out["assessment"])
             status = STATUS_PASS if all(c.passed for c in criteria) else STATUS_FAIL
@@ -410,7 +422,7 @@ def run_case(
             **{**_fields(partial), "timings": tuple(run.timings), "seconds": time.perf_counter() - t0,
                "folder": str(out_dir / slug)}
         )
-        write_atomic(tmp / "case.json", json.dumps(final.to_dict(), indent=2, default=_json_default))
+        write_atomic(tmp / "case.json", json.dumps(final.to_dict(), indent=2, default=_json_default, allow_nan=False))
         _publish(tmp, out_dir / slug)
         return final
     finally:

@@ -48,10 +48,11 @@ def _options(args):
 
 def _row(r) -> list[str]:
     w = r.worst
+    case = Path(r.folder).name if r.folder else Path(r.source).stem
     if r.status == "error":
         first = r.message.splitlines()[0] if r.message else ""
-        return [r.name, "-", "-", "ERROR", f"{r.seconds:.1f} s", first]
-    return [r.name, w.name if w else "-", f"{100 * w.margin:+.1f} %" if w else "-", r.status.upper(),
+        return [case, "-", "-", "ERROR", f"{r.seconds:.1f} s", first]
+    return [case, w.name if w else "-", f"{100 * w.margin:+.1f} %" if w else "-", r.status.upper(),
             f"{r.seconds:.1f} s", ""]
 
 

@@ -89,12 +89,15 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
         page.section("Traceback (internal error)").append(f"<pre>{esc(trace)}</pre>")
         write_atomic(folder / "error.txt", trace)
     page.section("Stage timings").append(timings_table(result))
-    write_atomic(folder / "results.json", results_json(result, stage_out))
+    if stage_out.get("assessment") is not None:
+        write_atomic(folder / "results.json", results_json(stage_out["assessment"]))
     write_atomic(folder / "report.html", page.html(header_html(result)))
 
 
-def results_json(result: CaseResult, stage_out: dict) -> str:
-    """The case's results document: the assessment's own JSON when there is one,
-    with the pipeline's status; otherwise the pipeline's record of the case."""
-    doc = result.to_dict()
-    return json.dumps(doc, indent=2, default=str)
+def results_json(assessment) -> str:
+    """``results.json``: the assessment's document (``fe_crank.assess.to_json``, schema
+    ``fe_crank/data/results.schema.json``).  Written only for cases whose assessment
+    ran; the pipeline's own record (status, message, timings) is ``case.json``."""
+    from fe_crank.assess import to_json
+
+    return json.dumps(to_json(assessment), indent=2, allow_nan=False)

@@ -8,7 +8,6 @@ opened from disk.
 from __future__ import annotations
 
 import html
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -124,4 +123,3 @@ def write_error_report(folder: Path, result: CaseResult, trace: str) -> None:
         write_atomic(folder / "error.txt", trace)
     page.section("Stage timings").append(timings_table(result))
     write_atomic(folder / "report.html", page.html(header_html(result)))
-    write_atomic(folder / "results.json", json.dumps(result.to_dict(), indent=2))

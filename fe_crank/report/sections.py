@@ -1,10 +1,151 @@
 """Report sections built from stage outputs: (heading, builder) in page order.
 
 A builder takes ``(folder, stage_out, options)``, writes its pictures into
-``folder`` and returns HTML fragments, or an empty list when the stage it shows
-did not run (the page header then carries the error that stopped it).
+``folder`` and returns HTML fragments, or an empty list when the stage it shows did
+not run (the page header then carries the error that stopped it).  Pictures the
+stages already draw for their own commands are drawn by those same functions.
 """
 
 from __future__ import annotations
 
-BUILDERS: list = []
+import math
+from pathlib import Path
+
+import numpy as np
+
+from fe_crank.report.html import Page, esc, table
+
+
+def _mpa(x) -> str:
+    return "-" if x is None or not np.isfinite(x) else f"{x / 1e6:.1f}"
+
+
+def _num(x, fmt="{:.3g}") -> str:
+    return "-" if x is None or not np.isfinite(x) else fmt.format(x)
+
+
+def dynamics_section(folder: Path, so: dict, options) -> list[str]:
+    """Piston motion, forces per cylinder, torque and the crankpin polar diagram
+    (drawn by ``fe_crank.cli.dynamics``), with the cycle's key numbers."""
+    res = so.get("dynamics")
+    if res is None:
+        return []
+    from fe_crank.cli.dynamics import _plots
+
+    _plots(res, Path(folder))
+    rows = [
+        ["speed", f"{res.speed * 30 / math.pi:.0f} rpm"],
+        ["mean indicated torque", f"{res.mean_torque:.1f} N m"],
+        ["indicated power", f"{res.power / 1e3:.2f} kW"],
+        ["torque non-uniformity (max - min) / mean", _num(res.torque_nonuniformity)],
+    ]
+    for name, t in res.throws.items():
+        f = np.hypot(t.pin_force[:, 0], t.pin_force[:, 1])
+        i = int(np.argmax(f))
+        rows.append([f"throw {name}: largest crankpin force",
+                     f"{f[i] / 1e3:.2f} kN at {math.degrees(res.theta[i]):.0f} deg"])
+    return [
+        table(["quantity", "value"], rows),
+        Page.figure("piston_motion.png", "Piston displacement, velocity and acceleration over the cycle"),
+        Page.figure("forces.png", "Gas, reciprocating inertia, tangential and radial force per cylinder"),
+        Page.figure("torque.png", "Indicated torque and its mean"),
+        Page.figure("crankpin_polar.png", "Crankpin polar diagram: rod force on the pin in the throw frame "
+                    "(x tangential, y radial outward)"),
+    ]
+
+
+def balance_section(folder: Path, so: dict, options) -> list[str]:
+    """Free forces and moments by source and order, hodographs, counterweight design."""
+    res = so.get("balance")
+    if res is None:
+        return []
+    from fe_crank.balance.analysis import forces_table
+    from fe_crank.cli.balance import plot_hodographs
+
+    out = [f"<p>Free forces and couples at {res.speed * 30 / math.pi:.0f} rpm, by source and order "
+           "(amplitudes of the hodograph ellipse: major / minor semi-axis).</p>"]
+    rows = [[r["source"], f"{r['order']:g}", _num(r["force_max"], "{:.4g}"), _num(r["force_min"], "{:.4g}"),
+             r["force_kind"], _num(r["moment_max"], "{:.4g}"), _num(r["moment_min"], "{:.4g}"), r["moment_kind"]]
+            for r in forces_table(res.forces)]
+    out.append(table(["source", "order", "F major [N]", "F minor [N]", "force", "M major [N m]",
+                      "M minor [N m]", "couple"], rows, num_cols={1, 2, 3, 5, 6}))
+    res_rows = [[f"{r['order']:g}", _num(r["force_max"], "{:.4g}"), _num(r["moment_max"], "{:.4g}")]
+                for r in forces_table(res.residual) if r["source"] == "total"]
+    out.append("<h3>Residual after counterweights and balance shafts</h3>"
+               + table(["order", "F major [N]", "M major [N m]"], res_rows, num_cols={0, 1, 2}))
+    st = res.design.strategy
+    cw_rows = []
+    for cw, sec in zip(res.design.counterweights, res.sectors):
+        s = "-" if sec is None else (f"r1 {sec.r_outer * 1e3:.1f}, r2 {sec.r_inner * 1e3:.1f}, b {sec.thickness * 1e3:.1f} mm, "
+                                     f"{math.degrees(sec.angle):.0f} deg: {sec.mass:.3f} kg at {sec.centroid_radius * 1e3:.1f} mm")
+        cw_rows.append([cw.shaft, f"{cw.z * 1e3:.1f}", f"{cw.unbalance:.4g}", f"{math.degrees(cw.angle_on_shaft):.1f}", s])
+    out.append(f"<h3>Counterweights required</h3><p>strategy: rotating masses x {st.rotating_fraction:g}, "
+               f"first-order reciprocating x {st.reciprocating_fraction:g}, couple {esc(st.couple)}</p>"
+               + table(["shaft", "z [mm]", "m r [kg m]", "angle [deg]", "annular sector"], cw_rows, num_cols={1, 2, 3}))
+    for p in plot_hodographs(res, Path(folder)):
+        out.append(Page.figure(p.name, f"Hodographs of the free force and couple, {p.stem.replace('_', ' ')}"))
+    return out
+
+
+def counterweight_section(folder: Path, so: dict, options) -> list[str]:
+    """Required vs built counterweight m*r (bars) and the counterweight checks."""
+    a = so.get("assessment")
+    checks = [(t.name, c) for t in getattr(a, "throws", ()) for c in t.counterweights]
+    if not checks:
+        return []
+    from fe_crank.report.plots import plot_bars
+
+    labels = [f"{t}: {c.name}" for t, c in checks]
+    built = [c.built_unbalance for _, c in checks]
+    req = [c.required_unbalance if c.required_unbalance is not None else np.nan for _, c in checks]
+    plot_bars(Path(folder) / "counterweight_mr.png", labels, {"required": req, "built": built},
+              ylabel="m r [kg m]", title="Counterweight unbalance: required vs built")
+    rows = [[lab, _num(c.required_unbalance, "{:.4g}"), f"{c.built_unbalance:.4g}",
+             "-" if c.unbalance_error is None else f"{100 * c.unbalance_error:.1f} %",
+             _num(c.bolt_load, "{:.4g}"), _num(c.bolt_utilisation)] for lab, (_, c) in zip(labels, checks)]
+    return [table(["counterweight", "required m r [kg m]", "built m r [kg m]", "error", "bolt load [N]",
+                   "bolt utilisation"], rows, num_cols={1, 2, 3, 4, 5}),
+            Page.figure("counterweight_mr.png", "Counterweight m*r: required by the balance strategy vs built geometry")]
+
+
+def assessment_section(folder: Path, so: dict, options) -> list[str]:
+    """Per throw and group: peak stresses, static, overspeed and fatigue safety factors."""
+    a = so.get("assessment")
+    if a is None:
+        return []
+    out = []
+    for t in a.throws:
+        rows = []
+        for g in t.groups:
+            vm = g.max_von_mises
+            ang = "" if vm.angle is None else f" at {math.degrees(vm.angle):.0f} deg"
+            rows.append([g.group, g.n_nodes, _mpa(vm.value) + ang,
+                         _mpa(g.max_von_mises_overspeed.value) if g.max_von_mises_overspeed else "-",
+                         _num(g.static_safety), _num(g.overspeed_safety),
+                         _num(g.fatigue_safety.value) if g.fatigue_safety else "-",
+                         _num(g.gough_pollard_safety.value) if g.gough_pollard_safety else "-",
+                         _mpa(g.amplitude_at_critical), _mpa(g.mean_at_critical)])
+        out.append(f"<h3>Throw {esc(t.name)} ({t.n_angles} crank angles)</h3>" + table(
+            ["group", "nodes", "max von Mises [MPa]", "at overspeed [MPa]", "static S", "overspeed S",
+             "fatigue S (Goodman)", "Gough-Pollard S", "amplitude [MPa]", "mean [MPa]"], rows,
+            num_cols=set(range(1, 10))))
+        m53 = getattr(t, "m53", ())
+        if m53:
+            mrows = [[f.fillet, f.scf_source, _num(f.scf_bending), _num(f.scf_torsion), _mpa(f.equivalent),
+                      _mpa(f.fatigue_strength), _num(f.acceptability)] for f in m53]
+            out.append("<h4>IACS UR M53</h4>" + table(
+                ["fillet", "SCF source", "alpha_B", "alpha_T", "sigma_V [MPa]", "sigma_DW [MPa]", "Q"], mrows,
+                num_cols={2, 3, 4, 5, 6}))
+    if a.notes:
+        out.append("<h3>Assumptions of the assessment</h3><ul>" + "".join(f"<li>{esc(n)}</li>" for n in a.notes)
+                   + "</ul>")
+    return out
+
+
+#: (heading, builder) in page order; the FE pictures come from ``fe_section``.
+BUILDERS: list = [
+    ("Kinematics, forces and torque", dynamics_section),
+    ("Balance: free forces, hodographs, counterweights", balance_section),
+    ("Counterweights: required vs built m*r", counterweight_section),
+    ("Stresses and safety factors by location", assessment_section),
+]
