@@ -88,7 +88,7 @@ BAD = [
      "cylinders[0].rod_length", "must exceed crank radius"),
     ("firing order names a missing cylinder", lambda e, c: (e.replace('strokes = 4', 'strokes = 4\nfiring_order = ["1", "7"]'), c),
      "engine.toml", "firing_order[1]", "'7'"),
-    ("malformed TOML", lambda e, c: (e.replace('name = "1"', 'name = "1'), c), "engine.toml", "",
+    ("malformed TOML", lambda e, c: (e.replace('name = "1"', 'name = "1'), c), "engine.toml", "line",
      "malformed TOML"),
     ("unknown top-level key in the load case", lambda e, c: (e, c + 'speeed = "1 rpm"\n'), "case.toml", "speeed",
      "unknown key"),
