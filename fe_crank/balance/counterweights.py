@@ -92,6 +92,13 @@ class CounterweightDesign:
     sectors: tuple = field(default_factory=tuple)  # SectorProperties per counterweight, when synthesised
 
 
+def _wrap(angle: float) -> float:
+    """Angle in (-pi, pi]."""
+    a = math.fmod(angle, 2.0 * math.pi)
+    a = a - 2.0 * math.pi if a > math.pi else a
+    return a + 2.0 * math.pi if a <= -math.pi else a
+
+
 def counterweight_mass(force: float, radius: float, omega: float) -> float:
     """``m_pr = P / (r_pr omega^2)`` (seed 000, eq. 161)."""
     if not (radius > 0.0 and omega > 0.0):
@@ -159,8 +166,8 @@ def size_counterweights(
         for z, uc in _planes_for_shaft(engine, strategy, sh.name):
             mag = abs(uc)
             psi = math.atan2(uc.imag, uc.real) if mag > 0 else 0.0
-            on_shaft = math.remainder(sh.sense * (psi - sh.phase), 2.0 * math.pi)
-            cws.append(Counterweight(sh.name, float(z), float(mag), psi, on_shaft))
+            on_shaft = _wrap(sh.sense * (psi - sh.phase))
+            cws.append(Counterweight(sh.name, float(z), float(mag), _wrap(psi), on_shaft))
             if mag == 0.0:
                 continue
             force = rotating_force(mag * (sh.speed_ratio * speed) ** 2, psi, sh.sense)

@@ -92,6 +92,14 @@ class FreeForces:
     speed: float  # rad/s of the reference shaft
     reference_z: float  # m: moments are about (0, 0, reference_z)
     terms: tuple[OrderTerm, ...] = field(default_factory=tuple)
+    force_scale: float = 0.0  # N: sum of first-order amplitudes, for round-off
+    length_scale: float = 1.0  # m: largest lever
+
+    def _clean(self, t: OrderTerm) -> OrderTerm:
+        ftol = ROUNDOFF * self.force_scale
+        mtol = ftol * max(self.length_scale, 1e-3)
+        return OrderTerm(t.source, t.order, np.where(np.abs(t.force) < ftol, 0.0, t.force),
+                         np.where(np.abs(t.moment) < mtol, 0.0, t.moment))
 
     @property
     def sources(self) -> tuple[str, ...]:
@@ -106,7 +114,7 @@ class FreeForces:
         for t in self.terms:
             if t.source == source and _key(t.order) == _key(order):
                 out = out + t
-        return out
+        return self._clean(out)
 
     def total(self, order: float, sources=None) -> OrderTerm:
         """Sum over ``sources`` (default all) at one order."""
@@ -114,7 +122,7 @@ class FreeForces:
         for t in self.terms:
             if _key(t.order) == _key(order) and (sources is None or t.source in sources):
                 out = out + replace(t, source="total")
-        return out
+        return self._clean(out)
 
     def evaluate(self, theta, sources=None, orders=None) -> tuple[np.ndarray, np.ndarray]:
         """Time-domain force (n, 2) and moment (n, 3): sum of the chosen terms."""
@@ -196,12 +204,37 @@ def reciprocating_terms(engine: Engine, speed: float, reference_z: float = 0.0, 
     return out
 
 
-def _merge(terms: list[OrderTerm]) -> tuple[OrderTerm, ...]:
+#: coefficients below this share of the engine's force scale are round-off: set to zero
+ROUNDOFF = 1e-11
+
+
+def _merge(terms: list[OrderTerm], force_scale: float, length_scale: float) -> tuple[OrderTerm, ...]:
+    """Sum terms of equal source and order; clear round-off so that cancelled orders read
+    exactly zero (and their hodographs ``zero``, not a noise ellipse)."""
     merged: dict[tuple[str, float], OrderTerm] = {}
     for t in terms:
         key = (t.source, _key(t.order))
         merged[key] = merged[key] + t if key in merged else t
-    return tuple(merged.values())
+    ftol = ROUNDOFF * force_scale
+    mtol = ftol * max(length_scale, 1e-3)
+    out = []
+    for t in merged.values():
+        f = np.where(np.abs(t.force) < ftol, 0.0, t.force)
+        m = np.where(np.abs(t.moment) < mtol, 0.0, t.moment)
+        out.append(OrderTerm(t.source, t.order, f, m))
+    return tuple(out)
+
+
+def _scales(engine: Engine, speed: float) -> tuple[float, float]:
+    """Sum of all first-order force amplitudes (N) and the engine's largest lever (m)."""
+    f = 0.0
+    for t in engine.throws:
+        sh = engine.shaft(t.shaft)
+        w2 = (sh.speed_ratio * speed) ** 2
+        f += rotating_mass(engine, t.name) * t.crank_radius * w2
+        f += sum(reciprocating_mass(c) for c in engine.cylinders if c.throw == t.name) * t.crank_radius * w2
+    lev = max([abs(t.axial_position) for t in engine.throws] + [abs(v) for s in engine.shafts for v in s.centre] + [0.0])
+    return max(f, 1e-300), lev
 
 
 def free_forces(engine: Engine, speed: float, *, reference_z: float = 0.0, kmax: int = 24) -> FreeForces:
@@ -237,4 +270,6 @@ def free_forces(engine: Engine, speed: float, *, reference_z: float = 0.0, kmax:
         from fe_crank.balance.nordberg import yoke_terms
 
         terms += yoke_terms(engine, yoke, speed, reference_z)
-    return FreeForces(engine.name, float(speed), float(reference_z), _merge(terms))
+    fscale, lscale = _scales(engine, speed)
+    lscale = max(lscale, abs(reference_z))
+    return FreeForces(engine.name, float(speed), float(reference_z), _merge(terms, fscale, lscale), fscale, lscale)

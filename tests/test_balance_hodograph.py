@@ -1,0 +1,57 @@
+"""Hodograph ellipses: seed 000 tilt formula, degenerate cases, co/counter-rotating split."""
+
+import math
+
+import numpy as np
+import pytest
+
+from fe_crank.balance.hodograph import hodograph
+
+
+def trace(h, n=36000):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    return h.a * np.cos(t) + h.b * np.sin(t), h.c * np.cos(t) + h.d * np.sin(t)
+
+
+@pytest.mark.parametrize("abcd", [(0.3, -1.2, 0.7, 0.4), (-0.185, 0.283, 0.178, -0.103), (2.0, 0.1, -0.5, 1.5)])
+def test_semi_axes_and_tilt_match_the_traced_curve(abcd):
+    h = hodograph(*abcd)
+    x, y = trace(h)
+    r = np.hypot(x, y)
+    assert h.major == pytest.approx(r.max(), rel=1e-5)
+    assert h.minor == pytest.approx(r.min(), rel=1e-4, abs=1e-12)
+    i = np.argmax(r)
+    assert math.tan(h.tilt) == pytest.approx(y[i] / x[i], rel=1e-3)
+
+
+@pytest.mark.parametrize("abcd", [(0.3, -1.2, 0.7, 0.4), (0.152, 0.866, 1.104, 0.5), (1.0, 0.0, 0.0, 0.2)])
+def test_seed000_tilt_formula_names_a_principal_axis(abcd):
+    """tan 2 delta = 2B/(C - A) (seed 000 eqs. 112-114) gives the major or the minor axis."""
+    h = hodograph(*abcd)
+    diff = (h.tilt - h.tilt_seed) % (math.pi / 2)
+    assert min(diff, math.pi / 2 - diff) < 1e-9
+
+
+def test_co_and_counter_rotating_vectors_rebuild_the_resultant():
+    h = hodograph(0.3, -1.2, 0.7, 0.4)
+    t = np.linspace(0, 2 * np.pi, 50)
+    x, y = 0.3 * np.cos(t) - 1.2 * np.sin(t), 0.7 * np.cos(t) + 0.4 * np.sin(t)
+    # engine convention: direction psi -> (sin psi, cos psi); co turns with +t, counter with -t
+    px = h.co_magnitude * np.sin(h.co_angle + t) + h.counter_magnitude * np.sin(h.counter_angle - t)
+    py = h.co_magnitude * np.cos(h.co_angle + t) + h.counter_magnitude * np.cos(h.counter_angle - t)
+    assert np.allclose(px, x) and np.allclose(py, y)
+    assert h.major == pytest.approx(h.co_magnitude + h.counter_magnitude)
+    assert h.minor == pytest.approx(abs(h.co_magnitude - h.counter_magnitude))
+
+
+def test_degenerate_ellipses_are_reported():
+    assert hodograph(0, 0, 0, 0).kind == "zero"
+    line = hodograph(1.0, 2.0, 0.5, 1.0)  # y = x/2 at every instant
+    assert line.kind == "line" and line.minor == pytest.approx(0, abs=1e-12)
+    assert math.degrees(line.tilt) == pytest.approx(math.degrees(math.atan(0.5)))
+    circ = hodograph(0.0, 3.0, 3.0, 0.0)  # x = 3 sin t, y = 3 cos t: turns with +t
+    assert circ.kind == "circle" and circ.counter_magnitude == pytest.approx(0, abs=1e-12)
+    assert circ.co_magnitude == pytest.approx(3.0)
+    anti = hodograph(0.0, -3.0, 3.0, 0.0)
+    assert anti.kind == "circle" and anti.co_magnitude == pytest.approx(0, abs=1e-12)
+    assert hodograph(1.0, 0.2, 0.3, 1.1).kind == "ellipse"
