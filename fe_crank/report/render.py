@@ -100,7 +100,9 @@ def render_field(
         p.set_background("white")
         p.add_mesh(
             surf, scalars=scalars, cmap="turbo", clim=clim, show_edges=False, smooth_shading=True, ambient=0.3,
-            scalar_bar_args={"title": title, "color": "black", "vertical": True, "fmt": "%.0f"},
+            scalar_bar_args={"title": title, "color": "black", "vertical": False, "fmt": "%.4g",
+                             "position_x": 0.2, "position_y": 0.03, "width": 0.6, "height": 0.07,
+                             "title_font_size": 18, "label_font_size": 15},
         )
         if hotspot is not None:
             hp = np.asarray(hotspot, float).reshape(3)
@@ -108,8 +110,8 @@ def render_field(
             p.add_mesh(pv.Sphere(radius=rad, center=hp), color="magenta")
             p.add_point_labels(hp[None, :], ["hot spot"], font_size=18, text_color="black",
                                shape_opacity=0.6, always_visible=True)
-        if view == "front":
-            p.view_xy()
+        if view == "front":  # from the front (free) end, looking along +z
+            p.view_xy(negative=True)
         elif view == "side":
             p.view_yz()
         else:

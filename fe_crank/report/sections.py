@@ -9,6 +9,7 @@ stages already draw for their own commands are drawn by those same functions.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -148,4 +149,197 @@ BUILDERS: list = [
     ("Balance: free forces, hodographs, counterweights", balance_section),
     ("Counterweights: required vs built m*r", counterweight_section),
     ("Stresses and safety factors by location", assessment_section),
+]
+
+
+# --------------------------------------------------------------------------- FE pictures
+
+
+@dataclass(frozen=True)
+class HotSpot:
+    """Where and when the pictures look: the critical point of the assessment."""
+
+    throw: str  # engine throw name
+    group: str
+    node: int
+    point: tuple[float, float, float]
+    angle: float | None  # rad: the crank angle drawn (None: no angle-bound result)
+    what: str  # "fatigue" or "static"
+
+
+def _critical(assessment, key: str, dyn) -> HotSpot | None:
+    """The hot spot the pictures show: the node with the lowest fatigue safety (static
+    safety when there is no fatigue result) over the throws the FE model ``key`` stands
+    for (one throw, or every throw when ``key`` is not a throw name, as ``assess_case``
+    does).  Fatigue works on the whole cycle, so the angle drawn is the angle of the
+    largest von Mises stress in the same group."""
+    names = [key] if key in dyn.throws else list(dyn.throws)
+    cands = []
+    for t in assessment.throws:
+        if t.name not in names:
+            continue
+        fat = [(g.fatigue_safety.value, t.name, g, g.fatigue_safety, "fatigue") for g in t.groups
+               if g.fatigue_safety is not None and g.fatigue_safety.value is not None]
+        cands += fat or [(g.static_safety, t.name, g, g.max_von_mises, "static") for g in t.groups
+                         if g.max_von_mises is not None]
+    if not cands:
+        return None
+    _, throw, g, ext, what = min(cands, key=lambda c: (c[0] if np.isfinite(c[0]) else np.inf))
+    angle = ext.angle if ext.angle is not None else (g.max_von_mises.angle if g.max_von_mises else None)
+    return HotSpot(throw, g.group, int(ext.node), tuple(float(c) for c in ext.point), angle, what)
+
+
+def _angle_index(dyn, angle: float | None) -> int:
+    if angle is None:
+        return 0
+    return int(np.argmin(np.abs(np.asarray(dyn.theta) - angle)))
+
+
+def _field_at_angle(units, dyn, lc, throw: str, index: int) -> np.ndarray:
+    """Displacement of the throw at cycle-angle index ``index`` by superposition of the
+    unit cases (the assessment's own coefficients, ``load_coefficients``)."""
+    from fe_crank.assess.superpose import load_coefficients
+
+    tl = dyn.throws[throw]
+    sense = lc.engine.shaft(lc.engine.throw(throw).shaft).sense
+    cases = tuple(units.cases)
+    mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
+    c = load_coefficients(tl.pin_force[index:index + 1], tl.torque_front[index:index + 1], dyn.speed,
+                          cases=cases, sense=sense, torque_mz=mz)[0]
+    return units.combine(dict(zip(cases, c)))
+
+
+def _xyz(u: np.ndarray) -> np.ndarray:
+    """Interleaved (x, y, z per node) displacement -> (n, 3)."""
+    return np.asarray(u).reshape(-1, 3)
+
+
+def fe_section(folder: Path, so: dict, options) -> list[str]:
+    """Renders (von Mises on the deformed throw at the critical crank angle, close-up of
+    the critical fillet with its hot spot, the throw and counterweights at overspeed) and
+    the ``.vtu`` fields, per meshed throw."""
+    units_by_key, a, dyn, lc = so.get("units"), so.get("assessment"), so.get("dynamics"), so.get("loadcase")
+    if not units_by_key or a is None or dyn is None:
+        return []
+    render = getattr(options, "render", True)
+    write_vtu_files = getattr(options, "write_vtu", True)
+    if not (render or write_vtu_files):
+        return ["<p>Pictures and fields switched off for this run (--no-render --no-vtu).</p>"]
+    from fe_crank.report import render as rd
+
+    out = []
+    done = {}
+    for throw, units in units_by_key.items():
+        if id(units) in done:  # identical throws share one FE model: draw it once
+            out.append(f"<p>Throw {esc(throw)}: same model as throw {esc(done[id(units)])} (shown above).</p>")
+            continue
+        done[id(units)] = throw
+        crit = _critical(a, throw, dyn)
+        if crit is None:
+            continue
+        eng_throw, group = crit.throw, crit.group
+        index = _angle_index(dyn, crit.angle)
+        u = _field_at_angle(units, dyn, lc, eng_throw, index)
+        vm = units.von_mises(units.stress_at_nodes(u))
+        fields = {"displacement": _xyz(u), "von_mises_mpa": vm / 1e6}
+        over = lc.operating.overspeed
+        if over and "centrifugal" in units.cases:
+            u_os = units.combine({"centrifugal": over**2})
+            fields["displacement_overspeed"] = _xyz(u_os)
+            fields["von_mises_overspeed_mpa"] = units.von_mises(units.stress_at_nodes(u_os)) / 1e6
+        grid = rd.tet_grid(units.points, units.mesh.t, fields)
+        tag = f"throw{_safe(eng_throw)}"
+        throw = eng_throw
+        angle_txt = "" if crit.angle is None else f" at crank angle {np.degrees(dyn.theta[index]):.0f} deg"
+        if write_vtu_files:
+            rd.write_vtu(Path(folder) / f"{tag}.vtu", grid)
+            out.append(f'<p>Fields for ParaView: <a href="{tag}.vtu">{tag}.vtu</a> (displacement [m] and von Mises '
+                       f"[MPa]{angle_txt}; at overspeed, centrifugal only).</p>")
+        if not render:
+            continue
+        size = float(np.linalg.norm(np.ptp(np.asarray(units.points), axis=1)))
+        umax = float(np.max(np.linalg.norm(fields["displacement"], axis=1)))
+        scale = rd.exaggeration_factor(umax, size)
+        hp = np.asarray(crit.point, float)
+        rd.render_field(Path(folder) / f"{tag}_von_mises.png", grid, "von_mises_mpa", title="von Mises [MPa]",
+                        displacement="displacement", scale=scale, hotspot=hp)
+        out.append(Page.figure(
+            f"{tag}_von_mises.png",
+            f"Throw {throw}: von Mises stress{angle_txt} (largest von Mises in {group}), on the deformed "
+            f"shape; deformation exaggerated x {scale:g} (largest displacement {umax * 1e6:.1f} um)"))
+        r_focus = max(0.12 * size, 1e-3)
+        rd.render_field(Path(folder) / f"{tag}_hotspot.png", grid, "von_mises_mpa", title="von Mises [MPa]",
+                        hotspot=hp, focus=(hp, r_focus))
+        out.append(Page.figure(
+            f"{tag}_hotspot.png",
+            f"Close-up of {group} (undeformed): hot spot of the {crit.what} assessment at "
+            f"({', '.join(f'{c * 1e3:.1f}' for c in hp)}) mm{angle_txt}"))
+        if "von_mises_overspeed_mpa" in fields:
+            umax_os = float(np.max(np.linalg.norm(fields["displacement_overspeed"], axis=1)))
+            s_os = rd.exaggeration_factor(umax_os, size)
+            rd.render_field(Path(folder) / f"{tag}_overspeed.png", grid, "von_mises_overspeed_mpa",
+                            title="von Mises [MPa]", displacement="displacement_overspeed", scale=s_os, view="front")
+            out.append(Page.figure(
+                f"{tag}_overspeed.png",
+                f"Throw {throw} and its counterweights at overspeed {over * 30 / np.pi:.0f} rpm, centrifugal load "
+                f"alone, seen from the front; deformation exaggerated x {s_os:g}"))
+    return out
+
+
+def _safe(name: str) -> str:
+    import re
+
+    return re.sub(r"[^A-Za-z0-9_-]+", "_", str(name))
+
+
+def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
+    """Mesh statistics and FE quality indicators: DOF, solver, equilibrium error of
+    every unit case, averaged vs unaveraged fillet stress (UR M53: within 5 %)."""
+    units_by_key, meshes = so.get("units"), so.get("meshes") or {}
+    if not units_by_key:
+        return []
+    out = []
+    seen = set()
+    for throw, units in units_by_key.items():
+        if id(units) in seen:
+            continue
+        seen.add(id(units))
+        m = units.mesh
+        rows = [["elements (quadratic tetrahedra)", m.t.shape[1]], ["nodes", units.points.shape[1]],
+                ["degrees of freedom", units.n_dof], ["solver", units.solver],
+                ["bearing model", f"{units.options.support} journal support"
+                 + (f", k = {units.bearing_stiffness:.3g} N/m^3" if units.options.support == "elastic" else "")]]
+        tm = meshes.get(throw)
+        stats = getattr(tm, "stats", None)
+        if stats is not None:
+            from dataclasses import fields as dc_fields, is_dataclass
+
+            items = ([(f.name, getattr(stats, f.name)) for f in dc_fields(stats)] if is_dataclass(stats)
+                     else list(dict(stats).items()) if isinstance(stats, dict) else [])
+            rows += [[f"mesh: {k}", v if not isinstance(v, float) else f"{v:.4g}"] for k, v in items]
+        radii = getattr(tm, "fillet_radii", None) or {}
+        rows += [[f"fillet radius {k}", f"{v * 1e3:.2f} mm"] for k, v in radii.items()]
+        for name, c in units.cases.items():
+            rows.append([f"equilibrium error, case {name}", f"{c.equilibrium_error:.2e}"])
+        for k, v in (units.timings or {}).items():
+            rows.append([f"time: {k}", f"{v:.2f} s"])
+        fillets = [g for g in ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")
+                   if g in (m.boundaries or {})]
+        a, dyn, lc = so.get("assessment"), so.get("dynamics"), so.get("loadcase")
+        if fillets and a is not None and dyn is not None:
+            crit = _critical(a, throw, dyn)
+            index, eng_throw = 0, (throw if throw in dyn.throws else next(iter(dyn.throws)))
+            if crit is not None:
+                eng_throw, index = crit.throw, _angle_index(dyn, crit.angle)
+            ind = units.averaging_indicator(_field_at_angle(units, dyn, lc, eng_throw, index), fillets)
+            for g, v in ind.items():
+                rows.append([f"unaveraged vs averaged von Mises at the {g} peak", f"{100 * v:+.1f} %"
+                             + ("" if abs(v) <= 0.05 else " (above the 5 % of UR M53: refine the fillet)")])
+        out.append(f"<h3>Throw {esc(throw)}</h3>" + table(["quantity", "value"], rows))
+    return out
+
+
+BUILDERS += [
+    ("Stress field renders", fe_section),
+    ("Mesh statistics and FE quality", mesh_quality_section),
 ]
