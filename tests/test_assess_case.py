@@ -121,3 +121,53 @@ def test_criterion_that_cannot_be_evaluated_is_an_error(tmp_path, solved):
     with pytest.raises(InputError) as e:
         _run(tmp_path, solved, "min_m53_acceptability = 1.15")
     assert e.value.key == "criteria.min_m53_acceptability" and "cannot be evaluated" in str(e.value)
+
+
+class _Geo:
+    """A geometry object offering the assessment's optional hooks."""
+
+    def __init__(self, m53_geometry, cws=()):
+        self._g, self._c = m53_geometry, cws
+
+    def m53_geometry(self, throw):
+        return self._g
+
+    def counterweights(self, throw):
+        return self._c
+
+
+def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solved):
+    import dataclasses
+
+    from fe_crank.assess import CounterweightData, M53Geometry, assess_case
+    from fe_crank.assess.m53 import fatigue_strength
+
+    p = tmp_path / "c.toml"
+    p.write_text(CASE.format(criteria="min_m53_acceptability = 1.15\nmax_unbalance_error = 0.05\n"
+                                      "max_bolt_utilisation = 0.8"))
+    lc = load_loadcase(p)
+    dyn = dynamics.analyse(lc.engine, lc.operating)
+    mesh, units = solved
+    inside = M53Geometry(pin_diameter=0.1, journal_diameter=0.12, crank_radius=0.09, web_thickness=0.03,
+                         web_width=0.15, pin_fillet_radius=0.005, journal_fillet_radius=0.006, bearing_to_web=0.06)
+    cw = CounterweightData("counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026,
+                           bolted=True, bolt_capacity=20e3)
+    a = assess_case(dataclasses.replace(lc, geometry=_Geo(inside, (cw,))), dyn, {}, {"throw": mesh},
+                    {"throw": units})
+    pin = a.throws[0].m53[0]
+    assert pin.scf_source.startswith("empirical") and pin.fatigue_strength == fatigue_strength(900e6, 0.1, 0.005, 1.05)
+    by = {c.quantity: c for c in a.criteria}
+    assert by["m53_acceptability"].value == min(f.acceptability for f in a.throws[0].m53)
+    # m r = 0.025 vs 0.026 required: error 1/26; bolt load m r omega_os^2 at 3600 rpm
+    assert by["unbalance_error"].value == pytest.approx(1 / 26) and by["unbalance_error"].passed
+    w = 3600 * np.pi / 30
+    assert by["bolt_utilisation"].value == pytest.approx(0.025 * w**2 / 20e3)
+    thin = dataclasses.replace(inside, web_thickness=0.015)
+    b = assess_case(dataclasses.replace(lc, geometry=_Geo(thin, (cw,))), dyn, {}, {"throw": mesh},
+                    {"throw": units})
+    pin_fe = b.throws[0].m53[0]
+    assert pin_fe.scf_source.startswith("FE") and "w = 0.15" in pin_fe.scf_source
+    assert pin_fe.scf_bending > 0 and pin_fe.scf_torsion > 0
+    doc = json.loads(json.dumps(to_json(b)))
+    jsonschema.validate(doc, load_schema())
+

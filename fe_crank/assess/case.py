@@ -9,6 +9,7 @@ import numpy as np
 
 from fe_crank.assess import m53
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
+from fe_crank.assess.stress import principal, von_mises
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
 from fe_crank.assess.throw import STATIC_ONLY_PREFIXES, GroupResult, assess_group
 from fe_crank.assess.verdict import CriterionResult, judge
@@ -45,6 +46,30 @@ class Assessment:
         return all(c.passed for c in self.criteria)
 
 
+def fe_scfs(unit: UnitStresses, geo: m53.M53Geometry) -> dict[str, dict[str, float]]:
+    """FE stress concentration factors in the sense of UR M53 Appendix III (Rev.2):
+    peak von Mises in the fillet under the unit radial pin force over the nominal web
+    bending stress of 1 N (sigma_BN = (1/2) a / (B W^2/6)), and peak absolute principal
+    stress under 1 N m of torque over tau_N = 1 / W_P.  For the journal fillet the FE
+    bending factor covers bending and shear together (``shear`` = 0): one radial unit
+    case cannot separate beta_B from beta_Q.  Only fillet groups present in the mesh count.
+    """
+    nom = m53.nominal_stresses(geo, [0.0, 2.0], [0.0, 2.0])  # amplitudes of 1 N and 1 N m
+    out = {}
+    for fillet, prefix, tau_n in (("pin", "crankpin_fillet", nom.torsion_pin),
+                                  ("journal", "journal_fillet", nom.torsion_journal)):
+        nodes = [unit.groups[g] for g in unit.groups if g.startswith(prefix)]
+        if not nodes or "pin_y" not in unit.cases or "torque" not in unit.cases:
+            continue
+        idx = np.concatenate(nodes)
+        s_b = unit.stress[unit.cases.index("pin_y")][:, idx]
+        s_t = unit.stress[unit.cases.index("torque")][:, idx] / abs(unit.torque_mz)
+        bend = float(von_mises(s_b[None])[0].max())
+        tors = float(np.abs(principal(s_t[None])[0]).max())
+        out[fillet] = {"bending": bend / nom.bending, "shear": 0.0, "torsion": tors / tau_n}
+    return out
+
+
 def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np.ndarray, torque: np.ndarray,
                  *, omega: float, sense: int = 1, overspeed: float | None, material, crank_radius: float,
                  m53_geometry: m53.M53Geometry | None = None, m53_additional: float = 10e6,
@@ -60,12 +85,17 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
     )
     fillets, nominal = (), None
     if m53_geometry is not None and material.tensile_strength is not None and material.m53_k is not None:
+        if fe_scf is None:
+            fe_scf = fe_scfs(unit, m53_geometry)
         nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], torque)
-        fillets = tuple(
-            m53.assess_fillet(m53_geometry, nominal, f, tensile=material.tensile_strength, k=material.m53_k,
-                              additional=m53_additional, fe_scf=(fe_scf or {}).get(f))
-            for f in ("pin", "journal")
-        )
+        try:
+            fillets = tuple(
+                m53.assess_fillet(m53_geometry, nominal, f, tensile=material.tensile_strength, k=material.m53_k,
+                                  additional=m53_additional, fe_scf=(fe_scf or {}).get(f))
+                for f in ("pin", "journal")
+            )
+        except ValueError as exc:  # outside the range and no fillet group in the mesh for FE SCFs
+            raise InputError(f"throw {name}: {exc}", key="geometry") from None
     cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
     return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)))
 
