@@ -171,7 +171,12 @@ def run(args) -> int:
     from fe_crank.balance.analysis import analyse_balance, result_to_dict
 
     engine, speed, settings = load_inputs(args)
-    res = analyse_balance(engine, speed, settings)
+    try:
+        res = analyse_balance(engine, speed, settings)
+    except InputError as exc:
+        if exc.file:
+            raise
+        raise InputError(exc.reason, file=str(args.file), key=exc.key) from None
     print(format_report(res))
     if args.out is not None:
         out = Path(args.out)
