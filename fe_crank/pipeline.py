@@ -49,13 +49,13 @@ class StageUnavailable(FeCrankError, RuntimeError):
 class CheckOptions:
     """How ``run_case`` runs: all fields plain data so the options pickle to workers.
 
-    ``mesh_size`` overrides the load case's characteristic element size (m) when
-    given; ``cache_dir`` holds meshes keyed by the hash of their inputs;
+    ``mesh_size`` is a preset of ``fe_crank.mesh`` ("test", "coarse", "medium",
+    "fine"; None: "coarse"); ``cache_dir`` holds meshes keyed by the hash of their inputs;
     ``render`` switches the pyvista pictures on; ``write_vtu`` the ``.vtu`` fields.
     """
 
-    mesh_size: float | None = None
-    cache_dir: str = ".cache/mesh"
+    mesh_size: str | None = None
+    cache_dir: str = ".cache/meshes"
     render: bool = True
     write_vtu: bool = True
 
@@ -331,24 +331,53 @@ def _balance_stage(lc):
     return analyse_balance(lc.engine, lc.operating.speed, lc.balance)
 
 
+def throw_keys(lc) -> dict[str, str]:
+    """Which geometry throw to mesh for each key handed to the assessment.
+
+    A geometry with a single throw stands for every throw of the engine (key
+    ``"all throws"``, which ``assess_case`` applies to each throw with its own loads);
+    otherwise the geometry's throw names must be the engine's throw names, so that no
+    throw goes unchecked.
+    """
+    g = lc.geometry
+    names = [t.name for t in g.throws]
+    engine = [t.name for t in lc.engine.throws]
+    if len(names) == 1:
+        return {names[0] if engine == names else "all throws": names[0]}
+    if sorted(names) != sorted(engine):
+        raise InputError(
+            f"the geometry's throws {names} must be the engine's throws {engine} "
+            "(or give one throw that stands for all)", file=lc.source_file, key="geometry",
+        )
+    return {n: n for n in engine}
+
+
 def _mesh_stage(lc, options: CheckOptions):
-    """Quadratic tetrahedral mesh of each throw to check (cached by input hash)."""
+    """Quadratic tetrahedral mesh of each throw (``fe_crank.mesh.mesh_throw``, cached
+    by the hash of its inputs: equal throws are meshed once)."""
     if lc.geometry is None:
         raise InputError(
             "the stress check needs a crank geometry: add geometry = \"../geometry/<file>.toml\"",
             file=lc.source_file, key="geometry",
         )
     mesh_throw = stage_function("fe_crank.mesh", "mesh_throw", "mesh")
-    kwargs = {"cache_dir": options.cache_dir}
-    if options.mesh_size is not None:
-        kwargs["size"] = options.mesh_size
-    return {"throw": mesh_throw(lc.geometry, **kwargs)}
+    kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or "coarse"}
+    return {key: mesh_throw(lc.geometry, throw=name, **kwargs) for key, name in throw_keys(lc).items()}
 
 
 def _fe_stage(lc, meshes):
-    """Unit load cases on one assembled stiffness per throw mesh."""
+    """Unit load cases on one assembled stiffness per distinct throw mesh (throws
+    with the same mesh key share one solution)."""
     solve_unit_cases = stage_function("fe_crank.fe", "solve_unit_cases", "FE")
-    return {k: solve_unit_cases(m, lc.material, lc.fe) for k, m in meshes.items()}
+    if lc.material is None:
+        raise InputError("the stress check needs a [material] section", file=lc.source_file, key="material")
+    solved, out = {}, {}
+    for key, m in meshes.items():
+        mk = getattr(m, "key", None) or id(m)
+        if mk not in solved:
+            solved[mk] = solve_unit_cases(m, lc.material, lc.fe)
+        out[key] = solved[mk]
+    return out
 
 
 def _criteria_of(assessment) -> tuple[CriterionResult, ...]:

@@ -23,26 +23,19 @@ def add_arguments(p) -> None:
                    help="run cases in N local processes (default 1: in this process)")
     p.add_argument("--dask-scheduler", metavar="ADDRESS",
                    help="run the cases on an existing Dask distributed cluster, e.g. tcp://10.0.0.5:8786")
-    p.add_argument("--mesh-size", metavar="LENGTH",
-                   help="override the characteristic element size of every case, e.g. \"4 mm\"")
-    p.add_argument("--cache-dir", default=".cache/mesh", metavar="DIR", help="mesh cache (default .cache/mesh)")
+    p.add_argument("--mesh-size", choices=("test", "coarse", "medium", "fine"), default=None,
+                   help="mesh preset (default coarse: fillet elements <= r/4, IACS UR M53 guidance; "
+                        "test is for quick trials only)")
+    p.add_argument("--cache-dir", default=".cache/meshes", metavar="DIR",
+                   help="mesh cache (default .cache/meshes)")
     p.add_argument("--no-render", action="store_true", help="skip the pyvista pictures (faster)")
     p.add_argument("--no-vtu", action="store_true", help="do not write the .vtu result fields")
 
 
 def _options(args):
-    from fe_crank.io.units import to_si
     from fe_crank.pipeline import CheckOptions
 
-    size = None
-    if args.mesh_size is not None:
-        try:
-            size = to_si(args.mesh_size, "length")
-        except ValueError as exc:
-            raise InputError(str(exc), key="--mesh-size") from None
-        if size <= 0:
-            raise InputError("must be positive", key="--mesh-size")
-    return CheckOptions(mesh_size=size, cache_dir=str(args.cache_dir), render=not args.no_render,
+    return CheckOptions(mesh_size=args.mesh_size, cache_dir=str(args.cache_dir), render=not args.no_render,
                         write_vtu=not args.no_vtu)
 
 

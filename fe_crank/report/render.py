@@ -106,7 +106,7 @@ def render_field(
         )
         if hotspot is not None:
             hp = np.asarray(hotspot, float).reshape(3)
-            rad = 0.04 * (focus[1] if focus else surf.length)
+            rad = (0.04 * focus[1]) if focus else 0.015 * surf.length
             p.add_mesh(pv.Sphere(radius=rad, center=hp), color="magenta")
             p.add_point_labels(hp[None, :], ["hot spot"], font_size=18, text_color="black",
                                shape_opacity=0.6, always_visible=True)
