@@ -120,3 +120,20 @@ def test_articulated_rod_differs_from_plain_and_matches_finite_differences():
         f += -3.0 * acc[j][:, None] * np.array([np.sin(b), np.cos(b)])
     got, _ = free_forces(art, W).evaluate(th, sources=("reciprocating",))
     assert np.abs(got - f).max() < 1e-5 * np.abs(f).max()
+
+
+@pytest.mark.parametrize("name", ["v8_crossplane", "deltic"])
+def test_dynamics_stage_inertia_forces_sum_to_the_free_reciprocating_force(name):
+    """The dynamics stage's per-cylinder inertia force (``-m_j a``, positive towards the crank
+    axis) summed along the cylinder axes over its own cycle grid."""
+    from fe_crank import model
+    from fe_crank.dynamics import analyse
+
+    e = CASES[name]()
+    res = analyse(e, model.OperatingPoint(W))
+    f_ref = np.zeros((res.theta.size, 2))
+    for c in e.cylinders:
+        axis = np.array([math.sin(c.bank_angle), math.cos(c.bank_angle)])
+        f_ref += -res.cylinders[c.name].inertia[:, None] * axis
+    f, _ = free_forces(e, W).evaluate(res.theta, sources=("reciprocating",))
+    assert np.abs(f - f_ref).max() < 1e-9 * np.abs(f_ref).max()

@@ -159,3 +159,12 @@ def test_moments_move_with_the_reference_point():
         fx, fy = ta.force
         assert np.allclose(tb.moment[0], ta.moment[0] + 0.3 * fy)
         assert np.allclose(tb.moment[1], ta.moment[1] - 0.3 * fx)
+
+
+def test_v6_60_split_pins_forces_balanced_couples_left():
+    """Even-firing 60 deg V6 on six split pins: first- and second-order forces cancel, the
+    rocking couples of both orders remain (the classical trade of this layout)."""
+    ff = free_forces(engine("v6_60.toml"), W)
+    for k in (1, 2):
+        assert_zero(ff.term("reciprocating", k), ("force",))
+        assert ff.term("reciprocating", k).moment_hodograph().kind != "zero"
