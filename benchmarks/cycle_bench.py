@@ -188,6 +188,8 @@ def main(argv=None) -> int:
     out["direct_720_extrapolated_s"] = float(np.mean(direct_t) * theta.size)
     out["superposition_vs_linear_direct_max_rel"] = max(lin_err)
     out["superposition_vs_single_arc_fillet_vm_max_rel"] = max(phys_dev)
+    out["single_arc_deviation_by_angle"] = {f"{np.rad2deg(theta[k]):.0f} deg": round(d, 5)
+                                            for k, d in zip(picks, phys_dev)}
     out["fatigue_min_safety"] = min(g.fatigue_safety.value for g in ta.groups if g.fatigue_safety)
     out["peak_rss_gb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6
     total_sup = sum(out[k] or 0 for k in ("assembly_s", "constraints_s", "factorisation_s", "unit_loads_s",
