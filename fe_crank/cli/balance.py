@@ -77,6 +77,9 @@ def write_atomic(path: Path, data: bytes) -> None:
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
@@ -136,19 +139,21 @@ def plot_hodographs(res, out: Path) -> list[Path]:
     for k in REPORTED_ORDERS:
         fig, axes = plt.subplots(1, 2, figsize=(9, 4.5))
         drawn = False
-        for src in res.forces.sources + ("total",):
-            ff = res.forces
-            t = ff.total(k, None if src == "total" else (src,))
+        curves = [(src, res.residual.total(k, (src,)), "-") for src in res.residual.sources]
+        curves.append(("free (before balancing)", res.forces.total(k), "-"))
+        curves.append(("residual", res.residual.total(k), "--"))
+        for src, t, style in curves:
             if not (t.force.any() or t.moment.any()):
                 continue
             f, m = t.evaluate(th / k)
-            axes[0].plot(f[:, 0], f[:, 1], label=src, lw=2 if src == "total" else 1)
-            axes[1].plot(m[:, 0], m[:, 1], label=src, lw=2 if src == "total" else 1)
+            lw = 1 if src in res.residual.sources else 2
+            axes[0].plot(f[:, 0] / 1e3, f[:, 1] / 1e3, style, label=src, lw=lw)
+            axes[1].plot(m[:, 0] / 1e3, m[:, 1] / 1e3, style, label=src, lw=lw)
             drawn = True
         if not drawn:
             plt.close(fig)
             continue
-        for ax, what, unit in ((axes[0], "force", "N"), (axes[1], "couple", "N m")):
+        for ax, what, unit in ((axes[0], "force", "kN"), (axes[1], "couple (Mx, My)", "kN m")):
             ax.set_aspect("equal", adjustable="datalim")
             ax.axhline(0, color="0.7", lw=0.5)
             ax.axvline(0, color="0.7", lw=0.5)
