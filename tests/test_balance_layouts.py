@@ -168,3 +168,17 @@ def test_v6_60_split_pins_forces_balanced_couples_left():
     for k in (1, 2):
         assert_zero(ff.term("reciprocating", k), ("force",))
         assert ff.term("reciprocating", k).moment_hodograph().kind != "zero"
+
+
+def test_articulated_nine_cylinder_radial_departs_from_the_plain_star():
+    """With link rods the first order stays close to (i/2) m_j r omega^2 (mean m_j) but becomes
+    an ellipse, and a second order appears that a plain star of i >= 4 cancels exactly."""
+    e = engine("radial9_articulated.toml")
+    r = e.throws[0].crank_radius
+    mj = np.mean([reciprocating_mass(c) for c in e.cylinders])
+    ff = free_forces(e, W)
+    h1 = ff.term("reciprocating", 1).force_hodograph()
+    assert h1.kind == "ellipse"
+    assert 0.5 * (h1.major + h1.minor) == pytest.approx(9 / 2 * mj * r * W**2, rel=0.05)
+    h2 = ff.term("reciprocating", 2).force_hodograph()
+    assert 0.01 * h1.major < h2.major < 0.2 * h1.major
