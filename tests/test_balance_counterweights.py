@@ -161,3 +161,13 @@ def test_balance_shaft_input_errors():
         balance_shafts(ff, "torque", 1)
     with pytest.raises(InputError):
         balance_shafts(ff, "force", 3)
+
+
+def test_nearest_counterweight_lookup_for_later_stages():
+    e = engine("inline3.toml")
+    d = size_counterweights(e, BalanceStrategy(1.0, 0.0, web_offset=0.02), W)
+    t = e.throws[1]
+    cw = d.nearest("main", t.axial_position + 0.019)
+    assert cw.z == pytest.approx(t.axial_position + 0.02)
+    assert cw.unbalance == pytest.approx(rotating_mass(e, t.name) * t.crank_radius / 2)
+    assert d.nearest("nope", 0.0) is None

@@ -91,6 +91,12 @@ class CounterweightDesign:
     residual: FreeForces
     sectors: tuple = field(default_factory=tuple)  # SectorProperties per counterweight, when synthesised
 
+    def nearest(self, shaft: str, z: float) -> Counterweight | None:
+        """The counterweight of ``shaft`` whose plane is closest to ``z`` (for the geometry and
+        assessment stages, which know their webs' axial positions); ``None`` if the shaft has none."""
+        own = [c for c in self.counterweights if c.shaft == shaft]
+        return min(own, key=lambda c: abs(c.z - z)) if own else None
+
 
 def _wrap(angle: float) -> float:
     """Angle in (-pi, pi]."""
