@@ -61,6 +61,11 @@ def test_bar_bending_plus_mean_torsion_closed_form():
     assert g.gough_pollard_safety.value == pytest.approx(k * 450e6 / sa, rel=1e-12)
     assert g.amplitude_at_critical == pytest.approx(sa, rel=1e-12)
     assert g.mean_at_critical == pytest.approx(np.sqrt(3) * tm, rel=1e-12)
+    # per-node fields: amplitude sigma_a |sin phi| round the circumference, mean sqrt3 tau_m everywhere
+    pts = _bar_units().points
+    phi = np.arctan2(pts[1], pts[0])
+    np.testing.assert_allclose(g.fields["amplitude"], sa * np.abs(np.sin(phi)), rtol=1e-9, atol=1e-6 * sa)
+    np.testing.assert_allclose(g.fields["mean"], np.sqrt(3) * tm, rtol=1e-9)
     # worst node at the top or bottom fibre (phi = 90 or 270 deg), max at theta = 90 deg (or 450)
     assert abs(g.fatigue_safety.point[1]) == pytest.approx(D / 2)
     assert np.rad2deg(g.max_von_mises.angle) % 360 in (90.0, 270.0)

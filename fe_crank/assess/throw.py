@@ -8,7 +8,7 @@ n_s = R_e / sigma_v,max.  Fatigue: ``fatigue.py``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -49,6 +49,10 @@ class GroupResult:
     gough_pollard_safety: Extreme | None
     amplitude_at_critical: float | None = None  # sigma_a' at the fatigue-critical node, Pa
     mean_at_critical: float | None = None  # sigma_m' there, Pa
+    #: per-node arrays for reports/VTU (not in the JSON): "node_ids", "max_von_mises",
+    #: "amplitude", "mean" (equivalent sigma_a', signed sigma_m'), "fatigue_safety",
+    #: "gough_pollard_safety" (inf where not computed)
+    fields: dict = field(default_factory=dict, repr=False, compare=False)
 
 
 def _axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
@@ -120,5 +124,8 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
         amp, mean = float(sa_eq[j]), float(sm_eq[j])
     if do_gp:
         gpe = _extreme(gp, nodes, unit, group, worst="min")
+    ids = unit.node_ids[nodes] if unit.node_ids is not None else nodes
+    fields = {"node_ids": ids, "max_von_mises": vm_max, "amplitude": sa_eq, "mean": sm_eq,
+              "fatigue_safety": good, "gough_pollard_safety": gp}
     return GroupResult(group, int(nodes.size), worst, os_ext, float(static),
-                       None if os_safety is None else float(os_safety), fat, gpe, amp, mean)
+                       None if os_safety is None else float(os_safety), fat, gpe, amp, mean, fields)
