@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from fe_crank.errors import InputError
+
 #: samples per shaft revolution for the spectral coefficients (orders up to N/2)
 SAMPLES = 256
 
@@ -48,7 +50,7 @@ def fourier_coefficients(samples: np.ndarray, kmax: int) -> np.ndarray:
     """
     n = samples.shape[-1]
     if kmax >= n // 2:
-        raise ValueError(f"kmax {kmax} needs more than {n} samples")
+        raise InputError(f"order {kmax} needs more than {n} samples per revolution", key="kmax")
     spec = np.fft.rfft(samples, axis=-1) / n
     out = np.empty(samples.shape[:-1] + (kmax + 1, 2))
     out[..., 0, 0] = spec[..., 0].real
