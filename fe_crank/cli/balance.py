@@ -103,6 +103,11 @@ def format_report(res) -> str:
         lines.append(f"{r['source']:<15}{r['order']:>6g} {_fmt(r['force_max'])} {_fmt(r['force_min'])} "
                      f"{r['force_kind']:>8} {r['force_tilt_deg']:9.2f} {_fmt(r['moment_max'])} "
                      f"{_fmt(r['moment_min'])} {r['moment_kind']:>8}")
+    from fe_crank.balance.analysis import exact_peak
+
+    ex = exact_peak(res.forces)
+    lines.append(f"{'recip. exact':<15}{'all':>6} {_fmt(ex['force_max'])} {'':>10} {'peak':>8} {'':>9} "
+                 f"{_fmt(ex['moment_max'])}")
     st = res.design.strategy
     lines += ["", f"counterweights: rotating {st.rotating_fraction:g}, first-order reciprocating "
               f"{st.reciprocating_fraction:g}, couple {st.couple}",
