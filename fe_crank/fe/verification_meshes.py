@@ -161,3 +161,44 @@ def box_beam(length=0.2, height=0.02, width=0.02, *, nx=20, ny=2, nz=2):
                                    "top": lambda x: np.abs(x[2] - height) < tol,
                                    "bottom": lambda x: np.abs(x[2]) < tol,
                                })
+
+
+def stepped_shaft(d=0.02, D=0.03, r=0.003, *, len_small=0.04, len_large=0.045, size=0.004,
+                  fillet_size=None):
+    """Round shaft with a shoulder: diameter d on 0 <= z <= len_small, D beyond, fillet r.
+
+    Boundaries: ``end_1`` (z = 0, small end), ``end_2``, ``fillet`` (the toroidal fillet
+    surface), ``surface`` (the rest).  ``fillet_size``: element size on the fillet
+    (default r / 4, the M53 guidance), growing to ``size`` within 2 r of it.
+    """
+    fs = fillet_size if fillet_size is not None else r / 4
+    with gmsh_session() as gmsh:
+        occ = gmsh.model.occ
+        a = occ.addCylinder(0, 0, 0, 0, 0, len_small, d / 2)
+        b = occ.addCylinder(0, 0, len_small, 0, 0, len_large, D / 2)
+        out, _ = occ.fuse([(3, a)], [(3, b)])
+        occ.synchronize()
+        vol = out[0][1]
+        # the shoulder's inner circular edge: radius d/2 at z = len_small
+        edge = None
+        for _, c in gmsh.model.getEntities(1):
+            bb = np.array(gmsh.model.getBoundingBox(1, c))
+            if abs(bb[2] - len_small) < 1e-6 and abs(bb[5] - len_small) < 1e-6 and abs(bb[3] - d / 2) < 1e-6:
+                edge = c
+        out = occ.fillet([vol], [edge], [r])
+        occ.synchronize()
+
+        def classify(kind, c, bb):
+            if abs(bb[2]) < 1e-6 and abs(bb[5]) < 1e-6:
+                return "end_1"
+            if abs(bb[2] - len_small - len_large) < 1e-6 and abs(bb[5] - len_small - len_large) < 1e-6:
+                return "end_2"
+            if kind not in ("Cylinder", "Plane"):
+                return "fillet"
+            return "surface"
+
+        _name_surfaces(gmsh, classify)
+        fillet = [t for (dim, t) in gmsh.model.getEntities(2)
+                  if gmsh.model.getType(2, t) not in ("Cylinder", "Plane")]
+        return _mesh(gmsh, min(fs, size), size, refine={"surfaces": fillet, "size": fs,
+                                                        "dist_min": 0.0, "dist_max": 4 * r})
