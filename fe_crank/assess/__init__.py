@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
 from fe_crank.assess.case import Assessment, ThrowAssessment, assess_throw, evaluate_criteria
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.m53 import M53Geometry
@@ -75,9 +76,11 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     ``throw_meshes`` and ``unit_solutions`` are dicts keyed alike (the pipeline's
     ``{"throw": ...}``); each key names a throw of the engine, or, when the key is not a
     throw name, the mesh stands for every throw and the most loaded throw's history is
-    used for each (all throws are assessed on that mesh).  The UR M53 route runs when
-    the geometry provides ``m53_geometry(throw) -> M53Geometry``; counterweight m r and
-    bolt checks when it provides ``counterweights(throw) -> tuple[CounterweightData]``.
+    used for each (all throws are assessed on that mesh).  UR M53 dimensions and the
+    counterweights' m r and bolts come from the ``CrankGeometry`` (``adapters.py``) and
+    the balance stage's ``BalanceResult.design``; a geometry object may instead offer
+    ``m53_geometry(throw) -> M53Geometry`` and ``counterweights(throw) ->
+    tuple[CounterweightData]``.
     """
     lc = loadcase
     material = lc.material
@@ -102,7 +105,12 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
             throw = lc.engine.throw(tname)
             sense = lc.engine.shaft(throw.shaft).sense
             m53g = _hook(lc.geometry, "m53_geometry", tname)
-            cws = _hook(lc.geometry, "counterweights", tname) or ()
+            if m53g is None:
+                m53g = m53_geometry_of(lc.geometry)
+            cws = _hook(lc.geometry, "counterweights", tname)
+            if cws is None:
+                gthrow = getattr(throw_meshes.get(key), "throw", None)
+                cws = counterweights_of(lc.geometry, gthrow, throw.axial_position, throw.shaft, balance)
             throws.append(assess_throw(
                 tname, unit, dynamics.theta, tl.pin_force, tl.torque_front, omega=omega, sense=sense,
                 overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,

@@ -1,0 +1,93 @@
+"""What the assessment takes from the geometry and balance stages.
+
+* ``m53_geometry_of(geometry)``: UR M53 dimensions of a ``CrankGeometry``.  The web
+  width B is taken at the middle of the pin/journal overlap (UR M53 3.1 figure), on the
+  web outline (convex hull of a circle of ``journal_end_radius`` about the crank axis
+  and one of ``pin_end_radius`` about the pin: its width varies linearly between the
+  two centres).  The main bearing centre is the middle of the journal, so the distance
+  to the web centre line is a = (L_journal + W)/2.  No axial bores, no recesses.
+* ``counterweights_of(...)``: per balance plane, the built m r of the throw's
+  counterweights (exact B-rep mass properties, ``fe_crank.geometry.mass``) against the
+  balance stage's required m r (``CounterweightDesign.nearest``), and for bolted ones
+  the bolt capacity n A_s R_e,bolt (A_s: ISO 898-1 tensile stress area of the coarse
+  thread for M8-M36, else pi/4 (0.88 d)^2, within 6 % of the table over M8-M30).
+"""
+
+from __future__ import annotations
+
+import math
+
+from fe_crank.assess.counterweight import CounterweightData
+from fe_crank.assess.m53 import M53Geometry
+
+#: ISO 898-1 tensile stress area (mm^2) of coarse-pitch metric threads by nominal d (mm)
+STRESS_AREA_MM2 = {8: 36.6, 10: 58.0, 12: 84.3, 14: 115.0, 16: 157.0, 18: 192.0, 20: 245.0, 22: 303.0,
+                   24: 353.0, 27: 459.0, 30: 561.0, 33: 694.0, 36: 817.0}
+
+
+def m53_geometry_of(geometry) -> M53Geometry | None:
+    """UR M53 dimensions of a ``fe_crank.geometry.spec.CrankGeometry`` (None if not one)."""
+    g = geometry
+    need = ("crankpin_diameter", "journal_diameter", "crank_radius", "web_thickness", "web",
+            "crankpin_fillet", "journal_fillet", "journal_length")
+    if g is None or not all(hasattr(g, k) for k in need):
+        return None
+    d, dg, r = g.crankpin_diameter, g.journal_diameter, g.crank_radius
+    y_mid = 0.5 * ((r - 0.5 * d) + 0.5 * dg)  # middle of the overlap (or of the gap)
+    rj, rp = g.web.journal_end_radius, g.web.pin_end_radius
+    width = 2.0 * (rj + (rp - rj) * min(max(y_mid / r, 0.0), 1.0))
+    return M53Geometry(pin_diameter=d, journal_diameter=dg, crank_radius=r, web_thickness=g.web_thickness,
+                       web_width=width, pin_fillet_radius=g.crankpin_fillet, journal_fillet_radius=g.journal_fillet,
+                       bearing_to_web=0.5 * (g.journal_length + g.web_thickness))
+
+
+def stress_area(diameter: float) -> float:
+    """Tensile stress area (m^2) of a metric coarse thread of nominal ``diameter`` (m)."""
+    d_mm = diameter * 1e3
+    for nominal, area in STRESS_AREA_MM2.items():
+        if abs(d_mm - nominal) < 0.05:
+            return area * 1e-6
+    return math.pi / 4.0 * (0.88 * diameter) ** 2
+
+
+def counterweights_of(geometry, geometry_throw: str | None, axial_position: float, shaft: str,
+                      balance) -> tuple[CounterweightData, ...]:
+    """Counterweight data of one throw, grouped by the balance plane they serve.
+
+    Counterweights of the throw that are nearest to the same balance counterweight are
+    summed (their m r add: both hang on -y); ``required_unbalance`` is that plane's
+    requirement, or None without a balance design.
+    """
+    if geometry is None or not hasattr(geometry, "throw"):
+        return ()
+    spec = geometry.throw(geometry_throw)
+    if not spec.counterweights:
+        return ()
+    from fe_crank.geometry.mass import mass_properties
+
+    props = mass_properties(geometry, spec)
+    design = getattr(balance, "design", None)
+    groups: dict[object, list] = {}
+    for cw in spec.counterweights:
+        part = props.parts.get(f"counterweight_{cw.web}")
+        if part is None:
+            continue
+        z = axial_position + part.centroid[2]
+        plane = design.nearest(shaft, z) if design is not None else None
+        groups.setdefault(id(plane) if plane is not None else cw.web, []).append((cw, part, plane))
+    out = []
+    for items in groups.values():
+        mass = sum(p.mass for _, p, _ in items)
+        mr = math.hypot(sum(p.unbalance_vector[0] for _, p, _ in items), sum(p.unbalance_vector[1] for _, p, _ in items))
+        plane = items[0][2]
+        bolted = [cw.bolted for cw, _, _ in items if cw.bolted is not None]
+        capacity = None
+        if bolted and all(b.yield_strength is not None for b in bolted):
+            capacity = sum(b.count * stress_area(b.diameter) * b.yield_strength for b in bolted)
+        out.append(CounterweightData(
+            name="+".join(f"counterweight_{cw.web}" for cw, _, _ in items), mass=mass,
+            centroid_radius=mr / mass if mass > 0 else 0.0,
+            required_unbalance=None if plane is None else plane.unbalance,
+            bolted=bool(bolted), bolt_capacity=capacity,
+        ))
+    return tuple(out)

@@ -1,0 +1,85 @@
+"""What the assessment takes from the geometry and balance stages: UR M53 dimensions,
+counterweight m r (checked against the annular-sector closed form) and bolt capacity."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import pytest
+
+from fe_crank.assess.adapters import counterweights_of, m53_geometry_of, stress_area
+from fe_crank.assess.m53 import out_of_range
+
+geo_io = pytest.importorskip("fe_crank.io.geometry")
+spec = pytest.importorskip("fe_crank.geometry.spec")
+sector = pytest.importorskip("fe_crank.balance.sector")
+
+
+@pytest.fixture(scope="module")
+def seed001(root):
+    return geo_io.load_geometry(root / "geometry" / "single_cylinder_seed001.toml")
+
+
+@pytest.fixture(scope="module")
+def root():
+    from pathlib import Path
+
+    return Path(__file__).resolve().parents[1]
+
+
+def test_m53_dimensions_of_seed001_crank(seed001):
+    m = m53_geometry_of(seed001)
+    # stadium web 80 mm wide; a = (journal length 25 + web 22)/2 = 23.5 mm
+    assert m.web_width == pytest.approx(0.080) and m.bearing_to_web == pytest.approx(0.0235)
+    rel = m.related("pin")
+    # s = ((50 + 60)/2 - 64)/50 = -0.18, w = 22/50, b = 80/50, r = 4/50
+    assert rel["s"] == pytest.approx(-0.18) and rel["w"] == pytest.approx(0.44)
+    assert rel["b"] == pytest.approx(1.6) and rel["r"] == pytest.approx(0.08)
+    assert out_of_range(rel) == []
+    assert m53_geometry_of(None) is None and m53_geometry_of(object()) is None
+
+
+def test_pear_web_width_at_mid_overlap(seed001):
+    pear = dataclasses.replace(seed001, web=spec.WebOutline("pear", 0.05, 0.03))
+    m = m53_geometry_of(pear)
+    y_mid = 0.5 * ((0.064 - 0.025) + 0.030)  # middle of the overlap, 34.5 mm
+    assert m.web_width == pytest.approx(2 * (0.05 + (0.03 - 0.05) * y_mid / 0.064))
+
+
+class _Plane:
+    unbalance = 0.2
+
+
+class _Design:
+    def nearest(self, shaft, z):
+        return _Plane()
+
+
+class _Balance:
+    design = _Design()
+
+
+def test_counterweight_mr_against_sector_closed_form_and_bolts(seed001):
+    cw = seed001.throw().counterweights[0]
+    s = sector.annular_sector(cw.outer_radius, cw.inner_radius, cw.thickness, cw.angle, seed001.density)
+    (data,) = counterweights_of(seed001, None, 0.0, "main", _Balance())
+    # both webs' sectors serve the one balance plane: m r adds
+    assert data.built_unbalance == pytest.approx(2 * s.unbalance, rel=1e-9)
+    assert data.required_unbalance == 0.2 and not data.bolted
+    bolt = spec.BoltedJoint(count=2, diameter=0.012, pitch_radius=0.05, yield_strength=640e6)
+    cws = tuple(dataclasses.replace(c, bolted=bolt) for c in seed001.throw().counterweights)
+    g2 = dataclasses.replace(seed001, throws=(dataclasses.replace(seed001.throw(), counterweights=cws),))
+    (d2,) = counterweights_of(g2, None, 0.0, "main", _Balance())
+    # two counterweights x 2 bolts M12 (A_s = 84.3 mm^2, ISO 898-1) x 640 MPa
+    assert d2.bolted and d2.bolt_capacity == pytest.approx(4 * 84.3e-6 * 640e6)
+    # without a balance design each web stands alone, with no requirement
+    per_web = counterweights_of(g2, None, 0.0, "main", None)
+    assert [d.name for d in per_web] == ["counterweight_1", "counterweight_2"]
+    assert all(d.required_unbalance is None and d.bolt_capacity == pytest.approx(2 * 84.3e-6 * 640e6)
+               for d in per_web)
+
+
+def test_stress_area_table_and_fallback():
+    assert stress_area(0.016) == pytest.approx(157e-6)
+    assert stress_area(0.0165) == pytest.approx(math.pi / 4 * (0.88 * 0.0165) ** 2)
