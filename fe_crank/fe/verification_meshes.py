@@ -70,10 +70,11 @@ def round_bar(diameter: float = 0.02, length: float = 0.08, size: float = 0.004)
 
 
 def simple_throw(*, journal_d=0.05, pin_d=0.045, radius=0.045, journal_len=0.03, web_t=0.02,
-                 pin_len=0.03, web_w=0.08, size=0.008):
-    """A crank throw without fillets (throw frame: crank axis z, pin centre on +y at ``radius``).
+                 pin_len=0.03, web_w=0.08, size=0.008, fillet=0.0, fillet_size=None):
+    """A crank throw with box webs (throw frame: crank axis z, pin centre on +y at ``radius``).
 
-    Boundaries: journal_1, journal_2, crankpin, end_1, end_2, other.
+    Boundaries: journal_1, journal_2, crankpin, end_1, end_2, other; with ``fillet`` > 0 also
+    crankpin_fillet_1/2 and journal_fillet_1/2 (element size ``fillet_size``, default r/2).
     """
     z0 = -(journal_len + web_t + pin_len / 2)
     zs = [z0, z0 + journal_len, z0 + journal_len + web_t, z0 + journal_len + web_t + pin_len,
@@ -85,14 +86,32 @@ def simple_throw(*, journal_d=0.05, pin_d=0.045, radius=0.045, journal_len=0.03,
         p = occ.addCylinder(0, radius, zs[2], 0, 0, pin_len, pin_d / 2)
         w2 = occ.addBox(-web_w / 2, -journal_d * 0.7, zs[3], web_w, radius + journal_d * 1.4, web_t)
         j2 = occ.addCylinder(0, 0, zs[4], 0, 0, journal_len, journal_d / 2)
-        occ.fuse([(3, j1)], [(3, w1), (3, p), (3, w2), (3, j2)])
+        out, _ = occ.fuse([(3, j1)], [(3, w1), (3, p), (3, w2), (3, j2)])
         occ.synchronize()
+        fillet_names = {}
+        if fillet > 0:
+            wanted = {(zs[1], 0.0, journal_d / 2): "journal_fillet_1", (zs[2], radius, pin_d / 2): "crankpin_fillet_1",
+                      (zs[3], radius, pin_d / 2): "crankpin_fillet_2", (zs[4], 0.0, journal_d / 2): "journal_fillet_2"}
+            edges = []
+            for _, c in gmsh.model.getEntities(1):
+                bb = np.array(gmsh.model.getBoundingBox(1, c))
+                for (z, yc, rad) in wanted:
+                    if (abs(bb[2] - z) < 1e-6 and abs(bb[5] - z) < 1e-6 and abs(bb[3] - rad) < 1e-6
+                            and abs(0.5 * (bb[1] + bb[4]) - yc) < 1e-6):
+                        edges.append(c)
+            occ.fillet([out[0][1]], edges, [fillet])
+            occ.synchronize()
+            fillet_names = wanted
 
         def classify(kind, c, bb):
             if abs(bb[2] - zs[0]) < 1e-6 and abs(bb[5] - zs[0]) < 1e-6:
                 return "end_1"
             if abs(bb[2] - zs[5]) < 1e-6 and abs(bb[5] - zs[5]) < 1e-6:
                 return "end_2"
+            if kind not in ("Cylinder", "Plane") and fillet_names:
+                for (z, yc, rad), name in fillet_names.items():
+                    if abs(c[2] - z) < 2 * fillet and abs(0.5 * (bb[1] + bb[4]) - yc) < 2 * fillet:
+                        return name
             if kind == "Cylinder":
                 if c[2] < zs[1]:
                     return "journal_1"
@@ -102,6 +121,11 @@ def simple_throw(*, journal_d=0.05, pin_d=0.045, radius=0.045, journal_len=0.03,
             return "other"
 
         _name_surfaces(gmsh, classify)
+        if fillet > 0:
+            fs = fillet_size if fillet_size is not None else fillet / 2
+            surf = [t for (_, t) in gmsh.model.getEntities(2)
+                    if gmsh.model.getType(2, t) not in ("Cylinder", "Plane")]
+            return _mesh(gmsh, min(fs, size), size, refine={"surfaces": surf, "size": fs, "dist_max": 4 * fillet})
         return _mesh(gmsh, size * 0.5, size)
 
 
