@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from fe_crank.io.loadcase import SECTIONS
 
-# SECTIONS["geometry"] = ...   (geometry stage)
+SECTIONS["geometry"] = __import__("fe_crank.io.geometry", fromlist=["_"]).parse_geometry  # geometry stage
 SECTIONS["material"] = __import__("fe_crank.io.material", fromlist=["_"]).parse_material  # assessment stage
 SECTIONS["criteria"] = __import__("fe_crank.io.criteria", fromlist=["_"]).parse_criteria  # assessment stage
 SECTIONS["fe"] = __import__("fe_crank.fe.input", fromlist=["_"]).parse_fe  # FE stage

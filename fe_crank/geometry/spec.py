@@ -1,0 +1,126 @@
+"""Frozen description of a crankshaft's geometry (SI floats), as the core sees it.
+
+All throws of a crankshaft share the journal, pin and web dimensions; each throw has
+its own angle and counterweights.  Dimensions are given in the THROW frame of
+``docs/contracts.md``: ``z`` the crank axis, crankpin centre on ``+y`` at distance
+``crank_radius``, counterweights centred on ``-y``, index 1 = front (smaller ``z``).
+
+Axial layout of one throw (``zp = crankpin_length / 2``, ``t = web_thickness``,
+``L = journal_length``)::
+
+    journal_1  z in [-zp - t - L, -zp - t]     end_1 at z = -zp - t - L
+    web_1      z in [-zp - t, -zp]
+    crankpin   z in [-zp, zp]
+    web_2      z in [zp, zp + t]
+    journal_2  z in [zp + t, zp + t + L]       end_2 at z = zp + t + L
+
+A counterweight on web 1 fills ``z in [-zp - t, -zp - t + thickness]`` (flush with the
+web's outer face), on web 2 ``z in [zp + t - thickness, zp + t]``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+WEB_OUTLINES = ("stadium", "pear")
+
+
+@dataclass(frozen=True)
+class WebOutline:
+    """Web outline in the xy plane: convex hull of two circles.
+
+    ``journal_end_radius`` about the crank axis and ``pin_end_radius`` about the
+    crankpin centre.  ``kind = "stadium"`` (rectangle with rounded ends) has both radii
+    equal to half the web width; ``"pear"`` (oval) has different radii.
+    """
+
+    kind: str
+    journal_end_radius: float
+    pin_end_radius: float
+
+
+@dataclass(frozen=True)
+class BoltedJoint:
+    """Bolted counterweight: data for the assessment's bolt check (not modelled in FE)."""
+
+    count: int
+    diameter: float  # m, nominal thread diameter
+    pitch_radius: float  # m, radius of the bolt positions from the crank axis
+    preload: float | None = None  # N per bolt
+    yield_strength: float | None = None  # Pa, bolt material
+
+
+@dataclass(frozen=True)
+class CounterweightSpec:
+    """Annular-sector counterweight on one web, centred on ``-y`` (opposite the pin)."""
+
+    web: int  # 1 (front) or 2 (rear)
+    outer_radius: float  # m, r1
+    inner_radius: float  # m, r2
+    angle: float  # rad, included angle
+    thickness: float  # m, axial (b)
+    bolted: BoltedJoint | None = None
+
+
+@dataclass(frozen=True)
+class OilBore:
+    """Straight oil bore through the crankpin centre at mid-length, in the xy plane.
+
+    ``angle`` is its direction from ``+y`` towards ``+x`` (throw frame).
+    """
+
+    diameter: float
+    angle: float
+
+
+@dataclass(frozen=True)
+class ThrowSpec:
+    name: str
+    angle: float  # rad, position on the shaft (model.Throw.angle)
+    counterweights: tuple[CounterweightSpec, ...] = ()
+
+
+@dataclass(frozen=True)
+class CrankGeometry:
+    """A crankshaft of ``len(throws)`` equal throws (SI)."""
+
+    name: str
+    density: float  # kg/m^3
+    crank_radius: float
+    journal_diameter: float
+    journal_length: float  # per side of a throw
+    crankpin_diameter: float
+    crankpin_length: float
+    web_thickness: float
+    web: WebOutline
+    crankpin_fillet: float  # m, radius where pin meets web
+    journal_fillet: float  # m, radius where journal meets web
+    throws: tuple[ThrowSpec, ...]
+    oil_bore: OilBore | None = None
+    require_overlap: bool = False
+    description: str = ""
+    source: str = ""
+    file: str = ""
+
+    def throw(self, which: str | int | None = None) -> ThrowSpec:
+        """A throw by name, by 0-based index, or the first one for ``None``."""
+        if which is None:
+            return self.throws[0]
+        if isinstance(which, int):
+            if not 0 <= which < len(self.throws):
+                raise IndexError(f"throw index {which} out of range (0..{len(self.throws) - 1})")
+            return self.throws[which]
+        for t in self.throws:
+            if t.name == which:
+                return t
+        raise KeyError(f"no throw named {which!r}; throws are {[t.name for t in self.throws]}")
+
+    @property
+    def pin_overlap(self) -> float:
+        """Radial overlap of crankpin and journal, ``(d_j + d_p)/2 - R`` (m)."""
+        return 0.5 * (self.journal_diameter + self.crankpin_diameter) - self.crank_radius
+
+    @property
+    def throw_length(self) -> float:
+        """Axial length of one throw model, end face to end face."""
+        return self.crankpin_length + 2.0 * (self.web_thickness + self.journal_length)

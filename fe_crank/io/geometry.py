@@ -1,0 +1,215 @@
+"""Crankshaft geometry files (``geometry/*.toml``) -> frozen ``CrankGeometry`` (SI).
+
+::
+
+    name = "V4 90 deg pneumatic engine crank, seed 003"
+    density = "7400 kg/m^3"
+    crank_radius = "33 mm"          # or: stroke = "66 mm"
+    require_overlap = false         # true: refuse a pin that does not overlap the journal
+
+    [journal]                       # main journal, each side of a throw
+    diameter = "50 mm"
+    length = "20 mm"                # half a main bearing: the throw model ends mid-bearing
+    fillet_radius = "3 mm"
+
+    [crankpin]
+    diameter = "45 mm"
+    length = "44 mm"
+    fillet_radius = "3 mm"
+    oil_bore = { diameter = "5 mm", angle = "90 deg" }   # optional, through the pin
+
+    [web]
+    thickness = "19 mm"
+    outline = "stadium"             # width = "64 mm"  (rectangle with rounded ends)
+    width = "64 mm"
+    # outline = "pear"; journal_end_radius = "38 mm"; pin_end_radius = "30 mm"
+
+    [counterweight]                 # optional: the same annular sector on each listed web
+    outer_radius = "71 mm"
+    inner_radius = "32 mm"
+    angle = "180 deg"
+    thickness = "19 mm"
+    webs = [1, 2]
+    bolted = { count = 2, diameter = "10 mm", pitch_radius = "50 mm", preload = "25 kN" }
+
+    [[throws]]                      # optional: one throw at 0 deg when absent
+    name = "1"
+    angle = "0 deg"
+    # counterweight = { ... }       # per-throw override; counterweight = false for none
+
+The load case refers to the file with ``geometry = "../geometry/x.toml"`` (relative
+to the load case).  Impossible geometries are refused here, before gmsh runs
+(``fe_crank.geometry.checks``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from fe_crank.errors import InputError
+from fe_crank.geometry.checks import check_geometry
+from fe_crank.geometry.spec import (
+    BoltedJoint,
+    CounterweightSpec,
+    CrankGeometry,
+    OilBore,
+    ThrowSpec,
+    WebOutline,
+)
+from fe_crank.io.base import Strict, read_toml, resolve_reference, validate
+from fe_crank.io.units import Angle, Density, Force, Length, Pressure
+
+
+class OilBoreInput(Strict):
+    diameter: Length
+    angle: Angle = 1.5707963267948966
+
+
+class JournalInput(Strict):
+    diameter: Length
+    length: Length
+    fillet_radius: Length = 0.0
+
+
+class CrankpinInput(JournalInput):
+    oil_bore: OilBoreInput | None = None
+
+
+class WebInput(Strict):
+    thickness: Length
+    outline: Literal["stadium", "pear"] = "stadium"
+    width: Length | None = None
+    journal_end_radius: Length | None = None
+    pin_end_radius: Length | None = None
+
+    @model_validator(mode="after")
+    def _outline_keys(self):
+        if self.outline == "stadium":
+            if self.width is None:
+                raise ValueError("outline \"stadium\" needs width")
+            if self.journal_end_radius is not None or self.pin_end_radius is not None:
+                raise ValueError("outline \"stadium\" takes width only; use outline = \"pear\" for two end radii")
+        else:
+            if self.journal_end_radius is None or self.pin_end_radius is None:
+                raise ValueError("outline \"pear\" needs journal_end_radius and pin_end_radius")
+            if self.width is not None:
+                raise ValueError("outline \"pear\" takes journal_end_radius and pin_end_radius, not width")
+        return self
+
+
+class BoltedInput(Strict):
+    count: int = Field(gt=0)
+    diameter: Length
+    pitch_radius: Length
+    preload: Force | None = None
+    yield_strength: Pressure | None = None
+
+
+class CounterweightInput(Strict):
+    outer_radius: Length
+    inner_radius: Length
+    angle: Angle
+    thickness: Length | None = None  # default: the web thickness
+    webs: list[int] = Field(default_factory=lambda: [1, 2], min_length=1)
+    bolted: BoltedInput | None = None
+
+
+class ThrowInput(Strict):
+    name: str | None = None
+    angle: Angle = 0.0
+    counterweight: CounterweightInput | Literal[False] | None = None
+
+
+class GeometryInput(Strict):
+    name: str = Field(min_length=1)
+    description: str = ""
+    source: str = ""
+    density: Density = 7850.0
+    crank_radius: Length | None = None
+    stroke: Length | None = None
+    require_overlap: bool = False
+    journal: JournalInput
+    crankpin: CrankpinInput
+    web: WebInput
+    counterweight: CounterweightInput | None = None
+    throws: list[ThrowInput] | None = None
+
+    @model_validator(mode="after")
+    def _radius(self):
+        if (self.crank_radius is None) == (self.stroke is None):
+            raise ValueError("give exactly one of crank_radius and stroke")
+        return self
+
+
+def _counterweights(cw: CounterweightInput | None, web_thickness: float) -> tuple[CounterweightSpec, ...]:
+    if cw is None:
+        return ()
+    bolted = None
+    if cw.bolted is not None:
+        b = cw.bolted
+        bolted = BoltedJoint(b.count, b.diameter, b.pitch_radius, b.preload, b.yield_strength)
+    thickness = web_thickness if cw.thickness is None else cw.thickness
+    return tuple(
+        CounterweightSpec(web=w, outer_radius=cw.outer_radius, inner_radius=cw.inner_radius, angle=cw.angle, thickness=thickness, bolted=bolted)
+        for w in cw.webs
+    )
+
+
+def geometry_from_dict(data: dict, file: str | Path = "<geometry>", prefix: str = "") -> CrankGeometry:
+    """Validate a geometry table (already read from TOML) and check it."""
+    raw = validate(GeometryInput, data, file, prefix)
+    if raw.web.outline == "stadium":
+        web = WebOutline("stadium", raw.web.width / 2, raw.web.width / 2)
+    else:
+        web = WebOutline("pear", raw.web.journal_end_radius, raw.web.pin_end_radius)
+    default_cw = _counterweights(raw.counterweight, raw.web.thickness)
+    throws_in = raw.throws if raw.throws else [ThrowInput()]
+    throws = []
+    for i, t in enumerate(throws_in):
+        if t.counterweight is None:
+            cws = default_cw
+        elif t.counterweight is False:
+            cws = ()
+        else:
+            cws = _counterweights(t.counterweight, raw.web.thickness)
+        throws.append(ThrowSpec(name=t.name or str(i + 1), angle=t.angle, counterweights=cws))
+    bore = raw.crankpin.oil_bore
+    g = CrankGeometry(
+        name=raw.name,
+        description=raw.description,
+        source=raw.source,
+        density=raw.density,
+        crank_radius=raw.crank_radius if raw.crank_radius is not None else raw.stroke / 2,
+        journal_diameter=raw.journal.diameter,
+        journal_length=raw.journal.length,
+        crankpin_diameter=raw.crankpin.diameter,
+        crankpin_length=raw.crankpin.length,
+        web_thickness=raw.web.thickness,
+        web=web,
+        crankpin_fillet=raw.crankpin.fillet_radius,
+        journal_fillet=raw.journal.fillet_radius,
+        throws=tuple(throws),
+        oil_bore=OilBore(bore.diameter, bore.angle) if bore is not None else None,
+        require_overlap=raw.require_overlap,
+        file=str(file),
+    )
+    check_geometry(g)
+    return g
+
+
+def load_geometry(path: str | Path) -> CrankGeometry:
+    """Read, validate and check one geometry file.  Raises ``InputError``/``GeometryError``."""
+    path = Path(path)
+    return geometry_from_dict(read_toml(path), path)
+
+
+def parse_geometry(value: object, file: str | Path, key: str = "geometry") -> CrankGeometry:
+    """Section parser registered as ``SECTIONS["geometry"]``: a path relative to the load case."""
+    if isinstance(value, str):
+        return load_geometry(resolve_reference(value, file))
+    if isinstance(value, dict):
+        return geometry_from_dict(value, file, key)
+    raise InputError("must be a file name, e.g. geometry = \"../geometry/x.toml\", or a table", file=str(file), key=key)
