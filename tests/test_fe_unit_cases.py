@@ -118,3 +118,20 @@ def test_bad_options_are_input_errors(throw):
         solve_unit_cases(throw, Steel(), FeOptions(solver="mumps"))
     with pytest.raises(InputError, match="unknown unit cases"):
         solve_unit_cases(throw, Steel(), FeOptions(cases=("gravity",)))
+
+
+def test_unsupported_body_is_a_mesh_error():
+    from skfem import MeshTri
+
+    with pytest.raises(MeshError, match="unsupported body"):
+        solve_unit_cases(MeshTri(), Steel())
+
+
+def test_material_without_density_is_an_input_error(throw):
+    @dataclass(frozen=True)
+    class NoDensity:
+        youngs_modulus: float = 210e9
+        poisson_ratio: float = 0.3
+
+    with pytest.raises(InputError, match="density"):
+        solve_unit_cases(throw, NoDensity())
