@@ -50,7 +50,7 @@ class CheckOptions:
     """How ``run_case`` runs: all fields plain data so the options pickle to workers.
 
     ``mesh_size`` is a preset of ``fe_crank.mesh`` ("test", "coarse", "medium",
-    "fine"; None: "coarse"); ``cache_dir`` holds meshes keyed by the hash of their inputs;
+    "fine") that overrides the load case's ``[mesh] size`` (default "coarse"); ``cache_dir`` holds meshes keyed by the hash of their inputs;
     ``render`` switches the pyvista pictures on; ``write_vtu`` the ``.vtu`` fields.
     """
 
@@ -58,6 +58,32 @@ class CheckOptions:
     cache_dir: str = ".cache/meshes"
     render: bool = True
     write_vtu: bool = True
+
+
+MESH_PRESETS = ("test", "coarse", "medium", "fine")
+
+
+@dataclass(frozen=True)
+class MeshSection:
+    """The load case's ``[mesh]`` table: ``size`` is a preset of ``fe_crank.mesh``
+    ("coarse", the default, keeps fillet elements within r/4 as IACS UR M53 asks;
+    "test" is for quick trials and demonstrations only)."""
+
+    size: str = "coarse"
+
+
+def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
+    """Section parser registered as ``SECTIONS["mesh"]``: ``[mesh] size = "coarse"``."""
+    if not isinstance(value, dict):
+        raise InputError('must be a table, e.g. [mesh] size = "coarse"', file=str(file), key=key)
+    for k in value:
+        if k != "size":
+            raise InputError("unknown key; the [mesh] table takes only size", file=str(file), key=f"{key}.{k}")
+    size = value.get("size", "coarse")
+    if size not in MESH_PRESETS:
+        raise InputError(f"unknown mesh size {size!r}; pick one of {list(MESH_PRESETS)}", file=str(file),
+                         key=f"{key}.size")
+    return MeshSection(size=size)
 
 
 @dataclass(frozen=True)
@@ -336,20 +362,32 @@ def throw_keys(lc) -> dict[str, str]:
 
     A geometry with a single throw stands for every throw of the engine (key
     ``"all throws"``, which ``assess_case`` applies to each throw with its own loads);
-    otherwise the geometry's throw names must be the engine's throw names, so that no
-    throw goes unchecked.
+    so do several throws that differ only in name and angle; otherwise the geometry's
+    throw names must be the engine's throw names, so that no throw goes unchecked.
     """
     g = lc.geometry
     names = [t.name for t in g.throws]
     engine = [t.name for t in lc.engine.throws]
     if len(names) == 1:
         return {names[0] if engine == names else "all throws": names[0]}
+    if sorted(names) != sorted(engine) and _all_equal(g.throws):
+        # equal throws under other names (e.g. "1", "2" for the engine's "A", "B"):
+        # one model stands for every throw, each assessed with its own loads
+        return {"all throws": names[0]}
     if sorted(names) != sorted(engine):
         raise InputError(
             f"the geometry's throws {names} must be the engine's throws {engine} "
             "(or give one throw that stands for all)", file=lc.source_file, key="geometry",
         )
     return {n: n for n in engine}
+
+
+def _all_equal(throws) -> bool:
+    """Throws that differ only in name and angle give the same throw model."""
+    import dataclasses
+
+    norm = [dataclasses.replace(t, name="", angle=0.0) for t in throws]
+    return all(n == norm[0] for n in norm)
 
 
 def _mesh_stage(lc, options: CheckOptions):
@@ -361,7 +399,8 @@ def _mesh_stage(lc, options: CheckOptions):
             file=lc.source_file, key="geometry",
         )
     mesh_throw = stage_function("fe_crank.mesh", "mesh_throw", "mesh")
-    kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or "coarse"}
+    section = lc.extras.get("mesh") or MeshSection()
+    kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or section.size}
     return {key: mesh_throw(lc.geometry, throw=name, **kwargs) for key, name in throw_keys(lc).items()}
 
 

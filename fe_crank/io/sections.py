@@ -13,4 +13,5 @@ SECTIONS["material"] = __import__("fe_crank.io.material", fromlist=["_"]).parse_
 SECTIONS["criteria"] = __import__("fe_crank.io.criteria", fromlist=["_"]).parse_criteria  # assessment stage
 SECTIONS["fe"] = __import__("fe_crank.fe.input", fromlist=["_"]).parse_fe  # FE stage
 SECTIONS["balance"] = __import__("fe_crank.io.balance", fromlist=["_"]).parse_balance  # balance stage
+SECTIONS["mesh"] = __import__("fe_crank.pipeline", fromlist=["_"]).parse_mesh_section  # check stage
 _ = SECTIONS

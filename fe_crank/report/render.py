@@ -117,11 +117,18 @@ def render_field(
         else:
             p.view_isometric()
         if focus is not None:
+            # look at the focus from outside the part: from the side of the model's centre
+            # opposite to the focus, leaning towards the chosen view direction
             centre, radius = np.asarray(focus[0], float), float(focus[1])
-            p.camera.focal_point = tuple(centre)
-            direction = np.asarray(p.camera.position) - np.asarray(p.camera.focal_point)
+            view_dir = np.asarray(p.camera.position) - np.asarray(p.camera.focal_point)
+            view_dir /= np.linalg.norm(view_dir)
+            outward = centre - np.asarray(surf.center)
+            n = np.linalg.norm(outward)
+            direction = view_dir if n == 0 else outward / n + 0.6 * view_dir
             direction /= np.linalg.norm(direction)
+            p.camera.focal_point = tuple(centre)
             p.camera.position = tuple(centre + 4.0 * radius * direction)
+            p.camera.up = (0.0, 1.0, 0.0) if abs(direction[1]) < 0.9 else (0.0, 0.0, 1.0)
         else:
             p.reset_camera()
         p.screenshot(str(path))

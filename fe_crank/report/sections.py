@@ -167,13 +167,16 @@ class HotSpot:
     what: str  # "fatigue" or "static"
 
 
-def _critical(assessment, key: str, dyn) -> HotSpot | None:
+def _critical(assessment, key, dyn) -> HotSpot | None:
     """The hot spot the pictures show: the node with the lowest fatigue safety (static
     safety when there is no fatigue result) over the throws the FE model ``key`` stands
     for (one throw, or every throw when ``key`` is not a throw name, as ``assess_case``
     does).  Fatigue works on the whole cycle, so the angle drawn is the angle of the
     largest von Mises stress in the same group."""
-    names = [key] if key in dyn.throws else list(dyn.throws)
+    keys = [key] if isinstance(key, str) else list(key)
+    names = [k for k in keys if k in dyn.throws]
+    if len(names) < len(keys):  # a key that is not a throw name stands for every throw
+        names = list(dyn.throws)
     cands = []
     for t in assessment.throws:
         if t.name not in names:
@@ -228,13 +231,13 @@ def fe_section(folder: Path, so: dict, options) -> list[str]:
     from fe_crank.report import render as rd
 
     out = []
-    done = {}
-    for throw, units in units_by_key.items():
-        if id(units) in done:  # identical throws share one FE model: draw it once
-            out.append(f"<p>Throw {esc(throw)}: same model as throw {esc(done[id(units)])} (shown above).</p>")
-            continue
-        done[id(units)] = throw
-        crit = _critical(a, throw, dyn)
+    shared = _shared_models(units_by_key)
+    for keys, units in shared:
+        throw = keys[0]
+        if len(keys) > 1:  # identical throws share one FE model: drawn once, at the worst of them
+            out.append(f"<p>Throws {esc(', '.join(keys))} share one FE model; it is drawn at the hot spot "
+                       "of the most critical of them.</p>")
+        crit = _critical(a, keys, dyn)
         if crit is None:
             continue
         eng_throw, group = crit.throw, crit.group
@@ -286,6 +289,14 @@ def fe_section(folder: Path, so: dict, options) -> list[str]:
     return out
 
 
+def _shared_models(units_by_key: dict) -> list[tuple[list[str], object]]:
+    """[(keys, units)] grouping the keys that share one FE solution, in order."""
+    groups: dict[int, tuple[list[str], object]] = {}
+    for k, u in units_by_key.items():
+        groups.setdefault(id(u), ([], u))[0].append(k)
+    return list(groups.values())
+
+
 def _safe(name: str) -> str:
     import re
 
@@ -299,11 +310,8 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
     if not units_by_key:
         return []
     out = []
-    seen = set()
-    for throw, units in units_by_key.items():
-        if id(units) in seen:
-            continue
-        seen.add(id(units))
+    for keys, units in _shared_models(units_by_key):
+        throw = keys[0]
         m = units.mesh
         rows = [["elements (quadratic tetrahedra)", m.t.shape[1]], ["nodes", units.points.shape[1]],
                 ["degrees of freedom", units.n_dof], ["solver", units.solver],
@@ -327,7 +335,7 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
                    if g in (m.boundaries or {})]
         a, dyn, lc = so.get("assessment"), so.get("dynamics"), so.get("loadcase")
         if fillets and a is not None and dyn is not None:
-            crit = _critical(a, throw, dyn)
+            crit = _critical(a, keys, dyn)
             index, eng_throw = 0, (throw if throw in dyn.throws else next(iter(dyn.throws)))
             if crit is not None:
                 eng_throw, index = crit.throw, _angle_index(dyn, crit.angle)
@@ -335,7 +343,8 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
             for g, v in ind.items():
                 rows.append([f"unaveraged vs averaged von Mises at the {g} peak", f"{100 * v:+.1f} %"
                              + ("" if abs(v) <= 0.05 else " (above the 5 % of UR M53: refine the fillet)")])
-        out.append(f"<h3>Throw {esc(throw)}</h3>" + table(["quantity", "value"], rows))
+        out.append(f"<h3>{'Throws' if len(keys) > 1 else 'Throw'} {esc(', '.join(keys))}</h3>"
+                   + table(["quantity", "value"], rows))
     return out
 
 
