@@ -77,3 +77,20 @@ def test_validity_range_enforced_fe_scfs_used_outside():
                           fe_scf={"bending": 3.0, "torsion": 2.0})
     assert r.scf_source.startswith("FE") and "w = 0.15" in r.scf_source and r.scf_bending == 3.0
     assert r.bending == pytest.approx(3.0 * nom.bending)
+
+
+def test_m53_takes_the_journal_torque_with_the_larger_alternating_part():
+    """A single throw at the free end carries no torque in front and the whole cylinder
+    torque behind: UR M53 must see the rear one."""
+    from fe_crank.assess.case import assess_throw
+    from fe_crank.assess.superpose import UnitStresses
+    from fe_crank.io.material import load_material
+
+    theta = np.deg2rad(np.arange(720.0))
+    unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={},
+                        cases=("pin_y", "torque"))
+    pin = np.column_stack([np.zeros(720), 4e4 * np.cos(theta)])
+    rear = 900.0 * np.sin(theta)
+    t = assess_throw("1", unit, theta, pin, np.zeros(720), omega=0.0, overspeed=None,
+                     material=load_material("42CrMo4"), crank_radius=0.09, m53_geometry=GEO, torque_rear=rear)
+    assert t.m53_nominal.torsion_pin == pytest.approx(900.0 / (math.pi / 16 * 0.1**3), rel=1e-9)

@@ -115,6 +115,7 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
                 tname, unit, dynamics.theta, tl.pin_force, tl.torque_front, omega=omega, sense=sense,
                 overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,
                 m53_additional=criteria.m53_additional_bending, counterweights=tuple(cws),
+                torque_rear=tl.torque_rear,
             ))
             if m53g is None:
                 notes.append(f"throw {tname}: no UR M53 dimensions from the geometry; M53 route not run")

@@ -74,9 +74,12 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
                  *, omega: float, sense: int = 1, overspeed: float | None, material, crank_radius: float,
                  m53_geometry: m53.M53Geometry | None = None, m53_additional: float = 10e6,
                  fe_scf: dict[str, dict[str, float]] | None = None,
-                 counterweights: tuple[CounterweightData, ...] = ()) -> ThrowAssessment:
+                 counterweights: tuple[CounterweightData, ...] = (),
+                 torque_rear: np.ndarray | None = None) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
-    throw frame and the torque through the throw (n,) over the cycle angles ``theta``."""
+    throw frame and the torque through the front journal (n,) over the cycle angles
+    ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
+    larger alternating part, the one the throw's fillets carry."""
     coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense,
                                torque_mz=unit.torque_mz)
     groups = tuple(
@@ -87,7 +90,10 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
     if m53_geometry is not None and material.tensile_strength is not None and material.m53_k is not None:
         if fe_scf is None:
             fe_scf = fe_scfs(unit, m53_geometry)
-        nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], torque)
+        m53_torque = torque
+        if torque_rear is not None and m53.half_range(torque_rear) > m53.half_range(torque):
+            m53_torque = torque_rear
+        nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque)
         try:
             fillets = tuple(
                 m53.assess_fillet(m53_geometry, nominal, f, tensile=material.tensile_strength, k=material.m53_k,

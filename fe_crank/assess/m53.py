@@ -182,7 +182,8 @@ def nominal_stresses(geo: M53Geometry, radial_force, torque) -> NominalStresses:
     line is M_BR = (F_R/2) a (a = ``bearing_to_web``) and the web shear force
     Q_R = F_R/2.  Amplitudes are half the range over the cycle (2.1.2):
     sigma_BN = M_BRN / (B W^2/6), sigma_QN = Q_RN / (B W); tau_N = M_TN / W_P (2.2.2).
-    The torque is the one through the throw from the dynamics stage; torsional
+    The torque is a journal torque from the dynamics stage (``assess_throw`` passes the
+    side with the larger alternating part); torsional
     vibration is NOT included (UR M53 asks for it from a forced-vibration calculation).
     """
     a = geo.bearing_to_web
