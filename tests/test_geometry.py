@@ -279,3 +279,31 @@ def test_fillets_add_material_in_the_corners():
     assert dpin == pytest.approx(2 * pappus(0.020, 0.003), rel=1e-3)
     djournal = m1.parts["journal_1"].volume - m0.parts["journal_1"].volume
     assert djournal == pytest.approx(pappus(0.025, 0.004), rel=1e-3)
+
+
+def test_seed003_counterweight_sized_by_balance_stage_matches_in_cad():
+    """Seed 003 eq. 11: the balance stage's required m r per plane (whole-shaft couple balance,
+    planes L1 = 217 / L2 = 128 mm apart) -> sector thickness solved with r1, r2, 180 deg kept ->
+    the CAD counterweight's m r equals the requirement within 0.5 %.
+
+    The seed's printed design (b = 19 mm) gives 1.0 % more than the requirement: the seed
+    rounds the centroid to x_pr = 34 mm where the sector's is 34.35 mm."""
+    from fe_crank.balance import BalanceStrategy, size_counterweights, solve_sector
+    from fe_crank.io.engine import load_engine
+
+    e = load_engine(ROOT / "engines" / "v4_90_seed003_pneumatic.toml")
+    planes = (-0.1085, -0.064, 0.064, 0.1085)
+    design = size_counterweights(e, BalanceStrategy(1.0, 0.5, "whole_shaft", planes=planes), 300.0)
+    need = design.counterweights[0].unbalance
+    assert all(cw.unbalance == pytest.approx(need, rel=1e-9) for cw in design.counterweights)
+    sized = solve_sector(need, free="thickness", r_outer=0.071, r_inner=0.032, angle=math.pi, density=7400.0)
+    g = load_geometry(SEED003)
+    spec = g.throws[0]
+    cws = tuple(dataclasses.replace(c, thickness=sized.thickness) for c in spec.counterweights)
+    g_sized = dataclasses.replace(g, throws=(dataclasses.replace(spec, counterweights=cws),))
+    mp = mass_properties(g_sized)
+    for web in (1, 2):
+        assert mp.counterweight_unbalance(web) == pytest.approx(need, rel=5e-3)
+    # the seed's b = 19 mm design against the same requirement
+    mp19 = mass_properties(g)
+    assert mp19.counterweight_unbalance(1) / need - 1 == pytest.approx(0.010, abs=2e-3)
