@@ -171,3 +171,17 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
     doc = json.loads(json.dumps(to_json(b)))
     jsonschema.validate(doc, load_schema())
 
+
+
+def test_stress_recovery_check(solved):
+    from fe_crank.assess.recovery import recovery_notes, recovery_ratios
+
+    mesh, units = solved
+    groups = {k: v for k, v in assessed_groups(units).items() if "fillet" in k}
+    ratios = recovery_ratios(units, groups)
+    assert set(ratios) == {"crankpin_fillet_1", "journal_fillet_2"}
+    # a plain bar with good elements: nodal peaks do not exceed the quadrature peaks much
+    assert all(0.5 < r < 1.25 for r in ratios.values()), ratios
+    assert recovery_notes(ratios) == []
+    notes = recovery_notes({"journal_fillet_2": 7.5, "oil_bore": 1.1})
+    assert len(notes) == 1 and "journal_fillet_2 is 7.50 x" in notes[0]

@@ -13,6 +13,7 @@ from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
 from fe_crank.assess.case import Assessment, ThrowAssessment, assess_throw, evaluate_criteria
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.m53 import M53Geometry
+from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.results import to_json
 from fe_crank.assess.superpose import UNIT_CASES, UnitStresses, load_coefficients
 from fe_crank.errors import InputError
@@ -99,6 +100,9 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     throws = []
     for key, units in unit_solutions.items():
         unit = unit_stresses(units)
+        boundary_groups = {g: units_nodes for g, units_nodes in assessed_groups(units).items()
+                           if g in ASSESSED_BOUNDARIES}
+        notes.extend(f"mesh {key}: {n}" for n in recovery_notes(recovery_ratios(units, boundary_groups)))
         names = [key] if key in dynamics.throws else list(dynamics.throws)
         for tname in names:
             tl = dynamics.throws[tname]

@@ -1,0 +1,54 @@
+"""A check of the nodal stresses the assessment relies on.
+
+Nodal stresses are element values extrapolated to the nodes and averaged.  On badly
+shaped curved quadratic tetrahedra (small Jacobian ratios at fillets) the extrapolation
+can overshoot by a large factor.  For each assessed boundary group and the unit cases
+``pin_y`` and ``torque``, the peak nodal von Mises is compared with the peak at the
+quadrature points of the elements touching the group (values the FE solution
+interpolates, not extrapolates).  A ratio well above 1 marks nodal peaks that are not
+to be trusted; ``assess_case`` writes it into the assessment's notes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fe_crank.assess.stress import von_mises
+
+#: ratios above this are reported
+RATIO_LIMIT = 1.25
+
+
+def recovery_ratios(units, groups: dict[str, np.ndarray], cases=("pin_y", "torque")) -> dict[str, float]:
+    """Group -> max over ``cases`` of (peak nodal vM / peak quadrature-point vM)."""
+    from fe_crank.fe.stress import stress_at_quadrature
+
+    mesh = units.mesh
+    basis = units.system.basis
+    mat = units.material
+    out: dict[str, float] = {}
+    for case in cases:
+        if case not in units.cases:
+            continue
+        u = units.displacement(case)
+        nodal = units.stress_at_nodes(u)
+        quad = None
+        for name, nodes in groups.items():
+            facets = (mesh.boundaries or {}).get(name)
+            if facets is None or len(facets) == 0:
+                continue
+            if quad is None:
+                quad = stress_at_quadrature(basis, u, mat.youngs_modulus, mat.poisson_ratio)
+            els = np.unique(mesh.f2t[0, facets])
+            q = float(von_mises(quad[:, els].reshape(6, -1)[None])[0].max())
+            n = float(von_mises(nodal[:, nodes][None])[0].max())
+            if q > 0:
+                out[name] = max(out.get(name, 0.0), n / q)
+    return out
+
+
+def recovery_notes(ratios: dict[str, float], limit: float = RATIO_LIMIT) -> list[str]:
+    return [f"stress recovery: peak nodal stress at {g} is {r:.2f} x the peak at the quadrature points of "
+            f"its elements (unit cases); nodal peaks there are extrapolation artefacts of the mesh, treat its "
+            f"safety factors as unreliable (finer or better-shaped fillet elements)"
+            for g, r in sorted(ratios.items()) if r > limit]
