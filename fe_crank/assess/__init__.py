@@ -95,7 +95,7 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     notes = [
         "stresses: linear elastic FE, nodal averages; histories by unit-load superposition (exact)",
         "overspeed: centrifugal unit case alone, scaled by omega_os^2",
-        "UR M53 nominal torsion from the dynamics torque through the throw; torsional vibration not included",
+        "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration not included",
     ]
     throws = []
     for key, units in unit_solutions.items():
