@@ -51,9 +51,9 @@ def test_mesh_volumes_match_the_solid(seed001_test_mesh):
     m = tm.mesh
     for name, idx in m.subdomains.items():
         v = ONE.assemble(Basis(m, ElementTetP2(), elements=idx))
-        assert v == pytest.approx(mp.parts[name].volume, rel=2e-3), name
+        assert v == pytest.approx(mp.parts[name].volume, rel=3e-4), name  # straight-sided geometry: -0.9 % here
     total = ONE.assemble(Basis(m, ElementTetP2()))
-    assert total == pytest.approx(mp.total.volume, rel=1e-3)
+    assert total == pytest.approx(mp.total.volume, rel=2e-4)
 
 
 def test_boundary_areas(seed001_test_mesh):
