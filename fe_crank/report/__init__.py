@@ -59,8 +59,28 @@ def _section_rows(obj) -> list[list[object]]:
                          + (f"  ({q.meaning})" if q is not None else "")])
         return rows
     if is_dataclass(obj):
-        return [[f.name, getattr(obj, f.name)] for f in fields(obj) if not f.name.startswith("_")]
+        return [[f.name, _fmt_property(f.name, getattr(obj, f.name))] for f in fields(obj) if not f.name.startswith("_")]
     return [["value", obj]]
+
+
+_MPA = ("yield_strength", "tensile_strength", "fatigue_limit_bending", "fatigue_limit_torsion")
+
+
+def _fmt_property(name: str, v) -> object:
+    """SI values of the input tables in the units a designer reads."""
+    if not isinstance(v, float):
+        return v
+    if name in _MPA:
+        return f"{v / 1e6:.4g} MPa"
+    if name == "youngs_modulus":
+        return f"{v / 1e9:.4g} GPa"
+    if name == "density":
+        return f"{v:.5g} kg/m^3"
+    if name == "bearing_stiffness":
+        return f"{v:.4g} N/m^3"
+    if name.endswith("_angle"):
+        return f"{math.degrees(v):.4g} deg"
+    return f"{v:.4g}"
 
 
 def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *, options=None, trace: str = "") -> None:

@@ -95,11 +95,19 @@ def header_html(result: CaseResult) -> str:
     )
 
 
+def display(value: float, unit: str) -> tuple[str, str]:
+    """A criterion's value in the unit a designer reads (stresses in MPa)."""
+    if unit == "Pa":
+        return f"{value / 1e6:.4g}", "MPa"
+    return f"{value:.4g}", unit
+
+
 def criteria_table(result: CaseResult) -> str:
     rows = []
     for c in sorted(result.criteria, key=lambda c: c.margin):
+        (v, unit), (lim, _) = display(c.value, c.unit), display(c.limit, c.unit)
         rows.append([
-            c.name, c.description, c.location, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit,
+            c.name, c.description, c.location, v, lim, unit,
             f"{100 * c.margin:+.1f} %", Raw(badge(STATUS_PASS if c.passed else STATUS_FAIL)),
         ])
     return table(

@@ -24,9 +24,12 @@ from fe_crank.pipeline import STATUS_ERROR, CaseResult, write_atomic
 
 
 def _criterion_text(c) -> str:
-    unit = f" {c.unit}" if c.unit else ""
+    from fe_crank.report.html import display
+
+    (v, unit), (lim, _) = display(c.value, c.unit), display(c.limit, c.unit)
+    unit = f" {unit}" if unit else ""
     loc = f" at {c.location}" if c.location else ""
-    return f"{c.name}{loc}: value {c.value:.4g}{unit}, limit {c.limit:.4g}{unit}, margin {100 * c.margin:+.1f} %"
+    return f"{c.name}{loc}: value {v}{unit}, limit {lim}{unit}, margin {100 * c.margin:+.1f} %"
 
 
 def junit_xml(results: Sequence[CaseResult]) -> str:
