@@ -98,8 +98,8 @@ def compute_scf(throw_mesh, material, geometry, *, solver: str = "auto", pin_fil
     eq = {}
     for k, name in enumerate(("bending", "torsion")):
         eq[name], _ = sys1.equilibrium_error(U[:, k], zero, loads[k])
-    s_b = stress_at_nodes(mesh, U[:, 0], E, nu, basis=None)
-    s_t = stress_at_nodes(mesh, U[:, 1], E, nu, basis=None)
+    s_b = stress_at_nodes(mesh, U[:, 0], E, nu)
+    s_t = stress_at_nodes(mesh, U[:, 1], E, nu)
     sig1_b = _abs_principal(s_b)
     tau_t = max_shear(s_t)
     sigma_n = 1.0 / w_eq

@@ -53,7 +53,7 @@ def choose_method(method: str, n_dof: int) -> str:
 class Factorisation:
     """A matrix prepared for repeated solves.  ``solve(B)`` takes (n,) or (n, k)."""
 
-    matrix: sp.csr_matrix
+    matrix: sp.csr_matrix | None
     method: str
     setup_time: float
     residual_tol: float = 1e-8
@@ -106,7 +106,7 @@ class Factorisation:
     def _check(self, B, X):
         if not np.all(np.isfinite(X)):
             raise SolverError(f"{self.method}: solution contains NaN or Inf (singular or unsupported model?)")
-        R = self.matrix @ X - B
+        R = self._matvec(X) - B
         nb = np.linalg.norm(B, axis=0)
         nr = np.linalg.norm(R, axis=0)
         rel = np.where(nb > 0, nr / np.where(nb > 0, nb, 1.0), nr)
@@ -114,6 +114,12 @@ class Factorisation:
         if np.any(rel > tol):
             raise SolverError(f"{self.method}: relative residual {rel.max():.3e} exceeds {tol:g} "
                               "(singular stiffness: is the body supported against every rigid-body mode?)")
+
+    def _matvec(self, X):
+        if self.matrix is not None:
+            return self.matrix @ X
+        U = self._upper                      # pardiso keeps only the upper triangle: K = U + U^T - D
+        return U @ X + U.T @ X - self._diag[:, None] * X
 
     def free(self):
         """Release the factorisation's memory (PARDISO keeps it in MKL's own memory)."""
@@ -153,6 +159,8 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
                               f"unsupported rigid-body mode?): {exc}") from exc
         fac._impl = solver
         fac._upper = upper
+        fac._diag = K.diagonal()
+        fac.matrix = None                    # only the upper triangle is kept (memory)
     elif chosen == "superlu":
         try:
             fac._impl = spla.splu(K.tocsc())

@@ -31,7 +31,8 @@ class System:
 
     mesh: object
     basis: Basis
-    K: sp.csr_matrix                  # elastic stiffness (full)
+    K_rows: sp.csr_matrix             # rows of the elastic stiffness at constrained dofs
+    rows: np.ndarray                  # those dofs (coupling slaves and held dofs)
     Ks: sp.csr_matrix                 # foundations (full)
     P: sp.csr_matrix                  # full <- reduced
     foundations: tuple[Foundation, ...]
@@ -86,7 +87,8 @@ class System:
         rs = -(self.Ks @ u)
         for name, sdofs in self.foundation_dofs.items():
             out[name] = _resultant(rs, x, sdofs)
-        resid = self.K @ u + self.Ks @ u - f
+        resid = np.zeros_like(u)
+        resid[self.rows] = self.K_rows @ u + (self.Ks @ u)[self.rows] - f[self.rows]
         for c in self.couplings:
             r = _resultant(resid, x, self.slave_dofs[c.boundary])
             if ref_loads and c.boundary in ref_loads:
@@ -207,6 +209,9 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
         refcols[c.boundary] = cmap
     P = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, ncol))
     Kr = (P.T @ (K + Ks) @ P).tocsr()
+    rows = np.union1d(np.flatnonzero(is_slave), np.flatnonzero(held))
+    K_rows = K[rows]
+    del K                                    # the full matrix is not kept: memory for the factor
     timings["constraints"] = time.perf_counter() - t0
 
     near_null = None
@@ -216,7 +221,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     t0 = time.perf_counter()
     fac = factorise(Kr, solver, near_nullspace=near_null)
     timings["factorisation"] = time.perf_counter() - t0
-    return System(mesh=mesh, basis=basis, K=K, Ks=Ks.tocsr(), P=P, foundations=tuple(foundations),
+    return System(mesh=mesh, basis=basis, K_rows=K_rows, rows=rows, Ks=Ks.tocsr(), P=P, foundations=tuple(foundations),
                   couplings=tuple(couplings), ref_points=refp, ref_columns=refcols, slave_dofs=slave,
                   dirichlet_dofs=np.concatenate(ddofs) if ddofs else np.zeros(0, int),
                   foundation_dofs=fdofs, factorisation=fac, timings=timings)

@@ -135,25 +135,17 @@ class UnitSolutions:
     def stress_at_nodes(self, u: np.ndarray) -> np.ndarray:
         """Averaged nodal stress (6, n_nodes), Voigt order xx yy zz xy yz zx, Pa."""
         return _stress.stress_at_nodes(self.mesh, u, self.material.youngs_modulus,
-                                       self.material.poisson_ratio, basis=self._node_basis)
+                                       self.material.poisson_ratio, dofs=self.system.basis.dofs)
 
     def element_nodal_stress(self, u: np.ndarray):
         """Unaveraged stress at element nodes (6, 10, ne) and node numbers (10, ne)."""
         return _stress.element_nodal_stress(self.mesh, u, self.material.youngs_modulus,
-                                            self.material.poisson_ratio, basis=self._node_basis)
+                                            self.material.poisson_ratio, dofs=self.system.basis.dofs)
 
     def averaging_indicator(self, u: np.ndarray, groups) -> dict[str, float]:
         """M53 averaged-vs-unaveraged check per fillet group (see stress.averaging_indicator)."""
         return _stress.averaging_indicator(self.mesh, u, self.material.youngs_modulus,
-                                           self.material.poisson_ratio, groups, basis=self._node_basis)
-
-    @property
-    def _node_basis(self):
-        nb = self.__dict__.get("_nb")
-        if nb is None:
-            nb = _stress.node_basis(self.mesh)
-            object.__setattr__(self, "_nb", nb)
-        return nb
+                                           self.material.poisson_ratio, groups, dofs=self.system.basis.dofs)
 
     von_mises = staticmethod(_stress.von_mises)
     principal = staticmethod(_stress.principal)
