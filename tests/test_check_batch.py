@@ -49,8 +49,11 @@ def test_broken_cases_exit_2_with_messages_naming_file_and_key(tmp_path, capsys)
     assert "broken_units.toml: operating.speed" in err and "without a unit" in err
     assert "broken_syntax.toml: malformed TOML" in err
     assert "Traceback" not in out + err
-    # one line per case in the summary, verdict ERROR
+    # one line per case in the summary, verdict ERROR; no progress bar or colour codes in a
+    # log (stdout is not a terminal here)
     assert out.count("ERROR") == 2
+    assert "\x1b[" not in out + err
+    assert len(out.strip().splitlines()) == 1 + 2 + 1  # header, two cases, totals line
     for name in ("broken_units", "broken_syntax"):
         folder = tmp_path / "r" / name
         doc = json.loads((folder / "case.json").read_text())
