@@ -36,6 +36,7 @@ GMSH_TO_SKFEM_TET10 = np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8])
 
 _TET4, _TET10, _TRI3, _TRI6 = 4, 11, 2, 9
 _LOCK = threading.Lock()
+_OWNER: dict[str, int] = {}
 
 
 @contextlib.contextmanager
@@ -59,7 +60,8 @@ def gmsh_session(*, threads: int = 1, verbosity: int = 2) -> Iterator[object]:
     Raises
     ------
     MeshError
-        If a session is already open in this process (gmsh has one global state).
+        If a session is already open in this thread (gmsh has one global state);
+        sessions opened from other threads wait for it to close.
 
     Examples
     --------
@@ -69,11 +71,14 @@ def gmsh_session(*, threads: int = 1, verbosity: int = 2) -> Iterator[object]:
     """
     import gmsh
 
-    if not _LOCK.acquire(blocking=False):
-        raise MeshError("a gmsh session is already open in this process; gmsh has one global state, do not nest sessions")
+    me = threading.get_ident()
+    if _OWNER.get("thread") == me:
+        raise MeshError("a gmsh session is already open in this thread; gmsh has one global state, do not nest sessions")
+    _LOCK.acquire()  # other threads wait: gmsh is not thread-safe, sessions are serialised
     if gmsh.isInitialized():
         _LOCK.release()
         raise MeshError("gmsh is already initialised outside fe-crank; finalise it before opening a gmsh_session")
+    _OWNER["thread"] = me
     try:
         gmsh.initialize(interruptible=False)
         try:
@@ -88,6 +93,7 @@ def gmsh_session(*, threads: int = 1, verbosity: int = 2) -> Iterator[object]:
         finally:
             gmsh.finalize()
     finally:
+        _OWNER.pop("thread", None)
         _LOCK.release()
 
 

@@ -121,3 +121,28 @@ def test_first_order_mesh_refused():
 def test_conversion_needs_session():
     with pytest.raises(MeshError, match="no gmsh session"):
         model_to_skfem()
+
+
+def test_sessions_from_threads_are_serialised():
+    import threading
+
+    import gmsh
+
+    inside, overlap = [], []
+
+    def work():
+        with gmsh_session():
+            inside.append(1)
+            if len(inside) > 1:
+                overlap.append(1)
+            gmsh.model.occ.addBox(0, 0, 0, 1, 1, 1)
+            gmsh.model.occ.synchronize()
+            gmsh.model.mesh.generate(3)
+            inside.pop()
+
+    threads = [threading.Thread(target=work) for _ in range(3)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not overlap and not inside
