@@ -45,7 +45,7 @@ def _row(r) -> list[str]:
     if r.status == "error":
         first = r.message.splitlines()[0] if r.message else ""
         return [case, "-", "-", "ERROR", f"{r.seconds:.1f} s", first]
-    return [case, w.name if w else "-", f"{100 * w.margin:+.1f} %" if w else "-", r.status.upper(),
+    return [case, w.name.removeprefix("criteria.") if w else "-", f"{100 * w.margin:+.1f} %" if w else "-", r.status.upper(),
             f"{r.seconds:.1f} s", ""]
 
 
@@ -67,11 +67,11 @@ def _print_rich(results, console) -> None:
     from rich.table import Table
 
     t = Table(title="fe-crank check")
-    for h in HEADER:
-        t.add_column(h, justify="right" if h in ("margin", "time") else "left")
+    for h in HEADER[:-1]:  # the error messages follow the table in full
+        t.add_column(h, justify="right" if h in ("margin", "time") else "left", no_wrap=h != "case")
     style = {"pass": "green", "fail": "red", "error": "magenta"}
     for r in results:
-        row = _row(r)
+        row = _row(r)[:-1]
         row[3] = f"[{style[r.status]}]{row[3]}[/]"
         t.add_row(*row)
     console.print(t)
