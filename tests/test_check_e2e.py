@@ -102,3 +102,32 @@ def test_dask_local_cluster_gives_the_serial_results(batch, tmp_path):
         assert [c.location for c in r.criteria] == [c["location"] for c in serial["criteria"]]
         for c, s in zip(r.criteria, serial["criteria"]):
             assert c.value == pytest.approx(s["value"], rel=1e-9)
+
+
+def test_sigkill_during_the_computation_leaves_no_report(tmp_path):
+    """Kill `fe-crank check` while it meshes or solves the real stack: the case has no
+    published folder, only a hidden partial one without case.json."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    out = tmp_path / "reports"
+    cmd = [sys.executable, "-c", "from fe_crank.cli import entry; entry()", "check", str(CASES[0]), "-o", str(out),
+           "--mesh-size", "test", "--cache-dir", str(tmp_path / "cache")]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env={**os.environ})
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not (out.is_dir() and any(out.iterdir())):
+            time.sleep(0.05)
+        time.sleep(0.5)  # inside load/dynamics/mesh: the case takes several seconds
+        assert proc.poll() is None, "the case finished before it could be interrupted"
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(timeout=20)
+    finally:
+        if proc.poll() is None:  # pragma: no cover
+            proc.kill()
+    entries = list(out.iterdir())
+    assert entries and all(p.name.startswith(".small_pass.partial-") for p in entries)
+    assert not any((p / "case.json").exists() for p in entries)
