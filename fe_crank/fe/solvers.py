@@ -115,6 +115,13 @@ class Factorisation:
             raise SolverError(f"{self.method}: relative residual {rel.max():.3e} exceeds {tol:g} "
                               "(singular stiffness: is the body supported against every rigid-body mode?)")
 
+    @property
+    def nnz(self) -> int:
+        """Stored non-zeros of the full symmetric matrix."""
+        if self.matrix is not None:
+            return int(self.matrix.nnz)
+        return int(2 * self._upper.nnz - self._upper.shape[0])
+
     def _matvec(self, X):
         if self.matrix is not None:
             return self.matrix @ X
