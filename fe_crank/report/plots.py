@@ -41,9 +41,12 @@ def plot_bars(path, labels: Sequence[str], series: Mapping[str, Sequence[float]]
     x = np.arange(len(labels))
     for j, (name, vals) in enumerate(series.items()):
         ax.bar(x + (j - (n - 1) / 2) * w, vals, width=w, label=name)
-    ax.set_xticks(x, labels)
+    ax.set_xticks(x, labels, rotation=20 if len(labels) > 3 else 0, ha="right" if len(labels) > 3 else "center")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.grid(True, axis="y", alpha=0.35)
-    ax.legend(fontsize=8)
+    top = np.nanmax([np.nanmax(np.asarray(v, float)) for v in series.values()] + [0.0])
+    if top > 0:
+        ax.set_ylim(0.0, 1.25 * top)  # room for the legend above the bars
+    ax.legend(fontsize=8, ncol=len(series), loc="upper center")
     return _save(fig, path)

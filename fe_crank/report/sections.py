@@ -96,7 +96,7 @@ def counterweight_section(folder: Path, so: dict, options) -> list[str]:
         return []
     from fe_crank.report.plots import plot_bars
 
-    labels = [f"{t}: {c.name}" for t, c in checks]
+    labels = [f"throw {t}: {c.name.replace('counterweight_', 'cw ')}" for t, c in checks]
     built = [c.built_unbalance for _, c in checks]
     req = [c.required_unbalance if c.required_unbalance is not None else np.nan for _, c in checks]
     plot_bars(Path(folder) / "counterweight_mr.png", labels, {"required": req, "built": built},
