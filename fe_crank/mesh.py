@@ -142,17 +142,19 @@ def _fillet_distance(g: CrankGeometry, name: str) -> str:
 
     The rolling-ball fillet of radius ``r_f`` between a cylinder of radius ``r`` and a
     web face is part of the torus whose spine circle (radius ``r + r_f``, about the
-    cylinder's axis) lies ``r_f`` off the web face; distance to the torus =
+    cylinder's axis) lies ``r_f - u`` off the web face (``u`` the undercut); distance to the torus =
     ``| dist(x, spine) - r_f |`` (exact, unlike sampled ``Distance`` fields).
     """
     zp = g.crankpin_length / 2
     zw = zp + g.web_thickness
     if name.startswith("crankpin_fillet"):
         rf, a, cy = g.crankpin_fillet, g.crankpin_diameter / 2 + g.crankpin_fillet, g.crank_radius
-        zc = -zp + rf if name.endswith("1") else zp - rf
+        off = rf - g.crankpin_undercut
+        zc = -zp + off if name.endswith("1") else zp - off
     else:
         rf, a, cy = g.journal_fillet, g.journal_diameter / 2 + g.journal_fillet, 0.0
-        zc = -zw - rf if name.endswith("1") else zw + rf
+        off = rf - g.journal_undercut
+        zc = -zw - off if name.endswith("1") else zw + off
     rho = f"Sqrt(x*x + (y - ({cy!r}))*(y - ({cy!r})))"
     spine = f"Sqrt(({rho} - {a!r})*({rho} - {a!r}) + (z - ({zc!r}))*(z - ({zc!r})))"
     return f"Fabs({spine} - {rf!r})"

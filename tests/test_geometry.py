@@ -307,3 +307,43 @@ def test_seed003_counterweight_sized_by_balance_stage_matches_in_cad():
     # the seed's b = 19 mm design against the same requirement
     mp19 = mass_properties(g)
     assert mp19.counterweight_unbalance(1) / need - 1 == pytest.approx(0.010, abs=2e-3)
+
+
+def _undercut_volumes(c: float, r: float, u: float) -> tuple[float, float]:
+    """Pappus volumes of an undercut fillet round a cylinder of radius c (closed form):
+    the ring added beside the cylinder (rectangle c..c+r x 0..r-u minus the lower-left
+    quarter of the arc's disc, less the half-segment below the face) and the groove cut
+    into the web (the disc's segment of depth u below the face)."""
+    d = r - u
+    rho_c = c + r
+    seg = r**2 * math.acos(d / r) - d * math.sqrt(r**2 - d**2)  # segment area below the face
+    groove = 2 * math.pi * rho_c * seg
+    rect = d * r * (c + r / 2)  # first moments int rho dA
+    quarter = rho_c * math.pi * r**2 / 4 - r**3 / 3
+    half_seg = rho_c * seg / 2 - 0.5 * (r**2 * (r - d) - (r**3 - d**3) / 3)
+    added = 2 * math.pi * (rect - (quarter - half_seg))
+    return added, groove
+
+
+def test_undercut_fillet_volumes_match_pappus():
+    g0 = geometry_from_dict(_base())
+    g1 = geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm", "undercut": "1 mm"},
+                                  journal={"fillet_radius": "3 mm", "undercut": "0.5 mm"}))
+    m0, m1 = mass_properties(g0), mass_properties(g1)
+    add_p, groove_p = _undercut_volumes(0.020, 0.003, 0.001)
+    add_j, groove_j = _undercut_volumes(0.025, 0.003, 0.0005)
+    assert _undercut_volumes(0.02, 0.003, 0.0)[0] == pytest.approx(2 * math.pi * (0.02 + 0.003 * (10 - 3 * math.pi) / (3 * (4 - math.pi))) * 0.003**2 * (1 - math.pi / 4))
+    dv = {k: m1.parts[k].volume - m0.parts[k].volume for k in m0.parts}
+    assert dv["crankpin"] == pytest.approx(2 * add_p, rel=1e-3)
+    assert dv["journal_1"] == pytest.approx(add_j, rel=1e-3)
+    assert dv["web_1"] == pytest.approx(-(groove_p + groove_j), rel=1e-3)
+
+
+def test_undercut_deeper_than_fillet_refused():
+    with pytest.raises(GeometryError, match="crankpin.undercut: undercut 3 mm must be smaller than the fillet radius 3 mm"):
+        geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm", "undercut": "3 mm"}))
+
+
+def test_undercut_groove_beyond_web_refused():
+    with pytest.raises(GeometryError, match="journal.undercut: the undercut groove reaches"):
+        geometry_from_dict(_base(journal={"fillet_radius": "4 mm", "undercut": "2 mm"}))

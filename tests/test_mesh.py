@@ -180,3 +180,25 @@ def test_cli_mesh_writes_statistics_and_picture(tmp_path, capsys):
 
     img = np.asarray(Image.open(png).convert("L"), dtype=float)
     assert img.std() > 10  # not blank
+
+
+def test_undercut_fillets_mesh_with_named_groups(tmp_path):
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_geometry import _base
+
+    from fe_crank.io.geometry import geometry_from_dict
+
+    g = geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm", "undercut": "1 mm"},
+                                 counterweight={"outer_radius": "70 mm", "inner_radius": "20 mm", "angle": "120 deg"}))
+    tm = mesh_throw(g, size="test", cache_dir=tmp_path)
+    assert {"crankpin_fillet_1", "crankpin_fillet_2"} <= set(tm.mesh.boundaries)
+    assert all(v.size > 0 for v in tm.mesh.boundaries.values())
+    # the fillet surface dips into the web: its nodes reach u below the web face z = -15 mm
+    f = tm.mesh.facets[:, tm.mesh.boundaries["crankpin_fillet_1"]]
+    z = tm.mesh.p[2, np.unique(f)]
+    assert z.min() == pytest.approx(-0.015 - 0.001, abs=2e-5)
+    mp = mass_properties(g)
+    vol = ONE.assemble(Basis(tm.mesh, ElementTetP2()))
+    assert vol == pytest.approx(mp.total.volume, rel=3e-4)

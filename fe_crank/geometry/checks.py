@@ -11,6 +11,8 @@ geometry of the throw frame (``fe_crank.geometry.spec``):
 * a counterweight must clear the crankpin and its fillet
   (distance from the pin centre to the sector ``>= d_p/2 + r_f``), touch the web
   (``r_inner < journal_end_radius``) and not reach the crankpin's mid-plane;
+* an undercut must be shallower than its fillet radius and the web, and its groove
+  (outer radius ``r + r_f + sqrt(r_f^2 - (r_f - u)^2)``) must stay inside the web;
 * with ``require_overlap`` the pin and journal sections must overlap:
   ``(d_j + d_p)/2 > R``.
 """
@@ -89,6 +91,20 @@ def check_geometry(g: CrankGeometry) -> None:
         raise _fail(g, "journal.fillet_radius", f"fillet radius {rf * 1e3:g} mm is larger than the web allows around the journal ({room * 1e3:g} mm between journal and web edge)")
     if rf >= g.journal_length and rf > 0:
         raise _fail(g, "journal.fillet_radius", f"fillet {rf * 1e3:g} mm does not fit on a journal {g.journal_length * 1e3:g} mm long")
+    for part, rf, u, r0, r_end in (
+        ("crankpin", g.crankpin_fillet, g.crankpin_undercut, rp, g.web.pin_end_radius),
+        ("journal", g.journal_fillet, g.journal_undercut, rj, g.web.journal_end_radius),
+    ):
+        if not (math.isfinite(u) and u >= 0.0):
+            raise _fail(g, f"{part}.undercut", f"cannot be negative (got {u * 1e3:g} mm)")
+        if u > 0.0:
+            if not u < rf:
+                raise _fail(g, f"{part}.undercut", f"undercut {u * 1e3:g} mm must be smaller than the fillet radius {rf * 1e3:g} mm")
+            if u >= g.web_thickness:
+                raise _fail(g, f"{part}.undercut", f"undercut {u * 1e3:g} mm is deeper than the web ({g.web_thickness * 1e3:g} mm)")
+            outer = r0 + rf + math.sqrt(rf**2 - (rf - u) ** 2)
+            if outer >= r_end:
+                raise _fail(g, f"{part}.undercut", f"the undercut groove reaches radius {outer * 1e3:.3g} mm, beyond the web edge ({r_end * 1e3:g} mm)")
     if g.require_overlap and g.pin_overlap <= 0.0:
         raise _fail(g, "require_overlap", f"crankpin and journal do not overlap: (d_j + d_p)/2 - R = {g.pin_overlap * 1e3:.3g} mm <= 0")
     if g.oil_bore is not None:

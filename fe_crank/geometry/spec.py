@@ -14,6 +14,10 @@ Axial layout of one throw (``zp = crankpin_length / 2``, ``t = web_thickness``,
     web_2      z in [zp, zp + t]
     journal_2  z in [zp + t, zp + t + L]       end_2 at z = zp + t + L
 
+An undercut fillet (``undercut = u > 0``) is a circular arc of radius ``r_f`` tangent to
+the pin (journal) whose centre lies ``r_f - u`` off the web face, so that the arc dips
+``u`` into the web: a groove round the pin in the web face.
+
 A counterweight on web 1 fills ``z in [-zp - t, -zp - t + thickness]`` (flush with the
 web's outer face), on web 2 ``z in [zp + t - thickness, zp + t]``.
 """
@@ -97,6 +101,8 @@ class CrankGeometry:
     journal_fillet: float  # m, radius where journal meets web
     throws: tuple[ThrowSpec, ...]
     oil_bore: OilBore | None = None
+    crankpin_undercut: float = 0.0  # m, depth of the fillet's recess into the web (0: tangent fillet)
+    journal_undercut: float = 0.0
     require_overlap: bool = False
     description: str = ""
     source: str = ""

@@ -144,13 +144,18 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None) -> T
 
     fillets = []
     radii = []
-    for rf, (cx, cy, z, r) in (
-        (g.crankpin_fillet, (0.0, R, -zp, rp)),
-        (g.crankpin_fillet, (0.0, R, zp, rp)),
-        (g.journal_fillet, (0.0, 0.0, -zw, rj)),
-        (g.journal_fillet, (0.0, 0.0, zw, rj)),
+    undercuts = []
+    # (radius, undercut, (cx, cy, z of the web face, cylinder radius), direction from the face into the pin/journal)
+    for rf, u, (cx, cy, z, r), side in (
+        (g.crankpin_fillet, g.crankpin_undercut, (0.0, R, -zp, rp), +1.0),
+        (g.crankpin_fillet, g.crankpin_undercut, (0.0, R, zp, rp), -1.0),
+        (g.journal_fillet, g.journal_undercut, (0.0, 0.0, -zw, rj), -1.0),
+        (g.journal_fillet, g.journal_undercut, (0.0, 0.0, zw, rj), +1.0),
     ):
         if rf <= 0:
+            continue
+        if u > 0:
+            undercuts.append((rf, u, cx, cy, z, r, side))
             continue
         edges = _edges_on_circle(gmsh, cx, cy, z, r, tol)
         if not edges:
@@ -165,6 +170,18 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None) -> T
         occ.synchronize()
         if len(out) != 1:
             raise GeometryError(f"filleting gave {len(out)} solids instead of one", file=g.file or None)
+        solid = out[0][1]
+    for rf, u, cx, cy, z, r, side in undercuts:
+        # undercut fillet: add the ring between the cylinder and the arc's centre plane, then
+        # cut the torus of the arc (it removes the spandrel's outside and the groove in the web)
+        zc = z + side * (rf - u)
+        ring = occ.addCylinder(cx, cy, min(z, zc), 0, 0, abs(zc - z), r + rf)
+        out, _ = occ.fuse([(3, solid)], [(3, ring)])
+        torus = occ.addTorus(cx, cy, zc, r + rf, rf)
+        out, _ = occ.cut(out, [(3, torus)])
+        occ.synchronize()
+        if len(out) != 1:
+            raise GeometryError(f"the undercut fillet at z = {z * 1e3:g} mm split the solid", file=g.file or None)
         solid = out[0][1]
 
     if g.oil_bore is not None:

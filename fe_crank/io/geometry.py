@@ -11,6 +11,7 @@
     diameter = "50 mm"
     length = "20 mm"                # half a main bearing: the throw model ends mid-bearing
     fillet_radius = "3 mm"
+    undercut = "0 mm"               # optional: recess of the fillet into the web (< fillet radius)
 
     [crankpin]
     diameter = "45 mm"
@@ -72,6 +73,7 @@ class JournalInput(Strict):
     diameter: Length
     length: Length
     fillet_radius: Length = 0.0
+    undercut: Length = 0.0
 
 
 class CrankpinInput(JournalInput):
@@ -193,6 +195,8 @@ def geometry_from_dict(data: dict, file: str | Path = "<geometry>", prefix: str 
         journal_fillet=raw.journal.fillet_radius,
         throws=tuple(throws),
         oil_bore=OilBore(bore.diameter, bore.angle) if bore is not None else None,
+        crankpin_undercut=raw.crankpin.undercut,
+        journal_undercut=raw.journal.undercut,
         require_overlap=raw.require_overlap,
         file=str(file),
     )
