@@ -21,6 +21,7 @@ the cache format.  Entries are written to a temporary folder and renamed into pl
 
 from __future__ import annotations
 
+import atexit
 import dataclasses
 import hashlib
 import json
@@ -372,8 +373,8 @@ def mesh_throw(
         ``"fine"`` (r/8) or a ``MeshOptions``.
     cache_dir
         Folder of the mesh cache; ``None`` meshes into a temporary folder without caching
-        (the ``.msh``/``.vtu`` paths then point into that folder, kept until exit of the
-        process is not guaranteed: copy them if needed).
+        (the ``.msh``/``.vtu`` paths then point into that folder, which is removed when
+        the process exits: copy the files to keep them).
 
     Returns
     -------
@@ -396,6 +397,7 @@ def mesh_throw(
     key = cache_key(geometry, spec, opt)
     if cache_dir is None:
         folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
+        atexit.register(shutil.rmtree, folder, True)  # no cache: the files live as long as the process
         mesh, stats = _build(geometry, spec, opt, folder)
         write_vtu(folder / "throw.vtu", mesh)
         return ThrowMesh(mesh, stats, dict(stats.fillet_radii), folder / "throw.msh", folder / "throw.vtu", spec.name, key, opt)
