@@ -137,3 +137,36 @@ def test_material_without_density_is_an_input_error(throw):
 
     with pytest.raises(InputError, match="density"):
         solve_unit_cases(throw, NoDensity())
+
+
+def test_rigid_support_carries_the_same_resultants(throw, unit):
+    """Stiffer journals change the split only slightly; loads still balance exactly."""
+    rigid = solve_unit_cases(throw, Steel(), FeOptions(support="rigid", cases=("pin_-y",)))
+    assert rigid.bearing_stiffness == pytest.approx(1000 * unit.bearing_stiffness)
+    c = rigid.cases["pin_-y"]
+    assert c.equilibrium_error < 1e-6
+    fy = c.reactions["journal_1"][1] + c.reactions["journal_2"][1]
+    assert fy == pytest.approx(1.0, rel=1e-6)          # the load is -1 N along y
+    # symmetric throw: each journal carries about half
+    assert c.reactions["journal_1"][1] == pytest.approx(0.5, rel=0.05)
+
+
+def test_foundation_on_the_loaded_arc_only(throw):
+    """Arc-limited foundation: springs act only within the arc; reactions still balance."""
+    from fe_crank.fe import Coupling, Foundation, build_system
+    from fe_crank.fe.loads import pin_pressure_load
+
+    k = 210e9 / 0.05
+    arc = (np.pi, np.deg2rad(60))                    # -y side: the pin is pushed towards -y
+    s = build_system(throw, 210e9, 0.3, solver="superlu",
+                     foundations=[Foundation("journal_1", k, arc), Foundation("journal_2", k, arc)],
+                     couplings=[Coupling("end_2", fixed=("ux", "uz", "rz"))])
+    f, _ = pin_pressure_load(s.basis, (0.0, -1000.0))
+    u = s.solve(f)
+    err, reac = s.equilibrium_error(u, f)
+    assert err < 1e-6
+    assert reac["journal_1"][1] + reac["journal_2"][1] == pytest.approx(1000.0, rel=1e-6)
+    rs = -(s.Ks @ u).reshape(-1, 3)
+    loaded = np.flatnonzero(np.linalg.norm(rs, axis=1) > 0)
+    ang = np.arctan2(s.points[0, loaded], s.points[1, loaded])
+    assert np.all(np.abs(np.angle(np.exp(1j * (ang - np.pi)))) < np.deg2rad(90))   # arc + one element
