@@ -170,3 +170,10 @@ def test_foundation_on_the_loaded_arc_only(throw):
     loaded = np.flatnonzero(np.linalg.norm(rs, axis=1) > 0)
     ang = np.arctan2(s.points[0, loaded], s.points[1, loaded])
     assert np.all(np.abs(np.angle(np.exp(1j * (ang - np.pi)))) < np.deg2rad(90))   # arc + one element
+
+
+def test_explicit_pin_centre_gives_the_same_load(throw, unit):
+    """The pin axis given as (0, R) reproduces the centroid-based pressure of this full pin."""
+    other = solve_unit_cases(throw, Steel(), FeOptions(cases=("pin_y",), pin_centre=(0.0, 0.045)))
+    assert other.pin["pin_y"].peak_pressure == pytest.approx(unit.pin["pin_y"].peak_pressure, rel=1e-4)
+    np.testing.assert_allclose(other.pin["pin_y"].resultant[:2], (0.0, 1.0), atol=1e-12)

@@ -62,6 +62,7 @@ class FeOptions:
     torque_face: str = "end_1"
     reaction_face: str = "end_2"
     pin_boundary: str = "crankpin"
+    pin_centre: tuple[float, float] | None = None   # (x, y) of the pin axis; None: centroid of the pin surface
     intorder: int = 2
 
 
@@ -230,7 +231,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
                           f"reacted at {options.reaction_face}")
         else:
             loads[name], pins[name] = pin_pressure_load(basis, PIN_FORCES[name], boundary=options.pin_boundary,
-                                                        half_angle=options.pin_half_angle)
+                                                        centre=options.pin_centre, half_angle=options.pin_half_angle)
             desc[name] = f"1 N on {options.pin_boundary} along {name[4:]}, cosine pressure +-" \
                          f"{np.rad2deg(options.pin_half_angle):.0f} deg"
     names = list(loads)
