@@ -26,7 +26,6 @@ import time
 def run_one(size: float, solver: str) -> dict:
     from dataclasses import dataclass
 
-    import numpy as np
 
     from fe_crank.fe import FeOptions, solve_unit_cases
     from fe_crank.fe.verification_meshes import simple_throw

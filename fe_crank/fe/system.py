@@ -19,7 +19,7 @@ from skfem import Basis, ElementTetP2
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_stiffness
 from fe_crank.fe.solvers import Factorisation, choose_method, factorise
-from fe_crank.fe.supports import (REF_DOFS, Coupling, Dirichlet, Foundation, assemble_foundation_matrix,
+from fe_crank.fe.supports import (REF_DOFS, Coupling, Foundation, assemble_foundation_matrix,
                                   boundary_facets, coupling_rows, face_centroid, rigid_body_modes)
 
 EQUILIBRIUM_TOL = 1e-6
