@@ -51,7 +51,9 @@ def test_mesh_volumes_match_the_solid(seed001_test_mesh):
     m = tm.mesh
     for name, idx in m.subdomains.items():
         v = ONE.assemble(Basis(m, ElementTetP2(), elements=idx))
-        assert v == pytest.approx(mp.parts[name].volume, rel=3e-4), name  # straight-sided geometry: -0.9 % here
+        # within 1e-3 (measured up to 7e-4 on the test preset, whose elements are ~r and of which
+        # 10 % are straightened poor curved ones); an all-straight-sided mesh misses by 0.9 % here
+        assert v == pytest.approx(mp.parts[name].volume, rel=1e-3), name
     total = ONE.assemble(Basis(m, ElementTetP2()))
     assert total == pytest.approx(mp.total.volume, rel=2e-4)
 
@@ -202,3 +204,49 @@ def test_undercut_fillets_mesh_with_named_groups(tmp_path):
     mp = mass_properties(g)
     vol = ONE.assemble(Basis(tm.mesh, ElementTetP2()))
     assert vol == pytest.approx(mp.total.volume, rel=3e-4)
+
+
+def test_no_poorly_curved_elements(seed001_test_mesh):
+    """Curved boundary slivers are straightened: before, 3.6 % of the seed-001 elements had a
+    Jacobian ratio (min/max over the element) near 1e-3, and nodal fillet stresses
+    overshot the quadrature-point values 30-100x."""
+    from fe_crank.gmsh_io import corner_jacobians
+
+    _, tm = seed001_test_mesh
+    J = corner_jacobians(tm.mesh)
+    ratio = J.min(axis=1) / J.max(axis=1)
+    assert ratio.min() > 0.05
+    assert tm.stats.min_jacobian_ratio == pytest.approx(ratio.min())
+
+
+def test_nodal_fillet_stress_agrees_with_quadrature_points(seed001_test_mesh):
+    """The nodal stresses the assessment reads stay within 25 % of the values at the
+    quadrature points of the same fillet elements (unit pin load and torque)."""
+    from fe_crank.assess import assessed_groups
+    from fe_crank.assess.recovery import RATIO_LIMIT, recovery_ratios
+    from fe_crank.fe import FeOptions, solve_unit_cases
+
+    @dataclasses.dataclass(frozen=True)
+    class Steel:
+        youngs_modulus: float = 210e9
+        poisson_ratio: float = 0.3
+        density: float = 7850.0
+
+    _, tm = seed001_test_mesh
+    units = solve_unit_cases(tm, Steel(), FeOptions(cases=("pin_y", "torque")))
+    groups = {n: nodes for n, nodes in assessed_groups(units).items() if "fillet" in n}
+    ratios = recovery_ratios(units, groups)
+    assert set(ratios) == set(groups)
+    assert max(ratios.values()) < RATIO_LIMIT, ratios
+
+
+def test_facet_quadrature_on_curved_journal_maps_back(tmp_path):
+    """scikit-fem's own inverse map stuck at a unit-cube corner on this mesh (inline-4,
+    test preset, journal_2); the robust inverse maps every facet point back exactly:
+    the journal diameter integrated over its surface is the drawing's."""
+    from fe_crank.fe.unit_cases import journal_diameter
+
+    g = load_geometry(ROOT / "geometry" / "inline4.toml")
+    tm = mesh_throw(g, size="test", cache_dir=tmp_path)
+    for j in ("journal_1", "journal_2"):
+        assert journal_diameter(tm.mesh, j) == pytest.approx(g.journal_diameter, rel=2e-3)

@@ -8,11 +8,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from skfem import ElementTetP2, FacetBasis
+from skfem import ElementTetP2
 
 from fe_crank.errors import InputError, MeshError
 from fe_crank.fe.assembly import assemble_body_load, assemble_surface_load
-from fe_crank.fe.supports import boundary_facets
+from fe_crank.fe.supports import boundary_facets, facet_basis
 
 SURFACE_INTORDER = 4
 
@@ -56,8 +56,8 @@ class PinPressure:
 
 def pin_centre(mesh, boundary: str = "crankpin") -> np.ndarray:
     """Pin axis (x, y) as the area centroid of the pin surface (a full cylinder)."""
-    fb = FacetBasis(mesh, ElementTetP2(), facets=boundary_facets(mesh, boundary, "the crankpin load"),
-                    intorder=SURFACE_INTORDER)
+    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the crankpin load"),
+                    SURFACE_INTORDER, "the crankpin load")
     x = np.asarray(fb.global_coordinates())
     return np.einsum("ieq,eq->i", x[:2], fb.dx) / fb.dx.sum()
 
@@ -79,7 +79,7 @@ def pin_pressure_load(basis, force, *, boundary: str = "crankpin", centre=None,
         raise InputError(f"pin force must be a non-zero finite (Fx, Fy), got {force!r}")
     mesh = basis.mesh
     facets = boundary_facets(mesh, boundary, "the crankpin load")
-    fb = FacetBasis(mesh, basis.elem, facets=facets, intorder=SURFACE_INTORDER)
+    fb = facet_basis(mesh, basis.elem, facets, SURFACE_INTORDER, "the crankpin load")
     c = np.asarray(centre, float) if centre is not None else pin_centre(mesh, boundary)
     x = np.asarray(fb.global_coordinates())
     n = np.array(fb.normals)
@@ -132,7 +132,7 @@ def face_torque_load(basis, torque: float, *, boundary: str, centre=None) -> np.
     """
     mesh = basis.mesh
     facets = boundary_facets(mesh, boundary, "the torque load")
-    fb = FacetBasis(mesh, basis.elem, facets=facets, intorder=SURFACE_INTORDER)
+    fb = facet_basis(mesh, basis.elem, facets, SURFACE_INTORDER, f"the torque on {boundary}")
     x = np.asarray(fb.global_coordinates())
     c = np.zeros(2) if centre is None else np.asarray(centre, float)
     dx, dy = x[0] - c[0], x[1] - c[1]

@@ -22,12 +22,12 @@ from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
-from skfem import FacetBasis, ElementTetP2
+from skfem import ElementTetP2
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
 from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load
-from fe_crank.fe.supports import Coupling, Foundation, boundary_facets
+from fe_crank.fe.supports import Coupling, Foundation, boundary_facets, facet_basis
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
 
 CASES = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque")
@@ -155,8 +155,8 @@ class UnitSolutions:
 
 def journal_diameter(mesh, boundary: str) -> float:
     """2 x the mean distance of the journal surface from the crank axis."""
-    fb = FacetBasis(mesh, ElementTetP2(), facets=boundary_facets(mesh, boundary, "the bearing support"),
-                    intorder=2)
+    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the bearing support"),
+                    2, "the bearing support")
     x = np.asarray(fb.global_coordinates())
     return float(2.0 * np.sum(np.hypot(x[0], x[1]) * fb.dx) / fb.dx.sum())
 
