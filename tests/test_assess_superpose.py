@@ -71,10 +71,46 @@ def test_superposition_equals_direct_solve(solved):
 
 def test_coefficients_split_by_sign_and_torque_sense():
     pin = np.array([[3.0, -4.0], [-1.0, 2.0]])
-    c = load_coefficients(pin, np.array([10.0, -5.0]), 2.0, sense=1)
-    # cases: centrifugal, pin_x, pin_y, pin_-x, pin_-y, torque
+    four = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque")
+    c = load_coefficients(pin, np.array([10.0, -5.0]), 2.0, sense=1, cases=four)
+    # four axis directions: each component on the case whose arc is on its loaded side
     # FE torque case: M_z = -1 N m (sense of rotation of a sense +1 shaft) -> coefficient = torque_front
-    np.testing.assert_array_equal(c, [[4.0, 3.0, 0.0, 0.0, 4.0, 10.0], [4.0, 0.0, 2.0, 1.0, 0.0, -5.0]])
+    np.testing.assert_allclose(c, [[4.0, 3.0, 0.0, 0.0, 4.0, 10.0], [4.0, 0.0, 2.0, 1.0, 0.0, -5.0]], atol=1e-12)
     c2 = load_coefficients(pin, np.array([10.0, -5.0]), 2.0, cases=("pin_x", "pin_y", "torque"), sense=-1,
                            torque_mz=2.0)
-    np.testing.assert_array_equal(c2, [[3.0, -4.0, 5.0], [-1.0, 2.0, -2.5]])
+    np.testing.assert_allclose(c2, [[3.0, -4.0, 5.0], [-1.0, 2.0, -2.5]], atol=1e-12)
+
+
+def test_default_twelve_directions_bracket_every_force():
+    """Default pin cases 30 deg apart: each force on the two directions that bracket it,
+    non-negative weights whose resultant is the force (over a full turn of directions)."""
+    from fe_crank.assess.superpose import UNIT_CASES
+    from fe_crank.fe.pin_directions import pin_direction, unit_force
+
+    ang = np.deg2rad(np.arange(0.0, 360.0, 0.7))
+    pin = 1e4 * np.column_stack([np.cos(ang), np.sin(ang)])
+    c = load_coefficients(pin, np.zeros(ang.size), 1.0)
+    pins = [i for i, n in enumerate(UNIT_CASES) if pin_direction(n) is not None]
+    assert len(pins) == 12
+    w = c[:, pins]
+    assert np.all(w >= 0.0) and np.all((w > 0).sum(axis=1) <= 2)
+    E = np.array([unit_force(UNIT_CASES[i]) for i in pins])
+    np.testing.assert_allclose(w @ E, pin, atol=1e-8)
+    # the two cases used are the neighbours of the force direction
+    for k, row in enumerate(w):
+        used = [pin_direction(UNIT_CASES[pins[i]]) for i in np.nonzero(row)[0]]
+        d = np.rad2deg(ang[k])
+        assert all(min(abs(u - d), 360 - abs(u - d)) <= 30.0 + 1e-9 for u in used)
+
+
+def test_pin_direction_sets_that_cannot_carry_a_force_are_refused():
+    from fe_crank.fe.pin_directions import pin_case_weights
+
+    with pytest.raises(ValueError, match="gap of 180"):
+        pin_case_weights(np.array([[1.0, 1.0]]), ["pin_x", "pin_y", "pin_-y"])
+    with pytest.raises(ValueError, match="only forces along it"):
+        pin_case_weights(np.array([[1.0, 1.0]]), ["pin_y"])
+    with pytest.raises(ValueError, match="parallel"):
+        pin_case_weights(np.array([[1.0, 1.0]]), ["pin_y", "pin_-y"])
+    with pytest.raises(ValueError, match="not pin unit cases"):
+        pin_case_weights(np.array([[1.0, 1.0]]), ["pin_400", "pin_y"])

@@ -32,7 +32,8 @@ def unit(throw):
 
 
 def test_every_unit_case_balances_its_reactions(unit):
-    assert set(unit.cases) == {"centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque"}
+    assert set(unit.cases) == {"centrifugal", "torque", "pin_x", "pin_030", "pin_060", "pin_y", "pin_120", "pin_150",
+                               "pin_-x", "pin_210", "pin_240", "pin_-y", "pin_300", "pin_330"}
     for case in unit.cases.values():
         assert case.equilibrium_error < 1e-6
         total = case.applied + sum(case.reactions.values())
@@ -87,10 +88,20 @@ def test_solvers_agree(throw, unit):
 
 
 def test_superposition_of_pin_cases(unit):
+    # a force along a unit-case direction is that case alone
+    assert unit.pin_weights(0.0, -2.0) == {"pin_-y": 2.0}
+    # (3, -2) N is at 326.3 deg: between pin_300 and pin_330, sine rule
     w = unit.pin_weights(3.0, -2.0)
-    assert w == {"pin_x": 3.0, "pin_-y": 2.0}
+    F, psi = np.hypot(3.0, 2.0), np.arctan2(-2.0, 3.0) + 2 * np.pi
+    a300 = F * np.sin(np.deg2rad(330) - psi) / np.sin(np.pi / 6)
+    a330 = F * np.sin(psi - np.deg2rad(300)) / np.sin(np.pi / 6)
+    assert set(w) == {"pin_300", "pin_330"}
+    assert w["pin_300"] == pytest.approx(a300) and w["pin_330"] == pytest.approx(a330)
     u = unit.combine(w)
-    np.testing.assert_allclose(u, 3.0 * unit.displacement("pin_x") + 2.0 * unit.displacement("pin_-y"))
+    np.testing.assert_allclose(u, a300 * unit.displacement("pin_300") + a330 * unit.displacement("pin_330"))
+    # the resultant of the combined load is the force
+    applied = sum(wk * unit.cases[k].applied[:2] for k, wk in w.items())
+    np.testing.assert_allclose(applied, [3.0, -2.0], atol=1e-9)
 
 
 def test_missing_boundary_is_a_clear_error(throw):

@@ -15,7 +15,8 @@ from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.m53 import M53Geometry
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.results import to_json
-from fe_crank.assess.superpose import UNIT_CASES, UnitStresses, load_coefficients
+from fe_crank.assess.superpose import UnitStresses, load_coefficients
+from fe_crank.fe.pin_directions import pin_direction
 from fe_crank.errors import InputError
 
 #: boundary groups assessed at their nodes; subdomains assessed with all their nodes
@@ -59,7 +60,7 @@ def unit_stresses(units, groups: dict[str, np.ndarray] | None = None) -> UnitStr
                          f"({', '.join(ASSESSED_BOUNDARIES + COUNTERWEIGHTS)})", key="geometry")
     ids = np.unique(np.concatenate(list(groups.values())))
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
-    cases = tuple(c for c in UNIT_CASES if c in units.cases)
+    cases = tuple(c for c in units.cases if c in ("centrifugal", "torque") or pin_direction(c) is not None)
     stress = np.stack([units.stress_at_nodes(units.displacement(c))[:, ids] for c in cases])
     mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
     return UnitStresses(stress=stress, points=np.asarray(units.points)[:, ids], groups=local, node_ids=ids,

@@ -3,16 +3,15 @@
 Linear elasticity makes the stress at crank angle theta an exact linear combination of
 the unit solutions (DESIGN.md, "FE")::
 
-    sigma(theta) = omega^2 S_c + F_x(theta) S_px + F_y(theta) S_py + T(theta) S_t
-
-(with F_x split into the pin_x / pin_-x cases by its sign, the same for F_y: see
-``load_coefficients``)
+    sigma(theta) = omega^2 S_c + sum_k a_k(F(theta)) S_pk + T(theta) S_t
 
 with ``S_c`` the stress of the centrifugal case at omega = 1 rad/s (body force
-rho omega^2 r scales with omega^2), ``S_px``, ``S_py`` the stresses of 1 N on the
-crankpin in the throw frame (x tangential, y radial outward), ``S_t`` that of 1 N m
-through the throw, and ``F_x, F_y, T`` the crankpin force and the torque entering the
-throw at its front journal (``torque_front``) from the dynamics stage.
+rho omega^2 r scales with omega^2), ``S_pk`` the stresses of 1 N on the crankpin in
+direction k of the throw frame (x tangential, y radial outward; 12 directions 30 deg
+apart by default), ``a_k`` the weights of the two directions that bracket the pin force
+F (``fe_crank.fe.pin_directions``), ``S_t`` the stress of 1 N m through the throw, and
+``F, T`` the crankpin force and the torque entering the throw at its front journal
+(``torque_front``) from the dynamics stage.
 """
 
 from __future__ import annotations
@@ -22,7 +21,9 @@ from typing import Iterator
 
 import numpy as np
 
-UNIT_CASES = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque")
+from fe_crank.fe.pin_directions import pin_case_weights, pin_cases, pin_direction
+
+UNIT_CASES = ("centrifugal",) + pin_cases() + ("torque",)
 
 
 @dataclass(frozen=True)
@@ -55,10 +56,9 @@ def load_coefficients(pin_force: np.ndarray, torque: np.ndarray, omega: float, *
     ``pin_force`` (n, 2) in the throw frame [N]; ``torque`` (n,) the torque through the
     front journal (``ThrowLoads.torque_front``) in the shaft's sense of rotation [N m];
     ``omega`` [rad/s]; ``sense`` the shaft's sense (+1 turns about -z, model.py).
-    Centrifugal: omega^2.  Pin: the case whose pressure arc is on the loaded side carries
-    each component's magnitude (pin_x for F_x > 0, pin_-x for F_x < 0; the FE stage's
-    ``UnitSolutions.pin_weights``); without the negative cases the positive one takes the
-    signed component.  Torque: the FE case applies a moment ``torque_mz`` about +z at the
+    Centrifugal: omega^2.  Pin: the two pin cases whose directions bracket the force carry
+    it with non-negative weights (``pin_directions.pin_case_weights``, the FE stage's
+    ``UnitSolutions.pin_weights``); with two pin cases only, the signed decomposition.  Torque: the FE case applies a moment ``torque_mz`` about +z at the
     front face (the FE stage's case is 1 N m in the sense of rotation of a sense +1 shaft,
     M_z = -1 N m); the torque through the front journal acts about -sense z, so its
     coefficient is -sense * torque_front / torque_mz.
@@ -68,20 +68,16 @@ def load_coefficients(pin_force: np.ndarray, torque: np.ndarray, omega: float, *
     n = pin_force.shape[0]
     if pin_force.shape != (n, 2) or torque.shape != (n,):
         raise ValueError(f"pin_force must be (n, 2) and torque (n,); got {pin_force.shape}, {torque.shape}")
-    fx, fy = pin_force[:, 0], pin_force[:, 1]
+    pins = [c for c in cases if pin_direction(c) is not None]
+    wp = pin_case_weights(pin_force, pins)
     cols = []
     for name in cases:
         if name == "centrifugal":
             cols.append(np.full(n, omega**2))
         elif name == "torque":
             cols.append(-sense * torque / torque_mz)
-        elif name in ("pin_x", "pin_y"):
-            f = fx if name == "pin_x" else fy
-            has_neg = ("pin_-x" if name == "pin_x" else "pin_-y") in cases
-            cols.append(np.maximum(f, 0.0) if has_neg else f)
-        elif name in ("pin_-x", "pin_-y"):
-            f = fx if name == "pin_-x" else fy
-            cols.append(np.maximum(-f, 0.0))
+        elif name in pins:
+            cols.append(wp[:, pins.index(name)])
         else:
             raise ValueError(f"unknown unit case {name!r}")
     return np.column_stack(cols)

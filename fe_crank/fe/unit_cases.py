@@ -27,11 +27,14 @@ from skfem import ElementTetP2
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
 from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load
+from fe_crank.fe.pin_directions import pin_case_weights, pin_cases, pin_direction, unit_force
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets, facet_basis
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
 
-CASES = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque")
-PIN_FORCES = {"pin_x": (1.0, 0.0), "pin_y": (0.0, 1.0), "pin_-x": (-1.0, 0.0), "pin_-y": (0.0, -1.0)}
+#: default unit cases: the centrifugal load, 1 N on the crankpin in 12 directions 30 deg
+#: apart (``pin_directions``: pin_x, pin_030, ..., pin_y = radial outward, ...), the torque
+CASES = ("centrifugal",) + pin_cases() + ("torque",)
+PIN_FORCES = {name: unit_force(name) for name in pin_cases()}
 
 
 class Material(Protocol):
@@ -49,7 +52,8 @@ class FeOptions:
     support: "elastic" (default) or "rigid" radial journal support, see module doc.
     bearing_stiffness: N/m^3, overrides the default E / d_journal for "elastic".
     solver: "auto" | "pardiso" | "amg" | "superlu".
-    cases: which unit cases to solve (subset of CASES).
+    cases: which unit cases to solve: "centrifugal", "torque" and pin cases by direction
+    ("pin_x", "pin_y", "pin_-x", "pin_-y", "pin_<deg>"; see ``pin_directions``).
     pin_half_angle: rad, half width of the cosine pressure arc.
     """
 
@@ -120,18 +124,11 @@ class UnitSolutions:
         return u
 
     def pin_weights(self, fx: float, fy: float) -> dict[str, float]:
-        """Weights of the pin unit cases for a pin force (Fx, Fy), N, throw frame.
-
-        The case whose pressure arc is on the loaded side is used for each component
-        (pin_x for Fx > 0, pin_-x for Fx < 0 ...); far from the pin surface this equals
-        a single cosine arc centred on the resultant (Saint-Venant).
-        """
-        w = {}
-        for comp, pos, neg in ((fx, "pin_x", "pin_-x"), (fy, "pin_y", "pin_-y")):
-            if comp != 0.0:
-                name = pos if comp > 0 or neg not in self.cases else neg
-                w[name] = w.get(name, 0.0) + (comp if name == pos else -comp)
-        return w
+        """Weights of the solved pin unit cases for a pin force (Fx, Fy), N, throw frame:
+        the two directions that bracket the force (``pin_directions.pin_case_weights``)."""
+        names = [c for c in self.cases if pin_direction(c) is not None]
+        w = pin_case_weights(np.array([[fx, fy]]), names)[0]
+        return {n: float(x) for n, x in zip(names, w) if x != 0.0}
 
     def stress_at_nodes(self, u: np.ndarray) -> np.ndarray:
         """Averaged nodal stress (6, n_nodes), Voigt order xx yy zz xy yz zx, Pa."""
@@ -188,9 +185,9 @@ def _throw_mesh(throw_mesh):
 def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None = None) -> UnitSolutions:
     """Assemble once, factorise once, solve the unit cases of ``options.cases``.
 
-    Cases: ``centrifugal`` (omega = 1 rad/s about z; scale by omega^2), ``pin_x``,
-    ``pin_y``, ``pin_-x``, ``pin_-y`` (1 N on the crankpin in the throw frame as a cosine
-    pressure, scale by the force component's magnitude, see ``UnitSolutions.pin_weights``),
+    Cases: ``centrifugal`` (omega = 1 rad/s about z; scale by omega^2), pin cases by
+    direction (1 N on the crankpin in the throw frame as a cosine pressure; a force is
+    built from the two directions that bracket it, see ``UnitSolutions.pin_weights``),
     ``torque`` (1 N m in the positive sense of rotation, i.e. about -z, M_z = -1 N m,
     entering at ``end_1`` and reacted at ``end_2``; a tangential pin force +Fx drives the
     shaft in the same sense, M_z = -R Fx).  Reactions are (Fx, Fy, Fz, Mx, My, Mz) about
@@ -199,9 +196,10 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     raises SolverError.
     """
     options = options or FeOptions()
-    unknown = set(options.cases) - set(CASES)
+    unknown = [c for c in options.cases if c not in ("centrifugal", "torque") and pin_direction(c) is None]
     if unknown:
-        raise InputError(f"unknown unit cases {sorted(unknown)}; pick from {', '.join(CASES)}", key="fe.cases")
+        raise InputError(f"unknown unit cases {sorted(unknown)}; pick from centrifugal, torque and pin cases "
+                         f"by direction (pin_x, pin_y, pin_-x, pin_-y, pin_<deg> as pin_030)", key="fe.cases")
     mesh = _throw_mesh(throw_mesh)
     for attr in ("youngs_modulus", "poisson_ratio", "density"):
         if not hasattr(material, attr):
@@ -230,9 +228,9 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
             desc[name] = (f"1 N m in the sense of rotation (M_z = -1 N m) on {options.torque_face}, "
                           f"reacted at {options.reaction_face}")
         else:
-            loads[name], pins[name] = pin_pressure_load(basis, PIN_FORCES[name], boundary=options.pin_boundary,
+            loads[name], pins[name] = pin_pressure_load(basis, unit_force(name), boundary=options.pin_boundary,
                                                         centre=options.pin_centre, half_angle=options.pin_half_angle)
-            desc[name] = f"1 N on {options.pin_boundary} along {name[4:]}, cosine pressure +-" \
+            desc[name] = f"1 N on {options.pin_boundary} at {pin_direction(name)} deg from +x, cosine pressure +-" \
                          f"{np.rad2deg(options.pin_half_angle):.0f} deg"
     names = list(loads)
     t_loads = time.perf_counter() - t0
