@@ -20,8 +20,11 @@ demo: $(STAMP)
 test: $(STAMP)
 	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q
 
+# The benchmarks of docs/performance.md (a few minutes; the 1M-dof rows: see there).
 bench: $(STAMP)
-	$(PY) benchmarks/run_all.py
+	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/mesh_bench.py --levels test coarse
+	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/fe_solve.py --geometry geometry/v4_90_pneumatic_seed003.toml --preset coarse
+	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/cycle_bench.py --size 4 --angles 3
 
 clean:
 	rm -rf $(VENV) reports .cache

@@ -5,7 +5,7 @@ assesses the whole cycle (720 angles at 1 deg) by superposition, and times a few
 solves (load vector + solve with the factorisation + stress recovery) to extrapolate the
 cost of solving all 720 angles.  Also reports how far the superposed fillet stress is
 from a direct solve with a single cosine arc centred on the actual pin-force resultant
-(the FE stage's unit cases split the force by sign; see docs/performance-assess.md).
+(the FE stage builds it from the two pin directions that bracket it; docs/performance.md).
 
     .venv/bin/python benchmarks/cycle_bench.py --size 4.0 [--angles 5] [--json out.json]
     .venv/bin/python benchmarks/cycle_bench.py --geometry geometry/single_cylinder_seed001.toml --preset medium

@@ -4,7 +4,7 @@ Each level runs in its own process (peak memory measured with ``getrusage``), wi
 the cache.  Usage::
 
     .venv/bin/python benchmarks/mesh_bench.py [GEOMETRY.toml] [--levels coarse medium fine]
-        [--mem-limit-gb 4] [--markdown docs/performance-mesh.md]
+        [--mem-limit-gb 4] [--markdown table.md]   (figures in docs/performance.md)
 
 Prints one line per level: preset, fillet rule, nodes, quadratic tets, P2 DOFs, largest
 fillet edge / r, min quality, straightened elements, gmsh+conversion time, peak RSS.
