@@ -21,6 +21,8 @@ def test_fe_section_parses_units_to_si():
 
 def test_fe_section_defaults():
     assert parse_fe({}, "case.toml") == FeOptions()
+    four = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque")   # the first design's set
+    assert parse_fe({"cases": list(four)}, "case.toml").cases == four
 
 
 @pytest.mark.parametrize("value, match", [
@@ -30,6 +32,9 @@ def test_fe_section_defaults():
     ({"solver": "mumps"}, "fe.solver"),
     ({"cases": ["gravity"]}, "unknown unit cases"),
     ({"support": "rigid", "bearing_stiffness": "1e12 N/m^3"}, "applies to support"),
+    ({"cases": ["centrifugal", "pin_y", "torque"]}, "cannot carry a crankpin force in every direction"),
+    ({"cases": ["centrifugal", "pin_x", "pin_y", "pin_-y", "torque"]}, "gap of 180"),
+    ({"cases": ["pin_x", "pin_y", "pin_-x", "pin_-y", "torque"]}, "needs the unit cases"),
 ])
 def test_fe_section_errors_name_file_and_key(value, match):
     with pytest.raises(InputError, match=match) as exc:

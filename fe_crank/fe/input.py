@@ -14,9 +14,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Literal
 
+import numpy as np
 from pydantic import Field, model_validator
 
 from fe_crank.errors import InputError
+from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
 from fe_crank.fe.unit_cases import CASES, FeOptions
 from fe_crank.io.base import Strict, validate
 from fe_crank.io.units import Angle, StiffnessPerArea
@@ -34,6 +36,15 @@ class FeInput(Strict):
         bad = [c for c in self.cases if c not in CASES]
         if bad:
             raise ValueError(f"unknown unit cases {bad}; pick from {', '.join(CASES)}")
+        missing = [c for c in ("centrifugal", "torque") if c not in self.cases]
+        if missing:
+            raise ValueError(f"the cycle assessment needs the unit cases {missing}")
+        pins = [c for c in self.cases if pin_direction(c) is not None]
+        try:  # the pin cases must carry a force in any direction
+            pin_case_weights(np.array([[np.cos(a), np.sin(a)] for a in np.deg2rad(np.arange(0, 360, 5))]), pins)
+        except ValueError as exc:
+            raise ValueError(f"the pin unit cases {pins} cannot carry a crankpin force in every direction "
+                             f"({exc}); list at least three directions less than 180 deg apart") from None
         if self.support == "rigid" and self.bearing_stiffness is not None:
             raise ValueError("bearing_stiffness applies to support = \"elastic\" only")
         return self
