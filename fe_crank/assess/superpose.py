@@ -21,9 +21,8 @@ from typing import Iterator
 
 import numpy as np
 
-from fe_crank.fe.pin_directions import pin_case_weights, pin_cases, pin_direction
-
-UNIT_CASES = ("centrifugal",) + pin_cases() + ("torque",)
+from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
+from fe_crank.fe.unit_cases import CASES as UNIT_CASES  # the FE stage's default unit cases
 
 
 @dataclass(frozen=True)
@@ -58,8 +57,8 @@ def load_coefficients(pin_force: np.ndarray, torque: np.ndarray, omega: float, *
     ``omega`` [rad/s]; ``sense`` the shaft's sense (+1 turns about -z, model.py).
     Centrifugal: omega^2.  Pin: the two pin cases whose directions bracket the force carry
     it with non-negative weights (``pin_directions.pin_case_weights``, the FE stage's
-    ``UnitSolutions.pin_weights``); with two pin cases only, the signed decomposition.  Torque: the FE case applies a moment ``torque_mz`` about +z at the
-    front face (the FE stage's case is 1 N m in the sense of rotation of a sense +1 shaft,
+    ``UnitSolutions.pin_weights``); with two pin cases only, the signed decomposition.
+    Torque: the FE case applies a moment ``torque_mz`` about +z at the front face (the FE stage's case is 1 N m in the sense of rotation of a sense +1 shaft,
     M_z = -1 N m); the torque through the front journal acts about -sense z, so its
     coefficient is -sense * torque_front / torque_mz.
     """
