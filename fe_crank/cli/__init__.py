@@ -24,6 +24,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "dynamics": ("fe_crank.cli.dynamics", "kinematics and dynamics over the cycle: table, JSON, plots"),
     "balance": ("fe_crank.cli.balance", "free forces/moments by order, counterweights, balance shafts"),
     "mesh": ("fe_crank.cli.mesh", "build and mesh a crank geometry (cached); statistics and a picture"),
+    "torsion": ("fe_crank.cli.torsion", "torsional vibration of the crank train: modes, Campbell, forced response"),
     "check": ("fe_crank.cli.check", "run load cases end to end and give verdicts (CI check)"),
 }
 

@@ -14,4 +14,5 @@ SECTIONS["criteria"] = __import__("fe_crank.io.criteria", fromlist=["_"]).parse_
 SECTIONS["fe"] = __import__("fe_crank.fe.input", fromlist=["_"]).parse_fe  # FE stage
 SECTIONS["balance"] = __import__("fe_crank.io.balance", fromlist=["_"]).parse_balance  # balance stage
 SECTIONS["mesh"] = __import__("fe_crank.pipeline", fromlist=["_"]).parse_mesh_section  # check stage
+SECTIONS["torsion"] = __import__("fe_crank.io.torsion", fromlist=["_"]).parse_torsion  # torsion stage
 _ = SECTIONS
