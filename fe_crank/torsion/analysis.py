@@ -66,7 +66,10 @@ class TorsionResult:
 
     def quasi_static(self, s: int) -> np.ndarray:
         """Rigid-shaft segment torques (n_seg, n_theta) at speed index ``s``: the
-        cumulative cylinder torque from the free end (all harmonics, i.e. exact)."""
+        cumulative cylinder torque from the free end, synthesised from the same orders as
+        the response (so that the vibratory part is the dynamic amplification of those
+        orders; the orders above them stay in the quasi-static torque of the dynamics
+        stage, taken as not amplified)."""
         ratio = (self.response.speeds[s] / self.harmonics.reference_speed) ** 2
         return self.qs_gas + ratio * self.qs_inertia
 
@@ -133,10 +136,12 @@ def analyse_torsion(loadcase, *, settings=None, inertias=None, fe_stiffness: flo
     if fe_stiffness is not None:
         stiff["fe"] = fe_stiffness
     qs = []
+    kept = np.isin(harmonics.orders, np.concatenate([[0.0], orders]))
+    ph = np.exp(1j * np.outer(theta, harmonics.orders[kept]))
     for part in (harmonics.gas, harmonics.inertia):
         per_mass = np.zeros((model.size, theta.size))
         for cyl, throw in harmonics.throw_of.items():
-            per_mass[model.throw_mass[throw]] += np.real(np.exp(1j * np.outer(theta, harmonics.orders)) @ part[cyl])
+            per_mass[model.throw_mass[throw]] += np.real(ph @ part[cyl][kept])
         qs.append(np.cumsum(per_mass, axis=0)[:-1])
     i_op = int(np.argmin(np.abs(speeds - op)))
     vel = response.velocity_synthesis(i_op, theta)[model.names.index("flywheel")]

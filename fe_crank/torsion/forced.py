@@ -16,8 +16,10 @@ mean torque of the cylinders before it, the quasi-static value of the dynamics s
 The time history over the cycle is the harmonic synthesis
 ``T_seg(theta) = T_mean + Re sum_n T_seg,n exp(i n theta)`` (IACS UR M53 2.2.2: orders
 0.5 .. 12 for four-stroke, 1 .. 15 for two-stroke engines).  The *vibratory* torque of
-a segment is this synthesis less the quasi-static torque (the rigid-shaft cumulative
-cylinder torque of the dynamics stage): what the elasticity and inertia of the shaft add.
+a segment is this synthesis less the quasi-static torque of the same orders (the
+rigid-shaft cumulative cylinder torque of the dynamics stage): what the elasticity and
+inertia of the shaft add.  The assessment takes the dynamics stage's exact quasi-static
+torque plus this vibratory part, so the orders above the synthesis are kept unamplified.
 """
 
 from __future__ import annotations
