@@ -161,7 +161,7 @@ class TorsionInput(Strict):
             raise ValueError("speed_range must be two increasing positive speeds")
         if not 0.0 <= self.shaft_loss_factor <= MAX_SHAFT_LOSS_FACTOR:
             raise ValueError(f"shaft_loss_factor must lie in [0, {MAX_SHAFT_LOSS_FACTOR}] "
-                             "(steel shafts with bearings: 0.02-0.08, docs/torsion.md)")
+                             "(a crank without damper: about 0.015-0.04, docs/torsion.md)")
         _non_negative(self, "cylinder_damping")
         if self.shaft_loss_factor == 0.0 and self.cylinder_damping == 0.0:
             raise ValueError("shaft_loss_factor and cylinder_damping are both zero: an undamped crank has "

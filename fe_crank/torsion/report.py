@@ -177,16 +177,28 @@ def html_fragment(res, folder: str | Path) -> str:
         f"<td class=num>{r['governing_speed_rpm']:.0f}</td><td class=num>{r['vibratory_half_range_at_governing']:.4g}</td>"
         f"<td class=num>{r['half_range_at_operating']:.4g}</td></tr>" for r in governing_table(res))
     freqs = ", ".join(f"{f:.1f}" for f in res.modes.frequencies_hz[1:6])
+    n = min(res.holzer_hz.size, res.modes.omega.size - 1)
+    holzer = (f"Holzer's table agrees within {np.max(np.abs(res.holzer_hz[:n] / res.modes.frequencies_hz[1:n + 1] - 1)):.1e}"
+              if n == res.modes.omega.size - 1 else "Holzer's table found only some of the modes: check the model")
+    k = res.stiffness
+    stiff = f"Throw stiffness (FE span): Carter {k['carter']:.4g} N m/rad"
+    if "fe" in k:
+        stiff += f", FE {k['fe']:.4g} N m/rad (Carter/FE {k['carter'] / k['fe']:.3f})"
+    stiff += f"; the model uses {k['used']}."
     inside = [r for r in res.resonances if r.in_range]
-    major = sorted(inside, key=lambda r: -abs(r.order == int(r.order)))[:8]
-    res_txt = "; ".join(f"mode {r.mode} x order {r.order:g} at {r.speed * RPM:.0f} rpm" for r in major) or "none"
+    def strength(r):  # largest segment M_TN at the resonance speed
+        return float(res.half_range[res.index(r.speed)].max())
+
+    major = sorted(inside, key=strength, reverse=True)[:6]
+    res_txt = "; ".join(f"mode {r.mode} x order {r.order:g} at {r.speed * RPM:.0f} rpm (M_TN up to {strength(r):.3g} N m)"
+                        for r in major) or "none"
     mode = ("the speed of the range where each journal's M_TN is largest (IACS UR M53 2.2.2)"
             if res.assess_speed == "governing" else "the operating speed")
     return (
         "<h2>Torsional vibration</h2>"
         f"<p>Lumped-mass chain of {res.model.size} masses (docs/torsion.md). Natural frequencies: {e(freqs)} Hz "
-        f"(Holzer check agrees). Resonances inside {res.speed_range[0] * RPM:.0f}-{res.speed_range[1] * RPM:.0f} rpm "
-        f"(first listed): {e(res_txt)}. Flywheel speed fluctuation at the operating speed: "
+        f"({e(holzer)}). {e(stiff)} Resonances inside {res.speed_range[0] * RPM:.0f}-{res.speed_range[1] * RPM:.0f} rpm "
+        f"(strongest first): {e(res_txt)}. Flywheel speed fluctuation at the operating speed: "
         f"{100 * res.flywheel_fluctuation:.3g} %.</p>"
         f"<p>The journal torques of the assessment are quasi-static + vibratory, the vibratory part taken at {e(mode)}.</p>"
         "<table><tr><th>segment</th><th>max M_TN [N m]</th><th>at [rpm]</th><th>vibratory part [N m]</th>"
