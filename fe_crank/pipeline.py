@@ -334,6 +334,8 @@ def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
     out["balance"] = run.timed("balance", _balance_stage, lc)
     out["meshes"] = run.timed("mesh", _mesh_stage, lc, options)
     out["units"] = run.timed("fe", _fe_stage, lc, out["meshes"])
+    if "torsion" in lc.extras:  # torsional vibration (docs/torsion.md): only with a [torsion] section
+        out["torsion"] = run.timed("torsion", __import__("fe_crank.torsion.stage", fromlist=["_"]).torsion_stage, lc, out["units"])
     out["assessment"] = run.timed("assess", _assess_stage, lc, out)
     return out
 
@@ -347,7 +349,10 @@ def _dynamics_stage(lc):
 def _assess_stage(lc, out):
     """Stresses, safety factors and the load case's criteria."""
     assess_case = stage_function("fe_crank.assess", "assess_case", "assessment")
-    return assess_case(lc, out["dynamics"], out["balance"], out["meshes"], out["units"])
+    from fe_crank.torsion.stage import dynamics_for_assessment  # journal torques + vibratory torque
+
+    return assess_case(lc, dynamics_for_assessment(out["dynamics"], out.get("torsion")), out["balance"],
+                       out["meshes"], out["units"])
 
 
 def _balance_stage(lc):

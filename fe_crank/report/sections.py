@@ -150,6 +150,7 @@ BUILDERS: list = [
     ("Counterweights: required vs built m*r", counterweight_section),
     ("Stresses and safety factors by location", assessment_section),
 ]
+BUILDERS.insert(1, ("Torsional vibration of the crank train", __import__("fe_crank.torsion.report", fromlist=["_"]).report_section))  # torsion stage
 
 
 # --------------------------------------------------------------------------- FE pictures

@@ -195,7 +195,6 @@ def html_fragment(res, folder: str | Path) -> str:
     mode = ("the speed of the range where each journal's M_TN is largest (IACS UR M53 2.2.2)"
             if res.assess_speed == "governing" else "the operating speed")
     return (
-        "<h2>Torsional vibration</h2>"
         f"<p>Lumped-mass chain of {res.model.size} masses (docs/torsion.md). Natural frequencies: {e(freqs)} Hz "
         f"({e(holzer)}). {e(stiff)} Resonances inside {res.speed_range[0] * RPM:.0f}-{res.speed_range[1] * RPM:.0f} rpm "
         f"(strongest first): {e(res_txt)}. Flywheel speed fluctuation at the operating speed: "
@@ -212,6 +211,26 @@ def html_fragment(res, folder: str | Path) -> str:
 
 def quasi_static_note() -> str:
     """Report text for a case without ``[torsion]``."""
-    return ("<h2>Torsional vibration</h2><p>Not computed: the load case has no [torsion] section, so the journal "
-            "torques are quasi-static (rigid shaft); UR M53 asks for the vibratory torque of a forced-vibration "
-            "calculation (docs/torsion.md).</p>")
+    return ("<p>Not computed: the load case has no [torsion] section, so the journal torques are "
+            "quasi-static (rigid shaft, cumulative cylinder torque); IACS UR M53 2.2 asks for the vibratory "
+            "torque of a forced-vibration calculation (docs/torsion.md).</p>")
+
+
+def report_section(folder, stage_out: dict, options=None) -> list[str]:
+    """Builder of the check report (``fe_crank.report.sections.BUILDERS``): the torsional
+    section with its PNGs and ``torsion.json`` (``result_to_dict``) in the case folder, or
+    the note that the check is quasi-static."""
+    import json
+
+    lc = stage_out.get("loadcase")
+    if lc is None:
+        return []
+    res = stage_out.get("torsion")
+    if res is None:
+        if "torsion" in lc.extras:
+            return ["<p>The case stopped before the torsional stage.</p>"]
+        return [quasi_static_note()]
+    folder = Path(folder)
+    data = {"load_case": lc.name, "source_file": lc.source_file, **result_to_dict(res)}
+    _save_bytes(folder / "torsion.json", json.dumps(data, indent=1, allow_nan=False).encode())
+    return [html_fragment(res, folder)]
