@@ -186,11 +186,11 @@ def html_fragment(res, folder: str | Path) -> str:
         stiff += f", FE {k['fe']:.4g} N m/rad (Carter/FE {k['carter'] / k['fe']:.3f})"
     stiff += f"; the model uses {k['used']}."
     inside = [r for r in res.resonances if r.in_range]
-    def strength(r):  # largest segment M_TN at the resonance speed
-        return float(res.half_range[res.index(r.speed)].max())
+    def strength(r):  # largest vibratory M_TN of the segments at the resonance speed
+        return float(res.vibratory_half_range[res.index(r.speed)].max())
 
     major = sorted(inside, key=strength, reverse=True)[:6]
-    res_txt = "; ".join(f"mode {r.mode} x order {r.order:g} at {r.speed * RPM:.0f} rpm (M_TN up to {strength(r):.3g} N m)"
+    res_txt = "; ".join(f"mode {r.mode} x order {r.order:g} at {r.speed * RPM:.0f} rpm (vibratory M_TN up to {strength(r):.3g} N m)"
                         for r in major) or "none"
     mode = ("the speed of the range where each journal's M_TN is largest (IACS UR M53 2.2.2)"
             if res.assess_speed == "governing" else "the operating speed")
