@@ -14,6 +14,7 @@ import json
 from pathlib import Path
 
 from fe_crank.errors import InputError
+from fe_crank.files import write_atomic
 
 
 def add_arguments(p) -> None:
@@ -59,9 +60,7 @@ def run(args) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     data = {"load_case": lc.name, "source_file": lc.source_file, **result_to_dict(res)}
-    from fe_crank.torsion.report import _save_bytes
-
-    _save_bytes(out / "torsion.json", json.dumps(data, indent=1).encode())
+    write_atomic(out / "torsion.json", json.dumps(data, indent=1, allow_nan=False))
     if not args.no_plots:
         write_plots(res, out)
     print(f"{lc.name}: {res.model.size} masses, natural frequencies [Hz]: "

@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import html
 import io
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
+
+from fe_crank.files import write_atomic
 
 RPM = 30.0 / np.pi
 PNGS = ("campbell.png", "torsion_response.png", "torsion_modes.png")
@@ -34,21 +34,7 @@ def _save(fig, path: Path) -> Path:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=110, bbox_inches="tight")
     _plt().close(fig)
-    return _save_bytes(path, buf.getvalue())
-
-
-def _save_bytes(path: Path, data: bytes) -> Path:
-    """Write ``data`` atomically: a temporary file beside ``path``, then renamed."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    return write_atomic(path, buf.getvalue())
 
 
 def _round(a, digits=6):
@@ -232,5 +218,5 @@ def report_section(folder, stage_out: dict, options=None) -> list[str]:
         return [quasi_static_note()]
     folder = Path(folder)
     data = {"load_case": lc.name, "source_file": lc.source_file, **result_to_dict(res)}
-    _save_bytes(folder / "torsion.json", json.dumps(data, indent=1, allow_nan=False).encode())
+    write_atomic(folder / "torsion.json", json.dumps(data, indent=1, allow_nan=False).encode())
     return [html_fragment(res, folder)]
