@@ -128,9 +128,6 @@ def analyse_torsion(loadcase, *, settings=None, inertias=None, fe_stiffness: flo
     theta = harmonics.cycle * np.arange(n_theta) / n_theta  # the grid of fe_crank.dynamics
     half = np.zeros((speeds.size, model.size - 1))
     vib_half = np.zeros_like(half)
-    for s in range(speeds.size):
-        syn = response.synthesis(s, theta)
-        half[s] = 0.5 * (syn.max(axis=1) - syn.min(axis=1))
     stiff = {"used": settings.throw_stiffness,
              "carter": carter_throw_stiffness(loadcase.geometry, shear_modulus(loadcase.material))}
     if fe_stiffness is not None:
@@ -149,9 +146,11 @@ def analyse_torsion(loadcase, *, settings=None, inertias=None, fe_stiffness: flo
     result = TorsionResult(model, modes, holzer_frequencies(model, 1.5 * modes.omega[-1]) / (2 * np.pi), harmonics,
                            response, theta, half, vib_half, op, (lo, hi), tuple(res_list), fluct, stiff,
                            settings.assess_speed, qs[0], qs[1])
-    for s in range(speeds.size):
-        v = result.vibratory(s)
-        vib_half[s] = 0.5 * (v.max(axis=1) - v.min(axis=1))
+    syn = response.synthesis_all(theta)  # (n_speeds, n_seg, n_theta)
+    half[:] = 0.5 * np.ptp(syn, axis=2)
+    ratio = (speeds / harmonics.reference_speed) ** 2
+    syn -= qs[0][None] + ratio[:, None, None] * qs[1][None]  # vibratory part
+    vib_half[:] = 0.5 * np.ptp(syn, axis=2)
     return result
 
 

@@ -63,14 +63,17 @@ def throw_inertias(loadcase) -> dict[str, float]:
     if g is None:
         raise InputError("torsional analysis needs the crank geometry (key 'geometry')", key="geometry")
     engine = loadcase.engine
+    import dataclasses
+
     names = {t.name for t in g.throws}
-    cad_cache: dict[str, float] = {}
+    cad_cache: dict = {}
     out = {}
     for t in crank_throws(engine):
-        gname = t.name if t.name in names else g.throws[0].name
-        if gname not in cad_cache:
-            cad_cache[gname] = mass_properties(g, gname).total.inertia_axis
-        j = cad_cache[gname]
+        spec = g.throw(t.name if t.name in names else None)
+        key = dataclasses.replace(spec, name="", angle=0.0)  # J_z does not depend on the throw's angle
+        if key not in cad_cache:
+            cad_cache[key] = mass_properties(g, spec).total.inertia_axis
+        j = cad_cache[key]
         for c in engine.cylinders:
             if c.throw == t.name:
                 j += reciprocating_inertia(c, t.crank_radius)

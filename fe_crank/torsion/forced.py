@@ -24,7 +24,7 @@ torque plus this vibratory part, so the orders above the synthesis are kept unam
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -65,21 +65,37 @@ class ForcedResponse:
     segment: np.ndarray
     angle: np.ndarray
     mean_torque: np.ndarray
+    _phases: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def _phase(self, theta) -> np.ndarray:
+        """``exp(i n theta)`` (n_orders, n_theta), kept for the grid last asked for."""
+        theta = np.asarray(theta, float)
+        key = (theta.size, float(theta[0]), float(theta[-1]))
+        if key not in self._phases:
+            self._phases.clear()
+            self._phases[key] = np.exp(1j * np.outer(self.orders, theta))
+        return self._phases[key]
 
     def synthesis(self, s: int, theta: np.ndarray) -> np.ndarray:
         """Segment torques (n_seg, n_theta) over the cycle at speed index ``s``."""
-        ph = np.exp(1j * np.outer(self.orders, np.asarray(theta, float)))  # (n_o, n_t)
-        return self.mean_torque[s][:, None] + np.real(self.segment[s].T @ ph)
+        ph = self._phase(theta)
+        seg = np.ascontiguousarray(self.segment[s].T)
+        return self.mean_torque[s][:, None] + seg.real @ ph.real - seg.imag @ ph.imag
+
+    def synthesis_all(self, theta: np.ndarray) -> np.ndarray:
+        """Segment torques (n_speeds, n_seg, n_theta) at every speed (real matrix products)."""
+        ph = self._phase(theta)
+        re = np.einsum("son,ot->snt", self.segment.real, ph.real, optimize=True)
+        im = np.einsum("son,ot->snt", self.segment.imag, ph.imag, optimize=True)
+        return self.mean_torque[:, :, None] + re - im
 
     def angle_synthesis(self, s: int, theta: np.ndarray) -> np.ndarray:
-        ph = np.exp(1j * np.outer(self.orders, np.asarray(theta, float)))
-        return np.real(self.angle[s].T @ ph)
+        return np.real(self.angle[s].T @ self._phase(theta))
 
     def velocity_synthesis(self, s: int, theta: np.ndarray) -> np.ndarray:
         """Vibratory angular velocity of every mass (n, n_theta), rad/s."""
-        ph = np.exp(1j * np.outer(self.orders, np.asarray(theta, float)))
         w = 1j * self.orders[:, None] * self.speeds[s]
-        return np.real((w * self.angle[s]).T @ ph)
+        return np.real((w * self.angle[s]).T @ self._phase(theta))
 
 
 def forced_response(model: TorsionModel, harmonics: CylinderHarmonics, speeds, orders=None) -> ForcedResponse:
@@ -95,15 +111,25 @@ def forced_response(model: TorsionModel, harmonics: CylinderHarmonics, speeds, o
     index = [int(np.argmin(np.abs(harmonics.orders - o))) for o in orders]
     if not np.allclose(harmonics.orders[index], orders):
         raise ValueError("orders must be harmonics of the engine cycle")
+    # per-mass excitation, gas and inertia parts (n_mass, n_harmonics)
+    gas = np.zeros((model.size, harmonics.orders.size), complex)
+    inertia = np.zeros_like(gas)
+    for cyl, throw in harmonics.throw_of.items():
+        gas[model.throw_mass[throw]] += harmonics.gas[cyl]
+        inertia[model.throw_mass[throw]] += harmonics.inertia[cyl]
+    kh, jm, cm = model.stiffness_matrix(hysteretic=True), model.mass_matrix(), model.damping_matrix()
+    k = np.asarray(model.stiffness, float)
+    ks = (k * (1 + 1j * np.asarray(model.loss_factor, float)))[None, :]
+    cs = np.asarray(model.segment_damping, float)[None, :]
     seg = np.zeros((speeds.size, orders.size, model.size - 1), complex)
     ang = np.zeros((speeds.size, orders.size, model.size), complex)
     mean = np.zeros((speeds.size, model.size - 1))
     for s, w in enumerate(speeds):
-        t0 = np.real(excitation_vector(model, harmonics, w, 0))
-        mean[s] = np.cumsum(t0)[:-1]
-        for o, (order, j) in enumerate(zip(orders, index)):
-            f = order * w
-            x = np.linalg.solve(receptance(model, f), excitation_vector(model, harmonics, w, j))
-            ang[s, o] = x
-            seg[s, o] = model.segment_torque(x, f)
+        t = gas + (w / harmonics.reference_speed) ** 2 * inertia
+        mean[s] = np.cumsum(np.real(t[:, 0]))[:-1]
+        f = (orders * w)[:, None, None]
+        a = kh[None] - f**2 * jm[None] + 1j * f * cm[None]  # (n_orders, n, n)
+        x = np.linalg.solve(a, t[:, index].T[:, :, None])[:, :, 0]  # (n_orders, n)
+        ang[s] = x
+        seg[s] = (ks + 1j * f[:, :, 0] * cs) * (x[:, :-1] - x[:, 1:])
     return ForcedResponse(speeds, orders, seg, ang, mean)
