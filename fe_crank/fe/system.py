@@ -43,6 +43,7 @@ class System:
     dirichlet_dofs: np.ndarray               # full vector dofs held at zero
     foundation_dofs: dict[str, np.ndarray]   # foundation boundary -> scalar dofs
     factorisation: Factorisation
+    point_dofs: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # single vector dofs held
     timings: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -98,7 +99,17 @@ class System:
             mask = np.zeros(resid.size, bool)
             mask[self.dirichlet_dofs] = True
             out["dirichlet"] = _resultant(np.where(mask, resid, 0.0), x, np.arange(x.shape[1]))
+        if self.point_dofs.size:
+            out["point_constraints"] = self.point_reactions(u, f)
         return out
+
+    def point_reactions(self, u: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """Resultant (Fx..Mz about the origin) of the reactions at the single held dofs."""
+        resid = np.zeros_like(u)
+        pos = np.searchsorted(self.rows, self.point_dofs)
+        resid[self.point_dofs] = (self.K_rows[pos] @ u + (self.Ks @ u)[self.point_dofs]
+                                  - f[self.point_dofs])
+        return _resultant(resid, self.points, np.unique(self.point_dofs // 3))
 
     def applied(self, f: np.ndarray, ref_loads: dict | None = None) -> tuple[np.ndarray, float, float]:
         """Resultant of the applied loads and the force and moment scales used for errors."""
@@ -141,9 +152,12 @@ def _generalised_at_origin(load, x0) -> np.ndarray:
 
 
 def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
-                 foundations=(), couplings=(), dirichlet=(), solver: str = "auto",
+                 foundations=(), couplings=(), dirichlet=(), held_dofs=(), solver: str = "auto",
                  intorder: int = 2, basis: Basis | None = None) -> System:
     """Assemble K (vectorised), the supports and the transformation; factorise once.
+
+    ``held_dofs``: single vector dofs (3 node + component) held at zero, e.g. the six
+    point constraints of a self-equilibrated (determinate) model.
 
     Raises MeshError for a missing named boundary or a node claimed by two constraints,
     SolverError when the factorisation fails (e.g. a rigid-body mode left free).
@@ -171,6 +185,8 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
         vd = (3 * s[:, None] + np.array(d.components)[None, :]).ravel()
         held[vd] = True
         ddofs.append(vd)
+    point_dofs = np.unique(np.asarray(held_dofs, dtype=int))
+    held[point_dofs] = True
     slave, refp = {}, {}
     for ci, c in enumerate(couplings):
         facets = boundary_facets(mesh, c.boundary, "an end-face coupling")
@@ -224,7 +240,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     return System(mesh=mesh, basis=basis, K_rows=K_rows, rows=rows, Ks=Ks.tocsr(), P=P, foundations=tuple(foundations),
                   couplings=tuple(couplings), ref_points=refp, ref_columns=refcols, slave_dofs=slave,
                   dirichlet_dofs=np.concatenate(ddofs) if ddofs else np.zeros(0, int),
-                  foundation_dofs=fdofs, factorisation=fac, timings=timings)
+                  foundation_dofs=fdofs, factorisation=fac, timings=timings, point_dofs=point_dofs)
 
 
 def _reduce_modes(B, free, refcols, refp) -> np.ndarray:

@@ -315,8 +315,7 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
         m = units.mesh
         rows = [["elements (quadratic tetrahedra)", m.t.shape[1]], ["nodes", units.points.shape[1]],
                 ["degrees of freedom", units.n_dof], ["solver", units.solver],
-                ["bearing model", f"{units.options.support} journal support"
-                 + (f", k = {units.bearing_stiffness:.3g} N/m^3" if units.options.support == "elastic" else "")]]
+                ["support model", units.support_model]]
         tm = meshes.get(throw)
         stats = getattr(tm, "stats", None)
         if stats is not None:
