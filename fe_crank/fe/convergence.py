@@ -158,3 +158,43 @@ def fillet_convergence(geometry, material, *, throw=None, base=None, factors=FAC
     changes = {name: [abs(b.peaks[name] - a.peaks[name]) / b.peaks[name] for a, b in zip(levels, levels[1:])]
                for name in loads}
     return ConvergenceStudy(levels=tuple(levels), loads=loads, tolerance=tolerance, changes=changes)
+
+
+def wanted(flag: bool | None, preset: str) -> bool:
+    """Run the study?  An explicit flag wins; by default for every preset but ``test``."""
+    return bool(flag) if flag is not None else preset != "test"
+
+
+def check_studies(lc, meshes: dict, dynamics, *, cache_dir=None) -> dict[str, ConvergenceStudy]:
+    """The check stage's study for each distinct throw mesh (``meshes``: key -> ThrowMesh).
+
+    Loads from ``check_loads`` (the throws the key stands for: the engine throw of that
+    name, else all of them); the first level uses the check's own mesh options.
+    """
+    out, done = {}, {}
+    for key, tm in meshes.items():
+        if tm.key in done:
+            out[key] = done[tm.key]
+            continue
+        tls = [dynamics.throws[key]] if key in dynamics.throws else list(dynamics.throws.values())
+        study = fillet_convergence(lc.geometry, lc.material, throw=tm.throw, base=tm.options,
+                                   loads=check_loads(tls, lc.operating.speed), fe_options=lc.fe,
+                                   cache_dir=cache_dir)
+        out[key] = done[tm.key] = study
+    return out
+
+
+def criterion(studies: dict[str, ConvergenceStudy]):
+    """The verdict's ``mesh_convergence`` criterion: the largest last-step change of the
+    peak fillet stress over the throws must not exceed the tolerance (a "max" criterion)."""
+    from fe_crank.results import CriterionResult
+
+    key, st = max(studies.items(), key=lambda kv: kv[1].change)
+    name = max(st.changes, key=lambda n: st.changes[n][-1])
+    a, b = st.levels[-2], st.levels[-1]
+    return CriterionResult(
+        name="mesh_convergence.max_peak_change", passed=st.converged, value=st.change, limit=st.tolerance,
+        margin=1.0 - st.change / st.tolerance, unit="", quantity="mesh_convergence", sense="max",
+        location=f"throw {key}, {b.where[name]}, {name}, r/{a.fillet_divisions:g} -> r/{b.fillet_divisions:g}",
+        description="relative change of the peak fillet von Mises stress at the last fillet refinement "
+                    "(hot-spot convergence study, docs/fe.md)")
