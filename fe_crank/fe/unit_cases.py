@@ -23,13 +23,12 @@ from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
-from skfem import Basis, ElementTetP2
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
 from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load
 from fe_crank.fe.pin_directions import pin_case_weights, pin_cases, pin_direction, unit_force
-from fe_crank.fe.determinate import POINT_REACTION_TOL, DeterminateLayout, DeterminateSupport, determinate_support
+from fe_crank.fe.determinate import POINT_REACTION_TOL, DeterminateLayout
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
 
@@ -242,18 +241,15 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         boundary_facets(mesh, name, "the unit load cases")
     check_support_options(options)
     E, nu = material.youngs_modulus, material.poisson_ratio
-    sup: DeterminateSupport | None = None
     if options.support == "foundation":
         system = build_system(mesh, E, nu, foundations=[Foundation(j, options.bearing_stiffness)
                                                         for j in options.journals],
                               couplings=[Coupling(options.reaction_face, fixed=("uz", "rz"))],
                               solver=options.solver, intorder=options.intorder)
     else:
-        basis = Basis(mesh, ElementTetP2(), intorder=options.intorder)
         layout = DeterminateLayout(journals=tuple(options.journals), torque_face=options.reaction_face,
                                    axial=_axial_journal(options))
-        sup = determinate_support(basis, layout)
-        system = build_system(mesh, E, nu, held_dofs=sup.held, solver=options.solver, basis=basis)
+        system = build_system(mesh, E, nu, determinate=layout, solver=options.solver, intorder=options.intorder)
     basis = system.basis
     t0 = time.perf_counter()
     loads, desc, pins = {}, {}, {}
@@ -274,18 +270,13 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     names = list(loads)
     t_loads = time.perf_counter() - t0
     t0 = time.perf_counter()
-    F = np.column_stack([loads[n] for n in names])
-    R = None
-    if sup is not None:
-        F, R = sup.self_equilibrated(F)
-    U = system.solve(F)
+    U = system.solve(np.column_stack([loads[n] for n in names]))
     t_solve = time.perf_counter() - t0
     cases = {}
     for i, name in enumerate(names):
-        if sup is None:
-            err, reac = system.equilibrium_error(U[:, i], loads[name])
-        else:
-            err, reac = _determinate_equilibrium(system, sup, U[:, i], loads[name], F[:, i], R[:, i], name)
+        err, reac = system.equilibrium_error(U[:, i], loads[name])
+        if "point_constraints" in reac:
+            _check_point_reactions(system, reac["point_constraints"], loads[name], name)
         if not err < EQUILIBRIUM_TOL:
             raise SolverError(f"unit case {name!r}: reactions do not balance the loads "
                               f"(relative error {err:.2e} > {EQUILIBRIUM_TOL:g})")
@@ -295,29 +286,19 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     timings = dict(system.timings)
     timings.update(loads=t_loads, solve=t_solve, solve_per_case=t_solve / max(len(names), 1),
                    total=time.perf_counter() - t_all)
+    sup = system.determinate
     centres = {j: float(c[2]) for j, c in sup.centres.items()} if sup is not None else {}
     return UnitSolutions(system=system, material=material, options=options, cases=cases, pin=pins,
                          bearing_stiffness=options.bearing_stiffness, support_model=support_text(options, centres),
                          bearing_centres=centres, timings=timings)
 
 
-def _determinate_equilibrium(system: System, sup: DeterminateSupport, u, f, f_total, R, name):
-    """Equilibrium error and reactions of a determinate solve.
-
-    Reactions: each support's statically determinate reaction (``sup.reaction_resultants``)
-    and the six point constraints (``point_constraints``), which must carry nothing but
-    round-off: above ``POINT_REACTION_TOL`` of the load scale it is a SolverError.
-    """
-    applied, fs, ms = system.applied(f)
-    reac = sup.reaction_resultants(R)
-    point = system.point_reactions(u, f_total)
-    reac["point_constraints"] = point
+def _check_point_reactions(system: System, point: np.ndarray, f: np.ndarray, name: str) -> None:
+    """The six point constraints of the determinate model must carry nothing but round-off
+    (above ``POINT_REACTION_TOL`` of the load scale it is a SolverError)."""
+    _, fs, ms = system.applied(f)
     pf = np.linalg.norm(point[:3]) / fs if fs > 0 else np.linalg.norm(point[:3])
     pm = np.linalg.norm(point[3:]) / ms if ms > 0 else np.linalg.norm(point[3:])
     if max(pf, pm) > POINT_REACTION_TOL:
         raise SolverError(f"unit case {name!r}: the point constraints carry a reaction ({max(pf, pm):.2e} of "
                           f"the load): the determinate reactions do not balance the load")
-    total = applied + sum(reac.values())
-    ef = np.linalg.norm(total[:3]) / fs if fs > 0 else np.linalg.norm(total[:3])
-    em = np.linalg.norm(total[3:]) / ms if ms > 0 else np.linalg.norm(total[3:])
-    return float(max(ef, em)), reac
