@@ -75,15 +75,30 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
                  m53_geometry: m53.M53Geometry | None = None, m53_additional: float = 10e6,
                  fe_scf: dict[str, dict[str, float]] | None = None,
                  counterweights: tuple[CounterweightData, ...] = (),
-                 torque_rear: np.ndarray | None = None) -> ThrowAssessment:
+                 torque_rear: np.ndarray | None = None,
+                 overspeed_loads: tuple[np.ndarray, np.ndarray] | None = None) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
     ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
-    larger alternating part, the one the throw's fillets carry."""
+    larger alternating part, the one the throw's fillets carry.
+
+    ``overspeed_loads`` = (pin force, front torque) of the cycle recomputed at the
+    overspeed (``assess_case`` runs the dynamics at omega_os with the load case's
+    ``overspeed_gas``).  Without it the operating pin force and torque are scaled by
+    (omega_os/omega)^2 whole: exact for the inertia part, an over-estimate of the gas
+    part (which does not grow with speed), so on the safe side."""
     coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense,
                                torque_mz=unit.torque_mz)
+    coeffs_os = None
+    if overspeed is not None:
+        if overspeed_loads is None:
+            scale = (overspeed / omega) ** 2 if omega > 0 else 1.0
+            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float))
+        coeffs_os = load_coefficients(overspeed_loads[0], overspeed_loads[1], overspeed, cases=unit.cases,
+                                      sense=sense, torque_mz=unit.torque_mz)
     groups = tuple(
-        assess_group(unit, g, coeffs, np.asarray(theta), material, crank_radius=crank_radius, overspeed=overspeed)
+        assess_group(unit, g, coeffs, np.asarray(theta), material, crank_radius=crank_radius, overspeed=overspeed,
+                     overspeed_coefficients=coeffs_os)
         for g in sorted(unit.groups) if len(unit.groups[g])
     )
     fillets, nominal = (), None

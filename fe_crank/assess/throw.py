@@ -1,9 +1,10 @@
 """Assessment of one throw from its unit stresses and its load history (plain arrays).
 
-Static: sigma_v,max over the cycle at every assessed node, and at overspeed the
-centrifugal case alone scaled by omega_os^2 (the crank's and counterweights' body
-force; the rod forces at overspeed are not known to this stage).  Safety
-n_s = R_e / sigma_v,max.  Fatigue: ``fatigue.py``.
+Static: sigma_v,max over the cycle at every assessed node.  Overspeed: the same over the
+cycle recomputed at the overspeed (``overspeed_coefficients``: the crank's own body force
+at omega_os^2 and the rod and piston forces of the overspeed cycle, whose inertia part
+scales with omega_os^2), the worst angle of that cycle.  Safety n_s = R_e / sigma_v,max.
+Fatigue: ``fatigue.py``.
 """
 
 from __future__ import annotations
@@ -73,9 +74,13 @@ def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str
 
 
 def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta: np.ndarray, material, *,
-                 crank_radius: float, overspeed: float | None, chunk: int = 2048) -> GroupResult:
+                 crank_radius: float, overspeed: float | None, chunk: int = 2048,
+                 overspeed_coefficients: np.ndarray | None = None) -> GroupResult:
     """Static and fatigue results of one node group.  ``material`` needs yield strength
-    for the static part and the fatigue properties for the fatigue part (None skips)."""
+    for the static part and the fatigue properties for the fatigue part (None skips).
+    ``overspeed_coefficients`` (n_angles, n_cases): the unit-case coefficients of the
+    cycle at the overspeed (``load_coefficients`` of the overspeed pin force and torque
+    at omega_os); required when ``overspeed`` is given."""
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
@@ -112,9 +117,17 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf
     os_ext, os_safety = None, None
     if overspeed is not None:
-        ci = unit.cases.index("centrifugal")
-        vm_os = von_mises(overspeed**2 * unit.stress[ci][:, nodes])
-        os_ext = _extreme(vm_os, nodes, unit, group, worst="max")
+        if overspeed_coefficients is None:
+            raise ValueError("overspeed given without the overspeed cycle's coefficients")
+        vm_os = np.empty(nodes.size)
+        os_arg = np.empty(nodes.size, dtype=int)
+        pos = 0
+        for idx, hist in iter_histories(unit, overspeed_coefficients, nodes, chunk):
+            vm = von_mises(hist)
+            os_arg[pos:pos + idx.size] = np.argmax(vm, axis=0)
+            vm_os[pos:pos + idx.size] = vm.max(axis=0)
+            pos += idx.size
+        os_ext = _extreme(vm_os, nodes, unit, group, worst="max", angles=theta[os_arg])
         os_safety = ys / os_ext.value if (ys is not None and os_ext.value > 0) else np.inf
     fat = gpe = None
     amp = mean = None
