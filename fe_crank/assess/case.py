@@ -11,7 +11,7 @@ from fe_crank.assess import m53
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
 from fe_crank.assess.stress import principal, von_mises
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
-from fe_crank.assess.throw import STATIC_ONLY_PREFIXES, GroupResult, assess_group
+from fe_crank.assess.throw import STATIC_ONLY_PREFIXES, GroupResult, assess_group, section_diameter
 from fe_crank.assess.verdict import CriterionResult, judge
 from fe_crank.errors import InputError
 
@@ -96,9 +96,11 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
             overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float))
         coeffs_os = load_coefficients(overspeed_loads[0], overspeed_loads[1], overspeed, cases=unit.cases,
                                       sense=sense, torque_mz=unit.torque_mz)
+    dp = m53_geometry.pin_diameter if m53_geometry is not None else None
+    dj = m53_geometry.journal_diameter if m53_geometry is not None else None
     groups = tuple(
         assess_group(unit, g, coeffs, np.asarray(theta), material, crank_radius=crank_radius, overspeed=overspeed,
-                     overspeed_coefficients=coeffs_os)
+                     overspeed_coefficients=coeffs_os, diameter=section_diameter(g, dp, dj))
         for g in sorted(unit.groups) if len(unit.groups[g])
     )
     fillets, nominal = (), None
