@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
 from fe_crank.assess.case import Assessment, ThrowAssessment, assess_throw, evaluate_criteria
 from fe_crank.assess.counterweight import CounterweightData
@@ -130,6 +131,9 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
             ))
             if m53g is None:
                 notes.append(f"throw {tname}: no UR M53 dimensions from the geometry; M53 route not run")
+            elif m53g.oil_bore_diameter > 0 and m53_oil_bore.in_range(m53g) is not None:
+                notes.append(f"throw {tname}: UR M53 oil-bore outlet not assessed empirically "
+                             f"({m53_oil_bore.in_range(m53g)}); FE route only (group oil_bore)")
     verdicts = evaluate_criteria(criteria, tuple(throws), file=lc.source_file, overspeed=overspeed)
     return Assessment(lc.name, lc.source_file, omega, overspeed, material, tuple(throws), verdicts, tuple(notes))
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fe_crank.assess import m53
+from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
 from fe_crank.assess.stress import principal, von_mises
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
@@ -119,6 +119,9 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
             )
         except ValueError as exc:  # outside the range and no fillet group in the mesh for FE SCFs
             raise InputError(f"throw {name}: {exc}", key="geometry") from None
+        outlet = m53_oil_bore.assess_outlet(m53_geometry, nominal, pin_force, tensile=material.tensile_strength,
+                                            k=material.m53_k)
+        fillets += (outlet,) if outlet is not None else ()
     cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
     return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)))
 
@@ -178,7 +181,7 @@ def evaluate_criteria(criteria, throws: tuple[ThrowAssessment, ...], *, file: st
             got = _pick(throws, lambda g: (getattr(g, attr).value, getattr(g, attr))
                         if g.group.startswith(STATIC_ONLY_PREFIXES) else None, "max")
         elif q == "m53_acceptability":
-            vals = [(f.acceptability, f"throw {t.name}, {f.fillet} fillet ({f.scf_source})")
+            vals = [(f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
                     for t in throws for f in t.m53]
             got = min(vals) if vals else None
         elif q in ("unbalance_error", "bolt_utilisation"):
