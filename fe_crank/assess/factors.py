@@ -23,7 +23,6 @@ section 6-9, eq. 6-18: S_e = k_a k_b k_c k_d k_e k_f S'_e.  Here:
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from statistics import NormalDist
 
