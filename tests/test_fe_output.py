@@ -1,4 +1,4 @@
-"""FE stage (issue 5): VTU output round trip, stress recovery identities, SCF mode."""
+"""FE stage: VTU output round trip, stress recovery identities, SCF mode."""
 
 from __future__ import annotations
 
