@@ -232,3 +232,20 @@ def test_seed001_tables3_4_rod_motion_from_velocity_and_acceleration_plans():
     # angular acceleration (table 4, eps2) and slider acceleration of the plans
     np.testing.assert_allclose(np.abs(m.beta_ddot), [8795, 15309.45, 18566.78, 15309.45, 8795], rtol=0.05)
     np.testing.assert_allclose(-m.a, [4200, 3200, 1200, -2250, -5150], rtol=0.06, atol=60)
+
+
+def test_harmonic_motion_keeps_the_exact_rod_and_crankpin_fields():
+    """piston_motion_harmonic truncates only s, v, a (its docstring); every other field is
+    the exact motion's, and integer angles are taken as float radians."""
+    phi = np.array([0, 1, 2, 3, 4, 5, 6])  # integer radians
+    h = piston_motion_harmonic(phi, R, L, OMEGA, (1, 2))
+    ex = piston_motion(phi.astype(float), R, L, OMEGA)
+    for m in (h.phi, h.s, h.v, h.a):
+        assert m.dtype == np.float64
+    np.testing.assert_array_equal(h.phi, phi.astype(float))
+    for name in ("beta", "beta_dot", "beta_ddot", "rod_cg_velocity", "rod_cg_acceleration",
+                 "crankpin_velocity", "crankpin_acceleration"):
+        np.testing.assert_array_equal(getattr(h, name), getattr(ex, name))
+    # two orders at phi = 1 rad: s = r (1 - cos 1) + r A_2/4 (1 - cos 2), A_2 exact
+    a2 = harmonic_coefficients(R / L, (2,))[2]
+    assert h.s[1] == pytest.approx(R * (1 - np.cos(1.0)) + R * a2 / 4 * (1 - np.cos(2.0)), rel=1e-14)
