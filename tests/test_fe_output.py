@@ -95,7 +95,10 @@ def test_scf_mode_against_ur_m53_empirical():
     assert max(r.equilibrium_error.values()) < 1e-6
     for key in ("alpha_T", "beta_T", "beta_B"):
         assert r.fe[key] == pytest.approx(r.empirical[key], rel=0.10)
-    assert 1.0 < r.fe["alpha_B"] < 6.0 and 0.0 < r.fe["beta_Q"] < 10.0
+    # alpha_B of this box web: FE 3.41 vs the M53 fit 2.93 (+17 %, measured); rel 0.25 still
+    # fails a factor error in the nominal stress sigma_BN = M / (B W^2 / 6) (x2, or W/B = 4)
+    assert r.fe["alpha_B"] == pytest.approx(r.empirical["alpha_B"], rel=0.25)
+    assert 0.0 < r.fe["beta_Q"] < 10.0  # no independent value for a box web (fit: 3.68, FE: 1.53)
     # the two symmetric journal fillets: beta_B agrees closely; beta_Q, a small difference of
     # two large stresses, only roughly
     b1, b2 = r.details["beta_B_per_side"]
