@@ -81,7 +81,9 @@ def hodograph(a: float, b: float, c: float, d: float) -> Hodograph:
     pm, qm = abs(p), abs(q)
     major, minor = pm + qm, abs(pm - qm)
     scale = max(major, 1e-300)
-    if major <= 1e-300 or major < DEGENERATE_RTOL * max(abs(a), abs(b), abs(c), abs(d), 1e-300):
+    # |a|, |b|, |c|, |d| <= p + q = major, so only an exactly zero resultant is "zero"
+    # (fe_crank.balance.forces clears round-off to exact zeros before this)
+    if major <= 1e-300:
         kind = "zero"
     elif minor <= DEGENERATE_RTOL * scale:
         kind = "line"
@@ -94,8 +96,8 @@ def hodograph(a: float, b: float, c: float, d: float) -> Hodograph:
     if kind in ("zero", "circle"):
         tilt = 0.0
     else:
-        psi = 0.5 * (math.atan2(p.imag, p.real) + math.atan2(q.imag, q.real)) if pm and qm else (
-            math.atan2(p.imag, p.real) if pm else math.atan2(q.imag, q.real))
+        # here both p and q are non-zero (a zero one makes the kind "circle")
+        psi = 0.5 * (math.atan2(p.imag, p.real) + math.atan2(q.imag, q.real))
         tilt = math.pi / 2.0 - psi
         tilt = (tilt + math.pi / 2.0) % math.pi - math.pi / 2.0
         if tilt <= -math.pi / 2.0 + 1e-15:
