@@ -13,6 +13,7 @@ from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
 from fe_crank.assess.case import Assessment, ThrowAssessment, assess_throw, evaluate_criteria
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.m53 import M53Geometry
+from fe_crank.assess.m53_fe import scf_provider
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.results import to_json
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
@@ -99,6 +100,7 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
         "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration not included",
     ]
     throws = []
+    scf_cache: dict = {}  # SCF mode (UR M53 App. III), solved only for a throw outside the empirical range
     for key, units in unit_solutions.items():
         unit = unit_stresses(units)
         boundary_groups = {g: units_nodes for g, units_nodes in assessed_groups(units).items()
@@ -120,7 +122,9 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
                 tname, unit, dynamics.theta, tl.pin_force, tl.torque_front, omega=omega, sense=sense,
                 overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,
                 m53_additional=criteria.m53_additional_bending, counterweights=tuple(cws),
-                torque_rear=tl.torque_rear,
+                torque_rear=tl.torque_rear, scf=None if m53g is None else scf_provider(
+                    scf_cache, key, throw_meshes.get(key, units.mesh), lc.geometry, material, m53g,
+                    solver=getattr(lc.fe, "solver", None) or "auto"),
             ))
             if m53g is None:
                 notes.append(f"throw {tname}: no UR M53 dimensions from the geometry; M53 route not run")

@@ -1,23 +1,38 @@
-"""SCF mode: stress concentration factors of the crank throw fillets by FE (IACS UR M53, FE appendix).
+"""SCF mode, FE part: the load cases and stress measures of the IACS UR M53 FE appendix.
 
-Load cases on one throw whose journal end faces ``end_1``/``end_2`` are coupled rigidly to
-reference points on the crank axis (as the UR M53 FE guidance prescribes):
+The appendix ("Guidance for calculation of stress concentration factors in the web
+fillet radii of crankshafts by utilizing finite element method", UR M53 Rev.2 and later,
+Appendix III; the clause numbers below are its own) defines, for one crank throw
+modelled from main-bearing centre line to main-bearing centre line (2.1):
 
-* pure bending: ``end_1`` held, a moment M_B about x (bending in the crank plane) at ``end_2``;
-* pure torsion: the same support, a torque T about z at ``end_2`` (same factorisation);
-* three-point bending: both reference points held in translation (``end_1`` also in
-  rotation about z), the crankpin loaded by a radial force F as a cosine pressure.
+* torsion (3.1): both end faces coupled rigidly to a master node on the crank axis
+  (surface warp suppressed), one master node held in all six dofs, the torque T at the
+  other; at every node of the pin and journal fillets
+  tau_equiv = max(|s1 - s2|, |s2 - s3|, |s1 - s3|) / 2 (3.1.2);
+* pure bending, "4-point bending" (3.2): the same supports, the bending moment M in the
+  crank plane at the free master node; von Mises sigma_equiv at every fillet node (3.2.2);
+* bending with shear force, "3-point bending" (3.3): both master nodes supported
+  (simply supported throw), the force F at the crankpin centre distributed over the pin
+  without suppressing its warping; von Mises sigma_3P at the journal fillet nodes (3.3.3).
 
-Factors, with the nominal stresses of UR M53 section 2 (web section for bending and shear):
-alpha_B = sigma_max(pin fillet) / sigma_N, beta_B = sigma_max(journal fillet) / sigma_N,
-sigma_N = M_B / (B W^2 / 6);  alpha_T = tau_max(pin fillet) / (T / W_P,pin),
-beta_T = tau_max(journal fillet) / (T / W_P,journal), W_P = pi/16 (D^4 - D_B^4) / D;
-beta_Q = (sigma_3P - beta_B sigma_N3P) / sigma_Q3P with sigma_N3P = Q L / (B W^2 / 6),
-sigma_Q3P = Q / (B W), Q the support reaction and L the axial distance from the support
-point to the web centre line (UR M53 FE appendix, three-point bending).
-sigma_max is the principal stress of largest magnitude (a pure moment puts the pin fillets
-in compression where the journal fillets are in tension: the factor is a magnitude) and
-tau_max = (sigma_1 - sigma_3)/2, both from averaged nodal stresses on the fillet surface.
+This module solves those cases for unit loads and returns the stress measures (their
+maxima per fillet, where they occur) and the FE quantities the nominal stresses need
+(support reactions, the lever from each support to its web centre); dividing by the
+nominal stresses of UR M53 is the assessment's job (``fe_crank.assess.m53_fe``).
+
+Model choices (stated in docs/fe.md): the throw mesh ends at the main-bearing centre
+planes (a geometry's journal length is half a main bearing, docs/geometry.md); the
+rigid couplings are ``fe.supports.Coupling`` (RBE2 type) at the end-face centroids; the
+3-point force is a uniform traction F/A over the crankpin bearing surface, a
+distributing (RBE3-type) coupling: its resultant passes through the pin centre and it
+does not stiffen the pin.
+
+Mesh quality (2.3), evaluated at the node where each measure peaks:
+(a) principal-stress criterion (2.3.1): the surface-normal stress should vanish,
+    min|s_i| < 0.03 max|s_i|;
+(b) averaged/unaveraged criterion (2.3.2): every element's unaveraged value of the
+    measure at that node within 5 % of the averaged value.
+The appendix asks for a refined mesh when neither holds; both are reported.
 """
 
 from __future__ import annotations
@@ -25,133 +40,192 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from skfem import ElementTetP2
 
-from fe_crank.errors import InputError
-from fe_crank.fe.loads import pin_pressure_load
-from fe_crank.fe.stress import averaging_indicator, max_shear, principal, stress_at_nodes
-from fe_crank.fe.supports import Coupling, boundary_facets
+from fe_crank.errors import MeshError, SolverError
+from fe_crank.fe.assembly import assemble_surface_load
+from fe_crank.fe.stress import _average, element_nodal_stress, principal, von_mises
+from fe_crank.fe.supports import Coupling, boundary_facets, facet_basis
 from fe_crank.fe.system import EQUILIBRIUM_TOL, build_system
-from fe_crank.errors import SolverError
 
 ALL6 = ("ux", "uy", "uz", "rx", "ry", "rz")
 PIN_FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2")
 JOURNAL_FILLETS = ("journal_fillet_1", "journal_fillet_2")
+PRINCIPAL_LIMIT = 0.03   # UR M53 App. III 2.3.1
+AVERAGING_LIMIT = 0.05   # UR M53 App. III 2.3.2
+
+
+def tau_equiv(s: np.ndarray) -> np.ndarray:
+    """tau_equiv = max(|s1 - s2|, |s2 - s3|, |s1 - s3|)/2 = (s1 - s3)/2 for s1 >= s2 >= s3 (App. III 3.1.2)."""
+    p = principal(s)
+    return 0.5 * (p[0] - p[2])
+
+
+MEASURES = {"von_mises": von_mises, "tau_equiv": tau_equiv}
 
 
 @dataclass(frozen=True)
-class ScfResult:
-    """FE stress concentration factors beside the UR M53 empirical ones (None: out of range)."""
+class Peak:
+    """Largest value of a stress measure over one fillet and the mesh checks at that node."""
 
-    fe: dict[str, float]                     # alpha_B, alpha_T, beta_B, beta_T, beta_Q
-    empirical: dict[str, float | None]
-    out_of_range: dict[str, tuple[str, ...]]  # "pin"/"journal" -> violated validity limits
-    averaging: dict[str, dict[str, float]]   # case -> fillet group -> M53 indicator
+    group: str
+    value: float                # Pa per unit load
+    node: int
+    point: tuple[float, float, float]
+    principal_ratio: float      # min|s_i| / max|s_i| at the node (2.3.1: < 0.03)
+    averaging: float            # max over the node's elements |s_el - s_avg| / s_avg (2.3.2: < 0.05)
+
+    @property
+    def principal_ok(self) -> bool:
+        return self.principal_ratio < PRINCIPAL_LIMIT
+
+    @property
+    def averaging_ok(self) -> bool:
+        return self.averaging < AVERAGING_LIMIT
+
+    @property
+    def mesh_ok(self) -> bool:
+        """App. III 2.3: a refined mesh is needed when neither criterion is met."""
+        return self.principal_ok or self.averaging_ok
+
+
+@dataclass(frozen=True)
+class ScfStresses:
+    """Unit-load results of the three appendix cases (SI: N, N m, Pa, m).
+
+    ``bending``: von Mises peaks per fillet under M = 1 N m about x (crank plane y-z);
+    ``torsion``: tau_equiv peaks per fillet under T = 1 N m about z;
+    ``three_point``: von Mises peaks per journal fillet under F = 1 N on the pin (-y);
+    ``reaction``: |F_y| at each support of the 3-point case (end_1, end_2), N;
+    ``lever``: axial distance from each support point to the centre of the web on its
+    side, m (``web_centres``); ``section_moment``: reaction x lever, the web-centre
+    bending moment of the statically determinate throw, N m.
+    """
+
+    bending: dict[str, Peak]
+    torsion: dict[str, Peak]
+    three_point: dict[str, Peak]
+    reaction: dict[str, float]
+    lever: dict[str, float]
     equilibrium_error: dict[str, float]
     n_dof: int
-    details: dict = field(default_factory=dict)
+    support_points: dict[str, tuple[float, float, float]] = field(default_factory=dict)
 
-    def for_assessment(self) -> dict[str, dict[str, float]]:
-        """The ``fe_scf`` dictionaries that ``fe_crank.assess.m53.assess_fillet`` takes."""
-        return {"pin": {"bending": self.fe["alpha_B"], "shear": 0.0, "torsion": self.fe["alpha_T"]},
-                "journal": {"bending": self.fe["beta_B"], "shear": self.fe["beta_Q"], "torsion": self.fe["beta_T"]}}
-
-
-def _abs_principal(s):
-    """Magnitude of the principal stress of largest magnitude, max(|sigma_1|, |sigma_3|)."""
-    p = principal(s)
-    return np.maximum(np.abs(p[0]), np.abs(p[2]))
+    @property
+    def section_moment(self) -> dict[str, float]:
+        return {k: self.reaction[k] * self.lever[k] for k in self.reaction}
 
 
-def _group_max(mesh, basis, field_, groups):
-    vals = []
+def _peaks(mesh, u, E, nu, groups, measure: str, basis) -> dict[str, Peak]:
+    dofs = basis.dofs
+    s_el, nodes = element_nodal_stress(mesh, u, E, nu, dofs=dofs)
+    n = u.size // 3
+    s_avg = _average(s_el, nodes, n)
+    f = MEASURES[measure]
+    m_avg = f(s_avg)
+    m_el = f(s_el)                                        # (10, ne)
+    out = {}
     for g in groups:
-        nodes = basis.get_dofs(boundary_facets(mesh, g, "the SCF evaluation")).all()
-        vals.append(field_[nodes].max())
-    return float(max(vals)), vals
+        fn = np.unique(dofs.get_facet_dofs(boundary_facets(mesh, g, "the SCF mode")).all())
+        i = int(fn[np.argmax(m_avg[fn])])
+        p = np.abs(principal(s_avg[:, i]))
+        at = nodes == i
+        dev = np.abs(m_el[at] - m_avg[i]).max() / m_avg[i] if m_avg[i] > 0 else 0.0
+        x = basis.doflocs[:, i]
+        out[g] = Peak(g, float(m_avg[i]), i, tuple(float(c) for c in x),
+                      float(p.min() / p.max()) if p.max() > 0 else 0.0, float(dev))
+    return out
 
 
-def compute_scf(throw_mesh, material, geometry, *, solver: str = "auto", pin_fillets=PIN_FILLETS,
-                journal_fillets=JOURNAL_FILLETS) -> ScfResult:
-    """UR M53 FE-appendix SCFs of one throw (see module docstring).
+def _pin_traction_load(basis, force_y: float, boundary: str = "crankpin") -> np.ndarray:
+    """Uniform traction (0, F/A, 0) over the pin surface: a distributing coupling of F (App. III 3.3.1)."""
+    mesh = basis.mesh
+    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the 3-point bending load"),
+                     4, "the 3-point bending load")
+    area = float(fb.dx.sum())
 
-    ``geometry``: an ``fe_crank.assess.m53.M53Geometry`` (pin_diameter, journal_diameter,
-    web_thickness, web_width, pin_bore, journal_bore, ...), SI.
+    def traction(x, n):
+        t = np.zeros_like(x)
+        t[1] = force_y / area
+        return t
+
+    return assemble_surface_load(fb, traction)
+
+
+def solve_bending_torsion(mesh, E: float, nu: float, *, solver: str = "auto"):
+    """App. III 3.1 and 3.2: ``end_1`` master node held in all six dofs, M_x = 1 N m (bending
+    in the crank plane y-z) and M_z = 1 N m (torsion) at the ``end_2`` master node.
+
+    Returns the ``System``, the displacements (n, 2) and the two reference-load dicts.
+    """
+    system = build_system(mesh, E, nu, couplings=[Coupling("end_1", fixed=ALL6), Coupling("end_2")], solver=solver)
+    zero = np.zeros(3 * system.basis.N)
+    loads = [{"end_2": np.array([0, 0, 0, 1.0, 0, 0])}, {"end_2": np.array([0, 0, 0, 0, 0, 1.0])}]
+    return system, system.solve(np.column_stack([zero, zero]), loads), loads
+
+
+def solve_three_point(mesh, E: float, nu: float, *, solver: str = "auto"):
+    """App. III 3.3: both master nodes held in ux, uy (``end_1`` also in uz and rz, against
+    the rigid slide and spin), a 1 N force towards the axis (-y) distributed over the pin.
+
+    Returns the ``System``, the displacement and the load vector.
+    """
+    system = build_system(mesh, E, nu, solver=solver, couplings=[
+        Coupling("end_1", fixed=("ux", "uy", "uz", "rz")), Coupling("end_2", fixed=("ux", "uy"))])
+    f = _pin_traction_load(system.basis, -1.0)
+    return system, system.solve(f), f
+
+
+def scf_stresses(throw_mesh, material, *, web_centres: tuple[float, float], solver: str = "auto",
+                 pin_fillets=PIN_FILLETS, journal_fillets=JOURNAL_FILLETS) -> ScfStresses:
+    """Solve the three UR M53 App. III cases for unit loads (see module docstring).
+
+    ``throw_mesh``: a ``ThrowMesh`` or ``MeshTet2`` with boundaries ``end_1``, ``end_2``
+    (the main-bearing centre planes), ``crankpin`` and the fillet groups;
+    ``material``: ``youngs_modulus``, ``poisson_ratio``; ``web_centres``: axial (z)
+    positions of the centre planes of web 1 (``end_1`` side) and web 2, m.
     """
     mesh = getattr(throw_mesh, "mesh", throw_mesh)
     E, nu = material.youngs_modulus, material.poisson_ratio
-    B, W = geometry.web_width, geometry.web_thickness
-    if not (B > 0 and W > 0):
-        raise InputError("web width and thickness must be > 0 for the SCF nominal stresses", key="geometry")
-    w_eq = B * W**2 / 6.0
-    area = B * W
-    wp_pin = np.pi / 16 * (geometry.pin_diameter**4 - geometry.pin_bore**4) / geometry.pin_diameter
-    wp_jou = np.pi / 16 * (geometry.journal_diameter**4 - geometry.journal_bore**4) / geometry.journal_diameter
     for g in (*pin_fillets, *journal_fillets, "end_1", "end_2", "crankpin"):
         boundary_facets(mesh, g, "the SCF mode")
-    groups = [*pin_fillets, *journal_fillets]
+    if len(web_centres) != 2:
+        raise MeshError("web_centres must give the axial positions of web 1 and web 2")
+    groups = (*pin_fillets, *journal_fillets)
 
-    # bending and torsion: one system, two right-hand sides
-    sys1 = build_system(mesh, E, nu, couplings=[Coupling("end_1", fixed=ALL6), Coupling("end_2")], solver=solver)
-    zero = np.zeros(3 * sys1.basis.N)
-    loads = [{"end_2": np.array([0, 0, 0, 1.0, 0, 0])}, {"end_2": np.array([0, 0, 0, 0, 0, 1.0])}]
-    U = sys1.solve(np.column_stack([zero, zero]), loads)
-    eq = {}
-    for k, name in enumerate(("bending", "torsion")):
-        eq[name], _ = sys1.equilibrium_error(U[:, k], zero, loads[k])
-    s_b = stress_at_nodes(mesh, U[:, 0], E, nu)
-    s_t = stress_at_nodes(mesh, U[:, 1], E, nu)
-    sig1_b = _abs_principal(s_b)
-    tau_t = max_shear(s_t)
-    sigma_n = 1.0 / w_eq
-    fe = {}
-    fe["alpha_B"], _ = _group_max(mesh, sys1.basis, sig1_b, pin_fillets)
-    fe["beta_B"], beta_b_side = _group_max(mesh, sys1.basis, sig1_b, journal_fillets)
-    beta_b_side = [v / (1.0 / w_eq) for v in beta_b_side]
-    fe["alpha_B"] /= sigma_n
-    fe["beta_B"] /= sigma_n
-    fe["alpha_T"] = _group_max(mesh, sys1.basis, tau_t, pin_fillets)[0] / (1.0 / wp_pin)
-    fe["beta_T"] = _group_max(mesh, sys1.basis, tau_t, journal_fillets)[0] / (1.0 / wp_jou)
-    averaging = {"bending": averaging_indicator(mesh, U[:, 0], E, nu, groups),
-                 "torsion": averaging_indicator(mesh, U[:, 1], E, nu, groups)}
+    sys1, U, loads = solve_bending_torsion(mesh, E, nu, solver=solver)
+    zero = np.zeros(U.shape[0])
+    eq = {name: sys1.equilibrium_error(U[:, k], zero, loads[k])[0] for k, name in enumerate(("bending", "torsion"))}
+    bending = _peaks(mesh, U[:, 0], E, nu, groups, "von_mises", sys1.basis)
+    torsion = _peaks(mesh, U[:, 1], E, nu, groups, "tau_equiv", sys1.basis)
+    n_dof = sys1.n_dof
+    del sys1, U
 
-    # three-point bending
-    sys2 = build_system(mesh, E, nu, solver=solver, couplings=[
-        Coupling("end_1", fixed=("ux", "uy", "uz", "rz")), Coupling("end_2", fixed=("ux", "uy"))])
-    f, _ = pin_pressure_load(sys2.basis, (0.0, -1.0))
-    u3 = sys2.solve(f)
+    sys2, u3, f = solve_three_point(mesh, E, nu, solver=solver)
     eq["three_point"], reac = sys2.equilibrium_error(u3, f)
     if max(eq.values()) >= EQUILIBRIUM_TOL:
         raise SolverError(f"SCF mode: reactions do not balance the loads ({max(eq.values()):.2e})")
-    s3 = _abs_principal(stress_at_nodes(mesh, u3, E, nu))
-    x = sys2.points
-    beta_q = []
-    for side, fil, bb in zip(("end_1", "end_2"), journal_fillets, beta_b_side):
-        q = abs(reac[side][1])
-        nodes = sys2.basis.get_dofs(boundary_facets(mesh, fil, "the SCF mode")).all()
-        z_support = sys2.ref_points[side][2]
-        # web centre line: the journal fillet's web-side edge plus half the web thickness
-        z_fillet = x[2, nodes].max() if side == "end_1" else x[2, nodes].min()
-        z_web = z_fillet + (W / 2 if side == "end_1" else -W / 2)
-        L = abs(z_web - z_support)
-        sigma_n3 = q * L / w_eq
-        sigma_q3 = q / area
-        # each side with its own beta_B: beta_Q is a small difference of two large stresses
-        beta_q.append((s3[nodes].max() - bb * sigma_n3) / sigma_q3)
-    fe["beta_Q"] = float(max(beta_q))
-    averaging["three_point"] = averaging_indicator(mesh, u3, E, nu, groups)
-
-    empirical, bad = _empirical(geometry)
-    return ScfResult(fe=fe, empirical=empirical, out_of_range=bad, averaging=averaging, equilibrium_error=eq,
-                     n_dof=sys1.n_dof, details={"beta_Q_per_side": beta_q, "beta_B_per_side": beta_b_side})
+    three = _peaks(mesh, u3, E, nu, journal_fillets, "von_mises", sys2.basis)
+    refs = {k: np.asarray(v, float) for k, v in sys2.ref_points.items()}
+    lever = {side: abs(float(zc) - refs[side][2]) for side, zc in zip(("end_1", "end_2"), web_centres)}
+    reaction = {side: abs(float(reac[side][1])) for side in ("end_1", "end_2")}
+    return ScfStresses(bending=bending, torsion=torsion, three_point=three, reaction=reaction, lever=lever,
+                       equilibrium_error=eq, n_dof=n_dof,
+                       support_points={k: tuple(float(c) for c in v) for k, v in refs.items()})
 
 
-def _empirical(geometry):
-    """UR M53 empirical SCFs for the same geometry (``fe_crank.assess.m53``), None out of range."""
-    from fe_crank.assess import m53
+def web_centres_from_mesh(throw_mesh, web_thickness: float, journal_fillets=JOURNAL_FILLETS) -> tuple[float, float]:
+    """Web centre planes estimated from the mesh: each journal fillet's web-side edge -/+ W/2.
 
-    rel_p, rel_j = geometry.related("pin"), geometry.related("journal")
-    bad_p, bad_j = tuple(m53.out_of_range(rel_p)), tuple(m53.out_of_range(rel_j))
-    emp = {"alpha_B": None if bad_p else m53.alpha_b(rel_p), "alpha_T": None if bad_p else m53.alpha_t(rel_p),
-           "beta_B": None if bad_j else m53.beta_b(rel_j), "beta_T": None if bad_j else m53.alpha_t(rel_j),
-           "beta_Q": None if bad_j else m53.beta_q(rel_j)}
-    return emp, {"pin": bad_p, "journal": bad_j}
+    Exact for fillets without an undercut (the fillet ends on the web face); prefer the
+    geometry's own positions (+-(L_pin/2 + W/2)) when they are known.
+    """
+    mesh = getattr(throw_mesh, "mesh", throw_mesh)
+    from skfem import Basis
+
+    basis = Basis(mesh, ElementTetP2(), intorder=1)
+    out = []
+    for k, g in enumerate(journal_fillets):
+        z = basis.doflocs[2, basis.get_dofs(boundary_facets(mesh, g, "the SCF mode")).all()]
+        out.append(z.max() + web_thickness / 2 if k == 0 else z.min() - web_thickness / 2)
+    return float(out[0]), float(out[1])
