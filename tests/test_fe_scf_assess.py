@@ -16,7 +16,7 @@ import pytest
 
 from fe_crank.assess import m53
 from fe_crank.assess.case import assess_throw
-from fe_crank.assess.m53_fe import compute_scf, factors, scf_provider, web_centres_of
+from fe_crank.assess.m53_fe import factors, scf_mesh, scf_mesh_options, scf_provider, web_centres_of
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.fe.scf import Peak, ScfStresses
 from fe_crank.io.geometry import load_geometry
@@ -87,7 +87,7 @@ def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet):
     assert m53.out_of_range(geo.related("pin")) == ["r = 0.1357 not in [0.03, 0.13]"]
     material = load_material("42CrMo4")
     cache = {}
-    provider = scf_provider(cache, "throw", tm, g, material, geo)
+    provider = scf_provider(cache, "throw", tm, g, material, geo, remesh=False)  # fast: keep the coarse mesh
     theta = np.deg2rad(np.arange(720.0))
     unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     pin = np.column_stack([np.zeros(720), 2e4 * np.cos(theta)])
@@ -121,3 +121,20 @@ def test_m53_route_inside_the_range_never_runs_the_scf_mode():
     assert all(f.scf_source.startswith("empirical") for f in t.m53)
     assert t.m53[0].scf_bending == pytest.approx(m53.alpha_b(SMALL.related("pin")), rel=1e-12)
     assert math.isfinite(t.m53[1].acceptability)
+
+
+def test_scf_mode_asks_for_r_over_4_fillet_elements(big_fillet):
+    """App. III 2.1: fillet elements <= r/4.  A load case meshed coarser (``test`` preset)
+    gets the SCF mode on the same throw meshed with fillet_divisions = 4, other options kept;
+    a mesh at r/4 or finer is used as it is."""
+    from fe_crank.mesh import PRESETS
+
+    test = PRESETS["test"]
+    want = scf_mesh_options(test)
+    assert want.fillet_divisions == 4.0 and dataclasses.replace(want, fillet_divisions=test.fillet_divisions) == test
+    assert scf_mesh_options(PRESETS["coarse"]) is PRESETS["coarse"]
+    assert scf_mesh_options(PRESETS["fine"]).fillet_divisions == 8.0
+    g, tm = big_fillet
+    fine_enough = dataclasses.replace(tm, options=PRESETS["medium"])
+    assert scf_mesh(fine_enough, g) is fine_enough
+    assert scf_mesh(tm.mesh, g) is tm.mesh          # a bare mesh: used as it is

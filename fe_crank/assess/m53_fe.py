@@ -23,7 +23,9 @@ criterion; ``ScfResult.mesh_ok`` says whether the appendix would accept the mesh
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from fe_crank.assess import m53
 from fe_crank.fe.scf import JOURNAL_FILLETS, PIN_FILLETS, ScfStresses, scf_stresses, web_centres_from_mesh
@@ -154,14 +156,42 @@ def compute_scf(throw_mesh, material, geo: m53.M53Geometry, *, web_centres: tupl
                      element_size=_element_size(throw_mesh), stresses=st, details=details)
 
 
-def scf_provider(cache: dict, key, throw_mesh, geometry, material, geo: m53.M53Geometry, *, solver: str = "auto"):
-    """A callable for ``assess_throw(scf=...)``: SCF mode on ``throw_mesh`` (the load case's
-    own ``mesh_throw`` mesh), solved once per mesh ``key`` and M53 dimensions."""
+def scf_mesh_options(options):
+    """Mesh options for the SCF mode: the load case's own when its fillet elements are at most
+    r/4 (UR M53 App. III 2.1), else the same options with ``fillet_divisions = 4``."""
+    if options is None or options.fillet_divisions >= 4.0:
+        return options
+    return dataclasses.replace(options, fillet_divisions=4.0)
+
+
+def scf_mesh(throw_mesh, geometry):
+    """The throw mesh the SCF mode runs on: the load case's ``mesh_throw`` mesh, or, when that
+    mesh is coarser than r/4 in the fillets (e.g. the ``test`` preset), the same throw of
+    ``geometry`` meshed again with ``scf_mesh_options`` (same cache).  A mesh without
+    options or a geometry that cannot be meshed here is used as it is (its ``mesh_ok`` says
+    whether the appendix accepts it)."""
+    opt = getattr(throw_mesh, "options", None)
+    want = scf_mesh_options(opt)
+    if want is opt or not hasattr(geometry, "throw") or getattr(throw_mesh, "throw", None) is None:
+        return throw_mesh
+    from fe_crank.mesh import mesh_throw
+
+    folder = Path(throw_mesh.msh_path).parent
+    cache = folder.parent if folder.name == throw_mesh.key else None
+    return mesh_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)
+
+
+def scf_provider(cache: dict, key, throw_mesh, geometry, material, geo: m53.M53Geometry, *, solver: str = "auto",
+                 remesh: bool = True):
+    """A callable for ``assess_throw(scf=...)``: SCF mode on the load case's own throw mesh
+    (``scf_mesh``: re-meshed at r/4 in the fillets when coarser, unless ``remesh`` is False),
+    solved once per mesh ``key`` and M53 dimensions."""
 
     def run() -> ScfResult:
         k = (key, geo)
         if k not in cache:
-            cache[k] = compute_scf(throw_mesh, material, geo, web_centres=web_centres_of(geometry), solver=solver)
+            tm = scf_mesh(throw_mesh, geometry) if remesh else throw_mesh
+            cache[k] = compute_scf(tm, material, geo, web_centres=web_centres_of(geometry), solver=solver)
         return cache[k]
 
     return run
