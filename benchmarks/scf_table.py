@@ -49,6 +49,13 @@ def main() -> None:
             where = ", ".join(f"{c * 1e3:.1f}" for c in q["point"])
             print(f"  {k:8s} {r.fe[k]:7.3f} {emp} {ratio} {100 * q['principal_ratio']:8.2f} {100 * q['averaging']:7.2f}"
                   f"  {q['group']} ({where})")
+        side = r.details["three_point"][0]
+        if r.empirical["beta_Q"] is not None:
+            # the journal fillet under the radial force as a whole: sigma_3P / sigma_N3P, which the
+            # empirical factors give as beta_B + beta_Q sigma_Q3P / sigma_N3P = beta_B + beta_Q W / (6 L)
+            emp_bq = r.empirical["beta_B"] + r.empirical["beta_Q"] * side["sigma_Q3P"] / side["sigma_N3P"]
+            print(f"  beta_BQ = sigma_3P / sigma_N3P: FE {r.fe['beta_BQ']:.3f}, empirical beta_B + beta_Q W/(6 L) "
+                  f"{emp_bq:.3f}, FE/emp {r.fe['beta_BQ'] / emp_bq:.3f}")
         print(f"  beta_BQ (method 2) {r.fe['beta_BQ']:.3f}; 3-point per side: "
               + "; ".join(f"{s['group']}: Q {s['Q_3P']:.4f} N, L {s['L'] * 1e3:.2f} mm, beta_Q {s['beta_Q']:.3f}"
                           for s in r.details["three_point"]))
