@@ -13,7 +13,7 @@ import argparse
 import time
 
 from fe_crank.assess.adapters import m53_geometry_of
-from fe_crank.assess.m53_fe import compute_scf, web_centres_of
+from fe_crank.assess.scf import compute_scf, web_centres_of
 from fe_crank.io.geometry import load_geometry
 from fe_crank.io.material import load_material
 from fe_crank.mesh import mesh_throw

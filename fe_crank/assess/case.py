@@ -48,7 +48,7 @@ class Assessment:
 
 def fe_scfs(scf) -> dict[str, dict[str, float]]:
     """The ``fe_scf`` dictionaries of ``m53.assess_fillet`` from the SCF mode of the UR M53
-    FE appendix (``fe_crank.assess.m53_fe.ScfResult``): alpha_B, alpha_T for the pin,
+    FE appendix (``fe_crank.assess.scf.ScfResult``): alpha_B, alpha_T for the pin,
     beta_B, beta_Q (method 1 of App. III 3.3.3), beta_T for the journal fillet, from the
     appendix's own models and stress measures -- not from the cycle model's stresses,
     whose foundation supports and single radial case give neither the nominal-stress
@@ -68,7 +68,7 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
     ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
     larger alternating part, the one the throw's fillets carry.  Outside the validity
     range of the empirical SCFs UR M53 takes FE SCFs: ``fe_scf`` as given, else
-    ``scf()`` (a callable returning the SCF mode's ``m53_fe.ScfResult``, called only then)."""
+    ``scf()`` (a callable returning the SCF mode's ``assess.scf.ScfResult``, called only then)."""
     coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense,
                                torque_mz=unit.torque_mz)
     groups = tuple(

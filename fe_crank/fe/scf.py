@@ -18,7 +18,7 @@ modelled from main-bearing centre line to main-bearing centre line (2.1):
 This module solves those cases for unit loads and returns the stress measures (their
 maxima per fillet, where they occur) and the FE quantities the nominal stresses need
 (support reactions, the lever from each support to its web centre); dividing by the
-nominal stresses of UR M53 is the assessment's job (``fe_crank.assess.m53_fe``).
+nominal stresses of UR M53 is the assessment's job (``fe_crank.assess.scf``).
 
 Model choices (stated in docs/fe.md): the throw mesh ends at the main-bearing centre
 planes (a geometry's journal length is half a main bearing, docs/geometry.md); the
@@ -40,7 +40,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from skfem import ElementTetP2
+from skfem import Basis, ElementTetP2
 
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_surface_load
@@ -221,8 +221,6 @@ def web_centres_from_mesh(throw_mesh, web_thickness: float, journal_fillets=JOUR
     geometry's own positions (+-(L_pin/2 + W/2)) when they are known.
     """
     mesh = getattr(throw_mesh, "mesh", throw_mesh)
-    from skfem import Basis
-
     basis = Basis(mesh, ElementTetP2(), intorder=1)
     out = []
     for k, g in enumerate(journal_fillets):

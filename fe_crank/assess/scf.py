@@ -29,6 +29,7 @@ from pathlib import Path
 
 from fe_crank.assess import m53
 from fe_crank.fe.scf import JOURNAL_FILLETS, PIN_FILLETS, ScfStresses, scf_stresses, web_centres_from_mesh
+from fe_crank.mesh import mesh_throw
 
 ELEMENT_SIZE_LIMIT = 0.25  # fillet element edge / r, UR M53 App. III 2.1
 
@@ -174,8 +175,6 @@ def scf_mesh(throw_mesh, geometry):
     want = scf_mesh_options(opt)
     if want is opt or not hasattr(geometry, "throw") or getattr(throw_mesh, "throw", None) is None:
         return throw_mesh
-    from fe_crank.mesh import mesh_throw
-
     folder = Path(throw_mesh.msh_path).parent
     cache = folder.parent if folder.name == throw_mesh.key else None
     return mesh_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)
