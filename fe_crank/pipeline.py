@@ -21,6 +21,7 @@ from __future__ import annotations
 import hashlib
 import importlib
 import json
+import logging
 import os
 import re
 import shutil
@@ -33,6 +34,8 @@ from pathlib import Path
 from typing import Callable, Iterable, Sequence
 
 from fe_crank.errors import FeCrankError, InputError
+
+log = logging.getLogger(__name__)
 
 #: Stage names in the order they run (also the keys of ``CaseResult.timings``).
 STAGES = ("load", "dynamics", "balance", "mesh", "fe", "assess", "report")
@@ -124,6 +127,10 @@ class CaseResult:
     folder: str = ""  # the finished case folder, "" when none could be written
     seconds: float = 0.0
     error_stage: str = ""
+    started: str = ""  # ISO 8601 UTC
+    provenance: dict = field(default_factory=dict, compare=False)  # fe_crank.provenance.collect
+    warnings: tuple[str, ...] = ()  # notes shown beside the verdict (fe_crank.report.quality)
+    planned_criteria: tuple[str, ...] = ()  # the load case's criteria (listed as errored when the case errors)
 
     @property
     def exit_code(self) -> int:
@@ -318,10 +325,15 @@ class _Run:
         if self.on_stage is not None:
             self.on_stage(str(self.path), stage)
         t0 = time.perf_counter()
+        ok = False
         try:
-            return fn(*args, **kwargs)
+            out = fn(*args, **kwargs)
+            ok = True
+            return out
         finally:
-            self.timings.append(StageTime(stage, time.perf_counter() - t0))
+            dt = time.perf_counter() - t0
+            self.timings.append(StageTime(stage, dt))
+            log.info("%s: %s %s in %.1f s", self.path.stem, stage, "done" if ok else "stopped", dt)
 
 
 def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
@@ -458,6 +470,7 @@ def run_case(
     tmp = Path(tempfile.mkdtemp(prefix=f".{slug}{PARTIAL_MARK}{os.getpid()}-", dir=out_dir))
     os.chmod(tmp, 0o755)
     name, status, message, criteria, trace, stage_out = path.stem, STATUS_ERROR, "", (), "", {}
+    started = _now_utc()
     try:
         try:
             _compute(run, options, stage_out)
@@ -474,9 +487,11 @@ def run_case(
         error_stage = run.stage if status == STATUS_ERROR else ""
         if "loadcase" in stage_out:
             name = stage_out["loadcase"].name
+        prov, notes, planned = _provenance(path, stage_out, options, started)
         partial = CaseResult(
             name=name, source=str(path), status=status, message=message, criteria=criteria,
             timings=tuple(run.timings), folder="", seconds=0.0, error_stage=error_stage,
+            started=started, provenance=prov, warnings=notes, planned_criteria=planned,
         )
         try:
             run.timed("report", _write_report, tmp, partial, stage_out, options, trace)
@@ -496,6 +511,30 @@ def run_case(
     finally:
         if tmp.exists():
             shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _now_utc() -> str:
+    from fe_crank.provenance import now_utc
+
+    return now_utc()
+
+
+def _provenance(path: Path, stage_out: dict, options, started: str):
+    """(provenance, warning texts, planned criterion names) of a case; the notes are
+    kept in ``stage_out["notes"]`` for the report.  Never fails the case."""
+    from fe_crank.provenance import collect
+    from fe_crank.report.quality import case_notes
+
+    prov = collect(path, stage_out, options, started=started)
+    try:
+        stage_out["notes"] = case_notes(stage_out, prov)
+    except FeCrankError as exc:  # a note that cannot be computed is itself a warning
+        from fe_crank.notes import Note
+
+        stage_out["notes"] = [Note(f"quality checks incomplete: {exc}")]
+    lc = stage_out.get("loadcase")
+    planned = tuple(lim.key for lim in getattr(getattr(lc, "criteria", None), "limits", ()) or ())
+    return prov, tuple(n.text for n in stage_out["notes"] if n.level == "warning"), planned
 
 
 def _fields(r: CaseResult) -> dict:
@@ -557,6 +596,9 @@ def run_cases(
     one task.  ``on_result`` is called in this process as each case finishes.
     """
     options = options or CheckOptions()
+    # one mesh cache for every worker: a relative folder is resolved here, not in each
+    # worker's own working directory (docs/usage.md, "Mesh cache")
+    options = CheckOptions(**{**asdict(options), "cache_dir": str(Path(options.cache_dir).resolve())})
     paths = [Path(p) for p in paths]
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -566,6 +608,10 @@ def run_cases(
 
     def done(i: int, r: CaseResult) -> None:
         results[i] = r
+        w = r.worst
+        log.log(logging.WARNING if r.status == STATUS_ERROR else logging.INFO, "%s: %s%s in %.1f s", slugs[i],
+                r.status.upper(), f" (worst {w.name}, margin {100 * w.margin:+.1f} %)" if w else
+                f": {r.message.splitlines()[0]}" if r.message else "", r.seconds)
         if on_result is not None:
             on_result(r)
 

@@ -27,7 +27,8 @@ def add_arguments(p) -> None:
                    help="mesh preset (default coarse: fillet elements <= r/4, IACS UR M53 guidance; "
                         "test is for quick trials only)")
     p.add_argument("--cache-dir", default=".cache/meshes", metavar="DIR",
-                   help="mesh cache (default .cache/meshes)")
+                   help="mesh cache folder shared by every case and worker (default: .cache/meshes, relative to "
+                        "the working directory; resolved before cases are sent to processes or Dask workers)")
     p.add_argument("--no-render", action="store_true", help="skip the pyvista pictures (faster)")
     p.add_argument("--no-vtu", action="store_true", help="do not write the .vtu result fields")
 

@@ -67,15 +67,21 @@ def positively_oriented(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
 
 
 def write_vtu(path: str | Path, mesh) -> Path:
-    """Write a ``meshio.Mesh`` (see ``quadratic_tet_mesh``) as binary VTU, atomically:
-    a temporary file in the same folder renamed into place, so a reader never sees
+    """Write a ``meshio.Mesh`` (see ``quadratic_tet_mesh``) as binary VTU with VTK's own
+    writer (through pyvista; meshio's writer drops field data), atomically: a
+    temporary file in the same folder renamed into place, so a reader never sees
     half a file."""
+    import pyvista as pv
+
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    grid = pv.from_meshio(mesh)
+    for k, v in (mesh.field_data or {}).items():
+        grid.field_data[k] = np.asarray(v)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".vtu", dir=path.parent)
     os.close(fd)
     try:
-        mesh.write(tmp, file_format="vtu")
+        grid.save(tmp, binary=True)
         os.chmod(tmp, 0o644)
         os.replace(tmp, path)
     finally:

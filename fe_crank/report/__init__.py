@@ -1,4 +1,5 @@
-"""Case reports: ``results.json``, ``report.html`` with PNGs beside it, ``.vtu`` fields.
+"""Case reports: ``results.json``, a self-contained ``report.html`` (pictures embedded;
+the PNGs also beside it), ``.vtu`` fields.
 
 ``write_case_report(folder, result, stage_out, *, options, trace)`` writes into a
 folder that the pipeline later renames into place (see ``fe_crank.pipeline``).
@@ -87,8 +88,9 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
     """Write ``results.json``, pictures, fields and ``report.html`` into ``folder``."""
     folder = Path(folder)
     page = Page(f"fe-crank: {result.name}")
+    notes = stage_out.get("notes") or []
     if result.criteria:
-        page.section("Verdict: safety factors and criteria").append(criteria_table(result))
+        page.section("Verdict: safety factors and criteria").append(criteria_table(result, notes))
     lc = stage_out.get("loadcase")
     if lc is not None:
         inputs = page.section("Inputs and assumptions")
@@ -110,14 +112,27 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
         write_atomic(folder / "error.txt", trace)
     page.section("Stage timings").append(timings_table(result))
     if stage_out.get("assessment") is not None:
-        write_atomic(folder / "results.json", results_json(stage_out["assessment"]))
-    write_atomic(folder / "report.html", page.html(header_html(result)))
+        write_atomic(folder / "results.json", results_json(stage_out["assessment"], result.provenance, notes))
+    write_atomic(folder / "report.html", page.html(header_html(result, notes), folder=folder))
 
 
-def results_json(assessment) -> str:
+def results_json(assessment, provenance: dict | None = None, notes=()) -> str:
     """``results.json``: the assessment's document (``fe_crank.assess.to_json``, schema
-    ``fe_crank/data/results.schema.json``).  Written only for cases whose assessment
-    ran; the pipeline's own record (status, message, timings) is ``case.json``."""
+    ``fe_crank/data/results.schema.json``) with ``provenance`` (``fe_crank.provenance``)
+    and ``warnings`` (the notes shown beside the verdict, ``fe_crank.notes.Note``).
+    Written only for cases whose assessment ran; the pipeline's own record (status,
+    message, timings) is ``case.json``."""
     from fe_crank.assess import to_json
 
-    return json.dumps(to_json(assessment), indent=2, allow_nan=False)
+    doc = to_json(assessment)
+    if provenance:
+        doc["provenance"] = provenance
+    doc["warnings"] = [n.to_dict() for n in notes]
+    return json.dumps(doc, indent=2, allow_nan=False, default=_plain)
+
+
+def _plain(o):
+    """numpy scalars in provenance statistics -> Python numbers."""
+    if hasattr(o, "item"):
+        return o.item()
+    raise TypeError(f"not JSON serialisable: {type(o).__name__}")

@@ -13,7 +13,6 @@ from pathlib import Path
 
 import numpy as np
 
-from fe_crank.report.fields import angle_index, critical, field_at_angle
 from fe_crank.report.html import Page, esc, table
 
 
@@ -48,11 +47,33 @@ def dynamics_section(folder: Path, so: dict, options) -> list[str]:
     return [
         table(["quantity", "value"], rows),
         Page.figure("piston_motion.png", "Piston displacement, velocity and acceleration over the cycle"),
-        Page.figure("forces.png", "Gas, reciprocating inertia, tangential and radial force per cylinder"),
+        Page.figure("forces.png", "Gas, reciprocating inertia, tangential and radial force per cylinder"
+                    + gas_steps(res)),
         Page.figure("torque.png", "Indicated torque and its mean"),
         Page.figure("crankpin_polar.png", "Crankpin polar diagram: rod force on the pin in the throw frame "
                     "(x tangential, y radial outward)"),
     ]
+
+
+def gas_steps(res, share: float = 0.1) -> str:
+    """Caption text explaining a step in a cylinder's gas force (a change between two
+    neighbouring angles above ``share`` of its peak): the pressure model drops there at
+    once, e.g. the exhaust blow-down of the Wiebe cycle at bottom dead centre after
+    firing (the exhaust valve is taken to open instantaneously)."""
+    out = []
+    for name, c in res.cylinders.items():
+        g = np.asarray(c.gas, float)
+        if g.size < 3 or not np.any(g):
+            continue
+        d = np.abs(np.diff(g))
+        i = int(np.argmax(d))
+        if d[i] > share * np.max(np.abs(g)):
+            out.append(f"cylinder {name}: the gas force steps by {d[i] / 1e3:.3g} kN at "
+                       f"{math.degrees(res.theta[i + 1]):.0f} deg")
+    if not out:
+        return ""
+    return ("; " + ", ".join(out) + " (the cylinder pressure of the gas model changes there at once; in the Wiebe "
+            "cycle this is the exhaust blow-down at bottom dead centre, the valve taken to open instantaneously)")
 
 
 def balance_section(folder: Path, so: dict, options) -> list[str]:
@@ -102,7 +123,8 @@ def counterweight_section(folder: Path, so: dict, options) -> list[str]:
     plot_bars(Path(folder) / "counterweight_mr.png", labels, {"required": req, "built": built},
               ylabel="m r [kg m]", title="Counterweight unbalance: required vs built")
     rows = [[lab, _num(c.required_unbalance, "{:.4g}"), f"{c.built_unbalance:.4g}",
-             "-" if c.unbalance_error is None else f"{100 * c.unbalance_error:.1f} %",
+             "-" if c.unbalance_error is None else f"{100 * c.unbalance_error:.1f} %"
+             + (" (!) more than 10 % off" if abs(c.unbalance_error) > 0.10 else ""),
              _num(c.bolt_load, "{:.4g}"), _num(c.bolt_utilisation)] for lab, (_, c) in zip(labels, checks)]
     return [table(["counterweight", "required m r [kg m]", "built m r [kg m]", "error", "bolt load [N]",
                    "bolt utilisation"], rows, num_cols={1, 2, 3, 4, 5}),
@@ -278,18 +300,11 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
             rows.append([f"equilibrium error, case {name}", f"{c.equilibrium_error:.2e}"])
         for k, v in (units.timings or {}).items():
             rows.append([f"time: {k}", f"{v:.2f} s"])
-        fillets = [g for g in ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")
-                   if g in (m.boundaries or {})]
-        a, dyn, lc = so.get("assessment"), so.get("dynamics"), so.get("loadcase")
-        if fillets and a is not None and dyn is not None:
-            crit = critical(a, keys, dyn)
-            index, eng_throw = 0, (throw if throw in dyn.throws else next(iter(dyn.throws)))
-            if crit is not None:
-                eng_throw, index = crit.throw, angle_index(dyn, crit.angle)
-            ind = units.averaging_indicator(field_at_angle(units, dyn, lc, eng_throw, index), fillets)
-            for g, v in ind.items():
-                rows.append([f"unaveraged vs averaged von Mises at the {g} peak", f"{100 * v:+.1f} %"
-                             + ("" if abs(v) <= 0.05 else " (above the 5 % of UR M53: refine the fillet)")])
+        from fe_crank.report.quality import averaging
+
+        for g, v in averaging(so).get(throw, {}).items():
+            rows.append([f"unaveraged vs averaged von Mises at the {g} peak", f"{100 * v:+.1f} %"
+                         + ("" if abs(v) <= 0.05 else " (above the 5 % of UR M53: refine the fillet)")])
         out.append(f"<h3>{'Throws' if len(keys) > 1 else 'Throw'} {esc(', '.join(keys))}</h3>"
                    + table(["quantity", "value"], rows))
     return out
