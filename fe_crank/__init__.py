@@ -9,7 +9,10 @@ cases end to end and returns their results; ``load_case(path)`` reads one load c
 
 __version__ = "0.1.0"
 
-from fe_crank.api import check, load_case  # noqa: E402  (after __version__: provenance reads it)
+# ``fe_crank.check`` is the check package, callable as ``fe_crank.api.check`` (its
+# __init__ makes it so): ``fe_crank.check(paths, ...)`` and ``fe_crank.check.run_cases``
+import fe_crank.check  # noqa: E402  (after __version__: provenance reads it)
+from fe_crank.api import load_case  # noqa: E402
 from fe_crank.errors import FeCrankError, InputError  # noqa: E402
 
 __all__ = ["__version__", "check", "load_case", "FeCrankError", "InputError"]

@@ -5,7 +5,7 @@
     results = fe_crank.check("loadcases/", output="reports/", mesh_size="test")
     results[0].status, results[0].worst, results[0].folder
 
-The same functions as ``fe-crank validate`` / ``fe-crank check`` (``fe_crank.pipeline``);
+The same functions as ``fe-crank validate`` / ``fe-crank check`` (``fe_crank.check``);
 no process-wide state is changed (no logging configuration: the caller's applies).
 """
 
@@ -34,7 +34,7 @@ def check(paths: str | Path | Iterable[str | Path], output: str | Path = "report
     several; ``mesh_size`` overrides the load cases' ``[mesh] size``; ``junit`` also
     writes JUnit XML.  Bad cases become "error" results; a path that does not exist
     raises ``InputError``."""
-    from fe_crank.pipeline import CheckOptions, find_loadcases, run_cases
+    from fe_crank.check import CheckOptions, find_loadcases, run_cases
 
     if isinstance(paths, (str, Path)):
         paths = [paths]

@@ -82,12 +82,12 @@ def test_quiet_and_verbose_exclude_each_other(capsys):
 def test_plain_log_is_one_line_per_record_and_written_at_once():
     buf = io.StringIO()
     log = setup_logging(0, buf)
-    logging.getLogger("fe_crank.pipeline").info("%s: %s done in %.1f s", "case", "mesh", 1.25)
+    logging.getLogger("fe_crank.check.stages").info("%s: %s done in %.1f s", "case", "mesh", 1.25)
     assert buf.getvalue().count("\n") == 1  # already in the stream: no buffering until the batch ends
     line = buf.getvalue().strip()
     assert line.endswith("INFO case: mesh done in 1.2 s") and "\x1b[" not in line
     setup_logging(-1, buf)
-    logging.getLogger("fe_crank.pipeline").info("hidden")
+    logging.getLogger("fe_crank.check.stages").info("hidden")
     assert "hidden" not in buf.getvalue()
     for h in list(log.handlers):
         log.removeHandler(h)
@@ -109,3 +109,13 @@ def test_ties_of_the_maximum_go_to_the_first_angle_whatever_the_last_digits():
     base[2, 0] = 3.0 * (1 + 1e-6)
     assert list(first_extreme(base, "max")) == [2, 0]
     assert first_extreme(np.array([2.0, 1.0, 1.0 + 1e-14]), "min") == 1
+
+
+def test_the_top_level_api_survives_importing_the_check_package():
+    import fe_crank
+    import fe_crank.check.batch  # noqa: F401  (a later submodule import must not rebind the name)
+
+    import fe_crank.check.case as case_module  # a submodule import still works
+
+    assert callable(fe_crank.check) and case_module.run_case is fe_crank.check.run_case
+    assert callable(fe_crank.load_case)

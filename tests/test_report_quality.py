@@ -9,7 +9,7 @@ from pathlib import Path
 from fe_crank.notes import Note, from_stage
 from fe_crank.provenance import input_files, input_hash
 from fe_crank.report.html import criteria_table, header_html
-from fe_crank.pipeline import CaseResult, CriterionResult
+from fe_crank.results import CaseResult, CriterionResult
 from fe_crank.report.quality import case_notes
 
 ROOT = Path(__file__).resolve().parents[1]

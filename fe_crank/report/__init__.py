@@ -2,7 +2,7 @@
 the PNGs also beside it), ``.vtu`` fields.
 
 ``write_case_report(folder, result, stage_out, *, options, trace)`` writes into a
-folder that the pipeline later renames into place (see ``fe_crank.pipeline``).
+folder that the pipeline later renames into place (see ``fe_crank.check.case``).
 Pictures: matplotlib for curves (``fe_crank.report.plots``), pyvista offscreen for
 the stress fields (``fe_crank.report.render``, imported lazily).
 """
@@ -13,7 +13,8 @@ import json
 import math
 from pathlib import Path
 
-from fe_crank.pipeline import CaseResult, write_atomic
+from fe_crank.files import write_atomic
+from fe_crank.results import CaseResult
 from fe_crank.report.html import Page, criteria_table, esc, header_html, table, timings_table
 
 

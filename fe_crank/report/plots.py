@@ -26,7 +26,7 @@ def figure(figsize: tuple[float, float]):
 
 
 def _save(fig, path: str | Path) -> Path:
-    from fe_crank.pipeline import write_atomic
+    from fe_crank.files import write_atomic
     import io
 
     buf = io.BytesIO()
