@@ -128,7 +128,8 @@ def support_info(stage_out: dict) -> list[dict]:
     for key, u in (stage_out.get("units") or {}).items():
         opts = getattr(u, "options", None)
         out.append({"throw": key, "support": getattr(opts, "support", None),
-                    "bearing_stiffness": getattr(u, "bearing_stiffness", None)})
+                    "bearing_stiffness": getattr(u, "bearing_stiffness", None),
+                    "model": getattr(u, "support_model", None)})
     return out
 
 

@@ -13,6 +13,7 @@ import json
 import math
 from pathlib import Path
 
+from fe_crank.fe import convergence
 from fe_crank.files import write_atomic
 from fe_crank.results import CaseResult
 from fe_crank.report.html import Page, criteria_table, esc, header_html, table, timings_table
@@ -100,6 +101,10 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
         inputs.append(table(["quantity", "value"], _engine_rows(lc)))
         for title, obj in (("material", lc.material), ("acceptance criteria", lc.criteria), ("FE model and bearings", lc.fe)):
             rows = _section_rows(obj)
+            if title == "material":
+                from fe_crank.assess.factors import material_rows
+
+                rows += material_rows(obj)
             if rows:
                 inputs.append(f"<h3>{esc(title)}</h3>" + table(["key", "value"], rows))
     from fe_crank.report import sections
@@ -113,19 +118,29 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
         write_atomic(folder / "error.txt", trace)
     page.section("Stage timings").append(timings_table(result))
     if stage_out.get("assessment") is not None:
-        write_atomic(folder / "results.json", results_json(stage_out["assessment"], result.provenance, notes))
+        studies = stage_out.get("mesh_convergence")
+        extra_criteria = (convergence.criterion(studies),) if studies else ()
+        write_atomic(folder / "results.json", results_json(stage_out["assessment"], fe_results(stage_out),
+                                                           extra_criteria, provenance=result.provenance, notes=notes))
     write_atomic(folder / "report.html", page.html(header_html(result, notes), folder=folder))
 
 
-def results_json(assessment, provenance: dict | None = None, notes=()) -> str:
+def results_json(assessment, extra: dict | None = None, criteria=(), *, provenance: dict | None = None,
+                 notes=()) -> str:
     """``results.json``: the assessment's document (``fe_crank.assess.to_json``, schema
-    ``fe_crank/data/results.schema.json``) with ``provenance`` (``fe_crank.provenance``)
-    and ``warnings`` (the notes shown beside the verdict, ``fe_crank.notes.Note``).
-    Written only for cases whose assessment ran; the pipeline's own record (status,
-    message, timings) is ``case.json``."""
+    ``fe_crank/data/results.schema.json``) plus ``extra`` top-level fields, ``criteria``
+    (``CriterionResult``) of other stages, ``provenance`` (``fe_crank.provenance``) and
+    ``warnings`` (the notes shown beside the verdict, ``fe_crank.notes.Note``).  Written
+    only for cases whose assessment ran; the pipeline's own record (status, message,
+    timings) is ``case.json``."""
     from fe_crank.assess import to_json
 
-    doc = to_json(assessment)
+    doc = {**to_json(assessment), **(extra or {})}
+    if criteria:  # criteria of other stages join the verdict (as in case.json)
+        from dataclasses import asdict
+
+        doc["criteria"] = [*doc["criteria"], *(asdict(c) for c in criteria)]
+        doc["passed"] = bool(doc["passed"] and all(c.passed for c in criteria))
     if provenance:
         doc["provenance"] = provenance
     doc["warnings"] = [n.to_dict() for n in notes]
@@ -137,3 +152,15 @@ def _plain(o):
     if hasattr(o, "item"):
         return o.item()
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
+
+
+def fe_results(stage_out: dict) -> dict:
+    """FE fields of results.json: ``support_model`` (text) and, when the study ran,
+    ``mesh_convergence`` (throw key -> ``ConvergenceStudy.to_dict()``)."""
+    out = {}
+    units = stage_out.get("units") or {}
+    if units:
+        out["support_model"] = next(iter(units.values())).support_model
+    if stage_out.get("mesh_convergence"):
+        out["mesh_convergence"] = {k: v.to_dict() for k, v in stage_out["mesh_convergence"].items()}
+    return out

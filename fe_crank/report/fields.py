@@ -158,16 +158,24 @@ def throw_fields(units, assessment, dyn, lc, keys) -> ThrowFields | None:
     if angle_deg is not None:
         field["crank_angle_deg"] = np.array([angle_deg])
     mesh = quadratic_tet_mesh(basis.doflocs, basis.element_dofs, point_data=data, cell_data=cdata, field_data=field)
-    return ThrowFields(mesh, crit, angle_deg, _overspeed_peak(t))
+    peak = _overspeed_peak({**data, "_points": np.asarray(basis.doflocs)}, t)
+    return ThrowFields(mesh, crit, angle_deg, peak)
 
 
-def _overspeed_peak(t) -> tuple[float, tuple[float, float, float], str] | None:
-    """The largest overspeed von Mises of the counterweight groups (of any group when
-    the throw has no counterweight): what the overspeed picture marks."""
-    groups = [g for g in getattr(t, "groups", ()) if g.max_von_mises_overspeed is not None]
-    cw = [g for g in groups if g.group.startswith("counterweight")] or groups
-    if not cw:
+def _overspeed_peak(data: dict, t) -> tuple[float, tuple[float, float, float], str] | None:
+    """The largest von Mises of the drawn overspeed field (centrifugal alone) on the
+    counterweight groups (on every assessed node when the throw has no counterweight):
+    what the overspeed picture marks, read from the field it draws."""
+    vm = data.get("von_mises_overspeed_Pa")
+    if vm is None:
         return None
-    g = max(cw, key=lambda g: g.max_von_mises_overspeed.value)
-    e = g.max_von_mises_overspeed
-    return float(e.value), tuple(float(c) for c in e.point), g.group
+    groups = list(getattr(t, "groups", ()))
+    ids = {g.group: i for i, g in enumerate(groups)}
+    gid = data["assessed_group"]
+    cw = [ids[g.group] for g in groups if g.group.startswith("counterweight")] or list(ids.values())
+    nodes = np.flatnonzero(np.isin(gid, cw)) if cw else np.arange(vm.size)
+    if nodes.size == 0:
+        return None
+    j = int(nodes[np.argmax(vm[nodes])])
+    name = groups[gid[j]].group if gid[j] >= 0 else "the part"
+    return float(vm[j]), tuple(float(c) for c in data["_points"][:, j]), name

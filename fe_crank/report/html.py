@@ -162,8 +162,8 @@ def provenance_table(prov: dict) -> str:
                                       f"fast direct solver {'available' if solver.get('fast_available') else 'NOT available'})"])
     for s in prov.get("support") or ():
         k = s.get("bearing_stiffness")
-        rows.append([f"support, throw {s.get('throw')}", f"{s.get('support')} journal support"
-                     + (f", k = {k:.3g} N/m^3" if isinstance(k, (int, float)) else "")])
+        rows.append([f"support, throw {s.get('throw')}", s.get("model") or (f"{s.get('support')} journal support"
+                     + (f", k = {k:.3g} N/m^3" if isinstance(k, (int, float)) else ""))])
     rows.append(["Python, platform", f"{prov.get('python')}, {prov.get('platform')}"])
     return "<details open><summary>Provenance</summary>" + table(["item", "value"], rows) + "</details>"
 
