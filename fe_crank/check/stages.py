@@ -6,6 +6,8 @@ Each stage is a plain call into its package: dynamics -> balance -> mesh (cached
 
 from __future__ import annotations
 
+import logging
+
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -24,6 +26,9 @@ from fe_crank.results import CriterionResult, StageTime
 from fe_crank.torsion.stage import dynamics_for_assessment, torsion_stage
 
 
+log = logging.getLogger(__name__)
+
+
 @dataclass
 class _Run:
     """Mutable state of one run (private; the result is frozen)."""
@@ -38,10 +43,15 @@ class _Run:
         if self.on_stage is not None:
             self.on_stage(str(self.path), stage)
         t0 = time.perf_counter()
+        ok = False
         try:
-            return fn(*args, **kwargs)
+            out = fn(*args, **kwargs)
+            ok = True
+            return out
         finally:
-            self.timings.append(StageTime(stage, time.perf_counter() - t0))
+            dt = time.perf_counter() - t0
+            self.timings.append(StageTime(stage, dt))
+            log.info("%s: %s %s in %.1f s", self.path.stem, stage, "done" if ok else "stopped", dt)
 
 
 def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
