@@ -26,7 +26,6 @@ import re
 import shutil
 import tempfile
 import time
-import tomllib
 import traceback
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -51,13 +50,17 @@ class CheckOptions:
 
     ``mesh_size`` is a preset of ``fe_crank.mesh`` ("test", "coarse", "medium",
     "fine") that overrides the load case's ``[mesh] size`` (default "coarse"); ``cache_dir`` holds meshes keyed by the hash of their inputs;
-    ``render`` switches the pyvista pictures on; ``write_vtu`` the ``.vtu`` fields.
+    ``render`` switches the pyvista pictures on; ``write_vtu`` the ``.vtu`` fields;
+    ``allow_outside_paths`` lets include paths leave the load case's folder tree;
+    ``max_elements`` overrides the estimated-element-count limit (docs/limits.md).
     """
 
     mesh_size: str | None = None
     cache_dir: str = ".cache/meshes"
     render: bool = True
     write_vtu: bool = True
+    allow_outside_paths: bool = False
+    max_elements: int | None = None
 
 
 MESH_PRESETS = ("test", "coarse", "medium", "fine")
@@ -237,10 +240,11 @@ def case_slug(path: str | Path) -> str:
 def is_loadcase_file(path: Path) -> bool:
     """A ``.toml`` with an ``[operating]`` table.  An unreadable TOML counts too, so
     that a broken load case in a folder is reported instead of silently skipped."""
+    from fe_crank.io.base import read_toml
+
     try:
-        with path.open("rb") as fh:
-            data = tomllib.load(fh)
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError):
+        data = read_toml(path)  # bounded: size, nesting depth; never a traceback
+    except InputError:
         return True
     return isinstance(data.get("operating"), dict)
 
@@ -329,7 +333,8 @@ def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
     finishes (so that a report of a case that stopped shows what did run)."""
     from fe_crank.io.loadcase import load_loadcase
 
-    lc = out["loadcase"] = run.timed("load", load_loadcase, run.path)
+    lc = out["loadcase"] = run.timed("load", load_loadcase, run.path,
+                                     allow_outside_paths=options.allow_outside_paths)
     out["dynamics"] = run.timed("dynamics", _dynamics_stage, lc)
     out["balance"] = run.timed("balance", _balance_stage, lc)
     out["meshes"] = run.timed("mesh", _mesh_stage, lc, options)
@@ -433,6 +438,15 @@ def _criteria_of(assessment) -> tuple[CriterionResult, ...]:
     return tuple(out)
 
 
+def _refuse_nan(criteria) -> None:
+    """A NaN in a criterion is an error of the case, never a verdict or a JSON value
+    (an infinite safety factor of an unloaded part is legitimate and is kept)."""
+    for c in criteria:
+        if any(x != x for x in (c.value, c.limit, c.margin)):
+            raise FeCrankError(f"criterion {c.name}: the computation gave NaN (not a number); "
+                               "the case is not assessed")
+
+
 def run_case(
     path: str | Path,
     out_dir: str | Path,
@@ -463,6 +477,7 @@ def run_case(
             _compute(run, options, stage_out)
             name = stage_out["loadcase"].name
             criteria = _criteria_of(stage_out["assessment"])
+            _refuse_nan(criteria)
             status = STATUS_PASS if all(c.passed for c in criteria) else STATUS_FAIL
             if not criteria:
                 status, message = STATUS_ERROR, "the assessment returned no criteria: nothing was checked"

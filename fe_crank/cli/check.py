@@ -30,13 +30,18 @@ def add_arguments(p) -> None:
                    help="mesh cache (default .cache/meshes)")
     p.add_argument("--no-render", action="store_true", help="skip the pyvista pictures (faster)")
     p.add_argument("--no-vtu", action="store_true", help="do not write the .vtu result fields")
+    p.add_argument("--allow-outside-paths", action="store_true",
+                   help="let engine/geometry/CSV paths leave the load case's folder tree (refused by default)")
+    p.add_argument("--max-elements", type=int, metavar="N",
+                   help="raise the limit on the estimated element count of a mesh (docs/limits.md)")
 
 
 def _options(args):
     from fe_crank.pipeline import CheckOptions
 
     return CheckOptions(mesh_size=args.mesh_size, cache_dir=str(args.cache_dir), render=not args.no_render,
-                        write_vtu=not args.no_vtu)
+                        write_vtu=not args.no_vtu, allow_outside_paths=args.allow_outside_paths,
+                        max_elements=args.max_elements)
 
 
 def _row(r) -> list[str]:
@@ -82,6 +87,9 @@ def run(args) -> int:
 
     if args.jobs < 1:
         raise InputError("must be at least 1", key="--jobs")
+    if args.max_elements is not None and args.max_elements < 1:
+        raise InputError("must be at least 1", key="--max-elements")
+    check_output_paths(args.output, args.junit)
     options = _options(args)
     paths = find_loadcases(args.paths)
     if not paths:
@@ -113,6 +121,40 @@ def run(args) -> int:
             where = "" if r.source in r.message else f"{r.source}: "
             print(f"error: {where}{r.message}", file=sys.stderr)
     return code
+
+
+def check_output_paths(output: Path, junit: Path | None) -> None:
+    """Refuse unusable output paths before any work starts: ``-o`` must be a folder
+    that can be created and written (probed with a temporary file), ``--junit`` a
+    file (not a folder) in a writable folder.  Raises InputError naming the option."""
+    import os
+    import tempfile
+
+    def probe(folder: Path, key: str) -> None:
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=".fe-crank-probe-", dir=folder)
+            os.close(fd)
+            os.unlink(tmp)
+        except FileExistsError:
+            raise InputError("is an existing file, expected a folder", file=str(folder), key=key) from None
+        except NotADirectoryError:
+            raise InputError("a part of the path is a file, expected folders", file=str(folder), key=key) from None
+        except PermissionError:
+            raise InputError("cannot write there: permission denied", file=str(folder), key=key) from None
+        except OSError as exc:
+            raise InputError(f"cannot write there: {exc.strerror or type(exc).__name__}", file=str(folder),
+                             key=key) from None
+
+    if output.exists() and not output.is_dir():
+        raise InputError("is an existing file, expected a folder", file=str(output), key="--output")
+    probe(output, "--output")
+    if junit is not None:
+        if junit.is_dir():
+            raise InputError("is a folder, expected a file name", file=str(junit), key="--junit")
+        probe(junit.parent if str(junit.parent) else Path("."), "--junit")
+        if junit.exists() and not os.access(junit, os.W_OK):
+            raise InputError("cannot write there: permission denied", file=str(junit), key="--junit")
 
 
 def _run_with_progress(paths, args, options):
