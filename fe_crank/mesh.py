@@ -371,6 +371,7 @@ def mesh_throw(
     *,
     size: str | MeshOptions = "coarse",
     cache_dir: str | Path | None = DEFAULT_CACHE_DIR,
+    max_elements: int | None = None,
 ) -> ThrowMesh:
     """Mesh one throw with quadratic tetrahedra (cached).
 
@@ -383,6 +384,9 @@ def mesh_throw(
     size
         ``"test"`` (fast, fillet edge about r: NOT for stress results), ``"coarse"`` (r/4), ``"medium"`` (r/5),
         ``"fine"`` (r/8) or a ``MeshOptions``.
+    max_elements
+        Limit on the element count estimated before meshing
+        (``fe_crank.geometry.estimate``; default ``MAX_ELEMENTS``).
     cache_dir
         Folder of the mesh cache; ``None`` meshes into a temporary folder without caching
         (the ``.msh``/``.vtu`` paths then point into that folder, which is removed when
@@ -406,6 +410,9 @@ def mesh_throw(
     check_geometry(geometry)
     spec = throw if isinstance(throw, ThrowSpec) else geometry.throw(throw)
     opt = resolve_options(size)
+    from fe_crank.geometry.estimate import check_element_budget
+
+    check_element_budget(geometry, spec, opt, max_elements)
     key = cache_key(geometry, spec, opt)
     if cache_dir is None:
         folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))

@@ -73,6 +73,7 @@ class MeshSection:
     "test" is for quick trials and demonstrations only)."""
 
     size: str = "coarse"
+    max_elements: int | None = None
 
 
 def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
@@ -80,13 +81,17 @@ def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
     if not isinstance(value, dict):
         raise InputError('must be a table, e.g. [mesh] size = "coarse"', file=str(file), key=key)
     for k in value:
-        if k != "size":
-            raise InputError("unknown key; the [mesh] table takes only size", file=str(file), key=f"{key}.{k}")
+        if k not in ("size", "max_elements"):
+            raise InputError("unknown key; the [mesh] table takes size and max_elements", file=str(file),
+                             key=f"{key}.{k}")
+    limit = value.get("max_elements")
+    if limit is not None and (isinstance(limit, bool) or not isinstance(limit, int) or limit < 1):
+        raise InputError("must be a positive whole number of elements", file=str(file), key=f"{key}.max_elements")
     size = value.get("size", "coarse")
     if size not in MESH_PRESETS:
         raise InputError(f"unknown mesh size {size!r}; pick one of {list(MESH_PRESETS)}", file=str(file),
                          key=f"{key}.size")
-    return MeshSection(size=size)
+    return MeshSection(size=size, max_elements=limit)
 
 
 @dataclass(frozen=True)
@@ -266,7 +271,10 @@ def find_loadcases(paths: Iterable[str | Path]) -> list[Path]:
             raise InputError("no such file or folder", file=str(p))
     seen, unique = set(), []
     for p in out:
-        key = p.resolve()
+        try:
+            key = p.resolve()
+        except (OSError, RuntimeError):  # a symbolic-link loop: reported when the case is read
+            key = p.absolute()
         if key not in seen:
             seen.add(key)
             unique.append(p)
@@ -280,7 +288,7 @@ def unique_slugs(paths: Sequence[Path]) -> list[str]:
     out = []
     for p, s in zip(paths, stems):
         if stems.count(s) > 1:
-            s = f"{s}-{hashlib.sha1(str(Path(p).resolve()).encode()).hexdigest()[:6]}"
+            s = f"{s}-{hashlib.sha1(os.path.abspath(p).encode()).hexdigest()[:6]}"
         out.append(s)
     return out
 
@@ -405,7 +413,8 @@ def _mesh_stage(lc, options: CheckOptions):
         )
     mesh_throw = stage_function("fe_crank.mesh", "mesh_throw", "mesh")
     section = lc.extras.get("mesh") or MeshSection()
-    kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or section.size}
+    kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or section.size,
+              "max_elements": options.max_elements or section.max_elements}
     return {key: mesh_throw(lc.geometry, throw=name, **kwargs) for key, name in throw_keys(lc).items()}
 
 

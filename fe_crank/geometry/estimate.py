@@ -81,3 +81,22 @@ def estimate_elements(g, spec, opt) -> int:
         db = g.oil_bore.diameter
         n += _layers(math.pi * db * 2 * rp, math.pi * db / (2 * opt.bore_divisions), size_max, opt.grading)
     return int(math.ceil(n))
+
+
+def check_element_budget(g, spec, opt, max_elements: int | None = None) -> int:
+    """Refuse (``GeometryError`` naming the geometry file) a throw whose estimated
+    element count exceeds ``max_elements`` (default ``MAX_ELEMENTS``); return the
+    estimate.  The message names the smallest fillet, the usual cause."""
+    from fe_crank.errors import GeometryError
+
+    limit = MAX_ELEMENTS if max_elements is None else int(max_elements)
+    n = estimate_elements(g, spec, opt)
+    if n > limit:
+        fillets = [(r, k) for k, r in (("crankpin.fillet_radius", g.crankpin_fillet),
+                                         ("journal.fillet_radius", g.journal_fillet)) if r > 0]
+        key = min(fillets)[1] if fillets else None
+        raise GeometryError(
+            f"the mesh would have about {n:.3g} elements, more than the limit {limit:.3g} "
+            "(a fillet radius or mesh size far too small?); raise it with --max-elements or "
+            "[mesh] max_elements in the load case (docs/limits.md)", file=getattr(g, "file", None) or None, key=key)
+    return n

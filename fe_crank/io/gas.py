@@ -160,7 +160,13 @@ def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: 
         if not csv.is_file():
             state = "is a folder" if csv.is_dir() else "not found"
             raise InputError(f"the gas pressure CSV {raw.file!r} {state}", file=str(file), key=f"{key}.file")
-        return read_gas_csv(csv, crankcase_pressure=raw.crankcase_pressure, source=raw.source)
+        try:
+            return read_gas_csv(csv, crankcase_pressure=raw.crankcase_pressure, source=raw.source)
+        except InputError as exc:
+            if exc.key is None:  # the file as a whole: name the key that referenced it
+                raise InputError(f"the gas pressure CSV {raw.file!r}: {exc.reason}", file=str(file),
+                                 key=f"{key}.file") from None
+            raise
     if kind == "wiebe":
         from fe_crank.gas import wiebe_cycle
 
