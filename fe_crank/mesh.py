@@ -15,8 +15,10 @@ stages' unit tests mesh a whole throw in a few seconds.
 
 Cache: ``cache_dir/<key>/`` with ``key`` = SHA-256 of the geometry (dimensions only,
 not its name or file), the throw, the mesh options, the fe-crank and gmsh versions and
-the cache format.  Entries are written to a temporary folder and renamed into place
-(atomic on POSIX), so a reader never sees half an entry.
+the cache format.  Entries are written to a temporary folder
+(``.<key>.partial-<pid>-*``) and renamed into place (atomic on POSIX), so a reader never
+sees half an entry; temporary folders of killed processes are removed by the next
+run, and an entry that cannot be read back whole is discarded and rebuilt.
 """
 
 from __future__ import annotations
@@ -365,6 +367,49 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
     return mesh, stats
 
 
+_TMP_MARK = ".partial-"
+
+
+def load_cache_entry(folder: Path):
+    """``(mesh, stats)`` of a complete cache entry, or None.  Any entry that cannot be
+    read back whole (truncated ``mesh.npz``, damaged ``stats.json``, a missing file,
+    arrays that do not form a mesh) is discarded, to be rebuilt."""
+    if not (folder / "complete").exists():
+        return None
+    try:
+        mesh = _load_npz(folder / "mesh.npz")
+        stats = _stats_from_json(json.loads((folder / "stats.json").read_text()))
+        for name in ("throw.msh", "throw.vtu"):
+            if not (folder / name).is_file():
+                raise FileNotFoundError(name)
+        return mesh, stats
+    except Exception:  # zipfile.BadZipFile, EOFError, OSError, ValueError, ...: rebuild
+        shutil.rmtree(folder, ignore_errors=True)
+        return None
+
+
+def clean_stale_cache_temps(root: Path) -> list[Path]:
+    """Remove temporary cache folders (``.<key>.partial-<pid>-*``) whose process is
+    gone (killed while meshing).  Returns what was removed."""
+    import re
+
+    removed = []
+    for p in root.iterdir():
+        m = re.match(r"^\..+\.partial-(\d+)-", p.name)
+        if not (m and p.is_dir()):
+            continue
+        try:
+            os.kill(int(m.group(1)), 0)
+            continue  # still running
+        except ProcessLookupError:
+            pass
+        except (PermissionError, OverflowError):
+            continue
+        shutil.rmtree(p, ignore_errors=True)
+        removed.append(p)
+    return removed
+
+
 def mesh_throw(
     geometry: CrankGeometry,
     throw: ThrowSpec | str | int | None = None,
@@ -422,15 +467,13 @@ def mesh_throw(
         return ThrowMesh(mesh, stats, dict(stats.fillet_radii), folder / "throw.msh", folder / "throw.vtu", spec.name, key, opt)
     root = Path(cache_dir)
     final = root / key
-    if (final / "complete").exists():
-        try:
-            mesh = _load_npz(final / "mesh.npz")
-            stats = _stats_from_json(json.loads((final / "stats.json").read_text()))
-            return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt)
-        except (OSError, ValueError, KeyError, TypeError):
-            shutil.rmtree(final, ignore_errors=True)  # a damaged entry is rebuilt
+    hit = load_cache_entry(final)
+    if hit is not None:
+        mesh, stats = hit
+        return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt)
     root.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{key}.", dir=root))
+    clean_stale_cache_temps(root)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{key}{_TMP_MARK}{os.getpid()}-", dir=root))
     try:
         mesh, stats = _build(geometry, spec, opt, tmp)
         _save_npz(tmp / "mesh.npz", mesh)
