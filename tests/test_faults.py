@@ -99,8 +99,15 @@ def test_damaged_cache_entry_is_rebuilt(tmp_path):
     from fe_crank.io.geometry import load_geometry
     from fe_crank.mesh import mesh_throw
 
+    from fe_crank.geometry.estimate import estimate_elements
+    from fe_crank.mesh import resolve_options
+
     g = load_geometry(GEOM)
     first = mesh_throw(g, size="test", cache_dir=tmp_path)
+    # the pre-meshing estimate against gmsh's real count (independent): within a factor
+    # 3, the accuracy docs/limits.md states (the limit must not let a 10x mesh through)
+    ratio = estimate_elements(g, g.throw(None), resolve_options("test")) / first.stats.elements
+    assert 1 / 3 < ratio < 3, ratio
     entry = tmp_path / first.key
     npz = entry / "mesh.npz"
     npz.write_bytes(npz.read_bytes()[: npz.stat().st_size // 2])

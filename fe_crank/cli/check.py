@@ -97,14 +97,22 @@ def run(args) -> int:
                          + ", ".join(map(str, args.paths)))
     tty = sys.stdout.isatty()
     t0 = time.perf_counter()
-    if tty:
-        results = _run_with_progress(paths, args, options)
-    else:
-        results = run_cases(paths, args.output, options, jobs=args.jobs, scheduler=args.dask_scheduler)
+    try:
+        if tty:
+            results = _run_with_progress(paths, args, options)
+        else:
+            results = run_cases(paths, args.output, options, jobs=args.jobs, scheduler=args.dask_scheduler)
+    except OSError as exc:  # the output folder went away or became read-only during the run
+        raise InputError(f"cannot write the reports: {exc.strerror or type(exc).__name__}",
+                         file=str(args.output), key="--output") from None
     if args.junit:
         from fe_crank.report.junit import write_junit
 
-        write_junit(args.junit, results)
+        try:
+            write_junit(args.junit, results)
+        except OSError as exc:
+            raise InputError(f"cannot write the JUnit XML: {exc.strerror or type(exc).__name__}",
+                             file=str(args.junit), key="--junit") from None
     if tty:
         from rich.console import Console
 
