@@ -354,7 +354,21 @@ def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
 def _dynamics_stage(lc):
     """Forces and torques over the whole cycle at the operating speed."""
     analyse = stage_function("fe_crank.dynamics", "analyse", "dynamics")
-    return analyse(lc.engine, lc.operating)
+    res = analyse(lc.engine, lc.operating)
+    refuse_non_finite_dynamics(res, lc.source_file)
+    return res
+
+
+def refuse_non_finite_dynamics(res, file) -> None:
+    """Forces and torques over the cycle must be finite: a NaN or inf (an input at the
+    edge of what the mechanism allows) is an error of the case, never a result."""
+    import numpy as np
+
+    arrays = {"torque": res.torque}
+    arrays.update({f"throw {n} pin force": t.pin_force for n, t in res.throws.items()})
+    for what, a in arrays.items():
+        if not np.all(np.isfinite(a)):
+            raise FeCrankError(f"{file}: the dynamics gave a non-finite {what} (NaN or inf); check the engine data")
 
 
 def _assess_stage(lc, out):

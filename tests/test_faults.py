@@ -120,10 +120,15 @@ def test_damaged_cache_entry_is_rebuilt(tmp_path):
     assert hit.stats.from_cache and hit.stats.elements == first.stats.elements
 
 
-def test_two_writers_to_one_output_folder(tmp_path):
+@pytest.fixture(scope="module")
+def shared_cache(tmp_path_factory) -> Path:
+    return tmp_path_factory.mktemp("cache")
+
+
+def test_two_writers_to_one_output_folder(tmp_path, shared_cache):
     """Two `fe-crank check` processes on the same case and output folder at once:
     both finish, the report is one complete run's, nothing temporary is left."""
-    out, cache = tmp_path / "out", tmp_path / "cache"
+    out, cache = tmp_path / "out", shared_cache
     procs = [subprocess.Popen(check_cmd(out, cache), env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                               text=True) for _ in range(2)]
     for p in procs:
@@ -150,3 +155,28 @@ def test_read_only_outputs_refused_before_work(tmp_path, args, words):
         assert w in r.stderr
     assert not (tmp_path / "c").exists()  # refused before any meshing
     assert time.monotonic() - t0 < 60
+
+
+def test_hostile_files_in_a_folder_do_not_stop_the_valid_case(tmp_path, shared_cache):
+    """A folder scan meets a nested-array bomb, a symbolic-link loop, a binary file
+    and a load case with "9**9**9 rpm": each is an error case naming its file, the
+    valid case beside them gets its complete report; exit 2."""
+    d = tmp_path / "cases"
+    d.mkdir()
+    (d / "small_pass.toml").write_text(CASE.read_text())
+    (d / "geometry_small.toml").write_text(GEOM.read_text())
+    (d / "bomb.toml").write_text("x = " + "[" * 5000 + "]" * 5000 + "\n")
+    os.symlink("loop.toml", d / "loop.toml")
+    (d / "binary.toml").write_bytes(bytes(range(256)))
+    (d / "hang.toml").write_text(CASE.read_text().replace('speed = "3000 rpm"', 'speed = "9**9**9 rpm"'))
+    out = tmp_path / "out"
+    cmd = FE_CRANK + ["check", str(d), "-o", str(out), "--cache-dir", str(shared_cache), "--mesh-size", "test",
+                      "--no-render", "--no-vtu"]
+    r = subprocess.run(cmd, env=ENV, capture_output=True, text=True, timeout=900)
+    assert r.returncode == 2, r.stderr
+    assert "Traceback" not in r.stderr + r.stdout
+    for name, words in (("bomb.toml", "nested deeper"), ("loop.toml", "symbolic-link loop"),
+                        ("binary.toml", "binary"), ("hang.toml", "operating.speed")):
+        line = next(ln for ln in r.stderr.splitlines() if name in ln)
+        assert words in line, line
+    assert_complete(out)

@@ -178,8 +178,9 @@ ALLOW_OUTSIDE_ENV = "FE_CRANK_ALLOW_OUTSIDE_PATHS"
 
 def folder_tree(path: str | Path) -> Path:
     """The folder tree of an input file: the parent of its folder, so that the usual
-    layout (``loadcases/``, ``engines/``, ``geometry/`` side by side) is inside it."""
-    return Path(path).resolve().parent.parent
+    layout (``loadcases/``, ``engines/``, ``geometry/`` side by side) is inside it.
+    The folder as named (a load case that is a link counts where the link is)."""
+    return Path(os.path.abspath(path)).parent.resolve().parent
 
 
 def outside_allowed() -> bool:
