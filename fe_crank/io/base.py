@@ -229,6 +229,17 @@ def resolve_reference(value: str, relative_to: str | Path, *, key: str = "") -> 
     return p
 
 
+def with_include_context(exc: InputError, file: str | Path, key: str) -> InputError:
+    """``exc`` (raised for an included file) with "(included by FILE: KEY)" added, so
+    that the message also names the reference that brought the file in."""
+    suffix = f"(included by {file}: {key})"
+    if "\n" in exc.reason:
+        new = type(exc)(f"{exc.reason}\n{suffix}")
+        new.file, new.key = exc.file, exc.key
+        return new
+    return type(exc)(f"{exc.reason} {suffix}", file=exc.file, key=exc.key)
+
+
 def read_included(value: str, relative_to: str | Path, key: str, what: str) -> tuple[Path, dict]:
     """Resolve an include (``engine = "..."``), read it as TOML.  A file that cannot
     be read is reported against the referencing file and key; errors inside the

@@ -60,7 +60,7 @@ from fe_crank.geometry.spec import (
     ThrowSpec,
     WebOutline,
 )
-from fe_crank.io.base import Strict, read_included, read_toml, validate
+from fe_crank.io.base import Strict, read_included, read_toml, validate, with_include_context
 from fe_crank.io.units import Angle, Density, Force, Length, Pressure
 
 
@@ -214,7 +214,10 @@ def parse_geometry(value: object, file: str | Path, key: str = "geometry") -> Cr
     """Section parser registered as ``SECTIONS["geometry"]``: a path relative to the load case."""
     if isinstance(value, str):
         p, data = read_included(value, file, key, "geometry file")
-        return geometry_from_dict(data, p)
+        try:
+            return geometry_from_dict(data, p)
+        except InputError as exc:
+            raise with_include_context(exc, file, key) from None
     if isinstance(value, dict):
         return geometry_from_dict(value, file, key)
     raise InputError("must be a file name, e.g. geometry = \"../geometry/x.toml\", or a table", file=str(file), key=key)
