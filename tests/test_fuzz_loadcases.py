@@ -1,5 +1,5 @@
 """Property-based fuzzing of load cases (hypothesis): mutated copies of the shipped
-cases and the test case -- keys deleted, values swapped for other types, units
+cases, geometries and two engines, and of the test case -- keys deleted, values swapped for other types, units
 swapped, extreme numbers -- must give exit 0 or 2 from ``fe-crank validate``, never
 a traceback, never a hang (an alarm per example), and the cases that validate must
 give finite forces and torques in the dynamics stage (or refuse with an error).
@@ -26,7 +26,9 @@ from fe_crank.cli import main
 from fe_crank.errors import FeCrankError
 
 ROOT = Path(__file__).resolve().parents[1]
-BASES = sorted(ROOT.glob("loadcases/*.toml")) + [ROOT / "tests" / "data" / "small_pass.toml"]
+BASES = (sorted(ROOT.glob("loadcases/*.toml")) + [ROOT / "tests" / "data" / "small_pass.toml"]
+         + sorted(ROOT.glob("geometry/*.toml"))
+         + [ROOT / "engines" / "single_cylinder_seed001.toml", ROOT / "engines" / "v4_90_seed003_pneumatic.toml"])
 UNITS = ["mm", "m", "rpm", "1/min", "1/s", "Hz", "rad/s", "deg", "rad", "kg", "MPa", "bar", "N", "N*m",
          "kg*m**2", "kg/m^3", "J", "", "furlong", "m**9", "(((m)))", "**9**9", "%"]
 EXTREMES = [0, -1, 10**30, -(10**30), 1e308, -1e308, 1e-308, 0.0, -0.0, math.inf, -math.inf, math.nan,

@@ -323,3 +323,11 @@ def test_mesh_section_max_elements(tmp_path):
     with pytest.raises(InputError, match="positive whole number") as e:
         load_loadcase(p)
     assert e.value.key == "mesh.max_elements"
+
+
+def test_error_inside_an_included_file_names_the_including_key(tmp_path, capsys):
+    p = case_dir(tmp_path)
+    (p.parent / "geometry_small.toml").write_text(GEOM.replace('crank_radius = "20 mm"', 'crank_radius = "20"'))
+    err = validate_refuses(capsys, p, "geometry_small.toml", "crank_radius", "has no unit",
+                           f"(included by {p}: geometry)")
+    assert err.count("\n") == 1  # one message
