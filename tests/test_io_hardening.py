@@ -331,3 +331,17 @@ def test_error_inside_an_included_file_names_the_including_key(tmp_path, capsys)
     err = validate_refuses(capsys, p, "geometry_small.toml", "crank_radius", "has no unit",
                            f"(included by {p}: geometry)")
     assert err.count("\n") == 1  # one message
+
+
+@pytest.mark.parametrize("geometry", sorted((ROOT / "geometry").glob("*.toml")), ids=lambda p: p.stem)
+def test_shipped_throws_pass_the_element_budget_at_every_preset(geometry):
+    """The limit must not refuse a real design: the `fine` preset of each shipped throw
+    (the V4 throw's fine mesh has 0.58 M tetrahedra, docs/performance.md) stays below it."""
+    from fe_crank.geometry.estimate import MAX_ELEMENTS, check_element_budget
+    from fe_crank.io.geometry import load_geometry
+    from fe_crank.mesh import resolve_options
+
+    g = load_geometry(geometry)
+    for t in g.throws:
+        for preset in ("test", "coarse", "medium", "fine"):
+            assert check_element_budget(g, t, resolve_options(preset)) < MAX_ELEMENTS
