@@ -1,0 +1,38 @@
+"""The load case's ``[mesh]`` section."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from fe_crank.errors import InputError
+from fe_crank.mesh.options import PRESETS
+
+MESH_PRESETS = tuple(PRESETS)
+
+
+@dataclass(frozen=True)
+class MeshSection:
+    """The load case's ``[mesh]`` table: ``size`` is a preset of ``fe_crank.mesh``
+    ("coarse", the default, keeps fillet elements within r/4 as IACS UR M53 asks;
+    "test" is for quick trials and demonstrations only)."""
+
+    size: str = "coarse"
+    max_elements: int | None = None  # limit on the estimated element count (docs/limits.md)
+
+
+def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
+    """Section parser registered as ``SECTIONS["mesh"]``: ``[mesh] size = "coarse"``."""
+    if not isinstance(value, dict):
+        raise InputError('must be a table, e.g. [mesh] size = "coarse"', file=str(file), key=key)
+    for k in value:
+        if k not in ("size", "max_elements"):
+            raise InputError("unknown key; the [mesh] table takes size and max_elements", file=str(file),
+                             key=f"{key}.{k}")
+    limit = value.get("max_elements")
+    if limit is not None and (isinstance(limit, bool) or not isinstance(limit, int) or limit < 1):
+        raise InputError("must be a positive whole number of elements", file=str(file), key=f"{key}.max_elements")
+    size = value.get("size", "coarse")
+    if size not in MESH_PRESETS:
+        raise InputError(f"unknown mesh size {size!r}; pick one of {list(MESH_PRESETS)}", file=str(file),
+                         key=f"{key}.size")
+    return MeshSection(size=size, max_elements=limit)
