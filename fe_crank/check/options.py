@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR
 
 #: Stage names in the order they run (also the keys of ``CaseResult.timings``).
-STAGES = ("load", "dynamics", "balance", "mesh", "fe", "assess", "report")
+STAGES = ("load", "dynamics", "balance", "mesh", "fe", "assess", "convergence", "report")
 
 
 @dataclass(frozen=True)
@@ -18,7 +18,9 @@ class CheckOptions:
     "fine") that overrides the load case's ``[mesh] size`` (default "coarse"); ``cache_dir`` holds meshes keyed by the hash of their inputs;
     ``render`` switches the pyvista pictures on; ``write_vtu`` the ``.vtu`` fields;
     ``allow_outside_paths`` lets include paths leave the load case's folder tree;
-    ``max_elements`` overrides the estimated-element-count limit (docs/limits.md).
+    ``max_elements`` overrides the estimated-element-count limit (docs/limits.md);
+    ``convergence`` the hot-spot convergence study (None: the load case's ``[mesh]
+    convergence``, by default on unless the mesh is ``test``; ``fe_crank.fe.convergence``).
     """
 
     mesh_size: str | None = None
@@ -27,3 +29,4 @@ class CheckOptions:
     write_vtu: bool = True
     allow_outside_paths: bool = False
     max_elements: int | None = None
+    convergence: bool | None = None

@@ -6,6 +6,7 @@ Exit code: 0 every criterion of every case passes, 1 a criterion failed,
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 from pathlib import Path
@@ -35,6 +36,9 @@ def add_arguments(p) -> None:
                    help="let engine/geometry/CSV paths leave the load case's folder tree (refused by default)")
     p.add_argument("--max-elements", type=int, metavar="N",
                    help="raise the limit on the estimated element count of a mesh (docs/limits.md)")
+    p.add_argument("--convergence", action=argparse.BooleanOptionalAction, default=None,
+                   help="hot-spot convergence study: fillets meshed at r/4, r/6, r/8 (from the preset), "
+                        "peak change <= 5 %% (default: the load case's [mesh] convergence, on unless the mesh is test)")
 
 
 def _options(args):
@@ -42,7 +46,7 @@ def _options(args):
 
     return CheckOptions(mesh_size=args.mesh_size, cache_dir=str(args.cache_dir), render=not args.no_render,
                         write_vtu=not args.no_vtu, allow_outside_paths=args.allow_outside_paths,
-                        max_elements=args.max_elements)
+                        max_elements=args.max_elements, convergence=args.convergence)
 
 
 def _row(r) -> list[str]:
