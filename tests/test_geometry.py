@@ -72,7 +72,7 @@ def test_geometry_section_of_a_loadcase(tmp_path):
         f'geometry = "{ROOT / "geometry" / "single_cylinder_seed001.toml"}"\n'
         '[operating]\nspeed = "2800 rpm"\n'
     )
-    case = load_loadcase(lc)
+    case = load_loadcase(lc, allow_outside_paths=True)  # absolute paths into the repository
     assert case.geometry.crank_radius == pytest.approx(0.064)
 
 

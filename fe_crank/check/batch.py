@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import hashlib
 import logging
+import os
 import time
 from dataclasses import asdict
 from pathlib import Path
@@ -115,8 +116,8 @@ def _run_dask(paths, slugs, out_dir: Path, options, scheduler, done) -> None:
         futs = {}
         for i, (p, s) in enumerate(zip(paths, slugs)):
             f = client.submit(
-                _run_case_job, str(p.resolve()), str(out_dir.resolve()), options, s,
-                key=f"fe-crank-{s}-{hashlib.sha1(str(p.resolve()).encode()).hexdigest()[:8]}-{time.time_ns()}",
+                _run_case_job, os.path.abspath(p), str(out_dir.resolve()), options, s,
+                key=f"fe-crank-{s}-{hashlib.sha1(os.path.abspath(p).encode()).hexdigest()[:8]}-{time.time_ns()}",
                 pure=False,
             )
             futs[f] = i

@@ -32,6 +32,15 @@ from fe_crank.report.html import write_error_report
 from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CaseResult
 
 
+def _refuse_nan(criteria) -> None:
+    """A NaN in a criterion is an error of the case, never a verdict or a JSON value
+    (an infinite safety factor of an unloaded part is legitimate and is kept)."""
+    for c in criteria:
+        if any(x != x for x in (c.value, c.limit, c.margin)):
+            raise FeCrankError(f"criterion {c.name}: the computation gave NaN (not a number); "
+                               "the case is not assessed")
+
+
 def run_case(
     path: str | Path,
     out_dir: str | Path,
@@ -63,6 +72,7 @@ def run_case(
             _compute(run, options, stage_out)
             name = stage_out["loadcase"].name
             criteria = _criteria_of(stage_out["assessment"])
+            _refuse_nan(criteria)
             if stage_out.get("mesh_convergence"):
                 criteria += (convergence.criterion(stage_out["mesh_convergence"]),)
             status = STATUS_PASS if all(c.passed for c in criteria) else STATUS_FAIL

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import hashlib
-import tomllib
+import os
 from pathlib import Path
 from typing import Iterable, Sequence
 
@@ -14,10 +14,11 @@ from fe_crank.errors import InputError
 def is_loadcase_file(path: Path) -> bool:
     """A ``.toml`` with an ``[operating]`` table.  An unreadable TOML counts too, so
     that a broken load case in a folder is reported instead of silently skipped."""
+    from fe_crank.io.base import read_toml
+
     try:
-        with path.open("rb") as fh:
-            data = tomllib.load(fh)
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError):
+        data = read_toml(path)  # bounded: size, nesting depth; never a traceback
+    except InputError:
         return True
     return isinstance(data.get("operating"), dict)
 
@@ -39,7 +40,10 @@ def find_loadcases(paths: Iterable[str | Path]) -> list[Path]:
             raise InputError("no such file or folder", file=str(p))
     seen, unique = set(), []
     for p in out:
-        key = p.resolve()
+        try:
+            key = p.resolve()
+        except (OSError, RuntimeError):  # a symbolic-link loop: reported when the case is read
+            key = p.absolute()
         if key not in seen:
             seen.add(key)
             unique.append(p)
@@ -53,6 +57,6 @@ def unique_slugs(paths: Sequence[Path]) -> list[str]:
     out = []
     for p, s in zip(paths, stems):
         if stems.count(s) > 1:
-            s = f"{s}-{hashlib.sha1(str(Path(p).resolve()).encode()).hexdigest()[:6]}"
+            s = f"{s}-{hashlib.sha1(os.path.abspath(p).encode()).hexdigest()[:6]}"
         out.append(s)
     return out

@@ -17,6 +17,8 @@ class CheckOptions:
     ``mesh_size`` is a preset of ``fe_crank.mesh`` ("test", "coarse", "medium",
     "fine") that overrides the load case's ``[mesh] size`` (default "coarse"); ``cache_dir`` holds meshes keyed by the hash of their inputs;
     ``render`` switches the pyvista pictures on; ``write_vtu`` the ``.vtu`` fields;
+    ``allow_outside_paths`` lets include paths leave the load case's folder tree;
+    ``max_elements`` overrides the estimated-element-count limit (docs/limits.md);
     ``convergence`` the hot-spot convergence study (None: the load case's ``[mesh]
     convergence``, by default on unless the mesh is ``test``; ``fe_crank.fe.convergence``).
     """
@@ -25,4 +27,6 @@ class CheckOptions:
     cache_dir: str = str(DEFAULT_CACHE_DIR)
     render: bool = True
     write_vtu: bool = True
+    allow_outside_paths: bool = False
+    max_elements: int | None = None
     convergence: bool | None = None

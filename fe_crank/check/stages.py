@@ -17,7 +17,7 @@ from fe_crank.assess import assess_case
 from fe_crank.balance.analysis import analyse_balance
 from fe_crank.check.options import CheckOptions
 from fe_crank.dynamics import analyse
-from fe_crank.errors import InputError
+from fe_crank.errors import FeCrankError, InputError
 from fe_crank.fe import convergence, solve_unit_cases
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.mesh import MeshSection
@@ -57,7 +57,8 @@ class _Run:
 def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
     """Run the computational stages, filling ``out`` with each stage's output as it
     finishes (so that a report of a case that stopped shows what did run)."""
-    lc = out["loadcase"] = run.timed("load", load_loadcase, run.path)
+    lc = out["loadcase"] = run.timed("load", load_loadcase, run.path,
+                                     allow_outside_paths=options.allow_outside_paths)
     out["dynamics"] = run.timed("dynamics", _dynamics_stage, lc)
     out["balance"] = run.timed("balance", _balance_stage, lc)
     out["meshes"] = run.timed("mesh", _mesh_stage, lc, options)
@@ -75,7 +76,21 @@ def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
 
 def _dynamics_stage(lc):
     """Forces and torques over the whole cycle at the operating speed."""
-    return analyse(lc.engine, lc.operating)
+    res = analyse(lc.engine, lc.operating)
+    refuse_non_finite_dynamics(res, lc.source_file)
+    return res
+
+
+def refuse_non_finite_dynamics(res, file) -> None:
+    """Forces and torques over the cycle must be finite: a NaN or inf (an input at the
+    edge of what the mechanism allows) is an error of the case, never a result."""
+    import numpy as np
+
+    arrays = {"torque": res.torque}
+    arrays.update({f"throw {n} pin force": t.pin_force for n, t in res.throws.items()})
+    for what, a in arrays.items():
+        if not np.all(np.isfinite(a)):
+            raise FeCrankError(f"{file}: the dynamics gave a non-finite {what} (NaN or inf); check the engine data")
 
 
 def _assess_stage(lc, out):
@@ -133,7 +148,8 @@ def _mesh_stage(lc, options: CheckOptions):
             file=lc.source_file, key="geometry",
         )
     section = lc.extras.get("mesh") or MeshSection()
-    kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or section.size}
+    kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or section.size,
+              "max_elements": options.max_elements or section.max_elements}
     return {key: mesh_throw(lc.geometry, throw=name, **kwargs) for key, name in throw_keys(lc).items()}
 
 

@@ -33,6 +33,10 @@ def add_arguments(p) -> None:
                         "to the working directory; resolved before cases are sent to processes or Dask workers)")
     p.add_argument("--no-render", action="store_true", help="skip the pyvista pictures (faster)")
     p.add_argument("--no-vtu", action="store_true", help="do not write the .vtu result fields")
+    p.add_argument("--allow-outside-paths", action="store_true",
+                   help="let engine/geometry/CSV paths leave the load case's folder tree (refused by default)")
+    p.add_argument("--max-elements", type=int, metavar="N",
+                   help="raise the limit on the estimated element count of a mesh (docs/limits.md)")
     p.add_argument("--convergence", action=argparse.BooleanOptionalAction, default=None,
                    help="hot-spot convergence study: fillets meshed at r/4, r/6, r/8 (from the preset), "
                         "peak change <= 5 %% (default: the load case's [mesh] convergence, on unless the mesh is test)")
@@ -42,7 +46,8 @@ def _options(args):
     from fe_crank.check import CheckOptions
 
     return CheckOptions(mesh_size=args.mesh_size, cache_dir=str(args.cache_dir), render=not args.no_render,
-                        write_vtu=not args.no_vtu, convergence=args.convergence)
+                        write_vtu=not args.no_vtu, allow_outside_paths=args.allow_outside_paths,
+                        max_elements=args.max_elements, convergence=args.convergence)
 
 
 def _row(r) -> list[str]:
@@ -88,6 +93,9 @@ def run(args) -> int:
 
     if args.jobs < 1:
         raise InputError("must be at least 1", key="--jobs")
+    if args.max_elements is not None and args.max_elements < 1:
+        raise InputError("must be at least 1", key="--max-elements")
+    check_output_paths(args.output, args.junit)
     options = _options(args)
     paths = find_loadcases(args.paths)
     if not paths:
@@ -95,14 +103,22 @@ def run(args) -> int:
                          + ", ".join(map(str, args.paths)))
     tty = sys.stdout.isatty()
     t0 = time.perf_counter()
-    if tty:
-        results = _run_with_progress(paths, args, options)
-    else:
-        results = run_cases(paths, args.output, options, jobs=args.jobs, scheduler=args.dask_scheduler)
+    try:
+        if tty:
+            results = _run_with_progress(paths, args, options)
+        else:
+            results = run_cases(paths, args.output, options, jobs=args.jobs, scheduler=args.dask_scheduler)
+    except OSError as exc:  # the output folder went away or became read-only during the run
+        raise InputError(f"cannot write the reports: {exc.strerror or type(exc).__name__}",
+                         file=str(args.output), key="--output") from None
     if args.junit:
         from fe_crank.report.junit import write_junit
 
-        write_junit(args.junit, results)
+        try:
+            write_junit(args.junit, results)
+        except OSError as exc:
+            raise InputError(f"cannot write the JUnit XML: {exc.strerror or type(exc).__name__}",
+                             file=str(args.junit), key="--junit") from None
     if tty:
         from rich.console import Console
 
@@ -119,6 +135,40 @@ def run(args) -> int:
             where = "" if r.source in r.message else f"{r.source}: "
             print(f"error: {where}{r.message}", file=sys.stderr)
     return code
+
+
+def check_output_paths(output: Path, junit: Path | None) -> None:
+    """Refuse unusable output paths before any work starts: ``-o`` must be a folder
+    that can be created and written (probed with a temporary file), ``--junit`` a
+    file (not a folder) in a writable folder.  Raises InputError naming the option."""
+    import os
+    import tempfile
+
+    def probe(folder: Path, key: str) -> None:
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=".fe-crank-probe-", dir=folder)
+            os.close(fd)
+            os.unlink(tmp)
+        except FileExistsError:
+            raise InputError("is an existing file, expected a folder", file=str(folder), key=key) from None
+        except NotADirectoryError:
+            raise InputError("a part of the path is a file, expected folders", file=str(folder), key=key) from None
+        except PermissionError:
+            raise InputError("cannot write there: permission denied", file=str(folder), key=key) from None
+        except OSError as exc:
+            raise InputError(f"cannot write there: {exc.strerror or type(exc).__name__}", file=str(folder),
+                             key=key) from None
+
+    if output.exists() and not output.is_dir():
+        raise InputError("is an existing file, expected a folder", file=str(output), key="--output")
+    probe(output, "--output")
+    if junit is not None:
+        if junit.is_dir():
+            raise InputError("is a folder, expected a file name", file=str(junit), key="--junit")
+        probe(junit.parent if str(junit.parent) else Path("."), "--junit")
+        if junit.exists() and not os.access(junit, os.W_OK):
+            raise InputError("cannot write there: permission denied", file=str(junit), key="--junit")
 
 
 def _run_with_progress(paths, args, options):

@@ -24,6 +24,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--cache-dir", default=str(DEFAULT_CACHE_DIR), metavar="DIR",
                    help=f"mesh cache folder (default: {DEFAULT_CACHE_DIR}, relative to the working directory)")
     p.add_argument("--no-render", action="store_true", help="do not render the PNG")
+    p.add_argument("--max-elements", type=int, default=None, metavar="N",
+                   help="raise the limit on the estimated element count (docs/limits.md)")
 
 
 def render_png(vtu_path: Path, png_path: Path, title: str = "") -> None:
@@ -74,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
             part = mp.parts.get(f"counterweight_{web}")
             if part is not None:
                 print(f"  counterweight_{web}: mass {part.mass:.4g} kg at r_c {abs(part.centroid[1]) * 1e3:.4g} mm, m r {part.unbalance * 1e3:.4g} kg mm")
-        tm = mesh_throw(g, spec, size=args.mesh_size, cache_dir=args.cache_dir)
+        tm = mesh_throw(g, spec, size=args.mesh_size, cache_dir=args.cache_dir, max_elements=args.max_elements)
         s = tm.stats
         print(f"  mesh ({args.mesh_size}{', cached' if s.from_cache else ''}): {s.nodes} nodes, {s.elements} quadratic tets, "
               f"{s.p2_dofs} P2 DOFs, min quality {s.min_quality:.3g}, {s.straightened} elements straightened, "

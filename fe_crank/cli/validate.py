@@ -11,6 +11,8 @@ from fe_crank.io.base import read_toml
 
 def add_arguments(p) -> None:
     p.add_argument("files", nargs="+", type=Path, help="load-case, engine or geometry .toml files")
+    p.add_argument("--allow-outside-paths", action="store_true",
+                   help="let engine/geometry/CSV paths leave the load case's folder tree (refused by default)")
 
 
 def _kind(data: dict) -> str:
@@ -23,7 +25,7 @@ def _kind(data: dict) -> str:
     return "loadcase"
 
 
-def validate_file(path: Path) -> str:
+def validate_file(path: Path, allow_outside_paths: bool = False) -> str:
     """Validate one file of any kind; return a one-line summary.  Raises InputError."""
     data = read_toml(path)
     kind = _kind(data)
@@ -39,7 +41,7 @@ def validate_file(path: Path) -> str:
         return f"geometry '{getattr(g, 'name', path.stem)}'"
     from fe_crank.io.loadcase import load_loadcase
 
-    lc = load_loadcase(path)
+    lc = load_loadcase(path, allow_outside_paths=allow_outside_paths or None)
     return f"load case '{lc.name}': engine '{lc.engine.name}', {lc.operating.speed * 30 / 3.141592653589793:.0f} rpm"
 
 
@@ -47,7 +49,7 @@ def run(args) -> int:
     bad = 0
     for path in args.files:
         try:
-            print(f"ok    {path}: {validate_file(path)}")
+            print(f"ok    {path}: {validate_file(path, getattr(args, 'allow_outside_paths', False))}")
         except FeCrankError as exc:
             bad += 1
             print(f"error {exc}", file=sys.stderr)

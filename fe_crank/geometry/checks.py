@@ -10,7 +10,9 @@ geometry of the throw frame (``fe_crank.geometry.spec``):
   (``r_end >= d/2``);
 * a counterweight must clear the crankpin and its fillet
   (distance from the pin centre to the sector ``>= d_p/2 + r_f``), touch the web
-  (``r_inner < journal_end_radius``) and not reach the crankpin's mid-plane;
+  (``r_inner < journal_end_radius``), not reach the crankpin's mid-plane and add
+  material: a sector no thicker than the web that lies wholly inside the web outline
+  is refused (its m r would be web material counted again);
 * an undercut must be shallower than its fillet radius and the web, and its groove
   (outer radius ``r + r_f + sqrt(r_f^2 - (r_f - u)^2)``) must stay inside the web;
 * with ``require_overlap`` the pin and journal sections must overlap:
@@ -52,6 +54,31 @@ def distance_to_sector(point: tuple[float, float], cw: CounterweightSpec) -> flo
         t = float(np.clip(np.dot([x, y], d), r2, r1))
         best = min(best, math.hypot(x - t * d[0], y - t * d[1]))
     return best
+
+
+def inside_web_outline(points: np.ndarray, g: CrankGeometry, tol: float = 1e-9) -> np.ndarray:
+    """Which points (2, n) of the xy plane lie in the web outline, the convex hull of
+    the circle ``journal_end_radius`` about the axis and ``pin_end_radius`` about the
+    crankpin centre (0, R).  That hull is the union of the circles interpolated
+    between the two, ``c(t) = (0, t R)``, ``r(t) = a + t (b - a)``, t in [0, 1], and
+    ``|p - c(t)| - r(t)`` is convex in t: its minimum over a fine grid decides."""
+    a, b, R = g.web.journal_end_radius, g.web.pin_end_radius, g.crank_radius
+    t = np.linspace(0.0, 1.0, 401)[:, None]
+    x, y = points
+    d = np.hypot(x[None, :], y[None, :] - t * R) - (a + t * (b - a))
+    return d.min(axis=0) <= tol * max(R, a, b)
+
+
+def sector_inside_web(g: CrankGeometry, cw: CounterweightSpec, n: int = 181) -> bool:
+    """True when the counterweight's annular sector lies wholly inside the web outline
+    (a set lies in a convex region when its boundary does: both arcs and both
+    radial edges are sampled)."""
+    half = cw.angle / 2.0
+    phi = np.linspace(-half, half, n)
+    s = np.linspace(cw.inner_radius, cw.outer_radius, n)
+    pts = [np.stack([r * np.sin(phi), -r * np.cos(phi)]) for r in (cw.inner_radius, cw.outer_radius)]
+    pts += [np.stack([s * np.sin(e), -s * np.cos(e)]) for e in (-half, half)]
+    return bool(np.all(inside_web_outline(np.concatenate(pts, axis=1), g)))
 
 
 def check_geometry(g: CrankGeometry) -> None:
@@ -140,6 +167,9 @@ def _check_counterweight(g: CrankGeometry, cw: CounterweightSpec, key: str) -> N
         raise _fail(g, f"{key}.inner_radius", f"counterweight (inner radius {cw.inner_radius * 1e3:g} mm) does not touch the web (journal end radius {g.web.journal_end_radius * 1e3:g} mm): it would float")
     if cw.thickness > g.web_thickness + g.crankpin_length / 2:
         raise _fail(g, f"{key}.thickness", f"counterweight {cw.thickness * 1e3:g} mm thick reaches past the crankpin mid-plane")
+    if cw.thickness <= g.web_thickness and sector_inside_web(g, cw):
+        raise _fail(g, key, "counterweight lies wholly inside the web outline: it adds no material "
+                    "(its m r would be web material counted twice); make its outer radius reach beyond the web")
     clearance = distance_to_sector((0.0, g.crank_radius), cw) - (g.crankpin_diameter / 2 + g.crankpin_fillet)
     if clearance <= 0.0:
         raise _fail(g, key, f"counterweight overlaps the crankpin or its fillet by {-clearance * 1e3:.3g} mm (reduce its angle or outer radius)")

@@ -1,13 +1,20 @@
 """Shared pieces of the input layer: strict pydantic base, TOML reading, error text.
 
 Every input model forbids unknown keys: a misspelt key is an error, not ignored.
-Validation errors become one ``InputError`` naming the file, the key path, the
-offending value and the reason.
+Validation errors become one ``InputError`` naming the file, the key path and the
+reason (a number may be shown, never a string or table read from a file).  File
+reading is bounded (``MAX_FILE_BYTES``, ``MAX_DEPTH``) and include paths stay in the
+load case's folder tree unless allowed (docs/limits.md).
 """
 
 from __future__ import annotations
 
+import errno
+import math
+import os
 import tomllib
+from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -21,7 +28,7 @@ M = TypeVar("M", bound=BaseModel)
 class Strict(BaseModel):
     """Base of every input model: unknown keys forbidden, instances frozen."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True, str_strip_whitespace=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, str_strip_whitespace=True, allow_inf_nan=False)
 
 
 def key_path(loc: tuple[Any, ...]) -> str:
@@ -42,10 +49,11 @@ def _reason(err: dict) -> str:
         msg = msg[len("Value error, "):]
     if kind == "missing":
         return "required key is missing"
-    if kind == "extra_forbidden":
-        return f"unknown key (value {err.get('input')!r}); check the spelling against the documented keys"
+    if kind == "extra_forbidden":  # the value is never shown: it may come from any file
+        return "unknown key; check the spelling against the documented keys"
     if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
-        return f"{msg} (got {err.get('input')!r})"
+        got = err.get("input")
+        return f"{msg} (got {got!r})" if isinstance(got, (int, float)) and not isinstance(got, bool) else msg
     return msg
 
 
@@ -68,20 +76,91 @@ def validation_to_input_error(exc: ValidationError, file: str | Path, prefix: st
     return e
 
 
-def read_toml(path: str | Path) -> dict:
-    """Read a TOML file; a missing or malformed file is an InputError naming it."""
-    p = Path(path)
+#: largest accepted input file (TOML or CSV), bytes; FE_CRANK_MAX_FILE_BYTES raises it
+MAX_FILE_BYTES = 4_000_000
+#: deepest accepted nesting of tables and arrays in an input file
+MAX_DEPTH = 12
+_BOM = b"\xef\xbb\xbf"
+
+
+def _limit(name: str, default: int) -> int:
+    raw = os.environ.get(name, "")
     try:
+        return int(raw) if raw.strip() else default
+    except ValueError:
+        raise InputError(f"must be a whole number of bytes (got {raw[:20]!r})", key=name) from None
+
+
+def read_text(path: str | Path, what: str = "file") -> str:
+    """Read a UTF-8 text input file (a leading byte-order mark is dropped).
+
+    Refused with an ``InputError`` naming the file: missing, a folder, unreadable
+    (permissions, a symbolic-link loop), larger than ``MAX_FILE_BYTES``, binary or
+    not UTF-8.  The file's contents never appear in the message.
+    """
+    p = Path(path)
+    limit = _limit("FE_CRANK_MAX_FILE_BYTES", MAX_FILE_BYTES)
+    try:
+        if p.is_dir():
+            raise InputError(f"is a folder, expected a {what}", file=str(p))
         with p.open("rb") as fh:
-            return tomllib.load(fh)
+            raw = fh.read(limit + 1)
+    except InputError:
+        raise
     except FileNotFoundError:
-        raise InputError("file not found", file=str(p)) from None
-    except IsADirectoryError:
-        raise InputError("is a folder, expected a .toml file", file=str(p)) from None
+        raise InputError(f"{what} not found", file=str(p)) from None
+    except PermissionError:
+        raise InputError(f"{what} cannot be read: permission denied", file=str(p)) from None
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            raise InputError(f"{what} cannot be read: symbolic-link loop", file=str(p)) from None
+        raise InputError(f"{what} cannot be read: {exc.strerror or type(exc).__name__}", file=str(p)) from None
+    if len(raw) > limit:
+        raise InputError(f"{what} larger than {limit} bytes (the limit; FE_CRANK_MAX_FILE_BYTES raises it, "
+                         "docs/limits.md)", file=str(p))
+    if raw.startswith(_BOM):
+        raw = raw[len(_BOM):]
+    if b"\x00" in raw:
+        raise InputError(f"is a binary file, expected a {what}", file=str(p))
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not a UTF-8 text file (invalid byte at offset {exc.start})", file=str(p)) from None
+
+
+def check_tree(data: Any, file: str | Path, prefix: str = "") -> None:
+    """Refuse nesting deeper than ``MAX_DEPTH`` and non-finite numbers (TOML's
+    ``inf``/``nan``: no input of fe-crank means them), naming the key.  Iterative:
+    any depth is inspected without recursion."""
+    stack = [(data, prefix, 0)]
+    while stack:
+        node, key, depth = stack.pop()
+        if isinstance(node, float) and not math.isfinite(node):
+            raise InputError("must be a finite number (inf and nan are not accepted)", file=str(file),
+                             key=key or None)
+        if isinstance(node, (dict, list)):
+            if depth >= MAX_DEPTH:
+                raise InputError(f"tables and arrays nested deeper than {MAX_DEPTH} levels", file=str(file),
+                                 key=key or None)
+            items = node.items() if isinstance(node, dict) else enumerate(node)
+            for k, v in items:
+                sub = f"{key}[{k}]" if isinstance(k, int) else (f"{key}.{k}" if key else str(k))
+                stack.append((v, sub, depth + 1))
+
+
+def read_toml(path: str | Path) -> dict:
+    """Read a TOML input file: ``read_text`` refusals, malformed TOML, nesting deeper
+    than ``MAX_DEPTH`` and non-finite numbers are an InputError naming the file."""
+    p = Path(path)
+    text = read_text(p, "TOML file")
+    try:
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"malformed TOML: {exc}", file=str(p)) from None
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not a UTF-8 text file: {exc}", file=str(p)) from None
+    except RecursionError:
+        raise InputError(f"malformed TOML: nested deeper than {MAX_DEPTH} levels", file=str(p)) from None
+    check_tree(data, p)
+    return data
 
 
 def validate(model: type[M], data: Any, file: str | Path, prefix: str = "") -> M:
@@ -91,9 +170,87 @@ def validate(model: type[M], data: Any, file: str | Path, prefix: str = "") -> M
         raise validation_to_input_error(exc, file, prefix) from None
 
 
-def resolve_reference(value: str, relative_to: str | Path) -> Path:
-    """A path in a file is relative to that file's folder."""
+#: the folder tree include paths must stay in, and whether paths outside it are allowed
+_ROOT: ContextVar[Path | None] = ContextVar("fe_crank_input_root", default=None)
+_ALLOW_OUTSIDE: ContextVar[bool | None] = ContextVar("fe_crank_allow_outside", default=None)
+ALLOW_OUTSIDE_ENV = "FE_CRANK_ALLOW_OUTSIDE_PATHS"
+
+
+def folder_tree(path: str | Path) -> Path:
+    """The folder tree of an input file: the parent of its folder, so that the usual
+    layout (``loadcases/``, ``engines/``, ``geometry/`` side by side) is inside it.
+    The folder as named (a load case that is a link counts where the link is)."""
+    return Path(os.path.abspath(path)).parent.resolve().parent
+
+
+def outside_allowed() -> bool:
+    v = _ALLOW_OUTSIDE.get()
+    if v is None:
+        return os.environ.get(ALLOW_OUTSIDE_ENV, "").strip().lower() in ("1", "true", "yes")
+    return v
+
+
+@contextmanager
+def input_root(path: str | Path, allow_outside: bool | None = None):
+    """Within the block, include paths must resolve into ``folder_tree(path)``
+    unless ``allow_outside`` (default: the ``FE_CRANK_ALLOW_OUTSIDE_PATHS`` variable)."""
+    t1 = _ROOT.set(folder_tree(path))
+    t2 = _ALLOW_OUTSIDE.set(allow_outside)
+    try:
+        yield
+    finally:
+        _ROOT.reset(t1)
+        _ALLOW_OUTSIDE.reset(t2)
+
+
+def resolve_reference(value: str, relative_to: str | Path, *, key: str = "") -> Path:
+    """A path in a file is relative to that file's folder.
+
+    It must resolve (symbolic links followed) into the folder tree of the load case
+    being read (``input_root``; without one, of ``relative_to``), or the option
+    ``--allow-outside-paths`` must be given.  The refusal is the same whether the
+    target exists or not, and nothing is read from it.
+    """
     p = Path(value)
     if not p.is_absolute():
         p = Path(relative_to).parent / p
+    if outside_allowed():
+        return p
+    root = _ROOT.get() or folder_tree(relative_to)
+    try:
+        inside = p.resolve().is_relative_to(root)
+    except (OSError, RuntimeError):  # a symbolic-link loop
+        inside = False
+    if not inside:
+        raise InputError(
+            f"the path {value!r} leads outside the load case's folder tree ({root}); such paths are refused "
+            f"unless --allow-outside-paths (or {ALLOW_OUTSIDE_ENV}=1) is given", file=str(relative_to),
+            key=key or None)
     return p
+
+
+def with_include_context(exc: InputError, file: str | Path, key: str) -> InputError:
+    """``exc`` (raised for an included file) with "(included by FILE: KEY)" added, so
+    that the message also names the reference that brought the file in."""
+    suffix = f"(included by {file}: {key})"
+    if "\n" in exc.reason:
+        new = type(exc)(f"{exc.reason}\n{suffix}")
+        new.file, new.key = exc.file, exc.key
+        return new
+    return type(exc)(f"{exc.reason} {suffix}", file=exc.file, key=exc.key)
+
+
+def read_included(value: str, relative_to: str | Path, key: str, what: str) -> tuple[Path, dict]:
+    """Resolve an include (``engine = "..."``), read it as TOML.  A file that cannot
+    be read is reported against the referencing file and key; errors inside the
+    included file name that file and its own keys."""
+    p = resolve_reference(value, relative_to, key=key)
+    if not p.is_file():
+        state = "is a folder" if p.is_dir() else "not found"
+        raise InputError(f"the {what} {value!r} {state}", file=str(relative_to), key=key)
+    try:
+        return p, read_toml(p)
+    except InputError as exc:
+        if exc.key is None:  # the file as a whole: say who referenced it
+            raise InputError(f"the {what} {value!r}: {exc.reason}", file=str(relative_to), key=key) from None
+        raise

@@ -19,6 +19,7 @@ property.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -87,8 +88,10 @@ class Criteria:
 
 def _number(value: object, file, key: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise InputError(f"must be a pure number (got {value!r})", file=str(file), key=key)
+        raise InputError(f"must be a pure number (got a {type(value).__name__})", file=str(file), key=key)
     v = float(value)
+    if not math.isfinite(v):
+        raise InputError("must be a finite number (inf and nan are not accepted)", file=str(file), key=key)
     if not v >= 0:
         raise InputError(f"must not be negative (got {v:g})", file=str(file), key=key)
     return v

@@ -34,7 +34,7 @@ from pydantic import Field, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
-from fe_crank.io.base import Strict, read_toml, resolve_reference, validate
+from fe_crank.io.base import Strict, read_included, read_toml, validate, with_include_context
 from fe_crank.io.gas import build_gas
 from fe_crank.io.units import Angle, Inertia, Length, Mass
 
@@ -264,7 +264,11 @@ def load_engine(path: str | Path) -> model.Engine:
 def engine_from_reference(value: object, file: str | Path, key: str = "engine") -> model.Engine:
     """``engine = "../engines/x.toml"`` (a path relative to ``file``) or an inline table."""
     if isinstance(value, str):
-        return load_engine(resolve_reference(value, file))
+        p, data = read_included(value, file, key, "engine file")
+        try:
+            return build_engine(data, p)
+        except InputError as exc:
+            raise with_include_context(exc, file, key) from None
     if isinstance(value, dict):
         return build_engine(value, file, key)
     raise InputError("must be a path to an engine file or an inline [engine] table", file=str(file), key=key)

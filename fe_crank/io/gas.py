@@ -17,8 +17,8 @@ from pydantic import Field, ValidationError, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
-from fe_crank.io.base import Strict, resolve_reference, validate, validation_to_input_error
-from fe_crank.io.units import Angle, Energy, Pressure, ureg
+from fe_crank.io.base import Strict, read_text, resolve_reference, validate, validation_to_input_error
+from fe_crank.io.units import Angle, Energy, Pressure, parse_unit, ureg
 
 
 class GasTableInput(Strict):
@@ -32,15 +32,15 @@ class GasTableInput(Strict):
     @model_validator(mode="after")
     def _check(self):
         try:
-            a = ureg.Quantity(1.0, self.angle_unit)
-        except Exception:
-            raise ValueError(f"angle_unit {self.angle_unit!r} is not a unit") from None
-        if not a.dimensionless:
+            a = ureg.Quantity(1.0, parse_unit(self.angle_unit))
+        except ValueError as exc:
+            raise ValueError(f"angle_unit: {exc}") from None
+        if not a.dimensionless or a.unitless:
             raise ValueError(f"angle_unit {self.angle_unit!r} is not an angle unit (deg or rad)")
         try:
-            p = ureg.Quantity(1.0, self.pressure_unit)
-        except Exception:
-            raise ValueError(f"pressure_unit {self.pressure_unit!r} is not a unit") from None
+            p = ureg.Quantity(1.0, parse_unit(self.pressure_unit))
+        except ValueError as exc:
+            raise ValueError(f"pressure_unit: {exc}") from None
         if not p.check("[pressure]"):
             raise ValueError(f"pressure_unit {self.pressure_unit!r} is not a pressure unit (Pa, kPa, MPa, bar)")
         ang = np.array([pt[0] for pt in self.points])
@@ -53,8 +53,8 @@ class GasTableInput(Strict):
     def arrays_si(self) -> tuple[np.ndarray, np.ndarray]:
         ang = np.array([pt[0] for pt in self.points], dtype=float)
         prs = np.array([pt[1] for pt in self.points], dtype=float)
-        ang = ureg.Quantity(ang, self.angle_unit).to("rad").magnitude
-        prs = ureg.Quantity(prs, self.pressure_unit).to("Pa").magnitude
+        ang = ureg.Quantity(ang, parse_unit(self.angle_unit)).to("rad").magnitude
+        prs = ureg.Quantity(prs, parse_unit(self.pressure_unit)).to("Pa").magnitude
         return np.asarray(ang, float), np.asarray(prs, float)
 
 
@@ -108,10 +108,7 @@ def _split_header(cell: str, file, key: str) -> str:
 def read_gas_csv(path, *, crankcase_pressure: float = 101325.0, source: str = "") -> model.GasPressure:
     """Read ``angle [unit], pressure [unit]`` CSV (absolute pressure) into a table."""
     path = Path(path)
-    try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except FileNotFoundError:
-        raise InputError("gas pressure CSV not found", file=str(path)) from None
+    lines = read_text(path, "gas pressure CSV").splitlines()
     rows = [ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")]
     if len(rows) < 3:
         raise InputError("needs a header and at least two rows", file=str(path))
@@ -123,9 +120,15 @@ def read_gas_csv(path, *, crankcase_pressure: float = 101325.0, source: str = ""
     for i, ln in enumerate(rows[1:], start=2):
         cells = ln.split(",")
         try:
-            points.append((float(cells[0]), float(cells[1])))
+            if len(cells) != 2:
+                raise IndexError
+            pt = (float(cells[0]), float(cells[1]))
         except (ValueError, IndexError):
-            raise InputError(f"row {ln!r} is not two numbers", file=str(path), key=f"row {i}") from None
+            raise InputError("is not two numbers", file=str(path), key=f"row {i}") from None
+        if not all(np.isfinite(pt)):
+            raise InputError("must be two finite numbers (inf and nan are not accepted)", file=str(path),
+                             key=f"row {i}")
+        points.append(pt)
     try:
         table = GasTableInput(angle_unit=au, pressure_unit=pu, points=points, source=source or str(path.name))
     except ValidationError as exc:
@@ -153,8 +156,17 @@ def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: 
         return model.GasPressure(ang, prs, raw.crankcase_pressure, raw.source)
     if kind == "csv":
         raw = validate(GasCsvInput, data, file, key)
-        return read_gas_csv(resolve_reference(raw.file, file), crankcase_pressure=raw.crankcase_pressure,
-                            source=raw.source)
+        csv = resolve_reference(raw.file, file, key=f"{key}.file")
+        if not csv.is_file():
+            state = "is a folder" if csv.is_dir() else "not found"
+            raise InputError(f"the gas pressure CSV {raw.file!r} {state}", file=str(file), key=f"{key}.file")
+        try:
+            return read_gas_csv(csv, crankcase_pressure=raw.crankcase_pressure, source=raw.source)
+        except InputError as exc:
+            if exc.key is None:  # the file as a whole: name the key that referenced it
+                raise InputError(f"the gas pressure CSV {raw.file!r}: {exc.reason}", file=str(file),
+                                 key=f"{key}.file") from None
+            raise
     if kind == "wiebe":
         from fe_crank.gas import wiebe_cycle
 

@@ -60,7 +60,7 @@ from fe_crank.geometry.spec import (
     ThrowSpec,
     WebOutline,
 )
-from fe_crank.io.base import Strict, read_toml, resolve_reference, validate
+from fe_crank.io.base import Strict, read_included, read_toml, validate, with_include_context
 from fe_crank.io.units import Angle, Density, Force, Length, Pressure
 
 
@@ -213,7 +213,11 @@ def load_geometry(path: str | Path) -> CrankGeometry:
 def parse_geometry(value: object, file: str | Path, key: str = "geometry") -> CrankGeometry:
     """Section parser registered as ``SECTIONS["geometry"]``: a path relative to the load case."""
     if isinstance(value, str):
-        return load_geometry(resolve_reference(value, file))
+        p, data = read_included(value, file, key, "geometry file")
+        try:
+            return geometry_from_dict(data, p)
+        except InputError as exc:
+            raise with_include_context(exc, file, key) from None
     if isinstance(value, dict):
         return geometry_from_dict(value, file, key)
     raise InputError("must be a file name, e.g. geometry = \"../geometry/x.toml\", or a table", file=str(file), key=key)

@@ -23,7 +23,7 @@ from pydantic import Field, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
-from fe_crank.io.base import Strict, read_toml, validate
+from fe_crank.io.base import Strict, input_root, read_toml, validate
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.sections import SECTIONS
 from fe_crank.io.units import Speed
@@ -49,9 +49,17 @@ class LoadCaseHead(Strict):
     schema_version: int = 1
 
 
-def load_loadcase(path: str | Path) -> model.LoadCase:
-    """Read, validate and convert one load-case file.  Raises InputError."""
-    path = Path(path)
+def load_loadcase(path: str | Path, *, allow_outside_paths: bool | None = None) -> model.LoadCase:
+    """Read, validate and convert one load-case file.  Raises InputError.
+
+    Include paths (``engine``, ``geometry``, a gas CSV) must stay in the load case's
+    folder tree unless ``allow_outside_paths`` (default: the environment variable
+    ``FE_CRANK_ALLOW_OUTSIDE_PATHS``); see ``fe_crank.io.base.resolve_reference``."""
+    with input_root(path, allow_outside_paths):
+        return _load(Path(path))
+
+
+def _load(path: Path) -> model.LoadCase:
     data = read_toml(path)
     if not isinstance(data, dict):  # pragma: no cover - tomllib always returns a dict
         raise InputError("top level must be a table", file=str(path))
@@ -60,7 +68,7 @@ def load_loadcase(path: str | Path) -> model.LoadCase:
     for key in data:
         if key not in known:
             raise InputError(
-                f"unknown key; known keys are {sorted(known)}", file=str(path), key=key
+                f"unknown key; known keys are {sorted(known)}", file=str(path), key=_short(key)
             )
     head = validate(LoadCaseHead, {k: v for k, v in data.items() if k in head_keys}, path)
     if "engine" not in data:
@@ -87,3 +95,9 @@ def load_loadcase(path: str | Path) -> model.LoadCase:
         balance=sections.get("balance"),
         extras=extras,
     )
+
+
+def _short(key: object) -> str:
+    """A key as written, cut to 40 characters for a message."""
+    text = str(key)
+    return text if len(text) <= 40 else text[:37] + "..."

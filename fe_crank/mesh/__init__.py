@@ -15,8 +15,10 @@ stages' unit tests mesh a whole throw in a few seconds.
 
 Cache: ``cache_dir/<key>/`` with ``key`` = SHA-256 of the geometry (dimensions only,
 not its name or file), the throw, the mesh options, the fe-crank and gmsh versions and
-the cache format.  Entries are written to a temporary folder and renamed into place
-(atomic on POSIX), so a reader never sees half an entry.
+the cache format.  Entries are written to a temporary folder
+(``.<key>.partial-<pid>-*``) and renamed into place (atomic on POSIX), so a reader never
+sees half an entry; temporary folders of killed processes are removed by the next
+run, and an entry that cannot be read back whole is discarded and rebuilt.
 """
 
 from fe_crank.mesh.build import mesh_throw

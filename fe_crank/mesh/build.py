@@ -14,7 +14,7 @@ import numpy as np
 
 from fe_crank.errors import MeshError
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
-from fe_crank.mesh.cache import _load_npz, _save_npz, _stats_from_json, _stats_to_json, cache_key
+from fe_crank.mesh.cache import TMP_MARK, _save_npz, _stats_to_json, cache_key, clean_stale_cache_temps, load_cache_entry
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
 from fe_crank.mesh.quality import _fillet_max_edge, _jacobian_ratio, _straighten_poor, _tet_tags
 from fe_crank.mesh.sizing import _set_size_fields
@@ -84,6 +84,7 @@ def mesh_throw(
     *,
     size: str | MeshOptions = "coarse",
     cache_dir: str | Path | None = DEFAULT_CACHE_DIR,
+    max_elements: int | None = None,
 ) -> ThrowMesh:
     """Mesh one throw with quadratic tetrahedra (cached).
 
@@ -96,6 +97,9 @@ def mesh_throw(
     size
         ``"test"`` (fast, fillet edge about r: NOT for stress results), ``"coarse"`` (r/4), ``"medium"`` (r/5),
         ``"fine"`` (r/8) or a ``MeshOptions``.
+    max_elements
+        Limit on the element count estimated before meshing
+        (``fe_crank.geometry.estimate``; default ``MAX_ELEMENTS``).
     cache_dir
         Folder of the mesh cache; ``None`` meshes into a temporary folder without caching
         (the ``.msh``/``.vtu`` paths then point into that folder, which is removed when
@@ -115,10 +119,12 @@ def mesh_throw(
         gmsh failed, inverted elements, a named group empty, a fillet too coarse.
     """
     from fe_crank.geometry.checks import check_geometry
+    from fe_crank.geometry.estimate import check_element_budget
 
     check_geometry(geometry)
     spec = throw if isinstance(throw, ThrowSpec) else geometry.throw(throw)
     opt = resolve_options(size)
+    check_element_budget(geometry, spec, opt, max_elements)
     key = cache_key(geometry, spec, opt)
     if cache_dir is None:
         folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
@@ -128,15 +134,13 @@ def mesh_throw(
         return ThrowMesh(mesh, stats, dict(stats.fillet_radii), folder / "throw.msh", folder / "throw.vtu", spec.name, key, opt)
     root = Path(cache_dir)
     final = root / key
-    if (final / "complete").exists():
-        try:
-            mesh = _load_npz(final / "mesh.npz")
-            stats = _stats_from_json(json.loads((final / "stats.json").read_text()))
-            return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt)
-        except (OSError, ValueError, KeyError, TypeError):
-            shutil.rmtree(final, ignore_errors=True)  # a damaged entry is rebuilt
+    hit = load_cache_entry(final)
+    if hit is not None:
+        mesh, stats = hit
+        return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt)
     root.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{key}.", dir=root))
+    clean_stale_cache_temps(root)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{key}{TMP_MARK}{os.getpid()}-", dir=root))
     try:
         mesh, stats = _build(geometry, spec, opt, tmp)
         _save_npz(tmp / "mesh.npz", mesh)

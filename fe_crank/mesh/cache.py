@@ -1,11 +1,18 @@
 """Mesh cache: the key of an entry (SHA-256 of everything that changes the mesh) and
-the entry's files (``mesh.npz``, ``stats.json``)."""
+the entry's files (``mesh.npz``, ``stats.json``).
+
+Entries are built in ``.<key>.partial-<pid>-*`` and renamed into place; the temporary
+folders of killed processes are removed by the next writer, and an entry that cannot
+be read back whole is discarded (``load_cache_entry``) to be rebuilt."""
 
 from __future__ import annotations
 
 import dataclasses
 import hashlib
 import json
+import os
+import re
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -68,3 +75,44 @@ def _stats_from_json(d: dict) -> MeshStats:
     d = dict(d)
     d["from_cache"] = True
     return MeshStats(**d)
+
+
+TMP_MARK = ".partial-"
+
+
+def load_cache_entry(folder: Path):
+    """``(mesh, stats)`` of a complete cache entry, or None.  Any entry that cannot be
+    read back whole (truncated ``mesh.npz``, damaged ``stats.json``, a missing file,
+    arrays that do not form a mesh) is discarded, to be rebuilt."""
+    if not (folder / "complete").exists():
+        return None
+    try:
+        mesh = _load_npz(folder / "mesh.npz")
+        stats = _stats_from_json(json.loads((folder / "stats.json").read_text()))
+        for name in ("throw.msh", "throw.vtu"):
+            if not (folder / name).is_file():
+                raise FileNotFoundError(name)
+        return mesh, stats
+    except Exception:  # zipfile.BadZipFile, EOFError, OSError, ValueError, ...: rebuild
+        shutil.rmtree(folder, ignore_errors=True)
+        return None
+
+
+def clean_stale_cache_temps(root: Path) -> list[Path]:
+    """Remove temporary cache folders (``.<key>.partial-<pid>-*``) whose process is
+    gone (killed while meshing).  Returns what was removed."""
+    removed = []
+    for p in root.iterdir():
+        m = re.match(r"^\..+\.partial-(\d+)-", p.name)
+        if not (m and p.is_dir()):
+            continue
+        try:
+            os.kill(int(m.group(1)), 0)
+            continue  # still running
+        except ProcessLookupError:
+            pass
+        except (PermissionError, OverflowError):
+            continue
+        shutil.rmtree(p, ignore_errors=True)
+        removed.append(p)
+    return removed
