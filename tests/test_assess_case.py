@@ -242,9 +242,7 @@ def test_overspeed_includes_rod_and_piston_inertia_hand_calc(tmp_path, solved):
 def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
     """Real FE bar, fully reversed torque T(theta) = T_a cos(theta) alone: the loading is
     proportional, S(theta) = c cos(theta) S_t, so the equivalent amplitude at every node
-    is exactly |c| vM(S_t) (closed form for a proportional history).  Component-wise
-    half ranges with the signs dropped, vM(|c S_t|), are lower wherever the shear and
-    normal components of S_t have mixed signs: shown here as well."""
+    is exactly |c| vM(S_t) (closed form for a proportional history)."""
     from fe_crank.assess import unit_stresses
     from fe_crank.assess.case import assess_throw
     from fe_crank.assess.stress import von_mises
@@ -258,7 +256,6 @@ def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
     t = assess_throw("1", unit, theta, np.zeros((360, 2)), t_a * np.cos(theta), omega=0.0, overspeed=None,
                      material=mat, crank_radius=R)
     s_t = unit.stress[unit.cases.index("torque")] * (t_a / abs(unit.torque_mz))
-    low = 1.0
     for g in t.groups:
         if "fillet" not in g.group:
             continue
@@ -266,6 +263,4 @@ def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
         exact = von_mises(s_t[:, idx])
         np.testing.assert_allclose(g.fields["amplitude"], exact, rtol=1e-9, atol=1e-9 * exact.max())
         assert g.fatigue_safety.value == pytest.approx(450e6 / exact.max(), rel=1e-9)
-        dropped = von_mises(np.abs(s_t[:, idx]))
-        low = min(low, float((dropped / exact).min()))
-    assert low < 0.99  # measured 0.982 at crankpin_fillet_1 of this bar (the old measure's error)
+    # (the sign-dropping half ranges' error is shown on closed forms in test_assess_amplitude.py)
