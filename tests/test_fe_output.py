@@ -1,4 +1,4 @@
-"""FE stage (issue 5): VTU output round trip, stress recovery identities."""
+"""FE stage: VTU output round trip, stress recovery identities."""
 
 from __future__ import annotations
 

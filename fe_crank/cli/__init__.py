@@ -16,7 +16,7 @@ import sys
 from types import ModuleType
 
 from fe_crank import __version__
-from fe_crank.cli import balance, check, dynamics, mesh, validate
+from fe_crank.cli import balance, check, dynamics, mesh, torsion, validate
 from fe_crank.errors import FeCrankError
 
 EXIT_PASS, EXIT_FAIL, EXIT_ERROR = 0, 1, 2
@@ -26,6 +26,7 @@ COMMANDS: dict[str, tuple[ModuleType, str]] = {
     "dynamics": (dynamics, "kinematics and dynamics over the cycle: table, JSON, plots"),
     "balance": (balance, "free forces/moments by order, counterweights, balance shafts"),
     "mesh": (mesh, "build and mesh a crank geometry (cached); statistics and a picture"),
+    "torsion": (torsion, "torsional vibration of the crank train: modes, Campbell, forced response"),
     "check": (check, "run load cases end to end and give verdicts (CI check)"),
 }
 

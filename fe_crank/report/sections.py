@@ -16,6 +16,7 @@ import numpy as np
 
 from fe_crank.report.html import Page, esc, table
 from fe_crank.report.stage_plots import dynamics_plots, plot_hodographs
+from fe_crank.torsion.report import report_section as torsion_section
 
 
 def _mpa(x) -> str:
@@ -148,6 +149,7 @@ BUILDERS: list = [
     ("Counterweights: required vs built m*r", counterweight_section),
     ("Stresses and safety factors by location", assessment_section),
 ]
+BUILDERS.insert(1, ("Torsional vibration of the crank train", torsion_section))  # torsion stage
 
 
 # --------------------------------------------------------------------------- FE pictures
