@@ -229,7 +229,14 @@ def test_overspeed_includes_rod_and_piston_inertia_hand_calc(tmp_path, solved):
             at_tdc += 1
         if "fillet" in g.group:
             assert ext.value > 3 * centrifugal_only[idx].max()
-    assert at_tdc >= 1  # counterweight_1 (measured: the fillets peak 0.1-1.2 % higher at 7 deg)
+    # the TDC state alone, with the hand force as the overspeed load: equal at every group
+    from fe_crank.assess.case import assess_throw
+
+    t0 = assess_throw("1", unit, np.zeros(1), np.zeros((1, 2)), np.zeros(1), omega=w, overspeed=w,
+                      material=lc.material, crank_radius=0.02,
+                      overspeed_loads=(np.array([[0.0, f]]), np.zeros(1)))
+    for g in t0.groups:
+        assert g.max_von_mises_overspeed.value == pytest.approx(by_hand[unit.groups[g.group]].max(), rel=1e-9)
     assert a.criteria[0].value == pytest.approx(650e6 / max(g.max_von_mises_overspeed.value
                                                             for g in a.throws[0].groups))
     assert any("overspeed: whole cycle recomputed at 3600 rpm" in n for n in a.notes)
@@ -238,9 +245,7 @@ def test_overspeed_includes_rod_and_piston_inertia_hand_calc(tmp_path, solved):
 def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
     """Real FE bar, fully reversed torque T(theta) = T_a cos(theta) alone: the loading is
     proportional, S(theta) = c cos(theta) S_t, so the equivalent amplitude at every node
-    is exactly |c| vM(S_t) (closed form for a proportional history).  Component-wise
-    half ranges with the signs dropped, vM(|c S_t|), are lower wherever the shear and
-    normal components of S_t have mixed signs: shown here as well."""
+    is exactly |c| vM(S_t) (closed form for a proportional history)."""
     from fe_crank.assess import unit_stresses
     from fe_crank.assess.case import assess_throw
     from fe_crank.assess.stress import von_mises
@@ -254,7 +259,6 @@ def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
     t = assess_throw("1", unit, theta, np.zeros((360, 2)), t_a * np.cos(theta), omega=0.0, overspeed=None,
                      material=mat, crank_radius=R)
     s_t = unit.stress[unit.cases.index("torque")] * (t_a / abs(unit.torque_mz))
-    low = 1.0
     for g in t.groups:
         if "fillet" not in g.group:
             continue
@@ -262,6 +266,4 @@ def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
         exact = von_mises(s_t[:, idx])
         np.testing.assert_allclose(g.fields["amplitude"], exact, rtol=1e-9, atol=1e-9 * exact.max())
         assert g.fatigue_safety.value == pytest.approx(450e6 / exact.max(), rel=1e-9)
-        dropped = von_mises(np.abs(s_t[:, idx]))
-        low = min(low, float((dropped / exact).min()))
-    assert low < 0.99  # measured 0.982 at crankpin_fillet_1 of this bar (the old measure's error)
+    # (the sign-dropping half ranges' error is shown on closed forms in test_assess_amplitude.py)

@@ -106,7 +106,7 @@ def amplitude_mean(history: np.ndarray, iterations: int = 16, stride: int = 4) -
 def signed_mean(mean: np.ndarray) -> np.ndarray:
     """sigma_m' = max(vM(S_m), s_1(S_m)) if s_1(S_m) > 0 else -vM(S_m); mean (6, n)."""
     vm = von_mises(mean)
-    s1 = principal(mean[None])[0][-1]
+    s1 = principal(mean[None])[0].max(axis=0)  # largest principal stress, whatever the order
     return np.where(s1 > 0, np.maximum(vm, s1), -vm)
 
 
