@@ -1,6 +1,6 @@
 """Frozen data the numerical core works on: SI floats only, no units, no files.
 
-Conventions (DESIGN.md):
+Conventions (docs/architecture.md, "Conventions"):
 
 * Global frame: ``z`` along the crank axis (positive from the front/free end to the
   flywheel end), ``y`` up, ``x`` completing a right-handed frame.  Looking along
@@ -156,8 +156,14 @@ def crank_angle_global(engine: Engine, throw_name: str, theta) -> np.ndarray:
 
 @dataclass(frozen=True)
 class OperatingPoint:
+    """``overspeed_gas``: the gas load of the overspeed condition (the assessment
+    recomputes the whole cycle at the overspeed): ``"motored"`` no combustion, the
+    engine's gas pressure table replaced by zero gauge pressure (the table gives no
+    motored curve); ``"as_operating"`` the operating gas pressure table."""
+
     speed: float  # rad/s, of the reference shaft
-    overspeed: float | None = None  # rad/s, for static/centrifugal checks
+    overspeed: float | None = None  # rad/s: the whole cycle (inertia, centrifugal) at this speed
+    overspeed_gas: str = "motored"  # "motored" or "as_operating"
 
 
 @dataclass(frozen=True)

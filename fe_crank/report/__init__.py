@@ -99,6 +99,10 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
         inputs.append(table(["quantity", "value"], _engine_rows(lc)))
         for title, obj in (("material", lc.material), ("acceptance criteria", lc.criteria), ("FE model and bearings", lc.fe)):
             rows = _section_rows(obj)
+            if title == "material":
+                from fe_crank.assess.factors import material_rows
+
+                rows += material_rows(obj)
             if rows:
                 inputs.append(f"<h3>{esc(title)}</h3>" + table(["key", "value"], rows))
     from fe_crank.report import sections

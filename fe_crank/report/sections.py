@@ -283,7 +283,8 @@ def fe_section(folder: Path, so: dict, options) -> list[str]:
             out.append(Page.figure(
                 f"{tag}_overspeed.png",
                 f"Throw {throw} and its counterweights at overspeed {over * 30 / np.pi:.0f} rpm, centrifugal load "
-                f"alone, seen from the front; deformation exaggerated x {s_os:g}"))
+                f"alone, seen from the front; deformation exaggerated x {s_os:g} (the overspeed safety in the tables "
+                "is over the whole cycle at overspeed, rod and piston inertia included)"))
     return out
 
 
