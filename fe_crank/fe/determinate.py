@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
+import scipy.sparse as sp
 from skfem import ElementTetP2
 
 from fe_crank.errors import MeshError, SolverError
@@ -66,7 +67,7 @@ class DeterminateSupport:
     centres: dict[str, np.ndarray]      # journal -> bearing centre (area centroid of its bearing surface)
     names: tuple[str, ...]              # reaction components, e.g. "journal_1.Fx", ..., "end_2.Mz"
     owner: tuple[str, ...]              # support each component belongs to
-    G: np.ndarray                       # (3 N, 6) nodal loads of a unit value of each component
+    G: sp.csc_matrix                    # (3 N, 6) nodal loads of a unit value of each component (sparse)
     A: np.ndarray                       # (6, 6) resultants (F, M about the origin) of the columns of G
     held: np.ndarray                    # (6,) vector dofs of the point constraints
     points: np.ndarray                  # (3, N) node coordinates
@@ -78,7 +79,7 @@ class DeterminateSupport:
     def self_equilibrated(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(f + G R, R): the load with its reactions applied, and the reactions."""
         R = self.reactions(f)
-        return f + self.G @ R, R
+        return f + np.asarray(self.G @ R).reshape(f.shape), R
 
     def reaction_resultants(self, R: np.ndarray) -> dict[str, np.ndarray]:
         """Generalised force (Fx, Fy, Fz, Mx, My, Mz about the origin) of each support."""
@@ -159,6 +160,7 @@ def determinate_support(basis, layout: DeterminateLayout, *, candidate_faces=("e
     owner.append(layout.torque_face)
     G = np.column_stack(cols)
     A = _resultants(G, x)
+    G = sp.csc_matrix(G)                 # non-zero on the bearing surfaces and the torque face only
     if np.linalg.cond(A) > 1e10:
         raise SolverError("determinate supports cannot balance every load (bearing centres coincide?)")
     cand = np.unique(np.concatenate([basis.get_dofs(boundary_facets(mesh, f, "the point constraints")).all()
