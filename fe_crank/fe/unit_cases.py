@@ -26,7 +26,7 @@ from skfem import ElementTetP2
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
-from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load
+from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
 from fe_crank.fe.pin_directions import pin_case_weights, pin_cases, pin_direction, unit_force
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets, facet_basis
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
@@ -217,7 +217,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
                           couplings=coup, solver=options.solver, intorder=options.intorder)
     basis = system.basis
     t0 = time.perf_counter()
-    loads, desc, pins = {}, {}, {}
+    loads, desc, pins, surface = {}, {}, {}, None
     for name in options.cases:
         if name == "centrifugal":
             loads[name] = centrifugal_load(basis, material.density, 1.0)
@@ -228,8 +228,10 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
             desc[name] = (f"1 N m in the sense of rotation (M_z = -1 N m) on {options.torque_face}, "
                           f"reacted at {options.reaction_face}")
         else:
+            if surface is None:   # the pin surface's facet basis, built once for all directions
+                surface = pin_surface(basis, options.pin_boundary, options.pin_centre)
             loads[name], pins[name] = pin_pressure_load(basis, unit_force(name), boundary=options.pin_boundary,
-                                                        centre=options.pin_centre, half_angle=options.pin_half_angle)
+                                                        half_angle=options.pin_half_angle, surface=surface)
             desc[name] = f"1 N on {options.pin_boundary} at {pin_direction(name)} deg from +x, cosine pressure +-" \
                          f"{np.rad2deg(options.pin_half_angle):.0f} deg"
     names = list(loads)
