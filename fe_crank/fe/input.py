@@ -5,7 +5,7 @@
     [fe]
     support = "elastic"                 # or "rigid": radial support of the journals
     bearing_stiffness = "5e12 N/m^3"    # elastic support only; default E / d_journal
-    solver = "auto"                     # "pardiso" | "amg" | "superlu"
+    solver = "auto"                     # "pardiso" | "cholmod" | "amg" | "superlu"
     pin_half_angle = "60 deg"           # cosine pressure arc on the crankpin
 """
 
@@ -27,7 +27,7 @@ from fe_crank.io.units import Angle, StiffnessPerArea
 class FeInput(Strict):
     support: Literal["elastic", "rigid"] = "elastic"
     bearing_stiffness: StiffnessPerArea | None = Field(default=None, gt=0)
-    solver: Literal["auto", "pardiso", "amg", "superlu"] = "auto"
+    solver: Literal["auto", "pardiso", "cholmod", "amg", "superlu"] = "auto"
     pin_half_angle: Angle = Field(default=FeOptions.pin_half_angle, gt=0, le=1.5707963267948966)
     cases: tuple[str, ...] = CASES
 

@@ -51,7 +51,7 @@ class FeOptions:
 
     support: "elastic" (default) or "rigid" radial journal support, see module doc.
     bearing_stiffness: N/m^3, overrides the default E / d_journal for "elastic".
-    solver: "auto" | "pardiso" | "amg" | "superlu".
+    solver: "auto" | "pardiso" | "cholmod" | "amg" | "superlu".
     cases: which unit cases to solve: "centrifugal", "torque" and pin cases by direction
     ("pin_x", "pin_y", "pin_-x", "pin_-y", "pin_<deg>"; see ``pin_directions``).
     pin_half_angle: rad, half width of the cosine pressure arc.
@@ -105,6 +105,11 @@ class UnitSolutions:
     @property
     def solver(self) -> str:
         return self.system.factorisation.method
+
+    @property
+    def solver_description(self) -> str:
+        """The solver that ran, in words, with the reason when ``auto`` fell back from PARDISO."""
+        return self.system.factorisation.description
 
     @property
     def points(self) -> np.ndarray:

@@ -314,7 +314,7 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
         throw = keys[0]
         m = units.mesh
         rows = [["elements (quadratic tetrahedra)", m.t.shape[1]], ["nodes", units.points.shape[1]],
-                ["degrees of freedom", units.n_dof], ["solver", units.solver],
+                ["degrees of freedom", units.n_dof], ["solver", getattr(units, "solver_description", units.solver)],
                 ["bearing model", f"{units.options.support} journal support"
                  + (f", k = {units.bearing_stiffness:.3g} N/m^3" if units.options.support == "elastic" else "")]]
         tm = meshes.get(throw)
