@@ -139,10 +139,10 @@ def stress_at_quadrature(basis: Basis, u: np.ndarray, youngs_modulus: float, poi
     """Stress (6, ne, nq) at the quadrature points of ``basis`` (scalar P2); ``elements``:
     only these elements of the basis (in that order)."""
     lam, mu = lame_parameters(youngs_modulus, poisson_ratio)
-    G, ed = _gradients(basis), basis.element_dofs
-    if elements is not None:
-        G, ed = G[:, :, elements], ed[:, elements]
-    return _stress_from_gradients(G, ed, u, lam, mu)
+    if elements is None:
+        return _stress_from_gradients(_gradients(basis), basis.element_dofs, u, lam, mu)
+    G = np.stack([b[0].grad[:, elements] for b in basis.basis])   # slice first: no whole-mesh copy
+    return _stress_from_gradients(G, basis.element_dofs[:, elements], u, lam, mu)
 
 
 def von_mises(s: np.ndarray) -> np.ndarray:
