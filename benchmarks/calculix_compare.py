@@ -17,7 +17,8 @@ process of its own (peak memory = that process's maximum resident set, from wait
 CalculiX comes from the OS package manager: if ``ccx`` is not on PATH the script runs
 ``apt-get update`` and ``apt-get install -y calculix-ccx`` (Debian/Ubuntu, as root) and
 says so; elsewhere install CalculiX 2.20 yourself and put ``ccx`` on PATH.
-Both codes get the same threads (``--threads``, default 2: OMP_NUM_THREADS, MKL's and
+Wall time and CPU time (user + system of all threads; less sensitive to other jobs on a
+shared machine) are reported for both.  Both codes get the same threads (``--threads``, default 2: OMP_NUM_THREADS, MKL's and
 CCX_NPROC_EQUATION_SOLVER).  The answers are compared at the assessed nodes: largest
 displacement difference relative to the largest displacement, and largest von Mises
 difference relative to the largest von Mises (CalculiX extrapolates its 4 integration
@@ -68,15 +69,19 @@ def _threads_env(n: int) -> dict:
                 OPENBLAS_NUM_THREADS="1")
 
 
-def run_measured(cmd, cwd, env, *, quiet=True) -> tuple[float, float, int]:
-    """(wall s, peak RSS GB, exit code) of one child process."""
+def _cpu(ru) -> float:
+    return ru.ru_utime + ru.ru_stime
+
+
+def run_measured(cmd, cwd, env, *, quiet=True) -> tuple[float, float, int, float]:
+    """(wall s, peak RSS GB, exit code, CPU s of all its threads) of one child process."""
     t0 = time.perf_counter()
     log = open(Path(cwd or ".") / "last_run.log", "w") if quiet else None
     p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=log or None, stderr=subprocess.STDOUT if quiet else None)
     _, status, ru = os.wait4(p.pid, 0)
     wall = time.perf_counter() - t0
     p.returncode = os.waitstatus_to_exitcode(status)
-    return wall, ru.ru_maxrss / 1024**2, p.returncode
+    return wall, ru.ru_maxrss / 1024**2, p.returncode, _cpu(ru)
 
 
 def unit_loads(units) -> dict[str, np.ndarray]:
@@ -118,18 +123,19 @@ def worker(args) -> int:
     cases = ONE if args.worker == "one" else CASES
     base = lc.fe or FeOptions()
     opts = FeOptions(**{**base.__dict__, "cases": cases})
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), _cpu(resource.getrusage(resource.RUSAGE_SELF))
     units = solve_unit_cases(tm.mesh, lc.material, opts)
     t_solve = time.perf_counter() - t0
     ids = np.unique(np.concatenate(list(assessed_groups(units).values())))
     t1 = time.perf_counter()
     S = unit_nodal_stress(units, cases, ids)
     t_rec = time.perf_counter() - t1
+    cpu = _cpu(resource.getrusage(resource.RUSAGE_SELF)) - c0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
     U = np.stack([units.displacement(c).reshape(-1, 3)[ids] for c in cases])
     info = {"dof": int(units.n_dof), "elements": int(tm.mesh.t.shape[1]), "nodes": int(units.points.shape[1]),
             "assessed_nodes": int(ids.size), "solver": units.solver_description, "fe_s": t_solve,
-            "recovery_s": t_rec, "fe_total_s": t_solve + t_rec, "peak_gb": peak,
+            "recovery_s": t_rec, "fe_total_s": t_solve + t_rec, "fe_cpu_s": cpu, "peak_gb": peak,
             "timings": {k: float(v) for k, v in units.timings.items()}}
     np.savez(work / f"fe_{args.worker}.npz", ids=ids, U=U, S=S, cases=np.array(cases))
     (work / f"fe_{args.worker}.json").write_text(json.dumps(info))
@@ -143,7 +149,7 @@ def compare(work: Path, which: str, ccx: str, threads: int) -> dict:
     from ccx_deck import read_dat_displacements, read_frd_stresses
     from fe_crank.fe.stress import von_mises
 
-    wall, peak, rc = run_measured([ccx, "-i", f"ccx_{which}"], work, _threads_env(threads))
+    wall, peak, rc, cpu = run_measured([ccx, "-i", f"ccx_{which}"], work, _threads_env(threads))
     if rc != 0:
         raise SystemExit(f"ccx failed on {work / f'ccx_{which}.inp'} (exit {rc}); see {work}")
     fe = np.load(work / f"fe_{which}.npz")
@@ -158,8 +164,9 @@ def compare(work: Path, which: str, ccx: str, threads: int) -> dict:
         sc = np.array([strs[k][i + 1] for i in ids]).T
         vf, vc = von_mises(fe["S"][k]), von_mises(sc)
         dv = max(dv, np.abs(vc - vf).max() / vf.max())
-    return {"cases": len(fe["cases"]), "fe_crank": info, "ccx": {"wall_s": wall, "peak_gb": peak},
-            "ratio_time": wall / info["fe_total_s"], "ratio_memory": peak / info["peak_gb"],
+    return {"cases": len(fe["cases"]), "fe_crank": info, "ccx": {"wall_s": wall, "cpu_s": cpu, "peak_gb": peak},
+            "ratio_time": wall / info["fe_total_s"], "ratio_cpu": cpu / info["fe_cpu_s"],
+            "ratio_memory": peak / info["peak_gb"],
             "max_rel_displacement_difference": du, "max_rel_von_mises_difference": dv}
 
 
@@ -186,7 +193,7 @@ def main(argv=None) -> int:
     result = {"loadcase": args.loadcase, "preset": args.preset, "threads": args.threads,
               "load_average": os.getloadavg()}
     for which in ("one", "all"):
-        wall, peak, rc = run_measured([sys.executable, __file__, "--worker", which, "--loadcase", args.loadcase,
+        wall, peak, rc, _ = run_measured([sys.executable, __file__, "--worker", which, "--loadcase", args.loadcase,
                                        "--preset", args.preset, "--work", str(work)], None, _threads_env(args.threads),
                                        quiet=False)
         if rc != 0:
@@ -197,7 +204,7 @@ def main(argv=None) -> int:
         f = r["fe_crank"]
         print(f"{which:>3} ({r['cases']:2d} cases, {f['dof']} dof): fe-crank {f['fe_total_s']:7.1f} s "
               f"{f['peak_gb']:5.2f} GB | CalculiX {r['ccx']['wall_s']:7.1f} s {r['ccx']['peak_gb']:5.2f} GB | "
-              f"time ratio {r['ratio_time']:5.1f} | memory ratio {r['ratio_memory']:4.2f} | "
+              f"time ratio {r['ratio_time']:5.1f} (CPU {r['ratio_cpu']:5.1f}) | memory ratio {r['ratio_memory']:4.2f} | "
               f"max du {r['max_rel_displacement_difference']:.1e}, max dvM {r['max_rel_von_mises_difference']:.1e}",
               flush=True)
     result["load_average_after"] = os.getloadavg()
