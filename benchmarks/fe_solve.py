@@ -11,7 +11,7 @@ With ``--geometry``, the real throw of that geometry file is meshed by ``mesh_th
 (filleted, graded to the fillets by the preset: coarse = r/4 of IACS UR M53, medium = r/5)
 instead of the fillet-less uniform test throw.
 
-The geometry is ``fe_crank.fe.verification_meshes.simple_throw`` (journals d 50 mm,
+The geometry is ``simple_throw`` of ``tests/verification_meshes.py`` (journals d 50 mm,
 pin d 45 mm, R 45 mm, webs 20 mm, no fillets), uniform element size, P2 tetrahedra.
 Results are printed as one JSON line per size (and appended to --json if given).
 """
@@ -26,6 +26,7 @@ import resource
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 
 def run_one(size: float, solver: str, geometry: str | None = None, preset: str = "coarse") -> dict:
@@ -33,7 +34,8 @@ def run_one(size: float, solver: str, geometry: str | None = None, preset: str =
 
 
     from fe_crank.fe import FeOptions, solve_unit_cases
-    from fe_crank.fe.verification_meshes import simple_throw
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+    from verification_meshes import simple_throw  # the test geometry (tests/verification_meshes.py)
 
     @dataclass(frozen=True)
     class Steel:

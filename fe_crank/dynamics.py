@@ -138,10 +138,6 @@ def cylinder_angle(engine: model.Engine, cyl: model.Cylinder, theta) -> np.ndarr
     return shaft.sense * (shaft.phase - cyl.bank_angle) + shaft.speed_ratio * theta + throw.angle
 
 
-def _crankpin_global_angle(shaft: model.Shaft, throw: model.Throw, theta):
-    return shaft.phase + shaft.sense * (shaft.speed_ratio * theta + throw.angle)
-
-
 def solve_cylinder(
     phi,
     *,
@@ -290,7 +286,7 @@ def analyse(
                 tq = tq + cf.torque
                 pin[:, 0] += shaft.sense * cf.tangential
                 pin[:, 1] += cf.radial
-            gamma = _crankpin_global_angle(shaft, t, theta)
+            gamma = model.crank_angle_global(engine, t.name, theta)
             ey = np.stack([np.sin(gamma), np.cos(gamma)], axis=-1)
             ex = np.stack([np.cos(gamma), -np.sin(gamma)], axis=-1)
             w = omega * shaft.speed_ratio

@@ -143,8 +143,9 @@ def piston_motion(
     return PistonMotion(phi, s, v, a, beta, bd, bdd, vg, ag, vb, ab)
 
 
-def _series_coefficients(lam: float) -> dict[int, float]:
-    """Textbook power-series coefficients (to lambda^5) of the acceleration harmonics."""
+def series_coefficients(lam: float) -> dict[int, float]:
+    """Textbook power-series coefficients ``A_k`` (k = 1, 2, 4, 6; to lambda^5) of the
+    acceleration harmonics of the central slider crank (see ``harmonic_coefficients``)."""
     return {
         1: 1.0,
         2: lam + lam**3 / 4.0 + 15.0 * lam**5 / 128.0,
@@ -192,7 +193,7 @@ def harmonic_coefficients(lam: float, orders=(1, 2, 4, 6), *, method: str = "exa
     if any(k < 1 for k in orders):
         raise ValueError(f"harmonic orders must be >= 1, got {orders}")
     if method == "series":
-        ser = _series_coefficients(lam)
+        ser = series_coefficients(lam)
         return {k: ser.get(k, 0.0) for k in orders}
     if method == "leading":
         lead = {1: 1.0, 2: lam, 4: -(lam**3) / 4.0, 6: 9.0 * lam**5 / 128.0}

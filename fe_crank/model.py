@@ -146,6 +146,14 @@ class Engine:
         return next(c for c in self.cylinders if c.name == name)
 
 
+def crank_angle_global(engine: Engine, throw_name: str, theta) -> np.ndarray:
+    """``psi`` of a throw's crankpin at cycle angle(s) ``theta`` (rad): the crank-angle
+    convention of the package, ``psi = phase + sense (speed_ratio theta + throw angle)``."""
+    t = engine.throw(throw_name)
+    sh = engine.shaft(t.shaft)
+    return sh.phase + sh.sense * (sh.speed_ratio * np.asarray(theta, dtype=float) + t.angle)
+
+
 @dataclass(frozen=True)
 class OperatingPoint:
     speed: float  # rad/s, of the reference shaft

@@ -21,16 +21,9 @@ from pathlib import Path
 import pytest
 
 from fe_crank.cli import main
-from fe_crank.pipeline import (
-    CaseResult,
-    CheckOptions,
-    CriterionResult,
-    batch_exit_code,
-    find_loadcases,
-    run_case,
-    run_cases,
-    write_atomic,
-)
+from fe_crank.check import CheckOptions, batch_exit_code, find_loadcases, run_case, run_cases
+from fe_crank.files import write_atomic
+from fe_crank.results import CaseResult, CriterionResult
 from fe_crank.report.junit import junit_xml
 
 DATA = Path(__file__).parent / "data"
@@ -163,7 +156,7 @@ KILL_SCRIPT = textwrap.dedent(
         time.sleep(60)                 # ... but the case is not finished yet
 
     rep.write_case_report = slow
-    from fe_crank.pipeline import run_cases
+    from fe_crank.check import run_cases
     run_cases(sys.argv[2:], sys.argv[1])
     """
 )

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from fe_crank.cli import main
-from fe_crank.pipeline import CheckOptions, run_cases
+from fe_crank.check import CheckOptions, run_cases
 from fe_crank.report.render import image_statistics
 
 pytestmark = pytest.mark.heavy  # two meshes' worth of FE solves and renders

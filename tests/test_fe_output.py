@@ -12,7 +12,7 @@ from skfem import Basis, ElementTetP2
 from fe_crank.fe import build_system, Dirichlet, max_shear, principal, von_mises
 from fe_crank.fe.loads import centrifugal_load
 from fe_crank.fe.stress import averaging_indicator, stress_at_nodes, stress_at_quadrature
-from fe_crank.fe.verification_meshes import annulus_sector, simple_throw
+from verification_meshes import annulus_sector, simple_throw
 from fe_crank.fe.vtu import write_fields
 
 E, NU = 210e9, 0.3
@@ -85,7 +85,7 @@ def test_scf_mode_against_ur_m53_empirical():
     to forged webs); they are reported, not asserted against the fit.
     """
     from fe_crank.assess.m53 import M53Geometry
-    from fe_crank.fe.scf import compute_scf
+    from fe_crank.assess.scf import compute_scf
 
     mesh = simple_throw(fillet=0.003, size=0.008)
     geo = M53Geometry(pin_diameter=0.045, journal_diameter=0.05, crank_radius=0.045, web_thickness=0.02,

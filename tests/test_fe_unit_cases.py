@@ -11,7 +11,7 @@ from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
 from fe_crank.fe.solvers import factorise
-from fe_crank.fe.verification_meshes import simple_throw
+from verification_meshes import simple_throw
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,7 @@ from fe_crank.fe import Coupling, Dirichlet, build_system
 from fe_crank.fe.assembly import assemble_surface_load
 from fe_crank.fe.loads import centrifugal_load
 from fe_crank.fe.stress import stress_at_nodes
-from fe_crank.fe.verification_meshes import annulus_sector, box_beam, round_bar
+from verification_meshes import annulus_sector, box_beam, round_bar
 
 E, NU, RHO = 210e9, 0.3, 7850.0
 ALL6 = ("ux", "uy", "uz", "rx", "ry", "rz")

@@ -16,7 +16,7 @@ from skfem import Basis, ElementTetP2
 
 from fe_crank.fe.loads import pin_centre, pin_pressure_load, pin_surface
 from fe_crank.fe.pin_directions import pin_cases, unit_force
-from fe_crank.fe.verification_meshes import simple_throw
+from verification_meshes import simple_throw
 
 
 @pytest.fixture(scope="module")

@@ -24,7 +24,7 @@ from fe_crank.assess.stress import von_mises as vm_nodes
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.stress import (averaging_indicator, element_nodal_stress, elements_of_nodes,
                                 stress_at_nodes, stress_at_quadrature, stress_at_selected_nodes, von_mises)
-from fe_crank.fe.verification_meshes import simple_throw
+from verification_meshes import simple_throw
 
 REL = 1e-12
 

@@ -12,7 +12,9 @@ import pytest
 from skfem import MeshTet, MeshTet2
 
 from fe_crank.io.loadcase import load_loadcase
-from fe_crank.pipeline import CaseResult, CheckOptions, _criteria_of
+from fe_crank.check import CheckOptions
+from fe_crank.check.stages import _criteria_of
+from fe_crank.results import CaseResult
 from fe_crank.report import write_case_report
 from fe_crank.report.render import image_statistics
 

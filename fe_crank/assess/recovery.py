@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from fe_crank.assess.stress import von_mises
+from fe_crank.fe.stress import stress_at_quadrature, stress_at_selected_nodes
 
 #: ratios above this are reported
 RATIO_LIMIT = 1.25
@@ -26,8 +27,6 @@ def recovery_ratios(units, groups: dict[str, np.ndarray], cases=("pin_y", "torqu
     groups' nodes (``stress_at_selected_nodes``, equal to the whole-mesh average there) and
     the quadrature-point stress of the elements touching each group's facets.
     """
-    from fe_crank.fe.stress import stress_at_quadrature, stress_at_selected_nodes
-
     mesh = units.mesh
     basis = units.system.basis
     mat = units.material

@@ -9,16 +9,19 @@ from __future__ import annotations
 
 import numpy as np
 
+from fe_crank.fe.stress import von_mises as _von_mises
+
 COMPONENTS = ("xx", "yy", "zz", "xy", "yz", "xz")
 
 
 def von_mises(s: np.ndarray) -> np.ndarray:
-    """sigma_v = sqrt(((s11-s22)^2 + (s22-s33)^2 + (s33-s11)^2)/2 + 3 (s12^2 + s23^2 + s13^2)).
+    """von Mises stress of ``s`` in this module's layout ``(..., 6, n)``.
 
-    Source: von Mises (1913); any strength-of-materials text, e.g. Shigley eq. 5-13.
+    The formula (von Mises 1913; e.g. Shigley eq. 5-13) is implemented once, in
+    ``fe_crank.fe.stress.von_mises`` (components on axis 0); this moves the component
+    axis there.
     """
-    xx, yy, zz, xy, yz, xz = (s[..., i, :] for i in range(6))
-    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2) + 3.0 * (xy**2 + yz**2 + xz**2))
+    return _von_mises(np.moveaxis(s, -2, 0))
 
 
 def to_matrix(s: np.ndarray) -> np.ndarray:

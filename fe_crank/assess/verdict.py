@@ -4,23 +4,10 @@ maximum; positive passes, and the case passes when every criterion does."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
+from fe_crank.results import CriterionResult
 
-@dataclass(frozen=True)
-class CriterionResult:
-    """One criterion's verdict (the fields the pipeline and the report read)."""
-
-    name: str  # the criterion's key, e.g. "criteria.min_fatigue_safety"
-    quantity: str
-    sense: str  # "min" | "max"
-    value: float
-    limit: float
-    margin: float
-    passed: bool
-    unit: str = ""
-    location: str = ""
-    description: str = ""
+__all__ = ["CriterionResult", "judge"]
 
 
 def judge(name: str, quantity: str, sense: str, value: float, limit: float, *, unit: str = "",
@@ -31,5 +18,6 @@ def judge(name: str, quantity: str, sense: str, value: float, limit: float, *, u
     else:
         passed = value <= limit
         margin = 1.0 - value / limit if limit > 0 else (math.inf if value <= 0 else -math.inf)
-    return CriterionResult(name, quantity, sense, float(value), float(limit), float(margin), bool(passed), unit,
-                           location, description)
+    return CriterionResult(name=name, quantity=quantity, sense=sense, value=float(value), limit=float(limit),
+                           margin=float(margin), passed=bool(passed), unit=unit, location=location,
+                           description=description)

@@ -30,8 +30,9 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from fe_crank.balance import harmonics
-from fe_crank.balance.hodograph import Hodograph, hodograph
 from fe_crank.balance.mechanism import direction, piston_positions, reciprocating_mass, rotating_mass
+from fe_crank.balance.nordberg import yoke_terms
+from fe_crank.balance.terms import OrderTerm, _key, point_term, rotating_force, zero_term
 from fe_crank.errors import InputError
 from fe_crank.model import Engine
 
@@ -39,49 +40,8 @@ from fe_crank.model import Engine
 REPORTED_ORDERS = (1.0, 2.0, 4.0, 6.0)
 SOURCES = ("rotating", "reciprocating", "yoke", "counterweights", "balance_shafts")
 
-
-def _key(order: float) -> float:
-    return round(float(order), 9)
-
-
-@dataclass(frozen=True)
-class OrderTerm:
-    """One source's resultant at one order (coefficients in N and N m)."""
-
-    source: str
-    order: float
-    force: np.ndarray  # (2, 2): rows Fx, Fy; columns cos, sin
-    moment: np.ndarray  # (3, 2): rows Mx, My, Mz; columns cos, sin
-
-    def evaluate(self, theta) -> tuple[np.ndarray, np.ndarray]:
-        """Force (n, 2) and moment (n, 3) at cycle angles ``theta``."""
-        th = np.atleast_1d(np.asarray(theta, dtype=float))
-        cs = np.stack([np.cos(self.order * th), np.sin(self.order * th)])
-        return (self.force @ cs).T, (self.moment @ cs).T
-
-    def force_hodograph(self) -> Hodograph:
-        (a, b), (c, d) = self.force
-        return hodograph(a, b, c, d)
-
-    def moment_hodograph(self) -> Hodograph:
-        """Ellipse of the pitch/yaw couple vector ``(Mx, My)``."""
-        (a, b), (c, d) = self.moment[:2]
-        return hodograph(a, b, c, d)
-
-    def __add__(self, other: "OrderTerm") -> "OrderTerm":
-        return OrderTerm(self.source, self.order, self.force + other.force, self.moment + other.moment)
-
-
-def zero_term(source: str, order: float) -> OrderTerm:
-    return OrderTerm(source, float(order), np.zeros((2, 2)), np.zeros((3, 2)))
-
-
-def point_term(source: str, order: float, force: np.ndarray, point: tuple[float, float, float]) -> OrderTerm:
-    """Term of a force with coefficients ``force`` (2, 2) acting at ``point``; ``M = r x F``."""
-    rx, ry, rz = point
-    fx, fy = force
-    moment = np.stack([-rz * fy, rz * fx, rx * fy - ry * fx])
-    return OrderTerm(source, float(order), np.asarray(force, float), moment)
+__all__ = ["REPORTED_ORDERS", "SOURCES", "FreeForces", "OrderTerm", "free_forces", "point_term",
+           "reciprocating_terms", "rotating_force", "rotating_terms", "zero_term"]
 
 
 @dataclass(frozen=True)
@@ -140,16 +100,6 @@ class FreeForces:
     def with_terms(self, extra) -> "FreeForces":
         """A copy with more terms (counterweights, balance shafts) added."""
         return replace(self, terms=self.terms + tuple(extra))
-
-
-def rotating_force(magnitude: float, psi0: float, sense: int) -> np.ndarray:
-    """Coefficients (2, 2) of ``magnitude u(psi0 + sense k theta)``.
-
-    ``u(psi) = (sin psi, cos psi)``: ``Fx = sin psi0 cos + s cos psi0 sin``,
-    ``Fy = cos psi0 cos - s sin psi0 sin`` (times ``magnitude``).
-    """
-    s = float(sense)
-    return magnitude * np.array([[np.sin(psi0), s * np.cos(psi0)], [np.cos(psi0), -s * np.sin(psi0)]])
 
 
 def _check_engine(engine: Engine) -> None:
@@ -267,8 +217,6 @@ def free_forces(engine: Engine, speed: float, *, reference_z: float = 0.0, kmax:
     terms = rotating_terms(engine, speed, reference_z) + reciprocating_terms(engine, speed, reference_z, kmax)
     yoke = getattr(engine, "yoke", None)
     if yoke is not None:
-        from fe_crank.balance.nordberg import yoke_terms
-
         terms += yoke_terms(engine, yoke, speed, reference_z)
     fscale, lscale = _scales(engine, speed)
     lscale = max(lscale, abs(reference_z))

@@ -9,7 +9,8 @@ Internal-Combustion Engine in Theory and Practice* vol. 2, ch. 8; Heywood, App. 
     A4 = -(lam^3/4 + 3 lam^5/16)
     A6 = 9 lam^5/128
 
-(``lam = r / l``), truncated after ``lam^5``.  For the balance sums fe-crank does not use
+(``lam = r / l``), truncated after ``lam^5`` (``series_coefficients``, implemented in
+``fe_crank.kinematics``).  For the balance sums fe-crank does not use
 the truncated series: ``spectral_coefficients`` takes the exact piston position of any
 mechanism (offset pins, articulated rods) at ``N`` equally spaced crank angles, and its
 discrete Fourier transform gives the coefficients of ``x(tau)``; twice differentiating
@@ -22,19 +23,12 @@ from __future__ import annotations
 import numpy as np
 
 from fe_crank.errors import InputError
+from fe_crank.kinematics import series_coefficients
+
+__all__ = ["SAMPLES", "acceleration_coefficients", "fourier_coefficients", "sample_angles", "series_coefficients"]
 
 #: samples per shaft revolution for the spectral coefficients (orders up to N/2)
 SAMPLES = 256
-
-
-def series_coefficients(lam: float) -> dict[int, float]:
-    """Closed-form ``A_k`` (k = 1, 2, 4, 6) of the central slider crank, to ``lam^5``."""
-    return {
-        1: 1.0,
-        2: lam + lam**3 / 4.0 + 15.0 * lam**5 / 128.0,
-        4: -(lam**3 / 4.0 + 3.0 * lam**5 / 16.0),
-        6: 9.0 * lam**5 / 128.0,
-    }
 
 
 def sample_angles(n: int = SAMPLES) -> np.ndarray:

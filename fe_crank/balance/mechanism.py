@@ -24,20 +24,15 @@ from __future__ import annotations
 import numpy as np
 
 from fe_crank.errors import InputError
-from fe_crank.model import Cylinder, Engine
+from fe_crank.model import Cylinder, Engine, crank_angle_global
+
+__all__ = ["big_end", "crank_angle_global", "direction", "piston_positions", "reciprocating_mass", "rotating_mass"]
 
 
 def direction(angle) -> np.ndarray:
     """``u(angle) = (sin, cos)`` stacked on the last axis."""
     angle = np.asarray(angle, dtype=float)
     return np.stack([np.sin(angle), np.cos(angle)], axis=-1)
-
-
-def crank_angle_global(engine: Engine, throw_name: str, theta) -> np.ndarray:
-    """``psi`` of a throw's crankpin at cycle angle(s) ``theta`` (rad)."""
-    t = engine.throw(throw_name)
-    sh = engine.shaft(t.shaft)
-    return sh.phase + sh.sense * (sh.speed_ratio * np.asarray(theta, dtype=float) + t.angle)
 
 
 def _slider(rel: np.ndarray, cyl: Cylinder, sense: int) -> np.ndarray:

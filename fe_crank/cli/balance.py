@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import tempfile
 from pathlib import Path
 
 from fe_crank.errors import InputError
+from fe_crank.files import write_atomic
 from fe_crank.io.base import read_toml
+from fe_crank.report.stage_plots import plot_hodographs
 
 
 def add_arguments(p) -> None:
@@ -70,23 +70,6 @@ def load_inputs(args):
     return engine, speed, _settings_from_args(args, args.file)
 
 
-def write_atomic(path: Path, data: bytes) -> None:
-    """Write through a temporary file in the same folder and rename it into place."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-
-
 def _fmt(x: float) -> str:
     return f"{x:10.4g}"
 
@@ -127,54 +110,6 @@ def format_report(res) -> str:
         if r["source"] == "total":
             lines.append(f"{r['order']:>6g} {_fmt(r['force_max'])} {_fmt(r['moment_max'])}")
     return "\n".join(lines)
-
-
-def plot_hodographs(res, out: Path) -> list[Path]:
-    """One PNG per reported order: force and couple hodographs by source (Agg backend)."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=True)
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    from fe_crank.balance.forces import REPORTED_ORDERS
-
-    th = np.linspace(0.0, 2.0 * np.pi, 361)
-    paths = []
-    for k in REPORTED_ORDERS:
-        fig, axes = plt.subplots(1, 2, figsize=(9, 4.5))
-        drawn = False
-        curves = [(src, res.residual.total(k, (src,)), "-") for src in res.residual.sources]
-        curves.append(("free (before balancing)", res.forces.total(k), "-"))
-        curves.append(("residual", res.residual.total(k), "--"))
-        for src, t, style in curves:
-            if not (t.force.any() or t.moment.any()):
-                continue
-            f, m = t.evaluate(th / k)
-            lw = 1 if src in res.residual.sources else 2
-            axes[0].plot(f[:, 0] / 1e3, f[:, 1] / 1e3, style, label=src, lw=lw)
-            axes[1].plot(m[:, 0] / 1e3, m[:, 1] / 1e3, style, label=src, lw=lw)
-            drawn = True
-        if not drawn:
-            plt.close(fig)
-            continue
-        for ax, what, unit in ((axes[0], "force", "kN"), (axes[1], "couple (Mx, My)", "kN m")):
-            ax.set_aspect("equal", adjustable="datalim")
-            ax.axhline(0, color="0.7", lw=0.5)
-            ax.axvline(0, color="0.7", lw=0.5)
-            ax.set_xlabel(f"x [{unit}]")
-            ax.set_ylabel(f"y [{unit}]")
-            ax.set_title(f"order {k:g} {what}")
-            ax.legend(fontsize=7)
-        fig.suptitle(res.engine, fontsize=9)
-        fig.tight_layout()
-        path = out / f"hodograph_order{k:g}.png"
-        tmp = out / f".hodograph_order{k:g}.tmp.png"
-        fig.savefig(tmp, dpi=100)
-        plt.close(fig)
-        os.replace(tmp, path)
-        paths.append(path)
-    return paths
 
 
 def run(args) -> int:

@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 
 from fe_crank.errors import InputError
+from fe_crank.mesh.options import DEFAULT_CACHE_DIR, PRESETS
 
 
 def add_arguments(p) -> None:
@@ -23,17 +24,17 @@ def add_arguments(p) -> None:
                    help="run cases in N local processes (default 1: in this process)")
     p.add_argument("--dask-scheduler", metavar="ADDRESS",
                    help="run the cases on an existing Dask distributed cluster, e.g. tcp://10.0.0.5:8786")
-    p.add_argument("--mesh-size", choices=("test", "coarse", "medium", "fine"), default=None,
+    p.add_argument("--mesh-size", choices=tuple(PRESETS), default=None,
                    help="mesh preset (default coarse: fillet elements <= r/4, IACS UR M53 guidance; "
                         "test is for quick trials only)")
-    p.add_argument("--cache-dir", default=".cache/meshes", metavar="DIR",
-                   help="mesh cache (default .cache/meshes)")
+    p.add_argument("--cache-dir", default=str(DEFAULT_CACHE_DIR), metavar="DIR",
+                   help=f"mesh cache (default {DEFAULT_CACHE_DIR})")
     p.add_argument("--no-render", action="store_true", help="skip the pyvista pictures (faster)")
     p.add_argument("--no-vtu", action="store_true", help="do not write the .vtu result fields")
 
 
 def _options(args):
-    from fe_crank.pipeline import CheckOptions
+    from fe_crank.check import CheckOptions
 
     return CheckOptions(mesh_size=args.mesh_size, cache_dir=str(args.cache_dir), render=not args.no_render,
                         write_vtu=not args.no_vtu)
@@ -78,7 +79,7 @@ def _print_rich(results, console) -> None:
 
 
 def run(args) -> int:
-    from fe_crank.pipeline import batch_exit_code, find_loadcases, run_cases
+    from fe_crank.check import batch_exit_code, find_loadcases, run_cases
 
     if args.jobs < 1:
         raise InputError("must be at least 1", key="--jobs")
@@ -120,7 +121,7 @@ def _run_with_progress(paths, args, options):
     in a serial run, the stage each case is in."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
-    from fe_crank.pipeline import run_cases
+    from fe_crank.check import run_cases
 
     with Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
                   TimeElapsedColumn(), transient=True) as progress:

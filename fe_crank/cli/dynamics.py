@@ -11,13 +11,13 @@ Prints a summary table on stdout.
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from fe_crank.errors import InputError
+from fe_crank.files import write_atomic
+from fe_crank.report.stage_plots import dynamics_plots
 
 PLOTS = ("piston_motion.png", "forces.png", "torque.png", "crankpin_polar.png")
 
@@ -29,19 +29,6 @@ def add_arguments(p) -> None:
     p.add_argument("--speed-fluctuation", type=float, default=0.01,
                    help="target coefficient of speed fluctuation for the flywheel (default 0.01)")
     p.add_argument("--no-plots", action="store_true", help="write the JSON only")
-
-
-def _atomic_write(path: Path, write) -> None:
-    """Call ``write(fh_path)`` on a temporary file beside ``path``, then rename it."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
-    os.close(fd)
-    try:
-        write(Path(tmp))
-        os.chmod(tmp, 0o644)  # mkstemp makes 0600; outputs are ordinary files
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def _round(a, digits=6):
@@ -102,69 +89,6 @@ def result_to_dict(res, loadcase) -> dict:
     }
 
 
-def _plots(res, out: Path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    deg = np.degrees(res.theta)
-
-    def save(fig, name):
-        _atomic_write(out / name, lambda p: fig.savefig(p, dpi=110, format="png"))
-        plt.close(fig)
-
-    fig, ax = plt.subplots(3, 1, sharex=True, figsize=(8, 7))
-    for name, c in res.cylinders.items():
-        ax[0].plot(deg, c.motion.s * 1e3, label=name)
-        ax[1].plot(deg, c.motion.v)
-        ax[2].plot(deg, c.motion.a)
-    ax[0].set_ylabel("s [mm]")
-    ax[1].set_ylabel("v [m/s]")
-    ax[2].set_ylabel("a [m/s²]")
-    ax[2].set_xlabel("cycle angle θ [deg]")
-    ax[0].legend(title="cylinder", fontsize=7)
-    ax[0].set_title(f"Piston motion — {res.engine}")
-    for a in ax:
-        a.grid(alpha=0.3)
-    save(fig, "piston_motion.png")
-
-    fig, ax = plt.subplots(figsize=(8, 5))
-    for name, c in res.cylinders.items():
-        ax.plot(deg, c.gas / 1e3, label=f"{name}: gas")
-        ax.plot(deg, c.inertia / 1e3, "--", label=f"{name}: reciprocating inertia")
-        ax.plot(deg, c.tangential / 1e3, label=f"{name}: tangential")
-        ax.plot(deg, c.radial / 1e3, ":", label=f"{name}: radial")
-    ax.set_xlabel("cycle angle θ [deg]")
-    ax.set_ylabel("force [kN]")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
-    ax.set_title("Forces per cylinder")
-    save(fig, "forces.png")
-
-    fig, ax = plt.subplots(figsize=(8, 4.5))
-    ax.plot(deg, res.torque, label="total")
-    ax.axhline(res.mean_torque, color="k", lw=0.8, label=f"mean {res.mean_torque:.1f} N·m")
-    ax.set_xlabel("cycle angle θ [deg]")
-    ax.set_ylabel("torque [N·m]")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    ax.set_title("Indicated torque")
-    save(fig, "torque.png")
-
-    fig, ax = plt.subplots(figsize=(6, 6))
-    for name, t in res.throws.items():
-        ax.plot(t.pin_force[:, 0] / 1e3, t.pin_force[:, 1] / 1e3, label=f"throw {name}")
-    ax.plot([0], [0], "k+")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("tangential (throw x) [kN]")
-    ax.set_ylabel("radial outward (throw y) [kN]")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    ax.set_title("Crankpin load, polar diagram (throw frame)")
-    save(fig, "crankpin_polar.png")
-
-
 def run(args) -> int:
     from fe_crank.dynamics import analyse
     from fe_crank.io.loadcase import load_loadcase
@@ -182,9 +106,9 @@ def run(args) -> int:
     except OSError as exc:
         raise InputError(f"cannot create output folder: {exc.strerror}", file=str(out)) from None
     data = result_to_dict(res, lc)
-    _atomic_write(out / "dynamics.json", lambda p: p.write_text(json.dumps(data, indent=1), encoding="utf-8"))
+    write_atomic(out / "dynamics.json", json.dumps(data, indent=1))
     if not args.no_plots:
-        _plots(res, out)
+        dynamics_plots(res, out)
 
     s = data["summary"]
     rows = [

@@ -11,11 +11,10 @@ from fe_crank.fe.stress import max_shear, principal, stress_at_nodes, von_mises
 from fe_crank.fe.supports import Coupling, Dirichlet, Foundation
 from fe_crank.fe.system import System, build_system
 from fe_crank.fe.unit_cases import CASES, FeOptions, UnitCase, UnitSolutions, solve_unit_cases
-from fe_crank.fe.scf import ScfResult, compute_scf
 from fe_crank.fe.vtu import write_fields
 
 __all__ = [
-    "CASES", "Coupling", "ScfResult", "compute_scf", "write_fields", "Dirichlet", "FeOptions", "Foundation", "System", "UnitCase", "UnitSolutions",
+    "CASES", "Coupling", "write_fields", "Dirichlet", "FeOptions", "Foundation", "System", "UnitCase", "UnitSolutions",
     "bearing_support", "build_system", "centrifugal", "elasticity", "factorise", "lame_parameters",
     "max_shear", "principal", "solve_unit_cases", "stress_at_nodes", "von_mises",
 ]

@@ -125,8 +125,3 @@ class CrankGeometry:
     def pin_overlap(self) -> float:
         """Radial overlap of crankpin and journal, ``(d_j + d_p)/2 - R`` (m)."""
         return 0.5 * (self.journal_diameter + self.crankpin_diameter) - self.crank_radius
-
-    @property
-    def throw_length(self) -> float:
-        """Axial length of one throw model, end face to end face."""
-        return self.crankpin_length + 2.0 * (self.web_thickness + self.journal_length)

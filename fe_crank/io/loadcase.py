@@ -9,15 +9,14 @@
     speed = "2800 rpm"
     overspeed = "3360 rpm"
 
-Sections handled by later stages are parsed by the functions registered in
-``SECTIONS`` (key -> callable(value, file, key) -> frozen object).  A top-level key
+Sections handled by later stages are parsed by the functions listed in
+``fe_crank.io.sections.SECTIONS`` (key -> callable(value, file, key) -> frozen object).  A top-level key
 that no stage knows is an error.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Callable
 
 from pydantic import Field, model_validator
 
@@ -25,6 +24,7 @@ from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.io.base import Strict, read_toml, validate
 from fe_crank.io.engine import engine_from_reference
+from fe_crank.io.sections import SECTIONS
 from fe_crank.io.units import Speed
 
 
@@ -47,27 +47,8 @@ class LoadCaseHead(Strict):
     schema_version: int = 1
 
 
-SectionParser = Callable[[Any, Path, str], object]
-
-#: section key -> parser.  Stages register their own section here.
-SECTIONS: dict[str, SectionParser] = {}
-
-
-def _register_builtin_sections() -> None:
-    """Import the stage modules that own load-case sections (they add to SECTIONS)."""
-    import importlib
-
-    for mod in ("fe_crank.io.sections",):
-        try:
-            importlib.import_module(mod)
-        except ModuleNotFoundError as exc:  # only the module itself may be missing
-            if exc.name != mod:
-                raise
-
-
 def load_loadcase(path: str | Path) -> model.LoadCase:
     """Read, validate and convert one load-case file.  Raises InputError."""
-    _register_builtin_sections()
     path = Path(path)
     data = read_toml(path)
     if not isinstance(data, dict):  # pragma: no cover - tomllib always returns a dict

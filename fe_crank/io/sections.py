@@ -1,17 +1,28 @@
-"""Registers the load-case sections owned by later stages.
+"""The load-case sections owned by later stages: section key -> parser.
 
 Each stage keeps its own input model in its own module; this file only wires the
-section key to the parser.  Add one line per section.
+section key to the parser (``callable(value, file, key) -> frozen object``).  Add
+one line per section.
 """
 
 from __future__ import annotations
 
-from fe_crank.io.loadcase import SECTIONS
+from typing import Any, Callable
 
-SECTIONS["geometry"] = __import__("fe_crank.io.geometry", fromlist=["_"]).parse_geometry  # geometry stage
-SECTIONS["material"] = __import__("fe_crank.io.material", fromlist=["_"]).parse_material  # assessment stage
-SECTIONS["criteria"] = __import__("fe_crank.io.criteria", fromlist=["_"]).parse_criteria  # assessment stage
-SECTIONS["fe"] = __import__("fe_crank.fe.input", fromlist=["_"]).parse_fe  # FE stage
-SECTIONS["balance"] = __import__("fe_crank.io.balance", fromlist=["_"]).parse_balance  # balance stage
-SECTIONS["mesh"] = __import__("fe_crank.pipeline", fromlist=["_"]).parse_mesh_section  # check stage
-_ = SECTIONS
+from fe_crank.fe.input import parse_fe
+from fe_crank.io.balance import parse_balance
+from fe_crank.io.criteria import parse_criteria
+from fe_crank.io.geometry import parse_geometry
+from fe_crank.io.material import parse_material
+from fe_crank.io.mesh import parse_mesh_section
+
+SectionParser = Callable[[Any, Any, str], object]
+
+SECTIONS: dict[str, SectionParser] = {
+    "geometry": parse_geometry,  # geometry stage
+    "material": parse_material,  # assessment stage
+    "criteria": parse_criteria,  # assessment stage
+    "fe": parse_fe,  # FE stage
+    "balance": parse_balance,  # balance stage
+    "mesh": parse_mesh_section,  # check stage
+}

@@ -12,7 +12,8 @@ import json
 import math
 from pathlib import Path
 
-from fe_crank.pipeline import CaseResult, write_atomic
+from fe_crank.files import write_atomic
+from fe_crank.results import CaseResult
 from fe_crank.report.html import Page, criteria_table, esc, header_html, table, timings_table
 
 

@@ -11,7 +11,8 @@ import html
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from fe_crank.pipeline import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CaseResult, write_atomic
+from fe_crank.files import write_atomic
+from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CaseResult
 
 CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:2em auto;max-width:72em;

@@ -20,7 +20,8 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Sequence
 
-from fe_crank.pipeline import STATUS_ERROR, CaseResult, write_atomic
+from fe_crank.files import write_atomic
+from fe_crank.results import STATUS_ERROR, CaseResult
 
 
 def _criterion_text(c) -> str:

@@ -23,7 +23,7 @@ def _plt():
 
 
 def _save(fig, path: str | Path) -> Path:
-    from fe_crank.pipeline import write_atomic
+    from fe_crank.files import write_atomic
     import io
 
     buf = io.BytesIO()

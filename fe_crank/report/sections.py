@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from fe_crank.report.html import Page, esc, table
+from fe_crank.report.stage_plots import dynamics_plots, plot_hodographs
 
 
 def _mpa(x) -> str:
@@ -27,13 +28,11 @@ def _num(x, fmt="{:.3g}") -> str:
 
 def dynamics_section(folder: Path, so: dict, options) -> list[str]:
     """Piston motion, forces per cylinder, torque and the crankpin polar diagram
-    (drawn by ``fe_crank.cli.dynamics``), with the cycle's key numbers."""
+    (drawn by ``fe_crank.report.stage_plots``, as for ``fe-crank dynamics``), with the cycle's key numbers."""
     res = so.get("dynamics")
     if res is None:
         return []
-    from fe_crank.cli.dynamics import _plots
-
-    _plots(res, Path(folder))
+    dynamics_plots(res, Path(folder))
     rows = [
         ["speed", f"{res.speed * 30 / math.pi:.0f} rpm"],
         ["mean indicated torque", f"{res.mean_torque:.1f} N m"],
@@ -61,7 +60,6 @@ def balance_section(folder: Path, so: dict, options) -> list[str]:
     if res is None:
         return []
     from fe_crank.balance.analysis import forces_table
-    from fe_crank.cli.balance import plot_hodographs
 
     out = [f"<p>Free forces and couples at {res.speed * 30 / math.pi:.0f} rpm, by source and order "
            "(amplitudes of the hodograph ellipse: major / minor semi-axis).</p>"]

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from fe_crank.assess import m53
 from fe_crank.errors import InputError
 from fe_crank.fe.loads import pin_pressure_load
 from fe_crank.fe.stress import averaging_indicator, max_shear, principal, stress_at_nodes
@@ -147,8 +148,6 @@ def compute_scf(throw_mesh, material, geometry, *, solver: str = "auto", pin_fil
 
 def _empirical(geometry):
     """UR M53 empirical SCFs for the same geometry (``fe_crank.assess.m53``), None out of range."""
-    from fe_crank.assess import m53
-
     rel_p, rel_j = geometry.related("pin"), geometry.related("journal")
     bad_p, bad_j = tuple(m53.out_of_range(rel_p)), tuple(m53.out_of_range(rel_j))
     emp = {"alpha_B": None if bad_p else m53.alpha_b(rel_p), "alpha_T": None if bad_p else m53.alpha_t(rel_p),

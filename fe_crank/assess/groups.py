@@ -1,0 +1,57 @@
+"""The node groups the assessment evaluates (fillets, oil bore, counterweights and their
+junctions with the webs) and the unit-case stresses at their nodes."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fe_crank.assess.superpose import UnitStresses, unit_nodal_stress
+from fe_crank.errors import InputError
+from fe_crank.fe.pin_directions import pin_direction
+
+#: boundary groups assessed at their nodes; subdomains assessed with all their nodes
+ASSESSED_BOUNDARIES = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2", "oil_bore")
+COUNTERWEIGHTS = ("counterweight_1", "counterweight_2")
+
+
+def _element_nodes(units, elements) -> np.ndarray:
+    return np.unique(np.asarray(units.system.basis.element_dofs)[:, elements])
+
+
+def assessed_groups(units) -> dict[str, np.ndarray]:
+    """Mesh node numbers of every assessed group present in the mesh: the fillet and
+    oil-bore boundaries (all P2 nodes of their facets), each counterweight subdomain and
+    its junction with the web (nodes shared by the counterweight's and the web's
+    elements)."""
+    mesh, basis = units.mesh, units.system.basis
+    groups = {}
+    for name in ASSESSED_BOUNDARIES:
+        if name in (mesh.boundaries or {}):
+            groups[name] = np.unique(basis.get_dofs(facets=mesh.boundaries[name]).all())
+    subs = mesh.subdomains or {}
+    for i, cw in enumerate(COUNTERWEIGHTS, start=1):
+        if cw in subs:
+            cw_nodes = _element_nodes(units, subs[cw])
+            groups[cw] = cw_nodes
+            web = f"web_{i}"
+            if web in subs:
+                junction = np.intersect1d(cw_nodes, _element_nodes(units, subs[web]))
+                if junction.size:
+                    groups[f"junction_{i}"] = junction
+    return groups
+
+
+def unit_stresses(units, groups: dict[str, np.ndarray] | None = None) -> UnitStresses:
+    """Nodal stresses of every solved unit case at the assessed nodes (FE stage's
+    ``UnitSolutions``).  Stress recovery is linear in u, so these are exact unit fields."""
+    groups = assessed_groups(units) if groups is None else groups
+    if not groups:
+        raise InputError("the mesh has none of the assessed groups "
+                         f"({', '.join(ASSESSED_BOUNDARIES + COUNTERWEIGHTS)})", key="geometry")
+    ids = np.unique(np.concatenate(list(groups.values())))
+    local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
+    cases = tuple(c for c in units.cases if c in ("centrifugal", "torque") or pin_direction(c) is not None)
+    stress = unit_nodal_stress(units, cases, ids)   # = stress_at_nodes(u_c)[:, ids], assessed elements only
+    mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
+    return UnitStresses(stress=stress, points=np.asarray(units.points)[:, ids], groups=local, node_ids=ids,
+                        cases=cases, torque_mz=mz)

@@ -1,0 +1,70 @@
+"""``assess_case``: the assessment of one load case, every throw, its criteria."""
+
+from __future__ import annotations
+
+from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
+from fe_crank.assess.case import Assessment, assess_throw, evaluate_criteria
+from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
+from fe_crank.assess.recovery import recovery_notes, recovery_ratios
+from fe_crank.errors import InputError
+
+
+def _hook(obj, name, *args):
+    f = getattr(obj, name, None)
+    return f(*args) if callable(f) else None
+
+
+def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> Assessment:
+    """Assess one load case.
+
+    ``throw_meshes`` and ``unit_solutions`` are dicts keyed alike (the pipeline's
+    ``{"throw": ...}``); each key names a throw of the engine, or, when the key is not a
+    throw name, the mesh stands for every throw and the most loaded throw's history is
+    used for each (all throws are assessed on that mesh).  UR M53 dimensions and the
+    counterweights' m r and bolts come from the ``CrankGeometry`` (``adapters.py``) and
+    the balance stage's ``BalanceResult.design``; a geometry object may instead offer
+    ``m53_geometry(throw) -> M53Geometry`` and ``counterweights(throw) ->
+    tuple[CounterweightData]``.
+    """
+    lc = loadcase
+    material = lc.material
+    if material is None:
+        raise InputError("the assessment needs a [material] section", file=lc.source_file, key="material")
+    criteria = lc.criteria
+    if criteria is None or not criteria.limits:
+        raise InputError("the assessment needs a [criteria] section with at least one limit",
+                         file=lc.source_file, key="criteria")
+    omega, overspeed = lc.operating.speed, lc.operating.overspeed
+    notes = [
+        "stresses: linear elastic FE, nodal averages; histories by unit-load superposition (exact)",
+        "overspeed: centrifugal unit case alone, scaled by omega_os^2",
+        "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration not included",
+    ]
+    throws = []
+    for key, units in unit_solutions.items():
+        unit = unit_stresses(units)
+        boundary_groups = {g: units_nodes for g, units_nodes in assessed_groups(units).items()
+                           if g in ASSESSED_BOUNDARIES}
+        notes.extend(f"mesh {key}: {n}" for n in recovery_notes(recovery_ratios(units, boundary_groups)))
+        names = [key] if key in dynamics.throws else list(dynamics.throws)
+        for tname in names:
+            tl = dynamics.throws[tname]
+            throw = lc.engine.throw(tname)
+            sense = lc.engine.shaft(throw.shaft).sense
+            m53g = _hook(lc.geometry, "m53_geometry", tname)
+            if m53g is None:
+                m53g = m53_geometry_of(lc.geometry)
+            cws = _hook(lc.geometry, "counterweights", tname)
+            if cws is None:
+                gthrow = getattr(throw_meshes.get(key), "throw", None)
+                cws = counterweights_of(lc.geometry, gthrow, throw.axial_position, throw.shaft, balance)
+            throws.append(assess_throw(
+                tname, unit, dynamics.theta, tl.pin_force, tl.torque_front, omega=omega, sense=sense,
+                overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,
+                m53_additional=criteria.m53_additional_bending, counterweights=tuple(cws),
+                torque_rear=tl.torque_rear,
+            ))
+            if m53g is None:
+                notes.append(f"throw {tname}: no UR M53 dimensions from the geometry; M53 route not run")
+    verdicts = evaluate_criteria(criteria, tuple(throws), file=lc.source_file, overspeed=overspeed)
+    return Assessment(lc.name, lc.source_file, omega, overspeed, material, tuple(throws), verdicts, tuple(notes))

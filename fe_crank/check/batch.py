@@ -1,0 +1,124 @@
+"""Batches of load cases: in this process, in local processes or on Dask.
+
+``run_cases(paths, out_dir, options, jobs=..., scheduler=...)`` runs many cases in
+this process, in local processes (``concurrent.futures`` with the ``spawn`` start
+method) or on an existing Dask distributed cluster; the results are the same
+whichever way they run (they are computed by the same ``run_case``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import time
+from pathlib import Path
+from typing import Callable, Sequence
+
+from fe_crank.check.case import run_case
+from fe_crank.check.discovery import unique_slugs
+from fe_crank.check.options import CheckOptions
+from fe_crank.check.publish import clean_stale_partials
+from fe_crank.errors import InputError
+from fe_crank.results import STATUS_ERROR, CaseResult
+
+
+def _run_case_job(path: str, out_dir: str, options: CheckOptions, slug: str) -> CaseResult:
+    """Top-level (picklable) job for process pools and Dask workers."""
+    return run_case(path, out_dir, options, slug=slug)
+
+
+def run_cases(
+    paths: Sequence[str | Path],
+    out_dir: str | Path,
+    options: CheckOptions | None = None,
+    *,
+    jobs: int = 1,
+    scheduler: str | object | None = None,
+    on_result: Callable[[CaseResult], None] | None = None,
+    on_stage: Callable[[str, str], None] | None = None,
+) -> list[CaseResult]:
+    """Run a batch; results in the order of ``paths``.
+
+    ``jobs == 1`` and no scheduler: in this process (``on_stage`` reports each stage
+    as it starts).  ``jobs > 1``: a ``ProcessPoolExecutor`` with the ``spawn`` start
+    method (safe with gmsh, VTK and threaded BLAS).  ``scheduler``: the address of
+    a running Dask distributed scheduler (or a ``distributed.Client``); each case is
+    one task.  ``on_result`` is called in this process as each case finishes.
+    """
+    options = options or CheckOptions()
+    paths = [Path(p) for p in paths]
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    clean_stale_partials(out_dir)
+    slugs = unique_slugs(paths)
+    results: list[CaseResult | None] = [None] * len(paths)
+
+    def done(i: int, r: CaseResult) -> None:
+        results[i] = r
+        if on_result is not None:
+            on_result(r)
+
+    if scheduler is not None:
+        _run_dask(paths, slugs, out_dir, options, scheduler, done)
+    elif jobs > 1 and len(paths) > 1:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+
+        ctx = multiprocessing.get_context("spawn")
+        with ProcessPoolExecutor(max_workers=min(jobs, len(paths)), mp_context=ctx) as pool:
+            futs = {
+                pool.submit(_run_case_job, str(p), str(out_dir.resolve()), options, s): i
+                for i, (p, s) in enumerate(zip(paths, slugs))
+            }
+            for fut in as_completed(futs):
+                i = futs[fut]
+                done(i, _result_or_crash(fut, paths[i]))
+    else:
+        for i, (p, s) in enumerate(zip(paths, slugs)):
+            done(i, run_case(p, out_dir, options, slug=s, on_stage=on_stage))
+    return [r for r in results if r is not None]
+
+
+def _result_or_crash(fut, path: Path) -> CaseResult:
+    """A worker that died (killed, out of memory) is an error result for its case."""
+    try:
+        return fut.result()
+    except Exception as exc:
+        return CaseResult(
+            name=path.stem, source=str(path), status=STATUS_ERROR,
+            message=f"the worker running this case stopped: {type(exc).__name__}: {exc}",
+            error_stage="worker",
+        )
+
+
+def _run_dask(paths, slugs, out_dir: Path, options, scheduler, done) -> None:
+    try:
+        from distributed import Client, as_completed
+    except ModuleNotFoundError:  # pragma: no cover - distributed is a dependency
+        raise InputError("--dask-scheduler needs the 'distributed' package") from None
+    own = not hasattr(scheduler, "submit")
+    try:
+        client = Client(scheduler, timeout="20s") if own else scheduler
+    except OSError as exc:
+        raise InputError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") from None
+    try:
+        futs = {}
+        for i, (p, s) in enumerate(zip(paths, slugs)):
+            f = client.submit(
+                _run_case_job, str(p.resolve()), str(out_dir.resolve()), options, s,
+                key=f"fe-crank-{s}-{hashlib.sha1(str(p.resolve()).encode()).hexdigest()[:8]}-{time.time_ns()}",
+                pure=False,
+            )
+            futs[f] = i
+        for fut in as_completed(list(futs)):
+            i = futs[fut]
+            done(i, _result_or_crash(fut, paths[i]))
+    finally:
+        if own:
+            client.close()
+
+
+def batch_exit_code(results: Sequence[CaseResult]) -> int:
+    """2 if any case errored, else 1 if any failed, else 0 (an empty batch is 2)."""
+    if not results:
+        return 2
+    return max(r.exit_code for r in results)

@@ -1,0 +1,146 @@
+"""The computational stages of one load case, in the order they run.
+
+Each stage is a plain call into its package: dynamics -> balance -> mesh (cached)
+-> FE unit cases -> cycle assessment.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+from fe_crank.assess import assess_case
+from fe_crank.balance.analysis import analyse_balance
+from fe_crank.check.options import CheckOptions
+from fe_crank.dynamics import analyse
+from fe_crank.errors import InputError
+from fe_crank.fe import solve_unit_cases
+from fe_crank.io.loadcase import load_loadcase
+from fe_crank.io.mesh import MeshSection
+from fe_crank.mesh import mesh_throw
+from fe_crank.results import CriterionResult, StageTime
+
+
+@dataclass
+class _Run:
+    """Mutable state of one run (private; the result is frozen)."""
+
+    path: Path
+    timings: list = field(default_factory=list)
+    stage: str = ""
+    on_stage: Callable[[str, str], None] | None = None
+
+    def timed(self, stage: str, fn: Callable, *args, **kwargs):
+        self.stage = stage
+        if self.on_stage is not None:
+            self.on_stage(str(self.path), stage)
+        t0 = time.perf_counter()
+        try:
+            return fn(*args, **kwargs)
+        finally:
+            self.timings.append(StageTime(stage, time.perf_counter() - t0))
+
+
+def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
+    """Run the computational stages, filling ``out`` with each stage's output as it
+    finishes (so that a report of a case that stopped shows what did run)."""
+    lc = out["loadcase"] = run.timed("load", load_loadcase, run.path)
+    out["dynamics"] = run.timed("dynamics", _dynamics_stage, lc)
+    out["balance"] = run.timed("balance", _balance_stage, lc)
+    out["meshes"] = run.timed("mesh", _mesh_stage, lc, options)
+    out["units"] = run.timed("fe", _fe_stage, lc, out["meshes"])
+    out["assessment"] = run.timed("assess", _assess_stage, lc, out)
+    return out
+
+
+def _dynamics_stage(lc):
+    """Forces and torques over the whole cycle at the operating speed."""
+    return analyse(lc.engine, lc.operating)
+
+
+def _assess_stage(lc, out):
+    """Stresses, safety factors and the load case's criteria."""
+    return assess_case(lc, out["dynamics"], out["balance"], out["meshes"], out["units"])
+
+
+def _balance_stage(lc):
+    """Free forces by order, counterweights sized by the ``[balance]`` strategy,
+    balance shafts, residual (``fe_crank.balance.analysis.analyse_balance``)."""
+    return analyse_balance(lc.engine, lc.operating.speed, lc.balance)
+
+
+def throw_keys(lc) -> dict[str, str]:
+    """Which geometry throw to mesh for each key handed to the assessment.
+
+    A geometry with a single throw stands for every throw of the engine (key
+    ``"all throws"``, which ``assess_case`` applies to each throw with its own loads);
+    so do several throws that differ only in name and angle; otherwise the geometry's
+    throw names must be the engine's throw names, so that no throw goes unchecked.
+    """
+    g = lc.geometry
+    names = [t.name for t in g.throws]
+    engine = [t.name for t in lc.engine.throws]
+    if len(names) == 1:
+        return {names[0] if engine == names else "all throws": names[0]}
+    if sorted(names) != sorted(engine) and _all_equal(g.throws):
+        # equal throws under other names (e.g. "1", "2" for the engine's "A", "B"):
+        # one model stands for every throw, each assessed with its own loads
+        return {"all throws": names[0]}
+    if sorted(names) != sorted(engine):
+        raise InputError(
+            f"the geometry's throws {names} must be the engine's throws {engine} "
+            "(or give one throw that stands for all)", file=lc.source_file, key="geometry",
+        )
+    return {n: n for n in engine}
+
+
+def _all_equal(throws) -> bool:
+    """Throws that differ only in name and angle give the same throw model."""
+    import dataclasses
+
+    norm = [dataclasses.replace(t, name="", angle=0.0) for t in throws]
+    return all(n == norm[0] for n in norm)
+
+
+def _mesh_stage(lc, options: CheckOptions):
+    """Quadratic tetrahedral mesh of each throw (``fe_crank.mesh.mesh_throw``, cached
+    by the hash of its inputs: equal throws are meshed once)."""
+    if lc.geometry is None:
+        raise InputError(
+            "the stress check needs a crank geometry: add geometry = \"../geometry/<file>.toml\"",
+            file=lc.source_file, key="geometry",
+        )
+    section = lc.extras.get("mesh") or MeshSection()
+    kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or section.size}
+    return {key: mesh_throw(lc.geometry, throw=name, **kwargs) for key, name in throw_keys(lc).items()}
+
+
+def _fe_stage(lc, meshes):
+    """Unit load cases on one assembled stiffness per distinct throw mesh (throws
+    with the same mesh key share one solution)."""
+    if lc.material is None:
+        raise InputError("the stress check needs a [material] section", file=lc.source_file, key="material")
+    solved, out = {}, {}
+    for key, m in meshes.items():
+        mk = getattr(m, "key", None) or id(m)
+        if mk not in solved:
+            solved[mk] = solve_unit_cases(m, lc.material, lc.fe)
+        out[key] = solved[mk]
+    return out
+
+
+def _criteria_of(assessment) -> tuple[CriterionResult, ...]:
+    """The assessment's criteria as ``CriterionResult`` (plain, picklable)."""
+    out = []
+    for c in getattr(assessment, "criteria", ()):
+        out.append(
+            CriterionResult(
+                name=str(c.name), passed=bool(c.passed), value=float(c.value), limit=float(c.limit),
+                margin=float(c.margin), description=str(getattr(c, "description", "")),
+                location=str(getattr(c, "location", "")), unit=str(getattr(c, "unit", "")),
+                quantity=str(getattr(c, "quantity", "")), sense=str(getattr(c, "sense", "")),
+            )
+        )
+    return tuple(out)

@@ -1,0 +1,33 @@
+"""The load case's ``[mesh]`` section."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from fe_crank.errors import InputError
+from fe_crank.mesh.options import PRESETS
+
+MESH_PRESETS = tuple(PRESETS)
+
+
+@dataclass(frozen=True)
+class MeshSection:
+    """The load case's ``[mesh]`` table: ``size`` is a preset of ``fe_crank.mesh``
+    ("coarse", the default, keeps fillet elements within r/4 as IACS UR M53 asks;
+    "test" is for quick trials and demonstrations only)."""
+
+    size: str = "coarse"
+
+
+def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
+    """Section parser registered as ``SECTIONS["mesh"]``: ``[mesh] size = "coarse"``."""
+    if not isinstance(value, dict):
+        raise InputError('must be a table, e.g. [mesh] size = "coarse"', file=str(file), key=key)
+    for k in value:
+        if k != "size":
+            raise InputError("unknown key; the [mesh] table takes only size", file=str(file), key=f"{key}.{k}")
+    size = value.get("size", "coarse")
+    if size not in MESH_PRESETS:
+        raise InputError(f"unknown mesh size {size!r}; pick one of {list(MESH_PRESETS)}", file=str(file),
+                         key=f"{key}.size")
+    return MeshSection(size=size)

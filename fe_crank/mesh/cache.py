@@ -1,0 +1,70 @@
+"""Mesh cache: the key of an entry (SHA-256 of everything that changes the mesh) and
+the entry's files (``mesh.npz``, ``stats.json``)."""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+from pathlib import Path
+
+import numpy as np
+
+from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
+from fe_crank.mesh.options import CACHE_FORMAT, MeshOptions
+from fe_crank.mesh.types import MeshStats
+
+
+def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -> str:
+    """SHA-256 (hex, 20 chars) of everything that changes the mesh."""
+    import gmsh
+
+    from fe_crank import __version__
+
+    geo = dataclasses.asdict(geometry)
+    for k in ("name", "description", "source", "file", "throws"):
+        geo.pop(k, None)
+    th = dataclasses.asdict(throw)
+    th.pop("angle", None)  # the throw frame does not depend on the throw's angle
+    th.pop("name", None)
+    for cw in th["counterweights"]:
+        cw.pop("bolted", None)  # bolt data do not change the solid
+    payload = {
+        "geometry": geo,
+        "throw": th,
+        "options": dataclasses.asdict(options),
+        "fe_crank": __version__,
+        "gmsh": gmsh.__version__,
+        "format": CACHE_FORMAT,
+    }
+    text = json.dumps(payload, sort_keys=True, default=repr)
+    return hashlib.sha256(text.encode()).hexdigest()[:20]
+
+def _save_npz(path: Path, mesh) -> None:
+    arrays = {"doflocs": mesh.doflocs, "t": mesh.t}
+    for k, v in (mesh.boundaries or {}).items():
+        arrays[f"b::{k}"] = v
+    for k, v in (mesh.subdomains or {}).items():
+        arrays[f"s::{k}"] = v
+    with open(path, "wb") as fh:
+        np.savez(fh, **arrays)
+
+
+def _load_npz(path: Path):
+    from skfem import MeshTet2
+
+    with np.load(path) as z:
+        mesh = MeshTet2(z["doflocs"], z["t"])
+        b = {k[3:]: z[k] for k in z.files if k.startswith("b::")}
+        s = {k[3:]: z[k] for k in z.files if k.startswith("s::")}
+    return mesh.with_boundaries(b).with_subdomains(s)
+
+
+def _stats_to_json(s: MeshStats) -> dict:
+    return dataclasses.asdict(s)
+
+
+def _stats_from_json(d: dict) -> MeshStats:
+    d = dict(d)
+    d["from_cache"] = True
+    return MeshStats(**d)

@@ -1,0 +1,68 @@
+"""gmsh size fields: fillet elements of ``r / fillet_divisions`` (IACS UR M53 appendix,
+FE guidance: at most ``r/4``), growing with the distance from the fillets."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.mesh.options import _SAFETY, MeshOptions
+
+
+def _fillet_distance(g: CrankGeometry, name: str) -> str:
+    """gmsh MathEval expression: distance from (x, y, z) to the fillet's torus.
+
+    The rolling-ball fillet of radius ``r_f`` between a cylinder of radius ``r`` and a
+    web face is part of the torus whose spine circle (radius ``r + r_f``, about the
+    cylinder's axis) lies ``r_f - u`` off the web face (``u`` the undercut); distance to the torus =
+    ``| dist(x, spine) - r_f |`` (exact, unlike sampled ``Distance`` fields).
+    """
+    zp = g.crankpin_length / 2
+    zw = zp + g.web_thickness
+    if name.startswith("crankpin_fillet"):
+        rf, a, cy = g.crankpin_fillet, g.crankpin_diameter / 2 + g.crankpin_fillet, g.crank_radius
+        off = rf - g.crankpin_undercut
+        zc = -zp + off if name.endswith("1") else zp - off
+    else:
+        rf, a, cy = g.journal_fillet, g.journal_diameter / 2 + g.journal_fillet, 0.0
+        off = rf - g.journal_undercut
+        zc = -zw - off if name.endswith("1") else zw + off
+    rho = f"Sqrt(x*x + (y - ({cy!r}))*(y - ({cy!r})))"
+    spine = f"Sqrt(({rho} - {a!r})*({rho} - {a!r}) + (z - ({zc!r}))*(z - ({zc!r})))"
+    return f"Fabs({spine} - {rf!r})"
+
+
+def _set_size_fields(gmsh, geometry: CrankGeometry, surfaces: dict[str, list[int]], fillet_radii: dict[str, float], opt: MeshOptions) -> float:
+    size_max = opt.size_max if opt.size_max is not None else geometry.crankpin_diameter / opt.coarse_divisions
+    fields = []
+    for name, r in fillet_radii.items():
+        h = _SAFETY * r / opt.fillet_divisions
+        d = gmsh.model.mesh.field.add("MathEval")
+        gmsh.model.mesh.field.setString(d, "F", _fillet_distance(geometry, name))
+        th = gmsh.model.mesh.field.add("Threshold")
+        gmsh.model.mesh.field.setNumber(th, "InField", d)
+        gmsh.model.mesh.field.setNumber(th, "SizeMin", h)
+        gmsh.model.mesh.field.setNumber(th, "SizeMax", size_max)
+        gmsh.model.mesh.field.setNumber(th, "DistMin", 0.0)
+        gmsh.model.mesh.field.setNumber(th, "DistMax", max(size_max - h, 0.0) / opt.grading)
+        fields.append(th)
+    if "oil_bore" in surfaces and geometry.oil_bore is not None:
+        h = np.pi * geometry.oil_bore.diameter / (2 * opt.bore_divisions)
+        d = gmsh.model.mesh.field.add("Distance")
+        gmsh.model.mesh.field.setNumbers(d, "SurfacesList", surfaces["oil_bore"])
+        th = gmsh.model.mesh.field.add("Threshold")
+        gmsh.model.mesh.field.setNumber(th, "InField", d)
+        gmsh.model.mesh.field.setNumber(th, "SizeMin", min(h, size_max))
+        gmsh.model.mesh.field.setNumber(th, "SizeMax", size_max)
+        gmsh.model.mesh.field.setNumber(th, "DistMin", 0.0)
+        gmsh.model.mesh.field.setNumber(th, "DistMax", max(size_max - h, 0.0) / opt.grading)
+        fields.append(th)
+    if fields:
+        mn = gmsh.model.mesh.field.add("Min")
+        gmsh.model.mesh.field.setNumbers(mn, "FieldsList", fields)
+        gmsh.model.mesh.field.setAsBackgroundMesh(mn)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", size_max)
+    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)  # 12 elements per 2 pi on curved faces
+    return size_max

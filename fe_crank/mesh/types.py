@@ -1,0 +1,36 @@
+"""What ``mesh_throw`` returns: the mesh, its statistics and where its files are."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from fe_crank.mesh.options import MeshOptions
+
+
+@dataclass(frozen=True)
+class MeshStats:
+    nodes: int
+    elements: int
+    p2_dofs: int  # 3 displacement components per node of the quadratic mesh
+    min_quality: float  # gmsh minSICN of the linear tetrahedra (1 ideal, <= 0 inverted)
+    straightened: int  # quadratic elements whose mid-edge nodes were moved to the midpoints (see _straighten_poor)
+    min_jacobian_ratio: float  # min/max of the quadratic map's Jacobian over each element, worst element
+    fillet_max_edge: dict[str, float]  # m, longest triangle edge on each fillet surface
+    fillet_radii: dict[str, float]
+    build_seconds: float
+    from_cache: bool = False
+
+
+@dataclass(frozen=True)
+class ThrowMesh:
+    """A meshed throw: scikit-fem ``MeshTet2`` with named boundaries/subdomains (throw frame)."""
+
+    mesh: object
+    stats: MeshStats
+    fillet_radii: dict[str, float]
+    msh_path: Path
+    vtu_path: Path
+    throw: str
+    key: str
+    options: MeshOptions = field(default_factory=MeshOptions)
