@@ -100,12 +100,29 @@ def unit_loads(units) -> dict[str, np.ndarray]:
         else:
             surf = surf or pin_surface(basis, opt.pin_boundary, opt.pin_centre)
             loads[name] = pin_pressure_load(basis, unit_force(name), half_angle=opt.pin_half_angle, surface=surf)[0]
+    loads = _with_determinate_reactions(units, loads)
     for name, f in loads.items():
         u = units.system.solve(f)
         ref = units.cases[name].displacement
         if np.abs(u - ref).max() > 1e-8 * np.abs(ref).max():
             raise SystemExit(f"benchmark: the rebuilt load of {name} is not the one the FE stage solved")
     return loads
+
+
+def _with_determinate_reactions(units, loads: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """With the statically determinate support model (``fe_crank.fe.determinate``, where
+    present) the FE stage solves each load together with its distributed reactions, held by
+    six point constraints only: CalculiX gets the same self-equilibrated nodal loads."""
+    opt = units.options
+    if getattr(opt, "support", None) != "determinate":
+        return loads
+    from fe_crank.fe.determinate import DeterminateLayout, determinate_support
+
+    j1, j2 = opt.journals
+    layout = DeterminateLayout(journals=(j1, j2), torque_face=opt.reaction_face,
+                               axial=j2 if opt.reaction_face == "end_2" else j1)
+    sup = determinate_support(units.system.basis, layout)
+    return {name: sup.self_equilibrated(f)[0] for name, f in loads.items()}
 
 
 def worker(args) -> int:
