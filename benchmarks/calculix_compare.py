@@ -110,18 +110,12 @@ def unit_loads(units) -> dict[str, np.ndarray]:
 
 
 def _with_determinate_reactions(units, loads: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """With the statically determinate support model (``fe_crank.fe.determinate``, where
-    present) the FE stage solves each load together with its distributed reactions, held by
-    six point constraints only: CalculiX gets the same self-equilibrated nodal loads."""
-    opt = units.options
-    if getattr(opt, "support", None) != "determinate":
+    """With the statically determinate support model the FE stage's ``System.solve`` adds
+    to each load its distributed reactions (``System.determinate``), held by six point
+    constraints only: CalculiX gets the same self-equilibrated nodal loads."""
+    sup = getattr(units.system, "determinate", None)
+    if sup is None:
         return loads
-    from fe_crank.fe.determinate import DeterminateLayout, determinate_support
-
-    j1, j2 = opt.journals
-    layout = DeterminateLayout(journals=(j1, j2), torque_face=opt.reaction_face,
-                               axial=j2 if opt.reaction_face == "end_2" else j1)
-    sup = determinate_support(units.system.basis, layout)
     return {name: sup.self_equilibrated(f)[0] for name, f in loads.items()}
 
 

@@ -156,8 +156,14 @@ def crank_angle_global(engine: Engine, throw_name: str, theta) -> np.ndarray:
 
 @dataclass(frozen=True)
 class OperatingPoint:
+    """``overspeed_gas``: the gas load of the overspeed condition (the assessment
+    recomputes the whole cycle at the overspeed): ``"motored"`` no combustion, the
+    engine's gas pressure table replaced by zero gauge pressure (the table gives no
+    motored curve); ``"as_operating"`` the operating gas pressure table."""
+
     speed: float  # rad/s, of the reference shaft
-    overspeed: float | None = None  # rad/s, for static/centrifugal checks
+    overspeed: float | None = None  # rad/s: the whole cycle (inertia, centrifugal) at this speed
+    overspeed_gas: str = "motored"  # "motored" or "as_operating"
 
 
 @dataclass(frozen=True)

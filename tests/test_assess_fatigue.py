@@ -46,7 +46,8 @@ def _bar_units(n=36):
 
 
 def test_bar_bending_plus_mean_torsion_closed_form():
-    mat = load_material("42CrMo4", surface_factor=0.9, size_factor=0.95)
+    # reliability 0.5: k_e = 1 - 0.08 * 0 = 1 (Shigley table 6-5), so k = k_a k_b
+    mat = load_material("42CrMo4", surface_factor=0.9, size_factor=0.95, reliability=0.5)
     k = 0.9 * 0.95
     theta = np.deg2rad(np.arange(720.0))
     pin = np.column_stack([M_A * np.sin(theta), np.zeros_like(theta)])
@@ -84,7 +85,7 @@ def test_bar_bending_plus_mean_torsion_closed_form():
 
 def test_pure_torsion_gough_pollard_and_goodman():
     """Fully reversed torsion tau_a: GP n = k tau_W / tau_a; vM-Goodman n = k sigma_W / (sqrt3 tau_a)."""
-    mat = load_material("C45")
+    mat = load_material("C45", surface_factor=1.0, size_factor=1.0, reliability=0.5)  # k = 1
     theta = np.deg2rad(np.arange(360.0))
     tq = 500.0 * np.cos(theta)
     t = assess_throw("1", _bar_units(), theta, np.zeros((360, 2)), tq, omega=0.0, overspeed=None,

@@ -52,7 +52,7 @@ def test_library_values_in_si_with_sources():
 
 def test_override_with_units_and_recorded_in_source(tmp_path):
     m = parse_material({"name": "C45", "yield_strength": "0.35 GPa", "surface_factor": 0.9}, tmp_path / "x.toml")
-    assert m.yield_strength == pytest.approx(350e6) and m.fatigue_factor == pytest.approx(0.9)
+    assert m.yield_strength == pytest.approx(350e6) and m.surface_factor == pytest.approx(0.9)
     assert "overridden in x.toml: surface_factor, yield_strength" in m.source
 
 

@@ -36,9 +36,13 @@ def m53_geometry_of(geometry) -> M53Geometry | None:
     y_mid = 0.5 * ((r - 0.5 * d) + 0.5 * dg)  # middle of the overlap (or of the gap)
     rj, rp = g.web.journal_end_radius, g.web.pin_end_radius
     width = 2.0 * (rj + (rp - rj) * min(max(y_mid / r, 0.0), 1.0))
+    bore = getattr(g, "oil_bore", None)
     return M53Geometry(pin_diameter=d, journal_diameter=dg, crank_radius=r, web_thickness=g.web_thickness,
                        web_width=width, pin_fillet_radius=g.crankpin_fillet, journal_fillet_radius=g.journal_fillet,
-                       bearing_to_web=0.5 * (g.journal_length + g.web_thickness))
+                       bearing_to_web=0.5 * (g.journal_length + g.web_thickness),
+                       pin_length=getattr(g, "crankpin_length", 0.0),
+                       oil_bore_diameter=0.0 if bore is None else bore.diameter,
+                       oil_bore_angle=0.0 if bore is None else bore.angle)
 
 
 def stress_area(diameter: float) -> float:

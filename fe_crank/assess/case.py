@@ -7,11 +7,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fe_crank.assess import m53
+from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
 from fe_crank.assess.stress import principal, von_mises
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
-from fe_crank.assess.throw import STATIC_ONLY_PREFIXES, GroupResult, assess_group
+from fe_crank.assess.throw import STATIC_ONLY_PREFIXES, GroupResult, assess_group, section_diameter
 from fe_crank.assess.verdict import CriterionResult, judge
 from fe_crank.errors import InputError
 
@@ -75,15 +75,32 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
                  m53_geometry: m53.M53Geometry | None = None, m53_additional: float = 10e6,
                  fe_scf: dict[str, dict[str, float]] | None = None,
                  counterweights: tuple[CounterweightData, ...] = (),
-                 torque_rear: np.ndarray | None = None) -> ThrowAssessment:
+                 torque_rear: np.ndarray | None = None,
+                 overspeed_loads: tuple[np.ndarray, np.ndarray] | None = None) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
     ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
-    larger alternating part, the one the throw's fillets carry."""
+    larger alternating part, the one the throw's fillets carry.
+
+    ``overspeed_loads`` = (pin force, front torque) of the cycle recomputed at the
+    overspeed (``assess_case`` runs the dynamics at omega_os with the load case's
+    ``overspeed_gas``).  Without it the operating pin force and torque are scaled by
+    (omega_os/omega)^2 whole: exact for the inertia part, an over-estimate of the gas
+    part (which does not grow with speed), so on the safe side."""
     coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense,
                                torque_mz=unit.torque_mz)
+    coeffs_os = None
+    if overspeed is not None:
+        if overspeed_loads is None:
+            scale = (overspeed / omega) ** 2 if omega > 0 else 1.0
+            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float))
+        coeffs_os = load_coefficients(overspeed_loads[0], overspeed_loads[1], overspeed, cases=unit.cases,
+                                      sense=sense, torque_mz=unit.torque_mz)
+    dp = m53_geometry.pin_diameter if m53_geometry is not None else None
+    dj = m53_geometry.journal_diameter if m53_geometry is not None else None
     groups = tuple(
-        assess_group(unit, g, coeffs, np.asarray(theta), material, crank_radius=crank_radius, overspeed=overspeed)
+        assess_group(unit, g, coeffs, np.asarray(theta), material, crank_radius=crank_radius, overspeed=overspeed,
+                     overspeed_coefficients=coeffs_os, diameter=section_diameter(g, dp, dj))
         for g in sorted(unit.groups) if len(unit.groups[g])
     )
     fillets, nominal = (), None
@@ -102,6 +119,9 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
             )
         except ValueError as exc:  # outside the range and no fillet group in the mesh for FE SCFs
             raise InputError(f"throw {name}: {exc}", key="geometry") from None
+        outlet = m53_oil_bore.assess_outlet(m53_geometry, nominal, pin_force, tensile=material.tensile_strength,
+                                            k=material.m53_k)
+        fillets += (outlet,) if outlet is not None else ()
     cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
     return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)))
 
@@ -161,7 +181,7 @@ def evaluate_criteria(criteria, throws: tuple[ThrowAssessment, ...], *, file: st
             got = _pick(throws, lambda g: (getattr(g, attr).value, getattr(g, attr))
                         if g.group.startswith(STATIC_ONLY_PREFIXES) else None, "max")
         elif q == "m53_acceptability":
-            vals = [(f.acceptability, f"throw {t.name}, {f.fillet} fillet ({f.scf_source})")
+            vals = [(f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
                     for t in throws for f in t.m53]
             got = min(vals) if vals else None
         elif q in ("unbalance_error", "bolt_utilisation"):

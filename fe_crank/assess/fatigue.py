@@ -5,13 +5,20 @@ size and treatment factors k = k_surface k_size k_treatment (Marin, Shigley's
 Mechanical Engineering Design, 10th ed., eq. 6-18): sigma_e = k sigma_W,
 tau_e = k tau_W.
 
-1. **Equivalent von Mises + modified Goodman** (Shigley eqs. 6-66, 6-67 and 6-46):
-   the half-range tensor S_a = (max_t S - min_t S) / 2 and the mid-range tensor
-   S_m = (max_t S + min_t S) / 2, taken component by component, give the equivalent
-   amplitude sigma_a' = vM(S_a) and the signed equivalent mean
-   sigma_m' = sign(tr S_m) vM(S_m).  Safety n from 1/n = sigma_a'/sigma_e + sigma_m'/R_m
-   for sigma_m' >= 0 and n = sigma_e / sigma_a' for a compressive mean (no credit taken).
-   For proportional loading the half-range tensor is the exact amplitude tensor.
+1. **Equivalent von Mises + modified Goodman** (Shigley eq. 6-46 on von Mises
+   equivalents, eqs. 6-66/6-67 generalised to a multiaxial history): the amplitude is the
+   radius of the smallest ball in the von Mises norm that contains the stress path
+   S(t), and the mean tensor is its centre -- the minimum circumscribed ball of the
+   deviatoric path of Dang Van (1989) and Papadopoulos et al. (Int. J. Fatigue 19(3),
+   1997, 219-235), sigma_a' = sqrt(3 J2,a).  For proportional loading
+   S(t) = S_0 + lambda(t) A the ball is centred on the mid-range tensor and
+   sigma_a' = vM(A) (lambda_max - lambda_min)/2 exactly, with the signs of the
+   components kept (reversed shear s_xx = +t, s_yy = -t gives sqrt(3) t).  See
+   ``amplitude_mean``.  The signed equivalent mean is sigma_m' = max(vM(S_m), s_1(S_m))
+   when the largest principal mean stress s_1 is tensile (a shear or hydrostatic-tension
+   mean counts against the part) and -vM(S_m) when no principal mean stress is tensile.
+   Safety n from 1/n = sigma_a'/sigma_e + max(sigma_m', 0)/R_m: a compressive mean earns
+   no credit (Shigley 6-46 is not extended into compression).
 2. **Gough-Pollard** for combined bending and torsion (Gough & Pollard, Proc. IMechE
    131, 1935; ellipse quadrant), with Goodman-corrected limits:
    (sigma_a/sigma_e')^2 + (tau_a/tau_e')^2 = 1/n^2,
@@ -25,22 +32,89 @@ from __future__ import annotations
 
 import numpy as np
 
-from fe_crank.assess.stress import cylindrical, von_mises
+from fe_crank.assess.stress import cylindrical, principal, von_mises
 
 
 def half_range(history: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(S_a, S_m): half range and mid range over axis 0 of a history (n_t, ...)."""
+    """(S_a, S_m): half range and mid range over axis 0 of a scalar history (n_t, ...)."""
     hi = history.max(axis=0)
     lo = history.min(axis=0)
     return 0.5 * (hi - lo), 0.5 * (hi + lo)
 
 
+def _radius(history: np.ndarray, centre: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """max_t vM(S(t) - c) per node and the angle index where it is reached."""
+    d = von_mises(history - centre[None])
+    return d.max(axis=0), d.argmax(axis=0)
+
+
+def amplitude_mean(history: np.ndarray, iterations: int = 16, stride: int = 4) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Amplitude, mean tensor and a lower bound of the amplitude of a stress path.
+
+    ``history`` (n_t, 6, n).  The amplitude is the radius R(c) = max_t vM(S(t) - c) of a
+    ball about a centre c that contains the whole path (von Mises norm = sqrt(3 J2) of
+    the deviatoric difference); the minimum over c is the minimum circumscribed ball
+    (MCB) of Dang Van / Papadopoulos.  Every R(c) is an upper bound of the MCB radius,
+    so the value returned is never below it (on the safe side):
+
+    * start: c_0 = the component-wise mid-range tensor.  For proportional loading this is
+      the MCB centre and R(c_0) the exact amplitude (the path is a segment through c_0);
+      for a circle or ellipse centred on the mid-range it is exact as well;
+    * refinement where R(c_0) exceeds the lower bound: Badoiu-Clarkson iterations
+      c_{k+1} = c_k + (S_far - c_k)/(k + 2) (S_far the farthest point of the path;
+      Badoiu & Clarkson, "Smaller core-sets for balls", SODA 2003) on every ``stride``-th
+      sample; the best of the last centres is then measured on the whole path and kept
+      if its radius is smaller than R(c_0).
+
+    The lower bound is half the longest chord found, vM(S(t_1) - S(t_2))/2 with t_1, t_2
+    the farthest point from c_0 and the farthest point from it (any half chord <= MCB
+    radius).  Returns (sigma_a', mean tensor (6, n), lower bound).
+    """
+    lo, hi = history.min(axis=0), history.max(axis=0)
+    c = 0.5 * (lo + hi)
+    best_r, far = _radius(history, c)
+    best_c = c.copy()
+    cols = np.arange(history.shape[-1])
+    p1 = history[far, :, cols].T
+    lower = 0.5 * von_mises(history - p1[None]).max(axis=0)
+    todo = best_r > lower * (1.0 + 1e-9)
+    if np.any(todo):
+        h = history[:, :, todo]
+        hs = h[::stride] if h.shape[0] >= 8 * stride else h  # search on a sub-sampled path
+        cc = c[:, todo]
+        _, far = _radius(hs, cc)
+        cands = [cc]
+        sub = np.arange(h.shape[-1])
+        for k in range(iterations):
+            cc = cc + (hs[far, :, sub].T - cc) / (k + 2.0)
+            r, far = _radius(hs, cc)
+            cands.append(cc)
+        # the candidate with the smallest radius on the sub-sampled path, then its true
+        # radius on the whole path (the upper bound that is returned)
+        rs = np.stack([_radius(hs, x)[0] for x in cands[-4:]] + [_radius(hs, cands[0])[0]])
+        pick = np.argmin(rs, axis=0)
+        pool = np.stack(cands[-4:] + [cands[0]])  # (5, 6, m)
+        cb = pool[pick, :, sub].T
+        rb, _ = _radius(h, cb)
+        better = rb < best_r[todo]
+        idx = np.flatnonzero(todo)[better]
+        best_r[idx] = rb[better]
+        best_c[:, idx] = cb[:, better]
+    return best_r, best_c, lower
+
+
+def signed_mean(mean: np.ndarray) -> np.ndarray:
+    """sigma_m' = max(vM(S_m), s_1(S_m)) if s_1(S_m) > 0 else -vM(S_m); mean (6, n)."""
+    vm = von_mises(mean)
+    s1 = principal(mean[None])[0][-1]
+    return np.where(s1 > 0, np.maximum(vm, s1), -vm)
+
+
 def equivalent_amplitude_mean(history: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """sigma_a' = vM(S_a) and signed sigma_m' = sign(tr S_m) vM(S_m) per node; history (n_t, 6, n)."""
-    sa, sm = half_range(history)
-    trace = sm[0] + sm[1] + sm[2]
-    sign = np.where(trace < 0, -1.0, 1.0)
-    return von_mises(sa), sign * von_mises(sm)
+    """sigma_a' (MCB radius, ``amplitude_mean``) and the signed sigma_m' (``signed_mean``)
+    per node; history (n_t, 6, n)."""
+    amp, mean, _ = amplitude_mean(history)
+    return amp, signed_mean(mean)
 
 
 def goodman_safety(sigma_a: np.ndarray, sigma_m: np.ndarray, endurance: float, tensile: float) -> np.ndarray:

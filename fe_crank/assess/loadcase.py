@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
 from fe_crank.assess.case import Assessment, assess_throw, evaluate_criteria
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
+from fe_crank.assess.overspeed import describe as describe_overspeed
+from fe_crank.assess.overspeed import overspeed_dynamics
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.errors import InputError
 
@@ -37,9 +40,11 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     omega, overspeed = lc.operating.speed, lc.operating.overspeed
     notes = [
         "stresses: linear elastic FE, nodal averages; histories by unit-load superposition (exact)",
-        "overspeed: centrifugal unit case alone, scaled by omega_os^2",
         "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration not included",
     ]
+    dyn_os = overspeed_dynamics(lc, dynamics)
+    if dyn_os is not None:
+        notes.insert(1, describe_overspeed(lc))
     throws = []
     for key, units in unit_solutions.items():
         unit = unit_stresses(units)
@@ -63,8 +68,13 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
                 overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,
                 m53_additional=criteria.m53_additional_bending, counterweights=tuple(cws),
                 torque_rear=tl.torque_rear,
+                overspeed_loads=None if dyn_os is None else (dyn_os.throws[tname].pin_force,
+                                                             dyn_os.throws[tname].torque_front),
             ))
             if m53g is None:
                 notes.append(f"throw {tname}: no UR M53 dimensions from the geometry; M53 route not run")
+            elif m53g.oil_bore_diameter > 0 and m53_oil_bore.in_range(m53g) is not None:
+                notes.append(f"throw {tname}: UR M53 oil-bore outlet not assessed empirically "
+                             f"({m53_oil_bore.in_range(m53g)}); FE route only (group oil_bore)")
     verdicts = evaluate_criteria(criteria, tuple(throws), file=lc.source_file, overspeed=overspeed)
     return Assessment(lc.name, lc.source_file, omega, overspeed, material, tuple(throws), verdicts, tuple(notes))

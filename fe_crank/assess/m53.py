@@ -54,6 +54,9 @@ class M53Geometry:
     journal_bore: float = 0.0  # D_BG
     pin_recess: float = 0.0  # T_H
     journal_recess: float = 0.0  # T_G
+    pin_length: float = 0.0  # L_pin, axial (for the oil-bore outlet's bending arm)
+    oil_bore_diameter: float = 0.0  # D_O (0: no oil bore)
+    oil_bore_angle: float = 0.0  # rad, from the radial (+y) towards the tangential (+x) direction
 
     @property
     def overlap(self) -> float:

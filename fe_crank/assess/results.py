@@ -14,6 +14,7 @@ import math
 from pathlib import Path
 
 from fe_crank.assess.case import SCHEMA_VERSION, Assessment
+from fe_crank.assess.factors import factors
 
 
 def _num(x):
@@ -38,6 +39,31 @@ def _group(g):
         "static_safety": _num(g.static_safety), "overspeed_safety": _num(g.overspeed_safety),
         "fatigue_safety": _extreme(g.fatigue_safety), "gough_pollard_safety": _extreme(g.gough_pollard_safety),
         "amplitude_at_critical": _num(g.amplitude_at_critical), "mean_at_critical": _num(g.mean_at_critical),
+        "fatigue_factors": None if g.fatigue_factors is None else {
+            "surface": g.fatigue_factors.surface, "size": g.fatigue_factors.size,
+            "reliability": g.fatigue_factors.reliability, "treatment": g.fatigue_factors.treatment,
+            "notch_support": g.fatigue_factors.notch_support, "product": g.fatigue_factors.product,
+            "diameter": _num(g.fatigue_factors.diameter)},
+    }
+
+
+def _material(m):
+    """Material table: library values and the fatigue factors common to every section
+    (``fatigue_factor`` = surface x reliability x treatment x notch support, x size when
+    the size factor is given; otherwise the size factor is per section, in each group)."""
+    ff = factors(m, None)
+    common = ff.surface * ff.reliability * ff.treatment * ff.notch_support
+    if m.size_factor is not None:
+        common *= m.size_factor
+    return {
+        "name": m.name, "source": m.source,
+        "yield_strength": _num(m.yield_strength), "tensile_strength": _num(m.tensile_strength),
+        "fatigue_limit_bending": _num(m.fatigue_limit_bending),
+        "fatigue_limit_torsion": _num(m.fatigue_limit_torsion), "fatigue_factor": common,
+        "surface_finish": None if m.surface_factor is not None else m.surface_finish,
+        "surface_factor": ff.surface, "size_factor": _num(m.size_factor), "reliability": m.reliability,
+        "reliability_factor": ff.reliability, "treatment_factor": ff.treatment,
+        "notch_support_factor": ff.notch_support,
     }
 
 
@@ -66,12 +92,7 @@ def to_json(assessment: Assessment) -> dict:
         "passed": a.passed,
         "speed_rpm": a.speed * 30.0 / math.pi,
         "overspeed_rpm": None if a.overspeed is None else a.overspeed * 30.0 / math.pi,
-        "material": {
-            "name": m.name, "source": m.source,
-            "yield_strength": _num(m.yield_strength), "tensile_strength": _num(m.tensile_strength),
-            "fatigue_limit_bending": _num(m.fatigue_limit_bending),
-            "fatigue_limit_torsion": _num(m.fatigue_limit_torsion), "fatigue_factor": m.fatigue_factor,
-        },
+        "material": _material(m),
         "criteria": [
             {"name": c.name, "quantity": c.quantity, "sense": c.sense, "value": _num(c.value),
              "limit": c.limit, "margin": _num(c.margin), "passed": c.passed, "unit": c.unit,

@@ -1,9 +1,10 @@
 """Assessment of one throw from its unit stresses and its load history (plain arrays).
 
-Static: sigma_v,max over the cycle at every assessed node, and at overspeed the
-centrifugal case alone scaled by omega_os^2 (the crank's and counterweights' body
-force; the rod forces at overspeed are not known to this stage).  Safety
-n_s = R_e / sigma_v,max.  Fatigue: ``fatigue.py``.
+Static: sigma_v,max over the cycle at every assessed node.  Overspeed: the same over the
+cycle recomputed at the overspeed (``overspeed_coefficients``: the crank's own body force
+at omega_os^2 and the rod and piston forces of the overspeed cycle, whose inertia part
+scales with omega_os^2), the worst angle of that cycle.  Safety n_s = R_e / sigma_v,max.
+Fatigue: ``fatigue.py``.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fe_crank.assess import fatigue
+from fe_crank.assess.factors import FatigueFactors, factors
 from fe_crank.assess.stress import von_mises
 from fe_crank.assess.superpose import UnitStresses, iter_histories
 
@@ -49,6 +51,7 @@ class GroupResult:
     gough_pollard_safety: Extreme | None
     amplitude_at_critical: float | None = None  # sigma_a' at the fatigue-critical node, Pa
     mean_at_critical: float | None = None  # sigma_m' there, Pa
+    fatigue_factors: FatigueFactors | None = None  # applied to the specimen fatigue limits
     #: per-node arrays for reports/VTU (not in the JSON): "node_ids", "max_von_mises",
     #: "amplitude", "mean" (equivalent sigma_a', signed sigma_m'), "fatigue_safety",
     #: "gough_pollard_safety" (inf where not computed)
@@ -63,6 +66,16 @@ def _axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
     return None
 
 
+def section_diameter(group: str, pin_diameter: float | None, journal_diameter: float | None) -> float | None:
+    """Diameter of the section a group belongs to, for the size factor: the crankpin's
+    for its fillets and the oil bore, the journal's for the journal fillets."""
+    if group.startswith(PIN_AXIS_GROUPS):
+        return pin_diameter
+    if group.startswith(JOURNAL_AXIS_GROUPS):
+        return journal_diameter
+    return None
+
+
 def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str, *, worst: str,
              angles: np.ndarray | None = None) -> Extreme:
     k = int(np.argmax(values) if worst == "max" else np.argmin(values))
@@ -73,9 +86,15 @@ def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str
 
 
 def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta: np.ndarray, material, *,
-                 crank_radius: float, overspeed: float | None, chunk: int = 2048) -> GroupResult:
+                 crank_radius: float, overspeed: float | None, chunk: int = 2048,
+                 overspeed_coefficients: np.ndarray | None = None,
+                 diameter: float | None = None) -> GroupResult:
     """Static and fatigue results of one node group.  ``material`` needs yield strength
-    for the static part and the fatigue properties for the fatigue part (None skips)."""
+    for the static part and the fatigue properties for the fatigue part (None skips).
+    ``overspeed_coefficients`` (n_angles, n_cases): the unit-case coefficients of the
+    cycle at the overspeed (``load_coefficients`` of the overspeed pin force and torque
+    at omega_os); required when ``overspeed`` is given.  ``diameter``: the section
+    diameter for the size factor (``factors.factors``; None: its fallback)."""
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
@@ -83,7 +102,8 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
         and material.tensile_strength is not None
     axis = _axis_for(group, crank_radius)
     do_gp = do_fatigue and axis is not None and material.fatigue_limit_torsion is not None
-    k = material.fatigue_factor
+    ff = factors(material, diameter) if do_fatigue else None
+    k = ff.product if ff is not None else 1.0
     vm_max = np.empty(nodes.size)
     vm_arg = np.empty(nodes.size, dtype=int)
     good = np.full(nodes.size, np.inf)
@@ -112,9 +132,17 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf
     os_ext, os_safety = None, None
     if overspeed is not None:
-        ci = unit.cases.index("centrifugal")
-        vm_os = von_mises(overspeed**2 * unit.stress[ci][:, nodes])
-        os_ext = _extreme(vm_os, nodes, unit, group, worst="max")
+        if overspeed_coefficients is None:
+            raise ValueError("overspeed given without the overspeed cycle's coefficients")
+        vm_os = np.empty(nodes.size)
+        os_arg = np.empty(nodes.size, dtype=int)
+        pos = 0
+        for idx, hist in iter_histories(unit, overspeed_coefficients, nodes, chunk):
+            vm = von_mises(hist)
+            os_arg[pos:pos + idx.size] = np.argmax(vm, axis=0)
+            vm_os[pos:pos + idx.size] = vm.max(axis=0)
+            pos += idx.size
+        os_ext = _extreme(vm_os, nodes, unit, group, worst="max", angles=theta[os_arg])
         os_safety = ys / os_ext.value if (ys is not None and os_ext.value > 0) else np.inf
     fat = gpe = None
     amp = mean = None
@@ -128,4 +156,4 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     fields = {"node_ids": ids, "max_von_mises": vm_max, "amplitude": sa_eq, "mean": sm_eq,
               "fatigue_safety": good, "gough_pollard_safety": gp}
     return GroupResult(group, int(nodes.size), worst, os_ext, float(static),
-                       None if os_safety is None else float(os_safety), fat, gpe, amp, mean, fields)
+                       None if os_safety is None else float(os_safety), fat, gpe, amp, mean, ff, fields)

@@ -22,6 +22,7 @@ from fe_crank.check.options import CheckOptions
 from fe_crank.check.publish import PARTIAL_MARK, _publish, case_slug
 from fe_crank.check.stages import _compute, _criteria_of, _Run
 from fe_crank.errors import FeCrankError
+from fe_crank.fe import convergence
 from fe_crank.files import write_atomic
 from fe_crank.report import write_case_report
 from fe_crank.report.html import write_error_report
@@ -58,6 +59,8 @@ def run_case(
             _compute(run, options, stage_out)
             name = stage_out["loadcase"].name
             criteria = _criteria_of(stage_out["assessment"])
+            if stage_out.get("mesh_convergence"):
+                criteria += (convergence.criterion(stage_out["mesh_convergence"]),)
             status = STATUS_PASS if all(c.passed for c in criteria) else STATUS_FAIL
             if not criteria:
                 status, message = STATUS_ERROR, "the assessment returned no criteria: nothing was checked"

@@ -16,7 +16,7 @@ from fe_crank.balance.analysis import analyse_balance
 from fe_crank.check.options import CheckOptions
 from fe_crank.dynamics import analyse
 from fe_crank.errors import InputError
-from fe_crank.fe import solve_unit_cases
+from fe_crank.fe import convergence, solve_unit_cases
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.mesh import MeshSection
 from fe_crank.mesh import mesh_throw
@@ -52,6 +52,11 @@ def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
     out["meshes"] = run.timed("mesh", _mesh_stage, lc, options)
     out["units"] = run.timed("fe", _fe_stage, lc, out["meshes"])
     out["assessment"] = run.timed("assess", _assess_stage, lc, out)
+    section = lc.extras.get("mesh") or MeshSection()
+    flag = options.convergence if options.convergence is not None else section.convergence
+    if convergence.wanted(flag, options.mesh_size or section.size):
+        out["mesh_convergence"] = run.timed("convergence", convergence.check_studies, lc, out["meshes"],
+                                            out["dynamics"], cache_dir=options.cache_dir)
     return out
 
 

@@ -6,6 +6,7 @@ Exit code: 0 every criterion of every case passes, 1 a criterion failed,
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 from pathlib import Path
@@ -31,13 +32,16 @@ def add_arguments(p) -> None:
                    help=f"mesh cache (default {DEFAULT_CACHE_DIR})")
     p.add_argument("--no-render", action="store_true", help="skip the pyvista pictures (faster)")
     p.add_argument("--no-vtu", action="store_true", help="do not write the .vtu result fields")
+    p.add_argument("--convergence", action=argparse.BooleanOptionalAction, default=None,
+                   help="hot-spot convergence study: fillets meshed at r/4, r/6, r/8 (from the preset), "
+                        "peak change <= 5 %% (default: the load case's [mesh] convergence, on unless the mesh is test)")
 
 
 def _options(args):
     from fe_crank.check import CheckOptions
 
     return CheckOptions(mesh_size=args.mesh_size, cache_dir=str(args.cache_dir), render=not args.no_render,
-                        write_vtu=not args.no_vtu)
+                        write_vtu=not args.no_vtu, convergence=args.convergence)
 
 
 def _row(r) -> list[str]:

@@ -3,8 +3,9 @@
 ::
 
     [fe]
-    support = "elastic"                 # or "rigid": radial support of the journals
-    bearing_stiffness = "5e12 N/m^3"    # elastic support only; default E / d_journal
+    support = "determinate"             # default; or "foundation" (needs bearing_stiffness)
+    bearing_stiffness = "2e12 N/m^3"    # foundation only, required there (docs/fe.md: how to derive it)
+    torque_reaction = "end_2"           # end face where the power is taken off: "end_2" (default) | "end_1"
     solver = "auto"                     # "pardiso" | "cholmod" | "amg" | "superlu"
     pin_half_angle = "60 deg"           # cosine pressure arc on the crankpin
 """
@@ -24,9 +25,16 @@ from fe_crank.io.base import Strict, validate
 from fe_crank.io.units import Angle, StiffnessPerArea
 
 
+RENAMED = {"elastic": "the radial foundation is now support = \"foundation\" with an explicit bearing_stiffness; "
+                      "the default \"determinate\" needs no stiffness",
+           "rigid": "the penalty (\"rigid\") bearing was removed: use the default \"determinate\" "
+                    "(simple supports at the bearing centres)"}
+
+
 class FeInput(Strict):
-    support: Literal["elastic", "rigid"] = "elastic"
+    support: Literal["determinate", "foundation"] = "determinate"
     bearing_stiffness: StiffnessPerArea | None = Field(default=None, gt=0)
+    torque_reaction: Literal["end_2", "end_1"] = "end_2"
     solver: Literal["auto", "pardiso", "cholmod", "amg", "superlu"] = "auto"
     pin_half_angle: Angle = Field(default=FeOptions.pin_half_angle, gt=0, le=1.5707963267948966)
     cases: tuple[str, ...] = CASES
@@ -45,8 +53,11 @@ class FeInput(Strict):
         except ValueError as exc:
             raise ValueError(f"the pin unit cases {pins} cannot carry a crankpin force in every direction "
                              f"({exc}); list at least three directions less than 180 deg apart") from None
-        if self.support == "rigid" and self.bearing_stiffness is not None:
-            raise ValueError("bearing_stiffness applies to support = \"elastic\" only")
+        if self.support == "foundation" and self.bearing_stiffness is None:
+            raise ValueError("support = \"foundation\" needs bearing_stiffness (N/m^3, from the oil film and "
+                             "housing: docs/fe.md)")
+        if self.support != "foundation" and self.bearing_stiffness is not None:
+            raise ValueError("bearing_stiffness applies to support = \"foundation\" only")
         return self
 
 
@@ -54,6 +65,11 @@ def parse_fe(value: object, file: str | Path, key: str = "fe") -> FeOptions:
     """Section parser registered as ``SECTIONS["fe"]``."""
     if not isinstance(value, dict):
         raise InputError("must be a table, e.g. [fe] support = \"elastic\"", file=str(file), key=key)
+    support = value.get("support")
+    if isinstance(support, str) and support in RENAMED:
+        raise InputError(f"support = {support!r} is no longer offered: {RENAMED[support]}", file=str(file),
+                         key=f"{key}.support")
     raw = validate(FeInput, value, file, key)
     return FeOptions(support=raw.support, bearing_stiffness=raw.bearing_stiffness, solver=raw.solver,
-                     pin_half_angle=raw.pin_half_angle, cases=tuple(raw.cases))
+                     pin_half_angle=raw.pin_half_angle, cases=tuple(raw.cases),
+                     torque_reaction=raw.torque_reaction)

@@ -18,6 +18,7 @@ from skfem import Basis, ElementTetP2
 
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_stiffness
+from fe_crank.fe.determinate import DeterminateSupport, determinate_support
 from fe_crank.fe.solvers import Factorisation, choose_method, factorise
 from fe_crank.fe.supports import (REF_DOFS, Coupling, Foundation, assemble_foundation_matrix,
                                   boundary_facets, coupling_rows, face_centroid, rigid_body_modes)
@@ -43,6 +44,8 @@ class System:
     dirichlet_dofs: np.ndarray               # full vector dofs held at zero
     foundation_dofs: dict[str, np.ndarray]   # foundation boundary -> scalar dofs
     factorisation: Factorisation
+    point_dofs: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # single vector dofs held
+    determinate: DeterminateSupport | None = None   # reactions applied as loads (fe.determinate)
     timings: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -70,6 +73,8 @@ class System:
     def solve(self, f: np.ndarray, ref_loads: list[dict] | None = None) -> np.ndarray:
         """Full displacement vectors for load vectors f (n_full,) or (n_full, k)."""
         F = f[:, None] if f.ndim == 1 else f
+        if self.determinate is not None:           # the statically determinate reactions as loads
+            F = self.determinate.self_equilibrated(F)[0]
         refs = ref_loads or [None] * F.shape[1]
         Fr = np.column_stack([self.reduce(F[:, k], refs[k]) for k in range(F.shape[1])])
         Q = self.factorisation.solve(Fr)
@@ -81,9 +86,14 @@ class System:
 
         Foundations: the spring forces -K_s u.  Couplings and Dirichlet sets: the nodal
         residual K u + K_s u - f on their nodes, less the loads applied at the reference point.
+        Determinate supports: each support's statically determined reaction, and the six
+        point constraints (``point_constraints``: round-off).
         """
         x = self.points
         out = {}
+        if self.determinate is not None:
+            f, R = self.determinate.self_equilibrated(f)
+            out.update(self.determinate.reaction_resultants(R))
         rs = -(self.Ks @ u)
         for name, sdofs in self.foundation_dofs.items():
             out[name] = _resultant(rs, x, sdofs)
@@ -98,7 +108,17 @@ class System:
             mask = np.zeros(resid.size, bool)
             mask[self.dirichlet_dofs] = True
             out["dirichlet"] = _resultant(np.where(mask, resid, 0.0), x, np.arange(x.shape[1]))
+        if self.point_dofs.size:
+            out["point_constraints"] = self.point_reactions(u, f)
         return out
+
+    def point_reactions(self, u: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """Resultant (Fx..Mz about the origin) of the reactions at the single held dofs."""
+        resid = np.zeros_like(u)
+        pos = np.searchsorted(self.rows, self.point_dofs)
+        resid[self.point_dofs] = (self.K_rows[pos] @ u + (self.Ks @ u)[self.point_dofs]
+                                  - f[self.point_dofs])
+        return _resultant(resid, self.points, np.unique(self.point_dofs // 3))
 
     def applied(self, f: np.ndarray, ref_loads: dict | None = None) -> tuple[np.ndarray, float, float]:
         """Resultant of the applied loads and the force and moment scales used for errors."""
@@ -141,9 +161,14 @@ def _generalised_at_origin(load, x0) -> np.ndarray:
 
 
 def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
-                 foundations=(), couplings=(), dirichlet=(), solver: str = "auto",
-                 intorder: int = 2, basis: Basis | None = None) -> System:
+                 foundations=(), couplings=(), dirichlet=(), held_dofs=(), determinate=None,
+                 solver: str = "auto", intorder: int = 2, basis: Basis | None = None) -> System:
     """Assemble K (vectorised), the supports and the transformation; factorise once.
+
+    ``held_dofs``: single vector dofs (3 node + component) held at zero.
+    ``determinate``: a ``DeterminateLayout`` -- statically determinate supports
+    (``fe_crank.fe.determinate``): ``solve`` adds to every load its reactions and the six
+    point constraints (added to ``held_dofs``) remove the rigid-body modes.
 
     Raises MeshError for a missing named boundary or a node claimed by two constraints,
     SolverError when the factorisation fails (e.g. a rigid-body mode left free).
@@ -152,6 +177,10 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     t0 = time.perf_counter()
     if basis is None:
         basis = Basis(mesh, ElementTetP2(), intorder=intorder)
+    sup = None
+    if determinate is not None:
+        sup = determinate_support(basis, determinate)
+        held_dofs = np.concatenate([np.asarray(held_dofs, dtype=int), sup.held])
     K = assemble_stiffness(basis, youngs_modulus, poisson_ratio)
     n = K.shape[0]
     N = basis.N
@@ -171,6 +200,8 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
         vd = (3 * s[:, None] + np.array(d.components)[None, :]).ravel()
         held[vd] = True
         ddofs.append(vd)
+    point_dofs = np.unique(np.asarray(held_dofs, dtype=int))
+    held[point_dofs] = True
     slave, refp = {}, {}
     for ci, c in enumerate(couplings):
         facets = boundary_facets(mesh, c.boundary, "an end-face coupling")
@@ -224,7 +255,8 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     return System(mesh=mesh, basis=basis, K_rows=K_rows, rows=rows, Ks=Ks.tocsr(), P=P, foundations=tuple(foundations),
                   couplings=tuple(couplings), ref_points=refp, ref_columns=refcols, slave_dofs=slave,
                   dirichlet_dofs=np.concatenate(ddofs) if ddofs else np.zeros(0, int),
-                  foundation_dofs=fdofs, factorisation=fac, timings=timings)
+                  foundation_dofs=fdofs, factorisation=fac, timings=timings, point_dofs=point_dofs,
+                  determinate=sup)
 
 
 def _reduce_modes(B, free, refcols, refp) -> np.ndarray:

@@ -5,14 +5,15 @@ solves every unit case against the same factorisation, so that any load of the c
 an exact linear combination:  u = omega^2 u_centrifugal + |Fx| u_pin_(+-)x + |Fy| u_pin_(+-)y
 + T u_torque.
 
-Support model (default ``"elastic"``): both journal surfaces (``journal_1``,
-``journal_2``) on a radial Winkler foundation of stiffness per area k (default
-E / d_journal, a steel bearing housing one journal diameter deep; oil film plus shell is
-of the same order, ~1e12 N/m^3), which carries the radial forces and bending moments
-with smooth, load-direction-independent reactions and no singular points at the journal
-fillets; the face ``end_2`` coupled rigidly to a point on the axis held in uz and rz,
-which carries the torque and any axial force (and is the "output" end of the throw).
-``"rigid"`` uses the same model with a penalty stiffness 1000 E / d_journal.
+Support model (default ``"determinate"``, ``fe_crank.fe.determinate``): the statically
+determinate throw of IACS UR M53 2.1 -- each journal's bearing surface tied by a
+distributing (RBE3) coupling to a simple support at its bearing centre (radial at both,
+axial at the torque end's journal), the torque M_z reacted at the end face where the
+power is taken off (``end_2``, flywheel side, unless ``torque_reaction = "end_1"``).  No
+stiffness parameter enters.  ``"foundation"``: both journal surfaces on a radial Winkler
+foundation whose stiffness per area the input must state (``bearing_stiffness``), the
+torque end face coupled rigidly to an axis point held in u_z and r_z; statically
+indeterminate, for studies of the bearing's elasticity only (docs/fe.md).
 """
 
 from __future__ import annotations
@@ -22,13 +23,13 @@ from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
-from skfem import ElementTetP2
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
 from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
 from fe_crank.fe.pin_directions import pin_case_weights, pin_cases, pin_direction, unit_force
-from fe_crank.fe.supports import Coupling, Foundation, boundary_facets, facet_basis
+from fe_crank.fe.determinate import POINT_REACTION_TOL, DeterminateLayout
+from fe_crank.fe.supports import Coupling, Foundation, boundary_facets
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
 
 #: default unit cases: the centrifugal load, 1 N on the crankpin in 12 directions 30 deg
@@ -49,25 +50,40 @@ class Material(Protocol):
 class FeOptions:
     """Options of :func:`solve_unit_cases` (all SI).
 
-    support: "elastic" (default) or "rigid" radial journal support, see module doc.
-    bearing_stiffness: N/m^3, overrides the default E / d_journal for "elastic".
+    support: "determinate" (default) or "foundation", see module doc.
+    bearing_stiffness: N/m^3, the foundation's stiffness per area ("foundation" only, required there).
+    torque_reaction: the end face that reacts the torque (where the power is taken off):
+    "end_2" (default, rear/flywheel side) or "end_1"; the ``torque`` unit case enters at the other.
     solver: "auto" | "pardiso" | "cholmod" | "amg" | "superlu".
     cases: which unit cases to solve: "centrifugal", "torque" and pin cases by direction
     ("pin_x", "pin_y", "pin_-x", "pin_-y", "pin_<deg>"; see ``pin_directions``).
     pin_half_angle: rad, half width of the cosine pressure arc.
     """
 
-    support: str = "elastic"
+    support: str = "determinate"
     bearing_stiffness: float | None = None
     solver: str = "auto"
     cases: tuple[str, ...] = CASES
     pin_half_angle: float = float(np.deg2rad(60.0))
     journals: tuple[str, str] = ("journal_1", "journal_2")
-    torque_face: str = "end_1"
-    reaction_face: str = "end_2"
+    torque_reaction: str = "end_2"
     pin_boundary: str = "crankpin"
     pin_centre: tuple[float, float] | None = None   # (x, y) of the pin axis; None: centroid of the pin surface
     intorder: int = 2
+
+    @property
+    def reaction_face(self) -> str:
+        """End face reacting the torque."""
+        return self.torque_reaction
+
+    @property
+    def torque_face(self) -> str:
+        """End face where the ``torque`` unit case enters (the other one)."""
+        return "end_1" if self.torque_reaction == "end_2" else "end_2"
+
+
+SUPPORTS = ("determinate", "foundation")
+TORQUE_ENDS = ("end_2", "end_1")
 
 
 @dataclass(frozen=True)
@@ -91,7 +107,9 @@ class UnitSolutions:
     options: FeOptions
     cases: dict[str, UnitCase]
     pin: dict[str, PinPressure]
-    bearing_stiffness: float
+    bearing_stiffness: float | None          # N/m^3, "foundation" only
+    support_model: str = ""                  # one-line statement of the support model (report, results.json)
+    bearing_centres: dict[str, float] = field(default_factory=dict)   # journal -> z of its bearing centre, m
     timings: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -155,29 +173,38 @@ class UnitSolutions:
     max_shear = staticmethod(_stress.max_shear)
 
 
-def journal_diameter(mesh, boundary: str) -> float:
-    """2 x the mean distance of the journal surface from the crank axis."""
-    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the bearing support"),
-                    2, "the bearing support")
-    x = np.asarray(fb.global_coordinates())
-    return float(2.0 * np.sum(np.hypot(x[0], x[1]) * fb.dx) / fb.dx.sum())
+def check_support_options(options: FeOptions) -> None:
+    """Refuse a support model that is not fully stated."""
+    if options.support not in SUPPORTS:
+        raise InputError(f"unknown support {options.support!r}; pick 'determinate' (statically determinate, "
+                         f"the default) or 'foundation' (with bearing_stiffness)", key="fe.support")
+    if options.torque_reaction not in TORQUE_ENDS:
+        raise InputError(f"unknown torque_reaction {options.torque_reaction!r}; pick 'end_2' or 'end_1'",
+                         key="fe.torque_reaction")
+    if options.support == "foundation":
+        k = options.bearing_stiffness
+        if k is None or not k > 0:
+            raise InputError("support = 'foundation' needs bearing_stiffness > 0 (N/m^3, from the oil film and "
+                             "housing; docs/fe.md says how to derive it)", key="fe.bearing_stiffness")
+    elif options.bearing_stiffness is not None:
+        raise InputError("bearing_stiffness applies to support = 'foundation' only", key="fe.bearing_stiffness")
 
 
-def support_model(mesh, material, options: FeOptions) -> tuple[list[Foundation], list[Coupling], float]:
-    """Foundations and couplings of the chosen support model and the stiffness used."""
-    if options.support not in ("elastic", "rigid"):
-        raise InputError(f"unknown support {options.support!r}; pick 'elastic' or 'rigid'", key="fe.support")
-    d = min(journal_diameter(mesh, j) for j in options.journals)
-    E = material.youngs_modulus
-    if options.support == "rigid":
-        k = 1000.0 * E / d
-    else:
-        k = options.bearing_stiffness if options.bearing_stiffness is not None else E / d
-        if not k > 0:
-            raise InputError(f"bearing stiffness must be > 0 N/m^3, got {k!r}", key="fe.bearing_stiffness")
-    found = [Foundation(j, k) for j in options.journals]
-    coup = [Coupling(options.reaction_face, fixed=("uz", "rz"), ref_point=None)]
-    return found, coup, k
+def support_text(options: FeOptions, centres: dict[str, float]) -> str:
+    """The support model in one line (``UnitSolutions.support_model``)."""
+    j1, j2 = options.journals
+    if options.support == "foundation":
+        return (f"radial elastic foundation k = {options.bearing_stiffness:.4g} N/m^3 on {j1} and {j2} "
+                f"(statically indeterminate); torque and axial force reacted at {options.reaction_face} "
+                f"(rigid coupling)")
+    zs = ", ".join(f"{centres[j] * 1e3:.2f}" for j in options.journals)
+    return (f"statically determinate (IACS UR M53 2.1): {j1} and {j2} on distributing (RBE3) couplings to "
+            f"simple supports at the bearing centres z = {zs} mm (radial at both, axial at "
+            f"{_axial_journal(options)}); torque reacted at {options.reaction_face}")
+
+
+def _axial_journal(options: FeOptions) -> str:
+    return options.journals[1] if options.torque_reaction == "end_2" else options.journals[0]
 
 
 def _throw_mesh(throw_mesh):
@@ -217,9 +244,17 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         needed.append(options.torque_face)
     for name in needed:
         boundary_facets(mesh, name, "the unit load cases")
-    found, coup, k = support_model(mesh, material, options)
-    system = build_system(mesh, material.youngs_modulus, material.poisson_ratio, foundations=found,
-                          couplings=coup, solver=options.solver, intorder=options.intorder)
+    check_support_options(options)
+    E, nu = material.youngs_modulus, material.poisson_ratio
+    if options.support == "foundation":
+        system = build_system(mesh, E, nu, foundations=[Foundation(j, options.bearing_stiffness)
+                                                        for j in options.journals],
+                              couplings=[Coupling(options.reaction_face, fixed=("uz", "rz"))],
+                              solver=options.solver, intorder=options.intorder)
+    else:
+        layout = DeterminateLayout(journals=tuple(options.journals), torque_face=options.reaction_face,
+                                   axial=_axial_journal(options))
+        system = build_system(mesh, E, nu, determinate=layout, solver=options.solver, intorder=options.intorder)
     basis = system.basis
     t0 = time.perf_counter()
     loads, desc, pins, surface = {}, {}, {}, None
@@ -247,6 +282,8 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     cases = {}
     for i, name in enumerate(names):
         err, reac = system.equilibrium_error(U[:, i], loads[name])
+        if "point_constraints" in reac:
+            _check_point_reactions(system, reac["point_constraints"], loads[name], name)
         if not err < EQUILIBRIUM_TOL:
             raise SolverError(f"unit case {name!r}: reactions do not balance the loads "
                               f"(relative error {err:.2e} > {EQUILIBRIUM_TOL:g})")
@@ -256,5 +293,19 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     timings = dict(system.timings)
     timings.update(loads=t_loads, solve=t_solve, solve_per_case=t_solve / max(len(names), 1),
                    total=time.perf_counter() - t_all)
+    sup = system.determinate
+    centres = {j: float(c[2]) for j, c in sup.centres.items()} if sup is not None else {}
     return UnitSolutions(system=system, material=material, options=options, cases=cases, pin=pins,
-                         bearing_stiffness=k, timings=timings)
+                         bearing_stiffness=options.bearing_stiffness, support_model=support_text(options, centres),
+                         bearing_centres=centres, timings=timings)
+
+
+def _check_point_reactions(system: System, point: np.ndarray, f: np.ndarray, name: str) -> None:
+    """The six point constraints of the determinate model must carry nothing but round-off
+    (above ``POINT_REACTION_TOL`` of the load scale it is a SolverError)."""
+    _, fs, ms = system.applied(f)
+    pf = np.linalg.norm(point[:3]) / fs if fs > 0 else np.linalg.norm(point[:3])
+    pm = np.linalg.norm(point[3:]) / ms if ms > 0 else np.linalg.norm(point[3:])
+    if max(pf, pm) > POINT_REACTION_TOL:
+        raise SolverError(f"unit case {name!r}: the point constraints carry a reaction ({max(pf, pm):.2e} of "
+                          f"the load): the determinate reactions do not balance the load")

@@ -42,7 +42,7 @@ QUANTITIES: dict[str, Quantity] = {
     "static_safety": Quantity("min", None, ("yield_strength",),
                               "yield strength / max von Mises over the cycle"),
     "overspeed_safety": Quantity("min", None, ("yield_strength",),
-                                 "yield strength / max von Mises at overspeed (centrifugal only)"),
+                                 "yield strength / max von Mises over the cycle at overspeed (inertia and body force at omega_os^2)"),
     "fatigue_safety": Quantity("min", None, ("fatigue_limit_bending", "tensile_strength"),
                                "equivalent (von Mises) amplitude and signed mean, modified Goodman"),
     "gough_pollard_safety": Quantity(

@@ -17,6 +17,7 @@ that no stage knows is an error.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Literal
 
 from pydantic import Field, model_validator
 
@@ -31,6 +32,7 @@ from fe_crank.io.units import Speed
 class OperatingInput(Strict):
     speed: Speed
     overspeed: Speed | None = None
+    overspeed_gas: Literal["motored", "as_operating"] = "motored"  # gas load at the overspeed
 
     @model_validator(mode="after")
     def _check(self):
@@ -77,7 +79,7 @@ def load_loadcase(path: str | Path) -> model.LoadCase:
         source_file=str(path),
         description=head.description,
         engine=engine,
-        operating=model.OperatingPoint(op.speed, op.overspeed),
+        operating=model.OperatingPoint(op.speed, op.overspeed, op.overspeed_gas),
         geometry=sections.get("geometry"),
         material=sections.get("material"),
         criteria=sections.get("criteria"),

@@ -5,7 +5,9 @@
     [material]
     name = "42CrMo4"                 # an entry of fe_crank/data/materials.toml
     yield_strength = "700 MPa"        # any property may be overridden, with its unit
-    surface_factor = 0.9              # part-dependent factors are pure numbers
+    surface_finish = "ground"         # ground | machined (default) | hot_rolled | as_forged
+    reliability = 0.99                # of the fatigue limits (default 0.99)
+    size_factor = 0.85                # optional: else from each section's diameter
 
 Without ``name`` every property the assessment needs must be given inline.  The
 library itself is read with the same model, so a library entry with a bare number
@@ -18,6 +20,7 @@ import importlib.resources
 from dataclasses import dataclass, fields
 from functools import lru_cache
 from pathlib import Path
+from typing import Literal
 
 from pydantic import Field
 
@@ -32,8 +35,12 @@ LIBRARY_NAME = "materials.toml"
 class Material:
     """Material properties, SI.  ``None`` marks a property the source does not give.
 
-    ``fatigue_factor`` is the product of the surface, size and treatment factors that
-    multiplies the specimen fatigue limits (Marin factors, Shigley eq. 6-18).
+    The specimen fatigue limits are multiplied by the part's factors
+    (``fe_crank.assess.factors``, Shigley eq. 6-18): surface (``surface_factor``, or
+    from ``surface_finish`` and R_m), size (``size_factor``, or from the section
+    diameter), reliability (from ``reliability``), treatment and notch support.  The
+    defaults are on the safe side: machined surface, size from the diameter, 99 %
+    reliability, no treatment and no notch-support credit.
     """
 
     name: str
@@ -44,16 +51,15 @@ class Material:
     tensile_strength: float | None = None  # Pa
     fatigue_limit_bending: float | None = None  # Pa, fully reversed
     fatigue_limit_torsion: float | None = None  # Pa, fully reversed
-    surface_factor: float = 1.0
-    size_factor: float = 1.0
+    surface_factor: float | None = None  # None: from surface_finish (Shigley eq. 6-19)
+    surface_finish: str = "machined"
+    size_factor: float | None = None  # None: from the section diameter (Shigley eq. 6-20)
+    reliability: float = 0.99  # -> k_e (Shigley table 6-5)
     treatment_factor: float = 1.0
+    notch_support_factor: float = 1.0  # FKM n_sigma, FE route only; 1 = no credit
     m53_k: float | None = None  # IACS UR M53 factor K
     description: str = ""
     source: str = ""
-
-    @property
-    def fatigue_factor(self) -> float:
-        return self.surface_factor * self.size_factor * self.treatment_factor
 
     def missing(self, names: tuple[str, ...] | list[str]) -> list[str]:
         """The properties among ``names`` that this material does not give."""
@@ -73,9 +79,12 @@ class MaterialInput(Strict):
     tensile_strength: Pressure | None = None
     fatigue_limit_bending: Pressure | None = None
     fatigue_limit_torsion: Pressure | None = None
-    surface_factor: float | None = Field(default=None, gt=0.0, le=2.0)
-    size_factor: float | None = Field(default=None, gt=0.0, le=2.0)
+    surface_factor: float | None = Field(default=None, gt=0.0, le=1.0)
+    surface_finish: Literal["ground", "machined", "hot_rolled", "as_forged"] | None = None
+    size_factor: float | None = Field(default=None, gt=0.0, le=1.0)
+    reliability: float | None = Field(default=None, ge=0.5, lt=1.0)
     treatment_factor: float | None = Field(default=None, gt=0.0, le=3.0)
+    notch_support_factor: float | None = Field(default=None, ge=1.0, le=2.0)
     m53_k: float | None = Field(default=None, gt=0.0, le=2.0)
     source: str | None = None
 

@@ -17,6 +17,7 @@ class MeshSection:
     "test" is for quick trials and demonstrations only)."""
 
     size: str = "coarse"
+    convergence: bool | None = None   # hot-spot convergence study; None: on unless size = "test"
 
 
 def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
@@ -24,10 +25,14 @@ def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
     if not isinstance(value, dict):
         raise InputError('must be a table, e.g. [mesh] size = "coarse"', file=str(file), key=key)
     for k in value:
-        if k != "size":
-            raise InputError("unknown key; the [mesh] table takes only size", file=str(file), key=f"{key}.{k}")
+        if k not in ("size", "convergence"):
+            raise InputError("unknown key; the [mesh] table takes size and convergence", file=str(file),
+                             key=f"{key}.{k}")
+    conv = value.get("convergence")
+    if conv is not None and not isinstance(conv, bool):
+        raise InputError("must be true or false", file=str(file), key=f"{key}.convergence")
     size = value.get("size", "coarse")
     if size not in MESH_PRESETS:
         raise InputError(f"unknown mesh size {size!r}; pick one of {list(MESH_PRESETS)}", file=str(file),
                          key=f"{key}.size")
-    return MeshSection(size=size)
+    return MeshSection(size=size, convergence=conv)

@@ -12,6 +12,7 @@ import json
 import math
 from pathlib import Path
 
+from fe_crank.fe import convergence
 from fe_crank.files import write_atomic
 from fe_crank.results import CaseResult
 from fe_crank.report.html import Page, criteria_table, esc, header_html, table, timings_table
@@ -98,6 +99,10 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
         inputs.append(table(["quantity", "value"], _engine_rows(lc)))
         for title, obj in (("material", lc.material), ("acceptance criteria", lc.criteria), ("FE model and bearings", lc.fe)):
             rows = _section_rows(obj)
+            if title == "material":
+                from fe_crank.assess.factors import material_rows
+
+                rows += material_rows(obj)
             if rows:
                 inputs.append(f"<h3>{esc(title)}</h3>" + table(["key", "value"], rows))
     from fe_crank.report import sections
@@ -111,14 +116,37 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
         write_atomic(folder / "error.txt", trace)
     page.section("Stage timings").append(timings_table(result))
     if stage_out.get("assessment") is not None:
-        write_atomic(folder / "results.json", results_json(stage_out["assessment"]))
+        studies = stage_out.get("mesh_convergence")
+        extra_criteria = (convergence.criterion(studies),) if studies else ()
+        write_atomic(folder / "results.json", results_json(stage_out["assessment"], fe_results(stage_out),
+                                                           extra_criteria))
     write_atomic(folder / "report.html", page.html(header_html(result)))
 
 
-def results_json(assessment) -> str:
+def results_json(assessment, extra: dict | None = None, criteria=()) -> str:
     """``results.json``: the assessment's document (``fe_crank.assess.to_json``, schema
-    ``fe_crank/data/results.schema.json``).  Written only for cases whose assessment
-    ran; the pipeline's own record (status, message, timings) is ``case.json``."""
+    ``fe_crank/data/results.schema.json``) plus ``extra`` top-level fields and ``criteria``
+    (``CriterionResult``) of other stages.  Written only
+    for cases whose assessment ran; the pipeline's own record (status, message, timings)
+    is ``case.json``."""
     from fe_crank.assess import to_json
 
-    return json.dumps(to_json(assessment), indent=2, allow_nan=False)
+    doc = {**to_json(assessment), **(extra or {})}
+    if criteria:  # criteria of other stages join the verdict (as in case.json)
+        from dataclasses import asdict
+
+        doc["criteria"] = [*doc["criteria"], *(asdict(c) for c in criteria)]
+        doc["passed"] = bool(doc["passed"] and all(c.passed for c in criteria))
+    return json.dumps(doc, indent=2, allow_nan=False)
+
+
+def fe_results(stage_out: dict) -> dict:
+    """FE fields of results.json: ``support_model`` (text) and, when the study ran,
+    ``mesh_convergence`` (throw key -> ``ConvergenceStudy.to_dict()``)."""
+    out = {}
+    units = stage_out.get("units") or {}
+    if units:
+        out["support_model"] = next(iter(units.values())).support_model
+    if stage_out.get("mesh_convergence"):
+        out["mesh_convergence"] = {k: v.to_dict() for k, v in stage_out["mesh_convergence"].items()}
+    return out

@@ -283,7 +283,8 @@ def fe_section(folder: Path, so: dict, options) -> list[str]:
             out.append(Page.figure(
                 f"{tag}_overspeed.png",
                 f"Throw {throw} and its counterweights at overspeed {over * 30 / np.pi:.0f} rpm, centrifugal load "
-                f"alone, seen from the front; deformation exaggerated x {s_os:g}"))
+                f"alone, seen from the front; deformation exaggerated x {s_os:g} (the overspeed safety in the tables "
+                "is over the whole cycle at overspeed, rod and piston inertia included)"))
     return out
 
 
@@ -313,8 +314,7 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
         m = units.mesh
         rows = [["elements (quadratic tetrahedra)", m.t.shape[1]], ["nodes", units.points.shape[1]],
                 ["degrees of freedom", units.n_dof], ["solver", getattr(units, "solver_description", units.solver)],
-                ["bearing model", f"{units.options.support} journal support"
-                 + (f", k = {units.bearing_stiffness:.3g} N/m^3" if units.options.support == "elastic" else "")]]
+                ["support model", units.support_model]]
         tm = meshes.get(throw)
         stats = getattr(tm, "stats", None)
         if stats is not None:

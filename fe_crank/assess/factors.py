@@ -1,0 +1,105 @@
+"""Endurance-limit modifying factors of the part (Marin factors), after Shigley.
+
+Source: Budynas & Nisbett, *Shigley's Mechanical Engineering Design*, 10th ed. (2015),
+section 6-9, eq. 6-18: S_e = k_a k_b k_c k_d k_e k_f S'_e.  Here:
+
+* k_a, surface (eq. 6-19, table 6-2): k_a = a R_m^b, R_m in MPa, with
+  ground a = 1.58, b = -0.085; machined or cold-drawn 4.51, -0.265;
+  hot-rolled 57.7, -0.718; as-forged 272, -0.995.  Capped at 1 (a polished specimen).
+* k_b, size (eq. 6-20, rotating round section of diameter d):
+  k_b = 1.24 d^-0.107 for 2.79 <= d <= 51 mm, 1.51 d^-0.157 for 51 < d <= 254 mm,
+  1 below 2.79 mm; above 254 mm the 254-mm value.  The crank's sections are loaded
+  in a direction fixed to the throw: the full diameter is used (not Shigley's
+  non-rotating equivalent 0.370 d, eq. 6-24, which would give a larger, less
+  conservative k_b).  Without a diameter: the 254-mm value, 0.633 (lowest of the range).
+* k_e, reliability (table 6-5): k_e = 1 - 0.08 z_a, z_a the standard normal quantile
+  of the reliability (0.50 -> 1.000, 0.90 -> 0.897, 0.99 -> 0.814, 0.999 -> 0.753);
+  the library fatigue limits (0.5 R_m, eq. 6-8) are mean values.
+* k_treatment: surface treatment (rolling, induction hardening), given by the user.
+* notch support n (FKM guideline, 6th ed. 2012, section 4.3.1.3.2, n_sigma >= 1 from
+  the relative stress gradient): given by the user, default 1 (no credit).  It applies
+  to the FE route, whose peak stresses carry the full elastic K_t.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from statistics import NormalDist
+
+#: Shigley table 6-2: surface finish -> (a [MPa], b)
+SURFACE = {"ground": (1.58, -0.085), "machined": (4.51, -0.265), "hot_rolled": (57.7, -0.718),
+           "as_forged": (272.0, -0.995)}
+#: size factor used when the section diameter is unknown (eq. 6-20 at 254 mm)
+SIZE_FALLBACK_DIAMETER = 0.254
+
+
+def surface_factor(finish: str, tensile: float) -> float:
+    """k_a = a R_m^b (Shigley eq. 6-19, table 6-2), R_m in Pa, not above 1."""
+    a, b = SURFACE[finish]
+    return min(1.0, a * (tensile / 1e6) ** b)
+
+
+def size_factor(diameter: float | None) -> float:
+    """k_b (Shigley eq. 6-20) for a round section of ``diameter`` m (None: 254 mm)."""
+    d = (SIZE_FALLBACK_DIAMETER if diameter is None else diameter) * 1e3
+    d = min(d, 254.0)
+    if d < 2.79:
+        return 1.0
+    if d <= 51.0:
+        return 1.24 * d**-0.107
+    return 1.51 * d**-0.157
+
+
+def reliability_factor(reliability: float) -> float:
+    """k_e = 1 - 0.08 z_a (Shigley table 6-5), z_a the normal quantile of ``reliability``."""
+    if not 0.5 <= reliability < 1.0:
+        raise ValueError(f"reliability must be in [0.5, 1), got {reliability}")
+    return 1.0 - 0.08 * NormalDist().inv_cdf(reliability)
+
+
+@dataclass(frozen=True)
+class FatigueFactors:
+    """The factors applied to the specimen fatigue limits of one section."""
+
+    surface: float
+    size: float
+    reliability: float
+    treatment: float
+    notch_support: float
+    diameter: float | None  # m, section diameter the size factor was taken for
+
+    @property
+    def product(self) -> float:
+        return self.surface * self.size * self.reliability * self.treatment * self.notch_support
+
+
+def factors(material, diameter: float | None = None) -> FatigueFactors:
+    """The factors of ``material`` (``fe_crank.io.material.Material``) for a section of
+    ``diameter``: given values win over the computed ones (surface from the finish and
+    R_m, size from the diameter)."""
+    ks = material.surface_factor
+    if ks is None:
+        ks = surface_factor(material.surface_finish, material.tensile_strength) \
+            if material.tensile_strength is not None else 1.0
+    kb = material.size_factor if material.size_factor is not None else size_factor(diameter)
+    return FatigueFactors(ks, kb, reliability_factor(material.reliability), material.treatment_factor,
+                          material.notch_support_factor, None if material.size_factor is not None else diameter)
+
+
+__all__ = ["SURFACE", "surface_factor", "size_factor", "reliability_factor", "FatigueFactors", "factors",
+           "material_rows"]
+
+
+def material_rows(material) -> list[list[str]]:
+    """Rows (name, value and source) of the factors for the report's material table."""
+    if material is None or not hasattr(material, "reliability"):
+        return []
+    ff = factors(material, None)
+    ka = (f"{ff.surface:.3f} (given)" if material.surface_factor is not None else
+          f"{ff.surface:.3f} ({material.surface_finish}, Shigley eq. 6-19)")
+    kb = (f"{material.size_factor:.3f} (given)" if material.size_factor is not None else
+          "per section from its diameter (Shigley eq. 6-20; see the fatigue table)")
+    return [["surface factor k_a", ka], ["size factor k_b", kb],
+            ["reliability factor k_e", f"{ff.reliability:.3f} ({material.reliability:.4g}, Shigley table 6-5)"],
+            ["treatment factor", f"{ff.treatment:.3f}"],
+            ["notch support factor", f"{ff.notch_support:.3f} (FE route; 1 = no credit)"]]

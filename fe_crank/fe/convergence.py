@@ -1,0 +1,200 @@
+"""Hot-spot convergence study: the peak fillet stress as the fillet elements are refined.
+
+IACS UR M53 (FE appendix, element size): the fillet elements must resolve the stress
+gradient; the rule of thumb r/4 is a minimum, not a proof.  A sign-off therefore meshes
+the throw at successively finer fillet sizes -- element edge r/(n f) for the factors f of
+``FACTORS`` (1, 1.5, 2: r/4, r/6, r/8 from the ``coarse`` preset's n = 4), the rest of
+the size field unchanged -- solves the same loads on each mesh and compares the peak von
+Mises stress on the fillet surfaces (averaged nodal stress, the value the assessment
+reads).  The relative change of the last step,
+
+    change = |sigma_k - sigma_(k-1)| / sigma_k,
+
+must not exceed ``TOLERANCE`` (5 %) for every load set; then the mesh is "converged" in
+the sense that the last refinement moved the hot-spot stress by less than the tolerance
+(a monotone, roughly geometric sequence puts the remaining error of the finest level at
+most about the last change).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fe_crank.fe.supports import boundary_facets
+from fe_crank.fe.unit_cases import FeOptions, solve_unit_cases
+
+FACTORS = (1.0, 1.5, 2.0)
+TOLERANCE = 0.05
+FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")
+#: default loads: the radial crankpin force (firing direction, towards the axis) and the torque, 1 N / 1 N m
+DEFAULT_LOADS = {"pin_-y": {"pin_-y": 1.0}, "torque": {"torque": 1.0}}
+
+
+@dataclass(frozen=True)
+class ConvergenceLevel:
+    """One mesh of the study: its fillet size and the peak fillet stress of each load set."""
+
+    fillet_divisions: float             # fillet element edge = r / fillet_divisions
+    n_dof: int
+    fillet_max_edge: dict[str, float]   # m, longest triangle edge on each fillet (mesh statistics)
+    peaks: dict[str, float]             # load set -> peak von Mises on the fillets, Pa
+    where: dict[str, str]               # load set -> fillet of the peak
+    seconds: float
+
+
+@dataclass(frozen=True)
+class ConvergenceStudy:
+    """Levels coarse -> fine, the relative change of the last step per load set, the verdict."""
+
+    levels: tuple[ConvergenceLevel, ...]
+    loads: dict[str, dict[str, float]]
+    tolerance: float
+    changes: dict[str, list[float]] = field(default_factory=dict)   # load set -> change of each step
+
+    @property
+    def change(self) -> float:
+        """Largest relative change of the last refinement over the load sets."""
+        return max(c[-1] for c in self.changes.values())
+
+    @property
+    def converged(self) -> bool:
+        return bool(self.change <= self.tolerance)
+
+    def to_dict(self) -> dict:
+        """The ``mesh_convergence`` entry of results.json (SI: Pa, m)."""
+        return {
+            "levels": [lv.fillet_divisions for lv in self.levels],
+            "fillet_size": [f"r/{lv.fillet_divisions:g}" for lv in self.levels],
+            "n_dof": [lv.n_dof for lv in self.levels],
+            "peaks": {name: [lv.peaks[name] for lv in self.levels] for name in self.loads},
+            "where": {name: [lv.where[name] for lv in self.levels] for name in self.loads},
+            "loads": self.loads,
+            "changes": self.changes,
+            "change": self.change,
+            "tolerance": self.tolerance,
+            "converged": self.converged,
+        }
+
+
+def check_loads(throw_loads, omega: float) -> dict[str, dict[str, float]]:
+    """Load sets of the check's study from the dynamics of one or more throws.
+
+    ``throw_loads``: objects with ``pin_force`` (n, 2) in the throw frame (N) and
+    ``torque_front``/``torque_rear`` (n,) (N m), e.g. ``DynamicsResult.throws`` values.
+    "peak pin force": the largest crankpin force of the cycle (pin unit cases by the two
+    bracketing directions) with the centrifugal load at ``omega`` (rad/s); "peak torque":
+    the largest journal torque through the throw (skipped when zero).
+    """
+    from fe_crank.fe.pin_directions import pin_case_weights, pin_cases
+
+    best, tmax = None, 0.0
+    for tl in throw_loads:
+        F = np.asarray(tl.pin_force, float)
+        i = int(np.argmax(np.hypot(F[:, 0], F[:, 1])))
+        if best is None or np.hypot(*F[i]) > np.hypot(*best):
+            best = F[i]
+        tmax = max(tmax, float(np.abs(tl.torque_front).max()), float(np.abs(tl.torque_rear).max()))
+    names = pin_cases()
+    w = pin_case_weights(np.asarray(best, float)[None, :], names)[0]
+    pin = {n: float(x) for n, x in zip(names, w) if x != 0.0}
+    loads = {"peak pin force": {**pin, "centrifugal": float(omega) ** 2}}
+    if tmax > 0:
+        loads["peak torque"] = {"torque": tmax}
+    return loads
+
+
+def peak_fillet_stress(units, u: np.ndarray, fillets=FILLETS) -> tuple[float, str]:
+    """Largest averaged nodal von Mises stress on the fillet surfaces present, and where."""
+    vm = units.von_mises(units.stress_at_nodes(u))
+    mesh, basis = units.mesh, units.system.basis
+    best, where = -np.inf, ""
+    for name in fillets:
+        if name not in (mesh.boundaries or {}):
+            continue
+        nodes = basis.get_dofs(boundary_facets(mesh, name, "the convergence study")).all()
+        v = float(vm[nodes].max())
+        if v > best:
+            best, where = v, name
+    if not where:
+        raise ValueError(f"the mesh has none of the fillet surfaces {fillets}")
+    return best, where
+
+
+def fillet_convergence(geometry, material, *, throw=None, base=None, factors=FACTORS, loads=None,
+                       fe_options: FeOptions | None = None, tolerance: float = TOLERANCE,
+                       cache_dir=None) -> ConvergenceStudy:
+    """Mesh ``throw`` of ``geometry`` at fillet sizes r/(n f), f in ``factors``, and compare peaks.
+
+    ``base``: the ``MeshOptions`` (or preset name) of the first level, n its
+    ``fillet_divisions``; ``loads``: {load set: {unit case: weight}} (default
+    ``DEFAULT_LOADS``); ``fe_options``: support model etc. of the check (only the unit
+    cases the loads need are solved).  Returns a :class:`ConvergenceStudy`.
+    """
+    from fe_crank.mesh import PRESETS, MeshOptions, mesh_throw
+
+    if len(factors) < 2:
+        raise ValueError("a convergence study needs at least two levels")
+    base = PRESETS[base or "coarse"] if not isinstance(base, MeshOptions) else base
+    loads = {k: dict(v) for k, v in (loads or DEFAULT_LOADS).items()}
+    needed = tuple(sorted({c for w in loads.values() for c in w}))
+    opts = dataclasses.replace(fe_options or FeOptions(), cases=needed)
+    levels = []
+    for f in factors:
+        t0 = time.perf_counter()
+        mopt = dataclasses.replace(base, fillet_divisions=base.fillet_divisions * f)
+        tm = mesh_throw(geometry, throw=throw, size=mopt, cache_dir=cache_dir)
+        units = solve_unit_cases(tm, material, opts)
+        peaks, where = {}, {}
+        for name, w in loads.items():
+            peaks[name], where[name] = peak_fillet_stress(units, units.combine(w))
+        levels.append(ConvergenceLevel(fillet_divisions=mopt.fillet_divisions, n_dof=units.n_dof,
+                                       fillet_max_edge=dict(tm.stats.fillet_max_edge), peaks=peaks,
+                                       where=where, seconds=time.perf_counter() - t0))
+        units.system.factorisation.free()
+    changes = {name: [abs(b.peaks[name] - a.peaks[name]) / b.peaks[name] for a, b in zip(levels, levels[1:])]
+               for name in loads}
+    return ConvergenceStudy(levels=tuple(levels), loads=loads, tolerance=tolerance, changes=changes)
+
+
+def wanted(flag: bool | None, preset: str) -> bool:
+    """Run the study?  An explicit flag wins; by default for every preset but ``test``."""
+    return bool(flag) if flag is not None else preset != "test"
+
+
+def check_studies(lc, meshes: dict, dynamics, *, cache_dir=None) -> dict[str, ConvergenceStudy]:
+    """The check stage's study for each distinct throw mesh (``meshes``: key -> ThrowMesh).
+
+    Loads from ``check_loads`` (the throws the key stands for: the engine throw of that
+    name, else all of them); the first level uses the check's own mesh options.
+    """
+    out, done = {}, {}
+    for key, tm in meshes.items():
+        if tm.key in done:
+            out[key] = done[tm.key]
+            continue
+        tls = [dynamics.throws[key]] if key in dynamics.throws else list(dynamics.throws.values())
+        study = fillet_convergence(lc.geometry, lc.material, throw=tm.throw, base=tm.options,
+                                   loads=check_loads(tls, lc.operating.speed), fe_options=lc.fe,
+                                   cache_dir=cache_dir)
+        out[key] = done[tm.key] = study
+    return out
+
+
+def criterion(studies: dict[str, ConvergenceStudy]):
+    """The verdict's ``mesh_convergence`` criterion: the largest last-step change of the
+    peak fillet stress over the throws must not exceed the tolerance (a "max" criterion)."""
+    from fe_crank.results import CriterionResult
+
+    key, st = max(studies.items(), key=lambda kv: kv[1].change)
+    name = max(st.changes, key=lambda n: st.changes[n][-1])
+    a, b = st.levels[-2], st.levels[-1]
+    return CriterionResult(
+        name="mesh_convergence.max_peak_change", passed=st.converged, value=st.change, limit=st.tolerance,
+        margin=1.0 - st.change / st.tolerance, unit="", quantity="mesh_convergence", sense="max",
+        location=f"throw {key}, {b.where[name]}, {name}, r/{a.fillet_divisions:g} -> r/{b.fillet_divisions:g}",
+        description="relative change of the peak fillet von Mises stress at the last fillet refinement "
+                    "(hot-spot convergence study, docs/fe.md)")
