@@ -8,8 +8,9 @@ FE stage (the consistent load vectors fe-crank assembled, written as *CLOAD), on
 
 Supports, translated from the FE stage's ``System``:
 
-* single held dofs (``point_dofs``) and held boundary components (``dirichlet_dofs``):
-  *BOUNDARY on those node dofs;
+* single held dofs (``point_dofs``: the six point constraints of the statically
+  determinate model, whose reactions are part of the nodal loads) and held boundary
+  components (``dirichlet_dofs``): *BOUNDARY on those node dofs;
 * rigid end-face couplings (RBE2): *RIGID BODY with a reference and a rotation node at
   fe-crank's reference point, their held dofs as *BOUNDARY;
 * elastic foundations (Winkler, k int (u.n_r)(v.n_r) dA): one SPRING1 per surface node
