@@ -18,6 +18,7 @@ demo: $(STAMP)
 	$(VENV)/bin/fe-crank check loadcases/ -o reports/
 
 test: $(STAMP)
+	$(VENV)/bin/lint-imports
 	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q
 
 # The benchmarks of docs/performance.md (a few minutes; the 1M-dof rows and the CalculiX

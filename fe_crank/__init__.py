@@ -1,6 +1,6 @@
 """fe-crank: finite-element crankshaft and counterweight stress checker.
 
-The pipeline (see DESIGN.md): load case -> kinematics -> dynamics -> balance ->
+The pipeline (see docs/architecture.md): load case -> kinematics -> dynamics -> balance ->
 geometry -> mesh -> FE -> assessment -> report.  SI units inside, always.
 """
 

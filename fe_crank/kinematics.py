@@ -33,13 +33,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.errors import GeometryError
+from fe_crank.errors import GeometryError, InputError
 
 __all__ = [
     "PistonMotion",
     "piston_motion",
     "harmonic_coefficients",
     "piston_motion_harmonic",
+    "fourier_coefficients",
+    "sample_angles",
 ]
 
 
@@ -143,6 +145,31 @@ def piston_motion(
     return PistonMotion(phi, s, v, a, beta, bd, bdd, vg, ag, vb, ab)
 
 
+def sample_angles(n: int) -> np.ndarray:
+    """``n`` equally spaced angles over one revolution, ``[0, 2 pi)``."""
+    return 2.0 * np.pi * np.arange(n) / n
+
+
+def fourier_coefficients(samples: np.ndarray, kmax: int) -> np.ndarray:
+    """Coefficients ``(alpha_k, beta_k)``, ``k = 0..kmax``, of ``sum alpha cos k t + beta sin k t``.
+
+    ``samples`` has shape ``(..., n)`` on ``sample_angles(n)``; returns shape
+    ``(..., kmax + 1, 2)``; ``alpha_0`` is the mean.  By the FFT:
+    ``alpha_k = 2 Re X_k / n``, ``beta_k = -2 Im X_k / n`` with ``X = rfft(samples)``
+    (the trapezoidal rule of the Fourier integrals, exact for orders below ``n / 2``).
+    """
+    n = samples.shape[-1]
+    if kmax >= n // 2:
+        raise InputError(f"order {kmax} needs more than {n} samples per revolution", key="kmax")
+    spec = np.fft.rfft(samples, axis=-1) / n
+    out = np.empty(samples.shape[:-1] + (kmax + 1, 2))
+    out[..., 0, 0] = spec[..., 0].real
+    out[..., 0, 1] = 0.0
+    out[..., 1:, 0] = 2.0 * spec[..., 1:kmax + 1].real
+    out[..., 1:, 1] = -2.0 * spec[..., 1:kmax + 1].imag
+    return out
+
+
 def series_coefficients(lam: float) -> dict[int, float]:
     """Textbook power-series coefficients ``A_k`` (k = 1, 2, 4, 6; to lambda^5) of the
     acceleration harmonics of the central slider crank (see ``harmonic_coefficients``)."""
@@ -172,8 +199,9 @@ def harmonic_coefficients(lam: float, orders=(1, 2, 4, 6), *, method: str = "exa
 
     With ``method="exact"`` (default) the true Fourier coefficients of the exact
     acceleration, ``A_k = (1/pi) int_0^2pi a/(r omega^2) cos(k phi) dphi``, by the
-    trapezoidal rule on 512 points (exponentially convergent for this periodic
-    analytic integrand; exact to round-off for lam < 0.5).  Any order >= 1 is allowed.
+    discrete Fourier transform of 512 samples (``fourier_coefficients``; the trapezoidal
+    rule, exponentially convergent for this periodic analytic integrand; exact to
+    round-off for lam < 0.5).  Any order >= 1 is allowed.
 
     Parameters
     ----------
@@ -201,10 +229,9 @@ def harmonic_coefficients(lam: float, orders=(1, 2, 4, 6), *, method: str = "exa
     if method != "exact":
         raise ValueError(f"method must be 'exact', 'series' or 'leading', got {method!r}")
     n = 512
-    phi = 2.0 * np.pi * np.arange(n) / n
-    a = piston_motion(phi, 1.0, 1.0 / lam, 1.0).a
-    return {k: float(2.0 / n * np.sum(a * np.cos(k * phi))) for k in orders}
-
+    a = piston_motion(sample_angles(n), 1.0, 1.0 / lam, 1.0).a
+    c = fourier_coefficients(a, max(orders))
+    return {k: float(c[k, 0]) for k in orders}
 
 def piston_motion_harmonic(phi, r: float, l: float, omega: float, orders=(1, 2), *, method: str = "exact") -> PistonMotion:
     """Piston motion from the truncated harmonic series (no pin offset).

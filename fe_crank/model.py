@@ -1,6 +1,6 @@
 """Frozen data the numerical core works on: SI floats only, no units, no files.
 
-Conventions (DESIGN.md):
+Conventions (docs/architecture.md, "Conventions"):
 
 * Global frame: ``z`` along the crank axis (positive from the front/free end to the
   flywheel end), ``y`` up, ``x`` completing a right-handed frame.  Looking along

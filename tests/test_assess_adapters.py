@@ -11,9 +11,9 @@ import pytest
 from fe_crank.assess.adapters import counterweights_of, m53_geometry_of, stress_area
 from fe_crank.assess.m53 import out_of_range
 
-geo_io = pytest.importorskip("fe_crank.io.geometry")
-spec = pytest.importorskip("fe_crank.geometry.spec")
-sector = pytest.importorskip("fe_crank.balance.sector")
+import fe_crank.io.geometry as geo_io
+import fe_crank.geometry.spec as spec
+import fe_crank.balance.sector as sector
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,7 @@ from fe_crank.assess import unit_stresses
 from fe_crank.assess.superpose import combine, load_coefficients, stress_history
 from fe_crank.io.material import load_material
 
-fe = pytest.importorskip("fe_crank.fe.unit_cases")
+import fe_crank.fe.unit_cases as fe
 from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load  # noqa: E402
 
 RADIUS, LENGTH = 0.02, 0.12

@@ -27,8 +27,10 @@ def test_semi_axes_and_tilt_match_the_traced_curve(abcd):
 @pytest.mark.parametrize("abcd", [(0.3, -1.2, 0.7, 0.4), (0.152, 0.866, 1.104, 0.5), (1.0, 0.0, 0.0, 0.2)])
 def test_seed000_tilt_formula_names_a_principal_axis(abcd):
     """tan 2 delta = 2B/(C - A) (seed 000 eqs. 112-114) gives the major or the minor axis."""
+    a, b, c, d = abcd
+    delta = 0.5 * math.atan2(2.0 * (a * c + b * d), (a * a + b * b) - (c * c + d * d))
     h = hodograph(*abcd)
-    diff = (h.tilt - h.tilt_seed) % (math.pi / 2)
+    diff = (h.tilt - delta) % (math.pi / 2)
     assert min(diff, math.pi / 2 - diff) < 1e-9
 
 
@@ -55,3 +57,22 @@ def test_degenerate_ellipses_are_reported():
     anti = hodograph(0.0, -3.0, 3.0, 0.0)
     assert anti.kind == "circle" and anti.co_magnitude == pytest.approx(0, abs=1e-12)
     assert hodograph(1.0, 0.2, 0.3, 1.1).kind == "ellipse"
+
+
+def test_degenerate_kinds_at_force_scale_and_tiny_scale():
+    """The kind thresholds are relative (1e-9 of the major semi-axis) at any scale."""
+    # a line with a 1e-11 relative minor axis at 5e4 N: Fx = 5e4 cos, Fy = 5e-7 sin -> "line"
+    h = hodograph(5e4, 0.0, 0.0, 5e-7)
+    assert h.kind == "line" and h.major == pytest.approx(5e4) and h.minor == pytest.approx(5e-7, abs=1e-10)  # round-off of p - q: eps * 5e4 ~ 1e-11
+    assert h.tilt == pytest.approx(0.0, abs=1e-12)
+    # a circle with a 1e-11 relative eccentricity: Fx = 5e4 sin, Fy = (5e4 + 1e-6) cos -> "circle", tilt 0
+    h = hodograph(0.0, 5e4, 5e4 + 1e-6, 0.0)
+    assert h.kind == "circle" and h.tilt == 0.0 and h.major == pytest.approx(5e4)
+    # a true ellipse at 1e-20 N is still an ellipse (no absolute threshold): semi-axes 1e-20, 0.5e-20
+    h = hodograph(1e-20, 0.0, 0.0, 0.5e-20)
+    assert h.kind == "ellipse"
+    assert (h.major, h.minor) == pytest.approx((1e-20, 0.5e-20), rel=1e-12)
+    assert h.tilt == pytest.approx(0.0, abs=1e-12)
+    # an exactly zero resultant: kind "zero", tilt 0
+    z = hodograph(0.0, 0.0, 0.0, 0.0)
+    assert z.kind == "zero" and z.tilt == 0.0 and z.major == 0.0

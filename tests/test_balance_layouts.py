@@ -1,4 +1,4 @@
-"""Textbook balance results of common layouts (issue 3, 'Done means')."""
+"""Textbook balance results of common layouts."""
 
 import math
 

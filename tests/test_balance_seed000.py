@@ -60,7 +60,7 @@ def test_deltic_section_ellipse_tilts_30_deg_and_turning_against_shaft_c(deltic,
     h = ff.term(source, k).force_hodograph()
     assert h.kind == "ellipse"
     # the seed gives the angle between the ellipse's axes and the coordinate axes: 30 deg
-    tilt = abs(math.degrees(h.tilt_seed)) % 90.0
+    tilt = abs(math.degrees(h.tilt)) % 90.0
     assert min(tilt, 90.0 - tilt) == pytest.approx(30.0, abs=0.01)
     # seed: the resultant turns at the speed of shaft c but opposite to it (c has sense -1 here)
     assert e.shaft("c").sense == -1 and h.co_magnitude > h.counter_magnitude
@@ -91,27 +91,43 @@ def test_four_shaft_coefficients_lines_and_tilts(four_shaft, k, seed, tilt_deg, 
     assert np.allclose(got.ravel(), seed, atol=1e-3)
     h = ff.term("reciprocating", k).force_hodograph()
     assert h.kind == "line"  # 'in this particular case straight lines' (seed)
-    # the seed's own coefficients give its tilt through tan 2 delta = 2B/(C - A) ...
-    assert math.degrees(hodograph(*seed).tilt_seed) == pytest.approx(tilt_deg, abs=printed_tol)
+    # the seed's printed coefficients give its tilt (seed: tan 2 delta = 2B/(C - A)) ...
+    assert math.degrees(hodograph(*seed).tilt) == pytest.approx(tilt_deg, abs=printed_tol)
     # ... and the unrounded coefficients agree within the rounding of the printed ones
-    assert math.degrees(h.tilt_seed) == pytest.approx(tilt_deg, abs=0.15)
+    assert math.degrees(h.tilt) == pytest.approx(tilt_deg, abs=0.15)
 
 
 def test_four_shaft_first_order_tilt_worked_example():
-    """Seed: B = 0.0072, C = 0.1269, A = 0.0004, tan 2 delta_1 = 0.114, delta_1 = 3 deg 15 min."""
-    a, b, c, d = -0.061, 0.351, -0.003, 0.020
-    B, C, A = a * c + b * d, a * a + b * b, c * c + d * d
-    assert (B, C, A) == pytest.approx((0.0072, 0.1269, 0.0004), abs=6e-5)
-    assert 2 * B / (C - A) == pytest.approx(0.114, abs=1e-3)
+    """Seed: B = 0.0072, C = 0.1269, A = 0.0004, tan 2 delta_1 = 0.114, delta_1 = 3 deg 15 min.
+
+    The hodograph of the seed's printed coefficients (a, b, c, d) = (-0.061, 0.351, -0.003, 0.020)
+    must have its major axis at the seed's delta_1 (the package finds the axis from the co- and
+    counter-rotating parts, not from tan 2 delta).  Hand check of the seed's route:
+    B = ac + bd = 0.000183 + 0.00702 = 0.0072, C = a^2 + b^2 = 0.003721 + 0.123201 = 0.1269,
+    A = c^2 + d^2 = 0.000009 + 0.0004 = 0.0004, 2B/(C - A) = 0.014406/0.126513 = 0.1139,
+    delta = atan(0.1139)/2 = 3.249 deg.  Tolerance: the seed prints delta to the minute."""
+    h = hodograph(-0.061, 0.351, -0.003, 0.020)
+    assert h.kind == "ellipse"
+    assert math.degrees(h.tilt) == pytest.approx(3.25, abs=1 / 60)
+    # the semi-axes squared are the eigenvalues of [[C, B], [B, A]] (seed eqs. 112-114)
+    lam = np.linalg.eigvalsh([[0.126922, 0.007203], [0.007203, 0.000409]])
+    assert (h.minor**2, h.major**2) == pytest.approx(tuple(lam), rel=1e-3)
 
 
 def test_nordberg_yoke_example_16():
-    """l_ya = 0.176 m, beta_max = 14 deg 44 min, m = 100 kg, omega^2 = 1740 -> 45 mm, 7.83 kN, 35.4 kN."""
+    """l_ya = 0.176 m, beta_max = 14 deg 44 min, m = 100 kg, omega^2 = 1740 -> 45 mm, 7.83 kN, 35.4 kN.
+
+    Hand calculation (eqs. 162-164): S/2 = l_ya sin beta_max = 0.176 * 0.254321 = 0.0447604 m
+    (the seed rounds it to 45 mm); P'_ya = m S/2 omega^2 = 100 * 0.0447604 * 1740 = 7788.3 N
+    (the seed's 7.83 kN is 100 * 0.045 * 1740 with the rounded 45 mm)."""
     e = engine("nordberg_radial.toml")
     y = yoke_inertia(e.yoke, math.sqrt(1740.0))
-    assert y.half_stroke == pytest.approx(0.045, abs=5e-4)
-    assert y.oscillating_amplitude == pytest.approx(7830.0, rel=0.01)  # seed rounds S/2 to 45 mm first
-    assert 100 * 0.045 * 1740 == pytest.approx(7830.0)
+    # rel 1e-5: the hand values carry 6 digits; a wrong trig function (tan: +3.4 %) or a
+    # missing factor is far outside
+    assert y.half_stroke == pytest.approx(0.0447604, rel=1e-5)
+    assert y.half_stroke == pytest.approx(0.045, abs=5e-4)  # the seed's rounded figure
+    assert y.oscillating_amplitude == pytest.approx(7788.3, rel=1e-5)
+    assert y.oscillating_amplitude == pytest.approx(7830.0, rel=0.01)  # seed, from the rounded 45 mm
     assert y.centrifugal == pytest.approx(35.4e3, rel=2e-3)
 
 

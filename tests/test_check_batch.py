@@ -134,7 +134,7 @@ def test_process_pool_gives_the_same_results_as_serial(tmp_path):
 
 
 def test_dask_local_cluster_gives_the_same_results_as_serial(tmp_path):
-    distributed = pytest.importorskip("distributed")
+    import distributed  # dask[distributed] is a declared dependency
     cases = [BROKEN[0], DATA / "early_stop_no_geometry.toml"]
     serial = run_cases(cases, tmp_path / "s")
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,

@@ -53,7 +53,7 @@ def test_files_of_a_computed_case(batch):
 
 
 def test_results_json_validates_against_the_schema(batch):
-    jsonschema = pytest.importorskip("jsonschema")
+    import jsonschema  # a declared dependency: a failed import must fail the test
     from fe_crank.assess.results import load_schema
 
     _, out, _, _ = batch
@@ -89,7 +89,7 @@ def test_rendered_pictures_are_not_blank(batch):
 
 
 def test_dask_local_cluster_gives_the_serial_results(batch, tmp_path):
-    distributed = pytest.importorskip("distributed")
+    import distributed  # dask[distributed] is a declared dependency
     _, out, _, cache = batch
     opts = CheckOptions(mesh_size="test", cache_dir=str(cache), render=False, write_vtu=False)
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,

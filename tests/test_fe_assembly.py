@@ -1,4 +1,4 @@
-"""FE stage (issue 5): vectorised assembly equals scikit-fem's generic assembly; solvers agree."""
+"""FE stage: vectorised assembly equals scikit-fem's generic assembly; solvers agree."""
 
 from __future__ import annotations
 

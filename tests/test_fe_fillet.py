@@ -1,4 +1,4 @@
-"""FE stage (issue 5): shaft-shoulder fillet Kt against the Peterson/Roark fit, convergence.
+"""FE stage: shaft-shoulder fillet Kt against the Peterson/Roark fit, convergence.
 
 Reference: Roark's Formulas for Stress and Strain, 7th ed. (Young & Budynas), Table 17.1
 case 17b (square shoulder with fillet in a circular shaft, bending), a fit of Peterson's

@@ -1,4 +1,4 @@
-"""FE stage (issue 5): the [fe] load-case section (units at the edge, strict keys)."""
+"""FE stage: the [fe] load-case section (units at the edge, strict keys)."""
 
 from __future__ import annotations
 

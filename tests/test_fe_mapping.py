@@ -1,4 +1,4 @@
-"""The robust inverse of the isoparametric map used for every surface integral (issue 5)."""
+"""The robust inverse of the isoparametric map used for every surface integral."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""FE stage (issue 5): unit load cases on a simple throw -- equilibrium, load integrals, errors."""
+"""FE stage: unit load cases on a simple throw -- equilibrium, load integrals, errors."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""FE stage (issue 5): P2 elasticity against closed-form solutions (Lame disk, beam, round bar)."""
+"""FE stage: P2 elasticity against closed-form solutions (Lame disk, beam, round bar)."""
 
 from __future__ import annotations
 

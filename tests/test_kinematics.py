@@ -2,6 +2,7 @@
 harmonic series against the exact motion."""
 
 import numpy as np
+from scipy.integrate import quad
 import pytest
 
 from fe_crank.errors import GeometryError
@@ -67,18 +68,55 @@ def test_dead_centres_closed_form():
     assert s.max() == pytest.approx(stroke, rel=1e-9)
 
 
-def test_series_coefficients_match_exact_fourier_to_next_power_of_lambda():
-    for lam in (0.1, 0.2, 0.3):
-        ex = harmonic_coefficients(lam, (1, 2, 3, 4, 6))
-        se = harmonic_coefficients(lam, (1, 2, 4, 6), method="series")
-        assert ex[1] == pytest.approx(1.0, abs=1e-13)
-        assert abs(ex[3]) < 1e-13  # odd orders vanish without offset
-        for k in (2, 4, 6):
-            # truncation after lam^5: error of order lam^7
-            assert abs(ex[k] - se[k]) < lam**7
+def _fourier_by_quadrature(k, lam):
+    """A_k = (1/pi) int_0^2pi a/(r w^2) cos k phi dphi by adaptive quadrature of the closed form
+
+    s = r (1 - cos phi) + l (1 - sqrt(D)), D = 1 - lam^2 sin^2 phi, twice differentiated:
+    a/(r w^2) = cos phi + lam (D cos 2phi + lam^2 sin^2 2phi / 4) / D^(3/2)
+    (independent of piston_motion and of the FFT used by harmonic_coefficients)."""
+
+    def f(p):
+        d = 1.0 - lam**2 * np.sin(p) ** 2
+        a = np.cos(p) + lam * (d * np.cos(2 * p) + lam**2 * np.sin(2 * p) ** 2 / 4.0) / d**1.5
+        return a * np.cos(k * p)
+
+    return quad(f, 0.0, 2 * np.pi, epsabs=1e-15, epsrel=1e-13, limit=200)[0] / np.pi
+
+
+def test_exact_harmonic_coefficients_equal_the_fourier_integrals_by_quadrature():
+    for lam in (0.1, 0.3, 0.45):
+        ex = harmonic_coefficients(lam, (1, 2, 3, 4, 6, 8))
+        for k in (1, 2, 3, 4, 6, 8):
+            # round-off level: the smallest coefficient checked (A_8 at lam=0.1) is ~ 1e-8
+            assert ex[k] == pytest.approx(_fourier_by_quadrature(k, lam), abs=1e-13)
         # sum of all coefficients at phi = 0 is a(0)/(r w^2) = 1 + lam exactly
         allk = harmonic_coefficients(lam, range(1, 40))
         assert sum(allk.values()) == pytest.approx(1 + lam, abs=1e-12)
+
+
+def test_series_lambda5_coefficients_against_the_exact_fourier_integrals():
+    """Textbook series (Taylor vol. 2 ch. 8): A_2 = lam + lam^3/4 + 15 lam^5/128,
+    A_4 = -(lam^3/4 + 3 lam^5/16), A_6 = 9 lam^5/128.
+
+    At lam = 0.02 the lam^5 coefficient recovered from the exact integral,
+    (A_k - lower powers) / lam^5, differs from the series value only by the lam^7 terms,
+    c7/c5 lam^2 <= 1.25 * 4e-4 = 5e-4 relative (c7/c5 <= 1.25 for k = 2, 4, 6, read off the
+    same integrals at lam = 0.05); rel = 2e-3 therefore catches a 1 % error in any lam^5
+    coefficient with a factor 5 margin (an absolute lam^7 bound at lam = 0.3 missed 6.7 %)."""
+    lam = 0.02
+    se = harmonic_coefficients(lam, (1, 2, 4, 6), method="series")
+    lower = {2: lam + lam**3 / 4.0, 4: -(lam**3) / 4.0, 6: 0.0}
+    c5_series = {2: 15.0 / 128.0, 4: -3.0 / 16.0, 6: 9.0 / 128.0}
+    for k in (2, 4, 6):
+        c5_exact = (_fourier_by_quadrature(k, lam) - lower[k]) / lam**5
+        assert c5_exact == pytest.approx(c5_series[k], rel=2e-3)
+        assert (se[k] - lower[k]) / lam**5 == pytest.approx(c5_exact, rel=2e-3)
+    assert se[1] == 1.0
+    # and at a real crank ratio the truncation error is of the order of the lam^7 term
+    for lam in (0.1, 0.2, 0.3):
+        se = harmonic_coefficients(lam, (2, 4, 6), method="series")
+        for k in (2, 4, 6):
+            assert abs(_fourier_by_quadrature(k, lam) - se[k]) < lam**7
 
 
 def test_truncated_series_converges_with_error_of_next_order():
@@ -194,3 +232,20 @@ def test_seed001_tables3_4_rod_motion_from_velocity_and_acceleration_plans():
     # angular acceleration (table 4, eps2) and slider acceleration of the plans
     np.testing.assert_allclose(np.abs(m.beta_ddot), [8795, 15309.45, 18566.78, 15309.45, 8795], rtol=0.05)
     np.testing.assert_allclose(-m.a, [4200, 3200, 1200, -2250, -5150], rtol=0.06, atol=60)
+
+
+def test_harmonic_motion_keeps_the_exact_rod_and_crankpin_fields():
+    """piston_motion_harmonic truncates only s, v, a (its docstring); every other field is
+    the exact motion's, and integer angles are taken as float radians."""
+    phi = np.array([0, 1, 2, 3, 4, 5, 6])  # integer radians
+    h = piston_motion_harmonic(phi, R, L, OMEGA, (1, 2))
+    ex = piston_motion(phi.astype(float), R, L, OMEGA)
+    for m in (h.phi, h.s, h.v, h.a):
+        assert m.dtype == np.float64
+    np.testing.assert_array_equal(h.phi, phi.astype(float))
+    for name in ("beta", "beta_dot", "beta_ddot", "rod_cg_velocity", "rod_cg_acceleration",
+                 "crankpin_velocity", "crankpin_acceleration"):
+        np.testing.assert_array_equal(getattr(h, name), getattr(ex, name))
+    # two orders at phi = 1 rad: s = r (1 - cos 1) + r A_2/4 (1 - cos 2), A_2 exact
+    a2 = harmonic_coefficients(R / L, (2,))[2]
+    assert h.s[1] == pytest.approx(R * (1 - np.cos(1.0)) + R * a2 / 4 * (1 - np.cos(2.0)), rel=1e-14)

@@ -1,5 +1,5 @@
 """Cycle assessment: unit-load superposition, static and fatigue safety, UR M53,
-counterweights, criteria -> verdicts (issue 6).  See docs/assessment.md.
+counterweights, criteria -> verdicts.  See docs/assessment.md.
 
 Public API: ``assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions)
 -> Assessment`` (``loadcase.py``) and ``to_json(assessment) -> dict`` (``results.py``);

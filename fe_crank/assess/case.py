@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -9,7 +10,6 @@ import numpy as np
 
 from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
-from fe_crank.assess.stress import principal, von_mises
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
 from fe_crank.assess.throw import STATIC_ONLY_PREFIXES, GroupResult, assess_group, section_diameter
 from fe_crank.assess.verdict import CriterionResult, judge
@@ -46,41 +46,30 @@ class Assessment:
         return all(c.passed for c in self.criteria)
 
 
-def fe_scfs(unit: UnitStresses, geo: m53.M53Geometry) -> dict[str, dict[str, float]]:
-    """FE stress concentration factors in the sense of UR M53 Appendix III (Rev.2):
-    peak von Mises in the fillet under the unit radial pin force over the nominal web
-    bending stress of 1 N (sigma_BN = (1/2) a / (B W^2/6)), and peak absolute principal
-    stress under 1 N m of torque over tau_N = 1 / W_P.  For the journal fillet the FE
-    bending factor covers bending and shear together (``shear`` = 0): one radial unit
-    case cannot separate beta_B from beta_Q.  Only fillet groups present in the mesh count.
+def fe_scfs(scf) -> dict[str, dict[str, float]]:
+    """The ``fe_scf`` dictionaries of ``m53.assess_fillet`` from the SCF mode of the UR M53
+    FE appendix (``fe_crank.assess.scf.ScfResult``): alpha_B, alpha_T for the pin,
+    beta_B, beta_Q (method 1 of App. III 3.3.3), beta_T for the journal fillet, from the
+    appendix's own models and stress measures -- not from the cycle model's stresses,
+    whose supports and single radial case give neither the nominal-stress basis nor the
+    bending/shear split of UR M53.
     """
-    nom = m53.nominal_stresses(geo, [0.0, 2.0], [0.0, 2.0])  # amplitudes of 1 N and 1 N m
-    out = {}
-    for fillet, prefix, tau_n in (("pin", "crankpin_fillet", nom.torsion_pin),
-                                  ("journal", "journal_fillet", nom.torsion_journal)):
-        nodes = [unit.groups[g] for g in unit.groups if g.startswith(prefix)]
-        if not nodes or "pin_y" not in unit.cases or "torque" not in unit.cases:
-            continue
-        idx = np.concatenate(nodes)
-        s_b = unit.stress[unit.cases.index("pin_y")][:, idx]
-        s_t = unit.stress[unit.cases.index("torque")][:, idx] / abs(unit.torque_mz)
-        bend = float(von_mises(s_b[None])[0].max())
-        tors = float(np.abs(principal(s_t[None])[0]).max())
-        out[fillet] = {"bending": bend / nom.bending, "shear": 0.0, "torsion": tors / tau_n}
-    return out
+    return scf.for_assessment()
 
 
 def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np.ndarray, torque: np.ndarray,
                  *, omega: float, sense: int = 1, overspeed: float | None, material, crank_radius: float,
                  m53_geometry: m53.M53Geometry | None = None, m53_additional: float = 10e6,
-                 fe_scf: dict[str, dict[str, float]] | None = None,
+                 fe_scf: dict[str, dict[str, float]] | None = None, scf=None,
                  counterweights: tuple[CounterweightData, ...] = (),
                  torque_rear: np.ndarray | None = None,
                  overspeed_loads: tuple[np.ndarray, np.ndarray] | None = None) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
     ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
-    larger alternating part, the one the throw's fillets carry.
+    larger alternating part, the one the throw's fillets carry.  Outside the validity
+    range of the empirical SCFs UR M53 takes FE SCFs: ``fe_scf`` as given, else
+    ``scf()`` (a callable returning the SCF mode's ``assess.scf.ScfResult``, called only then).
 
     ``overspeed_loads`` = (pin force, front torque) of the cycle recomputed at the
     overspeed (``assess_case`` runs the dynamics at omega_os with the load case's
@@ -105,8 +94,11 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
     )
     fillets, nominal = (), None
     if m53_geometry is not None and material.tensile_strength is not None and material.m53_k is not None:
-        if fe_scf is None:
-            fe_scf = fe_scfs(unit, m53_geometry)
+        scf_note = None
+        if fe_scf is None and scf is not None and any(
+                m53.out_of_range(m53_geometry.related(f)) for f in ("pin", "journal")):
+            result = scf()
+            fe_scf, scf_note = fe_scfs(result), result.summary()
         m53_torque = torque
         if torque_rear is not None and m53.half_range(torque_rear) > m53.half_range(torque):
             m53_torque = torque_rear
@@ -117,8 +109,12 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
                                   additional=m53_additional, fe_scf=(fe_scf or {}).get(f))
                 for f in ("pin", "journal")
             )
-        except ValueError as exc:  # outside the range and no fillet group in the mesh for FE SCFs
+        except ValueError as exc:  # outside the range and no FE SCFs
             raise InputError(f"throw {name}: {exc}", key="geometry") from None
+        if scf_note:  # say which FE SCFs: the appendix's SCF mode and its mesh verdict
+            fillets = tuple(dataclasses.replace(f, scf_source=f"{scf_note}; outside the UR M53 validity range: "
+                                                + "; ".join(f.out_of_range)) if f.out_of_range else f
+                            for f in fillets)
         outlet = m53_oil_bore.assess_outlet(m53_geometry, nominal, pin_force, tensile=material.tensile_strength,
                                             k=material.m53_k)
         fillets += (outlet,) if outlet is not None else ()

@@ -9,6 +9,7 @@ from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_st
 from fe_crank.assess.overspeed import describe as describe_overspeed
 from fe_crank.assess.overspeed import overspeed_dynamics
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
+from fe_crank.assess.scf import scf_provider
 from fe_crank.errors import InputError
 
 
@@ -46,6 +47,7 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     if dyn_os is not None:
         notes.insert(1, describe_overspeed(lc))
     throws = []
+    scf_cache: dict = {}  # SCF mode (UR M53 App. III), solved only for a throw outside the empirical range
     for key, units in unit_solutions.items():
         unit = unit_stresses(units)
         boundary_groups = {g: units_nodes for g, units_nodes in assessed_groups(units).items()
@@ -70,6 +72,9 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
                 torque_rear=tl.torque_rear,
                 overspeed_loads=None if dyn_os is None else (dyn_os.throws[tname].pin_force,
                                                              dyn_os.throws[tname].torque_front),
+                scf=None if m53g is None else scf_provider(
+                    scf_cache, key, throw_meshes.get(key, units.mesh), lc.geometry, material, m53g,
+                    solver=getattr(lc.fe, "solver", None) or "auto"),
             ))
             if m53g is None:
                 notes.append(f"throw {tname}: no UR M53 dimensions from the geometry; M53 route not run")

@@ -245,3 +245,19 @@ def assess_fillet(geo: M53Geometry, nominal: NominalStresses, fillet: str, *, te
     sdw = fatigue_strength(tensile, diameter, radius, k)
     return M53Fillet(fillet, source, scf["bending"], scf["shear"], scf["torsion"], bending, torsion, sv, sdw,
                      sdw / sv if sv > 0 else math.inf, tuple(bad))
+
+
+def web_section_modulus(geo: M53Geometry) -> float:
+    """W_eqw = B W^2 / 6, the web section for the nominal bending stress (UR M53 2.1.2.1), m^3."""
+    return geo.web_width * geo.web_thickness**2 / 6.0
+
+
+def web_area(geo: M53Geometry) -> float:
+    """F = B W, the web section for the nominal shear stress (UR M53 2.1.2.2), m^2."""
+    return geo.web_width * geo.web_thickness
+
+
+def polar_section_modulus(geo: M53Geometry, fillet: str) -> float:
+    """W_P = pi/16 (D^4 - D_BH^4)/D (pin) or pi/16 (D_G^4 - D_BG^4)/D_G (journal) (UR M53 2.2.2), m^3."""
+    d, bore = ((geo.pin_diameter, geo.pin_bore) if fillet == "pin" else (geo.journal_diameter, geo.journal_bore))
+    return math.pi / 16.0 * (d**4 - bore**4) / d

@@ -1,156 +1,196 @@
-"""SCF mode: stress concentration factors of the crank throw fillets by FE (IACS UR M53, FE appendix).
+"""UR M53 stress concentration factors by FE (SCF mode), beside the empirical ones.
 
-Load cases on one throw whose journal end faces ``end_1``/``end_2`` are coupled rigidly to
-reference points on the crank axis (as the UR M53 FE guidance prescribes):
+The FE stage (``fe_crank.fe.scf.scf_stresses``) solves the three load cases of the UR M53
+FE appendix (Rev.2 and later, Appendix III; clause numbers below are the appendix's)
+for unit loads; here its stress measures are divided by the nominal stresses of UR M53:
 
-* pure bending: ``end_1`` held, a moment M_B about x (bending in the crank plane) at ``end_2``;
-* pure torsion: the same support, a torque T about z at ``end_2`` (same factorisation);
-* three-point bending: both reference points held in translation (``end_1`` also in
-  rotation about z), the crankpin loaded by a radial force F as a cosine pressure.
+* alpha_B = sigma_equiv,alpha / sigma_N, beta_B = sigma_equiv,beta / sigma_N,
+  sigma_N = M / W_eqw, W_eqw = B W^2 / 6 (3.2.3; UR M53 2.1.2.1);
+  sigma_equiv the largest von Mises stress over the pin (alpha) or journal (beta) fillets;
+* alpha_T = tau_equiv,alpha / tau_N, beta_T = tau_equiv,beta / tau_N, tau_N = T / W_P with
+  W_P of the crankpin resp. journal (3.1.3; UR M53 2.2.2);
+* 3-point bending (3.3.3), method 1: sigma_3P = sigma_N3P beta_B + sigma_Q3P beta_Q, i.e.
+  beta_Q = (sigma_3P - sigma_N3P beta_B) / sigma_Q3P with sigma_N3P = Q_3P L / W_eqw (the
+  bending moment at the web centre, L from the support to the web centre) and
+  sigma_Q3P = Q_3P / (B W); method 2: beta_BQ = sigma_3P / sigma_N3P (reported).
+  Each web with its own reaction, lever and journal-fillet peak; the larger factor is kept.
 
-Factors, with the nominal stresses of UR M53 section 2 (web section for bending and shear):
-alpha_B = sigma_max(pin fillet) / sigma_N, beta_B = sigma_max(journal fillet) / sigma_N,
-sigma_N = M_B / (B W^2 / 6);  alpha_T = tau_max(pin fillet) / (T / W_P,pin),
-beta_T = tau_max(journal fillet) / (T / W_P,journal), W_P = pi/16 (D^4 - D_B^4) / D;
-beta_Q = (sigma_3P - beta_B sigma_N3P) / sigma_Q3P with sigma_N3P = Q L / (B W^2 / 6),
-sigma_Q3P = Q / (B W), Q the support reaction and L the axial distance from the support
-point to the web centre line (UR M53 FE appendix, three-point bending).
-sigma_max is the principal stress of largest magnitude (a pure moment puts the pin fillets
-in compression where the journal fillets are in tension: the factor is a magnitude) and
-tau_max = (sigma_1 - sigma_3)/2, both from averaged nodal stresses on the fillet surface.
+The assessment uses method 1 (beta_B and beta_Q separately, as in UR M53 5.1's
+sigma_BG = beta_B sigma_BN + beta_Q sigma_QN).  Mesh checks (2.1, 2.3): fillet elements
+<= r/4 and, at each peak, the principal-stress (< 3 %) or the averaged/unaveraged (< 5 %)
+criterion; ``ScfResult.mesh_ok`` says whether the appendix would accept the mesh.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
-
-import numpy as np
+from pathlib import Path
 
 from fe_crank.assess import m53
-from fe_crank.errors import InputError
-from fe_crank.fe.loads import pin_pressure_load
-from fe_crank.fe.stress import averaging_indicator, max_shear, principal, stress_at_nodes
-from fe_crank.fe.supports import Coupling, boundary_facets
-from fe_crank.fe.system import EQUILIBRIUM_TOL, build_system
-from fe_crank.errors import SolverError
+from fe_crank.fe.scf import JOURNAL_FILLETS, PIN_FILLETS, ScfStresses, scf_stresses, web_centres_from_mesh
+from fe_crank.mesh import mesh_throw
 
-ALL6 = ("ux", "uy", "uz", "rx", "ry", "rz")
-PIN_FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2")
-JOURNAL_FILLETS = ("journal_fillet_1", "journal_fillet_2")
+ELEMENT_SIZE_LIMIT = 0.25  # fillet element edge / r, UR M53 App. III 2.1
 
 
 @dataclass(frozen=True)
 class ScfResult:
-    """FE stress concentration factors beside the UR M53 empirical ones (None: out of range)."""
+    """FE SCFs (``fe``: alpha_B, alpha_T, beta_B, beta_T, beta_Q, beta_BQ), the empirical ones
+    of UR M53 3.2/3.3 (``empirical``, None out of range), the appendix's mesh checks at each
+    factor's peak (``quality``) and the FE stress measures they come from (``stresses``)."""
 
-    fe: dict[str, float]                     # alpha_B, alpha_T, beta_B, beta_T, beta_Q
+    fe: dict[str, float]
     empirical: dict[str, float | None]
-    out_of_range: dict[str, tuple[str, ...]]  # "pin"/"journal" -> violated validity limits
-    averaging: dict[str, dict[str, float]]   # case -> fillet group -> M53 indicator
-    equilibrium_error: dict[str, float]
-    n_dof: int
+    out_of_range: dict[str, tuple[str, ...]]
+    quality: dict[str, dict]
+    element_size: dict[str, float]          # fillet group -> longest element edge / r (ThrowMesh only)
+    stresses: ScfStresses
     details: dict = field(default_factory=dict)
+
+    @property
+    def equilibrium_error(self) -> dict[str, float]:
+        return self.stresses.equilibrium_error
+
+    @property
+    def mesh_ok(self) -> bool:
+        """Fillet elements <= r/4 (where known) and every peak meets a 2.3 criterion."""
+        return (all(v <= ELEMENT_SIZE_LIMIT * (1 + 1e-9) for v in self.element_size.values())
+                and all(q["mesh_ok"] for q in self.quality.values()))
 
     def for_assessment(self) -> dict[str, dict[str, float]]:
         """The ``fe_scf`` dictionaries that ``fe_crank.assess.m53.assess_fillet`` takes."""
-        return {"pin": {"bending": self.fe["alpha_B"], "shear": 0.0, "torsion": self.fe["alpha_T"]},
-                "journal": {"bending": self.fe["beta_B"], "shear": self.fe["beta_Q"], "torsion": self.fe["beta_T"]}}
+        f = self.fe
+        return {"pin": {"bending": f["alpha_B"], "shear": 0.0, "torsion": f["alpha_T"]},
+                "journal": {"bending": f["beta_B"], "shear": f["beta_Q"], "torsion": f["beta_T"]}}
+
+    def summary(self) -> str:
+        """One line for ``scf_source``: the appendix, the mesh verdict and the worst checks."""
+        worst_p = max(q["principal_ratio"] for q in self.quality.values())
+        worst_a = max(q["averaging"] for q in self.quality.values())
+        size = max(self.element_size.values()) if self.element_size else None
+        parts = [f"principal criterion max {100 * worst_p:.1f} % (< 3 %)",
+                 f"averaging max {100 * worst_a:.1f} % (< 5 %)"]
+        if size is not None:
+            parts.append(f"fillet elements <= r/{1 / size:.1f} (r/4 required)")
+        verdict = "mesh accepted" if self.mesh_ok else "mesh NOT accepted, refine"
+        return f"FE, UR M53 App. III SCF mode ({verdict}: {'; '.join(parts)})"
 
 
-def _abs_principal(s):
-    """Magnitude of the principal stress of largest magnitude, max(|sigma_1|, |sigma_3|)."""
-    p = principal(s)
-    return np.maximum(np.abs(p[0]), np.abs(p[2]))
+def _quality(peak) -> dict:
+    return {"group": peak.group, "point": peak.point, "principal_ratio": peak.principal_ratio,
+            "averaging": peak.averaging, "principal_ok": peak.principal_ok, "averaging_ok": peak.averaging_ok,
+            "mesh_ok": peak.mesh_ok}
 
 
-def _group_max(mesh, basis, field_, groups):
-    vals = []
-    for g in groups:
-        nodes = basis.get_dofs(boundary_facets(mesh, g, "the SCF evaluation")).all()
-        vals.append(field_[nodes].max())
-    return float(max(vals)), vals
+def _worst(peaks: dict, groups):
+    return max((peaks[g] for g in groups), key=lambda p: p.value)
 
 
-def compute_scf(throw_mesh, material, geometry, *, solver: str = "auto", pin_fillets=PIN_FILLETS,
-                journal_fillets=JOURNAL_FILLETS) -> ScfResult:
-    """UR M53 FE-appendix SCFs of one throw (see module docstring).
-
-    ``geometry``: an ``fe_crank.assess.m53.M53Geometry`` (pin_diameter, journal_diameter,
-    web_thickness, web_width, pin_bore, journal_bore, ...), SI.
-    """
-    mesh = getattr(throw_mesh, "mesh", throw_mesh)
-    E, nu = material.youngs_modulus, material.poisson_ratio
-    B, W = geometry.web_width, geometry.web_thickness
-    if not (B > 0 and W > 0):
-        raise InputError("web width and thickness must be > 0 for the SCF nominal stresses", key="geometry")
-    w_eq = B * W**2 / 6.0
-    area = B * W
-    wp_pin = np.pi / 16 * (geometry.pin_diameter**4 - geometry.pin_bore**4) / geometry.pin_diameter
-    wp_jou = np.pi / 16 * (geometry.journal_diameter**4 - geometry.journal_bore**4) / geometry.journal_diameter
-    for g in (*pin_fillets, *journal_fillets, "end_1", "end_2", "crankpin"):
-        boundary_facets(mesh, g, "the SCF mode")
-    groups = [*pin_fillets, *journal_fillets]
-
-    # bending and torsion: one system, two right-hand sides
-    sys1 = build_system(mesh, E, nu, couplings=[Coupling("end_1", fixed=ALL6), Coupling("end_2")], solver=solver)
-    zero = np.zeros(3 * sys1.basis.N)
-    loads = [{"end_2": np.array([0, 0, 0, 1.0, 0, 0])}, {"end_2": np.array([0, 0, 0, 0, 0, 1.0])}]
-    U = sys1.solve(np.column_stack([zero, zero]), loads)
-    eq = {}
-    for k, name in enumerate(("bending", "torsion")):
-        eq[name], _ = sys1.equilibrium_error(U[:, k], zero, loads[k])
-    s_b = stress_at_nodes(mesh, U[:, 0], E, nu)
-    s_t = stress_at_nodes(mesh, U[:, 1], E, nu)
-    sig1_b = _abs_principal(s_b)
-    tau_t = max_shear(s_t)
-    sigma_n = 1.0 / w_eq
-    fe = {}
-    fe["alpha_B"], _ = _group_max(mesh, sys1.basis, sig1_b, pin_fillets)
-    fe["beta_B"], beta_b_side = _group_max(mesh, sys1.basis, sig1_b, journal_fillets)
-    beta_b_side = [v / (1.0 / w_eq) for v in beta_b_side]
-    fe["alpha_B"] /= sigma_n
-    fe["beta_B"] /= sigma_n
-    fe["alpha_T"] = _group_max(mesh, sys1.basis, tau_t, pin_fillets)[0] / (1.0 / wp_pin)
-    fe["beta_T"] = _group_max(mesh, sys1.basis, tau_t, journal_fillets)[0] / (1.0 / wp_jou)
-    averaging = {"bending": averaging_indicator(mesh, U[:, 0], E, nu, groups),
-                 "torsion": averaging_indicator(mesh, U[:, 1], E, nu, groups)}
-
-    # three-point bending
-    sys2 = build_system(mesh, E, nu, solver=solver, couplings=[
-        Coupling("end_1", fixed=("ux", "uy", "uz", "rz")), Coupling("end_2", fixed=("ux", "uy"))])
-    f, _ = pin_pressure_load(sys2.basis, (0.0, -1.0))
-    u3 = sys2.solve(f)
-    eq["three_point"], reac = sys2.equilibrium_error(u3, f)
-    if max(eq.values()) >= EQUILIBRIUM_TOL:
-        raise SolverError(f"SCF mode: reactions do not balance the loads ({max(eq.values()):.2e})")
-    s3 = _abs_principal(stress_at_nodes(mesh, u3, E, nu))
-    x = sys2.points
-    beta_q = []
-    for side, fil, bb in zip(("end_1", "end_2"), journal_fillets, beta_b_side):
-        q = abs(reac[side][1])
-        nodes = sys2.basis.get_dofs(boundary_facets(mesh, fil, "the SCF mode")).all()
-        z_support = sys2.ref_points[side][2]
-        # web centre line: the journal fillet's web-side edge plus half the web thickness
-        z_fillet = x[2, nodes].max() if side == "end_1" else x[2, nodes].min()
-        z_web = z_fillet + (W / 2 if side == "end_1" else -W / 2)
-        L = abs(z_web - z_support)
-        sigma_n3 = q * L / w_eq
-        sigma_q3 = q / area
-        # each side with its own beta_B: beta_Q is a small difference of two large stresses
-        beta_q.append((s3[nodes].max() - bb * sigma_n3) / sigma_q3)
-    fe["beta_Q"] = float(max(beta_q))
-    averaging["three_point"] = averaging_indicator(mesh, u3, E, nu, groups)
-
-    empirical, bad = _empirical(geometry)
-    return ScfResult(fe=fe, empirical=empirical, out_of_range=bad, averaging=averaging, equilibrium_error=eq,
-                     n_dof=sys1.n_dof, details={"beta_Q_per_side": beta_q, "beta_B_per_side": beta_b_side})
+def factors(st: ScfStresses, geo: m53.M53Geometry) -> tuple[dict[str, float], dict[str, dict], dict]:
+    """SCFs of UR M53 App. III from unit-load stress measures (module docstring)."""
+    w_eq, area = m53.web_section_modulus(geo), m53.web_area(geo)
+    wp = {"pin": m53.polar_section_modulus(geo, "pin"), "journal": m53.polar_section_modulus(geo, "journal")}
+    sigma_n, tau_n = 1.0 / w_eq, {k: 1.0 / v for k, v in wp.items()}    # M = T = 1 N m
+    pb, jb = _worst(st.bending, PIN_FILLETS), _worst(st.bending, JOURNAL_FILLETS)
+    pt, jt = _worst(st.torsion, PIN_FILLETS), _worst(st.torsion, JOURNAL_FILLETS)
+    fe = {"alpha_B": pb.value / sigma_n, "beta_B": jb.value / sigma_n,
+          "alpha_T": pt.value / tau_n["pin"], "beta_T": jt.value / tau_n["journal"]}
+    per_side = []
+    for side, g in zip(("end_1", "end_2"), JOURNAL_FILLETS):
+        q, lever = st.reaction[side], st.lever[side]
+        s3p = st.three_point[g].value
+        s_n3p, s_q3p = q * lever / w_eq, q / area
+        per_side.append({"side": side, "group": g, "sigma_3P": s3p, "Q_3P": q, "L": lever,
+                         "sigma_N3P": s_n3p, "sigma_Q3P": s_q3p,
+                         "beta_Q": (s3p - s_n3p * fe["beta_B"]) / s_q3p, "beta_BQ": s3p / s_n3p})
+    fe["beta_Q"] = max(s["beta_Q"] for s in per_side)
+    fe["beta_BQ"] = max(s["beta_BQ"] for s in per_side)
+    q3 = max(st.three_point.values(), key=lambda p: p.value)
+    quality = {"alpha_B": _quality(pb), "beta_B": _quality(jb), "alpha_T": _quality(pt), "beta_T": _quality(jt),
+               "beta_Q": _quality(q3)}
+    return fe, quality, {"three_point": per_side}
 
 
-def _empirical(geometry):
-    """UR M53 empirical SCFs for the same geometry (``fe_crank.assess.m53``), None out of range."""
-    rel_p, rel_j = geometry.related("pin"), geometry.related("journal")
+def empirical(geo: m53.M53Geometry) -> tuple[dict[str, float | None], dict[str, tuple[str, ...]]]:
+    """UR M53 3.2/3.3 empirical SCFs of the same throw, None outside the validity range (3.1)."""
+    rel_p, rel_j = geo.related("pin"), geo.related("journal")
     bad_p, bad_j = tuple(m53.out_of_range(rel_p)), tuple(m53.out_of_range(rel_j))
     emp = {"alpha_B": None if bad_p else m53.alpha_b(rel_p), "alpha_T": None if bad_p else m53.alpha_t(rel_p),
            "beta_B": None if bad_j else m53.beta_b(rel_j), "beta_T": None if bad_j else m53.alpha_t(rel_j),
            "beta_Q": None if bad_j else m53.beta_q(rel_j)}
     return emp, {"pin": bad_p, "journal": bad_j}
+
+
+def web_centres_of(geometry) -> tuple[float, float] | None:
+    """Web centre planes z = -+(L_pin/2 + W/2) of a ``CrankGeometry`` (docs/contracts.md axial layout)."""
+    try:
+        z = 0.5 * geometry.crankpin_length + 0.5 * geometry.web_thickness
+    except AttributeError:
+        return None
+    return (-z, z)
+
+
+def _element_size(throw_mesh) -> dict[str, float]:
+    stats = getattr(throw_mesh, "stats", None)
+    if stats is None:
+        return {}
+    return {g: h / stats.fillet_radii[g] for g, h in stats.fillet_max_edge.items()
+            if g in (*PIN_FILLETS, *JOURNAL_FILLETS) and stats.fillet_radii.get(g)}
+
+
+def compute_scf(throw_mesh, material, geo: m53.M53Geometry, *, web_centres: tuple[float, float] | None = None,
+                solver: str = "auto") -> ScfResult:
+    """SCF mode on one throw mesh (UR M53 App. III), SCFs beside the empirical ones.
+
+    ``throw_mesh``: a ``fe_crank.mesh.ThrowMesh`` (from ``mesh_throw``: its fillet element
+    size is checked too) or a ``MeshTet2``; its end faces must be the main-bearing centre
+    planes.  ``web_centres``: axial positions of the two web centre planes (default: from
+    the journal fillets' web-side edges and W, ``fe.scf.web_centres_from_mesh``).
+    """
+    if web_centres is None:
+        web_centres = web_centres_from_mesh(throw_mesh, geo.web_thickness)
+    st = scf_stresses(throw_mesh, material, web_centres=web_centres, solver=solver)
+    fe, quality, details = factors(st, geo)
+    emp, bad = empirical(geo)
+    return ScfResult(fe=fe, empirical=emp, out_of_range=bad, quality=quality,
+                     element_size=_element_size(throw_mesh), stresses=st, details=details)
+
+
+def scf_mesh_options(options):
+    """Mesh options for the SCF mode: the load case's own when its fillet elements are at most
+    r/4 (UR M53 App. III 2.1), else the same options with ``fillet_divisions = 4``."""
+    if options is None or options.fillet_divisions >= 4.0:
+        return options
+    return dataclasses.replace(options, fillet_divisions=4.0)
+
+
+def scf_mesh(throw_mesh, geometry):
+    """The throw mesh the SCF mode runs on: the load case's ``mesh_throw`` mesh, or, when that
+    mesh is coarser than r/4 in the fillets (e.g. the ``test`` preset), the same throw of
+    ``geometry`` meshed again with ``scf_mesh_options`` (same cache).  A mesh without
+    options or a geometry that cannot be meshed here is used as it is (its ``mesh_ok`` says
+    whether the appendix accepts it)."""
+    opt = getattr(throw_mesh, "options", None)
+    want = scf_mesh_options(opt)
+    if want is opt or not hasattr(geometry, "throw") or getattr(throw_mesh, "throw", None) is None:
+        return throw_mesh
+    folder = Path(throw_mesh.msh_path).parent
+    cache = folder.parent if folder.name == throw_mesh.key else None
+    return mesh_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)
+
+
+def scf_provider(cache: dict, key, throw_mesh, geometry, material, geo: m53.M53Geometry, *, solver: str = "auto",
+                 remesh: bool = True):
+    """A callable for ``assess_throw(scf=...)``: SCF mode on the load case's own throw mesh
+    (``scf_mesh``: re-meshed at r/4 in the fillets when coarser, unless ``remesh`` is False),
+    solved once per mesh ``key`` and M53 dimensions."""
+
+    def run() -> ScfResult:
+        k = (key, geo)
+        if k not in cache:
+            tm = scf_mesh(throw_mesh, geometry) if remesh else throw_mesh
+            cache[k] = compute_scf(tm, material, geo, web_centres=web_centres_of(geometry), solver=solver)
+        return cache[k]
+
+    return run

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from fe_crank.fe.stress import principal as _principal
 from fe_crank.fe.stress import von_mises as _von_mises
 
 COMPONENTS = ("xx", "yy", "zz", "xy", "yz", "xz")
@@ -34,8 +35,10 @@ def to_matrix(s: np.ndarray) -> np.ndarray:
 
 
 def principal(s: np.ndarray) -> np.ndarray:
-    """Principal stresses, ascending, shape (..., 3, n)."""
-    return np.moveaxis(np.linalg.eigvalsh(to_matrix(s)), -1, -2)
+    """Principal stresses in this module's layout, shape (..., 3, n), descending
+    sigma_1 >= sigma_2 >= sigma_3: implemented once, in ``fe_crank.fe.stress.principal``
+    (components on axis 0); this moves the component axis there and back."""
+    return np.moveaxis(_principal(np.moveaxis(s, -2, 0)), 0, -2)
 
 
 def cylindrical(s: np.ndarray, points: np.ndarray, axis_point: tuple[float, float]) -> dict[str, np.ndarray]:

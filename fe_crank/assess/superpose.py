@@ -1,7 +1,7 @@
 """Unit-load superposition over the cycle.
 
 Linear elasticity makes the stress at crank angle theta an exact linear combination of
-the unit solutions (DESIGN.md, "FE")::
+the unit solutions (docs/fe.md)::
 
     sigma(theta) = omega^2 S_c + sum_k a_k(F(theta)) S_pk + T(theta) S_t
 

@@ -13,7 +13,8 @@ Internal-Combustion Engine in Theory and Practice* vol. 2, ch. 8; Heywood, App. 
 ``fe_crank.kinematics``).  For the balance sums fe-crank does not use
 the truncated series: ``spectral_coefficients`` takes the exact piston position of any
 mechanism (offset pins, articulated rods) at ``N`` equally spaced crank angles, and its
-discrete Fourier transform gives the coefficients of ``x(tau)``; twice differentiating
+discrete Fourier transform (``fe_crank.kinematics.fourier_coefficients``, the one used
+for the exact ``harmonic_coefficients`` too) gives the coefficients of ``x(tau)``; twice differentiating
 term by term, order ``k`` of the acceleration is ``-k^2`` times order ``k`` of the
 position.  For a smooth periodic ``x`` the error decays exponentially with ``N``.
 """
@@ -22,8 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from fe_crank.errors import InputError
-from fe_crank.kinematics import series_coefficients
+from fe_crank.kinematics import fourier_coefficients, series_coefficients
+from fe_crank.kinematics import sample_angles as _sample_angles
 
 __all__ = ["SAMPLES", "acceleration_coefficients", "fourier_coefficients", "sample_angles", "series_coefficients"]
 
@@ -32,26 +33,8 @@ SAMPLES = 256
 
 
 def sample_angles(n: int = SAMPLES) -> np.ndarray:
-    """``n`` equally spaced angles over one revolution, ``[0, 2 pi)``."""
-    return 2.0 * np.pi * np.arange(n) / n
-
-
-def fourier_coefficients(samples: np.ndarray, kmax: int) -> np.ndarray:
-    """Coefficients ``(alpha_k, beta_k)``, ``k = 0..kmax``, of ``sum alpha cos k t + beta sin k t``.
-
-    ``samples`` has shape ``(..., n)`` on ``sample_angles(n)``; returns shape
-    ``(..., kmax + 1, 2)``.  ``alpha_0`` is the mean.
-    """
-    n = samples.shape[-1]
-    if kmax >= n // 2:
-        raise InputError(f"order {kmax} needs more than {n} samples per revolution", key="kmax")
-    spec = np.fft.rfft(samples, axis=-1) / n
-    out = np.empty(samples.shape[:-1] + (kmax + 1, 2))
-    out[..., 0, 0] = spec[..., 0].real
-    out[..., 0, 1] = 0.0
-    out[..., 1:, 0] = 2.0 * spec[..., 1:kmax + 1].real
-    out[..., 1:, 1] = -2.0 * spec[..., 1:kmax + 1].imag
-    return out
+    """``n`` equally spaced angles over one revolution (``fe_crank.kinematics.sample_angles``)."""
+    return _sample_angles(n)
 
 
 def acceleration_coefficients(position: np.ndarray, kmax: int) -> np.ndarray:

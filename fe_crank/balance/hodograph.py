@@ -7,11 +7,11 @@ A resultant of order ``k`` written as (Liventsev, seed 000, eqs. 152-157 and 112
 
 traces an ellipse.  With ``B = ac + bd``, ``C = a^2 + b^2``, ``A = c^2 + d^2`` the
 principal axes are tilted from ``+x`` (towards ``+y``) by ``delta`` with
-``tan 2 delta = 2 B / (C - A)`` (seed 000, eqs. 112-114, 125).  Independently, the
-vector is the sum of a co-rotating vector (turning with the reference shaft, i.e. in the
-positive angle sense of ``fe_crank.model``) and a counter-rotating one; their lengths
-``p`` and ``q`` give the semi-axes ``p + q`` and ``|p - q|``.  Both routes are returned
-and the tests check that they agree.
+``tan 2 delta = 2 B / (C - A)`` (seed 000, eqs. 112-114, 125; the tests use it as the
+independent check).  The package takes the other route: the vector is the sum of a
+co-rotating vector (turning with the reference shaft, i.e. in the positive angle sense of
+``fe_crank.model``) and a counter-rotating one; their lengths ``p`` and ``q`` give the
+semi-axes ``p + q`` and ``|p - q|`` and their directions the major axis.
 """
 
 from __future__ import annotations
@@ -49,14 +49,6 @@ class Hodograph:
     counter_angle: float
     kind: str
 
-    @property
-    def tilt_seed(self) -> float:
-        """``delta`` from ``tan 2 delta = 2B/(C - A)`` (seed 000), rad, ``atan2`` branch."""
-        b_ = self.a * self.c + self.b * self.d
-        c_ = self.a**2 + self.b**2
-        a_ = self.c**2 + self.d**2
-        return 0.5 * math.atan2(2.0 * b_, c_ - a_)
-
     def as_dict(self) -> dict:
         return {
             "coefficients": {"a": self.a, "b": self.b, "c": self.c, "d": self.d},
@@ -89,7 +81,9 @@ def hodograph(a: float, b: float, c: float, d: float) -> Hodograph:
     pm, qm = abs(p), abs(q)
     major, minor = pm + qm, abs(pm - qm)
     scale = max(major, 1e-300)
-    if major <= 1e-300 or major < DEGENERATE_RTOL * max(abs(a), abs(b), abs(c), abs(d), 1e-300):
+    # |a|, |b|, |c|, |d| <= p + q = major, so only an exactly zero resultant is "zero"
+    # (fe_crank.balance.forces clears round-off to exact zeros before this)
+    if major <= 1e-300:
         kind = "zero"
     elif minor <= DEGENERATE_RTOL * scale:
         kind = "line"
@@ -102,8 +96,8 @@ def hodograph(a: float, b: float, c: float, d: float) -> Hodograph:
     if kind in ("zero", "circle"):
         tilt = 0.0
     else:
-        psi = 0.5 * (math.atan2(p.imag, p.real) + math.atan2(q.imag, q.real)) if pm and qm else (
-            math.atan2(p.imag, p.real) if pm else math.atan2(q.imag, q.real))
+        # here both p and q are non-zero (a zero one makes the kind "circle")
+        psi = 0.5 * (math.atan2(p.imag, p.real) + math.atan2(q.imag, q.real))
         tilt = math.pi / 2.0 - psi
         tilt = (tilt + math.pi / 2.0) % math.pi - math.pi / 2.0
         if tilt <= -math.pi / 2.0 + 1e-15:

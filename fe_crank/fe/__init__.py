@@ -1,4 +1,4 @@
-"""FE stage: P2 linear elasticity of the crank throw with scikit-fem (issue 5).
+"""FE stage: P2 linear elasticity of the crank throw with scikit-fem.
 
 Public API: :func:`solve_unit_cases` -> :class:`UnitSolutions`; stress recovery
 (:func:`stress_at_nodes`, :func:`von_mises`, :func:`principal`, :func:`max_shear`);

@@ -1,0 +1,106 @@
+"""Mutation testing of the core physics modules with mutmut (not run in CI).
+
+Each module is mutated on its own, in a fresh copy of the repository, and each mutant is
+run against that module's fast tests only (a per-module selection: the whole suite takes
+too long per mutant).  A mutant is *killed* when a test fails, *survived* otherwise;
+`timeout` counts as killed (the mutant made a test hang).  The score per module is
+killed / (killed + survived); docs/testing.md records the last run and every survivor.
+
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py            # all modules
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py kinematics # one module
+
+Needs `pip install mutmut` (>= 3) in the venv.  One worker (`--max-children 1`) by default:
+the machine is shared.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+#: module -> (file to mutate, its fast tests)
+MODULES: dict[str, tuple[str, list[str]]] = {
+    "kinematics": ("fe_crank/kinematics.py", ["tests/test_kinematics.py"]),
+    "dynamics": ("fe_crank/dynamics.py", ["tests/test_dynamics.py", "tests/test_geared_shaft.py"]),
+    "balance.harmonics": ("fe_crank/balance/harmonics.py",
+                          ["tests/test_balance_harmonics.py", "tests/test_balance_layouts.py"]),
+    "balance.hodograph": ("fe_crank/balance/hodograph.py", ["tests/test_balance_hodograph.py"]),
+    "balance.forces": ("fe_crank/balance/forces.py",
+                       ["tests/test_balance_layouts.py", "tests/test_balance_seed000.py",
+                        "tests/test_balance_crosscheck.py"]),
+    "balance.counterweights": ("fe_crank/balance/counterweights.py",
+                               ["tests/test_balance_counterweights.py", "tests/test_balance_seed003.py"]),
+    "assess.m53": ("fe_crank/assess/m53.py", ["tests/test_assess_m53.py"]),
+    "assess.fatigue": ("fe_crank/assess/fatigue.py", ["tests/test_assess_fatigue.py"]),
+    "fe.loads": ("fe_crank/fe/loads.py", ["tests/test_fe_unit_cases.py"]),
+    "fe.forms": ("fe_crank/fe/forms.py", ["tests/test_fe_verification.py", "tests/test_fe_assembly.py"]),
+}
+
+
+def run_module(name: str, children: int) -> dict:
+    target, tests = MODULES[name]
+    with tempfile.TemporaryDirectory(prefix=f"mutmut-{name}-") as tmp:
+        work = Path(tmp) / "repo"
+        files = subprocess.run(["git", "ls-files"], cwd=ROOT, check=True, capture_output=True,
+                               text=True).stdout.split()
+        for f in files:
+            dst = work / f
+            dst.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / f, dst)
+        sel = "\n    ".join(["-x", "-q", "-p", "no:cacheprovider", "-m", "not heavy", *tests])
+        (work / "setup.cfg").write_text(
+            "[mutmut]\nsource_paths = fe_crank\n"
+            f"only_mutate = {target}\n"
+            "also_copy =\n    tests\n    engines\n    geometry\n    loadcases\n"
+            f"pytest_add_cli_args_test_selection =\n    {sel}\n"
+        )
+        env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+        mutmut = str(Path(sys.executable).parent / "mutmut")
+        subprocess.run([mutmut, "run", "--max-children", str(children)], cwd=work, env=env,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        out = subprocess.run([mutmut, "results", "--all", "true"], cwd=work, env=env,
+                             capture_output=True, text=True).stdout
+        status: dict[str, list[str]] = {}
+        for line in out.splitlines():
+            if ":" in line:
+                mutant, st = line.rsplit(":", 1)
+                status.setdefault(st.strip(), []).append(mutant.strip())
+        diffs = {m: subprocess.run([mutmut, "show", m], cwd=work, env=env, capture_output=True,
+                                   text=True).stdout for m in status.get("survived", [])}
+    killed = len(status.get("killed", [])) + len(status.get("timeout", []))
+    survived = len(status.get("survived", []))
+    total = killed + survived
+    return {"module": name, "file": target, "tests": tests, "killed": killed, "survived": survived,
+            "other": {k: len(v) for k, v in status.items() if k not in ("killed", "timeout", "survived")},
+            "score": killed / total if total else None, "survivors": diffs}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("modules", nargs="*", default=list(MODULES), choices=list(MODULES))
+    ap.add_argument("--max-children", type=int, default=1)
+    ap.add_argument("--json", type=Path, help="write the per-module results here")
+    a = ap.parse_args()
+    results = []
+    for m in a.modules:
+        r = run_module(m, a.max_children)
+        results.append(r)
+        score = "n/a" if r["score"] is None else f"{100 * r['score']:.1f} %"
+        print(f"{m:24s} killed {r['killed']:4d}  survived {r['survived']:4d}  {score}  {r['other']}",
+              flush=True)
+        for diff in r["survivors"].values():
+            print(diff, flush=True)
+    if a.json:
+        a.json.write_text(json.dumps(results, indent=1))
+
+
+if __name__ == "__main__":
+    main()
