@@ -7,7 +7,7 @@ load case (``fe_crank.check.case.run_case`` makes it, the report reads it).
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 
 STATUS_PASS, STATUS_FAIL, STATUS_ERROR = "pass", "fail", "error"
 _EXIT = {STATUS_PASS: 0, STATUS_FAIL: 1, STATUS_ERROR: 2}
@@ -55,6 +55,10 @@ class CaseResult:
     folder: str = ""  # the finished case folder, "" when none could be written
     seconds: float = 0.0
     error_stage: str = ""
+    started: str = ""  # ISO 8601 UTC
+    provenance: dict = field(default_factory=dict, compare=False)  # fe_crank.provenance.collect
+    warnings: tuple[str, ...] = ()  # notes shown beside the verdict (fe_crank.report.quality)
+    planned_criteria: tuple[str, ...] = ()  # the load case's criteria (listed as errored when the case errors)
 
     @property
     def exit_code(self) -> int:

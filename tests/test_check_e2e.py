@@ -78,7 +78,7 @@ def test_junit_counts_the_criteria(batch):
     assert int(root.get("failures")) == n_failed
     assert int(root.get("errors")) == 1
     suites = {s.get("name"): s for s in root.findall("testsuite")}
-    assert len(suites["small single, passing"].findall("testcase")) == 3
+    assert len(suites["small_pass"].findall("testcase")) == 3  # suite named after the file stem
 
 
 def test_rendered_pictures_are_not_blank(batch):

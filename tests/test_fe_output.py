@@ -42,10 +42,15 @@ def test_vtu_round_trip(tmp_path, disk):
     path = write_fields(tmp_path / "disk.vtu", s.basis, u, sig)
     back = meshio.read(path)
     assert back.cells[0].type == "tetra10"
-    np.testing.assert_array_equal(back.cells[0].data, s.basis.element_dofs.T)
+    # the same cells, some with corners 1 and 2 (and their edges) swapped to a positive volume
+    np.testing.assert_array_equal(np.sort(back.cells[0].data, axis=1), np.sort(s.basis.element_dofs.T, axis=1))
+    p = back.points
+    c = back.cells[0].data
+    vol = np.einsum("ij,ij->i", np.cross(p[c[:, 1]] - p[c[:, 0]], p[c[:, 2]] - p[c[:, 0]]), p[c[:, 3]] - p[c[:, 0]])
+    assert (vol > 0).all()
     np.testing.assert_allclose(back.points, s.basis.doflocs.T)
-    np.testing.assert_allclose(back.point_data["displacement"], u.reshape(-1, 3))
-    np.testing.assert_allclose(back.point_data["von_mises"], von_mises(sig))
+    np.testing.assert_allclose(back.point_data["displacement_m"], u.reshape(-1, 3))
+    np.testing.assert_allclose(back.point_data["von_mises_Pa"], von_mises(sig))
     # VTK tetra10 node order = scikit-fem's: mid-edge node 4 lies between corners 0 and 1
     c = back.cells[0].data[0]
     mid = 0.5 * (back.points[c[0]] + back.points[c[1]])

@@ -172,7 +172,7 @@ def test_cli_mesh_bad_geometry_exits_2(tmp_path, capsys):
 def test_cli_mesh_writes_statistics_and_picture(tmp_path, capsys):
     from fe_crank.cli import main
 
-    rc = main(["mesh", str(SEED003), "-o", str(tmp_path / "out"), "--size", "test", "--cache-dir", str(tmp_path / "c")])
+    rc = main(["mesh", str(SEED003), "-o", str(tmp_path / "out"), "--mesh-size", "test", "--cache-dir", str(tmp_path / "c")])
     assert rc == 0
     out = capsys.readouterr().out
     assert "counterweight_1: mass 0.8872 kg" in out and "P2 DOFs" in out

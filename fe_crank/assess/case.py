@@ -15,7 +15,7 @@ from fe_crank.assess.throw import STATIC_ONLY_PREFIXES, GroupResult, assess_grou
 from fe_crank.assess.verdict import CriterionResult, judge
 from fe_crank.errors import InputError
 
-SCHEMA_VERSION = "1.0"
+SCHEMA_VERSION = "1.1"  # 1.1: optional provenance and warnings (written by the report)
 
 
 @dataclass(frozen=True)

@@ -41,7 +41,9 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     omega, overspeed = lc.operating.speed, lc.operating.overspeed
     notes = [
         "stresses: linear elastic FE, nodal averages; histories by unit-load superposition (exact)",
-        "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration not included",
+        "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration "
+        + ("included: quasi-static + vibratory journal torque ([torsion], docs/torsion.md)" if "torsion" in lc.extras
+           else "not included (no [torsion] section)"),
     ]
     dyn_os = overspeed_dynamics(lc, dynamics)
     if dyn_os is not None:

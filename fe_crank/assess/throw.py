@@ -66,6 +66,21 @@ def _axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
     return None
 
 
+#: values within this relative distance of an extreme count as ties; ties go to the
+#: first (node, angle), so serial, process and Dask runs (whose solvers may differ in
+#: the last digits) name the same place
+TIE_RTOL = 1e-9
+
+
+def first_extreme(values: np.ndarray, worst: str = "max", axis: int = 0) -> np.ndarray:
+    """Index of the first value within ``TIE_RTOL`` of the max (min) along ``axis``."""
+    v = np.asarray(values, float)
+    e = v.max(axis=axis, keepdims=True) if worst == "max" else v.min(axis=axis, keepdims=True)
+    tol = TIE_RTOL * np.abs(e)
+    near = v >= e - tol if worst == "max" else v <= e + tol
+    return np.argmax(near, axis=axis)
+
+
 def section_diameter(group: str, pin_diameter: float | None, journal_diameter: float | None) -> float | None:
     """Diameter of the section a group belongs to, for the size factor: the crankpin's
     for its fillets and the oil bore, the journal's for the journal fillets."""
@@ -78,7 +93,8 @@ def section_diameter(group: str, pin_diameter: float | None, journal_diameter: f
 
 def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str, *, worst: str,
              angles: np.ndarray | None = None) -> Extreme:
-    k = int(np.argmax(values) if worst == "max" else np.argmin(values))
+    k = int(first_extreme(values, worst)) if np.isfinite(values).all() else \
+        int(np.argmax(values) if worst == "max" else np.argmin(values))
     node = int(unit.node_ids[idx[k]]) if unit.node_ids is not None else int(idx[k])
     pt = tuple(float(c) for c in unit.points[:, idx[k]])
     ang = float(angles[k]) if angles is not None else None
@@ -114,7 +130,7 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     for idx, hist in iter_histories(unit, coefficients, nodes, chunk):
         sl = slice(pos, pos + idx.size)
         vm = von_mises(hist)  # (n_t, k)
-        vm_arg[sl] = np.argmax(vm, axis=0)
+        vm_arg[sl] = first_extreme(vm, "max", axis=0)
         vm_max[sl] = vm.max(axis=0)
         if do_fatigue:
             a, m = fatigue.equivalent_amplitude_mean(hist)
@@ -139,7 +155,7 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
         pos = 0
         for idx, hist in iter_histories(unit, overspeed_coefficients, nodes, chunk):
             vm = von_mises(hist)
-            os_arg[pos:pos + idx.size] = np.argmax(vm, axis=0)
+            os_arg[pos:pos + idx.size] = first_extreme(vm, "max", axis=0)
             vm_os[pos:pos + idx.size] = vm.max(axis=0)
             pos += idx.size
         os_ext = _extreme(vm_os, nodes, unit, group, worst="max", angles=theta[os_arg])

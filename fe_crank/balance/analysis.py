@@ -11,6 +11,7 @@ from fe_crank.balance.counterweights import BalanceStrategy, CounterweightDesign
 from fe_crank.balance.forces import REPORTED_ORDERS, FreeForces, free_forces
 from fe_crank.balance.sector import SectorProperties, solve_sector
 from fe_crank.balance.shafts import BalanceShaftDesign, balance_shafts
+from fe_crank.errors import InputError
 from fe_crank.model import Engine
 
 SOURCE_GROUPS = ("rotating", "reciprocating", "yoke", "counterweights", "balance_shafts")
@@ -52,9 +53,14 @@ def analyse_balance(engine: Engine, speed: float, settings=None) -> BalanceResul
     residual = design.residual
     shaft_designs = []
     ref_sense = engine.shafts[0].sense
-    for req in (settings.shafts if settings is not None else ()):
-        d = balance_shafts(residual, req.component, req.order, reference_sense=ref_sense,
-                           offset=req.offset, span=req.span)
+    for i, req in enumerate(settings.shafts if settings is not None else ()):
+        try:
+            d = balance_shafts(residual, req.component, req.order, reference_sense=ref_sense,
+                               offset=req.offset, span=req.span, positions=getattr(req, "positions", None))
+        except InputError as exc:
+            if exc.key != "balance.shafts.positions":
+                raise
+            raise InputError(exc.reason, key=f"balance.shafts[{i}].positions") from None
         shaft_designs.append(d)
         residual = d.residual
     return BalanceResult(engine.name, speed, forces, design, tuple(sectors), tuple(shaft_designs), residual)
@@ -125,7 +131,8 @@ def result_to_dict(res: BalanceResult) -> dict:
             {"component": d.component, "order": d.order, "shafts": [
                 {"name": s.name, "speed_ratio": s.speed_ratio, "unbalance_kg_m": s.unbalance,
                  "angle_deg": math.degrees(s.angle), "z_m": list(s.z), "position_m": list(s.position),
-                 "on_crankshaft": s.on_crankshaft, "constraint": s.constraint} for s in d.shafts]}
+                 "on_crankshaft": s.on_crankshaft, "constraint": s.constraint} for s in d.shafts],
+             "roll_moment_n_m": d.roll_moment}
             for d in res.shafts
         ],
         "residual": by_source(res.residual)["total"],

@@ -15,6 +15,18 @@ and ``psi0 = arg(-P)``.  For a couple, a pair ``+U`` at ``z1``, ``-U`` at ``z2``
 (``L = z1 - z2``) gives the moment ``L (-Fy, Fx)``, i.e. ``w_M = -i L w_F`` with
 ``w = y + i x`` components, so the pair that cancels ``P_M`` has
 ``U e^{i psi0} = -i P_M / (L (k omega)^2)``.
+
+Free placement: ``positions`` puts each shaft's axis anywhere in the cross-section
+(seed 002 allows the second-order pair at different heights).  The force of a shaft is
+a free vector, so any placement cancels the force; what placement adds is the moment
+about the crank axis of forces acting on offset lines, ``M_z = sum (x_i F_y,i - y_i F_x,i)``.
+For a straight-line force along ``y`` the two shafts' ``x`` components cancel as forces
+but act at heights ``h_1, h_2``: a roll moment of amplitude ``U (k omega)^2 |h_1 - h_2|``
+(one shaft's force times the height offset), reported as ``roll_moment`` and carried
+in the residual's ``M_z``.  A placement is refused when it cannot cancel the component:
+a position count that differs from the number of shafts the component needs, a
+balance shaft on the crank axis (only the crankshaft's own counterweights sit there),
+or a crankshaft counterweight pair placed off the crank axis.
 """
 
 from __future__ import annotations
@@ -56,6 +68,7 @@ class BalanceShaftDesign:
     order: int
     shafts: tuple[BalanceShaft, ...]
     residual: FreeForces
+    roll_moment: float = 0.0  # N m: amplitude of M_z (about the crank axis) of these shafts' forces
 
 
 def _terms_for(shaft: BalanceShaft, sense: int, order: int, speed: float, ref_z: float) -> list[OrderTerm]:
@@ -77,6 +90,7 @@ def balance_shafts(
     offset: float = 0.1,
     span: float = 0.2,
     sources=None,
+    positions=None,
 ) -> BalanceShaftDesign:
     """Design balance shafts that cancel one component of ``forces``.
 
@@ -96,6 +110,9 @@ def balance_shafts(
         centred on the reference point.
     sources : iterable of str, optional
         Sources included in the target (default: all present).
+    positions : sequence of (x, y), optional
+        Axis of each shaft (m, engine frame), in the order of the design's shafts
+        (the one turning with the crank first); default the symmetric placement above.
     """
     if component not in COMPONENTS:
         raise InputError(f"{component!r} is not one of {COMPONENTS}", key="balance.shafts.component")
@@ -139,7 +156,35 @@ def balance_shafts(
             constraint = "counterweight pair on the crankshaft (seed 002: one balance shaft plus a crank pair)"
         name = f"{component}{order}_{'crank' if on_crank else ('plus' if rel > 0 else 'minus')}"
         designs.append((BalanceShaft(name, rel, abs(u), cmath.phase(u), z, pos, on_crank, constraint), sense))
+    if positions is not None:
+        designs = _place(designs, positions, component, order)
     terms = []
     for sh, sense in designs:
         terms += _terms_for(sh, sense, order, w, zr)
-    return BalanceShaftDesign(component, order, tuple(s for s, _ in designs), forces.with_terms(terms))
+    mz = sum((t.moment[2] for t in terms), start=[0.0, 0.0])
+    return BalanceShaftDesign(component, order, tuple(s for s, _ in designs), forces.with_terms(terms),
+                              float(math.hypot(mz[0], mz[1])))
+
+
+def _place(designs, positions, component: str, order: int):
+    """Put the designed shafts at the user's ``positions`` (module docstring: refusals)."""
+    import dataclasses
+
+    key = "balance.shafts.positions"
+    positions = [tuple(float(v) for v in p) for p in positions]
+    if len(positions) != len(designs):
+        raise InputError(
+            f"the order-{order} {component} needs {len(designs)} shaft(s) "
+            f"({', '.join(s.name for s, _ in designs)}); give one position each", key=key)
+    out = []
+    for (sh, sense), (x, y) in zip(designs, positions):
+        if not (math.isfinite(x) and math.isfinite(y)):
+            raise InputError("positions must be finite", key=key)
+        on_axis = math.hypot(x, y) < 1e-9
+        if sh.on_crankshaft and not on_axis:
+            raise InputError(f"{sh.name} is a counterweight pair on the crankshaft: its position is the crank "
+                             "axis (0, 0)", key=key)
+        if not sh.on_crankshaft and on_axis:
+            raise InputError(f"balance shaft {sh.name} cannot sit on the crank axis", key=key)
+        out.append((dataclasses.replace(sh, position=(x, y), constraint=sh.constraint + "; placed as given"), sense))
+    return out

@@ -5,9 +5,15 @@
 local processes or Dask), ``publish`` (atomic publication of a case folder),
 ``discovery`` (load-case files and their folder names).  Result types are in
 ``fe_crank.results``, the atomic writer in ``fe_crank.files``.
+
+The package is also callable: ``fe_crank.check(paths, output=..., mesh_size=...)`` is
+``fe_crank.api.check`` (the top-level Python API).
 """
 
 from __future__ import annotations
+
+import sys
+import types
 
 from fe_crank.check.batch import batch_exit_code, run_cases
 from fe_crank.check.case import run_case
@@ -15,6 +21,17 @@ from fe_crank.check.discovery import find_loadcases, is_loadcase_file, unique_sl
 from fe_crank.check.options import STAGES, CheckOptions
 from fe_crank.check.publish import case_slug, clean_stale_partials
 from fe_crank.check.stages import throw_keys
+
+class _CallablePackage(types.ModuleType):
+    """``fe_crank.check(...)`` runs ``fe_crank.api.check``; the package stays a package."""
+
+    def __call__(self, *args, **kwargs):
+        from fe_crank.api import check
+
+        return check(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CallablePackage
 
 __all__ = [
     "STAGES", "CheckOptions", "batch_exit_code", "case_slug", "clean_stale_partials", "find_loadcases",

@@ -9,7 +9,9 @@ whichever way they run (they are computed by the same ``run_case``).
 from __future__ import annotations
 
 import hashlib
+import logging
 import time
+from dataclasses import asdict
 from pathlib import Path
 from typing import Callable, Sequence
 
@@ -19,6 +21,8 @@ from fe_crank.check.options import CheckOptions
 from fe_crank.check.publish import clean_stale_partials
 from fe_crank.errors import InputError
 from fe_crank.results import STATUS_ERROR, CaseResult
+
+log = logging.getLogger(__name__)
 
 
 def _run_case_job(path: str, out_dir: str, options: CheckOptions, slug: str) -> CaseResult:
@@ -45,6 +49,9 @@ def run_cases(
     one task.  ``on_result`` is called in this process as each case finishes.
     """
     options = options or CheckOptions()
+    # one mesh cache for every worker: a relative folder is resolved here, not in each
+    # worker's own working directory (docs/usage.md)
+    options = CheckOptions(**{**asdict(options), "cache_dir": str(Path(options.cache_dir).resolve())})
     paths = [Path(p) for p in paths]
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -54,6 +61,10 @@ def run_cases(
 
     def done(i: int, r: CaseResult) -> None:
         results[i] = r
+        w = r.worst
+        log.log(logging.WARNING if r.status == STATUS_ERROR else logging.INFO, "%s: %s%s in %.1f s", slugs[i],
+                r.status.upper(), f" (worst {w.name}, margin {100 * w.margin:+.1f} %)" if w else
+                f": {r.message.splitlines()[0]}" if r.message else "", r.seconds)
         if on_result is not None:
             on_result(r)
 

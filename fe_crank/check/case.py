@@ -24,6 +24,9 @@ from fe_crank.check.stages import _compute, _criteria_of, _Run
 from fe_crank.errors import FeCrankError
 from fe_crank.fe import convergence
 from fe_crank.files import write_atomic
+from fe_crank.notes import Note
+from fe_crank.provenance import collect, now_utc
+from fe_crank.report.quality import case_notes
 from fe_crank.report import write_case_report
 from fe_crank.report.html import write_error_report
 from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CaseResult
@@ -54,6 +57,7 @@ def run_case(
     tmp = Path(tempfile.mkdtemp(prefix=f".{slug}{PARTIAL_MARK}{os.getpid()}-", dir=out_dir))
     os.chmod(tmp, 0o755)
     name, status, message, criteria, trace, stage_out = path.stem, STATUS_ERROR, "", (), "", {}
+    started = now_utc()
     try:
         try:
             _compute(run, options, stage_out)
@@ -72,9 +76,11 @@ def run_case(
         error_stage = run.stage if status == STATUS_ERROR else ""
         if "loadcase" in stage_out:
             name = stage_out["loadcase"].name
+        prov, notes, planned = _provenance(path, stage_out, options, started)
         partial = CaseResult(
             name=name, source=str(path), status=status, message=message, criteria=criteria,
             timings=tuple(run.timings), folder="", seconds=0.0, error_stage=error_stage,
+            started=started, provenance=prov, warnings=notes, planned_criteria=planned,
         )
         try:
             run.timed("report", _write_report, tmp, partial, stage_out, options, trace)
@@ -94,6 +100,19 @@ def run_case(
     finally:
         if tmp.exists():
             shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _provenance(path: Path, stage_out: dict, options, started: str):
+    """(provenance, warning texts, planned criterion names) of a case; the notes are
+    kept in ``stage_out["notes"]`` for the report.  Never fails the case."""
+    prov = collect(path, stage_out, options, started=started)
+    try:
+        stage_out["notes"] = case_notes(stage_out, prov)
+    except FeCrankError as exc:  # a note that cannot be computed is itself a warning
+        stage_out["notes"] = [Note(f"quality checks incomplete: {exc}")]
+    lc = stage_out.get("loadcase")
+    planned = tuple(lim.key for lim in getattr(getattr(lc, "criteria", None), "limits", ()) or ())
+    return prov, tuple(n.text for n in stage_out["notes"] if n.level == "warning"), planned
 
 
 def _fields(r: CaseResult) -> dict:

@@ -6,6 +6,8 @@ Each stage is a plain call into its package: dynamics -> balance -> mesh (cached
 
 from __future__ import annotations
 
+import logging
+
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,6 +23,10 @@ from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.mesh import MeshSection
 from fe_crank.mesh import mesh_throw
 from fe_crank.results import CriterionResult, StageTime
+from fe_crank.torsion.stage import dynamics_for_assessment, torsion_stage
+
+
+log = logging.getLogger(__name__)
 
 
 @dataclass
@@ -37,10 +43,15 @@ class _Run:
         if self.on_stage is not None:
             self.on_stage(str(self.path), stage)
         t0 = time.perf_counter()
+        ok = False
         try:
-            return fn(*args, **kwargs)
+            out = fn(*args, **kwargs)
+            ok = True
+            return out
         finally:
-            self.timings.append(StageTime(stage, time.perf_counter() - t0))
+            dt = time.perf_counter() - t0
+            self.timings.append(StageTime(stage, dt))
+            log.info("%s: %s %s in %.1f s", self.path.stem, stage, "done" if ok else "stopped", dt)
 
 
 def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
@@ -51,6 +62,8 @@ def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
     out["balance"] = run.timed("balance", _balance_stage, lc)
     out["meshes"] = run.timed("mesh", _mesh_stage, lc, options)
     out["units"] = run.timed("fe", _fe_stage, lc, out["meshes"])
+    if "torsion" in lc.extras:  # torsional vibration (docs/torsion.md): only with a [torsion] section
+        out["torsion"] = run.timed("torsion", torsion_stage, lc, out["units"])
     out["assessment"] = run.timed("assess", _assess_stage, lc, out)
     section = lc.extras.get("mesh") or MeshSection()
     flag = options.convergence if options.convergence is not None else section.convergence
@@ -66,8 +79,10 @@ def _dynamics_stage(lc):
 
 
 def _assess_stage(lc, out):
-    """Stresses, safety factors and the load case's criteria."""
-    return assess_case(lc, out["dynamics"], out["balance"], out["meshes"], out["units"])
+    """Stresses, safety factors and the load case's criteria (journal torques with the
+    vibratory torque when the torsional stage ran)."""
+    dyn = dynamics_for_assessment(out["dynamics"], out.get("torsion"))
+    return assess_case(lc, dyn, out["balance"], out["meshes"], out["units"])
 
 
 def _balance_stage(lc):

@@ -7,6 +7,11 @@ traceback for an expected error.  Exit codes: 0 pass, 1 a criterion failed,
 Each subcommand is a module in this package with ``add_arguments(parser)`` and
 ``run(args) -> int``; ``COMMANDS`` lists them (name -> (module, one-line help)).
 The modules are imported statically: one that cannot be imported is an error.
+
+One convention for every subcommand: no abbreviated options (``allow_abbrev=False``),
+``-o/--output DIR`` (default ``reports/``) where files are written, ``--mesh-size`` and
+``--cache-dir`` where meshes are made, ``-v/--verbose`` and ``-q/--quiet`` everywhere
+(standard-library logging, ``fe_crank.logs``).
 """
 
 from __future__ import annotations
@@ -16,7 +21,7 @@ import sys
 from types import ModuleType
 
 from fe_crank import __version__
-from fe_crank.cli import balance, check, dynamics, mesh, validate
+from fe_crank.cli import balance, check, dynamics, mesh, torsion, validate
 from fe_crank.errors import FeCrankError
 
 EXIT_PASS, EXIT_FAIL, EXIT_ERROR = 0, 1, 2
@@ -26,19 +31,32 @@ COMMANDS: dict[str, tuple[ModuleType, str]] = {
     "dynamics": (dynamics, "kinematics and dynamics over the cycle: table, JSON, plots"),
     "balance": (balance, "free forces/moments by order, counterweights, balance shafts"),
     "mesh": (mesh, "build and mesh a crank geometry (cached); statistics and a picture"),
+    "torsion": (torsion, "torsional vibration of the crank train: modes, Campbell, forced response"),
     "check": (check, "run load cases end to end and give verdicts (CI check)"),
 }
+
+
+def common_options() -> argparse.ArgumentParser:
+    """The options every subcommand takes (an argparse parent parser)."""
+    c = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
+    g = c.add_mutually_exclusive_group()
+    g.add_argument("-v", "--verbose", action="count", default=0,
+                   help="more log lines (-v: debug details); logs go to stderr")
+    g.add_argument("-q", "--quiet", action="store_true", help="log warnings and errors only")
+    return c
 
 
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="fe-crank",
         description="Finite-element crankshaft and counterweight stress checker.",
+        allow_abbrev=False,
     )
     p.add_argument("--version", action="version", version=f"fe-crank {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     for name, (module, help_text) in COMMANDS.items():
-        sp = sub.add_parser(name, help=help_text, description=help_text)
+        sp = sub.add_parser(name, help=help_text, description=help_text, allow_abbrev=False,
+                            parents=[common_options()])
         module.add_arguments(sp)
         sp.set_defaults(_module=module)
     return p
@@ -53,6 +71,7 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "command", None):
         parser.print_help(sys.stderr)
         return EXIT_ERROR
+    _setup_process(args)
     try:
         return int(args._module.run(args))
     except FeCrankError as exc:
@@ -61,6 +80,20 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("fe-crank: interrupted", file=sys.stderr)
         return 130
+
+
+def _setup_process(args) -> None:
+    """Process-wide settings belong to the application, not the library: logging, and
+    VTK's own log kept to errors (no "bad X server connection" noise offscreen)."""
+    from fe_crank.logs import setup_logging
+
+    setup_logging(-1 if getattr(args, "quiet", False) else getattr(args, "verbose", 0))
+    try:
+        from vtkmodules.vtkCommonCore import vtkLogger
+
+        vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_ERROR)
+    except ImportError:  # pragma: no cover - VTK comes with pyvista
+        pass
 
 
 def entry() -> None:  # console-script entry point

@@ -1,4 +1,4 @@
-"""``fe-crank balance FILE -o DIR``: free forces and moments by order and source,
+"""``fe-crank balance FILE [-o DIR]``: free forces and moments by order and source,
 counterweight design and residual; hodograph PNGs and a JSON summary.
 
 FILE is a load case (speed and ``[balance]`` taken from it) or an engine file (then
@@ -20,7 +20,8 @@ from fe_crank.report.stage_plots import plot_hodographs
 
 def add_arguments(p) -> None:
     p.add_argument("file", type=Path, help="load-case or engine .toml file")
-    p.add_argument("-o", "--out", type=Path, default=None, help="output folder (JSON and hodograph PNGs)")
+    p.add_argument("-o", "--output", type=Path, default=Path("reports"), metavar="DIR",
+                   help="folder for balance.json and the hodograph PNGs (default: reports/)")
     p.add_argument("--speed", default=None, help='speed for an engine file, with its unit, e.g. "3000 rpm"')
     p.add_argument("--fraction", type=float, default=None,
                    help="share of the first-order reciprocating mass balanced by counterweights (engine file)")
@@ -123,8 +124,8 @@ def run(args) -> int:
             raise
         raise InputError(exc.reason, file=str(args.file), key=exc.key) from None
     print(format_report(res))
-    if args.out is not None:
-        out = Path(args.out)
+    if args.output is not None:
+        out = Path(args.output)
         write_atomic(out / "balance.json", json.dumps(result_to_dict(res), indent=2).encode())
         written = [out / "balance.json"]
         if not args.no_plots:

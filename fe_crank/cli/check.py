@@ -29,7 +29,8 @@ def add_arguments(p) -> None:
                    help="mesh preset (default coarse: fillet elements <= r/4, IACS UR M53 guidance; "
                         "test is for quick trials only)")
     p.add_argument("--cache-dir", default=str(DEFAULT_CACHE_DIR), metavar="DIR",
-                   help=f"mesh cache (default {DEFAULT_CACHE_DIR})")
+                   help=f"mesh cache folder shared by every case and worker (default: {DEFAULT_CACHE_DIR}, relative "
+                        "to the working directory; resolved before cases are sent to processes or Dask workers)")
     p.add_argument("--no-render", action="store_true", help="skip the pyvista pictures (faster)")
     p.add_argument("--no-vtu", action="store_true", help="do not write the .vtu result fields")
     p.add_argument("--convergence", action=argparse.BooleanOptionalAction, default=None,

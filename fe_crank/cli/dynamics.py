@@ -1,4 +1,4 @@
-"""``fe-crank dynamics FILE -o DIR``: kinematics and dynamics over the cycle.
+"""``fe-crank dynamics FILE [-o DIR]``: kinematics and dynamics over the cycle.
 
 Writes into DIR (each file atomically: a temporary file in DIR, then renamed):
 
@@ -24,7 +24,8 @@ PLOTS = ("piston_motion.png", "forces.png", "torque.png", "crankpin_polar.png")
 
 def add_arguments(p) -> None:
     p.add_argument("file", type=Path, help="load-case .toml file (engine + operating point)")
-    p.add_argument("-o", "--out", type=Path, required=True, help="output folder (created if missing)")
+    p.add_argument("-o", "--output", type=Path, default=Path("reports"), metavar="DIR",
+                   help="folder for dynamics.json and the plots (default: reports/)")
     p.add_argument("--step", type=float, default=1.0, help="crank-angle step in degrees (default 1)")
     p.add_argument("--speed-fluctuation", type=float, default=0.01,
                    help="target coefficient of speed fluctuation for the flywheel (default 0.01)")
@@ -100,7 +101,7 @@ def run(args) -> int:
                          key="--speed-fluctuation")
     lc = load_loadcase(args.file)
     res = analyse(lc.engine, lc.operating, step=np.radians(args.step), speed_fluctuation=args.speed_fluctuation)
-    out: Path = args.out
+    out: Path = args.output
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

@@ -1,4 +1,4 @@
-"""``fe-crank mesh GEOMETRY.toml -o DIR``: build, mesh (cached) and picture crank throws.
+"""``fe-crank mesh GEOMETRY.toml [-o DIR]``: build, mesh (cached) and picture crank throws.
 
 Prints the mass properties of each throw (from the OCC solid) and the mesh statistics,
 the cached ``.msh``/``.vtu`` paths, copies them into ``DIR`` and writes an offscreen
@@ -16,11 +16,14 @@ from fe_crank.mesh import DEFAULT_CACHE_DIR, PRESETS
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("geometry", help="geometry file (geometry/*.toml)")
-    p.add_argument("-o", "--out", default=".", help="output folder for the picture and mesh copies (default: .)")
+    p.add_argument("-o", "--output", default="reports", metavar="DIR",
+                   help="folder for the picture and mesh copies (default: reports/)")
     p.add_argument("--throw", default=None, help="throw name to mesh, or 'all' (default: the first throw)")
-    p.add_argument("--size", default="coarse", choices=sorted(PRESETS), help="mesh size preset (default: coarse)")
-    p.add_argument("--cache-dir", default=str(DEFAULT_CACHE_DIR), help=f"mesh cache folder (default: {DEFAULT_CACHE_DIR})")
-    p.add_argument("--no-picture", action="store_true", help="do not render the PNG")
+    p.add_argument("--mesh-size", default="coarse", choices=sorted(PRESETS),
+                   help="mesh preset (default coarse: fillet elements <= r/4; test is for quick trials only)")
+    p.add_argument("--cache-dir", default=str(DEFAULT_CACHE_DIR), metavar="DIR",
+                   help=f"mesh cache folder (default: {DEFAULT_CACHE_DIR}, relative to the working directory)")
+    p.add_argument("--no-render", action="store_true", help="do not render the PNG")
 
 
 def render_png(vtu_path: Path, png_path: Path, title: str = "") -> None:
@@ -46,7 +49,7 @@ def run(args: argparse.Namespace) -> int:
     from fe_crank.mesh import mesh_throw
 
     g = load_geometry(args.geometry)
-    out = Path(args.out)
+    out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
     if args.throw in (None, ""):
         throws = [g.throws[0]]
@@ -71,9 +74,9 @@ def run(args: argparse.Namespace) -> int:
             part = mp.parts.get(f"counterweight_{web}")
             if part is not None:
                 print(f"  counterweight_{web}: mass {part.mass:.4g} kg at r_c {abs(part.centroid[1]) * 1e3:.4g} mm, m r {part.unbalance * 1e3:.4g} kg mm")
-        tm = mesh_throw(g, spec, size=args.size, cache_dir=args.cache_dir)
+        tm = mesh_throw(g, spec, size=args.mesh_size, cache_dir=args.cache_dir)
         s = tm.stats
-        print(f"  mesh ({args.size}{', cached' if s.from_cache else ''}): {s.nodes} nodes, {s.elements} quadratic tets, "
+        print(f"  mesh ({args.mesh_size}{', cached' if s.from_cache else ''}): {s.nodes} nodes, {s.elements} quadratic tets, "
               f"{s.p2_dofs} P2 DOFs, min quality {s.min_quality:.3g}, {s.straightened} elements straightened, "
               f"built in {s.build_seconds:.1f} s")
         for name, h in s.fillet_max_edge.items():
@@ -83,7 +86,7 @@ def run(args: argparse.Namespace) -> int:
         base = out / f"{stem}_throw{spec.name}"
         shutil.copyfile(tm.msh_path, base.with_suffix(".msh"))
         shutil.copyfile(tm.vtu_path, base.with_suffix(".vtu"))
-        if not args.no_picture:
+        if not args.no_render:
             png = base.with_suffix(".png")
             render_png(tm.vtu_path, png, f"{g.name}, throw {spec.name}")
             print(f"  picture: {png}")

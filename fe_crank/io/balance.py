@@ -24,6 +24,7 @@
     order = 2
     offset = "100 mm"
     span = "200 mm"
+    positions = [["60 mm", "40 mm"], ["-60 mm", "-20 mm"]]   # optional: (x, y) of each shaft
 """
 
 from __future__ import annotations
@@ -65,6 +66,7 @@ class ShaftRequestInput(Strict):
     order: Literal[1, 2]
     offset: Length = 0.1
     span: Length = 0.2
+    positions: list[tuple[Length, Length]] | None = None
 
 
 class BalanceInput(Strict):
@@ -107,6 +109,7 @@ class ShaftRequest:
     order: int
     offset: float
     span: float
+    positions: tuple[tuple[float, float], ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -131,5 +134,7 @@ def parse_balance(value: object, file: str | Path, key: str = "balance") -> Bala
     if raw.counterweight is not None:
         c = raw.counterweight
         cw = CounterweightSpec(c.density, c.free, c.r_outer, c.r_inner, c.thickness, c.angle, c.envelope, c.journal_radius)
-    shafts = tuple(ShaftRequest(s.component, s.order, s.offset, s.span) for s in raw.shafts)
+    shafts = tuple(ShaftRequest(s.component, s.order, s.offset, s.span,
+                                None if s.positions is None else tuple(tuple(p) for p in s.positions))
+                   for s in raw.shafts)
     return BalanceSettings(strategy, raw.reference_z, cw, shafts)

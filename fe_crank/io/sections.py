@@ -15,6 +15,7 @@ from fe_crank.io.criteria import parse_criteria
 from fe_crank.io.geometry import parse_geometry
 from fe_crank.io.material import parse_material
 from fe_crank.io.mesh import parse_mesh_section
+from fe_crank.io.torsion import parse_torsion
 
 SectionParser = Callable[[Any, Any, str], object]
 
@@ -25,4 +26,5 @@ SECTIONS: dict[str, SectionParser] = {
     "fe": parse_fe,  # FE stage
     "balance": parse_balance,  # balance stage
     "mesh": parse_mesh_section,  # check stage
+    "torsion": parse_torsion,  # torsion stage
 }

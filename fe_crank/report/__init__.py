@@ -1,7 +1,8 @@
-"""Case reports: ``results.json``, ``report.html`` with PNGs beside it, ``.vtu`` fields.
+"""Case reports: ``results.json``, a self-contained ``report.html`` (pictures embedded;
+the PNGs also beside it), ``.vtu`` fields.
 
 ``write_case_report(folder, result, stage_out, *, options, trace)`` writes into a
-folder that the pipeline later renames into place (see ``fe_crank.pipeline``).
+folder that the pipeline later renames into place (see ``fe_crank.check.case``).
 Pictures: matplotlib for curves (``fe_crank.report.plots``), pyvista offscreen for
 the stress fields (``fe_crank.report.render``, imported lazily).
 """
@@ -89,8 +90,9 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
     """Write ``results.json``, pictures, fields and ``report.html`` into ``folder``."""
     folder = Path(folder)
     page = Page(f"fe-crank: {result.name}")
+    notes = stage_out.get("notes") or []
     if result.criteria:
-        page.section("Verdict: safety factors and criteria").append(criteria_table(result))
+        page.section("Verdict: safety factors and criteria").append(criteria_table(result, notes))
     lc = stage_out.get("loadcase")
     if lc is not None:
         inputs = page.section("Inputs and assumptions")
@@ -119,16 +121,18 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
         studies = stage_out.get("mesh_convergence")
         extra_criteria = (convergence.criterion(studies),) if studies else ()
         write_atomic(folder / "results.json", results_json(stage_out["assessment"], fe_results(stage_out),
-                                                           extra_criteria))
-    write_atomic(folder / "report.html", page.html(header_html(result)))
+                                                           extra_criteria, provenance=result.provenance, notes=notes))
+    write_atomic(folder / "report.html", page.html(header_html(result, notes), folder=folder))
 
 
-def results_json(assessment, extra: dict | None = None, criteria=()) -> str:
+def results_json(assessment, extra: dict | None = None, criteria=(), *, provenance: dict | None = None,
+                 notes=()) -> str:
     """``results.json``: the assessment's document (``fe_crank.assess.to_json``, schema
-    ``fe_crank/data/results.schema.json``) plus ``extra`` top-level fields and ``criteria``
-    (``CriterionResult``) of other stages.  Written only
-    for cases whose assessment ran; the pipeline's own record (status, message, timings)
-    is ``case.json``."""
+    ``fe_crank/data/results.schema.json``) plus ``extra`` top-level fields, ``criteria``
+    (``CriterionResult``) of other stages, ``provenance`` (``fe_crank.provenance``) and
+    ``warnings`` (the notes shown beside the verdict, ``fe_crank.notes.Note``).  Written
+    only for cases whose assessment ran; the pipeline's own record (status, message,
+    timings) is ``case.json``."""
     from fe_crank.assess import to_json
 
     doc = {**to_json(assessment), **(extra or {})}
@@ -137,7 +141,17 @@ def results_json(assessment, extra: dict | None = None, criteria=()) -> str:
 
         doc["criteria"] = [*doc["criteria"], *(asdict(c) for c in criteria)]
         doc["passed"] = bool(doc["passed"] and all(c.passed for c in criteria))
-    return json.dumps(doc, indent=2, allow_nan=False)
+    if provenance:
+        doc["provenance"] = provenance
+    doc["warnings"] = [n.to_dict() for n in notes]
+    return json.dumps(doc, indent=2, allow_nan=False, default=_plain)
+
+
+def _plain(o):
+    """numpy scalars in provenance statistics -> Python numbers."""
+    if hasattr(o, "item"):
+        return o.item()
+    raise TypeError(f"not JSON serialisable: {type(o).__name__}")
 
 
 def fe_results(stage_out: dict) -> dict:

@@ -1,13 +1,16 @@
 """A small, dependency-free HTML page builder for case reports.
 
-The page is self-contained (inline CSS, no scripts, no network) and refers to its
-pictures by relative file name, so the folder can be zipped, archived by CI or
-opened from disk.
+The page is self-contained: inline CSS, no scripts, no network, and its pictures
+embedded as ``data:image/png;base64`` URIs (``Page.html(folder=...)``), so
+``report.html`` alone is the whole document (mailed, archived, printed).  The PNG
+files stay beside it for other uses.
 """
 
 from __future__ import annotations
 
+import base64
 import html
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -25,6 +28,12 @@ th{background:#f3f3f3} td.num{text-align:right;font-variant-numeric:tabular-nums
 figure{display:inline-block;margin:.5em 1em .5em 0;vertical-align:top} figure img{max-width:34em;border:1px solid #ddd}
 figcaption{font-size:.9em;color:#555;max-width:34em} pre{background:#f7f7f7;padding:.6em;overflow-x:auto}
 .note{color:#555;font-size:.92em}
+.banner{border:3px solid #c62828;background:#fdecea;color:#b71c1c;font-weight:700;padding:.6em 1em;margin:.8em 0;
+font-size:1.15em}
+ul.warn{margin:.3em 0 .6em 1.2em;padding:0} ul.warn li{color:#8a4b00} td ul.warn{margin:0;font-size:.9em}
+@media print{body{max-width:none;margin:0;font-size:10pt} figure{display:block;page-break-inside:avoid}
+figure img{max-width:100%} h2{page-break-after:avoid} table{page-break-inside:auto} tr{page-break-inside:avoid}
+.badge{border:1px solid #000;-webkit-print-color-adjust:exact;print-color-adjust:exact}}
 """
 
 
@@ -71,7 +80,7 @@ class Page:
     def figure(file: str, caption: str) -> str:
         return f'<figure><img src="{esc(file)}" alt="{esc(caption)}"><figcaption>{esc(caption)}</figcaption></figure>'
 
-    def html(self, head_html: str = "") -> str:
+    def html(self, head_html: str = "", folder: str | Path | None = None) -> str:
         body = [f"<h1>{esc(self.title)}</h1>", head_html]
         for heading, parts in self.sections:
             if not parts:
@@ -83,17 +92,80 @@ class Page:
             f"<title>{esc(self.title)}</title><style>{CSS}</style></head><body>\n"
             + "\n".join(body)
             + "\n</body></html>\n"
-        )
+        ) if folder is None else embed_images(self.html(head_html), folder)
 
 
-def header_html(result: CaseResult) -> str:
+_IMG = re.compile(r'<img src="([^"]+)"')
+
+
+def embed_images(text: str, folder: str | Path) -> str:
+    """Replace every ``<img src="file.png">`` by the picture's bytes as a base64 data
+    URI (a picture that is missing keeps only its alt text and caption)."""
+
+    def repl(m: re.Match) -> str:
+        src = html.unescape(m.group(1))
+        if src.startswith("data:"):
+            return m.group(0)
+        p = Path(folder) / src
+        if not p.is_file():
+            return "<img"
+        data = base64.b64encode(p.read_bytes()).decode("ascii")
+        return f'<img src="data:image/png;base64,{data}"'
+
+    return _IMG.sub(repl, text)
+
+
+def header_html(result: CaseResult, notes=()) -> str:
+    """Verdict badge, the "not a sign-off" banner when the mesh is below the sign-off
+    rule, the warnings that concern the whole case, and where the result came from."""
     w = result.worst
     worst = f"worst criterion <b>{esc(w.name)}</b>, margin {100 * w.margin:+.1f} %" if w else ""
     msg = f'<pre>{esc(result.message)}</pre>' if result.message else ""
+    mesh = (result.provenance or {}).get("mesh") or {}
+    banner = ""
+    if mesh.get("preset") and not mesh.get("sign_off"):
+        banner = (f'<div class="banner">NOT A SIGN-OFF (test mesh): mesh preset "{esc(mesh["preset"])}" is below '
+                  f'the sign-off rule ({esc(mesh.get("sign_off_rule", "coarse or finer"))}). Run with '
+                  "--mesh-size coarse or finer before trusting this verdict.</div>")
+    case_wide = [n for n in notes if not n.criteria]
     return (
-        f"<p>{badge(result.status)} &nbsp; {worst}</p>"
+        f"{banner}<p>{badge(result.status)} &nbsp; {worst}</p>{notes_list(case_wide)}"
         f'<p class="note">load case file <code>{esc(result.source)}</code></p>{msg}'
+        + provenance_table(result.provenance or {})
     )
+
+
+def notes_list(notes) -> str:
+    """A list of notes, warnings first, each marked with its level."""
+    if not notes:
+        return ""
+    items = sorted(notes, key=lambda n: n.level != "warning")
+    return '<ul class="warn">' + "".join(f"<li><b>{esc(n.level)}</b>: {esc(n.text)}</li>" for n in items) + "</ul>"
+
+
+def provenance_table(prov: dict) -> str:
+    """What produced the result: version, date, input hash, mesh, solver, support."""
+    if not prov:
+        return ""
+    mesh = prov.get("mesh") or {}
+    rows = [["fe-crank version", prov.get("version", "")], ["run started (UTC)", prov.get("started", "")],
+            ["input SHA-256 (load case and the files it refers to)", Raw(f"<code>{esc((prov.get('input') or {}).get('sha256'))}</code>")],
+            ["mesh preset", f"{mesh.get('preset')} ({'meets' if mesh.get('sign_off') else 'below'} the sign-off rule: "
+                            f"{mesh.get('sign_off_rule', '')})"]]
+    for key, st in (mesh.get("throws") or {}).items():
+        if isinstance(st, dict):
+            rows.append([f"mesh {key}", f"{st.get('elements')} quadratic tetrahedra, {st.get('nodes')} nodes, "
+                                        f"{st.get('p2_dofs')} DOF, min quality {st.get('min_quality', float('nan')):.3g}"])
+    solver = prov.get("solver") or {}
+    if solver:
+        rows.append(["linear solver", f"{', '.join(solver.get('used') or [])} (requested {solver.get('requested')}; "
+                                      f"fast direct solver {'available' if solver.get('fast_available') else 'NOT available'})"])
+    for s in prov.get("support") or ():
+        k = s.get("bearing_stiffness")
+        rows.append([f"support, throw {s.get('throw')}", s.get("model") or (f"{s.get('support')} journal support"
+                     + (f", k = {k:.3g} N/m^3" if isinstance(k, (int, float)) else ""))])
+    rows.append(["Python, platform", f"{prov.get('python')}, {prov.get('platform')}"])
+    return "<details open><summary>Provenance</summary>" + table(["item", "value"], rows) + "</details>"
 
 
 def display(value: float, unit: str) -> tuple[str, str]:
@@ -103,16 +175,21 @@ def display(value: float, unit: str) -> tuple[str, str]:
     return f"{value:.4g}", unit
 
 
-def criteria_table(result: CaseResult) -> str:
+def criteria_table(result: CaseResult, notes=()) -> str:
+    """The verdict table; each criterion's row lists the warnings and assumptions that
+    concern it (``fe_crank.notes.Note.concerns``) except the case-wide ones, which the
+    header shows once."""
     rows = []
     for c in sorted(result.criteria, key=lambda c: c.margin):
         (v, unit), (lim, _) = display(c.value, c.unit), display(c.limit, c.unit)
+        mine = [n for n in notes if n.criteria and n.concerns(c.name)]
         rows.append([
             c.name, c.description, c.location, v, lim, unit,
-            f"{100 * c.margin:+.1f} %", Raw(badge(STATUS_PASS if c.passed else STATUS_FAIL)),
+            f"{100 * c.margin:+.1f} %", Raw(badge(STATUS_PASS if c.passed else STATUS_FAIL)), Raw(notes_list(mine)),
         ])
     return table(
-        ["criterion", "what", "where", "value", "limit", "unit", "margin", "verdict"], rows, num_cols={3, 4, 6}
+        ["criterion", "what", "where", "value", "limit", "unit", "margin", "verdict", "warnings and assumptions"], rows,
+        num_cols={3, 4, 6}
     )
 
 

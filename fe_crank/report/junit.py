@@ -1,21 +1,31 @@
 """JUnit XML for CI systems: one ``<testcase>`` per criterion of each load case.
 
-Layout (the de-facto schema GitLab, Jenkins and GitHub reporters read)::
+Layout (the common JUnit schema that Jenkins, GitLab and GitHub reporters read)::
 
-    <testsuites name="fe-crank" tests=.. failures=.. errors=.. time=..>
-      <testsuite name="<case>" tests=.. failures=.. errors=.. time=..>
-        <testcase classname="fe-crank.<case>" name="<criterion>" time="0">
-          <failure message="margin -12.0 %: ...">...</failure>   (failed criterion)
-        </testcase>
-        <testcase classname="fe-crank.<case>" name="pipeline">
-          <error message="...">...</error>                          (case that errored)
+    <testsuites name="fe-crank" tests=.. failures=.. errors=.. time=.. timestamp=..>
+      <testsuite name="<case file stem>" tests=.. failures=.. errors=.. skipped="0"
+                 time=.. timestamp=.. hostname=..>
+        <properties> source, version, input_sha256, mesh_preset, sign_off, solver </properties>
+        <testcase classname="fe-crank.<case file stem>" name="<criterion>" time="..">
+          <failure message="..." type="criterion">...</failure>    (failed criterion)
+          <error message="..." type="...">...</error>               (case that errored)
+          <system-out>value, limit, margin; warnings</system-out>
         </testcase>
       </testsuite>
     </testsuites>
+
+``classname`` is the case file stem (letters, digits, ``_.-``), stable across runs
+so CI keeps each criterion's history.  A case that errored lists every criterion of
+its load case as an ``<error>`` test (plus ``pipeline`` carrying the message; only
+``pipeline`` when the load case could not be read).  Times: the case's wall time
+shared equally among its tests (the criteria come out of one computation), so the
+tests add up to the suite time.
 """
 
 from __future__ import annotations
 
+import re
+import socket
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Sequence
@@ -33,45 +43,86 @@ def _criterion_text(c) -> str:
     return f"{c.name}{loc}: value {v}{unit}, limit {lim}{unit}, margin {100 * c.margin:+.1f} %"
 
 
-def junit_xml(results: Sequence[CaseResult]) -> str:
+def classname(r: CaseResult) -> str:
+    """``fe-crank.<file stem>``: no spaces or commas, the same whatever the case's title."""
+    stem = Path(r.folder).name if r.folder else Path(r.source).stem
+    return "fe-crank." + (re.sub(r"[^A-Za-z0-9_.-]+", "_", stem) or "case")
+
+
+def _properties(suite, r: CaseResult) -> None:
+    props = ET.SubElement(suite, "properties")
+    prov = r.provenance or {}
+    mesh = prov.get("mesh") or {}
+    solver = prov.get("solver") or {}
+    items = [("source", r.source), ("version", prov.get("version")), ("started", r.started),
+             ("input_sha256", (prov.get("input") or {}).get("sha256")), ("mesh_preset", mesh.get("preset")),
+             ("sign_off", None if not mesh else str(bool(mesh.get("sign_off"))).lower()),
+             ("solver", ",".join(solver.get("used") or []) or None)]
+    for name, value in items:
+        if value not in (None, ""):
+            ET.SubElement(props, "property", name=name, value=str(value))
+
+
+def junit_xml(results: Sequence[CaseResult], *, hostname: str | None = None) -> str:
     """The JUnit XML document for a batch, as text."""
+    host = hostname or socket.gethostname()
     root = ET.Element("testsuites", name="fe-crank")
     tot = {"tests": 0, "failures": 0, "errors": 0, "time": 0.0}
     for r in results:
-        suite = ET.SubElement(root, "testsuite", name=r.name)
+        cls = classname(r)
+        suite = ET.SubElement(root, "testsuite", name=cls.removeprefix("fe-crank."))
+        _properties(suite, r)
+        warn = "\n".join(f"warning: {w}" for w in r.warnings)
+        errored = r.status == STATUS_ERROR
+        names = [c.name for c in r.criteria] if not errored or r.criteria else list(r.planned_criteria)
+        n_tests = len(names) + (1 if errored else 0)
+        each = f"{r.seconds / max(n_tests, 1):.3f}"
         n = f = e = 0
-        ET.SubElement(ET.SubElement(suite, "properties"), "property", name="source", value=r.source)
-        for c in r.criteria:
-            tc = ET.SubElement(suite, "testcase", classname=f"fe-crank.{r.name}", name=c.name, time="0")
+        by_name = {c.name: c for c in r.criteria}
+        stage = f" (stage {r.error_stage})" if r.error_stage else ""
+        first = (r.message.splitlines()[0] if r.message else "error")
+        for name in names:
+            tc = ET.SubElement(suite, "testcase", classname=cls, name=name, time=each)
             n += 1
-            if not c.passed:
+            c = by_name.get(name)
+            if errored:
+                e += 1
+                err = ET.SubElement(tc, "error", message=f"not evaluated: {first}", type=f"error{stage}")
+                err.text = r.message
+            elif not c.passed:
                 f += 1
                 fail = ET.SubElement(tc, "failure", message=_criterion_text(c), type="criterion")
                 fail.text = _criterion_text(c) + (f"\n{c.description}" if c.description else "")
-            else:
-                ET.SubElement(tc, "system-out").text = _criterion_text(c)
-        if r.status == STATUS_ERROR:
-            tc = ET.SubElement(
-                suite, "testcase", classname=f"fe-crank.{r.name}", name="pipeline", time=f"{r.seconds:.3f}"
-            )
+            if c is not None:
+                ET.SubElement(tc, "system-out").text = _criterion_text(c) + (f"\n{warn}" if warn else "")
+        if errored:
+            tc = ET.SubElement(suite, "testcase", classname=cls, name="pipeline", time=each)
             n += 1
             e += 1
-            stage = f" (stage {r.error_stage})" if r.error_stage else ""
-            err = ET.SubElement(tc, "error", message=r.message.splitlines()[0] if r.message else "error",
-                                type=f"error{stage}")
+            err = ET.SubElement(tc, "error", message=first, type=f"error{stage}")
             err.text = r.message
         suite.set("tests", str(n))
         suite.set("failures", str(f))
         suite.set("errors", str(e))
+        suite.set("skipped", "0")
         suite.set("time", f"{r.seconds:.3f}")
+        suite.set("timestamp", (r.started or "")[:19] or _now())
+        suite.set("hostname", host)
         tot["tests"] += n
         tot["failures"] += f
         tot["errors"] += e
         tot["time"] += r.seconds
     for k, v in tot.items():
         root.set(k, f"{v:.3f}" if k == "time" else str(v))
+    root.set("timestamp", min((r.started for r in results if r.started), default=_now())[:19])
     ET.indent(root)
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+
+
+def _now() -> str:
+    from fe_crank.provenance import now_utc
+
+    return now_utc()[:19]
 
 
 def write_junit(path: str | Path, results: Sequence[CaseResult]) -> Path:

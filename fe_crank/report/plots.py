@@ -1,4 +1,6 @@
-"""matplotlib pictures for the report (Agg backend: files only, never a window).
+"""matplotlib pictures for the report: ``matplotlib.figure.Figure`` objects printed
+through the Agg canvas (files only, never a window, no ``matplotlib.use``: the
+process's backend is left alone).
 
 Only what no stage draws itself: the curves of dynamics (``fe_crank.cli.dynamics``)
 and the hodographs of balance (``fe_crank.cli.balance``) are drawn by those stages'
@@ -13,13 +15,14 @@ from typing import Mapping, Sequence
 import numpy as np
 
 
-def _plt():
-    import matplotlib
+def figure(figsize: tuple[float, float]):
+    """A matplotlib ``Figure`` on its own Agg canvas (not registered with pyplot)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
+    fig = Figure(figsize=figsize)
+    FigureCanvasAgg(fig)
+    return fig
 
 
 def _save(fig, path: str | Path) -> Path:
@@ -28,14 +31,13 @@ def _save(fig, path: str | Path) -> Path:
 
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=110, bbox_inches="tight")
-    _plt().close(fig)
     return write_atomic(path, buf.getvalue())
 
 
 def plot_bars(path, labels: Sequence[str], series: Mapping[str, Sequence[float]], *, ylabel: str, title: str) -> Path:
     """Grouped bars (e.g. required vs built counterweight m*r per plane)."""
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(6.0, 3.4))
+    fig = figure((6.0, 3.4))
+    ax = fig.add_subplot()
     n = max(len(series), 1)
     w = 0.8 / n
     x = np.arange(len(labels))

@@ -1,11 +1,16 @@
-"""Offscreen pyvista pictures of the stress field (no display is ever opened).
+"""Offscreen pyvista pictures of a stress field (no window is ever opened).
 
-pyvista and VTK are imported lazily, inside the functions, so that importing the
-report package stays light and works where no GL library is installed.
+The pictures are drawn from the same ``meshio.Mesh`` of quadratic tetrahedra that is
+written as the ``.vtu`` file (``fe_crank.fe.vtu``): every P2 node, mid-edge nodes
+included, carries its value, so the colour bar, the written file and the verdict
+table agree on the peak.  Only ``pyvista.Plotter(off_screen=True)`` is used: no
+process-wide pyvista or VTK setting is changed.  pyvista is imported inside the
+functions so that importing the report package stays light.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -14,58 +19,71 @@ import numpy as np
 
 @dataclass(frozen=True)
 class RenderedView:
-    """A picture written to disk and what it shows (for the caption)."""
+    """A picture written to disk and what its colour bar shows."""
 
-    file: str
-    caption: str
+    file: Path
+    clim: tuple[float, float]  # colour-bar range, display unit
+    peak: float  # largest value of the drawn field on the whole part, display unit
     exaggeration: float = 1.0
 
 
 def exaggeration_factor(max_displacement: float, model_size: float, *, fraction: float = 0.05) -> float:
     """Scale for drawing a deformed shape: the largest displacement is drawn as
     ``fraction`` of the model size, ``s = fraction * L / max|u|`` (1 when the
-    model does not move).  The factor is stated in every caption."""
+    model does not move), rounded to one significant digit."""
     if not max_displacement > 0 or not np.isfinite(max_displacement):
         return 1.0
     s = fraction * model_size / max_displacement
-    # round to one significant digit so the caption reads "x 2000", not "x 1987.3"
     mag = 10 ** np.floor(np.log10(s))
     return float(np.round(s / mag) * mag)
 
 
-def _pv():
-    from vtkmodules.vtkCommonCore import vtkLogger
+def nice_step(span: float, intervals: int = 5) -> float:
+    """A round tick step (1, 2, 2.5 or 5 x 10^k) giving about ``intervals`` intervals
+    over ``span``."""
+    if not span > 0 or not np.isfinite(span):
+        return 1.0
+    raw = span / intervals
+    mag = 10 ** math.floor(math.log10(raw))
+    for m in (1.0, 2.0, 2.5, 5.0, 10.0):
+        if m * mag >= raw * (1 - 1e-12):
+            return m * mag
+    return 10.0 * mag  # pragma: no cover
 
-    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_ERROR)  # no "bad X server" noise
+
+def nice_range(lo: float, hi: float) -> tuple[float, float, int, str]:
+    """Colour-bar range on round ticks containing [lo, hi]: (low, high, number of
+    labels, printf format).  Fields with ``lo >= 0`` (von Mises) start at 0.  Of the
+    round steps giving 4 to 8 intervals, the one whose top lies closest above ``hi``
+    (least colour range wasted) is taken."""
+    lo = 0.0 if lo >= 0 else lo
+    best = None
+    for intervals in (5, 4, 6, 7, 8):
+        step = nice_step(hi - lo, intervals)
+        a, b = math.floor(lo / step) * step, math.ceil(hi / step) * step
+        if b <= a:
+            b = a + step
+        if best is None or b - hi < best[1] - hi - 1e-12 * abs(hi):
+            best = (a, b, step)
+    a, b, step = best
+    frac = f"{step:.9f}".rstrip("0").split(".")[1]  # decimals the step needs (2.5 -> 1, 0.05 -> 2)
+    return a, b, int(round((b - a) / step)) + 1, f"%.{len(frac)}f"
+
+
+def nice_length(size: float) -> float:
+    """A round length (1, 2, 5 x 10^k m) of about a quarter of ``size`` for a scale bar."""
+    raw = 0.25 * size
+    mag = 10 ** math.floor(math.log10(raw))
+    return max(m * mag for m in (1.0, 2.0, 5.0) if m * mag <= raw * (1 + 1e-12))
+
+
+def grid_of(mesh, display: dict[str, np.ndarray] | None = None):
+    """pyvista grid of a ``meshio.Mesh`` (quadratic cells kept), plus display-only
+    point arrays (e.g. von Mises in MPa) that are not written to the file."""
     import pyvista as pv
 
-    pv.OFF_SCREEN = True
-    return pv
-
-
-def tet_grid(points: np.ndarray, tets: np.ndarray, point_data: dict[str, np.ndarray] | None = None):
-    """A pyvista grid of linear tetrahedra.
-
-    ``points`` (3, n) or (n, 3) node coordinates (m); ``tets`` (4, m) or (m, 4)
-    corner indices (quadratic meshes: the corner nodes, the mid-edge nodes stay
-    unused points so nodal fields keep their length).
-    """
-    pv = _pv()
-    pts = np.asarray(points, float)
-    if pts.shape[0] == 3 and pts.shape[1] != 3:
-        pts = pts.T
-    t = np.asarray(tets)
-    if t.shape[0] == 4 and t.shape[1] != 4:
-        t = t.T
-    t = np.array(t[:, :4], dtype=np.int64)
-    # VTK wants positively oriented tetrahedra ((b-a) x (c-a) . (d-a) > 0); swap two
-    # corners of the others so cell volumes (and normals) come out right
-    a, b, c, d = (pts[t[:, k]] for k in range(4))
-    neg = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a) < 0
-    t[neg, 1], t[neg, 2] = t[neg, 2], t[neg, 1].copy()
-    cells = np.hstack([np.full((t.shape[0], 1), 4), t]).ravel()
-    grid = pv.UnstructuredGrid(cells, np.full(t.shape[0], pv.CellType.TETRA, dtype=np.uint8), pts)
-    for k, v in (point_data or {}).items():
+    grid = pv.from_meshio(mesh)
+    for k, v in (display or {}).items():
         grid.point_data[k] = np.asarray(v)
     return grid
 
@@ -79,19 +97,30 @@ def render_field(
     displacement: str | None = None,
     scale: float = 1.0,
     hotspot: np.ndarray | None = None,
+    hotspot_label: str = "hot spot",
     focus: tuple[np.ndarray, float] | None = None,
-    clim: tuple[float, float] | None = None,
     view: str = "iso",
+    text: str = "",
+    unit: str = "MPa",
     window_size: tuple[int, int] = (1000, 760),
-) -> Path:
+) -> RenderedView:
     """Draw ``grid``'s outer surface coloured by ``scalars`` into a PNG.
 
-    ``displacement`` names a (n, 3) point array drawn times ``scale``;
-    ``hotspot`` (3,) is marked with a sphere and a label; ``focus`` =
-    (centre, radius) zooms the camera onto a region (a fillet close-up).
+    The surface of the quadratic cells is subdivided once, so mid-edge values are
+    drawn.  The colour bar (right of the part) spans round ticks from 0 (or the
+    minimum) to just above the field's peak on the whole part; the peak is printed
+    with ``text`` in the upper left.  ``displacement`` names a (n, 3) point array drawn
+    times ``scale``; ``hotspot`` (3,) is marked with a sphere and ``hotspot_label``;
+    ``focus`` = (centre, radius) zooms onto a region (a fillet close-up).  An axis
+    triad and a length scale are drawn.
     """
-    pv = _pv()
-    surf = grid.extract_surface(algorithm="dataset_surface") if _has_algorithm_kw(grid) else grid.extract_surface()
+    import pyvista as pv
+
+    values = np.asarray(grid.point_data[scalars], float)
+    finite = values[np.isfinite(values)]
+    peak = float(finite.max()) if finite.size else 0.0
+    lo, hi, n_labels, fmt = nice_range(float(finite.min()) if finite.size else 0.0, peak)
+    surf = grid.extract_surface(nonlinear_subdivision=1, algorithm="dataset_surface")
     if displacement is not None:
         surf = surf.copy()
         surf.points = surf.points + scale * np.asarray(surf.point_data[displacement])
@@ -99,26 +128,28 @@ def render_field(
     try:
         p.set_background("white")
         p.add_mesh(
-            surf, scalars=scalars, cmap="turbo", clim=clim, show_edges=False, smooth_shading=True, ambient=0.3,
-            scalar_bar_args={"title": title, "color": "black", "vertical": False, "fmt": "%.4g",
-                             "position_x": 0.2, "position_y": 0.03, "width": 0.6, "height": 0.07,
-                             "title_font_size": 18, "label_font_size": 15},
+            surf, scalars=scalars, cmap="turbo", clim=(lo, hi), show_edges=False, smooth_shading=True, ambient=0.3,
+            scalar_bar_args={"title": title, "color": "black", "vertical": True, "fmt": fmt, "n_labels": n_labels,
+                             "position_x": 0.86, "position_y": 0.12, "width": 0.06, "height": 0.76,
+                             "title_font_size": 16, "label_font_size": 14},
         )
         if hotspot is not None:
             hp = np.asarray(hotspot, float).reshape(3)
             rad = (0.04 * focus[1]) if focus else 0.015 * surf.length
             p.add_mesh(pv.Sphere(radius=rad, center=hp), color="magenta")
-            p.add_point_labels(hp[None, :], ["hot spot"], font_size=18, text_color="black",
+            p.add_point_labels(hp[None, :], [hotspot_label], font_size=16, text_color="black",
                                shape_opacity=0.6, always_visible=True)
+        head = f"peak on the part {peak:.4g} {unit}".rstrip()
+        p.add_text("\n".join([head, text] if text else [head]), position="upper_left", font_size=10, color="black")
+        p.add_axes(color="black", labels_off=False)
         if view == "front":  # from the front (free) end, looking along +z
             p.view_xy(negative=True)
         elif view == "side":
             p.view_yz()
         else:
             p.view_isometric()
+        bounds = np.asarray(surf.bounds).reshape(3, 2)
         if focus is not None:
-            # look at the focus from outside the part: from the side of the model's centre
-            # opposite to the focus, leaning towards the chosen view direction
             centre, radius = np.asarray(focus[0], float), float(focus[1])
             view_dir = np.asarray(p.camera.position) - np.asarray(p.camera.focal_point)
             view_dir /= np.linalg.norm(view_dir)
@@ -130,20 +161,26 @@ def render_field(
             p.camera.position = tuple(centre + 4.0 * radius * direction)
             p.camera.up = (0.0, 1.0, 0.0) if abs(direction[1]) < 0.9 else (0.0, 0.0, 1.0)
         else:
+            _scale_bar(p, bounds)
             p.reset_camera()
         p.screenshot(str(path))
     finally:
         p.close()
-    return Path(path)
+    return RenderedView(Path(path), (lo, hi), peak, scale if displacement is not None else 1.0)
 
 
-def _has_algorithm_kw(grid) -> bool:
-    import inspect
-
-    try:
-        return "algorithm" in inspect.signature(grid.extract_surface).parameters
-    except (TypeError, ValueError):  # pragma: no cover
-        return False
+def _scale_bar(p, bounds: np.ndarray) -> None:
+    """A ruler of round length along x below the part (lengths in mm)."""
+    size = float(np.linalg.norm(bounds[:, 1] - bounds[:, 0]))
+    if not size > 0:
+        return
+    length = nice_length(size)
+    y = bounds[1, 0] - 0.06 * size
+    z = bounds[2, 1]
+    a = [bounds[0, 0], y, z]
+    b = [bounds[0, 0] + length, y, z]
+    p.add_ruler(a, b, title=f"{length * 1e3:g} mm", number_labels=2, show_labels=False, font_size_factor=0.8,
+                label_color="black", tick_color="black")
 
 
 def image_statistics(path: str | Path) -> dict[str, float]:
@@ -157,21 +194,3 @@ def image_statistics(path: str | Path) -> dict[str, float]:
     differs = np.any(np.abs(img - bg) > 0.02, axis=-1)
     return {"coverage": float(differs.mean()), "std": float(img.mean(axis=-1).std()),
             "colours": float(len(np.unique((img * 255).astype(np.uint8).reshape(-1, 3), axis=0)))}
-
-
-def write_vtu(path: str | Path, grid) -> Path:
-    """Write the grid and its point fields as a VTK XML file (ParaView) atomically."""
-    import os
-    import tempfile
-
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".vtu", dir=path.parent)
-    os.close(fd)
-    try:
-        grid.save(tmp, binary=True)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-    return path

@@ -9,13 +9,13 @@ stages already draw for their own commands are drawn by those same functions.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from fe_crank.report.html import Page, esc, table
 from fe_crank.report.stage_plots import dynamics_plots, plot_hodographs
+from fe_crank.torsion.report import report_section as torsion_section
 
 
 def _mpa(x) -> str:
@@ -47,11 +47,33 @@ def dynamics_section(folder: Path, so: dict, options) -> list[str]:
     return [
         table(["quantity", "value"], rows),
         Page.figure("piston_motion.png", "Piston displacement, velocity and acceleration over the cycle"),
-        Page.figure("forces.png", "Gas, reciprocating inertia, tangential and radial force per cylinder"),
+        Page.figure("forces.png", "Gas, reciprocating inertia, tangential and radial force per cylinder"
+                    + gas_steps(res)),
         Page.figure("torque.png", "Indicated torque and its mean"),
         Page.figure("crankpin_polar.png", "Crankpin polar diagram: rod force on the pin in the throw frame "
                     "(x tangential, y radial outward)"),
     ]
+
+
+def gas_steps(res, share: float = 0.1) -> str:
+    """Caption text explaining a step in a cylinder's gas force (a change between two
+    neighbouring angles above ``share`` of its peak): the pressure model drops there at
+    once, e.g. the exhaust blow-down of the Wiebe cycle at bottom dead centre after
+    firing (the exhaust valve is taken to open instantaneously)."""
+    out = []
+    for name, c in res.cylinders.items():
+        g = np.asarray(c.gas, float)
+        if g.size < 3 or not np.any(g):
+            continue
+        d = np.abs(np.diff(g))
+        i = int(np.argmax(d))
+        if d[i] > share * np.max(np.abs(g)):
+            out.append(f"cylinder {name}: the gas force steps by {d[i] / 1e3:.3g} kN at "
+                       f"{math.degrees(res.theta[i + 1]):.0f} deg")
+    if not out:
+        return ""
+    return ("; " + ", ".join(out) + " (the cylinder pressure of the gas model changes there at once; in the Wiebe "
+            "cycle this is the exhaust blow-down at bottom dead centre, the valve taken to open instantaneously)")
 
 
 def balance_section(folder: Path, so: dict, options) -> list[str]:
@@ -100,7 +122,8 @@ def counterweight_section(folder: Path, so: dict, options) -> list[str]:
     plot_bars(Path(folder) / "counterweight_mr.png", labels, {"required": req, "built": built},
               ylabel="m r [kg m]", title="Counterweight unbalance: required vs built")
     rows = [[lab, _num(c.required_unbalance, "{:.4g}"), f"{c.built_unbalance:.4g}",
-             "-" if c.unbalance_error is None else f"{100 * c.unbalance_error:.1f} %",
+             "-" if c.unbalance_error is None else f"{100 * c.unbalance_error:.1f} %"
+             + (" (!) more than 10 % off" if abs(c.unbalance_error) > 0.10 else ""),
              _num(c.bolt_load, "{:.4g}"), _num(c.bolt_utilisation)] for lab, (_, c) in zip(labels, checks)]
     return [table(["counterweight", "required m r [kg m]", "built m r [kg m]", "error", "bolt load [N]",
                    "bolt utilisation"], rows, num_cols={1, 2, 3, 4, 5}),
@@ -148,77 +171,16 @@ BUILDERS: list = [
     ("Counterweights: required vs built m*r", counterweight_section),
     ("Stresses and safety factors by location", assessment_section),
 ]
+BUILDERS.insert(1, ("Torsional vibration of the crank train", torsion_section))  # torsion stage
 
 
 # --------------------------------------------------------------------------- FE pictures
 
 
-@dataclass(frozen=True)
-class HotSpot:
-    """Where and when the pictures look: the critical point of the assessment."""
-
-    throw: str  # engine throw name
-    group: str
-    node: int
-    point: tuple[float, float, float]
-    angle: float | None  # rad: the crank angle drawn (None: no angle-bound result)
-    what: str  # "fatigue" or "static"
-
-
-def _critical(assessment, key, dyn) -> HotSpot | None:
-    """The hot spot the pictures show: the node with the lowest fatigue safety (static
-    safety when there is no fatigue result) over the throws the FE model ``key`` stands
-    for (one throw, or every throw when ``key`` is not a throw name, as ``assess_case``
-    does).  Fatigue works on the whole cycle, so the angle drawn is the angle of the
-    largest von Mises stress in the same group."""
-    keys = [key] if isinstance(key, str) else list(key)
-    names = [k for k in keys if k in dyn.throws]
-    if len(names) < len(keys):  # a key that is not a throw name stands for every throw
-        names = list(dyn.throws)
-    cands = []
-    for t in assessment.throws:
-        if t.name not in names:
-            continue
-        fat = [(g.fatigue_safety.value, t.name, g, g.fatigue_safety, "fatigue") for g in t.groups
-               if g.fatigue_safety is not None and g.fatigue_safety.value is not None]
-        cands += fat or [(g.static_safety, t.name, g, g.max_von_mises, "static") for g in t.groups
-                         if g.max_von_mises is not None]
-    if not cands:
-        return None
-    _, throw, g, ext, what = min(cands, key=lambda c: (c[0] if np.isfinite(c[0]) else np.inf))
-    angle = ext.angle if ext.angle is not None else (g.max_von_mises.angle if g.max_von_mises else None)
-    return HotSpot(throw, g.group, int(ext.node), tuple(float(c) for c in ext.point), angle, what)
-
-
-def _angle_index(dyn, angle: float | None) -> int:
-    if angle is None:
-        return 0
-    return int(np.argmin(np.abs(np.asarray(dyn.theta) - angle)))
-
-
-def _field_at_angle(units, dyn, lc, throw: str, index: int) -> np.ndarray:
-    """Displacement of the throw at cycle-angle index ``index`` by superposition of the
-    unit cases (the assessment's own coefficients, ``load_coefficients``)."""
-    from fe_crank.assess.superpose import load_coefficients
-
-    tl = dyn.throws[throw]
-    sense = lc.engine.shaft(lc.engine.throw(throw).shaft).sense
-    cases = tuple(units.cases)
-    mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
-    c = load_coefficients(tl.pin_force[index:index + 1], tl.torque_front[index:index + 1], dyn.speed,
-                          cases=cases, sense=sense, torque_mz=mz)[0]
-    return units.combine(dict(zip(cases, c)))
-
-
-def _xyz(u: np.ndarray) -> np.ndarray:
-    """Interleaved (x, y, z per node) displacement -> (n, 3)."""
-    return np.asarray(u).reshape(-1, 3)
-
-
 def fe_section(folder: Path, so: dict, options) -> list[str]:
-    """Renders (von Mises on the deformed throw at the critical crank angle, close-up of
-    the critical fillet with its hot spot, the throw and counterweights at overspeed) and
-    the ``.vtu`` fields, per meshed throw."""
+    """Per meshed throw: the ``.vtu`` fields (``fe_crank.report.fields``) and renders drawn
+    from the same fields (von Mises on the deformed throw at the governing crank angle,
+    close-up of the hot spot, the throw and counterweights at overspeed)."""
     units_by_key, a, dyn, lc = so.get("units"), so.get("assessment"), so.get("dynamics"), so.get("loadcase")
     if not units_by_key or a is None or dyn is None:
         return []
@@ -226,65 +188,74 @@ def fe_section(folder: Path, so: dict, options) -> list[str]:
     write_vtu_files = getattr(options, "write_vtu", True)
     if not (render or write_vtu_files):
         return ["<p>Pictures and fields switched off for this run (--no-render --no-vtu).</p>"]
+    from fe_crank.fe.vtu import write_vtu
     from fe_crank.report import render as rd
+    from fe_crank.report.fields import throw_fields
 
     out = []
-    shared = _shared_models(units_by_key)
-    for keys, units in shared:
-        throw = keys[0]
+    for keys, units in _shared_models(units_by_key):
         if len(keys) > 1:  # identical throws share one FE model: drawn once, at the worst of them
             out.append(f"<p>Throws {esc(', '.join(keys))} share one FE model; it is drawn at the hot spot "
                        "of the most critical of them.</p>")
-        crit = _critical(a, keys, dyn)
-        if crit is None:
+        tf = throw_fields(units, a, dyn, lc, keys)
+        if tf is None:
             continue
-        eng_throw, group = crit.throw, crit.group
-        index = _angle_index(dyn, crit.angle)
-        u = _field_at_angle(units, dyn, lc, eng_throw, index)
-        vm = units.von_mises(units.stress_at_nodes(u))
-        fields = {"displacement": _xyz(u), "von_mises_mpa": vm / 1e6}
-        over = lc.operating.overspeed
-        if over and "centrifugal" in units.cases:
-            u_os = units.combine({"centrifugal": over**2})
-            fields["displacement_overspeed"] = _xyz(u_os)
-            fields["von_mises_overspeed_mpa"] = units.von_mises(units.stress_at_nodes(u_os)) / 1e6
-        grid = rd.tet_grid(units.points, units.mesh.t, fields)
-        tag = f"throw{_safe(eng_throw)}"
-        throw = eng_throw
-        angle_txt = "" if crit.angle is None else f" at crank angle {np.degrees(dyn.theta[index]):.0f} deg"
+        crit, pd = tf.hotspot, tf.mesh.point_data
+        throw, group, tag = crit.throw, crit.group, f"throw{_safe(crit.throw)}"
+        angle_txt = "" if tf.angle_deg is None else f" at crank angle {tf.angle_deg:.0f} deg"
         if write_vtu_files:
-            rd.write_vtu(Path(folder) / f"{tag}.vtu", grid)
-            out.append(f'<p>Fields for ParaView: <a href="{tag}.vtu">{tag}.vtu</a> (displacement [m] and von Mises '
-                       f"[MPa]{angle_txt}; at overspeed, centrifugal only).</p>")
+            write_vtu(Path(folder) / f"{tag}.vtu", tf.mesh)
+            out.append(f'<p>Fields for ParaView: <code>{tag}.vtu</code> (quadratic tetrahedra; displacement, stress '
+                       f"tensor, von Mises and principal stresses{angle_txt} and at overspeed; fatigue amplitude, mean "
+                       "and safety over the cycle; subdomain, boundary and assessed-group ids; units in the field "
+                       "names).</p>")
         if not render:
             continue
-        size = float(np.linalg.norm(np.ptp(np.asarray(units.points), axis=1)))
-        umax = float(np.max(np.linalg.norm(fields["displacement"], axis=1)))
+        display = {"von_mises_MPa": pd["von_mises_Pa"] / 1e6}
+        if "von_mises_overspeed_Pa" in pd:
+            display["von_mises_overspeed_MPa"] = pd["von_mises_overspeed_Pa"] / 1e6
+        grid = rd.grid_of(tf.mesh, display)
+        pts = np.asarray(units.points)
+        size = float(np.linalg.norm(np.ptp(pts, axis=1)))
+        umax = float(np.max(np.linalg.norm(pd["displacement_m"], axis=1)))
         scale = rd.exaggeration_factor(umax, size)
         hp = np.asarray(crit.point, float)
-        rd.render_field(Path(folder) / f"{tag}_von_mises.png", grid, "von_mises_mpa", title="von Mises [MPa]",
-                        displacement="displacement", scale=scale, hotspot=hp)
+        vm_hot = float(pd["von_mises_Pa"][crit.node]) / 1e6
+        label = f"hot spot ({crit.what}) {vm_hot:.4g} MPa"
+        v = rd.render_field(Path(folder) / f"{tag}_von_mises.png", grid, "von_mises_MPa", title="von Mises [MPa]",
+                            displacement="displacement_m", scale=scale, hotspot=hp, hotspot_label=label,
+                            text=f"throw {throw}{angle_txt}; deformation x {scale:g}")
         out.append(Page.figure(
             f"{tag}_von_mises.png",
-            f"Throw {throw}: von Mises stress{angle_txt} (largest von Mises in {group}), on the deformed "
-            f"shape; deformation exaggerated x {scale:g} (largest displacement {umax * 1e6:.1f} um)"))
+            f"Throw {throw}: von Mises stress{angle_txt} (largest von Mises of {group}), peak on the part "
+            f"{v.peak:.4g} MPa, on the deformed shape; deformation exaggerated x {scale:g} (largest displacement "
+            f"{umax * 1e6:.1f} um)"))
         r_focus = max(0.12 * size, 1e-3)
-        rd.render_field(Path(folder) / f"{tag}_hotspot.png", grid, "von_mises_mpa", title="von Mises [MPa]",
-                        hotspot=hp, focus=(hp, r_focus))
+        rd.render_field(Path(folder) / f"{tag}_hotspot.png", grid, "von_mises_MPa", title="von Mises [MPa]",
+                        hotspot=hp, hotspot_label=label, focus=(hp, r_focus),
+                        text=f"close-up of {group}{angle_txt}, undeformed")
         out.append(Page.figure(
             f"{tag}_hotspot.png",
             f"Close-up of {group} (undeformed): hot spot of the {crit.what} assessment at "
-            f"({', '.join(f'{c * 1e3:.1f}' for c in hp)}) mm{angle_txt}"))
-        if "von_mises_overspeed_mpa" in fields:
-            umax_os = float(np.max(np.linalg.norm(fields["displacement_overspeed"], axis=1)))
+            f"({', '.join(f'{c * 1e3:.1f}' for c in hp)}) mm{angle_txt}, von Mises there {vm_hot:.4g} MPa"))
+        if "von_mises_overspeed_MPa" in display:
+            over = lc.operating.overspeed
+            umax_os = float(np.max(np.linalg.norm(pd["displacement_overspeed_m"], axis=1)))
             s_os = rd.exaggeration_factor(umax_os, size)
-            rd.render_field(Path(folder) / f"{tag}_overspeed.png", grid, "von_mises_overspeed_mpa",
-                            title="von Mises [MPa]", displacement="displacement_overspeed", scale=s_os, view="front")
+            mark, mark_label, mark_txt = None, "", ""
+            if tf.overspeed_peak is not None:
+                val, point, g_os = tf.overspeed_peak
+                mark, mark_label = np.asarray(point), f"max of {g_os} {val / 1e6:.4g} MPa"
+                mark_txt = f"; marked: the largest von Mises of {g_os}, {val / 1e6:.4g} MPa"
+            rd.render_field(Path(folder) / f"{tag}_overspeed.png", grid, "von_mises_overspeed_MPa",
+                            title="von Mises [MPa]", displacement="displacement_overspeed_m", scale=s_os,
+                            view="front", hotspot=mark, hotspot_label=mark_label,
+                            text=f"overspeed {over * 30 / np.pi:.0f} rpm, centrifugal only; deformation x {s_os:g}")
             out.append(Page.figure(
                 f"{tag}_overspeed.png",
                 f"Throw {throw} and its counterweights at overspeed {over * 30 / np.pi:.0f} rpm, centrifugal load "
-                f"alone, seen from the front; deformation exaggerated x {s_os:g} (the overspeed safety in the tables "
-                "is over the whole cycle at overspeed, rod and piston inertia included)"))
+                f"alone, seen from the front; deformation exaggerated x {s_os:g}{mark_txt} (the overspeed safety in "
+                "the tables is over the whole cycle at overspeed, rod and piston inertia included)"))
     return out
 
 
@@ -329,18 +300,11 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
             rows.append([f"equilibrium error, case {name}", f"{c.equilibrium_error:.2e}"])
         for k, v in (units.timings or {}).items():
             rows.append([f"time: {k}", f"{v:.2f} s"])
-        fillets = [g for g in ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")
-                   if g in (m.boundaries or {})]
-        a, dyn, lc = so.get("assessment"), so.get("dynamics"), so.get("loadcase")
-        if fillets and a is not None and dyn is not None:
-            crit = _critical(a, keys, dyn)
-            index, eng_throw = 0, (throw if throw in dyn.throws else next(iter(dyn.throws)))
-            if crit is not None:
-                eng_throw, index = crit.throw, _angle_index(dyn, crit.angle)
-            ind = units.averaging_indicator(_field_at_angle(units, dyn, lc, eng_throw, index), fillets)
-            for g, v in ind.items():
-                rows.append([f"unaveraged vs averaged von Mises at the {g} peak", f"{100 * v:+.1f} %"
-                             + ("" if abs(v) <= 0.05 else " (above the 5 % of UR M53: refine the fillet)")])
+        from fe_crank.report.quality import averaging
+
+        for g, v in averaging(so).get(throw, {}).items():
+            rows.append([f"unaveraged vs averaged von Mises at the {g} peak", f"{100 * v:+.1f} %"
+                         + ("" if abs(v) <= 0.05 else " (above the 5 % of UR M53: refine the fillet)")])
         out.append(f"<h3>{'Throws' if len(keys) > 1 else 'Throw'} {esc(', '.join(keys))}</h3>"
                    + table(["quantity", "value"], rows))
     return out

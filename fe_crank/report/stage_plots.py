@@ -1,5 +1,9 @@
 """Pictures of the dynamics and balance stages, drawn for their own commands
-(``fe-crank dynamics``, ``fe-crank balance``) and for the check's report."""
+(``fe-crank dynamics``, ``fe-crank balance``) and for the check's report.
+
+matplotlib ``Figure`` objects on their own Agg canvas (``fe_crank.report.plots.figure``):
+no ``matplotlib.use``, no pyplot state, never a window.
+"""
 
 from __future__ import annotations
 
@@ -9,25 +13,27 @@ from pathlib import Path
 import numpy as np
 
 from fe_crank.files import write_atomic
+from fe_crank.report.plots import figure
+
+#: a hodograph whose amplitude is below this share of the largest amplitude of the
+#: engine (any order, any source) is negligible or rounding noise: not drawn (the
+#: report's and the command's tables still list every amplitude)
+HODOGRAPH_NOISE = 1e-3
+
+
+def _save(fig, path: Path, dpi: int = 110) -> Path:
+    buf = io.BytesIO()
+    fig.savefig(buf, dpi=dpi, format="png")
+    return write_atomic(path, buf.getvalue())
 
 
 def dynamics_plots(res, out: Path) -> None:
     """Piston motion, forces per cylinder, torque and the crankpin polar diagram:
     ``piston_motion.png``, ``forces.png``, ``torque.png``, ``crankpin_polar.png`` in ``out``."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     deg = np.degrees(res.theta)
 
-    def save(fig, name):
-        buf = io.BytesIO()
-        fig.savefig(buf, dpi=110, format="png")
-        write_atomic(out / name, buf.getvalue())
-        plt.close(fig)
-
-    fig, ax = plt.subplots(3, 1, sharex=True, figsize=(8, 7))
+    fig = figure((8, 7))
+    ax = fig.subplots(3, 1, sharex=True)
     for name, c in res.cylinders.items():
         ax[0].plot(deg, c.motion.s * 1e3, label=name)
         ax[1].plot(deg, c.motion.v)
@@ -40,9 +46,10 @@ def dynamics_plots(res, out: Path) -> None:
     ax[0].set_title(f"Piston motion — {res.engine}")
     for a in ax:
         a.grid(alpha=0.3)
-    save(fig, "piston_motion.png")
+    _save(fig, out / "piston_motion.png")
 
-    fig, ax = plt.subplots(figsize=(8, 5))
+    fig = figure((8, 5))
+    ax = fig.add_subplot()
     for name, c in res.cylinders.items():
         ax.plot(deg, c.gas / 1e3, label=f"{name}: gas")
         ax.plot(deg, c.inertia / 1e3, "--", label=f"{name}: reciprocating inertia")
@@ -53,9 +60,10 @@ def dynamics_plots(res, out: Path) -> None:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, ncol=2)
     ax.set_title("Forces per cylinder")
-    save(fig, "forces.png")
+    _save(fig, out / "forces.png")
 
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+    fig = figure((8, 4.5))
+    ax = fig.add_subplot()
     ax.plot(deg, res.torque, label="total")
     ax.axhline(res.mean_torque, color="k", lw=0.8, label=f"mean {res.mean_torque:.1f} N·m")
     ax.set_xlabel("cycle angle θ [deg]")
@@ -63,9 +71,10 @@ def dynamics_plots(res, out: Path) -> None:
     ax.grid(alpha=0.3)
     ax.legend()
     ax.set_title("Indicated torque")
-    save(fig, "torque.png")
+    _save(fig, out / "torque.png")
 
-    fig, ax = plt.subplots(figsize=(6, 6))
+    fig = figure((6, 6))
+    ax = fig.add_subplot()
     for name, t in res.throws.items():
         ax.plot(t.pin_force[:, 0] / 1e3, t.pin_force[:, 1] / 1e3, label=f"throw {name}")
     ax.plot([0], [0], "k+")
@@ -75,52 +84,62 @@ def dynamics_plots(res, out: Path) -> None:
     ax.grid(alpha=0.3)
     ax.legend()
     ax.set_title("Crankpin load, polar diagram (throw frame)")
-    save(fig, "crankpin_polar.png")
+    _save(fig, out / "crankpin_polar.png")
+
+
+def _amplitude(a: np.ndarray) -> float:
+    """Largest semi-axis bound of a hodograph: the norm of its cos/sin coefficients."""
+    return float(np.linalg.norm(np.asarray(a, float)))
 
 
 def plot_hodographs(res, out: Path) -> list[Path]:
-    """One PNG per reported order: force and couple hodographs by source (Agg backend)."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=True)
-    import matplotlib.pyplot as plt
-    import numpy as np
+    """One PNG per reported order that has a free force or couple: force and couple
+    hodographs by source.  A curve below ``HODOGRAPH_NOISE`` of the engine's largest
+    force (couple) amplitude is left out (negligible or rounding noise); a panel with nothing
+    left says so instead of drawing noise; an order with nothing in either panel gets
+    no picture."""
+    from matplotlib.ticker import MaxNLocator
 
     from fe_crank.balance.forces import REPORTED_ORDERS
 
     th = np.linspace(0.0, 2.0 * np.pi, 361)
+    every = [res.forces.total(k) for k in REPORTED_ORDERS]
+    every += [res.residual.total(k, (s,)) for k in REPORTED_ORDERS for s in res.residual.sources]
+    ref_f = max((_amplitude(t.force) for t in every), default=0.0)
+    ref_m = max((_amplitude(t.moment) for t in every), default=0.0)
     paths = []
     for k in REPORTED_ORDERS:
-        fig, axes = plt.subplots(1, 2, figsize=(9, 4.5))
-        drawn = False
         curves = [(src, res.residual.total(k, (src,)), "-") for src in res.residual.sources]
         curves.append(("free (before balancing)", res.forces.total(k), "-"))
         curves.append(("residual", res.residual.total(k), "--"))
-        for src, t, style in curves:
-            if not (t.force.any() or t.moment.any()):
-                continue
-            f, m = t.evaluate(th / k)
-            lw = 1 if src in res.residual.sources else 2
-            axes[0].plot(f[:, 0] / 1e3, f[:, 1] / 1e3, style, label=src, lw=lw)
-            axes[1].plot(m[:, 0] / 1e3, m[:, 1] / 1e3, style, label=src, lw=lw)
-            drawn = True
-        if not drawn:
-            plt.close(fig)
+        keep_f = [(s, t, st) for s, t, st in curves if _amplitude(t.force) > HODOGRAPH_NOISE * ref_f > 0]
+        keep_m = [(s, t, st) for s, t, st in curves if _amplitude(t.moment) > HODOGRAPH_NOISE * ref_m > 0]
+        if not (keep_f or keep_m):
             continue
-        for ax, what, unit in ((axes[0], "force", "kN"), (axes[1], "couple (Mx, My)", "kN m")):
+        fig = figure((9, 4.5))
+        axes = fig.subplots(1, 2)
+        for ax, keep, idx, what, unit in ((axes[0], keep_f, 0, "force", "kN"),
+                                          (axes[1], keep_m, 1, "couple (Mx, My)", "kN m")):
+            for src, t, style in keep:
+                v = t.evaluate(th / k)[idx]
+                lw = 1 if src in res.residual.sources else 2
+                ax.plot(v[:, 0] / 1e3, v[:, 1] / 1e3, style, label=src, lw=lw)
+            ax.set_title(f"order {k:g} {what}")
+            if not keep:
+                ax.text(0.5, 0.5, f"no free {what.split()[0]} of order {k:g}", ha="center", va="center",
+                        transform=ax.transAxes, color="0.4")
+                ax.set_xticks([])
+                ax.set_yticks([])
+                continue
             ax.set_aspect("equal", adjustable="datalim")
             ax.axhline(0, color="0.7", lw=0.5)
             ax.axvline(0, color="0.7", lw=0.5)
+            ax.xaxis.set_major_locator(MaxNLocator(5))
+            ax.yaxis.set_major_locator(MaxNLocator(5))
             ax.set_xlabel(f"x [{unit}]")
             ax.set_ylabel(f"y [{unit}]")
-            ax.set_title(f"order {k:g} {what}")
             ax.legend(fontsize=7)
         fig.suptitle(res.engine, fontsize=9)
         fig.tight_layout()
-        path = out / f"hodograph_order{k:g}.png"
-        buf = io.BytesIO()
-        fig.savefig(buf, dpi=100, format="png")
-        plt.close(fig)
-        write_atomic(path, buf.getvalue())
-        paths.append(path)
+        paths.append(_save(fig, out / f"hodograph_order{k:g}.png", dpi=100))
     return paths

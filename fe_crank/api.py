@@ -1,0 +1,48 @@
+"""The Python API in three calls, for notebooks and scripts.
+
+    import fe_crank
+    lc = fe_crank.load_case("loadcases/single_cylinder_seed001.toml")
+    results = fe_crank.check("loadcases/", output="reports/", mesh_size="test")
+    results[0].status, results[0].worst, results[0].folder
+
+The same functions as ``fe-crank validate`` / ``fe-crank check`` (``fe_crank.check``);
+no process-wide state is changed (no logging configuration: the caller's applies).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Iterable
+
+
+def load_case(path: str | Path):
+    """Read and validate one load-case file -> ``fe_crank.model.LoadCase`` (SI inside).
+    Raises ``fe_crank.errors.InputError`` naming the file, the key and the reason."""
+    from fe_crank.io.loadcase import load_loadcase
+
+    return load_loadcase(path)
+
+
+def check(paths: str | Path | Iterable[str | Path], output: str | Path = "reports", *,
+          mesh_size: str | None = None, cache_dir: str | Path = ".cache/meshes", jobs: int = 1,
+          scheduler=None, render: bool = True, write_vtu: bool = True, junit: str | Path | None = None) -> list:
+    """Check load cases end to end, as ``fe-crank check`` does; returns one
+    ``CaseResult`` per case (``.status`` "pass" | "fail" | "error", ``.criteria``,
+    ``.worst``, ``.folder`` with report.html, results.json, the ``.vtu`` fields).
+
+    ``paths``: a file, a folder (every ``*.toml`` with an ``[operating]`` table) or
+    several; ``mesh_size`` overrides the load cases' ``[mesh] size``; ``junit`` also
+    writes JUnit XML.  Bad cases become "error" results; a path that does not exist
+    raises ``InputError``."""
+    from fe_crank.check import CheckOptions, find_loadcases, run_cases
+
+    if isinstance(paths, (str, Path)):
+        paths = [paths]
+    files = find_loadcases(paths)
+    opts = CheckOptions(mesh_size=mesh_size, cache_dir=str(cache_dir), render=render, write_vtu=write_vtu)
+    results = run_cases(files, output, opts, jobs=jobs, scheduler=scheduler)
+    if junit is not None:
+        from fe_crank.report.junit import write_junit
+
+        write_junit(junit, results)
+    return results

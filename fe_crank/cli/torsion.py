@@ -1,0 +1,81 @@
+"""``fe-crank torsion CASE -o DIR``: torsional vibration of the crank train.
+
+Needs the load case's ``[torsion]`` section (docs/torsion.md).  Writes into DIR
+``torsion.json`` (natural frequencies, mode shapes, resonances in the speed range,
+vibratory torque of every shaft segment vs speed, the governing speed of each segment)
+and ``campbell.png``, ``torsion_response.png``, ``torsion_modes.png``; prints a summary.
+``--fe-stiffness`` also meshes one throw and measures its stiffness with the FE model
+(always done when the section says ``throw_stiffness = "fe"``).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from fe_crank.errors import InputError
+from fe_crank.files import write_atomic
+
+
+def add_arguments(p) -> None:
+    p.add_argument("file", type=Path, help="load-case .toml file with a [torsion] section")
+    p.add_argument("-o", "--out", type=Path, required=True, help="output folder (created if missing)")
+    p.add_argument("--fe-stiffness", action="store_true",
+                   help="also measure the throw stiffness on the FE throw model and report it beside Carter's")
+    p.add_argument("--mesh-size", default=None, help="mesh preset for --fe-stiffness (default: the case's [mesh])")
+    p.add_argument("--cache-dir", type=Path, default=Path(".cache/meshes"), help="mesh cache folder")
+    p.add_argument("--no-plots", action="store_true", help="write the JSON only")
+
+
+def fe_stiffness_of(lc, size: str | None, cache_dir) -> float:
+    """Torsional stiffness of the load case's first throw on its FE model (N m/rad, FE span)."""
+    import dataclasses
+
+    from fe_crank.fe import solve_unit_cases
+    from fe_crank.fe.unit_cases import FeOptions
+    from fe_crank.mesh import mesh_throw
+    from fe_crank.torsion.stiffness import fe_throw_stiffness
+
+    mesh_cfg = lc.extras.get("mesh")
+    size = size or getattr(mesh_cfg, "size", None) or (mesh_cfg if isinstance(mesh_cfg, str) else None) or "coarse"
+    throw = lc.geometry.throws[0].name
+    tm = mesh_throw(lc.geometry, throw=throw, size=size, cache_dir=cache_dir)
+    opts = dataclasses.replace(lc.fe or FeOptions(), cases=("centrifugal", "torque"))
+    return fe_throw_stiffness(solve_unit_cases(tm, lc.material, opts))
+
+
+def run(args) -> int:
+    from fe_crank.io.loadcase import load_loadcase
+    from fe_crank.torsion import analyse_torsion
+    from fe_crank.torsion.report import RPM, result_to_dict, write_plots
+
+    lc = load_loadcase(args.file)
+    settings = lc.extras.get("torsion")
+    if settings is None:
+        raise InputError("the load case has no [torsion] section (docs/torsion.md)", file=str(args.file), key="torsion")
+    k_fe = None
+    if args.fe_stiffness or settings.throw_stiffness == "fe":
+        k_fe = fe_stiffness_of(lc, args.mesh_size, args.cache_dir)
+    res = analyse_torsion(lc, fe_stiffness=k_fe)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    data = {"load_case": lc.name, "source_file": lc.source_file, **result_to_dict(res)}
+    write_atomic(out / "torsion.json", json.dumps(data, indent=1, allow_nan=False))
+    if not args.no_plots:
+        write_plots(res, out)
+    print(f"{lc.name}: {res.model.size} masses, natural frequencies [Hz]: "
+          + ", ".join(f"{f:.1f}" for f in res.modes.frequencies_hz[1:6]))
+    k = res.stiffness
+    line = f"throw stiffness (FE span): Carter {k['carter']:.4g} N m/rad"
+    if "fe" in k:
+        line += f", FE {k['fe']:.4g} N m/rad (Carter/FE = {k['carter'] / k['fe']:.3f})"
+    print(line)
+    print(f"{'segment':<22}{'max M_TN [N m]':>16}{'at [rpm]':>10}{'vibratory [N m]':>17}{'at op. [N m]':>14}")
+    from fe_crank.torsion.report import governing_table
+
+    for r in governing_table(res):
+        print(f"{r['segment']:<22}{r['max_half_range']:>16.4g}{r['governing_speed_rpm']:>10.0f}"
+              f"{r['vibratory_half_range_at_governing']:>17.4g}{r['half_range_at_operating']:>14.4g}")
+    print(f"flywheel speed fluctuation at {res.operating_speed * RPM:.0f} rpm: {100 * res.flywheel_fluctuation:.3g} %")
+    print(f"written: {out / 'torsion.json'}")
+    return 0

@@ -1,0 +1,212 @@
+"""The load case's ``[torsion]`` section -> frozen ``TorsionSettings`` (SI floats).
+
+::
+
+    [torsion]
+    speed_range = ["1000 rpm", "6600 rpm"]   # swept for resonances; contains the operating speed
+    speed_steps = 561                        # optional (default 561)
+    throw_stiffness = "carter"               # or "fe": from the FE throw model (check stage)
+    shaft_loss_factor = 0.04                 # relative damping of the crank segments (eta)
+    cylinder_damping = "0.3 N*m*s/rad"       # absolute damping of each throw to ground
+    assess_speed = "governing"               # or "operating"
+
+    [torsion.pulley]                         # optional front hub
+    inertia = "0.008 kg*m^2"
+    stiffness = "4e5 N*m/rad"                # hub to the front journal of throw 1
+
+    [torsion.damper]                         # optional damper ring on the hub
+    inertia = "0.01 kg*m^2"
+    stiffness = "3e4 N*m/rad"
+    damping = "4 N*m*s/rad"                  # viscous, ring to hub
+    loss_factor = 0.2                        # optional, rubber hysteresis
+
+    [torsion.flywheel]                       # required
+    inertia = "0.12 kg*m^2"
+    stiffness = "6e5 N*m/rad"                # last throw to the flywheel
+
+    [[torsion.driven]]                       # optional chain behind the flywheel
+    name = "generator"
+    inertia = "0.3 kg*m^2"
+    stiffness = "2e4 N*m/rad"                # coupling from the previous mass
+    damping = "10 N*m*s/rad"                 # optional, viscous across the coupling
+    loss_factor = 0.1                        # optional, coupling hysteresis
+    absolute_damping = "0 N*m*s/rad"         # optional, to ground
+
+Torsional stiffness must be written per angle (``N*m/rad``, ``kN*m/deg``) and damping
+per angular speed (``N*m*s/rad``): a bare ``N*m`` could be a torque, so it is refused.
+Damping is never defaulted for the crank: ``shaft_loss_factor`` and ``cylinder_damping``
+are required (docs/torsion.md gives typical values and their sources).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Literal
+
+from pydantic import BeforeValidator, Field, model_validator
+
+from fe_crank.errors import InputError
+from fe_crank.io.base import Strict, validate
+from fe_crank.io.units import Inertia, Speed, ureg
+
+#: accepted range of a loss factor (dimensionless); above it a linear model is not credible
+MAX_SHAFT_LOSS_FACTOR = 0.2
+MAX_COUPLING_LOSS_FACTOR = 1.0
+
+
+def _per_angle(kind: str, si: str, example: str):
+    dims = {"stiffness": "[mass]*[length]**2/[time]**2", "damping": "[mass]*[length]**2/[time]"}[kind]
+
+    def parse(value: object) -> float:
+        if isinstance(value, bool) or not isinstance(value, str):
+            raise ValueError(f"expected a torsional {kind} with its unit as a string, e.g. \"{example}\"; "
+                             "got a value without a unit")
+        try:
+            q = ureg.Quantity(value.strip())
+        except Exception:  # pint raises several unrelated classes
+            raise ValueError(f"cannot read this as a torsional {kind} (e.g. \"{example}\")") from None
+        units = dict(getattr(q, "_units", {}) or {})
+        per_angle = any(u in ("radian", "degree", "revolution", "turn") and e < 0 for u, e in units.items())
+        if not per_angle:
+            raise ValueError(f"a torsional {kind} is written per angle, e.g. \"{example}\" "
+                             "(without /rad it could be a torque)")
+        if not q.check(dims):
+            raise ValueError(f"not a torsional {kind} (e.g. \"{example}\")")
+        out = float(q.to(si).magnitude)
+        if not math.isfinite(out):
+            raise ValueError(f"not a finite torsional {kind}")
+        return out
+
+    return BeforeValidator(parse)
+
+
+Stiffness = Annotated[float, _per_angle("stiffness", "N*m/rad", "2e5 N*m/rad")]
+Damping = Annotated[float, _per_angle("damping", "N*m*s/rad", "5 N*m*s/rad")]
+
+
+def _positive(obj, *keys):
+    for k in keys:
+        v = getattr(obj, k)
+        if v is not None and not v > 0:
+            raise ValueError(f"{k} must be positive")
+
+
+def _non_negative(obj, *keys):
+    for k in keys:
+        v = getattr(obj, k)
+        if v is not None and v < 0:
+            raise ValueError(f"{k} must not be negative")
+
+
+class MassInput(Strict):
+    inertia: Inertia
+    stiffness: Stiffness
+
+    @model_validator(mode="after")
+    def _check(self):
+        _positive(self, "inertia", "stiffness")
+        return self
+
+
+class DamperInput(MassInput):
+    damping: Damping
+    loss_factor: float = 0.0
+
+    @model_validator(mode="after")
+    def _damping(self):
+        _non_negative(self, "damping")
+        if not 0.0 <= self.loss_factor <= MAX_COUPLING_LOSS_FACTOR:
+            raise ValueError(f"loss_factor must lie in [0, {MAX_COUPLING_LOSS_FACTOR}]")
+        return self
+
+
+class DrivenInput(Strict):
+    name: str = Field(min_length=1)
+    inertia: Inertia
+    stiffness: Stiffness | None = None
+    damping: Damping = 0.0
+    loss_factor: float = 0.0
+    absolute_damping: Damping = 0.0
+
+    @model_validator(mode="after")
+    def _check(self):
+        if self.stiffness is None:
+            raise ValueError("a driven machine needs the stiffness of its connection (shaft or coupling) "
+                             "to the previous mass")
+        _positive(self, "inertia", "stiffness")
+        _non_negative(self, "damping", "absolute_damping")
+        if not 0.0 <= self.loss_factor <= MAX_COUPLING_LOSS_FACTOR:
+            raise ValueError(f"loss_factor must lie in [0, {MAX_COUPLING_LOSS_FACTOR}]")
+        return self
+
+
+class TorsionInput(Strict):
+    speed_range: tuple[Speed, Speed]
+    speed_steps: int = Field(561, ge=11, le=20001)
+    throw_stiffness: Literal["carter", "fe"] = "carter"
+    shaft_loss_factor: float
+    cylinder_damping: Damping
+    assess_speed: Literal["governing", "operating"] = "governing"
+    pulley: MassInput | None = None
+    damper: DamperInput | None = None
+    flywheel: MassInput
+    driven: list[DrivenInput] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _check(self):
+        lo, hi = self.speed_range
+        if not 0 < lo < hi:
+            raise ValueError("speed_range must be two increasing positive speeds")
+        if not 0.0 <= self.shaft_loss_factor <= MAX_SHAFT_LOSS_FACTOR:
+            raise ValueError(f"shaft_loss_factor must lie in [0, {MAX_SHAFT_LOSS_FACTOR}] "
+                             "(a crank without damper: about 0.015-0.04, docs/torsion.md)")
+        _non_negative(self, "cylinder_damping")
+        if self.shaft_loss_factor == 0.0 and self.cylinder_damping == 0.0:
+            raise ValueError("shaft_loss_factor and cylinder_damping are both zero: an undamped crank has "
+                             "unbounded resonances; state the damping")
+        if self.damper is not None and self.pulley is None:
+            raise ValueError("a damper needs the pulley (hub) it is mounted on: give [torsion.pulley]")
+        return self
+
+
+@dataclass(frozen=True)
+class Element:
+    """A mass of the chain and the segment that joins it to its neighbour."""
+
+    name: str
+    inertia: float
+    stiffness: float
+    damping: float = 0.0  # viscous across the segment
+    loss_factor: float | None = None  # None: the shaft's
+    absolute_damping: float = 0.0
+
+
+@dataclass(frozen=True)
+class TorsionSettings:
+    speed_range: tuple[float, float]
+    speed_steps: int
+    throw_stiffness: str
+    shaft_loss_factor: float
+    cylinder_damping: float
+    assess_speed: str
+    damper: Element | None  # ring; its segment joins it to the pulley
+    pulley: Element | None  # hub; its segment joins it to throw 1
+    flywheel: Element  # its segment joins the last throw to it
+    driven: tuple[Element, ...]  # each segment joins the previous mass to it
+
+
+def parse_torsion(value: object, file: str | Path, key: str = "torsion") -> TorsionSettings:
+    """Parser registered as ``SECTIONS["torsion"]``.  Raises InputError naming file and key."""
+    if not isinstance(value, dict):
+        raise InputError("must be a table", file=str(file), key=key)
+    raw = validate(TorsionInput, value, file, key)
+    d = raw.damper
+    damper = None if d is None else Element("damper", d.inertia, d.stiffness, d.damping, d.loss_factor)
+    pulley = None if raw.pulley is None else Element("pulley", raw.pulley.inertia, raw.pulley.stiffness)
+    fly = Element("flywheel", raw.flywheel.inertia, raw.flywheel.stiffness)
+    driven = tuple(Element(x.name, x.inertia, x.stiffness, x.damping, x.loss_factor, x.absolute_damping)
+                   for x in raw.driven)
+    return TorsionSettings(tuple(raw.speed_range), raw.speed_steps, raw.throw_stiffness, raw.shaft_loss_factor,
+                           raw.cylinder_damping, raw.assess_speed, damper, pulley, fly, driven)

@@ -1,0 +1,181 @@
+"""The result fields of one FE model: what the ``.vtu`` file holds and the pictures show.
+
+One ``meshio.Mesh`` of quadratic tetrahedra (``fe_crank.fe.vtu``) per meshed throw,
+built once and both written and drawn, so file, pictures and tables agree:
+
+* at the governing crank angle (the angle of the largest von Mises stress of the
+  hot-spot group, by superposition of the unit cases with the assessment's own
+  coefficients): ``displacement_m``, ``stress_Pa`` (Voigt xx yy zz xy yz zx),
+  ``von_mises_Pa``, ``principal_1..3_Pa``, ``max_shear_Pa``;
+* at overspeed (centrifugal unit case x omega_os^2 alone): the same names with
+  ``_overspeed``;
+* over the cycle, at the assessed nodes (NaN elsewhere): ``max_von_mises_cycle_Pa``,
+  ``fatigue_amplitude_Pa`` and ``fatigue_mean_Pa`` (equivalent sigma_a', sigma_m'),
+  ``fatigue_safety`` (Goodman), ``gough_pollard_safety``; ``assessed_group`` (id);
+* regions: cell data ``subdomain``, point data ``boundary``; field data maps
+  ``subdomain:<name>``, ``boundary:<name>``, ``assessed_group:<name>`` to ids and
+  ``crank_angle_deg`` to the governing angle.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fe_crank.fe.vtu import boundary_point_ids, quadratic_tet_mesh, region_ids, stress_fields
+
+#: assessment per-node arrays -> VTU names, and how nodes in two groups combine
+_ASSESSED = (
+    ("max_von_mises", "max_von_mises_cycle_Pa", np.fmax),
+    ("amplitude", "fatigue_amplitude_Pa", np.fmax),
+    ("mean", "fatigue_mean_Pa", np.fmax),
+    ("fatigue_safety", "fatigue_safety", np.fmin),
+    ("gough_pollard_safety", "gough_pollard_safety", np.fmin),
+)
+
+
+@dataclass(frozen=True)
+class HotSpot:
+    """Where and when the pictures look: the critical point of the assessment."""
+
+    throw: str  # engine throw name
+    group: str
+    node: int
+    point: tuple[float, float, float]
+    angle: float | None  # rad: the crank angle drawn (None: no angle-bound result)
+    what: str  # "fatigue" or "static"
+
+
+def _finite_key(v: float) -> float:
+    return v if np.isfinite(v) else np.inf
+
+
+def critical(assessment, keys, dyn) -> HotSpot | None:
+    """The hot spot the pictures show: the node with the lowest fatigue safety (static
+    safety when there is no fatigue result) over the throws the FE model stands for
+    (``keys``: throw names, or any other key standing for every throw, as
+    ``assess_case`` does).  Ties go to the first throw, then the first group, in the
+    assessment's order (deterministic whichever way the case ran).  Fatigue works on
+    the whole cycle, so the angle drawn is that of the group's largest von Mises."""
+    keys = [keys] if isinstance(keys, str) else list(keys)
+    names = [k for k in keys if k in dyn.throws]
+    if len(names) < len(keys):
+        names = list(dyn.throws)
+    cands = []
+    for ti, t in enumerate(assessment.throws):
+        if t.name not in names:
+            continue
+        fat = [(_finite_key(g.fatigue_safety.value), ti, gi, t.name, g, g.fatigue_safety, "fatigue")
+               for gi, g in enumerate(t.groups) if g.fatigue_safety is not None and g.fatigue_safety.value is not None]
+        cands += fat or [(_finite_key(g.static_safety), ti, gi, t.name, g, g.max_von_mises, "static")
+                         for gi, g in enumerate(t.groups) if g.max_von_mises is not None]
+    if not cands:
+        return None
+    _, _, _, throw, g, ext, what = min(cands, key=lambda c: c[:3])
+    angle = g.max_von_mises.angle if g.max_von_mises is not None else ext.angle
+    return HotSpot(throw, g.group, int(ext.node), tuple(float(c) for c in ext.point), angle, what)
+
+
+def angle_index(dyn, angle: float | None) -> int:
+    """Index of the cycle angle nearest ``angle`` (the first of equals)."""
+    if angle is None:
+        return 0
+    return int(np.argmin(np.abs(np.asarray(dyn.theta) - angle)))
+
+
+def field_at_angle(units, dyn, lc, throw: str, index: int) -> np.ndarray:
+    """Displacement of the throw at cycle-angle index ``index`` by superposition of the
+    unit cases (the assessment's own coefficients, ``load_coefficients``)."""
+    from fe_crank.assess.superpose import load_coefficients
+
+    tl = dyn.throws[throw]
+    sense = lc.engine.shaft(lc.engine.throw(throw).shaft).sense
+    cases = tuple(units.cases)
+    mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
+    c = load_coefficients(tl.pin_force[index:index + 1], tl.torque_front[index:index + 1], dyn.speed,
+                          cases=cases, sense=sense, torque_mz=mz)[0]
+    return units.combine(dict(zip(cases, c)))
+
+
+def assessed_fields(throw_assessment, n_points: int) -> tuple[dict[str, np.ndarray], dict]:
+    """Per-node assessment arrays of one throw spread over all mesh nodes (NaN where
+    not assessed; infinite safeties, i.e. unloaded or not computed, also NaN)."""
+    out = {name: np.full(n_points, np.nan) for _, name, _ in _ASSESSED}
+    gid = np.full(n_points, -1, np.int32)
+    field = {}
+    for i, g in enumerate(getattr(throw_assessment, "groups", ())):
+        f = g.fields or {}
+        ids = np.asarray(f.get("node_ids", ()), dtype=np.int64)
+        if ids.size == 0:
+            continue
+        field[f"assessed_group:{g.group}"] = np.array([i, 0])
+        gid[ids] = np.where(gid[ids] < 0, i, gid[ids])
+        for key, name, combine in _ASSESSED:
+            if key in f:
+                v = np.asarray(f[key], float)
+                v = np.where(np.isfinite(v), v, np.nan)
+                out[name][ids] = combine(out[name][ids], v)
+    out["assessed_group"] = gid
+    return out, field
+
+
+@dataclass(frozen=True)
+class ThrowFields:
+    """The fields of one FE model and the facts its pictures state."""
+
+    mesh: object  # meshio.Mesh
+    hotspot: HotSpot
+    angle_deg: float | None
+    overspeed_peak: tuple[float, tuple[float, float, float], str] | None  # value Pa, point, group
+
+
+def throw_fields(units, assessment, dyn, lc, keys) -> ThrowFields | None:
+    """The fields of the FE model ``units`` standing for the throws ``keys`` (see the
+    module docstring); None when the assessment has no hot spot for it."""
+    crit = critical(assessment, keys, dyn)
+    if crit is None:
+        return None
+    index = angle_index(dyn, crit.angle)
+    u = field_at_angle(units, dyn, lc, crit.throw, index)
+    basis = units.system.basis
+    n = basis.doflocs.shape[1]
+    data = {"displacement_m": np.asarray(u).reshape(-1, 3), **stress_fields(units.stress_at_nodes(u))}
+    over = lc.operating.overspeed
+    if over and "centrifugal" in units.cases:
+        u_os = units.combine({"centrifugal": over**2})
+        data["displacement_overspeed_m"] = np.asarray(u_os).reshape(-1, 3)
+        data.update(stress_fields(units.stress_at_nodes(u_os), "_overspeed"))
+    t = next((t for t in assessment.throws if t.name == crit.throw), None)
+    extra, field = assessed_fields(t, n)
+    data.update(extra)
+    cdata, fsub = region_ids(units.mesh)
+    field.update(fsub)
+    if getattr(units.mesh, "boundaries", None):
+        data["boundary"], fb = boundary_point_ids(units.mesh, basis)
+        field.update(fb)
+    angle_deg = None if crit.angle is None else float(np.degrees(dyn.theta[index]))
+    if angle_deg is not None:
+        field["crank_angle_deg"] = np.array([angle_deg])
+    mesh = quadratic_tet_mesh(basis.doflocs, basis.element_dofs, point_data=data, cell_data=cdata, field_data=field)
+    peak = _overspeed_peak({**data, "_points": np.asarray(basis.doflocs)}, t)
+    return ThrowFields(mesh, crit, angle_deg, peak)
+
+
+def _overspeed_peak(data: dict, t) -> tuple[float, tuple[float, float, float], str] | None:
+    """The largest von Mises of the drawn overspeed field (centrifugal alone) on the
+    counterweight groups (on every assessed node when the throw has no counterweight):
+    what the overspeed picture marks, read from the field it draws."""
+    vm = data.get("von_mises_overspeed_Pa")
+    if vm is None:
+        return None
+    groups = list(getattr(t, "groups", ()))
+    ids = {g.group: i for i, g in enumerate(groups)}
+    gid = data["assessed_group"]
+    cw = [ids[g.group] for g in groups if g.group.startswith("counterweight")] or list(ids.values())
+    nodes = np.flatnonzero(np.isin(gid, cw)) if cw else np.arange(vm.size)
+    if nodes.size == 0:
+        return None
+    j = int(nodes[np.argmax(vm[nodes])])
+    name = groups[gid[j]].group if gid[j] >= 0 else "the part"
+    return float(vm[j]), tuple(float(c) for c in data["_points"][:, j]), name

@@ -1,0 +1,102 @@
+"""Torsional stiffness of one crank throw: Carter's empirical equivalent length and the
+twist of the project's FE throw model under its unit torque.
+
+Carter's formula (B. C. Carter, 1928, as given by Den Hartog, *Mechanical Vibrations*,
+4th ed., sec. 5.2, and Ker Wilson, *Practical Solution of Torsional Vibration Problems*,
+vol. 1, ch. 4): the length of plain journal-diameter shaft that twists like one throw
+(journal length ``L_j`` in the throw, two webs of thickness ``h`` and width ``b``, pin
+of length ``L_p`` and diameter ``D_p``, crank radius ``R``)::
+
+    L_e = (L_j + 0.8 h) + 0.75 L_p (D_j / D_p)^4 + 1.5 R D_j^4 / (h b^3)
+
+and ``k = G I_p / L_e`` with ``I_p = pi D_j^4 / 32``.  The three terms: the journals
+(lengthened by 0.4 h into each web), the pin in torsion (shortened where the webs hold
+it), the two webs in bending about their thickness (the beam value
+``2 * 12 R / (E h b^3)`` times an empirical 1.5 / 0.906 for the flexible web-pin and
+web-journal junctions).  The formula is empirical; it is compared with the FE value
+in docs/torsion.md.
+
+FE: the torque unit case of ``fe_crank.fe.unit_cases`` applies 1 N m as the Saint-Venant
+shear flow on ``end_1`` and holds ``end_2`` (rigidly coupled to the axis in rotation);
+the radial journal foundation carries no torque.  The rotation of an end face is the
+least-squares rigid rotation of its nodes, ``phi = sum (x u_y - y u_x) / sum (x^2 + y^2)``,
+and ``k = |M_z| / |phi_1 - phi_2|``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from fe_crank.errors import InputError
+
+
+def carter_equivalent_length(*, journal_diameter: float, journal_length: float, web_thickness: float,
+                             web_width: float, pin_diameter: float, pin_length: float,
+                             crank_radius: float) -> float:
+    """Carter's equivalent length (m) of one throw, referred to the journal diameter."""
+    dj, h, b = journal_diameter, web_thickness, web_width
+    for key, v in (("journal_diameter", dj), ("web_thickness", h), ("web_width", b),
+                   ("pin_diameter", pin_diameter), ("crank_radius", crank_radius)):
+        if not v > 0:
+            raise InputError(f"must be positive for the throw stiffness (got {v} m)", key=f"geometry.{key}")
+    return ((journal_length + 0.8 * h) + 0.75 * pin_length * (dj / pin_diameter) ** 4
+            + 1.5 * crank_radius * dj**4 / (h * b**3))
+
+
+def shaft_stiffness(shear_modulus: float, diameter: float, length: float) -> float:
+    """``k = G pi D^4 / (32 L)`` of a plain round shaft (N m/rad)."""
+    return shear_modulus * math.pi * diameter**4 / (32.0 * length)
+
+
+def carter_throw_stiffness(geometry, shear_modulus: float, journal_length: float | None = None) -> float:
+    """Carter stiffness of one throw of a ``CrankGeometry`` (N m/rad).
+
+    ``journal_length``: the journal length inside the throw (default: the geometry's two
+    half-journals, ``2 * journal_length``, the span of the FE throw model).  The web
+    width is the UR M53 width at the middle of the pin/journal overlap
+    (``fe_crank.assess.adapters.m53_geometry_of``)."""
+    from fe_crank.assess.adapters import m53_geometry_of
+
+    m = m53_geometry_of(geometry)
+    if m is None:
+        raise InputError("the geometry lacks the dimensions of a crank throw", key="geometry")
+    lj = 2.0 * geometry.journal_length if journal_length is None else journal_length
+    le = carter_equivalent_length(journal_diameter=m.journal_diameter, journal_length=lj,
+                                  web_thickness=m.web_thickness, web_width=m.web_width,
+                                  pin_diameter=m.pin_diameter, pin_length=geometry.crankpin_length,
+                                  crank_radius=m.crank_radius)
+    return shaft_stiffness(shear_modulus, m.journal_diameter, le)
+
+
+def throw_span(geometry) -> float:
+    """Axial length of the FE throw model, end_1 to end_2: ``L_p + 2 h + 2 L_j``."""
+    return geometry.crankpin_length + 2 * geometry.web_thickness + 2 * geometry.journal_length
+
+
+def face_rotation(points: np.ndarray, displacement: np.ndarray, nodes: np.ndarray) -> float:
+    """Least-squares rotation about z (rad, right-handed) of the nodes ``nodes``."""
+    x, y = points[0, nodes], points[1, nodes]
+    u = np.asarray(displacement).reshape(-1, 3)
+    ux, uy = u[nodes, 0], u[nodes, 1]
+    return float(np.sum(x * uy - y * ux) / np.sum(x * x + y * y))
+
+
+def fe_throw_stiffness(units, faces=("end_1", "end_2")) -> float:
+    """Torsional stiffness (N m/rad) of the FE throw between its end faces from the
+    ``torque`` unit case of a ``UnitSolutions`` (module docstring)."""
+    if "torque" not in units.cases:
+        raise InputError("the FE unit cases lack 'torque'", key="fe.cases")
+    case = units.cases["torque"]
+    mesh = units.mesh
+    pts = np.asarray(units.points)
+    rot = []
+    for face in faces:
+        nodes = np.unique(mesh.facets[:, mesh.boundaries[face]])
+        rot.append(face_rotation(pts, case.displacement, nodes))
+    twist = rot[0] - rot[1]
+    mz = float(case.applied[5])
+    if not twist * mz > 0:
+        raise ValueError(f"FE twist {twist:.3g} rad does not follow the applied torque {mz:.3g} N m")
+    return abs(mz) / abs(twist)
