@@ -21,11 +21,14 @@ test: $(STAMP)
 	$(VENV)/bin/lint-imports
 	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q
 
-# The benchmarks of docs/performance.md (a few minutes; the 1M-dof rows: see there).
+# The benchmarks of docs/performance.md (a few minutes; the 1M-dof rows and the CalculiX
+# comparison, benchmarks/calculix_compare.py: see there).
 bench: $(STAMP)
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/mesh_bench.py --levels test coarse
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/fe_solve.py --geometry geometry/v4_90_pneumatic_seed003.toml --preset coarse
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/cycle_bench.py --size 4 --angles 3
+	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/pin_loads.py --preset test
+	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/scaling.py --levels 0 1 --full-recovery
 
 clean:
 	rm -rf $(VENV) reports .cache

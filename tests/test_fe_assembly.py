@@ -61,7 +61,7 @@ def test_lame_parameters_closed_form_and_bad_input():
         lame_parameters(-1.0, 0.3)
 
 
-@pytest.mark.parametrize("method", ["superlu", "amg", "pardiso"])
+@pytest.mark.parametrize("method", ["superlu", "amg", "pardiso", "cholmod"])
 def test_solvers_reach_the_same_solution(ball, method):
     """Clamped ball surface cap, body load: each method against a dense solve."""
     b = Basis(ball, ElementTetP2(), intorder=2)
@@ -72,8 +72,8 @@ def test_solvers_reach_the_same_solution(ball, method):
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
     Kr = K[free][:, free]
     x_ref = np.linalg.solve(Kr.toarray(), f[free])
-    if method == "pardiso":
-        pytest.importorskip("pypardiso")
+    if method in ("pardiso", "cholmod"):
+        pytest.importorskip({"pardiso": "pypardiso", "cholmod": "cholespy"}[method])
     fac = factorise(Kr, method)
     x = fac.solve(np.column_stack([f[free], 2 * f[free]]))
     assert np.abs(x[:, 0] - x_ref).max() < 1e-7 * np.abs(x_ref).max()

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.superpose import UnitStresses, unit_nodal_stress
 from fe_crank.errors import InputError
 from fe_crank.fe.pin_directions import pin_direction
 
@@ -51,7 +51,7 @@ def unit_stresses(units, groups: dict[str, np.ndarray] | None = None) -> UnitStr
     ids = np.unique(np.concatenate(list(groups.values())))
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
     cases = tuple(c for c in units.cases if c in ("centrifugal", "torque") or pin_direction(c) is not None)
-    stress = np.stack([units.stress_at_nodes(units.displacement(c))[:, ids] for c in cases])
+    stress = unit_nodal_stress(units, cases, ids)   # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
     return UnitStresses(stress=stress, points=np.asarray(units.points)[:, ids], groups=local, node_ids=ids,
                         cases=cases, torque_mz=mz)

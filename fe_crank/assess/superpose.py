@@ -22,6 +22,7 @@ from typing import Iterator
 import numpy as np
 
 from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
+from fe_crank.fe.stress import stress_at_selected_nodes
 from fe_crank.fe.unit_cases import CASES as UNIT_CASES  # the FE stage's default unit cases
 
 
@@ -45,6 +46,19 @@ class UnitStresses:
     @property
     def n_nodes(self) -> int:
         return self.stress.shape[-1]
+
+
+def unit_nodal_stress(units, cases, node_ids) -> np.ndarray:
+    """Averaged nodal stresses (n_cases, 6, n) of the unit cases ``cases`` of ``units`` (the FE
+    stage's ``UnitSolutions``) at the mesh nodes ``node_ids``, Voigt xx yy zz xy yz zx, Pa.
+
+    Equal to ``units.stress_at_nodes(u_c)[:, node_ids]`` for each case (the average at a node
+    takes every element sharing it), computed on those elements only and with one node
+    basis for all cases (``fe_crank.fe.stress.stress_at_selected_nodes``).
+    """
+    mat = units.material
+    return stress_at_selected_nodes(units.mesh, [units.displacement(c) for c in cases], mat.youngs_modulus,
+                                    mat.poisson_ratio, node_ids, dofs=units.system.basis.dofs)
 
 
 def load_coefficients(pin_force: np.ndarray, torque: np.ndarray, omega: float, *,

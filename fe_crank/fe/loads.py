@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from skfem import ElementTetP2
+from skfem import ElementTetP2, FacetBasis
 
 from fe_crank.errors import InputError, MeshError
 from fe_crank.fe.assembly import assemble_body_load, assemble_surface_load
@@ -54,16 +54,52 @@ class PinPressure:
     resultant: np.ndarray     # (3,) integral of the traction
 
 
+@dataclass(frozen=True)
+class PinSurface:
+    """The crankpin surface's facet quadrature, built once for every pin direction.
+
+    ``fb``: the facet basis (its isoparametric inverse map is the expensive part);
+    ``centre`` (2,) the pin axis; ``x`` (3, nf, nq) quadrature points; ``n_r`` (3, nf, nq)
+    the unit radial normals (axial part removed); ``angle`` (nf, nq) the angle of each
+    point about the pin axis, from +y towards +x.
+    """
+
+    fb: FacetBasis
+    centre: np.ndarray
+    x: np.ndarray
+    n_r: np.ndarray
+    angle: np.ndarray
+
+
+def pin_surface(basis, boundary: str = "crankpin", centre=None) -> PinSurface:
+    """Build the :class:`PinSurface` of ``boundary`` on the mesh of ``basis`` once; pass it
+    to :func:`pin_pressure_load` for each direction (``centre`` None: the area centroid)."""
+    mesh = basis.mesh
+    facets = boundary_facets(mesh, boundary, "the crankpin load")
+    fb = facet_basis(mesh, basis.elem, facets, SURFACE_INTORDER, "the crankpin load")
+    x = np.asarray(fb.global_coordinates())
+    c = np.asarray(centre, float) if centre is not None else _centroid_xy(fb, x)
+    n = np.array(fb.normals)
+    n[2] = 0.0
+    n /= np.maximum(np.sqrt(n[0] ** 2 + n[1] ** 2), 1e-300)
+    ang = np.arctan2(x[0] - c[0], x[1] - c[1])
+    return PinSurface(fb=fb, centre=c, x=x, n_r=n, angle=ang)
+
+
+def _centroid_xy(fb, x) -> np.ndarray:
+    return np.einsum("ieq,eq->i", x[:2], fb.dx) / fb.dx.sum()
+
+
 def pin_centre(mesh, boundary: str = "crankpin") -> np.ndarray:
     """Pin axis (x, y) as the area centroid of the pin surface (a full cylinder)."""
     fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the crankpin load"),
                     SURFACE_INTORDER, "the crankpin load")
-    x = np.asarray(fb.global_coordinates())
-    return np.einsum("ieq,eq->i", x[:2], fb.dx) / fb.dx.sum()
+    return _centroid_xy(fb, np.asarray(fb.global_coordinates()))
 
 
 def pin_pressure_load(basis, force, *, boundary: str = "crankpin", centre=None,
-                      half_angle: float = np.deg2rad(60.0)) -> tuple[np.ndarray, PinPressure]:
+                      half_angle: float = np.deg2rad(60.0),
+                      surface: PinSurface | None = None) -> tuple[np.ndarray, PinPressure]:
     """Crankpin bearing load: a cosine pressure over +-half_angle that integrates to ``force``.
 
     p(psi) = p0 cos(pi psi / (2 psi_0)) for |psi| < psi_0, psi measured about the pin axis
@@ -73,19 +109,15 @@ def pin_pressure_load(basis, force, *, boundary: str = "crankpin", centre=None,
     surface equals ``force`` (Fx, Fy) to round-off (the arc centre moves by the mesh's
     asymmetry only, typically < 1e-3 rad).  The cosine vanishes at the arc ends, which
     avoids the spurious peak of a uniform pressure that stops abruptly.
+    ``surface``: a :func:`pin_surface` built once for several directions (then
+    ``boundary`` and ``centre`` are those it was built with).
     """
     F = np.asarray(force, float)
     if F.shape != (2,) or not np.all(np.isfinite(F)) or np.linalg.norm(F) == 0:
         raise InputError(f"pin force must be a non-zero finite (Fx, Fy), got {force!r}")
-    mesh = basis.mesh
-    facets = boundary_facets(mesh, boundary, "the crankpin load")
-    fb = facet_basis(mesh, basis.elem, facets, SURFACE_INTORDER, "the crankpin load")
-    c = np.asarray(centre, float) if centre is not None else pin_centre(mesh, boundary)
-    x = np.asarray(fb.global_coordinates())
-    n = np.array(fb.normals)
-    n[2] = 0.0
-    n /= np.maximum(np.sqrt(n[0] ** 2 + n[1] ** 2), 1e-300)
-    ang = np.arctan2(x[0] - c[0], x[1] - c[1])
+    if surface is None:
+        surface = pin_surface(basis, boundary, centre)
+    fb, c, n, ang = surface.fb, surface.centre, surface.n_r, surface.angle
     fdir = np.arctan2(F[0], F[1])
 
     def shape(centre_angle):

@@ -5,9 +5,16 @@ Methods
 ``pardiso``  MKL PARDISO through pypardiso, symmetric positive-definite type (mtype 2)
              on the upper triangle; the factorisation is computed once (phase 12) and
              every right-hand side reuses it (phase 33).  Default where it imports.
+``cholmod``  CHOLMOD supernodal Cholesky (SuiteSparse) through cholespy, whose wheels bundle
+             CHOLMOD, METIS and a reference BLAS (no system package); the lower
+             triangle is factorised once and every right-hand side reuses it.  The
+             fallback where pypardiso does not install (docs/performance.md).
 ``amg``      conjugate gradients preconditioned by pyamg smoothed aggregation with the
              rigid-body modes as near-nullspace (pure pip, low memory, slow per case).
 ``superlu``  SciPy SuperLU: always available; for small systems.
+
+``auto`` picks pardiso, else cholmod, else SuperLU (small) or AMG-CG (large), and says so:
+a fallback is logged as a warning and recorded in ``Factorisation.note``.
 
 Every solution is checked: finite, and relative residual ||K x - b|| / ||b|| below
 ``residual_tol``; otherwise :class:`~fe_crank.errors.SolverError`.
@@ -15,6 +22,7 @@ Every solution is checked: finite, and relative residual ||K x - b|| / ||b|| bel
 
 from __future__ import annotations
 
+import logging
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -25,8 +33,16 @@ import scipy.sparse.linalg as spla
 
 from fe_crank.errors import InputError, SolverError
 
-METHODS = ("auto", "pardiso", "amg", "superlu")
+METHODS = ("auto", "pardiso", "cholmod", "amg", "superlu")
 SUPERLU_MAX_DOF = 60_000
+DESCRIPTIONS = {
+    "pardiso": "MKL PARDISO (pypardiso), sparse Cholesky, factorised once",
+    "cholmod": "CHOLMOD (SuiteSparse, via cholespy), supernodal Cholesky, factorised once",
+    "superlu": "SciPy SuperLU, sparse LU, factorised once",
+    "amg": "conjugate gradients with pyamg smoothed-aggregation preconditioner (rigid-body modes)",
+}
+log = logging.getLogger(__name__)
+_warned: set[str] = set()
 
 
 def pardiso_available() -> bool:
@@ -38,14 +54,36 @@ def pardiso_available() -> bool:
     return True
 
 
+def cholmod_available() -> bool:
+    """True where cholespy (CHOLMOD) imports."""
+    try:
+        import cholespy  # noqa: F401
+    except Exception:  # noqa: BLE001 - any import failure means "not available"
+        return False
+    return True
+
+
+def fallback_note(method: str, n_dof: int) -> str | None:
+    """Why ``auto`` did not pick PARDISO, or None when it did (or a method was asked for)."""
+    if method != "auto" or pardiso_available():
+        return None
+    chosen = choose_method("auto", n_dof)
+    return (f"pypardiso (MKL PARDISO) is not installed; using {DESCRIPTIONS[chosen]} instead"
+            + ("" if chosen == "cholmod" else ", much slower on large meshes")
+            + ". Install it with: pip install pypardiso (x86-64)")
+
+
 def choose_method(method: str, n_dof: int) -> str:
-    """Resolve ``auto``: pardiso where it imports, else SuperLU for small and AMG-CG for large systems."""
+    """Resolve ``auto``: pardiso where it imports, else cholmod where cholespy imports, else
+    SuperLU for small and AMG-CG for large systems."""
     if method not in METHODS:
         raise InputError(f"unknown solver {method!r}; pick one of {', '.join(METHODS)}", key="fe.solver")
     if method != "auto":
         return method
     if pardiso_available():
         return "pardiso"
+    if cholmod_available():
+        return "cholmod"
     return "superlu" if n_dof <= SUPERLU_MAX_DOF else "amg"
 
 
@@ -61,6 +99,13 @@ class Factorisation:
     _near_null: np.ndarray | None = field(default=None, repr=False)
     amg_rtol: float = 1e-10
     amg_maxiter: int = 2000
+    note: str | None = None               # why this method ran when ``auto`` fell back from PARDISO
+
+    @property
+    def description(self) -> str:
+        """The solver in words, with the fallback note if any (for reports)."""
+        d = DESCRIPTIONS.get(self.method, self.method)
+        return d if not self.note else f"{d} ({self.note})"
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         b = np.asarray(b, dtype=float)
@@ -72,6 +117,10 @@ class Factorisation:
             X = self._solve_pardiso(B)
         elif self.method == "superlu":
             X = self._impl.solve(np.ascontiguousarray(B))
+        elif self.method == "cholmod":
+            B = np.ascontiguousarray(B)
+            X = np.zeros_like(B)
+            self._impl.solve(B, X)
         else:
             X = np.column_stack([self._solve_amg(B[:, k]) for k in range(B.shape[1])])
         X = np.asarray(X).reshape(B.shape)
@@ -125,7 +174,7 @@ class Factorisation:
     def _matvec(self, X):
         if self.matrix is not None:
             return self.matrix @ X
-        U = self._upper                      # pardiso keeps only the upper triangle: K = U + U^T - D
+        U = self._upper                      # pardiso/cholmod keep one triangle: K = U + U^T - D
         return U @ X + U.T @ X - self._diag[:, None] * X
 
     def free(self):
@@ -150,8 +199,13 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
     if np.any(np.diff(K.indptr) == 0):
         raise SolverError("singular stiffness: a degree of freedom has no stiffness (empty row)")
     chosen = choose_method(method, n)
+    note = fallback_note(method, n)
+    if note and note not in _warned:                 # once per process: batch runs solve many meshes
+        _warned.add(note)
+        log.warning("fe-crank: %s", note)
     t0 = time.perf_counter()
-    fac = Factorisation(matrix=K, method=chosen, setup_time=0.0, residual_tol=residual_tol, amg_rtol=amg_rtol)
+    fac = Factorisation(matrix=K, method=chosen, setup_time=0.0, residual_tol=residual_tol, amg_rtol=amg_rtol,
+                        note=note)
     if chosen == "pardiso":
         import pypardiso
         from pypardiso.pardiso_wrapper import PyPardisoError
@@ -168,6 +222,20 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
         fac._upper = upper
         fac._diag = K.diagonal()
         fac.matrix = None                    # only the upper triangle is kept (memory)
+    elif chosen == "cholmod":
+        from cholespy import CholeskySolverD, MatrixType
+
+        lower = sp.tril(K, format="csc")               # CHOLMOD reads the lower triangle (stype -1)
+        lower.sort_indices()
+        try:
+            fac._impl = CholeskySolverD(n, lower.indptr.astype(np.int32), lower.indices.astype(np.int32),
+                                        np.ascontiguousarray(lower.data, dtype=float), MatrixType.CSC)
+        except Exception as exc:  # noqa: BLE001 - cholespy raises plain exceptions
+            raise SolverError(f"CHOLMOD factorisation failed (matrix not positive definite: "
+                              f"unsupported rigid-body mode?): {exc}") from exc
+        fac._upper = lower.T.tocsr()                   # the same triangle as CSR upper (for residuals)
+        fac._diag = K.diagonal()
+        fac.matrix = None
     elif chosen == "superlu":
         try:
             fac._impl = spla.splu(K.tocsc())

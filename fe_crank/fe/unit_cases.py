@@ -26,7 +26,7 @@ import numpy as np
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
-from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load
+from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
 from fe_crank.fe.pin_directions import pin_case_weights, pin_cases, pin_direction, unit_force
 from fe_crank.fe.determinate import POINT_REACTION_TOL, DeterminateLayout
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets
@@ -54,7 +54,7 @@ class FeOptions:
     bearing_stiffness: N/m^3, the foundation's stiffness per area ("foundation" only, required there).
     torque_reaction: the end face that reacts the torque (where the power is taken off):
     "end_2" (default, rear/flywheel side) or "end_1"; the ``torque`` unit case enters at the other.
-    solver: "auto" | "pardiso" | "amg" | "superlu".
+    solver: "auto" | "pardiso" | "cholmod" | "amg" | "superlu".
     cases: which unit cases to solve: "centrifugal", "torque" and pin cases by direction
     ("pin_x", "pin_y", "pin_-x", "pin_-y", "pin_<deg>"; see ``pin_directions``).
     pin_half_angle: rad, half width of the cosine pressure arc.
@@ -123,6 +123,11 @@ class UnitSolutions:
     @property
     def solver(self) -> str:
         return self.system.factorisation.method
+
+    @property
+    def solver_description(self) -> str:
+        """The solver that ran, in words, with the reason when ``auto`` fell back from PARDISO."""
+        return self.system.factorisation.description
 
     @property
     def points(self) -> np.ndarray:
@@ -252,7 +257,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         system = build_system(mesh, E, nu, determinate=layout, solver=options.solver, intorder=options.intorder)
     basis = system.basis
     t0 = time.perf_counter()
-    loads, desc, pins = {}, {}, {}
+    loads, desc, pins, surface = {}, {}, {}, None
     for name in options.cases:
         if name == "centrifugal":
             loads[name] = centrifugal_load(basis, material.density, 1.0)
@@ -263,8 +268,10 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
             desc[name] = (f"1 N m in the sense of rotation (M_z = -1 N m) on {options.torque_face}, "
                           f"reacted at {options.reaction_face}")
         else:
+            if surface is None:   # the pin surface's facet basis, built once for all directions
+                surface = pin_surface(basis, options.pin_boundary, options.pin_centre)
             loads[name], pins[name] = pin_pressure_load(basis, unit_force(name), boundary=options.pin_boundary,
-                                                        centre=options.pin_centre, half_angle=options.pin_half_angle)
+                                                        half_angle=options.pin_half_angle, surface=surface)
             desc[name] = f"1 N on {options.pin_boundary} at {pin_direction(name)} deg from +x, cosine pressure +-" \
                          f"{np.rad2deg(options.pin_half_angle):.0f} deg"
     names = list(loads)

@@ -284,7 +284,7 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
         throw = keys[0]
         m = units.mesh
         rows = [["elements (quadratic tetrahedra)", m.t.shape[1]], ["nodes", units.points.shape[1]],
-                ["degrees of freedom", units.n_dof], ["solver", units.solver],
+                ["degrees of freedom", units.n_dof], ["solver", getattr(units, "solver_description", units.solver)],
                 ["support model", units.support_model]]
         tm = meshes.get(throw)
         stats = getattr(tm, "stats", None)
