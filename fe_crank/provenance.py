@@ -25,7 +25,7 @@ from dataclasses import asdict, is_dataclass
 from datetime import datetime, timezone
 from pathlib import Path
 
-from fe_crank import __version__
+from fe_crank.version import __version__
 
 #: mesh presets whose verdicts may be signed off (fillet elements <= r/4)
 SIGN_OFF_PRESETS = ("coarse", "medium", "fine")

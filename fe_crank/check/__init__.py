@@ -7,7 +7,7 @@ local processes or Dask), ``publish`` (atomic publication of a case folder),
 ``fe_crank.results``, the atomic writer in ``fe_crank.files``.
 
 The package is also callable: ``fe_crank.check(paths, output=..., mesh_size=...)`` is
-``fe_crank.api.check`` (the top-level Python API).
+``fe_crank.check.api.check`` (the top-level Python API, with ``load_case``).
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from __future__ import annotations
 import sys
 import types
 
+from fe_crank.check import api
 from fe_crank.check.batch import batch_exit_code, run_cases
 from fe_crank.check.case import run_case
 from fe_crank.check.discovery import find_loadcases, is_loadcase_file, unique_slugs
@@ -23,12 +24,10 @@ from fe_crank.check.publish import case_slug, clean_stale_partials
 from fe_crank.check.stages import throw_keys
 
 class _CallablePackage(types.ModuleType):
-    """``fe_crank.check(...)`` runs ``fe_crank.api.check``; the package stays a package."""
+    """``fe_crank.check(...)`` runs ``fe_crank.check.api.check``; the package stays a package."""
 
     def __call__(self, *args, **kwargs):
-        from fe_crank.api import check
-
-        return check(*args, **kwargs)
+        return api.check(*args, **kwargs)
 
 
 sys.modules[__name__].__class__ = _CallablePackage

@@ -20,7 +20,7 @@ import argparse
 import sys
 from types import ModuleType
 
-from fe_crank import __version__
+from fe_crank.version import __version__
 from fe_crank.cli import balance, check, dynamics, mesh, torsion, validate
 from fe_crank.errors import FeCrankError
 

@@ -26,7 +26,7 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     """SHA-256 (hex, 20 chars) of everything that changes the mesh."""
     import gmsh
 
-    from fe_crank import __version__
+    from fe_crank.version import __version__
 
     geo = dataclasses.asdict(geometry)
     for k in ("name", "description", "source", "file", "throws"):

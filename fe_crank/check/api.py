@@ -14,12 +14,16 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Iterable
 
+from fe_crank.check.batch import run_cases
+from fe_crank.check.discovery import find_loadcases
+from fe_crank.check.options import CheckOptions
+from fe_crank.io.loadcase import load_loadcase
+from fe_crank.report.junit import write_junit
+
 
 def load_case(path: str | Path):
     """Read and validate one load-case file -> ``fe_crank.model.LoadCase`` (SI inside).
     Raises ``fe_crank.errors.InputError`` naming the file, the key and the reason."""
-    from fe_crank.io.loadcase import load_loadcase
-
     return load_loadcase(path)
 
 
@@ -34,15 +38,11 @@ def check(paths: str | Path | Iterable[str | Path], output: str | Path = "report
     several; ``mesh_size`` overrides the load cases' ``[mesh] size``; ``junit`` also
     writes JUnit XML.  Bad cases become "error" results; a path that does not exist
     raises ``InputError``."""
-    from fe_crank.check import CheckOptions, find_loadcases, run_cases
-
     if isinstance(paths, (str, Path)):
         paths = [paths]
     files = find_loadcases(paths)
     opts = CheckOptions(mesh_size=mesh_size, cache_dir=str(cache_dir), render=render, write_vtu=write_vtu)
     results = run_cases(files, output, opts, jobs=jobs, scheduler=scheduler)
     if junit is not None:
-        from fe_crank.report.junit import write_junit
-
         write_junit(junit, results)
     return results
