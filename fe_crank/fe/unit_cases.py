@@ -173,6 +173,18 @@ class UnitSolutions:
     max_shear = staticmethod(_stress.max_shear)
 
 
+def journal_diameter(mesh, boundary: str) -> float:
+    """2 x the mean distance of the journal surface from the crank axis (area-weighted)."""
+    from skfem import ElementTetP2
+
+    from fe_crank.fe.supports import facet_basis
+
+    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the bearing support"),
+                     2, "the bearing support")
+    x = np.asarray(fb.global_coordinates())
+    return float(2.0 * np.sum(np.hypot(x[0], x[1]) * fb.dx) / fb.dx.sum())
+
+
 def check_support_options(options: FeOptions) -> None:
     """Refuse a support model that is not fully stated."""
     if options.support not in SUPPORTS:
