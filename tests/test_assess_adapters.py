@@ -30,8 +30,9 @@ def root():
 
 def test_m53_dimensions_of_seed001_crank(seed001):
     m = m53_geometry_of(seed001)
-    # stadium web 80 mm wide; a = (journal length 25 + web 22)/2 = 23.5 mm
-    assert m.web_width == pytest.approx(0.080) and m.bearing_to_web == pytest.approx(0.0235)
+    # stadium web 80 mm wide; the journal is half a main bearing, so its end face is the
+    # bearing centre: a = journal length 25 + web 22 / 2 = 36 mm
+    assert m.web_width == pytest.approx(0.080) and m.bearing_to_web == pytest.approx(0.036)
     rel = m.related("pin")
     # s = ((50 + 60)/2 - 64)/50 = -0.18, w = 22/50, b = 80/50, r = 4/50
     assert rel["s"] == pytest.approx(-0.18) and rel["w"] == pytest.approx(0.44)

@@ -42,13 +42,13 @@ def solved(geometry, cache):
 
 def test_reactions_at_the_bearing_centres_of_the_shipped_throw(geometry, solved):
     """geometry/single_cylinder_seed001.toml: pin 36 mm long, webs 22 mm, journals 25 mm
-    with 4 mm fillets.  Journal_1 spans z = -(18 + 22 + 25) = -65 mm to -40 mm, its bearing
-    surface (without the fillet) -65 to -44 mm: bearing centre -54.5 mm.  A unit pin force
-    at z_p = 0 gives R_1 = R_2 = F (54.5 - 0) / 109 = 0.5 F, acting at -54.5 and +54.5 mm."""
+    with 4 mm fillets.  Journal_1 spans z = -(18 + 22 + 25) = -65 mm to -40 mm: half a main
+    bearing (docs/geometry.md), so the main-bearing centre is the end face, -65 mm.  A unit
+    pin force at z_p = 0 gives R_1 = R_2 = F (65 - 0) / 130 = 0.5 F, acting at -65 and
+    +65 mm."""
     _, u = solved
     c = u.cases["pin_-y"]
-    zc = -(0.018 + 0.022 + 0.025 + (0.018 + 0.022 + 0.004)) / 2
-    assert zc == pytest.approx(-0.0545)
+    zc = -(0.018 + 0.022 + 0.025)
     for j, z in (("journal_1", zc), ("journal_2", -zc)):
         r = c.reactions[j]
         assert r[1] == pytest.approx(0.5, abs=1e-4)        # mesh asymmetry of the oil bore only
@@ -62,7 +62,7 @@ def test_fillet_stress_of_three_point_bending_against_ur_m53(geometry, solved):
     """Unit radial pin force (three-point bending of the determinate throw) vs UR M53.
 
     Nominal stresses of UR M53 2.1.2 at the web centre (z_w = -(18 + 11) = -29 mm):
-    M_BN = R_1 (z_w - z_1) = 0.5 N x 25.5 mm, sigma_BN = M_BN / (B W^2 / 6),
+    M_BN = R_1 (z_w - z_1) = 0.5 N x 36 mm, sigma_BN = M_BN / (B W^2 / 6),
     sigma_QN = R_1 / (B W), B = 80 mm (stadium web), W = 22 mm.  Fillet stresses of
     UR M53 3.2/3.3/5: crankpin sigma = alpha_B sigma_BN, journal sigma = beta_B sigma_BN +
     beta_Q sigma_QN, with the empirical alpha_B, beta_B, beta_Q of ``assess.m53`` (the
@@ -78,7 +78,7 @@ def test_fillet_stress_of_three_point_bending_against_ur_m53(geometry, solved):
     r1 = c.reactions["journal_1"][1]
     z_w = -(0.018 + 0.011)
     m_bn = r1 * (z_w - u.bearing_centres["journal_1"])
-    assert m_bn == pytest.approx(0.5 * 0.0255, rel=1e-3)
+    assert m_bn == pytest.approx(0.5 * 0.036, rel=1e-3)
     s_bn = m_bn / (geo.web_width * geo.web_thickness**2 / 6)
     s_qn = r1 / (geo.web_width * geo.web_thickness)
     s = u.stress_at_nodes(c.displacement)

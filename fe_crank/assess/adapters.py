@@ -4,8 +4,9 @@
   width B is taken at the middle of the pin/journal overlap (UR M53 3.1 figure), on the
   web outline (convex hull of a circle of ``journal_end_radius`` about the crank axis
   and one of ``pin_end_radius`` about the pin: its width varies linearly between the
-  two centres).  The main bearing centre is the middle of the journal, so the distance
-  to the web centre line is a = (L_journal + W)/2.  No axial bores, no recesses.
+  two centres).  The journal of a throw is half a main bearing (docs/geometry.md), so the
+  main-bearing centre is the journal's end face and the distance to the web centre line
+  is a = L_journal + W/2 (the same lever as the FE supports and SCF mode).  No axial bores, no recesses.
 * ``counterweights_of(...)``: per balance plane, the built m r of the throw's
   counterweights (exact B-rep mass properties, ``fe_crank.geometry.mass``) against the
   balance stage's required m r (``CounterweightDesign.nearest``), and for bolted ones
@@ -39,7 +40,7 @@ def m53_geometry_of(geometry) -> M53Geometry | None:
     bore = getattr(g, "oil_bore", None)
     return M53Geometry(pin_diameter=d, journal_diameter=dg, crank_radius=r, web_thickness=g.web_thickness,
                        web_width=width, pin_fillet_radius=g.crankpin_fillet, journal_fillet_radius=g.journal_fillet,
-                       bearing_to_web=0.5 * (g.journal_length + g.web_thickness),
+                       bearing_to_web=g.journal_length + 0.5 * g.web_thickness,
                        pin_length=getattr(g, "crankpin_length", 0.0),
                        oil_bore_diameter=0.0 if bore is None else bore.diameter,
                        oil_bore_angle=0.0 if bore is None else bore.angle)

@@ -4,11 +4,18 @@ The model of IACS UR M53 (section 2.1: "the crankthrow is a statically determina
 system ... supported in the centre of the adjacent main journals"), built in FE as:
 
 * each journal's bearing surface (``journal_1``, ``journal_2``) is tied to a reference
-  point at its bearing centre by a *distributing* coupling (RBE3 type): the reference
-  point's translation is the area-weighted mean of the surface's, u_ref = sum_i w_i u_i /
-  sum_i w_i with w_i = int_S N_i dA (the consistent nodal areas), and a force R at the
-  reference point loads the surface with the nodal forces f_i = R w_i / sum_i w_i (a
-  uniform traction R / A on the discretised surface).  It adds no stiffness.
+  point at its main-bearing centre by a *distributing* coupling (RBE3 type) that adds no
+  stiffness.  The throw model ends at the centre plane of each main bearing (the journal
+  of a throw is half a main bearing, docs/geometry.md; UR M53 2.1 and its FE appendix
+  model a throw "from main-bearing centre to main-bearing centre"), so the reference
+  point is the centre of the end face (``end_1``, ``end_2``): the longer lever of the
+  two possible choices (the other being the centroid of the modelled bearing surface),
+  i.e. the conservative one.  A force R at the reference point loads the surface with the
+  RBE3 distribution about the surface's area centroid c, with the consistent nodal areas
+  w_i = int_S N_i dA / A: f_i = w_i R + w_i (theta x d_i), d_i = x_i - c, where
+  I theta = (x_ref - c) x R and I = sum_i w_i (|d_i|^2 1 - d_i d_i^T) (the transfer
+  moment of R from the reference point to c, spread as a rigid-rotation pattern); the
+  nodal forces sum to R and their moment about x_ref is zero.
 * the reference points are simple supports: radial x and y at both bearing centres,
   axial z at one (the torque end's journal), no rotations held;
 * the torque M_z is reacted at the end face where the power is taken off (``end_2``,
@@ -51,12 +58,15 @@ class DeterminateLayout:
     """Where the determinate reactions act; see module doc.
 
     ``journals``: the two bearing surfaces; ``torque_face``: the end face that reacts M_z;
-    ``axial``: the journal whose bearing centre holds u_z.
+    ``axial``: the journal whose bearing centre holds u_z; ``centre_faces``: the end face
+    whose centre is each journal's main-bearing centre (None: the area centroid of the
+    bearing surface itself).
     """
 
     journals: tuple[str, str] = ("journal_1", "journal_2")
     torque_face: str = "end_2"
     axial: str = "journal_2"
+    centre_faces: tuple[str, str] | None = ("end_1", "end_2")
 
 
 @dataclass
@@ -64,7 +74,7 @@ class DeterminateSupport:
     """The distributed unit reactions of a layout on one basis and their resultants."""
 
     layout: DeterminateLayout
-    centres: dict[str, np.ndarray]      # journal -> bearing centre (area centroid of its bearing surface)
+    centres: dict[str, np.ndarray]      # journal -> main-bearing centre (reference point of its coupling)
     names: tuple[str, ...]              # reaction components, e.g. "journal_1.Fx", ..., "end_2.Mz"
     owner: tuple[str, ...]              # support each component belongs to
     G: sp.csc_matrix                    # (3 N, 6) nodal loads of a unit value of each component (sparse)
@@ -117,6 +127,30 @@ def bearing_surface_load(basis, boundary: str) -> tuple[np.ndarray, np.ndarray, 
     return w, centre, area
 
 
+def face_centre(basis, boundary: str) -> np.ndarray:
+    """Area centroid of a named face (the main-bearing centre on an end face)."""
+    mesh = basis.mesh
+    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "a main-bearing centre"),
+                     SURFACE_INTORDER, f"the bearing centre on {boundary}")
+    x = np.asarray(fb.global_coordinates())
+    return np.einsum("ieq,eq->i", x, fb.dx) / float(fb.dx.sum())
+
+
+def transfer_moment_load(w: np.ndarray, x: np.ndarray, c: np.ndarray, moment: np.ndarray) -> np.ndarray:
+    """Nodal forces (3 N,) of the RBE3 moment distribution: f_i = w_i (theta x d_i) with
+    d_i = x_i - c, I theta = M, I = sum_i w_i (|d_i|^2 1 - d_i d_i^T).  For weights w that
+    sum to 1 with centroid c (sum_i w_i d_i = 0) they sum to zero force and to the moment
+    M about c (any point)."""
+    on = np.flatnonzero(w)
+    d = x[:, on].T - c                                           # (n, 3)
+    wi = w[on]
+    inertia = np.einsum("i,i->", wi, np.einsum("ij,ij->i", d, d)) * np.eye(3) - np.einsum("i,ij,ik->jk", wi, d, d)
+    theta = np.linalg.solve(inertia, moment)
+    out = np.zeros((x.shape[1], 3))
+    out[on] = wi[:, None] * np.cross(theta, d)
+    return out.reshape(-1)
+
+
 def point_constraints(points: np.ndarray, candidates: np.ndarray) -> np.ndarray:
     """Six vector dofs that remove the rigid-body modes (a 3-2-1 set).
 
@@ -143,13 +177,17 @@ def determinate_support(basis, layout: DeterminateLayout, *, candidate_faces=("e
     N = basis.N
     x = basis.doflocs
     cols, names, owner, centres = [], [], [], {}
-    for j in layout.journals:
+    for i, j in enumerate(layout.journals):
         w, c, _ = bearing_surface_load(basis, j)
-        centres[j] = c
+        ref = c if layout.centre_faces is None else face_centre(basis, layout.centre_faces[i])
+        centres[j] = ref
         comps = ("Fx", "Fy", "Fz") if j == layout.axial else ("Fx", "Fy")
         for k, comp in enumerate(comps):
             g = np.zeros(3 * N)
             g[k::3] = w
+            unit = np.zeros(3)
+            unit[k] = 1.0
+            g += transfer_moment_load(w, x, c, np.cross(ref - c, unit))
             cols.append(g)
             names.append(f"{j}.{comp}")
             owner.append(j)
