@@ -14,8 +14,11 @@ $(STAMP): pyproject.toml
 
 setup: $(STAMP)
 
+# The shipped single-cylinder crank (assumed shaft sizes) FAILs its fatigue and overspeed
+# criteria under the determinate support: the demo succeeds when every case was computed
+# (check exit 0 or 1) and fails on an ERROR (exit 2).
 demo: $(STAMP)
-	$(VENV)/bin/fe-crank check loadcases/ -o reports/
+	$(VENV)/bin/fe-crank check loadcases/ -o reports/ || [ $$? -eq 1 ]
 
 test: $(STAMP)
 	$(VENV)/bin/lint-imports
