@@ -19,12 +19,14 @@ so a result can be traced to its inputs without git:
 from __future__ import annotations
 
 import hashlib
+import os
 import platform
-import tomllib
 from dataclasses import asdict, is_dataclass
 from datetime import datetime, timezone
 from pathlib import Path
 
+from fe_crank.errors import InputError
+from fe_crank.io.base import read_toml
 from fe_crank.version import __version__
 
 #: mesh presets whose verdicts may be signed off (fillet elements <= r/4)
@@ -51,19 +53,26 @@ def _references(path: Path, data) -> list[Path]:
     return out
 
 
+def _resolved(p: str | Path) -> Path:
+    """``Path.resolve`` that survives a symbolic-link loop (then the absolute path)."""
+    try:
+        return Path(p).resolve()
+    except (OSError, RuntimeError):
+        return Path(os.path.abspath(p))
+
+
 def input_files(path: str | Path) -> list[Path]:
     """The load case and every file it refers to, recursively (resolved, sorted)."""
-    todo, seen = [Path(path).resolve()], set()
+    todo, seen = [_resolved(path)], set()
     while todo:
         p = todo.pop()
         if p in seen or not p.is_file():
             continue
         seen.add(p)
         if p.suffix == ".toml":
-            try:
-                with p.open("rb") as fh:
-                    todo += [q.resolve() for q in _references(p, tomllib.load(fh))]
-            except (tomllib.TOMLDecodeError, UnicodeDecodeError, OSError):
+            try:  # the bounded reader: size, nesting and encoding limits of the load stage
+                todo += [_resolved(q) for q in _references(p, read_toml(p))]
+            except (InputError, OSError, RecursionError):
                 pass  # the load stage reports it; the bytes are still hashed
     return sorted(seen)
 
@@ -72,21 +81,23 @@ def _rel(p: Path, base: Path) -> str:
     try:
         return p.relative_to(base).as_posix()
     except ValueError:
-        import os
-
         return Path(os.path.relpath(p, base)).as_posix()
 
 
 def input_hash(path: str | Path) -> dict:
     """``{"sha256": ..., "files": [{"path", "sha256"}]}`` of ``input_files(path)``."""
-    base = Path(path).resolve().parent
+    base = _resolved(path).parent
     total = hashlib.sha256()
     files = []
     for p in input_files(path):
-        data = p.read_bytes()
         rel = _rel(p, base)
-        total.update(rel.encode() + b"\0" + data)
-        files.append({"path": rel, "sha256": hashlib.sha256(data).hexdigest()})
+        total.update(rel.encode() + b"\0")
+        one = hashlib.sha256()
+        with p.open("rb") as fh:  # in blocks: an input of any size is hashed in bounded memory
+            for block in iter(lambda: fh.read(1 << 20), b""):
+                total.update(block)
+                one.update(block)
+        files.append({"path": rel, "sha256": one.hexdigest()})
     return {"sha256": total.hexdigest(), "files": files}
 
 

@@ -16,10 +16,16 @@ CASE = ROOT / "loadcases" / "inline4_genset_torsion.toml"
 
 
 def variant(tmp_path, old: str, new: str) -> Path:
+    """The shipped case with one line changed, in a copy of the repository layout (the
+    included geometry beside it, inside the case's folder tree as the path policy asks)."""
     text = CASE.read_text()
     assert old in text
-    p = tmp_path / "case.toml"
-    p.write_text(text.replace(old, new).replace('"../geometry/', f'"{ROOT}/geometry/'))
+    (tmp_path / "geometry").mkdir(exist_ok=True)
+    for g in (ROOT / "geometry").glob("*.toml"):
+        (tmp_path / "geometry" / g.name).write_text(g.read_text())
+    (tmp_path / "loadcases").mkdir(exist_ok=True)
+    p = tmp_path / "loadcases" / "case.toml"
+    p.write_text(text.replace(old, new))
     return p
 
 

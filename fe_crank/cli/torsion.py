@@ -19,11 +19,13 @@ from fe_crank.files import write_atomic
 
 def add_arguments(p) -> None:
     p.add_argument("file", type=Path, help="load-case .toml file with a [torsion] section")
-    p.add_argument("-o", "--out", type=Path, required=True, help="output folder (created if missing)")
+    p.add_argument("-o", "--output", type=Path, default=Path("reports"), metavar="DIR",
+                   help="output folder (created if missing; default: reports/)")
     p.add_argument("--fe-stiffness", action="store_true",
                    help="also measure the throw stiffness on the FE throw model and report it beside Carter's")
     p.add_argument("--mesh-size", default=None, help="mesh preset for --fe-stiffness (default: the case's [mesh])")
-    p.add_argument("--cache-dir", type=Path, default=Path(".cache/meshes"), help="mesh cache folder")
+    p.add_argument("--cache-dir", type=Path, default=Path(".cache/meshes"), metavar="DIR",
+                   help="mesh cache folder (default: .cache/meshes)")
     p.add_argument("--no-plots", action="store_true", help="write the JSON only")
 
 
@@ -57,7 +59,7 @@ def run(args) -> int:
     if args.fe_stiffness or settings.throw_stiffness == "fe":
         k_fe = fe_stiffness_of(lc, args.mesh_size, args.cache_dir)
     res = analyse_torsion(lc, fe_stiffness=k_fe)
-    out = Path(args.out)
+    out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
     data = {"load_case": lc.name, "source_file": lc.source_file, **result_to_dict(res)}
     write_atomic(out / "torsion.json", json.dumps(data, indent=1, allow_nan=False))
