@@ -6,7 +6,6 @@ supported beam (reactions by statics, moment by the lever arm), written out in e
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -14,7 +13,7 @@ from skfem import ElementTetP2
 
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.supports import _robust_mapping
-from verification_meshes import simple_throw
+from verification_meshes import Steel, simple_throw
 
 # simple_throw defaults (m): journals d 50 x 30, webs 80 wide x 20 thick (box), pin d 45 x 30
 # at R = 45; axial layout: journal_1 [-65, -35] mm, web_1 [-35, -15], pin [-15, 15], ...
@@ -23,13 +22,6 @@ Z1 = -(L_P / 2 + T_W + L_J)              # main-bearing centre of journal_1: the
 Z2 = -Z1
 Z_WEB1 = -(L_P / 2 + T_W / 2)            # web_1 centre plane, -25 mm
 WEB_Y = (-0.05 * 0.7, R_CRANK + 0.05 * 0.7)   # web box in y: [-0.7 d_j, R + 0.7 d_j]
-
-
-@dataclass(frozen=True)
-class Steel:
-    youngs_modulus: float = 210e9
-    poisson_ratio: float = 0.3
-    density: float = 7850.0
 
 
 @pytest.fixture(scope="module")

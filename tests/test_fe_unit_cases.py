@@ -11,14 +11,7 @@ from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
 from fe_crank.fe.solvers import factorise
-from verification_meshes import simple_throw
-
-
-@dataclass(frozen=True)
-class Steel:
-    youngs_modulus: float = 210e9
-    poisson_ratio: float = 0.3
-    density: float = 7850.0
+from verification_meshes import Steel, simple_throw
 
 
 @pytest.fixture(scope="module")

@@ -13,7 +13,6 @@ Real gmsh mesh with real fillets, real scikit-fem solves (the FE stage's unit ca
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -24,16 +23,9 @@ from fe_crank.assess.stress import von_mises as vm_nodes
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.stress import (averaging_indicator, element_nodal_stress, elements_of_nodes,
                                 stress_at_nodes, stress_at_quadrature, stress_at_selected_nodes, von_mises)
-from verification_meshes import simple_throw
+from verification_meshes import Steel, simple_throw
 
 REL = 1e-12
-
-
-@dataclass(frozen=True)
-class Steel:
-    youngs_modulus: float = 210e9
-    poisson_ratio: float = 0.3
-    density: float = 7850.0
 
 
 @pytest.fixture(scope="module")

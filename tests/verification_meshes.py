@@ -6,10 +6,21 @@ curved surfaces are quadratic (isoparametric).  Dimensions in metres.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from fe_crank.gmsh_io import gmsh_session, model_to_skfem
 
+
+
+@dataclass(frozen=True)
+class Steel:
+    """Structural steel for the verification models (SI)."""
+
+    youngs_modulus: float = 210e9
+    poisson_ratio: float = 0.3
+    density: float = 7850.0
 
 def _mesh(gmsh, size_min: float, size_max: float, refine: dict | None = None):
     gmsh.option.setNumber("Mesh.MeshSizeMin", size_min)
