@@ -94,3 +94,49 @@ def test_m53_takes_the_journal_torque_with_the_larger_alternating_part():
     t = assess_throw("1", unit, theta, pin, np.zeros(720), omega=0.0, overspeed=None,
                      material=load_material("42CrMo4"), crank_radius=0.09, m53_geometry=GEO, torque_rear=rear)
     assert t.m53_nominal.torsion_pin == pytest.approx(900.0 / (math.pi / 16 * 0.1**3), rel=1e-9)
+
+
+def test_ke_two_stroke_scales_the_web_stresses_only():
+    """UR M53 2.1.2.1: sigma_BFN = K_e M_BRFN / W_eqw, sigma_QFN = K_e Q_RFN / F with
+    K_e = 0.8 for two-stroke and 1.0 for four-stroke engines; torsion (2.2.2) and the
+    oil-bore outlet's sigma_BON (2.1.2.2) carry no K_e.  Same loads as the hand
+    calculation above: M_BN = 1500 N m -> 0.8 x 66.667 = 53.333 MPa; Q_N = 25 kN ->
+    0.8 x 5.5556 = 4.4444 MPa; tau_N = 10.186 MPa unchanged."""
+    assert m53.ke_factor(2) == 0.8 and m53.ke_factor(4) == 1.0
+    with pytest.raises(ValueError, match="strokes = 3"):
+        m53.ke_factor(3)
+    theta = np.deg2rad(np.arange(720.0))
+    fr = 50e3 * np.cos(theta) - 10e3
+    tq = 2e3 * np.sin(2 * theta)
+    nom = m53.nominal_stresses(GEO, fr, tq, ke=m53.ke_factor(2))
+    assert nom.ke == 0.8
+    assert nom.bending == pytest.approx(0.8 * 1500 / 2.25e-5, rel=1e-9)  # 53.333 MPa
+    assert nom.shear == pytest.approx(0.8 * 25e3 / 4.5e-3, rel=1e-9)  # 4.4444 MPa
+    assert nom.torsion_pin == pytest.approx(2000 / (math.pi / 16 * 0.1**3), rel=1e-9)
+    # journal fillet: sigma_BG = beta_B sigma_BFN + beta_Q sigma_QFN
+    #   = 2.06439 x 53.333 + 2.94110 x 4.4444 = 110.101 + 13.072 = 123.173 MPa
+    j = m53.assess_fillet(GEO, nom, "journal", tensile=800e6, k=1.05, additional=10e6)
+    assert j.bending == pytest.approx(123.173e6, rel=5e-5)
+
+
+def test_ke_reaches_the_route_through_assess_throw_but_not_the_outlet():
+    """``assess_throw(m53_ke=0.8)``: the web's nominal bending is 0.8 x the four-stroke
+    value, the oil-bore outlet's bending stress is the same for both."""
+    import dataclasses
+
+    from fe_crank.assess.case import assess_throw
+    from fe_crank.assess.superpose import UnitStresses
+    from fe_crank.io.material import load_material
+
+    geo = dataclasses.replace(GEO, pin_length=0.08, oil_bore_diameter=0.01)
+    theta = np.deg2rad(np.arange(720.0))
+    unit = UnitStresses(stress=np.zeros((3, 6, 1)), points=np.zeros((3, 1)), groups={},
+                        cases=("pin_x", "pin_y", "torque"))
+    pin = np.column_stack([1e4 * np.sin(theta), 4e4 * np.cos(theta)])
+    kw = dict(omega=0.0, overspeed=None, material=load_material("42CrMo4"), crank_radius=0.09, m53_geometry=geo)
+    four = assess_throw("1", unit, theta, pin, 900.0 * np.sin(theta), **kw)
+    two = assess_throw("1", unit, theta, pin, 900.0 * np.sin(theta), m53_ke=0.8, **kw)
+    assert two.m53_nominal.bending == pytest.approx(0.8 * four.m53_nominal.bending, rel=1e-12)
+    assert two.m53_nominal.shear == pytest.approx(0.8 * four.m53_nominal.shear, rel=1e-12)
+    o4, o2 = (next(f for f in t.m53 if f.fillet == "oil_bore") for t in (four, two))
+    assert o2.bending == o4.bending and o2.acceptability == o4.acceptability

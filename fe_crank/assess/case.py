@@ -59,7 +59,7 @@ def fe_scfs(scf) -> dict[str, dict[str, float]]:
 
 def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np.ndarray, torque: np.ndarray,
                  *, omega: float, sense: int = 1, overspeed: float | None, material, crank_radius: float,
-                 m53_geometry: m53.M53Geometry | None = None, m53_additional: float = 10e6,
+                 m53_geometry: m53.M53Geometry | None = None, m53_additional: float = 10e6, m53_ke: float = 1.0,
                  fe_scf: dict[str, dict[str, float]] | None = None, scf=None,
                  counterweights: tuple[CounterweightData, ...] = (),
                  torque_rear: np.ndarray | None = None,
@@ -70,6 +70,8 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
     larger alternating part, the one the throw's fillets carry.  Outside the validity
     range of the empirical SCFs UR M53 takes FE SCFs: ``fe_scf`` as given, else
     ``scf()`` (a callable returning the SCF mode's ``assess.scf.ScfResult``, called only then).
+    ``m53_ke``: UR M53 2.1.2.1's K_e on the web's nominal stresses (``m53.ke_factor``:
+    0.8 two-stroke, 1.0 four-stroke); the M53 route only, the FE route's stresses are not scaled.
 
     ``overspeed_loads`` = (pin force, front torque) of the cycle recomputed at the
     overspeed (``assess_case`` runs the dynamics at omega_os with the load case's
@@ -102,7 +104,7 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
         m53_torque = torque
         if torque_rear is not None and m53.half_range(torque_rear) > m53.half_range(torque):
             m53_torque = torque_rear
-        nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque)
+        nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque, ke=m53_ke)
         try:
             fillets = tuple(
                 m53.assess_fillet(m53_geometry, nominal, f, tensile=material.tensile_strength, k=material.m53_k,

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from fe_crank.assess import m53_oil_bore
+from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
 from fe_crank.assess.case import Assessment, assess_throw, evaluate_criteria
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
@@ -45,6 +45,10 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
         + ("included: quasi-static + vibratory journal torque ([torsion], docs/torsion.md)" if "torsion" in lc.extras
            else "not included (no [torsion] section)"),
     ]
+    ke = m53.ke_factor(lc.engine.strokes)
+    if lc.engine.strokes == 2:
+        notes.append("UR M53 route: two-stroke engine, K_e = 0.8 on the web's nominal bending and compressive "
+                     "stresses (UR M53 2.1.2.1); not applied to the FE route nor to the oil-bore outlet")
     dyn_os = overspeed_dynamics(lc, dynamics)
     if dyn_os is not None:
         notes.insert(1, describe_overspeed(lc))
@@ -70,7 +74,7 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
             throws.append(assess_throw(
                 tname, unit, dynamics.theta, tl.pin_force, tl.torque_front, omega=omega, sense=sense,
                 overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,
-                m53_additional=criteria.m53_additional_bending, counterweights=tuple(cws),
+                m53_additional=criteria.m53_additional_bending, m53_ke=ke, counterweights=tuple(cws),
                 torque_rear=tl.torque_rear,
                 overspeed_loads=None if dyn_os is None else (dyn_os.throws[tname].pin_force,
                                                              dyn_os.throws[tname].torque_front),

@@ -162,14 +162,30 @@ def equivalent_stress(bending: float, torsion: float, additional: float) -> floa
     return math.sqrt((abs(bending) + additional) ** 2 + 3.0 * torsion**2)
 
 
+#: K_e of UR M53 2.1.2.1: "empirical factor considering to some extent the influence of
+#: adjacent crank and bearing restraint", on the web's nominal bending and compressive
+#: stresses only (not on the oil-bore outlet's sigma_BON of 2.1.2.2, nor on torsion)
+KE = {2: 0.8, 4: 1.0}
+
+
+def ke_factor(strokes: int) -> float:
+    """K_e = 0.8 for two-stroke, 1.0 for four-stroke engines (UR M53 2.1.2.1)."""
+    try:
+        return KE[int(strokes)]
+    except (KeyError, ValueError, TypeError):
+        raise ValueError(f"UR M53 K_e is defined for 2- and 4-stroke engines, not strokes = {strokes!r}") from None
+
+
 @dataclass(frozen=True)
 class NominalStresses:
-    """Nominal alternating stresses (amplitudes, Pa) of UR M53 section 2."""
+    """Nominal alternating stresses (amplitudes, Pa) of UR M53 section 2; ``bending`` and
+    ``shear`` include K_e (``ke``, 2.1.2.1)."""
 
-    bending: float  # sigma_BN = M_BN / W_eqw, web section W_eqw = B W^2 / 6
-    shear: float  # sigma_QN = Q_N / F, web section F = B W
+    bending: float  # sigma_BFN = K_e M_BRFN / W_eqw, web section W_eqw = B W^2 / 6
+    shear: float  # sigma_QFN = K_e Q_RFN / F, web section F = B W
     torsion_pin: float  # tau_N = M_TN / W_P, W_P = pi/16 (D^4 - D_BH^4)/D
     torsion_journal: float  # same with D_G, D_BG
+    ke: float = 1.0  # K_e of 2.1.2.1 (0.8 two-stroke, 1.0 four-stroke)
 
 
 def half_range(x) -> float:
@@ -177,14 +193,15 @@ def half_range(x) -> float:
     return 0.5 * float(x.max() - x.min())
 
 
-def nominal_stresses(geo: M53Geometry, radial_force, torque) -> NominalStresses:
+def nominal_stresses(geo: M53Geometry, radial_force, torque, *, ke: float = 1.0) -> NominalStresses:
     """Nominal alternating stresses from the cycle of the radial pin force and the torque.
 
     Statically determinate throw (UR M53 2.1.1): supports at the main-bearing centres,
     each carries half of the radial force; the web bending moment at the web centre
     line is M_BR = (F_R/2) a (a = ``bearing_to_web``) and the web shear force
-    Q_R = F_R/2.  Amplitudes are half the range over the cycle (2.1.2):
-    sigma_BN = M_BRN / (B W^2/6), sigma_QN = Q_RN / (B W); tau_N = M_TN / W_P (2.2.2).
+    Q_R = F_R/2.  Amplitudes are half the range over the cycle (2.1.2.1):
+    sigma_BFN = K_e M_BRFN / (B W^2/6), sigma_QFN = K_e Q_RFN / (B W), K_e = 0.8 for
+    two-stroke and 1.0 for four-stroke engines (``ke_factor``); tau_N = M_TN / W_P (2.2.2).
     The torque is a journal torque from the dynamics stage (``assess_throw`` passes the
     side with the larger alternating part); torsional
     vibration is NOT included (UR M53 asks for it from a forced-vibration calculation).
@@ -197,7 +214,7 @@ def nominal_stresses(geo: M53Geometry, radial_force, torque) -> NominalStresses:
     area = geo.web_width * geo.web_thickness
     wp_pin = math.pi / 16.0 * (geo.pin_diameter**4 - geo.pin_bore**4) / geo.pin_diameter
     wp_jou = math.pi / 16.0 * (geo.journal_diameter**4 - geo.journal_bore**4) / geo.journal_diameter
-    return NominalStresses(m_bn / w_eq, q_n / area, m_tn / wp_pin, m_tn / wp_jou)
+    return NominalStresses(ke * m_bn / w_eq, ke * q_n / area, m_tn / wp_pin, m_tn / wp_jou, ke)
 
 
 @dataclass(frozen=True)

@@ -1,26 +1,38 @@
-"""IACS UR M53 Rev.1: the outlet of the crankpin oil bore.
+"""IACS UR M53: the outlet of the crankpin oil bore.
 
-Clauses (UR M53 Rev.1, Dec 2004; unchanged in Rev.2):
+Checked against the rule text as public class rules reproduce it clause by clause (Korean
+Register, Rules for the Classification of Steel Ships, Pt 5, Annex 5-3 "Guidance for
+calculation of crankshaft stress", 2025 edition, which follows UR M53's numbering);
+every formula and coefficient below agrees with that text.  UR M53 clauses:
 
 * 2.1.1.2 / 2.1.2.2, nominal alternating bending stress at the outlet:
   sigma_BON = M_BON / W_e, W_e = pi/32 (D^4 - D_BH^4)/D, M_BON the half range over the
   cycle of the bending moment in the crankpin section through the oil bore, in the plane
   of the outlet: M_BO = M_BTO cos(psi) + M_BRO sin(psi), psi the angular position of the
-  bore measured from the tangential direction.  With ``OilBore.angle`` a measured from
-  the radial (+y) towards the tangential (+x) direction, sin(psi) = cos(a) and
-  cos(psi) = sin(a).  Statically determinate throw (supports at the main-bearing centres,
-  the pin at mid-span): M_BRO = (F_R/2) L/2, M_BTO = (F_T/2) L/2, L/2 = bearing centre
-  to pin centre = a_web + W/2 + L_pin/2.
-* 2.1.4: sigma_BO = gamma_B sigma_BON;  2.2.3: tau_TO = gamma_T tau_N (tau_N of the pin).
-* 3.4, stress concentration factors, d_O = D_O/D:
-  gamma_B = 3 - 5.88 d_O + 34.6 d_O^2,  gamma_T = 4 - 6 d_O + 30 d_O^2,
-  valid for 0 <= d_O <= 0.2.
-* 5.2, equivalent alternating stress at the outlet:
-  sigma_V = sigma_BO/3 [1 + 2 sqrt(1 + 9/4 (tau_TO/sigma_BO)^2)]
-          = sigma_BO/3 + 2/3 sqrt(sigma_BO^2 + 9/4 tau_TO^2)   (no sigma_add: 4 is for fillets).
-* 6, fatigue strength with R_X = D_O/2; K above 1 (forging grain flow) is credited to
-  the fillets only, so the outlet uses min(K, 1).
+  bore (2.1.2.2, its Fig. "crankpin section through the oil bore"), measured from the
+  tangential direction.  With ``OilBore.angle`` a measured from the radial (+y) towards
+  the tangential (+x) direction, sin(psi) = cos(a) and cos(psi) = sin(a).  No K_e here:
+  2.1.2.1's K_e multiplies the web's nominal stresses only.  Statically determinate
+  throw (2.1.1; supports at the main-bearing centres, the pin at mid-span):
+  M_BRO = (F_R/2) L/2, M_BTO = (F_T/2) L/2, L/2 = bearing centre to pin centre
+  = a_web + W/2 + L_pin/2.
+* 2.1.4: sigma_BO = gamma_B sigma_BON;  2.2.3: sigma_TO = gamma_T tau_N (tau_N of the
+  axially bored crankpin, 2.2.2; the rule writes the outlet's torsional term as a normal
+  stress, the largest principal stress, hence sigma_TO; here ``tau_TO``).
+* 3.1, definitions: gamma_B, gamma_T are the ratio of the largest principal stress at the
+  outlet to the nominal stress of the bored crankpin section (ESDU data, radially
+  drilled holes only); related dimension d_O = D_O/D, valid for 0 <= d_O <= 0.2.
+* 3.4, stress concentration factors:
+  gamma_B = 3 - 5.88 d_O + 34.6 d_O^2,  gamma_T = 4 - 6 d_O + 30 d_O^2.
+* 5.1 / 5.2, equivalent alternating stress at the outlet (the largest principal stress
+  of bending and torsion taken in phase):
+  sigma_V = sigma_BO/3 [1 + 2 sqrt(1 + 9/4 (sigma_TO/sigma_BO)^2)]
+          = sigma_BO/3 + 2/3 sqrt(sigma_BO^2 + 9/4 sigma_TO^2)   (no sigma_add: 4 is for fillets).
+* 6, fatigue strength with R_X = D_O/2 (not below 2 mm); "values of K greater than 1 are
+  only applicable to the fatigue strength in the fillet area", so the outlet uses min(K, 1).
 * 7, acceptability Q = sigma_DW / sigma_V.
+
+No published worked example of the outlet was found; the test checks a hand calculation.
 
 Outside 0 <= d_O <= 0.2 the empirical factors do not apply and UR M53 Appendix III
 (FE) does not cover oil bores (its 1.1.5): the outlet is then assessed by the FE route
@@ -35,18 +47,18 @@ import numpy as np
 
 from fe_crank.assess.m53 import M53Fillet, M53Geometry, NominalStresses, fatigue_strength, half_range
 
-#: d_O = D_O/D range of UR M53 3.4
+#: d_O = D_O/D range of UR M53 3.1
 D_O_RANGE = (0.0, 0.2)
-SOURCE = "empirical, UR M53 Rev.1 3.4 (oil-bore outlet)"
+SOURCE = "empirical, UR M53 3.4 (oil-bore outlet)"
 
 
 def gamma_b(d_o: float) -> float:
-    """gamma_B = 3 - 5.88 d_O + 34.6 d_O^2 (UR M53 3.4)."""
+    """gamma_B = 3 - 5.88 d_O + 34.6 d_O^2, d_O = D_O/D (UR M53 3.4; d_O of 3.1)."""
     return 3.0 - 5.88 * d_o + 34.6 * d_o**2
 
 
 def gamma_t(d_o: float) -> float:
-    """gamma_T = 4 - 6 d_O + 30 d_O^2 (UR M53 3.4)."""
+    """gamma_T = 4 - 6 d_O + 30 d_O^2, d_O = D_O/D (UR M53 3.4; d_O of 3.1)."""
     return 4.0 - 6.0 * d_o + 30.0 * d_o**2
 
 
@@ -56,11 +68,11 @@ def in_range(geo: M53Geometry) -> str | None:
     lo, hi = D_O_RANGE
     if lo <= d_o <= hi + 1e-12:
         return None
-    return f"d_O = D_O/D = {d_o:.4g} not in [{lo}, {hi}] (UR M53 3.4)"
+    return f"d_O = D_O/D = {d_o:.4g} not in [{lo}, {hi}] (UR M53 3.1)"
 
 
 def nominal_bending(geo: M53Geometry, pin_force) -> float:
-    """sigma_BON [Pa]: half range of M_BO / W_e over the cycle (UR M53 2.1.2.2).
+    """sigma_BON [Pa]: half range of M_BO / W_e over the cycle (UR M53 2.1.2.2, no K_e).
 
     ``pin_force`` (n, 2): (tangential, radial) force on the crankpin in the throw frame."""
     f = np.asarray(pin_force, float)
@@ -72,7 +84,8 @@ def nominal_bending(geo: M53Geometry, pin_force) -> float:
 
 
 def equivalent_stress(bending: float, torsion: float) -> float:
-    """sigma_V = sigma_BO/3 + 2/3 sqrt(sigma_BO^2 + 9/4 tau_TO^2) (UR M53 5.2)."""
+    """sigma_V = sigma_BO/3 [1 + 2 sqrt(1 + 9/4 (sigma_TO/sigma_BO)^2)]
+    = sigma_BO/3 + 2/3 sqrt(sigma_BO^2 + 9/4 sigma_TO^2) (UR M53 5.2, outlet of the oil bore)."""
     b = abs(bending)
     return b / 3.0 + 2.0 / 3.0 * math.sqrt(b**2 + 2.25 * torsion**2)
 

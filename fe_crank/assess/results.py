@@ -104,7 +104,8 @@ def to_json(assessment: Assessment) -> dict:
              "m53": [_m53(f) for f in t.m53],
              "m53_nominal": None if t.m53_nominal is None else {
                  "bending": t.m53_nominal.bending, "shear": t.m53_nominal.shear,
-                 "torsion_pin": t.m53_nominal.torsion_pin, "torsion_journal": t.m53_nominal.torsion_journal},
+                 "torsion_pin": t.m53_nominal.torsion_pin, "torsion_journal": t.m53_nominal.torsion_journal,
+                 "ke": t.m53_nominal.ke},
              "counterweights": [_cw(c) for c in t.counterweights]}
             for t in a.throws
         ],
