@@ -22,6 +22,14 @@ closed single-zone cycle:
 
 Pneumatic engines (seed 003) give their own table: compressed-air admission and
 exhaust are a p(phi) table like any other.
+
+:func:`motored_cycle` is the same closed cycle without combustion (the overspeed check's
+"motored" gas): the charge trapped at BDC (inlet valve closure idealised at BDC) at the
+intake/boost pressure p_0 is compressed and re-expanded along one polytrope,
+``p = p_0 (V_BDC / V(phi))^n``, so ``p_TDC = p_0 eps^n``.  n = 1.35 unless the gas data
+state their own exponent: Heywood (1988), sec. 9.2, fits the compression and expansion
+lines of real engines with polytropes of n = 1.3 +- 0.05; the upper end is taken so
+the compression load at the firing TDC is not under-estimated.
 """
 
 from __future__ import annotations
@@ -32,7 +40,10 @@ from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.kinematics import piston_motion
 
-__all__ = ["pressure_at", "cylinder_volume", "wiebe_cycle"]
+__all__ = ["pressure_at", "cylinder_volume", "wiebe_cycle", "motored_cycle", "MOTORED_EXPONENT"]
+
+#: polytropic exponent of the motored curve, Heywood (1988) sec. 9.2: n = 1.3 +- 0.05 (upper end)
+MOTORED_EXPONENT = 1.35
 
 
 def pressure_at(gas: model.GasPressure, angle, cycle: float) -> np.ndarray:
@@ -148,3 +159,47 @@ def wiebe_cycle(
         intake = (ang > 2 * np.pi) & (ang < 3 * np.pi)
         p = np.where(exhaust, exhaust_pressure, np.where(intake, intake_pressure, p))
     return model.GasPressure(ang, p, crankcase_pressure, source="Wiebe heat release with polytropes (fe_crank.gas.wiebe_cycle)")
+
+
+def motored_cycle(
+    *,
+    bore: float,
+    r: float,
+    l: float,
+    compression_ratio: float,
+    intake_pressure: float,
+    exhaust_pressure: float | None = None,
+    n_poly: float = MOTORED_EXPONENT,
+    strokes: int = 4,
+    n: int = 1441,
+    crankcase_pressure: float = 101325.0,
+) -> model.GasPressure:
+    """Pressure table of a motored cylinder (no combustion), angle from TDC firing.
+
+    Closed part, BDC .. TDC firing .. BDC (-pi .. pi): ``p = p_0 (V(-pi)/V(phi))^n`` with
+    ``p_0`` = ``intake_pressure`` (the intake/boost pressure at inlet valve closure,
+    idealised at BDC) and ``V`` from :func:`cylinder_volume`; at TDC ``V(-pi)/V(0) = eps``,
+    so ``p_TDC = p_0 eps^n``.  Four-stroke: exhaust stroke at ``exhaust_pressure``
+    (default ``p_0``), intake stroke at ``p_0``; two-stroke: the closed part is the
+    whole cycle (scavenging idealised at BDC).  ``n_poly``: polytropic exponent
+    (:data:`MOTORED_EXPONENT` = 1.35, Heywood 1988 sec. 9.2).
+    """
+    if compression_ratio <= 1.0:
+        raise InputError(f"compression_ratio must exceed 1 (got {compression_ratio})", key="gas.compression_ratio")
+    if not 1.0 < n_poly < 2.0:
+        raise InputError(f"the polytropic exponent must lie in (1, 2) (got {n_poly})", key="gas.k")
+    if not intake_pressure > 0:
+        raise InputError("intake_pressure must be a positive absolute pressure", key="gas.intake_pressure")
+    p_ex = intake_pressure if exhaust_pressure is None else exhaust_pressure
+    cycle = 4.0 * np.pi if strokes == 4 else 2.0 * np.pi
+    ang = np.linspace(0.0, cycle, n)
+    closed_phi = np.where(ang <= np.pi, ang, ang - cycle)  # -pi .. pi around TDC firing
+    v_bdc = cylinder_volume(-np.pi, bore, r, l, compression_ratio)
+    p = intake_pressure * (v_bdc / cylinder_volume(closed_phi, bore, r, l, compression_ratio)) ** n_poly
+    if strokes == 4:
+        exhaust = (ang > np.pi) & (ang <= 2 * np.pi)
+        intake = (ang > 2 * np.pi) & (ang < 3 * np.pi)
+        p = np.where(exhaust, p_ex, np.where(intake, intake_pressure, p))
+    src = (f"motored: polytrope p = p_0 (V_BDC/V)^n, eps = {compression_ratio:g}, "
+           f"p_0 = {intake_pressure / 1e6:.4g} MPa, n = {n_poly:g} (fe_crank.gas.motored_cycle)")
+    return model.GasPressure(ang, np.asarray(p, float), crankcase_pressure, source=src)

@@ -80,12 +80,15 @@ class GasPressure:
     ``angle`` is the cylinder's own crank angle from TDC firing, over one cycle
     (0 .. 4 pi for a four-stroke, 0 .. 2 pi for a two-stroke), increasing.
     The pressure acting on the piston's underside is ``crankcase_pressure``.
+    ``motored``: the same cylinder without combustion (``fe_crank.gas.motored_cycle``),
+    when the gas data give a compression ratio and the intake pressure; else None.
     """
 
     angle: np.ndarray
     pressure: np.ndarray
     crankcase_pressure: float = 101325.0
     source: str = ""
+    motored: GasPressure | None = None
 
 
 @dataclass(frozen=True)
@@ -157,9 +160,10 @@ def crank_angle_global(engine: Engine, throw_name: str, theta) -> np.ndarray:
 @dataclass(frozen=True)
 class OperatingPoint:
     """``overspeed_gas``: the gas load of the overspeed condition (the assessment
-    recomputes the whole cycle at the overspeed): ``"motored"`` no combustion, the
-    engine's gas pressure table replaced by zero gauge pressure (the table gives no
-    motored curve); ``"as_operating"`` the operating gas pressure table."""
+    recomputes the whole cycle at the overspeed): ``"motored"`` no combustion (the
+    motored compression curve ``GasPressure.motored`` where the gas data allow it, and
+    zero gauge pressure; ``fe_crank.assess.overspeed``); ``"as_operating"`` the operating
+    gas pressure table."""
 
     speed: float  # rad/s, of the reference shaft
     overspeed: float | None = None  # rad/s: the whole cycle (inertia, centrifugal) at this speed

@@ -12,6 +12,12 @@ r = 50 mm, l = 200 mm (lambda = 0.25), m_p = 1.2 kg, rod 0.8 kg with c = 50 mm
 F = [1.4 * 1.25 + 0.6] * 0.05 * omega^2 = 0.1175 omega^2 N
     at 3500 rpm (omega = 366.519 rad/s, omega^2 = 134336.3):  15784.5 N
     at 4200 rpm (omega = 439.823 rad/s, omega^2 = 193444.3):  22729.7 N  (x 1.44)
+
+Motored gas (no combustion), closed form of the polytrope p V^n = const from BDC:
+p_TDC = p_0 eps^n = 0.1 MPa x 9^1.35 = 0.1 x exp(1.35 ln 9) = 0.1 x exp(2.966253) = 0.1 x 19.41902
+= 1.941902 MPa (eps = 9, p_0 = 0.1 MPa, n = 1.35 = the Wiebe input's default k);
+gas force at the firing TDC (p_TDC - p_cc) A, A = pi/4 0.08^2 = 5.02655e-3 m^2:
+(1.941902 - 0.101325) MPa x A = 9251.8 N, towards the axis.
 """
 
 from __future__ import annotations
@@ -74,11 +80,65 @@ def test_hand_values():
     assert _hand(4200) == pytest.approx(22729.7, abs=0.1)
 
 
+def _p_tdc():
+    return 0.1e6 * 9.0**1.35
+
+
+def test_motored_curve_closed_form():
+    """fe_crank.gas.motored_cycle against p = p_0 (V_BDC/V)^n: p_TDC = p_0 eps^n, p_BDC = p_0,
+    and at 90 deg the volume ratio from the exact slider-crank by hand."""
+    from fe_crank.gas import motored_cycle
+
+    assert _p_tdc() == pytest.approx(1.941902e6, rel=1e-6)
+    g = motored_cycle(bore=0.08, r=0.05, l=0.2, compression_ratio=9.0, intake_pressure=0.1e6, n_poly=1.35,
+                      strokes=4, n=1441)
+    deg = np.rad2deg(g.angle)
+    # tolerance 1e-12: closed form at the grid points; an exponent 1.3 instead of 1.35 is 10 % off
+    assert g.pressure[0] == pytest.approx(_p_tdc(), rel=1e-12)            # firing TDC
+    assert g.pressure[-1] == pytest.approx(_p_tdc(), rel=1e-12)           # same TDC, end of cycle
+    assert g.pressure[np.argmin(abs(deg - 180))] == pytest.approx(0.1e6, rel=1e-12)  # BDC
+    # 90 deg after TDC: s = r + l - (r cos 90 + sqrt(l^2 - r^2)) = 0.25 - 0.193649 = 0.056351 m;
+    # V_s = A 0.1, V_c = V_s/8; V_BDC/V = (9/8 0.1)/(0.1/8 + 0.056351) = 0.1125/0.068851 = 1.633963
+    i = int(np.argmin(abs(deg - 90)))
+    assert g.pressure[i] == pytest.approx(0.1e6 * 1.633963**1.35, rel=1e-5)
+    # gas exchange of the four-stroke at the intake pressure (no exhaust pressure given)
+    assert np.all(g.pressure[(deg > 180.5) & (deg < 539.5)] == 0.1e6)
+    two = motored_cycle(bore=0.08, r=0.05, l=0.2, compression_ratio=9.0, intake_pressure=0.1e6, strokes=2, n=721)
+    assert two.angle[-1] == pytest.approx(2 * np.pi) and two.pressure.max() == pytest.approx(_p_tdc(), rel=1e-12)
+
+
+def test_motored_overspeed_checks_the_compression_curve_and_zero_gas(tmp_path):
+    """Two overspeed cycles: the motored curve (firing TDC: inertia minus the compression
+    force 9251.9 N by hand) and zero gas (both TDCs: inertia only); the notes name both."""
+    from fe_crank.assess.overspeed import describe, overspeed_cycles
+
+    lc = _case(tmp_path)
+    dyn = analyse(lc.engine, lc.operating)
+    cycles = overspeed_cycles(lc, dyn)
+    assert len(cycles) == 2 and "p_0 (V_BDC/V)^n" in cycles[0].gas and "zero gauge" in cycles[1].gas
+    pin = cycles[0].dynamics.throws["1"].pin_force
+    deg = np.rad2deg(cycles[0].dynamics.theta)
+    area = math.pi / 4 * 0.08**2
+    assert (_p_tdc() - 101325.0) * area == pytest.approx(9251.8, abs=0.1)
+    i = int(np.argmin(np.abs(deg - 0.0)))
+    # tolerance 1e-9: exact at TDC; leaving the compression out is 9252 N = 41 % off
+    assert pin[i, 1] == pytest.approx(_hand(4200) - (_p_tdc() - 101325.0) * area, rel=1e-9)
+    # gas-exchange TDC: exhaust pressure 0.1013 MPa, (0.1013e6 - 101325) A = -0.1257 N
+    i = int(np.argmin(np.abs(deg - 360.0)))
+    assert pin[i, 1] == pytest.approx(_hand(4200) - (0.1013e6 - 101325.0) * area, rel=1e-9)
+    np.testing.assert_array_equal(overspeed_dynamics(lc, dyn).throws["1"].pin_force, pin)
+    note = describe(lc)
+    assert "eps = 9" in note and "n = 1.35" in note and "zero gauge" in note and "the worse of the two" in note
+
+
 def test_motored_overspeed_pin_force_at_both_tdcs_equals_hand_value(tmp_path):
+    """The zero-gas cycle of the motored condition: inertia only at both TDCs."""
+    from fe_crank.assess.overspeed import overspeed_cycles
+
     lc = _case(tmp_path)
     assert lc.operating.overspeed_gas == "motored"
     dyn = analyse(lc.engine, lc.operating)
-    os = overspeed_dynamics(lc, dyn)
+    os = overspeed_cycles(lc, dyn)[-1].dynamics
     pin = os.throws["1"].pin_force
     deg = np.rad2deg(os.theta)
     for tdc in (0.0, 360.0):
@@ -110,3 +170,61 @@ def test_bad_overspeed_gas_is_an_input_error(tmp_path):
     with pytest.raises(InputError) as e:
         _case(tmp_path, 'overspeed_gas = "full"')
     assert "operating.overspeed_gas" in str(e.value)
+
+
+TABLE_GAS = """
+[engine.gas]
+model = "table"
+angle_unit = "deg"
+pressure_unit = "MPa"
+points = [[0, 5.0], [360, 0.1], [720, 5.0]]
+{motored}
+"""
+
+
+def _table_case(tmp_path, motored=""):
+    text = CASE[:CASE.index("[engine.gas]")] + TABLE_GAS.format(motored=motored)
+    p = tmp_path / "t.toml"
+    p.write_text(textwrap.dedent(text.format(extra="")))
+    return load_loadcase(p)
+
+
+def test_table_gas_motored_curve_only_with_its_data(tmp_path):
+    """A p(phi) table gives no motored curve unless it states compression ratio and intake
+    pressure: then zero gas alone, and the note says why; with both keys the curve is the
+    closed form; one key alone is refused, naming the file and key."""
+    from fe_crank.assess.overspeed import describe, overspeed_cycles
+
+    lc = _table_case(tmp_path)
+    assert lc.engine.gas.motored is None
+    dyn = analyse(lc.engine, lc.operating)
+    assert len(overspeed_cycles(lc, dyn)) == 1
+    assert "no compression ratio and intake pressure" in describe(lc)
+    lc = _table_case(tmp_path, 'compression_ratio = 9.0\nintake_pressure = "0.1 MPa"')
+    assert lc.engine.gas.motored.pressure.max() == pytest.approx(_p_tdc(), rel=1e-12)
+    with pytest.raises(InputError) as e:
+        _table_case(tmp_path, "compression_ratio = 9.0")
+    assert "t.toml" in str(e.value) and "engine.gas" in str(e.value) and "intake_pressure" in str(e.value)
+
+
+def test_overspeed_takes_the_worse_of_several_cycles():
+    """``assess_throw`` with two overspeed cycles: one node, sigma_xx = 1 Pa per N of pin_y;
+    cycle A peaks at +100 N, cycle B at -300 N: von Mises 300 Pa, at B's angle."""
+    from fe_crank.assess.case import assess_throw
+    from fe_crank.assess.superpose import UnitStresses
+    from fe_crank.io.material import load_material
+
+    stress = np.zeros((3, 6, 1))
+    stress[1, 0, 0] = 1.0
+    unit = UnitStresses(stress=stress, points=np.zeros((3, 1)), groups={"crankpin_fillet_1": np.array([0])},
+                        cases=("pin_x", "pin_y", "torque"))
+    theta = np.deg2rad([0.0, 90.0, 180.0, 270.0])
+    a = np.column_stack([np.zeros(4), [100.0, 0.0, -50.0, 0.0]])
+    b = np.column_stack([np.zeros(4), [0.0, 0.0, -300.0, 10.0]])
+    kw = dict(omega=1.0, overspeed=1.0, material=load_material("42CrMo4"), crank_radius=0.05)
+    one = assess_throw("1", unit, theta, a, np.zeros(4), overspeed_loads=[(a, np.zeros(4))], **kw)
+    both = assess_throw("1", unit, theta, a, np.zeros(4), overspeed_loads=[(a, np.zeros(4)), (b, np.zeros(4))],
+                        **kw)
+    assert one.groups[0].max_von_mises_overspeed.value == pytest.approx(100.0, rel=1e-12)
+    ext = both.groups[0].max_von_mises_overspeed
+    assert ext.value == pytest.approx(300.0, rel=1e-12) and np.rad2deg(ext.angle) == pytest.approx(180.0)

@@ -63,7 +63,7 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
                  fe_scf: dict[str, dict[str, float]] | None = None, scf=None,
                  counterweights: tuple[CounterweightData, ...] = (),
                  torque_rear: np.ndarray | None = None,
-                 overspeed_loads: tuple[np.ndarray, np.ndarray] | None = None) -> ThrowAssessment:
+                 overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
     ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
@@ -77,7 +77,9 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
     overspeed (``assess_case`` runs the dynamics at omega_os with the load case's
     ``overspeed_gas``).  Without it the operating pin force and torque are scaled by
     (omega_os/omega)^2 whole: exact for the inertia part, an over-estimate of the gas
-    part (which does not grow with speed), so on the safe side."""
+    part (which does not grow with speed), so on the safe side.  A list of such pairs
+    (several gas states of the overspeed condition, ``assess.overspeed.overspeed_cycles``)
+    is checked as one longer history: the overspeed result is the worst over all of them."""
     coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense,
                                torque_mz=unit.torque_mz)
     coeffs_os = None
@@ -85,12 +87,15 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
         if overspeed_loads is None:
             scale = (overspeed / omega) ** 2 if omega > 0 else 1.0
             overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float))
-        coeffs_os = load_coefficients(overspeed_loads[0], overspeed_loads[1], overspeed, cases=unit.cases,
-                                      sense=sense, torque_mz=unit.torque_mz)
+        cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
+        coeffs_os = np.vstack([load_coefficients(p, t, overspeed, cases=unit.cases, sense=sense,
+                                                 torque_mz=unit.torque_mz) for p, t in cycles])
+        theta_os = np.tile(np.asarray(theta), len(cycles))  # the angle of the worst row, whichever cycle
     dp = m53_geometry.pin_diameter if m53_geometry is not None else None
     dj = m53_geometry.journal_diameter if m53_geometry is not None else None
     groups = tuple(
-        assess_group(unit, g, coeffs, np.asarray(theta), material, crank_radius=crank_radius, overspeed=overspeed,
+        assess_group(unit, g, coeffs, np.asarray(theta) if coeffs_os is None else theta_os, material,
+                     crank_radius=crank_radius, overspeed=overspeed,
                      overspeed_coefficients=coeffs_os, diameter=section_diameter(g, dp, dj))
         for g in sorted(unit.groups) if len(unit.groups[g])
     )

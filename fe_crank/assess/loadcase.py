@@ -7,7 +7,7 @@ from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
 from fe_crank.assess.case import Assessment, assess_throw, evaluate_criteria
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
 from fe_crank.assess.overspeed import describe as describe_overspeed
-from fe_crank.assess.overspeed import overspeed_dynamics
+from fe_crank.assess.overspeed import overspeed_cycles
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.scf import scf_provider
 from fe_crank.errors import InputError
@@ -49,8 +49,8 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     if lc.engine.strokes == 2:
         notes.append("UR M53 route: two-stroke engine, K_e = 0.8 on the web's nominal bending and compressive "
                      "stresses (UR M53 2.1.2.1); not applied to the FE route nor to the oil-bore outlet")
-    dyn_os = overspeed_dynamics(lc, dynamics)
-    if dyn_os is not None:
+    cycles_os = overspeed_cycles(lc, dynamics)
+    if cycles_os:
         notes.insert(1, describe_overspeed(lc))
     throws = []
     scf_cache: dict = {}  # SCF mode (UR M53 App. III), solved only for a throw outside the empirical range
@@ -76,8 +76,8 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
                 overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,
                 m53_additional=criteria.m53_additional_bending, m53_ke=ke, counterweights=tuple(cws),
                 torque_rear=tl.torque_rear,
-                overspeed_loads=None if dyn_os is None else (dyn_os.throws[tname].pin_force,
-                                                             dyn_os.throws[tname].torque_front),
+                overspeed_loads=[(c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front)
+                                 for c in cycles_os] or None,
                 scf=None if m53g is None else scf_provider(
                     scf_cache, key, throw_meshes.get(key, units.mesh), lc.geometry, material, m53g,
                     solver=getattr(lc.fe, "solver", None) or "auto"),

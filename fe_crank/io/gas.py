@@ -5,6 +5,12 @@ beside the input file) and ``"wiebe"`` (the parametric cycle of ``fe_crank.gas``
 Units are explicit: the table states its angle and pressure units
 (``angle_unit = "deg"``, ``pressure_unit = "MPa"``); a CSV states them in its
 header (``angle [deg], pressure [MPa]``).  Pressures are absolute.
+
+The motored curve (no combustion, the overspeed check's ``overspeed_gas = "motored"``,
+``fe_crank.gas.motored_cycle``) needs the compression ratio and the intake/boost
+pressure: the ``wiebe`` model has them (its ``k`` is the exponent); a ``table`` or
+``csv`` may state them with the optional keys ``compression_ratio`` and
+``intake_pressure`` (both or neither) and ``polytropic_exponent`` (default 1.35).
 """
 
 from __future__ import annotations
@@ -21,7 +27,23 @@ from fe_crank.io.base import Strict, read_text, resolve_reference, validate, val
 from fe_crank.io.units import Angle, Energy, Pressure, parse_unit, ureg
 
 
-class GasTableInput(Strict):
+class MotoredKeys(Strict):
+    """Optional data for the motored curve of a table or CSV gas model."""
+
+    compression_ratio: float | None = Field(default=None, gt=1.0)
+    intake_pressure: Pressure | None = None
+    polytropic_exponent: float = Field(default=1.35, gt=1.0, lt=2.0)
+
+    @model_validator(mode="after")
+    def _pair(self):
+        if (self.compression_ratio is None) != (self.intake_pressure is None):
+            raise ValueError("compression_ratio and intake_pressure go together (the motored compression curve)")
+        if self.intake_pressure is not None and not self.intake_pressure > 0:
+            raise ValueError("intake_pressure must be a positive absolute pressure")
+        return self
+
+
+class GasTableInput(MotoredKeys):
     model: Literal["table"] = "table"
     angle_unit: str = Field(description="unit of the first column, e.g. 'deg'")
     pressure_unit: str = Field(description="unit of the second column, e.g. 'MPa' (absolute)")
@@ -58,7 +80,7 @@ class GasTableInput(Strict):
         return np.asarray(ang, float), np.asarray(prs, float)
 
 
-class GasCsvInput(Strict):
+class GasCsvInput(MotoredKeys):
     """``model = "csv"``: a CSV file beside the input file, header ``angle [deg], pressure [MPa]``."""
 
     model: Literal["csv"]
@@ -137,6 +159,19 @@ def read_gas_csv(path, *, crankcase_pressure: float = 101325.0, source: str = ""
     return model.GasPressure(ang, prs, crankcase_pressure, table.source)
 
 
+def _with_motored(gas: model.GasPressure, raw: MotoredKeys, geom: dict) -> model.GasPressure:
+    """``gas`` with its motored curve when the input states compression ratio and intake pressure."""
+    if raw.compression_ratio is None:
+        return gas
+    from dataclasses import replace
+
+    from fe_crank.gas import motored_cycle
+
+    m = motored_cycle(compression_ratio=raw.compression_ratio, intake_pressure=raw.intake_pressure,
+                      n_poly=raw.polytropic_exponent, crankcase_pressure=gas.crankcase_pressure, **geom)
+    return replace(gas, motored=m)
+
+
 def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: float, rod_length: float) -> model.GasPressure:
     """Validate a ``[gas]`` table (``model`` = table | csv | wiebe) and return the p(phi) table.
 
@@ -144,6 +179,7 @@ def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: 
     if not isinstance(data, dict):
         raise InputError("must be a table", file=str(file), key=key)
     kind = data.get("model", "table")
+    geom = {"bore": bore, "r": crank_radius, "l": rod_length, "strokes": strokes}
     if kind == "table":
         raw = validate(GasTableInput, data, file, key)
         ang, prs = raw.arrays_si()
@@ -153,7 +189,7 @@ def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: 
                 f"angles must lie within one cycle, 0 .. {np.degrees(cycle):.0f} deg from TDC firing",
                 file=str(file), key=f"{key}.points",
             )
-        return model.GasPressure(ang, prs, raw.crankcase_pressure, raw.source)
+        return _with_motored(model.GasPressure(ang, prs, raw.crankcase_pressure, raw.source), raw, geom)
     if kind == "csv":
         raw = validate(GasCsvInput, data, file, key)
         csv = resolve_reference(raw.file, file, key=f"{key}.file")
@@ -161,14 +197,15 @@ def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: 
             state = "is a folder" if csv.is_dir() else "not found"
             raise InputError(f"the gas pressure CSV {raw.file!r} {state}", file=str(file), key=f"{key}.file")
         try:
-            return read_gas_csv(csv, crankcase_pressure=raw.crankcase_pressure, source=raw.source)
+            return _with_motored(read_gas_csv(csv, crankcase_pressure=raw.crankcase_pressure, source=raw.source),
+                                 raw, geom)
         except InputError as exc:
             if exc.key is None:  # the file as a whole: name the key that referenced it
                 raise InputError(f"the gas pressure CSV {raw.file!r}: {exc.reason}", file=str(file),
                                  key=f"{key}.file") from None
             raise
     if kind == "wiebe":
-        from fe_crank.gas import wiebe_cycle
+        from fe_crank.gas import motored_cycle, wiebe_cycle
 
         raw = validate(GasWiebeInput, data, file, key)
         g = wiebe_cycle(
@@ -178,5 +215,8 @@ def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: 
             combustion_duration=raw.combustion_duration, k=raw.k, wiebe_a=raw.wiebe_a, wiebe_m=raw.wiebe_m,
             strokes=strokes, crankcase_pressure=raw.crankcase_pressure,
         )
-        return model.GasPressure(g.angle, g.pressure, g.crankcase_pressure, raw.source or g.source)
+        motored = motored_cycle(bore=bore, r=crank_radius, l=rod_length, compression_ratio=raw.compression_ratio,
+                                intake_pressure=raw.intake_pressure, exhaust_pressure=raw.exhaust_pressure,
+                                n_poly=raw.k, strokes=strokes, crankcase_pressure=raw.crankcase_pressure)
+        return model.GasPressure(g.angle, g.pressure, g.crankcase_pressure, raw.source or g.source, motored)
     raise InputError(f"unknown gas model {kind!r}; use 'table', 'csv' or 'wiebe'", file=str(file), key=f"{key}.model")
