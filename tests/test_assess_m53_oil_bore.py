@@ -1,5 +1,11 @@
-"""UR M53 Rev.1 oil-bore outlet (fe_crank.assess.m53_oil_bore) against a hand calculation
-with the rule's formulas (3.4, 2.1.2.2, 2.2.3, 5.2, 6, 7), arithmetic shown.
+"""UR M53 oil-bore outlet (fe_crank.assess.m53_oil_bore) against a hand calculation
+with the rule's formulas (3.1, 3.4, 2.1.2.2, 2.2.3, 5.2, 6, 7), arithmetic shown.  The
+coefficients are those of the rule text as reproduced clause by clause in the Korean
+Register's Rules for the Classification of Steel Ships, Pt 5, Annex 5-3 (2025):
+gamma_B = 3 - 5.88 d_O + 34.6 d_O^2, gamma_T = 4 - 6 d_O + 30 d_O^2, 0 <= d_O = D_O/D <= 0.2,
+sigma_V = sigma_BO/3 [1 + 2 sqrt(1 + 9/4 (sigma_TO/sigma_BO)^2)].  No published worked
+example of the outlet was found; a wrong coefficient moves gamma_B or gamma_T by more
+than the 1e-12 tolerance of the hand values.
 
 Geometry: D = 50 mm, no pin bore, D_O = 6 mm (d_O = 0.12), bore at a = 30 deg from the
 radial direction; bearing centre to web centre 30 mm, W = 20 mm, L_pin = 40 mm, so the

@@ -67,6 +67,40 @@ def test_factors_against_hand_computed_nominal_stresses():
     assert fe["beta_B"] * s1["sigma_N3P"] + s1["beta_Q"] * s1["sigma_Q3P"] == pytest.approx(28000.0, rel=1e-12)
 
 
+def test_the_verdict_does_not_depend_on_the_beta_b_beta_q_split():
+    """UR M53 2.1.3 with SCF-mode factors: sigma_BG = beta_B sigma_BFN + beta_Q sigma_QFN.
+    sigma_BFN and sigma_QFN come from the same radial force of the statically determinate
+    throw (2.1.1), M = (F_R/2) a and Q = F_R/2, so with the route's lever a equal to the
+    SCF mode's L (both: main-bearing centre plane to web centre, here 18 mm)
+    sigma_BG = (F_R/2)(beta_B a / W_eqw + beta_Q / F) = beta_BQ sigma_BFN, method 2 of
+    App. III 3.3.3, whatever the split: shifting beta_B by +d and beta_Q by -d F a / W_eqw
+    = -d 6 a / W leaves the fillet stress unchanged.  Numbers of the hand test above
+    (beta_B 2.688, beta_Q 2.688, beta_BQ 2.98667) with F_R = 20 kN cos(theta):
+    sigma_BFN = 10 kN x 0.018 / 9.6e-7 = 187.5 MPa, sigma_BG = 2.98667 x 187.5 = 560.0 MPa."""
+    st = ScfStresses(
+        bending={g: _peak(g, v) for g, v in zip(("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1",
+                                                  "journal_fillet_2"), (2.5e6, 2.4e6, 2.7e6, 2.8e6))},
+        torsion={g: _peak(g, v) for g, v in zip(("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1",
+                                                  "journal_fillet_2"), (4.0e5, 3.9e5, 3.0e5, 2.0e5))},
+        three_point={"journal_fillet_1": _peak("journal_fillet_1", 28000.0),
+                     "journal_fillet_2": _peak("journal_fillet_2", 27000.0)},
+        reaction={"end_1": 0.5, "end_2": 0.5}, lever={"end_1": 0.018, "end_2": 0.018},
+        equilibrium_error={"bending": 0.0}, n_dof=0)
+    fe, _, _ = factors(st, SMALL)
+    theta = np.deg2rad(np.arange(720.0))
+    nom = m53.nominal_stresses(SMALL, 2e4 * np.cos(theta), np.zeros(720))
+    assert nom.bending == pytest.approx(187.5e6, rel=1e-12)
+    split = {"bending": fe["beta_B"], "shear": fe["beta_Q"], "torsion": fe["beta_T"]}
+    d = 0.5  # another split of the same sigma_3P: beta_B + d, beta_Q - d 6 a / W
+    other = {"bending": fe["beta_B"] + d, "shear": fe["beta_Q"] - d * 6 * 0.018 / 0.012, "torsion": fe["beta_T"]}
+    # (SMALL is inside the empirical range, where assess_fillet takes the empirical SCFs:
+    # the combination is formed here as 2.1.3 and assess_fillet form it)
+    bg = [f["bending"] * nom.bending + f["shear"] * nom.shear for f in (split, other)]
+    assert bg[0] == pytest.approx(fe["beta_BQ"] * nom.bending, rel=1e-12)
+    assert bg[0] == pytest.approx(560.0e6, rel=1e-5)
+    assert bg[1] == pytest.approx(bg[0], rel=1e-12)
+
+
 @pytest.fixture(scope="module")
 def big_fillet(tmp_path_factory):
     """geometry_small with 3.8 mm fillets: r/D = 3.8/28 = 0.1357 > 0.13, outside UR M53 3.1."""
