@@ -1,7 +1,7 @@
 """beta_Q of the SCF mode (UR M53 App. III 3.3.3, method 1): how well is it defined?
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/beta_q_study.py tests/data/geometry_small.toml \
-        --journal 12 24 --fillet-divisions 2
+        --journal 12 24 --preset coarse        # or --fillet-divisions 2 (r/2, faster)
 
 The same throw solved with two journal lengths, i.e. two levers L from the main-bearing
 centre plane (the model's end face) to the web centre.  Linear elasticity and Saint-Venant:
@@ -28,7 +28,7 @@ from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.assess.scf import compute_scf, web_centres_of
 from fe_crank.io.geometry import load_geometry
 from fe_crank.io.material import load_material
-from fe_crank.mesh import MeshOptions, mesh_throw
+from fe_crank.mesh import PRESETS, MeshOptions, mesh_throw
 
 
 def main() -> None:
@@ -37,12 +37,14 @@ def main() -> None:
     ap.add_argument("--journal", nargs="+", type=float, default=[12.0, 24.0], help="journal lengths, mm")
     ap.add_argument("--fillet-divisions", type=float, default=2.0)
     ap.add_argument("--coarse-divisions", type=float, default=1.5)
+    ap.add_argument("--preset", default=None, help="a mesh preset (e.g. coarse) instead of the divisions")
     ap.add_argument("--material", default="42CrMo4")
     ap.add_argument("--cache", default=".cache/meshes")
     a = ap.parse_args()
     material = load_material(a.material)
     g0 = load_geometry(a.geometry)
-    opts = MeshOptions(coarse_divisions=a.coarse_divisions, fillet_divisions=a.fillet_divisions, grading=2.5)
+    opts = (PRESETS[a.preset] if a.preset else
+            MeshOptions(coarse_divisions=a.coarse_divisions, fillet_divisions=a.fillet_divisions, grading=2.5))
     rows = []
     for jl in a.journal:
         g = dataclasses.replace(g0, journal_length=jl * 1e-3)

@@ -59,6 +59,9 @@ def main() -> None:
         print(f"  beta_BQ (method 2) {r.fe['beta_BQ']:.3f}; 3-point per side: "
               + "; ".join(f"{s['group']}: Q {s['Q_3P']:.4f} N, L {s['L'] * 1e3:.2f} mm, beta_Q {s['beta_Q']:.3f}"
                           for s in r.details["three_point"]))
+        share = side["beta_Q"] * side["sigma_Q3P"] / side["sigma_3P"]
+        print(f"  shear part beta_Q sigma_Q3P of sigma_3P: {100 * share:.1f} %, so a relative change of sigma_3P "
+              f"moves method 1's beta_Q {1 / share:.1f} times as much (benchmarks/beta_q_study.py)")
         print(f"  equilibrium {max(r.equilibrium_error.values()):.1e}; {r.summary()}")
 
 

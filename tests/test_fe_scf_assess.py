@@ -200,4 +200,16 @@ def test_scf_mode_against_the_ur_m53_empirical_factors(tmp_path):
     emp_bq = r.empirical["beta_B"] + r.empirical["beta_Q"] * side["sigma_Q3P"] / side["sigma_N3P"]
     assert emp_bq == pytest.approx(1.647 + 2.677 * 12 / (6 * 18), rel=1e-3)
     assert r.fe["beta_BQ"] == pytest.approx(emp_bq, rel=0.15)
-    assert 0.0 < r.fe["beta_Q"] < r.empirical["beta_Q"]
+    # beta_Q against the empirical value: method 1 gives beta_Q = (beta_BQ - beta_B) / x,
+    # x = sigma_Q3P / sigma_N3P = W/(6 L) = 12/108 = 0.1111, so the scatter the fits allow on
+    # the two quantities they predict (beta_B 10 %, beta_BQ 15 %, above) allows on beta_Q
+    # (0.15 x 1.944 + 0.10 x 1.647)/0.1111 = 4.1 either side of 2.677: beta_Q cannot be
+    # checked tighter than that (docs/assessment.md, the beta_Q study).  It must be positive:
+    # the shear adds to the bending at the peak (a negative value would be a sign or
+    # reaction error: the applied force F = 2 Q taken for Q gives (1.70 - 2 x 1.57)/(2 x 0.111) = -6.5).
+    x = side["sigma_Q3P"] / side["sigma_N3P"]
+    assert x == pytest.approx(12 / 108, rel=1e-3)
+    assert side["beta_Q"] == pytest.approx((side["beta_BQ"] - r.fe["beta_B"]) / x, rel=1e-9)
+    band = (0.15 * emp_bq + 0.10 * r.empirical["beta_B"]) / x
+    assert band == pytest.approx(4.1, abs=0.05)
+    assert 0.0 < r.fe["beta_Q"] and abs(r.fe["beta_Q"] - r.empirical["beta_Q"]) < band
