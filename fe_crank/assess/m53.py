@@ -9,7 +9,12 @@ factor Q (section 7, Q >= 1.15).  The empirical formulas are unchanged in Rev.2
 what ``fe_crank`` uses outside the validity range.
 
 The formulas are in the rule's units: lengths in mm, stresses in N/mm^2 (MPa).  The
-public functions here take and return SI (m, Pa) and convert inside.
+public functions here take and return SI (m, Pa) and convert inside.  Checked against
+the rule text as the Korean Register reproduces it clause by clause (Rules for the
+Classification of Steel Ships, Pt 5, Annex 5-3, 2025), which also gives K_e (2.1.2.1,
+``ke_factor``).  One difference there is unresolved: that text prints alpha_T's
+f(b) = 7.8955 - 10.654 b + 5.3482 b^2 - 0.85 b^3, this module keeps -0.857 b^3 (f(b) 2 %
+lower at b = 1.5, 6 % at b = 2.2).
 
 Related dimensions (section 3.1, all divided by the crankpin diameter D):
 r = R_H/D (pin fillet) or R_G/D (journal fillet), s = S/D (S: pin/journal overlap,
