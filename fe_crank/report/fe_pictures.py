@@ -19,7 +19,7 @@ from fe_crank.fe.vtu import write_vtu
 from fe_crank.report import render as rd
 from fe_crank.report.fields import shared_models, throw_fields
 from fe_crank.report.html import Page, esc
-from fe_crank.report.overspeed_state import field_peak
+from fe_crank.report.overspeed_state import field_peak, throw_names
 from fe_crank.report.superposed import assessed_dynamics
 
 #: the overspeed gas assumption in words (``[operating] overspeed_gas``, fe_crank.assess.overspeed)
@@ -39,19 +39,24 @@ def fe_section(folder: Path, so: dict, options) -> list[str]:
         return ["<p>Pictures and fields switched off for this run (--no-render --no-vtu).</p>"]
     out = []
     for keys, units in shared_models(units_by_key):
-        if len(keys) > 1:  # identical throws share one FE model: drawn once, at the worst of them
-            out.append(f"<p>Throws {esc(', '.join(keys))} share one FE model; it is drawn at the hot spot "
-                       "of the most critical of them.</p>")
         tf = throw_fields(units, a, dyn, lc, keys)
         if tf is None:
             continue
+        names = throw_names(keys, dyn)
+        if len(names) > 1:  # identical throws share one FE model: drawn once, where it is most critical
+            os_txt = "" if tf.overspeed is None else f", the overspeed state of throw {tf.overspeed.throw}"
+            out.append(f"<p>One FE model stands for throws {esc(', '.join(names))}, each assessed with its own "
+                       f"loads; it is drawn where it is most critical: the hot spot of throw {esc(tf.hotspot.throw)}"
+                       f"{esc(os_txt)}.</p>")
         tag = f"throw{_safe(tf.hotspot.throw)}"
         angle_txt = "" if tf.angle_deg is None else f" at crank angle {tf.angle_deg:.0f} deg"
         if write_vtu_files:
             write_vtu(Path(folder) / f"{tag}.vtu", tf.mesh)
             out.append(f'<p>Fields for ParaView: <code>{tag}.vtu</code> (quadratic tetrahedra; displacement, stress '
-                       f"tensor, von Mises and principal stresses{angle_txt} and, with the suffix "
-                       "<code>_overspeed</code>, in the governing overspeed state; fatigue amplitude, mean "
+                       f"tensor, von Mises and principal stresses of throw {esc(tf.hotspot.throw)}{angle_txt} and, "
+                       "with the suffix <code>_overspeed</code>, in the governing overspeed state"
+                       + ("" if tf.overspeed is None else f" (throw {esc(tf.overspeed.throw)})")
+                       + "; fatigue amplitude, mean "
                        "and safety over the cycle; subdomain, boundary and assessed-group ids; units in the field "
                        "names).</p>")
         if render:
@@ -59,7 +64,7 @@ def fe_section(folder: Path, so: dict, options) -> list[str]:
             grid = rd.grid_of(tf.mesh, _display(tf.mesh.point_data))
             out += _hotspot_figures(Path(folder), tag, tf, grid, size, angle_txt)
             if tf.overspeed is not None:
-                out += _overspeed_figure(Path(folder), tag, tf, grid, size)
+                out += _overspeed_figure(Path(folder), f"throw{_safe(tf.overspeed.throw)}", tf, grid, size)
     return out
 
 
@@ -81,7 +86,8 @@ def _hotspot_figures(folder: Path, tag: str, tf, grid, size: float, angle_txt: s
     vm_hot = float(pd["von_mises_Pa"][crit.node]) / 1e6
     label = f"hot spot ({crit.what}) {vm_hot:.4g} MPa"
     v = rd.render_field(folder / f"{tag}_von_mises.png", grid, "von_mises_MPa", title="von Mises [MPa]",
-                        displacement="displacement_m", scale=scale, hotspot=hp, hotspot_label=label,
+                        displacement="displacement_m", scale=scale,
+                        hotspot=_drawn(tf, crit.node, "displacement_m", scale), hotspot_label=label,
                         text=f"throw {throw}{angle_txt}; deformation x {scale:g}")
     rd.render_field(folder / f"{tag}_hotspot.png", grid, "von_mises_MPa", title="von Mises [MPa]",
                     hotspot=hp, hotspot_label=label, focus=(hp, max(0.12 * size, 1e-3)),
@@ -106,12 +112,13 @@ def _overspeed_figure(folder: Path, tag: str, tf, grid, size: float) -> list[str
     scale = rd.exaggeration_factor(umax, size)
     vm_hot = float(vm[os_.node]) / 1e6
     safety = "" if os_.safety is None else f", overspeed safety {os_.safety:.3g}"
-    marks, cw_txt = (), ""
+    marks, cw_txt, key_txt = (), "", ""
     peaks = [(*field_peak(vm, g), g) for g in os_.counterweights]
     if peaks:
         value, node, cw = max(peaks, key=lambda p: p[0])
         point = np.asarray(tf.mesh.points[node], float)
-        marks = ((point, f"max of {cw.group} {value / 1e6:.4g} MPa"),)
+        marks = ((_drawn(tf, node, "displacement_overspeed_m", scale), "counterweight max"),)
+        key_txt = f"; black: max of {cw.group} {value / 1e6:.4g} MPa"
         ext = cw.max_von_mises_overspeed
         cw_txt = (f"; black: the largest von Mises of {cw.group} in this state, {value / 1e6:.4g} MPa at "
                   f"({', '.join(f'{c * 1e3:.1f}' for c in point)}) mm (its maximum over the overspeed cycle "
@@ -120,9 +127,10 @@ def _overspeed_figure(folder: Path, tag: str, tf, grid, size: float) -> list[str
     when = f"{os_.rpm:.0f} rpm, crank angle {os_.angle_deg:.0f} deg"
     v = rd.render_field(folder / f"{tag}_overspeed.png", grid, "von_mises_overspeed_MPa", title="von Mises [MPa]",
                         displacement="displacement_overspeed_m", scale=scale,
-                        hotspot=np.asarray(os_.point), hotspot_label=f"overspeed hot spot {vm_hot:.4g} MPa",
-                        marks=marks,
-                        text=f"throw {os_.throw} at overspeed {when} ({os_.gas}); deformation x {scale:g}")
+                        hotspot=_drawn(tf, os_.node, "displacement_overspeed_m", scale),
+                        hotspot_label="overspeed hot spot", marks=marks,
+                        text=f"throw {os_.throw} at overspeed {when} ({os_.gas}); deformation x {scale:g}\n"
+                             f"magenta: overspeed hot spot, {os_.group} {vm_hot:.4g} MPa{key_txt}")
     return [Page.figure(
         f"{tag}_overspeed.png",
         f"Throw {os_.throw} at overspeed {when}: the governing state of the overspeed check (the cycle recomputed "
@@ -131,6 +139,12 @@ def _overspeed_figure(folder: Path, tag: str, tf, grid, size: float) -> list[str
         f"cycle; peak on the part {v.peak:.4g} MPa; magenta: the overspeed hot spot, {os_.group}, "
         f"{vm_hot:.4g} MPa{safety}{cw_txt}; deformation exaggerated x {scale:g} (largest displacement "
         f"{umax * 1e6:.1f} um)")]
+
+
+def _drawn(tf, node: int, displacement: str, scale: float) -> np.ndarray:
+    """Where a node is drawn on a deformed picture: x + scale u (markers sit on the surface)."""
+    pd = tf.mesh.point_data
+    return np.asarray(tf.mesh.points[node], float) + scale * np.asarray(pd[displacement][node], float)
 
 
 def _safe(name: str) -> str:

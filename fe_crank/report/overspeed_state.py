@@ -89,7 +89,8 @@ def overspeed_state(units, assessment, dyn, lc, keys, dyn_os=None) -> OverspeedS
     theta = np.asarray(dyn_os.theta)
     index = int(np.argmin(np.abs(theta - ext.angle))) if ext.angle is not None else 0
     u = field_at_angle(units, dyn_os, lc, t.name, index)
-    return OverspeedState(t.name, g.group, float(ext.value), g.overspeed_safety, int(ext.node), tuple(float(c) for c in ext.point),
+    return OverspeedState(t.name, g.group, float(ext.value), g.overspeed_safety, int(ext.node),
+                          tuple(float(c) for c in ext.point),
                           index, float(np.degrees(theta[index])), float(dyn_os.speed),
                           getattr(op, "overspeed_gas", "motored"), np.asarray(u),
                           tuple(g for g in t.groups if g.group in COUNTERWEIGHTS))

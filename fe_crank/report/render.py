@@ -152,8 +152,8 @@ def render_field(
                            smooth_shading=True, ambient=0.3, show_scalar_bar=False)
         if show_bar:
             p.subplot(0, 1)
-            p.add_scalar_bar(title=title.replace(" [", "\n["), mapper=actor.mapper, color="black", vertical=True, fmt=fmt,
-                             n_labels=n_labels, **BAR_PLACE, title_font_size=16, label_font_size=14)
+            p.add_scalar_bar(title=title.replace(" [", "\n["), mapper=actor.mapper, color="black", vertical=True,
+                             fmt=fmt, n_labels=n_labels, **BAR_PLACE, title_font_size=16, label_font_size=14)
             p.subplot(0, 0)
         rad = (0.04 * focus[1]) if focus else 0.015 * surf.length
         spots = ([(hotspot, hotspot_label, "magenta")] if hotspot is not None else []) \
@@ -188,6 +188,7 @@ def render_field(
         else:
             _scale_bar(p, bounds)
             p.reset_camera()
+            p.camera.zoom(0.85)  # margin for the ruler under the part (reset_camera fits the 3D props only)
         p.screenshot(str(path))
         boxes = _boxes(p, window_size)
     finally:
@@ -236,17 +237,25 @@ def _boxes(p, window_size) -> tuple:
 
 
 def _scale_bar(p, bounds: np.ndarray) -> None:
-    """A ruler of round length along x below the part (lowest y and z; lengths in mm)."""
+    """A ruler of round length (``nice_length``, in mm) under the part as the camera sees
+    it: along the screen's horizontal, centred below the projection of the bounding box,
+    so it lies flat in the picture whatever the view direction."""
     size = float(np.linalg.norm(bounds[:, 1] - bounds[:, 0]))
     if not size > 0:
         return
     length = nice_length(size)
-    y = bounds[1, 0] - 0.06 * size
-    z = bounds[2, 0] - 0.06 * size
-    a = [bounds[0, 0], y, z]
-    b = [bounds[0, 0] + length, y, z]
-    p.add_ruler(a, b, title=f"{length * 1e3:g} mm", number_labels=2, show_labels=False, font_size_factor=0.8,
-                label_color="black", tick_color="black")
+    d = np.asarray(p.camera.position, float) - np.asarray(p.camera.focal_point, float)
+    d /= np.linalg.norm(d)
+    up = np.asarray(p.camera.up, float)
+    up = up - (up @ d) * d
+    up /= np.linalg.norm(up)
+    right = np.cross(up, d)  # the camera looks along -d
+    corners = np.array([[x, y, z] for x in bounds[0] for y in bounds[1] for z in bounds[2]])
+    centre = corners.mean(axis=0)
+    low = float(np.min((corners - centre) @ up)) - 0.03 * size
+    a = centre + low * up - 0.5 * length * right
+    p.add_ruler(list(a), list(a + length * right), title=f"{length * 1e3:g} mm", number_labels=2, show_labels=False,
+                font_size_factor=0.8, label_color="black", tick_color="black")
 
 
 def image_statistics(path: str | Path) -> dict[str, float]:
