@@ -172,7 +172,7 @@ def render_field(
             p.view_yz()
         else:  # isometric, from the octant facing the marked points
             pts = [pt for pt, _, _ in spots]
-            p.view_vector(iso_direction(np.asarray(surf.center), pts), viewup=(0.0, 0.0, 1.0))
+            p.view_vector(iso_direction(np.asarray(surf.center), pts), viewup=(0.0, 1.0, 0.0))  # y up: crankpin up
         bounds = np.asarray(surf.bounds).reshape(3, 2)
         if focus is not None:
             centre, radius = np.asarray(focus[0], float), float(focus[1])
@@ -201,7 +201,7 @@ def iso_direction(centre: np.ndarray, points) -> np.ndarray:
     faces the marked ``points`` best: of the eight octants, the one with the largest sum
     of cosines to the unit vectors from the part's ``centre`` to the points, the first
     point (the hot spot) weighted twice; ties and no points give (1, 1, 1) / sqrt(3),
-    pyvista's default isometric view."""
+    pyvista's default isometric direction.  Drawn with y (the crankpin side) up."""
     octants = [np.array([sx, sy, sz], float) / math.sqrt(3.0)
                for sx in (1, -1) for sy in (1, -1) for sz in (1, -1)]
     units = []
