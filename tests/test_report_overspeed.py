@@ -147,9 +147,13 @@ def test_overspeed_picture_marks_the_table_peak_and_the_counterweight_maximum(ca
     assert "motored: no combustion" in cap and "rod and piston inertia" in cap
     assert re.search(r"deformation exaggerated x [0-9.e+]+", cap)
     # the hot-spot marker's value is the table's peak (4 significant digits printed)
-    hot = re.search(r"magenta: the overspeed hot spot, (\w+), ([0-9.e+]+) MPa", cap)
+    hot = re.search(r"magenta: the overspeed hot spot, (\w+) at \(([-0-9., ]+)\) mm, ([0-9.e+]+) MPa", cap)
+    assert hot, cap
     assert hot.group(1) == gov.group
-    assert float(hot.group(2)) == pytest.approx(gov.max_von_mises_overspeed.value / 1e6, rel=5e-4)
+    assert float(hot.group(3)) == pytest.approx(gov.max_von_mises_overspeed.value / 1e6, rel=5e-4)
+    k = int(np.argmax(hist[i]))  # the group's node of that maximum, from the independent path
+    point = np.array([float(v) for v in hot.group(2).split(",")]) / 1e3
+    np.testing.assert_allclose(point, units.points[:, nodes[k]], atol=0.06e-3)  # printed to 0.1 mm
     # the counterweight marker: the largest von Mises of the counterweight groups in this
     # state, found here from the unit stresses at the counterweight nodes at angle i
     cws = [g for g in groups.values() if g.group.startswith("counterweight")]

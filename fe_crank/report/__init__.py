@@ -16,7 +16,6 @@ from pathlib import Path
 from fe_crank.fe import convergence
 from fe_crank.files import write_atomic
 from fe_crank.results import CaseResult
-from fe_crank.report import sections
 from fe_crank.report.html import Page, criteria_table, esc, header_html, table, timings_table
 
 
@@ -108,6 +107,8 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
                 rows += material_rows(obj)
             if rows:
                 inputs.append(f"<h3>{esc(title)}</h3>" + table(["key", "value"], rows))
+    from fe_crank.report import sections  # the stage sections import every stage: loaded when a report is written
+
     for heading, builder in sections.BUILDERS:
         parts = builder(folder, stage_out, options)
         if parts:

@@ -136,8 +136,8 @@ def _overspeed_figure(folder: Path, tag: str, tf, grid, size: float) -> list[str
         f"Throw {os_.throw} at overspeed {when}: the governing state of the overspeed check (the cycle recomputed "
         f"at the overspeed with rod and piston inertia and the crank's own body force; "
         f"{GAS_WORDS.get(os_.gas, os_.gas)}), the crank angle of the largest von Mises of {os_.group} over that "
-        f"cycle; peak on the part {v.peak:.4g} MPa; magenta: the overspeed hot spot, {os_.group}, "
-        f"{vm_hot:.4g} MPa{safety}{cw_txt}; deformation exaggerated x {scale:g} (largest displacement "
+        f"cycle; peak on the part {v.peak:.4g} MPa; magenta: the overspeed hot spot, {os_.group} at "
+        f"({', '.join(f'{c * 1e3:.1f}' for c in os_.point)}) mm, {vm_hot:.4g} MPa{safety}{cw_txt}; deformation exaggerated x {scale:g} (largest displacement "
         f"{umax * 1e6:.1f} um)")]
 
 

@@ -33,6 +33,13 @@ def _num(x, fmt="{:.3g}") -> str:
     return "-" if x is None or not np.isfinite(x) else fmt.format(x)
 
 
+def _at(ext) -> str:
+    """An extreme stress in MPa with the crank angle where it occurs."""
+    if ext is None:
+        return "-"
+    return _mpa(ext.value) + ("" if ext.angle is None else f" at {math.degrees(ext.angle):.0f} deg")
+
+
 def dynamics_section(folder: Path, so: dict, options) -> list[str]:
     """Piston motion, forces per cylinder, torque and the crankpin polar diagram
     (drawn by ``fe_crank.report.stage_plots``, as for ``fe-crank dynamics``), with the cycle's key numbers."""
@@ -142,10 +149,8 @@ def assessment_section(folder: Path, so: dict, options) -> list[str]:
     for t in a.throws:
         rows = []
         for g in t.groups:
-            vm = g.max_von_mises
-            ang = "" if vm.angle is None else f" at {math.degrees(vm.angle):.0f} deg"
-            rows.append([g.group, g.n_nodes, _mpa(vm.value) + ang,
-                         _mpa(g.max_von_mises_overspeed.value) if g.max_von_mises_overspeed else "-",
+            rows.append([g.group, g.n_nodes, _at(g.max_von_mises),
+                         _at(g.max_von_mises_overspeed),
                          _num(g.static_safety), _num(g.overspeed_safety),
                          _num(g.fatigue_safety.value) if g.fatigue_safety else "-",
                          _num(g.gough_pollard_safety.value) if g.gough_pollard_safety else "-",
