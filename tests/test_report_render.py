@@ -8,8 +8,8 @@ import pytest
 from skfem import Basis, ElementTetP2, MeshTet, MeshTet2
 
 from fe_crank.fe.vtu import quadratic_tet_mesh, write_vtu
-from fe_crank.report.render import (exaggeration_factor, grid_of, image_statistics, nice_length, nice_range,
-                                    render_field)
+from fe_crank.report.render import (exaggeration_factor, grid_of, image_statistics, iso_direction, nice_length,
+                                    nice_range, render_field)
 
 
 def test_exaggeration_draws_the_largest_displacement_as_the_chosen_fraction():
@@ -87,6 +87,51 @@ def test_close_up_fills_the_frame(cube, tmp_path):
                      hotspot=np.array([1.0, 1.0, 1.0]), focus=(np.array([1.0, 1.0, 1.0]), 0.2),
                      window_size=(400, 300))
     assert image_statistics(v.file)["coverage"] > 0.6
+
+
+def _background(img: np.ndarray) -> np.ndarray:
+    """Pixels of the white background (any channel within 2 % of white)."""
+    return np.all(img[..., :3] > 0.98, axis=-1)
+
+
+def test_colour_bar_has_its_own_strip_and_never_covers_the_close_up(cube, tmp_path):
+    """The close-up fills the frame, so a colour bar drawn over the scene would sit on the
+    part.  Check: the same close-up drawn without the bar (same camera: the bar is in a
+    viewport of its own) has no part pixel anywhere in the bar's strip, while the bar
+    actor's box, as VTK placed it, lies in that strip and is drawn (not background)."""
+    import matplotlib.image as mpimg
+
+    mesh, _ = cube
+    kw = dict(title="von Mises [MPa]", hotspot=np.array([1.0, 1.0, 1.0]), window_size=(500, 380),
+              focus=(np.array([1.0, 1.0, 1.0]), 0.2))
+    with_bar = render_field(tmp_path / "bar.png", grid_of(mesh), "f_MPa", **kw)
+    part_only = render_field(tmp_path / "part.png", grid_of(mesh), "f_MPa", show_bar=False, **kw)
+    img_bar, img_part = (np.asarray(mpimg.imread(str(v.file)), float) for v in (with_bar, part_only))
+    assert img_bar.shape[:2] == (380, 500)
+    left, top, right, bottom = with_bar.bar_viewport
+    assert (left, top, right, bottom) == (420, 0, 500, 380)  # BAR_STRIP 0.16 of 500 px at the right edge
+    assert with_bar.part_viewport == (0, 0, 420, 380)
+    bl, bt, br, bb = with_bar.bar_box
+    assert left <= bl < br <= right and top <= bt < bb <= bottom
+    part = ~_background(img_part)
+    assert part[:, :left].mean() > 0.9  # the close-up fills its viewport
+    assert not part[:, left:].any()  # and never reaches the bar's strip
+    assert (~_background(img_bar[bt:bb, bl:br])).mean() > 0.1  # control: the bar is drawn in its box
+    # the bar changes nothing in the part's viewport
+    assert np.abs(img_bar[:, :left] - img_part[:, :left]).max() < 0.02
+    # round ticks: 0..100 in steps of 20 (nice_range)
+    assert with_bar.clim == (0.0, 100.0)
+
+
+def test_isometric_view_faces_the_hot_spot():
+    # hot spot below the centre on -z, towards +y: the camera comes from -z, +y; x tied
+    # (cosine 0) goes to +x, the first octant
+    d = iso_direction(np.zeros(3), [np.array([0.0, 0.3, -1.0])])
+    np.testing.assert_allclose(d * np.sqrt(3), [1.0, 1.0, -1.0])
+    # the hot spot counts twice: a second mark on the opposite side does not turn the view
+    d = iso_direction(np.zeros(3), [np.array([-1.0, -1.0, -1.0]), np.array([1.0, 1.0, 1.0])])
+    np.testing.assert_allclose(d * np.sqrt(3), [-1.0, -1.0, -1.0])
+    np.testing.assert_allclose(iso_direction(np.zeros(3), []) * np.sqrt(3), [1.0, 1.0, 1.0])
 
 
 def test_vtu_round_trip_keeps_tetra10_and_fields(cube, tmp_path):

@@ -107,7 +107,7 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
                 rows += material_rows(obj)
             if rows:
                 inputs.append(f"<h3>{esc(title)}</h3>" + table(["key", "value"], rows))
-    from fe_crank.report import sections
+    from fe_crank.report import sections  # the stage sections import every stage: loaded when a report is written
 
     for heading, builder in sections.BUILDERS:
         parts = builder(folder, stage_out, options)

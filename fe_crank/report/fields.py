@@ -7,14 +7,17 @@ built once and both written and drawn, so file, pictures and tables agree:
   hot-spot group, by superposition of the unit cases with the assessment's own
   coefficients): ``displacement_m``, ``stress_Pa`` (Voigt xx yy zz xy yz zx),
   ``von_mises_Pa``, ``principal_1..3_Pa``, ``max_shear_Pa``;
-* at overspeed (centrifugal unit case x omega_os^2 alone): the same names with
+* at overspeed: the governing state of the overspeed criterion (the cycle recomputed
+  at omega_os with rod and piston inertia, at the crank angle of the governing
+  group's maximum; ``fe_crank.report.overspeed_state``): the same names with
   ``_overspeed``;
 * over the cycle, at the assessed nodes (NaN elsewhere): ``max_von_mises_cycle_Pa``,
   ``fatigue_amplitude_Pa`` and ``fatigue_mean_Pa`` (equivalent sigma_a', sigma_m'),
   ``fatigue_safety`` (Goodman), ``gough_pollard_safety``; ``assessed_group`` (id);
 * regions: cell data ``subdomain``, point data ``boundary``; field data maps
   ``subdomain:<name>``, ``boundary:<name>``, ``assessed_group:<name>`` to ids and
-  ``crank_angle_deg`` to the governing angle.
+  ``crank_angle_deg`` to the governing angle, ``overspeed_crank_angle_deg`` and
+  ``overspeed_rpm`` to the overspeed state's angle and speed.
 """
 
 from __future__ import annotations
@@ -24,6 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank.fe.vtu import boundary_point_ids, quadratic_tet_mesh, region_ids, stress_fields
+from fe_crank.report.overspeed_state import OverspeedState, overspeed_state, throw_names
+from fe_crank.report.superposed import angle_index, field_at_angle
 
 #: assessment per-node arrays -> VTU names, and how nodes in two groups combine
 _ASSESSED = (
@@ -58,10 +63,7 @@ def critical(assessment, keys, dyn) -> HotSpot | None:
     ``assess_case`` does).  Ties go to the first throw, then the first group, in the
     assessment's order (deterministic whichever way the case ran).  Fatigue works on
     the whole cycle, so the angle drawn is that of the group's largest von Mises."""
-    keys = [keys] if isinstance(keys, str) else list(keys)
-    names = [k for k in keys if k in dyn.throws]
-    if len(names) < len(keys):
-        names = list(dyn.throws)
+    names = throw_names(keys, dyn)
     cands = []
     for ti, t in enumerate(assessment.throws):
         if t.name not in names:
@@ -75,27 +77,6 @@ def critical(assessment, keys, dyn) -> HotSpot | None:
     _, _, _, throw, g, ext, what = min(cands, key=lambda c: c[:3])
     angle = g.max_von_mises.angle if g.max_von_mises is not None else ext.angle
     return HotSpot(throw, g.group, int(ext.node), tuple(float(c) for c in ext.point), angle, what)
-
-
-def angle_index(dyn, angle: float | None) -> int:
-    """Index of the cycle angle nearest ``angle`` (the first of equals)."""
-    if angle is None:
-        return 0
-    return int(np.argmin(np.abs(np.asarray(dyn.theta) - angle)))
-
-
-def field_at_angle(units, dyn, lc, throw: str, index: int) -> np.ndarray:
-    """Displacement of the throw at cycle-angle index ``index`` by superposition of the
-    unit cases (the assessment's own coefficients, ``load_coefficients``)."""
-    from fe_crank.assess.superpose import load_coefficients
-
-    tl = dyn.throws[throw]
-    sense = lc.engine.shaft(lc.engine.throw(throw).shaft).sense
-    cases = tuple(units.cases)
-    mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
-    c = load_coefficients(tl.pin_force[index:index + 1], tl.torque_front[index:index + 1], dyn.speed,
-                          cases=cases, sense=sense, torque_mz=mz)[0]
-    return units.combine(dict(zip(cases, c)))
 
 
 def assessed_fields(throw_assessment, n_points: int) -> tuple[dict[str, np.ndarray], dict]:
@@ -127,12 +108,13 @@ class ThrowFields:
     mesh: object  # meshio.Mesh
     hotspot: HotSpot
     angle_deg: float | None
-    overspeed_peak: tuple[float, tuple[float, float, float], str] | None  # value Pa, point, group
+    overspeed: OverspeedState | None = None  # the state of the ``_overspeed`` fields
 
 
-def throw_fields(units, assessment, dyn, lc, keys) -> ThrowFields | None:
+def throw_fields(units, assessment, dyn, lc, keys, dyn_os=None) -> ThrowFields | None:
     """The fields of the FE model ``units`` standing for the throws ``keys`` (see the
-    module docstring); None when the assessment has no hot spot for it."""
+    module docstring); None when the assessment has no hot spot for it.  ``dyn``: the
+    dynamics the assessment used; ``dyn_os``: its overspeed cycle (computed when not given)."""
     crit = critical(assessment, keys, dyn)
     if crit is None:
         return None
@@ -141,11 +123,10 @@ def throw_fields(units, assessment, dyn, lc, keys) -> ThrowFields | None:
     basis = units.system.basis
     n = basis.doflocs.shape[1]
     data = {"displacement_m": np.asarray(u).reshape(-1, 3), **stress_fields(units.stress_at_nodes(u))}
-    over = lc.operating.overspeed
-    if over and "centrifugal" in units.cases:
-        u_os = units.combine({"centrifugal": over**2})
-        data["displacement_overspeed_m"] = np.asarray(u_os).reshape(-1, 3)
-        data.update(stress_fields(units.stress_at_nodes(u_os), "_overspeed"))
+    os_state = overspeed_state(units, assessment, dyn, lc, keys, dyn_os)
+    if os_state is not None:
+        data["displacement_overspeed_m"] = os_state.displacement.reshape(-1, 3)
+        data.update(stress_fields(units.stress_at_nodes(os_state.displacement), "_overspeed"))
     t = next((t for t in assessment.throws if t.name == crit.throw), None)
     extra, field = assessed_fields(t, n)
     data.update(extra)
@@ -157,25 +138,16 @@ def throw_fields(units, assessment, dyn, lc, keys) -> ThrowFields | None:
     angle_deg = None if crit.angle is None else float(np.degrees(dyn.theta[index]))
     if angle_deg is not None:
         field["crank_angle_deg"] = np.array([angle_deg])
+    if os_state is not None:
+        field["overspeed_crank_angle_deg"] = np.array([os_state.angle_deg])
+        field["overspeed_rpm"] = np.array([os_state.rpm])
     mesh = quadratic_tet_mesh(basis.doflocs, basis.element_dofs, point_data=data, cell_data=cdata, field_data=field)
-    peak = _overspeed_peak({**data, "_points": np.asarray(basis.doflocs)}, t)
-    return ThrowFields(mesh, crit, angle_deg, peak)
+    return ThrowFields(mesh, crit, angle_deg, os_state)
 
 
-def _overspeed_peak(data: dict, t) -> tuple[float, tuple[float, float, float], str] | None:
-    """The largest von Mises of the drawn overspeed field (centrifugal alone) on the
-    counterweight groups (on every assessed node when the throw has no counterweight):
-    what the overspeed picture marks, read from the field it draws."""
-    vm = data.get("von_mises_overspeed_Pa")
-    if vm is None:
-        return None
-    groups = list(getattr(t, "groups", ()))
-    ids = {g.group: i for i, g in enumerate(groups)}
-    gid = data["assessed_group"]
-    cw = [ids[g.group] for g in groups if g.group.startswith("counterweight")] or list(ids.values())
-    nodes = np.flatnonzero(np.isin(gid, cw)) if cw else np.arange(vm.size)
-    if nodes.size == 0:
-        return None
-    j = int(nodes[np.argmax(vm[nodes])])
-    name = groups[gid[j]].group if gid[j] >= 0 else "the part"
-    return float(vm[j]), tuple(float(c) for c in data["_points"][:, j]), name
+def shared_models(units_by_key: dict) -> list[tuple[list[str], object]]:
+    """[(keys, units)] grouping the keys that share one FE solution, in order."""
+    groups: dict[int, tuple[list[str], object]] = {}
+    for k, u in units_by_key.items():
+        groups.setdefault(id(u), ([], u))[0].append(k)
+    return list(groups.values())

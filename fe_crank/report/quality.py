@@ -17,6 +17,8 @@
 from __future__ import annotations
 
 from fe_crank.notes import ASSUMPTION, WARNING, Note, from_stage, unique
+from fe_crank.report.fields import critical
+from fe_crank.report.superposed import angle_index, assessed_dynamics, field_at_angle
 
 #: UR M53 Appendix (FE): averaged and unaveraged fillet stress within 5 %
 AVERAGING_LIMIT = 0.05
@@ -38,10 +40,9 @@ def averaging(stage_out: dict) -> dict[str, dict[str, float]]:
     (cached in ``stage_out["averaging"]``; the report's quality table shows it)."""
     if "averaging" in stage_out:
         return stage_out["averaging"]
-    from fe_crank.report.fields import angle_index, critical, field_at_angle
-
     out: dict[str, dict[str, float]] = {}
-    units_by_key, a, dyn, lc = (stage_out.get(k) for k in ("units", "assessment", "dynamics", "loadcase"))
+    units_by_key, a, lc = (stage_out.get(k) for k in ("units", "assessment", "loadcase"))
+    dyn = assessed_dynamics(stage_out)
     if units_by_key and a is not None and dyn is not None:
         done: dict[int, dict[str, float]] = {}
         for key, units in units_by_key.items():

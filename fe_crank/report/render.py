@@ -25,6 +25,18 @@ class RenderedView:
     clim: tuple[float, float]  # colour-bar range, display unit
     peak: float  # largest value of the drawn field on the whole part, display unit
     exaggeration: float = 1.0
+    #: pixel boxes (left, top, right, bottom; image rows from the top, right/bottom
+    #: exclusive) of the viewport the part is drawn in and of the colour bar's strip
+    part_viewport: tuple[int, int, int, int] = (0, 0, 0, 0)
+    bar_viewport: tuple[int, int, int, int] = (0, 0, 0, 0)
+    #: pixel box of the colour bar actor (bar, ticks and title) as VTK placed it; None without a bar
+    bar_box: tuple[int, int, int, int] | None = None
+
+
+#: share of the picture's width given to the colour bar's own viewport (right edge)
+BAR_STRIP = 0.16
+#: the bar inside its strip (normalised coordinates of that viewport)
+BAR_PLACE = {"position_x": 0.3, "position_y": 0.1, "width": 0.5, "height": 0.78}
 
 
 def exaggeration_factor(max_displacement: float, model_size: float, *, fraction: float = 0.05) -> float:
@@ -98,21 +110,26 @@ def render_field(
     scale: float = 1.0,
     hotspot: np.ndarray | None = None,
     hotspot_label: str = "hot spot",
+    marks: tuple[tuple[np.ndarray, str], ...] = (),
     focus: tuple[np.ndarray, float] | None = None,
     view: str = "iso",
     text: str = "",
     unit: str = "MPa",
     window_size: tuple[int, int] = (1000, 760),
+    show_bar: bool = True,
 ) -> RenderedView:
     """Draw ``grid``'s outer surface coloured by ``scalars`` into a PNG.
 
     The surface of the quadratic cells is subdivided once, so mid-edge values are
-    drawn.  The colour bar (right of the part) spans round ticks from 0 (or the
-    minimum) to just above the field's peak on the whole part; the peak is printed
-    with ``text`` in the upper left.  ``displacement`` names a (n, 3) point array drawn
-    times ``scale``; ``hotspot`` (3,) is marked with a sphere and ``hotspot_label``;
-    ``focus`` = (centre, radius) zooms onto a region (a fillet close-up).  An axis
-    triad and a length scale are drawn.
+    drawn.  The colour bar spans round ticks from 0 (or the minimum) to just above the
+    field's peak on the whole part; it has a viewport of its own, a strip of
+    ``BAR_STRIP`` of the width at the right edge, so it never covers the part (the part's
+    viewport is the rest; ``show_bar=False`` leaves the strip empty).  The peak is
+    printed with ``text`` in the upper left.  ``displacement`` names a (n, 3) point
+    array drawn times ``scale``; ``hotspot`` (3,) is marked with a magenta sphere and
+    ``hotspot_label``, each of ``marks`` (point, label) with a black one; ``focus`` =
+    (centre, radius) zooms onto a region (a fillet close-up).  An axis triad and a
+    length scale are drawn.
     """
     import pyvista as pv
 
@@ -124,20 +141,27 @@ def render_field(
     if displacement is not None:
         surf = surf.copy()
         surf.points = surf.points + scale * np.asarray(surf.point_data[displacement])
-    p = pv.Plotter(off_screen=True, window_size=list(window_size))
+    # the part in the left viewport, the colour bar alone in a strip on the right: the
+    # bar can never cover the part, whatever the zoom
+    p = pv.Plotter(off_screen=True, window_size=list(window_size), shape=(1, 2),
+                   col_weights=[1.0 - BAR_STRIP, BAR_STRIP], border=False)
     try:
         p.set_background("white")
-        p.add_mesh(
-            surf, scalars=scalars, cmap="turbo", clim=(lo, hi), show_edges=False, smooth_shading=True, ambient=0.3,
-            scalar_bar_args={"title": title, "color": "black", "vertical": True, "fmt": fmt, "n_labels": n_labels,
-                             "position_x": 0.86, "position_y": 0.12, "width": 0.06, "height": 0.76,
-                             "title_font_size": 16, "label_font_size": 14},
-        )
-        if hotspot is not None:
-            hp = np.asarray(hotspot, float).reshape(3)
-            rad = (0.04 * focus[1]) if focus else 0.015 * surf.length
-            p.add_mesh(pv.Sphere(radius=rad, center=hp), color="magenta")
-            p.add_point_labels(hp[None, :], [hotspot_label], font_size=16, text_color="black",
+        p.subplot(0, 0)
+        actor = p.add_mesh(surf, scalars=scalars, cmap="turbo", clim=(lo, hi), show_edges=False,
+                           smooth_shading=True, ambient=0.3, show_scalar_bar=False)
+        if show_bar:
+            p.subplot(0, 1)
+            p.add_scalar_bar(title=title.replace(" [", "\n["), mapper=actor.mapper, color="black", vertical=True,
+                             fmt=fmt, n_labels=n_labels, **BAR_PLACE, title_font_size=16, label_font_size=14)
+            p.subplot(0, 0)
+        rad = (0.04 * focus[1]) if focus else 0.015 * surf.length
+        spots = ([(hotspot, hotspot_label, "magenta")] if hotspot is not None else []) \
+            + [(pt, lab, "black") for pt, lab in marks]
+        for pt, lab, colour in spots:
+            hp = np.asarray(pt, float).reshape(3)
+            p.add_mesh(pv.Sphere(radius=rad, center=hp), color=colour)
+            p.add_point_labels(hp[None, :], [lab], font_size=16, text_color="black",
                                shape_opacity=0.6, always_visible=True)
         head = f"peak on the part {peak:.4g} {unit}".rstrip()
         p.add_text("\n".join([head, text] if text else [head]), position="upper_left", font_size=10, color="black")
@@ -146,8 +170,9 @@ def render_field(
             p.view_xy(negative=True)
         elif view == "side":
             p.view_yz()
-        else:
-            p.view_isometric()
+        else:  # isometric, from the octant facing the marked points
+            pts = [pt for pt, _, _ in spots]
+            p.view_vector(iso_direction(np.asarray(surf.center), pts), viewup=(0.0, 1.0, 0.0))  # y up: crankpin up
         bounds = np.asarray(surf.bounds).reshape(3, 2)
         if focus is not None:
             centre, radius = np.asarray(focus[0], float), float(focus[1])
@@ -163,24 +188,74 @@ def render_field(
         else:
             _scale_bar(p, bounds)
             p.reset_camera()
+            p.camera.zoom(0.85)  # margin for the ruler under the part (reset_camera fits the 3D props only)
         p.screenshot(str(path))
+        boxes = _boxes(p, window_size)
     finally:
         p.close()
-    return RenderedView(Path(path), (lo, hi), peak, scale if displacement is not None else 1.0)
+    return RenderedView(Path(path), (lo, hi), peak, scale if displacement is not None else 1.0, *boxes)
+
+
+def iso_direction(centre: np.ndarray, points) -> np.ndarray:
+    """The isometric direction towards the camera, ``(+-1, +-1, +-1) / sqrt(3)``, that
+    faces the marked ``points`` best: of the eight octants, the one with the largest sum
+    of cosines to the unit vectors from the part's ``centre`` to the points, the first
+    point (the hot spot) weighted twice; ties and no points give (1, 1, 1) / sqrt(3),
+    pyvista's default isometric direction.  Drawn with y (the crankpin side) up."""
+    octants = [np.array([sx, sy, sz], float) / math.sqrt(3.0)
+               for sx in (1, -1) for sy in (1, -1) for sz in (1, -1)]
+    units = []
+    for i, pt in enumerate(points):
+        v = np.asarray(pt, float).reshape(3) - np.asarray(centre, float).reshape(3)
+        n = np.linalg.norm(v)
+        if n > 0:
+            units.append((2.0 if i == 0 else 1.0) * v / n)
+    if not units:
+        return octants[0]
+    score = [float(sum(d @ u for u in units)) for d in octants]
+    return octants[int(np.argmax(np.asarray(score) > max(score) - 1e-12))]
+
+
+def _boxes(p, window_size) -> tuple:
+    """Pixel boxes (left, top, right, bottom) of the two viewports and of the colour bar
+    actor, from VTK's own layout (display coordinates have their origin bottom left)."""
+    w, h = window_size
+
+    def box(x0, y0, x1, y1):
+        return (int(round(x0)), int(round(h - y1)), int(round(x1)), int(round(h - y0)))
+
+    vp = [box(*(np.asarray(r.GetViewport()) * [w, h, w, h])) for r in p.renderers]
+    bar = None
+    bar_renderer = p.renderers[1]
+    actors = list(p.scalar_bars.values())
+    if actors:
+        a = actors[0]
+        x0, y0 = a.GetPositionCoordinate().GetComputedDisplayValue(bar_renderer)
+        x1, y1 = a.GetPosition2Coordinate().GetComputedDisplayValue(bar_renderer)
+        bar = box(x0, y0, x1, y1)
+    return vp[0], vp[1], bar
 
 
 def _scale_bar(p, bounds: np.ndarray) -> None:
-    """A ruler of round length along x below the part (lengths in mm)."""
+    """A ruler of round length (``nice_length``, in mm) under the part as the camera sees
+    it: along the screen's horizontal, centred below the projection of the bounding box,
+    so it lies flat in the picture whatever the view direction."""
     size = float(np.linalg.norm(bounds[:, 1] - bounds[:, 0]))
     if not size > 0:
         return
     length = nice_length(size)
-    y = bounds[1, 0] - 0.06 * size
-    z = bounds[2, 1]
-    a = [bounds[0, 0], y, z]
-    b = [bounds[0, 0] + length, y, z]
-    p.add_ruler(a, b, title=f"{length * 1e3:g} mm", number_labels=2, show_labels=False, font_size_factor=0.8,
-                label_color="black", tick_color="black")
+    d = np.asarray(p.camera.position, float) - np.asarray(p.camera.focal_point, float)
+    d /= np.linalg.norm(d)
+    up = np.asarray(p.camera.up, float)
+    up = up - (up @ d) * d
+    up /= np.linalg.norm(up)
+    right = np.cross(up, d)  # the camera looks along -d
+    corners = np.array([[x, y, z] for x in bounds[0] for y in bounds[1] for z in bounds[2]])
+    centre = corners.mean(axis=0)
+    low = float(np.min((corners - centre) @ up)) - 0.03 * size
+    a = centre + low * up - 0.5 * length * right
+    p.add_ruler(list(a), list(a + length * right), title=f"{length * 1e3:g} mm", number_labels=2, show_labels=False,
+                font_size_factor=0.8, label_color="black", tick_color="black")
 
 
 def image_statistics(path: str | Path) -> dict[str, float]:

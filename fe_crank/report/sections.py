@@ -3,17 +3,24 @@
 A builder takes ``(folder, stage_out, options)``, writes its pictures into
 ``folder`` and returns HTML fragments, or an empty list when the stage it shows did
 not run (the page header then carries the error that stopped it).  Pictures the
-stages already draw for their own commands are drawn by those same functions.
+stages already draw for their own commands are drawn by those same functions; the
+FE renders and the ``.vtu`` fields by ``fe_crank.report.fe_pictures``.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import fields as dc_fields, is_dataclass
 from pathlib import Path
 
 import numpy as np
 
+from fe_crank.balance.analysis import forces_table
+from fe_crank.report.fe_pictures import fe_section
+from fe_crank.report.fields import shared_models
 from fe_crank.report.html import Page, esc, table
+from fe_crank.report.plots import plot_bars
+from fe_crank.report.quality import averaging
 from fe_crank.report.stage_plots import dynamics_plots, plot_hodographs
 from fe_crank.torsion.report import report_section as torsion_section
 
@@ -24,6 +31,13 @@ def _mpa(x) -> str:
 
 def _num(x, fmt="{:.3g}") -> str:
     return "-" if x is None or not np.isfinite(x) else fmt.format(x)
+
+
+def _at(ext) -> str:
+    """An extreme stress in MPa with the crank angle where it occurs."""
+    if ext is None:
+        return "-"
+    return _mpa(ext.value) + ("" if ext.angle is None else f" at {math.degrees(ext.angle):.0f} deg")
 
 
 def dynamics_section(folder: Path, so: dict, options) -> list[str]:
@@ -81,8 +95,6 @@ def balance_section(folder: Path, so: dict, options) -> list[str]:
     res = so.get("balance")
     if res is None:
         return []
-    from fe_crank.balance.analysis import forces_table
-
     out = [f"<p>Free forces and couples at {res.speed * 30 / math.pi:.0f} rpm, by source and order "
            "(amplitudes of the hodograph ellipse: major / minor semi-axis).</p>"]
     rows = [[r["source"], f"{r['order']:g}", _num(r["force_max"], "{:.4g}"), _num(r["force_min"], "{:.4g}"),
@@ -114,8 +126,6 @@ def counterweight_section(folder: Path, so: dict, options) -> list[str]:
     checks = [(t.name, c) for t in getattr(a, "throws", ()) for c in t.counterweights]
     if not checks:
         return []
-    from fe_crank.report.plots import plot_bars
-
     labels = [f"throw {t}: {c.name.replace('counterweight_', 'cw ')}" for t, c in checks]
     built = [c.built_unbalance for _, c in checks]
     req = [c.required_unbalance if c.required_unbalance is not None else np.nan for _, c in checks]
@@ -139,10 +149,8 @@ def assessment_section(folder: Path, so: dict, options) -> list[str]:
     for t in a.throws:
         rows = []
         for g in t.groups:
-            vm = g.max_von_mises
-            ang = "" if vm.angle is None else f" at {math.degrees(vm.angle):.0f} deg"
-            rows.append([g.group, g.n_nodes, _mpa(vm.value) + ang,
-                         _mpa(g.max_von_mises_overspeed.value) if g.max_von_mises_overspeed else "-",
+            rows.append([g.group, g.n_nodes, _at(g.max_von_mises),
+                         _at(g.max_von_mises_overspeed),
                          _num(g.static_safety), _num(g.overspeed_safety),
                          _num(g.fatigue_safety.value) if g.fatigue_safety else "-",
                          _num(g.gough_pollard_safety.value) if g.gough_pollard_safety else "-",
@@ -174,105 +182,6 @@ BUILDERS: list = [
 BUILDERS.insert(1, ("Torsional vibration of the crank train", torsion_section))  # torsion stage
 
 
-# --------------------------------------------------------------------------- FE pictures
-
-
-def fe_section(folder: Path, so: dict, options) -> list[str]:
-    """Per meshed throw: the ``.vtu`` fields (``fe_crank.report.fields``) and renders drawn
-    from the same fields (von Mises on the deformed throw at the governing crank angle,
-    close-up of the hot spot, the throw and counterweights at overspeed)."""
-    units_by_key, a, dyn, lc = so.get("units"), so.get("assessment"), so.get("dynamics"), so.get("loadcase")
-    if not units_by_key or a is None or dyn is None:
-        return []
-    render = getattr(options, "render", True)
-    write_vtu_files = getattr(options, "write_vtu", True)
-    if not (render or write_vtu_files):
-        return ["<p>Pictures and fields switched off for this run (--no-render --no-vtu).</p>"]
-    from fe_crank.fe.vtu import write_vtu
-    from fe_crank.report import render as rd
-    from fe_crank.report.fields import throw_fields
-
-    out = []
-    for keys, units in _shared_models(units_by_key):
-        if len(keys) > 1:  # identical throws share one FE model: drawn once, at the worst of them
-            out.append(f"<p>Throws {esc(', '.join(keys))} share one FE model; it is drawn at the hot spot "
-                       "of the most critical of them.</p>")
-        tf = throw_fields(units, a, dyn, lc, keys)
-        if tf is None:
-            continue
-        crit, pd = tf.hotspot, tf.mesh.point_data
-        throw, group, tag = crit.throw, crit.group, f"throw{_safe(crit.throw)}"
-        angle_txt = "" if tf.angle_deg is None else f" at crank angle {tf.angle_deg:.0f} deg"
-        if write_vtu_files:
-            write_vtu(Path(folder) / f"{tag}.vtu", tf.mesh)
-            out.append(f'<p>Fields for ParaView: <code>{tag}.vtu</code> (quadratic tetrahedra; displacement, stress '
-                       f"tensor, von Mises and principal stresses{angle_txt} and at overspeed; fatigue amplitude, mean "
-                       "and safety over the cycle; subdomain, boundary and assessed-group ids; units in the field "
-                       "names).</p>")
-        if not render:
-            continue
-        display = {"von_mises_MPa": pd["von_mises_Pa"] / 1e6}
-        if "von_mises_overspeed_Pa" in pd:
-            display["von_mises_overspeed_MPa"] = pd["von_mises_overspeed_Pa"] / 1e6
-        grid = rd.grid_of(tf.mesh, display)
-        pts = np.asarray(units.points)
-        size = float(np.linalg.norm(np.ptp(pts, axis=1)))
-        umax = float(np.max(np.linalg.norm(pd["displacement_m"], axis=1)))
-        scale = rd.exaggeration_factor(umax, size)
-        hp = np.asarray(crit.point, float)
-        vm_hot = float(pd["von_mises_Pa"][crit.node]) / 1e6
-        label = f"hot spot ({crit.what}) {vm_hot:.4g} MPa"
-        v = rd.render_field(Path(folder) / f"{tag}_von_mises.png", grid, "von_mises_MPa", title="von Mises [MPa]",
-                            displacement="displacement_m", scale=scale, hotspot=hp, hotspot_label=label,
-                            text=f"throw {throw}{angle_txt}; deformation x {scale:g}")
-        out.append(Page.figure(
-            f"{tag}_von_mises.png",
-            f"Throw {throw}: von Mises stress{angle_txt} (largest von Mises of {group}), peak on the part "
-            f"{v.peak:.4g} MPa, on the deformed shape; deformation exaggerated x {scale:g} (largest displacement "
-            f"{umax * 1e6:.1f} um)"))
-        r_focus = max(0.12 * size, 1e-3)
-        rd.render_field(Path(folder) / f"{tag}_hotspot.png", grid, "von_mises_MPa", title="von Mises [MPa]",
-                        hotspot=hp, hotspot_label=label, focus=(hp, r_focus),
-                        text=f"close-up of {group}{angle_txt}, undeformed")
-        out.append(Page.figure(
-            f"{tag}_hotspot.png",
-            f"Close-up of {group} (undeformed): hot spot of the {crit.what} assessment at "
-            f"({', '.join(f'{c * 1e3:.1f}' for c in hp)}) mm{angle_txt}, von Mises there {vm_hot:.4g} MPa"))
-        if "von_mises_overspeed_MPa" in display:
-            over = lc.operating.overspeed
-            umax_os = float(np.max(np.linalg.norm(pd["displacement_overspeed_m"], axis=1)))
-            s_os = rd.exaggeration_factor(umax_os, size)
-            mark, mark_label, mark_txt = None, "", ""
-            if tf.overspeed_peak is not None:
-                val, point, g_os = tf.overspeed_peak
-                mark, mark_label = np.asarray(point), f"max of {g_os} {val / 1e6:.4g} MPa"
-                mark_txt = f"; marked: the largest von Mises of {g_os}, {val / 1e6:.4g} MPa"
-            rd.render_field(Path(folder) / f"{tag}_overspeed.png", grid, "von_mises_overspeed_MPa",
-                            title="von Mises [MPa]", displacement="displacement_overspeed_m", scale=s_os,
-                            view="front", hotspot=mark, hotspot_label=mark_label,
-                            text=f"overspeed {over * 30 / np.pi:.0f} rpm, centrifugal only; deformation x {s_os:g}")
-            out.append(Page.figure(
-                f"{tag}_overspeed.png",
-                f"Throw {throw} and its counterweights at overspeed {over * 30 / np.pi:.0f} rpm, centrifugal load "
-                f"alone, seen from the front; deformation exaggerated x {s_os:g}{mark_txt} (the overspeed safety in "
-                "the tables is over the whole cycle at overspeed, rod and piston inertia included)"))
-    return out
-
-
-def _shared_models(units_by_key: dict) -> list[tuple[list[str], object]]:
-    """[(keys, units)] grouping the keys that share one FE solution, in order."""
-    groups: dict[int, tuple[list[str], object]] = {}
-    for k, u in units_by_key.items():
-        groups.setdefault(id(u), ([], u))[0].append(k)
-    return list(groups.values())
-
-
-def _safe(name: str) -> str:
-    import re
-
-    return re.sub(r"[^A-Za-z0-9_-]+", "_", str(name))
-
-
 def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
     """Mesh statistics and FE quality indicators: DOF, solver, equilibrium error of
     every unit case, averaged vs unaveraged fillet stress (UR M53: within 5 %)."""
@@ -280,7 +189,7 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
     if not units_by_key:
         return []
     out = []
-    for keys, units in _shared_models(units_by_key):
+    for keys, units in shared_models(units_by_key):
         throw = keys[0]
         m = units.mesh
         rows = [["elements (quadratic tetrahedra)", m.t.shape[1]], ["nodes", units.points.shape[1]],
@@ -289,8 +198,6 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
         tm = meshes.get(throw)
         stats = getattr(tm, "stats", None)
         if stats is not None:
-            from dataclasses import fields as dc_fields, is_dataclass
-
             items = ([(f.name, getattr(stats, f.name)) for f in dc_fields(stats)] if is_dataclass(stats)
                      else list(dict(stats).items()) if isinstance(stats, dict) else [])
             rows += [[f"mesh: {k}", v if not isinstance(v, float) else f"{v:.4g}"] for k, v in items]
@@ -300,8 +207,6 @@ def mesh_quality_section(folder: Path, so: dict, options) -> list[str]:
             rows.append([f"equilibrium error, case {name}", f"{c.equilibrium_error:.2e}"])
         for k, v in (units.timings or {}).items():
             rows.append([f"time: {k}", f"{v:.2f} s"])
-        from fe_crank.report.quality import averaging
-
         for g, v in averaging(so).get(throw, {}).items():
             rows.append([f"unaveraged vs averaged von Mises at the {g} peak", f"{100 * v:+.1f} %"
                          + ("" if abs(v) <= 0.05 else " (above the 5 % of UR M53: refine the fillet)")])
