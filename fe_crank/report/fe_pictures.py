@@ -27,6 +27,22 @@ GAS_WORDS = {"motored": "motored: no combustion, zero gauge gas pressure",
              "as_operating": "gas as operating: the operating gas pressure table"}
 
 
+def _long_gas(words: str) -> str:
+    """The gas load of the drawn overspeed cycle for the caption."""
+    if words in GAS_WORDS:
+        return GAS_WORDS[words]
+    return f"motored: {words}" if words.startswith("no combustion") else f"gas as operating: {words}"
+
+
+def _short_gas(words: str) -> str:
+    """A few words for the picture's own text; the caption carries the whole description."""
+    if words.startswith("no combustion, zero"):
+        return "zero gas"
+    if words.startswith("no combustion"):
+        return "motored"
+    return "gas as operating" if "operating" in words else words
+
+
 def fe_section(folder: Path, so: dict, options) -> list[str]:
     """Per FE model: the ``.vtu`` file and the three pictures (module docstring)."""
     units_by_key, a, lc = so.get("units"), so.get("assessment"), so.get("loadcase")
@@ -129,13 +145,13 @@ def _overspeed_figure(folder: Path, tag: str, tf, grid, size: float) -> list[str
                         displacement="displacement_overspeed_m", scale=scale,
                         hotspot=_drawn(tf, os_.node, "displacement_overspeed_m", scale),
                         hotspot_label="overspeed hot spot", marks=marks,
-                        text=f"throw {os_.throw} at overspeed {when} ({os_.gas}); deformation x {scale:g}\n"
+                        text=f"throw {os_.throw} at overspeed {when} ({_short_gas(os_.gas)}); deformation x {scale:g}\n"
                              f"magenta: overspeed hot spot, {os_.group} {vm_hot:.4g} MPa{key_txt}")
     return [Page.figure(
         f"{tag}_overspeed.png",
         f"Throw {os_.throw} at overspeed {when}: the governing state of the overspeed check (the cycle recomputed "
         f"at the overspeed with rod and piston inertia and the crank's own body force; "
-        f"{GAS_WORDS.get(os_.gas, os_.gas)}), the crank angle of the largest von Mises of {os_.group} over that "
+        f"{_long_gas(os_.gas)}), the crank angle of the largest von Mises of {os_.group} over that "
         f"cycle; peak on the part {v.peak:.4g} MPa; magenta: the overspeed hot spot, {os_.group} at "
         f"({', '.join(f'{c * 1e3:.1f}' for c in os_.point)}) mm, {vm_hot:.4g} MPa{safety}{cw_txt}; deformation exaggerated x {scale:g} (largest displacement "
         f"{umax * 1e6:.1f} um)")]

@@ -24,7 +24,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank.assess.groups import COUNTERWEIGHTS
-from fe_crank.assess.overspeed import overspeed_dynamics
+from fe_crank.assess.overspeed import overspeed_cycles
+from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.report.superposed import field_at_angle
 
 
@@ -41,7 +42,7 @@ class OverspeedState:
     index: int  # cycle-angle index of theta*
     angle_deg: float  # theta*, degrees of the cycle
     speed: float  # omega_os, rad/s
-    gas: str  # "motored" or "as_operating"
+    gas: str  # the gas load of the governing overspeed cycle, in words
     displacement: np.ndarray  # superposed displacement at theta*, flat DOF vector
     counterweights: tuple = ()  # the throw's counterweight group results (marked in the picture)
 
@@ -75,8 +76,8 @@ def governing(assessment, names) -> tuple[object, object] | None:
 
 def overspeed_state(units, assessment, dyn, lc, keys, dyn_os=None) -> OverspeedState | None:
     """The governing overspeed state of the FE model ``units`` (module docstring); None
-    without an overspeed or an overspeed result.  ``dyn_os``: the overspeed cycle
-    (``assess.overspeed.overspeed_dynamics(lc, dyn)``, computed when not given)."""
+    without an overspeed or an overspeed result.  ``dyn_os``: one overspeed cycle to draw;
+    when not given, the governing one of ``assess.overspeed.overspeed_cycles(lc, dyn)``."""
     op = lc.operating
     if not op.overspeed:
         return None
@@ -85,15 +86,34 @@ def overspeed_state(units, assessment, dyn, lc, keys, dyn_os=None) -> OverspeedS
         return None
     t, g = found
     ext = g.max_von_mises_overspeed
-    dyn_os = dyn_os if dyn_os is not None else overspeed_dynamics(lc, dyn)
+    if dyn_os is not None:
+        cycles = [(getattr(op, "overspeed_gas", "motored"), dyn_os)]
+    else:
+        cycles = [(c.gas, c.dynamics) for c in overspeed_cycles(lc, dyn)]
+    # The criterion takes the worst of the overspeed cycles (motored curve and zero gas):
+    # draw the cycle whose state at theta* reaches the table's value at its node.
+    best = None
+    for gas, d in cycles:
+        theta = np.asarray(d.theta)
+        index = int(np.argmin(np.abs(theta - ext.angle))) if ext.angle is not None else 0
+        u = field_at_angle(units, d, lc, t.name, index)
+        at_node = _von_mises_at(units, u, int(ext.node)) if len(cycles) > 1 else 0.0
+        if best is None or at_node > best[0]:
+            best = (at_node, gas, d, index, u)
+    _, gas, dyn_os, index, u = best
     theta = np.asarray(dyn_os.theta)
-    index = int(np.argmin(np.abs(theta - ext.angle))) if ext.angle is not None else 0
-    u = field_at_angle(units, dyn_os, lc, t.name, index)
     return OverspeedState(t.name, g.group, float(ext.value), g.overspeed_safety, int(ext.node),
                           tuple(float(c) for c in ext.point),
                           index, float(np.degrees(theta[index])), float(dyn_os.speed),
-                          getattr(op, "overspeed_gas", "motored"), np.asarray(u),
+                          gas, np.asarray(u),
                           tuple(g for g in t.groups if g.group in COUNTERWEIGHTS))
+
+
+def _von_mises_at(units, u: np.ndarray, node: int) -> float:
+    """Averaged nodal von Mises of the field ``u`` at one mesh node, Pa."""
+    s = stress_at_selected_nodes(units.mesh, [u], units.material.youngs_modulus, units.material.poisson_ratio,
+                                 np.array([node]), dofs=units.system.basis.dofs)
+    return float(von_mises(s[0])[0])
 
 
 def field_peak(values: np.ndarray, group) -> tuple[float, int]:
