@@ -15,6 +15,7 @@ from fe_crank.assess import assess_case, assessed_groups, to_json
 from fe_crank.assess.results import load_schema
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.throw_scope import ALL_THROWS
 
 import fe_crank.fe.unit_cases as fe
 import fe_crank.dynamics as dynamics
@@ -81,7 +82,7 @@ def _run(tmp_path, solved, criteria):
     lc = load_loadcase(p)
     dyn = dynamics.analyse(lc.engine, lc.operating)
     mesh, units = solved
-    return lc, dyn, assess_case(lc, dyn, {}, {"throw": mesh}, {"throw": units})
+    return lc, dyn, assess_case(lc, dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units})
 
 
 def _max_von_mises_by_hand(solved, dyn, omega):
@@ -186,8 +187,8 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
                          web_width=0.15, pin_fillet_radius=0.005, journal_fillet_radius=0.006, bearing_to_web=0.06)
     cw = CounterweightData("counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026,
                            bolted=True, bolt_capacity=20e3)
-    a = assess_case(dataclasses.replace(lc, geometry=_Geo(inside, (cw,))), dyn, {}, {"throw": mesh},
-                    {"throw": units})
+    a = assess_case(dataclasses.replace(lc, geometry=_Geo(inside, (cw,))), dyn, {}, {ALL_THROWS: mesh},
+                    {ALL_THROWS: units})
     pin = a.throws[0].m53[0]
     # M53 sigma_DW = K (0.42 s_B + 39.3)[0.264 + 1.073 D^-0.2 + (785 - s_B)/4900 + 196/s_B sqrt(1/R_H)]
     # (N/mm2, mm), s_B = 900, D = 100, R_H = 5, K = 1.05 by hand:
@@ -207,7 +208,7 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
     from fe_crank.errors import MeshError
 
     with pytest.raises(MeshError, match="no boundary 'journal_fillet_1', needed by the SCF mode"):
-        assess_case(dataclasses.replace(lc, geometry=_Geo(thin, (cw,))), dyn, {}, {"throw": mesh}, {"throw": units})
+        assess_case(dataclasses.replace(lc, geometry=_Geo(thin, (cw,))), dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units})
     doc = json.loads(json.dumps(to_json(a)))
     jsonschema.validate(doc, load_schema())
 

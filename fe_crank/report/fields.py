@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank.fe.vtu import boundary_point_ids, quadratic_tet_mesh, region_ids, stress_fields
+from fe_crank.throw_scope import throws_of
 
 #: assessment per-node arrays -> VTU names, and how nodes in two groups combine
 _ASSESSED = (
@@ -54,14 +55,12 @@ def _finite_key(v: float) -> float:
 def critical(assessment, keys, dyn) -> HotSpot | None:
     """The hot spot the pictures show: the node with the lowest fatigue safety (static
     safety when there is no fatigue result) over the throws the FE model stands for
-    (``keys``: throw names, or any other key standing for every throw, as
-    ``assess_case`` does).  Ties go to the first throw, then the first group, in the
+    (``keys``: throw names, or ``ALL_THROWS`` standing for every throw, as
+    ``assess_case`` reads them, ``fe_crank.throw_scope``).  Ties go to the first throw, then the first group, in the
     assessment's order (deterministic whichever way the case ran).  Fatigue works on
     the whole cycle, so the angle drawn is that of the group's largest von Mises."""
     keys = [keys] if isinstance(keys, str) else list(keys)
-    names = [k for k in keys if k in dyn.throws]
-    if len(names) < len(keys):
-        names = list(dyn.throws)
+    names = {n for k in keys for n in throws_of(k, dyn.throws)}
     cands = []
     for ti, t in enumerate(assessment.throws):
         if t.name not in names:
