@@ -138,3 +138,35 @@ def test_minimum_ball_when_the_mid_range_is_not_its_centre():
     assert low[0] == pytest.approx(1.5 * tau, rel=1e-12)
     # the signed mean of a pure shear centre is tensile (s_1 > 0): +vM
     assert signed_mean(np.array([[0, 0, 0, 30e6, 0, 0.0]]).T)[0] == pytest.approx(np.sqrt(3) * 30e6, rel=1e-12)
+
+
+def test_bending_direction_from_the_largest_meridional_deviation():
+    """``bending_torsion`` on a three-instant path at the node (0, a) of an axis through
+    the origin (e_r = +y, e_theta = -x: s_rr = s_yy, s_rz = s_yz, s_rtheta = -s_xy,
+    s_thetaz = -s_xz).  Meridional deviations from the mean m = (rr 0, zz 200, rz 0) MPa:
+
+        d1 = 100 t t (t = (1, 1)/sqrt2: rr = zz = rz = 50)   Frobenius size 100
+        d2 = (rr 0, zz -90, rz 0)                             size 90
+        d3 = -(d1 + d2) = (rr -50, zz 40, rz -50)             size 95.4
+
+    so the direction is t = (1, 1)/sqrt2 (eigenvector of d1 of eigenvalue 100), and
+    sigma = t.S.t = (rr + zz)/2 + rz, tau = (s_rtheta + s_thetaz)/sqrt2 at each instant.
+    Weighting the components otherwise (size^2 not rr^2 + zz^2 + 2 rz^2) or measuring
+    from anything but the mean picks d2, d3 or a tilted direction: sigma off by > 10 MPa."""
+    from fe_crank.assess.fatigue import bending_torsion
+
+    m = np.array([0.0, 200.0, 0.0])
+    d1 = np.array([50.0, 50.0, 50.0])
+    d2 = np.array([0.0, -90.0, 0.0])
+    mer = np.stack([m + d1, m + d2, m - d1 - d2]) * 1e6  # (3, [rr, zz, rz])
+    rt = np.array([10.0, 20.0, -30.0]) * 1e6
+    tz = np.array([5.0, -5.0, 0.0]) * 1e6
+    h = np.zeros((3, 6, 1))
+    h[:, 1, 0], h[:, 2, 0], h[:, 4, 0] = mer[:, 0], mer[:, 1], mer[:, 2]  # yy, zz, yz
+    h[:, 3, 0], h[:, 5, 0] = -rt, -tz  # xy, xz
+    h[:, 0, 0] = 30e6  # s_xx = s_thetatheta: outside the meridional plane, no effect
+    sigma, tau = bending_torsion(h, np.array([[0.0], [0.02], [0.001]]), (0.0, 0.0))
+    expected_sigma = 0.5 * (mer[:, 0] + mer[:, 1]) + mer[:, 2]  # (50 + 250)/2 + 50 = 200, 55, 45 MPa
+    np.testing.assert_allclose(sigma[:, 0], expected_sigma, rtol=1e-12)
+    np.testing.assert_allclose(sigma[:, 0], [200e6, 55e6, 45e6], rtol=1e-12)
+    np.testing.assert_allclose(tau[:, 0], (rt + tz) / np.sqrt(2), rtol=1e-12)
