@@ -141,32 +141,34 @@ def test_minimum_ball_when_the_mid_range_is_not_its_centre():
 
 
 def test_bending_direction_from_the_largest_meridional_deviation():
-    """``bending_torsion`` on a three-instant path at the node (0, a) of an axis through
+    """``bending_torsion`` on a four-instant path at the node (0, a) of an axis through
     the origin (e_r = +y, e_theta = -x: s_rr = s_yy, s_rz = s_yz, s_rtheta = -s_xy,
-    s_thetaz = -s_xz).  Meridional deviations from the mean m = (rr 0, zz 200, rz 0) MPa:
+    s_thetaz = -s_xz).  Meridional deviations (rr, zz, rz) from the mean m = (0, 200, 0)
+    MPa, summing to zero, with their Frobenius sizes sqrt(rr^2 + zz^2 + 2 rz^2):
 
-        d1 = 100 t t (t = (1, 1)/sqrt2: rr = zz = rz = 50)   Frobenius size 100
-        d2 = (rr 0, zz -90, rz 0)                             size 90
-        d3 = -(d1 + d2) = (rr -50, zz 40, rz -50)             size 95.4
+        d0 = (10, -50, -10)     52.9
+        d1 = -100 t t = (-36, -64, -48), t = (0.6, 0.8)   100   <- the largest
+        d2 = (26, 44, 58)       96.6
+        d3 = (0, 70, 0)         70
 
-    so the direction is t = (1, 1)/sqrt2 (eigenvector of d1 of eigenvalue 100), and
-    sigma = t.S.t = (rr + zz)/2 + rz, tau = (s_rtheta + s_thetaz)/sqrt2 at each instant.
-    Weighting the components otherwise (size^2 not rr^2 + zz^2 + 2 rz^2) or measuring
-    from anything but the mean picks d2, d3 or a tilted direction: sigma off by > 10 MPa."""
+    The eigenvalue of d1 of largest magnitude is -100 (compressive), its direction
+    t = (0.6, 0.8), so sigma = t.S.t = 0.36 rr + 0.96 rz + 0.64 zz at each instant:
+    S0 = (10, 150, -10): 3.6 - 9.6 + 96 = 90;  S1 = (-36, 136, -48): -12.96 - 46.08 + 87.04
+    = 28;  S2 = (26, 244, 58): 9.36 + 55.68 + 156.16 = 221.2;  S3 = (0, 270, 0): 172.8 MPa;
+    tau = +-(0.6 s_rtheta + 0.8 s_thetaz) (the sign of t is free).  The path is chosen so
+    that another instant (d2, or d0 when the search is skipped), the eigenvalue of the
+    other sign, another weighting of the size or deviations not taken from the mean give
+    another direction: sigma off by more than 1 MPa."""
     from fe_crank.assess.fatigue import bending_torsion
 
-    m = np.array([0.0, 200.0, 0.0])
-    d1 = np.array([50.0, 50.0, 50.0])
-    d2 = np.array([0.0, -90.0, 0.0])
-    mer = np.stack([m + d1, m + d2, m - d1 - d2]) * 1e6  # (3, [rr, zz, rz])
-    rt = np.array([10.0, 20.0, -30.0]) * 1e6
-    tz = np.array([5.0, -5.0, 0.0]) * 1e6
-    h = np.zeros((3, 6, 1))
+    mer = np.array([[10.0, 150.0, -10.0], [-36.0, 136.0, -48.0], [26.0, 244.0, 58.0], [0.0, 270.0, 0.0]]) * 1e6
+    rt = np.array([10.0, 20.0, -30.0, 0.0]) * 1e6
+    tz = np.array([5.0, -5.0, 0.0, 0.0]) * 1e6
+    h = np.zeros((4, 6, 1))
     h[:, 1, 0], h[:, 2, 0], h[:, 4, 0] = mer[:, 0], mer[:, 1], mer[:, 2]  # yy, zz, yz
     h[:, 3, 0], h[:, 5, 0] = -rt, -tz  # xy, xz
     h[:, 0, 0] = 30e6  # s_xx = s_thetatheta: outside the meridional plane, no effect
     sigma, tau = bending_torsion(h, np.array([[0.0], [0.02], [0.001]]), (0.0, 0.0))
-    expected_sigma = 0.5 * (mer[:, 0] + mer[:, 1]) + mer[:, 2]  # (50 + 250)/2 + 50 = 200, 55, 45 MPa
-    np.testing.assert_allclose(sigma[:, 0], expected_sigma, rtol=1e-12)
-    np.testing.assert_allclose(sigma[:, 0], [200e6, 55e6, 45e6], rtol=1e-12)
-    np.testing.assert_allclose(tau[:, 0], (rt + tz) / np.sqrt(2), rtol=1e-12)
+    np.testing.assert_allclose(sigma[:, 0], [90e6, 28e6, 221.2e6, 172.8e6], rtol=1e-12)
+    expected_tau = 0.6 * rt + 0.8 * tz
+    np.testing.assert_allclose(np.sign(tau[0, 0]) * tau[:, 0], expected_tau, rtol=1e-12, atol=1e-6)
