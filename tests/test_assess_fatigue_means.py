@@ -172,3 +172,46 @@ def test_bending_direction_from_the_largest_meridional_deviation():
     np.testing.assert_allclose(sigma[:, 0], [90e6, 28e6, 221.2e6, 172.8e6], rtol=1e-12)
     expected_tau = 0.6 * rt + 0.8 * tz
     np.testing.assert_allclose(np.sign(tau[0, 0]) * tau[:, 0], expected_tau, rtol=1e-12, atol=1e-6)
+
+
+def test_bending_torsion_and_signed_mean_are_homogeneous_at_any_scale():
+    """sigma, tau and the signed mean are linear in the stress (degree 1): the path above
+    scaled by 1e-8 (deviations below 1 Pa) gives the values scaled by 1e-8 -- no
+    threshold in pascals may enter the directions or the signs.  A path with no
+    variation has no bending direction: the axis direction (0, 1) is taken, sigma =
+    s_zz, tau = s_thetaz."""
+    from fe_crank.assess.fatigue import bending_torsion
+
+    mer = np.array([[10.0, 150.0, -10.0], [-36.0, 136.0, -48.0], [26.0, 244.0, 58.0], [0.0, 270.0, 0.0]])
+    h = np.zeros((4, 6, 1))
+    h[:, 1, 0], h[:, 2, 0], h[:, 4, 0] = mer[:, 0], mer[:, 1], mer[:, 2]
+    pts = np.array([[0.0], [0.02], [0.001]])
+    for scale in (1e6, 1e-8):
+        sigma, _ = bending_torsion(scale * h, pts, (0.0, 0.0))
+        np.testing.assert_allclose(sigma[:, 0], scale * np.array([90.0, 28.0, 221.2, 172.8]), rtol=1e-12)
+    still = np.zeros((3, 6, 1))
+    still[:, 1, 0], still[:, 2, 0], still[:, 5, 0] = 50e6, 100e6, -7e6  # s_rr, s_zz, s_thetaz = +7 MPa
+    sigma, tau = bending_torsion(still, pts, (0.0, 0.0))
+    np.testing.assert_allclose(sigma[:, 0], 100e6, rtol=1e-12)
+    np.testing.assert_allclose(tau[:, 0], 7e6, rtol=1e-12)
+    # a tensile mean of 0.5 Pa is tensile, a compressive one compressive
+    np.testing.assert_allclose(signed_mean(np.array([[0.5, -0.5], [0, 0], [0, 0], [0, 0], [0, 0], [0, 0.0]])),
+                               [0.5, -0.5], rtol=1e-12)
+
+
+def test_the_mid_range_centre_is_kept_when_it_is_the_minimum():
+    """Four shear states on a circle of radius tau about 0, visited P2, P1, P3, P4 with
+    P1 = (1, 0), P2 = (-1/2, sqrt3/2), P3 = (-1/2, -sqrt3/2), P4 = (-1, 0) times tau in the
+    (tau_xy, tau_yz) plane.  The mid-range is 0, and P1, P4 are a diameter: the minimum
+    ball is centred on the mid-range, radius sqrt(3) tau exactly.  The chord search
+    starts from P2 (the first of the equally far points), whose longest chord is
+    sqrt(3) tau < the diameter, so the refinement runs -- and must not replace the exact
+    centre by a worse one: the amplitude stays sqrt(3) tau to round-off."""
+    tau = 100e6
+    pts = np.array([[-0.5, np.sqrt(3) / 2], [1.0, 0.0], [-0.5, -np.sqrt(3) / 2], [-1.0, 0.0]]) * tau
+    h = np.zeros((4, 6, 1))
+    h[:, 3, 0], h[:, 4, 0] = pts[:, 0], pts[:, 1]
+    a, m, low = amplitude_mean(h)
+    assert low[0] == pytest.approx(1.5 * tau, rel=1e-12)  # sqrt3 * (sqrt3 tau / 2): refinement runs
+    assert a[0] == pytest.approx(np.sqrt(3) * tau, rel=1e-12)
+    assert np.abs(m).max() < 1e-9 * tau
