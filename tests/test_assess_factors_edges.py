@@ -7,7 +7,7 @@ import dataclasses
 
 import pytest
 
-from fe_crank.assess.factors import factors, material_rows, reliability_factor, size_factor
+from fe_crank.assess.factors import factors, material_rows, reliability_factor, size_factor, surface_factor
 from fe_crank.io.material import load_material
 
 
@@ -26,6 +26,13 @@ def test_size_factor_at_the_range_ends():
     # 254 mm and above: the 254-mm value 0.633021, also for no diameter
     assert size_factor(0.254) == size_factor(0.255) == size_factor(1.0) == size_factor(None)
     assert size_factor(0.254) == pytest.approx(0.633021, rel=1e-6)
+
+
+def test_surface_factor_full_precision():
+    """k_a = a (R_m / 1 MPa)^b with the table's a, b as exact numbers (rel 1e-12: R_m
+    converted with any other factor than 1e6 Pa/MPa is caught, even 1 ppm off)."""
+    assert surface_factor("machined", 900e6) == pytest.approx(4.51 * 900.0**-0.265, rel=1e-12)
+    assert surface_factor("as_forged", 580e6) == pytest.approx(272.0 * 580.0**-0.995, rel=1e-12)
 
 
 def test_reliability_range():

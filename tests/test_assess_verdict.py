@@ -39,6 +39,12 @@ def test_judge_margins_by_hand():
     assert c.margin == -math.inf and not c.passed
     assert judge("k", "q", "min", 0.0, 0.0).margin == math.inf and judge("k", "q", "min", 0.0, 0.0).passed
     assert judge("k", "q", "min", -1.0, 0.0).passed is False
+    # limits below 1 (unbalance error, bolt utilisation): 1 - 0.03/0.05 = 0.4; 0.6/0.5 - 1 = 0.2
+    assert judge("k", "unbalance_error", "max", 0.03, 0.05).margin == pytest.approx(0.4, rel=1e-12)
+    assert judge("k", "q", "min", 0.6, 0.5).margin == pytest.approx(0.2, rel=1e-12)
+    # unit, location and description are empty unless given (a safety factor has no unit)
+    c = judge("k", "q", "min", 2.0, 1.0)
+    assert (c.unit, c.location, c.description) == ("", "", "")
 
 
 def _ext(value, group, node, angle=None):

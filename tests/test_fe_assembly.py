@@ -64,6 +64,7 @@ def test_lame_parameters_closed_form_and_bad_input():
         assert e.value.key == "material.poisson_ratio"
     assert lame_parameters(E, 0.499)[0] == pytest.approx(E * 0.499 / (1.499 * 0.002), rel=1e-12)
     assert lame_parameters(E, -0.99)[1] == pytest.approx(E / 0.02, rel=1e-12)
+    assert lame_parameters(0.5, 0.3)[1] == pytest.approx(0.5 / 2.6, rel=1e-12)  # any E > 0, in Pa
     for e_mod in (0.0, -1.0):
         with pytest.raises(InputError, match="Young's modulus must be > 0") as e:
             lame_parameters(e_mod, 0.3)
