@@ -97,3 +97,24 @@ def test_m53_takes_the_journal_torque_with_the_larger_alternating_part():
     t = assess_throw("1", unit, theta, pin, np.zeros(720), omega=0.0, overspeed=None,
                      material=load_material("42CrMo4"), crank_radius=0.09, m53_geometry=GEO, torque_rear=rear)
     assert t.m53_nominal.torsion_pin == pytest.approx(900.0 / (math.pi / 16 * 0.1**3), rel=1e-9)
+
+
+def test_default_additional_stress_sources_and_fe_shear_scf():
+    """sigma_add defaults to 10 MPa (UR M53 5.2, trunk piston engines): sigma_V =
+    sqrt((sigma_B + 10 MPa)^2 + 3 tau^2) exactly, from the fillet's own sigma_B and tau.
+    The source names the clause: 3.2 for the pin, 3.3 for the journal.  Outside the range
+    the journal's FE beta_Q multiplies the nominal shear: sigma_B = beta_B sigma_BN +
+    beta_Q sigma_QN with the given 3.0 and 2.0."""
+    theta = np.deg2rad(np.arange(720.0))
+    nom = m53.nominal_stresses(GEO, 50e3 * np.cos(theta), 2e3 * np.sin(2 * theta))
+    for fillet, clause in (("pin", "3.2"), ("journal", "3.3")):
+        r = m53.assess_fillet(GEO, nom, fillet, tensile=800e6, k=1.05)
+        assert r.equivalent == pytest.approx(math.sqrt((r.bending + 10e6) ** 2 + 3 * r.torsion**2), rel=1e-12)
+        assert r.scf_source == f"empirical, UR M53 Rev.1 {clause}"
+    thin = m53.M53Geometry(**{**GEO.__dict__, "web_thickness": 0.015})
+    nom = m53.nominal_stresses(thin, 50e3 * np.cos(theta), 2e3 * np.sin(2 * theta))
+    j = m53.assess_fillet(thin, nom, "journal", tensile=800e6, k=1.05,
+                          fe_scf={"bending": 3.0, "shear": 2.0, "torsion": 1.5})
+    assert j.scf_shear == 2.0
+    assert j.bending == pytest.approx(3.0 * nom.bending + 2.0 * nom.shear, rel=1e-12)
+    assert j.torsion == pytest.approx(1.5 * nom.torsion_journal, rel=1e-12)
