@@ -15,6 +15,7 @@ from fe_crank.assess import assess_case, assessed_groups, to_json
 from fe_crank.assess.results import load_schema
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.throw_scope import ALL_THROWS
 
 import fe_crank.fe.unit_cases as fe
 import fe_crank.dynamics as dynamics
@@ -81,7 +82,40 @@ def _run(tmp_path, solved, criteria):
     lc = load_loadcase(p)
     dyn = dynamics.analyse(lc.engine, lc.operating)
     mesh, units = solved
-    return lc, dyn, assess_case(lc, dyn, {}, {"throw": mesh}, {"throw": units})
+    return lc, dyn, assess_case(lc, dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units})
+
+
+def _max_von_mises_by_hand(solved, dyn, omega):
+    """max over the assessed nodes and the 720 cycle angles of vM(sigma(theta)), sigma
+    combined here from the unit stresses with loops over the angles (an independent
+    route to the package's vectorised superposition):
+
+        sigma = omega^2 S_c + a S_(30 j) + b S_(30 (j + 1)) + (-T / M_z) S_t
+
+    the pin force F at angle psi in [30 j, 30 (j + 1)) deg carried by the two bracketing
+    30-deg pin cases with the sine rule a = |F| sin(30 (j + 1) - psi) / sin 30,
+    b = |F| sin(psi - 30 j) / sin 30 (so that a e_j + b e_(j+1) = F), the torque through the
+    front journal acting about -z on the unit case of moment M_z (sense +1)."""
+    from fe_crank.assess import unit_stresses
+    from fe_crank.assess.stress import von_mises
+
+    _, units = solved
+    unit = unit_stresses(units)
+    stress = {c: unit.stress[i] for i, c in enumerate(unit.cases)}
+    direction = {0: "pin_x", 90: "pin_y", 180: "pin_-x", 270: "pin_-y"}
+    name = lambda d: direction.get(d % 360, f"pin_{d % 360:03d}")  # noqa: E731
+    tl = dyn.throws["1"]
+    worst = 0.0
+    for f, torque in zip(tl.pin_force, tl.torque_front):
+        mag = float(np.hypot(*f))
+        psi = float(np.degrees(np.arctan2(f[1], f[0]))) % 360.0
+        j = int(psi // 30)
+        a = mag * np.sin(np.radians(30 * (j + 1) - psi)) / 0.5
+        b = mag * np.sin(np.radians(psi - 30 * j)) / 0.5
+        s = (omega**2 * stress["centrifugal"] + a * stress[name(30 * j)] + b * stress[name(30 * (j + 1))]
+             - torque / unit.torque_mz * stress["torque"])
+        worst = max(worst, float(von_mises(s[None])[0].max()))
+    return worst
 
 
 def test_groups_include_junction(solved):
@@ -108,9 +142,11 @@ def test_assess_case_verdicts_and_json(tmp_path, solved):
     assert not cw.passed and cw.margin < 0
     assert "counterweight_1" in cw.location or "junction_1" in cw.location
     assert a.passed is False
-    # static safety = R_e / max over the groups of the max von Mises over the cycle
-    worst = max(g.max_von_mises.value for g in a.throws[0].groups)
-    assert a.criteria[0].value == pytest.approx(650e6 / worst)
+    # static safety = R_e / (max over the assessed nodes and the cycle of the von Mises
+    # stress), R_e = 650 MPa (42CrMo4 +QT, library); the stress re-superposed by hand below
+    worst = _max_von_mises_by_hand(solved, dyn, lc.operating.speed)
+    assert a.criteria[0].value == pytest.approx(650e6 / worst, rel=1e-9)
+    assert a.criteria[0].value == pytest.approx(min(g.static_safety for g in a.throws[0].groups), rel=1e-12)
     doc = json.loads(json.dumps(to_json(a)))
     jsonschema.validate(doc, load_schema())
     assert doc["throws"][0]["n_angles"] == dyn.theta.size == 720
@@ -151,8 +187,8 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
                          web_width=0.15, pin_fillet_radius=0.005, journal_fillet_radius=0.006, bearing_to_web=0.06)
     cw = CounterweightData("counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026,
                            bolted=True, bolt_capacity=20e3)
-    a = assess_case(dataclasses.replace(lc, geometry=_Geo(inside, (cw,))), dyn, {}, {"throw": mesh},
-                    {"throw": units})
+    a = assess_case(dataclasses.replace(lc, geometry=_Geo(inside, (cw,))), dyn, {}, {ALL_THROWS: mesh},
+                    {ALL_THROWS: units})
     pin = a.throws[0].m53[0]
     # M53 sigma_DW = K (0.42 s_B + 39.3)[0.264 + 1.073 D^-0.2 + (785 - s_B)/4900 + 196/s_B sqrt(1/R_H)]
     # (N/mm2, mm), s_B = 900, D = 100, R_H = 5, K = 1.05 by hand:
@@ -172,7 +208,7 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
     from fe_crank.errors import MeshError
 
     with pytest.raises(MeshError, match="no boundary 'journal_fillet_1', needed by the SCF mode"):
-        assess_case(dataclasses.replace(lc, geometry=_Geo(thin, (cw,))), dyn, {}, {"throw": mesh}, {"throw": units})
+        assess_case(dataclasses.replace(lc, geometry=_Geo(thin, (cw,))), dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units})
     doc = json.loads(json.dumps(to_json(a)))
     jsonschema.validate(doc, load_schema())
 
@@ -185,8 +221,26 @@ def test_stress_recovery_check(solved):
     groups = {k: v for k, v in assessed_groups(units).items() if "fillet" in k}
     ratios = recovery_ratios(units, groups)
     assert set(ratios) == {"crankpin_fillet_1", "journal_fillet_2"}
-    # a plain bar with good elements: nodal peaks do not exceed the quadrature peaks much
-    assert all(0.5 < r < 1.25 for r in ratios.values()), ratios
+    # Torsion of the bar: tau = T r / J, linear in the radius r (Saint-Venant, round
+    # section), so vM = sqrt(3) tau peaks at the surface nodes (r = R) and, among the
+    # quadrature points of the elements touching the group, at the largest radius r_q:
+    # the ratio is R / r_q, from the mesh geometry alone.  For this mesh
+    # R / r_q = 20 / 19.51 = 1.0251.  0.5 % covers the section being a polygon of
+    # straight-edged elements (measured 0.04 % off); it catches a ratio taken on other
+    # elements (interior ones: r_q < 18 mm, ratio > 1.1) or nodal values in place of the
+    # quadrature ones (ratio 1).
+    torsion = recovery_ratios(units, groups, cases=("torque",))
+    basis = units.system.basis
+    for name, nodes in groups.items():
+        elements = np.unique(mesh.f2t[0, mesh.boundaries[name]])
+        xq = basis.mapping.F(basis.X, tind=elements)
+        r_q = np.hypot(xq[0], xq[1]).max()
+        r_n = np.hypot(*units.points[:2, nodes]).max()
+        assert r_n == pytest.approx(R, rel=1e-12)
+        assert torsion[name] == pytest.approx(r_n / r_q, rel=5e-3)
+        # the reported ratio is the larger of the two unit cases'
+        bending = recovery_ratios(units, groups, cases=("pin_y",))[name]
+        assert ratios[name] == max(bending, torsion[name])
     assert recovery_notes(ratios) == []
     notes = recovery_notes({"journal_fillet_2": 7.5, "oil_bore": 1.1})
     assert len(notes) == 1 and "journal_fillet_2 is 7.50 x" in notes[0]
@@ -237,8 +291,12 @@ def test_overspeed_includes_rod_and_piston_inertia_hand_calc(tmp_path, solved):
                       overspeed_loads=(np.array([[0.0, f]]), np.zeros(1)))
     for g in t0.groups:
         assert g.max_von_mises_overspeed.value == pytest.approx(by_hand[unit.groups[g.group]].max(), rel=1e-9)
-    assert a.criteria[0].value == pytest.approx(650e6 / max(g.max_von_mises_overspeed.value
-                                                            for g in a.throws[0].groups))
+    # no gas table: every load of the cycle (pin force, torque, body force) is an inertia
+    # load, proportional to omega^2, so the overspeed stresses are (3600/3000)^2 = 1.44
+    # times the operating ones at every angle, and the overspeed safety is
+    # R_e / (1.44 max vM_operating) -- the operating maximum re-superposed by hand
+    worst = _max_von_mises_by_hand(solved, dyn, lc.operating.speed)
+    assert a.criteria[0].value == pytest.approx(650e6 / (1.44 * worst), rel=1e-9)
     assert any("overspeed: whole cycle recomputed at 3600 rpm" in n for n in a.notes)
 
 

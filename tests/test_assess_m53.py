@@ -44,8 +44,11 @@ def test_fatigue_strength_by_hand():
     # (0.42*800 + 39.3) = 375.3;  0.264 + 1.073*100^-0.2 (0.427169) + (785-800)/4900 (-0.003061)
     #   + 196/800*sqrt(1/5) (0.109567) = 0.797675;  sigma_DW = 1.05 * 375.3 * 0.797675 = 314.336 MPa
     assert m53.fatigue_strength(800e6, 0.1, 0.005, 1.05) == pytest.approx(314.336e6, rel=1e-5)
-    # fillet radius below 2 mm is taken as 2 mm (UR M53 6)
-    assert m53.fatigue_strength(800e6, 0.1, 0.001, 1.0) == m53.fatigue_strength(800e6, 0.1, 0.002, 1.0)
+    # fillet radius below 2 mm is taken as 2 mm (UR M53 6): R_X = 2 mm, K = 1:
+    # 375.3 * (0.264 + 0.427169 - 0.003061 + 0.245 * sqrt(1/2) (0.173241)) = 375.3 * 0.861349 = 323.264 MPa
+    # for R = 1 and 2 mm alike (R_X = 1 mm unclamped would give 0.245: 350.2 MPa, 8 % more)
+    for radius in (0.001, 0.002):
+        assert m53.fatigue_strength(800e6, 0.1, radius, 1.0) == pytest.approx(323.264e6, rel=1e-5)
 
 
 def test_nominal_stresses_and_q_by_hand():
@@ -142,3 +145,24 @@ def test_ke_reaches_the_route_through_assess_throw_but_not_the_outlet():
     assert two.m53_nominal.shear == pytest.approx(0.8 * four.m53_nominal.shear, rel=1e-12)
     o4, o2 = (next(f for f in t.m53 if f.fillet == "oil_bore") for t in (four, two))
     assert o2.bending == o4.bending and o2.acceptability == o4.acceptability
+
+
+def test_default_additional_stress_sources_and_fe_shear_scf():
+    """sigma_add defaults to 10 MPa (UR M53 5.2, trunk piston engines): sigma_V =
+    sqrt((sigma_B + 10 MPa)^2 + 3 tau^2) exactly, from the fillet's own sigma_B and tau.
+    The source names the clause: 3.2 for the pin, 3.3 for the journal.  Outside the range
+    the journal's FE beta_Q multiplies the nominal shear: sigma_B = beta_B sigma_BN +
+    beta_Q sigma_QN with the given 3.0 and 2.0."""
+    theta = np.deg2rad(np.arange(720.0))
+    nom = m53.nominal_stresses(GEO, 50e3 * np.cos(theta), 2e3 * np.sin(2 * theta))
+    for fillet, clause in (("pin", "3.2"), ("journal", "3.3")):
+        r = m53.assess_fillet(GEO, nom, fillet, tensile=800e6, k=1.05)
+        assert r.equivalent == pytest.approx(math.sqrt((r.bending + 10e6) ** 2 + 3 * r.torsion**2), rel=1e-12)
+        assert r.scf_source == f"empirical, UR M53 Rev.1 {clause}"
+    thin = m53.M53Geometry(**{**GEO.__dict__, "web_thickness": 0.015})
+    nom = m53.nominal_stresses(thin, 50e3 * np.cos(theta), 2e3 * np.sin(2 * theta))
+    j = m53.assess_fillet(thin, nom, "journal", tensile=800e6, k=1.05,
+                          fe_scf={"bending": 3.0, "shear": 2.0, "torsion": 1.5})
+    assert j.scf_shear == 2.0
+    assert j.bending == pytest.approx(3.0 * nom.bending + 2.0 * nom.shear, rel=1e-12)
+    assert j.torsion == pytest.approx(1.5 * nom.torsion_journal, rel=1e-12)

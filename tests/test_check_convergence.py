@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import jsonschema
 import pytest
 
 from fe_crank.cli import main
@@ -30,7 +31,6 @@ def test_check_with_convergence_study(tmp_path):
                  "--no-render", "--no-vtu", "--cache-dir", str(tmp_path / "cache")])
     doc = json.loads((out / "small_pass" / "results.json").read_text())
     case = json.loads((out / "small_pass" / "case.json").read_text())
-    jsonschema = pytest.importorskip("jsonschema")
     from fe_crank.assess.results import load_schema
 
     jsonschema.validate(doc, load_schema())

@@ -52,13 +52,39 @@ def test_foundation_equals_bilinear_form(ball):
 
 
 def test_lame_parameters_closed_form_and_bad_input():
+    # E = 210 GPa, nu = 0.3: lambda = 210 * 0.3 / (1.3 * 0.4) = 63 / 0.52 = 121.1538 GPa,
+    # mu = 210 / 2.6 = 80.7692 GPa; scikit-fem's own lame_parameters as a second source
     lam, mu = lame_parameters(E, NU)
-    assert lam == pytest.approx(E * NU / ((1 + NU) * (1 - 2 * NU)))
-    assert mu == pytest.approx(E / 2.6)
-    with pytest.raises(InputError, match="Poisson"):
-        lame_parameters(E, 0.5)
-    with pytest.raises(InputError, match="Young"):
-        lame_parameters(-1.0, 0.3)
+    assert lam == pytest.approx(121.153846e9, rel=1e-8) and mu == pytest.approx(80.769231e9, rel=1e-8)
+    assert (lam, mu) == pytest.approx(skfem_lame(E, NU), rel=1e-14)
+    # the open interval -1 < nu < 0.5 and E > 0: the ends are refused, the inside accepted
+    for nu in (0.5, -1.0, 0.6):
+        with pytest.raises(InputError, match="Poisson's ratio must lie in") as e:
+            lame_parameters(E, nu)
+        assert e.value.key == "material.poisson_ratio"
+    assert lame_parameters(E, 0.499)[0] == pytest.approx(E * 0.499 / (1.499 * 0.002), rel=1e-12)
+    assert lame_parameters(E, -0.99)[1] == pytest.approx(E / 0.02, rel=1e-12)
+    assert lame_parameters(0.5, 0.3)[1] == pytest.approx(0.5 / 2.6, rel=1e-12)  # any E > 0, in Pa
+    for e_mod in (0.0, -1.0):
+        with pytest.raises(InputError, match="Young's modulus must be > 0") as e:
+            lame_parameters(e_mod, 0.3)
+        assert e.value.key == "material.youngs_modulus"
+
+
+def test_centrifugal_about_an_offset_axis(ball):
+    """Axis through p = (0.1, 0.2, 0) along 2 e_z (not a unit vector): the resultant is
+    rho omega^2 V (c - p)_perp with c = 0 the ball's centroid and V its volume
+    (quadrature), i.e. -rho omega^2 V (0.1, 0.2, 0); the form and the fast load agree."""
+    b = Basis(ball, ElementTetP2(), intorder=4)
+    vb = Basis(ball, ElementVector(ElementTetP2()), intorder=4)
+    kw = dict(axis_point=(0.1, 0.2, 0.0), axis=(0.0, 0.0, 2.0))
+    f = centrifugal_load(b, 7850.0, 300.0, **kw)
+    f_ref = asm(centrifugal(7850.0, 300.0, **kw), vb)
+    np.testing.assert_allclose(f, f_ref, rtol=0, atol=1e-12 * np.abs(f_ref).max())
+    volume = float(b.dx.sum())
+    total = f.reshape(-1, 3).sum(axis=0)
+    expected = -7850.0 * 300.0**2 * volume * np.array([0.1, 0.2, 0.0])
+    np.testing.assert_allclose(total, expected, rtol=0, atol=1e-9 * np.abs(expected).max())
 
 
 @pytest.mark.parametrize("method", ["superlu", "amg", "pardiso", "cholmod"])

@@ -11,6 +11,7 @@ from fe_crank.assess.overspeed import overspeed_cycles
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.scf import scf_provider
 from fe_crank.errors import InputError
+from fe_crank.throw_scope import throws_of
 
 
 def _hook(obj, name, *args):
@@ -21,10 +22,10 @@ def _hook(obj, name, *args):
 def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> Assessment:
     """Assess one load case.
 
-    ``throw_meshes`` and ``unit_solutions`` are dicts keyed alike (the pipeline's
-    ``{"throw": ...}``); each key names a throw of the engine, or, when the key is not a
-    throw name, the mesh stands for every throw and the most loaded throw's history is
-    used for each (all throws are assessed on that mesh).  UR M53 dimensions and the
+    ``throw_meshes`` and ``unit_solutions`` are dicts keyed alike
+    (``fe_crank.throw_scope``): a key is the name of one throw of the engine, or
+    ``ALL_THROWS``, the mesh then standing for every throw, each assessed on it with its
+    own loads.  Any other key is a ValueError.  UR M53 dimensions and the
     counterweights' m r and bolts come from the ``CrankGeometry`` (``adapters.py``) and
     the balance stage's ``BalanceResult.design``; a geometry object may instead offer
     ``m53_geometry(throw) -> M53Geometry`` and ``counterweights(throw) ->
@@ -59,8 +60,7 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
         boundary_groups = {g: units_nodes for g, units_nodes in assessed_groups(units).items()
                            if g in ASSESSED_BOUNDARIES}
         notes.extend(f"mesh {key}: {n}" for n in recovery_notes(recovery_ratios(units, boundary_groups)))
-        names = [key] if key in dynamics.throws else list(dynamics.throws)
-        for tname in names:
+        for tname in throws_of(key, dynamics.throws):
             tl = dynamics.throws[tname]
             throw = lc.engine.throw(tname)
             sense = lc.engine.shaft(throw.shaft).sense

@@ -23,6 +23,7 @@ from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.mesh import MeshSection
 from fe_crank.mesh import mesh_throw
 from fe_crank.results import CriterionResult, StageTime
+from fe_crank.throw_scope import ALL_THROWS
 from fe_crank.torsion.stage import dynamics_for_assessment, torsion_stage
 
 
@@ -110,7 +111,7 @@ def throw_keys(lc) -> dict[str, str]:
     """Which geometry throw to mesh for each key handed to the assessment.
 
     A geometry with a single throw stands for every throw of the engine (key
-    ``"all throws"``, which ``assess_case`` applies to each throw with its own loads);
+    ``ALL_THROWS``, ``fe_crank.throw_scope``, which ``assess_case`` applies to each throw with its own loads);
     so do several throws that differ only in name and angle; otherwise the geometry's
     throw names must be the engine's throw names, so that no throw goes unchecked.
     """
@@ -118,11 +119,11 @@ def throw_keys(lc) -> dict[str, str]:
     names = [t.name for t in g.throws]
     engine = [t.name for t in lc.engine.throws]
     if len(names) == 1:
-        return {names[0] if engine == names else "all throws": names[0]}
+        return {names[0] if engine == names else ALL_THROWS: names[0]}
     if sorted(names) != sorted(engine) and _all_equal(g.throws):
         # equal throws under other names (e.g. "1", "2" for the engine's "A", "B"):
         # one model stands for every throw, each assessed with its own loads
-        return {"all throws": names[0]}
+        return {ALL_THROWS: names[0]}
     if sorted(names) != sorted(engine):
         raise InputError(
             f"the geometry's throws {names} must be the engine's throws {engine} "

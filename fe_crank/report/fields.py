@@ -59,11 +59,11 @@ def _finite_key(v: float) -> float:
 def critical(assessment, keys, dyn) -> HotSpot | None:
     """The hot spot the pictures show: the node with the lowest fatigue safety (static
     safety when there is no fatigue result) over the throws the FE model stands for
-    (``keys``: throw names, or any other key standing for every throw, as
-    ``assess_case`` does).  Ties go to the first throw, then the first group, in the
+    (``keys``: throw names, or ``ALL_THROWS`` standing for every throw, as
+    ``assess_case`` reads them, ``fe_crank.throw_scope``).  Ties go to the first throw, then the first group, in the
     assessment's order (deterministic whichever way the case ran).  Fatigue works on
     the whole cycle, so the angle drawn is that of the group's largest von Mises."""
-    names = throw_names(keys, dyn)
+    names = set(throw_names(keys, dyn))
     cands = []
     for ti, t in enumerate(assessment.throws):
         if t.name not in names:

@@ -27,6 +27,7 @@ from fe_crank.assess.groups import COUNTERWEIGHTS
 from fe_crank.assess.overspeed import overspeed_cycles
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.report.superposed import field_at_angle
+from fe_crank.throw_scope import throws_of
 
 
 @dataclass(frozen=True)
@@ -52,11 +53,12 @@ class OverspeedState:
 
 
 def throw_names(keys, dyn) -> list[str]:
-    """The engine throws an FE model stands for: its keys when they are throw names,
-    every throw otherwise (the key ``"all throws"``, as ``assess_case`` reads it)."""
+    """The engine throws an FE model stands for, in the engine's order: its keys (throw
+    names, or ``ALL_THROWS`` for every throw), read as ``assess_case`` reads them
+    (``fe_crank.throw_scope.throws_of``)."""
     keys = [keys] if isinstance(keys, str) else list(keys)
-    names = [k for k in keys if k in dyn.throws]
-    return names if len(names) == len(keys) else list(dyn.throws)
+    wanted = {n for k in keys for n in throws_of(k, dyn.throws)}
+    return [n for n in dyn.throws if n in wanted]
 
 
 def governing(assessment, names) -> tuple[object, object] | None:
