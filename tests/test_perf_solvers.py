@@ -80,3 +80,18 @@ def test_cholmod_refuses_an_indefinite_matrix():
     K = sp.csr_matrix(np.array([[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]]))
     with pytest.raises(SolverError, match="not positive definite"):
         solvers.factorise(K, "cholmod")
+
+
+def test_free_releases_the_factor_and_refuses_a_later_solve(system):
+    """The check frees the factor after the unit solves; what the report reads stays."""
+    K, f = system
+    fac = solvers.factorise(K, "auto")
+    x = fac.solve(f)
+    nnz, desc = fac.nnz, fac.description
+    assert nnz == K.nnz
+    fac.free()
+    assert fac.nnz == nnz and fac.description == desc
+    with pytest.raises(SolverError, match="released"):
+        fac.solve(f)
+    fac.free()                                          # twice is harmless
+    assert np.all(np.isfinite(x))
