@@ -70,6 +70,9 @@ def main(argv=None) -> int:
     ap.add_argument("--out", help="report folder (default: a temporary one)")
     args = ap.parse_args(argv)
 
+    import logging
+
+    logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", datefmt="%H:%M:%S")
     from fe_crank.check.case import run_case
     from fe_crank.check.options import CheckOptions
 

@@ -19,6 +19,7 @@ most about the last change).
 from __future__ import annotations
 
 import dataclasses
+import logging
 import time
 from dataclasses import dataclass, field
 
@@ -27,6 +28,8 @@ import numpy as np
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.supports import boundary_facets
 from fe_crank.fe.unit_cases import FeOptions, solve_unit_cases
+
+log = logging.getLogger(__name__)
 
 FACTORS = (1.0, 1.5, 2.0)
 TOLERANCE = 0.05
@@ -180,6 +183,9 @@ def fillet_convergence(geometry, material, *, throw=None, base=None, factors=FAC
         levels.append(ConvergenceLevel(fillet_divisions=mopt.fillet_divisions, n_dof=units.n_dof,
                                        fillet_max_edge=dict(tm.stats.fillet_max_edge), peaks=peaks,
                                        where=where, seconds=time.perf_counter() - t0, reused=reuse))
+        lv = levels[-1]
+        log.info("convergence level r/%g: %d DOF, %.1f s%s", lv.fillet_divisions, lv.n_dof, lv.seconds,
+                 " (the check's own mesh and solution)" if reuse else "")
         if not reuse:
             units.system.factorisation.free()
             del units

@@ -240,7 +240,8 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
         refcols[c.boundary] = cmap
     P = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, ncol))
     method = choose_method(solver, ncol)
-    Kr = _reduced(K, Ks, P, free, direct=method in ("pardiso", "cholmod"))
+    direct = method in ("pardiso", "pardiso_ooc", "cholmod")
+    Kr = _reduced(K, Ks, P, free, direct=direct)
     rows = np.union1d(np.flatnonzero(is_slave), np.flatnonzero(held))
     K_rows = K[rows]
     del K                                    # the full matrix is not kept: memory for the factor
@@ -251,7 +252,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
         B = rigid_body_modes(basis.doflocs)
         near_null = _reduce_modes(B, free, refcols, refp)
     t0 = time.perf_counter()
-    fac = factorise(Kr, solver, near_nullspace=near_null, upper=method in ("pardiso", "cholmod"))
+    fac = factorise(Kr, solver, near_nullspace=near_null, upper=direct)
     del Kr
     timings["factorisation"] = time.perf_counter() - t0
     return System(mesh=mesh, basis=basis, K_rows=K_rows, rows=rows, Ks=Ks.tocsr(), P=P, foundations=tuple(foundations),
