@@ -89,8 +89,9 @@ def fallback_note(method: str, n_dof: int) -> str | None:
 
 
 def choose_method(method: str, n_dof: int) -> str:
-    """Resolve ``auto``: pardiso where it imports, else cholmod where cholespy imports, else
-    SuperLU for small and AMG-CG for large systems."""
+    """Resolve ``auto``: pardiso where it imports (``pardiso_ooc`` above ``OOC_MIN_DOF``
+    unknowns), else cholmod where cholespy imports, else SuperLU for small and AMG-CG for
+    large systems."""
     if method not in METHODS:
         raise InputError(f"unknown solver {method!r}; pick one of {', '.join(METHODS)}", key="fe.solver")
     if method != "auto":
@@ -226,7 +227,7 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
     ``upper``: ``K`` holds the upper triangle only (diagonal included), which is all the
     direct methods read; the caller can then drop the full matrix before the
     factorisation (``build_system`` does: about 1 GB less at the peak of a 1M-DOF run).
-    Only for ``pardiso`` and ``cholmod``.
+    Only for ``pardiso``, ``pardiso_ooc`` and ``cholmod``.
     """
     K = sp.csr_matrix(K)
     K.sort_indices()
