@@ -31,6 +31,7 @@ bench: $(STAMP)
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/fe_solve.py --geometry geometry/v4_90_pneumatic_seed003.toml --preset coarse
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/cycle_bench.py --size 4 --angles 3
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/pin_loads.py --preset test
+	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/fatigue_bench.py --nodes 4096
 	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/scaling.py --levels 0 1 --full-recovery
 
 clean:

@@ -25,6 +25,44 @@ def von_mises(s: np.ndarray) -> np.ndarray:
     return _von_mises(np.moveaxis(s, -2, 0))
 
 
+def von_mises_path(history: np.ndarray, centre: np.ndarray | None = None) -> np.ndarray:
+    """vM(S(t) - c) of a stress path ``history`` (n_t, 6, n) about ``centre`` (6, n)
+    (None: about zero), shape (n_t, n).
+
+    The formula of ``von_mises``, sqrt(((d_xx-d_yy)^2 + (d_yy-d_zz)^2 + (d_zz-d_xx)^2)/2
+    + 3 (d_xy^2 + d_yz^2 + d_zx^2)), evaluated term by term in the same order into a
+    few reused buffers: the same floating-point result as ``von_mises(history - centre)``
+    without a temporary array per operation (the cycle assessment's hot loop).
+    """
+    shape = history.shape[:1] + history.shape[2:]
+
+    def comp(k, out):
+        if centre is None:
+            out[...] = history[:, k]
+            return out
+        return np.subtract(history[:, k], centre[k], out=out)
+
+    d = [comp(k, np.empty(shape)) for k in range(3)]
+    acc, tmp = np.subtract(d[0], d[1]), np.subtract(d[1], d[2])
+    np.multiply(acc, acc, out=acc)
+    np.multiply(tmp, tmp, out=tmp)
+    acc += tmp
+    np.subtract(d[2], d[0], out=tmp)
+    np.multiply(tmp, tmp, out=tmp)
+    acc += tmp
+    acc *= 0.5
+    shear, sq = d[0], d[1]                  # reuse the normal components' buffers
+    comp(3, shear)
+    np.multiply(shear, shear, out=shear)
+    for k in (4, 5):
+        comp(k, sq)
+        np.multiply(sq, sq, out=sq)
+        shear += sq
+    shear *= 3.0
+    acc += shear
+    return np.sqrt(acc, out=acc)
+
+
 def to_matrix(s: np.ndarray) -> np.ndarray:
     """(..., 6, n) -> (..., n, 3, 3) symmetric tensors."""
     xx, yy, zz, xy, yz, xz = (s[..., i, :] for i in range(6))

@@ -15,7 +15,7 @@ import numpy as np
 
 from fe_crank.assess import fatigue
 from fe_crank.assess.factors import FatigueFactors, factors
-from fe_crank.assess.stress import von_mises
+from fe_crank.assess.stress import von_mises_path
 from fe_crank.assess.superpose import UnitStresses, iter_histories
 
 #: groups assessed for fatigue with Gough-Pollard need a local axis: these prefixes use
@@ -129,7 +129,7 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     pos = 0
     for idx, hist in iter_histories(unit, coefficients, nodes, chunk):
         sl = slice(pos, pos + idx.size)
-        vm = von_mises(hist)  # (n_t, k)
+        vm = von_mises_path(hist)  # (n_t, k)
         vm_arg[sl] = first_extreme(vm, "max", axis=0)
         vm_max[sl] = vm.max(axis=0)
         if do_fatigue:
@@ -154,7 +154,7 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
         os_arg = np.empty(nodes.size, dtype=int)
         pos = 0
         for idx, hist in iter_histories(unit, overspeed_coefficients, nodes, chunk):
-            vm = von_mises(hist)
+            vm = von_mises_path(hist)
             os_arg[pos:pos + idx.size] = first_extreme(vm, "max", axis=0)
             vm_os[pos:pos + idx.size] = vm.max(axis=0)
             pos += idx.size

@@ -71,7 +71,7 @@ def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
     flag = options.convergence if options.convergence is not None else section.convergence
     if convergence.wanted(flag, options.mesh_size or section.size):
         out["mesh_convergence"] = run.timed("convergence", convergence.check_studies, lc, out["meshes"],
-                                            out["dynamics"], cache_dir=options.cache_dir)
+                                            out["dynamics"], cache_dir=options.cache_dir, units=out["units"])
     return out
 
 
@@ -164,6 +164,9 @@ def _fe_stage(lc, meshes):
         mk = getattr(m, "key", None) or id(m)
         if mk not in solved:
             solved[mk] = solve_unit_cases(m, lc.material, lc.fe)
+            # every unit case is solved: later stages combine displacements and never solve
+            # again, so the factor (the largest allocation of the run) goes now
+            solved[mk].system.factorisation.free()
         out[key] = solved[mk]
     return out
 

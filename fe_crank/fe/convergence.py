@@ -19,13 +19,17 @@ most about the last change).
 from __future__ import annotations
 
 import dataclasses
+import logging
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.supports import boundary_facets
 from fe_crank.fe.unit_cases import FeOptions, solve_unit_cases
+
+log = logging.getLogger(__name__)
 
 FACTORS = (1.0, 1.5, 2.0)
 TOLERANCE = 0.05
@@ -44,6 +48,7 @@ class ConvergenceLevel:
     peaks: dict[str, float]             # load set -> peak von Mises on the fillets, Pa
     where: dict[str, str]               # load set -> fillet of the peak
     seconds: float
+    reused: bool = False                # the check's own mesh and solution (no mesh, no solve)
 
 
 @dataclass(frozen=True)
@@ -109,30 +114,50 @@ def check_loads(throw_loads, omega: float) -> dict[str, dict[str, float]]:
 
 def peak_fillet_stress(units, u: np.ndarray, fillets=FILLETS) -> tuple[float, str]:
     """Largest averaged nodal von Mises stress on the fillet surfaces present, and where."""
-    vm = units.von_mises(units.stress_at_nodes(u))
+    return peak_fillet_stresses(units, {"u": u}, fillets)["u"]
+
+
+def peak_fillet_stresses(units, fields: dict[str, np.ndarray], fillets=FILLETS) -> dict[str, tuple[float, str]]:
+    """``peak_fillet_stress`` of several displacement fields on one mesh: name -> (peak, fillet).
+
+    The averaged nodal stress is recovered at the fillet nodes only, on the elements that
+    share them (``stress.stress_at_selected_nodes``: the whole-mesh average at those nodes
+    to the last bits of the summation order), with one node basis for all fields.
+    """
     mesh, basis = units.mesh, units.system.basis
-    best, where = -np.inf, ""
-    for name in fillets:
-        if name not in (mesh.boundaries or {}):
-            continue
-        nodes = basis.get_dofs(boundary_facets(mesh, name, "the convergence study")).all()
-        v = float(vm[nodes].max())
-        if v > best:
-            best, where = v, name
-    if not where:
+    groups = {name: basis.get_dofs(boundary_facets(mesh, name, "the convergence study")).all()
+              for name in fillets if name in (mesh.boundaries or {})}
+    if not groups:
         raise ValueError(f"the mesh has none of the fillet surfaces {fillets}")
-    return best, where
+    ids = np.unique(np.concatenate(list(groups.values())))
+    mat = units.material
+    s = stress_at_selected_nodes(mesh, list(fields.values()), mat.youngs_modulus, mat.poisson_ratio, ids,
+                                 dofs=basis.dofs)
+    out = {}
+    for j, key in enumerate(fields):
+        vm = von_mises(s[j])
+        best, where = -np.inf, ""
+        for name, nodes in groups.items():
+            v = float(vm[np.searchsorted(ids, nodes)].max())
+            if v > best:
+                best, where = v, name
+        out[key] = (best, where)
+    return out
 
 
 def fillet_convergence(geometry, material, *, throw=None, base=None, factors=FACTORS, loads=None,
                        fe_options: FeOptions | None = None, tolerance: float = TOLERANCE,
-                       cache_dir=None) -> ConvergenceStudy:
+                       cache_dir=None, first=None) -> ConvergenceStudy:
     """Mesh ``throw`` of ``geometry`` at fillet sizes r/(n f), f in ``factors``, and compare peaks.
 
     ``base``: the ``MeshOptions`` (or preset name) of the first level, n its
     ``fillet_divisions``; ``loads``: {load set: {unit case: weight}} (default
     ``DEFAULT_LOADS``); ``fe_options``: support model etc. of the check (only the unit
-    cases the loads need are solved).  Returns a :class:`ConvergenceStudy`.
+    cases the loads need are solved).  ``first``: (throw mesh, unit solutions) already
+    solved, e.g. the check's own; a level whose mesh options equal that mesh's (same
+    inputs, so the same mesh: the cache key) takes that solution instead of meshing and
+    solving again, when it holds every unit case the loads need and was solved with the
+    same support model.  Returns a :class:`ConvergenceStudy`.
     """
     from fe_crank.mesh import PRESETS, MeshOptions, mesh_throw
 
@@ -146,18 +171,44 @@ def fillet_convergence(geometry, material, *, throw=None, base=None, factors=FAC
     for f in factors:
         t0 = time.perf_counter()
         mopt = dataclasses.replace(base, fillet_divisions=base.fillet_divisions * f)
-        tm = mesh_throw(geometry, throw=throw, size=mopt, cache_dir=cache_dir)
-        units = solve_unit_cases(tm, material, opts)
-        peaks, where = {}, {}
-        for name, w in loads.items():
-            peaks[name], where[name] = peak_fillet_stress(units, units.combine(w))
+        reuse = _reusable(first, mopt, opts)
+        if reuse:
+            tm, units = first
+        else:
+            tm = mesh_throw(geometry, throw=throw, size=mopt, cache_dir=cache_dir)
+            units = solve_unit_cases(tm, material, opts)
+        got = peak_fillet_stresses(units, {name: units.combine(w) for name, w in loads.items()})
+        peaks = {name: got[name][0] for name in loads}
+        where = {name: got[name][1] for name in loads}
         levels.append(ConvergenceLevel(fillet_divisions=mopt.fillet_divisions, n_dof=units.n_dof,
                                        fillet_max_edge=dict(tm.stats.fillet_max_edge), peaks=peaks,
-                                       where=where, seconds=time.perf_counter() - t0))
-        units.system.factorisation.free()
+                                       where=where, seconds=time.perf_counter() - t0, reused=reuse))
+        lv = levels[-1]
+        log.info("convergence level r/%g: %d DOF, %.1f s%s", lv.fillet_divisions, lv.n_dof, lv.seconds,
+                 " (the check's own mesh and solution)" if reuse else "")
+        if not reuse:
+            units.system.factorisation.free()
+            del units
     changes = {name: [abs(b.peaks[name] - a.peaks[name]) / b.peaks[name] for a, b in zip(levels, levels[1:])]
                for name in loads}
     return ConvergenceStudy(levels=tuple(levels), loads=loads, tolerance=tolerance, changes=changes)
+
+
+def _reusable(first, mesh_options, fe_options: FeOptions) -> bool:
+    """Can ``first`` = (throw mesh, unit solutions) stand for the level meshed with
+    ``mesh_options`` and solved with ``fe_options``?  Same mesh options (the mesh is a
+    function of the geometry, the throw and these, ``fe_crank.mesh``), the same support
+    model and integration order, and every unit case needed."""
+    if first is None:
+        return False
+    tm, units = first
+    if getattr(tm, "options", None) != mesh_options:
+        return False
+    done = units.options
+    same = all(getattr(done, k) == getattr(fe_options, k) for k in
+               ("support", "bearing_stiffness", "torque_reaction", "journals", "pin_boundary", "pin_centre",
+                "pin_half_angle", "intorder"))
+    return same and all(c in units.cases for c in fe_options.cases)
 
 
 def wanted(flag: bool | None, preset: str) -> bool:
@@ -165,11 +216,14 @@ def wanted(flag: bool | None, preset: str) -> bool:
     return bool(flag) if flag is not None else preset != "test"
 
 
-def check_studies(lc, meshes: dict, dynamics, *, cache_dir=None) -> dict[str, ConvergenceStudy]:
+def check_studies(lc, meshes: dict, dynamics, *, cache_dir=None, units: dict | None = None
+                  ) -> dict[str, ConvergenceStudy]:
     """The check stage's study for each distinct throw mesh (``meshes``: key -> ThrowMesh).
 
     Loads from ``check_loads`` (the throws the key stands for: the engine throw of that
-    name, else all of them); the first level uses the check's own mesh options.
+    name, else all of them); the first level uses the check's own mesh options, and with
+    ``units`` (key -> the check's ``UnitSolutions``) the check's own solution on that mesh
+    (one mesh and one factorisation fewer).
     """
     out, done = {}, {}
     for key, tm in meshes.items():
@@ -177,9 +231,10 @@ def check_studies(lc, meshes: dict, dynamics, *, cache_dir=None) -> dict[str, Co
             out[key] = done[tm.key]
             continue
         tls = [dynamics.throws[key]] if key in dynamics.throws else list(dynamics.throws.values())
+        first = (tm, units[key]) if units and key in units else None
         study = fillet_convergence(lc.geometry, lc.material, throw=tm.throw, base=tm.options,
                                    loads=check_loads(tls, lc.operating.speed), fe_options=lc.fe,
-                                   cache_dir=cache_dir)
+                                   cache_dir=cache_dir, first=first)
         out[key] = done[tm.key] = study
     return out
 

@@ -6,7 +6,7 @@
     support = "determinate"             # default; or "foundation" (needs bearing_stiffness)
     bearing_stiffness = "2e12 N/m^3"    # foundation only, required there (docs/fe.md: how to derive it)
     torque_reaction = "end_2"           # end face where the power is taken off: "end_2" (default) | "end_1"
-    solver = "auto"                     # "pardiso" | "cholmod" | "amg" | "superlu"
+    solver = "auto"                     # "pardiso" | "pardiso_ooc" | "cholmod" | "amg" | "superlu"
     pin_half_angle = "60 deg"           # cosine pressure arc on the crankpin
 """
 
@@ -35,7 +35,7 @@ class FeInput(Strict):
     support: Literal["determinate", "foundation"] = "determinate"
     bearing_stiffness: StiffnessPerArea | None = Field(default=None, gt=0)
     torque_reaction: Literal["end_2", "end_1"] = "end_2"
-    solver: Literal["auto", "pardiso", "cholmod", "amg", "superlu"] = "auto"
+    solver: Literal["auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu"] = "auto"
     pin_half_angle: Angle = Field(default=FeOptions.pin_half_angle, gt=0, le=1.5707963267948966)
     cases: tuple[str, ...] = CASES
 

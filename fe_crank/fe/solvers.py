@@ -5,6 +5,11 @@ Methods
 ``pardiso``  MKL PARDISO through pypardiso, symmetric positive-definite type (mtype 2)
              on the upper triangle; the factorisation is computed once (phase 12) and
              every right-hand side reuses it (phase 33).  Default where it imports.
+``pardiso_ooc``  the same, out of core where the factor does not fit in memory (MKL
+             PARDISO's iparm(60) = 1: in core if the factor fits ``MKL_PARDISO_OOC_MAX_CORE_SIZE``
+             MB, default 60 % of the machine's memory, else its factor on disk in a temporary
+             folder, ``FE_CRANK_OOC_DIR`` or the system's); ``auto`` takes it above
+             ``OOC_MIN_DOF`` unknowns (the ``fine`` preset), so every smaller run is unchanged.
 ``cholmod``  CHOLMOD supernodal Cholesky (SuiteSparse) through cholespy, whose wheels bundle
              CHOLMOD, METIS and a reference BLAS (no system package); the lower
              triangle is factorised once and every right-hand side reuses it.  The
@@ -23,6 +28,9 @@ Every solution is checked: finite, and relative residual ||K x - b|| / ||b|| bel
 from __future__ import annotations
 
 import logging
+import os
+import shutil
+import tempfile
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -33,10 +41,17 @@ import scipy.sparse.linalg as spla
 
 from fe_crank.errors import InputError, SolverError
 
-METHODS = ("auto", "pardiso", "cholmod", "amg", "superlu")
+METHODS = ("auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu")
+#: above this many unknowns ``auto`` lets PARDISO go out of core when its factor does not fit
+#: (the ``fine`` preset, 2.9M DOF, needs ~27 GB in core; ``medium``, 1.0-1.15M DOF, 8 GB)
+OOC_MIN_DOF = 1_500_000
+#: share of the machine's memory the in-core part of an out-of-core factor may take
+OOC_CORE_SHARE = 0.6
 SUPERLU_MAX_DOF = 60_000
 DESCRIPTIONS = {
     "pardiso": "MKL PARDISO (pypardiso), sparse Cholesky, factorised once",
+    "pardiso_ooc": "MKL PARDISO (pypardiso), sparse Cholesky, factorised once, out of core where the factor "
+                   "does not fit in memory",
     "cholmod": "CHOLMOD (SuiteSparse, via cholespy), supernodal Cholesky, factorised once",
     "superlu": "SciPy SuperLU, sparse LU, factorised once",
     "amg": "conjugate gradients with pyamg smoothed-aggregation preconditioner (rigid-body modes)",
@@ -74,14 +89,18 @@ def fallback_note(method: str, n_dof: int) -> str | None:
 
 
 def choose_method(method: str, n_dof: int) -> str:
-    """Resolve ``auto``: pardiso where it imports, else cholmod where cholespy imports, else
-    SuperLU for small and AMG-CG for large systems."""
+    """Resolve ``auto``: pardiso where it imports (``pardiso_ooc`` above ``OOC_MIN_DOF``
+    unknowns), else cholmod where cholespy imports, else SuperLU for small and AMG-CG for
+    large systems."""
     if method not in METHODS:
         raise InputError(f"unknown solver {method!r}; pick one of {', '.join(METHODS)}", key="fe.solver")
     if method != "auto":
+        if method == "pardiso_ooc" and not pardiso_available():
+            raise InputError("solver 'pardiso_ooc' needs pypardiso (MKL PARDISO): pip install pypardiso",
+                             key="fe.solver")
         return method
     if pardiso_available():
-        return "pardiso"
+        return "pardiso_ooc" if n_dof > OOC_MIN_DOF else "pardiso"
     if cholmod_available():
         return "cholmod"
     return "superlu" if n_dof <= SUPERLU_MAX_DOF else "amg"
@@ -100,6 +119,8 @@ class Factorisation:
     amg_rtol: float = 1e-10
     amg_maxiter: int = 2000
     note: str | None = None               # why this method ran when ``auto`` fell back from PARDISO
+    _nnz: int | None = field(default=None, repr=False)   # kept by ``free``
+    _ooc_dir: str | None = field(default=None, repr=False)  # PARDISO's factor files (pardiso_ooc)
 
     @property
     def description(self) -> str:
@@ -113,7 +134,10 @@ class Factorisation:
         B = b[:, None] if single else b
         if not np.all(np.isfinite(B)):
             raise SolverError("load vector contains NaN or Inf")
-        if self.method == "pardiso":
+        if self._impl is None:
+            raise SolverError(f"{self.method}: the factorisation was released (Factorisation.free); "
+                              "factorise again to solve")
+        if self.method in ("pardiso", "pardiso_ooc"):
             X = self._solve_pardiso(B)
         elif self.method == "superlu":
             X = self._impl.solve(np.ascontiguousarray(B))
@@ -167,6 +191,8 @@ class Factorisation:
     @property
     def nnz(self) -> int:
         """Stored non-zeros of the full symmetric matrix."""
+        if self._nnz is not None:
+            return self._nnz
         if self.matrix is not None:
             return int(self.matrix.nnz)
         return int(2 * self._upper.nnz - self._upper.shape[0])
@@ -178,27 +204,41 @@ class Factorisation:
         return U @ X + U.T @ X - self._diag[:, None] * X
 
     def free(self):
-        """Release the factorisation's memory (PARDISO keeps it in MKL's own memory)."""
-        if self.method == "pardiso" and self._impl is not None:
+        """Release the factorisation's memory (PARDISO keeps it in MKL's own memory).
+        The matrix goes too; the method, its description and ``nnz`` stay; ``solve``
+        raises ``SolverError`` afterwards."""
+        if self._impl is None:
+            return
+        self._nnz = self.nnz
+        if self.method in ("pardiso", "pardiso_ooc"):
             self._impl.free_memory(everything=True)
+        if self._ooc_dir is not None:
+            shutil.rmtree(self._ooc_dir, ignore_errors=True)
         self._impl = None
+        self.matrix = self._upper = self._diag = self._near_null = None
 
 
 def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarray | None = None,
-              residual_tol: float = 1e-8, amg_rtol: float = 1e-10) -> Factorisation:
+              residual_tol: float = 1e-8, amg_rtol: float = 1e-10, upper: bool = False) -> Factorisation:
     """Prepare the SPD matrix ``K`` for repeated solves with ``method`` (see module doc).
 
     ``near_nullspace`` (n, 6): rigid-body modes for smoothed aggregation (Vanek, Mandel &
     Brezina 1996); required for good AMG convergence in elasticity.
+    ``upper``: ``K`` holds the upper triangle only (diagonal included), which is all the
+    direct methods read; the caller can then drop the full matrix before the
+    factorisation (``build_system`` does: about 1 GB less at the peak of a 1M-DOF run).
+    Only for ``pardiso``, ``pardiso_ooc`` and ``cholmod``.
     """
     K = sp.csr_matrix(K)
     K.sort_indices()
     n = K.shape[0]
     if n == 0:
         raise SolverError("empty system: every degree of freedom is constrained")
-    if np.any(np.diff(K.indptr) == 0):
+    if np.any(np.diff(K.indptr) == 0):   # for an upper triangle: no diagonal and no coupling to later dofs
         raise SolverError("singular stiffness: a degree of freedom has no stiffness (empty row)")
     chosen = choose_method(method, n)
+    if upper and chosen not in ("pardiso", "pardiso_ooc", "cholmod"):
+        raise ValueError(f"an upper triangle cannot be factorised by {chosen}: it needs the whole matrix")
     note = fallback_note(method, n)
     if note and note not in _warned:                 # once per process: batch runs solve many meshes
         _warned.add(note)
@@ -206,26 +246,28 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
     t0 = time.perf_counter()
     fac = Factorisation(matrix=K, method=chosen, setup_time=0.0, residual_tol=residual_tol, amg_rtol=amg_rtol,
                         note=note)
-    if chosen == "pardiso":
+    if chosen in ("pardiso", "pardiso_ooc"):
         import pypardiso
         from pypardiso.pardiso_wrapper import PyPardisoError
 
-        upper = sp.triu(K, format="csr")
-        upper.sort_indices()
+        tri = K if upper else sp.triu(K, format="csr")
+        tri.sort_indices()
         solver = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
+        if chosen == "pardiso_ooc":
+            fac._ooc_dir = _out_of_core(solver)
         try:
-            solver.factorize(upper)
+            solver.factorize(tri)
         except PyPardisoError as exc:
             raise SolverError(f"PARDISO factorisation failed (matrix not positive definite: "
                               f"unsupported rigid-body mode?): {exc}") from exc
         fac._impl = solver
-        fac._upper = upper
+        fac._upper = tri
         fac._diag = K.diagonal()
         fac.matrix = None                    # only the upper triangle is kept (memory)
     elif chosen == "cholmod":
         from cholespy import CholeskySolverD, MatrixType
 
-        lower = sp.tril(K, format="csc")               # CHOLMOD reads the lower triangle (stype -1)
+        lower = K.T.tocsc() if upper else sp.tril(K, format="csc")   # CHOLMOD reads the lower triangle (stype -1)
         lower.sort_indices()
         try:
             fac._impl = CholeskySolverD(n, lower.indptr.astype(np.int32), lower.indices.astype(np.int32),
@@ -249,3 +291,33 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
         fac._near_null = B
     fac.setup_time = time.perf_counter() - t0
     return fac
+
+
+def _out_of_core(solver) -> str:
+    """Switch a PyPardisoSolver to MKL PARDISO's out-of-core mode; returns the folder of its
+    factor files.
+
+    MKL reads user iparm values only when iparm(1) = 1 (otherwise it fills in its
+    defaults and ignores the rest), so the defaults of a real SPD matrix are stated
+    (Intel oneMKL reference, ``pardiso`` iparm): iparm(2) = 2 nested dissection (METIS),
+    iparm(10) = 8 pivot perturbation 1e-8 (unused without pivoting), iparm(18) = -1 report
+    the factor's non-zeros, and iparm(60) = 1: in core when the factor fits
+    ``MKL_PARDISO_OOC_MAX_CORE_SIZE`` MB, else out of core.  ``MKL_PARDISO_OOC_PATH`` is a
+    prefix: it must end with a separator to put the files into the folder.
+    """
+    folder = tempfile.mkdtemp(prefix="fe-crank-pardiso-", dir=os.environ.get("FE_CRANK_OOC_DIR") or None)
+    os.environ["MKL_PARDISO_OOC_PATH"] = os.path.join(folder, "")
+    if "MKL_PARDISO_OOC_MAX_CORE_SIZE" not in os.environ:
+        os.environ["MKL_PARDISO_OOC_MAX_CORE_SIZE"] = str(int(OOC_CORE_SHARE * _memory_bytes() / 2**20))
+    os.environ.setdefault("MKL_PARDISO_OOC_KEEP_FILE", "0")     # files deleted when the factor is released
+    solver.iparm[0] = 1
+    solver.iparm[1] = 2
+    solver.iparm[9] = 8
+    solver.iparm[17] = -1
+    solver.iparm[59] = 1
+    return folder
+
+
+def _memory_bytes() -> int:
+    """Physical memory of the machine (bytes)."""
+    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")

@@ -239,24 +239,51 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
             ncol += 1
         refcols[c.boundary] = cmap
     P = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, ncol))
-    Kr = (P.T @ (K + Ks) @ P).tocsr()
+    method = choose_method(solver, ncol)
+    direct = method in ("pardiso", "pardiso_ooc", "cholmod")
+    Kr = _reduced(K, Ks, P, free, direct=direct)
     rows = np.union1d(np.flatnonzero(is_slave), np.flatnonzero(held))
     K_rows = K[rows]
     del K                                    # the full matrix is not kept: memory for the factor
     timings["constraints"] = time.perf_counter() - t0
 
     near_null = None
-    if choose_method(solver, ncol) == "amg":
+    if method == "amg":
         B = rigid_body_modes(basis.doflocs)
         near_null = _reduce_modes(B, free, refcols, refp)
     t0 = time.perf_counter()
-    fac = factorise(Kr, solver, near_nullspace=near_null)
+    fac = factorise(Kr, solver, near_nullspace=near_null, upper=direct)
+    del Kr
     timings["factorisation"] = time.perf_counter() - t0
     return System(mesh=mesh, basis=basis, K_rows=K_rows, rows=rows, Ks=Ks.tocsr(), P=P, foundations=tuple(foundations),
                   couplings=tuple(couplings), ref_points=refp, ref_columns=refcols, slave_dofs=slave,
                   dirichlet_dofs=np.concatenate(ddofs) if ddofs else np.zeros(0, int),
                   foundation_dofs=fdofs, factorisation=fac, timings=timings, point_dofs=point_dofs,
                   determinate=sup)
+
+
+def _reduced(K, Ks, P, free, *, direct: bool):
+    """K_r = P^T (K + K_s) P; for a direct solver its upper triangle only (all it reads),
+    so that the full reduced matrix never exists next to the factor.
+
+    Without couplings P only selects the free dofs (ascending) and K_r is the principal
+    submatrix K[free, free] (+ K_s likewise), taken by indexing: the same entries as the
+    sparse products (each a single term times 1.0), without their cost; explicit zeros
+    are dropped as the products drop them, so the pattern, hence PARDISO's ordering and
+    its factor, are the same.
+    """
+    if P.shape[1] == free.size:              # no coupling columns: P is the selection of ``free``
+        A = K if Ks.nnz == 0 else K + Ks
+        if direct:
+            A = sp.triu(A, format="csr")     # the triangle of a principal submatrix is the submatrix of the triangle
+        Kr = A[free][:, free].tocsr()
+    else:
+        Kr = (P.T @ (K + Ks) @ P).tocsr()
+        if direct:
+            Kr = sp.triu(Kr, format="csr")
+    Kr.eliminate_zeros()
+    Kr.sort_indices()
+    return Kr
 
 
 def _reduce_modes(B, free, refcols, refp) -> np.ndarray:

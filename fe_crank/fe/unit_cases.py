@@ -20,71 +20,18 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Protocol
 
 import numpy as np
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
 from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
-from fe_crank.fe.pin_directions import pin_case_weights, pin_cases, pin_direction, unit_force
+from fe_crank.fe.fe_options import (CASES, PIN_FORCES, SUPPORTS, TORQUE_ENDS, FeOptions, Material,  # noqa: F401
+                                     axial_journal, check_support_options, support_text)
+from fe_crank.fe.pin_directions import pin_case_weights, pin_direction, unit_force
 from fe_crank.fe.determinate import POINT_REACTION_TOL, DeterminateLayout
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
-
-#: default unit cases: the centrifugal load, 1 N on the crankpin in 12 directions 30 deg
-#: apart (``pin_directions``: pin_x, pin_030, ..., pin_y = radial outward, ...), the torque
-CASES = ("centrifugal",) + pin_cases() + ("torque",)
-PIN_FORCES = {name: unit_force(name) for name in pin_cases()}
-
-
-class Material(Protocol):
-    """What the FE stage reads from a material (SI)."""
-
-    youngs_modulus: float
-    poisson_ratio: float
-    density: float
-
-
-@dataclass(frozen=True)
-class FeOptions:
-    """Options of :func:`solve_unit_cases` (all SI).
-
-    support: "determinate" (default) or "foundation", see module doc.
-    bearing_stiffness: N/m^3, the foundation's stiffness per area ("foundation" only, required there).
-    torque_reaction: the end face that reacts the torque (where the power is taken off):
-    "end_2" (default, rear/flywheel side) or "end_1"; the ``torque`` unit case enters at the other.
-    solver: "auto" | "pardiso" | "cholmod" | "amg" | "superlu".
-    cases: which unit cases to solve: "centrifugal", "torque" and pin cases by direction
-    ("pin_x", "pin_y", "pin_-x", "pin_-y", "pin_<deg>"; see ``pin_directions``).
-    pin_half_angle: rad, half width of the cosine pressure arc.
-    """
-
-    support: str = "determinate"
-    bearing_stiffness: float | None = None
-    solver: str = "auto"
-    cases: tuple[str, ...] = CASES
-    pin_half_angle: float = float(np.deg2rad(60.0))
-    journals: tuple[str, str] = ("journal_1", "journal_2")
-    torque_reaction: str = "end_2"
-    pin_boundary: str = "crankpin"
-    pin_centre: tuple[float, float] | None = None   # (x, y) of the pin axis; None: centroid of the pin surface
-    intorder: int = 2
-
-    @property
-    def reaction_face(self) -> str:
-        """End face reacting the torque."""
-        return self.torque_reaction
-
-    @property
-    def torque_face(self) -> str:
-        """End face where the ``torque`` unit case enters (the other one)."""
-        return "end_1" if self.torque_reaction == "end_2" else "end_2"
-
-
-SUPPORTS = ("determinate", "foundation")
-TORQUE_ENDS = ("end_2", "end_1")
-
 
 @dataclass(frozen=True)
 class UnitCase:
@@ -185,40 +132,6 @@ def journal_diameter(mesh, boundary: str) -> float:
     return float(2.0 * np.sum(np.hypot(x[0], x[1]) * fb.dx) / fb.dx.sum())
 
 
-def check_support_options(options: FeOptions) -> None:
-    """Refuse a support model that is not fully stated."""
-    if options.support not in SUPPORTS:
-        raise InputError(f"unknown support {options.support!r}; pick 'determinate' (statically determinate, "
-                         f"the default) or 'foundation' (with bearing_stiffness)", key="fe.support")
-    if options.torque_reaction not in TORQUE_ENDS:
-        raise InputError(f"unknown torque_reaction {options.torque_reaction!r}; pick 'end_2' or 'end_1'",
-                         key="fe.torque_reaction")
-    if options.support == "foundation":
-        k = options.bearing_stiffness
-        if k is None or not k > 0:
-            raise InputError("support = 'foundation' needs bearing_stiffness > 0 (N/m^3, from the oil film and "
-                             "housing; docs/fe.md says how to derive it)", key="fe.bearing_stiffness")
-    elif options.bearing_stiffness is not None:
-        raise InputError("bearing_stiffness applies to support = 'foundation' only", key="fe.bearing_stiffness")
-
-
-def support_text(options: FeOptions, centres: dict[str, float]) -> str:
-    """The support model in one line (``UnitSolutions.support_model``)."""
-    j1, j2 = options.journals
-    if options.support == "foundation":
-        return (f"radial elastic foundation k = {options.bearing_stiffness:.4g} N/m^3 on {j1} and {j2} "
-                f"(statically indeterminate); torque and axial force reacted at {options.reaction_face} "
-                f"(rigid coupling)")
-    zs = ", ".join(f"{centres[j] * 1e3:.2f}" for j in options.journals)
-    return (f"statically determinate (IACS UR M53 2.1): {j1} and {j2} on distributing (RBE3) couplings to "
-            f"simple supports at the bearing centres z = {zs} mm (radial at both, axial at "
-            f"{_axial_journal(options)}); torque reacted at {options.reaction_face}")
-
-
-def _axial_journal(options: FeOptions) -> str:
-    return options.journals[1] if options.torque_reaction == "end_2" else options.journals[0]
-
-
 def _throw_mesh(throw_mesh):
     mesh = getattr(throw_mesh, "mesh", throw_mesh)
     if mesh.t.shape[0] != 4 or mesh.p.shape[0] != 3:
@@ -265,7 +178,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
                               solver=options.solver, intorder=options.intorder)
     else:
         layout = DeterminateLayout(journals=tuple(options.journals), torque_face=options.reaction_face,
-                                   axial=_axial_journal(options))
+                                   axial=axial_journal(options))
         system = build_system(mesh, E, nu, determinate=layout, solver=options.solver, intorder=options.intorder)
     basis = system.basis
     t0 = time.perf_counter()
