@@ -42,6 +42,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "kinematics": ("fe_crank/kinematics.py", _MECHANISM_TESTS),
     "kinetostatics": ("fe_crank/kinetostatics.py", _MECHANISM_TESTS),
     "dynamics": ("fe_crank/dynamics.py", _MECHANISM_TESTS),
+    "slider_crank": ("fe_crank/slider_crank.py", _MECHANISM_TESTS),
     "balance.harmonics": ("fe_crank/balance/harmonics.py", _MECHANISM_TESTS),
     "balance.hodograph": ("fe_crank/balance/hodograph.py", _MECHANISM_TESTS),
     "balance.forces": ("fe_crank/balance/forces.py", _MECHANISM_TESTS),
