@@ -8,6 +8,7 @@ killed / (killed + survived); docs/testing.md records the last run and every sur
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py            # all modules
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py kinematics # one module
+    ... benchmarks/mutation.py kinematics --only 'fe_crank.kinematics.x_piston_motion__mutmut_*'
 
 Needs `pip install mutmut` (>= 3) in the venv.  One worker (`--max-children 1`) by default:
 the machine is shared.
@@ -57,7 +58,9 @@ MODULES: dict[str, tuple[str, list[str]]] = {
 }
 
 
-def run_module(name: str, children: int) -> dict:
+def run_module(name: str, children: int, only: list[str] | None = None) -> dict:
+    """Mutate one module; with ``only`` (mutant names or fnmatch patterns, as ``mutmut
+    show`` prints them) run just those mutants, e.g. the survivors of an earlier run."""
     target, tests = MODULES[name]
     with tempfile.TemporaryDirectory(prefix=f"mutmut-{name}-") as tmp:
         work = Path(tmp) / "repo"
@@ -76,15 +79,21 @@ def run_module(name: str, children: int) -> dict:
         )
         env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
         mutmut = str(Path(sys.executable).parent / "mutmut")
-        subprocess.run([mutmut, "run", "--max-children", str(children)], cwd=work, env=env,
+        subprocess.run([mutmut, "run", "--max-children", str(children), *(only or [])], cwd=work, env=env,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         out = subprocess.run([mutmut, "results", "--all", "true"], cwd=work, env=env,
                              capture_output=True, text=True).stdout
         status: dict[str, list[str]] = {}
+        by_function: dict[str, dict[str, int]] = {}
         for line in out.splitlines():
             if ":" in line:
                 mutant, st = line.rsplit(":", 1)
-                status.setdefault(st.strip(), []).append(mutant.strip())
+                mutant, st = mutant.strip(), st.strip()
+                if only and st == "not checked":
+                    continue  # outside the requested subset
+                status.setdefault(st, []).append(mutant)
+                fn = by_function.setdefault(mutant.split("__mutmut_")[0], {})
+                fn[st] = fn.get(st, 0) + 1
         diffs = {m: subprocess.run([mutmut, "show", m], cwd=work, env=env, capture_output=True,
                                    text=True).stdout for m in status.get("survived", [])}
     killed = len(status.get("killed", [])) + len(status.get("timeout", []))
@@ -92,7 +101,7 @@ def run_module(name: str, children: int) -> dict:
     total = killed + survived
     return {"module": name, "file": target, "tests": tests, "killed": killed, "survived": survived,
             "other": {k: len(v) for k, v in status.items() if k not in ("killed", "timeout", "survived")},
-            "score": killed / total if total else None, "survivors": diffs}
+            "score": killed / total if total else None, "by_function": by_function, "survivors": diffs}
 
 
 def main() -> None:
@@ -100,10 +109,12 @@ def main() -> None:
     ap.add_argument("modules", nargs="*", default=list(MODULES), choices=list(MODULES))
     ap.add_argument("--max-children", type=int, default=1)
     ap.add_argument("--json", type=Path, help="write the per-module results here")
+    ap.add_argument("--only", nargs="+", metavar="MUTANT",
+                    help="run only these mutants (names or fnmatch patterns), e.g. earlier survivors")
     a = ap.parse_args()
     results = []
     for m in a.modules:
-        r = run_module(m, a.max_children)
+        r = run_module(m, a.max_children, a.only)
         results.append(r)
         score = "n/a" if r["score"] is None else f"{100 * r['score']:.1f} %"
         print(f"{m:24s} killed {r['killed']:4d}  survived {r['survived']:4d}  {score}  {r['other']}",
