@@ -85,8 +85,22 @@ def test_bad_orders_and_method_are_refused_by_name():
         harmonic_coefficients(LAM, (1, 2), method="taylor")
 
 
-def test_zero_crank_radius_is_refused():
+def test_mechanism_checks_by_message():
+    """r and l must be positive and finite, and l > r + |e| (the crank turns fully):
+    l = r + |e| exactly (0.375 = 0.25 + 0.125, binary fractions) is refused as well."""
     with pytest.raises(GeometryError, match="crank radius must be positive"):
         piston_motion(0.0, 0.0, 0.3, 1.0)
-    with pytest.raises(GeometryError, match="rod length must be positive"):
-        piston_motion(0.0, 0.1, float("inf"), 1.0)
+    for bad_l in (0.0, float("inf")):
+        with pytest.raises(GeometryError, match="rod length must be positive"):
+            piston_motion(0.0, 0.1, bad_l, 1.0)
+    turn = "must exceed crank radius .* otherwise the crank cannot turn fully"
+    with pytest.raises(GeometryError, match=turn):
+        piston_motion(0.0, 0.25, 0.375, 1.0, offset=-0.125)
+    with pytest.raises(GeometryError, match=turn):
+        piston_motion(0.0, 0.1, 0.12, 1.0, offset=0.05)  # 0.12 < 0.1 + 0.05
+
+
+def test_integer_angles_are_float_radians():
+    m = piston_motion([0, 1, 2], 0.05, 0.2, 10.0)
+    assert m.phi.dtype == np.float64
+    np.testing.assert_array_equal(m.phi, [0.0, 1.0, 2.0])
