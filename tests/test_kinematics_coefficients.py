@@ -104,3 +104,22 @@ def test_integer_angles_are_float_radians():
     m = piston_motion([0, 1, 2], 0.05, 0.2, 10.0)
     assert m.phi.dtype == np.float64
     np.testing.assert_array_equal(m.phi, [0.0, 1.0, 2.0])
+
+
+def test_crankpin_vectors_closed_form_and_rod_cg_zero_without_a_distance():
+    """Crankpin B = r (cos phi, sin phi) in (axial, lateral): v_B = r omega (-sin, cos),
+    a_B = -r omega^2 (cos, sin); at phi = 90 deg with r = 0.05 m, omega = 10 rad/s:
+    v_B = (-0.5, 0) m/s and a_B = (0, -5) m/s^2.  Without ``rod_cg`` the rod's
+    centre-of-mass vectors are zero arrays of the same (n, 2) shape (class docstring)."""
+    phi = np.array([0.0, np.pi / 2, 2.0])
+    r, omega = 0.05, 10.0
+    m = piston_motion(phi, r, 0.2, omega)
+    np.testing.assert_allclose(m.crankpin_velocity[1], [-0.5, 0.0], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(m.crankpin_acceleration[1], [0.0, -5.0], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(m.crankpin_velocity, r * omega * np.stack([-np.sin(phi), np.cos(phi)], -1),
+                               rtol=1e-15, atol=1e-16)
+    np.testing.assert_allclose(m.crankpin_acceleration, -r * omega**2 * np.stack([np.cos(phi), np.sin(phi)], -1),
+                               rtol=1e-15, atol=1e-15)
+    for vec in (m.rod_cg_velocity, m.rod_cg_acceleration):
+        assert vec.shape == (3, 2)
+        np.testing.assert_array_equal(vec, 0.0)
