@@ -1,0 +1,55 @@
+"""Dynamics stage: the cycle grid, the refusal of bad step and speed-fluctuation
+arguments (by message and key), and an engine without a gas table (inertia only)."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from fe_crank.dynamics import analyse
+from fe_crank.errors import InputError
+from fe_crank.io.loadcase import load_loadcase
+
+SEED_CASE = "loadcases/single_cylinder_seed001.toml"
+
+
+@pytest.fixture(scope="module")
+def seed(request):
+    return load_loadcase(request.config.rootpath / SEED_CASE)
+
+
+@pytest.mark.parametrize("step", [0.0, -0.01, float("nan")])
+def test_angle_step_must_be_positive(seed, step):
+    with pytest.raises(InputError, match="angle step must be positive") as err:
+        analyse(seed.engine, seed.operating, step=step)
+    assert err.value.key == "step"
+
+
+def test_cycle_grid_has_round_cycle_over_step_equal_steps_and_at_least_eight(seed):
+    """Four-stroke cycle, 720 deg: step 720/8.4 deg gives round(8.4) = 8 steps of exactly
+    90 deg (0, 90, ..., 630); step 720/7.4 deg gives round(7.4) = 7 < 8 steps: refused."""
+    assert seed.engine.cycle_angle == pytest.approx(4 * np.pi, rel=1e-15)
+    res = analyse(seed.engine, seed.operating, step=np.radians(720 / 8.4))
+    np.testing.assert_allclose(np.degrees(res.theta), 90.0 * np.arange(8), rtol=0, atol=1e-12)
+    assert res.cycle == pytest.approx(4 * np.pi, rel=1e-15)
+    with pytest.raises(InputError, match="too coarse for the cycle") as err:
+        analyse(seed.engine, seed.operating, step=np.radians(720 / 7.4))
+    assert err.value.key == "step"
+
+
+@pytest.mark.parametrize("delta", [0.0, -0.01])
+def test_speed_fluctuation_must_be_positive(seed, delta):
+    with pytest.raises(InputError, match="speed_fluctuation must be positive") as err:
+        analyse(seed.engine, seed.operating, step=np.radians(10), speed_fluctuation=delta)
+    assert err.value.key == "speed_fluctuation"
+
+
+def test_engine_without_gas_table_has_zero_gas_force_and_says_so(seed):
+    """No gas table: cylinder and crankcase both at 101325 Pa, so F_g = 0 and the rod force
+    is the inertia alone; one warning names the model."""
+    res = analyse(replace(seed.engine, gas=None), seed.operating, step=np.radians(10))
+    assert res.warnings == ("engine has no gas pressure: inertia forces only",)
+    cyl = res.cylinders[seed.engine.cylinders[0].name]
+    np.testing.assert_array_equal(cyl.pressure, 101325.0)
+    np.testing.assert_array_equal(cyl.gas, 0.0)
+    assert res.indicated_work == pytest.approx(0.0, abs=1e-9)  # closed integral of a constant p dV (J)
