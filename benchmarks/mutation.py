@@ -31,8 +31,9 @@ ROOT = Path(__file__).resolve().parents[1]
 #: for each mutant only those of the selected tests that execute the mutated function, so a
 #: wide selection costs little and no survivor is left to tests outside the selection.
 _MECHANISM_TESTS = [
-    "tests/test_kinematics.py", "tests/test_kinetostatics.py", "tests/test_dynamics.py",
-    "tests/test_geared_shaft.py", "tests/test_balance_harmonics.py",
+    "tests/test_kinematics.py", "tests/test_kinematics_coefficients.py", "tests/test_kinetostatics.py",
+    "tests/test_dynamics.py", "tests/test_dynamics_inputs.py", "tests/test_geared_shaft.py",
+    "tests/test_balance_harmonics.py",
     "tests/test_balance_hodograph.py", "tests/test_balance_layouts.py",
     "tests/test_balance_seed000.py", "tests/test_balance_seed003.py",
     "tests/test_balance_crosscheck.py", "tests/test_balance_counterweights.py",
