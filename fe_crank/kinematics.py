@@ -163,7 +163,7 @@ def fourier_coefficients(samples: np.ndarray, kmax: int) -> np.ndarray:
     n = samples.shape[-1]
     if 2 * kmax >= n:
         raise InputError(f"order {kmax} needs more than {n} samples per revolution", key="kmax")
-    spec = np.fft.rfft(samples, axis=-1) / n
+    spec = np.fft.rfft(samples) / n  # along the last axis
     out = np.zeros(samples.shape[:-1] + (kmax + 1, 2))  # beta_0 stays 0
     out[..., 0, 0] = spec[..., 0].real
     out[..., 1:, 0] = 2.0 * spec[..., 1:kmax + 1].real
