@@ -102,3 +102,14 @@ def test_as_dict_of_an_axis_aligned_ellipse_and_a_45_degree_line():
     assert line["tilt_deg"] == pytest.approx(45.0, rel=1e-13)
     assert line["co_rotating"] == pytest.approx({"magnitude": math.sqrt(0.5), "angle_deg": 45.0}, rel=1e-14)
     assert line["counter_rotating"] == pytest.approx({"magnitude": math.sqrt(0.5), "angle_deg": 45.0}, rel=1e-14)
+
+
+@pytest.mark.parametrize("deg", [-89.0, -70.0, -45.0, -10.0, 30.0, 90.0])
+def test_tilt_is_reported_in_the_half_open_range_minus_90_to_90(deg):
+    """A line oscillation along the direction ``deg`` from +x towards +y,
+    ``(Fx, Fy) = (cos deg, sin deg) cos t``, has its major axis at ``deg`` itself; the
+    class documents the range (-90, 90] deg, so -70 stays -70 (not 110) and 90 stays 90."""
+    u = math.radians(deg)
+    h = hodograph(math.cos(u), 0.0, math.sin(u), 0.0)
+    assert h.kind == "line"
+    assert math.degrees(h.tilt) == pytest.approx(deg, abs=1e-9)
