@@ -51,8 +51,8 @@ def solve_cylinder(
         Q = m a_G + P
 
     ``P`` is the force of the rod on the piston, ``Q`` the force of the crankpin on the
-    rod.  Returns a dict with ``motion``, ``P`` (n, 2), ``Q`` (n, 2), ``rod_force``,
-    ``side_thrust``, ``tangential``, ``radial``, ``torque`` (see module docstring).
+    rod.  Returns a dict with ``motion``, ``rod_force``, ``side_thrust``, ``tangential``,
+    ``radial``, ``torque`` (defined in ``fe_crank.dynamics``), each of the shape of ``phi``.
     """
     J = rod_mass * rod_cg * (l - rod_cg) if rod_inertia is None else rod_inertia
     m = piston_motion(phi, r, l, omega, offset=offset, rod_cg=rod_cg)
@@ -74,8 +74,6 @@ def solve_cylinder(
     radial = F[..., 0] * cphi + F[..., 1] * sphi
     return {
         "motion": m,
-        "P": P,
-        "Q": Q,
         "rod_force": pu * cb - pw * sb,
         "side_thrust": pw,
         "tangential": tangential,

@@ -53,3 +53,24 @@ def test_engine_without_gas_table_has_zero_gas_force_and_says_so(seed):
     np.testing.assert_array_equal(cyl.pressure, 101325.0)
     np.testing.assert_array_equal(cyl.gas, 0.0)
     assert res.indicated_work == pytest.approx(0.0, abs=1e-9)  # closed integral of a constant p dV (J)
+
+
+def test_slider_crank_at_tdc_by_hand_for_a_scalar_angle():
+    """At TDC (phi = 0, no offset) the rod lies on the axis: beta = 0, beta'' = 0 and the
+    rod's centre of mass has no lateral acceleration, so the side thrust and the tangential
+    force vanish and, with the two-mass rod (J = m c (l - c)), the radial force on the pin is
+    ``-F_g + (m_p + m c/l) r w^2 (1 + lam) + m (1 - c/l) r w^2``.  r = 0.05 m, l = 0.2 m
+    (lam = 0.25), w = 100 rad/s: r w^2 = 500, a = 500 * 1.25 = 625 m/s^2; m_p = 1.5 kg,
+    m = 1 kg, c = 0.05 m (c/l = 0.25), F_g = 10 kN:
+    radial = -10000 + 1.75 * 625 + 0.75 * 500 = -10000 + 1093.75 + 375 = -8531.25 N;
+    rod force = F_g - m_p a = 10000 - 937.5 = 9062.5 N.  A scalar angle gives scalars."""
+    from fe_crank.slider_crank import solve_cylinder
+
+    sol = solve_cylinder(0.0, r=0.05, l=0.2, omega=100.0, gas_force=10000.0, piston_mass=1.5,
+                         rod_mass=1.0, rod_cg=0.05)
+    for name in ("rod_force", "side_thrust", "tangential", "radial", "torque"):
+        assert np.shape(sol[name]) == ()
+    assert float(sol["radial"]) == pytest.approx(-8531.25, rel=1e-13)
+    assert float(sol["rod_force"]) == pytest.approx(9062.5, rel=1e-13)
+    for name in ("side_thrust", "tangential", "torque"):
+        assert float(sol[name]) == pytest.approx(0.0, abs=1e-9)
