@@ -74,3 +74,26 @@ def test_slider_crank_at_tdc_by_hand_for_a_scalar_angle():
     assert float(sol["rod_force"]) == pytest.approx(9062.5, rel=1e-13)
     for name in ("side_thrust", "tangential", "torque"):
         assert float(sol[name]) == pytest.approx(0.0, abs=1e-9)
+
+
+def test_default_speed_fluctuation_is_one_percent(seed):
+    """The flywheel of docs/mechanism.md is for delta = 0.01, the default; J = dE / (delta w^2)."""
+    res = analyse(seed.engine, seed.operating, step=np.radians(10))
+    assert res.speed_fluctuation == 0.01
+    w = seed.operating.speed
+    assert res.flywheel_inertia == pytest.approx(res.excess_energy / (0.01 * w**2), rel=1e-14)
+
+
+@pytest.mark.parametrize("offset_deg", [0.01, 10.0])
+def test_firing_offset_off_its_tdc_is_reported_even_when_small(seed, offset_deg):
+    """Single cylinder, axis at bank 0: firing TDC is crank angle 0 mod 360 deg; a firing
+    offset of 0.01 deg or 10 deg is that far from it, and the warning says so; 360 deg
+    (the other revolution of the four-stroke cycle) is a TDC and is not reported."""
+    assert seed.engine.cylinders[0].firing_offset == 0.0
+    assert not analyse(seed.engine, seed.operating, step=np.radians(10)).warnings
+    cyl = replace(seed.engine.cylinders[0], firing_offset=np.radians(offset_deg))
+    res = analyse(replace(seed.engine, cylinders=(cyl,)), seed.operating, step=np.radians(10))
+    (w,) = res.warnings
+    assert f"firing_offset {offset_deg:.6g} deg is not at its TDC (crank {offset_deg:.6g} deg from the axis)" in w
+    cyl = replace(seed.engine.cylinders[0], firing_offset=np.radians(360.0))
+    assert not analyse(replace(seed.engine, cylinders=(cyl,)), seed.operating, step=np.radians(10)).warnings
