@@ -50,6 +50,7 @@ def test_engine_without_gas_table_has_zero_gas_force_and_says_so(seed):
     res = analyse(replace(seed.engine, gas=None), seed.operating, step=np.radians(10))
     assert res.warnings == ("engine has no gas pressure: inertia forces only",)
     cyl = res.cylinders[seed.engine.cylinders[0].name]
+    assert cyl.pressure.shape == cyl.gas.shape == res.theta.shape
     np.testing.assert_array_equal(cyl.pressure, 101325.0)
     np.testing.assert_array_equal(cyl.gas, 0.0)
     assert res.indicated_work == pytest.approx(0.0, abs=1e-9)  # closed integral of a constant p dV (J)
@@ -84,16 +85,18 @@ def test_default_speed_fluctuation_is_one_percent(seed):
     assert res.flywheel_inertia == pytest.approx(res.excess_energy / (0.01 * w**2), rel=1e-14)
 
 
-@pytest.mark.parametrize("offset_deg", [0.01, 10.0])
-def test_firing_offset_off_its_tdc_is_reported_even_when_small(seed, offset_deg):
+@pytest.mark.parametrize("offset_deg, off_tdc", [(0.01, 0.01), (10.0, 10.0), (370.0, 10.0), (-20.0, -20.0)])
+def test_firing_offset_off_its_tdc_is_reported_even_when_small(seed, offset_deg, off_tdc):
     """Single cylinder, axis at bank 0: firing TDC is crank angle 0 mod 360 deg; a firing
-    offset of 0.01 deg or 10 deg is that far from it, and the warning says so; 360 deg
-    (the other revolution of the four-stroke cycle) is a TDC and is not reported."""
+    offset of 0.01, 10, 370 (= 360 + 10) or -20 deg is 0.01, 10, 10 or -20 deg from the
+    nearest TDC, and the warning says so; 360 deg (the other revolution of the four-stroke
+    cycle) is a TDC and is not reported."""
     assert seed.engine.cylinders[0].firing_offset == 0.0
     assert not analyse(seed.engine, seed.operating, step=np.radians(10)).warnings
     cyl = replace(seed.engine.cylinders[0], firing_offset=np.radians(offset_deg))
     res = analyse(replace(seed.engine, cylinders=(cyl,)), seed.operating, step=np.radians(10))
     (w,) = res.warnings
-    assert f"firing_offset {offset_deg:.6g} deg is not at its TDC (crank {offset_deg:.6g} deg from the axis)" in w
+    assert w == (f"cylinder {cyl.name}: firing_offset {offset_deg:.6g} deg is not at its TDC (crank "
+                 f"{off_tdc:.6g} deg from the axis); the gas table is applied from the nearest TDC")
     cyl = replace(seed.engine.cylinders[0], firing_offset=np.radians(360.0))
     assert not analyse(replace(seed.engine, cylinders=(cyl,)), seed.operating, step=np.radians(10)).warnings
