@@ -100,3 +100,47 @@ def test_firing_offset_off_its_tdc_is_reported_even_when_small(seed, offset_deg,
                  f"{off_tdc:.6g} deg from the axis); the gas table is applied from the nearest TDC")
     cyl = replace(seed.engine.cylinders[0], firing_offset=np.radians(360.0))
     assert not analyse(replace(seed.engine, cylinders=(cyl,)), seed.operating, step=np.radians(10)).warnings
+
+
+def test_inline_four_cylinder_records_against_independent_relations(request, seed):
+    """Each cylinder record of the inline four (engines/inline4.toml, firing offsets 0, 180,
+    540, 360 deg; it has no pressure table, so the seed 001 table is lent to it) against
+    relations the record must obey:
+
+    * ``gas_angle = mod(theta - firing_offset, 720 deg)``: the gas table's angle is the
+      cycle angle counted from that cylinder's firing TDC;
+    * ``s`` of the central slider crank, ``r + l - r cos phi - sqrt(l^2 - r^2 sin^2 phi)``;
+    * ``volume_swept = (pi/4) bore^2 s``;
+    * Newton on the piston along its axis: the rod's axial push on the pin,
+      ``(rod_force + side_thrust sin beta) / cos beta`` (the rod-direction component and
+      the lateral component of that force resolved back onto the axis), equals
+      ``F_g - m_p a``;
+    * the cycle integral of the engine torque equals the sum of the four p-V loop works
+      (inertia forces do no net work over a cycle), and is four times one cylinder's.
+    """
+    lc = load_loadcase(request.config.rootpath / "loadcases/inline4_rated.toml")
+    lc = replace(lc, engine=replace(lc.engine, gas=seed.engine.gas))
+    res = analyse(lc.engine, lc.operating, step=np.radians(0.5))
+    works = []
+    for cyl in lc.engine.cylinders:
+        cf = res.cylinders[cyl.name]
+        assert (cf.name, cf.throw) == (cyl.name, cyl.throw)
+        np.testing.assert_allclose(cf.gas_angle, np.mod(res.theta - cyl.firing_offset, 4 * np.pi),
+                                   rtol=0, atol=1e-9)
+        r, l = lc.engine.throw(cyl.throw).crank_radius, cyl.rod.length
+        phi = cf.motion.phi
+        np.testing.assert_allclose(phi, cf.phi, rtol=0, atol=0)
+        s = r + l - r * np.cos(phi) - np.sqrt(l**2 - (r * np.sin(phi)) ** 2)
+        np.testing.assert_allclose(cf.motion.s, s, rtol=0, atol=1e-12 * r)
+        np.testing.assert_allclose(cf.volume_swept, np.pi / 4 * cyl.bore**2 * s, rtol=1e-12, atol=1e-18)
+        beta = cf.motion.beta
+        axial = (cf.rod_force + cf.side_thrust * np.sin(beta)) / np.cos(beta)
+        np.testing.assert_allclose(axial, cf.gas - cyl.piston_mass * cf.motion.a, rtol=1e-12,
+                                   atol=1e-9 * np.max(np.abs(cf.gas)))
+        works.append(np.sum(0.5 * (cf.pressure + np.roll(cf.pressure, -1)) * (np.roll(cf.volume_swept, -1)
+                                                                             - cf.volume_swept)))
+    assert works[0] > 100.0  # J: a working engine
+    np.testing.assert_allclose(works, works[0], rtol=1e-3)  # four equal cylinders
+    work_torque = np.sum(res.torque) * res.cycle / res.theta.size
+    assert res.indicated_work == pytest.approx(sum(works), rel=1e-12)
+    assert work_torque == pytest.approx(sum(works), rel=2e-4)
