@@ -144,3 +144,21 @@ def test_inline_four_cylinder_records_against_independent_relations(request, see
     work_torque = np.sum(res.torque) * res.cycle / res.theta.size
     assert res.indicated_work == pytest.approx(sum(works), rel=1e-12)
     assert work_torque == pytest.approx(sum(works), rel=2e-4)
+
+
+def test_throw_records_have_the_documented_shapes_and_bearing_split(seed):
+    """docs/contracts.md: ``pin_force`` (n, 2) in the throw frame (x tangential, y radial);
+    each bearing takes half of the pin load plus half of the throw's centrifugal force
+    ``m_rot R w^2`` along the crank, resolved into the engine frame with the crank at
+    ``gamma`` from +y: x-axis of the throw (cos g, -sin g), y-axis (sin g, cos g)."""
+    res = analyse(seed.engine, seed.operating, step=np.radians(5.0))
+    n = res.theta.size
+    throw = seed.engine.throws[0]
+    th = res.throws[throw.name]
+    assert th.pin_force.shape == (n, 2) and th.bearing_front.shape == (n, 2)
+    g = th.angle_global
+    fx, fy = th.pin_force[:, 0], th.pin_force[:, 1] + throw.rotating_mass * throw.crank_radius * seed.operating.speed**2
+    half = 0.5 * np.stack([fx * np.cos(g) + fy * np.sin(g), -fx * np.sin(g) + fy * np.cos(g)], axis=1)
+    np.testing.assert_allclose(th.bearing_front, half, rtol=1e-13, atol=1e-9)
+    np.testing.assert_allclose(th.bearing_rear, half, rtol=1e-13, atol=1e-9)
+    np.testing.assert_allclose(th.pin_force_magnitude, np.hypot(th.pin_force[:, 0], th.pin_force[:, 1]), rtol=1e-15)
