@@ -162,3 +162,20 @@ def test_throw_records_have_the_documented_shapes_and_bearing_split(seed):
     np.testing.assert_allclose(th.bearing_front, half, rtol=1e-13, atol=1e-9)
     np.testing.assert_allclose(th.bearing_rear, half, rtol=1e-13, atol=1e-9)
     np.testing.assert_allclose(th.pin_force_magnitude, np.hypot(th.pin_force[:, 0], th.pin_force[:, 1]), rtol=1e-15)
+
+
+def test_throw_names_and_torque_and_small_engine_nonuniformity(seed):
+    """The throw record carries its name, shaft and the torque of its cylinder
+    (``tangential * r``); a small engine (bore 9.2 mm, mean torque well below 1 N m) still
+    gets the non-uniformity ``(T_max - T_min) / T_mean`` (Kolchin & Demidov, ch. 5)."""
+    cyl = replace(seed.engine.cylinders[0], bore=0.0092)
+    eng = replace(seed.engine, cylinders=(cyl,))
+    res = analyse(eng, seed.operating, step=np.radians(2.0))
+    throw = eng.throws[0]
+    th = res.throws[throw.name]
+    assert (th.name, th.shaft) == (throw.name, throw.shaft)
+    cf = res.cylinders[cyl.name]
+    np.testing.assert_allclose(th.torque, cf.tangential * throw.crank_radius, rtol=1e-15, atol=0)
+    assert 0.0 < res.mean_torque < 1.0
+    t = res.torque
+    assert res.torque_nonuniformity == pytest.approx((t.max() - t.min()) / t.mean(), rel=1e-12)
