@@ -179,3 +179,33 @@ def test_throw_names_and_torque_and_small_engine_nonuniformity(seed):
     assert 0.0 < res.mean_torque < 1.0
     t = res.torque
     assert res.torque_nonuniformity == pytest.approx((t.max() - t.min()) / t.mean(), rel=1e-12)
+
+
+def test_massless_engine_without_gas_has_no_torque_and_infinite_nonuniformity(seed):
+    """No gas table, massless piston and rod: every force is exactly zero, the mean torque
+    is 0 and the non-uniformity (T_max - T_min) / T_mean is reported as infinite."""
+    cyl = seed.engine.cylinders[0]
+    cyl = replace(cyl, piston_mass=0.0, rod=replace(cyl.rod, mass=0.0, inertia_cg=None))
+    eng = replace(seed.engine, gas=None, cylinders=(cyl,))
+    res = analyse(eng, seed.operating, step=np.radians(10))
+    assert (res.engine, res.speed) == (eng.name, seed.operating.speed)
+    np.testing.assert_array_equal(res.torque, 0.0)
+    assert res.mean_torque == 0.0 and res.torque_nonuniformity == float("inf")
+    assert res.excess_energy == 0.0 and res.flywheel_inertia == 0.0
+
+
+def test_flywheel_of_a_toy_engine_with_under_one_joule_of_excess_work(seed):
+    """Bore 2 mm at 1 rad/s: the excess work E(theta) = int (T - T_mean) dtheta swings by
+    far less than 1 J, and the flywheel J = dE / (delta w^2) still gives the speed
+    fluctuation delta = 0.02 when J d(w^2/2)/dtheta = T - T_mean is integrated (as in
+    tests/test_dynamics.py for the full-size engine)."""
+    cyl = replace(seed.engine.cylinders[0], bore=0.002)
+    eng = replace(seed.engine, cylinders=(cyl,))
+    op = replace(seed.operating, speed=1.0)
+    res = analyse(eng, op, step=np.radians(0.5), speed_fluctuation=0.02)
+    assert 0.0 < res.excess_energy < 0.5
+    dth = res.cycle / res.theta.size
+    excess = np.concatenate([[0.0], np.cumsum(res.torque - res.mean_torque) * dth])
+    assert excess.max() - excess.min() == pytest.approx(res.excess_energy, rel=0.01)
+    w = np.sqrt(1.0 + 2 * (excess - excess.mean()) / res.flywheel_inertia)
+    assert (w.max() - w.min()) / w.mean() == pytest.approx(0.02, rel=0.02)
