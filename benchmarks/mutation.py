@@ -60,10 +60,12 @@ MODULES: dict[str, tuple[str, list[str]]] = {
 }
 
 
-def run_module(name: str, children: int, only: list[str] | None = None) -> dict:
+def run_module(name: str, children: int, only: list[str] | None = None,
+               tests: list[str] | None = None) -> dict:
     """Mutate one module; with ``only`` (mutant names or fnmatch patterns, as ``mutmut
     show`` prints them) run just those mutants, e.g. the survivors of an earlier run."""
-    target, tests = MODULES[name]
+    target, selected = MODULES[name]
+    tests = tests or selected
     with tempfile.TemporaryDirectory(prefix=f"mutmut-{name}-") as tmp:
         work = Path(tmp) / "repo"
         files = subprocess.run(["git", "ls-files"], cwd=ROOT, check=True, capture_output=True,
@@ -113,10 +115,13 @@ def main() -> None:
     ap.add_argument("--json", type=Path, help="write the per-module results here")
     ap.add_argument("--only", nargs="+", metavar="MUTANT",
                     help="run only these mutants (names or fnmatch patterns), e.g. earlier survivors")
+    ap.add_argument("--tests", nargs="+", metavar="FILE",
+                    help="test files instead of the module's selection (e.g. to confirm that new tests kill "
+                         "the survivors of a full run; the score of such a run covers only those tests)")
     a = ap.parse_args()
     results = []
     for m in a.modules:
-        r = run_module(m, a.max_children, a.only)
+        r = run_module(m, a.max_children, a.only, a.tests)
         results.append(r)
         score = "n/a" if r["score"] is None else f"{100 * r['score']:.1f} %"
         print(f"{m:24s} killed {r['killed']:4d}  survived {r['survived']:4d}  {score}  {r['other']}",
