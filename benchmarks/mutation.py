@@ -37,7 +37,7 @@ _MECHANISM_TESTS = [
     "tests/test_balance_hodograph.py", "tests/test_balance_layouts.py",
     "tests/test_balance_seed000.py", "tests/test_balance_seed003.py",
     "tests/test_balance_crosscheck.py", "tests/test_balance_counterweights.py",
-    "tests/test_balance_inputs.py",
+    "tests/test_balance_inputs.py", "tests/test_balance_forces_terms.py",
 ]
 
 #: module -> (file to mutate, its fast tests)
