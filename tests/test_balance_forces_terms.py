@@ -95,10 +95,13 @@ def test_pin_offset_moves_the_line_of_action(bank_deg):
 
 def test_cylinder_without_reciprocating_mass_does_not_hide_the_next():
     """Two cylinders on two throws 180 deg apart; the first has no piston and a massless rod:
-    the second alone gives the first order 1.75 * 0.05 * 400^2 = 14000 N along y."""
+    the second alone gives the first order 1.75 * 0.05 * 400^2 = 14000 N along y.  The force
+    scale sums both throws: 1.0 * 0.05 * 400^2 = 8000 N (throw 1's own mass) plus
+    (0.75 + 1.75) * 0.05 * 400^2 = 20000 N (throw 2), 28000 N."""
     shafts = (model.Shaft("main"),)
-    throws = (model.Throw("1", "main", 0.0, 0.05), model.Throw("2", "main", math.pi, 0.05))
+    throws = (model.Throw("1", "main", 0.0, 0.05, 0.0, 1.0), model.Throw("2", "main", math.pi, 0.05))
     cyls = (model.Cylinder("1", "1", 0.09, model.Rod(0.2, 0.0, 0.05), 0.0),
             model.Cylinder("2", "2", 0.09, _rod(), 1.5))
-    rec = free_forces(model.Engine("pair", 4, shafts, throws, cyls), W).term("reciprocating", 1)
-    np.testing.assert_allclose(np.hypot(*rec.force.T), [0.0, 14000.0], rtol=1e-12, atol=1e-6)
+    ff = free_forces(model.Engine("pair", 4, shafts, throws, cyls), W)
+    np.testing.assert_allclose(np.hypot(*ff.term("reciprocating", 1).force.T), [0.0, 14000.0], rtol=1e-12, atol=1e-6)
+    assert ff.force_scale == pytest.approx(28000.0, rel=1e-14)
