@@ -79,3 +79,15 @@ def test_empty_engine_and_idle_shaft_are_refused_by_key():
     with pytest.raises(InputError, match="shaft 'spare' drives no cylinder") as err:
         free_forces(idle, 400.0)
     assert err.value.key == "shafts.spare"
+
+
+@pytest.mark.parametrize("angle, wrapped", [
+    (0.5, 0.5), (1.5 * math.pi, -0.5 * math.pi), (-1.5 * math.pi, 0.5 * math.pi),
+    (math.pi, math.pi), (-math.pi, math.pi), (4.5 * math.pi, 0.5 * math.pi), (-4.5 * math.pi, -0.5 * math.pi),
+])
+def test_counterweight_angles_are_wrapped_into_minus_pi_to_pi(angle, wrapped):
+    """Counterweight angles are reported in (-pi, pi]: 3 pi/2 is -pi/2, -pi is pi, 9 pi/2 is
+    pi/2 (subtract whole turns of 2 pi by hand)."""
+    from fe_crank.balance.counterweights import _wrap
+
+    assert _wrap(angle) == pytest.approx(wrapped, abs=1e-12)
