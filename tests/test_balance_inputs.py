@@ -4,6 +4,7 @@ lever rule of the Nordberg rocker counterweight (seed 000, eq. 166) by hand."""
 
 import math
 
+import numpy as np
 import pytest
 
 from fe_crank import model
@@ -91,3 +92,20 @@ def test_counterweight_angles_are_wrapped_into_minus_pi_to_pi(angle, wrapped):
     from fe_crank.balance.counterweights import _wrap
 
     assert _wrap(angle) == pytest.approx(wrapped, abs=1e-12)
+
+
+def test_whole_shaft_balance_in_three_asymmetric_planes_by_hand():
+    """One throw at z = 0 with U = 2.75 kg * 0.05 m = 0.1375 kg m (rotating part, the pin at
+    angle 0), planes z = -0.1, 0, 0.3 m (mean 1/15 m, signs -, -, +): U_i = A + sgn_i B with
+    3 A - B = -U and -0.1 (A - B) + 0.3 (A + B) = 0.2 A + 0.4 B = 0, so A = -2B, B = U/7 and
+    U_i = -3U/7, -3U/7, -U/7: 0.0589286, 0.0589286, 0.0196429 kg m, all opposite the pin
+    (angle pi).  Sum -U and first moment 0.3 U/7 - 0.3 U/7 = 0, so the residual rotating
+    first order is zero."""
+    d = size_counterweights(_single(), BalanceStrategy(couple="whole_shaft", planes=(-0.1, 0.0, 0.3)), 400.0)
+    u = 0.1375
+    np.testing.assert_allclose([c.unbalance for c in d.counterweights], [3 * u / 7, 3 * u / 7, u / 7], rtol=1e-12)
+    np.testing.assert_allclose([c.z for c in d.counterweights], [-0.1, 0.0, 0.3], rtol=0, atol=0)
+    for c in d.counterweights:
+        assert c.angle == pytest.approx(math.pi, abs=1e-12)
+    res = d.residual.total(1, sources=("rotating", "counterweights"))
+    assert res.force_hodograph().kind == "zero" and res.moment_hodograph().kind == "zero"
