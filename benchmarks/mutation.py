@@ -8,6 +8,7 @@ killed / (killed + survived); docs/testing.md records the last run and every sur
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py            # all modules
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py kinematics # one module
+    ... benchmarks/mutation.py kinematics --only 'fe_crank.kinematics.x_piston_motion__mutmut_*'
 
 Needs `pip install mutmut` (>= 3) in the venv.  One worker (`--max-children 1`) by default:
 the machine is shared.
@@ -26,18 +27,32 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 
+#: every fast test of the mechanism and balance stages (about 25 s in all): mutmut 3 runs
+#: for each mutant only those of the selected tests that execute the mutated function, so a
+#: wide selection costs little and no survivor is left to tests outside the selection.
+_MECHANISM_TESTS = [
+    "tests/test_kinematics.py", "tests/test_kinematics_coefficients.py", "tests/test_kinetostatics.py",
+    "tests/test_dynamics.py", "tests/test_dynamics_inputs.py", "tests/test_geared_shaft.py",
+    "tests/test_balance_harmonics.py",
+    "tests/test_balance_hodograph.py", "tests/test_balance_layouts.py",
+    "tests/test_balance_seed000.py", "tests/test_balance_seed003.py",
+    "tests/test_balance_crosscheck.py", "tests/test_balance_counterweights.py",
+    "tests/test_balance_inputs.py", "tests/test_balance_forces_terms.py",
+]
+
 #: module -> (file to mutate, its fast tests)
 MODULES: dict[str, tuple[str, list[str]]] = {
-    "kinematics": ("fe_crank/kinematics.py", ["tests/test_kinematics.py"]),
-    "dynamics": ("fe_crank/dynamics.py", ["tests/test_dynamics.py", "tests/test_geared_shaft.py"]),
-    "balance.harmonics": ("fe_crank/balance/harmonics.py",
-                          ["tests/test_balance_harmonics.py", "tests/test_balance_layouts.py"]),
-    "balance.hodograph": ("fe_crank/balance/hodograph.py", ["tests/test_balance_hodograph.py"]),
-    "balance.forces": ("fe_crank/balance/forces.py",
-                       ["tests/test_balance_layouts.py", "tests/test_balance_seed000.py",
-                        "tests/test_balance_crosscheck.py"]),
-    "balance.counterweights": ("fe_crank/balance/counterweights.py",
-                               ["tests/test_balance_counterweights.py", "tests/test_balance_seed003.py"]),
+    "kinematics": ("fe_crank/kinematics.py", _MECHANISM_TESTS),
+    "kinetostatics": ("fe_crank/kinetostatics.py", _MECHANISM_TESTS),
+    "dynamics": ("fe_crank/dynamics.py", _MECHANISM_TESTS),
+    "slider_crank": ("fe_crank/slider_crank.py", _MECHANISM_TESTS),
+    "balance.harmonics": ("fe_crank/balance/harmonics.py", _MECHANISM_TESTS),
+    "balance.hodograph": ("fe_crank/balance/hodograph.py", _MECHANISM_TESTS),
+    "balance.forces": ("fe_crank/balance/forces.py", _MECHANISM_TESTS),
+    "balance.counterweights": ("fe_crank/balance/counterweights.py", _MECHANISM_TESTS),
+    "balance.nordberg": ("fe_crank/balance/nordberg.py", _MECHANISM_TESTS),
+    "balance.sector": ("fe_crank/balance/sector.py", _MECHANISM_TESTS),
+    "balance.terms": ("fe_crank/balance/terms.py", _MECHANISM_TESTS),
     "assess.m53": ("fe_crank/assess/m53.py",
                    ["tests/test_assess_m53.py", "tests/test_assess_m53_oil_bore.py", "tests/test_assess_adapters.py"]),
     "assess.fatigue": ("fe_crank/assess/fatigue.py",
@@ -58,8 +73,12 @@ MODULES: dict[str, tuple[str, list[str]]] = {
 }
 
 
-def run_module(name: str, children: int) -> dict:
-    target, tests = MODULES[name]
+def run_module(name: str, children: int, only: list[str] | None = None,
+               tests: list[str] | None = None) -> dict:
+    """Mutate one module; with ``only`` (mutant names or fnmatch patterns, as ``mutmut
+    show`` prints them) run just those mutants, e.g. the survivors of an earlier run."""
+    target, selected = MODULES[name]
+    tests = tests or selected
     with tempfile.TemporaryDirectory(prefix=f"mutmut-{name}-") as tmp:
         work = Path(tmp) / "repo"
         files = subprocess.run(["git", "ls-files"], cwd=ROOT, check=True, capture_output=True,
@@ -77,15 +96,21 @@ def run_module(name: str, children: int) -> dict:
         )
         env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
         mutmut = str(Path(sys.executable).parent / "mutmut")
-        subprocess.run([mutmut, "run", "--max-children", str(children)], cwd=work, env=env,
+        subprocess.run([mutmut, "run", "--max-children", str(children), *(only or [])], cwd=work, env=env,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         out = subprocess.run([mutmut, "results", "--all", "true"], cwd=work, env=env,
                              capture_output=True, text=True).stdout
         status: dict[str, list[str]] = {}
+        by_function: dict[str, dict[str, int]] = {}
         for line in out.splitlines():
             if ":" in line:
                 mutant, st = line.rsplit(":", 1)
-                status.setdefault(st.strip(), []).append(mutant.strip())
+                mutant, st = mutant.strip(), st.strip()
+                if only and st == "not checked":
+                    continue  # outside the requested subset
+                status.setdefault(st, []).append(mutant)
+                fn = by_function.setdefault(mutant.split("__mutmut_")[0], {})
+                fn[st] = fn.get(st, 0) + 1
         diffs = {m: subprocess.run([mutmut, "show", m], cwd=work, env=env, capture_output=True,
                                    text=True).stdout for m in status.get("survived", [])}
     killed = len(status.get("killed", [])) + len(status.get("timeout", []))
@@ -93,7 +118,7 @@ def run_module(name: str, children: int) -> dict:
     total = killed + survived
     return {"module": name, "file": target, "tests": tests, "killed": killed, "survived": survived,
             "other": {k: len(v) for k, v in status.items() if k not in ("killed", "timeout", "survived")},
-            "score": killed / total if total else None, "survivors": diffs}
+            "score": killed / total if total else None, "by_function": by_function, "survivors": diffs}
 
 
 def main() -> None:
@@ -101,10 +126,15 @@ def main() -> None:
     ap.add_argument("modules", nargs="*", default=list(MODULES), choices=list(MODULES))
     ap.add_argument("--max-children", type=int, default=1)
     ap.add_argument("--json", type=Path, help="write the per-module results here")
+    ap.add_argument("--only", nargs="+", metavar="MUTANT",
+                    help="run only these mutants (names or fnmatch patterns), e.g. earlier survivors")
+    ap.add_argument("--tests", nargs="+", metavar="FILE",
+                    help="test files instead of the module's selection (e.g. to confirm that new tests kill "
+                         "the survivors of a full run; the score of such a run covers only those tests)")
     a = ap.parse_args()
     results = []
     for m in a.modules:
-        r = run_module(m, a.max_children)
+        r = run_module(m, a.max_children, a.only, a.tests)
         results.append(r)
         score = "n/a" if r["score"] is None else f"{100 * r['score']:.1f} %"
         print(f"{m:24s} killed {r['killed']:4d}  survived {r['survived']:4d}  {score}  {r['other']}",

@@ -156,15 +156,16 @@ def fourier_coefficients(samples: np.ndarray, kmax: int) -> np.ndarray:
     ``samples`` has shape ``(..., n)`` on ``sample_angles(n)``; returns shape
     ``(..., kmax + 1, 2)``; ``alpha_0`` is the mean.  By the FFT:
     ``alpha_k = 2 Re X_k / n``, ``beta_k = -2 Im X_k / n`` with ``X = rfft(samples)``
-    (the trapezoidal rule of the Fourier integrals, exact for orders below ``n / 2``).
+    (the trapezoidal rule of the Fourier integrals, exact for orders below ``n / 2``;
+    order ``n / 2`` of an even ``n`` is the Nyquist term, whose sine is lost and whose
+    cosine would be doubled, so ``kmax < n / 2`` is required).
     """
     n = samples.shape[-1]
-    if kmax >= n // 2:
+    if 2 * kmax >= n:
         raise InputError(f"order {kmax} needs more than {n} samples per revolution", key="kmax")
-    spec = np.fft.rfft(samples, axis=-1) / n
-    out = np.empty(samples.shape[:-1] + (kmax + 1, 2))
+    spec = np.fft.rfft(samples) / n  # along the last axis
+    out = np.zeros(samples.shape[:-1] + (kmax + 1, 2))  # beta_0 stays 0
     out[..., 0, 0] = spec[..., 0].real
-    out[..., 0, 1] = 0.0
     out[..., 1:, 0] = 2.0 * spec[..., 1:kmax + 1].real
     out[..., 1:, 1] = -2.0 * spec[..., 1:kmax + 1].imag
     return out

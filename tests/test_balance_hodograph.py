@@ -76,3 +76,40 @@ def test_degenerate_kinds_at_force_scale_and_tiny_scale():
     # an exactly zero resultant: kind "zero", tilt 0
     z = hodograph(0.0, 0.0, 0.0, 0.0)
     assert z.kind == "zero" and z.tilt == 0.0 and z.major == 0.0
+
+
+def test_as_dict_of_an_axis_aligned_ellipse_and_a_45_degree_line():
+    """The record written to results.json, by hand:
+
+    * Fx = 3 cos t, Fy = sin t: P = ((0 + 0) + i (3 - 1))/2 = i, Q = ((0 - 0) + i (3 + 1))/2
+      = 2i, so |P| = 1, |Q| = 2 (both at 90 deg from +y), semi-axes 1 + 2 = 3 and 2 - 1 = 1,
+      major axis along +x (tilt 0);
+    * Fx = Fy = cos t: P = Q = (1 + i)/2, |P| = |Q| = sqrt(2)/2 at 45 deg, semi-axes
+      sqrt(2) and 0 (a line), tilt 90 - (45 + 45)/2 = 45 deg from +x towards +y.
+    """
+    d = hodograph(3.0, 0.0, 0.0, 1.0).as_dict()
+    assert d["coefficients"] == {"a": 3.0, "b": 0.0, "c": 0.0, "d": 1.0}
+    assert d["kind"] == "ellipse"
+    assert d["semi_major"] == pytest.approx(3.0, rel=1e-15)
+    assert d["semi_minor"] == pytest.approx(1.0, rel=1e-15)
+    assert d["tilt_deg"] == pytest.approx(0.0, abs=1e-12)
+    assert d["co_rotating"] == pytest.approx({"magnitude": 1.0, "angle_deg": 90.0}, rel=1e-15)
+    assert d["counter_rotating"] == pytest.approx({"magnitude": 2.0, "angle_deg": 90.0}, rel=1e-15)
+    line = hodograph(1.0, 0.0, 1.0, 0.0).as_dict()
+    assert line["kind"] == "line"
+    assert line["semi_major"] == pytest.approx(math.sqrt(2.0), rel=1e-15)
+    assert line["semi_minor"] == pytest.approx(0.0, abs=1e-15)
+    assert line["tilt_deg"] == pytest.approx(45.0, rel=1e-13)
+    assert line["co_rotating"] == pytest.approx({"magnitude": math.sqrt(0.5), "angle_deg": 45.0}, rel=1e-14)
+    assert line["counter_rotating"] == pytest.approx({"magnitude": math.sqrt(0.5), "angle_deg": 45.0}, rel=1e-14)
+
+
+@pytest.mark.parametrize("deg", [-89.0, -70.0, -45.0, -10.0, 30.0, 90.0])
+def test_tilt_is_reported_in_the_half_open_range_minus_90_to_90(deg):
+    """A line oscillation along the direction ``deg`` from +x towards +y,
+    ``(Fx, Fy) = (cos deg, sin deg) cos t``, has its major axis at ``deg`` itself; the
+    class documents the range (-90, 90] deg, so -70 stays -70 (not 110) and 90 stays 90."""
+    u = math.radians(deg)
+    h = hodograph(math.cos(u), 0.0, math.sin(u), 0.0)
+    assert h.kind == "line"
+    assert math.degrees(h.tilt) == pytest.approx(deg, abs=1e-9)

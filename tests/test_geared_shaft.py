@@ -127,3 +127,12 @@ def test_geared_shaft_dynamics(geared):
     # throw 3 (no cylinder): each bearing carries half its centrifugal force, 1200 N, at every angle
     b = res.throws["3"].bearing_front
     np.testing.assert_allclose(np.hypot(b[:, 0], b[:, 1]), 0.5 * M_ROT * R_AUX * (2 * OMEGA) ** 2, rtol=1e-12)
+
+
+def test_geared_shaft_torque_is_reduced_to_the_crank_by_its_speed_ratio(geared):
+    """Power equivalence: the aux shaft turns at 2 omega, so its torque T_aux counts as
+    2 T_aux on the crankshaft (T omega = T_crank omega + T_aux 2 omega)."""
+    res = analyse(geared, model.OperatingPoint(speed=OMEGA), step=math.radians(2.0))
+    np.testing.assert_allclose(res.torque, res.shaft_torque["crank"] + 2.0 * res.shaft_torque["aux"],
+                               rtol=1e-13, atol=1e-12 * np.max(np.abs(res.torque)))
+    assert np.max(np.abs(res.shaft_torque["aux"])) > 1.0  # N m: the geared shaft does carry torque

@@ -43,5 +43,5 @@ def acceleration_coefficients(position: np.ndarray, kmax: int) -> np.ndarray:
     Shape as ``fourier_coefficients``; order 0 is zero.
     """
     c = fourier_coefficients(position, kmax)
-    k = np.arange(kmax + 1, dtype=float)
+    k = np.arange(kmax + 1)  # integer orders: k^2 is exact, the product with c is float
     return -(k**2)[:, None] * c
