@@ -28,9 +28,7 @@ Every solution is checked: finite, and relative residual ||K x - b|| / ||b|| bel
 from __future__ import annotations
 
 import logging
-import os
 import shutil
-import tempfile
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -40,13 +38,12 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from fe_crank.errors import InputError, SolverError
+from fe_crank.fe.pardiso_ooc import out_of_core
 
 METHODS = ("auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu")
 #: above this many unknowns ``auto`` lets PARDISO go out of core when its factor does not fit
 #: (the ``fine`` preset, 2.9M DOF, needs ~27 GB in core; ``medium``, 1.0-1.15M DOF, 8 GB)
 OOC_MIN_DOF = 1_500_000
-#: share of the machine's memory the in-core part of an out-of-core factor may take
-OOC_CORE_SHARE = 0.6
 SUPERLU_MAX_DOF = 60_000
 DESCRIPTIONS = {
     "pardiso": "MKL PARDISO (pypardiso), sparse Cholesky, factorised once",
@@ -254,7 +251,7 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
         tri.sort_indices()
         solver = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
         if chosen == "pardiso_ooc":
-            fac._ooc_dir = _out_of_core(solver)
+            fac._ooc_dir = out_of_core(solver)
         try:
             solver.factorize(tri)
         except PyPardisoError as exc:
@@ -291,33 +288,3 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
         fac._near_null = B
     fac.setup_time = time.perf_counter() - t0
     return fac
-
-
-def _out_of_core(solver) -> str:
-    """Switch a PyPardisoSolver to MKL PARDISO's out-of-core mode; returns the folder of its
-    factor files.
-
-    MKL reads user iparm values only when iparm(1) = 1 (otherwise it fills in its
-    defaults and ignores the rest), so the defaults of a real SPD matrix are stated
-    (Intel oneMKL reference, ``pardiso`` iparm): iparm(2) = 2 nested dissection (METIS),
-    iparm(10) = 8 pivot perturbation 1e-8 (unused without pivoting), iparm(18) = -1 report
-    the factor's non-zeros, and iparm(60) = 1: in core when the factor fits
-    ``MKL_PARDISO_OOC_MAX_CORE_SIZE`` MB, else out of core.  ``MKL_PARDISO_OOC_PATH`` is a
-    prefix: it must end with a separator to put the files into the folder.
-    """
-    folder = tempfile.mkdtemp(prefix="fe-crank-pardiso-", dir=os.environ.get("FE_CRANK_OOC_DIR") or None)
-    os.environ["MKL_PARDISO_OOC_PATH"] = os.path.join(folder, "")
-    if "MKL_PARDISO_OOC_MAX_CORE_SIZE" not in os.environ:
-        os.environ["MKL_PARDISO_OOC_MAX_CORE_SIZE"] = str(int(OOC_CORE_SHARE * _memory_bytes() / 2**20))
-    os.environ.setdefault("MKL_PARDISO_OOC_KEEP_FILE", "0")     # files deleted when the factor is released
-    solver.iparm[0] = 1
-    solver.iparm[1] = 2
-    solver.iparm[9] = 8
-    solver.iparm[17] = -1
-    solver.iparm[59] = 1
-    return folder
-
-
-def _memory_bytes() -> int:
-    """Physical memory of the machine (bytes)."""
-    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
