@@ -12,10 +12,9 @@ The formulas are in the rule's units: lengths in mm, stresses in N/mm^2 (MPa).  
 public functions here take and return SI (m, Pa) and convert inside.  Checked against
 the rule text as the Korean Register reproduces it clause by clause (Rules for the
 Classification of Steel Ships, Pt 5, Annex 5-3, 2025), which also gives K_e (2.1.2.1,
-``ke_factor``).  alpha_T's f(b) takes the cubic coefficient as that text prints it,
--0.85 b^3; a value of -0.857 is also in circulation.  The printed one is taken because it
-is the one with a source at hand and the conservative one (alpha_T 2 % higher at
-b = 1.5, 6 % at b = 2.2).
+``ke_factor``).  One difference there is unresolved: that text prints alpha_T's
+f(b) = 7.8955 - 10.654 b + 5.3482 b^2 - 0.85 b^3, this module keeps -0.857 b^3 (f(b) 2 %
+lower at b = 1.5, 6 % at b = 2.2).
 
 Related dimensions (section 3.1, all divided by the crankpin diameter D):
 r = R_H/D (pin fillet) or R_G/D (journal fillet), s = S/D (S: pin/journal overlap,
@@ -119,7 +118,7 @@ def alpha_t(rel: dict[str, float]) -> float:
     """Torsional SCF alpha_T = 0.8 f(r,s) f(b) f(w) (3.2; with r = R_G/D it is beta_T of 3.3)."""
     s, w, b, r = (rel[k] for k in ("s", "w", "b", "r"))
     frs = r ** (-0.322 + 0.1015 * (1.0 - s))
-    fb = 7.8955 - 10.654 * b + 5.3482 * b**2 - 0.85 * b**3  # 3.2, as printed (module docstring)
+    fb = 7.8955 - 10.654 * b + 5.3482 * b**2 - 0.857 * b**3
     fw = w ** (-0.145)
     return 0.8 * frs * fb * fw
 
