@@ -14,7 +14,9 @@ the rule text as the Korean Register reproduces it clause by clause (Rules for t
 Classification of Steel Ships, Pt 5, Annex 5-3, 2025), which also gives K_e (2.1.2.1,
 ``ke_factor``).  One difference there is unresolved: that text prints alpha_T's
 f(b) = 7.8955 - 10.654 b + 5.3482 b^2 - 0.85 b^3, this module keeps -0.857 b^3 (f(b) 2 %
-lower at b = 1.5, 6 % at b = 2.2).
+lower at b = 1.5, 6 % at b = 2.2).  The FE SCF mode sides with -0.857: on the throw of
+tests/test_fe_scf_assess.py (b = 1.43) FE alpha_T / empirical is 0.913 with it and 0.897
+with -0.85 (docs/assessment.md).
 
 Related dimensions (section 3.1, all divided by the crankpin diameter D):
 r = R_H/D (pin fillet) or R_G/D (journal fillet), s = S/D (S: pin/journal overlap,
