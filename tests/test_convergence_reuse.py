@@ -22,14 +22,11 @@ from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS, mesh_throw
 
 from conftest import ROOT
+from verification_meshes import Steel
 
 pytestmark = pytest.mark.heavy  # two meshes of the shipped throw, three factorisations
 
 FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")
-
-
-class C45:
-    youngs_modulus, poisson_ratio, density = 210e9, 0.3, 7850.0
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +44,7 @@ def check_solution(geometry, cache):
     """What the check's FE stage hands on: its mesh and its unit solutions (more cases than
     the study needs), with the factor already released as the check does."""
     tm = mesh_throw(geometry, size="test", cache_dir=cache)
-    units = solve_unit_cases(tm, C45(), FeOptions(cases=("centrifugal", "pin_-y", "pin_x", "torque")))
+    units = solve_unit_cases(tm, Steel(), FeOptions(cases=("centrifugal", "pin_-y", "pin_x", "torque")))
     units.system.factorisation.free()
     return tm, units
 
@@ -66,9 +63,9 @@ def test_peak_at_the_fillet_nodes_equals_the_whole_mesh_average(check_solution):
 
 def test_first_level_reuses_the_check_solution(geometry, cache, check_solution):
     tm, units = check_solution
-    reused = fillet_convergence(geometry, C45(), base=PRESETS["test"], factors=(1.0, 2.0), cache_dir=cache,
+    reused = fillet_convergence(geometry, Steel(), base=PRESETS["test"], factors=(1.0, 2.0), cache_dir=cache,
                                 first=check_solution)
-    fresh = fillet_convergence(geometry, C45(), base=PRESETS["test"], factors=(1.0, 2.0), cache_dir=cache)
+    fresh = fillet_convergence(geometry, Steel(), base=PRESETS["test"], factors=(1.0, 2.0), cache_dir=cache)
     # one mesh and one solve fewer: the first level is the check's (its factor is released,
     # so a solve there would have raised), the second is solved as before
     assert [lv.reused for lv in reused.levels] == [True, False]

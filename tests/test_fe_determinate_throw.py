@@ -16,12 +16,9 @@ from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS, mesh_throw
 
 from conftest import ROOT
+from verification_meshes import Steel
 
 FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")
-
-
-class C45:
-    youngs_modulus, poisson_ratio, density = 210e9, 0.3, 7850.0
 
 
 @pytest.fixture(scope="module")
@@ -37,7 +34,7 @@ def geometry():
 @pytest.fixture(scope="module")
 def solved(geometry, cache):
     tm = mesh_throw(geometry, size="test", cache_dir=cache)
-    return tm, solve_unit_cases(tm, C45(), FeOptions(cases=("pin_-y", "torque")))
+    return tm, solve_unit_cases(tm, Steel(), FeOptions(cases=("pin_-y", "torque")))
 
 
 def test_reactions_at_the_bearing_centres_of_the_shipped_throw(geometry, solved):
@@ -97,7 +94,7 @@ def test_convergence_study_refines_the_fillets(geometry, solved, cache):
     mesh above: its peak equals the one computed directly; the change is |p2 - p1| / p2 by
     hand; the fillet edges of the second level are about half those of the first."""
     tm, u = solved
-    study = fillet_convergence(geometry, C45(), base=PRESETS["test"], factors=(1.0, 2.0), cache_dir=cache)
+    study = fillet_convergence(geometry, Steel(), base=PRESETS["test"], factors=(1.0, 2.0), cache_dir=cache)
     assert [lv.fillet_divisions for lv in study.levels] == [1.0, 2.0]
     direct, _ = peak_fillet_stress(u, u.displacement("pin_-y"))
     assert study.levels[0].peaks["pin_-y"] == pytest.approx(direct, rel=1e-9)
