@@ -105,9 +105,29 @@ def _edges_on_circle(gmsh, cx, cy, z, r, tol):
     return out
 
 
-def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None) -> ThrowModel:
+def _cut_to_fundamental(occ, solid: int, cut: tuple[int, ...], g: CrankGeometry) -> int:
+    """Intersect the solid with ``x >= 0`` (axis 0 in ``cut``) and ``z <= 0`` (axis 2)."""
+    if not cut:
+        return solid
+    if not set(cut) <= {0, 2}:
+        raise ValueError(f"cut axes must be 0 (x = 0) and/or 2 (z = 0), got {cut}")
+    x0 = 0.0 if 0 in cut else -_BIG
+    z1 = 0.0 if 2 in cut else _BIG
+    box = occ.addBox(x0, -_BIG, -_BIG, _BIG - x0, 2 * _BIG, z1 + _BIG)
+    out, _ = occ.intersect([(3, solid)], [(3, box)])
+    occ.synchronize()
+    if len(out) != 1:
+        raise GeometryError(f"cutting the throw to its fundamental part gave {len(out)} solids", file=g.file or None)
+    return out[0][1]
+
+
+def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, cut: tuple[int, ...] = ()) -> ThrowModel:
     """Build one throw in the current gmsh model (OCC kernel) and name its groups.
 
+    ``cut``: axes of mirror planes (0: ``x = 0``, 2: ``z = 0``) across which the caller
+    knows the throw to be symmetric (``fe_crank.mesh.planes``); the solid is then cut to
+    its fundamental part ``x >= 0`` / ``z <= 0`` before it is split and named, so only the
+    ``_1`` groups exist for a cut at ``z = 0``, and the cut faces are left unnamed.
     Returns the entity tags by group name (internal to fe-crank's meshing).
     Raises ``GeometryError`` for impossible input (checked before any OCC call) and
     when OpenCASCADE cannot build the fillets.
@@ -188,11 +208,15 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None) -> T
     if g.oil_bore is not None:
         a = g.oil_bore.angle
         dx, dy = math.sin(a), math.cos(a)
+        if 0 in cut:  # a bore along x or y (the caller checked): exact direction, exactly symmetric
+            dx, dy = float(round(dx)), float(round(dy))
         half = 2.0 * rp
         bore = occ.addCylinder(-half * dx, R - half * dy, 0.0, 2 * half * dx, 2 * half * dy, 0.0, g.oil_bore.diameter / 2)
         out, _ = occ.cut([(3, solid)], [(3, bore)])
         occ.synchronize()
         solid = out[0][1]
+
+    solid = _cut_to_fundamental(occ, solid, cut, g)
 
     # split into subdomains: slabs at the web faces, counterweight sectors
     tools = [
@@ -233,7 +257,9 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None) -> T
         else:
             volumes["journal_2"].append(tag)
 
-    surfaces = classify_surfaces(gmsh, g, keep, tol)
+    if 2 in cut:  # only the front half (z <= 0) was built
+        volumes = {k: v for k, v in volumes.items() if not (k.endswith("_2") and not v)}
+    surfaces = classify_surfaces(gmsh, g, keep, tol, cut=cut)
     for name, tags in volumes.items():
         if not tags:
             raise GeometryError(f"building the throw left no volume for {name!r}", file=g.file or None)

@@ -14,6 +14,9 @@ import numpy as np
 
 from fe_crank.errors import MeshError
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
+from fe_crank.mesh.mirror import mirror_all, swap_side
+from fe_crank.mesh.msh import write_msh
+from fe_crank.mesh.planes import symmetry_planes
 from fe_crank.mesh.cache import TMP_MARK, _save_npz, _stats_to_json, cache_key, clean_stale_cache_temps, load_cache_entry
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
 from fe_crank.mesh.quality import _fillet_max_edge, _jacobian_ratio, _straighten_poor, _tet_tags
@@ -22,13 +25,15 @@ from fe_crank.mesh.types import MeshStats, ThrowMesh
 from fe_crank.mesh.vtu import write_vtu
 
 
-def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: Path):
+def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: Path, planes: tuple[int, ...] = ()):
+    """Mesh the throw, or with ``planes`` its fundamental part, mirrored across them
+    (``fe_crank.mesh.mirror``); the stats and ``throw.msh`` are of the whole mesh."""
     from fe_crank.geometry.throw import add_throw
     from fe_crank.gmsh_io import gmsh_session, model_to_skfem
 
     t0 = time.perf_counter()
     with gmsh_session() as gmsh:
-        model = add_throw(geometry, spec)
+        model = add_throw(geometry, spec, cut=planes)
         _set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt)
         gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
         gmsh.option.setNumber("Mesh.Optimize", 1)
@@ -53,9 +58,17 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
             raise MeshError(f"gmsh could not mesh throw {spec.name!r} of {geometry.name!r}: {exc}") from None
         straightened = _straighten_poor(gmsh, spec.name)
         mesh = model_to_skfem()
-        gmsh.write(str(folder / "throw.msh"))
-    missing = [n for n in model.surfaces if n not in mesh.boundaries or mesh.boundaries[n].size == 0]
-    missing += [n for n in model.volumes if n not in mesh.subdomains or mesh.subdomains[n].size == 0]
+        if not planes:
+            gmsh.write(str(folder / "throw.msh"))
+    expected = (set(model.surfaces), set(model.volumes))
+    if planes:
+        mesh = mirror_all(mesh, planes)
+        straightened *= 2 ** len(planes)  # each straightened element and its images
+        if 2 in planes:
+            expected = tuple(s | {swap_side(n) for n in s} for s in expected)
+        write_msh(folder / "throw.msh", mesh)
+    missing = [n for n in sorted(expected[0]) if n not in mesh.boundaries or mesh.boundaries[n].size == 0]
+    missing += [n for n in sorted(expected[1]) if n not in mesh.subdomains or mesh.subdomains[n].size == 0]
     if missing:
         raise MeshError(f"named groups missing or empty after meshing: {missing}")
     ratio = _jacobian_ratio(mesh)
@@ -69,6 +82,7 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
         fillet_max_edge=_fillet_max_edge(mesh, model.fillet_radii),
         fillet_radii=dict(model.fillet_radii),
         build_seconds=time.perf_counter() - t0,
+        symmetry=tuple(planes),
     )
     if opt.fillet_divisions >= 4.0:
         for name, h in stats.fillet_max_edge.items():
@@ -126,23 +140,24 @@ def mesh_throw(
     opt = resolve_options(size)
     check_element_budget(geometry, spec, opt, max_elements)
     key = cache_key(geometry, spec, opt)
+    planes = symmetry_planes(geometry, spec) if opt.symmetric else ()
     if cache_dir is None:
         folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
         atexit.register(shutil.rmtree, folder, True)  # no cache: the files live as long as the process
-        mesh, stats = _build(geometry, spec, opt, folder)
+        mesh, stats = _build(geometry, spec, opt, folder, planes)
         write_vtu(folder / "throw.vtu", mesh)
-        return ThrowMesh(mesh, stats, dict(stats.fillet_radii), folder / "throw.msh", folder / "throw.vtu", spec.name, key, opt)
+        return ThrowMesh(mesh, stats, dict(stats.fillet_radii), folder / "throw.msh", folder / "throw.vtu", spec.name, key, opt, stats.symmetry)
     root = Path(cache_dir)
     final = root / key
     hit = load_cache_entry(final)
     if hit is not None:
         mesh, stats = hit
-        return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt)
+        return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt, stats.symmetry)
     root.mkdir(parents=True, exist_ok=True)
     clean_stale_cache_temps(root)
     tmp = Path(tempfile.mkdtemp(prefix=f".{key}{TMP_MARK}{os.getpid()}-", dir=root))
     try:
-        mesh, stats = _build(geometry, spec, opt, tmp)
+        mesh, stats = _build(geometry, spec, opt, tmp, planes)
         _save_npz(tmp / "mesh.npz", mesh)
         write_vtu(tmp / "throw.vtu", mesh)
         (tmp / "stats.json").write_text(json.dumps(_stats_to_json(stats), indent=1))
@@ -154,4 +169,4 @@ def mesh_throw(
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
-    return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt)
+    return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt, stats.symmetry)

@@ -74,6 +74,7 @@ def _stats_to_json(s: MeshStats) -> dict:
 def _stats_from_json(d: dict) -> MeshStats:
     d = dict(d)
     d["from_cache"] = True
+    d["symmetry"] = tuple(int(a) for a in d.get("symmetry", ()))
     return MeshStats(**d)
 
 

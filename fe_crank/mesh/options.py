@@ -11,7 +11,7 @@ import numpy as np
 
 from fe_crank.errors import MeshError
 
-CACHE_FORMAT = 2  # 2: Netgen optimisation and straightening of poorly curved elements (minSJ <= 0.1)
+CACHE_FORMAT = 3  # 2: Netgen optimisation and straightening of poorly curved elements (minSJ <= 0.1); 3: mirrored meshes of symmetric throws, `symmetry` in stats
 DEFAULT_CACHE_DIR = Path(".cache") / "meshes"
 _SAFETY = 0.65  # target edge = SAFETY * r / fillet_divisions: gmsh's surface edges exceed the target by up to ~40 %
 
@@ -22,7 +22,9 @@ class MeshOptions:
 
     ``size_max = crankpin_diameter / coarse_divisions`` unless given (m).  Fillet
     element edge ``<= r / fillet_divisions``; size grows away from the fillets by
-    ``grading`` m per m of distance.
+    ``grading`` m per m of distance.  ``symmetric``: where the throw is exactly
+    mirror-symmetric (``fe_crank.mesh.planes.symmetry_planes``), mesh its fundamental part
+    and mirror it, so the mesh is an exact mirror image too (``ThrowMesh.symmetry``).
     """
 
     coarse_divisions: float = 4.0
@@ -31,6 +33,7 @@ class MeshOptions:
     size_max: float | None = None
     bore_divisions: float = 6.0  # elements round the oil bore circumference / pi
     optimize_high_order: bool = False  # gmsh's HighOrder optimiser can abort the process (uncaught C++ error)
+    symmetric: bool = True  # mesh the fundamental part of a mirror-symmetric throw and mirror it (fe_crank.mesh.planes)
 
     def __post_init__(self):
         for name in ("coarse_divisions", "fillet_divisions", "grading", "bore_divisions"):

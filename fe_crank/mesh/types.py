@@ -20,6 +20,7 @@ class MeshStats:
     fillet_radii: dict[str, float]
     build_seconds: float
     from_cache: bool = False
+    symmetry: tuple[int, ...] = ()  # axes of the mirror planes the mesh was built with (ThrowMesh.symmetry)
 
 
 @dataclass(frozen=True)
@@ -34,3 +35,6 @@ class ThrowMesh:
     throw: str
     key: str
     options: MeshOptions = field(default_factory=MeshOptions)
+    #: axes normal to the planes through the origin across which the mesh is an exact mirror
+    #: image of itself (0: x = 0, the crank plane; 2: z = 0, the mid-plane); () when not mirrored
+    symmetry: tuple[int, ...] = ()

@@ -1,0 +1,70 @@
+"""The mirror planes of a throw: across which planes through the origin the solid of one
+throw (``fe_crank.geometry.throw.add_throw``) is exactly its own mirror image.
+
+Throw frame (``fe_crank.geometry.spec``): ``z`` the crank axis, crankpin centre on ``+y``.
+
+* ``z = 0`` (axis 2), the mid-plane through the crankpin's centre: journals, webs,
+  fillets and undercuts are built from one specification for both sides and the oil bore
+  lies in ``z = 0``, so the throw is symmetric exactly when its counterweights are: none,
+  or one on each web with equal outer/inner radius, angle and thickness.  Bolt data are
+  not part of the solid (they feed the bolt check only) and are ignored.
+* ``x = 0`` (axis 0), the crank plane: the web outline (hull of two circles centred on
+  the ``y`` axis), the pin, the journals and the counterweight sectors (centred on ``-y``)
+  are symmetric about it; the oil bore, a through-bore in ``z = 0`` along
+  ``(sin a, cos a)``, is symmetric only when it runs along ``y`` or along ``x``
+  (``a`` a multiple of 90 deg, to within ``ANGLE_TOL``); an oblique bore breaks it.
+
+Anything else (a counterweight on one web only, two different counterweights, two
+counterweights on one web) leaves the plane out: a plane is used only when the
+specification makes the solid symmetric by construction.
+"""
+
+from __future__ import annotations
+
+import math
+
+from fe_crank.geometry.spec import CounterweightSpec, CrankGeometry, ThrowSpec
+
+#: rad: an oil-bore angle this close to a multiple of 90 deg counts as along x or y
+#: (a parsed "90 deg" is pi/2 to within 1 ulp; 1e-12 rad moves the bore's far end by < 1e-13 m)
+ANGLE_TOL = 1e-12
+
+
+def _same_sector(a: CounterweightSpec, b: CounterweightSpec) -> bool:
+    return (a.outer_radius, a.inner_radius, a.angle, a.thickness) == (b.outer_radius, b.inner_radius, b.angle, b.thickness)
+
+
+def z_symmetric(spec: ThrowSpec) -> bool:
+    """Counterweights on neither web, or one on each web with equal sectors (exact equality)."""
+    cws = spec.counterweights
+    if not cws:
+        return True
+    if len(cws) != 2 or sorted(cw.web for cw in cws) != [1, 2]:
+        return False
+    return _same_sector(cws[0], cws[1])
+
+
+def bore_axis_aligned(angle: float) -> int | None:
+    """0 when the bore direction ``(sin a, cos a)`` is along ``y``, 1 along ``x``, None when oblique."""
+    k = angle / (math.pi / 2)
+    n = round(k)
+    if abs(k - n) * (math.pi / 2) > ANGLE_TOL:
+        return None
+    return n % 2
+
+
+def x_symmetric(geometry: CrankGeometry) -> bool:
+    """No oil bore, or one along ``x`` or ``y`` (every other part is symmetric by construction)."""
+    return geometry.oil_bore is None or bore_axis_aligned(geometry.oil_bore.angle) is not None
+
+
+def symmetry_planes(geometry: CrankGeometry, throw: ThrowSpec | str | int | None = None) -> tuple[int, ...]:
+    """Axes normal to the throw's exact mirror planes through the origin, ascending:
+    0 for ``x = 0``, 2 for ``z = 0``; ``()`` when there is none."""
+    spec = throw if isinstance(throw, ThrowSpec) else geometry.throw(throw)
+    out = []
+    if x_symmetric(geometry):
+        out.append(0)
+    if z_symmetric(spec):
+        out.append(2)
+    return tuple(out)
