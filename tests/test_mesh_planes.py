@@ -87,3 +87,13 @@ def test_oblique_bore_and_one_sided_counterweight_leave_no_plane():
 def test_shipped_geometries(name, planes):
     g = load_geometry(ROOT / "geometry" / name)
     assert {t.name: symmetry_planes(g, t) for t in g.throws} == planes
+
+
+def test_mesh_section_symmetric_key():
+    from fe_crank.errors import InputError
+    from fe_crank.io.mesh import parse_mesh_section
+
+    assert parse_mesh_section({}, "lc.toml").symmetric is True
+    assert parse_mesh_section({"symmetric": False}, "lc.toml").symmetric is False
+    with pytest.raises(InputError, match="mesh.symmetric.*true or false"):
+        parse_mesh_section({"symmetric": "no"}, "lc.toml")

@@ -6,6 +6,7 @@ Each stage is a plain call into its package: dynamics -> balance -> mesh (cached
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 
 import time
@@ -21,7 +22,7 @@ from fe_crank.errors import FeCrankError, InputError
 from fe_crank.fe import convergence, solve_unit_cases
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.mesh import MeshSection
-from fe_crank.mesh import mesh_throw
+from fe_crank.mesh import mesh_throw, resolve_options
 from fe_crank.results import CriterionResult, StageTime
 from fe_crank.throw_scope import ALL_THROWS
 from fe_crank.torsion.stage import dynamics_for_assessment, torsion_stage
@@ -151,6 +152,8 @@ def _mesh_stage(lc, options: CheckOptions):
     section = lc.extras.get("mesh") or MeshSection()
     kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or section.size,
               "max_elements": options.max_elements or section.max_elements}
+    if not section.symmetric:  # [mesh] symmetric = false: mesh the whole throw (comparisons)
+        kwargs["size"] = dataclasses.replace(resolve_options(kwargs["size"]), symmetric=False)
     return {key: mesh_throw(lc.geometry, throw=name, **kwargs) for key, name in throw_keys(lc).items()}
 
 
