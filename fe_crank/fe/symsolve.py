@@ -44,6 +44,7 @@ from skfem import Basis
 
 from fe_crank.errors import SolverError
 from fe_crank.fe.assembly import assemble_stiffness
+from fe_crank.fe.pardiso_phases import pardiso_factorize
 from fe_crank.fe.solvers import DESCRIPTIONS, Factorisation, choose_method, factorise
 from fe_crank.fe.supports import rigid_body_modes
 from fe_crank.fe.symmetry import Mirror, character_of
@@ -100,6 +101,10 @@ class SymmetricSolver:
         s = (f"{d}; solved on {2 ** k} symmetry components of the {part} of the mesh (mirror planes "
              f"{self.mirror.describe()}, {3 * self.nodes.size} dofs each)")
         return s if not self.note else f"{s} ({self.note})"
+
+    @property
+    def analysis_time(self) -> float:
+        return self.timings.get("analysis", 0.0)
 
     @property
     def nnz(self) -> int:
@@ -230,6 +235,7 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
         else:
             comp.factor = factorise(A, method, upper=True)
     timings["factorisation"] = time.perf_counter() - t0
+    timings["analysis"] = sum(c.factor.analysis_time for c in comps)
     return SymmetricSolver(mirror=mirror, nodes=nodes, weights=weights, components=comps, points=x,
                            held_full=np.asarray(held_full, int), method=method,
                            setup_time=timings["factorisation"], timings=timings)
@@ -260,10 +266,11 @@ def _pardiso_ordered(A: sp.csr_matrix, perm: np.ndarray | None) -> tuple[Factori
         solver.iparm[4] = 1
         solver.perm = perm.copy()
     try:
-        solver.factorize(A)
+        t_analysis = pardiso_factorize(solver, A)
     except PyPardisoError as exc:
         raise SolverError(f"PARDISO factorisation of a symmetry component failed: {exc}") from exc
-    fac = Factorisation(matrix=None, method="pardiso", setup_time=time.perf_counter() - t0)
+    fac = Factorisation(matrix=None, method="pardiso", setup_time=time.perf_counter() - t0,
+                        analysis_time=t_analysis)
     fac._impl = solver
     fac._upper = A
     fac._diag = A.diagonal()

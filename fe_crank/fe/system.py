@@ -172,8 +172,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     ``held_dofs``: single vector dofs (3 node + component) held at zero.
     ``determinate``: a ``DeterminateLayout`` -- statically determinate supports
     (``fe_crank.fe.determinate``): ``solve`` adds to every load its reactions and the six
-    point constraints (added to ``held_dofs``) remove the rigid-body modes; or its
-    ``DeterminateSupport`` already built on ``basis``.
+    point constraints (added to ``held_dofs``) remove the rigid-body modes (or a built ``DeterminateSupport``).
 
     Raises MeshError for a missing named boundary or a node claimed by two constraints,
     SolverError when the factorisation fails (e.g. a rigid-body mode left free).

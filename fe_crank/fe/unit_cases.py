@@ -224,7 +224,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         cases[name] = UnitCase(name=name, description=desc[name], displacement=U[:, i], applied=applied,
                                reactions=reac, equilibrium_error=err)
     timings = dict(system.timings)
-    timings.update(loads=t_loads, solve=t_solve, solve_per_case=t_solve / max(len(names), 1),
+    timings.update(analysis=getattr(system.factorisation, "analysis_time", 0.0), loads=t_loads, solve=t_solve, solve_per_case=t_solve / max(len(names), 1),
                    total=time.perf_counter() - t_all)
     sup = system.determinate
     centres = {j: float(c[2]) for j, c in sup.centres.items()} if sup is not None else {}
