@@ -131,7 +131,9 @@ def solver_info(stage_out: dict) -> dict:
     used = sorted({u.solver for u in (stage_out.get("units") or {}).values()})
     lc = stage_out.get("loadcase")
     requested = getattr(getattr(lc, "fe", None), "solver", None) or "auto"
-    return {"used": used, "requested": requested, "fast_available": bool(pardiso_available())}
+    described = sorted({getattr(u, "solver_description", u.solver) for u in (stage_out.get("units") or {}).values()})
+    return {"used": used, "requested": requested, "fast_available": bool(pardiso_available()),
+            "described": described}   # in words: fallback notes, "solved on 4 symmetry components ..."
 
 
 def support_info(stage_out: dict) -> list[dict]:

@@ -41,6 +41,9 @@ class FeOptions:
     cases: which unit cases to solve: "centrifugal", "torque" and pin cases by direction
     ("pin_x", "pin_y", "pin_-x", "pin_-y", "pin_<deg>"; see ``pin_directions``).
     pin_half_angle: rad, half width of the cosine pressure arc.
+    symmetry: solve on the symmetry components where the mesh states mirror planes
+    (``ThrowMesh.symmetry``) and the supports are the determinate ones (``fe.symsolve``);
+    False: the full model (for comparison; same answer to round-off).
     """
 
     support: str = "determinate"
@@ -53,6 +56,7 @@ class FeOptions:
     pin_boundary: str = "crankpin"
     pin_centre: tuple[float, float] | None = None   # (x, y) of the pin axis; None: centroid of the pin surface
     intorder: int = 2
+    symmetry: bool = True
 
     @property
     def reaction_face(self) -> str:

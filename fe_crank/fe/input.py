@@ -8,6 +8,7 @@
     torque_reaction = "end_2"           # end face where the power is taken off: "end_2" (default) | "end_1"
     solver = "auto"                     # "pardiso" | "pardiso_ooc" | "cholmod" | "amg" | "superlu"
     pin_half_angle = "60 deg"           # cosine pressure arc on the crankpin
+    symmetry = true                     # solve mirror-symmetric meshes on their symmetry components
 """
 
 from __future__ import annotations
@@ -38,6 +39,7 @@ class FeInput(Strict):
     solver: Literal["auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu"] = "auto"
     pin_half_angle: Angle = Field(default=FeOptions.pin_half_angle, gt=0, le=1.5707963267948966)
     cases: tuple[str, ...] = CASES
+    symmetry: bool = True
 
     @model_validator(mode="after")
     def _check(self):
@@ -72,4 +74,4 @@ def parse_fe(value: object, file: str | Path, key: str = "fe") -> FeOptions:
     raw = validate(FeInput, value, file, key)
     return FeOptions(support=raw.support, bearing_stiffness=raw.bearing_stiffness, solver=raw.solver,
                      pin_half_angle=raw.pin_half_angle, cases=tuple(raw.cases),
-                     torque_reaction=raw.torque_reaction)
+                     torque_reaction=raw.torque_reaction, symmetry=raw.symmetry)

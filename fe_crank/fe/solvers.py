@@ -39,6 +39,7 @@ import scipy.sparse.linalg as spla
 
 from fe_crank.errors import InputError, SolverError
 from fe_crank.fe.pardiso_ooc import out_of_core
+from fe_crank.fe.pardiso_phases import pardiso_factorize
 
 METHODS = ("auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu")
 #: above this many unknowns ``auto`` lets PARDISO go out of core when its factor does not fit
@@ -118,6 +119,7 @@ class Factorisation:
     note: str | None = None               # why this method ran when ``auto`` fell back from PARDISO
     _nnz: int | None = field(default=None, repr=False)   # kept by ``free``
     _ooc_dir: str | None = field(default=None, repr=False)  # PARDISO's factor files (pardiso_ooc)
+    analysis_time: float = 0.0            # PARDISO: its phase 1 (reordering, symbolic), part of setup_time
 
     @property
     def description(self) -> str:
@@ -253,7 +255,7 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
         if chosen == "pardiso_ooc":
             fac._ooc_dir = out_of_core(solver)
         try:
-            solver.factorize(tri)
+            fac.analysis_time = pardiso_factorize(solver, tri)
         except PyPardisoError as exc:
             raise SolverError(f"PARDISO factorisation failed (matrix not positive definite: "
                               f"unsupported rigid-body mode?): {exc}") from exc

@@ -47,6 +47,7 @@ class System:
     point_dofs: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # single vector dofs held
     determinate: DeterminateSupport | None = None   # reactions applied as loads (fe.determinate)
     timings: dict[str, float] = field(default_factory=dict)
+    symmetric: object | None = None   # fe.symsolve.SymmetricSolver: solved on symmetry components
 
     @property
     def n_dof(self) -> int:
@@ -75,6 +76,9 @@ class System:
         F = f[:, None] if f.ndim == 1 else f
         if self.determinate is not None:           # the statically determinate reactions as loads
             F = self.determinate.self_equilibrated(F)[0]
+        if self.symmetric is not None:             # determinate only: no reference loads
+            U = self.symmetric.solve(F)
+            return U[:, 0] if f.ndim == 1 else U
         refs = ref_loads or [None] * F.shape[1]
         Fr = np.column_stack([self.reduce(F[:, k], refs[k]) for k in range(F.shape[1])])
         Q = self.factorisation.solve(Fr)
@@ -168,7 +172,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     ``held_dofs``: single vector dofs (3 node + component) held at zero.
     ``determinate``: a ``DeterminateLayout`` -- statically determinate supports
     (``fe_crank.fe.determinate``): ``solve`` adds to every load its reactions and the six
-    point constraints (added to ``held_dofs``) remove the rigid-body modes.
+    point constraints (added to ``held_dofs``) remove the rigid-body modes (or a built ``DeterminateSupport``).
 
     Raises MeshError for a missing named boundary or a node claimed by two constraints,
     SolverError when the factorisation fails (e.g. a rigid-body mode left free).
@@ -179,7 +183,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
         basis = Basis(mesh, ElementTetP2(), intorder=intorder)
     sup = None
     if determinate is not None:
-        sup = determinate_support(basis, determinate)
+        sup = determinate if isinstance(determinate, DeterminateSupport) else determinate_support(basis, determinate)
         held_dofs = np.concatenate([np.asarray(held_dofs, dtype=int), sup.held])
     K = assemble_stiffness(basis, youngs_modulus, poisson_ratio)
     n = K.shape[0]

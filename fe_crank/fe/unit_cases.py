@@ -18,6 +18,7 @@ indeterminate, for studies of the bearing's elasticity only (docs/fe.md).
 
 from __future__ import annotations
 
+import logging
 import time
 from dataclasses import dataclass, field
 
@@ -30,8 +31,11 @@ from fe_crank.fe.fe_options import (CASES, PIN_FORCES, SUPPORTS, TORQUE_ENDS, Fe
                                      axial_journal, check_support_options, support_text)
 from fe_crank.fe.pin_directions import pin_case_weights, pin_direction, unit_force
 from fe_crank.fe.determinate import POINT_REACTION_TOL, DeterminateLayout
+from fe_crank.fe.symsystem import determinate_system
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
+
+log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class UnitCase:
@@ -171,7 +175,11 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         boundary_facets(mesh, name, "the unit load cases")
     check_support_options(options)
     E, nu = material.youngs_modulus, material.poisson_ratio
+    axes = tuple(getattr(throw_mesh, "symmetry", None) or ()) if options.symmetry else ()
     if options.support == "foundation":
+        if axes:
+            log.info("fe-crank: the foundation support is solved on the full model (symmetry components: "
+                     "determinate supports only)")
         system = build_system(mesh, E, nu, foundations=[Foundation(j, options.bearing_stiffness)
                                                         for j in options.journals],
                               couplings=[Coupling(options.reaction_face, fixed=("uz", "rz"))],
@@ -179,7 +187,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     else:
         layout = DeterminateLayout(journals=tuple(options.journals), torque_face=options.reaction_face,
                                    axial=axial_journal(options))
-        system = build_system(mesh, E, nu, determinate=layout, solver=options.solver, intorder=options.intorder)
+        system = determinate_system(mesh, E, nu, layout, axes, solver=options.solver, intorder=options.intorder)
     basis = system.basis
     t0 = time.perf_counter()
     loads, desc, pins, surface = {}, {}, {}, None
@@ -216,7 +224,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         cases[name] = UnitCase(name=name, description=desc[name], displacement=U[:, i], applied=applied,
                                reactions=reac, equilibrium_error=err)
     timings = dict(system.timings)
-    timings.update(loads=t_loads, solve=t_solve, solve_per_case=t_solve / max(len(names), 1),
+    timings.update(analysis=getattr(system.factorisation, "analysis_time", 0.0), loads=t_loads, solve=t_solve, solve_per_case=t_solve / max(len(names), 1),
                    total=time.perf_counter() - t_all)
     sup = system.determinate
     centres = {j: float(c[2]) for j, c in sup.centres.items()} if sup is not None else {}

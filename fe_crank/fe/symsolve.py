@@ -1,0 +1,277 @@
+"""The statically determinate throw solved on the symmetry components of its fundamental part.
+
+With k verified mirror planes (``fe_crank.fe.symmetry``) the self-equilibrated load f
+(the determinate reactions applied as loads, ``DeterminateSupport.self_equilibrated``)
+splits into 2^k components f_e.  Each is solved on the fundamental part Q (the elements
+whose centroid has x_a > 0 for every plane a; the other parts are its images), with the
+displacement restricted to the component by the plane conditions: for a node on plane a,
+u_a = 0 where the component is symmetric about it (e_a = +1) and the two in-plane
+components are zero where it is antisymmetric (e_a = -1).  With T the expansion of the
+part's unknowns q to the full vector (u = sum_g chi_e(g) g q), K = sum_g g K_Q g and
+T^T f = 2^k (f_e at Q's nodes with a node on m planes weighted by 2^-m), so the
+Galerkin equations T^T K T q = T^T f are
+
+    K_Q q = W f_e,   W = diag(2^-m_i)  (a node on one plane carries half its load, on two a quarter)
+
+-- the full model's energy is 2^k times the part's.  The component's share of the six
+rigid-body modes (a translation along the plane's normal and the two rotations about
+in-plane axes are antisymmetric about it, the rest symmetric) is left free by the plane
+conditions; f_e is orthogonal to it (f is self-equilibrated and the projection is
+orthogonal), so it is removed by holding as many single dofs of the part (picked by
+pivoted QR, as ``determinate.point_constraints``), which then carry round-off only.
+The components are summed, u = sum_e T_e q_e, and the rigid motion that makes the full
+model's six held point dofs zero is taken off: u then equals the full model's solution,
+not only its stresses.
+
+Every component matrix keeps the pattern of the part's stiffness (all 3 n_Q dofs: the
+constrained ones become rows with a unit diagonal and explicit-zero couplings), so
+MKL PARDISO's fill-reducing ordering (METIS nested dissection) of the first serves every
+other (``iparm(5)``: returned by the first analysis, supplied to the others; Intel oneMKL
+reference, ``pardiso`` iparm), which skips the reordering of the other components.
+"""
+
+from __future__ import annotations
+
+import copy
+import logging
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+from skfem import Basis
+
+from fe_crank.errors import SolverError
+from fe_crank.fe.assembly import assemble_stiffness
+from fe_crank.fe.pardiso_phases import pardiso_factorize
+from fe_crank.fe.solvers import DESCRIPTIONS, Factorisation, choose_method, factorise
+from fe_crank.fe.supports import rigid_body_modes
+from fe_crank.fe.symmetry import Mirror, character_of
+
+log = logging.getLogger(__name__)
+#: direct methods the components are solved with (AMG-CG and out-of-core PARDISO: full model)
+METHODS = ("pardiso", "cholmod", "superlu")
+#: reuse the first component's PARDISO ordering for the others (module doc)
+SHARE_ORDERING = True
+_TEMPLATE: dict[str, object] = {}
+
+
+def mode_characters(axes) -> np.ndarray:
+    """(6, k) character of each rigid-body mode (tx, ty, tz, rx, ry, rz) under each reflection:
+    translation along the plane's normal -1, in-plane +1; rotation about the normal +1,
+    about an in-plane axis -1 (a rotation vector is axial: it flips where a polar one does not)."""
+    out = np.ones((6, len(axes)), int)
+    for j, a in enumerate(axes):
+        for m in range(3):
+            out[m, j] = -1 if m == a else 1
+            out[3 + m, j] = 1 if m == a else -1
+    return out
+
+
+@dataclass
+class Component:
+    chars: dict[int, int]
+    constrained: np.ndarray              # (3 n_Q,) bool: plane conditions and held dofs
+    held: np.ndarray                     # local dofs held against the component's rigid modes
+    factor: Factorisation | None = None
+
+
+@dataclass
+class SymmetricSolver:
+    """The component factorisations of one part; the face of ``Factorisation`` that the rest
+    of the package reads (``method``, ``description``, ``nnz``, ``free``, ``setup_time``)."""
+
+    mirror: Mirror
+    nodes: np.ndarray                    # (n_Q,) full node numbers of the part
+    weights: np.ndarray                  # (n_Q,) 2^-m, m = planes the node lies on
+    components: list[Component]
+    points: np.ndarray                   # (3, N) all nodes
+    held_full: np.ndarray                # (6,) the full model's point dofs
+    method: str
+    setup_time: float = 0.0
+    note: str | None = None
+    timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def description(self) -> str:
+        k = len(self.mirror.axes)
+        d = DESCRIPTIONS.get(self.method, self.method)
+        part = "half" if k == 1 else "quarter"
+        s = (f"{d}; solved on {2 ** k} symmetry components of the {part} of the mesh (mirror planes "
+             f"{self.mirror.describe()}, {3 * self.nodes.size} dofs each)")
+        return s if not self.note else f"{s} ({self.note})"
+
+    @property
+    def analysis_time(self) -> float:
+        return self.timings.get("analysis", 0.0)
+
+    @property
+    def nnz(self) -> int:
+        return int(sum(c.factor.nnz for c in self.components if c.factor is not None))
+
+    def free(self):
+        """Release every component's factorisation (``Factorisation.free``)."""
+        for c in self.components:
+            if c.factor is not None:
+                c.factor.free()
+
+    def solve(self, F: np.ndarray) -> np.ndarray:
+        """Full displacements (3 N, k) of self-equilibrated full loads F (3 N, k)."""
+        N = self.points.shape[1]
+        k = F.shape[1]
+        Fn = F.reshape(N, 3, k)
+        U = np.zeros((N, 3, k))
+        group = self.mirror.group
+        for comp in self.components:
+            b = np.zeros((self.nodes.size, 3, k))
+            for planes, p, s in group:           # f_e at the part's nodes: 2^-k sum_g chi(g) (g f)
+                b += character_of(comp.chars, planes) * s[None, :, None] * Fn[p[self.nodes]]
+            b *= self.weights[:, None, None] / len(group)
+            b = b.reshape(-1, k)
+            b[comp.constrained] = 0.0
+            q = comp.factor.solve(b).reshape(self.nodes.size, 3, k)
+            for planes, p, s in group:           # u_e = sum_g chi(g) g q, each image once
+                U[p[self.nodes]] += (character_of(comp.chars, planes) * self.weights)[:, None, None] \
+                    * s[None, :, None] * q
+        U = U.reshape(3 * N, k)
+        return U - _rigid_fit(self.points, self.held_full, U)
+
+
+def _rigid_fit(x: np.ndarray, held: np.ndarray, U: np.ndarray) -> np.ndarray:
+    """The rigid motion B a with (B a)[held] = U[held] (six held dofs), evaluated everywhere."""
+    nodes = held // 3
+    Bh = rigid_body_modes(x[:, nodes]).reshape(len(held), 3, 6)[np.arange(len(held)), held % 3]
+    a = np.linalg.solve(Bh, U[held])                               # (6, k)
+    Un = np.zeros((x.shape[1], 3, U.shape[1]))
+    Un += a[None, :3, :]
+    Un += np.cross(a[3:].T[:, None, :], x.T[None, :, :]).transpose(1, 2, 0)  # theta x x
+    return Un.reshape(U.shape)
+
+
+def pick_held(x: np.ndarray, free: np.ndarray, modes: list[int]) -> np.ndarray:
+    """Local dofs (of the part's nodes x (3, n)) that remove the rigid modes ``modes``: the
+    first pivots of a QR with column pivoting of the modes restricted to the free dofs."""
+    if not modes:
+        return np.zeros(0, int)
+    B = rigid_body_modes(x)
+    B[:, 3:] /= np.ptp(x, axis=1).max()                            # rotations in length units
+    B = B[:, modes]
+    rows = np.flatnonzero(free)
+    _, R, piv = sla.qr(B[rows].T, pivoting=True, mode="economic")
+    r = len(modes)
+    if abs(R[r - 1, r - 1]) < 1e-6 * abs(R[0, 0]):
+        raise SolverError("cannot hold the rigid-body modes of a symmetry component (degenerate part?)")
+    return rows[piv[:r]]
+
+
+def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson_ratio: float,
+                           held_full: np.ndarray, solver: str = "auto", *,
+                           share_ordering: bool | None = None) -> SymmetricSolver | None:
+    """Assemble the part's stiffness once and factorise each component (module doc).
+
+    Returns None (logged) when the method is not a direct one this path supports.
+    """
+    n_full = 3 * basis.N
+    method = choose_method(solver, n_full)
+    if method not in METHODS:
+        log.info("fe-crank: the %s solver runs on the full model (symmetry components need a direct solver)",
+                 method)
+        return None
+    timings = {}
+    t0 = time.perf_counter()
+    x = basis.doflocs
+    el = basis.element_dofs
+    centroid = x[:, el[:4]].mean(axis=1)                           # (3, ne)
+    part = np.flatnonzero(np.all([centroid[a] > 0 for a in mirror.axes], axis=0))
+    if part.size * 2 ** len(mirror.axes) != el.shape[1]:
+        log.warning("fe-crank: the mirror halves do not partition the elements; solving the full model")
+        return None
+    pb = Basis(basis.mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs,
+               elements=part)
+    nodes = np.unique(el[:, part])
+    m = np.zeros(nodes.size, int)
+    for a in mirror.axes:
+        m += mirror.on_plane[a][nodes]
+    weights = 0.5 ** m
+    ldofs = (3 * nodes[:, None] + np.arange(3)).ravel()
+    K = assemble_stiffness(pb, youngs_modulus, poisson_ratio)
+    Kq = sp.triu(K[ldofs][:, ldofs], format="csr")
+    del K, pb
+    Kq.sort_indices()
+    timings["assembly"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    mchars = mode_characters(mirror.axes)
+    rows = np.repeat(np.arange(Kq.shape[0]), np.diff(Kq.indptr))
+    comps = []
+    for chars in mirror.characters:
+        allowed = np.ones((nodes.size, 3), bool)
+        for a, e in chars.items():
+            on = mirror.on_plane[a][nodes]
+            for c in range(3):
+                if (c == a) != (e == -1):                          # sign of component c under R_a != e_a
+                    allowed[on, c] = False
+        modes = [j for j in range(6) if all(mchars[j, i] == chars[a] for i, a in enumerate(mirror.axes))]
+        held = pick_held(x[:, nodes], allowed.ravel(), modes)
+        cons = ~allowed.ravel()
+        cons[held] = True
+        comps.append(Component(chars=chars, constrained=cons, held=held))
+    timings["constraints"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    share = SHARE_ORDERING if share_ordering is None else share_ordering
+    perm = None
+    for comp in comps:
+        A = Kq.copy()
+        cut = comp.constrained[rows] | comp.constrained[A.indices]
+        A.data[cut] = 0.0                                          # explicit zeros: the pattern stays
+        diag = A.indptr[:-1]                                       # upper triangle, sorted: diagonal first
+        if not np.array_equal(A.indices[diag], np.arange(A.shape[0])):
+            raise SolverError("the part's stiffness lacks a diagonal entry")
+        A.data[diag[comp.constrained]] = 1.0
+        if method == "pardiso" and share:
+            comp.factor, perm = _pardiso_ordered(A, perm)
+        elif method == "superlu":                                  # SuperLU needs the whole matrix
+            comp.factor = factorise((A + A.T - sp.diags(A.diagonal())).tocsr(), method)
+        else:
+            comp.factor = factorise(A, method, upper=True)
+    timings["factorisation"] = time.perf_counter() - t0
+    timings["analysis"] = sum(c.factor.analysis_time for c in comps)
+    return SymmetricSolver(mirror=mirror, nodes=nodes, weights=weights, components=comps, points=x,
+                           held_full=np.asarray(held_full, int), method=method,
+                           setup_time=timings["factorisation"], timings=timings)
+
+
+def _pardiso_ordered(A: sp.csr_matrix, perm: np.ndarray | None) -> tuple[Factorisation, np.ndarray]:
+    """PARDISO (SPD, upper triangle ``A``) factorised with the ordering ``perm`` (None: computed
+    by METIS and returned).  MKL reads user iparm values only with iparm(1) = 1, so its
+    defaults for a real SPD matrix are stated (as ``pardiso_ooc.out_of_core``); iparm(5) = 2
+    returns the permutation of phase 1, iparm(5) = 1 takes the caller's."""
+    import pypardiso
+    from pypardiso.pardiso_wrapper import PyPardisoError
+
+    t0 = time.perf_counter()
+    if "solver" not in _TEMPLATE:            # finding and loading mkl_rt takes ~0.6 s: once per process
+        _TEMPLATE["solver"] = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
+    solver = copy.copy(_TEMPLATE["solver"])
+    solver.pt = np.zeros_like(solver.pt)     # a handle of its own
+    solver.iparm = np.zeros_like(solver.iparm)
+    solver.iparm[0] = 1
+    solver.iparm[1] = 2
+    solver.iparm[9] = 8
+    solver.iparm[17] = -1
+    if perm is None:
+        solver.iparm[4] = 2
+        solver.perm = np.zeros(A.shape[0], dtype=np.int32)
+    else:
+        solver.iparm[4] = 1
+        solver.perm = perm.copy()
+    try:
+        t_analysis = pardiso_factorize(solver, A)
+    except PyPardisoError as exc:
+        raise SolverError(f"PARDISO factorisation of a symmetry component failed: {exc}") from exc
+    fac = Factorisation(matrix=None, method="pardiso", setup_time=time.perf_counter() - t0,
+                        analysis_time=t_analysis)
+    fac._impl = solver
+    fac._upper = A
+    fac._diag = A.diagonal()
+    return fac, solver.perm.copy()
