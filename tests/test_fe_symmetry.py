@@ -163,3 +163,37 @@ def test_free_releases_every_component():
 def test_symmetry_switch_is_read_from_the_fe_section():
     assert parse_fe({"symmetry": False}, "case.toml").symmetry is False
     assert parse_fe({}, "case.toml").symmetry is True
+
+
+def test_one_shared_analysis_equals_separate_factorisations(monkeypatch):
+    """The components on one PARDISO handle (one analysis, maxfct = 4) against each component
+    factorised on its own (phase 12 each): the same factors, so the same answer to round-off."""
+    from fe_crank.fe import symsolve
+
+    throw = mirrored_throw((0, 2), size=0.02)
+    opts = FeOptions(cases=("pin_030", "centrifugal", "torque"))
+    shared = solve_unit_cases(throw, Steel(), opts)
+    assert shared.timings["analysis"] > 0
+    monkeypatch.setattr(symsolve, "SHARE_ORDERING", False)
+    own = solve_unit_cases(throw, Steel(), opts)
+    for name in opts.cases:
+        u0, u1 = shared.displacement(name), own.displacement(name)
+        assert np.abs(u0 - u1).max() <= REL * np.abs(u1).max()
+    shared.system.factorisation.free()
+    own.system.factorisation.free()
+
+
+@pytest.mark.parametrize("method", ["superlu", "cholmod"])
+def test_other_direct_solvers_on_the_components(method):
+    from fe_crank.fe.solvers import cholmod_available
+
+    if method == "cholmod" and not cholmod_available():
+        pytest.skip("cholespy not installed")
+    throw = mirrored_throw((0, 2), size=0.02)
+    cases = ("pin_-y", "centrifugal", "torque")
+    sym = solve_unit_cases(throw, Steel(), FeOptions(solver=method, cases=cases))
+    full = solve_unit_cases(throw, Steel(), FeOptions(symmetry=False, cases=cases))
+    assert "symmetry components" in sym.solver_description and sym.solver == method
+    for name in cases:
+        u0, u1 = sym.displacement(name), full.displacement(name)
+        assert np.abs(u0 - u1).max() <= REL * np.abs(u1).max()
