@@ -98,7 +98,7 @@ class SymmetricSolver:
         k = len(self.mirror.axes)
         d = DESCRIPTIONS.get(self.method, self.method)
         part = "half" if k == 1 else "quarter"
-        s = (f"{d}; solved on {2 ** k} symmetry components of the {part} of the mesh (mirror planes "
+        s = (f"{d}; solved on {2 ** k} symmetry components of the {part} of the mesh (mirror plane{'s' if k > 1 else ''} "
              f"{self.mirror.describe()}, {3 * self.nodes.size} dofs each)")
         return s if not self.note else f"{s} ({self.note})"
 
