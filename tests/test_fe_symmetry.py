@@ -58,7 +58,7 @@ def test_symmetric_solve_equals_full_solve(pair):
 def test_mirror_is_exact_and_names_map(pair):
     planes, throw, sym, _ = pair
     basis = sym.system.basis
-    mirror, why = verify_mirror(basis.doflocs, basis.element_dofs[:4], planes)
+    mirror, why = verify_mirror(basis.doflocs, basis.element_dofs, planes)
     assert mirror is not None, why
     x = basis.doflocs
     tol = 1e-15 * np.ptp(x, axis=1).max()      # round-off of the dof locations (found: 2e-17 of the size)
@@ -81,7 +81,7 @@ def test_symmetric_load_has_no_antisymmetric_component(pair):
     the uniform field e_z is antisymmetric about z = 0 and symmetric about x = 0."""
     planes, _, sym, _ = pair
     basis = sym.system.basis
-    mirror, _ = verify_mirror(basis.doflocs, basis.element_dofs[:4], planes)
+    mirror, _ = verify_mirror(basis.doflocs, basis.element_dofs, planes)
     x = basis.doflocs
     tol = 1e-15 * np.ptp(x, axis=1).max()      # round-off of the dof locations (v is a position)
     v = np.stack([x[0], x[1], np.zeros_like(x[0])], axis=1).ravel()
@@ -105,7 +105,7 @@ def test_rigid_mode_characters_match_the_reflections(pair):
     """The hand table of ``mode_characters`` against reflecting the modes themselves: R B_m = chi_m B_m."""
     planes, _, sym, _ = pair
     basis = sym.system.basis
-    mirror, _ = verify_mirror(basis.doflocs, basis.element_dofs[:4], planes)
+    mirror, _ = verify_mirror(basis.doflocs, basis.element_dofs, planes)
     B = rigid_body_modes(basis.doflocs)
     chars = mode_characters(mirror.axes)
     for j, a in enumerate(mirror.axes):
@@ -137,10 +137,13 @@ def test_a_moved_node_breaks_the_mirror():
     x = basis.doflocs.copy()
     i = int(np.argmax(x[0]))
     x[1, i] += 1e-7                          # 1e-7 m: far above round-off, far below an element
-    mirror, why = verify_mirror(x, basis.element_dofs[:4], (0,))
+    mirror, why = verify_mirror(x, basis.element_dofs, (0,))
     assert mirror is None and "no mirror image" in why
-    mirror, why = verify_mirror(basis.doflocs, basis.element_dofs[:4], (0,))
+    mirror, why = verify_mirror(basis.doflocs, basis.element_dofs, (0,))
     assert mirror is not None
+    # one element left out: its mirror image has no image any more
+    mirror, why = verify_mirror(basis.doflocs, basis.element_dofs[:, 1:], (0,))
+    assert mirror is None and "elements do not map" in why
 
 
 def test_foundation_support_is_solved_on_the_full_model():
@@ -163,3 +166,37 @@ def test_free_releases_every_component():
 def test_symmetry_switch_is_read_from_the_fe_section():
     assert parse_fe({"symmetry": False}, "case.toml").symmetry is False
     assert parse_fe({}, "case.toml").symmetry is True
+
+
+def test_one_shared_analysis_equals_separate_factorisations(monkeypatch):
+    """The components on one PARDISO handle (one analysis, maxfct = 4) against each component
+    factorised on its own (phase 12 each): the same factors, so the same answer to round-off."""
+    from fe_crank.fe import symsolve
+
+    throw = mirrored_throw((0, 2), size=0.02)
+    opts = FeOptions(cases=("pin_030", "centrifugal", "torque"))
+    shared = solve_unit_cases(throw, Steel(), opts)
+    assert shared.timings["analysis"] > 0
+    monkeypatch.setattr(symsolve, "SHARE_ORDERING", False)
+    own = solve_unit_cases(throw, Steel(), opts)
+    for name in opts.cases:
+        u0, u1 = shared.displacement(name), own.displacement(name)
+        assert np.abs(u0 - u1).max() <= REL * np.abs(u1).max()
+    shared.system.factorisation.free()
+    own.system.factorisation.free()
+
+
+@pytest.mark.parametrize("method", ["superlu", "cholmod"])
+def test_other_direct_solvers_on_the_components(method):
+    from fe_crank.fe.solvers import cholmod_available
+
+    if method == "cholmod" and not cholmod_available():
+        pytest.skip("cholespy not installed")
+    throw = mirrored_throw((0, 2), size=0.02)
+    cases = ("pin_-y", "centrifugal", "torque")
+    sym = solve_unit_cases(throw, Steel(), FeOptions(solver=method, cases=cases))
+    full = solve_unit_cases(throw, Steel(), FeOptions(symmetry=False, cases=cases))
+    assert "symmetry components" in sym.solver_description and sym.solver == method
+    for name in cases:
+        u0, u1 = sym.displacement(name), full.displacement(name)
+        assert np.abs(u0 - u1).max() <= REL * np.abs(u1).max()

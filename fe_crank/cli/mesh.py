@@ -81,6 +81,8 @@ def run(args: argparse.Namespace) -> int:
         print(f"  mesh ({args.mesh_size}{', cached' if s.from_cache else ''}): {s.nodes} nodes, {s.elements} quadratic tets, "
               f"{s.p2_dofs} P2 DOFs, min quality {s.min_quality:.3g}, {s.straightened} elements straightened, "
               f"built in {s.build_seconds:.1f} s")
+        if s.symmetry:  # exact mirror image across these planes (docs/geometry.md)
+            print("  mirrored across " + ", ".join({0: "x = 0", 2: "z = 0"}[a] for a in s.symmetry))
         for name, h in s.fillet_max_edge.items():
             r = s.fillet_radii[name]
             print(f"  {name}: r {r * 1e3:g} mm, largest edge {h * 1e3:.3g} mm (r/{r / h:.2f})")

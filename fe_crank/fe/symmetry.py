@@ -87,9 +87,9 @@ def component(v: np.ndarray, mirror: Mirror, chars: dict[int, int]) -> np.ndarra
 
 
 def verify_mirror(points: np.ndarray, element_nodes: np.ndarray, axes) -> tuple[Mirror | None, str]:
-    """Check that the nodes ``points`` (3, N) and elements (their vertex nodes, (4, ne)) map
-    onto themselves across each plane x_a = 0 of ``axes``; returns (Mirror, "") or
-    (None, the reason it does not).
+    """Check that the nodes ``points`` (3, N) and elements (all their P2 nodes, (10, ne): the
+    image of an element's edge node must be the edge node of its image) map onto themselves
+    across each plane x_a = 0 of ``axes``; returns (Mirror, "") or (None, the reason it does not).
 
     Nodes are matched by coordinates to ``MATCH_TOL`` of the model size (a k-d tree); the
     map must be a permutation, fix exactly the nodes on the plane, and take the set of
@@ -133,17 +133,16 @@ def verify_mirror(points: np.ndarray, element_nodes: np.ndarray, axes) -> tuple[
 
 
 def _element_keys(el: np.ndarray, N: int) -> np.ndarray:
-    """One 16-byte key per element from its sorted vertex nodes (two int64 words, exact)."""
-    el = el.astype(np.int64)
-    words = np.ascontiguousarray(np.stack([el[0] * N + el[1], el[2] * N + el[3]], axis=1))
-    return words.view(np.dtype((np.void, 16))).ravel()
+    """One key per element from its sorted nodes (m, ne): the m node numbers as bytes (exact)."""
+    words = np.ascontiguousarray(el.T.astype(np.int64))
+    return words.view(np.dtype((np.void, 8 * el.shape[0]))).ravel()
 
 
 def mesh_mirror(mesh, basis, axes) -> Mirror | None:
     """The verified mirror of ``basis`` (its P2 nodes) across ``axes``, or None (logged why)."""
     if not axes:
         return None
-    mirror, why = verify_mirror(basis.doflocs, basis.element_dofs[:4], axes)
+    mirror, why = verify_mirror(basis.doflocs, basis.element_dofs, axes)
     if mirror is None:
         log.warning("fe-crank: the mesh was meant to be mirror-symmetric (%s) but is not: %s; solving the "
                     "full model", ", ".join(f"{AXIS_NAMES.get(a, a)} = 0" for a in axes), why)

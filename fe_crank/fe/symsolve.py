@@ -24,10 +24,10 @@ model's six held point dofs zero is taken off: u then equals the full model's so
 not only its stresses.
 
 Every component matrix keeps the pattern of the part's stiffness (all 3 n_Q dofs: the
-constrained ones become rows with a unit diagonal and explicit-zero couplings), so
-MKL PARDISO's fill-reducing ordering (METIS nested dissection) of the first serves every
-other (``iparm(5)``: returned by the first analysis, supplied to the others; Intel oneMKL
-reference, ``pardiso`` iparm), which skips the reordering of the other components.
+constrained ones become rows with a unit diagonal and explicit-zero couplings), so one
+MKL PARDISO handle holds all their factors (``maxfct`` = 2^k): the analysis (phase 11,
+the METIS reordering and the symbolic factorisation) runs once and each component only
+needs its numerical factorisation (phase 22) (``pardiso_phases.SharedAnalysis``).
 """
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ from skfem import Basis
 
 from fe_crank.errors import SolverError
 from fe_crank.fe.assembly import assemble_stiffness
-from fe_crank.fe.pardiso_phases import pardiso_factorize
+from fe_crank.fe.pardiso_phases import SharedAnalysis
 from fe_crank.fe.solvers import DESCRIPTIONS, Factorisation, choose_method, factorise
 from fe_crank.fe.supports import rigid_body_modes
 from fe_crank.fe.symmetry import Mirror, character_of
@@ -52,7 +52,7 @@ from fe_crank.fe.symmetry import Mirror, character_of
 log = logging.getLogger(__name__)
 #: direct methods the components are solved with (AMG-CG and out-of-core PARDISO: full model)
 METHODS = ("pardiso", "cholmod", "superlu")
-#: reuse the first component's PARDISO ordering for the others (module doc)
+#: one PARDISO analysis for every component (module doc); False: each its own (for comparison)
 SHARE_ORDERING = True
 _TEMPLATE: dict[str, object] = {}
 
@@ -98,7 +98,7 @@ class SymmetricSolver:
         k = len(self.mirror.axes)
         d = DESCRIPTIONS.get(self.method, self.method)
         part = "half" if k == 1 else "quarter"
-        s = (f"{d}; solved on {2 ** k} symmetry components of the {part} of the mesh (mirror planes "
+        s = (f"{d}; solved on {2 ** k} symmetry components of the {part} of the mesh (mirror plane{'s' if k > 1 else ''} "
              f"{self.mirror.describe()}, {3 * self.nodes.size} dofs each)")
         return s if not self.note else f"{s} ({self.note})"
 
@@ -219,7 +219,7 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
     timings["constraints"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     share = SHARE_ORDERING if share_ordering is None else share_ordering
-    perm = None
+    matrices = []
     for comp in comps:
         A = Kq.copy()
         cut = comp.constrained[rows] | comp.constrained[A.indices]
@@ -228,12 +228,16 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
         if not np.array_equal(A.indices[diag], np.arange(A.shape[0])):
             raise SolverError("the part's stiffness lacks a diagonal entry")
         A.data[diag[comp.constrained]] = 1.0
-        if method == "pardiso" and share:
-            comp.factor, perm = _pardiso_ordered(A, perm)
-        elif method == "superlu":                                  # SuperLU needs the whole matrix
-            comp.factor = factorise((A + A.T - sp.diags(A.diagonal())).tocsr(), method)
-        else:
-            comp.factor = factorise(A, method, upper=True)
+        matrices.append(A)
+    del Kq
+    if method == "pardiso" and share:
+        for comp, fac in zip(comps, _pardiso_shared(matrices)):
+            comp.factor = fac
+    else:
+        for comp, A in zip(comps, matrices):
+            if method == "superlu":                                # SuperLU needs the whole matrix
+                A = (A + A.T - sp.diags(A.diagonal())).tocsr()
+            comp.factor = factorise(A, method, upper=method != "superlu")
     timings["factorisation"] = time.perf_counter() - t0
     timings["analysis"] = sum(c.factor.analysis_time for c in comps)
     return SymmetricSolver(mirror=mirror, nodes=nodes, weights=weights, components=comps, points=x,
@@ -241,37 +245,37 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
                            setup_time=timings["factorisation"], timings=timings)
 
 
-def _pardiso_ordered(A: sp.csr_matrix, perm: np.ndarray | None) -> tuple[Factorisation, np.ndarray]:
-    """PARDISO (SPD, upper triangle ``A``) factorised with the ordering ``perm`` (None: computed
-    by METIS and returned).  MKL reads user iparm values only with iparm(1) = 1, so its
-    defaults for a real SPD matrix are stated (as ``pardiso_ooc.out_of_core``); iparm(5) = 2
-    returns the permutation of phase 1, iparm(5) = 1 takes the caller's."""
+def _pardiso_solver():
+    """A fresh PyPardisoSolver (SPD) with MKL's defaults for a real SPD matrix stated (MKL reads
+    user iparm values only with iparm(1) = 1; as ``pardiso_ooc.out_of_core``)."""
     import pypardiso
-    from pypardiso.pardiso_wrapper import PyPardisoError
 
-    t0 = time.perf_counter()
     if "solver" not in _TEMPLATE:            # finding and loading mkl_rt takes ~0.6 s: once per process
         _TEMPLATE["solver"] = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
     solver = copy.copy(_TEMPLATE["solver"])
     solver.pt = np.zeros_like(solver.pt)     # a handle of its own
     solver.iparm = np.zeros_like(solver.iparm)
     solver.iparm[0] = 1
-    solver.iparm[1] = 2
+    solver.iparm[1] = 2                      # METIS nested dissection
     solver.iparm[9] = 8
     solver.iparm[17] = -1
-    if perm is None:
-        solver.iparm[4] = 2
-        solver.perm = np.zeros(A.shape[0], dtype=np.int32)
-    else:
-        solver.iparm[4] = 1
-        solver.perm = perm.copy()
+    return solver
+
+
+def _pardiso_shared(matrices) -> list[Factorisation]:
+    """The component matrices (one pattern) factorised on one PARDISO handle: one analysis."""
+    from pypardiso.pardiso_wrapper import PyPardisoError
+
+    out = []
     try:
-        t_analysis = pardiso_factorize(solver, A)
+        shared = SharedAnalysis(_pardiso_solver(), matrices[0], len(matrices))
+        for k, A in enumerate(matrices):
+            t0 = time.perf_counter()
+            member = shared.factor(k + 1, A)
+            fac = Factorisation(matrix=None, method="pardiso", setup_time=time.perf_counter() - t0,
+                                analysis_time=shared.analysis_time if k == 0 else 0.0)
+            fac._impl, fac._upper, fac._diag = member, A, A.diagonal()
+            out.append(fac)
     except PyPardisoError as exc:
         raise SolverError(f"PARDISO factorisation of a symmetry component failed: {exc}") from exc
-    fac = Factorisation(matrix=None, method="pardiso", setup_time=time.perf_counter() - t0,
-                        analysis_time=t_analysis)
-    fac._impl = solver
-    fac._upper = A
-    fac._diag = A.diagonal()
-    return fac, solver.perm.copy()
+    return out
