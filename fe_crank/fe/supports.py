@@ -17,7 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import ElementTetP2, FacetBasis
+from skfem import CellBasis, ElementTetP2, FacetBasis
+from skfem.assembly import Dofs
 from skfem.mapping import MappingIsoparametric
 
 from fe_crank.errors import MeshError
@@ -82,9 +83,44 @@ class RobustIsoparametric(MappingIsoparametric):
     a good element, Jacobian ratio 0.69, residual 18 mm after 50 iterations).
     Started from the inverse of the straight-sided element the iteration is within
     the sagitta of the answer and converges quadratically.
+
+    Two memos make a basis cheaper without changing a bit of it: ``invDF`` keeps its
+    last result (a basis asks for the same inverse Jacobian once per shape function,
+    ten times for P2), and ``invF`` keeps its last answer (a ``FacetBasis`` inverts the
+    same points twice, for the basis and for the normals, with equal element lists on
+    boundary facets).  Both compare their arguments by identity (the arrays are held,
+    so an identity cannot be reused) and the element lists by value; ``clear_memo``
+    drops them, and the Jacobian cache of the parent class, once a basis is built.
     """
 
+    def clear_memo(self) -> None:
+        self._invdf_memo = None
+        self._invf_memo = None
+        self._cache = {}
+
+    @staticmethod
+    def _same(a, b) -> bool:
+        if a is None or b is None:
+            return a is b
+        return a is b or (a.shape == b.shape and np.array_equal(a, b))
+
+    def invDF(self, X, tind=None):
+        memo = getattr(self, "_invdf_memo", None)
+        if memo is not None and memo[0] is X and self._same(memo[1], tind):
+            return memo[2]
+        out = super().invDF(X, tind)
+        self._invdf_memo = (X, tind, out)
+        return out
+
     def invF(self, x, tind=None, newton_max_iters=50, newton_tol=1e-12):
+        memo = getattr(self, "_invf_memo", None)
+        if memo is not None and memo[0] is x and self._same(memo[1], tind):
+            return memo[2]
+        X = self._newton_inverse(x, tind, newton_max_iters, newton_tol)
+        self._invf_memo = (x, tind, X)
+        return X
+
+    def _newton_inverse(self, x, tind, newton_max_iters, newton_tol):
         mesh_ = self.mesh
         t = mesh_.t[:4] if tind is None else mesh_.t[:4, tind]
         P = mesh_.p[:, t]                                # (3, 4, ne)
@@ -107,6 +143,38 @@ class RobustIsoparametric(MappingIsoparametric):
             raise InverseMapError(f"Newton's method did not converge (relative residual {np.nanmax(r):.1e})")
         return X
 
+    def _facet_nodes(self):
+        """Global nodes of every facet (6, n_facets), vertices then edge nodes: what the
+        parent's ``bndmap``/``bndJ`` stack on every call, stacked once here."""
+        fn = getattr(self, "_facet_nodes_cache", None)
+        if fn is None:
+            m = self.mesh
+            fn = np.vstack((m.facets, m.dofs.edge_dofs[0, m.f2e]))
+            self._facet_nodes_cache = fn
+        return fn
+
+    def bndmap(self, i, X, find=None):
+        if len(self.mesh.dofs.facet_dofs) > 0 or len(self.mesh.dofs.edge_dofs) == 0:
+            return super().bndmap(i, X, find)
+        p = self.mesh.doflocs
+        facets = self._facet_nodes()
+        out = np.zeros((facets.shape[1] if find is None else len(find), X.shape[-1]))
+        for itr in range(facets.shape[0]):
+            phi, _ = self.bndelem.lbasis(X, itr)
+            out += p[i, facets[itr, :] if find is None else facets[itr, find]][:, None] * phi
+        return out
+
+    def bndJ(self, i, j, X, find=None):
+        if len(self.mesh.dofs.facet_dofs) > 0 or len(self.mesh.dofs.edge_dofs) == 0:
+            return super().bndJ(i, j, X, find)
+        p = self.mesh.doflocs
+        facets = self._facet_nodes()
+        out = np.zeros((facets.shape[1] if find is None else len(find), X.shape[-1]))
+        for itr in range(facets.shape[0]):
+            _, dphi = self.bndelem.lbasis(X, itr)
+            out += p[i, facets[itr, :] if find is None else facets[itr, find]][:, None] * dphi[j]
+        return out
+
 
 def _robust_mapping(mesh):
     """The mesh's isoparametric mapping with a robust inverse (cached on the mesh), or None if affine."""
@@ -119,18 +187,58 @@ def _robust_mapping(mesh):
     return m
 
 
+def mesh_dofs(mesh, elem) -> Dofs:
+    """The global numbering of ``elem`` on ``mesh``, built once per mesh and element type.
+
+    ``Dofs(mesh, elem)`` is deterministic; every basis of the mesh built through
+    :func:`cell_basis` and :func:`facet_basis` shares this one (scikit-fem would rebuild
+    it, and the whole mesh's dof locations, for each facet basis).
+    """
+    cache = getattr(mesh, "_fe_crank_dofs", None)
+    if cache is None:
+        cache = {}
+        mesh._fe_crank_dofs = cache
+    key = (type(elem), type(getattr(elem, "elem", None)))
+    if key not in cache:
+        cache[key] = Dofs(mesh, elem)
+    return cache[key]
+
+
+def cell_basis(mesh, intorder: int = 2, elem=None) -> CellBasis:
+    """The scalar P2 ``Basis`` of the whole mesh (the stiffness's and the body loads').
+
+    The same numbers as ``Basis(mesh, ElementTetP2(), intorder=intorder)``: on a curved
+    mesh it uses the mesh's :class:`RobustIsoparametric` mapping, whose ``invDF`` memo
+    computes the inverse Jacobian once instead of once per shape function, and the dof
+    numbering of :func:`mesh_dofs`.
+    """
+    elem = ElementTetP2() if elem is None else elem
+    mapping = _robust_mapping(mesh)
+    basis = CellBasis(mesh, elem, mapping=mapping, intorder=intorder, dofs=mesh_dofs(mesh, elem))
+    if mapping is not None:
+        mapping.clear_memo()
+    return basis
+
+
 def facet_basis(mesh, elem, facets, intorder: int, what: str) -> FacetBasis:
     """``FacetBasis`` on ``facets`` of a (possibly curved) mesh; a failed inverse map is a MeshError.
 
     On a curved (isoparametric) mesh the reference coordinates of the facet quadrature
     points come from a Newton iteration (see ``_robust_mapping``), which can only fail on
     folded or nearly degenerate elements: a property of the mesh, reported as such.
+    The dof numbering is the mesh's shared one (:func:`mesh_dofs`) and the global dof
+    locations are not computed (the cell basis has them): the cost is that of the facets.
     """
+    mapping = _robust_mapping(mesh)
     try:
-        return FacetBasis(mesh, elem, mapping=_robust_mapping(mesh), facets=facets, intorder=intorder)
+        return FacetBasis(mesh, elem, mapping=mapping, facets=facets, intorder=intorder,
+                          dofs=mesh_dofs(mesh, elem), disable_doflocs=True)
     except (InverseMapError, np.linalg.LinAlgError) as exc:
         raise MeshError(f"{what}: the curved elements under the surface are too distorted to map its "
                         f"quadrature points ({exc}); remesh with a finer or better-shaped mesh") from None
+    finally:
+        if mapping is not None:
+            mapping.clear_memo()
 
 
 def radial_direction(x, n):
