@@ -76,3 +76,18 @@ def test_shared_bases_are_bit_for_bit_the_scikit_fem_ones():
         assert np.array_equal(np.asarray(fb.global_coordinates()), np.asarray(fresh.global_coordinates()))
         for a, b in zip(fb.basis, fresh.basis):
             assert np.array_equal(a[0].grad, b[0].grad) and np.array_equal(np.asarray(a[0]), np.asarray(b[0]))
+
+
+def test_edge_tables_are_scikit_fem_s():
+    """``prime_edge_tables`` fills edges, t2e and f2e by a packed sort; scikit-fem's own
+    ``np.unique(axis=1)`` build on a second copy of the mesh is the reference (equal
+    arrays, dtypes and memory layout: the P2 edge-node numbering depends on them)."""
+    from fe_crank.fe.supports import prime_edge_tables
+
+    m = curved_cube()
+    ours, ref = MeshTet2(m.doflocs, m.t), MeshTet2(m.doflocs, m.t)
+    prime_edge_tables(ours)
+    for name in ("edges", "t2e", "f2e"):
+        a, b = getattr(ours, name), getattr(ref, name)
+        assert a.dtype == b.dtype and a.flags.c_contiguous == b.flags.c_contiguous
+        assert np.array_equal(a, b), name

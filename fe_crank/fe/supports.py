@@ -22,7 +22,7 @@ from skfem.assembly import Dofs
 from skfem.mapping import MappingIsoparametric
 
 from fe_crank.errors import MeshError
-from fe_crank.fe.assembly import assemble_foundation
+from fe_crank.fe.assembly import assemble_foundation, unique_inverse
 
 REF_DOFS = ("ux", "uy", "uz", "rx", "ry", "rz")
 
@@ -149,6 +149,7 @@ class RobustIsoparametric(MappingIsoparametric):
         fn = getattr(self, "_facet_nodes_cache", None)
         if fn is None:
             m = self.mesh
+            prime_edge_tables(m)
             fn = np.vstack((m.facets, m.dofs.edge_dofs[0, m.f2e]))
             self._facet_nodes_cache = fn
         return fn
@@ -187,6 +188,31 @@ def _robust_mapping(mesh):
     return m
 
 
+def _edge_table(rows: np.ndarray, pairs) -> tuple[np.ndarray, np.ndarray]:
+    """scikit-fem's ``Mesh.build_entities(rows, pairs)`` for two-vertex entities (edges):
+    the sorted unique vertex pairs (2, n) and the map (len(pairs), n_rows) into them,
+    by one packed sort (``assembly.unique_inverse``) instead of ``np.unique(axis=1)``."""
+    indexing = np.hstack([rows[list(ix)] for ix in pairs])
+    s = np.sort(indexing, axis=0)
+    nv = int(s.max()) + 1 if s.size else 1
+    uniq, inv = unique_inverse(s[0].astype(np.int64) * nv + s[1], nv * nv)
+    first = uniq // nv
+    edges = np.vstack([first, uniq - first * nv]).astype(indexing.dtype)
+    return np.ascontiguousarray(edges), inv.reshape(len(pairs), rows.shape[1])
+
+
+def prime_edge_tables(mesh) -> None:
+    """Fill a tetrahedral mesh's lazily built ``edges``/``t2e`` and ``f2e`` (the numbering of
+    the P2 edge nodes and of the facets' edges) with :func:`_edge_table`: the same arrays
+    scikit-fem builds (tested), at a fraction of the cost of its ``np.unique(axis=1)``."""
+    if mesh.t.shape[0] != 4 or mesh.facets.shape[0] != 3:
+        return
+    if not hasattr(mesh, "_edges"):
+        mesh._edges, mesh._t2e = _edge_table(mesh.t, mesh.elem.refdom.edges)
+    if not hasattr(mesh, "_f2e"):
+        mesh._f2e = _edge_table(mesh.facets, mesh.bndelem.refdom.facets)[1]
+
+
 def mesh_dofs(mesh, elem) -> Dofs:
     """The global numbering of ``elem`` on ``mesh``, built once per mesh and element type.
 
@@ -200,6 +226,7 @@ def mesh_dofs(mesh, elem) -> Dofs:
         mesh._fe_crank_dofs = cache
     key = (type(elem), type(getattr(elem, "elem", None)))
     if key not in cache:
+        prime_edge_tables(mesh)
         cache[key] = Dofs(mesh, elem)
     return cache[key]
 
