@@ -60,7 +60,7 @@ def main(argv=None) -> int:
     if args.profile or args.top:
         import cProfile
 
-        prof = cProfile.Profile()
+        prof = cProfile.Profile(timer=time.process_time)
         prof.enable()
     c_all, w_all = _cpu(), time.perf_counter()
 

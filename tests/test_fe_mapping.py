@@ -79,7 +79,7 @@ def test_shared_bases_are_bit_for_bit_the_scikit_fem_ones():
 
 
 def test_edge_tables_are_scikit_fem_s():
-    """``prime_edge_tables`` fills edges, t2e and f2e by a packed sort; scikit-fem's own
+    """``prime_edge_tables`` fills facets, t2f, edges, t2e and f2e by integer keys; scikit-fem's own
     ``np.unique(axis=1)`` build on a second copy of the mesh is the reference (equal
     arrays, dtypes and memory layout: the P2 edge-node numbering depends on them)."""
     from fe_crank.fe.supports import prime_edge_tables
@@ -87,7 +87,7 @@ def test_edge_tables_are_scikit_fem_s():
     m = curved_cube()
     ours, ref = MeshTet2(m.doflocs, m.t), MeshTet2(m.doflocs, m.t)
     prime_edge_tables(ours)
-    for name in ("edges", "t2e", "f2e"):
+    for name in ("facets", "t2f", "edges", "t2e", "f2e"):
         a, b = getattr(ours, name), getattr(ref, name)
         assert a.dtype == b.dtype and a.flags.c_contiguous == b.flags.c_contiguous
         assert np.array_equal(a, b), name

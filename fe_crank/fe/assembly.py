@@ -2,7 +2,8 @@
 
 Degrees of freedom are interleaved like scikit-fem's ``ElementVector``: the vector dof
 of component ``i`` at scalar dof ``s`` is ``3 s + i``.  Element matrices are contracted
-with ``numpy.einsum`` in chunks of elements and summed into CSR through COO.
+with ``numpy.einsum`` in chunks of elements and summed by ``numpy.bincount`` into a
+precomputed block pattern (the stiffness) or into the load vector.
 """
 
 from __future__ import annotations

@@ -188,29 +188,39 @@ def _robust_mapping(mesh):
     return m
 
 
-def _edge_table(rows: np.ndarray, pairs) -> tuple[np.ndarray, np.ndarray]:
-    """scikit-fem's ``Mesh.build_entities(rows, pairs)`` for two-vertex entities (edges):
-    the sorted unique vertex pairs (2, n) and the map (len(pairs), n_rows) into them,
-    by one packed sort (``assembly.unique_inverse``) instead of ``np.unique(axis=1)``."""
-    indexing = np.hstack([rows[list(ix)] for ix in pairs])
+def _entity_table(rows: np.ndarray, tuples) -> tuple[np.ndarray, np.ndarray]:
+    """scikit-fem's ``Mesh.build_entities(rows, tuples)`` (sorted): the distinct vertex
+    tuples (k, n), each sorted and in lexicographic order, and the map (len(tuples),
+    n_rows) into them, from one integer key per tuple (sum_i v_i nv^(k-1-i), whose
+    order is the lexicographic one) instead of ``np.unique(axis=1)``."""
+    indexing = np.hstack([rows[list(ix)] for ix in tuples])
     s = np.sort(indexing, axis=0)
+    k = s.shape[0]
     nv = int(s.max()) + 1 if s.size else 1
-    uniq, inv = unique_inverse(s[0].astype(np.int64) * nv + s[1], nv * nv)
-    first = uniq // nv
-    edges = np.vstack([first, uniq - first * nv]).astype(indexing.dtype)
-    return np.ascontiguousarray(edges), inv.reshape(len(pairs), rows.shape[1])
+    key = np.zeros(s.shape[1], dtype=np.int64)
+    for r in range(k):
+        key = key * nv + s[r]
+    uniq, inv = unique_inverse(key, nv**k)
+    out = np.empty((k, uniq.size), dtype=indexing.dtype)
+    for r in range(k - 1, -1, -1):
+        uniq, out[r] = np.divmod(uniq, nv)
+    return np.ascontiguousarray(out), inv.reshape(len(tuples), rows.shape[1])
 
 
 def prime_edge_tables(mesh) -> None:
-    """Fill a tetrahedral mesh's lazily built ``edges``/``t2e`` and ``f2e`` (the numbering of
-    the P2 edge nodes and of the facets' edges) with :func:`_edge_table`: the same arrays
-    scikit-fem builds (tested), at a fraction of the cost of its ``np.unique(axis=1)``."""
-    if mesh.t.shape[0] != 4 or mesh.facets.shape[0] != 3:
+    """Fill a tetrahedral mesh's lazily built ``facets``/``t2f``, ``edges``/``t2e`` and
+    ``f2e`` (the numbering of the P2 edge nodes and of the facets' edges) with
+    :func:`_entity_table`: the same arrays scikit-fem builds (tested), at a fraction of
+    the cost of its ``np.unique(axis=1)``.  Meshes whose vertex numbers do not fit the
+    integer keys (more than 2^21 vertices) keep scikit-fem's own build."""
+    if mesh.t.shape[0] != 4 or int(mesh.t.max()) >= 2**21:
         return
+    if not hasattr(mesh, "_facets"):
+        mesh._facets, mesh._t2f = _entity_table(mesh.t, mesh.elem.refdom.facets)
     if not hasattr(mesh, "_edges"):
-        mesh._edges, mesh._t2e = _edge_table(mesh.t, mesh.elem.refdom.edges)
+        mesh._edges, mesh._t2e = _entity_table(mesh.t, mesh.elem.refdom.edges)
     if not hasattr(mesh, "_f2e"):
-        mesh._f2e = _edge_table(mesh.facets, mesh.bndelem.refdom.facets)[1]
+        mesh._f2e = _entity_table(mesh.facets, mesh.bndelem.refdom.facets)[1]
 
 
 def mesh_dofs(mesh, elem) -> Dofs:
