@@ -49,3 +49,45 @@ def test_degenerate_element_is_a_mesh_error():
     flat = MeshTet2(p, m.t)
     with pytest.raises(MeshError, match="too distorted"):
         facet_basis(flat, ElementTetP2(), flat.boundary_facets(), 2, "the flattened cube")
+
+
+def test_shared_bases_are_bit_for_bit_the_scikit_fem_ones():
+    """``cell_basis``/``facet_basis`` reuse one inverse Jacobian per basis, one dof numbering
+    per mesh and one Newton inverse per facet basis: memos only, so every number must
+    equal the basis scikit-fem builds from scratch (fresh mapping, own ``Dofs``), exactly."""
+    from skfem import Basis
+
+    from fe_crank.fe.supports import cell_basis
+
+    m = curved_cube()
+    ours = cell_basis(m, 2)
+    ref = Basis(m, ElementTetP2(), intorder=2)
+    assert np.array_equal(ours.dx, ref.dx) and np.array_equal(ours.doflocs, ref.doflocs)
+    assert np.array_equal(ours.element_dofs, ref.element_dofs)
+    for a, b in zip(ours.basis, ref.basis):
+        assert np.array_equal(a[0].grad, b[0].grad) and np.array_equal(np.asarray(a[0]), np.asarray(b[0]))
+    facets = m.boundary_facets()
+    for _ in range(2):                           # a second build on the same mesh: the memos are cleared
+        fb = facet_basis(m, ElementTetP2(), facets, 4, "test")
+        fresh = FacetBasis(m, ElementTetP2(), mapping=RobustIsoparametric(m, m.elem(), m.bndelem),
+                           facets=facets, intorder=4)
+        assert np.array_equal(fb.dx, fresh.dx)
+        assert np.array_equal(np.asarray(fb.normals), np.asarray(fresh.normals))
+        assert np.array_equal(np.asarray(fb.global_coordinates()), np.asarray(fresh.global_coordinates()))
+        for a, b in zip(fb.basis, fresh.basis):
+            assert np.array_equal(a[0].grad, b[0].grad) and np.array_equal(np.asarray(a[0]), np.asarray(b[0]))
+
+
+def test_edge_tables_are_scikit_fem_s():
+    """``prime_edge_tables`` fills facets, t2f, edges, t2e and f2e by integer keys; scikit-fem's own
+    ``np.unique(axis=1)`` build on a second copy of the mesh is the reference (equal
+    arrays, dtypes and memory layout: the P2 edge-node numbering depends on them)."""
+    from fe_crank.fe.supports import prime_edge_tables
+
+    m = curved_cube()
+    ours, ref = MeshTet2(m.doflocs, m.t), MeshTet2(m.doflocs, m.t)
+    prime_edge_tables(ours)
+    for name in ("facets", "t2f", "edges", "t2e", "f2e"):
+        a, b = getattr(ours, name), getattr(ref, name)
+        assert a.dtype == b.dtype and a.flags.c_contiguous == b.flags.c_contiguous
+        assert np.array_equal(a, b), name

@@ -17,11 +17,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import ElementTetP2, FacetBasis
-from skfem.mapping import MappingIsoparametric
+from skfem import ElementTetP2
 
 from fe_crank.errors import MeshError
 from fe_crank.fe.assembly import assemble_foundation
+from fe_crank.fe.bases import (InverseMapError, RobustIsoparametric, _robust_mapping, cell_basis,  # noqa: F401
+                               facet_basis, mesh_dofs, prime_edge_tables)
 
 REF_DOFS = ("ux", "uy", "uz", "rx", "ry", "rz")
 
@@ -67,70 +68,6 @@ def boundary_facets(mesh, name: str, needed_by: str):
         have = ", ".join(sorted(bnd)) or "none"
         raise MeshError(f"mesh has no boundary {name!r}, needed by {needed_by}; it has: {have}")
     return bnd[name]
-
-
-class InverseMapError(Exception):
-    """The reference coordinates of a point could not be found (degenerate or folded element)."""
-
-
-class RobustIsoparametric(MappingIsoparametric):
-    """``invF`` by Newton's method from the affine (vertex) inverse, without clipping.
-
-    scikit-fem's own inverse starts every point at (1/2, 1/2, 1/2), outside the
-    reference tetrahedron, and clips each iterate to the unit cube; on curved
-    elements an iterate can stick at a cube corner (seen on the inline-4 journal:
-    a good element, Jacobian ratio 0.69, residual 18 mm after 50 iterations).
-    Started from the inverse of the straight-sided element the iteration is within
-    the sagitta of the answer and converges quadratically.
-    """
-
-    def invF(self, x, tind=None, newton_max_iters=50, newton_tol=1e-12):
-        mesh_ = self.mesh
-        t = mesh_.t[:4] if tind is None else mesh_.t[:4, tind]
-        P = mesh_.p[:, t]                                # (3, 4, ne)
-        A = np.stack([P[:, 1] - P[:, 0], P[:, 2] - P[:, 0], P[:, 3] - P[:, 0]], axis=1)  # (3, 3, ne)
-        try:
-            Ainv = np.linalg.inv(A.transpose(2, 0, 1))  # (ne, 3, 3)
-        except np.linalg.LinAlgError:
-            raise InverseMapError("a degenerate element (vertices in one plane)") from None
-        X = np.einsum("eij,jeq->ieq", Ainv, x - P[:, 0][:, :, None])
-        h = np.linalg.norm(A, axis=0).max(axis=0)       # (ne,) longest edge from vertex 0
-        for _ in range(newton_max_iters):
-            r = x - self.F(X, tind)
-            dX = np.einsum("ijeq,jeq->ieq", self.invDF(X, tind), r)
-            X = X + dX
-            if np.abs(dX).max() < newton_tol:
-                break
-        with np.errstate(invalid="ignore", divide="ignore"):
-            r = np.abs(x - self.F(X, tind)).max(axis=(0, 2)) / h
-        if not np.all(r < 1e-9):
-            raise InverseMapError(f"Newton's method did not converge (relative residual {np.nanmax(r):.1e})")
-        return X
-
-
-def _robust_mapping(mesh):
-    """The mesh's isoparametric mapping with a robust inverse (cached on the mesh), or None if affine."""
-    if getattr(mesh, "affine", True):
-        return None
-    m = getattr(mesh, "_fe_crank_mapping", None)
-    if m is None:
-        m = RobustIsoparametric(mesh, mesh.elem(), mesh.bndelem)
-        mesh._fe_crank_mapping = m
-    return m
-
-
-def facet_basis(mesh, elem, facets, intorder: int, what: str) -> FacetBasis:
-    """``FacetBasis`` on ``facets`` of a (possibly curved) mesh; a failed inverse map is a MeshError.
-
-    On a curved (isoparametric) mesh the reference coordinates of the facet quadrature
-    points come from a Newton iteration (see ``_robust_mapping``), which can only fail on
-    folded or nearly degenerate elements: a property of the mesh, reported as such.
-    """
-    try:
-        return FacetBasis(mesh, elem, mapping=_robust_mapping(mesh), facets=facets, intorder=intorder)
-    except (InverseMapError, np.linalg.LinAlgError) as exc:
-        raise MeshError(f"{what}: the curved elements under the surface are too distorted to map its "
-                        f"quadrature points ({exc}); remesh with a finer or better-shaped mesh") from None
 
 
 def radial_direction(x, n):

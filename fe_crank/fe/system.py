@@ -14,14 +14,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, ElementTetP2
+from skfem import Basis
 
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_stiffness
 from fe_crank.fe.determinate import DeterminateSupport, determinate_support
 from fe_crank.fe.solvers import Factorisation, choose_method, factorise
 from fe_crank.fe.supports import (REF_DOFS, Coupling, Foundation, assemble_foundation_matrix,
-                                  boundary_facets, coupling_rows, face_centroid, rigid_body_modes)
+                                  boundary_facets, cell_basis, coupling_rows, face_centroid, rigid_body_modes)
 
 EQUILIBRIUM_TOL = 1e-6
 
@@ -180,7 +180,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     timings = {}
     t0 = time.perf_counter()
     if basis is None:
-        basis = Basis(mesh, ElementTetP2(), intorder=intorder)
+        basis = cell_basis(mesh, intorder)
     sup = None
     if determinate is not None:
         sup = determinate if isinstance(determinate, DeterminateSupport) else determinate_support(basis, determinate)
