@@ -15,7 +15,7 @@ import numpy as np
 
 from fe_crank.assess import fatigue
 from fe_crank.assess.factors import FatigueFactors, factors
-from fe_crank.assess.stress import von_mises_path
+from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_histories
 
 #: groups assessed for fatigue with Gough-Pollard need a local axis: these prefixes use
@@ -81,6 +81,14 @@ def first_extreme(values: np.ndarray, worst: str = "max", axis: int = 0) -> np.n
     return np.argmax(near, axis=axis)
 
 
+def _max_over_cycle(vm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(max over axis 0, ``first_extreme(vm, "max")``) of a (n_t, n) array, the maximum
+    computed once for both."""
+    e = vm.max(axis=0)
+    near = vm >= e - TIE_RTOL * np.abs(e)
+    return e, np.argmax(near, axis=0)
+
+
 def section_diameter(group: str, pin_diameter: float | None, journal_diameter: float | None) -> float | None:
     """Diameter of the section a group belongs to, for the size factor: the crankpin's
     for its fillets and the oil bore, the journal's for the journal fillets."""
@@ -99,6 +107,19 @@ def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str
     pt = tuple(float(c) for c in unit.points[:, idx[k]])
     ang = float(angles[k]) if angles is not None else None
     return Extreme(float(values[k]), group, node, pt, ang)
+
+
+def _blocks(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, chunk: int):
+    """Yield (position in ``nodes``, node indices, history planes (6, n_t, k)): the
+    histories of ``iter_histories`` in blocks of ``fatigue.NODE_BLOCK`` nodes, each block
+    copied to contiguous component planes."""
+    block = fatigue.NODE_BLOCK
+    pos = 0
+    for idx, hist in iter_histories(unit, coefficients, nodes, chunk):
+        for b in range(0, idx.size, block):
+            sub = idx[b:b + block]
+            yield pos, sub, np.ascontiguousarray(hist[:, :, b:b + block].transpose(1, 0, 2))
+            pos += sub.size
 
 
 def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta: np.ndarray, material, *,
@@ -126,12 +147,15 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     sa_eq = np.zeros(nodes.size)
     sm_eq = np.zeros(nodes.size)
     gp = np.full(nodes.size, np.inf)
-    pos = 0
-    for idx, hist in iter_histories(unit, coefficients, nodes, chunk):
+    # every criterion reads the same history: each chunk's history is taken
+    # ``fatigue.NODE_BLOCK`` nodes at a time as its six component planes (6, n_t, k)
+    # (one copy, then cache-resident and contiguous for every pass)
+    buf = None
+    for pos, idx, planes in _blocks(unit, coefficients, nodes, chunk):
         sl = slice(pos, pos + idx.size)
-        vm = von_mises_path(hist)  # (n_t, k)
-        vm_arg[sl] = first_extreme(vm, "max", axis=0)
-        vm_max[sl] = vm.max(axis=0)
+        buf = buf if buf is not None and buf.shape == planes.shape else np.empty(planes.shape)
+        hist = planes.transpose(1, 0, 2)  # (n_t, 6, k) view
+        vm_max[sl], vm_arg[sl] = _max_over_cycle(von_mises_planes(planes, buf=buf))  # over (n_t, k)
         if do_fatigue:
             a, m = fatigue.equivalent_amplitude_mean(hist)
             sa_eq[sl], sm_eq[sl] = a, m
@@ -142,7 +166,6 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
             t_a, t_m = fatigue.half_range(tau)
             gp[sl] = fatigue.gough_pollard_safety(s_a, s_m, t_a, t_m, k * material.fatigue_limit_bending,
                                                   k * material.fatigue_limit_torsion, material.tensile_strength)
-        pos += idx.size
     worst = _extreme(vm_max, nodes, unit, group, worst="max", angles=theta[vm_arg])
     ys = material.yield_strength
     static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf
@@ -152,12 +175,9 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
             raise ValueError("overspeed given without the overspeed cycle's coefficients")
         vm_os = np.empty(nodes.size)
         os_arg = np.empty(nodes.size, dtype=int)
-        pos = 0
-        for idx, hist in iter_histories(unit, overspeed_coefficients, nodes, chunk):
-            vm = von_mises_path(hist)
-            os_arg[pos:pos + idx.size] = first_extreme(vm, "max", axis=0)
-            vm_os[pos:pos + idx.size] = vm.max(axis=0)
-            pos += idx.size
+        for pos, idx, planes in _blocks(unit, overspeed_coefficients, nodes, chunk):
+            buf = buf if buf is not None and buf.shape == planes.shape else np.empty(planes.shape)
+            vm_os[pos:pos + idx.size], os_arg[pos:pos + idx.size] = _max_over_cycle(von_mises_planes(planes, buf=buf))
         os_ext = _extreme(vm_os, nodes, unit, group, worst="max", angles=theta[os_arg])
         os_safety = ys / os_ext.value if (ys is not None and os_ext.value > 0) else np.inf
     fat = gpe = None
