@@ -111,7 +111,8 @@ def _amplitude_block(planes: np.ndarray, iterations: int, stride: int):
     lo, hi = planes.min(axis=1), planes.max(axis=1)
     c = 0.5 * (lo + hi)
     buf = np.empty(planes.shape)
-    best_r, far = _radius(planes, c, buf)
+    d0 = von_mises_planes(planes, c, buf)               # (n_t, n), about the mid-range
+    best_r, far = max_and_first(d0)
     best_c = c.copy()
     cols = np.arange(planes.shape[-1])
     p1 = planes[:, far, cols]
@@ -120,10 +121,12 @@ def _amplitude_block(planes: np.ndarray, iterations: int, stride: int):
     if np.any(todo):
         h = planes if todo.all() else planes[:, :, todo]
         # search on a sub-sampled path (a contiguous copy: the same values, faster passes)
-        hs = np.ascontiguousarray(h[:, ::stride]) if h.shape[1] >= 8 * stride else h
+        step = stride if h.shape[1] >= 8 * stride else 1
+        hs = np.ascontiguousarray(h[:, ::step]) if step > 1 else h
         sbuf = np.empty(hs.shape)
         cc = c[:, todo]
-        r, far = _radius(hs, cc, sbuf)
+        # the start's distances on the sub-sampled path are rows of the whole path's
+        r, far = max_and_first(d0[::step] if todo.all() else d0[::step][:, todo])
         cands, radii = [cc], [r]            # radius of each candidate on the sub-sampled path
         sub = np.arange(h.shape[-1])
         for k in range(iterations):
@@ -204,7 +207,7 @@ def bending_torsion(history: np.ndarray, points: np.ndarray, axis_point: tuple[f
     # signed variation tensor: the deviation from the time mean where it is largest
     dev = {k: v - v.mean(axis=0) for k, v in c.items() if k in ("rr", "zz", "rz")}
     size = np.sqrt(dev["rr"] ** 2 + dev["zz"] ** 2 + 2 * dev["rz"] ** 2)
-    at = np.argmax(size, axis=0)
+    at = max_and_first(size)[1]                          # first angle of the largest
     cols = np.arange(size.shape[1])
     rr_a, zz_a, rz_a = (dev[k][at, cols] for k in ("rr", "zz", "rz"))
     # eigenvector of the largest-magnitude eigenvalue of [[rr, rz], [rz, zz]]

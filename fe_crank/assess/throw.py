@@ -16,7 +16,7 @@ import numpy as np
 from fe_crank.assess import fatigue
 from fe_crank.assess.factors import FatigueFactors, factors
 from fe_crank.assess.stress import von_mises_planes
-from fe_crank.assess.superpose import UnitStresses, iter_histories
+from fe_crank.assess.superpose import UnitStresses, iter_planes
 
 #: groups assessed for fatigue with Gough-Pollard need a local axis: these prefixes use
 #: the crankpin axis (x, y) = (0, R); the journal fillets the crank axis (0, 0).
@@ -110,20 +110,16 @@ def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str
 
 
 def _blocks(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, chunk: int):
-    """Yield (position in ``nodes``, node indices, history planes (6, n_t, k)): the
-    histories of ``iter_histories`` in blocks of ``fatigue.NODE_BLOCK`` nodes, each block
-    copied to contiguous component planes."""
-    block = fatigue.NODE_BLOCK
+    """Yield (position in ``nodes``, node indices, history planes (6, n_t, k)) in blocks
+    of ``chunk`` nodes (``superpose.iter_planes``)."""
     pos = 0
-    for idx, hist in iter_histories(unit, coefficients, nodes, chunk):
-        for b in range(0, idx.size, block):
-            sub = idx[b:b + block]
-            yield pos, sub, np.ascontiguousarray(hist[:, :, b:b + block].transpose(1, 0, 2))
-            pos += sub.size
+    for idx, planes in iter_planes(unit, coefficients, nodes, chunk):
+        yield pos, idx, planes
+        pos += idx.size
 
 
 def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta: np.ndarray, material, *,
-                 crank_radius: float, overspeed: float | None, chunk: int = 2048,
+                 crank_radius: float, overspeed: float | None, chunk: int = fatigue.NODE_BLOCK,
                  overspeed_coefficients: np.ndarray | None = None,
                  diameter: float | None = None) -> GroupResult:
     """Static and fatigue results of one node group.  ``material`` needs yield strength
@@ -147,9 +143,8 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     sa_eq = np.zeros(nodes.size)
     sm_eq = np.zeros(nodes.size)
     gp = np.full(nodes.size, np.inf)
-    # every criterion reads the same history: each chunk's history is taken
-    # ``fatigue.NODE_BLOCK`` nodes at a time as its six component planes (6, n_t, k)
-    # (one copy, then cache-resident and contiguous for every pass)
+    # every criterion reads the same history, ``chunk`` nodes at a time as its six
+    # component planes (6, n_t, k): cache-resident and contiguous for every pass
     buf = None
     for pos, idx, planes in _blocks(unit, coefficients, nodes, chunk):
         sl = slice(pos, pos + idx.size)

@@ -54,8 +54,9 @@ def _hooke(H: np.ndarray, lam: float, mu: float) -> np.ndarray:
 def _stress_at_pairs(Gp: np.ndarray, edofs: np.ndarray, u: np.ndarray, lam: float, mu: float) -> np.ndarray:
     """sigma (6, P) at P (element, point) pairs: gradients Gp (m, 3, P), element dofs (m, P).
     The operations of ``_stress_from_gradients``, value by value."""
-    U = np.ascontiguousarray(u.reshape(-1, 3)[edofs].transpose(2, 0, 1))    # (3, m, P): U[i, a]
-    return _hooke(_grad_u(U, Gp, lambda a, i: U[i, a][None, :]), lam, mu)
+    base = 3 * edofs
+    U = [u[base + i] for i in range(3)]             # U[i][a, p]: u_i at local node a of pair p
+    return _hooke(_grad_u(U, Gp, lambda a, i: U[i][a][None, :]), lam, mu)
 
 
 #: (element, node) pairs per block of ``stress_at_selected_nodes`` (the block's gradients,
