@@ -11,7 +11,8 @@
 * the history planes against ``stress_history`` (a matrix product: equal to round-off,
   1e-14 of the largest value, far below any wrong case or node, which moves it by O(1));
 * the recovery check reading the unit stresses against its own recovery;
-* ``assess_group`` in blocks of 128 nodes against one block holding every node.
+* ``assess_group`` in blocks of 128 nodes against one block holding every node;
+* the overspeed peak evaluated where it can occur (``assess.peak``) against every node.
 
 Real gmsh mesh with real fillets, real scikit-fem solves.
 """
@@ -24,10 +25,11 @@ from skfem import Basis, ElementTetP2
 
 from fe_crank.assess import assessed_groups, unit_stresses
 from fe_crank.assess.fatigue import max_and_first
+from fe_crank.assess.peak import group_peak, max_over_cycle, peak_bound
 from fe_crank.assess.recovery import recovery_ratios
 from fe_crank.assess.stress import von_mises, von_mises_planes
 from fe_crank.assess.superpose import iter_planes, load_coefficients, stress_history
-from fe_crank.assess.throw import assess_group
+from fe_crank.assess.throw import assess_group, first_extreme
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.forms import lame_parameters
 from fe_crank.fe.stress import elements_of_nodes, node_gradients, stress_at_selected_nodes
@@ -171,3 +173,40 @@ def test_assess_group_does_not_depend_on_the_block(units):
             fin = np.isfinite(y)
             np.testing.assert_array_equal(np.isfinite(x), fin)
             assert np.abs(x[fin] - y[fin]).max() <= 1e-12 * np.abs(y[fin]).max(), (g, k)
+
+
+def test_group_peak_bound_holds_and_the_extreme_is_the_full_evaluations(units):
+    """peak.py: B >= every node's peak (the seminorm's triangle inequality), and the
+    pruned evaluation finds the same largest peak, first node of its tie band and first
+    angle as evaluating every node, bit for bit (the evaluated nodes' values are the same
+    operations)."""
+    us = unit_stresses(units)
+    co = 1.44 * _coefficients(units, us)
+    for g in ("journal_fillet_1", "crankpin_fillet_2", "counterweight_1"):
+        nodes = us.groups.get(g)
+        if nodes is None:
+            continue
+        full, full_arg = max_over_cycle(von_mises(stress_history(us, co, nodes)))
+        bound = peak_bound(us, co, nodes)
+        assert np.all(full <= bound * (1 + 1e-12)), g
+        pos, peak, arg = group_peak(us, co, nodes)
+        assert pos.size < nodes.size, g                        # it did prune
+        k_full = int(first_extreme(full, "max"))
+        k = int(first_extreme(peak, "max"))
+        assert pos[k] == k_full and peak[k] == full[k_full] and arg[k] == full_arg[k_full], g
+
+
+def test_peak_bound_hand_value():
+    """Two unit states, uniaxial 100 MPa and pure shear 50 MPa (vM 100 and 86.60 MPa),
+    with coefficients (1, 1) and (1, -2): B = max(100 + 86.60, 100 + 173.21) = 273.21 MPa;
+    the true peaks are vM(100, shear 50) = sqrt(100^2 + 3 50^2) = 132.29 MPa and
+    vM(100, shear -100) = sqrt(100^2 + 3 100^2) = 200 MPa."""
+    from fe_crank.assess.superpose import UnitStresses
+
+    s = np.zeros((2, 6, 1))
+    s[0, 0, 0], s[1, 3, 0] = 100e6, 50e6
+    unit = UnitStresses(stress=s, points=np.zeros((3, 1)), cases=("a", "b"))
+    co = np.array([[1.0, 1.0], [1.0, -2.0]])
+    assert peak_bound(unit, co, np.array([0]))[0] == pytest.approx(100e6 + 2 * np.sqrt(3) * 50e6, rel=1e-15)
+    pos, peak, arg = group_peak(unit, co, np.array([0]))
+    assert peak[0] == pytest.approx(200e6, rel=1e-15) and arg[0] == 1

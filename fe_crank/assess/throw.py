@@ -15,6 +15,7 @@ import numpy as np
 
 from fe_crank.assess import fatigue
 from fe_crank.assess.factors import FatigueFactors, factors
+from fe_crank.assess.peak import TIE_RTOL, group_peak, max_over_cycle
 from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
 
@@ -66,10 +67,6 @@ def _axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
     return None
 
 
-#: values within this relative distance of an extreme count as ties; ties go to the
-#: first (node, angle), so serial, process and Dask runs (whose solvers may differ in
-#: the last digits) name the same place
-TIE_RTOL = 1e-9
 
 
 def first_extreme(values: np.ndarray, worst: str = "max", axis: int = 0) -> np.ndarray:
@@ -79,14 +76,6 @@ def first_extreme(values: np.ndarray, worst: str = "max", axis: int = 0) -> np.n
     tol = TIE_RTOL * np.abs(e)
     near = v >= e - tol if worst == "max" else v <= e + tol
     return np.argmax(near, axis=axis)
-
-
-def _max_over_cycle(vm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(max over axis 0, ``first_extreme(vm, "max")``) of a (n_t, n) array, the maximum
-    computed once for both."""
-    e = vm.max(axis=0)
-    near = vm >= e - TIE_RTOL * np.abs(e)
-    return e, np.argmax(near, axis=0)
 
 
 def section_diameter(group: str, pin_diameter: float | None, journal_diameter: float | None) -> float | None:
@@ -150,7 +139,7 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
         sl = slice(pos, pos + idx.size)
         buf = buf if buf is not None and buf.shape == planes.shape else np.empty(planes.shape)
         hist = planes.transpose(1, 0, 2)  # (n_t, 6, k) view
-        vm_max[sl], vm_arg[sl] = _max_over_cycle(von_mises_planes(planes, buf=buf))  # over (n_t, k)
+        vm_max[sl], vm_arg[sl] = max_over_cycle(von_mises_planes(planes, buf=buf))  # over (n_t, k)
         if do_fatigue:
             a, m = fatigue.equivalent_amplitude_mean(hist)
             sa_eq[sl], sm_eq[sl] = a, m
@@ -168,12 +157,9 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     if overspeed is not None:
         if overspeed_coefficients is None:
             raise ValueError("overspeed given without the overspeed cycle's coefficients")
-        vm_os = np.empty(nodes.size)
-        os_arg = np.empty(nodes.size, dtype=int)
-        for pos, idx, planes in _blocks(unit, overspeed_coefficients, nodes, chunk):
-            buf = buf if buf is not None and buf.shape == planes.shape else np.empty(planes.shape)
-            vm_os[pos:pos + idx.size], os_arg[pos:pos + idx.size] = _max_over_cycle(von_mises_planes(planes, buf=buf))
-        os_ext = _extreme(vm_os, nodes, unit, group, worst="max", angles=theta[os_arg])
+        # only the group's largest peak is reported: evaluated where it can occur (peak.py)
+        pos, vm_os, os_arg = group_peak(unit, overspeed_coefficients, nodes, chunk)
+        os_ext = _extreme(vm_os, nodes[pos], unit, group, worst="max", angles=theta[os_arg])
         os_safety = ys / os_ext.value if (ys is not None and os_ext.value > 0) else np.inf
     fat = gpe = None
     amp = mean = None
