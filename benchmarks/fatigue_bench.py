@@ -4,7 +4,8 @@ Synthetic but shaped like the check's data: 14 unit cases combined with cycle
 coefficients (centrifugal, 12 half-wave pin weights, torque), so most paths are not
 proportional and every node runs the Badoiu-Clarkson refinement.  Times
 ``fatigue.amplitude_mean`` and the von Mises evaluation of a path (plain formula vs
-``von_mises_path``), each in this process (CPU seconds, best of ``--repeat``), and
+``von_mises_path`` and ``von_mises_planes``, the latter on the (6, n_t, k) component
+planes the assessment holds), each in this process (CPU seconds, best of ``--repeat``), and
 checks that the results are identical bit for bit.  ``--reference FILE`` also times
 another version of ``fatigue.py`` (e.g. ``git show main:fe_crank/assess/fatigue.py >
 /tmp/fatigue_main.py``) on the same data and compares its results.
@@ -50,7 +51,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     from fe_crank.assess import fatigue
-    from fe_crank.assess.stress import von_mises, von_mises_path
+    from fe_crank.assess.stress import von_mises, von_mises_path, von_mises_planes
 
     h = paths(args.nodes)
     chunks = [np.ascontiguousarray(h[:, :, s:s + args.chunk]) for s in range(0, h.shape[-1], args.chunk)]
@@ -64,6 +65,10 @@ def main(argv=None) -> int:
     t_path, b = cpu(lambda: [von_mises_path(x, cc) for x, cc in zip(chunks, c)], args.repeat)
     same = all(np.array_equal(x, y) for x, y in zip(a, b))
     rows.append(("von Mises of a path about its mid-range: plain / von_mises_path", t_plain, t_path, same))
+    planes = [np.ascontiguousarray(x.transpose(1, 0, 2)) for x in chunks]   # (6, n_t, k), as assess_group holds them
+    t_planes, d = cpu(lambda: [von_mises_planes(x, cc) for x, cc in zip(planes, c)], args.repeat)
+    same = all(np.array_equal(x, y) for x, y in zip(a, d))
+    rows.append(("the same: plain / von_mises_planes on component planes", t_plain, t_planes, same))
     t_new, new = cpu(amp(fatigue), args.repeat)
     if args.reference:
         spec = importlib.util.spec_from_file_location("fatigue_reference", args.reference)

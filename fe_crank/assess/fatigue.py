@@ -32,10 +32,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from fe_crank.assess.stress import cylindrical, principal, von_mises, von_mises_path
+from fe_crank.assess.stress import cylindrical, principal, von_mises, von_mises_planes
 
-#: nodes per block of ``amplitude_mean`` (a block's path, 720 x 6 x 256 x 8 B = 8.8 MB)
-NODE_BLOCK = 256
+#: nodes per block of ``amplitude_mean`` (a block's path, 720 x 6 x 128 x 8 B = 4.4 MB, and
+#: its scratch arrays stay in the processor's cache)
+NODE_BLOCK = 128
 
 
 def half_range(history: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -45,10 +46,24 @@ def half_range(history: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return 0.5 * (hi - lo), 0.5 * (hi + lo)
 
 
-def _radius(history: np.ndarray, centre: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """max_t vM(S(t) - c) per node and the angle index where it is reached."""
-    d = von_mises_path(history, centre)
-    return d.max(axis=0), d.argmax(axis=0)
+def _radius(planes: np.ndarray, centre: np.ndarray, buf: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """max_t vM(S(t) - c) per node and the angle index where it is reached; the path as
+    component planes (6, n_t, n)."""
+    d = von_mises_planes(planes, centre, buf)
+    return max_and_first(d)
+
+
+def max_and_first(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(d.max(axis=0), d.argmax(axis=0))`` of a (n_t, n) array: the first index of the
+    maximum found as the first row equal to it (a comparison is cheaper than numpy's
+    argmax along a non-contiguous axis, which copies the array).  Exactly the same
+    values; a column holding a NaN falls back to ``argmax`` (its first NaN)."""
+    r = d.max(axis=0)
+    first = (d == r).argmax(axis=0)
+    if not np.isfinite(r).all():
+        bad = ~np.isfinite(r)
+        first[bad] = d[:, bad].argmax(axis=0)
+    return r, first
 
 
 def amplitude_mean(history: np.ndarray, iterations: int = 16, stride: int = 4,
@@ -75,41 +90,48 @@ def amplitude_mean(history: np.ndarray, iterations: int = 16, stride: int = 4,
     radius).  Returns (sigma_a', mean tensor (6, n), lower bound).
 
     Every node is computed on its own path only, so the nodes are taken ``block`` at a
-    time (the temporaries of a block stay in the processor's cache; the values do not
-    depend on the block size).
+    time, each block as its six component planes (6, n_t, block) (the temporaries of a
+    block stay in the processor's cache; the values do not depend on the block size nor
+    on the memory layout of ``history``).
     """
     n = history.shape[-1]
+    planes = history.transpose(1, 0, 2)                  # (6, n_t, n) view
     if n <= block:
-        return _amplitude_block(np.ascontiguousarray(history), iterations, stride)
+        return _amplitude_block(np.ascontiguousarray(planes), iterations, stride)
     amp, mean, lower = np.empty(n), np.empty((6, n)), np.empty(n)
     for s in range(0, n, block):
         sl = slice(s, s + block)
-        amp[sl], mean[:, sl], lower[sl] = _amplitude_block(np.ascontiguousarray(history[:, :, sl]), iterations,
+        amp[sl], mean[:, sl], lower[sl] = _amplitude_block(np.ascontiguousarray(planes[:, :, sl]), iterations,
                                                            stride)
     return amp, mean, lower
 
 
-def _amplitude_block(history: np.ndarray, iterations: int, stride: int):
-    """``amplitude_mean`` of one block of nodes."""
-    lo, hi = history.min(axis=0), history.max(axis=0)
+def _amplitude_block(planes: np.ndarray, iterations: int, stride: int):
+    """``amplitude_mean`` of one block of nodes given as contiguous planes (6, n_t, n)."""
+    lo, hi = planes.min(axis=1), planes.max(axis=1)
     c = 0.5 * (lo + hi)
-    best_r, far = _radius(history, c)
+    buf = np.empty(planes.shape)
+    d0 = von_mises_planes(planes, c, buf)               # (n_t, n), about the mid-range
+    best_r, far = max_and_first(d0)
     best_c = c.copy()
-    cols = np.arange(history.shape[-1])
-    p1 = history[far, :, cols].T
-    lower = 0.5 * _radius(history, p1)[0]
+    cols = np.arange(planes.shape[-1])
+    p1 = planes[:, far, cols]
+    lower = 0.5 * _radius(planes, p1, buf)[0]
     todo = best_r > lower * (1.0 + 1e-9)
     if np.any(todo):
-        h = history[:, :, todo]
+        h = planes if todo.all() else planes[:, :, todo]
         # search on a sub-sampled path (a contiguous copy: the same values, faster passes)
-        hs = np.ascontiguousarray(h[::stride]) if h.shape[0] >= 8 * stride else h
+        step = stride if h.shape[1] >= 8 * stride else 1
+        hs = np.ascontiguousarray(h[:, ::step]) if step > 1 else h
+        sbuf = np.empty(hs.shape)
         cc = c[:, todo]
-        r, far = _radius(hs, cc)
+        # the start's distances on the sub-sampled path are rows of the whole path's
+        r, far = max_and_first(d0[::step] if todo.all() else d0[::step][:, todo])
         cands, radii = [cc], [r]            # radius of each candidate on the sub-sampled path
         sub = np.arange(h.shape[-1])
         for k in range(iterations):
-            cc = cc + (hs[far, :, sub].T - cc) / (k + 2.0)
-            r, far = _radius(hs, cc)
+            cc = cc + (hs[:, far, sub] - cc) / (k + 2.0)
+            r, far = _radius(hs, cc, sbuf)
             cands.append(cc)
             radii.append(r)
         # the candidate with the smallest radius on the sub-sampled path (of the last four
@@ -118,7 +140,7 @@ def _amplitude_block(history: np.ndarray, iterations: int, stride: int):
         pick = np.argmin(rs, axis=0)
         pool = np.stack(cands[-4:] + [cands[0]])  # (5, 6, m)
         cb = pool[pick, :, sub].T
-        rb, _ = _radius(h, cb)
+        rb, _ = _radius(h, cb, buf if h is planes else None)
         better = rb < best_r[todo]
         idx = np.flatnonzero(todo)[better]
         best_r[idx] = rb[better]
@@ -181,11 +203,11 @@ def bending_torsion(history: np.ndarray, points: np.ndarray, axis_point: tuple[f
 
     Returns (sigma_history, tau_history), each (n_t, n).
     """
-    c = cylindrical(history, points, axis_point)
+    c = cylindrical(history, points, axis_point, ("rr", "zz", "rz", "rt", "tz"))
     # signed variation tensor: the deviation from the time mean where it is largest
     dev = {k: v - v.mean(axis=0) for k, v in c.items() if k in ("rr", "zz", "rz")}
     size = np.sqrt(dev["rr"] ** 2 + dev["zz"] ** 2 + 2 * dev["rz"] ** 2)
-    at = np.argmax(size, axis=0)
+    at = max_and_first(size)[1]                          # first angle of the largest
     cols = np.arange(size.shape[1])
     rr_a, zz_a, rz_a = (dev[k][at, cols] for k in ("rr", "zz", "rz"))
     # eigenvector of the largest-magnitude eigenvalue of [[rr, rz], [rz, zz]]

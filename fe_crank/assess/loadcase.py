@@ -56,10 +56,10 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     throws = []
     scf_cache: dict = {}  # SCF mode (UR M53 App. III), solved only for a throw outside the empirical range
     for key, units in unit_solutions.items():
-        unit = unit_stresses(units)
-        boundary_groups = {g: units_nodes for g, units_nodes in assessed_groups(units).items()
-                           if g in ASSESSED_BOUNDARIES}
-        notes.extend(f"mesh {key}: {n}" for n in recovery_notes(recovery_ratios(units, boundary_groups)))
+        groups = assessed_groups(units)
+        unit = unit_stresses(units, groups)
+        boundary_groups = {g: units_nodes for g, units_nodes in groups.items() if g in ASSESSED_BOUNDARIES}
+        notes.extend(f"mesh {key}: {n}" for n in recovery_notes(recovery_ratios(units, boundary_groups, unit=unit)))
         for tname in throws_of(key, dynamics.throws):
             tl = dynamics.throws[tname]
             throw = lc.engine.throw(tname)

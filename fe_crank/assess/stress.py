@@ -30,20 +30,35 @@ def von_mises_path(history: np.ndarray, centre: np.ndarray | None = None) -> np.
     (None: about zero), shape (n_t, n).
 
     The formula of ``von_mises``, sqrt(((d_xx-d_yy)^2 + (d_yy-d_zz)^2 + (d_zz-d_xx)^2)/2
-    + 3 (d_xy^2 + d_yz^2 + d_zx^2)), evaluated term by term in the same order into a
-    few reused buffers: the same floating-point result as ``von_mises(history - centre)``
-    without a temporary array per operation (the cycle assessment's hot loop).
+    + 3 (d_xy^2 + d_yz^2 + d_zx^2)), evaluated term by term in the same order: the same
+    floating-point result as ``von_mises(history - centre)`` (``von_mises_planes``, on the
+    component planes of ``history``; fastest when each component's (n_t, n) plane is
+    contiguous, i.e. ``history`` is a transposed view of a (6, n_t, n) array).
     """
-    shape = history.shape[:1] + history.shape[2:]
+    return von_mises_planes(history.transpose(1, 0, 2), centre)
 
-    def comp(k, out):
-        if centre is None:
-            out[...] = history[:, k]
-            return out
-        return np.subtract(history[:, k], centre[k], out=out)
 
-    d = [comp(k, np.empty(shape)) for k in range(3)]
-    acc, tmp = np.subtract(d[0], d[1]), np.subtract(d[1], d[2])
+def von_mises_planes(planes: np.ndarray, centre: np.ndarray | None = None, buf: np.ndarray | None = None,
+                     out: np.ndarray | None = None) -> np.ndarray:
+    """vM(S(t) - c) of a stress path given as component planes ``planes`` (6, n_t, n),
+    about ``centre`` (6, n) (None: about zero); shape (n_t, n).
+
+    Whole-block operations only (the six differences in one subtraction, the three
+    shear squares in one multiplication), each term in the order of ``von_mises``:
+    ((d_xx-d_yy)^2 + (d_yy-d_zz)^2) + (d_zz-d_xx)^2, times 1/2, plus 3 ((d_xy^2 +
+    d_yz^2) + d_zx^2), square root -- so the same floating-point result.  ``buf``: a
+    (6, n_t, n) scratch array to reuse, ``out``: the (n_t, n) result array.
+    """
+    if centre is not None:
+        d = np.subtract(planes, centre[:, None, :], out=buf)
+        tmp = d[1]                                      # d_yy is not needed after d_yy - d_zz
+        shear = d[3:]
+    else:                                               # about zero: the planes themselves
+        d = planes
+        tmp = np.empty(planes.shape[1:])
+        shear = np.empty((3,) + planes.shape[1:]) if buf is None else buf[3:]
+    acc = np.subtract(d[0], d[1], out=out)
+    np.subtract(d[1], d[2], out=tmp)
     np.multiply(acc, acc, out=acc)
     np.multiply(tmp, tmp, out=tmp)
     acc += tmp
@@ -51,15 +66,12 @@ def von_mises_path(history: np.ndarray, centre: np.ndarray | None = None) -> np.
     np.multiply(tmp, tmp, out=tmp)
     acc += tmp
     acc *= 0.5
-    shear, sq = d[0], d[1]                  # reuse the normal components' buffers
-    comp(3, shear)
-    np.multiply(shear, shear, out=shear)
-    for k in (4, 5):
-        comp(k, sq)
-        np.multiply(sq, sq, out=sq)
-        shear += sq
-    shear *= 3.0
-    acc += shear
+    np.multiply(d[3:], d[3:], out=shear)
+    sq = shear[0]
+    sq += shear[1]
+    sq += shear[2]
+    sq *= 3.0
+    acc += sq
     return np.sqrt(acc, out=acc)
 
 
@@ -79,12 +91,14 @@ def principal(s: np.ndarray) -> np.ndarray:
     return np.moveaxis(_principal(np.moveaxis(s, -2, 0)), 0, -2)
 
 
-def cylindrical(s: np.ndarray, points: np.ndarray, axis_point: tuple[float, float]) -> dict[str, np.ndarray]:
+def cylindrical(s: np.ndarray, points: np.ndarray, axis_point: tuple[float, float],
+                which: tuple[str, ...] = ("rr", "tt", "zz", "rt", "tz", "rz")) -> dict[str, np.ndarray]:
     """Components in the cylindrical frame (r, theta, z) of an axis parallel to z.
 
     ``points`` (3, n) are the node coordinates; ``axis_point`` (x, y) a point of the
-    axis.  Returns ``rr, tt, zz, rt, tz, rz`` each of shape (..., n).  Rotation
-    sigma' = Q sigma Q^T with e_r = (cos a, sin a, 0), e_t = (-sin a, cos a, 0).
+    axis.  Returns ``rr, tt, zz, rt, tz, rz`` (those named in ``which``) each of shape
+    (..., n).  Rotation sigma' = Q sigma Q^T with e_r = (cos a, sin a, 0),
+    e_t = (-sin a, cos a, 0).
     """
     dx = points[0] - axis_point[0]
     dy = points[1] - axis_point[1]
@@ -92,9 +106,12 @@ def cylindrical(s: np.ndarray, points: np.ndarray, axis_point: tuple[float, floa
     c = np.where(rad > 0, dx / np.where(rad > 0, rad, 1.0), 1.0)
     sn = np.where(rad > 0, dy / np.where(rad > 0, rad, 1.0), 0.0)
     xx, yy, zz, xy, yz, xz = (s[..., i, :] for i in range(6))
-    rr = c * c * xx + sn * sn * yy + 2 * c * sn * xy
-    tt = sn * sn * xx + c * c * yy - 2 * c * sn * xy
-    rt = (yy - xx) * c * sn + xy * (c * c - sn * sn)
-    rz = c * xz + sn * yz
-    tz = -sn * xz + c * yz
-    return {"rr": rr, "tt": tt, "zz": zz, "rt": rt, "tz": tz, "rz": rz}
+    formulas = {
+        "rr": lambda: c * c * xx + sn * sn * yy + 2 * c * sn * xy,
+        "tt": lambda: sn * sn * xx + c * c * yy - 2 * c * sn * xy,
+        "zz": lambda: zz,
+        "rt": lambda: (yy - xx) * c * sn + xy * (c * c - sn * sn),
+        "tz": lambda: -sn * xz + c * yz,
+        "rz": lambda: c * xz + sn * yz,
+    }
+    return {k: formulas[k]() for k in ("rr", "tt", "zz", "rt", "tz", "rz") if k in which}

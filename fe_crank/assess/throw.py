@@ -15,8 +15,9 @@ import numpy as np
 
 from fe_crank.assess import fatigue
 from fe_crank.assess.factors import FatigueFactors, factors
-from fe_crank.assess.stress import von_mises_path
-from fe_crank.assess.superpose import UnitStresses, iter_histories
+from fe_crank.assess.peak import TIE_RTOL, group_peak, max_over_cycle
+from fe_crank.assess.stress import von_mises_planes
+from fe_crank.assess.superpose import UnitStresses, iter_planes
 
 #: groups assessed for fatigue with Gough-Pollard need a local axis: these prefixes use
 #: the crankpin axis (x, y) = (0, R); the journal fillets the crank axis (0, 0).
@@ -66,10 +67,6 @@ def _axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
     return None
 
 
-#: values within this relative distance of an extreme count as ties; ties go to the
-#: first (node, angle), so serial, process and Dask runs (whose solvers may differ in
-#: the last digits) name the same place
-TIE_RTOL = 1e-9
 
 
 def first_extreme(values: np.ndarray, worst: str = "max", axis: int = 0) -> np.ndarray:
@@ -101,8 +98,17 @@ def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str
     return Extreme(float(values[k]), group, node, pt, ang)
 
 
+def _blocks(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, chunk: int):
+    """Yield (position in ``nodes``, node indices, history planes (6, n_t, k)) in blocks
+    of ``chunk`` nodes (``superpose.iter_planes``)."""
+    pos = 0
+    for idx, planes in iter_planes(unit, coefficients, nodes, chunk):
+        yield pos, idx, planes
+        pos += idx.size
+
+
 def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta: np.ndarray, material, *,
-                 crank_radius: float, overspeed: float | None, chunk: int = 2048,
+                 crank_radius: float, overspeed: float | None, chunk: int = fatigue.NODE_BLOCK,
                  overspeed_coefficients: np.ndarray | None = None,
                  diameter: float | None = None) -> GroupResult:
     """Static and fatigue results of one node group.  ``material`` needs yield strength
@@ -126,12 +132,14 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     sa_eq = np.zeros(nodes.size)
     sm_eq = np.zeros(nodes.size)
     gp = np.full(nodes.size, np.inf)
-    pos = 0
-    for idx, hist in iter_histories(unit, coefficients, nodes, chunk):
+    # every criterion reads the same history, ``chunk`` nodes at a time as its six
+    # component planes (6, n_t, k): cache-resident and contiguous for every pass
+    buf = None
+    for pos, idx, planes in _blocks(unit, coefficients, nodes, chunk):
         sl = slice(pos, pos + idx.size)
-        vm = von_mises_path(hist)  # (n_t, k)
-        vm_arg[sl] = first_extreme(vm, "max", axis=0)
-        vm_max[sl] = vm.max(axis=0)
+        buf = buf if buf is not None and buf.shape == planes.shape else np.empty(planes.shape)
+        hist = planes.transpose(1, 0, 2)  # (n_t, 6, k) view
+        vm_max[sl], vm_arg[sl] = max_over_cycle(von_mises_planes(planes, buf=buf))  # over (n_t, k)
         if do_fatigue:
             a, m = fatigue.equivalent_amplitude_mean(hist)
             sa_eq[sl], sm_eq[sl] = a, m
@@ -142,7 +150,6 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
             t_a, t_m = fatigue.half_range(tau)
             gp[sl] = fatigue.gough_pollard_safety(s_a, s_m, t_a, t_m, k * material.fatigue_limit_bending,
                                                   k * material.fatigue_limit_torsion, material.tensile_strength)
-        pos += idx.size
     worst = _extreme(vm_max, nodes, unit, group, worst="max", angles=theta[vm_arg])
     ys = material.yield_strength
     static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf
@@ -150,15 +157,9 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     if overspeed is not None:
         if overspeed_coefficients is None:
             raise ValueError("overspeed given without the overspeed cycle's coefficients")
-        vm_os = np.empty(nodes.size)
-        os_arg = np.empty(nodes.size, dtype=int)
-        pos = 0
-        for idx, hist in iter_histories(unit, overspeed_coefficients, nodes, chunk):
-            vm = von_mises_path(hist)
-            os_arg[pos:pos + idx.size] = first_extreme(vm, "max", axis=0)
-            vm_os[pos:pos + idx.size] = vm.max(axis=0)
-            pos += idx.size
-        os_ext = _extreme(vm_os, nodes, unit, group, worst="max", angles=theta[os_arg])
+        # only the group's largest peak is reported: evaluated where it can occur (peak.py)
+        pos, vm_os, os_arg = group_peak(unit, overspeed_coefficients, nodes, chunk)
+        os_ext = _extreme(vm_os, nodes[pos], unit, group, worst="max", angles=theta[os_arg])
         os_safety = ys / os_ext.value if (ys is not None and os_ext.value > 0) else np.inf
     fat = gpe = None
     amp = mean = None

@@ -18,15 +18,50 @@ _IJ = ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))
 
 
 def _stress_from_gradients(G: np.ndarray, edofs: np.ndarray, u: np.ndarray, lam: float, mu: float) -> np.ndarray:
-    """sigma (6, ne, nq) from scalar gradients G (m, 3, ne, nq) and element dofs (m, ne)."""
+    """sigma (6, ne, nq) from scalar gradients G (m, 3, ne, nq) and element dofs (m, ne).
+
+    grad u: H_ij = sum_a U_ai dphi_a/dx_j, summed over the m local nodes a = 0, 1, ...
+    in turn (the order ``np.einsum("aei,ajeq->ijeq")`` takes, so the same bits, at about
+    two thirds of its time).
+    """
     U = u.reshape(-1, 3)[edofs]                      # (m, ne, 3)
-    H = np.einsum("aei,ajeq->ijeq", U, G)            # grad u, H_ij = du_i/dx_j
-    eps = 0.5 * (H + H.transpose(1, 0, 2, 3))
+    return _hooke(_grad_u(U, G, lambda a, i: U[a, :, i][None, :, None]), lam, mu)
+
+
+def _grad_u(U: np.ndarray, G: np.ndarray, coef) -> np.ndarray:
+    """H_ij = du_i/dx_j = sum_a U_ai G_aj..., a = 0, 1, ... in turn; ``coef(a, i)`` is U_ai
+    shaped to broadcast against G[a] (3, ...)."""
+    H = np.empty((3,) + G.shape[1:])
+    tmp = np.empty(G.shape[1:])
+    for i in range(3):
+        acc = H[i]
+        np.multiply(coef(0, i), G[0], out=acc)
+        for a in range(1, G.shape[0]):
+            acc += np.multiply(coef(a, i), G[a], out=tmp)
+    return H
+
+
+def _hooke(H: np.ndarray, lam: float, mu: float) -> np.ndarray:
+    """sigma (6, ...) from grad u (3, 3, ...): eps = sym(H), sigma = 2 mu eps + lam tr(eps) I."""
+    eps = 0.5 * (H + np.swapaxes(H, 0, 1))
     tr = eps[0, 0] + eps[1, 1] + eps[2, 2]
     s = np.empty((6,) + tr.shape)
     for k, (i, j) in enumerate(_IJ):
         s[k] = 2.0 * mu * eps[i, j] + (lam * tr if i == j else 0.0)
     return s
+
+
+def _stress_at_pairs(Gp: np.ndarray, edofs: np.ndarray, u: np.ndarray, lam: float, mu: float) -> np.ndarray:
+    """sigma (6, P) at P (element, point) pairs: gradients Gp (m, 3, P), element dofs (m, P).
+    The operations of ``_stress_from_gradients``, value by value."""
+    base = 3 * edofs
+    U = [u[base + i] for i in range(3)]             # U[i][a, p]: u_i at local node a of pair p
+    return _hooke(_grad_u(U, Gp, lambda a, i: U[i][a][None, :]), lam, mu)
+
+
+#: (element, node) pairs per block of ``stress_at_selected_nodes`` (the block's gradients,
+#: 10 x 3 x 4096 x 8 B = 1 MB, stay in cache while every field is evaluated on them)
+PAIR_BLOCK = 4096
 
 
 NODE_CHUNK = 40000  # elements per node-basis chunk (the full basis of a 1M-dof mesh is ~1 GB)
@@ -57,6 +92,30 @@ def node_bases(mesh, dofs=None, chunk: int = NODE_CHUNK, elements=None):
         yield idx, Basis(mesh, e, quadrature=(X, W), elements=idx, dofs=dofs, disable_doflocs=True)
 
 
+def node_gradients(mesh, dofs=None, chunk: int = NODE_CHUNK, elements=None):
+    """Yield (element indices, scalar P2 gradients (m, 3, ne, m) at the element's own nodes,
+    element dofs (m, ne)): what ``_gradients`` and ``element_dofs`` of ``node_bases`` give,
+    without building the basis.
+
+    grad phi_a = DF^-T grad_ref phi_a at every node of every element, from scikit-fem's
+    own mapping (``mesh._mapping()``: its ``invDF`` and the element's ``lbasis``) with the
+    contraction scikit-fem's ``ElementH1.gbasis`` uses, so the same bits; the inverse
+    Jacobian is evaluated once per chunk instead of once per basis function (a
+    ``CellBasis`` evaluates it for each of its m functions).
+    """
+    e = ElementTetP2()
+    X = np.asarray(e.doflocs, float).T               # (3, m) reference nodes
+    dofs = _node_dofs(mesh, dofs)
+    mapping = mesh._mapping()
+    elements = np.arange(mesh.t.shape[1]) if elements is None else np.asarray(elements)
+    dphi = [e.lbasis(X, a)[1] for a in range(X.shape[1])]
+    for start in range(0, elements.size, chunk):
+        idx = elements[start:start + chunk]
+        invDF = mapping.invDF(X, idx)
+        G = np.stack([np.einsum("ijkl,il->jkl", invDF, d) for d in dphi])
+        yield idx, G, dofs.element_dofs[:, idx]
+
+
 def elements_of_nodes(element_dofs: np.ndarray, nodes, n_nodes: int) -> np.ndarray:
     """Ascending indices of the elements (columns of ``element_dofs`` (m, ne)) that have
     at least one of ``nodes``: every element that enters the nodal average at them."""
@@ -76,11 +135,11 @@ def element_nodal_stress(mesh, u: np.ndarray, youngs_modulus: float, poisson_rat
     out = np.empty((6, 10, ne))
     nodes = np.empty((10, ne), dtype=np.int64)
     pos = 0
-    for idx, nb in node_bases(mesh, dofs, elements=elements):
+    for idx, G, ed in node_gradients(mesh, dofs, elements=elements):
         sl = slice(pos, pos + idx.size)
-        s = _stress_from_gradients(_gradients(nb), nb.element_dofs, u, lam, mu)   # (6, n, m): points = nodes
+        s = _stress_from_gradients(G, ed, u, lam, mu)   # (6, n, m): points = nodes
         out[:, :, sl] = s.transpose(0, 2, 1)
-        nodes[:, sl] = nb.element_dofs
+        nodes[:, sl] = ed
         pos += idx.size
     return out, nodes
 
@@ -118,17 +177,23 @@ def stress_at_selected_nodes(mesh, displacements, youngs_modulus: float, poisson
     local[nodes] = np.arange(nodes.size)
     out = np.zeros((len(U), 6, nodes.size))
     count = np.zeros(nodes.size)
-    for _, nb in node_bases(mesh, dofs, chunk, elements=elements):
-        ed = nb.element_dofs                              # (m, nc)
+    for _, G, ed in node_gradients(mesh, dofs, chunk, elements=elements):   # ed (m, nc)
         loc = local[ed.T]                                 # (nc, m), -1 where not selected
-        keep = loc >= 0
-        where = loc[keep]
+        e_p, q_p = np.nonzero(loc >= 0)                   # (element, local node) pairs kept, element-major
+        where = loc[e_p, q_p]
         count += np.bincount(where, minlength=nodes.size)
-        G = _gradients(nb)
-        for j, u in enumerate(U):
-            s = _stress_from_gradients(G, ed, u, lam, mu)     # (6, nc, m)
+        # the stress only where it is averaged: at the kept pairs (the same operations on
+        # the same operands as on the whole chunk, so the same values)
+        S = np.empty((len(U), 6, e_p.size))
+        for b in range(0, e_p.size, PAIR_BLOCK):
+            sl = slice(b, b + PAIR_BLOCK)
+            Gp = G[:, :, e_p[sl], q_p[sl]]                # (m, 3, p)
+            ep = ed[:, e_p[sl]]                           # (m, p)
+            for j, u in enumerate(U):
+                S[j, :, sl] = _stress_at_pairs(Gp, ep, u, lam, mu)
+        for j in range(len(U)):
             for k in range(6):
-                out[j, k] += np.bincount(where, s[k][keep], minlength=nodes.size)
+                out[j, k] += np.bincount(where, S[j, k], minlength=nodes.size)
     if np.any(count == 0):
         raise MeshError("stress requested at nodes that belong to no element")
     return out / count
