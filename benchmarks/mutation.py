@@ -38,6 +38,8 @@ _MECHANISM_TESTS = [
     "tests/test_balance_seed000.py", "tests/test_balance_seed003.py",
     "tests/test_balance_crosscheck.py", "tests/test_balance_counterweights.py",
     "tests/test_balance_inputs.py", "tests/test_balance_forces_terms.py",
+    "tests/test_balance_roundoff.py", "tests/test_balance_counterweight_planes.py",
+    "tests/test_balance_yoke_terms.py", "tests/test_dynamics_excess_work.py",
 ]
 
 #: module -> (file to mutate, its fast tests)
