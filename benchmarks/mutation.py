@@ -39,7 +39,7 @@ _MECHANISM_TESTS = [
     "tests/test_balance_crosscheck.py", "tests/test_balance_counterweights.py",
     "tests/test_balance_inputs.py", "tests/test_balance_forces_terms.py",
     "tests/test_balance_roundoff.py", "tests/test_balance_counterweight_planes.py",
-    "tests/test_balance_yoke_terms.py", "tests/test_dynamics_excess_work.py",
+    "tests/test_balance_yoke_terms.py", "tests/test_dynamics_excess_work.py", "tests/test_balance_sector_limits.py",
 ]
 
 #: module -> (file to mutate, its fast tests)
