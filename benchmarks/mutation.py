@@ -40,6 +40,7 @@ _MECHANISM_TESTS = [
     "tests/test_balance_inputs.py", "tests/test_balance_forces_terms.py",
     "tests/test_balance_roundoff.py", "tests/test_balance_counterweight_planes.py",
     "tests/test_balance_yoke_terms.py", "tests/test_dynamics_excess_work.py", "tests/test_balance_sector_limits.py",
+    "tests/test_kinetostatics_reactions.py",
 ]
 
 #: module -> (file to mutate, its fast tests)
