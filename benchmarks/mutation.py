@@ -58,7 +58,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "balance.terms": ("fe_crank/balance/terms.py", _MECHANISM_TESTS),
     "assess.m53": ("fe_crank/assess/m53.py",
                    ["tests/test_assess_m53.py", "tests/test_assess_m53_oil_bore.py", "tests/test_assess_adapters.py",
-                    "tests/test_assess_m53_bores.py"]),
+                    "tests/test_assess_m53_bores.py", "tests/test_assess_m53_sections.py"]),
     "assess.m53_oil_bore": ("fe_crank/assess/m53_oil_bore.py",
                             ["tests/test_assess_m53_oil_bore.py", "tests/test_assess_m53.py",
                              "tests/test_assess_adapters.py"]),
