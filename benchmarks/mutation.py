@@ -61,7 +61,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                     "tests/test_assess_m53_bores.py", "tests/test_assess_m53_sections.py"]),
     "assess.m53_oil_bore": ("fe_crank/assess/m53_oil_bore.py",
                             ["tests/test_assess_m53_oil_bore.py", "tests/test_assess_m53.py",
-                             "tests/test_assess_adapters.py"]),
+                             "tests/test_assess_adapters.py", "tests/test_assess_m53_oil_bore_limits.py"]),
     "assess.fatigue": ("fe_crank/assess/fatigue.py",
                        ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py",
                         "tests/test_assess_amplitude.py"]),
