@@ -129,3 +129,25 @@ def test_efficiency_limits_and_refusals_in_full():
     with pytest.raises(InputError) as err:
         mechanical_efficiency(idle, friction_coefficient=0.01, d_O1=0.1, d_A=0.1, d_B=0.1)
     assert err.value.reason == "no driving power: the gas force does no positive work over these positions"
+
+
+def test_rod_weight_shared_between_crankpin_and_guide_by_hand():
+    """Standing mechanism (omega = 0) at phi = 90 deg, gravity along -w (cylinder
+    horizontal), only the rod heavy: m2 = 2 kg, W = 19.62 N at c/l = 0.25 from the big end.
+    Moments on the rod about B: -x R12_w + (1 - c/l) x W = 0 -> R12 = (0, 0.75 W) =
+    (0, 14.715) N; the group's forces: R03 = (0, W - R12_w) = (0, 0.25 W) = (0, 4.905) N."""
+    kw = dict(MASSLESS, omega=0.0, rod_mass=2.0)
+    res = analyse_position(math.pi / 2, gas_force=0.0, gravity=(0.0, -9.81), **kw)
+    np.testing.assert_allclose(res.R12, [0.0, 14.715], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(res.R03, [0.0, 4.905], rtol=1e-12, atol=1e-12)
+
+
+def test_efficiency_of_a_2d_array_of_angles_equals_that_of_the_same_angles_in_a_row():
+    """The means run over every sampled position whatever the array's shape."""
+    mech = dict(r=R, l=L, omega=100.0, piston_mass=1.0, rod_mass=1.5, rod_cg=0.05, rod_inertia=0.01)
+    phi = np.array([[0.3, 0.6, 0.9], [1.2, 1.5, 1.8]])
+    kw = dict(friction_coefficient=0.05, d_O1=0.08, d_A=0.06, d_B=0.03)
+    grid = mechanical_efficiency(analyse_position(phi, gas_force=8000.0, **mech), **kw)
+    row = mechanical_efficiency(analyse_position(phi.ravel(), gas_force=8000.0, **mech), **kw)
+    for name in ("power_O1", "power_A", "power_B", "power_O3", "driving_power", "efficiency"):
+        assert getattr(grid, name) == pytest.approx(getattr(row, name), rel=1e-12)
