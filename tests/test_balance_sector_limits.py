@@ -110,6 +110,7 @@ G = dict(r_outer=0.5, r_inner=0.0, thickness=1.0, angle=PI, density=1.5)
      "needs an inner radius of 30 mm, inside the journal radius 32 mm"),
 ])
 def test_inverse_design_refusals_in_full(call, reason):
+    call = dict(call)  # the parameter is shared between runs: leave it intact
     u = call.pop("unbalance")
     err = _refused(solve_sector, u, **call)
     assert (err.key, err.reason) == ("counterweight", reason)
