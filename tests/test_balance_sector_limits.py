@@ -98,6 +98,9 @@ G = dict(r_outer=0.5, r_inner=0.0, thickness=1.0, angle=PI, density=1.5)
     # U > 0.125: even r2 = 0 gives only (2/3) 1.5 * 1 * 1 * 0.5^3 = 0.125 kg m
     (dict(unbalance=0.2, free="r_inner", **{k: v for k, v in G.items() if k != "r_inner"}),
      "even a full sector out to r_outer = 500 mm gives only 0.125 kg m, 0.2 kg m required"),
+    # b = 0.5 m, 60 deg (sin 30 deg = 0.5): 1 * 0.5 * 0.5 * 0.125 = 0.03125 kg m
+    (dict(unbalance=0.05, free="r_inner", r_outer=0.5, thickness=0.5, angle=PI / 3, density=1.5),
+     "even a full sector out to r_outer = 500 mm gives only 0.03125 kg m, 0.05 kg m required"),
     # sin(a/2) = 0.2 / 0.125 = 1.6 > 1: the half ring gives 0.2 / 1.6 = 0.125 kg m
     (dict(unbalance=0.2, free="angle", **{k: v for k, v in G.items() if k != "angle"}),
      "needs 0.2 kg m but a 180 deg sector of these radii and thickness gives only 0.125 kg m "
@@ -116,3 +119,20 @@ def test_inverse_design_refusals_in_full(call, reason):
     assert (err.key, err.reason) == ("counterweight", reason)
     err = _refused(solve_sector, u, key="counterweights.web_2", **call)
     assert err.key == "counterweights.web_2"
+
+
+def test_sector_record_in_report_units():
+    """Lengths in mm, the angle in degrees, the rest in SI: Seed 003's sector (r1 = 71,
+    r2 = 32, b = 19 mm, 180 deg, 7400 kg/m^3) by the module's closed forms:
+    m = 7400 * 0.019 * (pi/2) * (0.071^2 - 0.032^2) = 140.6 * 1.5707963 * 0.004017 = 0.887170 kg,
+    U = (2/3) 7400 * 0.019 * (0.071^3 - 0.032^3) = 93.733333 * 0.000325143 = 0.03047674 kg m,
+    r_c = U / m = 34.353 mm."""
+    d = annular_sector(0.071, 0.032, 0.019, PI, 7400.0).as_dict()
+    assert set(d) == {"r_outer_mm", "r_inner_mm", "thickness_mm", "angle_deg", "density_kg_m3", "mass_kg",
+                      "centroid_radius_mm", "unbalance_kg_m"}
+    assert (d["r_outer_mm"], d["r_inner_mm"], d["thickness_mm"]) == pytest.approx((71.0, 32.0, 19.0), rel=1e-12)
+    assert d["angle_deg"] == pytest.approx(180.0, rel=1e-12)
+    assert d["density_kg_m3"] == 7400.0
+    assert d["mass_kg"] == pytest.approx(0.887170, rel=1e-6)
+    assert d["unbalance_kg_m"] == pytest.approx(0.03047674, rel=1e-6)
+    assert d["centroid_radius_mm"] == pytest.approx(34.353, rel=1e-4)
