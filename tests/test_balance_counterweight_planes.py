@@ -137,3 +137,27 @@ def test_counterweight_mass_below_one_rad_per_s_and_one_metre():
     for r, w in ((0.0, 0.5), (0.5, 0.0)):
         with pytest.raises(InputError, match="must be positive"):
             counterweight_mass(1.0, r, w)
+
+
+def test_per_throw_webs_either_side_of_the_throw():
+    """web_offset 0.05 m: each throw's U = 0.1375 kg m is split into U/2 = 0.06875 kg m on
+    its two webs at z_t - 0.05 and z_t + 0.05 (throw A1 at 0: -0.05 and +0.05 m)."""
+    e = _one_throw()
+    d = size_counterweights(e, BalanceStrategy(rotating_fraction=1.0, web_offset=0.05), W)
+    assert sorted(c.z for c in d.counterweights) == pytest.approx([-0.05, 0.05], abs=1e-15)
+    assert [c.unbalance for c in d.counterweights] == pytest.approx([0.06875, 0.06875], rel=1e-14)
+
+
+def test_strategy_and_sizing_refusals_in_full():
+    cases = [
+        (lambda: BalanceStrategy(couple="whole_shaft", planes=(0.1,)), "balance.planes",
+         "whole_shaft couple balance needs at least two counterweight planes"),
+        (lambda: BalanceStrategy(web_offset=-0.01), "balance.web_offset", "web_offset cannot be negative"),
+        (lambda: counterweight_mass(1.0, 0.0, 10.0), "balance", "counterweight radius and speed must be positive"),
+        (lambda: _planes((0.1, 0.1)), "balance.planes",
+         "counterweight planes must lie at two or more distinct axial positions"),
+    ]
+    for make, key, reason in cases:
+        with pytest.raises(InputError) as err:
+            make()
+        assert (err.value.key, err.value.reason) == (key, reason)
