@@ -17,6 +17,7 @@ from fe_crank import model
 from fe_crank.balance import free_forces
 from fe_crank.balance.forces import ROUNDOFF, FreeForces, _merge
 from fe_crank.balance.terms import OrderTerm, point_term
+from fe_crank.errors import InputError
 
 SCALE = 1e11  # N: force threshold ROUNDOFF * SCALE = 1 N
 
@@ -34,7 +35,8 @@ def test_merge_thresholds_by_hand():
     1 * max(2, 1e-3) = 2 N m; length scale 1e-4 m -> 1 * max(1e-4, 1e-3) = 1e-3 N m.
     A force of 0.5 N is cleared, one of 3 N kept, one exactly at the threshold kept; a
     moment of 1.5 N m is cleared at 2 N m and kept at 1e-3 N m; one exactly at the moment
-    threshold is kept.  Equal source and order are summed: 0.5 + 0.25 = 0.75 N (cleared)."""
+    threshold is kept.  Equal source and order are summed: 0.5 + 0.25 = 0.75 N (cleared).
+    With the 1e-3 N m moment threshold a moment of 0.5 N m is kept."""
     ftol = ROUNDOFF * SCALE
     assert ftol == pytest.approx(1.0, rel=1e-15)
     terms = [_term("rotating", 1, 0.5, 1.5), _term("reciprocating", 2, 3.0, 2.0 * ftol),
@@ -47,8 +49,8 @@ def test_merge_thresholds_by_hand():
     np.testing.assert_array_equal(out[("reciprocating", 2.0)].moment, 2.0 * ftol)  # at the threshold: kept
     np.testing.assert_array_equal(out[("yoke", 1.0)].force, ftol)  # at the threshold: kept
     np.testing.assert_array_equal(out[("rotating", 2.0)].force, 0.0)  # 0.75 N summed, then cleared
-    small = _by_source(_merge([_term("rotating", 1, 3.0, 1.5)], SCALE, 1e-4))
-    np.testing.assert_array_equal(small[("rotating", 1.0)].moment, 1.5)  # 1.5 N m > 1e-3 N m
+    small = _by_source(_merge([_term("rotating", 1, 3.0, 0.5)], SCALE, 1e-4))
+    np.testing.assert_array_equal(small[("rotating", 1.0)].moment, 0.5)  # 0.5 N m > 1e-3 N m (a 1 m floor clears it)
 
 
 def test_term_and_total_clear_with_the_same_thresholds_by_hand():
@@ -111,3 +113,10 @@ def test_kmax_limits_the_reciprocating_orders_and_keeps_the_highest():
     lam = 0.25
     assert 0.00408936 == pytest.approx(lam**3 / 4 + 3 * lam**5 / 16, rel=2e-6)  # 8 digits typed
     assert math.isclose(0.25402069, lam + lam**3 / 4 + 15 * lam**5 / 128, rel_tol=1e-7)
+
+
+def test_empty_engine_refusal_in_full():
+    e = model.Engine("empty", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, 0.05),), ())
+    with pytest.raises(InputError) as err:
+        free_forces(e, 100.0)
+    assert (err.value.key, err.value.reason) == ("cylinders", "the engine has no cylinders: nothing to balance")
