@@ -71,3 +71,37 @@ def test_equivalent_stress_takes_the_bending_magnitude():
 def test_readable_locations():
     assert [ob.where(f) for f in ("pin", "journal", "oil_bore")] == ["pin fillet", "journal fillet",
                                                                     "oil-bore outlet"]
+
+
+def test_in_phase_tangential_and_radial_forces_add_at_the_outlet():
+    """M_BO = M_BTO sin(a) + M_BRO cos(a) (2.1.2.2 with psi = 90 deg - a): with F_R =
+    20 kN cos(theta) and F_T = 5 kN cos(theta) in phase, at a = 30 deg the amplitude is
+    0.5 * 0.06 * (20000 * 0.8660254 + 5000 * 0.5) = 0.03 * 19820.508 = 594.6152 N m;
+    W_e = pi/32 * 0.05^3 = 1.2271846e-5 m^3: sigma_BON = 48.45361 MPa.  The 1-degree grid
+    holds theta = 0, the peak."""
+    pin = np.column_stack([5e3 * np.cos(TH), 20e3 * np.cos(TH)])
+    assert ob.nominal_bending(GEO, pin) == pytest.approx(594.6152 / 1.2271846e-5, rel=1e-6)
+
+
+def test_outlet_record_fields_and_q_for_vanishing_stress():
+    """The record carries gamma_B = 2.79264 and gamma_T = 3.712 (d_O = 0.12, by hand in the
+    companion test) as its SCFs.  Without load sigma_V = 0 and Q is infinite; with a radial
+    force of 0.1 mN amplitude sigma_V is below 1 Pa and Q = sigma_DW / sigma_V, finite."""
+    nom = m53.nominal_stresses(GEO, PIN[:, 1], TQ)
+    r = ob.assess_outlet(GEO, nom, PIN, tensile=900e6, k=1.05)
+    assert (r.scf_bending, r.scf_torsion) == pytest.approx((2.79264, 3.712), rel=1e-12)
+    zero = m53.NominalStresses(0.0, 0.0, 0.0, 0.0)
+    r0 = ob.assess_outlet(GEO, zero, np.zeros((4, 2)), tensile=900e6, k=1.05)
+    assert r0.equivalent == 0.0 and math.isinf(r0.acceptability)
+    tiny = np.column_stack([np.zeros(720), 1e-4 * np.cos(TH)])
+    rt = ob.assess_outlet(GEO, zero, tiny, tensile=900e6, k=1.05)
+    assert 0.0 < rt.equivalent < 1.0
+    assert rt.acceptability == pytest.approx(rt.fatigue_strength / rt.equivalent, rel=1e-12)
+
+
+def test_range_limits_of_d_o_exactly():
+    """d_O = 0 (no bore) and d_O = 0.2 + 1e-12 (the allowance; D = 1 m so that D_O/D is
+    exact) are inside 3.1's range."""
+    assert ob.in_range(dataclasses.replace(GEO, oil_bore_diameter=0.0)) is None
+    edge = dataclasses.replace(GEO, pin_diameter=1.0, oil_bore_diameter=0.2 + 1e-12)
+    assert ob.in_range(edge) is None
