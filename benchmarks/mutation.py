@@ -38,6 +38,9 @@ _MECHANISM_TESTS = [
     "tests/test_balance_seed000.py", "tests/test_balance_seed003.py",
     "tests/test_balance_crosscheck.py", "tests/test_balance_counterweights.py",
     "tests/test_balance_inputs.py", "tests/test_balance_forces_terms.py",
+    "tests/test_balance_roundoff.py", "tests/test_balance_counterweight_planes.py",
+    "tests/test_balance_yoke_terms.py", "tests/test_dynamics_excess_work.py", "tests/test_balance_sector_limits.py",
+    "tests/test_kinetostatics_reactions.py",
 ]
 
 #: module -> (file to mutate, its fast tests)
@@ -54,7 +57,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "balance.sector": ("fe_crank/balance/sector.py", _MECHANISM_TESTS),
     "balance.terms": ("fe_crank/balance/terms.py", _MECHANISM_TESTS),
     "assess.m53": ("fe_crank/assess/m53.py",
-                   ["tests/test_assess_m53.py", "tests/test_assess_m53_oil_bore.py", "tests/test_assess_adapters.py"]),
+                   ["tests/test_assess_m53.py", "tests/test_assess_m53_oil_bore.py", "tests/test_assess_adapters.py",
+                    "tests/test_assess_m53_bores.py", "tests/test_assess_m53_sections.py"]),
+    "assess.m53_oil_bore": ("fe_crank/assess/m53_oil_bore.py",
+                            ["tests/test_assess_m53_oil_bore.py", "tests/test_assess_m53.py",
+                             "tests/test_assess_adapters.py", "tests/test_assess_m53_oil_bore_limits.py"]),
     "assess.fatigue": ("fe_crank/assess/fatigue.py",
                        ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py",
                         "tests/test_assess_amplitude.py"]),

@@ -77,9 +77,7 @@ def test_first_level_reuses_the_check_solution(geometry, cache, check_solution):
         # the fresh level solves 2 right-hand sides, the check 4: the PARDISO solutions differ
         # by round-off (relative residual < 1e-8 is checked; observed ~1e-13)
         assert reused.levels[0].peaks[name] == pytest.approx(fresh.levels[0].peaks[name], rel=1e-9)
-        # the same mesh solved twice: threaded PARDISO is not bitwise reproducible (on the
-        # mirrored r/2 mesh 2e-12 to 4e-12 apart with 2 MKL threads, identical with 1)
-        assert reused.levels[1].peaks[name] == pytest.approx(fresh.levels[1].peaks[name], rel=1e-10)
+        assert reused.levels[1].peaks[name] == pytest.approx(fresh.levels[1].peaks[name], rel=1e-12)
     assert reused.levels[0].where == fresh.levels[0].where
     assert reused.converged == fresh.converged
 

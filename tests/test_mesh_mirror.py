@@ -23,6 +23,7 @@ from test_geometry import _base  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SEED001 = ROOT / "geometry" / "single_cylinder_seed001.toml"
+SYM = dataclasses.replace(PRESETS["test"], symmetric=True)
 ONE = Functional(lambda w: 1.0 + 0.0 * w.x[0])
 
 
@@ -98,8 +99,9 @@ def test_mesh_on_both_sides_refused():
 def seed001(tmp_path_factory):
     g = load_geometry(SEED001)
     c = tmp_path_factory.mktemp("cache")
-    sym = mesh_throw(g, size="test", cache_dir=c)
-    plain = mesh_throw(g, size=dataclasses.replace(PRESETS["test"], symmetric=False), cache_dir=c)
+    sym = mesh_throw(g, size=SYM, cache_dir=c)
+    plain = mesh_throw(g, size="test", cache_dir=c)
+    assert PRESETS["test"].symmetric is False  # mirrored meshes are asked for
     return g, sym, plain, c
 
 
@@ -176,7 +178,7 @@ def test_seed001_msh_and_vtu_are_the_whole_mesh(seed001):
 
 def test_seed001_symmetry_survives_the_cache(seed001):
     g, tm, _, c = seed001
-    again = mesh_throw(g, size="test", cache_dir=c)
+    again = mesh_throw(g, size=SYM, cache_dir=c)
     assert again.stats.from_cache and again.symmetry == (0, 2) and again.key == tm.key
     assert np.array_equal(again.mesh.doflocs, tm.mesh.doflocs)
 
@@ -184,7 +186,7 @@ def test_seed001_symmetry_survives_the_cache(seed001):
 def test_oblique_bore_gets_only_z():
     g = geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm", "oil_bore": {"diameter": "6 mm", "angle": "45 deg"}},
                                  journal={"fillet_radius": "3 mm"}))
-    tm = mesh_throw(g, size="test", cache_dir=None)
+    tm = mesh_throw(g, size=SYM, cache_dir=None)
     assert tm.symmetry == (2,)
     _check_self_image(tm.mesh, 2, swap_side)
     assert np.any(_image_index(tm.mesh.doflocs.T, 0) < 0)  # not mirrored in x
@@ -194,7 +196,7 @@ def test_oblique_bore_gets_only_z():
 def test_counterweight_on_one_web_gets_only_x():
     g = geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm"}, journal={"fillet_radius": "3 mm"},
                                  counterweight={"outer_radius": "70 mm", "inner_radius": "20 mm", "angle": "120 deg", "webs": [1]}))
-    tm = mesh_throw(g, size="test", cache_dir=None)
+    tm = mesh_throw(g, size=SYM, cache_dir=None)
     assert tm.symmetry == (0,)
     _check_self_image(tm.mesh, 0, lambda n: n)
     assert "counterweight_1" in tm.mesh.subdomains and "counterweight_2" not in tm.mesh.subdomains

@@ -93,7 +93,7 @@ def test_mesh_section_symmetric_key():
     from fe_crank.errors import InputError
     from fe_crank.io.mesh import parse_mesh_section
 
-    assert parse_mesh_section({}, "lc.toml").symmetric is True
-    assert parse_mesh_section({"symmetric": False}, "lc.toml").symmetric is False
+    assert parse_mesh_section({}, "lc.toml").symmetric is False
+    assert parse_mesh_section({"symmetric": True}, "lc.toml").symmetric is True
     with pytest.raises(InputError, match="mesh.symmetric.*true or false"):
         parse_mesh_section({"symmetric": "no"}, "lc.toml")

@@ -115,23 +115,11 @@ def stress_history(unit: UnitStresses, coefficients: np.ndarray, nodes=slice(Non
 
 def iter_histories(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray,
                    chunk: int = 2048) -> Iterator[tuple[np.ndarray, np.ndarray]]:
-    """Yield (node indices, history (n_t, 6, k)) in chunks, to bound memory.
-
-    The histories are ``stress_history`` of each chunk (the same product, computed into
-    one buffer reused from chunk to chunk: a yielded history is overwritten by the
-    next one).
-    """
+    """Yield (node indices, history (n_t, 6, k)) in chunks, to bound memory."""
     nodes = np.asarray(nodes)
-    c = np.atleast_2d(np.asarray(coefficients, float))
-    if c.shape[1] != unit.stress.shape[0]:
-        raise ValueError(f"{c.shape[1]} coefficients for {unit.stress.shape[0]} unit cases")
-    buf = np.empty(c.shape[0] * 6 * min(chunk, nodes.size))
     for start in range(0, nodes.size, chunk):
         idx = nodes[start:start + chunk]
-        u = unit.stress[:, :, idx].reshape(unit.stress.shape[0], -1)
-        out = buf[:c.shape[0] * u.shape[1]].reshape(c.shape[0], u.shape[1])
-        np.dot(c, u, out=out)                    # what np.tensordot (``combine``) computes
-        yield idx, out.reshape(c.shape[0], 6, idx.size)
+        yield idx, stress_history(unit, coefficients, idx)
 
 
 def iter_planes(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray,

@@ -67,8 +67,6 @@ def _axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
     return None
 
 
-
-
 def first_extreme(values: np.ndarray, worst: str = "max", axis: int = 0) -> np.ndarray:
     """Index of the first value within ``TIE_RTOL`` of the max (min) along ``axis``."""
     v = np.asarray(values, float)
