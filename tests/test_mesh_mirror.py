@@ -95,13 +95,23 @@ def test_mesh_on_both_sides_refused():
         mirror_mesh(m, 0)
 
 
+@pytest.fixture(scope="module", autouse=True)
+def both_planes():
+    """These tests check the mirroring across either plane and both: let ``mesh_throw``
+    mirror across every exact plane (by default it uses the mid-plane only,
+    ``fe_crank.mesh.planes.MESH_PLANES``)."""
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr("fe_crank.mesh.planes.MESH_PLANES", (0, 2))
+        yield
+
+
 @pytest.fixture(scope="module")
-def seed001(tmp_path_factory):
+def seed001(tmp_path_factory, both_planes):
     g = load_geometry(SEED001)
     c = tmp_path_factory.mktemp("cache")
     sym = mesh_throw(g, size=SYM, cache_dir=c)
-    plain = mesh_throw(g, size="test", cache_dir=c)
-    assert PRESETS["test"].symmetric is False  # mirrored meshes are asked for
+    plain = mesh_throw(g, size=dataclasses.replace(PRESETS["test"], symmetric=False), cache_dir=c)
+    assert PRESETS["test"].symmetric is True  # mirrored meshes are the default
     return g, sym, plain, c
 
 

@@ -93,7 +93,18 @@ def test_mesh_section_symmetric_key():
     from fe_crank.errors import InputError
     from fe_crank.io.mesh import parse_mesh_section
 
-    assert parse_mesh_section({}, "lc.toml").symmetric is False
-    assert parse_mesh_section({"symmetric": True}, "lc.toml").symmetric is True
+    assert parse_mesh_section({}, "lc.toml").symmetric is True
+    assert parse_mesh_section({"symmetric": False}, "lc.toml").symmetric is False
     with pytest.raises(InputError, match="mesh.symmetric.*true or false"):
         parse_mesh_section({"symmetric": "no"}, "lc.toml")
+
+
+def test_meshes_are_mirrored_across_the_mid_plane_only():
+    """The shipped single cylinder is symmetric about x = 0 and z = 0; the mesh is mirrored
+    across z = 0 alone (``MESH_PLANES``: a cut along the crank plane runs through the
+    fillets' hot spots)."""
+    from fe_crank.mesh.planes import mesh_planes
+
+    g = load_geometry(ROOT / "geometry" / "single_cylinder_seed001.toml")
+    assert symmetry_planes(g) == (0, 2)
+    assert mesh_planes(g) == (2,)

@@ -152,8 +152,8 @@ def _mesh_stage(lc, options: CheckOptions):
     section = lc.extras.get("mesh") or MeshSection()
     kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or section.size,
               "max_elements": options.max_elements or section.max_elements}
-    if section.symmetric:  # [mesh] symmetric = true: mirrored mesh of a symmetric throw (docs/geometry.md)
-        kwargs["size"] = dataclasses.replace(resolve_options(kwargs["size"]), symmetric=True)
+    if not section.symmetric:  # [mesh] symmetric = false: mesh a symmetric throw whole (docs/geometry.md)
+        kwargs["size"] = dataclasses.replace(resolve_options(kwargs["size"]), symmetric=False)
     return {key: mesh_throw(lc.geometry, throw=name, **kwargs) for key, name in throw_keys(lc).items()}
 
 

@@ -19,7 +19,7 @@ class MeshSection:
     size: str = "coarse"
     max_elements: int | None = None  # limit on the estimated element count (docs/limits.md)
     convergence: bool | None = None   # hot-spot convergence study; None: on unless size = "test"
-    symmetric: bool = False  # mesh a mirror-symmetric throw's fundamental part and mirror it (MeshOptions.symmetric)
+    symmetric: bool = True  # mesh a mirror-symmetric throw's fundamental part and mirror it (MeshOptions.symmetric)
 
 
 def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
@@ -33,7 +33,7 @@ def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
     conv = value.get("convergence")
     if conv is not None and not isinstance(conv, bool):
         raise InputError("must be true or false", file=str(file), key=f"{key}.convergence")
-    sym = value.get("symmetric", False)
+    sym = value.get("symmetric", True)
     if not isinstance(sym, bool):
         raise InputError("must be true or false", file=str(file), key=f"{key}.symmetric")
     limit = value.get("max_elements")

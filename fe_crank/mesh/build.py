@@ -16,7 +16,7 @@ from fe_crank.errors import MeshError
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
 from fe_crank.mesh.mirror import mirror_all, swap_side
 from fe_crank.mesh.msh import write_msh
-from fe_crank.mesh.planes import symmetry_planes
+from fe_crank.mesh.planes import mesh_planes
 from fe_crank.mesh.cache import TMP_MARK, _save_npz, _stats_to_json, cache_key, clean_stale_cache_temps, load_cache_entry
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
 from fe_crank.mesh.quality import _fillet_max_edge, _jacobian_ratio, _straighten_poor, _tet_tags
@@ -140,7 +140,7 @@ def mesh_throw(
     opt = resolve_options(size)
     check_element_budget(geometry, spec, opt, max_elements)
     key = cache_key(geometry, spec, opt)
-    planes = symmetry_planes(geometry, spec) if opt.symmetric else ()
+    planes = mesh_planes(geometry, spec) if opt.symmetric else ()
     if cache_dir is None:
         folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
         atexit.register(shutil.rmtree, folder, True)  # no cache: the files live as long as the process

@@ -19,6 +19,7 @@ import numpy as np
 
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
 from fe_crank.mesh.options import CACHE_FORMAT, MeshOptions
+from fe_crank.mesh.planes import mesh_planes
 from fe_crank.mesh.types import MeshStats
 
 
@@ -43,6 +44,7 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
         "fe_crank": __version__,
         "gmsh": gmsh.__version__,
         "format": CACHE_FORMAT,
+        "planes": list(mesh_planes(geometry, throw)) if options.symmetric else [],
     }
     text = json.dumps(payload, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()[:20]

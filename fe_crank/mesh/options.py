@@ -33,7 +33,7 @@ class MeshOptions:
     size_max: float | None = None
     bore_divisions: float = 6.0  # elements round the oil bore circumference / pi
     optimize_high_order: bool = False  # gmsh's HighOrder optimiser can abort the process (uncaught C++ error)
-    symmetric: bool = False  # mesh the fundamental part of a mirror-symmetric throw and mirror it (fe_crank.mesh.planes); off by default until the assessment and SCF checks are settled on mirrored meshes (docs/geometry.md)
+    symmetric: bool = True  # mesh the fundamental part of a mirror-symmetric throw and mirror it (fe_crank.mesh.planes; docs/geometry.md)
 
     def __post_init__(self):
         for name in ("coarse_divisions", "fillet_divisions", "grading", "bore_divisions"):
