@@ -175,3 +175,27 @@ def test_counterweight_stress_bounded_with_the_fillet_growing_when_sharp():
     assert sharp[1] / sharp[0] > 1.1 and sharp[2] / sharp[1] > 1.15 and sharp[2] / sharp[0] > 1.3, sharp
 
     assert max(peaks) < sharp[2], (peaks, sharp)  # the fillet relieves the singular corner
+
+
+@pytest.mark.heavy
+def test_convergence_study_follows_the_counterweight_fillets():
+    """The hot-spot study reports the peak on the counterweight fillets as a load set of
+    its own (name prefix ``COUNTERWEIGHT_PREFIX``), with its change and its place, and the
+    study's change covers it; its peaks equal a direct recovery on the same meshes
+    (``_cw_peak`` over the fillet faces is the same averaged nodal stress)."""
+    from fe_crank.fe.convergence import COUNTERWEIGHT_PREFIX, fillet_convergence
+    from fe_crank.io.material import load_material
+    from fe_crank.mesh import MeshOptions
+
+    g = geometry_from_dict(_small("3 mm"), "g.toml")
+    study = fillet_convergence(g, load_material("C45"), base=MeshOptions(coarse_divisions=1.5, fillet_divisions=1.0,
+                                                                         grading=2.0),
+                               factors=(1.0, 2.0), loads={"spin": {"centrifugal": 1.0}})
+    name = COUNTERWEIGHT_PREFIX + "spin"
+    assert set(study.changes) == {"spin", name}
+    assert all(w.startswith("counterweight_fillet_") for w in (lv.where[name] for lv in study.levels))
+    a, b = (lv.peaks[name] for lv in study.levels)
+    assert study.changes[name] == [pytest.approx(abs(b - a) / b, rel=1e-12)]
+    assert study.change == max(c[-1] for c in study.changes.values())
+    d = study.to_dict()
+    assert set(d["peaks"]) == set(d["where"]) == {"spin", name}
