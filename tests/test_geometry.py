@@ -299,7 +299,8 @@ def test_seed003_counterweight_sized_by_balance_stage_matches_in_cad():
     sized = solve_sector(need, free="thickness", r_outer=0.071, r_inner=0.032, angle=math.pi, density=7400.0)
     g = load_geometry(SEED003)
     spec = g.throws[0]
-    cws = tuple(dataclasses.replace(c, thickness=sized.thickness) for c in spec.counterweights)
+    cws = tuple(dataclasses.replace(c, thickness=sized.thickness, fillet_radius=None)  # a sector, as sized
+                for c in spec.counterweights)
     g_sized = dataclasses.replace(g, throws=(dataclasses.replace(spec, counterweights=cws),))
     mp = mass_properties(g_sized)
     for web in (1, 2):

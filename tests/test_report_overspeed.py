@@ -44,6 +44,7 @@ COUNTERWEIGHT = """
 outer_radius = "40 mm"
 inner_radius = "18 mm"
 angle = "140 deg"
+fillet_radius = "3 mm"
 webs = [1, 2]
 """
 

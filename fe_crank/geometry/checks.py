@@ -173,3 +173,17 @@ def _check_counterweight(g: CrankGeometry, cw: CounterweightSpec, key: str) -> N
     clearance = distance_to_sector((0.0, g.crank_radius), cw) - (g.crankpin_diameter / 2 + g.crankpin_fillet)
     if clearance <= 0.0:
         raise _fail(g, key, f"counterweight overlaps the crankpin or its fillet by {-clearance * 1e3:.3g} mm (reduce its angle or outer radius)")
+    rc = cw.fillet_radius
+    if rc is not None:
+        room = min(cw.thickness, cw.outer_radius - g.web.journal_end_radius, clearance)
+        if not (math.isfinite(rc) and rc > 0.0):
+            raise _fail(g, f"{key}.fillet_radius", f"must be positive (got {rc:g} in SI units)")
+        if rc >= room:
+            raise _fail(g, f"{key}.fillet_radius", f"{rc * 1e3:g} mm does not fit: it must be smaller than the "
+                        f"counterweight's thickness, its overhang beyond the web and its clearance to the "
+                        f"crankpin fillet ({room * 1e3:.3g} mm here)")
+        step = abs(cw.thickness - g.web_thickness)
+        if 0.0 < step <= rc:
+            raise _fail(g, f"{key}.fillet_radius", f"{rc * 1e3:g} mm does not fit on the {step * 1e3:.3g} mm step "
+                        "between the counterweight's and the web's faces: make the counterweight as thick as the "
+                        "web or the step larger than the fillet radius")

@@ -19,7 +19,9 @@ the pin (journal) whose centre lies ``r_f - u`` off the web face, so that the ar
 ``u`` into the web: a groove round the pin in the web face.
 
 A counterweight on web 1 fills ``z in [-zp - t, -zp - t + thickness]`` (flush with the
-web's outer face), on web 2 ``z in [zp + t - thickness, zp + t]``.
+web's outer face), on web 2 ``z in [zp + t - thickness, zp + t]``.  Its ``fillet_radius``
+rounds the concave edges where the sector's faces meet the web's (a sharp edge there is
+a stress singularity: the elastic stress grows without bound as the mesh is refined).
 """
 
 from __future__ import annotations
@@ -64,6 +66,7 @@ class CounterweightSpec:
     angle: float  # rad, included angle
     thickness: float  # m, axial (b)
     bolted: BoltedJoint | None = None
+    fillet_radius: float | None = None  # m, transition radius to the web; None: a sharp edge
 
 
 @dataclass(frozen=True)

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 from fe_crank.errors import GeometryError
 from fe_crank.geometry.checks import check_geometry
+from fe_crank.geometry.cw_fillet import fill_tools, fillet_faces, junction_edges
 from fe_crank.geometry.spec import CounterweightSpec, CrankGeometry, ThrowSpec
 from fe_crank.geometry.surfaces import classify_surfaces
 
@@ -166,6 +167,7 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
     fillets = []
     radii = []
     undercuts = []
+    circles = set()
     # (radius, undercut, (cx, cy, z of the web face, cylinder radius), direction from the face into the pin/journal)
     for rf, u, (cx, cy, z, r), side in (
         (g.crankpin_fillet, g.crankpin_undercut, (0.0, R, -zp, rp), +1.0),
@@ -179,10 +181,17 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
             undercuts.append((rf, u, cx, cy, z, r, side))
             continue
         edges = _edges_on_circle(gmsh, cx, cy, z, r, tol)
+        circles.update(edges)
         if not edges:
             raise GeometryError(f"no edge found where the fillet of {rf * 1e3:g} mm should go (z = {z * 1e3:g} mm)", file=g.file or None)
         fillets += edges
         radii += [rf] * len(edges)
+    # counterweight-to-web transition fillets (cw_fillet.py): every other concave edge
+    for _, _, cx, cy, z, r, _ in undercuts:
+        circles.update(_edges_on_circle(gmsh, cx, cy, z, r, tol))
+    cw_edges = junction_edges(gmsh, solid, cws, circles, 1e-3 * min(g.web_thickness, R))
+    fillets += [e for e, _ in cw_edges]
+    radii += [rc for _, rc in cw_edges]
     if fillets:
         try:
             out = occ.fillet([solid], fillets, radii, removeVolume=True)
@@ -225,11 +234,13 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
         occ.addBox(-_BIG, -_BIG, -zp, 2 * _BIG, 2 * _BIG, 2 * zp),  # pin slab
         occ.addBox(-_BIG, -_BIG, zp, 2 * _BIG, 2 * _BIG, t),  # web 2 slab
     ]
-    cw_tools = {}
+    cw_tools = []  # (web, tag, is the sector itself)
     for web, cw in cws.items():
         z0 = -zw if web == 1 else zw - cw.thickness
-        cw_tools[web] = _sector_prism(occ, cw, z0)
-    _, out_map = occ.fragment([(3, solid)], [(3, x) for x in tools + list(cw_tools.values())])
+        cw_tools.append((web, _sector_prism(occ, cw, z0), True))
+        if cw.fillet_radius:
+            cw_tools += [(web, tag, False) for tag in fill_tools(occ, g, cw, _web_prism, _sector_prism, _BIG)]
+    _, out_map = occ.fragment([(3, solid)], [(3, x) for x in tools + [tag for _, tag, _ in cw_tools]])
     occ.synchronize()
     keep = {tag for dim, tag in out_map[0] if dim == 3}
     drop = [(3, tag) for dim, tag in gmsh.model.getEntities(3) if tag not in keep]
@@ -239,7 +250,12 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
     volumes: dict[str, list[int]] = {k: [] for k in ("journal_1", "web_1", "crankpin", "web_2", "journal_2")}
     for cwweb in sorted(cws):
         volumes[f"counterweight_{cwweb}"] = []
-    cw_pieces = {web: {tag for dim, tag in out_map[1 + len(tools) + i] if dim == 3} & keep for i, web in enumerate(cw_tools)}
+    cw_pieces = {web: set() for web in cws}
+    sector_pieces = set()
+    for i, (web, _, sector) in enumerate(cw_tools):
+        got = {tag for dim, tag in out_map[1 + len(tools) + i] if dim == 3} & keep
+        cw_pieces[web] |= got
+        sector_pieces |= got if sector else set()
     for tag in sorted(keep):
         in_cw = [web for web, s in cw_pieces.items() if tag in s]
         if in_cw:
@@ -260,6 +276,13 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
     if 2 in cut:  # only the front half (z <= 0) was built
         volumes = {k: v for k, v in volumes.items() if not (k.endswith("_2") and not v)}
     surfaces = classify_surfaces(gmsh, g, keep, tol, cut=cut)
+    for web in sorted(cws):
+        if cws[web].fillet_radius and not (2 in cut and web == 2):   # web 2 is the mirror image of web 1
+            faces = fillet_faces(gmsh, cw_pieces[web] - sector_pieces, keep)
+            if not faces:
+                raise GeometryError(f"the counterweight fillet on web {web} left no surface", file=g.file or None,
+                                    key="counterweight.fillet_radius")
+            surfaces[f"counterweight_fillet_{web}"] = faces
     for name, tags in volumes.items():
         if not tags:
             raise GeometryError(f"building the throw left no volume for {name!r}", file=g.file or None)

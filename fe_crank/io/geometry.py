@@ -30,6 +30,7 @@
     inner_radius = "32 mm"
     angle = "180 deg"
     thickness = "19 mm"
+    fillet_radius = "5 mm"          # transition radius where the sector meets the web
     webs = [1, 2]
     bolted = { count = 2, diameter = "10 mm", pitch_radius = "50 mm", preload = "25 kN" }
 
@@ -115,6 +116,7 @@ class CounterweightInput(Strict):
     inner_radius: Length
     angle: Angle
     thickness: Length | None = None  # default: the web thickness
+    fillet_radius: Length | None = None  # None: a sharp edge (its stress cannot be assessed)
     webs: list[int] = Field(default_factory=lambda: [1, 2], min_length=1)
     bolted: BoltedInput | None = None
 
@@ -155,7 +157,8 @@ def _counterweights(cw: CounterweightInput | None, web_thickness: float) -> tupl
         bolted = BoltedJoint(b.count, b.diameter, b.pitch_radius, b.preload, b.yield_strength)
     thickness = web_thickness if cw.thickness is None else cw.thickness
     return tuple(
-        CounterweightSpec(web=w, outer_radius=cw.outer_radius, inner_radius=cw.inner_radius, angle=cw.angle, thickness=thickness, bolted=bolted)
+        CounterweightSpec(web=w, outer_radius=cw.outer_radius, inner_radius=cw.inner_radius, angle=cw.angle,
+                          thickness=thickness, bolted=bolted, fillet_radius=cw.fillet_radius)
         for w in cw.webs
     )
 
@@ -202,6 +205,30 @@ def geometry_from_dict(data: dict, file: str | Path = "<geometry>", prefix: str 
     )
     check_geometry(g)
     return g
+
+
+#: criteria (``io.criteria`` quantities) that judge the counterweights' FE stress
+COUNTERWEIGHT_STRESS_QUANTITIES = ("counterweight_stress", "counterweight_overspeed_stress")
+
+
+def require_counterweight_fillets(g: CrankGeometry | None, quantities, file: str | Path) -> None:
+    """Refuse a counterweight stress criterion on a counterweight without ``fillet_radius``.
+
+    A sharp re-entrant edge between counterweight and web is a stress singularity
+    (``fe_crank.geometry.cw_fillet``): its FE stress grows with every mesh refinement, so
+    any figure from it would be optimistic.  ``quantities``: the criteria's quantities."""
+    wanted = sorted(set(quantities) & set(COUNTERWEIGHT_STRESS_QUANTITIES))
+    if g is None or not wanted:
+        return
+    for i, t in enumerate(g.throws):
+        for cw in t.counterweights:
+            if cw.fillet_radius is None:
+                key = f"throws[{i}].counterweight.fillet_radius" if len(g.throws) > 1 else "counterweight.fillet_radius"
+                raise InputError(
+                    f"required by the criterion max_{wanted[0]} of {Path(file).name}: the transition radius "
+                    "between counterweight and web (e.g. fillet_radius = \"5 mm\"); a sharp edge there is a "
+                    "stress singularity whose FE stress grows without bound as the mesh is refined",
+                    file=g.file or str(file), key=key)
 
 
 def load_geometry(path: str | Path) -> CrankGeometry:

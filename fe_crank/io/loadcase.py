@@ -25,6 +25,7 @@ from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.io.base import Strict, input_root, read_toml, validate
 from fe_crank.io.engine import engine_from_reference
+from fe_crank.io.geometry import require_counterweight_fillets
 from fe_crank.io.sections import SECTIONS
 from fe_crank.io.units import Speed
 
@@ -81,6 +82,8 @@ def _load(path: Path) -> model.LoadCase:
     for key, parser in SECTIONS.items():
         if key in data:
             sections[key] = parser(data[key], path, key)
+    if sections.get("criteria") is not None:
+        require_counterweight_fillets(sections.get("geometry"), [lim.quantity for lim in sections["criteria"].limits], path)
     extras = {k: v for k, v in sections.items() if k not in ("geometry", "material", "criteria", "fe", "balance")}
     return model.LoadCase(
         name=head.name,

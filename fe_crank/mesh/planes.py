@@ -6,7 +6,7 @@ Throw frame (``fe_crank.geometry.spec``): ``z`` the crank axis, crankpin centre 
 * ``z = 0`` (axis 2), the mid-plane through the crankpin's centre: journals, webs,
   fillets and undercuts are built from one specification for both sides and the oil bore
   lies in ``z = 0``, so the throw is symmetric exactly when its counterweights are: none,
-  or one on each web with equal outer/inner radius, angle and thickness.  Bolt data are
+  or one on each web with equal outer/inner radius, angle, thickness and transition fillet radius.  Bolt data are
   not part of the solid (they feed the bolt check only) and are ignored.
 * ``x = 0`` (axis 0), the crank plane: the web outline (hull of two circles centred on
   the ``y`` axis), the pin, the journals and the counterweight sectors (centred on ``-y``)
@@ -40,7 +40,8 @@ MESH_PLANES = (2,)
 
 
 def _same_sector(a: CounterweightSpec, b: CounterweightSpec) -> bool:
-    return (a.outer_radius, a.inner_radius, a.angle, a.thickness) == (b.outer_radius, b.inner_radius, b.angle, b.thickness)
+    return ((a.outer_radius, a.inner_radius, a.angle, a.thickness, a.fillet_radius)
+            == (b.outer_radius, b.inner_radius, b.angle, b.thickness, b.fillet_radius))
 
 
 def z_symmetric(spec: ThrowSpec) -> bool:
