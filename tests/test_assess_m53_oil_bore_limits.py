@@ -13,13 +13,7 @@ import pytest
 
 from fe_crank.assess import m53, m53_oil_bore as ob
 
-GEO = m53.M53Geometry(pin_diameter=0.050, journal_diameter=0.060, crank_radius=0.064, web_thickness=0.020,
-                      web_width=0.080, pin_fillet_radius=0.004, journal_fillet_radius=0.004,
-                      bearing_to_web=0.030, pin_length=0.040, oil_bore_diameter=0.006,
-                      oil_bore_angle=math.radians(30.0))
-TH = np.deg2rad(np.arange(720.0))
-PIN = np.column_stack([5e3 * np.sin(TH), 20e3 * np.cos(TH)])
-TQ = 500.0 * np.sin(TH)
+from test_assess_m53_oil_bore import GEO, PIN, TH, TQ  # the same throw and cycle as the hand calculations there
 
 
 def test_nominal_bending_of_a_bored_pin_by_hand():
