@@ -18,9 +18,10 @@ import time
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, ElementTetP2
+from skfem import Basis
 
 from fe_crank.fe.assembly import assemble_stiffness
+from fe_crank.fe.bases import cell_basis
 from fe_crank.fe.determinate import determinate_support
 from fe_crank.fe.stress import elements_of_nodes
 from fe_crank.fe.symmetry import mesh_mirror
@@ -44,7 +45,7 @@ def determinate_system(mesh, youngs_modulus: float, poisson_ratio: float, layout
     """The System of the determinate supports ``layout``: on the symmetry components across
     ``axes`` (the mesh's stated mirror planes) where they verify, else the full model."""
     t0 = time.perf_counter()
-    basis = Basis(mesh, ElementTetP2(), intorder=intorder)
+    basis = cell_basis(mesh, intorder)    # the whole mesh's P2 basis, built once (fe.bases)
     sup = determinate_support(basis, layout)
     if axes:
         system = symmetric_system(basis, sup, youngs_modulus, poisson_ratio, axes, solver, t0)
