@@ -15,7 +15,7 @@ import logging
 import numpy as np
 import pytest
 
-from fe_crank.errors import SolverError
+from fe_crank.errors import InputError, SolverError
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.input import parse_fe
 from fe_crank.fe.supports import rigid_body_modes
@@ -166,6 +166,9 @@ def test_free_releases_every_component():
 def test_symmetry_switch_is_read_from_the_fe_section():
     assert parse_fe({"symmetry": False}, "case.toml").symmetry is False
     assert parse_fe({}, "case.toml").symmetry is True
+    with pytest.raises(InputError) as err:          # a string is refused, not read as a boolean
+        parse_fe({"symmetry": "no"}, "case.toml")
+    assert err.value.key == "fe.symmetry" and "case.toml" in str(err.value)
 
 
 def test_one_shared_analysis_equals_separate_factorisations(monkeypatch):

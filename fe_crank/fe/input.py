@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Literal
 
 import numpy as np
-from pydantic import Field, model_validator
+from pydantic import Field, StrictBool, model_validator
 
 from fe_crank.errors import InputError
 from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
@@ -39,7 +39,7 @@ class FeInput(Strict):
     solver: Literal["auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu"] = "auto"
     pin_half_angle: Angle = Field(default=FeOptions.pin_half_angle, gt=0, le=1.5707963267948966)
     cases: tuple[str, ...] = CASES
-    symmetry: bool = True
+    symmetry: StrictBool = True   # true or false only: a string such as "no" is refused, not read
 
     @model_validator(mode="after")
     def _check(self):
