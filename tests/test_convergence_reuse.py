@@ -26,7 +26,7 @@ from verification_meshes import Steel
 
 pytestmark = pytest.mark.heavy  # two meshes of the shipped throw, three factorisations
 
-FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")
+from fe_crank.fe.convergence import FILLETS  # the four shaft fillets of a throw
 
 
 @pytest.fixture(scope="module")

@@ -18,7 +18,7 @@ from fe_crank.mesh import PRESETS, mesh_throw
 from conftest import ROOT
 from verification_meshes import Steel
 
-FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")
+from fe_crank.fe.convergence import FILLETS  # the four shaft fillets of a throw
 
 
 @pytest.fixture(scope="module")
