@@ -63,7 +63,8 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
                  fe_scf: dict[str, dict[str, float]] | None = None, scf=None,
                  counterweights: tuple[CounterweightData, ...] = (),
                  torque_rear: np.ndarray | None = None,
-                 overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None) -> ThrowAssessment:
+                 overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None,
+                 threads: int = 1) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
     ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
@@ -79,7 +80,8 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
     (omega_os/omega)^2 whole: exact for the inertia part, an over-estimate of the gas
     part (which does not grow with speed), so on the safe side.  A list of such pairs
     (several gas states of the overspeed condition, ``assess.overspeed.overspeed_cycles``)
-    is checked as one longer history: the overspeed result is the worst over all of them."""
+    is checked as one longer history: the overspeed result is the worst over all of them.
+    ``threads``: each group's node blocks on that many threads (``assess_group``)."""
     coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense,
                                torque_mz=unit.torque_mz)
     coeffs_os = None
@@ -96,7 +98,7 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
     groups = tuple(
         assess_group(unit, g, coeffs, np.asarray(theta) if coeffs_os is None else theta_os, material,
                      crank_radius=crank_radius, overspeed=overspeed,
-                     overspeed_coefficients=coeffs_os, diameter=section_diameter(g, dp, dj))
+                     overspeed_coefficients=coeffs_os, diameter=section_diameter(g, dp, dj), threads=threads)
         for g in sorted(unit.groups) if len(unit.groups[g])
     )
     fillets, nominal = (), None

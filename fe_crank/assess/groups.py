@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from fe_crank.assess.superpose import UnitStresses, unit_nodal_stress
+from fe_crank.assess.workers import run_blocks
 from fe_crank.errors import InputError
 from fe_crank.fe.pin_directions import pin_direction
 
@@ -41,9 +42,30 @@ def assessed_groups(units) -> dict[str, np.ndarray]:
     return groups
 
 
-def unit_stresses(units, groups: dict[str, np.ndarray] | None = None) -> UnitStresses:
+def _recover(units, cases: tuple[str, ...], ids: np.ndarray, threads: int) -> np.ndarray:
+    """``unit_nodal_stress(units, cases, ids)``, the cases split into ``threads`` sets."""
+    sets = [s for s in np.array_split(np.arange(len(cases)), max(1, min(int(threads), len(cases)))) if s.size]
+    if len(sets) == 1:
+        return unit_nodal_stress(units, cases, ids)
+    out = np.empty((len(cases), 6, ids.size))
+
+    def one(sel, _scratch):
+        out[sel] = unit_nodal_stress(units, tuple(cases[j] for j in sel), ids)
+
+    run_blocks(one, sets, len(sets))
+    return out
+
+
+def unit_stresses(units, groups: dict[str, np.ndarray] | None = None, *, threads: int = 1) -> UnitStresses:
     """Nodal stresses of every solved unit case at the assessed nodes (FE stage's
-    ``UnitSolutions``).  Stress recovery is linear in u, so these are exact unit fields."""
+    ``UnitSolutions``).  Stress recovery is linear in u, so these are exact unit fields.
+
+    ``threads`` > 1: the unit cases are split into that many sets, each recovered on its
+    own thread (``workers.run_blocks``).  Each case's averages are computed by the same
+    operations on the same operands whichever set it is in (the recovery treats every
+    displacement field on its own), so the result is the one-thread result bit for bit;
+    each thread rebuilds the node gradients of the assessed elements (their cost is
+    spent once more per extra thread)."""
     groups = assessed_groups(units) if groups is None else groups
     if not groups:
         raise InputError("the mesh has none of the assessed groups "
@@ -51,7 +73,7 @@ def unit_stresses(units, groups: dict[str, np.ndarray] | None = None) -> UnitStr
     ids = np.unique(np.concatenate(list(groups.values())))
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
     cases = tuple(c for c in units.cases if c in ("centrifugal", "torque") or pin_direction(c) is not None)
-    stress = unit_nodal_stress(units, cases, ids)   # = stress_at_nodes(u_c)[:, ids], assessed elements only
+    stress = _recover(units, cases, ids, threads)   # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
     return UnitStresses(stress=stress, points=np.asarray(units.points)[:, ids], groups=local, node_ids=ids,
                         cases=cases, torque_mz=mz)

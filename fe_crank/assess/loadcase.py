@@ -19,7 +19,7 @@ def _hook(obj, name, *args):
     return f(*args) if callable(f) else None
 
 
-def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> Assessment:
+def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, threads: int = 1) -> Assessment:
     """Assess one load case.
 
     ``throw_meshes`` and ``unit_solutions`` are dicts keyed alike
@@ -29,7 +29,9 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     counterweights' m r and bolts come from the ``CrankGeometry`` (``adapters.py``) and
     the balance stage's ``BalanceResult.design``; a geometry object may instead offer
     ``m53_geometry(throw) -> M53Geometry`` and ``counterweights(throw) ->
-    tuple[CounterweightData]``.
+    tuple[CounterweightData]``.  ``threads``: the node blocks of every group (and the
+    unit-stress recovery) on that many threads, the same results bit for bit as one
+    (``assess.workers``); the caller says how many cores are this case's.
     """
     lc = loadcase
     material = lc.material
@@ -57,7 +59,7 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
     scf_cache: dict = {}  # SCF mode (UR M53 App. III), solved only for a throw outside the empirical range
     for key, units in unit_solutions.items():
         groups = assessed_groups(units)
-        unit = unit_stresses(units, groups)
+        unit = unit_stresses(units, groups, threads=threads)
         boundary_groups = {g: units_nodes for g, units_nodes in groups.items() if g in ASSESSED_BOUNDARIES}
         notes.extend(f"mesh {key}: {n}" for n in recovery_notes(recovery_ratios(units, boundary_groups, unit=unit)))
         for tname in throws_of(key, dynamics.throws):
@@ -75,7 +77,7 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions) -> As
                 tname, unit, dynamics.theta, tl.pin_force, tl.torque_front, omega=omega, sense=sense,
                 overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,
                 m53_additional=criteria.m53_additional_bending, m53_ke=ke, counterweights=tuple(cws),
-                torque_rear=tl.torque_rear,
+                torque_rear=tl.torque_rear, threads=threads,
                 overspeed_loads=[(c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front)
                                  for c in cycles_os] or None,
                 scf=None if m53g is None else scf_provider(

@@ -18,6 +18,7 @@ from fe_crank.assess.factors import FatigueFactors, factors
 from fe_crank.assess.peak import TIE_RTOL, group_peak, max_over_cycle
 from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
+from fe_crank.assess.workers import run_blocks, scratch_array
 
 #: groups assessed for fatigue with Gough-Pollard need a local axis: these prefixes use
 #: the crankpin axis (x, y) = (0, R); the journal fillets the crank axis (0, 0).
@@ -96,25 +97,18 @@ def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str
     return Extreme(float(values[k]), group, node, pt, ang)
 
 
-def _blocks(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, chunk: int):
-    """Yield (position in ``nodes``, node indices, history planes (6, n_t, k)) in blocks
-    of ``chunk`` nodes (``superpose.iter_planes``)."""
-    pos = 0
-    for idx, planes in iter_planes(unit, coefficients, nodes, chunk):
-        yield pos, idx, planes
-        pos += idx.size
-
-
 def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta: np.ndarray, material, *,
                  crank_radius: float, overspeed: float | None, chunk: int = fatigue.NODE_BLOCK,
                  overspeed_coefficients: np.ndarray | None = None,
-                 diameter: float | None = None) -> GroupResult:
+                 diameter: float | None = None, threads: int = 1) -> GroupResult:
     """Static and fatigue results of one node group.  ``material`` needs yield strength
     for the static part and the fatigue properties for the fatigue part (None skips).
     ``overspeed_coefficients`` (n_angles, n_cases): the unit-case coefficients of the
     cycle at the overspeed (``load_coefficients`` of the overspeed pin force and torque
     at omega_os); required when ``overspeed`` is given.  ``diameter``: the section
-    diameter for the size factor (``factors.factors``; None: its fallback)."""
+    diameter for the size factor (``factors.factors``; None: its fallback).  ``threads``:
+    the node blocks run on that many threads (``workers.run_blocks``: the same results
+    bit for bit as one thread)."""
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
@@ -130,12 +124,15 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     sa_eq = np.zeros(nodes.size)
     sm_eq = np.zeros(nodes.size)
     gp = np.full(nodes.size, np.inf)
-    # every criterion reads the same history, ``chunk`` nodes at a time as its six
-    # component planes (6, n_t, k): cache-resident and contiguous for every pass
-    buf = None
-    for pos, idx, planes in _blocks(unit, coefficients, nodes, chunk):
+
+    def block(pos: int, scratch: dict) -> None:
+        # every criterion reads the same history, ``chunk`` nodes at a time as its six
+        # component planes (6, n_t, k): cache-resident and contiguous for every pass; the
+        # block writes its own slice only (``workers.run_blocks``)
+        idx = nodes[pos:pos + chunk]
         sl = slice(pos, pos + idx.size)
-        buf = buf if buf is not None and buf.shape == planes.shape else np.empty(planes.shape)
+        ((_, planes),) = iter_planes(unit, coefficients, idx, chunk)     # one block
+        buf = scratch_array(scratch, "buf", planes.shape)
         hist = planes.transpose(1, 0, 2)  # (n_t, 6, k) view
         vm_max[sl], vm_arg[sl] = max_over_cycle(von_mises_planes(planes, buf=buf))  # over (n_t, k)
         if do_fatigue:
@@ -148,6 +145,8 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
             t_a, t_m = fatigue.half_range(tau)
             gp[sl] = fatigue.gough_pollard_safety(s_a, s_m, t_a, t_m, k * material.fatigue_limit_bending,
                                                   k * material.fatigue_limit_torsion, material.tensile_strength)
+
+    run_blocks(block, range(0, nodes.size, chunk), threads)
     worst = _extreme(vm_max, nodes, unit, group, worst="max", angles=theta[vm_arg])
     ys = material.yield_strength
     static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf

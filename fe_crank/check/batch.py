@@ -18,7 +18,7 @@ from typing import Callable, Sequence
 
 from fe_crank.check.case import run_case
 from fe_crank.check.discovery import unique_slugs
-from fe_crank.check.options import CheckOptions
+from fe_crank.check.options import CheckOptions, assess_threads
 from fe_crank.check.publish import clean_stale_partials
 from fe_crank.errors import InputError
 from fe_crank.results import STATUS_ERROR, CaseResult
@@ -70,9 +70,16 @@ def run_cases(
             on_result(r)
 
     if scheduler is not None:
+        # a Dask worker may run several cases at once on cores this process cannot see:
+        # one assess thread per case unless the options say otherwise
+        if options.assess_threads is None:
+            options = CheckOptions(**{**asdict(options), "assess_threads": 1})
         _run_dask(paths, slugs, out_dir, options, scheduler, done)
     elif jobs > 1 and len(paths) > 1:
         import multiprocessing
+
+        # the cases' processes share the cores: each case's assess stage takes its share
+        options = CheckOptions(**{**asdict(options), "assess_threads": assess_threads(options, min(jobs, len(paths)))})
         from concurrent.futures import ProcessPoolExecutor, as_completed
 
         ctx = multiprocessing.get_context("spawn")

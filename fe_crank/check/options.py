@@ -30,3 +30,24 @@ class CheckOptions:
     allow_outside_paths: bool = False
     max_elements: int | None = None
     convergence: bool | None = None
+    assess_threads: int | None = None
+
+
+def cores_available() -> int:
+    """The cores this process may run on (its CPU affinity; the CPU count where the
+    platform has no affinity)."""
+    import os
+
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - platforms without sched_getaffinity
+        return max(1, os.cpu_count() or 1)
+
+
+def assess_threads(options: CheckOptions, processes: int = 1) -> int:
+    """Threads of the assess stage of one case: ``options.assess_threads`` when set, else
+    the cores this process may use shared among the ``processes`` cases that run at the
+    same time (``fe-crank check -j N``), at least 1."""
+    if options.assess_threads is not None:
+        return max(1, int(options.assess_threads))
+    return max(1, cores_available() // max(1, int(processes)))

@@ -16,7 +16,7 @@ from typing import Callable
 
 from fe_crank.assess import assess_case
 from fe_crank.balance.analysis import analyse_balance
-from fe_crank.check.options import CheckOptions
+from fe_crank.check.options import CheckOptions, assess_threads
 from fe_crank.dynamics import analyse
 from fe_crank.errors import FeCrankError, InputError
 from fe_crank.fe import convergence, solve_unit_cases
@@ -67,7 +67,7 @@ def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
     out["units"] = run.timed("fe", _fe_stage, lc, out["meshes"])
     if "torsion" in lc.extras:  # torsional vibration (docs/torsion.md): only with a [torsion] section
         out["torsion"] = run.timed("torsion", torsion_stage, lc, out["units"])
-    out["assessment"] = run.timed("assess", _assess_stage, lc, out)
+    out["assessment"] = run.timed("assess", _assess_stage, lc, out, assess_threads(options))
     section = lc.extras.get("mesh") or MeshSection()
     flag = options.convergence if options.convergence is not None else section.convergence
     if convergence.wanted(flag, options.mesh_size or section.size):
@@ -95,11 +95,11 @@ def refuse_non_finite_dynamics(res, file) -> None:
             raise FeCrankError(f"{file}: the dynamics gave a non-finite {what} (NaN or inf); check the engine data")
 
 
-def _assess_stage(lc, out):
+def _assess_stage(lc, out, threads: int = 1):
     """Stresses, safety factors and the load case's criteria (journal torques with the
-    vibratory torque when the torsional stage ran)."""
+    vibratory torque when the torsional stage ran); node blocks on ``threads`` threads."""
     dyn = dynamics_for_assessment(out["dynamics"], out.get("torsion"))
-    return assess_case(lc, dyn, out["balance"], out["meshes"], out["units"])
+    return assess_case(lc, dyn, out["balance"], out["meshes"], out["units"], threads=threads)
 
 
 def _balance_stage(lc):

@@ -1,0 +1,57 @@
+"""Independent blocks of the assessment on a pool of threads.
+
+The per-node criteria of a group (``throw.assess_group``) are computed block by block
+(``fatigue.NODE_BLOCK`` nodes at a time); a block reads only the unit stresses of its
+own nodes and writes only its own slice of the group's per-node arrays, so the blocks
+are independent.  numpy releases the global interpreter lock inside its array kernels
+(ufunc loops, reductions, the BLAS matrix products of the superposition, integer
+indexing of float arrays), so the blocks of one process can run on several cores as
+threads, sharing the unit stresses instead of copying them to other processes.
+
+Each block runs exactly the operations of the serial loop on exactly the same operands
+and writes a slice no other block writes: the results are bit for bit those of one
+thread, whatever the number of threads and the order in which the blocks finish.  Each
+thread keeps its own scratch buffers (``scratch``), so the memory grows by one block's
+buffers per extra thread (a few MB).
+"""
+
+from __future__ import annotations
+
+import threading
+from typing import Callable, Iterable
+
+
+def run_blocks(fn: Callable[[object, dict], None], items: Iterable, threads: int = 1) -> None:
+    """Call ``fn(item, scratch)`` for every item, on ``threads`` threads (1: in this
+    thread, in order).  ``scratch`` is a dict private to the calling thread, kept from
+    one item to the next (reusable buffers).  An exception of any item is raised here,
+    after the items already started have finished."""
+    items = list(items)
+    if threads <= 1 or len(items) <= 1:
+        scratch: dict = {}
+        for it in items:
+            fn(it, scratch)
+        return
+    from concurrent.futures import ThreadPoolExecutor
+
+    local = threading.local()
+
+    def call(it):
+        s = getattr(local, "scratch", None)
+        if s is None:
+            s = local.scratch = {}
+        fn(it, s)
+
+    with ThreadPoolExecutor(max_workers=min(int(threads), len(items)), thread_name_prefix="fe-crank-assess") as ex:
+        for _ in ex.map(call, items):
+            pass
+
+
+def scratch_array(scratch: dict, name: str, shape: tuple, factory=None):
+    """A buffer of ``shape`` from ``scratch`` (made, or remade when the shape changed)."""
+    import numpy as np
+
+    buf = scratch.get(name)
+    if buf is None or buf.shape != tuple(shape):
+        buf = scratch[name] = (factory or np.empty)(shape)
+    return buf
