@@ -16,6 +16,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from fe_crank.assess.counterweight import CounterweightData
@@ -56,12 +57,16 @@ def stress_area(diameter: float) -> float:
 
 
 def counterweights_of(geometry, geometry_throw: str | None, axial_position: float, shaft: str,
-                      balance) -> tuple[CounterweightData, ...]:
+                      balance, *, solids: list | None = None) -> tuple[CounterweightData, ...]:
     """Counterweight data of one throw, grouped by the balance plane they serve.
 
     Counterweights of the throw that are nearest to the same balance counterweight are
     summed (their m r add: both hang on -y); ``required_unbalance`` is that plane's
-    requirement, or None without a balance design.
+    requirement, or None without a balance design.  ``solids``: a list shared by the
+    calls of one load case, of (throw spec without name and angle, mass properties):
+    throws that differ only in name and angle are one solid (``add_throw`` builds a
+    throw in its own frame from the geometry and the throw's counterweights), whose
+    mass properties are then computed once.
     """
     if geometry is None or not hasattr(geometry, "throw"):
         return ()
@@ -70,7 +75,12 @@ def counterweights_of(geometry, geometry_throw: str | None, axial_position: floa
         return ()
     from fe_crank.geometry.mass import mass_properties
 
-    props = mass_properties(geometry, spec)
+    solid = dataclasses.replace(spec, name="", angle=0.0)
+    props = next((p for k, p in (solids or ()) if k == solid), None)
+    if props is None:
+        props = mass_properties(geometry, spec)
+        if solids is not None:
+            solids.append((solid, props))
     design = getattr(balance, "design", None)
     groups: dict[object, list] = {}
     for cw in spec.counterweights:

@@ -57,11 +57,16 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, th
         notes.insert(1, describe_overspeed(lc))
     throws = []
     scf_cache: dict = {}  # SCF mode (UR M53 App. III), solved only for a throw outside the empirical range
+    solved: dict = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
+    solids: list = []  # counterweight mass properties of equal throw solids (adapters.counterweights_of)
     for key, units in unit_solutions.items():
-        groups = assessed_groups(units)
-        unit = unit_stresses(units, groups, threads=threads)
-        boundary_groups = {g: units_nodes for g, units_nodes in groups.items() if g in ASSESSED_BOUNDARIES}
-        notes.extend(f"mesh {key}: {n}" for n in recovery_notes(recovery_ratios(units, boundary_groups, unit=unit)))
+        if id(units) not in solved:
+            groups = assessed_groups(units)
+            unit = unit_stresses(units, groups, threads=threads)
+            boundary_groups = {g: units_nodes for g, units_nodes in groups.items() if g in ASSESSED_BOUNDARIES}
+            solved[id(units)] = unit, recovery_notes(recovery_ratios(units, boundary_groups, unit=unit))
+        unit, recovery = solved[id(units)]
+        notes.extend(f"mesh {key}: {n}" for n in recovery)
         for tname in throws_of(key, dynamics.throws):
             tl = dynamics.throws[tname]
             throw = lc.engine.throw(tname)
@@ -72,7 +77,8 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, th
             cws = _hook(lc.geometry, "counterweights", tname)
             if cws is None:
                 gthrow = getattr(throw_meshes.get(key), "throw", None)
-                cws = counterweights_of(lc.geometry, gthrow, throw.axial_position, throw.shaft, balance)
+                cws = counterweights_of(lc.geometry, gthrow, throw.axial_position, throw.shaft, balance,
+                                        solids=solids)
             throws.append(assess_throw(
                 tname, unit, dynamics.theta, tl.pin_force, tl.torque_front, omega=omega, sense=sense,
                 overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,
