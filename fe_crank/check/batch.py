@@ -77,10 +77,10 @@ def run_cases(
         _run_dask(paths, slugs, out_dir, options, scheduler, done)
     elif jobs > 1 and len(paths) > 1:
         import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor, as_completed
 
         # the cases' processes share the cores: each case's assess stage takes its share
         options = CheckOptions(**{**asdict(options), "assess_threads": assess_threads(options, min(jobs, len(paths)))})
-        from concurrent.futures import ProcessPoolExecutor, as_completed
 
         ctx = multiprocessing.get_context("spawn")
         with ProcessPoolExecutor(max_workers=min(jobs, len(paths)), mp_context=ctx) as pool:
