@@ -47,6 +47,7 @@ _MECHANISM_TESTS = [
 #: tests that design balance shafts (the `fe-crank balance` command, free placement)
 _BALANCE_SHAFT_TESTS = _MECHANISM_TESTS + [
     "tests/test_balance_cli.py", "tests/test_torsion_balance_shafts.py", "tests/test_balance_shafts_design.py",
+    "tests/test_balance_analysis_record.py",
 ]
 
 #: module -> (file to mutate, its fast tests)
