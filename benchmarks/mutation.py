@@ -50,6 +50,13 @@ _BALANCE_SHAFT_TESTS = _MECHANISM_TESTS + [
     "tests/test_balance_analysis_record.py",
 ]
 
+#: the torsional-vibration physics: closed forms of the free and forced chain, Carter's
+#: stiffness, the harmonics of the cylinder torques, and the stage on the shipped case
+_TORSION_TESTS = [
+    "tests/test_torsion_free.py", "tests/test_torsion_forced.py", "tests/test_torsion_excitation.py",
+    "tests/test_torsion_stiffness.py", "tests/test_torsion_analysis.py",
+]
+
 #: module -> (file to mutate, its fast tests)
 MODULES: dict[str, tuple[str, list[str]]] = {
     "kinematics": ("fe_crank/kinematics.py", _MECHANISM_TESTS),
@@ -66,6 +73,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "balance.mechanism": ("fe_crank/balance/mechanism.py", _MECHANISM_TESTS),
     "balance.analysis": ("fe_crank/balance/analysis.py", _BALANCE_SHAFT_TESTS),
     "balance.shafts": ("fe_crank/balance/shafts.py", _BALANCE_SHAFT_TESTS),
+    "torsion.model": ("fe_crank/torsion/model.py", _TORSION_TESTS),
+    "torsion.free": ("fe_crank/torsion/free.py", _TORSION_TESTS),
+    "torsion.forced": ("fe_crank/torsion/forced.py", _TORSION_TESTS),
+    "torsion.stiffness": ("fe_crank/torsion/stiffness.py", _TORSION_TESTS),
+    "torsion.excitation": ("fe_crank/torsion/excitation.py", _TORSION_TESTS),
     "assess.m53": ("fe_crank/assess/m53.py",
                    ["tests/test_assess_m53.py", "tests/test_assess_m53_oil_bore.py", "tests/test_assess_adapters.py",
                     "tests/test_assess_m53_bores.py", "tests/test_assess_m53_sections.py"]),

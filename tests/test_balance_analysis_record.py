@@ -250,3 +250,18 @@ def test_placement_refusal_keeps_its_reason_and_names_the_request():
         analyse_balance(_engine(), W, _settings(shafts=shafts))
     assert err.value.key == "balance.shafts[1].positions"
     assert err.value.reason == ("the order-1 force needs 1 shaft(s) (force1_minus); give one position each")
+
+
+def test_first_order_rows_of_counterweights_and_yoke_are_always_listed(res):
+    """Asked for order 2 only, the table still lists the first order of the sources that
+    have one by construction: the counterweights (29000 N, above) and, on the Nordberg
+    radial engine of seed 000 (example 16's yoke), the synchronising yoke."""
+    from fe_crank.balance import free_forces
+
+    from _balance_helpers import engine
+
+    keys = [(r["source"], r["order"]) for r in forces_table(res.residual, orders=(2.0,))]
+    assert ("counterweights", 1.0) in keys and ("rotating", 1.0) in keys
+    yoke = [r for r in forces_table(free_forces(engine("nordberg_radial.toml"), W), orders=(2.0,))
+            if r["source"] == "yoke"]
+    assert [r["order"] for r in yoke][0] == 1.0 and yoke[0]["force_max"] > 0.0

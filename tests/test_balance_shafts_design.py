@@ -227,6 +227,17 @@ def test_the_part_threshold_is_relative_to_the_target():
     assert [s.name for s in d.shafts] == ["force1_minus"]
 
 
+def test_a_part_of_exactly_the_threshold_is_round_off():
+    """P = 1 N, Q = 1.000000000001e-12 i N: in floating point 1e-12 * (|P| + |Q|) equals |Q|
+    exactly (checked below), and a part at the threshold counts as round-off: one shaft.
+    The coefficients are exact: F_x = |Q| cos + sin, F_y = cos + |Q| sin (record force
+    scale 1e-6 N, so that the record's own round-off clearing leaves them)."""
+    q = 1.000000000001e-12
+    assert 1e-12 * (1.0 + q) == q
+    d = balance_shafts(record(force_term(1, 1.0 + 0j, q * 1j), scale=1e-6), "force", 1)
+    assert [s.name for s in d.shafts] == ["force1_plus"]
+
+
 def test_shaft_terms_cancel_only_the_selected_sources():
     """Target the reciprocating source only: the rotating 700 N of the same order stays in
     the residual; only the 300 N line is cancelled."""
