@@ -54,7 +54,7 @@ _BALANCE_SHAFT_TESTS = _MECHANISM_TESTS + [
 #: stiffness, the harmonics of the cylinder torques, and the stage on the shipped case
 _TORSION_TESTS = [
     "tests/test_torsion_free.py", "tests/test_torsion_forced.py", "tests/test_torsion_excitation.py",
-    "tests/test_torsion_stiffness.py", "tests/test_torsion_analysis.py",
+    "tests/test_torsion_stiffness.py", "tests/test_torsion_analysis.py", "tests/test_torsion_holzer_table.py",
 ]
 
 #: module -> (file to mutate, its fast tests)
