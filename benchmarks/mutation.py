@@ -40,7 +40,21 @@ _MECHANISM_TESTS = [
     "tests/test_balance_inputs.py", "tests/test_balance_forces_terms.py",
     "tests/test_balance_roundoff.py", "tests/test_balance_counterweight_planes.py",
     "tests/test_balance_yoke_terms.py", "tests/test_dynamics_excess_work.py", "tests/test_balance_sector_limits.py",
-    "tests/test_kinetostatics_reactions.py",
+    "tests/test_kinetostatics_reactions.py", "tests/test_balance_mechanism_exact.py",
+]
+
+#: the balance stage's whole call and its balance shafts: the mechanism selection plus the
+#: tests that design balance shafts (the `fe-crank balance` command, free placement)
+_BALANCE_SHAFT_TESTS = _MECHANISM_TESTS + [
+    "tests/test_balance_cli.py", "tests/test_torsion_balance_shafts.py", "tests/test_balance_shafts_design.py",
+    "tests/test_balance_analysis_record.py",
+]
+
+#: the torsional-vibration physics: closed forms of the free and forced chain, Carter's
+#: stiffness, the harmonics of the cylinder torques, and the stage on the shipped case
+_TORSION_TESTS = [
+    "tests/test_torsion_free.py", "tests/test_torsion_forced.py", "tests/test_torsion_excitation.py",
+    "tests/test_torsion_stiffness.py", "tests/test_torsion_analysis.py", "tests/test_torsion_holzer_table.py",
 ]
 
 #: module -> (file to mutate, its fast tests)
@@ -56,6 +70,14 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "balance.nordberg": ("fe_crank/balance/nordberg.py", _MECHANISM_TESTS),
     "balance.sector": ("fe_crank/balance/sector.py", _MECHANISM_TESTS),
     "balance.terms": ("fe_crank/balance/terms.py", _MECHANISM_TESTS),
+    "balance.mechanism": ("fe_crank/balance/mechanism.py", _MECHANISM_TESTS),
+    "balance.analysis": ("fe_crank/balance/analysis.py", _BALANCE_SHAFT_TESTS),
+    "balance.shafts": ("fe_crank/balance/shafts.py", _BALANCE_SHAFT_TESTS),
+    "torsion.model": ("fe_crank/torsion/model.py", _TORSION_TESTS),
+    "torsion.free": ("fe_crank/torsion/free.py", _TORSION_TESTS),
+    "torsion.forced": ("fe_crank/torsion/forced.py", _TORSION_TESTS),
+    "torsion.stiffness": ("fe_crank/torsion/stiffness.py", _TORSION_TESTS),
+    "torsion.excitation": ("fe_crank/torsion/excitation.py", _TORSION_TESTS),
     "assess.m53": ("fe_crank/assess/m53.py",
                    ["tests/test_assess_m53.py", "tests/test_assess_m53_oil_bore.py", "tests/test_assess_adapters.py",
                     "tests/test_assess_m53_bores.py", "tests/test_assess_m53_sections.py"]),
