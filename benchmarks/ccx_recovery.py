@@ -61,10 +61,16 @@ def gauss_points() -> np.ndarray:
 def calculix_nodal_stress(units, displacements, nodes) -> np.ndarray:
     """(k, 6, len(nodes)) nodal stresses by CalculiX's C3D10 recovery (module docstring)
     of the displacement fields ``displacements`` of the FE stage's ``units``."""
-    basis = units.system.basis
-    mesh, dofs, mat = units.mesh, basis.dofs, units.material
+    mat = units.material
+    return calculix_recovery(units.mesh, units.system.basis.dofs, mat.youngs_modulus, mat.poisson_ratio,
+                             displacements, nodes)
+
+
+def calculix_recovery(mesh, dofs, youngs_modulus: float, poisson_ratio: float, displacements, nodes) -> np.ndarray:
+    """(k, 6, len(nodes)) CalculiX's C3D10 nodal stresses (module docstring) of interleaved
+    P2 displacement vectors on ``mesh`` (a ``MeshTet2``; ``dofs`` its scalar P2 ``Dofs``)."""
     nodes = np.asarray(nodes, dtype=np.int64)
-    n_all = dofs.element_dofs.max() + 1
+    n_all = int(dofs.element_dofs.max()) + 1
     els = elements_of_nodes(dofs.element_dofs, nodes, n_all)
     gb = Basis(mesh, ElementTetP2(), quadrature=(gauss_points(), np.full(4, 1.0 / 24.0)), elements=els, dofs=dofs)
     ed = dofs.element_dofs[:, els]                            # (10, ne)
@@ -75,7 +81,7 @@ def calculix_nodal_stress(units, displacements, nodes) -> np.ndarray:
     count = np.bincount(loc[keep], minlength=nodes.size)
     out = np.zeros((len(displacements), 6, nodes.size))
     for j, u in enumerate(displacements):
-        v = stress_at_quadrature(gb, np.asarray(u, float), mat.youngs_modulus, mat.poisson_ratio)  # (6, ne, 4)
+        v = stress_at_quadrature(gb, np.asarray(u, float), youngs_modulus, poisson_ratio)   # (6, ne, 4)
         corners = (v - GAUSS_B * v.sum(axis=2, keepdims=True)) / (GAUSS_A - GAUSS_B)
         mids = 0.5 * (corners[:, :, EDGES[:, 0]] + corners[:, :, EDGES[:, 1]])
         el = np.concatenate([corners, mids], axis=2).transpose(0, 2, 1)   # (6, 10, ne)
