@@ -177,6 +177,7 @@ def compare(work: Path, which: str, ccx: str | None, threads: int, loadcase: str
 
     fe = np.load(work / f"fe_{which}.npz")
     info = json.loads((work / f"fe_{which}.json").read_text())
+    groups = {g: np.asarray(p) for g, p in info.pop("groups").items()}
     out = {"cases": len(fe["cases"]), "fe_crank": info, "ccx_run": ccx is not None}
     if ccx is None:
         return out
@@ -192,7 +193,6 @@ def compare(work: Path, which: str, ccx: str | None, threads: int, loadcase: str
     top = vf.max(axis=1, keepdims=True)
     straight = fe["curvature"] <= 1e-9
     flags = {f: fe[f] for f in PLACE_FLAGS + ("curvature",)}
-    groups = {g: np.asarray(p) for g, p in info.pop("groups").items()}
     out.update({
         "ccx": {"wall_s": wall, "cpu_s": cpu, "peak_gb": peak},
         "ratio_time": wall / info["fe_total_s"], "ratio_cpu": cpu / info["fe_cpu_s"],

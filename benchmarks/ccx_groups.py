@@ -28,7 +28,7 @@ PLACE_FLAGS = ("plane", "point", "near_point", "edge")
 def place_of(flags: dict, k: int) -> str:
     """Words for node position k: on the mirror plane, at / next to a point constraint, on
     a group's edge, and the curvature of its elements."""
-    words = [w for f, w in (("plane", "z = 0 plane"), ("point", "point constraint"),
+    words = [w for f, w in (("plane", "mirror plane"), ("point", "point constraint"),
                             ("near_point", "next to a point constraint"), ("edge", "group edge")) if flags[f][k]]
     c = float(flags["curvature"][k])
     words.append(f"curved elements ({100 * c:.1f} %)" if c > 1e-9 else "straight elements")
