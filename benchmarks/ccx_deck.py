@@ -35,6 +35,36 @@ import numpy as np
 _SWAP = np.array([1, 0, 2, 3, 4, 6, 5, 8, 7, 9])
 
 
+def unit_loads(units) -> dict[str, np.ndarray]:
+    """The load vectors of the solved unit cases, rebuilt as the FE stage builds them and
+    checked against its solutions (a mismatch stops the benchmark).  With the statically
+    determinate support model the FE stage's ``System.solve`` adds to each load its
+    distributed reactions (``System.determinate``), held by six point constraints only:
+    CalculiX gets the same self-equilibrated nodal loads."""
+    from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
+    from fe_crank.fe.pin_directions import unit_force
+
+    basis, opt = units.system.basis, units.options
+    surf, loads = None, {}
+    for name in units.cases:
+        if name == "centrifugal":
+            loads[name] = centrifugal_load(basis, units.material.density, 1.0)
+        elif name == "torque":
+            loads[name] = face_torque_load(basis, -1.0, boundary=opt.torque_face)
+        else:
+            surf = surf or pin_surface(basis, opt.pin_boundary, opt.pin_centre)
+            loads[name] = pin_pressure_load(basis, unit_force(name), half_angle=opt.pin_half_angle, surface=surf)[0]
+    sup = getattr(units.system, "determinate", None)
+    if sup is not None:
+        loads = {name: sup.self_equilibrated(f)[0] for name, f in loads.items()}
+    for name, f in loads.items():
+        u = units.system.solve(f)
+        ref = units.cases[name].displacement
+        if np.abs(u - ref).max() > 1e-8 * np.abs(ref).max():
+            raise SystemExit(f"benchmark: the rebuilt load of {name} is not the one the FE stage solved")
+    return loads
+
+
 def c3d10_connectivity(element_dofs: np.ndarray, points: np.ndarray) -> np.ndarray:
     """(ne, 10) 1-based C3D10 connectivity with positive volume."""
     t = np.asarray(element_dofs).T.copy()                      # (ne, 10)
@@ -111,6 +141,24 @@ def write_deck(path: Path, units, loads: dict[str, np.ndarray], output_nodes: np
                 "*NODE PRINT, NSET=NOUT", "U", "*NODE FILE, NSET=NOUT", "S", "*END STEP"]
     path.write_text("\n".join(out) + "\n")
     return path
+
+
+def plane_nodes(element_dofs: np.ndarray, points: np.ndarray, axes) -> dict[str, int]:
+    """How the deck's nodes on the mirror planes ``axes`` (coordinate exactly 0) join the two
+    halves: nodes on a plane, those used by elements of both sides (each element placed
+    by its centroid), and coincident nodes anywhere (0 for one connected model)."""
+    p = np.asarray(points)
+    t = np.asarray(element_dofs)
+    out = {"duplicate_coordinates": int(p.shape[1] - np.unique(p.T, axis=0).shape[0])}
+    for ax in axes:
+        on = np.flatnonzero(p[ax] == 0.0)
+        side = p[ax][t[:4]].mean(axis=0)
+        lo, hi = np.zeros(p.shape[1], bool), np.zeros(p.shape[1], bool)
+        lo[t[:, side < 0].ravel()] = True
+        hi[t[:, side > 0].ravel()] = True
+        out[f"plane_{ax}_nodes"] = int(on.size)
+        out[f"plane_{ax}_nodes_in_both_halves"] = int((lo[on] & hi[on]).sum())
+    return out
 
 
 def _chunks(ids, per: int = 16) -> str:
