@@ -143,3 +143,16 @@ def test_stress_history_at_selected_nodes_and_in_chunks():
     # one angle as a 1-D row of coefficients
     (idx, p), = iter_planes(unit, co[1], np.array([1]))
     assert p.shape == (6, 1, 1) and p[0, 0, 0] == 3 * 201.0
+
+
+def test_integer_tables_combine_to_float_stresses():
+    """Whole-number unit stresses and coefficients (as a hand-written table gives them)
+    combine to float arrays with the hand values: node 0, xx: 2 x 0 + 3 x 100 + 1 x 200 = 500;
+    the per-component planes are float too (written into a float array)."""
+    stress = (100 * np.arange(3)[:, None, None] + np.zeros((3, 6, 2), dtype=int)).astype(int)
+    unit = UnitStresses(stress=stress, points=np.zeros((3, 2)), cases=("a", "b", "c"))
+    co = np.array([[2, 3, 1]])
+    s = combine(unit.stress, co)
+    assert s.dtype == float and s[0, 0, 0] == 500.0
+    (idx, planes), = iter_planes(unit, co, np.arange(2))
+    assert planes.dtype == float and planes[0, 0, 0] == 500.0
