@@ -66,6 +66,10 @@ def test_to_matrix_places_each_component():
     # (xx, yy, zz, xy, yz, xz) = (1, 2, 3, 4, 5, 6)
     np.testing.assert_array_equal(m[0, 0], [[1, 4, 6], [4, 2, 5], [6, 5, 3]])
     np.testing.assert_array_equal(m[1, 1], -10 * np.array([[1, 4, 6], [4, 2, 5], [6, 5, 3]]))
+    # two leading axes (cycles x angles): (2, 2, 6, 2) -> (2, 2, 2 nodes, 3, 3)
+    m4 = to_matrix(np.stack([np.stack([s, -s]), np.stack([2 * s, 3 * s])]))
+    assert m4.shape == (2, 2, 2, 3, 3)
+    np.testing.assert_array_equal(m4[1, 1, 1], 30 * np.array([[1, 4, 6], [4, 2, 5], [6, 5, 3]]))
 
 
 def test_principal_stresses_by_hand_in_the_stacked_layout():
