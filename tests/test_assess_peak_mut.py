@@ -130,3 +130,43 @@ def test_a_node_whose_bound_equals_the_peak_found_is_evaluated():
     np.testing.assert_array_equal(pos, [0, 1])
     np.testing.assert_array_equal(peak, [20.0, 20.0])
     np.testing.assert_array_equal(arg, [0, 0])
+
+
+def test_max_over_cycle_of_a_zero_maximum_after_negative_values():
+    """A column whose maximum is exactly 0, first reached at t = 1 (band of width 0):
+    the first index is 1, not 0."""
+    e, first = max_over_cycle(np.array([[-1.0], [0.0], [0.0]]))
+    assert e[0] == 0.0 and first[0] == 1
+
+
+def test_a_node_whose_peak_lies_on_the_edge_of_the_tie_band_is_evaluated():
+    """Node 1 peaks at 60 Pa; node 0 exactly at the band's edge, 60 - 1e-9 x 60 (a tie:
+    the band is closed).  Its bound, widened by 1e-12 for rounding, reaches the band, so it
+    is evaluated and, being the first node of the band, is the group's extreme.  (The
+    peak of a uniaxial state is exact: sqrt(fl(x^2)) = |x| in IEEE arithmetic.)"""
+    edge = 60.0 - TIE_RTOL * 60.0
+    unit = _unit([edge, 60.0])
+    pos, peak, _ = group_peak(unit, np.array([[1.0]]), np.arange(2), block=1)
+    np.testing.assert_array_equal(pos, [0, 1])
+    assert peak[0] == edge and peak[0] >= peak.max() - TIE_RTOL * peak.max()
+
+
+def test_a_node_with_a_non_finite_stress_is_never_pruned():
+    """A NaN unit stress (a failed recovery) at node 0: the bound is not finite, so the
+    nodes are taken in their own order and node 0 is evaluated (its NaN peak reaches the
+    group's extreme and fails the check) -- the pruning must not drop it behind the
+    finite bounds.  Node 1 (20 Pa) is evaluated next, node 2 (10 Pa) is below the band."""
+    unit = _unit([np.nan, 10.0, 5.0])
+    pos, peak, _ = group_peak(unit, np.array([[1.0], [-2.0]]), np.arange(3), block=1)
+    np.testing.assert_array_equal(pos, [0, 1])
+    assert np.isnan(peak[0]) and peak[1] == 20.0
+
+
+def test_blocks_larger_than_the_history_default():
+    """Blocks of 200 nodes (more than ``iter_planes``' default of 128): 200 equal nodes
+    are one block and every one gets its peak."""
+    unit = _unit([3.0] * 200)
+    pos, peak, arg = group_peak(unit, np.array([[1.0], [-2.0]]), np.arange(200), block=200)
+    np.testing.assert_array_equal(pos, np.arange(200))
+    np.testing.assert_array_equal(peak, np.full(200, 6.0))
+    np.testing.assert_array_equal(arg, np.ones(200, int))
