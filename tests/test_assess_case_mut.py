@@ -224,3 +224,117 @@ def test_m53_and_counterweight_criteria_take_the_worst_over_throws():
     # 360 N on 20 kN (throw 1) and on 40 kN (throw 2): 0.018 in throw 1
     assert out["bolt_utilisation"].value == pytest.approx(0.018, rel=1e-12)
     assert out["bolt_utilisation"].location == "throw 1, counterweight_1"
+
+
+def test_torque_sense_and_unit_moment_reach_both_cycles():
+    """A torque unit case that also gives sigma_xx (2 Pa per N m) adds to the pin case's
+    1 Pa per N: at angle 0, F = 1000 N, T = 100 N m.  Unit moment M_z = -2 N m:
+    coefficient -sense T / M_z = T / 2 = 50 (sense +1) -> 1000 + 100 = 1100 Pa;
+    sense -1 -> -50 -> 900 Pa.  The same in the overspeed cycle given as loads (x 1)."""
+    s = np.zeros((4, 6, 1))
+    s[2, 0], s[3, 0] = 1.0, 2.0
+    unit = UnitStresses(stress=s, points=np.zeros((3, 1)), groups={"counterweight_1": np.array([0])},
+                        cases=CASES, torque_mz=-2.0)
+    torque = np.array([100.0, 0.0, 0.0, 0.0])
+    for sense, expected in ((1, 1100.0), (-1, 900.0)):
+        t = assess_throw("1", unit, THETA, PIN, torque, omega=1.0, sense=sense, overspeed=1.0, material=MAT,
+                         crank_radius=0.05, overspeed_loads=(PIN, torque))
+        g = _vm(t, "counterweight_1")
+        assert g.max_von_mises.value == pytest.approx(expected, rel=1e-12)
+        assert g.max_von_mises_overspeed.value == pytest.approx(expected, rel=1e-12)
+
+
+def test_overspeed_scaling_below_one_radian_per_second():
+    """omega = 0.5 rad/s, omega_os = 1 rad/s: the loads x (1 / 0.5)^2 = 4: 4000 Pa plus the
+    body force 0.01 x 1 = 0.01 Pa at angle 0 (the factor 1 is only for omega = 0)."""
+    unit = _unit({"counterweight_1": [0]})
+    t = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=0.5, overspeed=1.0, material=MAT, crank_radius=0.05)
+    assert _vm(t, "counterweight_1").max_von_mises_overspeed.value == pytest.approx(4000.01, rel=1e-12)
+
+
+def test_each_fillet_gets_the_size_factor_of_its_own_section():
+    """With the UR M53 geometry given, the crankpin fillets take the pin diameter (0.1 m)
+    and the journal fillets the journal diameter (0.12 m) for the size factor."""
+    from fe_crank.assess.factors import factors
+
+    unit = _unit({"crankpin_fillet_1": [0], "journal_fillet_1": [0]}, points=np.array([[0.01], [0.05], [0.0]]))
+    pin = np.column_stack([np.zeros(4), [20e3, -5e3, 8e3, -5e3]])
+    t = assess_throw("1", unit, THETA, pin, np.zeros(4), omega=100.0, overspeed=None, material=MAT,
+                     crank_radius=0.09, m53_geometry=INSIDE)
+    assert factors(MAT, 0.1) != factors(MAT, 0.12)
+    assert _vm(t, "crankpin_fillet_1").fatigue_factors == factors(MAT, 0.1)
+    assert _vm(t, "journal_fillet_1").fatigue_factors == factors(MAT, 0.12)
+
+
+def _scf_result():
+    from fe_crank.assess.scf import ScfResult
+
+    # hand-chosen FE SCFs and mesh checks (principal criterion 1 %, averaging 2 %)
+    return ScfResult(fe={"alpha_B": 2.5, "alpha_T": 1.9, "beta_B": 3.1, "beta_Q": 1.2, "beta_T": 1.7, "beta_BQ": 3.0},
+                     empirical={}, out_of_range={},
+                     quality={"journal": {"principal_ratio": 0.01, "averaging": 0.02, "mesh_ok": True}},
+                     element_size={}, stresses=None)
+
+
+def test_fe_scfs_out_of_range_from_the_given_factors_or_the_scf_mode():
+    """Journal fillet radius 2 mm (r/D = 0.017, below UR M53's 0.03): the journal fillet
+    takes the FE SCFs, the pin fillet (in range) its empirical ones.  Given as ``fe_scf``
+    they are used as given; from ``scf`` (the SCF mode) the journal's record names the
+    mode's verdict and why: "<summary>; outside the UR M53 validity range: r = 0.02 not in
+    [0.03, 0.13]"."""
+    geo = dataclasses.replace(INSIDE, journal_fillet_radius=0.002)
+    unit = _unit({"counterweight_1": [0]})
+    pin = np.column_stack([np.zeros(4), [20e3, -5e3, 8e3, -5e3]])
+    result = _scf_result()
+    fe_scf = result.for_assessment()
+    nominal = m53.nominal_stresses(geo, pin[:, 1], np.zeros(4))
+    ref = [m53.assess_fillet(geo, nominal, f, tensile=MAT.tensile_strength, k=MAT.m53_k, fe_scf=fe_scf[f])
+           for f in ("pin", "journal")]
+    assert ref[0].out_of_range == () and ref[1].out_of_range == ("r = 0.02 not in [0.03, 0.13]",)
+    kw = dict(omega=100.0, overspeed=None, material=MAT, crank_radius=0.09, m53_geometry=geo)
+    given = assess_throw("1", unit, THETA, pin, np.zeros(4), fe_scf=fe_scf, **kw)
+    assert list(given.m53) == ref
+    mode = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result, **kw)
+    summary = ("FE, UR M53 App. III SCF mode (mesh accepted: principal criterion max 1.0 % (< 3 %); "
+               "averaging max 2.0 % (< 5 %))")
+    assert result.summary() == summary
+    assert mode.m53[0] == ref[0]
+    assert mode.m53[1] == dataclasses.replace(
+        ref[1], scf_source=summary + "; outside the UR M53 validity range: r = 0.02 not in [0.03, 0.13]")
+    # two reasons are joined by "; "
+    geo2 = dataclasses.replace(geo, web_thickness=0.015)
+    two = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result, **dict(kw, m53_geometry=geo2))
+    assert two.m53[1].scf_source == (summary + "; outside the UR M53 validity range: "
+                                     "w = 0.15 not in [0.2, 0.8]; r = 0.02 not in [0.03, 0.13]")
+
+
+def test_counterweight_bolt_load_at_the_speed_without_an_overspeed():
+    """No overspeed: the bolt load at omega = 100 rad/s: 0.025 x 100^2 = 250 N on 20 kN."""
+    unit = _unit({"counterweight_1": [0]})
+    cw = CounterweightData("counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026,
+                           bolted=True, bolt_capacity=20e3)
+    t = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=None, material=MAT,
+                     crank_radius=0.05, counterweights=(cw,))
+    assert t.counterweights[0].bolt_utilisation == pytest.approx(250.0 / 20e3, rel=1e-12)
+
+
+def test_ties_go_to_the_first_throw_and_locations_are_in_millimetres():
+    """Two identical throws: every worst value ties, and the first throw is named.  The
+    node at (0.25, -0.125, 1.5) m is printed as (250.0, -125.0, 1500.0) mm.  Criteria
+    without a unit (safeties) carry none; an error without a file names none."""
+    pts = np.array([[0.25], [-0.125], [1.5]])
+    unit = _unit({"counterweight_1": [0]}, points=pts)
+    kw = dict(omega=100.0, overspeed=120.0, material=MAT, crank_radius=0.05)
+    a = assess_throw("A", unit, THETA, PIN, np.zeros(4), **kw)
+    b = assess_throw("B", unit, THETA, PIN, np.zeros(4), **kw)
+    crit = build_criteria({"min_static_safety": 1.5, "max_counterweight_stress": "1 MPa"}, "c.toml")
+    out = evaluate_criteria(crit, (a, b), file="c.toml", overspeed=120.0)
+    assert out[0].location == "throw A, counterweight_1, node 100 at (250.0, -125.0, 1500.0) mm, 0 deg"
+    assert out[1].location == out[0].location
+    assert out[0].unit == "" and out[1].unit == "Pa"
+    with pytest.raises(InputError) as e:
+        evaluate_criteria(build_criteria({"min_m53_acceptability": 1.15}, "c.toml"), (a,))
+    assert e.value.file == "" and str(e.value).startswith("criteria.min_m53_acceptability: cannot be evaluated")
+    with pytest.raises(InputError) as e:
+        evaluate_criteria(build_criteria({"min_m53_acceptability": 1.15}, "c.toml"), (a,), file="c.toml")
+    assert e.value.file == "c.toml"
