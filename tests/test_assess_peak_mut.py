@@ -170,3 +170,15 @@ def test_blocks_larger_than_the_history_default():
     np.testing.assert_array_equal(pos, np.arange(200))
     np.testing.assert_array_equal(peak, np.full(200, 6.0))
     np.testing.assert_array_equal(arg, np.ones(200, int))
+
+
+def test_nodes_of_equal_bound_are_taken_in_node_order():
+    """41 nodes: 100 Pa at node 0, 80 Pa at nodes 5, 17 and 30, 50 Pa elsewhere; blocks of
+    three.  The first block holds node 0 and the first two of the tied 80-Pa nodes in node
+    order (5, 17), so the nodes evaluated -- and the work done -- do not depend on the
+    sorting algorithm (numpy's default quicksort takes 5, 30 for this input)."""
+    values = np.full(41, 50.0)
+    values[0], values[[5, 17, 30]] = 100.0, 80.0
+    pos, peak, _ = group_peak(_unit(values), np.array([[1.0]]), np.arange(41), block=3)
+    np.testing.assert_array_equal(pos, [0, 5, 17])
+    np.testing.assert_array_equal(peak, [100.0, 80.0, 80.0])
