@@ -76,3 +76,15 @@ def test_unknown_gas_mode_is_refused_in_full(tmp_path):
     with pytest.raises(ValueError) as e:
         overspeed_cycles(bad, dyn)
     assert str(e.value) == "overspeed_gas must be one of ('motored', 'as_operating'), not 'full'"
+
+
+def test_an_operating_cycle_of_another_length_is_refused(tmp_path):
+    """The operating dynamics of a two-stroke version of the engine (360 angles over 360
+    deg) against the four-stroke load case: the overspeed cycle on the same step has 720
+    angles, not 360 -- refused rather than paired angle by angle."""
+    lc = _case(tmp_path)
+    two = analyse(replace(lc.engine, strokes=2), lc.operating)
+    assert two.theta.size == 360
+    with pytest.raises(ValueError) as e:
+        overspeed_cycles(lc, two)
+    assert str(e.value) == "overspeed cycle grid differs from the operating one"
