@@ -338,3 +338,17 @@ def test_ties_go_to_the_first_throw_and_locations_are_in_millimetres():
     with pytest.raises(InputError) as e:
         evaluate_criteria(build_criteria({"min_m53_acceptability": 1.15}, "c.toml"), (a,), file="c.toml")
     assert e.value.file == "c.toml"
+
+
+def test_the_scf_mode_runs_when_only_the_pin_fillet_is_out_of_range():
+    """Pin fillet radius 2 mm (r/D = 0.02, below 0.03), journal in range: the SCF mode
+    is run (else the pin fillet could not be assessed) and the pin's record names it."""
+    geo = dataclasses.replace(INSIDE, pin_fillet_radius=0.002)
+    assert m53.out_of_range(geo.related("pin")) and not m53.out_of_range(geo.related("journal"))
+    unit = _unit({"counterweight_1": [0]})
+    pin = np.column_stack([np.zeros(4), [20e3, -5e3, 8e3, -5e3]])
+    t = assess_throw("1", unit, THETA, pin, np.zeros(4), omega=100.0, overspeed=None, material=MAT,
+                     crank_radius=0.09, m53_geometry=geo, scf=_scf_result)
+    assert t.m53[0].scf_source.startswith("FE, UR M53 App. III SCF mode (mesh accepted")
+    assert t.m53[0].scf_source.endswith("; outside the UR M53 validity range: r = 0.02 not in [0.03, 0.13]")
+    assert t.m53[1].out_of_range == ()
