@@ -150,3 +150,70 @@ def test_fatigue_of_a_fully_reversed_bending_node_by_hand():
         g5 = assess_group(unit, "crankpin_fillet_1", co, THETA, dataclasses.replace(MAT, **{field: None}),
                           crank_radius=0.05, overspeed=None, diameter=0.1)
         assert g5.fatigue_safety is None and g5.gough_pollard_safety is None and g5.fatigue_factors is None
+
+
+def test_first_extreme_with_a_zero_extreme_and_rows():
+    """A band of width 0 (extreme exactly 0): the first index of the extreme itself --
+    max of (-1, 0, 0) at 1, min of (1, 0, 0) at 1; min along axis 1 of (2, 3) rows."""
+    assert first_extreme(np.array([-1.0, 0.0, 0.0])) == 1
+    assert first_extreme(np.array([1.0, 0.0, 0.0]), "min") == 1
+    m = np.array([[1.0, 2.0, 1.0], [5.0, 4.0, 4 * (1 + 5e-10)]])
+    np.testing.assert_array_equal(first_extreme(m, "min", axis=1), [0, 1])
+
+
+def _torsion_group(points, component, group, scale=(0.0, 1.0, 0.5)):
+    """Three nodes of ``group``, one unit case of pure shear ``component`` (5 = xz, 4 = yz)
+    scaled 0, 1, 0.5 per node."""
+    s = np.zeros((1, 6, 3))
+    s[0, component] = scale
+    return UnitStresses(stress=s, points=points, groups={group: np.array([0, 1, 2])}, cases=("c0",),
+                        node_ids=np.array([10, 11, 12]))
+
+
+def test_fully_reversed_torsion_at_the_fillets_by_hand():
+    """tau_a = 100 MPa of torsion, zero mean, at the fillet (node 1; node 2 half of it, node
+    0 unloaded): von Mises amplitude sqrt(3) 100 MPa -> Goodman n = k sigma_f / 173.205 MPa;
+    Gough-Pollard with no bending: n = k tau_f / 100 MPa (tau_f the torsion limit).  The
+    torsion is tau_tz about the fillet's own axis: at the crankpin node (0, 60, 0) mm about
+    the pin axis (0, R = 50 mm) it is -tau_xz; at the journal node (60, 0, 0) mm about the
+    crank axis it is tau_yz.  About a wrong axis (1 m off) the same stress is tau_rz and
+    the torsion amplitude near zero.  The unloaded node has infinite safeties and is not
+    the critical one; blocks of 2 nodes (2 + 1)."""
+    co = np.array([[100e6], [0.0], [-100e6], [0.0]])
+    for group, pts, comp, dia in (("crankpin_fillet_1", [[0.0] * 3, [0.06] * 3, [0.0] * 3], 5, 0.1),
+                                  ("journal_fillet_2", [[0.06] * 3, [0.0] * 3, [0.0] * 3], 4, 0.12)):
+        unit = _torsion_group(np.array(pts), comp, group)
+        g = assess_group(unit, group, co, THETA, MAT, crank_radius=0.05, overspeed=None, diameter=dia, chunk=2)
+        k = factors(MAT, dia).product
+        good = k * MAT.fatigue_limit_bending / (math.sqrt(3.0) * 100e6)
+        gp = k * MAT.fatigue_limit_torsion / 100e6
+        assert g.fatigue_safety.value == pytest.approx(good, rel=1e-9) and g.fatigue_safety.node == 11
+        assert g.fatigue_safety.group == group
+        assert g.amplitude_at_critical == pytest.approx(math.sqrt(3.0) * 100e6, rel=1e-9)
+        assert abs(g.mean_at_critical) < 1e-3
+        gpe = g.gough_pollard_safety
+        assert gpe.value == pytest.approx(gp, rel=1e-9) and gpe.node == 11 and gpe.group == group
+        np.testing.assert_allclose(g.fields["amplitude"], [0.0, math.sqrt(3.0) * 100e6, math.sqrt(3.0) * 50e6],
+                                   rtol=1e-9, atol=1e-3)
+        assert np.all(np.abs(g.fields["mean"]) < 1e-3)
+        assert g.fields["fatigue_safety"][0] == math.inf
+        np.testing.assert_allclose(g.fields["gough_pollard_safety"][1:], [gp, 2 * gp], rtol=1e-9)
+        assert g.fields["gough_pollard_safety"][0] == math.inf
+
+
+def test_static_extreme_ties_nan_and_stresses_below_one_pascal():
+    """Static extreme: 120 (1 - 5e-10) MPa at node 0 ties with 120 MPa at node 1 -> node 0
+    (the first of the band); a NaN stress at node 1 is the extreme (it must not pass
+    unseen); a peak of 0.5 Pa gives the safety 650e6 / 0.5 = 1.3e9, not infinity."""
+    co = np.array([[1.0], [0.0], [-1.0], [0.0]])
+    unit = _unit([[120e6 * (1 - 5e-10), 120e6, 1.0]], groups={"junction_1": np.array([0, 1, 2])})
+    g = assess_group(unit, "junction_1", co, THETA, MAT, crank_radius=0.05, overspeed=1.0,
+                     overspeed_coefficients=co)
+    assert g.max_von_mises.node == 10 and g.max_von_mises_overspeed.node == 10
+    unit = _unit([[1.0, np.nan, 2.0]], groups={"junction_1": np.array([0, 1, 2])})
+    g = assess_group(unit, "junction_1", co, THETA, MAT, crank_radius=0.05, overspeed=None)
+    assert g.max_von_mises.node == 11 and np.isnan(g.max_von_mises.value)
+    unit = _unit([[0.5]], groups={"junction_1": np.array([0])})
+    g = assess_group(unit, "junction_1", co, THETA, MAT, crank_radius=0.05, overspeed=1.0, overspeed_coefficients=co)
+    assert g.static_safety == pytest.approx(1.3e9, rel=1e-12)
+    assert g.overspeed_safety == pytest.approx(1.3e9, rel=1e-12)
