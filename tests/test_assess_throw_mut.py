@@ -217,3 +217,19 @@ def test_static_extreme_ties_nan_and_stresses_below_one_pascal():
     g = assess_group(unit, "junction_1", co, THETA, MAT, crank_radius=0.05, overspeed=1.0, overspeed_coefficients=co)
     assert g.static_safety == pytest.approx(1.3e9, rel=1e-12)
     assert g.overspeed_safety == pytest.approx(1.3e9, rel=1e-12)
+
+
+def test_the_least_safe_of_loaded_nodes_is_the_fatigue_extreme():
+    """Every node loaded (torsion 1, 0.5, 0.25 x 100 MPa, all safeties finite): the
+    fatigue and Gough-Pollard extremes are the minimum, node 10, not the maximum.  At a
+    journal node (0, 60, 0) mm the torsion about the crank axis is -tau_xz."""
+    co = np.array([[100e6], [0.0], [-100e6], [0.0]])
+    for group, pts, comp, dia in (("crankpin_fillet_1", [[0.0] * 3, [0.06] * 3, [0.0] * 3], 5, 0.1),
+                                  ("journal_fillet_1", [[0.0] * 3, [0.06] * 3, [0.0] * 3], 5, 0.12)):
+        unit = _torsion_group(np.array(pts), comp, group, scale=(1.0, 0.5, 0.25))
+        g = assess_group(unit, group, co, THETA, MAT, crank_radius=0.05, overspeed=None, diameter=dia)
+        k = factors(MAT, dia).product
+        assert g.fatigue_safety.node == 10 and g.gough_pollard_safety.node == 10
+        assert g.fatigue_safety.value == pytest.approx(k * MAT.fatigue_limit_bending / (math.sqrt(3.0) * 100e6),
+                                                       rel=1e-9)
+        assert g.gough_pollard_safety.value == pytest.approx(k * MAT.fatigue_limit_torsion / 100e6, rel=1e-9)
