@@ -57,6 +57,21 @@ _TORSION_TESTS = [
     "tests/test_torsion_stiffness.py", "tests/test_torsion_analysis.py", "tests/test_torsion_holzer_table.py",
 ]
 
+#: the fast tests of the cycle assessment (hand-built unit stresses, closed-form cycles, the
+#: one-cylinder dynamics and the small bar meshes of test_assess_superpose / test_assess_case;
+#: about 30 s in all): shared by superpose, stress, peak, overspeed and case as above.  The
+#: tests on the gmsh throw of test_perf_assess_blocks (20 s of meshing and solving) are left
+#: out except those on hand-built arrays.
+_ASSESS_TESTS = [
+    "tests/test_assess_superpose.py", "tests/test_assess_superpose_mut.py", "tests/test_assess_stress_mut.py",
+    "tests/test_assess_peak_mut.py", "tests/test_assess_overspeed.py", "tests/test_assess_overspeed_mut.py",
+    "tests/test_assess_case.py", "tests/test_assess_case_mut.py", "tests/test_perf_assess.py",
+    "tests/test_stress_layouts.py", "tests/test_assess_throw_mut.py",
+    "tests/test_perf_assess_blocks.py::test_von_mises_planes_is_the_plain_formula_bitwise",
+    "tests/test_perf_assess_blocks.py::test_max_and_first_is_max_and_argmax",
+    "tests/test_perf_assess_blocks.py::test_peak_bound_hand_value",
+]
+
 #: module -> (file to mutate, its fast tests)
 MODULES: dict[str, tuple[str, list[str]]] = {
     "kinematics": ("fe_crank/kinematics.py", _MECHANISM_TESTS),
@@ -92,9 +107,19 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                         "tests/test_assess_fatigue_means.py"]),
     "assess.verdict": ("fe_crank/assess/verdict.py",
                        ["tests/test_assess_verdict.py", "tests/test_assess_fatigue.py"]),
+    "assess.superpose": ("fe_crank/assess/superpose.py", _ASSESS_TESTS),
+    "assess.stress": ("fe_crank/assess/stress.py", _ASSESS_TESTS),
+    "assess.peak": ("fe_crank/assess/peak.py", _ASSESS_TESTS),
+    "assess.overspeed": ("fe_crank/assess/overspeed.py", _ASSESS_TESTS),
     "assess.case": ("fe_crank/assess/case.py",
-                    ["tests/test_assess_verdict.py", "tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py",
-                     "tests/test_assess_case.py", "tests/test_assess_m53_oil_bore.py"]),
+                    _ASSESS_TESTS + ["tests/test_assess_verdict.py", "tests/test_assess_fatigue.py",
+                                     "tests/test_assess_fatigue_means.py", "tests/test_assess_m53_oil_bore.py"]),
+    "assess.throw": ("fe_crank/assess/throw.py",
+                     _ASSESS_TESTS + ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py"]),
+    "assess.groups": ("fe_crank/assess/groups.py",
+                      ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py", "tests/test_assess_superpose.py"]),
+    "assess.recovery": ("fe_crank/assess/recovery.py",
+                        ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py"]),
     "fe.loads": ("fe_crank/fe/loads.py",
                  ["tests/test_fe_unit_cases.py", "tests/test_fe_assembly.py", "tests/test_fe_determinate.py",
                   "tests/test_assess_superpose.py", "tests/test_perf_loads.py"]),
