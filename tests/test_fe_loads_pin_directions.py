@@ -54,6 +54,9 @@ def test_unit_forces_by_definition():
     assert unit_force("pin_-x") == (-1.0, 0.0)
     assert unit_force("pin_-y") == (0.0, -1.0)
     assert unit_force("pin_000") == (1.0, 0.0)
+    # 1 deg: (cos 1, sin 1) = (0.9998476952, 0.0174524064)
+    assert unit_force("pin_001") == pytest.approx((0.9998476951563913, 0.01745240643728351), rel=1e-15)
+    assert unit_force("pin_091") == pytest.approx((-0.01745240643728351, 0.9998476951563913), rel=1e-14)
     # angle from +x towards +y: (cos 30, sin 30) = (0.8660254037844386, 0.5); 120: (-0.5, 0.866)
     assert unit_force("pin_030") == pytest.approx((0.8660254037844386, 0.5), rel=1e-15)
     assert unit_force("pin_120") == pytest.approx((-0.5, 0.8660254037844386), rel=1e-15)
@@ -74,13 +77,17 @@ def test_weights_of_the_default_twelve_directions_by_the_sine_rule():
     # F = 200 N at 350 deg (= -10 deg): bracketed by 330 and 360 = pin_x:
     #   a(330) = 200 sin(10) / 0.5 = 69.45927107,  b(0) = 200 sin(20) / 0.5 = 136.8080573
     # F = 0: no weight
+    # F = 100 N at 20 deg: between the first two directions, 0 and 30 deg:
+    #   a(0) = 100 sin(10) / 0.5 = 34.72963553,  b(30) = 100 sin(20) / 0.5 = 68.40402867
     F = np.array([[1000 * np.cos(np.deg2rad(40)), 1000 * np.sin(np.deg2rad(40))],
                   [0.0, 500.0],
                   [200 * np.cos(np.deg2rad(-10)), 200 * np.sin(np.deg2rad(-10))],
-                  [0.0, 0.0]])
+                  [0.0, 0.0],
+                  [100 * np.cos(np.deg2rad(20)), 100 * np.sin(np.deg2rad(20))]])
     W = pin_case_weights(F, names)
-    assert W.shape == (4, 12)
-    want = np.zeros((4, 12))
+    assert W.shape == (5, 12)
+    want = np.zeros((5, 12))
+    want[4, idx["pin_x"]], want[4, idx["pin_030"]] = 34.72963553, 68.40402867
     want[0, idx["pin_030"]], want[0, idx["pin_060"]] = 684.0402867, 347.2963553
     want[1, idx["pin_y"]] = 500.0
     want[2, idx["pin_330"]], want[2, idx["pin_x"]] = 69.45927107, 136.8080573
