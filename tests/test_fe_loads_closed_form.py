@@ -195,10 +195,11 @@ def test_pin_pressure_refusals(pin):
         with pytest.raises(InputError) as e:
             pin_pressure_load(pin, bad)
         assert str(e.value) == f"pin force must be a non-zero finite (Fx, Fy), got {text}"
-    # an end face has no radial normal: the cosine pressure gives no force
-    with pytest.raises(MeshError) as e:
-        pin_pressure_load(pin, (0.0, 1.0), boundary="end_1")
-    assert str(e.value) == "boundary 'end_1': cosine pressure does not produce a force (not a pin surface?)"
+    # an end face has no radial normal: the cosine pressure gives no force, in any direction
+    for F in ((0.0, 1.0), (-1.0, -1.0), (2.0, -0.5)):
+        with pytest.raises(MeshError) as e:
+            pin_pressure_load(pin, F, boundary="end_1")
+        assert str(e.value) == "boundary 'end_1': cosine pressure does not produce a force (not a pin surface?)"
 
 
 def test_face_torque_is_the_round_shaft_shear_flow(pin):
