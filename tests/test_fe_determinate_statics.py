@@ -53,8 +53,10 @@ def bar():
     return Basis(_square_bar(), ElementTetP2(), intorder=2)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def support(bar):
+    # function scope: built inside each test that uses it (mutation testing maps each
+    # function to the tests that call it; a module fixture would credit the first only)
     return determinate_support(bar, DeterminateLayout())
 
 
@@ -144,6 +146,8 @@ R_HAND = (-1.4, 1.4, -1.6, 2.6, -2.0, 0.07)
 
 def test_columns_reactions_and_their_resultants_by_statics(bar, support):
     s = support
+    assert s.layout == DeterminateLayout()
+    np.testing.assert_array_equal(s.points, bar.doflocs)
     assert s.names == ("journal_1.Fx", "journal_1.Fy", "journal_2.Fx", "journal_2.Fy", "journal_2.Fz", "end_2.Mz")
     assert s.owner == ("journal_1", "journal_1", "journal_2", "journal_2", "journal_2", "end_2")
     np.testing.assert_allclose(s.centres["journal_1"], (0, 0, Z1), atol=1e-15)
@@ -214,6 +218,18 @@ def test_six_point_constraints_remove_the_rigid_body_modes_and_carry_nothing(bar
     u[free] = spla.spsolve(Kff, g[free])
     reaction = K[held] @ u - g[held]
     assert np.abs(reaction).max() < 1e-9 * np.linalg.norm(P)
+
+
+def test_three_points_take_a_3_2_1_set():
+    """Nodes (0,0,0), (1,0,0), (0,1,0): six independent dofs exist among their nine (e.g. z at
+    all three: no z translation, no rotation about x or y; y at the two on the x axis: no y
+    translation, no rotation about z; x at the third: no x translation).  The chosen six must
+    be such a set: the rigid-body modes at them form a nonsingular 6 x 6 matrix."""
+    P = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, 0.0]])
+    held = point_constraints(P, np.arange(3))
+    assert held.shape == (6,) and len(set(held.tolist())) == 6 and held.max() < 9
+    assert held.dtype.kind == "i"
+    assert abs(np.linalg.det(rigid_body_modes(P)[held])) > 0.1     # |det| of a 3-2-1 set here: 1
 
 
 def test_point_constraint_choice_does_not_depend_on_the_unit_of_length(bar):
