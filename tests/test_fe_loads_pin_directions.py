@@ -134,6 +134,11 @@ def test_one_and_two_directions_are_signed_decompositions():
         with pytest.raises(ValueError) as e:
             pin_case_weights((across, 250.0), ["pin_y"])
         assert str(e.value) == "one pin direction (pin_y) carries only forces along it"
+    # relative at any scale: 1 mN along with 2e-13 N across passes (threshold 1e-12 N),
+    # 3e-12 N across (3e-9 of the force) is refused
+    np.testing.assert_allclose(pin_case_weights((2e-13, 1e-3), ["pin_y"]), [[1e-3]], rtol=REL)
+    with pytest.raises(ValueError, match="carries only forces along it"):
+        pin_case_weights((3e-12, 1e-3), ["pin_y"])
     # two directions: F = a e_1 + b e_2.  pin_x and pin_y: (3, -4) -> 3, -4.
     np.testing.assert_allclose(pin_case_weights((3.0, -4.0), ["pin_x", "pin_y"]), [[3.0, -4.0]], rtol=REL)
     # pin_x and pin_060, F = (0, 1): b sin 60 = 1 -> b = 2/sqrt(3) = 1.1547005384,
