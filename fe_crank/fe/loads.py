@@ -60,7 +60,7 @@ class PinSurface:
 
     ``fb``: the facet basis (its isoparametric inverse map is the expensive part);
     ``centre`` (2,) the pin axis; ``x`` (3, nf, nq) quadrature points; ``n_r`` (3, nf, nq)
-    the unit radial normals (axial part removed); ``angle`` (nf, nq) the angle of each
+    the unit radial normals (axial part removed; zero on facets normal to the axis); ``angle`` (nf, nq) the angle of each
     point about the pin axis, from +y towards +x.
     """
 
