@@ -120,9 +120,10 @@ def test_pin_centre_and_surface(pin):
     assert s.n_r.shape == s.x.shape == (3,) + s.angle.shape
     assert np.all(s.n_r[2] == 0.0)
     np.testing.assert_allclose(np.hypot(s.n_r[0], s.n_r[1]), 1.0, rtol=1e-14)
-    # radial within the facetting of the P2 surface (measured 2e-3 rad at 8 mm elements)
+    # radial within the facetting of the P2 surface (measured 4e-4 at 8 mm elements; a normal
+    # turned by a wrong component is off by order 1)
     radial = (s.x[:2] - np.array([CX, CY])[:, None, None]) / R
-    assert np.abs(s.n_r[:2] - radial).max() < 0.01
+    assert np.abs(s.n_r[:2] - radial).max() < 2e-3
     # with a given centre the angle is atan2(x - cx, y - cy): from +y towards +x
     g = pin_surface(pin, "crankpin", centre=(CX, CY))
     np.testing.assert_array_equal(g.centre, (CX, CY))
@@ -225,7 +226,8 @@ def test_face_torque_is_the_round_shaft_shear_flow(pin):
         return (T / J) * (-(x[1] - CY) * v[0] + (x[0] - CX) * v[1])
 
     ref = asm(form, fb)
-    # J of the facetted disk vs pi R^4 / 2: area error of the P2 boundary, measured < 1e-5
+    # J of the facetted disk vs pi R^4 / 2: the P2 boundary's error, measured 4e-5 of the
+    # largest entry; 1e-4, so that a 1 % error in J or the shear flow fails
     assert np.abs(f - ref).max() < 1e-4 * np.abs(ref).max()
     # about the origin (default centre) the same face takes T as well, its lever being (CX, CY)
     g = face_torque_load(pin, T, boundary="end_2")
