@@ -120,9 +120,17 @@ MODULES: dict[str, tuple[str, list[str]]] = {
                       ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py", "tests/test_assess_superpose.py"]),
     "assess.recovery": ("fe_crank/assess/recovery.py",
                         ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py"]),
+    # the FE load and support modules: tiny meshes only (a few seconds per test file); the
+    # unit-case tests on the seed throw (tests/test_fe_unit_cases.py, test_fe_determinate*.py
+    # of the throw, test_assess_superpose.py) solve FE models for tens of seconds a mutant
     "fe.loads": ("fe_crank/fe/loads.py",
-                 ["tests/test_fe_unit_cases.py", "tests/test_fe_assembly.py", "tests/test_fe_determinate.py",
-                  "tests/test_assess_superpose.py", "tests/test_perf_loads.py"]),
+                 ["tests/test_fe_loads_closed_form.py", "tests/test_fe_determinate_statics.py",
+                  "tests/test_fe_loads_boundaries.py", "tests/test_perf_loads.py", "tests/test_fe_assembly.py",
+                  "tests/test_fe_verification.py"]),
+    "fe.determinate": ("fe_crank/fe/determinate.py",
+                       ["tests/test_fe_determinate_statics.py", "tests/test_fe_loads_boundaries.py"]),
+    "fe.pin_directions": ("fe_crank/fe/pin_directions.py",
+                          ["tests/test_fe_loads_pin_directions.py", "tests/test_perf_loads.py"]),
     "fe.forms": ("fe_crank/fe/forms.py", ["tests/test_fe_assembly.py", "tests/test_fe_verification.py"]),
 }
 

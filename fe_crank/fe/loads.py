@@ -60,7 +60,7 @@ class PinSurface:
 
     ``fb``: the facet basis (its isoparametric inverse map is the expensive part);
     ``centre`` (2,) the pin axis; ``x`` (3, nf, nq) quadrature points; ``n_r`` (3, nf, nq)
-    the unit radial normals (axial part removed); ``angle`` (nf, nq) the angle of each
+    the unit radial normals (axial part removed; zero on facets normal to the axis); ``angle`` (nf, nq) the angle of each
     point about the pin axis, from +y towards +x.
     """
 
@@ -81,7 +81,10 @@ def pin_surface(basis, boundary: str = "crankpin", centre=None) -> PinSurface:
     c = np.asarray(centre, float) if centre is not None else _centroid_xy(fb, x)
     n = np.array(fb.normals)
     n[2] = 0.0
-    n /= np.maximum(np.sqrt(n[0] ** 2 + n[1] ** 2), 1e-300)
+    nr = np.sqrt(n[0] ** 2 + n[1] ** 2)
+    # a facet normal to the axis has only round-off radial parts: no radial pressure there
+    # (normalising them would press a flat face in random directions)
+    n = np.where(nr > 1e-6, n / np.maximum(nr, 1e-300), 0.0)
     ang = np.arctan2(x[0] - c[0], x[1] - c[1])
     return PinSurface(fb=fb, centre=c, x=x, n_r=n, angle=ang)
 
