@@ -7,9 +7,10 @@ For one unit case (``pin_y``, set ``one``) and for all unit cases of the FE stag
 ``all``), each code runs in a process of its own (peak memory = that process's maximum
 resident set, from wait4):
 
-* fe-crank: ``solve_unit_cases`` (assembly, one factorisation, every case) and the unit
-  stresses at the assessed nodes (``unit_nodal_stress``) -- what the check computes
-  before superposing the cycle;
+* fe-crank: ``solve_unit_cases`` of the throw mesh (assembly, one factorisation, every
+  case; on the mesh's symmetry components when it is mirrored, as the check solves it)
+  and the unit stresses at the assessed nodes (``unit_nodal_stress``) -- what the check
+  computes before superposing the cycle;
 * CalculiX (``ccx``): the same C3D10 mesh, material, supports and nodal loads written by
   ``ccx_deck.write_deck``, one *STEP per case, displacements and nodal stresses written
   at the assessed nodes only.
@@ -112,7 +113,7 @@ def worker(args) -> int:
     base = lc.fe or FeOptions()
     opts = FeOptions(**{**base.__dict__, "cases": cases})
     t0, c0 = time.perf_counter(), _cpu(resource.getrusage(resource.RUSAGE_SELF))
-    units = solve_unit_cases(tm.mesh, lc.material, opts)
+    units = solve_unit_cases(tm, lc.material, opts)   # with the mesh's symmetry, as the check
     t_solve = time.perf_counter() - t0
     ids = np.unique(np.concatenate(list(assessed_groups(units).values())))
     t1 = time.perf_counter()

@@ -44,7 +44,7 @@ def level(loadcase: str, f: float) -> dict:
     tm = mesh_throw(lc.geometry, size=MeshOptions(coarse_divisions=1.5, fillet_divisions=f, grading=2.0,
                                                                 bore_divisions=6.0 * f),
                     cache_dir=".cache/meshes")
-    units = solve_unit_cases(tm.mesh, lc.material, lc.fe or FeOptions())
+    units = solve_unit_cases(tm, lc.material, lc.fe or FeOptions())
     groups = assessed_groups(units)
     unit = unit_stresses(units, groups)
     ids = unit.node_ids

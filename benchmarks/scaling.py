@@ -53,7 +53,7 @@ def solve_level(loadcase: str, level: int, solver: str, full_recovery: bool = Fa
     lc = load_loadcase(loadcase)
     tm = mesh_throw(lc.geometry, size=_options(level), cache_dir=".cache/meshes")
     base = lc.fe or FeOptions()
-    units = solve_unit_cases(tm.mesh, lc.material, FeOptions(**{**base.__dict__, "solver": solver}))
+    units = solve_unit_cases(tm, lc.material, FeOptions(**{**base.__dict__, "solver": solver}))  # with its symmetry
     ids = np.unique(np.concatenate(list(assessed_groups(units).values())))
     t0 = time.perf_counter()
     unit_nodal_stress(units, list(units.cases), ids)
