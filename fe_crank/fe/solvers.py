@@ -31,6 +31,7 @@ import logging
 import shutil
 import time
 import warnings
+import weakref
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -120,6 +121,15 @@ class Factorisation:
     _nnz: int | None = field(default=None, repr=False)   # kept by ``free``
     _ooc_dir: str | None = field(default=None, repr=False)  # PARDISO's factor files (pardiso_ooc)
     analysis_time: float = 0.0            # PARDISO: its phase 1 (reordering, symbolic), part of setup_time
+    _finalizer: object = field(default=None, repr=False, compare=False)
+
+    def own_external(self) -> None:
+        """Tie what PARDISO holds outside Python's memory (the factor in MKL's own memory,
+        the out-of-core factor files) to this object's lifetime: released by ``free`` or,
+        at the latest, when the object is garbage-collected.  Without it a process that
+        solves several models (a batch, the convergence study) keeps every factor."""
+        if self.method in ("pardiso", "pardiso_ooc") and self._finalizer is None:
+            self._finalizer = weakref.finalize(self, _release_external, self._impl, self._ooc_dir)
 
     @property
     def description(self) -> str:
@@ -209,12 +219,20 @@ class Factorisation:
         if self._impl is None:
             return
         self._nnz = self.nnz
-        if self.method in ("pardiso", "pardiso_ooc"):
-            self._impl.free_memory(everything=True)
-        if self._ooc_dir is not None:
-            shutil.rmtree(self._ooc_dir, ignore_errors=True)
+        if self._finalizer is not None:
+            self._finalizer()                # runs once: a later garbage collection does nothing
+        elif self.method in ("pardiso", "pardiso_ooc"):
+            _release_external(self._impl, self._ooc_dir)
         self._impl = None
         self.matrix = self._upper = self._diag = self._near_null = None
+
+
+def _release_external(impl, ooc_dir: str | None) -> None:
+    """Free a PARDISO factor (phase -1, or phase 0 of one member of a shared handle) and
+    remove its out-of-core factor files."""
+    impl.free_memory(everything=True)
+    if ooc_dir is not None:
+        shutil.rmtree(ooc_dir, ignore_errors=True)
 
 
 def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarray | None = None,
@@ -260,6 +278,7 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
             raise SolverError(f"PARDISO factorisation failed (matrix not positive definite: "
                               f"unsupported rigid-body mode?): {exc}") from exc
         fac._impl = solver
+        fac.own_external()
         fac._upper = tri
         fac._diag = K.diagonal()
         fac.matrix = None                    # only the upper triangle is kept (memory)

@@ -275,6 +275,7 @@ def _pardiso_shared(matrices) -> list[Factorisation]:
             fac = Factorisation(matrix=None, method="pardiso", setup_time=time.perf_counter() - t0,
                                 analysis_time=shared.analysis_time if k == 0 else 0.0)
             fac._impl, fac._upper, fac._diag = member, A, A.diagonal()
+            fac.own_external()
             out.append(fac)
     except PyPardisoError as exc:
         raise SolverError(f"PARDISO factorisation of a symmetry component failed: {exc}") from exc
