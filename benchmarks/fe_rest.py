@@ -3,14 +3,14 @@
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/fe_rest.py \
         loadcases/single_cylinder_seed001.toml --preset coarse [--repeat 3]
 
-Meshes (cached) the case's first throw and times, in CPU seconds (user + system,
-``os.times``; best of ``--repeat``), each piece of ``solve_unit_cases`` on the symmetric
+Meshes (cached) the case's first throw and times, in CPU seconds (user + system of all
+threads, ``time.process_time``; best of ``--repeat``), each piece of ``solve_unit_cases`` on the symmetric
 path that is neither the factorisation nor a PARDISO solve, both as the stage formed it
 before and as it does now, on the same inputs:
 
 * the half's stiffness: a basis on the half's elements, the stiffness in the whole
-  numbering, indexed down to the half's dofs, upper triangle -- against
-  ``assembly.part_stiffness`` from the whole basis, upper triangle;
+  numbering, indexed down to the half's dofs, ``scipy.sparse.triu`` -- against
+  ``assembly.part_stiffness`` from the whole basis, ``assembly.upper_triangle``;
 * the selection P of the free dofs: ``setdiff1d`` and a COO matrix -- against
   ``symsystem.selection``;
 * the per-case equilibrium check of the 14 unit cases: the whole-vector residual and
@@ -30,12 +30,10 @@ import argparse
 import os
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from check_profile import _cpu  # noqa: E402  CPU seconds (user + system) of this process
+_cpu = time.process_time       # CPU seconds (user + system) of this process, finer than os.times
 
 
 def _best(fn, repeat):
@@ -105,7 +103,7 @@ def main(argv=None) -> int:
     from skfem import Basis
 
     from fe_crank.fe import symsolve
-    from fe_crank.fe.assembly import assemble_stiffness, part_stiffness
+    from fe_crank.fe.assembly import assemble_stiffness, part_stiffness, upper_triangle
     from fe_crank.fe.bases import cell_basis
     from fe_crank.fe.determinate import DeterminateLayout, determinate_support
     from fe_crank.fe.fe_options import FeOptions, axial_journal
@@ -152,7 +150,7 @@ def main(argv=None) -> int:
         return K
 
     def current_half():
-        K = sp.triu(part_stiffness(basis, part, nodes, E, nu), format="csr")
+        K = upper_triangle(part_stiffness(basis, part, nodes, E, nu))
         K.sort_indices()
         return K
 
@@ -206,7 +204,7 @@ def main(argv=None) -> int:
           f"elements / {3 * nodes.size} dofs, {len(loads)} unit loads; CPU s, best of {args.repeat}")
     print(f"{'piece':<32} {'former':>8} {'current':>8} {'ratio':>6}")
     for name, cf, cc in rows_out:
-        print(f"{name:<32} {cf:8.3f} {cc:8.3f} {cf / max(cc, 1e-9):6.1f}")
+        print(f"{name:<32} {cf:8.3f} {cc:8.3f} {cf / cc if cc >= 0.005 else float('inf'):6.1f}")
     tf, tc = sum(r[1] for r in rows_out), sum(r[2] for r in rows_out)
     print(f"{'total':<32} {tf:8.3f} {tc:8.3f} {tf / max(tc, 1e-9):6.1f}")
     print(f"every pair identical bit for bit; load average at the end: {os.getloadavg()[0]:.2f}")

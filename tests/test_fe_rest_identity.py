@@ -213,3 +213,21 @@ def test_component_matrices_equal_the_former_masking():
             got.sort_indices()
         for a in ("indptr", "indices", "data"):
             assert np.array_equal(getattr(want, a), getattr(got, a)), a
+
+
+def test_upper_triangle_equals_scipy_triu(shipped):
+    """``assembly.upper_triangle`` against ``scipy.sparse.triu``: the shipped throw's
+    stiffness (explicit zeros and all), and a small matrix with empty rows at both ends."""
+    import scipy.sparse as sp
+
+    from fe_crank.fe.assembly import assemble_stiffness, upper_triangle
+    from fe_crank.fe.bases import cell_basis
+
+    K = assemble_stiffness(cell_basis(shipped.mesh, 2), 210e9, 0.3)
+    S = sp.csr_matrix((np.array([1.0, 0.0, 2.0, 3.0, 4.0, 5.0]), np.array([1, 2, 0, 3, 1, 2]),
+                       np.array([0, 0, 2, 4, 6, 6, 6])), shape=(6, 6))
+    for M in (K, S):
+        want, got = sp.triu(M, format="csr"), upper_triangle(M)
+        assert want.shape == got.shape
+        for a in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(want, a), getattr(got, a)), a

@@ -128,6 +128,17 @@ def part_stiffness(basis: Basis, elements: np.ndarray, nodes: np.ndarray, youngs
                                     chunk=chunk)
 
 
+def upper_triangle(K: sp.csr_matrix) -> sp.csr_matrix:
+    """The upper triangle (diagonal included) of a CSR matrix with sorted indices, explicit
+    zeros kept: the matrix ``scipy.sparse.triu(K, format="csr")`` returns, by one mask over
+    the entries instead of its round trip through COO."""
+    n = K.shape[0]
+    keep = K.indices >= np.repeat(np.arange(n, dtype=K.indices.dtype), np.diff(K.indptr))
+    kept_before = np.zeros(keep.size + 1, np.int64)
+    np.cumsum(keep, out=kept_before[1:])
+    return sp.csr_matrix((K.data[keep], K.indices[keep], kept_before[K.indptr]), shape=K.shape)
+
+
 def stiffness_from_gradients(g_all: np.ndarray, dx_all: np.ndarray, element_dofs: np.ndarray, N: int,
                              youngs_modulus: float, poisson_ratio: float, *, chunk: int = CHUNK) -> sp.csr_matrix:
     """The kernel of :func:`assemble_stiffness`: gradients g_all (m, 3, ne, nq), weights

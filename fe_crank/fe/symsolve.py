@@ -42,7 +42,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 from fe_crank.errors import SolverError
-from fe_crank.fe.assembly import part_stiffness
+from fe_crank.fe.assembly import part_stiffness, upper_triangle
 from fe_crank.fe.pardiso_phases import SharedAnalysis
 from fe_crank.fe.solvers import DESCRIPTIONS, Factorisation, choose_method, factorise
 from fe_crank.fe.supports import rigid_body_modes
@@ -219,7 +219,7 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
     # the part's stiffness in its own numbering, from the whole basis's gradients (no basis
     # of its own, no whole-size matrix): the matrix K[ldofs][:, ldofs] of the part's elements
     K = part_stiffness(basis, part, nodes, youngs_modulus, poisson_ratio)
-    Kq = sp.triu(K, format="csr")
+    Kq = upper_triangle(K)
     del K
     Kq.sort_indices()
     timings["assembly"] = time.perf_counter() - t0
