@@ -194,9 +194,13 @@ def main(argv=None) -> int:
         symsolve._remove_rigid_fit(basis.doflocs, sup.held, V)
         return V
 
-    def former_rigid_copy():
+    def former_rigid_copy():          # the whole motion built, then subtracted into a new array
         V = U.copy()
-        return V - symsolve._rigid_fit(basis.doflocs, sup.held, V)
+        a = symsolve._rigid_coefficients(basis.doflocs, sup.held, V)
+        Un = np.zeros((basis.N, 3, V.shape[1]))
+        Un += a[None, :3, :]
+        Un += np.cross(a[3:].T[:, None, :], basis.doflocs.T[None, :, :]).transpose(1, 2, 0)
+        return V - Un.reshape(V.shape)
 
     pair(f"rigid motion off U (3N x {len(loads)})", former_rigid_copy, current_rigid, np.array_equal)
 

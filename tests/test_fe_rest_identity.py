@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fe_crank.fe import solve_unit_cases
+from fe_crank.fe import solve_unit_cases, symsolve
 from fe_crank.fe.supports import Coupling, Foundation
 from fe_crank.fe.system import build_system
 from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
@@ -160,17 +160,15 @@ def test_selection_equals_the_coo_route():
 
 
 def test_rigid_motion_removed_in_place_equals_the_whole_array_route():
-    """``symsolve._remove_rigid_fit`` (blocks of nodes, in place) against U - ``_rigid_fit``
-    (the whole rigid motion built, then subtracted): the same bits, on a node count that
-    is not a multiple of the block, and the held dofs end at zero to round-off."""
-    from fe_crank.fe import symsolve
-
+    """``symsolve._remove_rigid_fit`` (blocks of nodes, in place) against U - B a with the
+    whole rigid motion built, then subtracted: the same bits, on a node count that is not
+    a multiple of the block, and the held dofs end at zero to round-off."""
     rng = np.random.default_rng(7)
     N, k = 3 * symsolve.RIGID_BLOCK + 17, 5
     x = rng.uniform(-0.1, 0.1, (3, N))
     U = rng.normal(size=(3 * N, k))
     held = np.array([0, 1, 2, 3 * 40 + 1, 3 * 40 + 2, 3 * 977])
-    former = U - symsolve._rigid_fit(x, held, U)
+    former = U - _rigid_fit_whole(x, held, U)
     now = U.copy()
     symsolve._remove_rigid_fit(x, held, now)
     assert np.array_equal(former, now)
@@ -231,3 +229,12 @@ def test_upper_triangle_equals_scipy_triu(shipped):
         assert want.shape == got.shape
         for a in ("indptr", "indices", "data"):
             assert np.array_equal(getattr(want, a), getattr(got, a)), a
+
+
+def _rigid_fit_whole(x, held, U):
+    """The rigid motion B a with (B a)[held] = U[held], built whole (the former route)."""
+    a = symsolve._rigid_coefficients(x, held, U)
+    Un = np.zeros((x.shape[1], 3, U.shape[1]))
+    Un += a[None, :3, :]
+    Un += np.cross(a[3:].T[:, None, :], x.T[None, :, :]).transpose(1, 2, 0)  # theta x x
+    return Un.reshape(U.shape)

@@ -142,15 +142,6 @@ class SymmetricSolver:
 RIGID_BLOCK = 8192
 
 
-def _rigid_fit(x: np.ndarray, held: np.ndarray, U: np.ndarray) -> np.ndarray:
-    """The rigid motion B a with (B a)[held] = U[held] (six held dofs), evaluated everywhere."""
-    a = _rigid_coefficients(x, held, U)
-    Un = np.zeros((x.shape[1], 3, U.shape[1]))
-    Un += a[None, :3, :]
-    Un += np.cross(a[3:].T[:, None, :], x.T[None, :, :]).transpose(1, 2, 0)  # theta x x
-    return Un.reshape(U.shape)
-
-
 def _rigid_coefficients(x: np.ndarray, held: np.ndarray, U: np.ndarray) -> np.ndarray:
     """a (6, k): (u0, theta) of the rigid motion B a that equals U at the six held dofs."""
     nodes = held // 3
@@ -159,8 +150,9 @@ def _rigid_coefficients(x: np.ndarray, held: np.ndarray, U: np.ndarray) -> np.nd
 
 
 def _remove_rigid_fit(x: np.ndarray, held: np.ndarray, U: np.ndarray) -> None:
-    """U -= ``_rigid_fit(x, held, U)`` in place, ``RIGID_BLOCK`` nodes at a time: each entry
-    is the same (0 + u0) + theta x x, subtracted once, without two whole-size arrays."""
+    """U -= B a in place, the rigid motion with (B a)[held] = U[held] (six held dofs):
+    (0 + u0) + theta x x at every node, ``RIGID_BLOCK`` nodes at a time (no whole-size
+    temporaries)."""
     a = _rigid_coefficients(x, held, U)
     N, k = x.shape[1], U.shape[1]
     Un3 = U.reshape(N, 3, k)
