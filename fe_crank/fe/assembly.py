@@ -104,12 +104,48 @@ def assemble_stiffness(basis: Basis, youngs_modulus: float, poisson_ratio: float
     ``ElementVector(basis.elem)`` (tested).  Element blocks (a, b) of 3x3 are summed into a
     block-sparse (BSR) matrix over the scalar connectivity, then converted to CSR.
     """
+    return stiffness_from_gradients(_gradients(basis), basis.dx, basis.element_dofs, basis.N,
+                                    youngs_modulus, poisson_ratio, chunk=chunk)
+
+
+def part_stiffness(basis: Basis, elements: np.ndarray, nodes: np.ndarray, youngs_modulus: float,
+                   poisson_ratio: float, *, chunk: int = CHUNK) -> sp.csr_matrix:
+    """Stiffness (3 n, 3 n) of the elements ``elements`` of ``basis`` in the numbering of
+    ``nodes`` (sorted, every node of those elements; node ``nodes[i]`` is local node i).
+
+    The whole mesh's basis already holds the gradients and weights of every element, so
+    they are taken from it (the same numbers a basis on the elements alone computes, each
+    element's mapping being its own); numbering by rank in ``nodes`` keeps the order of
+    every block key, so the matrix is entry for entry K[ldofs][:, ldofs] of the stiffness
+    assembled on those elements in the whole numbering, without that matrix.
+    """
+    first = basis.basis[0][0].grad
+    g = np.empty((len(basis.basis), 3, elements.size, first.shape[-1]))
+    for a, b in enumerate(basis.basis):
+        np.take(b[0].grad, elements, axis=1, out=g[a])
+    edofs = np.searchsorted(nodes, basis.element_dofs[:, elements])
+    return stiffness_from_gradients(g, basis.dx[elements], edofs, nodes.size, youngs_modulus, poisson_ratio,
+                                    chunk=chunk)
+
+
+def upper_triangle(K: sp.csr_matrix) -> sp.csr_matrix:
+    """The upper triangle (diagonal included) of a CSR matrix with sorted indices, explicit
+    zeros kept: the matrix ``scipy.sparse.triu(K, format="csr")`` returns, by one mask over
+    the entries instead of its round trip through COO."""
+    n = K.shape[0]
+    keep = K.indices >= np.repeat(np.arange(n, dtype=K.indices.dtype), np.diff(K.indptr))
+    kept_before = np.zeros(keep.size + 1, np.int64)
+    np.cumsum(keep, out=kept_before[1:])
+    return sp.csr_matrix((K.data[keep], K.indices[keep], kept_before[K.indptr]), shape=K.shape)
+
+
+def stiffness_from_gradients(g_all: np.ndarray, dx_all: np.ndarray, element_dofs: np.ndarray, N: int,
+                             youngs_modulus: float, poisson_ratio: float, *, chunk: int = CHUNK) -> sp.csr_matrix:
+    """The kernel of :func:`assemble_stiffness`: gradients g_all (m, 3, ne, nq), weights
+    dx_all (ne, nq), scalar element dofs (m, ne) numbered below N."""
     lam, mu = lame_parameters(youngs_modulus, poisson_ratio)
-    g_all = _gradients(basis)                     # (m, 3, ne, nq)
-    dx_all = basis.dx                             # (ne, nq)
     m, _, ne, _ = g_all.shape
-    N = basis.N
-    indptr, indices, pos = block_pattern(basis.element_dofs, N)
+    indptr, indices, pos = block_pattern(element_dofs, N)
     nnzb = indices.size
     data = np.zeros((3, 3, nnzb))
     kij = np.empty((min(chunk, ne), m, m))

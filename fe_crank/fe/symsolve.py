@@ -40,10 +40,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-from skfem import Basis
 
 from fe_crank.errors import SolverError
-from fe_crank.fe.assembly import assemble_stiffness
+from fe_crank.fe.assembly import part_stiffness, upper_triangle
 from fe_crank.fe.pardiso_phases import SharedAnalysis
 from fe_crank.fe.solvers import DESCRIPTIONS, Factorisation, choose_method, factorise
 from fe_crank.fe.supports import rigid_body_modes
@@ -135,18 +134,35 @@ class SymmetricSolver:
                 U[p[self.nodes]] += (character_of(comp.chars, planes) * self.weights)[:, None, None] \
                     * s[None, :, None] * q
         U = U.reshape(3 * N, k)
-        return U - _rigid_fit(self.points, self.held_full, U)
+        _remove_rigid_fit(self.points, self.held_full, U)
+        return U
 
 
-def _rigid_fit(x: np.ndarray, held: np.ndarray, U: np.ndarray) -> np.ndarray:
-    """The rigid motion B a with (B a)[held] = U[held] (six held dofs), evaluated everywhere."""
+#: nodes per block of the rigid-motion removal (a block's temporaries stay in cache)
+RIGID_BLOCK = 8192
+
+
+def _rigid_coefficients(x: np.ndarray, held: np.ndarray, U: np.ndarray) -> np.ndarray:
+    """a (6, k): (u0, theta) of the rigid motion B a that equals U at the six held dofs."""
     nodes = held // 3
     Bh = rigid_body_modes(x[:, nodes]).reshape(len(held), 3, 6)[np.arange(len(held)), held % 3]
-    a = np.linalg.solve(Bh, U[held])                               # (6, k)
-    Un = np.zeros((x.shape[1], 3, U.shape[1]))
-    Un += a[None, :3, :]
-    Un += np.cross(a[3:].T[:, None, :], x.T[None, :, :]).transpose(1, 2, 0)  # theta x x
-    return Un.reshape(U.shape)
+    return np.linalg.solve(Bh, U[held])
+
+
+def _remove_rigid_fit(x: np.ndarray, held: np.ndarray, U: np.ndarray) -> None:
+    """U -= B a in place, the rigid motion with (B a)[held] = U[held] (six held dofs):
+    (0 + u0) + theta x x at every node, ``RIGID_BLOCK`` nodes at a time (no whole-size
+    temporaries)."""
+    a = _rigid_coefficients(x, held, U)
+    N, k = x.shape[1], U.shape[1]
+    Un3 = U.reshape(N, 3, k)
+    theta = a[3:].T[:, None, :]
+    for start in range(0, N, RIGID_BLOCK):
+        sl = slice(start, min(start + RIGID_BLOCK, N))
+        r = np.zeros((sl.stop - sl.start, 3, k))
+        r += a[None, :3, :]
+        r += np.cross(theta, x.T[None, sl, :]).transpose(1, 2, 0)
+        Un3[sl] -= r
 
 
 def pick_held(x: np.ndarray, free: np.ndarray, modes: list[int]) -> np.ndarray:
@@ -187,22 +203,21 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
     if part.size * 2 ** len(mirror.axes) != el.shape[1]:
         log.warning("fe-crank: the mirror halves do not partition the elements; solving the full model")
         return None
-    pb = Basis(basis.mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs,
-               elements=part)
     nodes = np.unique(el[:, part])
     m = np.zeros(nodes.size, int)
     for a in mirror.axes:
         m += mirror.on_plane[a][nodes]
     weights = 0.5 ** m
-    ldofs = (3 * nodes[:, None] + np.arange(3)).ravel()
-    K = assemble_stiffness(pb, youngs_modulus, poisson_ratio)
-    Kq = sp.triu(K[ldofs][:, ldofs], format="csr")
-    del K, pb
+    # the part's stiffness in its own numbering, from the whole basis's gradients (no basis
+    # of its own, no whole-size matrix): the matrix K[ldofs][:, ldofs] of the part's elements
+    K = part_stiffness(basis, part, nodes, youngs_modulus, poisson_ratio)
+    Kq = upper_triangle(K)
+    del K
     Kq.sort_indices()
     timings["assembly"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     mchars = mode_characters(mirror.axes)
-    rows = np.repeat(np.arange(Kq.shape[0]), np.diff(Kq.indptr))
+    row_len = np.diff(Kq.indptr)
     comps = []
     for chars in mirror.characters:
         allowed = np.ones((nodes.size, 3), bool)
@@ -220,9 +235,9 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
     t0 = time.perf_counter()
     share = SHARE_ORDERING if share_ordering is None else share_ordering
     matrices = []
-    for comp in comps:
-        A = Kq.copy()
-        cut = comp.constrained[rows] | comp.constrained[A.indices]
+    for i, comp in enumerate(comps):
+        A = Kq if i == len(comps) - 1 else Kq.copy()               # the last one takes the part's own
+        cut = np.repeat(comp.constrained, row_len) | comp.constrained[A.indices]   # row or column held
         A.data[cut] = 0.0                                          # explicit zeros: the pattern stays
         diag = A.indptr[:-1]                                       # upper triangle, sorted: diagonal first
         if not np.array_equal(A.indices[diag], np.arange(A.shape[0])):

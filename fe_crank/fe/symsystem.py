@@ -40,6 +40,18 @@ def stiffness_rows(basis, youngs_modulus: float, poisson_ratio: float, rows: np.
     return assemble_stiffness(sub, youngs_modulus, poisson_ratio)[rows].tocsr()
 
 
+def selection(n: int, held: np.ndarray) -> sp.csr_matrix:
+    """P (n, n - len(held)): the full vector <- the dofs not in ``held`` (unique, sorted), in
+    ascending order; built as CSR directly (row i holds one 1 in column
+    (number of kept dofs before i)), the matrix the COO route with ``setdiff1d`` gives."""
+    keep = np.ones(n, bool)
+    keep[held] = False
+    indptr = np.zeros(n + 1, np.int64)
+    np.cumsum(keep, out=indptr[1:])
+    m = int(indptr[-1])
+    return sp.csr_matrix((np.ones(m), np.arange(m), indptr), shape=(n, m))
+
+
 def determinate_system(mesh, youngs_modulus: float, poisson_ratio: float, layout, axes=(), *,
                        solver: str = "auto", intorder: int = 2) -> System:
     """The System of the determinate supports ``layout``: on the symmetry components across
@@ -73,8 +85,7 @@ def symmetric_system(basis, sup, youngs_modulus: float, poisson_ratio: float, ax
     rows = np.unique(sup.held)
     K_rows = stiffness_rows(basis, youngs_modulus, poisson_ratio, rows)
     n = 3 * basis.N
-    free = np.setdiff1d(np.arange(n), rows)
-    P = sp.csr_matrix((np.ones(free.size), (free, np.arange(free.size))), shape=(n, free.size))
+    P = selection(n, rows)
     t = solver_.timings
     timings = {"assembly": t_pre + t["assembly"], "constraints": t["constraints"] + time.perf_counter() - t0,
                "factorisation": t["factorisation"]}

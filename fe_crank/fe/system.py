@@ -19,6 +19,7 @@ from skfem import Basis
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_stiffness
 from fe_crank.fe.determinate import DeterminateSupport, determinate_support
+from fe_crank.fe.equilibrium import EquilibriumChecks
 from fe_crank.fe.solvers import Factorisation, choose_method, factorise
 from fe_crank.fe.supports import (REF_DOFS, Coupling, Foundation, assemble_foundation_matrix,
                                   boundary_facets, cell_basis, coupling_rows, face_centroid, rigid_body_modes)
@@ -27,7 +28,7 @@ EQUILIBRIUM_TOL = 1e-6
 
 
 @dataclass
-class System:
+class System(EquilibriumChecks):
     """Assembled and factorised system; see module docstring.  Build with :func:`build_system`."""
 
     mesh: object
@@ -84,84 +85,6 @@ class System:
         Q = self.factorisation.solve(Fr)
         U = self.P @ Q
         return U[:, 0] if f.ndim == 1 else U
-
-    def reactions(self, u: np.ndarray, f: np.ndarray, ref_loads: dict | None = None) -> dict[str, np.ndarray]:
-        """Resultant reaction on the body of each support, (Fx, Fy, Fz, Mx, My, Mz) about the origin.
-
-        Foundations: the spring forces -K_s u.  Couplings and Dirichlet sets: the nodal
-        residual K u + K_s u - f on their nodes, less the loads applied at the reference point.
-        Determinate supports: each support's statically determined reaction, and the six
-        point constraints (``point_constraints``: round-off).
-        """
-        x = self.points
-        out = {}
-        if self.determinate is not None:
-            f, R = self.determinate.self_equilibrated(f)
-            out.update(self.determinate.reaction_resultants(R))
-        rs = -(self.Ks @ u)
-        for name, sdofs in self.foundation_dofs.items():
-            out[name] = _resultant(rs, x, sdofs)
-        resid = np.zeros_like(u)
-        resid[self.rows] = self.K_rows @ u + (self.Ks @ u)[self.rows] - f[self.rows]
-        for c in self.couplings:
-            r = _resultant(resid, x, self.slave_dofs[c.boundary])
-            if ref_loads and c.boundary in ref_loads:
-                r = r - _generalised_at_origin(ref_loads[c.boundary], self.ref_points[c.boundary])
-            out[c.boundary] = r
-        if self.dirichlet_dofs.size:
-            mask = np.zeros(resid.size, bool)
-            mask[self.dirichlet_dofs] = True
-            out["dirichlet"] = _resultant(np.where(mask, resid, 0.0), x, np.arange(x.shape[1]))
-        if self.point_dofs.size:
-            out["point_constraints"] = self.point_reactions(u, f)
-        return out
-
-    def point_reactions(self, u: np.ndarray, f: np.ndarray) -> np.ndarray:
-        """Resultant (Fx..Mz about the origin) of the reactions at the single held dofs."""
-        resid = np.zeros_like(u)
-        pos = np.searchsorted(self.rows, self.point_dofs)
-        resid[self.point_dofs] = (self.K_rows[pos] @ u + (self.Ks @ u)[self.point_dofs]
-                                  - f[self.point_dofs])
-        return _resultant(resid, self.points, np.unique(self.point_dofs // 3))
-
-    def applied(self, f: np.ndarray, ref_loads: dict | None = None) -> tuple[np.ndarray, float, float]:
-        """Resultant of the applied loads and the force and moment scales used for errors."""
-        x = self.points
-        fn = f.reshape(-1, 3)
-        res = _resultant(f, x, np.arange(x.shape[1]))
-        fscale = np.linalg.norm(fn, axis=1).sum()
-        mscale = np.linalg.norm(np.cross(x.T, fn), axis=1).sum()
-        for name, load in (ref_loads or {}).items():
-            g = _generalised_at_origin(load, self.ref_points[name])
-            res = res + g
-            fscale += np.linalg.norm(load[:3])
-            mscale += np.linalg.norm(g[3:])
-        return res, fscale, mscale
-
-    def equilibrium_error(self, u, f, ref_loads=None) -> tuple[float, dict[str, np.ndarray]]:
-        """max(|sum F|/F_scale, |sum M|/M_scale) of applied loads plus reactions, and the reactions.
-
-        F_scale is the sum of the magnitudes of the nodal loads, M_scale the sum of the
-        magnitudes of their moments about the origin.
-        """
-        reac = self.reactions(u, f, ref_loads)
-        total, fs, ms = self.applied(f, ref_loads)
-        for r in reac.values():
-            total = total + r
-        ef = np.linalg.norm(total[:3]) / fs if fs > 0 else np.linalg.norm(total[:3])
-        em = np.linalg.norm(total[3:]) / ms if ms > 0 else np.linalg.norm(total[3:])
-        return float(max(ef, em)), reac
-
-
-def _resultant(v: np.ndarray, x: np.ndarray, sdofs: np.ndarray) -> np.ndarray:
-    fn = v.reshape(-1, 3)[sdofs]
-    xs = x[:, sdofs].T
-    return np.concatenate([fn.sum(axis=0), np.cross(xs, fn).sum(axis=0)])
-
-
-def _generalised_at_origin(load, x0) -> np.ndarray:
-    load = np.asarray(load, float)
-    return np.concatenate([load[:3], load[3:] + np.cross(x0, load[:3])])
 
 
 def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,

@@ -214,14 +214,14 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     t_solve = time.perf_counter() - t0
     cases = {}
     for i, name in enumerate(names):
-        err, reac = system.equilibrium_error(U[:, i], loads[name])
+        applied = system.applied(loads[name])       # once per case: the error, the point check, the record
+        err, reac = system.equilibrium_error(U[:, i], loads[name], applied=applied)
         if "point_constraints" in reac:
-            _check_point_reactions(system, reac["point_constraints"], loads[name], name)
+            _check_point_reactions(reac["point_constraints"], applied, name)
         if not err < EQUILIBRIUM_TOL:
             raise SolverError(f"unit case {name!r}: reactions do not balance the loads "
                               f"(relative error {err:.2e} > {EQUILIBRIUM_TOL:g})")
-        applied = system.applied(loads[name])[0]
-        cases[name] = UnitCase(name=name, description=desc[name], displacement=U[:, i], applied=applied,
+        cases[name] = UnitCase(name=name, description=desc[name], displacement=U[:, i], applied=applied[0],
                                reactions=reac, equilibrium_error=err)
     timings = dict(system.timings)
     timings.update(analysis=getattr(system.factorisation, "analysis_time", 0.0), loads=t_loads, solve=t_solve, solve_per_case=t_solve / max(len(names), 1),
@@ -233,10 +233,11 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
                          bearing_centres=centres, timings=timings)
 
 
-def _check_point_reactions(system: System, point: np.ndarray, f: np.ndarray, name: str) -> None:
+def _check_point_reactions(point: np.ndarray, applied, name: str) -> None:
     """The six point constraints of the determinate model must carry nothing but round-off
-    (above ``POINT_REACTION_TOL`` of the load scale it is a SolverError)."""
-    _, fs, ms = system.applied(f)
+    (above ``POINT_REACTION_TOL`` of the load scale it is a SolverError).  ``applied``:
+    ``System.applied`` of the case's load (resultant, force scale, moment scale)."""
+    _, fs, ms = applied
     pf = np.linalg.norm(point[:3]) / fs if fs > 0 else np.linalg.norm(point[:3])
     pm = np.linalg.norm(point[3:]) / ms if ms > 0 else np.linalg.norm(point[3:])
     if max(pf, pm) > POINT_REACTION_TOL:
