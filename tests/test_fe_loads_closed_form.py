@@ -26,8 +26,7 @@ from skfem.helpers import dot
 from fe_crank.errors import InputError, MeshError
 from fe_crank.fe.loads import (SURFACE_INTORDER, centrifugal_load, face_torque_load, pin_centre,
                                pin_pressure_load, pin_surface)
-from fe_crank.gmsh_io import gmsh_session
-from verification_meshes import _mesh, _name_surfaces, box_beam
+from verification_meshes import box_beam, round_bar
 
 RHO, OMEGA = 7850.0, 30.0
 R, L, CX, CY = 0.020, 0.030, 0.004, 0.045
@@ -41,19 +40,7 @@ def box():
 
 def _cylinder(size=0.008):
     """Solid cylinder radius R on the axis (CX, CY), 0 <= z <= L: crankpin (lateral), end_1, end_2."""
-    with gmsh_session() as gmsh:
-        gmsh.model.occ.addCylinder(CX, CY, 0, 0, 0, L, R)
-        gmsh.model.occ.synchronize()
-
-        def classify(kind, c, bb):
-            if abs(bb[5]) < 1e-6:
-                return "end_1"
-            if abs(bb[2] - L) < 1e-6:
-                return "end_2"
-            return "crankpin"
-
-        _name_surfaces(gmsh, classify)
-        return _mesh(gmsh, size * 0.5, size)
+    return round_bar(2 * R, L, size, centre=(CX, CY), lateral="crankpin")
 
 
 @pytest.fixture(scope="module")

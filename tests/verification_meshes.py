@@ -63,10 +63,12 @@ def _name_surfaces(gmsh, classify):
     gmsh.model.addPhysicalGroup(3, vols, name="body")
 
 
-def round_bar(diameter: float = 0.02, length: float = 0.08, size: float = 0.004):
-    """Solid round bar on the z axis from z = 0 to ``length``: boundaries end_1, end_2, surface."""
+def round_bar(diameter: float = 0.02, length: float = 0.08, size: float = 0.004, *, centre=(0.0, 0.0),
+              lateral: str = "surface"):
+    """Solid round bar parallel to z through ``centre`` (x, y), from z = 0 to ``length``:
+    boundaries end_1, end_2 and ``lateral`` (the cylindrical surface)."""
     with gmsh_session() as gmsh:
-        gmsh.model.occ.addCylinder(0, 0, 0, 0, 0, length, diameter / 2)
+        gmsh.model.occ.addCylinder(centre[0], centre[1], 0, 0, 0, length, diameter / 2)
         gmsh.model.occ.synchronize()
 
         def classify(kind, c, bb):
@@ -74,7 +76,7 @@ def round_bar(diameter: float = 0.02, length: float = 0.08, size: float = 0.004)
                 return "end_1"
             if abs(c[2] - length) < 1e-9:
                 return "end_2"
-            return "surface"
+            return lateral
 
         _name_surfaces(gmsh, classify)
         return _mesh(gmsh, size * 0.5, size)
