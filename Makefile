@@ -22,6 +22,8 @@ demo: $(STAMP)
 
 test: $(STAMP)
 	$(VENV)/bin/lint-imports
+	$(VENV)/bin/ruff check fe_crank tests benchmarks
+	$(VENV)/bin/ruff format --check fe_crank tests benchmarks
 	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q
 
 # The benchmarks of docs/performance.md (a few minutes; the 1M-dof rows and the CalculiX

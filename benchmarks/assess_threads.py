@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from check_profile import RssSampler  # noqa: E402
+from check_profile import RssSampler
 
 
 def _cpu() -> float:
@@ -66,8 +66,10 @@ def main(argv=None) -> int:
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.torsion.stage import dynamics_for_assessment, torsion_stage
 
-    print(f"load average at the start {os.getloadavg()[0]:.2f}; cores of this process "
-          f"{len(os.sched_getaffinity(0))}", flush=True)
+    print(
+        f"load average at the start {os.getloadavg()[0]:.2f}; cores of this process {len(os.sched_getaffinity(0))}",
+        flush=True,
+    )
     lc = load_loadcase(args.loadcase)
     dyn = _dynamics_stage(lc)
     bal = _balance_stage(lc)
@@ -95,8 +97,7 @@ def main(argv=None) -> int:
     for k in (1, args.threads):
         w, c, p = best[k]
         print(f"{k:>8} {w:8.2f} {c:8.2f} {c / w:9.2f} {p / 1e9:20.3f}")
-    print(f"wall ratio {best[1][0] / best[args.threads][0]:.2f}x, CPU ratio "
-          f"{best[1][1] / best[args.threads][1]:.2f}x")
+    print(f"wall ratio {best[1][0] / best[args.threads][0]:.2f}x, CPU ratio {best[1][1] / best[args.threads][1]:.2f}x")
     diff = same_assessment(out[1], out[args.threads])
     print("identical bit for bit" if not diff else "DIFFERENT: " + "; ".join(diff))
     print(f"load average at the end {os.getloadavg()[0]:.2f}")

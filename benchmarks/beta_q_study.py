@@ -43,8 +43,11 @@ def main() -> None:
     a = ap.parse_args()
     material = load_material(a.material)
     g0 = load_geometry(a.geometry)
-    opts = (PRESETS[a.preset] if a.preset else
-            MeshOptions(coarse_divisions=a.coarse_divisions, fillet_divisions=a.fillet_divisions, grading=2.5))
+    opts = (
+        PRESETS[a.preset]
+        if a.preset
+        else MeshOptions(coarse_divisions=a.coarse_divisions, fillet_divisions=a.fillet_divisions, grading=2.5)
+    )
     rows = []
     for jl in a.journal:
         g = dataclasses.replace(g0, journal_length=jl * 1e-3)
@@ -56,13 +59,17 @@ def main() -> None:
         rows.append((jl, geo, r, side))
         share = side["beta_Q"] * side["sigma_Q3P"] / side["sigma_3P"]
         emp = r.empirical
-        print(f"journal {jl:g} mm: L = {side['L'] * 1e3:.2f} mm, {r.stresses.n_dof} dofs, "
-              f"CPU {time.process_time() - t0:.0f} s, fillet edge/r max {max(r.element_size.values()):.3f}")
-        print(f"  beta_B {r.fe['beta_B']:.3f} (emp. {emp['beta_B']:.3f}); sigma_3P/sigma_N3P {r.fe['beta_BQ']:.3f}; "
-              f"method 1 beta_Q {side['beta_Q']:.3f} (emp. {emp['beta_Q']:.3f}); shear share of sigma_3P "
-              f"{100 * share:.1f} %; sensitivity {1 / share:.1f}; 3P peak {r.quality['beta_Q']['point']}, "
-              f"bending peak {r.quality['beta_B']['point']}")
-    for (j1, geo1, r1, s1), (j2, geo2, r2, s2) in zip(rows, rows[1:]):
+        print(
+            f"journal {jl:g} mm: L = {side['L'] * 1e3:.2f} mm, {r.stresses.n_dof} dofs, "
+            f"CPU {time.process_time() - t0:.0f} s, fillet edge/r max {max(r.element_size.values()):.3f}"
+        )
+        print(
+            f"  beta_B {r.fe['beta_B']:.3f} (emp. {emp['beta_B']:.3f}); sigma_3P/sigma_N3P {r.fe['beta_BQ']:.3f}; "
+            f"method 1 beta_Q {side['beta_Q']:.3f} (emp. {emp['beta_Q']:.3f}); shear share of sigma_3P "
+            f"{100 * share:.1f} %; sensitivity {1 / share:.1f}; 3P peak {r.quality['beta_Q']['point']}, "
+            f"bending peak {r.quality['beta_B']['point']}"
+        )
+    for (_j1, geo1, r1, s1), (_j2, _geo2, r2, s2) in zip(rows, rows[1:]):
         # sigma_3P/Q = A L/W + B/F at two levers (W, F the same: only the journal changed)
         w_eq = geo1.web_width * geo1.web_thickness**2 / 6.0
         area = geo1.web_width * geo1.web_thickness
@@ -70,9 +77,11 @@ def main() -> None:
         l1, l2 = s1["L"], s2["L"]
         big_a = (y2 - y1) / (l2 - l1) * w_eq
         big_b = (y1 - big_a * l1 / w_eq) * area
-        print(f"levers {l1 * 1e3:.1f} / {l2 * 1e3:.1f} mm: A = {big_a:.3f} (beta_B of pure bending "
-              f"{r1.fe['beta_B']:.3f} / {r2.fe['beta_B']:.3f}), B = {big_b:.3f} (method 1 "
-              f"{s1['beta_Q']:.3f} / {s2['beta_Q']:.3f}; empirical {r1.empirical['beta_Q']:.3f})")
+        print(
+            f"levers {l1 * 1e3:.1f} / {l2 * 1e3:.1f} mm: A = {big_a:.3f} (beta_B of pure bending "
+            f"{r1.fe['beta_B']:.3f} / {r2.fe['beta_B']:.3f}), B = {big_b:.3f} (method 1 "
+            f"{s1['beta_Q']:.3f} / {s2['beta_Q']:.3f}; empirical {r1.empirical['beta_Q']:.3f})"
+        )
 
 
 if __name__ == "__main__":

@@ -65,21 +65,31 @@ def ensure_ccx() -> str:
         print(f"CalculiX: {found}", flush=True)
         return found
     if shutil.which("apt-get") and os.geteuid() == 0:
-        print("CalculiX (ccx) not found: installing the OS package calculix-ccx "
-              "(apt-get update; apt-get install -y calculix-ccx)", flush=True)
+        print(
+            "CalculiX (ccx) not found: installing the OS package calculix-ccx "
+            "(apt-get update; apt-get install -y calculix-ccx)",
+            flush=True,
+        )
         env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
         subprocess.run(["apt-get", "update", "-qq"], check=True, env=env)
         subprocess.run(["apt-get", "install", "-y", "-qq", "calculix-ccx"], check=True, env=env)
         found = shutil.which("ccx")
     if not found:
-        raise SystemExit("CalculiX (ccx) is not installed and could not be installed here: install CalculiX 2.20 "
-                         "(Debian/Ubuntu: apt-get install calculix-ccx) and put ccx on PATH")
+        raise SystemExit(
+            "CalculiX (ccx) is not installed and could not be installed here: install CalculiX 2.20 "
+            "(Debian/Ubuntu: apt-get install calculix-ccx) and put ccx on PATH"
+        )
     return found
 
 
 def _threads_env(n: int) -> dict:
-    return dict(os.environ, OMP_NUM_THREADS=str(n), MKL_NUM_THREADS=str(n), CCX_NPROC_EQUATION_SOLVER=str(n),
-                OPENBLAS_NUM_THREADS="1")
+    return dict(
+        os.environ,
+        OMP_NUM_THREADS=str(n),
+        MKL_NUM_THREADS=str(n),
+        CCX_NPROC_EQUATION_SOLVER=str(n),
+        OPENBLAS_NUM_THREADS="1",
+    )
 
 
 def _cpu(ru) -> float:
@@ -113,7 +123,7 @@ def worker(args) -> int:
     base = lc.fe or FeOptions()
     opts = FeOptions(**{**base.__dict__, "cases": cases})
     t0, c0 = time.perf_counter(), _cpu(resource.getrusage(resource.RUSAGE_SELF))
-    units = solve_unit_cases(tm, lc.material, opts)   # with the mesh's symmetry, as the check
+    units = solve_unit_cases(tm, lc.material, opts)  # with the mesh's symmetry, as the check
     t_solve = time.perf_counter() - t0
     ids = np.unique(np.concatenate(list(assessed_groups(units).values())))
     t1 = time.perf_counter()
@@ -122,10 +132,19 @@ def worker(args) -> int:
     cpu = _cpu(resource.getrusage(resource.RUSAGE_SELF)) - c0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
     U = np.stack([units.displacement(c).reshape(-1, 3)[ids] for c in cases])
-    info = {"dof": int(units.n_dof), "elements": int(tm.mesh.t.shape[1]), "nodes": int(units.points.shape[1]),
-            "assessed_nodes": int(ids.size), "solver": units.solver_description, "fe_s": t_solve,
-            "recovery_s": t_rec, "fe_total_s": t_solve + t_rec, "fe_cpu_s": cpu, "peak_gb": peak,
-            "timings": {k: float(v) for k, v in units.timings.items()}}
+    info = {
+        "dof": int(units.n_dof),
+        "elements": int(tm.mesh.t.shape[1]),
+        "nodes": int(units.points.shape[1]),
+        "assessed_nodes": int(ids.size),
+        "solver": units.solver_description,
+        "fe_s": t_solve,
+        "recovery_s": t_rec,
+        "fe_total_s": t_solve + t_rec,
+        "fe_cpu_s": cpu,
+        "peak_gb": peak,
+        "timings": {k: float(v) for k, v in units.timings.items()},
+    }
     # where the two codes may differ (after the measurement: not in fe-crank's time or peak)
     from ccx_recovery import calculix_nodal_stress, edge_nodes, places
 
@@ -142,8 +161,16 @@ def worker(args) -> int:
 
     # the deck's nodes are fe-crank's: one node where the mirrored halves meet
     info["deck_nodes"] = plane_nodes(units.system.basis.element_dofs, units.points, info["mirror_axes"])
-    np.savez(work / f"fe_{args.worker}.npz", ids=ids, U=U, S=S, SX=SX, cases=np.array(cases),
-             points=np.asarray(units.points)[:, ids], **flags)
+    np.savez(
+        work / f"fe_{args.worker}.npz",
+        ids=ids,
+        U=U,
+        S=S,
+        SX=SX,
+        cases=np.array(cases),
+        points=np.asarray(units.points)[:, ids],
+        **flags,
+    )
     (work / f"fe_{args.worker}.json").write_text(json.dumps(info))
     write_deck(work / f"ccx_{args.worker}.inp", units, unit_loads(units), ids)
     return 0
@@ -158,14 +185,27 @@ def check_peaks(lc, tm, units) -> dict:
     from fe_crank.dynamics import analyse
 
     keys = throw_keys(lc)
-    if len(keys) != 1:                  # the benchmark meshes one throw
+    if len(keys) != 1:  # the benchmark meshes one throw
         return {}
     key = next(iter(keys))
-    a = assess_case(lc, analyse(lc.engine, lc.operating), analyse_balance(lc.engine, lc.operating.speed, lc.balance),
-                    {key: tm}, {key: units})
-    return {t.name: {g.group: {"node": g.max_von_mises.node, "static": g.max_von_mises.value,
-                               "goodman": None if g.fatigue_safety is None else g.fatigue_safety.value}
-                     for g in t.groups} for t in a.throws}
+    a = assess_case(
+        lc,
+        analyse(lc.engine, lc.operating),
+        analyse_balance(lc.engine, lc.operating.speed, lc.balance),
+        {key: tm},
+        {key: units},
+    )
+    return {
+        t.name: {
+            g.group: {
+                "node": g.max_von_mises.node,
+                "static": g.max_von_mises.value,
+                "goodman": None if g.fatigue_safety is None else g.fatigue_safety.value,
+            }
+            for g in t.groups
+        }
+        for t in a.throws
+    }
 
 
 def compare(work: Path, which: str, ccx: str | None, threads: int, loadcase: str) -> dict:
@@ -174,6 +214,7 @@ def compare(work: Path, which: str, ccx: str | None, threads: int, loadcase: str
     (``ccx_groups``)."""
     from ccx_deck import read_dat_displacements, read_frd_stresses
     from ccx_groups import PLACE_FLAGS, cycle_table, unit_case_table, von_mises_cases
+
     from fe_crank.assess.superpose import UnitStresses
 
     fe = np.load(work / f"fe_{which}.npz")
@@ -194,24 +235,36 @@ def compare(work: Path, which: str, ccx: str | None, threads: int, loadcase: str
     top = vf.max(axis=1, keepdims=True)
     straight = fe["curvature"] <= 1e-9
     flags = {f: fe[f] for f in PLACE_FLAGS + ("curvature",)}
-    out.update({
-        "ccx": {"wall_s": wall, "cpu_s": cpu, "peak_gb": peak},
-        "ratio_time": wall / info["fe_total_s"], "ratio_cpu": cpu / info["fe_cpu_s"],
-        "ratio_memory": peak / info["peak_gb"],
-        "max_rel_displacement_difference": du,
-        "max_rel_von_mises_difference": float((np.abs(vc - vf) / top).max()),
-        # the whole difference is the recovery: CalculiX's, reproduced on fe-crank's u, is CalculiX's
-        "max_rel_von_mises_ccx_vs_ccx_recovery_of_fe_u": float((np.abs(vc - vx) / top).max()),
-        "max_rel_von_mises_difference_straight_element_nodes": float((np.abs(vc - vf) / top)[:, straight].max())
-        if straight.any() else None,
-        "nodes_with_curved_elements": int((~straight).sum()),
-        "groups": unit_case_table(vf, vc, groups, flags, cases)})
+    out.update(
+        {
+            "ccx": {"wall_s": wall, "cpu_s": cpu, "peak_gb": peak},
+            "ratio_time": wall / info["fe_total_s"],
+            "ratio_cpu": cpu / info["fe_cpu_s"],
+            "ratio_memory": peak / info["peak_gb"],
+            "max_rel_displacement_difference": du,
+            "max_rel_von_mises_difference": float((np.abs(vc - vf) / top).max()),
+            # the whole difference is the recovery: CalculiX's, reproduced on fe-crank's u, is CalculiX's
+            "max_rel_von_mises_ccx_vs_ccx_recovery_of_fe_u": float((np.abs(vc - vx) / top).max()),
+            "max_rel_von_mises_difference_straight_element_nodes": float((np.abs(vc - vf) / top)[:, straight].max())
+            if straight.any()
+            else None,
+            "nodes_with_curved_elements": int((~straight).sum()),
+            "groups": unit_case_table(vf, vc, groups, flags, cases),
+        }
+    )
     if which == "all":
-        unit = UnitStresses(stress=fe["S"], points=fe["points"], groups=groups, node_ids=ids, cases=tuple(cases),
-                            torque_mz=info["torque_mz"])
-        cyc = cycle_table(loadcase, unit, {"fe-crank": fe["S"], "CalculiX": C, "CalculiX recovery of fe-crank u":
-                                           fe["SX"]}, flags)
-        for t, rows in info.get("check", {}).items():   # the same peaks the check reports
+        unit = UnitStresses(
+            stress=fe["S"],
+            points=fe["points"],
+            groups=groups,
+            node_ids=ids,
+            cases=tuple(cases),
+            torque_mz=info["torque_mz"],
+        )
+        cyc = cycle_table(
+            loadcase, unit, {"fe-crank": fe["S"], "CalculiX": C, "CalculiX recovery of fe-crank u": fe["SX"]}, flags
+        )
+        for t, rows in info.get("check", {}).items():  # the same peaks the check reports
             for g, r in rows.items():
                 mine = cyc[t][g]
                 if mine["node"] != r["node"] or abs(mine["static"]["fe-crank"]["peak"] / r["static"] - 1) > 1e-9:
@@ -230,10 +283,20 @@ def main(argv=None) -> int:
     ap.add_argument("--work", default=None, help="folder for decks and results (default .cache/ccx_<preset>)")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--json", default=None, help="append the result to this file")
-    ap.add_argument("--sets", nargs="+", choices=SETS, default=list(SETS),
-                    help="case sets fe-crank runs: one (pin_y) and/or all (every unit case); default both")
-    ap.add_argument("--ccx-sets", nargs="*", choices=SETS, default=None,
-                    help="case sets CalculiX runs, among --sets (default: the same; none: fe-crank only)")
+    ap.add_argument(
+        "--sets",
+        nargs="+",
+        choices=SETS,
+        default=list(SETS),
+        help="case sets fe-crank runs: one (pin_y) and/or all (every unit case); default both",
+    )
+    ap.add_argument(
+        "--ccx-sets",
+        nargs="*",
+        choices=SETS,
+        default=None,
+        help="case sets CalculiX runs, among --sets (default: the same; none: fe-crank only)",
+    )
     ap.add_argument("--worker", choices=SETS, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     args.work = args.work or f".cache/ccx_{args.preset}"
@@ -244,22 +307,51 @@ def main(argv=None) -> int:
     sets = [s for s in SETS if s in args.sets]
     ccx_sets = sets if args.ccx_sets is None else [s for s in SETS if s in args.ccx_sets]
     if not set(ccx_sets) <= set(sets):
-        ap.error(f"--ccx-sets {' '.join(ccx_sets)}: CalculiX runs the decks fe-crank writes, so only sets of "
-                 f"--sets ({' '.join(sets)})")
+        ap.error(
+            f"--ccx-sets {' '.join(ccx_sets)}: CalculiX runs the decks fe-crank writes, so only sets of "
+            f"--sets ({' '.join(sets)})"
+        )
     ccx = ensure_ccx() if ccx_sets else None
     work = Path(args.work)
     work.mkdir(parents=True, exist_ok=True)
     # mesh once (cached) so that neither side's time includes meshing
-    subprocess.run([sys.executable, "-c", "from fe_crank.io.loadcase import load_loadcase;"
-                    "from fe_crank.mesh import mesh_throw;"
-                    f"mesh_throw(load_loadcase({args.loadcase!r}).geometry, size={args.preset!r}, "
-                    "cache_dir='.cache/meshes')"], check=True)
-    result = {"loadcase": args.loadcase, "preset": args.preset, "threads": args.threads,
-              "sets": sets, "ccx_sets": ccx_sets, "load_average": os.getloadavg()}
+    subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "from fe_crank.io.loadcase import load_loadcase;"
+            "from fe_crank.mesh import mesh_throw;"
+            f"mesh_throw(load_loadcase({args.loadcase!r}).geometry, size={args.preset!r}, "
+            "cache_dir='.cache/meshes')",
+        ],
+        check=True,
+    )
+    result = {
+        "loadcase": args.loadcase,
+        "preset": args.preset,
+        "threads": args.threads,
+        "sets": sets,
+        "ccx_sets": ccx_sets,
+        "load_average": os.getloadavg(),
+    }
     for which in sets:
-        wall, peak, rc, _ = run_measured([sys.executable, __file__, "--worker", which, "--loadcase", args.loadcase,
-                                       "--preset", args.preset, "--work", str(work)], None, _threads_env(args.threads),
-                                       quiet=False)
+        wall, peak, rc, _ = run_measured(
+            [
+                sys.executable,
+                __file__,
+                "--worker",
+                which,
+                "--loadcase",
+                args.loadcase,
+                "--preset",
+                args.preset,
+                "--work",
+                str(work),
+            ],
+            None,
+            _threads_env(args.threads),
+            quiet=False,
+        )
         if rc != 0:
             raise SystemExit(f"fe-crank worker failed ({which})")
         r = compare(work, which, ccx if which in ccx_sets else None, args.threads, args.loadcase)
@@ -268,10 +360,12 @@ def main(argv=None) -> int:
         f = r["fe_crank"]
         line = f"{which:>3} ({r['cases']:2d} cases, {f['dof']} dof): fe-crank {f['fe_total_s']:7.1f} s {f['peak_gb']:5.2f} GB"
         if r["ccx_run"]:
-            line += (f" | CalculiX {r['ccx']['wall_s']:7.1f} s {r['ccx']['peak_gb']:5.2f} GB | time ratio "
-                     f"{r['ratio_time']:5.1f} (CPU {r['ratio_cpu']:5.1f}) | memory ratio {r['ratio_memory']:4.2f} | "
-                     f"max du {r['max_rel_displacement_difference']:.1e}, max dvM {r['max_rel_von_mises_difference']:.1e}"
-                     f" (CalculiX vs its recovery of fe-crank's u {r['max_rel_von_mises_ccx_vs_ccx_recovery_of_fe_u']:.1e})")
+            line += (
+                f" | CalculiX {r['ccx']['wall_s']:7.1f} s {r['ccx']['peak_gb']:5.2f} GB | time ratio "
+                f"{r['ratio_time']:5.1f} (CPU {r['ratio_cpu']:5.1f}) | memory ratio {r['ratio_memory']:4.2f} | "
+                f"max du {r['max_rel_displacement_difference']:.1e}, max dvM {r['max_rel_von_mises_difference']:.1e}"
+                f" (CalculiX vs its recovery of fe-crank's u {r['max_rel_von_mises_ccx_vs_ccx_recovery_of_fe_u']:.1e})"
+            )
         else:
             line += " | CalculiX not run (--ccx-sets)"
         print(line, flush=True)

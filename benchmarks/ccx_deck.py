@@ -67,7 +67,7 @@ def unit_loads(units) -> dict[str, np.ndarray]:
 
 def c3d10_connectivity(element_dofs: np.ndarray, points: np.ndarray) -> np.ndarray:
     """(ne, 10) 1-based C3D10 connectivity with positive volume."""
-    t = np.asarray(element_dofs).T.copy()                      # (ne, 10)
+    t = np.asarray(element_dofs).T.copy()  # (ne, 10)
     p = points.T
     a, b, c, d = (p[t[:, k]] for k in range(4))
     vol = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)
@@ -87,12 +87,16 @@ def _lines(rows, fmt: str) -> str:
 def write_deck(path: Path, units, loads: dict[str, np.ndarray], output_nodes: np.ndarray) -> Path:
     """Write ``path`` (.inp): mesh, material, supports of ``units.system`` and one step per load."""
     sys_ = units.system
-    x = np.asarray(units.points)                               # (3, N)
+    x = np.asarray(units.points)  # (3, N)
     N = x.shape[1]
     mat = units.material
     conn = c3d10_connectivity(sys_.basis.element_dofs, x)
-    out = ["*HEADING", "fe-crank throw model (benchmarks/calculix_compare.py)",
-           "*NODE, NSET=NALL", _lines(np.column_stack([np.arange(1, N + 1), x.T]), "%d, %.13e, %.13e, %.13e")]
+    out = [
+        "*HEADING",
+        "fe-crank throw model (benchmarks/calculix_compare.py)",
+        "*NODE, NSET=NALL",
+        _lines(np.column_stack([np.arange(1, N + 1), x.T]), "%d, %.13e, %.13e, %.13e"),
+    ]
     extra = N
     rigid = []
     for c in sys_.couplings:
@@ -101,10 +105,16 @@ def write_deck(path: Path, units, loads: dict[str, np.ndarray], output_nodes: np
         out.append(f"{extra + 2}, {ref[0]:.13e}, {ref[1]:.13e}, {ref[2]:.13e}")
         rigid.append((c, extra + 1, extra + 2))
         extra += 2
-    out += ["*ELEMENT, TYPE=C3D10, ELSET=EALL",
-            _lines(np.column_stack([np.arange(1, conn.shape[0] + 1), conn]), "%d" + ", %d" * 10)]
-    out += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{mat.youngs_modulus:.13e}, {mat.poisson_ratio:.13e}",
-            "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL"]
+    out += [
+        "*ELEMENT, TYPE=C3D10, ELSET=EALL",
+        _lines(np.column_stack([np.arange(1, conn.shape[0] + 1), conn]), "%d" + ", %d" * 10),
+    ]
+    out += [
+        "*MATERIAL, NAME=STEEL",
+        "*ELASTIC",
+        f"{mat.youngs_modulus:.13e}, {mat.poisson_ratio:.13e}",
+        "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
+    ]
     eid = conn.shape[0]
     held = [np.asarray(getattr(sys_, "point_dofs", np.zeros(0, int))), np.asarray(sys_.dirichlet_dofs)]
     held = np.unique(np.concatenate(held)).astype(int)
@@ -128,17 +138,31 @@ def write_deck(path: Path, units, loads: dict[str, np.ndarray], output_nodes: np
                 if k <= 0:
                     continue
                 eid += 1
-                out += [f"*ELEMENT, TYPE=SPRING1, ELSET=SP{eid}", f"{eid}, {s + 1}",
-                        f"*SPRING, ELSET=SP{eid}, ORIENTATION=CYL", "1", f"{k:.13e}"]
+                out += [
+                    f"*ELEMENT, TYPE=SPRING1, ELSET=SP{eid}",
+                    f"{eid}, {s + 1}",
+                    f"*SPRING, ELSET=SP{eid}, ORIENTATION=CYL",
+                    "1",
+                    f"{k:.13e}",
+                ]
     if bcs:
         out += ["*BOUNDARY", _lines([(n, d, d) for n, d in sorted(set(bcs))], "%d, %d, %d")]
-    out += [f"*NSET, NSET=NOUT", _chunks(np.asarray(output_nodes) + 1)]
-    for name, f in loads.items():
+    out += ["*NSET, NSET=NOUT", _chunks(np.asarray(output_nodes) + 1)]
+    for _name, f in loads.items():
         fn = f.reshape(-1, 3)
         nz = np.flatnonzero(np.any(fn != 0.0, axis=1))
         rows = [(n + 1, j + 1, fn[n, j]) for n in nz for j in range(3) if fn[n, j] != 0.0]
-        out += ["*STEP", "*STATIC", "*CLOAD, OP=NEW", _lines(rows, "%d, %d, %.13e"),
-                "*NODE PRINT, NSET=NOUT", "U", "*NODE FILE, NSET=NOUT", "S", "*END STEP"]
+        out += [
+            "*STEP",
+            "*STATIC",
+            "*CLOAD, OP=NEW",
+            _lines(rows, "%d, %d, %.13e"),
+            "*NODE PRINT, NSET=NOUT",
+            "U",
+            "*NODE FILE, NSET=NOUT",
+            "S",
+            "*END STEP",
+        ]
     path.write_text("\n".join(out) + "\n")
     return path
 
@@ -163,7 +187,7 @@ def plane_nodes(element_dofs: np.ndarray, points: np.ndarray, axes) -> dict[str,
 
 def _chunks(ids, per: int = 16) -> str:
     ids = [str(int(i)) for i in ids]
-    return "\n".join(", ".join(ids[i:i + per]) for i in range(0, len(ids), per))
+    return "\n".join(", ".join(ids[i : i + per]) for i in range(0, len(ids), per))
 
 
 def read_dat_displacements(path: Path) -> list[dict[int, np.ndarray]]:
@@ -195,5 +219,5 @@ def read_frd_stresses(path: Path) -> list[dict[int, np.ndarray]]:
             cur = None
         elif cur is not None and line.startswith(" -1"):
             node = int(line[3:13])
-            cur[node] = np.array([float(line[13 + 12 * i:25 + 12 * i]) for i in range(6)])
+            cur[node] = np.array([float(line[13 + 12 * i : 25 + 12 * i]) for i in range(6)])
     return steps

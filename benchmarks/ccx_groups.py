@@ -28,8 +28,16 @@ PLACE_FLAGS = ("plane", "point", "near_point", "edge")
 def place_of(flags: dict, k: int) -> str:
     """Words for node position k: on the mirror plane, at / next to a point constraint, on
     a group's edge, and the curvature of its elements."""
-    words = [w for f, w in (("plane", "mirror plane"), ("point", "point constraint"),
-                            ("near_point", "next to a point constraint"), ("edge", "group edge")) if flags[f][k]]
+    words = [
+        w
+        for f, w in (
+            ("plane", "mirror plane"),
+            ("point", "point constraint"),
+            ("near_point", "next to a point constraint"),
+            ("edge", "group edge"),
+        )
+        if flags[f][k]
+    ]
     c = float(flags["curvature"][k])
     words.append(f"curved elements ({100 * c:.1f} %)" if c > 1e-9 else "straight elements")
     return ", ".join(words)
@@ -47,10 +55,17 @@ def unit_case_table(vf: np.ndarray, vc: np.ndarray, groups: dict, flags: dict, c
             if top <= 0:
                 continue
             k = int(np.argmax(d))
-            row = {"case": cases[c], "rel_to_max": float(d[k] / top), "local": float(d[k] / max(f[k], 1e-300)),
-                   "fe": float(f[k]), "ccx": float(vc[c, pos[k]]), "place": place_of(flags, pos[k]),
-                   "peak_fe": float(top), "peak_ccx": float(vc[c, pos].max()),
-                   "peak_rel": float(vc[c, pos].max() / top - 1.0)}
+            row = {
+                "case": cases[c],
+                "rel_to_max": float(d[k] / top),
+                "local": float(d[k] / max(f[k], 1e-300)),
+                "fe": float(f[k]),
+                "ccx": float(vc[c, pos[k]]),
+                "place": place_of(flags, pos[k]),
+                "peak_fe": float(top),
+                "peak_ccx": float(vc[c, pos].max()),
+                "peak_rel": float(vc[c, pos].max() / top - 1.0),
+            }
             if best is None or row["rel_to_max"] > best["rel_to_max"]:
                 best = row
         if best is not None:
@@ -76,17 +91,33 @@ def throw_cycles(loadcase_path: str, unit) -> dict:
     for tname, tl in dyn.throws.items():
         throw = lc.engine.throw(tname)
         sense = lc.engine.shaft(throw.shaft).sense
-        co = load_coefficients(tl.pin_force, tl.torque_front, omega, cases=unit.cases, sense=sense,
-                               torque_mz=unit.torque_mz)
-        loads = [(c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front) for c in cyc] or \
-            [((os_ / omega) ** 2 * tl.pin_force, (os_ / omega) ** 2 * tl.torque_front)]
-        co_os = np.vstack([load_coefficients(p, t, os_, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
-                           for p, t in loads]) if os_ is not None else None
+        co = load_coefficients(
+            tl.pin_force, tl.torque_front, omega, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz
+        )
+        loads = [(c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front) for c in cyc] or [
+            ((os_ / omega) ** 2 * tl.pin_force, (os_ / omega) ** 2 * tl.torque_front)
+        ]
+        co_os = (
+            np.vstack(
+                [
+                    load_coefficients(p, t, os_, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
+                    for p, t in loads
+                ]
+            )
+            if os_ is not None
+            else None
+        )
         theta = np.asarray(dyn.theta) if co_os is None else np.tile(np.asarray(dyn.theta), len(loads))
-        out[tname] = dict(coefficients=co, overspeed_coefficients=co_os, theta=theta, overspeed=os_,
-                          crank_radius=throw.crank_radius, material=lc.material,
-                          dp=None if m53g is None else m53g.pin_diameter,
-                          dj=None if m53g is None else m53g.journal_diameter)
+        out[tname] = dict(
+            coefficients=co,
+            overspeed_coefficients=co_os,
+            theta=theta,
+            overspeed=os_,
+            crank_radius=throw.crank_radius,
+            material=lc.material,
+            dp=None if m53g is None else m53g.pin_diameter,
+            dj=None if m53g is None else m53g.journal_diameter,
+        )
     return out
 
 
@@ -107,22 +138,42 @@ def cycle_table(loadcase_path: str, unit, stresses: dict[str, np.ndarray], flags
     for tname, a in throw_cycles(loadcase_path, unit).items():
         rows = {}
         for g in sorted(unit.groups):
-            res = {name: assess_group(dataclasses.replace(unit, stress=s), g, a["coefficients"], a["theta"],
-                                      a["material"], crank_radius=a["crank_radius"], overspeed=a["overspeed"],
-                                      overspeed_coefficients=a["overspeed_coefficients"],
-                                      diameter=section_diameter(g, a["dp"], a["dj"]))
-                   for name, s in stresses.items()}
+            res = {
+                name: assess_group(
+                    dataclasses.replace(unit, stress=s),
+                    g,
+                    a["coefficients"],
+                    a["theta"],
+                    a["material"],
+                    crank_radius=a["crank_radius"],
+                    overspeed=a["overspeed"],
+                    overspeed_coefficients=a["overspeed_coefficients"],
+                    diameter=section_diameter(g, a["dp"], a["dj"]),
+                )
+                for name, s in stresses.items()
+            }
             ref = next(iter(res.values()))
             node = ref.max_von_mises.node
-            row = {"node": node, "point_mm": [round(1e3 * c, 3) for c in ref.max_von_mises.point],
-                   "place": place_of(flags, pos_of[node]), "static": {}, "overspeed": {}, "goodman": {}}
+            row = {
+                "node": node,
+                "point_mm": [round(1e3 * c, 3) for c in ref.max_von_mises.point],
+                "place": place_of(flags, pos_of[node]),
+                "static": {},
+                "overspeed": {},
+                "goodman": {},
+            }
             for name, r in res.items():
-                row["static"][name] = {"at_check_node": _at(r, node), "peak": r.max_von_mises.value,
-                                       "peak_node": r.max_von_mises.node,
-                                       "peak_place": place_of(flags, pos_of[r.max_von_mises.node])}
+                row["static"][name] = {
+                    "at_check_node": _at(r, node),
+                    "peak": r.max_von_mises.value,
+                    "peak_node": r.max_von_mises.node,
+                    "peak_place": place_of(flags, pos_of[r.max_von_mises.node]),
+                }
                 if r.max_von_mises_overspeed is not None:
-                    row["overspeed"][name] = {"peak": r.max_von_mises_overspeed.value,
-                                              "peak_node": r.max_von_mises_overspeed.node}
+                    row["overspeed"][name] = {
+                        "peak": r.max_von_mises_overspeed.value,
+                        "peak_node": r.max_von_mises_overspeed.node,
+                    }
                 if r.fatigue_safety is not None:
                     row["goodman"][name] = {"min": r.fatigue_safety.value, "node": r.fatigue_safety.node}
             f = np.asarray(ref.fields["max_von_mises"])
@@ -139,18 +190,23 @@ def cycle_table(loadcase_path: str, unit, stresses: dict[str, np.ndarray], flags
 
 def print_groups(r: dict) -> None:
     for g, d in r.get("groups", {}).items():
-        print(f"    {g:22s} unit cases: largest |dvM| {100 * d['rel_to_max']:5.1f} % of the group max "
-              f"({100 * d['local']:5.1f} % locally; {d['case']}; {d['place']}); group peaks differ by "
-              f"{100 * d['peak_rel']:+.2f} %", flush=True)
+        print(
+            f"    {g:22s} unit cases: largest |dvM| {100 * d['rel_to_max']:5.1f} % of the group max "
+            f"({100 * d['local']:5.1f} % locally; {d['case']}; {d['place']}); group peaks differ by "
+            f"{100 * d['peak_rel']:+.2f} %",
+            flush=True,
+        )
     for t, rows in r.get("cycle", {}).items():
         for g, row in rows.items():
             st = row["static"]
             f, c = st["fe-crank"], st["CalculiX"]
-            line = (f"    {t}/{g:22s} cycle: static peak fe-crank {f['peak'] / 1e6:8.2f} MPa at node {row['node']} "
-                    f"({row['place']}); CalculiX there {c['at_check_node'] / 1e6:8.2f} "
-                    f"({100 * (c['at_check_node'] / f['peak'] - 1):+.2f} %), CalculiX's peak {c['peak'] / 1e6:8.2f} "
-                    f"({100 * (c['peak'] / f['peak'] - 1):+.2f} %); largest |d| {100 * c['max_diff_rel_to_max']:.1f} % "
-                    f"of max ({100 * c['max_diff_local']:.1f} % locally, {c['max_diff_place']})")
+            line = (
+                f"    {t}/{g:22s} cycle: static peak fe-crank {f['peak'] / 1e6:8.2f} MPa at node {row['node']} "
+                f"({row['place']}); CalculiX there {c['at_check_node'] / 1e6:8.2f} "
+                f"({100 * (c['at_check_node'] / f['peak'] - 1):+.2f} %), CalculiX's peak {c['peak'] / 1e6:8.2f} "
+                f"({100 * (c['peak'] / f['peak'] - 1):+.2f} %); largest |d| {100 * c['max_diff_rel_to_max']:.1f} % "
+                f"of max ({100 * c['max_diff_local']:.1f} % locally, {c['max_diff_place']})"
+            )
             gd = row["goodman"]
             if gd:
                 line += f"; Goodman fe-crank {gd['fe-crank']['min']:.3f} CalculiX {gd['CalculiX']['min']:.3f}"

@@ -39,11 +39,10 @@ GAUSS_B = (5.0 - np.sqrt(5.0)) / 20.0
 def _edges() -> np.ndarray:
     """(6, 2) corner pairs of the P2 tetrahedron's mid-edge nodes 4..9 (scikit-fem order),
     found from the reference node positions."""
-    X = np.asarray(ElementTetP2().doflocs, float)             # (10, 3)
+    X = np.asarray(ElementTetP2().doflocs, float)  # (10, 3)
     pairs = []
     for m in range(4, 10):
-        pairs.append(next((i, j) for i in range(4) for j in range(i + 1, 4)
-                          if np.allclose(0.5 * (X[i] + X[j]), X[m])))
+        pairs.append(next((i, j) for i in range(4) for j in range(i + 1, 4) if np.allclose(0.5 * (X[i] + X[j]), X[m])))
     return np.array(pairs)
 
 
@@ -54,16 +53,17 @@ def gauss_points() -> np.ndarray:
     """(3, 4) reference coordinates of the 4-point rule, point k nearest corner k (corner
     0 at the origin, corner k = e_k): barycentric a at its own corner, b elsewhere."""
     a, b = GAUSS_A, GAUSS_B
-    lam = np.full((4, 4), b) + np.eye(4) * (a - b)            # lam[k, j]: point k, corner j
-    return lam[:, 1:].T.copy()                                # (x, y, z) = (lam1, lam2, lam3)
+    lam = np.full((4, 4), b) + np.eye(4) * (a - b)  # lam[k, j]: point k, corner j
+    return lam[:, 1:].T.copy()  # (x, y, z) = (lam1, lam2, lam3)
 
 
 def calculix_nodal_stress(units, displacements, nodes) -> np.ndarray:
     """(k, 6, len(nodes)) nodal stresses by CalculiX's C3D10 recovery (module docstring)
     of the displacement fields ``displacements`` of the FE stage's ``units``."""
     mat = units.material
-    return calculix_recovery(units.mesh, units.system.basis.dofs, mat.youngs_modulus, mat.poisson_ratio,
-                             displacements, nodes)
+    return calculix_recovery(
+        units.mesh, units.system.basis.dofs, mat.youngs_modulus, mat.poisson_ratio, displacements, nodes
+    )
 
 
 def calculix_recovery(mesh, dofs, youngs_modulus: float, poisson_ratio: float, displacements, nodes) -> np.ndarray:
@@ -73,7 +73,7 @@ def calculix_recovery(mesh, dofs, youngs_modulus: float, poisson_ratio: float, d
     n_all = int(dofs.element_dofs.max()) + 1
     els = elements_of_nodes(dofs.element_dofs, nodes, n_all)
     gb = Basis(mesh, ElementTetP2(), quadrature=(gauss_points(), np.full(4, 1.0 / 24.0)), elements=els, dofs=dofs)
-    ed = dofs.element_dofs[:, els]                            # (10, ne)
+    ed = dofs.element_dofs[:, els]  # (10, ne)
     local = np.full(n_all, -1, dtype=np.int64)
     local[nodes] = np.arange(nodes.size)
     loc = local[ed]
@@ -81,10 +81,10 @@ def calculix_recovery(mesh, dofs, youngs_modulus: float, poisson_ratio: float, d
     count = np.bincount(loc[keep], minlength=nodes.size)
     out = np.zeros((len(displacements), 6, nodes.size))
     for j, u in enumerate(displacements):
-        v = stress_at_quadrature(gb, np.asarray(u, float), youngs_modulus, poisson_ratio)   # (6, ne, 4)
+        v = stress_at_quadrature(gb, np.asarray(u, float), youngs_modulus, poisson_ratio)  # (6, ne, 4)
         corners = (v - GAUSS_B * v.sum(axis=2, keepdims=True)) / (GAUSS_A - GAUSS_B)
         mids = 0.5 * (corners[:, :, EDGES[:, 0]] + corners[:, :, EDGES[:, 1]])
-        el = np.concatenate([corners, mids], axis=2).transpose(0, 2, 1)   # (6, 10, ne)
+        el = np.concatenate([corners, mids], axis=2).transpose(0, 2, 1)  # (6, 10, ne)
         for k in range(6):
             out[j, k] = np.bincount(loc[keep], el[k][keep], minlength=nodes.size)
     return out / count
@@ -95,7 +95,7 @@ def element_curvature(units) -> np.ndarray:
     the edge length, of each element (0 for a straight-sided element)."""
     P = np.asarray(units.points)
     t = np.asarray(units.system.basis.element_dofs)
-    a, b = P[:, t[EDGES[:, 0]]], P[:, t[EDGES[:, 1]]]          # (3, 6, ne)
+    a, b = P[:, t[EDGES[:, 0]]], P[:, t[EDGES[:, 1]]]  # (3, 6, ne)
     off = np.linalg.norm(P[:, t[4:]] - 0.5 * (a + b), axis=0) / np.linalg.norm(b - a, axis=0)
     return off.max(axis=0)
 

@@ -34,6 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 def level(loadcase: str, f: float) -> dict:
     from ccx_groups import cycle_table
     from ccx_recovery import calculix_nodal_stress, edge_nodes, places
+
     from fe_crank.assess.groups import assessed_groups, unit_stresses
     from fe_crank.fe import FeOptions, solve_unit_cases
     from fe_crank.io.loadcase import load_loadcase
@@ -41,9 +42,11 @@ def level(loadcase: str, f: float) -> dict:
     from fe_crank.mesh.options import MeshOptions
 
     lc = load_loadcase(loadcase)
-    tm = mesh_throw(lc.geometry, size=MeshOptions(coarse_divisions=1.5, fillet_divisions=f, grading=2.0,
-                                                                bore_divisions=6.0 * f),
-                    cache_dir=".cache/meshes")
+    tm = mesh_throw(
+        lc.geometry,
+        size=MeshOptions(coarse_divisions=1.5, fillet_divisions=f, grading=2.0, bore_divisions=6.0 * f),
+        cache_dir=".cache/meshes",
+    )
     units = solve_unit_cases(tm, lc.material, lc.fe or FeOptions())
     groups = assessed_groups(units)
     unit = unit_stresses(units, groups)
@@ -52,8 +55,13 @@ def level(loadcase: str, f: float) -> dict:
     flags["edge"] = np.isin(ids, np.concatenate([edge_nodes(units, g) for g in groups]))
     sx = calculix_nodal_stress(units, [units.displacement(c) for c in unit.cases], ids)
     cyc = cycle_table(loadcase, unit, {"fe-crank": unit.stress, "CalculiX recovery": sx}, flags)
-    return {"fillet_divisions": f, "dof": int(units.n_dof), "elements": int(tm.mesh.t.shape[1]),
-            "peak_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, "cycle": cyc}
+    return {
+        "fillet_divisions": f,
+        "dof": int(units.n_dof),
+        "elements": int(tm.mesh.t.shape[1]),
+        "peak_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2,
+        "cycle": cyc,
+    }
 
 
 def main(argv=None) -> int:
@@ -64,23 +72,35 @@ def main(argv=None) -> int:
     ap.add_argument("--worker", type=float, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.worker is not None:
-        print(json.dumps(level(args.loadcase, args.worker), default=lambda o: o.tolist() if hasattr(o, "tolist") else str(o)))
+        print(
+            json.dumps(
+                level(args.loadcase, args.worker), default=lambda o: o.tolist() if hasattr(o, "tolist") else str(o)
+            )
+        )
         return 0
     out = {"loadcase": args.loadcase, "load_average": os.getloadavg(), "levels": []}
     for f in args.fillet_divisions:
-        p = subprocess.run([sys.executable, __file__, "--worker", str(f), "--loadcase", args.loadcase],
-                           check=True, stdout=subprocess.PIPE, text=True)
+        p = subprocess.run(
+            [sys.executable, __file__, "--worker", str(f), "--loadcase", args.loadcase],
+            check=True,
+            stdout=subprocess.PIPE,
+            text=True,
+        )
         out["levels"].append(json.loads(p.stdout.strip().splitlines()[-1]))
         lv = out["levels"][-1]
         print(f"r/{f:g}: {lv['dof']} dof, peak {lv['peak_gb']:.2f} GB", flush=True)
-        for t, rows in lv["cycle"].items():
+        for _t, rows in lv["cycle"].items():
             for g, row in rows.items():
                 st, gd = row["static"], row["goodman"]
-                line = (f"  {g:22s} static peak: fe-crank {st['fe-crank']['peak'] / 1e6:8.2f} MPa, CalculiX recovery "
-                        f"{st['CalculiX recovery']['peak'] / 1e6:8.2f} MPa")
+                line = (
+                    f"  {g:22s} static peak: fe-crank {st['fe-crank']['peak'] / 1e6:8.2f} MPa, CalculiX recovery "
+                    f"{st['CalculiX recovery']['peak'] / 1e6:8.2f} MPa"
+                )
                 if gd:
-                    line += (f"; Goodman: fe-crank {gd['fe-crank']['min']:.3f}, CalculiX recovery "
-                             f"{gd['CalculiX recovery']['min']:.3f}")
+                    line += (
+                        f"; Goodman: fe-crank {gd['fe-crank']['min']:.3f}, CalculiX recovery "
+                        f"{gd['CalculiX recovery']['min']:.3f}"
+                    )
                 print(line, flush=True)
     out["load_average_after"] = os.getloadavg()
     if args.json:

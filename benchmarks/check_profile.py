@@ -83,15 +83,26 @@ def main(argv=None) -> int:
 
     def close():
         if state["stage"] is not None:
-            rows.append({"stage": state["stage"], "wall_s": time.perf_counter() - state["wall"],
-                         "cpu_s": _cpu() - state["cpu"], "peak_rss_gb": sampler.mark() / 1e9})
+            rows.append(
+                {
+                    "stage": state["stage"],
+                    "wall_s": time.perf_counter() - state["wall"],
+                    "cpu_s": _cpu() - state["cpu"],
+                    "peak_rss_gb": sampler.mark() / 1e9,
+                }
+            )
 
     def on_stage(_path, stage):
         close()
         state.update(stage=stage, wall=time.perf_counter(), cpu=_cpu())
 
-    opts = CheckOptions(mesh_size=args.preset, cache_dir=args.cache_dir, render=False, write_vtu=False,
-                        convergence=bool(args.convergence))
+    opts = CheckOptions(
+        mesh_size=args.preset,
+        cache_dir=args.cache_dir,
+        render=False,
+        write_vtu=False,
+        convergence=bool(args.convergence),
+    )
     out = args.out or tempfile.mkdtemp(prefix="check_profile-")
     t0, c0 = time.perf_counter(), _cpu()
     prof = None
@@ -104,8 +115,11 @@ def main(argv=None) -> int:
     if prof is not None:
         prof.disable()
     close()
-    total = {"wall_s": time.perf_counter() - t0, "cpu_s": _cpu() - c0,
-             "ru_maxrss_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024 / 1e9}
+    total = {
+        "wall_s": time.perf_counter() - t0,
+        "cpu_s": _cpu() - c0,
+        "ru_maxrss_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024 / 1e9,
+    }
     sampler.stop = True
     print(f"{args.loadcase} --preset {args.preset}: status {result.status} {result.message}")
     print(f"{'stage':<12} {'wall s':>8} {'cpu s':>8} {'peak RSS GB':>12}")
@@ -121,8 +135,18 @@ def main(argv=None) -> int:
 
             pstats.Stats(prof, stream=sys.stdout).sort_stats("cumulative").print_stats(args.top)
     if args.json:
-        Path(args.json).write_text(json.dumps({"loadcase": args.loadcase, "preset": args.preset, "stages": rows,
-                                               "total": total, "status": result.status}, indent=2))
+        Path(args.json).write_text(
+            json.dumps(
+                {
+                    "loadcase": args.loadcase,
+                    "preset": args.preset,
+                    "stages": rows,
+                    "total": total,
+                    "status": result.status,
+                },
+                indent=2,
+            )
+        )
     return 0
 
 

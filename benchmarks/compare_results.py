@@ -73,8 +73,10 @@ def compare(root_a: Path, root_b: Path, rtol: float) -> list[str]:
         ca, cb = fa[case] / "case.json", fb[case] / "case.json"
         if ca.exists() and cb.exists():
             va, vb = json.loads(ca.read_text()), json.loads(cb.read_text())
-            out += [f"{case}: case.json {d}" for d in diff({k: va.get(k) for k in VERDICT},
-                                                           {k: vb.get(k) for k in VERDICT}, rtol)]
+            out += [
+                f"{case}: case.json {d}"
+                for d in diff({k: va.get(k) for k in VERDICT}, {k: vb.get(k) for k in VERDICT}, rtol)
+            ]
         ra, rb = fa[case] / "results.json", fb[case] / "results.json"
         if ra.exists() != rb.exists():
             out.append(f"{case}: results.json only in {'the first' if ra.exists() else 'the second'} tree")
@@ -100,8 +102,10 @@ def main(argv: list[str] | None = None) -> int:
     n = len(case_folders(args.first))
     for d in diffs:
         print(d)
-    print(f"{n} case(s) compared: {'no difference' if not diffs else f'{len(diffs)} difference(s)'} "
-          f"beyond {args.rtol:g} relative")
+    print(
+        f"{n} case(s) compared: {'no difference' if not diffs else f'{len(diffs)} difference(s)'} "
+        f"beyond {args.rtol:g} relative"
+    )
     return 1 if diffs else 0
 
 

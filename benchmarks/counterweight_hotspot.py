@@ -45,9 +45,8 @@ def main(argv=None):
     from fe_crank.io.geometry import load_geometry
     from fe_crank.io.material import load_material
     from fe_crank.io.units import to_si
-    from fe_crank.mesh.options import resolve_options
+    from fe_crank.mesh.options import _SAFETY, resolve_options
     from fe_crank.mesh.quality import _straighten_poor
-    from fe_crank.mesh.options import _SAFETY
     from fe_crank.mesh.sizing import _set_size_fields, _surface_field, counterweight_fillet_radius
     from fe_crank.mesh.types import MeshStats, ThrowMesh
 
@@ -59,8 +58,12 @@ def main(argv=None):
     ap.add_argument("--speed", default="3360 rpm")
     ap.add_argument("--material", default="C45")
     ap.add_argument("--cw-fillet", type=float, default=None, help="mm: override the counterweight fillet radius")
-    ap.add_argument("--cw-divisions", type=float, default=None,
-                    help="counterweight fillet elements r/N (default: the preset's fillet_divisions)")
+    ap.add_argument(
+        "--cw-divisions",
+        type=float,
+        default=None,
+        help="counterweight fillet elements r/N (default: the preset's fillet_divisions)",
+    )
     a = ap.parse_args(argv)
 
     g = load_geometry(a.geometry)
@@ -118,19 +121,22 @@ def main(argv=None):
     groups = {k: v for k, v in assessed_groups(units).items() if k.startswith(("counterweight", "junction"))}
     ids = np.unique(np.concatenate(list(groups.values())))
     u = omega**2 * units.displacement("centrifugal")
-    s = stress_at_selected_nodes(units.mesh, [u], mat.youngs_modulus, mat.poisson_ratio, ids,
-                                 dofs=units.system.basis.dofs)[0]
+    s = stress_at_selected_nodes(
+        units.mesh, [u], mat.youngs_modulus, mat.poisson_ratio, ids, dofs=units.system.basis.dofs
+    )[0]
     vm = von_mises(s)
     i = int(np.argmax(vm))
     p = np.asarray(units.points)[:, ids[i]] * 1e3
     owners = [k for k, v in groups.items() if ids[i] in v]
     ru = resource.getrusage(resource.RUSAGE_SELF)
     rc = [c.fillet_radius for c in spec.counterweights if c.fillet_radius]
-    print(f"preset={a.preset} cw_fillet={rc[0] * 1e3 if rc else 0:g} mm cw_divisions={a.cw_divisions or opt.fillet_divisions:g} "
-          f"corner_size={a.corner_size:g} mm dof={units.n_dof} "
-          f"max_vm={vm[i] / 1e6:.2f} MPa at ({p[0]:.1f}, {p[1]:.1f}, {p[2]:.1f}) mm r={math.hypot(p[0], p[1]):.2f} mm "
-          f"groups={'+'.join(owners)} cpu_mesh={t_mesh:.1f}s cpu={ru.ru_utime + ru.ru_stime:.1f}s "
-          f"peak_rss={ru.ru_maxrss / 1e6:.2f} GB")
+    print(
+        f"preset={a.preset} cw_fillet={rc[0] * 1e3 if rc else 0:g} mm cw_divisions={a.cw_divisions or opt.fillet_divisions:g} "
+        f"corner_size={a.corner_size:g} mm dof={units.n_dof} "
+        f"max_vm={vm[i] / 1e6:.2f} MPa at ({p[0]:.1f}, {p[1]:.1f}, {p[2]:.1f}) mm r={math.hypot(p[0], p[1]):.2f} mm "
+        f"groups={'+'.join(owners)} cpu_mesh={t_mesh:.1f}s cpu={ru.ru_utime + ru.ru_stime:.1f}s "
+        f"peak_rss={ru.ru_maxrss / 1e6:.2f} GB"
+    )
 
 
 if __name__ == "__main__":

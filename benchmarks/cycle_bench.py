@@ -57,7 +57,7 @@ def build_throw(size_mm: float):
         vols = gmsh.model.getEntities(3)
         zc = {v[1]: occ.getCenterOfMass(3, v[1]) for v in vols}
         names = {}
-        for tag, (cx, cy, cz) in zc.items():
+        for tag, (_cx, cy, cz) in zc.items():
             if cz < lj:
                 names[tag] = "journal_1"
             elif cz < lj + w:
@@ -111,9 +111,11 @@ def loads_for(units, basis, mat):
     from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load
     from fe_crank.fe.unit_cases import PIN_FORCES
 
-    return {"centrifugal": lambda: centrifugal_load(basis, mat.density, 1.0),
-            "torque": lambda: face_torque_load(basis, units.cases["torque"].applied[5], boundary="end_1"),
-            **{k: (lambda f=f: pin_pressure_load(basis, f)[0]) for k, f in PIN_FORCES.items()}}
+    return {
+        "centrifugal": lambda: centrifugal_load(basis, mat.density, 1.0),
+        "torque": lambda: face_torque_load(basis, units.cases["torque"].applied[5], boundary="end_1"),
+        **{k: (lambda f=f: pin_pressure_load(basis, f)[0]) for k, f in PIN_FORCES.items()},
+    }
 
 
 def main(argv=None) -> int:
@@ -128,8 +130,8 @@ def main(argv=None) -> int:
 
     from fe_crank.assess import unit_stresses
     from fe_crank.assess.case import assess_throw
-    from fe_crank.assess.superpose import combine, load_coefficients, stress_history
     from fe_crank.assess.stress import von_mises
+    from fe_crank.assess.superpose import combine, load_coefficients, stress_history
     from fe_crank.dynamics import analyse
     from fe_crank.fe.loads import pin_pressure_load
     from fe_crank.fe.unit_cases import FeOptions, solve_unit_cases
@@ -154,10 +156,18 @@ def main(argv=None) -> int:
     mat = load_material("42CrMo4")
     units = solve_unit_cases(mesh, mat, FeOptions(solver=args.solver))
     tm = units.timings
-    out.update(nodes=int(units.points.shape[1]), elements=int(mesh.t.shape[1]), dof=int(units.n_dof),
-               solver=units.solver, assembly_s=tm.get("assembly"), constraints_s=tm.get("constraints"),
-               factorisation_s=tm.get("factorisation"), unit_loads_s=tm.get("loads"), unit_solves_s=tm.get("solve"),
-               n_unit_cases=len(units.cases))
+    out.update(
+        nodes=int(units.points.shape[1]),
+        elements=int(mesh.t.shape[1]),
+        dof=int(units.n_dof),
+        solver=units.solver,
+        assembly_s=tm.get("assembly"),
+        constraints_s=tm.get("constraints"),
+        factorisation_s=tm.get("factorisation"),
+        unit_loads_s=tm.get("loads"),
+        unit_solves_s=tm.get("solve"),
+        n_unit_cases=len(units.cases),
+    )
     # a real cycle: seed-001 single cylinder at its speed (pin forces scaled to this throw only by use)
     lc = load_loadcase("loadcases/single_cylinder_seed001.toml")
     dyn = analyse(lc.engine, lc.operating)
@@ -167,13 +177,23 @@ def main(argv=None) -> int:
     unit = unit_stresses(units)
     out["unit_stress_recovery_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    ta = assess_throw("1", unit, theta, tl.pin_force, tl.torque_front, omega=lc.operating.speed,
-                      overspeed=lc.operating.overspeed, material=mat, crank_radius=crank_radius)
+    ta = assess_throw(
+        "1",
+        unit,
+        theta,
+        tl.pin_force,
+        tl.torque_front,
+        omega=lc.operating.speed,
+        overspeed=lc.operating.overspeed,
+        material=mat,
+        crank_radius=crank_radius,
+    )
     out["superposition_and_assessment_s"] = time.perf_counter() - t0
     out["n_angles"] = int(theta.size)
     out["assessed_nodes"] = int(unit.n_nodes)
-    coeffs = load_coefficients(tl.pin_force, tl.torque_front, lc.operating.speed, cases=unit.cases,
-                               torque_mz=unit.torque_mz)
+    coeffs = load_coefficients(
+        tl.pin_force, tl.torque_front, lc.operating.speed, cases=unit.cases, torque_mz=unit.torque_mz
+    )
     basis = units.system.basis
     makers = loads_for(units, basis, mat)
     t0 = time.perf_counter()
@@ -187,8 +207,10 @@ def main(argv=None) -> int:
         t0 = time.perf_counter()
         # per-angle direct solve as one would do without superposition: build the load
         # (a cosine arc centred on the actual resultant), solve, recover stress
-        f = combine(unit_f[[i for i, c in enumerate(unit.cases) if not c.startswith("pin")]],
-                    coeffs[k, [i for i, c in enumerate(unit.cases) if not c.startswith("pin")]])[0]
+        f = combine(
+            unit_f[[i for i, c in enumerate(unit.cases) if not c.startswith("pin")]],
+            coeffs[k, [i for i, c in enumerate(unit.cases) if not c.startswith("pin")]],
+        )[0]
         f = f + pin_pressure_load(basis, tl.pin_force[k])[0]
         u = units.system.solve(f)
         s = units.stress_at_nodes(u)[:, unit.node_ids]
@@ -203,16 +225,27 @@ def main(argv=None) -> int:
     out["direct_720_extrapolated_s"] = float(np.mean(direct_t) * theta.size)
     out["superposition_vs_linear_direct_max_rel"] = max(lin_err)
     out["superposition_vs_single_arc_fillet_vm_max_rel"] = max(phys_dev)
-    out["single_arc_deviation_by_angle"] = {f"{np.rad2deg(theta[k]):.0f} deg": round(d, 5)
-                                            for k, d in zip(picks, phys_dev)}
+    out["single_arc_deviation_by_angle"] = {
+        f"{np.rad2deg(theta[k]):.0f} deg": round(d, 5) for k, d in zip(picks, phys_dev)
+    }
     out["fatigue_min_safety"] = min(g.fatigue_safety.value for g in ta.groups if g.fatigue_safety)
     out["peak_rss_gb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6
-    total_sup = sum(out[k] or 0 for k in ("assembly_s", "constraints_s", "factorisation_s", "unit_loads_s",
-                                          "unit_solves_s", "unit_stress_recovery_s",
-                                          "superposition_and_assessment_s"))
+    total_sup = sum(
+        out[k] or 0
+        for k in (
+            "assembly_s",
+            "constraints_s",
+            "factorisation_s",
+            "unit_loads_s",
+            "unit_solves_s",
+            "unit_stress_recovery_s",
+            "superposition_and_assessment_s",
+        )
+    )
     out["total_superposition_route_s"] = total_sup
-    out["total_direct_route_s"] = sum(out[k] or 0 for k in ("assembly_s", "constraints_s", "factorisation_s")) \
-        + out["direct_720_extrapolated_s"]
+    out["total_direct_route_s"] = (
+        sum(out[k] or 0 for k in ("assembly_s", "constraints_s", "factorisation_s")) + out["direct_720_extrapolated_s"]
+    )
     text = json.dumps(out, indent=2)
     print(text)
     if args.json:

@@ -34,8 +34,11 @@ import numpy as np
 def paths(n: int, n_t: int = 720, seed: int = 1) -> np.ndarray:
     rng = np.random.default_rng(seed)
     th = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
-    coeff = np.column_stack([np.full(n_t, 1e4)] + [np.maximum(0.0, np.cos(th * k / 2 + k)) * 1e4 for k in range(12)]
-                            + [1e3 * np.sin(3 * th)])
+    coeff = np.column_stack(
+        [np.full(n_t, 1e4)]
+        + [np.maximum(0.0, np.cos(th * k / 2 + k)) * 1e4 for k in range(12)]
+        + [1e3 * np.sin(3 * th)]
+    )
     return np.tensordot(coeff, rng.normal(size=(14, 6, n)), axes=(1, 0))
 
 
@@ -64,7 +67,7 @@ def main(argv=None) -> int:
     from fe_crank.assess.stress import von_mises, von_mises_path, von_mises_planes
 
     h = paths(args.nodes)
-    chunks = [np.ascontiguousarray(h[:, :, s:s + args.chunk]) for s in range(0, h.shape[-1], args.chunk)]
+    chunks = [np.ascontiguousarray(h[:, :, s : s + args.chunk]) for s in range(0, h.shape[-1], args.chunk)]
     c = [0.5 * (x.min(axis=0) + x.max(axis=0)) for x in chunks]
 
     def amp(mod):
@@ -75,7 +78,7 @@ def main(argv=None) -> int:
     t_path, b = cpu(lambda: [von_mises_path(x, cc) for x, cc in zip(chunks, c)], args.repeat)
     same = all(np.array_equal(x, y) for x, y in zip(a, b))
     rows.append(("von Mises of a path about its mid-range: plain / von_mises_path", t_plain, t_path, same))
-    planes = [np.ascontiguousarray(x.transpose(1, 0, 2)) for x in chunks]   # (6, n_t, k), as assess_group holds them
+    planes = [np.ascontiguousarray(x.transpose(1, 0, 2)) for x in chunks]  # (6, n_t, k), as assess_group holds them
     t_planes, d = cpu(lambda: [von_mises_planes(x, cc) for x, cc in zip(planes, c)], args.repeat)
     same = all(np.array_equal(x, y) for x, y in zip(a, d))
     rows.append(("the same: plain / von_mises_planes on component planes", t_plain, t_planes, same))
@@ -107,10 +110,20 @@ def _synthetic_group(n: int, seed: int = 2):
     from fe_crank.fe.unit_cases import CASES
 
     rng = np.random.default_rng(seed)
-    pts = np.vstack([0.03 * np.cos(np.linspace(0, 2 * np.pi, n)), 0.03 * np.sin(np.linspace(0, 2 * np.pi, n)),
-                     np.linspace(-0.01, 0.01, n)])
-    us = UnitStresses(stress=rng.normal(size=(len(CASES), 6, n)) * 1e3, points=pts, groups={"journal_fillet_1":
-                      np.arange(n)}, node_ids=np.arange(n), cases=CASES)
+    pts = np.vstack(
+        [
+            0.03 * np.cos(np.linspace(0, 2 * np.pi, n)),
+            0.03 * np.sin(np.linspace(0, 2 * np.pi, n)),
+            np.linspace(-0.01, 0.01, n),
+        ]
+    )
+    us = UnitStresses(
+        stress=rng.normal(size=(len(CASES), 6, n)) * 1e3,
+        points=pts,
+        groups={"journal_fillet_1": np.arange(n)},
+        node_ids=np.arange(n),
+        cases=CASES,
+    )
     th = np.linspace(0.0, 4 * np.pi, 720, endpoint=False)
     pin = np.column_stack([3e3 * np.sin(th), 2e4 * np.cos(th) + 5e3])
     co = load_coefficients(pin, 400.0 * np.sin(2 * th) + 150.0, 293.0, cases=CASES, torque_mz=-1.0)
@@ -131,7 +144,7 @@ def threaded(n: int, threads: int, repeat: int) -> None:
         amp = np.empty(n)
 
         def one(s, _scratch):
-            amp[s:s + B] = fatigue.amplitude_mean(planes[:, :, s:s + B].transpose(1, 0, 2))[0]
+            amp[s : s + B] = fatigue.amplitude_mean(planes[:, :, s : s + B].transpose(1, 0, 2))[0]
 
         run_blocks(one, range(0, n, B), k)
         return amp
@@ -140,23 +153,41 @@ def threaded(n: int, threads: int, repeat: int) -> None:
     mat = load_material("42CrMo4")
 
     def group(k):
-        return assess_group(us, "journal_fillet_1", co, th, mat, crank_radius=0.0, overspeed=330.0,
-                            overspeed_coefficients=1.3 * co, threads=k)
+        return assess_group(
+            us,
+            "journal_fillet_1",
+            co,
+            th,
+            mat,
+            crank_radius=0.0,
+            overspeed=330.0,
+            overspeed_coefficients=1.3 * co,
+            threads=k,
+        )
 
-    print(f"{n} nodes x 720 angles, 1 vs {threads} threads, best of {repeat}; "
-          f"cores of this process {len(os.sched_getaffinity(0))}; load average {os.getloadavg()[0]:.2f}")
-    for what, fn, same in (("fatigue blocks (amplitude_mean)", blocks, np.array_equal),
-                           ("assess_group", group, lambda a, b: a == b and all(
-                               np.array_equal(a.fields[k], b.fields[k]) for k in a.fields))):
+    print(
+        f"{n} nodes x 720 angles, 1 vs {threads} threads, best of {repeat}; "
+        f"cores of this process {len(os.sched_getaffinity(0))}; load average {os.getloadavg()[0]:.2f}"
+    )
+    for what, fn, same in (
+        ("fatigue blocks (amplitude_mean)", blocks, np.array_equal),
+        (
+            "assess_group",
+            group,
+            lambda a, b: a == b and all(np.array_equal(a.fields[k], b.fields[k]) for k in a.fields),
+        ),
+    ):
         best = {1: (np.inf, np.inf), threads: (np.inf, np.inf)}
         outs = {}
         for _ in range(repeat):
             for k in (1, threads):
-                w, c, outs[k] = _wall_cpu(lambda: fn(k))
+                w, c, outs[k] = _wall_cpu(lambda fn=fn, k=k: fn(k))
                 best[k] = (min(best[k][0], w), min(best[k][1], c))
         (w1, c1), (wn, cn) = best[1], best[threads]
-        print(f"{what}: wall {w1:.3f} -> {wn:.3f} s ({w1 / wn:.2f}x), CPU {c1:.3f} -> {cn:.3f} s "
-              f"(parallelism CPU/wall {c1 / w1:.2f} -> {cn / wn:.2f}); identical: {same(outs[1], outs[threads])}")
+        print(
+            f"{what}: wall {w1:.3f} -> {wn:.3f} s ({w1 / wn:.2f}x), CPU {c1:.3f} -> {cn:.3f} s "
+            f"(parallelism CPU/wall {c1 / w1:.2f} -> {cn / wn:.2f}); identical: {same(outs[1], outs[threads])}"
+        )
     # the interpreter's share of a block, measured in one thread (so whatever the load):
     # the same calls on a 1-node, 32-angle path, where the array kernels do next to
     # nothing, take about the time a block spends outside the kernels, holding the lock
@@ -166,9 +197,11 @@ def threaded(n: int, threads: int, repeat: int) -> None:
     t_tiny, _ = cpu(lambda: [fatigue.amplitude_mean(tiny) for _ in range(reps)], 3)
     t_full, _ = cpu(lambda: blocks(1), 3)
     held = t_tiny / reps * n_blocks
-    print(f"fatigue blocks, one thread: {t_full:.3f} s CPU, of which interpreter overhead (the same calls "
-          f"on 1 node x 32 angles) {held:.3f} s = {100 * held / t_full:.0f} %: the share that holds the lock; "
-          f"Amdahl bound on 2 cores {1 / (held / t_full + (1 - held / t_full) / 2):.2f}x")
+    print(
+        f"fatigue blocks, one thread: {t_full:.3f} s CPU, of which interpreter overhead (the same calls "
+        f"on 1 node x 32 angles) {held:.3f} s = {100 * held / t_full:.0f} %: the share that holds the lock; "
+        f"Amdahl bound on 2 cores {1 / (held / t_full + (1 - held / t_full) / 2):.2f}x"
+    )
     print(f"load average at the end {os.getloadavg()[0]:.2f}")
 
 

@@ -33,7 +33,7 @@ import time
 
 import numpy as np
 
-_cpu = time.process_time       # CPU seconds (user + system) of this process, finer than os.times
+_cpu = time.process_time  # CPU seconds (user + system) of this process, finer than os.times
 
 
 def _best(fn, repeat):
@@ -120,8 +120,10 @@ def main(argv=None) -> int:
     mesh, opts, mat = tm.mesh, lc.fe or FeOptions(), lc.material
     E, nu = mat.youngs_modulus, mat.poisson_ratio
     basis = cell_basis(mesh, opts.intorder)
-    sup = determinate_support(basis, DeterminateLayout(journals=tuple(opts.journals), torque_face=opts.reaction_face,
-                                                       axial=axial_journal(opts)))
+    sup = determinate_support(
+        basis,
+        DeterminateLayout(journals=tuple(opts.journals), torque_face=opts.reaction_face, axial=axial_journal(opts)),
+    )
     mirror = mesh_mirror(mesh, basis, tuple(getattr(tm, "symmetry", None) or ()))
     if mirror is None:
         print("the mesh states no verified mirror plane: nothing of the symmetric path to time")
@@ -142,8 +144,9 @@ def main(argv=None) -> int:
     nodes = np.unique(el[:, part])
 
     def former_half():
-        pb = Basis(mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs,
-                   elements=part)
+        pb = Basis(
+            mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs, elements=part
+        )
         ldofs = (3 * nodes[:, None] + np.arange(3)).ravel()
         K = sp.triu(assemble_stiffness(pb, E, nu)[ldofs][:, ldofs], format="csr")
         K.sort_indices()
@@ -155,8 +158,9 @@ def main(argv=None) -> int:
         return K
 
     def same_csr(a, b):
-        return a.shape == b.shape and all(np.array_equal(getattr(a, k), getattr(b, k))
-                                          for k in ("indptr", "indices", "data"))
+        return a.shape == b.shape and all(
+            np.array_equal(getattr(a, k), getattr(b, k)) for k in ("indptr", "indices", "data")
+        )
 
     pair("half stiffness (triu)", former_half, current_half, same_csr)
 
@@ -169,14 +173,33 @@ def main(argv=None) -> int:
 
     pair("selection P", former_selection, lambda: selection(n, held), same_csr)
 
-    system = System(mesh=mesh, basis=basis, K_rows=stiffness_rows(basis, E, nu, held), rows=held,
-                    Ks=sp.csr_matrix((n, n)), P=selection(n, held), foundations=(), couplings=(), ref_points={},
-                    ref_columns={}, slave_dofs={}, dirichlet_dofs=np.zeros(0, int), foundation_dofs={},
-                    factorisation=None, point_dofs=held, determinate=sup)
+    system = System(
+        mesh=mesh,
+        basis=basis,
+        K_rows=stiffness_rows(basis, E, nu, held),
+        rows=held,
+        Ks=sp.csr_matrix((n, n)),
+        P=selection(n, held),
+        foundations=(),
+        couplings=(),
+        ref_points={},
+        ref_columns={},
+        slave_dofs={},
+        dirichlet_dofs=np.zeros(0, int),
+        foundation_dofs={},
+        factorisation=None,
+        point_dofs=held,
+        determinate=sup,
+    )
     loads = [centrifugal_load(basis, mat.density, 1.0), face_torque_load(basis, -1.0, boundary=opts.torque_face)]
     surf = pin_surface(basis, opts.pin_boundary, opts.pin_centre)
-    loads += [pin_pressure_load(basis, unit_force(c), boundary=opts.pin_boundary, half_angle=opts.pin_half_angle,
-                                surface=surf)[0] for c in opts.cases if pin_direction(c) is not None]
+    loads += [
+        pin_pressure_load(
+            basis, unit_force(c), boundary=opts.pin_boundary, half_angle=opts.pin_half_angle, surface=surf
+        )[0]
+        for c in opts.cases
+        if pin_direction(c) is not None
+    ]
     rng = np.random.default_rng(1)
     U = rng.normal(size=(n, len(loads))) * 1e-9
 
@@ -184,17 +207,22 @@ def main(argv=None) -> int:
         return lambda: [fn(system, U[:, i], f) for i, f in enumerate(loads)]
 
     def same_checks(a, b):
-        return all(np.array_equal(x[0], y[0]) and np.array_equal(x[2], y[2]) and x[1].keys() == y[1].keys()
-                   and all(np.array_equal(x[1][k], y[1][k]) for k in x[1]) for x, y in zip(a, b))
+        return all(
+            np.array_equal(x[0], y[0])
+            and np.array_equal(x[2], y[2])
+            and x[1].keys() == y[1].keys()
+            and all(np.array_equal(x[1][k], y[1][k]) for k in x[1])
+            for x, y in zip(a, b)
+        )
 
     pair(f"equilibrium checks x{len(loads)}", checks(_former_check), checks(_current_check), same_checks)
 
     def current_rigid():
-        V = U.copy()                     # the rebuilt U the solve owns; its copy is timed on both sides
+        V = U.copy()  # the rebuilt U the solve owns; its copy is timed on both sides
         symsolve._remove_rigid_fit(basis.doflocs, sup.held, V)
         return V
 
-    def former_rigid_copy():          # the whole motion built, then subtracted into a new array
+    def former_rigid_copy():  # the whole motion built, then subtracted into a new array
         V = U.copy()
         a = symsolve._rigid_coefficients(basis.doflocs, sup.held, V)
         Un = np.zeros((basis.N, 3, V.shape[1]))
@@ -204,8 +232,10 @@ def main(argv=None) -> int:
 
     pair(f"rigid motion off U (3N x {len(loads)})", former_rigid_copy, current_rigid, np.array_equal)
 
-    print(f"{args.loadcase} --preset {args.preset}: {n} DOF, {mesh.t.shape[1]} elements, half {part.size} "
-          f"elements / {3 * nodes.size} dofs, {len(loads)} unit loads; CPU s, best of {args.repeat}")
+    print(
+        f"{args.loadcase} --preset {args.preset}: {n} DOF, {mesh.t.shape[1]} elements, half {part.size} "
+        f"elements / {3 * nodes.size} dofs, {len(loads)} unit loads; CPU s, best of {args.repeat}"
+    )
     print(f"{'piece':<32} {'former':>8} {'current':>8} {'ratio':>6}")
     for name, cf, cc in rows_out:
         print(f"{name:<32} {cf:8.3f} {cc:8.3f} {cf / cc if cc >= 0.005 else float('inf'):6.1f}")

@@ -20,9 +20,8 @@ import sys
 import time
 from pathlib import Path
 
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from check_profile import _cpu  # noqa: E402  CPU seconds (user + system) of this process
+from check_profile import _cpu
 
 
 def main(argv=None) -> int:
@@ -36,18 +35,21 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     import numpy as np
+
     from fe_crank.fe.assembly import assemble_stiffness
     from fe_crank.fe.determinate import DeterminateLayout, determinate_support
     from fe_crank.fe.fe_options import FeOptions, axial_journal
     from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
     from fe_crank.fe.pin_directions import pin_direction, unit_force
+
     try:
         from fe_crank.fe.supports import cell_basis
-    except ImportError:            # the code before cell_basis existed: the same basis, built by scikit-fem
+    except ImportError:  # the code before cell_basis existed: the same basis, built by scikit-fem
         from skfem import Basis, ElementTetP2
 
         def cell_basis(mesh, intorder):
             return Basis(mesh, ElementTetP2(), intorder=intorder)
+
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mesh import mesh_throw
 
@@ -71,8 +73,7 @@ def main(argv=None) -> int:
         return out
 
     basis = timed("cell basis", lambda: cell_basis(mesh, opts.intorder))
-    layout = DeterminateLayout(journals=tuple(opts.journals), torque_face=opts.reaction_face,
-                               axial=axial_journal(opts))
+    layout = DeterminateLayout(journals=tuple(opts.journals), torque_face=opts.reaction_face, axial=axial_journal(opts))
     sup = timed("determinate_support", lambda: determinate_support(basis, layout))
     K = timed("assemble_stiffness", lambda: assemble_stiffness(basis, mat.youngs_modulus, mat.poisson_ratio))
     loads = {}
@@ -85,14 +86,17 @@ def main(argv=None) -> int:
         surf = timed("pin_surface", lambda: pin_surface(basis, opts.pin_boundary, opts.pin_centre))
         c, w = _cpu(), time.perf_counter()
         for name in pins:
-            loads[name] = pin_pressure_load(basis, unit_force(name), boundary=opts.pin_boundary,
-                                            half_angle=opts.pin_half_angle, surface=surf)[0]
+            loads[name] = pin_pressure_load(
+                basis, unit_force(name), boundary=opts.pin_boundary, half_angle=opts.pin_half_angle, surface=surf
+            )[0]
         rows.append((f"pin_pressure_load x{len(pins)}", _cpu() - c, time.perf_counter() - w))
     total = (_cpu() - c_all, time.perf_counter() - w_all)
     if prof is not None:
         prof.disable()
-    print(f"{args.loadcase} --preset {args.preset}: {3 * basis.N} DOF, {mesh.t.shape[1]} elements, "
-          f"nnz K {K.nnz}, {len(loads)} load vectors")
+    print(
+        f"{args.loadcase} --preset {args.preset}: {3 * basis.N} DOF, {mesh.t.shape[1]} elements, "
+        f"nnz K {K.nnz}, {len(loads)} load vectors"
+    )
     print(f"{'piece':<24} {'cpu s':>8} {'wall s':>8}")
     for name, c, w in rows:
         print(f"{name:<24} {c:8.2f} {w:8.2f}")
@@ -100,9 +104,18 @@ def main(argv=None) -> int:
     print(f"load average at the end: {os.getloadavg()[0]:.2f}")
     print(f"checksums: K {abs(K).sum():.17g}, loads {sum(float(np.abs(v).sum()) for v in loads.values()):.17g}")
     if args.save:
-        np.savez(args.save, K_data=K.data, K_indices=K.indices, K_indptr=K.indptr, G_data=sup.G.data,
-                 G_indices=sup.G.indices, G_indptr=sup.G.indptr, A=sup.A, held=sup.held,
-                 **{f"load_{k}": v for k, v in loads.items()})
+        np.savez(
+            args.save,
+            K_data=K.data,
+            K_indices=K.indices,
+            K_indptr=K.indptr,
+            G_data=sup.G.data,
+            G_indices=sup.G.indices,
+            G_indptr=sup.G.indptr,
+            A=sup.A,
+            held=sup.held,
+            **{f"load_{k}": v for k, v in loads.items()},
+        )
     if prof is not None:
         if args.profile:
             prof.dump_stats(args.profile)

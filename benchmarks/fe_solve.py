@@ -32,8 +32,8 @@ from pathlib import Path
 def run_one(size: float, solver: str, geometry: str | None = None, preset: str = "coarse") -> dict:
     from dataclasses import dataclass
 
-
     from fe_crank.fe import FeOptions, solve_unit_cases
+
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
     from verification_meshes import simple_throw  # the test geometry (tests/verification_meshes.py)
 
@@ -60,15 +60,24 @@ def run_one(size: float, solver: str, geometry: str | None = None, preset: str =
     t_stress = time.perf_counter() - t0
     t = sol.timings
     return {
-        "model": f"{geometry} ({preset})" if geometry else f"simple_throw({size})", "solver": sol.solver, "elements": int(mesh.nelements), "dof": int(sol.n_dof),
-        "nnz": sol.system.factorisation.nnz, "mesh_s": round(t_mesh, 2),
-        "assembly_s": round(t["assembly"] + t["constraints"], 2), "factorisation_s": round(t["factorisation"], 2),
-        "loads_s": round(t["loads"], 2), "solve_6_cases_s": round(t["solve"], 2),
-        "solve_per_case_s": round(t["solve_per_case"], 3), "stress_recovery_s": round(t_stress, 2),
+        "model": f"{geometry} ({preset})" if geometry else f"simple_throw({size})",
+        "solver": sol.solver,
+        "elements": int(mesh.nelements),
+        "dof": int(sol.n_dof),
+        "nnz": sol.system.factorisation.nnz,
+        "mesh_s": round(t_mesh, 2),
+        "assembly_s": round(t["assembly"] + t["constraints"], 2),
+        "factorisation_s": round(t["factorisation"], 2),
+        "loads_s": round(t["loads"], 2),
+        "solve_6_cases_s": round(t["solve"], 2),
+        "solve_per_case_s": round(t["solve_per_case"], 3),
+        "stress_recovery_s": round(t_stress, 2),
         "fe_total_s": round(t["total"], 2),
         "max_equilibrium_error": float(max(c.equilibrium_error for c in sol.cases.values())),
         "peak_rss_gb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 2),
-        "vm_max_pa": vm, "cpus": os.cpu_count(), "machine": platform.processor() or platform.machine(),
+        "vm_max_pa": vm,
+        "cpus": os.cpu_count(),
+        "machine": platform.processor() or platform.machine(),
     }
 
 
@@ -89,8 +98,11 @@ def main(argv=None) -> int:
         sizes = sizes[:1]
     for size in sizes:
         extra = ["--geometry", args.geometry, "--preset", args.preset] if args.geometry else []
-        out = subprocess.run([sys.executable, __file__, "--one", "--size", str(size), "--solver", args.solver, *extra],
-                             capture_output=True, text=True)
+        out = subprocess.run(
+            [sys.executable, __file__, "--one", "--size", str(size), "--solver", args.solver, *extra],
+            capture_output=True,
+            text=True,
+        )
         if out.returncode != 0:
             print(out.stderr, file=sys.stderr)
             return out.returncode

@@ -86,13 +86,16 @@ def main(argv: list[str] | None = None) -> int:
     for level in args.levels:
         limit = int(args.mem_limit_gb * 1024**3)
 
-        def _limit():
+        def _limit(limit=limit):
             resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 
         try:
             proc = subprocess.run(
                 [sys.executable, __file__, args.geometry, "--child", level],
-                capture_output=True, text=True, timeout=args.timeout, preexec_fn=_limit,
+                capture_output=True,
+                text=True,
+                timeout=args.timeout,
+                preexec_fn=_limit,
                 env={**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"},
             )
         except subprocess.TimeoutExpired:
@@ -105,12 +108,14 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{level}: failed (rc {proc.returncode}): {tail[0]}")
             rows.append({"level": level, "failed": f"rc {proc.returncode}: {tail[0][:120]}"})
             continue
-        r = json.loads(line[len("RESULT "):])
+        r = json.loads(line[len("RESULT ") :])
         rows.append(r)
-        print(f"{level:7s} r/{r['fillet_divisions']:<4g} nodes {r['nodes']:>8d} tets {r['elements']:>8d} "
-              f"P2 DOFs {r['p2_dofs']:>8d} fillet edge r/{1 / r['fillet_edge_over_r']:.2f} "
-              f"minSICN {r['min_quality']:.3f} straightened {r['straightened']:>5d} "
-              f"{r['seconds']:7.1f} s {r['peak_rss_mb']:7.0f} MB")
+        print(
+            f"{level:7s} r/{r['fillet_divisions']:<4g} nodes {r['nodes']:>8d} tets {r['elements']:>8d} "
+            f"P2 DOFs {r['p2_dofs']:>8d} fillet edge r/{1 / r['fillet_edge_over_r']:.2f} "
+            f"minSICN {r['min_quality']:.3f} straightened {r['straightened']:>5d} "
+            f"{r['seconds']:7.1f} s {r['peak_rss_mb']:7.0f} MB"
+        )
     machine = _machine()
     print(machine)
     if args.markdown:

@@ -31,30 +31,48 @@ ROOT = Path(__file__).resolve().parents[1]
 #: for each mutant only those of the selected tests that execute the mutated function, so a
 #: wide selection costs little and no survivor is left to tests outside the selection.
 _MECHANISM_TESTS = [
-    "tests/test_kinematics.py", "tests/test_kinematics_coefficients.py", "tests/test_kinetostatics.py",
-    "tests/test_dynamics.py", "tests/test_dynamics_inputs.py", "tests/test_geared_shaft.py",
+    "tests/test_kinematics.py",
+    "tests/test_kinematics_coefficients.py",
+    "tests/test_kinetostatics.py",
+    "tests/test_dynamics.py",
+    "tests/test_dynamics_inputs.py",
+    "tests/test_geared_shaft.py",
     "tests/test_balance_harmonics.py",
-    "tests/test_balance_hodograph.py", "tests/test_balance_layouts.py",
-    "tests/test_balance_seed000.py", "tests/test_balance_seed003.py",
-    "tests/test_balance_crosscheck.py", "tests/test_balance_counterweights.py",
-    "tests/test_balance_inputs.py", "tests/test_balance_forces_terms.py",
-    "tests/test_balance_roundoff.py", "tests/test_balance_counterweight_planes.py",
-    "tests/test_balance_yoke_terms.py", "tests/test_dynamics_excess_work.py", "tests/test_balance_sector_limits.py",
-    "tests/test_kinetostatics_reactions.py", "tests/test_balance_mechanism_exact.py",
+    "tests/test_balance_hodograph.py",
+    "tests/test_balance_layouts.py",
+    "tests/test_balance_seed000.py",
+    "tests/test_balance_seed003.py",
+    "tests/test_balance_crosscheck.py",
+    "tests/test_balance_counterweights.py",
+    "tests/test_balance_inputs.py",
+    "tests/test_balance_forces_terms.py",
+    "tests/test_balance_roundoff.py",
+    "tests/test_balance_counterweight_planes.py",
+    "tests/test_balance_yoke_terms.py",
+    "tests/test_dynamics_excess_work.py",
+    "tests/test_balance_sector_limits.py",
+    "tests/test_kinetostatics_reactions.py",
+    "tests/test_balance_mechanism_exact.py",
 ]
 
 #: the balance stage's whole call and its balance shafts: the mechanism selection plus the
 #: tests that design balance shafts (the `fe-crank balance` command, free placement)
 _BALANCE_SHAFT_TESTS = _MECHANISM_TESTS + [
-    "tests/test_balance_cli.py", "tests/test_torsion_balance_shafts.py", "tests/test_balance_shafts_design.py",
+    "tests/test_balance_cli.py",
+    "tests/test_torsion_balance_shafts.py",
+    "tests/test_balance_shafts_design.py",
     "tests/test_balance_analysis_record.py",
 ]
 
 #: the torsional-vibration physics: closed forms of the free and forced chain, Carter's
 #: stiffness, the harmonics of the cylinder torques, and the stage on the shipped case
 _TORSION_TESTS = [
-    "tests/test_torsion_free.py", "tests/test_torsion_forced.py", "tests/test_torsion_excitation.py",
-    "tests/test_torsion_stiffness.py", "tests/test_torsion_analysis.py", "tests/test_torsion_holzer_table.py",
+    "tests/test_torsion_free.py",
+    "tests/test_torsion_forced.py",
+    "tests/test_torsion_excitation.py",
+    "tests/test_torsion_stiffness.py",
+    "tests/test_torsion_analysis.py",
+    "tests/test_torsion_holzer_table.py",
 ]
 
 #: the fast tests of the cycle assessment (hand-built unit stresses, closed-form cycles, the
@@ -63,10 +81,17 @@ _TORSION_TESTS = [
 #: tests on the gmsh throw of test_perf_assess_blocks (20 s of meshing and solving) are left
 #: out except those on hand-built arrays.
 _ASSESS_TESTS = [
-    "tests/test_assess_superpose.py", "tests/test_assess_superpose_mut.py", "tests/test_assess_stress_mut.py",
-    "tests/test_assess_peak_mut.py", "tests/test_assess_overspeed.py", "tests/test_assess_overspeed_mut.py",
-    "tests/test_assess_case.py", "tests/test_assess_case_mut.py", "tests/test_perf_assess.py",
-    "tests/test_stress_layouts.py", "tests/test_assess_throw_mut.py",
+    "tests/test_assess_superpose.py",
+    "tests/test_assess_superpose_mut.py",
+    "tests/test_assess_stress_mut.py",
+    "tests/test_assess_peak_mut.py",
+    "tests/test_assess_overspeed.py",
+    "tests/test_assess_overspeed_mut.py",
+    "tests/test_assess_case.py",
+    "tests/test_assess_case_mut.py",
+    "tests/test_perf_assess.py",
+    "tests/test_stress_layouts.py",
+    "tests/test_assess_throw_mut.py",
     "tests/test_perf_assess_blocks.py::test_von_mises_planes_is_the_plain_formula_bitwise",
     "tests/test_perf_assess_blocks.py::test_max_and_first_is_max_and_argmax",
     "tests/test_perf_assess_blocks.py::test_peak_bound_hand_value",
@@ -93,58 +118,99 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "torsion.forced": ("fe_crank/torsion/forced.py", _TORSION_TESTS),
     "torsion.stiffness": ("fe_crank/torsion/stiffness.py", _TORSION_TESTS),
     "torsion.excitation": ("fe_crank/torsion/excitation.py", _TORSION_TESTS),
-    "assess.m53": ("fe_crank/assess/m53.py",
-                   ["tests/test_assess_m53.py", "tests/test_assess_m53_oil_bore.py", "tests/test_assess_adapters.py",
-                    "tests/test_assess_m53_bores.py", "tests/test_assess_m53_sections.py"]),
-    "assess.m53_oil_bore": ("fe_crank/assess/m53_oil_bore.py",
-                            ["tests/test_assess_m53_oil_bore.py", "tests/test_assess_m53.py",
-                             "tests/test_assess_adapters.py", "tests/test_assess_m53_oil_bore_limits.py"]),
-    "assess.fatigue": ("fe_crank/assess/fatigue.py",
-                       ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py",
-                        "tests/test_assess_amplitude.py"]),
-    "assess.factors": ("fe_crank/assess/factors.py",
-                       ["tests/test_assess_factors.py", "tests/test_assess_factors_edges.py", "tests/test_assess_fatigue.py",
-                        "tests/test_assess_fatigue_means.py"]),
-    "assess.verdict": ("fe_crank/assess/verdict.py",
-                       ["tests/test_assess_verdict.py", "tests/test_assess_fatigue.py"]),
+    "assess.m53": (
+        "fe_crank/assess/m53.py",
+        [
+            "tests/test_assess_m53.py",
+            "tests/test_assess_m53_oil_bore.py",
+            "tests/test_assess_adapters.py",
+            "tests/test_assess_m53_bores.py",
+            "tests/test_assess_m53_sections.py",
+        ],
+    ),
+    "assess.m53_oil_bore": (
+        "fe_crank/assess/m53_oil_bore.py",
+        [
+            "tests/test_assess_m53_oil_bore.py",
+            "tests/test_assess_m53.py",
+            "tests/test_assess_adapters.py",
+            "tests/test_assess_m53_oil_bore_limits.py",
+        ],
+    ),
+    "assess.fatigue": (
+        "fe_crank/assess/fatigue.py",
+        ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py", "tests/test_assess_amplitude.py"],
+    ),
+    "assess.factors": (
+        "fe_crank/assess/factors.py",
+        [
+            "tests/test_assess_factors.py",
+            "tests/test_assess_factors_edges.py",
+            "tests/test_assess_fatigue.py",
+            "tests/test_assess_fatigue_means.py",
+        ],
+    ),
+    "assess.verdict": ("fe_crank/assess/verdict.py", ["tests/test_assess_verdict.py", "tests/test_assess_fatigue.py"]),
     "assess.superpose": ("fe_crank/assess/superpose.py", _ASSESS_TESTS),
     "assess.stress": ("fe_crank/assess/stress.py", _ASSESS_TESTS),
     "assess.peak": ("fe_crank/assess/peak.py", _ASSESS_TESTS),
     "assess.overspeed": ("fe_crank/assess/overspeed.py", _ASSESS_TESTS),
-    "assess.case": ("fe_crank/assess/case.py",
-                    _ASSESS_TESTS + ["tests/test_assess_verdict.py", "tests/test_assess_fatigue.py",
-                                     "tests/test_assess_fatigue_means.py", "tests/test_assess_m53_oil_bore.py"]),
-    "assess.throw": ("fe_crank/assess/throw.py",
-                     _ASSESS_TESTS + ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py"]),
-    "assess.groups": ("fe_crank/assess/groups.py",
-                      ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py", "tests/test_assess_superpose.py"]),
-    "assess.recovery": ("fe_crank/assess/recovery.py",
-                        ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py"]),
+    "assess.case": (
+        "fe_crank/assess/case.py",
+        _ASSESS_TESTS
+        + [
+            "tests/test_assess_verdict.py",
+            "tests/test_assess_fatigue.py",
+            "tests/test_assess_fatigue_means.py",
+            "tests/test_assess_m53_oil_bore.py",
+        ],
+    ),
+    "assess.throw": (
+        "fe_crank/assess/throw.py",
+        _ASSESS_TESTS + ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py"],
+    ),
+    "assess.groups": (
+        "fe_crank/assess/groups.py",
+        ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py", "tests/test_assess_superpose.py"],
+    ),
+    "assess.recovery": (
+        "fe_crank/assess/recovery.py",
+        ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py"],
+    ),
     # the FE load and support modules: tiny meshes only (a few seconds per test file); the
     # unit-case tests on the seed throw (tests/test_fe_unit_cases.py, test_fe_determinate*.py
     # of the throw, test_assess_superpose.py) solve FE models for tens of seconds a mutant
-    "fe.loads": ("fe_crank/fe/loads.py",
-                 ["tests/test_fe_loads_closed_form.py", "tests/test_fe_determinate_statics.py",
-                  "tests/test_fe_loads_boundaries.py", "tests/test_perf_loads.py", "tests/test_fe_assembly.py",
-                  "tests/test_fe_verification.py"]),
-    "fe.determinate": ("fe_crank/fe/determinate.py",
-                       ["tests/test_fe_determinate_statics.py", "tests/test_fe_loads_boundaries.py"]),
-    "fe.pin_directions": ("fe_crank/fe/pin_directions.py",
-                          ["tests/test_fe_loads_pin_directions.py", "tests/test_perf_loads.py"]),
+    "fe.loads": (
+        "fe_crank/fe/loads.py",
+        [
+            "tests/test_fe_loads_closed_form.py",
+            "tests/test_fe_determinate_statics.py",
+            "tests/test_fe_loads_boundaries.py",
+            "tests/test_perf_loads.py",
+            "tests/test_fe_assembly.py",
+            "tests/test_fe_verification.py",
+        ],
+    ),
+    "fe.determinate": (
+        "fe_crank/fe/determinate.py",
+        ["tests/test_fe_determinate_statics.py", "tests/test_fe_loads_boundaries.py"],
+    ),
+    "fe.pin_directions": (
+        "fe_crank/fe/pin_directions.py",
+        ["tests/test_fe_loads_pin_directions.py", "tests/test_perf_loads.py"],
+    ),
     "fe.forms": ("fe_crank/fe/forms.py", ["tests/test_fe_assembly.py", "tests/test_fe_verification.py"]),
 }
 
 
-def run_module(name: str, children: int, only: list[str] | None = None,
-               tests: list[str] | None = None) -> dict:
+def run_module(name: str, children: int, only: list[str] | None = None, tests: list[str] | None = None) -> dict:
     """Mutate one module; with ``only`` (mutant names or fnmatch patterns, as ``mutmut
     show`` prints them) run just those mutants, e.g. the survivors of an earlier run."""
     target, selected = MODULES[name]
     tests = tests or selected
     with tempfile.TemporaryDirectory(prefix=f"mutmut-{name}-") as tmp:
         work = Path(tmp) / "repo"
-        files = subprocess.run(["git", "ls-files"], cwd=ROOT, check=True, capture_output=True,
-                               text=True).stdout.split()
+        files = subprocess.run(["git", "ls-files"], cwd=ROOT, check=True, capture_output=True, text=True).stdout.split()
         for f in files:
             dst = work / f
             dst.parent.mkdir(parents=True, exist_ok=True)
@@ -158,10 +224,16 @@ def run_module(name: str, children: int, only: list[str] | None = None,
         )
         env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
         mutmut = str(Path(sys.executable).parent / "mutmut")
-        subprocess.run([mutmut, "run", "--max-children", str(children), *(only or [])], cwd=work, env=env,
-                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        out = subprocess.run([mutmut, "results", "--all", "true"], cwd=work, env=env,
-                             capture_output=True, text=True).stdout
+        subprocess.run(
+            [mutmut, "run", "--max-children", str(children), *(only or [])],
+            cwd=work,
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+        out = subprocess.run(
+            [mutmut, "results", "--all", "true"], cwd=work, env=env, capture_output=True, text=True
+        ).stdout
         status: dict[str, list[str]] = {}
         by_function: dict[str, dict[str, int]] = {}
         for line in out.splitlines():
@@ -173,14 +245,24 @@ def run_module(name: str, children: int, only: list[str] | None = None,
                 status.setdefault(st, []).append(mutant)
                 fn = by_function.setdefault(mutant.split("__mutmut_")[0], {})
                 fn[st] = fn.get(st, 0) + 1
-        diffs = {m: subprocess.run([mutmut, "show", m], cwd=work, env=env, capture_output=True,
-                                   text=True).stdout for m in status.get("survived", [])}
+        diffs = {
+            m: subprocess.run([mutmut, "show", m], cwd=work, env=env, capture_output=True, text=True).stdout
+            for m in status.get("survived", [])
+        }
     killed = len(status.get("killed", [])) + len(status.get("timeout", []))
     survived = len(status.get("survived", []))
     total = killed + survived
-    return {"module": name, "file": target, "tests": tests, "killed": killed, "survived": survived,
-            "other": {k: len(v) for k, v in status.items() if k not in ("killed", "timeout", "survived")},
-            "score": killed / total if total else None, "by_function": by_function, "survivors": diffs}
+    return {
+        "module": name,
+        "file": target,
+        "tests": tests,
+        "killed": killed,
+        "survived": survived,
+        "other": {k: len(v) for k, v in status.items() if k not in ("killed", "timeout", "survived")},
+        "score": killed / total if total else None,
+        "by_function": by_function,
+        "survivors": diffs,
+    }
 
 
 def main() -> None:
@@ -188,19 +270,26 @@ def main() -> None:
     ap.add_argument("modules", nargs="*", default=list(MODULES), choices=list(MODULES))
     ap.add_argument("--max-children", type=int, default=1)
     ap.add_argument("--json", type=Path, help="write the per-module results here")
-    ap.add_argument("--only", nargs="+", metavar="MUTANT",
-                    help="run only these mutants (names or fnmatch patterns), e.g. earlier survivors")
-    ap.add_argument("--tests", nargs="+", metavar="FILE",
-                    help="test files instead of the module's selection (e.g. to confirm that new tests kill "
-                         "the survivors of a full run; the score of such a run covers only those tests)")
+    ap.add_argument(
+        "--only",
+        nargs="+",
+        metavar="MUTANT",
+        help="run only these mutants (names or fnmatch patterns), e.g. earlier survivors",
+    )
+    ap.add_argument(
+        "--tests",
+        nargs="+",
+        metavar="FILE",
+        help="test files instead of the module's selection (e.g. to confirm that new tests kill "
+        "the survivors of a full run; the score of such a run covers only those tests)",
+    )
     a = ap.parse_args()
     results = []
     for m in a.modules:
         r = run_module(m, a.max_children, a.only, a.tests)
         results.append(r)
         score = "n/a" if r["score"] is None else f"{100 * r['score']:.1f} %"
-        print(f"{m:24s} killed {r['killed']:4d}  survived {r['survived']:4d}  {score}  {r['other']}",
-              flush=True)
+        print(f"{m:24s} killed {r['killed']:4d}  survived {r['survived']:4d}  {score}  {r['other']}", flush=True)
         for diff in r["survivors"].values():
             print(diff, flush=True)
     if a.json:

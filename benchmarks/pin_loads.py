@@ -37,8 +37,10 @@ def main(argv=None) -> int:
     new = [pin_pressure_load(basis, unit_force(c), surface=surf)[0] for c in pin_cases()]
     t_new = time.perf_counter() - t0
     diff = max(np.abs(a - b).max() / np.abs(a).max() for a, b in zip(old, new))
-    print(f"{len(old)} pin loads, {3 * basis.N} dof: a surface per direction {t_old:.2f} s, one surface "
-          f"{t_new:.2f} s (x{t_old / t_new:.1f}); max relative difference {diff:.1e}; load {os.getloadavg()[0]:.1f}")
+    print(
+        f"{len(old)} pin loads, {3 * basis.N} dof: a surface per direction {t_old:.2f} s, one surface "
+        f"{t_new:.2f} s (x{t_old / t_new:.1f}); max relative difference {diff:.1e}; load {os.getloadavg()[0]:.1f}"
+    )
     return 0
 
 

@@ -59,19 +59,29 @@ def solve_level(loadcase: str, level: int, solver: str, full_recovery: bool = Fa
     unit_nodal_stress(units, list(units.cases), ids)
     t_rec = time.perf_counter() - t0
     extra = {}
-    if full_recovery:   # the former route: whole-mesh nodal stress of every case, then the assessed nodes
+    if full_recovery:  # the former route: whole-mesh nodal stress of every case, then the assessed nodes
         t0 = time.perf_counter()
         full = np.stack([units.stress_at_nodes(units.displacement(c))[:, ids] for c in units.cases])
         extra["recovery_whole_mesh"] = time.perf_counter() - t0
         again = unit_nodal_stress(units, list(units.cases), ids)
         extra["recovery_max_rel_difference"] = float(np.abs(again - full).max() / np.abs(full).max())
     t = units.timings
-    return {**extra, "level": level, "dof": int(units.n_dof), "elements": int(tm.mesh.t.shape[1]),
-            "assessed_nodes": int(ids.size), "cases": len(units.cases), "solver": units.solver,
-            "assembly": t["assembly"] + t["constraints"], "factorisation": t["factorisation"],
-            "solves": t["loads"] + t["solve"], "recovery": t_rec, "fe_total": t["total"] + t_rec,
-            "peak_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2,
-            "load_average": os.getloadavg()}
+    return {
+        **extra,
+        "level": level,
+        "dof": int(units.n_dof),
+        "elements": int(tm.mesh.t.shape[1]),
+        "assessed_nodes": int(ids.size),
+        "cases": len(units.cases),
+        "solver": units.solver,
+        "assembly": t["assembly"] + t["constraints"],
+        "factorisation": t["factorisation"],
+        "solves": t["loads"] + t["solve"],
+        "recovery": t_rec,
+        "fe_total": t["total"] + t_rec,
+        "peak_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2,
+        "load_average": os.getloadavg(),
+    }
 
 
 def fit(rows: list[dict], key: str) -> float | None:
@@ -116,8 +126,11 @@ def main(argv=None) -> int:
     ap.add_argument("--solver", default="auto")
     ap.add_argument("--json", default=None, help="append one line per level; with --plot, read earlier lines too")
     ap.add_argument("--plot", default=None, help="PNG of time and memory vs DOF")
-    ap.add_argument("--full-recovery", action="store_true",
-                    help="also time the whole-mesh recovery of every case (the former route) and compare")
+    ap.add_argument(
+        "--full-recovery",
+        action="store_true",
+        help="also time the whole-mesh recovery of every case (the former route) and compare",
+    )
     ap.add_argument("--one", type=int, default=None, help=argparse.SUPPRESS)
     ap.add_argument("--mesh-only", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)

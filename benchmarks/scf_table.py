@@ -37,9 +37,11 @@ def main() -> None:
         t1 = time.perf_counter()
         r = compute_scf(tm, material, geo, web_centres=web_centres_of(g))
         t2 = time.perf_counter()
-        print(f"{path}  preset {a.preset}: {r.stresses.n_dof} dofs, mesh {t1 - t0:.0f} s, SCF mode {t2 - t1:.0f} s; "
-              f"fillet edge/r max {max(r.element_size.values()):.3f}; "
-              f"out of range: {dict(r.out_of_range)}")
+        print(
+            f"{path}  preset {a.preset}: {r.stresses.n_dof} dofs, mesh {t1 - t0:.0f} s, SCF mode {t2 - t1:.0f} s; "
+            f"fillet edge/r max {max(r.element_size.values()):.3f}; "
+            f"out of range: {dict(r.out_of_range)}"
+        )
         print(f"  {'factor':8s} {'FE':>7s} {'empir.':>7s} {'FE/emp':>7s} {'princ.%':>8s} {'avg.%':>7s}  peak at (mm)")
         for k in FACTORS:
             e = r.empirical.get(k)
@@ -47,21 +49,31 @@ def main() -> None:
             ratio = f"{r.fe[k] / e:7.3f}" if e else "      -"
             emp = f"{e:7.3f}" if e else "      -"
             where = ", ".join(f"{c * 1e3:.1f}" for c in q["point"])
-            print(f"  {k:8s} {r.fe[k]:7.3f} {emp} {ratio} {100 * q['principal_ratio']:8.2f} {100 * q['averaging']:7.2f}"
-                  f"  {q['group']} ({where})")
+            print(
+                f"  {k:8s} {r.fe[k]:7.3f} {emp} {ratio} {100 * q['principal_ratio']:8.2f} {100 * q['averaging']:7.2f}"
+                f"  {q['group']} ({where})"
+            )
         side = r.details["three_point"][0]
         if r.empirical["beta_Q"] is not None:
             # the journal fillet under the radial force as a whole: sigma_3P / sigma_N3P, which the
             # empirical factors give as beta_B + beta_Q sigma_Q3P / sigma_N3P = beta_B + beta_Q W / (6 L)
             emp_bq = r.empirical["beta_B"] + r.empirical["beta_Q"] * side["sigma_Q3P"] / side["sigma_N3P"]
-            print(f"  beta_BQ = sigma_3P / sigma_N3P: FE {r.fe['beta_BQ']:.3f}, empirical beta_B + beta_Q W/(6 L) "
-                  f"{emp_bq:.3f}, FE/emp {r.fe['beta_BQ'] / emp_bq:.3f}")
-        print(f"  beta_BQ (method 2) {r.fe['beta_BQ']:.3f}; 3-point per side: "
-              + "; ".join(f"{s['group']}: Q {s['Q_3P']:.4f} N, L {s['L'] * 1e3:.2f} mm, beta_Q {s['beta_Q']:.3f}"
-                          for s in r.details["three_point"]))
+            print(
+                f"  beta_BQ = sigma_3P / sigma_N3P: FE {r.fe['beta_BQ']:.3f}, empirical beta_B + beta_Q W/(6 L) "
+                f"{emp_bq:.3f}, FE/emp {r.fe['beta_BQ'] / emp_bq:.3f}"
+            )
+        print(
+            f"  beta_BQ (method 2) {r.fe['beta_BQ']:.3f}; 3-point per side: "
+            + "; ".join(
+                f"{s['group']}: Q {s['Q_3P']:.4f} N, L {s['L'] * 1e3:.2f} mm, beta_Q {s['beta_Q']:.3f}"
+                for s in r.details["three_point"]
+            )
+        )
         share = side["beta_Q"] * side["sigma_Q3P"] / side["sigma_3P"]
-        print(f"  shear part beta_Q sigma_Q3P of sigma_3P: {100 * share:.1f} %, so a relative change of sigma_3P "
-              f"moves method 1's beta_Q {1 / share:.1f} times as much (benchmarks/beta_q_study.py)")
+        print(
+            f"  shear part beta_Q sigma_Q3P of sigma_3P: {100 * share:.1f} %, so a relative change of sigma_3P "
+            f"moves method 1's beta_Q {1 / share:.1f} times as much (benchmarks/beta_q_study.py)"
+        )
         print(f"  equilibrium {max(r.equilibrium_error.values()):.1e}; {r.summary()}")
 
 

@@ -34,8 +34,7 @@ def run_one(size: float, variant: str, planes: tuple[int, ...]) -> dict:
     from symmetric_meshes import mirrored_throw
     from verification_meshes import Steel
 
-    from fe_crank.fe import FeOptions, solve_unit_cases
-    from fe_crank.fe import symsolve
+    from fe_crank.fe import FeOptions, solve_unit_cases, symsolve
 
     throw = mirrored_throw(planes, size=size)
     symsolve.SHARE_ORDERING = variant != "sym_own_order"
@@ -43,14 +42,24 @@ def run_one(size: float, variant: str, planes: tuple[int, ...]) -> dict:
     sol = solve_unit_cases(throw, Steel(), FeOptions(symmetry=variant != "full"))
     cpu, wall = _cpu() - c0, time.perf_counter() - t0
     t = sol.timings
-    return {"variant": variant, "planes": list(planes), "dof": int(sol.n_dof), "cpu_s": round(cpu, 2),
-            "wall_s": round(wall, 2), "assembly_s": round(t["assembly"] + t["constraints"], 2),
-            "analysis_s": round(t["analysis"], 2), "factorisation_s": round(t["factorisation"], 2),
-            "numeric_s": round(t["factorisation"] - t["analysis"], 2), "loads_s": round(t["loads"], 2),
-            "solves_s": round(t["solve"], 2), "cases": len(sol.cases),
-            "max_equilibrium_error": float(max(c.equilibrium_error for c in sol.cases.values())),
-            "peak_rss_gb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 2),
-            "solver": sol.solver_description, "load_avg": os.getloadavg()[0]}
+    return {
+        "variant": variant,
+        "planes": list(planes),
+        "dof": int(sol.n_dof),
+        "cpu_s": round(cpu, 2),
+        "wall_s": round(wall, 2),
+        "assembly_s": round(t["assembly"] + t["constraints"], 2),
+        "analysis_s": round(t["analysis"], 2),
+        "factorisation_s": round(t["factorisation"], 2),
+        "numeric_s": round(t["factorisation"] - t["analysis"], 2),
+        "loads_s": round(t["loads"], 2),
+        "solves_s": round(t["solve"], 2),
+        "cases": len(sol.cases),
+        "max_equilibrium_error": float(max(c.equilibrium_error for c in sol.cases.values())),
+        "peak_rss_gb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 2),
+        "solver": sol.solver_description,
+        "load_avg": os.getloadavg()[0],
+    }
 
 
 def main(argv=None) -> int:
@@ -66,8 +75,11 @@ def main(argv=None) -> int:
         return 0
     rows = []
     for v in args.variant or VARIANTS:
-        out = subprocess.run([sys.executable, __file__, "--one", "--size", str(args.size), "--variant", v,
-                              "--planes", args.planes], capture_output=True, text=True)
+        out = subprocess.run(
+            [sys.executable, __file__, "--one", "--size", str(args.size), "--variant", v, "--planes", args.planes],
+            capture_output=True,
+            text=True,
+        )
         if out.returncode != 0:
             print(out.stderr, file=sys.stderr)
             return out.returncode
@@ -77,8 +89,10 @@ def main(argv=None) -> int:
     if full:
         for r in rows:
             if r is not full:
-                print(f"{r['variant']}: CPU {r['cpu_s']:.1f} s vs full {full['cpu_s']:.1f} s, "
-                      f"ratio {r['cpu_s'] / full['cpu_s']:.2f}")
+                print(
+                    f"{r['variant']}: CPU {r['cpu_s']:.1f} s vs full {full['cpu_s']:.1f} s, "
+                    f"ratio {r['cpu_s'] / full['cpu_s']:.2f}"
+                )
     return 0
 
 

@@ -190,9 +190,16 @@ def analyse(
         fg = (p - pcc) * area
         rod = cyl.rod
         sol = solve_cylinder(
-            phi, r=throw.crank_radius, l=rod.length, omega=omega * shaft.speed_ratio, gas_force=fg,
-            piston_mass=cyl.piston_mass, rod_mass=rod.mass, rod_cg=rod.cg_from_big_end,
-            rod_inertia=rod.inertia_cg, offset=cyl.pin_offset,
+            phi,
+            r=throw.crank_radius,
+            l=rod.length,
+            omega=omega * shaft.speed_ratio,
+            gas_force=fg,
+            piston_mass=cyl.piston_mass,
+            rod_mass=rod.mass,
+            rod_cg=rod.cg_from_big_end,
+            rod_inertia=rod.inertia_cg,
+            offset=cyl.pin_offset,
         )
         m = sol["motion"]
         m_j = cyl.piston_mass + rod.mass * rod.reciprocating_fraction
@@ -202,17 +209,26 @@ def analyse(
         pm = 0.5 * (p + np.roll(p, -1))
         work += float(np.sum(pm * dv))
         cylinders[cyl.name] = CylinderForces(
-            name=cyl.name, throw=cyl.throw, phi=phi, gas_angle=gas_angle, pressure=p, motion=m,
-            gas=fg, inertia=-m_j * m.a, rod_force=sol["rod_force"], side_thrust=sol["side_thrust"],
-            tangential=sol["tangential"], radial=sol["radial"], torque=sol["torque"], volume_swept=vol,
+            name=cyl.name,
+            throw=cyl.throw,
+            phi=phi,
+            gas_angle=gas_angle,
+            pressure=p,
+            motion=m,
+            gas=fg,
+            inertia=-m_j * m.a,
+            rod_force=sol["rod_force"],
+            side_thrust=sol["side_thrust"],
+            tangential=sol["tangential"],
+            radial=sol["radial"],
+            torque=sol["torque"],
+            volume_swept=vol,
         )
 
     throws: dict[str, ThrowLoads] = {}
     shaft_torque: dict[str, np.ndarray] = {}
     for shaft in engine.shafts:
-        on_shaft = sorted(
-            (t for t in engine.throws if t.shaft == shaft.name), key=lambda t: t.axial_position
-        )
+        on_shaft = sorted((t for t in engine.throws if t.shaft == shaft.name), key=lambda t: t.axial_position)
         cumulative = np.zeros_like(theta)
         for t in on_shaft:
             cyls = [c for c in engine.cylinders if c.throw == t.name]
@@ -232,9 +248,15 @@ def analyse(
             front = cumulative.copy()
             cumulative = cumulative + tq
             throws[t.name] = ThrowLoads(
-                name=t.name, shaft=shaft.name, angle_global=gamma, pin_force=pin, torque=tq,
-                torque_front=front, torque_rear=cumulative.copy(),
-                bearing_front=0.5 * total_global, bearing_rear=0.5 * total_global,
+                name=t.name,
+                shaft=shaft.name,
+                angle_global=gamma,
+                pin_force=pin,
+                torque=tq,
+                torque_front=front,
+                torque_rear=cumulative.copy(),
+                bearing_front=0.5 * total_global,
+                bearing_rear=0.5 * total_global,
             )
         shaft_torque[shaft.name] = cumulative
 
@@ -247,14 +269,28 @@ def analyse(
         nonuni = float("inf")
     # excess work E(theta) = int (T - T_mean) dtheta (trapezoid, periodic)
     dtheta = cycle / theta.size
-    excess = np.concatenate([[0.0], np.cumsum(0.5 * ((torque - mean_torque) + np.roll(torque - mean_torque, -1)) * dtheta)])
+    excess = np.concatenate(
+        [[0.0], np.cumsum(0.5 * ((torque - mean_torque) + np.roll(torque - mean_torque, -1)) * dtheta)]
+    )
     de = float(excess.max() - excess.min())
     if not speed_fluctuation > 0:
         raise InputError(f"speed_fluctuation must be positive (got {speed_fluctuation})", key="speed_fluctuation")
     j_fly = de / (speed_fluctuation * omega**2)
     return DynamicsResult(
-        engine=engine.name, speed=omega, theta=theta, cycle=cycle, cylinders=cylinders, throws=throws,
-        shaft_torque=shaft_torque, torque=torque, mean_torque=mean_torque, power=power,
-        torque_nonuniformity=nonuni, indicated_work=work, speed_fluctuation=speed_fluctuation,
-        excess_energy=de, flywheel_inertia=j_fly, warnings=tuple(warnings),
+        engine=engine.name,
+        speed=omega,
+        theta=theta,
+        cycle=cycle,
+        cylinders=cylinders,
+        throws=throws,
+        shaft_torque=shaft_torque,
+        torque=torque,
+        mean_torque=mean_torque,
+        power=power,
+        torque_nonuniformity=nonuni,
+        indicated_work=work,
+        speed_fluctuation=speed_fluctuation,
+        excess_energy=de,
+        flywheel_inertia=j_fly,
+        warnings=tuple(warnings),
     )

@@ -129,7 +129,14 @@ def wiebe_cycle(
     def dqdphi(p):
         x = (p - combustion_start) / combustion_duration
         x = np.clip(x, 0.0, None)
-        return heat_released * wiebe_a * (wiebe_m + 1.0) / combustion_duration * x**wiebe_m * np.exp(-wiebe_a * x ** (wiebe_m + 1.0))
+        return (
+            heat_released
+            * wiebe_a
+            * (wiebe_m + 1.0)
+            / combustion_duration
+            * x**wiebe_m
+            * np.exp(-wiebe_a * x ** (wiebe_m + 1.0))
+        )
 
     def rhs(p, pr):
         h = 1e-6
@@ -158,7 +165,9 @@ def wiebe_cycle(
         exhaust = (ang > np.pi) & (ang <= 2 * np.pi)
         intake = (ang > 2 * np.pi) & (ang < 3 * np.pi)
         p = np.where(exhaust, exhaust_pressure, np.where(intake, intake_pressure, p))
-    return model.GasPressure(ang, p, crankcase_pressure, source="Wiebe heat release with polytropes (fe_crank.gas.wiebe_cycle)")
+    return model.GasPressure(
+        ang, p, crankcase_pressure, source="Wiebe heat release with polytropes (fe_crank.gas.wiebe_cycle)"
+    )
 
 
 def motored_cycle(
@@ -200,6 +209,8 @@ def motored_cycle(
         exhaust = (ang > np.pi) & (ang <= 2 * np.pi)
         intake = (ang > 2 * np.pi) & (ang < 3 * np.pi)
         p = np.where(exhaust, p_ex, np.where(intake, intake_pressure, p))
-    src = (f"motored: polytrope p = p_0 (V_BDC/V)^n, eps = {compression_ratio:g}, "
-           f"p_0 = {intake_pressure / 1e6:.4g} MPa, n = {n_poly:g} (fe_crank.gas.motored_cycle)")
+    src = (
+        f"motored: polytrope p = p_0 (V_BDC/V)^n, eps = {compression_ratio:g}, "
+        f"p_0 = {intake_pressure / 1e6:.4g} MPa, n = {n_poly:g} (fe_crank.gas.motored_cycle)"
+    )
     return model.GasPressure(ang, np.asarray(p, float), crankcase_pressure, source=src)

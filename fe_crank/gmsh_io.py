@@ -73,7 +73,9 @@ def gmsh_session(*, threads: int = 1, verbosity: int = 2) -> Iterator[object]:
 
     me = threading.get_ident()
     if _OWNER.get("thread") == me:
-        raise MeshError("a gmsh session is already open in this thread; gmsh has one global state, do not nest sessions")
+        raise MeshError(
+            "a gmsh session is already open in this thread; gmsh has one global state, do not nest sessions"
+        )
     _LOCK.acquire()  # other threads wait: gmsh is not thread-safe, sessions are serialised
     if gmsh.isInitialized():
         _LOCK.release()
@@ -114,7 +116,9 @@ def _elements_of(gmsh, dim: int, entity: int, wanted: tuple[int, ...]) -> list[t
     for etype, etags, enodes in zip(types, tags, nodes):
         if etype in wanted:
             n = len(etags)
-            out.append((int(etype), np.asarray(etags, dtype=np.int64), np.asarray(enodes, dtype=np.int64).reshape(n, -1)))
+            out.append(
+                (int(etype), np.asarray(etags, dtype=np.int64), np.asarray(enodes, dtype=np.int64).reshape(n, -1))
+            )
     return out
 
 
@@ -197,7 +201,9 @@ def model_to_skfem(*, dim: int = 3, orient: bool = True):
     )
     scale = np.max(np.ptp(doflocs, axis=0)) ** 3 if doflocs.size else 1.0
     if np.any(np.abs(d) <= 1e-14 * scale):
-        raise MeshError(f"model_to_skfem: {int(np.sum(np.abs(d) <= 1e-14 * scale))} degenerate tetrahedra (zero volume)")
+        raise MeshError(
+            f"model_to_skfem: {int(np.sum(np.abs(d) <= 1e-14 * scale))} degenerate tetrahedra (zero volume)"
+        )
     if orient and np.any(d < 0):
         neg = d < 0
         # swap corners 1 and 2: edges (0,1)<->(0,2), (1,3)<->(2,3)

@@ -166,8 +166,8 @@ def fourier_coefficients(samples: np.ndarray, kmax: int) -> np.ndarray:
     spec = np.fft.rfft(samples) / n  # along the last axis
     out = np.zeros(samples.shape[:-1] + (kmax + 1, 2))  # beta_0 stays 0
     out[..., 0, 0] = spec[..., 0].real
-    out[..., 1:, 0] = 2.0 * spec[..., 1:kmax + 1].real
-    out[..., 1:, 1] = -2.0 * spec[..., 1:kmax + 1].imag
+    out[..., 1:, 0] = 2.0 * spec[..., 1 : kmax + 1].real
+    out[..., 1:, 1] = -2.0 * spec[..., 1 : kmax + 1].imag
     return out
 
 
@@ -234,7 +234,10 @@ def harmonic_coefficients(lam: float, orders=(1, 2, 4, 6), *, method: str = "exa
     c = fourier_coefficients(a, max(orders))
     return {k: float(c[k, 0]) for k in orders}
 
-def piston_motion_harmonic(phi, r: float, l: float, omega: float, orders=(1, 2), *, method: str = "exact") -> PistonMotion:
+
+def piston_motion_harmonic(
+    phi, r: float, l: float, omega: float, orders=(1, 2), *, method: str = "exact"
+) -> PistonMotion:
     """Piston motion from the truncated harmonic series (no pin offset).
 
     With ``A_k`` from :func:`harmonic_coefficients`::
@@ -258,7 +261,15 @@ def piston_motion_harmonic(phi, r: float, l: float, omega: float, orders=(1, 2),
         v = v + r * omega * ak / k * np.sin(k * phi)
         a = a + r * omega**2 * ak * np.cos(k * phi)
     return PistonMotion(
-        phi, s, v, a, exact.beta, exact.beta_dot, exact.beta_ddot,
-        exact.rod_cg_velocity, exact.rod_cg_acceleration,
-        exact.crankpin_velocity, exact.crankpin_acceleration,
+        phi,
+        s,
+        v,
+        a,
+        exact.beta,
+        exact.beta_dot,
+        exact.beta_ddot,
+        exact.rod_cg_velocity,
+        exact.rod_cg_acceleration,
+        exact.crankpin_velocity,
+        exact.crankpin_acceleration,
     )

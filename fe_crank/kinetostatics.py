@@ -33,8 +33,14 @@ import numpy as np
 from fe_crank.errors import InputError
 from fe_crank.kinematics import PistonMotion, piston_motion
 
-__all__ = ["KinetostaticResult", "analyse_position", "zhukovsky_moment", "virtual_power_moment",
-           "FrictionLosses", "mechanical_efficiency"]
+__all__ = [
+    "KinetostaticResult",
+    "analyse_position",
+    "zhukovsky_moment",
+    "virtual_power_moment",
+    "FrictionLosses",
+    "mechanical_efficiency",
+]
 
 
 def _cross(a, b):
@@ -148,15 +154,30 @@ def analyse_position(
     R01 = -(R21 + f1 + Pb[..., None] * et)
     R01c = -(R21 + f1)
     loads = {
-        "gas": ("B", F_gas), "inertia_3": ("B", F_I3), "weight_3": ("B", G3),
-        "inertia_2": ("S2", F_I2), "weight_2": ("S2", G2),
-        "inertia_1": ("S1", F_I1), "weight_1": ("S1", G1),
+        "gas": ("B", F_gas),
+        "inertia_3": ("B", F_I3),
+        "weight_3": ("B", G3),
+        "inertia_2": ("S2", F_I2),
+        "weight_2": ("S2", G2),
+        "inertia_1": ("S1", F_I1),
+        "weight_1": ("S1", G1),
     }
     couples = {"inertia_2": (omega2, M_I2, "A", "B")}
     return KinetostaticResult(
-        phi=phi, omega=omega, motion=m, points={"O": O, "A": A, "B": B, "S1": S1, "S2": S2},
-        velocities=vel, loads=loads, couples=couples, R12=R12, R03=R03, R23=R23, R01=R01, R01_couple=R01c,
-        balancing_moment=Mb, balancing_force=Pb,
+        phi=phi,
+        omega=omega,
+        motion=m,
+        points={"O": O, "A": A, "B": B, "S1": S1, "S2": S2},
+        velocities=vel,
+        loads=loads,
+        couples=couples,
+        R12=R12,
+        R03=R03,
+        R23=R23,
+        R01=R01,
+        R01_couple=R01c,
+        balancing_moment=Mb,
+        balancing_force=Pb,
     )
 
 
@@ -240,7 +261,7 @@ def mechanical_efficiency(
     f = friction_coefficient
     om = res.omega
     om2 = -res.motion.beta_dot
-    n = lambda v: np.linalg.norm(v, axis=-1)  # noqa: E731
+    n = lambda v: np.linalg.norm(v, axis=-1)
     pO1 = float(np.mean(f * n(res.R01_couple) * d_O1 / 2 * abs(om)))
     pA = float(np.mean(f * n(res.R12) * d_A / 2 * np.abs(om - om2)))
     pB = float(np.mean(f * n(res.R23) * d_B / 2 * np.abs(om2)))

@@ -22,7 +22,7 @@ import hashlib
 import os
 import platform
 from dataclasses import asdict, is_dataclass
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 
 from fe_crank.errors import InputError
@@ -35,7 +35,7 @@ SIGN_OFF_PRESETS = ("coarse", "medium", "fine")
 
 def now_utc() -> str:
     """The current time, ISO 8601 in UTC to the second (``2026-11-23T17:20:05+00:00``)."""
-    return datetime.now(timezone.utc).isoformat(timespec="seconds")
+    return datetime.now(UTC).isoformat(timespec="seconds")
 
 
 def _references(path: Path, data) -> list[Path]:
@@ -47,7 +47,7 @@ def _references(path: Path, data) -> list[Path]:
         for v in data:
             out += _references(path, v)
     elif isinstance(data, str) and data.lower().endswith((".toml", ".csv")) and "\n" not in data:
-        p = (path.parent / data)
+        p = path.parent / data
         if p.is_file():
             out.append(p)
     return out
@@ -132,17 +132,26 @@ def solver_info(stage_out: dict) -> dict:
     lc = stage_out.get("loadcase")
     requested = getattr(getattr(lc, "fe", None), "solver", None) or "auto"
     described = sorted({getattr(u, "solver_description", u.solver) for u in (stage_out.get("units") or {}).values()})
-    return {"used": used, "requested": requested, "fast_available": bool(pardiso_available()),
-            "described": described}   # in words: fallback notes, "solved on 4 symmetry components ..."
+    return {
+        "used": used,
+        "requested": requested,
+        "fast_available": bool(pardiso_available()),
+        "described": described,
+    }  # in words: fallback notes, "solved on 4 symmetry components ..."
 
 
 def support_info(stage_out: dict) -> list[dict]:
     out = []
     for key, u in (stage_out.get("units") or {}).items():
         opts = getattr(u, "options", None)
-        out.append({"throw": key, "support": getattr(opts, "support", None),
-                    "bearing_stiffness": getattr(u, "bearing_stiffness", None),
-                    "model": getattr(u, "support_model", None)})
+        out.append(
+            {
+                "throw": key,
+                "support": getattr(opts, "support", None),
+                "bearing_stiffness": getattr(u, "bearing_stiffness", None),
+                "model": getattr(u, "support_model", None),
+            }
+        )
     return out
 
 
@@ -161,8 +170,12 @@ def collect(path: str | Path, stage_out: dict, options, *, started: str) -> dict
         "python": platform.python_version(),
         "platform": platform.platform(terse=True),
         "input": inputs,
-        "mesh": {"preset": preset, "sign_off": preset in SIGN_OFF_PRESETS if preset else False,
-                 "sign_off_rule": "coarse or finer, fillet elements <= r/4", "throws": meshes},
+        "mesh": {
+            "preset": preset,
+            "sign_off": preset in SIGN_OFF_PRESETS if preset else False,
+            "sign_off_rule": "coarse or finer, fillet elements <= r/4",
+            "throws": meshes,
+        },
         "solver": solver_info(stage_out) if stage_out.get("units") else None,
         "support": support_info(stage_out),
     }

@@ -21,8 +21,14 @@ from pathlib import Path
 import numpy as np
 
 
-def quadratic_tet_mesh(points: np.ndarray, cells: np.ndarray, *, point_data: dict | None = None,
-                       cell_data: dict | None = None, field_data: dict | None = None):
+def quadratic_tet_mesh(
+    points: np.ndarray,
+    cells: np.ndarray,
+    *,
+    point_data: dict | None = None,
+    cell_data: dict | None = None,
+    field_data: dict | None = None,
+):
     """A ``meshio.Mesh`` of ``tetra10`` cells.
 
     ``points`` (n, 3) or (3, n) node coordinates [m]; ``cells`` (m, 10) or (10, m)
@@ -44,8 +50,13 @@ def quadratic_tet_mesh(points: np.ndarray, cells: np.ndarray, *, point_data: dic
         if v.shape[0] != pts.shape[0]:
             raise ValueError(f"point field {k!r} has {v.shape[0]} values for {pts.shape[0]} points")
     cdata = {k: [np.asarray(v)] for k, v in (cell_data or {}).items()}
-    return meshio.Mesh(np.ascontiguousarray(pts), [("tetra10", np.ascontiguousarray(c, dtype=np.int64))],
-                       point_data=pdata, cell_data=cdata, field_data=dict(field_data or {}))
+    return meshio.Mesh(
+        np.ascontiguousarray(pts),
+        [("tetra10", np.ascontiguousarray(c, dtype=np.int64))],
+        point_data=pdata,
+        cell_data=cdata,
+        field_data=dict(field_data or {}),
+    )
 
 
 #: tetra10 node order with corners 1 and 2 swapped (edges follow: (0,1) <-> (0,2), (1,3) <-> (2,3))

@@ -35,7 +35,7 @@ def mirror(p, t, bnd, axis):
     scale = np.ptp(p, axis=1).max()
     on = np.abs(p[axis]) < 1e-9 * scale
     p = p.copy()
-    p[axis, on] = 0.0                        # on-plane nodes exactly on it
+    p[axis, on] = 0.0  # on-plane nodes exactly on it
     off = np.flatnonzero(~on)
     new = np.arange(p.shape[1])
     new[off] = p.shape[1] + np.arange(off.size)
@@ -45,7 +45,7 @@ def mirror(p, t, bnd, axis):
     for name, tri in bnd.items():
         out_b.setdefault(name, []).append(tri)
         out_b.setdefault(_swap(name) if axis == 2 else name, []).append(new[tri])
-    t2 = new[t][[1, 0, 2, 3]]                # a reflection reverses orientation: swap two vertices
+    t2 = new[t][[1, 0, 2, 3]]  # a reflection reverses orientation: swap two vertices
     return np.hstack([p, q]), np.hstack([t, t2]), {k: np.hstack(v) for k, v in out_b.items()}
 
 
@@ -54,11 +54,13 @@ def _quarter(planes, size, journal_d, pin_d, radius, journal_len, web_t, pin_len
     big = 1.0
     with gmsh_session() as gmsh:
         occ = gmsh.model.occ
-        parts = [occ.addCylinder(0, 0, zs[0], 0, 0, journal_len, journal_d / 2),
-                 occ.addBox(-web_w / 2, -journal_d * 0.7, zs[1], web_w, radius + journal_d * 1.4, web_t),
-                 occ.addCylinder(0, radius, zs[2], 0, 0, pin_len, pin_d / 2),
-                 occ.addBox(-web_w / 2, -journal_d * 0.7, zs[3], web_w, radius + journal_d * 1.4, web_t),
-                 occ.addCylinder(0, 0, zs[4], 0, 0, journal_len, journal_d / 2)]
+        parts = [
+            occ.addCylinder(0, 0, zs[0], 0, 0, journal_len, journal_d / 2),
+            occ.addBox(-web_w / 2, -journal_d * 0.7, zs[1], web_w, radius + journal_d * 1.4, web_t),
+            occ.addCylinder(0, radius, zs[2], 0, 0, pin_len, pin_d / 2),
+            occ.addBox(-web_w / 2, -journal_d * 0.7, zs[3], web_w, radius + journal_d * 1.4, web_t),
+            occ.addCylinder(0, 0, zs[4], 0, 0, journal_len, journal_d / 2),
+        ]
         body, _ = occ.fuse([(3, parts[0])], [(3, k) for k in parts[1:]])
         x0 = 0.0 if 0 in planes else -big
         z1 = 0.0 if 2 in planes else big
@@ -71,7 +73,7 @@ def _quarter(planes, size, journal_d, pin_d, radius, journal_len, web_t, pin_len
             c = np.array(occ.getCenterOfMass(2, tag))
             flat = [a for a in range(3) if bb[a + 3] - bb[a] < 1e-6]
             if any(a in planes and abs(bb[a]) < 1e-6 for a in flat):
-                continue                                          # a cut face: interior after mirroring
+                continue  # a cut face: interior after mirroring
             if 2 in flat and abs(bb[2] - zs[0]) < 1e-6:
                 name = "end_1"
             elif 2 in flat and abs(bb[2] - zs[5]) < 1e-6:
@@ -91,24 +93,42 @@ def _quarter(planes, size, journal_d, pin_d, radius, journal_len, web_t, pin_len
         index = np.zeros(int(tags.max()) + 1, int)
         index[tags.astype(int)] = np.arange(tags.size)
         p = coords.reshape(-1, 3).T
-        t = np.hstack([index[np.asarray(n, int)].reshape(-1, 4).T
-                       for _, tg in gmsh.model.getEntities(3)
-                       for ty, _, n in zip(*gmsh.model.mesh.getElements(3, tg)) if ty == 4])
+        t = np.hstack(
+            [
+                index[np.asarray(n, int)].reshape(-1, 4).T
+                for _, tg in gmsh.model.getEntities(3)
+                for ty, _, n in zip(*gmsh.model.mesh.getElements(3, tg))
+                if ty == 4
+            ]
+        )
         bnd = {}
         for dim, ptag in gmsh.model.getPhysicalGroups(2):
             name = gmsh.model.getPhysicalName(dim, ptag)
-            tri = [index[np.asarray(n, int)].reshape(-1, 3).T
-                   for ent in gmsh.model.getEntitiesForPhysicalGroup(dim, ptag)
-                   for ty, _, n in zip(*gmsh.model.mesh.getElements(2, ent)) if ty == 2]
+            tri = [
+                index[np.asarray(n, int)].reshape(-1, 3).T
+                for ent in gmsh.model.getEntitiesForPhysicalGroup(dim, ptag)
+                for ty, _, n in zip(*gmsh.model.mesh.getElements(2, ent))
+                if ty == 2
+            ]
             bnd[name] = np.hstack(tri)
-    used = np.unique(t)                                           # nodes of the tetrahedra only
+    used = np.unique(t)  # nodes of the tetrahedra only
     renum = np.full(p.shape[1], -1)
     renum[used] = np.arange(used.size)
     return p[:, used], renum[t], {k: renum[v] for k, v in bnd.items()}
 
 
-def mirrored_throw(planes=(0, 2), *, size=0.012, journal_d=0.05, pin_d=0.045, radius=0.045, journal_len=0.03,
-                   web_t=0.02, pin_len=0.03, web_w=0.08) -> MirroredThrow:
+def mirrored_throw(
+    planes=(0, 2),
+    *,
+    size=0.012,
+    journal_d=0.05,
+    pin_d=0.045,
+    radius=0.045,
+    journal_len=0.03,
+    web_t=0.02,
+    pin_len=0.03,
+    web_w=0.08,
+) -> MirroredThrow:
     """The body meshed on its part behind ``planes`` (0: x = 0, 2: z = 0) and mirrored (module doc)."""
     from skfem import MeshTet1, MeshTet2
 

@@ -8,12 +8,11 @@ import math
 
 import pytest
 
+import fe_crank.balance.sector as sector
+import fe_crank.geometry.spec as spec
+import fe_crank.io.geometry as geo_io
 from fe_crank.assess.adapters import counterweights_of, m53_geometry_of, stress_area
 from fe_crank.assess.m53 import out_of_range
-
-import fe_crank.io.geometry as geo_io
-import fe_crank.geometry.spec as spec
-import fe_crank.balance.sector as sector
 
 
 @pytest.fixture(scope="module")
@@ -65,8 +64,15 @@ class _Balance:
 
 def test_counterweight_mr_against_sector_closed_form_and_bolts(seed001):
     # the closed form is the sector's: the counterweights without their transition fillets
-    seed001 = dataclasses.replace(seed001, throws=tuple(dataclasses.replace(t, counterweights=tuple(
-        dataclasses.replace(c, fillet_radius=None) for c in t.counterweights)) for t in seed001.throws))
+    seed001 = dataclasses.replace(
+        seed001,
+        throws=tuple(
+            dataclasses.replace(
+                t, counterweights=tuple(dataclasses.replace(c, fillet_radius=None) for c in t.counterweights)
+            )
+            for t in seed001.throws
+        ),
+    )
     cw = seed001.throw().counterweights[0]
     s = sector.annular_sector(cw.outer_radius, cw.inner_radius, cw.thickness, cw.angle, seed001.density)
     (data,) = counterweights_of(seed001, None, 0.0, "main", _Balance())
@@ -82,8 +88,7 @@ def test_counterweight_mr_against_sector_closed_form_and_bolts(seed001):
     # without a balance design each web stands alone, with no requirement
     per_web = counterweights_of(g2, None, 0.0, "main", None)
     assert [d.name for d in per_web] == ["counterweight_1", "counterweight_2"]
-    assert all(d.required_unbalance is None and d.bolt_capacity == pytest.approx(2 * 84.3e-6 * 640e6)
-               for d in per_web)
+    assert all(d.required_unbalance is None and d.bolt_capacity == pytest.approx(2 * 84.3e-6 * 640e6) for d in per_web)
 
 
 def test_stress_area_table_and_fallback():

@@ -102,13 +102,15 @@ def test_signed_mean_rules():
     6-67 counts a shear mean); hydrostatic tension p: +p (vM is 0, s_1 = p); uniaxial
     compression -s; a mean with a tensile principal stress and a larger compressive one
     (s_xx = +50, s_yy = -150 MPa, trace < 0) still counts as tensile: +vM = 180.3 MPa."""
-    cols = np.array([
-        [100e6, 0, 0, 0, 0, 0],
-        [0, 0, 0, 50e6, 0, 0],
-        [30e6, 30e6, 30e6, 0, 0, 0],
-        [-100e6, 0, 0, 0, 0, 0],
-        [50e6, -150e6, 0, 0, 0, 0],
-    ]).T
+    cols = np.array(
+        [
+            [100e6, 0, 0, 0, 0, 0],
+            [0, 0, 0, 50e6, 0, 0],
+            [30e6, 30e6, 30e6, 0, 0, 0],
+            [-100e6, 0, 0, 0, 0, 0],
+            [50e6, -150e6, 0, 0, 0, 0],
+        ]
+    ).T
     got = signed_mean(cols)
     vm5 = np.sqrt(((200e6) ** 2 + 150e6**2 + 50e6**2) / 2)  # 180.3 MPa
     np.testing.assert_allclose(got, [100e6, np.sqrt(3) * 50e6, 30e6, -100e6, vm5], rtol=1e-12)

@@ -11,14 +11,13 @@ import numpy as np
 import pytest
 from skfem import MeshTet, MeshTet2
 
+import fe_crank.dynamics as dynamics
+import fe_crank.fe.unit_cases as fe
 from fe_crank.assess import assess_case, assessed_groups, to_json
 from fe_crank.assess.results import load_schema
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.throw_scope import ALL_THROWS
-
-import fe_crank.fe.unit_cases as fe
-import fe_crank.dynamics as dynamics
 
 R, L = 0.02, 0.12
 
@@ -29,16 +28,21 @@ def _bar():
     p = np.array([R * x * np.sqrt(1 - y**2 / 2), R * y * np.sqrt(1 - x**2 / 2), L * z])
     m2 = MeshTet2.from_mesh(MeshTet(p, m.t))
     e = 1e-9
-    side = lambda x: (x[2] > e) & (x[2] < L - e)  # noqa: E731
-    m2 = m2.with_boundaries({
-        "end_1": lambda x: np.abs(x[2]) < e, "end_2": lambda x: np.abs(x[2] - L) < e,
-        "journal_1": lambda x: side(x) & (x[2] < L / 3), "journal_2": lambda x: side(x) & (x[2] > 2 * L / 3),
-        "crankpin": lambda x: side(x) & (x[2] > L / 3) & (x[2] < 2 * L / 3),
-        "crankpin_fillet_1": lambda x: side(x) & (np.abs(x[2] - L / 3) < L / 12),
-        "journal_fillet_2": lambda x: side(x) & (np.abs(x[2] - 2 * L / 3) < L / 12),
-    })
-    return m2.with_subdomains({"counterweight_1": lambda x: x[2] < L / 6,
-                               "web_1": lambda x: (x[2] > L / 6) & (x[2] < L / 3)})
+    side = lambda x: (x[2] > e) & (x[2] < L - e)
+    m2 = m2.with_boundaries(
+        {
+            "end_1": lambda x: np.abs(x[2]) < e,
+            "end_2": lambda x: np.abs(x[2] - L) < e,
+            "journal_1": lambda x: side(x) & (x[2] < L / 3),
+            "journal_2": lambda x: side(x) & (x[2] > 2 * L / 3),
+            "crankpin": lambda x: side(x) & (x[2] > L / 3) & (x[2] < 2 * L / 3),
+            "crankpin_fillet_1": lambda x: side(x) & (np.abs(x[2] - L / 3) < L / 12),
+            "journal_fillet_2": lambda x: side(x) & (np.abs(x[2] - 2 * L / 3) < L / 12),
+        }
+    )
+    return m2.with_subdomains(
+        {"counterweight_1": lambda x: x[2] < L / 6, "web_1": lambda x: (x[2] > L / 6) & (x[2] < L / 3)}
+    )
 
 
 CASE = """
@@ -103,7 +107,7 @@ def _max_von_mises_by_hand(solved, dyn, omega):
     unit = unit_stresses(units)
     stress = {c: unit.stress[i] for i, c in enumerate(unit.cases)}
     direction = {0: "pin_x", 90: "pin_y", 180: "pin_-x", 270: "pin_-y"}
-    name = lambda d: direction.get(d % 360, f"pin_{d % 360:03d}")  # noqa: E731
+    name = lambda d: direction.get(d % 360, f"pin_{d % 360:03d}")
     tl = dyn.throws["1"]
     worst = 0.0
     for f, torque in zip(tl.pin_force, tl.torque_front):
@@ -112,8 +116,12 @@ def _max_von_mises_by_hand(solved, dyn, omega):
         j = int(psi // 30)
         a = mag * np.sin(np.radians(30 * (j + 1) - psi)) / 0.5
         b = mag * np.sin(np.radians(psi - 30 * j)) / 0.5
-        s = (omega**2 * stress["centrifugal"] + a * stress[name(30 * j)] + b * stress[name(30 * (j + 1))]
-             - torque / unit.torque_mz * stress["torque"])
+        s = (
+            omega**2 * stress["centrifugal"]
+            + a * stress[name(30 * j)]
+            + b * stress[name(30 * (j + 1))]
+            - torque / unit.torque_mz * stress["torque"]
+        )
         worst = max(worst, float(von_mises(s[None])[0].max()))
     return worst
 
@@ -128,16 +136,25 @@ def test_groups_include_junction(solved):
 
 
 def test_assess_case_verdicts_and_json(tmp_path, solved):
-    lc, dyn, a = _run(tmp_path, solved, """
+    lc, dyn, a = _run(
+        tmp_path,
+        solved,
+        """
         min_static_safety = 1.5
         min_overspeed_safety = 1.5
         min_fatigue_safety = 1.2
         min_gough_pollard_safety = 1.2
         max_counterweight_stress = "1 kPa"
-        """)
+        """,
+    )
     names = [c.quantity for c in a.criteria]
-    assert names == ["static_safety", "overspeed_safety", "fatigue_safety", "gough_pollard_safety",
-                     "counterweight_stress"]
+    assert names == [
+        "static_safety",
+        "overspeed_safety",
+        "fatigue_safety",
+        "gough_pollard_safety",
+        "counterweight_stress",
+    ]
     cw = a.criteria[-1]
     assert not cw.passed and cw.margin < 0
     assert "counterweight_1" in cw.location or "junction_1" in cw.location
@@ -178,17 +195,28 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
     from fe_crank.assess import CounterweightData, M53Geometry, assess_case
 
     p = tmp_path / "c.toml"
-    p.write_text(CASE.format(criteria="min_m53_acceptability = 1.15\nmax_unbalance_error = 0.05\n"
-                                      "max_bolt_utilisation = 0.8"))
+    p.write_text(
+        CASE.format(criteria="min_m53_acceptability = 1.15\nmax_unbalance_error = 0.05\nmax_bolt_utilisation = 0.8")
+    )
     lc = load_loadcase(p)
     dyn = dynamics.analyse(lc.engine, lc.operating)
     mesh, units = solved
-    inside = M53Geometry(pin_diameter=0.1, journal_diameter=0.12, crank_radius=0.09, web_thickness=0.03,
-                         web_width=0.15, pin_fillet_radius=0.005, journal_fillet_radius=0.006, bearing_to_web=0.06)
-    cw = CounterweightData("counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026,
-                           bolted=True, bolt_capacity=20e3)
-    a = assess_case(dataclasses.replace(lc, geometry=_Geo(inside, (cw,))), dyn, {}, {ALL_THROWS: mesh},
-                    {ALL_THROWS: units})
+    inside = M53Geometry(
+        pin_diameter=0.1,
+        journal_diameter=0.12,
+        crank_radius=0.09,
+        web_thickness=0.03,
+        web_width=0.15,
+        pin_fillet_radius=0.005,
+        journal_fillet_radius=0.006,
+        bearing_to_web=0.06,
+    )
+    cw = CounterweightData(
+        "counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026, bolted=True, bolt_capacity=20e3
+    )
+    a = assess_case(
+        dataclasses.replace(lc, geometry=_Geo(inside, (cw,))), dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units}
+    )
     pin = a.throws[0].m53[0]
     # M53 sigma_DW = K (0.42 s_B + 39.3)[0.264 + 1.073 D^-0.2 + (785 - s_B)/4900 + 196/s_B sqrt(1/R_H)]
     # (N/mm2, mm), s_B = 900, D = 100, R_H = 5, K = 1.05 by hand:
@@ -208,10 +236,11 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
     from fe_crank.errors import MeshError
 
     with pytest.raises(MeshError, match="no boundary 'journal_fillet_1', needed by the SCF mode"):
-        assess_case(dataclasses.replace(lc, geometry=_Geo(thin, (cw,))), dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units})
+        assess_case(
+            dataclasses.replace(lc, geometry=_Geo(thin, (cw,))), dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units}
+        )
     doc = json.loads(json.dumps(to_json(a)))
     jsonschema.validate(doc, load_schema())
-
 
 
 def test_stress_recovery_check(solved):
@@ -286,9 +315,18 @@ def test_overspeed_includes_rod_and_piston_inertia_hand_calc(tmp_path, solved):
     # the TDC state alone, with the hand force as the overspeed load: equal at every group
     from fe_crank.assess.case import assess_throw
 
-    t0 = assess_throw("1", unit, np.zeros(1), np.zeros((1, 2)), np.zeros(1), omega=w, overspeed=w,
-                      material=lc.material, crank_radius=0.02,
-                      overspeed_loads=(np.array([[0.0, f]]), np.zeros(1)))
+    t0 = assess_throw(
+        "1",
+        unit,
+        np.zeros(1),
+        np.zeros((1, 2)),
+        np.zeros(1),
+        omega=w,
+        overspeed=w,
+        material=lc.material,
+        crank_radius=0.02,
+        overspeed_loads=(np.array([[0.0, f]]), np.zeros(1)),
+    )
     for g in t0.groups:
         assert g.max_von_mises_overspeed.value == pytest.approx(by_hand[unit.groups[g.group]].max(), rel=1e-9)
     # no gas table: every load of the cycle (pin force, torque, body force) is an inertia
@@ -314,8 +352,17 @@ def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
     theta = np.deg2rad(np.arange(360.0))
     t_a = 300.0
     mat = load_material("42CrMo4", surface_factor=1.0, size_factor=1.0, reliability=0.5)
-    t = assess_throw("1", unit, theta, np.zeros((360, 2)), t_a * np.cos(theta), omega=0.0, overspeed=None,
-                     material=mat, crank_radius=R)
+    t = assess_throw(
+        "1",
+        unit,
+        theta,
+        np.zeros((360, 2)),
+        t_a * np.cos(theta),
+        omega=0.0,
+        overspeed=None,
+        material=mat,
+        crank_radius=R,
+    )
     s_t = unit.stress[unit.cases.index("torque")] * (t_a / abs(unit.torque_mz))
     for g in t.groups:
         if "fillet" not in g.group:

@@ -27,17 +27,30 @@ from fe_crank.io.material import load_material
 CASES = ("centrifugal", "pin_x", "pin_y", "torque")
 THETA = np.deg2rad([0.0, 90.0, 180.0, 270.0])
 PIN = np.column_stack([np.zeros(4), [1000.0, 0.0, -500.0, 0.0]])
-MAT = load_material("42CrMo4")                       # R_e = 650 MPa (library)
-INSIDE = m53.M53Geometry(pin_diameter=0.1, journal_diameter=0.12, crank_radius=0.09, web_thickness=0.03,
-                         web_width=0.15, pin_fillet_radius=0.005, journal_fillet_radius=0.006, bearing_to_web=0.06)
+MAT = load_material("42CrMo4")  # R_e = 650 MPa (library)
+INSIDE = m53.M53Geometry(
+    pin_diameter=0.1,
+    journal_diameter=0.12,
+    crank_radius=0.09,
+    web_thickness=0.03,
+    web_width=0.15,
+    pin_fillet_radius=0.005,
+    journal_fillet_radius=0.006,
+    bearing_to_web=0.06,
+)
 
 
 def _unit(groups, n=1, points=None):
     s = np.zeros((4, 6, n))
     s[0, 0], s[2, 0], s[3, 3] = 0.01, 1.0, 2.0
     pts = np.zeros((3, n)) if points is None else points
-    return UnitStresses(stress=s, points=pts, groups={k: np.asarray(v, int) for k, v in groups.items()},
-                        node_ids=np.arange(100, 100 + n), cases=CASES)
+    return UnitStresses(
+        stress=s,
+        points=pts,
+        groups={k: np.asarray(v, int) for k, v in groups.items()},
+        node_ids=np.arange(100, 100 + n),
+        cases=CASES,
+    )
 
 
 def _vm(throw, group):
@@ -51,20 +64,27 @@ def test_overspeed_scales_the_operating_loads_by_the_speed_ratio_squared():
     omega = 0 (a standstill cycle): the loads are kept (x 1), the body force is at
     omega_os: 144 + 1000 = 1144 Pa."""
     unit = _unit({"counterweight_1": [0]})
-    t = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=120.0, material=MAT,
-                     crank_radius=0.05)
+    t = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=120.0, material=MAT, crank_radius=0.05)
     g = _vm(t, "counterweight_1")
     assert g.max_von_mises.value == pytest.approx(1100.0, rel=1e-12)
     assert g.max_von_mises_overspeed.value == pytest.approx(1584.0, rel=1e-12)
     assert g.max_von_mises_overspeed.angle == 0.0
     assert g.overspeed_safety == pytest.approx(650e6 / 1584.0, rel=1e-12)
-    t0 = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=0.0, overspeed=120.0, material=MAT,
-                      crank_radius=0.05)
+    t0 = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=0.0, overspeed=120.0, material=MAT, crank_radius=0.05)
     assert _vm(t0, "counterweight_1").max_von_mises_overspeed.value == pytest.approx(1144.0, rel=1e-12)
     # the torque is scaled too: T = 10 N m at 90 deg -> tau = 1.44 x 20 = 28.8 Pa, vM = sqrt(3) 28.8
     # (the largest at 90 deg, where the pin force is zero: 144 Pa and tau 28.8 -> sqrt(144^2 + 3 28.8^2))
-    t1 = assess_throw("1", unit, THETA, np.zeros((4, 2)), np.array([0.0, 10.0, 0.0, 0.0]), omega=100.0,
-                      overspeed=120.0, material=MAT, crank_radius=0.05)
+    t1 = assess_throw(
+        "1",
+        unit,
+        THETA,
+        np.zeros((4, 2)),
+        np.array([0.0, 10.0, 0.0, 0.0]),
+        omega=100.0,
+        overspeed=120.0,
+        material=MAT,
+        crank_radius=0.05,
+    )
     g1 = _vm(t1, "counterweight_1").max_von_mises_overspeed
     assert g1.value == pytest.approx(math.sqrt(144.0**2 + 3 * 28.8**2), rel=1e-12)
     assert g1.angle == pytest.approx(math.pi / 2, rel=1e-15)
@@ -72,8 +92,7 @@ def test_overspeed_scales_the_operating_loads_by_the_speed_ratio_squared():
 
 def test_groups_sorted_empty_ones_skipped_and_the_angle_count():
     unit = _unit({"junction_2": [0], "counterweight_1": [0], "junction_0": []})
-    t = assess_throw("7", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=None, material=MAT,
-                     crank_radius=0.05)
+    t = assess_throw("7", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=None, material=MAT, crank_radius=0.05)
     assert t.name == "7" and [g.group for g in t.groups] == ["counterweight_1", "junction_2"]
     assert t.n_angles == 4 and t.m53 == () and t.m53_nominal is None and t.counterweights == ()
     assert t.groups[0].max_von_mises_overspeed is None
@@ -100,8 +119,9 @@ def test_m53_takes_the_journal_torque_with_the_larger_range_and_its_options():
     assert t2.m53_nominal == m53.nominal_stresses(INSIDE, pin[:, 1], rear, ke=1.0)
     t3 = assess_throw("1", unit, THETA, pin, front, **kw)
     assert t3.m53_nominal == m53.nominal_stresses(INSIDE, pin[:, 1], front, ke=1.0)
-    assert t3.m53[0] == m53.assess_fillet(INSIDE, t3.m53_nominal, "pin", tensile=MAT.tensile_strength,
-                                          k=MAT.m53_k, additional=10e6)
+    assert t3.m53[0] == m53.assess_fillet(
+        INSIDE, t3.m53_nominal, "pin", tensile=MAT.tensile_strength, k=MAT.m53_k, additional=10e6
+    )
     # a material without UR M53's K (or without a tensile strength): no M53 results
     for field in ("m53_k", "tensile_strength"):
         t4 = assess_throw("1", unit, THETA, pin, front, **dict(kw, material=dataclasses.replace(MAT, **{field: None})))
@@ -116,8 +136,18 @@ def test_m53_outside_the_range_without_fe_scfs_names_the_throw_and_key():
     with pytest.raises(ValueError) as ref:
         m53.assess_fillet(thin, nominal, "pin", tensile=MAT.tensile_strength, k=MAT.m53_k)
     with pytest.raises(InputError) as e:
-        assess_throw("3", unit, THETA, pin, np.zeros(4), omega=100.0, overspeed=None, material=MAT,
-                     crank_radius=0.09, m53_geometry=thin)
+        assess_throw(
+            "3",
+            unit,
+            THETA,
+            pin,
+            np.zeros(4),
+            omega=100.0,
+            overspeed=None,
+            material=MAT,
+            crank_radius=0.09,
+            m53_geometry=thin,
+        )
     assert e.value.key == "geometry" and str(e.value) == f"geometry: throw 3: {ref.value}"
 
 
@@ -125,10 +155,21 @@ def test_counterweight_checks_at_the_speed_and_overspeed():
     """m r = 0.5 x 0.05 = 0.025 kg m against 0.026 required: error 1/26; bolt load
     m r omega_os^2 = 0.025 x 120^2 = 360 N on 20 kN: 0.018."""
     unit = _unit({"counterweight_1": [0]})
-    cw = CounterweightData("counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026,
-                           bolted=True, bolt_capacity=20e3)
-    t = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=120.0, material=MAT,
-                     crank_radius=0.05, counterweights=(cw,))
+    cw = CounterweightData(
+        "counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026, bolted=True, bolt_capacity=20e3
+    )
+    t = assess_throw(
+        "1",
+        unit,
+        THETA,
+        PIN,
+        np.zeros(4),
+        omega=100.0,
+        overspeed=120.0,
+        material=MAT,
+        crank_radius=0.05,
+        counterweights=(cw,),
+    )
     (c,) = t.counterweights
     assert c.unbalance_error == pytest.approx(1 / 26, rel=1e-12)
     assert c.bolt_utilisation == pytest.approx(0.025 * 120.0**2 / 20e3, rel=1e-12)
@@ -151,9 +192,16 @@ def _two_throws():
 
 def test_each_criterion_takes_the_worst_group_and_names_where():
     t1, t2 = _two_throws()
-    crit = build_criteria({"min_static_safety": 1.5, "min_overspeed_safety": 1.5,
-                           "max_counterweight_stress": "1 kPa", "max_counterweight_overspeed_stress": "3 kPa",
-                           "min_fatigue_safety": 1.2}, "c.toml")
+    crit = build_criteria(
+        {
+            "min_static_safety": 1.5,
+            "min_overspeed_safety": 1.5,
+            "max_counterweight_stress": "1 kPa",
+            "max_counterweight_overspeed_stress": "3 kPa",
+            "min_fatigue_safety": 1.2,
+        },
+        "c.toml",
+    )
     out = {c.quantity: c for c in evaluate_criteria(crit, (t1, t2), file="c.toml", overspeed=120.0)}
     # static: the largest vM over both throws, 2100 Pa in throw 2's counterweight (node 101)
     assert out["static_safety"].value == pytest.approx(650e6 / 2100.0, rel=1e-12)
@@ -189,14 +237,20 @@ def test_overspeed_criteria_without_an_overspeed_and_unevaluable_ones_are_input_
             evaluate_criteria(build_criteria({key: value}, "c.toml"), (t1,), file="c.toml", overspeed=None)
         assert e.value.key == f"criteria.{key}" and e.value.file == "c.toml"
         assert str(e.value).endswith("needs operating.overspeed")
-    for key, q in (("min_m53_acceptability", "m53 acceptability"), ("max_unbalance_error", "unbalance error"),
-                   ("max_bolt_utilisation", "bolt utilisation"), ("min_gough_pollard_safety", "gough pollard safety")):
+    for key, q in (
+        ("min_m53_acceptability", "m53 acceptability"),
+        ("max_unbalance_error", "unbalance error"),
+        ("max_bolt_utilisation", "bolt utilisation"),
+        ("min_gough_pollard_safety", "gough pollard safety"),
+    ):
         no_fillet = dataclasses.replace(t1, groups=tuple(g for g in t1.groups if g.group == "counterweight_1"))
         with pytest.raises(InputError) as e:
             evaluate_criteria(build_criteria({key: 1.0}, "c.toml"), (no_fillet,), file="c.toml", overspeed=120.0)
         assert e.value.key == f"criteria.{key}"
-        assert (f"cannot be evaluated: the model gives no {q} (missing geometry, mesh group, balance requirement "
-                "or bolt data)") in str(e.value)
+        assert (
+            f"cannot be evaluated: the model gives no {q} (missing geometry, mesh group, balance requirement "
+            "or bolt data)"
+        ) in str(e.value)
 
 
 def test_m53_and_counterweight_criteria_take_the_worst_over_throws():
@@ -205,17 +259,20 @@ def test_m53_and_counterweight_criteria_take_the_worst_over_throws():
     unit = _unit({"counterweight_1": [0]})
     pin = np.column_stack([np.zeros(4), [20e3, -5e3, 8e3, -5e3]])
     kw = dict(omega=100.0, overspeed=120.0, material=MAT, crank_radius=0.09, m53_geometry=INSIDE)
-    cw_a = CounterweightData("counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026,
-                             bolted=True, bolt_capacity=20e3)
-    cw_b = CounterweightData("counterweight_2", mass=0.5, centroid_radius=0.05, required_unbalance=0.02,
-                             bolted=True, bolt_capacity=40e3)
+    cw_a = CounterweightData(
+        "counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026, bolted=True, bolt_capacity=20e3
+    )
+    cw_b = CounterweightData(
+        "counterweight_2", mass=0.5, centroid_radius=0.05, required_unbalance=0.02, bolted=True, bolt_capacity=40e3
+    )
     t1 = assess_throw("1", unit, THETA, pin, 100.0 * np.cos(THETA), counterweights=(cw_a,), **kw)
     t2 = assess_throw("2", unit, THETA, 3 * pin, 100.0 * np.cos(THETA), counterweights=(cw_b,), **kw)
-    crit = build_criteria({"min_m53_acceptability": 1.15, "max_unbalance_error": 0.05,
-                           "max_bolt_utilisation": 0.8}, "c.toml")
+    crit = build_criteria(
+        {"min_m53_acceptability": 1.15, "max_unbalance_error": 0.05, "max_bolt_utilisation": 0.8}, "c.toml"
+    )
     out = {c.quantity: c for c in evaluate_criteria(crit, (t1, t2), file="c.toml", overspeed=120.0)}
     worst = min((f.acceptability, t.name, f.fillet, f.scf_source) for t in (t1, t2) for f in t.m53)
-    assert worst[1] == "2"                                   # three times the radial force
+    assert worst[1] == "2"  # three times the radial force
     assert out["m53_acceptability"].value == worst[0]
     assert out["m53_acceptability"].location == f"throw 2, {worst[2]} fillet ({worst[3]})"
     # |0.025 - 0.026| / 0.026 = 1/26 (throw 1) and |0.025 - 0.02| / 0.02 = 1/4 (throw 2)
@@ -233,12 +290,24 @@ def test_torque_sense_and_unit_moment_reach_both_cycles():
     sense -1 -> -50 -> 900 Pa.  The same in the overspeed cycle given as loads (x 1)."""
     s = np.zeros((4, 6, 1))
     s[2, 0], s[3, 0] = 1.0, 2.0
-    unit = UnitStresses(stress=s, points=np.zeros((3, 1)), groups={"counterweight_1": np.array([0])},
-                        cases=CASES, torque_mz=-2.0)
+    unit = UnitStresses(
+        stress=s, points=np.zeros((3, 1)), groups={"counterweight_1": np.array([0])}, cases=CASES, torque_mz=-2.0
+    )
     torque = np.array([100.0, 0.0, 0.0, 0.0])
     for sense, expected in ((1, 1100.0), (-1, 900.0)):
-        t = assess_throw("1", unit, THETA, PIN, torque, omega=1.0, sense=sense, overspeed=1.0, material=MAT,
-                         crank_radius=0.05, overspeed_loads=(PIN, torque))
+        t = assess_throw(
+            "1",
+            unit,
+            THETA,
+            PIN,
+            torque,
+            omega=1.0,
+            sense=sense,
+            overspeed=1.0,
+            material=MAT,
+            crank_radius=0.05,
+            overspeed_loads=(PIN, torque),
+        )
         g = _vm(t, "counterweight_1")
         assert g.max_von_mises.value == pytest.approx(expected, rel=1e-12)
         assert g.max_von_mises_overspeed.value == pytest.approx(expected, rel=1e-12)
@@ -259,8 +328,18 @@ def test_each_fillet_gets_the_size_factor_of_its_own_section():
 
     unit = _unit({"crankpin_fillet_1": [0], "journal_fillet_1": [0]}, points=np.array([[0.01], [0.05], [0.0]]))
     pin = np.column_stack([np.zeros(4), [20e3, -5e3, 8e3, -5e3]])
-    t = assess_throw("1", unit, THETA, pin, np.zeros(4), omega=100.0, overspeed=None, material=MAT,
-                     crank_radius=0.09, m53_geometry=INSIDE)
+    t = assess_throw(
+        "1",
+        unit,
+        THETA,
+        pin,
+        np.zeros(4),
+        omega=100.0,
+        overspeed=None,
+        material=MAT,
+        crank_radius=0.09,
+        m53_geometry=INSIDE,
+    )
     assert factors(MAT, 0.1) != factors(MAT, 0.12)
     assert _vm(t, "crankpin_fillet_1").fatigue_factors == factors(MAT, 0.1)
     assert _vm(t, "journal_fillet_1").fatigue_factors == factors(MAT, 0.12)
@@ -270,10 +349,14 @@ def _scf_result():
     from fe_crank.assess.scf import ScfResult
 
     # hand-chosen FE SCFs and mesh checks (principal criterion 1 %, averaging 2 %)
-    return ScfResult(fe={"alpha_B": 2.5, "alpha_T": 1.9, "beta_B": 3.1, "beta_Q": 1.2, "beta_T": 1.7, "beta_BQ": 3.0},
-                     empirical={}, out_of_range={},
-                     quality={"journal": {"principal_ratio": 0.01, "averaging": 0.02, "mesh_ok": True}},
-                     element_size={}, stresses=None)
+    return ScfResult(
+        fe={"alpha_B": 2.5, "alpha_T": 1.9, "beta_B": 3.1, "beta_Q": 1.2, "beta_T": 1.7, "beta_BQ": 3.0},
+        empirical={},
+        out_of_range={},
+        quality={"journal": {"principal_ratio": 0.01, "averaging": 0.02, "mesh_ok": True}},
+        element_size={},
+        stresses=None,
+    )
 
 
 def test_fe_scfs_out_of_range_from_the_given_factors_or_the_scf_mode():
@@ -288,33 +371,50 @@ def test_fe_scfs_out_of_range_from_the_given_factors_or_the_scf_mode():
     result = _scf_result()
     fe_scf = result.for_assessment()
     nominal = m53.nominal_stresses(geo, pin[:, 1], np.zeros(4))
-    ref = [m53.assess_fillet(geo, nominal, f, tensile=MAT.tensile_strength, k=MAT.m53_k, fe_scf=fe_scf[f])
-           for f in ("pin", "journal")]
+    ref = [
+        m53.assess_fillet(geo, nominal, f, tensile=MAT.tensile_strength, k=MAT.m53_k, fe_scf=fe_scf[f])
+        for f in ("pin", "journal")
+    ]
     assert ref[0].out_of_range == () and ref[1].out_of_range == ("r = 0.02 not in [0.03, 0.13]",)
     kw = dict(omega=100.0, overspeed=None, material=MAT, crank_radius=0.09, m53_geometry=geo)
     given = assess_throw("1", unit, THETA, pin, np.zeros(4), fe_scf=fe_scf, **kw)
     assert list(given.m53) == ref
     mode = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result, **kw)
-    summary = ("FE, UR M53 App. III SCF mode (mesh accepted: principal criterion max 1.0 % (< 3 %); "
-               "averaging max 2.0 % (< 5 %))")
+    summary = (
+        "FE, UR M53 App. III SCF mode (mesh accepted: principal criterion max 1.0 % (< 3 %); "
+        "averaging max 2.0 % (< 5 %))"
+    )
     assert result.summary() == summary
     assert mode.m53[0] == ref[0]
     assert mode.m53[1] == dataclasses.replace(
-        ref[1], scf_source=summary + "; outside the UR M53 validity range: r = 0.02 not in [0.03, 0.13]")
+        ref[1], scf_source=summary + "; outside the UR M53 validity range: r = 0.02 not in [0.03, 0.13]"
+    )
     # two reasons are joined by "; "
     geo2 = dataclasses.replace(geo, web_thickness=0.015)
     two = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result, **dict(kw, m53_geometry=geo2))
-    assert two.m53[1].scf_source == (summary + "; outside the UR M53 validity range: "
-                                     "w = 0.15 not in [0.2, 0.8]; r = 0.02 not in [0.03, 0.13]")
+    assert two.m53[1].scf_source == (
+        summary + "; outside the UR M53 validity range: w = 0.15 not in [0.2, 0.8]; r = 0.02 not in [0.03, 0.13]"
+    )
 
 
 def test_counterweight_bolt_load_at_the_speed_without_an_overspeed():
     """No overspeed: the bolt load at omega = 100 rad/s: 0.025 x 100^2 = 250 N on 20 kN."""
     unit = _unit({"counterweight_1": [0]})
-    cw = CounterweightData("counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026,
-                           bolted=True, bolt_capacity=20e3)
-    t = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=None, material=MAT,
-                     crank_radius=0.05, counterweights=(cw,))
+    cw = CounterweightData(
+        "counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026, bolted=True, bolt_capacity=20e3
+    )
+    t = assess_throw(
+        "1",
+        unit,
+        THETA,
+        PIN,
+        np.zeros(4),
+        omega=100.0,
+        overspeed=None,
+        material=MAT,
+        crank_radius=0.05,
+        counterweights=(cw,),
+    )
     assert t.counterweights[0].bolt_utilisation == pytest.approx(250.0 / 20e3, rel=1e-12)
 
 
@@ -347,8 +447,19 @@ def test_the_scf_mode_runs_when_only_the_pin_fillet_is_out_of_range():
     assert m53.out_of_range(geo.related("pin")) and not m53.out_of_range(geo.related("journal"))
     unit = _unit({"counterweight_1": [0]})
     pin = np.column_stack([np.zeros(4), [20e3, -5e3, 8e3, -5e3]])
-    t = assess_throw("1", unit, THETA, pin, np.zeros(4), omega=100.0, overspeed=None, material=MAT,
-                     crank_radius=0.09, m53_geometry=geo, scf=_scf_result)
+    t = assess_throw(
+        "1",
+        unit,
+        THETA,
+        pin,
+        np.zeros(4),
+        omega=100.0,
+        overspeed=None,
+        material=MAT,
+        crank_radius=0.09,
+        m53_geometry=geo,
+        scf=_scf_result,
+    )
     assert t.m53[0].scf_source.startswith("FE, UR M53 App. III SCF mode (mesh accepted")
     assert t.m53[0].scf_source.endswith("; outside the UR M53 validity range: r = 0.02 not in [0.03, 0.13]")
     assert t.m53[1].out_of_range == ()

@@ -63,8 +63,10 @@ def test_material_defaults_are_on_the_safe_side_and_product():
     assert g.product == pytest.approx(0.88623 * 0.80491 * 0.89748 * 1.1, rel=1e-4)
 
 
-@pytest.mark.parametrize("key,value", [("reliability", 0.3), ("notch_support_factor", 0.9),
-                                       ("surface_finish", "polished"), ("size_factor", 1.2)])
+@pytest.mark.parametrize(
+    "key,value",
+    [("reliability", 0.3), ("notch_support_factor", 0.9), ("surface_finish", "polished"), ("size_factor", 1.2)],
+)
 def test_bad_factor_is_an_input_error(key, value):
     with pytest.raises(InputError) as e:
         load_material("C45", **{key: value})
@@ -82,16 +84,37 @@ def test_size_factor_per_section_in_the_assessment():
     s = np.zeros((3, 6, 2 * n))
     s[0, 2] = np.concatenate([y, y]) / (np.pi * d**4 / 64)
     pts = np.vstack([np.concatenate([x, x]), np.concatenate([y, y + 0.1]), np.zeros(2 * n)])
-    unit = UnitStresses(stress=s, points=pts, groups={"journal_fillet_1": np.arange(n),
-                                                     "crankpin_fillet_1": np.arange(n, 2 * n)},
-                        cases=("pin_x", "pin_y", "torque"))
-    geo = M53Geometry(pin_diameter=0.040, journal_diameter=0.055, crank_radius=0.1, web_thickness=0.02,
-                      web_width=0.08, pin_fillet_radius=0.003, journal_fillet_radius=0.003, bearing_to_web=0.03)
+    unit = UnitStresses(
+        stress=s,
+        points=pts,
+        groups={"journal_fillet_1": np.arange(n), "crankpin_fillet_1": np.arange(n, 2 * n)},
+        cases=("pin_x", "pin_y", "torque"),
+    )
+    geo = M53Geometry(
+        pin_diameter=0.040,
+        journal_diameter=0.055,
+        crank_radius=0.1,
+        web_thickness=0.02,
+        web_width=0.08,
+        pin_fillet_radius=0.003,
+        journal_fillet_radius=0.003,
+        bearing_to_web=0.03,
+    )
     mat = load_material("42CrMo4", surface_finish="ground", reliability=0.99)
     theta = np.deg2rad(np.arange(360.0))
     pin = np.column_stack([1000.0 * np.sin(theta), np.zeros_like(theta)])
-    t = assess_throw("1", unit, theta, pin, np.zeros(360), omega=0.0, overspeed=None, material=mat,
-                     crank_radius=0.1, m53_geometry=geo)
+    t = assess_throw(
+        "1",
+        unit,
+        theta,
+        pin,
+        np.zeros(360),
+        omega=0.0,
+        overspeed=None,
+        material=mat,
+        crank_radius=0.1,
+        m53_geometry=geo,
+    )
     sa = 32 * 1000.0 / (np.pi * d**3)
     by = {g.group: g for g in t.groups}
     ka, ke = 0.88623, 0.81389  # ground 900 MPa (above); 99 %: 1 - 0.08 * 2.32635 = 0.81389

@@ -45,8 +45,9 @@ def test_reliability_range():
 
 
 def test_given_factors_win_and_no_tensile_strength_gives_no_surface_factor():
-    m = load_material("C45", surface_factor=0.8, size_factor=0.9, reliability=0.9, treatment_factor=1.2,
-                      notch_support_factor=1.1)
+    m = load_material(
+        "C45", surface_factor=0.8, size_factor=0.9, reliability=0.9, treatment_factor=1.2, notch_support_factor=1.1
+    )
     f = factors(m, 0.04)
     # given size factor: no diameter is recorded for it; product 0.8 * 0.9 * 0.89748 * 1.2 * 1.1
     assert (f.surface, f.size, f.treatment, f.notch_support, f.diameter) == (0.8, 0.9, 1.2, 1.1, None)
@@ -66,9 +67,15 @@ def test_report_rows():
         ["size factor k_b", "per section from its diameter (Shigley eq. 6-20; see the fatigue table)"],
         ["reliability factor k_e", "0.814 (0.99, Shigley table 6-5)"],
         ["treatment factor", "1.000"],
-        ["notch support factor", "1.000 (FE route; 1 = no credit)"]]
-    rows = material_rows(load_material("C45", surface_factor=0.8, size_factor=0.9, reliability=0.9,
-                                       treatment_factor=1.2))
-    assert rows[:4] == [["surface factor k_a", "0.800 (given)"], ["size factor k_b", "0.900 (given)"],
-                        ["reliability factor k_e", "0.897 (0.9, Shigley table 6-5)"], ["treatment factor", "1.200"]]
+        ["notch support factor", "1.000 (FE route; 1 = no credit)"],
+    ]
+    rows = material_rows(
+        load_material("C45", surface_factor=0.8, size_factor=0.9, reliability=0.9, treatment_factor=1.2)
+    )
+    assert rows[:4] == [
+        ["surface factor k_a", "0.800 (given)"],
+        ["size factor k_b", "0.900 (given)"],
+        ["reliability factor k_e", "0.897 (0.9, Shigley table 6-5)"],
+        ["treatment factor", "1.200"],
+    ]
     assert material_rows(None) == [] and material_rows(object()) == []

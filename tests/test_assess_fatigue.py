@@ -18,7 +18,7 @@ import pytest
 
 from fe_crank.assess import assess_throw, evaluate_criteria, to_json
 from fe_crank.assess.case import Assessment
-from fe_crank.assess.fatigue import gough_pollard_safety, goodman_safety
+from fe_crank.assess.fatigue import goodman_safety, gough_pollard_safety
 from fe_crank.assess.results import load_schema
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.io.criteria import build_criteria
@@ -41,8 +41,14 @@ def _bar_units(n=36):
     s[2, 5] = -tau * np.sin(phi)  # xz
     s[2, 4] = tau * np.cos(phi)  # yz
     pts = np.vstack([x, y, np.zeros(n)])
-    return UnitStresses(stress=s, points=pts, groups={"journal_fillet_1": np.arange(n)},
-                        node_ids=np.arange(n) + 100, cases=("pin_x", "pin_y", "torque"), torque_mz=1.0)
+    return UnitStresses(
+        stress=s,
+        points=pts,
+        groups={"journal_fillet_1": np.arange(n)},
+        node_ids=np.arange(n) + 100,
+        cases=("pin_x", "pin_y", "torque"),
+        torque_mz=1.0,
+    )
 
 
 def test_bar_bending_plus_mean_torsion_closed_form():
@@ -52,8 +58,18 @@ def test_bar_bending_plus_mean_torsion_closed_form():
     theta = np.deg2rad(np.arange(720.0))
     pin = np.column_stack([M_A * np.sin(theta), np.zeros_like(theta)])
     # torque coefficient is -sense * torque_front / torque_mz: sense -1 gives +T_m on the unit case
-    t = assess_throw("1", _bar_units(), theta, pin, np.full(theta.size, T_M), omega=0.0, sense=-1,
-                     overspeed=None, material=mat, crank_radius=0.0)
+    t = assess_throw(
+        "1",
+        _bar_units(),
+        theta,
+        pin,
+        np.full(theta.size, T_M),
+        omega=0.0,
+        sense=-1,
+        overspeed=None,
+        material=mat,
+        crank_radius=0.0,
+    )
     g = t.groups[0]
     sa = 32 * M_A / (np.pi * D**3)
     tm = 16 * T_M / (np.pi * D**3)
@@ -71,8 +87,9 @@ def test_bar_bending_plus_mean_torsion_closed_form():
     assert abs(g.fatigue_safety.point[1]) == pytest.approx(D / 2)
     assert np.rad2deg(g.max_von_mises.angle) % 360 in (90.0, 270.0)
 
-    crit = build_criteria({"min_static_safety": 1.5, "min_fatigue_safety": 2.0,
-                           "min_gough_pollard_safety": 1.5}, "t.toml")
+    crit = build_criteria(
+        {"min_static_safety": 1.5, "min_fatigue_safety": 2.0, "min_gough_pollard_safety": 1.5}, "t.toml"
+    )
     verdicts = evaluate_criteria(crit, (t,), file="t.toml")
     by = {v.quantity: v for v in verdicts}
     # by hand: sigma_a = 32 * 2000 / (pi 0.05^3) = 162.97 MPa, tau_m = 122.23 MPa
@@ -100,8 +117,9 @@ def test_pure_torsion_gough_pollard_and_goodman():
     mat = load_material("C45", surface_factor=1.0, size_factor=1.0, reliability=0.5)  # k = 1
     theta = np.deg2rad(np.arange(360.0))
     tq = 500.0 * np.cos(theta)
-    t = assess_throw("1", _bar_units(), theta, np.zeros((360, 2)), tq, omega=0.0, overspeed=None,
-                     material=mat, crank_radius=0.0)
+    t = assess_throw(
+        "1", _bar_units(), theta, np.zeros((360, 2)), tq, omega=0.0, overspeed=None, material=mat, crank_radius=0.0
+    )
     ta = 16 * 500.0 / (np.pi * D**3)
     g = t.groups[0]
     assert g.gough_pollard_safety.value == pytest.approx(167e6 / ta, rel=1e-9)

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import assess_throw
-from fe_crank.assess.fatigue import amplitude_mean, gough_pollard_safety, goodman_safety, half_range, signed_mean
+from fe_crank.assess.fatigue import amplitude_mean, goodman_safety, gough_pollard_safety, half_range, signed_mean
 from fe_crank.assess.stress import von_mises
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.io.material import load_material
@@ -35,12 +35,19 @@ def _node_throw(sigma_m: float, tau_m: float):
     s[0, 2], s[0, 5] = sigma_m, -tau_m  # centrifugal: the mean tensor
     s[1, 2] = 1.0  # pin_x: s_zz per N
     s[3, 5] = -1.0  # torque: s_xz = -tau_theta_z per N m
-    unit = UnitStresses(stress=s, points=np.array([[0.0], [A], [0.0]]), groups={"journal_fillet_1": np.arange(1)},
-                        node_ids=np.arange(1), cases=("centrifugal", "pin_x", "pin_y", "torque"), torque_mz=1.0)
+    unit = UnitStresses(
+        stress=s,
+        points=np.array([[0.0], [A], [0.0]]),
+        groups={"journal_fillet_1": np.arange(1)},
+        node_ids=np.arange(1),
+        cases=("centrifugal", "pin_x", "pin_y", "torque"),
+        torque_mz=1.0,
+    )
     mat = load_material("42CrMo4", surface_factor=1.0, size_factor=1.0, reliability=0.5)
     pin = np.column_stack([SA * np.sin(THETA), np.zeros_like(THETA)])
-    t = assess_throw("1", unit, THETA, pin, TA * np.cos(THETA), omega=1.0, sense=-1, overspeed=None,
-                     material=mat, crank_radius=0.0)
+    t = assess_throw(
+        "1", unit, THETA, pin, TA * np.cos(THETA), omega=1.0, sense=-1, overspeed=None, material=mat, crank_radius=0.0
+    )
     return t.groups[0]
 
 
@@ -60,9 +67,14 @@ def _node_throw(sigma_m: float, tau_m: float):
 # (+100, 0):    1/n = 0.26667 + 0.11111 -> 2.6471;  1/sqrt(0.09 + 0.036982) -> 2.8063
 # The sign errors these catch move n by 4 % or more (e.g. a compressive mean taken as
 # tensile: 3.75 -> 2.6471; |tau_m| taken signed: 2.6334 -> 3.5); abs 1e-4 on 4-digit values.
-CASES = {(100e6, 150e6): (1.7361, 2.4762), (-100e6, -150e6): (1.7361, 2.6334),
-         (-100e6, 0.0): (3.75, 3.0416), (100e6, 0.0): (2.6471, 2.8063),
-         (100e6, -150e6): (1.7361, 2.4762), (-100e6, 150e6): (1.7361, 2.6334)}
+CASES = {
+    (100e6, 150e6): (1.7361, 2.4762),
+    (-100e6, -150e6): (1.7361, 2.6334),
+    (-100e6, 0.0): (3.75, 3.0416),
+    (100e6, 0.0): (2.6471, 2.8063),
+    (100e6, -150e6): (1.7361, 2.4762),
+    (-100e6, 150e6): (1.7361, 2.6334),
+}
 
 
 @pytest.mark.parametrize("means", list(CASES))
@@ -103,7 +115,8 @@ def test_gough_pollard_and_goodman_at_the_edges():
     # sigma_m = R_m/4 -> sigma_e' = 150 MPa; tau_e stays 100 MPa: (60/150)^2 + (30/100)^2 = 0.25
     assert gough_pollard_safety(60e6, rm / 4, 30e6, 0.0, 200e6, 100e6, rm) == pytest.approx(2.0, rel=1e-12)
     assert gough_pollard_safety(60e6, -rm / 4, 30e6, 0.0, 200e6, 100e6, rm) == pytest.approx(
-        1 / np.hypot(0.3, 0.3), rel=1e-12)
+        1 / np.hypot(0.3, 0.3), rel=1e-12
+    )
 
 
 def test_half_range():
@@ -195,8 +208,9 @@ def test_bending_torsion_and_signed_mean_are_homogeneous_at_any_scale():
     np.testing.assert_allclose(sigma[:, 0], 100e6, rtol=1e-12)
     np.testing.assert_allclose(tau[:, 0], 7e6, rtol=1e-12)
     # a tensile mean of 0.5 Pa is tensile, a compressive one compressive
-    np.testing.assert_allclose(signed_mean(np.array([[0.5, -0.5], [0, 0], [0, 0], [0, 0], [0, 0], [0, 0.0]])),
-                               [0.5, -0.5], rtol=1e-12)
+    np.testing.assert_allclose(
+        signed_mean(np.array([[0.5, -0.5], [0, 0], [0, 0], [0, 0], [0, 0], [0, 0.0]])), [0.5, -0.5], rtol=1e-12
+    )
 
 
 def test_the_mid_range_centre_is_kept_when_it_is_the_minimum():

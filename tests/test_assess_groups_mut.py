@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from test_assess_case import L, _bar
 
 import fe_crank.fe.unit_cases as fe
 from fe_crank.assess.groups import assessed_groups, unit_stresses
 from fe_crank.errors import InputError
 from fe_crank.io.material import load_material
-from test_assess_case import L, _bar
 
 
 @pytest.fixture(scope="module")
@@ -31,8 +31,9 @@ def test_groups_of_the_bar_and_their_nodes(units):
     z = units.points[2]
     # fillet: every P2 node of the boundary's facets (vertices and edge midpoints)
     facets = units.mesh.boundaries["crankpin_fillet_1"]
-    expected = np.unique(np.concatenate([units.mesh.facets[:, facets].ravel(),
-                                         units.mesh.nvertices + units.mesh.f2e[:, facets].ravel()]))
+    expected = np.unique(
+        np.concatenate([units.mesh.facets[:, facets].ravel(), units.mesh.nvertices + units.mesh.f2e[:, facets].ravel()])
+    )
     np.testing.assert_array_equal(groups["crankpin_fillet_1"], expected)
     assert np.all(np.abs(z[groups["crankpin_fillet_1"]] - L / 3) <= L / 12 + 1e-12)
     # counterweight: every node of its elements, z <= L/6; the junction: the plane z = L/6
@@ -40,7 +41,7 @@ def test_groups_of_the_bar_and_their_nodes(units):
     assert np.all(z[cw] <= L / 6 + 1e-12)
     np.testing.assert_array_equal(cw, np.nonzero(z <= L / 6 + 1e-12)[0])
     np.testing.assert_array_equal(groups["junction_1"], np.nonzero(np.abs(z - L / 6) < 1e-12)[0])
-    assert groups["junction_1"].size > 25                  # the 5 x 5 vertices and the edge midpoints
+    assert groups["junction_1"].size > 25  # the 5 x 5 vertices and the edge midpoints
 
 
 def test_unit_stresses_hold_every_group_at_its_own_nodes(units):
@@ -48,7 +49,9 @@ def test_unit_stresses_hold_every_group_at_its_own_nodes(units):
     unit = unit_stresses(units, groups)
     np.testing.assert_array_equal(unit.node_ids, [1, 3, 5, 7])
     assert {k: list(unit.node_ids[v]) for k, v in unit.groups.items()} == {
-        "journal_fillet_2": [7, 3, 5], "counterweight_1": [5, 1]}
+        "journal_fillet_2": [7, 3, 5],
+        "counterweight_1": [5, 1],
+    }
     assert unit.cases == tuple(units.cases)
     # the FE stage's torque case: M_z = -1 N m, as integrated from its face load
     assert unit.torque_mz == pytest.approx(-1.0, rel=1e-12)
@@ -64,9 +67,11 @@ def test_a_mesh_without_assessed_groups_is_refused(units):
     with pytest.raises(InputError) as e:
         unit_stresses(units, {})
     assert e.value.key == "geometry"
-    assert str(e.value) == ("geometry: the mesh has none of the assessed groups (crankpin_fillet_1, "
-                            "crankpin_fillet_2, journal_fillet_1, journal_fillet_2, oil_bore, counterweight_1, "
-                            "counterweight_2)")
+    assert str(e.value) == (
+        "geometry: the mesh has none of the assessed groups (crankpin_fillet_1, "
+        "crankpin_fillet_2, journal_fillet_1, journal_fillet_2, oil_bore, counterweight_1, "
+        "counterweight_2)"
+    )
 
 
 def test_without_a_torque_case_the_fe_stages_convention_is_taken():
@@ -96,7 +101,8 @@ def test_recovery_ratios_read_from_the_unit_stresses_and_the_notes(units):
     # a unit-stress set for other nodes under the same name: recovered, not read
     other = unit_stresses(units, {"crankpin_fillet_1": groups["journal_fillet_2"]})
     assert recovery_ratios(units, {"crankpin_fillet_1": groups["crankpin_fillet_1"]}, unit=other) == {
-        "crankpin_fillet_1": own["crankpin_fillet_1"]}
+        "crankpin_fillet_1": own["crankpin_fillet_1"]
+    }
     # torque alone: the largest of the cases is the reported one
     torsion = recovery_ratios(units, groups, cases=("torque",))
     bending = recovery_ratios(units, groups, cases=("pin_y",))
@@ -109,6 +115,7 @@ def test_recovery_ratios_read_from_the_unit_stresses_and_the_notes(units):
     assert notes == [
         f"stress recovery: peak nodal stress at {g} is {r} x the peak at the quadrature points of its elements "
         "(unit cases); nodal peaks there are extrapolation artefacts of the mesh, treat its safety factors as "
-        "unreliable (finer or better-shaped fillet elements)" for g, r in (("journal_fillet_2", "7.50"),
-                                                                          ("oil_bore", "1.30"))]
+        "unreliable (finer or better-shaped fillet elements)"
+        for g, r in (("journal_fillet_2", "7.50"), ("oil_bore", "1.30"))
+    ]
     assert recovery_notes({"oil_bore": 1.3}, limit=1.5) == []

@@ -12,8 +12,16 @@ from fe_crank.assess import m53
 
 # D = 100, D_G = 120, crank radius 90 -> S = 20 mm; W = 30, B = 150, R_H = 5, R_G = 6 mm, no bores:
 # s = 0.2, w = 0.3, b = 1.5, r = 0.05 (pin) / 0.06 (journal) -- all inside UR M53 3.1
-GEO = m53.M53Geometry(pin_diameter=0.1, journal_diameter=0.12, crank_radius=0.09, web_thickness=0.03,
-                      web_width=0.15, pin_fillet_radius=0.005, journal_fillet_radius=0.006, bearing_to_web=0.06)
+GEO = m53.M53Geometry(
+    pin_diameter=0.1,
+    journal_diameter=0.12,
+    crank_radius=0.09,
+    web_thickness=0.03,
+    web_width=0.15,
+    pin_fillet_radius=0.005,
+    journal_fillet_radius=0.006,
+    bearing_to_web=0.06,
+)
 
 
 def test_related_dimensions_and_range():
@@ -76,8 +84,7 @@ def test_validity_range_enforced_fe_scfs_used_outside():
     nom = m53.nominal_stresses(thin, [0.0, 1e4], [0.0, 100.0])
     with pytest.raises(ValueError, match=r"w = 0.15 not in \[0.2, 0.8\]"):
         m53.assess_fillet(thin, nom, "pin", tensile=800e6, k=1.05)
-    r = m53.assess_fillet(thin, nom, "pin", tensile=800e6, k=1.05,
-                          fe_scf={"bending": 3.0, "torsion": 2.0})
+    r = m53.assess_fillet(thin, nom, "pin", tensile=800e6, k=1.05, fe_scf={"bending": 3.0, "torsion": 2.0})
     assert r.scf_source.startswith("FE") and "w = 0.15" in r.scf_source and r.scf_bending == 3.0
     assert r.bending == pytest.approx(3.0 * nom.bending)
 
@@ -90,12 +97,22 @@ def test_m53_takes_the_journal_torque_with_the_larger_alternating_part():
     from fe_crank.io.material import load_material
 
     theta = np.deg2rad(np.arange(720.0))
-    unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={},
-                        cases=("pin_y", "torque"))
+    unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     pin = np.column_stack([np.zeros(720), 4e4 * np.cos(theta)])
     rear = 900.0 * np.sin(theta)
-    t = assess_throw("1", unit, theta, pin, np.zeros(720), omega=0.0, overspeed=None,
-                     material=load_material("42CrMo4"), crank_radius=0.09, m53_geometry=GEO, torque_rear=rear)
+    t = assess_throw(
+        "1",
+        unit,
+        theta,
+        pin,
+        np.zeros(720),
+        omega=0.0,
+        overspeed=None,
+        material=load_material("42CrMo4"),
+        crank_radius=0.09,
+        m53_geometry=GEO,
+        torque_rear=rear,
+    )
     assert t.m53_nominal.torsion_pin == pytest.approx(900.0 / (math.pi / 16 * 0.1**3), rel=1e-9)
 
 
@@ -133,8 +150,9 @@ def test_ke_reaches_the_route_through_assess_throw_but_not_the_outlet():
 
     geo = dataclasses.replace(GEO, pin_length=0.08, oil_bore_diameter=0.01)
     theta = np.deg2rad(np.arange(720.0))
-    unit = UnitStresses(stress=np.zeros((3, 6, 1)), points=np.zeros((3, 1)), groups={},
-                        cases=("pin_x", "pin_y", "torque"))
+    unit = UnitStresses(
+        stress=np.zeros((3, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_x", "pin_y", "torque")
+    )
     pin = np.column_stack([1e4 * np.sin(theta), 4e4 * np.cos(theta)])
     kw = dict(omega=0.0, overspeed=None, material=load_material("42CrMo4"), crank_radius=0.09, m53_geometry=geo)
     four = assess_throw("1", unit, theta, pin, 900.0 * np.sin(theta), **kw)
@@ -159,8 +177,9 @@ def test_default_additional_stress_sources_and_fe_shear_scf():
         assert r.scf_source == f"empirical, UR M53 Rev.1 {clause}"
     thin = m53.M53Geometry(**{**GEO.__dict__, "web_thickness": 0.015})
     nom = m53.nominal_stresses(thin, 50e3 * np.cos(theta), 2e3 * np.sin(2 * theta))
-    j = m53.assess_fillet(thin, nom, "journal", tensile=800e6, k=1.05,
-                          fe_scf={"bending": 3.0, "shear": 2.0, "torsion": 1.5})
+    j = m53.assess_fillet(
+        thin, nom, "journal", tensile=800e6, k=1.05, fe_scf={"bending": 3.0, "shear": 2.0, "torsion": 1.5}
+    )
     assert j.scf_shear == 2.0
     assert j.bending == pytest.approx(3.0 * nom.bending + 2.0 * nom.shear, rel=1e-12)
     assert j.torsion == pytest.approx(1.5 * nom.torsion_journal, rel=1e-12)

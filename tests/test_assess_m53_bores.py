@@ -50,8 +50,15 @@ def test_recess_factor_by_hand():
     assert m53.alpha_b(rel) / m53.alpha_b({**BORED, "s": -0.25}) == pytest.approx(1.15, rel=1e-12)
 
 
-LIMITS = [("w", 0.2, 0.8), ("b", 1.1, 2.2), ("r", 0.03, 0.13), ("dG", 0.0, 0.8), ("dH", 0.0, 0.8),
-          ("tH", -0.3, 0.3), ("tG", -0.3, 0.3)]
+LIMITS = [
+    ("w", 0.2, 0.8),
+    ("b", 1.1, 2.2),
+    ("r", 0.03, 0.13),
+    ("dG", 0.0, 0.8),
+    ("dH", 0.0, 0.8),
+    ("tH", -0.3, 0.3),
+    ("tG", -0.3, 0.3),
+]
 
 
 @pytest.mark.parametrize("key, lo, hi", LIMITS)
@@ -74,9 +81,16 @@ def test_overlap_limit_and_its_floor():
     assert m53.out_of_range({**BASE, "s": -5.0}) == []
 
     def geo(radius):
-        return m53.M53Geometry(pin_diameter=0.1, journal_diameter=0.12, crank_radius=radius, web_thickness=0.03,
-                               web_width=0.15, pin_fillet_radius=0.005, journal_fillet_radius=0.006,
-                               bearing_to_web=0.06)
+        return m53.M53Geometry(
+            pin_diameter=0.1,
+            journal_diameter=0.12,
+            crank_radius=radius,
+            web_thickness=0.03,
+            web_width=0.15,
+            pin_fillet_radius=0.005,
+            journal_fillet_radius=0.006,
+            bearing_to_web=0.06,
+        )
 
     assert geo(0.06).related("pin")["s"] == pytest.approx(0.5, rel=1e-12)
     assert geo(0.2).related("pin")["s"] == -0.5

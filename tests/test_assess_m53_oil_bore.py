@@ -20,15 +20,25 @@ import math
 import numpy as np
 import pytest
 
-from fe_crank.assess import m53, m53_oil_bore as ob
+from fe_crank.assess import m53
+from fe_crank.assess import m53_oil_bore as ob
 from fe_crank.assess.case import assess_throw
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.io.material import load_material
 
-GEO = m53.M53Geometry(pin_diameter=0.050, journal_diameter=0.060, crank_radius=0.064, web_thickness=0.020,
-                      web_width=0.080, pin_fillet_radius=0.004, journal_fillet_radius=0.004,
-                      bearing_to_web=0.030, pin_length=0.040, oil_bore_diameter=0.006,
-                      oil_bore_angle=math.radians(30.0))
+GEO = m53.M53Geometry(
+    pin_diameter=0.050,
+    journal_diameter=0.060,
+    crank_radius=0.064,
+    web_thickness=0.020,
+    web_width=0.080,
+    pin_fillet_radius=0.004,
+    journal_fillet_radius=0.004,
+    bearing_to_web=0.030,
+    pin_length=0.040,
+    oil_bore_diameter=0.006,
+    oil_bore_angle=math.radians(30.0),
+)
 TH = np.deg2rad(np.arange(720.0))
 PIN = np.column_stack([5e3 * np.sin(TH), 20e3 * np.cos(TH)])
 TQ = 500.0 * np.sin(TH)
@@ -92,11 +102,24 @@ def test_outlet_in_the_throw_assessment_and_q_criterion():
     from fe_crank.io.criteria import build_criteria
 
     n = 8
-    unit = UnitStresses(stress=np.zeros((3, 6, n)), points=np.zeros((3, n)),
-                        groups={"crankpin_fillet_1": np.arange(4), "journal_fillet_1": np.arange(4, n)},
-                        cases=("pin_x", "pin_y", "torque"))
-    t = assess_throw("1", unit, TH, PIN, TQ, omega=0.0, overspeed=None, material=load_material("42CrMo4"),
-                     crank_radius=0.064, m53_geometry=GEO)
+    unit = UnitStresses(
+        stress=np.zeros((3, 6, n)),
+        points=np.zeros((3, n)),
+        groups={"crankpin_fillet_1": np.arange(4), "journal_fillet_1": np.arange(4, n)},
+        cases=("pin_x", "pin_y", "torque"),
+    )
+    t = assess_throw(
+        "1",
+        unit,
+        TH,
+        PIN,
+        TQ,
+        omega=0.0,
+        overspeed=None,
+        material=load_material("42CrMo4"),
+        crank_radius=0.064,
+        m53_geometry=GEO,
+    )
     by = {f.fillet: f for f in t.m53}
     assert set(by) == {"pin", "journal", "oil_bore"}
     assert by["oil_bore"].acceptability == pytest.approx(2.3896, rel=2e-4)

@@ -10,10 +10,10 @@ import math
 
 import numpy as np
 import pytest
-
-from fe_crank.assess import m53, m53_oil_bore as ob
-
 from test_assess_m53_oil_bore import GEO, PIN, TH, TQ  # the same throw and cycle as the hand calculations there
+
+from fe_crank.assess import m53
+from fe_crank.assess import m53_oil_bore as ob
 
 
 def test_nominal_bending_of_a_bored_pin_by_hand():
@@ -51,8 +51,10 @@ def test_range_of_d_o_and_no_bore():
     assert ob.assess_outlet(edge, nom, PIN, tensile=900e6, k=1.05) is not None
     big = dataclasses.replace(GEO, oil_bore_diameter=0.011)
     assert ob.in_range(big) == "d_O = D_O/D = 0.22 not in [0.0, 0.2] (UR M53 3.1)"
-    assert ob.in_range(dataclasses.replace(GEO, oil_bore_diameter=-0.001)) == \
-        "d_O = D_O/D = -0.02 not in [0.0, 0.2] (UR M53 3.1)"
+    assert (
+        ob.in_range(dataclasses.replace(GEO, oil_bore_diameter=-0.001))
+        == "d_O = D_O/D = -0.02 not in [0.0, 0.2] (UR M53 3.1)"
+    )
 
 
 def test_equivalent_stress_takes_the_bending_magnitude():
@@ -63,8 +65,7 @@ def test_equivalent_stress_takes_the_bending_magnitude():
 
 
 def test_readable_locations():
-    assert [ob.where(f) for f in ("pin", "journal", "oil_bore")] == ["pin fillet", "journal fillet",
-                                                                    "oil-bore outlet"]
+    assert [ob.where(f) for f in ("pin", "journal", "oil_bore")] == ["pin fillet", "journal fillet", "oil-bore outlet"]
 
 
 def test_in_phase_tangential_and_radial_forces_add_at_the_outlet():

@@ -13,8 +13,16 @@ from fe_crank.assess import m53
 
 # D = 100, D_G = 120, crank radius 90 mm, W = 30, B = 150, R_H = 5, R_G = 6 mm (s = 0.2,
 # w = 0.3, b = 1.5, r = 0.05 / 0.06: inside 3.1), bores D_BH = 30, D_BG = 40 mm
-GEO = m53.M53Geometry(pin_diameter=0.1, journal_diameter=0.12, crank_radius=0.09, web_thickness=0.03,
-                      web_width=0.15, pin_fillet_radius=0.005, journal_fillet_radius=0.006, bearing_to_web=0.06)
+GEO = m53.M53Geometry(
+    pin_diameter=0.1,
+    journal_diameter=0.12,
+    crank_radius=0.09,
+    web_thickness=0.03,
+    web_width=0.15,
+    pin_fillet_radius=0.005,
+    journal_fillet_radius=0.006,
+    bearing_to_web=0.06,
+)
 BORED = dataclasses.replace(GEO, pin_bore=0.03, journal_bore=0.04, pin_recess=0.005, journal_recess=0.002)
 
 
@@ -88,8 +96,9 @@ def test_out_of_range_record_and_messages_in_full():
     assert (r.scf_bending, r.scf_shear, r.scf_torsion) == (3.0, 0.0, 2.0)
     with pytest.raises(ValueError) as err:
         m53.assess_fillet(bad, nom, "pin", tensile=800e6, k=1.05)
-    assert str(err.value) == (f"pin fillet outside the UR M53 validity range ({both}) "
-                              "and no FE stress concentration factors given")
+    assert str(err.value) == (
+        f"pin fillet outside the UR M53 validity range ({both}) and no FE stress concentration factors given"
+    )
 
 
 def test_q_for_a_vanishing_equivalent_stress():

@@ -90,12 +90,13 @@ def test_motored_curve_closed_form():
     from fe_crank.gas import motored_cycle
 
     assert _p_tdc() == pytest.approx(1.941902e6, rel=1e-6)
-    g = motored_cycle(bore=0.08, r=0.05, l=0.2, compression_ratio=9.0, intake_pressure=0.1e6, n_poly=1.35,
-                      strokes=4, n=1441)
+    g = motored_cycle(
+        bore=0.08, r=0.05, l=0.2, compression_ratio=9.0, intake_pressure=0.1e6, n_poly=1.35, strokes=4, n=1441
+    )
     deg = np.rad2deg(g.angle)
     # tolerance 1e-12: closed form at the grid points; an exponent 1.3 instead of 1.35 is 10 % off
-    assert g.pressure[0] == pytest.approx(_p_tdc(), rel=1e-12)            # firing TDC
-    assert g.pressure[-1] == pytest.approx(_p_tdc(), rel=1e-12)           # same TDC, end of cycle
+    assert g.pressure[0] == pytest.approx(_p_tdc(), rel=1e-12)  # firing TDC
+    assert g.pressure[-1] == pytest.approx(_p_tdc(), rel=1e-12)  # same TDC, end of cycle
     assert g.pressure[np.argmin(abs(deg - 180))] == pytest.approx(0.1e6, rel=1e-12)  # BDC
     # 90 deg after TDC: s = r + l - (r cos 90 + sqrt(l^2 - r^2)) = 0.25 - 0.193649 = 0.056351 m;
     # V_s = A 0.1, V_c = V_s/8; V_BDC/V = (9/8 0.1)/(0.1/8 + 0.056351) = 0.1125/0.068851 = 1.633963
@@ -183,7 +184,7 @@ points = [[0, 5.0], [360, 0.1], [720, 5.0]]
 
 
 def _table_case(tmp_path, motored=""):
-    text = CASE[:CASE.index("[engine.gas]")] + TABLE_GAS.format(motored=motored)
+    text = CASE[: CASE.index("[engine.gas]")] + TABLE_GAS.format(motored=motored)
     p = tmp_path / "t.toml"
     p.write_text(textwrap.dedent(text.format(extra="")))
     return load_loadcase(p)
@@ -216,15 +217,18 @@ def test_overspeed_takes_the_worse_of_several_cycles():
 
     stress = np.zeros((3, 6, 1))
     stress[1, 0, 0] = 1.0
-    unit = UnitStresses(stress=stress, points=np.zeros((3, 1)), groups={"crankpin_fillet_1": np.array([0])},
-                        cases=("pin_x", "pin_y", "torque"))
+    unit = UnitStresses(
+        stress=stress,
+        points=np.zeros((3, 1)),
+        groups={"crankpin_fillet_1": np.array([0])},
+        cases=("pin_x", "pin_y", "torque"),
+    )
     theta = np.deg2rad([0.0, 90.0, 180.0, 270.0])
     a = np.column_stack([np.zeros(4), [100.0, 0.0, -50.0, 0.0]])
     b = np.column_stack([np.zeros(4), [0.0, 0.0, -300.0, 10.0]])
     kw = dict(omega=1.0, overspeed=1.0, material=load_material("42CrMo4"), crank_radius=0.05)
     one = assess_throw("1", unit, theta, a, np.zeros(4), overspeed_loads=[(a, np.zeros(4))], **kw)
-    both = assess_throw("1", unit, theta, a, np.zeros(4), overspeed_loads=[(a, np.zeros(4)), (b, np.zeros(4))],
-                        **kw)
+    both = assess_throw("1", unit, theta, a, np.zeros(4), overspeed_loads=[(a, np.zeros(4)), (b, np.zeros(4))], **kw)
     assert one.groups[0].max_von_mises_overspeed.value == pytest.approx(100.0, rel=1e-12)
     ext = both.groups[0].max_von_mises_overspeed
     assert ext.value == pytest.approx(300.0, rel=1e-12) and np.rad2deg(ext.angle) == pytest.approx(180.0)

@@ -10,25 +10,30 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from test_assess_overspeed import _case, _hand, _table_case
 
 from fe_crank.assess.overspeed import describe, overspeed_cycles, overspeed_dynamics
 from fe_crank.dynamics import analyse
-from test_assess_overspeed import _case, _hand, _table_case
 
 
 def test_note_in_full_for_each_gas_state(tmp_path):
     """4200 rpm = 439.823 rad/s, printed back as 439.823 x 30 / pi = 4200 rpm."""
-    head = ("overspeed: whole cycle recomputed at 4200 rpm (rod and piston inertia and crank body force at "
-            "omega_os^2; gas: ")
+    head = (
+        "overspeed: whole cycle recomputed at 4200 rpm (rod and piston inertia and crank body force at "
+        "omega_os^2; gas: "
+    )
     lc = _case(tmp_path, 'overspeed_gas = "as_operating"')
     assert describe(lc) == head + "the operating gas pressure table); worst angle"
     lc = _table_case(tmp_path)
-    assert describe(lc) == head + ("no combustion, zero gauge gas pressure (the gas data give no compression "
-                                   "ratio and intake pressure for a motored curve)); worst angle")
+    assert describe(lc) == head + (
+        "no combustion, zero gauge gas pressure (the gas data give no compression "
+        "ratio and intake pressure for a motored curve)); worst angle"
+    )
     lc = _case(tmp_path)
     src = lc.engine.gas.motored.source
-    assert describe(lc) == head + (f"(no combustion, {src}) and (no combustion, zero gauge gas pressure), "
-                                   "the worse of the two); worst angle")
+    assert describe(lc) == head + (
+        f"(no combustion, {src}) and (no combustion, zero gauge gas pressure), the worse of the two); worst angle"
+    )
 
 
 def test_cycles_and_their_order_grid_and_gas(tmp_path):
@@ -37,8 +42,10 @@ def test_cycles_and_their_order_grid_and_gas(tmp_path):
     lc = _case(tmp_path)
     dyn = analyse(lc.engine, lc.operating)
     cycles = overspeed_cycles(lc, dyn)
-    assert [c.gas for c in cycles] == [f"no combustion, {lc.engine.gas.motored.source}",
-                                      "no combustion, zero gauge gas pressure"]
+    assert [c.gas for c in cycles] == [
+        f"no combustion, {lc.engine.gas.motored.source}",
+        "no combustion, zero gauge gas pressure",
+    ]
     for c in cycles:
         np.testing.assert_array_equal(c.dynamics.theta, dyn.theta)
         assert c.dynamics.speed == lc.operating.overspeed
@@ -46,8 +53,9 @@ def test_cycles_and_their_order_grid_and_gas(tmp_path):
     assert np.all(cycles[1].dynamics.cylinders["1"].gas == 0.0)
     # the first cycle is the one overspeed_dynamics returns
     assert overspeed_dynamics(lc, dyn) is not None
-    np.testing.assert_array_equal(overspeed_dynamics(lc, dyn).throws["1"].pin_force,
-                                  cycles[0].dynamics.throws["1"].pin_force)
+    np.testing.assert_array_equal(
+        overspeed_dynamics(lc, dyn).throws["1"].pin_force, cycles[0].dynamics.throws["1"].pin_force
+    )
     lc_op = _case(tmp_path, 'overspeed_gas = "as_operating"')
     (one,) = overspeed_cycles(lc_op, dyn)
     assert one.gas == "the operating gas pressure table"

@@ -25,10 +25,7 @@ def test_max_over_cycle_first_index_of_the_tie_band():
     Column 1: 2 (1 - 2e-9) at t = 1 is outside -> the exact maximum's first index, 3.
     Column 2 (negative values): max -1 at t = 2; band -1 - 1e-9 holds -1 - 5e-10 at t = 1."""
     assert TIE_RTOL == 1e-9
-    vm = np.array([[1.0, 1.0, -2.0],
-                   [2 * (1 - 5e-10), 2 * (1 - 2e-9), -1 - 5e-10],
-                   [2.0, 1.5, -1.0],
-                   [2.0, 2.0, -3.0]])
+    vm = np.array([[1.0, 1.0, -2.0], [2 * (1 - 5e-10), 2 * (1 - 2e-9), -1 - 5e-10], [2.0, 1.5, -1.0], [2.0, 2.0, -3.0]])
     e, first = max_over_cycle(vm)
     np.testing.assert_array_equal(e, [2.0, 2.0, -1.0])
     np.testing.assert_array_equal(first, [1, 3, 1])
@@ -122,8 +119,8 @@ def test_a_node_whose_bound_equals_the_peak_found_is_evaluated():
     1e-12, is below the tie band's 1e-9."""
     assert BOUND_RTOL == 1e-12 < TIE_RTOL
     s = np.zeros((2, 6, 2))
-    s[0, 0, 0] = 20.0                                        # node 0: 20 Pa from case a alone
-    s[0, 0, 1], s[1, 0, 1] = 10.0, 10.0                      # node 1: 10 + 10 at angle 0
+    s[0, 0, 0] = 20.0  # node 0: 20 Pa from case a alone
+    s[0, 0, 1], s[1, 0, 1] = 10.0, 10.0  # node 1: 10 + 10 at angle 0
     unit = UnitStresses(stress=s, points=np.zeros((3, 2)), cases=("a", "b"))
     co = np.array([[1.0, 1.0], [1.0, -1.0]])
     pos, peak, arg = group_peak(unit, co, np.arange(2), block=1)

@@ -19,7 +19,7 @@ from fe_crank.assess.stress import cylindrical, principal, to_matrix, von_mises,
 # vM^2 = ((100 + 50)^2 + (-50 - 30)^2 + (30 - 100)^2) / 2 + 3 (20^2 + (-10)^2 + 40^2)
 #      = (22500 + 6400 + 4900) / 2 + 3 (400 + 100 + 1600) = 16900 + 6300 = 23200
 GENERAL = np.array([100.0, -50.0, 30.0, 20.0, -10.0, 40.0])
-VM_GENERAL = math.sqrt(23200.0)                               # 152.3155
+VM_GENERAL = math.sqrt(23200.0)  # 152.3155
 # uniaxial 7 -> 7; pure shear tau_yz = 5 -> sqrt(3) 5; hydrostatic 10 -> 0
 UNIAXIAL = np.array([7.0, 0, 0, 0, 0, 0])
 SHEAR = np.array([0, 0, 0, 0, 5.0, 0])
@@ -53,15 +53,16 @@ def test_von_mises_path_and_planes_about_a_centre():
     buf, out = np.full(planes.shape, np.nan), np.full((2, 3), np.nan)
     got = von_mises_planes(planes, None, buf, out)
     assert got is out
-    np.testing.assert_allclose(got, [[VM_GENERAL, 7.0, math.sqrt(75.0)], [0.0, VM_GENERAL, 14.0]], rtol=1e-12,
-                               atol=1e-12)
+    np.testing.assert_allclose(
+        got, [[VM_GENERAL, 7.0, math.sqrt(75.0)], [0.0, VM_GENERAL, 14.0]], rtol=1e-12, atol=1e-12
+    )
     np.testing.assert_array_equal(von_mises_planes(planes, centre, buf), about)
-    assert np.array_equal(planes, h.transpose(1, 0, 2))      # the input is left as it was
+    assert np.array_equal(planes, h.transpose(1, 0, 2))  # the input is left as it was
 
 
 def test_to_matrix_places_each_component():
     s = np.arange(1.0, 7.0)[:, None] * np.array([1.0, 10.0])  # (6, 2): node 1 is ten times node 0
-    m = to_matrix(np.stack([s, -s]))                          # (2, 2 nodes, 3, 3)
+    m = to_matrix(np.stack([s, -s]))  # (2, 2 nodes, 3, 3)
     assert m.shape == (2, 2, 3, 3)
     # (xx, yy, zz, xy, yz, xz) = (1, 2, 3, 4, 5, 6)
     np.testing.assert_array_equal(m[0, 0], [[1, 4, 6], [4, 2, 5], [6, 5, 3]])
@@ -109,8 +110,13 @@ def test_cylindrical_components_by_hand_and_by_rotation():
     Node 1 at 120 deg (radius 2) and node 2 on the axis (the x direction stands for e_r
     there): GENERAL against Q s Q^T."""
     a0, a1 = math.radians(30.0), math.radians(120.0)
-    pts = np.array([[1 + 0.5 * math.cos(a0), 1 + 2 * math.cos(a1), 1.0],
-                    [2 + 0.5 * math.sin(a0), 2 + 2 * math.sin(a1), 2.0], [0.3, -0.1, 0.0]])
+    pts = np.array(
+        [
+            [1 + 0.5 * math.cos(a0), 1 + 2 * math.cos(a1), 1.0],
+            [2 + 0.5 * math.sin(a0), 2 + 2 * math.sin(a1), 2.0],
+            [0.3, -0.1, 0.0],
+        ]
+    )
     s = np.stack([UNIAXIAL * 100 / 7, GENERAL, GENERAL], -1)
     cyl = cylindrical(np.stack([s, 2 * s]), pts, (1.0, 2.0))
     assert list(cyl) == ["rr", "tt", "zz", "rt", "tz", "rz"]

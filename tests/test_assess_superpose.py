@@ -7,12 +7,11 @@ import numpy as np
 import pytest
 from skfem import MeshTet, MeshTet2
 
+import fe_crank.fe.unit_cases as fe
 from fe_crank.assess import unit_stresses
 from fe_crank.assess.superpose import combine, load_coefficients, stress_history
+from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load
 from fe_crank.io.material import load_material
-
-import fe_crank.fe.unit_cases as fe
-from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load  # noqa: E402
 
 RADIUS, LENGTH = 0.02, 0.12
 
@@ -24,14 +23,16 @@ def _bar_throw():
     p = np.array([RADIUS * x * np.sqrt(1 - y**2 / 2), RADIUS * y * np.sqrt(1 - x**2 / 2), LENGTH * z])
     m2 = MeshTet2.from_mesh(MeshTet(p, m.t))
     eps = 1e-9
-    lateral = lambda x: (x[2] > eps) & (x[2] < LENGTH - eps)  # noqa: E731
-    return m2.with_boundaries({
-        "end_1": lambda x: np.abs(x[2]) < eps,
-        "end_2": lambda x: np.abs(x[2] - LENGTH) < eps,
-        "journal_1": lambda x: lateral(x) & (x[2] < LENGTH / 3),
-        "journal_2": lambda x: lateral(x) & (x[2] > 2 * LENGTH / 3),
-        "crankpin": lambda x: lateral(x) & (x[2] > LENGTH / 3) & (x[2] < 2 * LENGTH / 3),
-    })
+    lateral = lambda x: (x[2] > eps) & (x[2] < LENGTH - eps)
+    return m2.with_boundaries(
+        {
+            "end_1": lambda x: np.abs(x[2]) < eps,
+            "end_2": lambda x: np.abs(x[2] - LENGTH) < eps,
+            "journal_1": lambda x: lateral(x) & (x[2] < LENGTH / 3),
+            "journal_2": lambda x: lateral(x) & (x[2] > 2 * LENGTH / 3),
+            "crankpin": lambda x: lateral(x) & (x[2] > LENGTH / 3) & (x[2] < 2 * LENGTH / 3),
+        }
+    )
 
 
 @pytest.fixture(scope="module")
@@ -47,11 +48,15 @@ def test_superposition_equals_direct_solve(solved):
     assert units.cases["torque"].applied[5] == pytest.approx(-1.0)  # the FE stage's convention
     basis = units.system.basis
     nodes = np.unique(basis.get_dofs(facets=mesh.boundaries["crankpin"]).all())
-    groups = {"crankpin_fillet_1": nodes, "journal_fillet_1": np.unique(
-        basis.get_dofs(facets=mesh.boundaries["journal_1"]).all())}
+    groups = {
+        "crankpin_fillet_1": nodes,
+        "journal_fillet_1": np.unique(basis.get_dofs(facets=mesh.boundaries["journal_1"]).all()),
+    }
     unit = unit_stresses(units, groups)
-    loads = {"centrifugal": centrifugal_load(basis, mat.density, 1.0),
-             "torque": face_torque_load(basis, unit.torque_mz, boundary="end_1")}
+    loads = {
+        "centrifugal": centrifugal_load(basis, mat.density, 1.0),
+        "torque": face_torque_load(basis, unit.torque_mz, boundary="end_1"),
+    }
     for name, force in fe.PIN_FORCES.items():
         loads[name] = pin_pressure_load(basis, force)[0]
     omega = 300.0
@@ -76,8 +81,9 @@ def test_coefficients_split_by_sign_and_torque_sense():
     # four axis directions: each component on the case whose arc is on its loaded side
     # FE torque case: M_z = -1 N m (sense of rotation of a sense +1 shaft) -> coefficient = torque_front
     np.testing.assert_allclose(c, [[4.0, 3.0, 0.0, 0.0, 4.0, 10.0], [4.0, 0.0, 2.0, 1.0, 0.0, -5.0]], atol=1e-12)
-    c2 = load_coefficients(pin, np.array([10.0, -5.0]), 2.0, cases=("pin_x", "pin_y", "torque"), sense=-1,
-                           torque_mz=2.0)
+    c2 = load_coefficients(
+        pin, np.array([10.0, -5.0]), 2.0, cases=("pin_x", "pin_y", "torque"), sense=-1, torque_mz=2.0
+    )
     np.testing.assert_allclose(c2, [[3.0, -4.0, 5.0], [-1.0, 2.0, -2.5]], atol=1e-12)
 
 

@@ -16,8 +16,15 @@ import math
 import numpy as np
 import pytest
 
-from fe_crank.assess.superpose import (UNIT_CASES, UnitStresses, combine, iter_histories, iter_planes,
-                                       load_coefficients, stress_history)
+from fe_crank.assess.superpose import (
+    UNIT_CASES,
+    UnitStresses,
+    combine,
+    iter_histories,
+    iter_planes,
+    load_coefficients,
+    stress_history,
+)
 from fe_crank.fe.pin_directions import pin_direction
 
 
@@ -141,7 +148,7 @@ def test_stress_history_at_selected_nodes_and_in_chunks():
     assert [i.size for i, _ in iter_histories(big, co, np.arange(2049))] == [2048, 1]
     assert [i.size for i, _ in iter_planes(big, co, np.arange(129))] == [128, 1]
     # one angle as a 1-D row of coefficients
-    (idx, p), = iter_planes(unit, co[1], np.array([1]))
+    ((idx, p),) = iter_planes(unit, co[1], np.array([1]))
     assert p.shape == (6, 1, 1) and p[0, 0, 0] == 3 * 201.0
 
 
@@ -154,5 +161,5 @@ def test_integer_tables_combine_to_float_stresses():
     co = np.array([[2, 3, 1]])
     s = combine(unit.stress, co)
     assert s.dtype == float and s[0, 0, 0] == 500.0
-    (idx, planes), = iter_planes(unit, co, np.arange(2))
+    ((idx, planes),) = iter_planes(unit, co, np.arange(2))
     assert planes.dtype == float and planes[0, 0, 0] == 500.0

@@ -18,7 +18,7 @@ from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import assess_group, first_extreme, section_diameter
 from fe_crank.io.material import load_material
 
-MAT = load_material("42CrMo4")                       # R_e = 650 MPa (library)
+MAT = load_material("42CrMo4")  # R_e = 650 MPa (library)
 THETA = np.deg2rad([0.0, 90.0, 180.0, 270.0])
 
 
@@ -59,8 +59,13 @@ def _unit(sxx, txy=None, groups=None, node_ids=True, points=None):
     if txy is not None:
         s[:, 3] = np.atleast_2d(txy)
     pts = np.zeros((3, n)) if points is None else points
-    return UnitStresses(stress=s, points=pts, groups=groups or {}, cases=tuple(f"c{i}" for i in range(n_cases)),
-                        node_ids=np.arange(10, 10 + n) if node_ids else None)
+    return UnitStresses(
+        stress=s,
+        points=pts,
+        groups=groups or {},
+        cases=tuple(f"c{i}" for i in range(n_cases)),
+        node_ids=np.arange(10, 10 + n) if node_ids else None,
+    )
 
 
 def test_static_and_overspeed_extremes_by_hand():
@@ -70,8 +75,9 @@ def test_static_and_overspeed_extremes_by_hand():
     pts = np.array([[0.001, 0.002, 0.003], [0.0, 0.1, 0.0], [0.0, 0.0, 0.2]])
     unit = _unit([[1.0, 3.0, 2.0]], groups={"counterweight_1": np.array([0, 1, 2])}, points=pts)
     co = np.array([[10e6], [-40e6], [20e6], [0.0]])
-    g = assess_group(unit, "counterweight_1", co, THETA, MAT, crank_radius=0.05, overspeed=1.0,
-                     overspeed_coefficients=1.5 * co)
+    g = assess_group(
+        unit, "counterweight_1", co, THETA, MAT, crank_radius=0.05, overspeed=1.0, overspeed_coefficients=1.5 * co
+    )
     assert g.group == "counterweight_1" and g.n_nodes == 3
     e = g.max_von_mises
     assert e.value == pytest.approx(120e6, rel=1e-12) and e.node == 11 and e.point == (0.002, 0.1, 0.0)
@@ -90,8 +96,17 @@ def test_static_and_overspeed_extremes_by_hand():
     g2 = assess_group(u2, "counterweight_1", co, THETA, MAT, crank_radius=0.05, overspeed=None)
     assert g2.max_von_mises.node == 1 and g2.max_von_mises_overspeed is None and g2.overspeed_safety is None
     # chunk of one node: the same
-    g3 = assess_group(unit, "counterweight_1", co, THETA, MAT, crank_radius=0.05, overspeed=1.0,
-                      overspeed_coefficients=1.5 * co, chunk=1)
+    g3 = assess_group(
+        unit,
+        "counterweight_1",
+        co,
+        THETA,
+        MAT,
+        crank_radius=0.05,
+        overspeed=1.0,
+        overspeed_coefficients=1.5 * co,
+        chunk=1,
+    )
     assert g3.max_von_mises == e and g3.max_von_mises_overspeed == o
 
 
@@ -102,8 +117,16 @@ def test_zero_stress_and_no_yield_strength_give_an_infinite_static_safety():
     assert g.static_safety == math.inf and g.overspeed_safety == math.inf and g.max_von_mises.value == 0.0
     unit = _unit([[1.0, 2.0]], groups={"junction_1": np.array([0, 1])})
     co = np.array([[1e6], [0.0], [0.0], [0.0]])
-    g = assess_group(unit, "junction_1", co, THETA, dataclasses.replace(MAT, yield_strength=None), crank_radius=0.05,
-                     overspeed=1.0, overspeed_coefficients=co)
+    g = assess_group(
+        unit,
+        "junction_1",
+        co,
+        THETA,
+        dataclasses.replace(MAT, yield_strength=None),
+        crank_radius=0.05,
+        overspeed=1.0,
+        overspeed_coefficients=co,
+    )
     assert g.static_safety == math.inf and g.overspeed_safety == math.inf and g.max_von_mises.value == 2e6
 
 
@@ -126,8 +149,7 @@ def test_fatigue_of_a_fully_reversed_bending_node_by_hand():
     No shear: Gough-Pollard gives the same as the bending-only Goodman.  A journal fillet uses
     the crank axis, a material without a torsion fatigue limit gives no Gough-Pollard."""
     pts = np.array([[0.01], [0.05], [0.0]])
-    unit = _unit([[1.0]], groups={"crankpin_fillet_1": np.array([0]), "journal_fillet_1": np.array([0])},
-                 points=pts)
+    unit = _unit([[1.0]], groups={"crankpin_fillet_1": np.array([0]), "journal_fillet_1": np.array([0])}, points=pts)
     co = np.array([[100e6], [0.0], [-100e6], [0.0]])
     g = assess_group(unit, "crankpin_fillet_1", co, THETA, MAT, crank_radius=0.05, overspeed=None, diameter=0.1)
     ff = factors(MAT, 0.1)
@@ -147,8 +169,16 @@ def test_fatigue_of_a_fully_reversed_bending_node_by_hand():
     g4 = assess_group(unit, "crankpin_fillet_1", co, THETA, no_tors, crank_radius=0.05, overspeed=None, diameter=0.1)
     assert g4.gough_pollard_safety is None and g4.fatigue_safety.value == pytest.approx(expected, rel=1e-12)
     for field in ("fatigue_limit_bending", "tensile_strength"):
-        g5 = assess_group(unit, "crankpin_fillet_1", co, THETA, dataclasses.replace(MAT, **{field: None}),
-                          crank_radius=0.05, overspeed=None, diameter=0.1)
+        g5 = assess_group(
+            unit,
+            "crankpin_fillet_1",
+            co,
+            THETA,
+            dataclasses.replace(MAT, **{field: None}),
+            crank_radius=0.05,
+            overspeed=None,
+            diameter=0.1,
+        )
         assert g5.fatigue_safety is None and g5.gough_pollard_safety is None and g5.fatigue_factors is None
 
 
@@ -166,8 +196,9 @@ def _torsion_group(points, component, group, scale=(0.0, 1.0, 0.5)):
     scaled 0, 1, 0.5 per node."""
     s = np.zeros((1, 6, 3))
     s[0, component] = scale
-    return UnitStresses(stress=s, points=points, groups={group: np.array([0, 1, 2])}, cases=("c0",),
-                        node_ids=np.array([10, 11, 12]))
+    return UnitStresses(
+        stress=s, points=points, groups={group: np.array([0, 1, 2])}, cases=("c0",), node_ids=np.array([10, 11, 12])
+    )
 
 
 def test_fully_reversed_torsion_at_the_fillets_by_hand():
@@ -180,8 +211,10 @@ def test_fully_reversed_torsion_at_the_fillets_by_hand():
     the torsion amplitude near zero.  The unloaded node has infinite safeties and is not
     the critical one; blocks of 2 nodes (2 + 1)."""
     co = np.array([[100e6], [0.0], [-100e6], [0.0]])
-    for group, pts, comp, dia in (("crankpin_fillet_1", [[0.0] * 3, [0.06] * 3, [0.0] * 3], 5, 0.1),
-                                  ("journal_fillet_2", [[0.06] * 3, [0.0] * 3, [0.0] * 3], 4, 0.12)):
+    for group, pts, comp, dia in (
+        ("crankpin_fillet_1", [[0.0] * 3, [0.06] * 3, [0.0] * 3], 5, 0.1),
+        ("journal_fillet_2", [[0.06] * 3, [0.0] * 3, [0.0] * 3], 4, 0.12),
+    ):
         unit = _torsion_group(np.array(pts), comp, group)
         g = assess_group(unit, group, co, THETA, MAT, crank_radius=0.05, overspeed=None, diameter=dia, chunk=2)
         k = factors(MAT, dia).product
@@ -193,8 +226,9 @@ def test_fully_reversed_torsion_at_the_fillets_by_hand():
         assert abs(g.mean_at_critical) < 1e-3
         gpe = g.gough_pollard_safety
         assert gpe.value == pytest.approx(gp, rel=1e-9) and gpe.node == 11 and gpe.group == group
-        np.testing.assert_allclose(g.fields["amplitude"], [0.0, math.sqrt(3.0) * 100e6, math.sqrt(3.0) * 50e6],
-                                   rtol=1e-9, atol=1e-3)
+        np.testing.assert_allclose(
+            g.fields["amplitude"], [0.0, math.sqrt(3.0) * 100e6, math.sqrt(3.0) * 50e6], rtol=1e-9, atol=1e-3
+        )
         assert np.all(np.abs(g.fields["mean"]) < 1e-3)
         assert g.fields["fatigue_safety"][0] == math.inf
         np.testing.assert_allclose(g.fields["gough_pollard_safety"][1:], [gp, 2 * gp], rtol=1e-9)
@@ -207,8 +241,7 @@ def test_static_extreme_ties_nan_and_stresses_below_one_pascal():
     unseen); a peak of 0.5 Pa gives the safety 650e6 / 0.5 = 1.3e9, not infinity."""
     co = np.array([[1.0], [0.0], [-1.0], [0.0]])
     unit = _unit([[120e6 * (1 - 5e-10), 120e6, 1.0]], groups={"junction_1": np.array([0, 1, 2])})
-    g = assess_group(unit, "junction_1", co, THETA, MAT, crank_radius=0.05, overspeed=1.0,
-                     overspeed_coefficients=co)
+    g = assess_group(unit, "junction_1", co, THETA, MAT, crank_radius=0.05, overspeed=1.0, overspeed_coefficients=co)
     assert g.max_von_mises.node == 10 and g.max_von_mises_overspeed.node == 10
     unit = _unit([[1.0, np.nan, 2.0]], groups={"junction_1": np.array([0, 1, 2])})
     g = assess_group(unit, "junction_1", co, THETA, MAT, crank_radius=0.05, overspeed=None)
@@ -224,12 +257,15 @@ def test_the_least_safe_of_loaded_nodes_is_the_fatigue_extreme():
     fatigue and Gough-Pollard extremes are the minimum, node 10, not the maximum.  At a
     journal node (0, 60, 0) mm the torsion about the crank axis is -tau_xz."""
     co = np.array([[100e6], [0.0], [-100e6], [0.0]])
-    for group, pts, comp, dia in (("crankpin_fillet_1", [[0.0] * 3, [0.06] * 3, [0.0] * 3], 5, 0.1),
-                                  ("journal_fillet_1", [[0.0] * 3, [0.06] * 3, [0.0] * 3], 5, 0.12)):
+    for group, pts, comp, dia in (
+        ("crankpin_fillet_1", [[0.0] * 3, [0.06] * 3, [0.0] * 3], 5, 0.1),
+        ("journal_fillet_1", [[0.0] * 3, [0.06] * 3, [0.0] * 3], 5, 0.12),
+    ):
         unit = _torsion_group(np.array(pts), comp, group, scale=(1.0, 0.5, 0.25))
         g = assess_group(unit, group, co, THETA, MAT, crank_radius=0.05, overspeed=None, diameter=dia)
         k = factors(MAT, dia).product
         assert g.fatigue_safety.node == 10 and g.gough_pollard_safety.node == 10
-        assert g.fatigue_safety.value == pytest.approx(k * MAT.fatigue_limit_bending / (math.sqrt(3.0) * 100e6),
-                                                       rel=1e-9)
+        assert g.fatigue_safety.value == pytest.approx(
+            k * MAT.fatigue_limit_bending / (math.sqrt(3.0) * 100e6), rel=1e-9
+        )
         assert g.gough_pollard_safety.value == pytest.approx(k * MAT.fatigue_limit_torsion / 100e6, rel=1e-9)

@@ -19,11 +19,15 @@ from fe_crank.io.criteria import build_criteria
 
 def test_judge_margins_by_hand():
     # min: margin value/limit - 1: 1.5/1.2 - 1 = 0.25; max: 1 - value/limit: 1 - 80/100 = 0.2
-    c = judge("criteria.min_static_safety", "static_safety", "min", 1.5, 1.2, unit="", location="here",
-              description="d")
+    c = judge("criteria.min_static_safety", "static_safety", "min", 1.5, 1.2, unit="", location="here", description="d")
     assert (c.passed, c.margin, c.value, c.limit) == (True, pytest.approx(0.25, rel=1e-12), 1.5, 1.2)
     assert (c.name, c.quantity, c.sense, c.location, c.description) == (
-        "criteria.min_static_safety", "static_safety", "min", "here", "d")
+        "criteria.min_static_safety",
+        "static_safety",
+        "min",
+        "here",
+        "d",
+    )
     c = judge("k", "q", "min", 0.9, 1.2)
     assert not c.passed and c.margin == pytest.approx(0.9 / 1.2 - 1, rel=1e-12)
     c = judge("k", "counterweight_stress", "max", 80e6, 100e6, unit="Pa")
@@ -52,11 +56,16 @@ def _ext(value, group, node, angle=None):
 
 
 def _group(name, node, vm, vm_os, fat, gp):
-    return GroupResult(group=name, n_nodes=3, max_von_mises=_ext(vm, name, node, math.radians(30)),
-                       max_von_mises_overspeed=_ext(vm_os, name, node, math.radians(60)),
-                       static_safety=650e6 / vm, overspeed_safety=650e6 / vm_os,
-                       fatigue_safety=None if fat is None else _ext(fat, name, node + 1),
-                       gough_pollard_safety=None if gp is None else _ext(gp, name, node + 2))
+    return GroupResult(
+        group=name,
+        n_nodes=3,
+        max_von_mises=_ext(vm, name, node, math.radians(30)),
+        max_von_mises_overspeed=_ext(vm_os, name, node, math.radians(60)),
+        static_safety=650e6 / vm,
+        overspeed_safety=650e6 / vm_os,
+        fatigue_safety=None if fat is None else _ext(fat, name, node + 1),
+        gough_pollard_safety=None if gp is None else _ext(gp, name, node + 2),
+    )
 
 
 def _fillet(name, q):
@@ -66,23 +75,42 @@ def _fillet(name, q):
 def _throws():
     # throw "1": fillet 100 MPa (static 6.5), fatigue 2.0, GP 2.5; counterweight 40 MPa
     # throw "2": fillet 130 MPa (static 5.0), fatigue 1.6, GP 3.0; junction 55 MPa, at overspeed 70
-    t1 = ThrowAssessment("1", (_group("crankpin_fillet_1", 10, 100e6, 120e6, 2.0, 2.5),
-                               _group("counterweight_1", 20, 40e6, 60e6, None, None)),
-                         m53=(_fillet("pin", 1.4), _fillet("journal", 1.3)),
-                         counterweights=(CounterweightCheck("cw_a", 0.03, 0.031, 0.02, 5e3, 0.25),))
-    t2 = ThrowAssessment("2", (_group("journal_fillet_2", 30, 130e6, 140e6, 1.6, 3.0),
-                               _group("junction_2", 40, 55e6, 70e6, None, None)),
-                         m53=(_fillet("pin", 1.35), _fillet("oil_bore", 1.5)),
-                         counterweights=(CounterweightCheck("cw_b", 0.02, None, None, 8e3, 0.4),
-                                         CounterweightCheck("cw_c", 0.02, 0.021, 0.05, None, None)))
+    t1 = ThrowAssessment(
+        "1",
+        (
+            _group("crankpin_fillet_1", 10, 100e6, 120e6, 2.0, 2.5),
+            _group("counterweight_1", 20, 40e6, 60e6, None, None),
+        ),
+        m53=(_fillet("pin", 1.4), _fillet("journal", 1.3)),
+        counterweights=(CounterweightCheck("cw_a", 0.03, 0.031, 0.02, 5e3, 0.25),),
+    )
+    t2 = ThrowAssessment(
+        "2",
+        (_group("journal_fillet_2", 30, 130e6, 140e6, 1.6, 3.0), _group("junction_2", 40, 55e6, 70e6, None, None)),
+        m53=(_fillet("pin", 1.35), _fillet("oil_bore", 1.5)),
+        counterweights=(
+            CounterweightCheck("cw_b", 0.02, None, None, 8e3, 0.4),
+            CounterweightCheck("cw_c", 0.02, 0.021, 0.05, None, None),
+        ),
+    )
     return (t1, t2)
 
 
 def test_each_criterion_takes_the_worst_value_and_names_where():
-    crit = build_criteria({"min_static_safety": 1.5, "min_overspeed_safety": 1.5, "min_fatigue_safety": 1.7,
-                           "min_gough_pollard_safety": 1.2, "max_counterweight_stress": "50 MPa",
-                           "max_counterweight_overspeed_stress": "100 MPa", "min_m53_acceptability": 1.15,
-                           "max_unbalance_error": 0.04, "max_bolt_utilisation": 0.8}, "t.toml")
+    crit = build_criteria(
+        {
+            "min_static_safety": 1.5,
+            "min_overspeed_safety": 1.5,
+            "min_fatigue_safety": 1.7,
+            "min_gough_pollard_safety": 1.2,
+            "max_counterweight_stress": "50 MPa",
+            "max_counterweight_overspeed_stress": "100 MPa",
+            "min_m53_acceptability": 1.15,
+            "max_unbalance_error": 0.04,
+            "max_bolt_utilisation": 0.8,
+        },
+        "t.toml",
+    )
     by = {v.quantity: v for v in evaluate_criteria(crit, _throws(), file="t.toml", overspeed=400.0)}
     # static: min of R_e / vM over every group: 650/130 = 5.0 at throw 2's fillet, 30 deg
     assert by["static_safety"].value == pytest.approx(5.0, rel=1e-12)
@@ -93,8 +121,10 @@ def test_each_criterion_takes_the_worst_value_and_names_where():
     assert by["fatigue_safety"].value == 1.6 and not by["fatigue_safety"].passed
     assert by["fatigue_safety"].margin == pytest.approx(1.6 / 1.7 - 1, rel=1e-12)
     assert by["fatigue_safety"].location == "throw 2, journal_fillet_2, node 31 at (31.0, 0.0, 2.0) mm"
-    assert by["gough_pollard_safety"].value == 2.5 and "throw 1, crankpin_fillet_1, node 12" in \
-        by["gough_pollard_safety"].location
+    assert (
+        by["gough_pollard_safety"].value == 2.5
+        and "throw 1, crankpin_fillet_1, node 12" in by["gough_pollard_safety"].location
+    )
     # counterweight stresses: max over counterweight and junction groups only (the fillets'
     # 100-140 MPa are not counterweight stresses): 55 MPa at junction_2 fails 50 MPa
     cw = by["counterweight_stress"]
@@ -119,12 +149,12 @@ def test_overspeed_criteria_need_an_overspeed(key):
     assert e.value.key == f"criteria.{key}" and e.value.file == "t.toml"
 
 
-@pytest.mark.parametrize("key", ["min_fatigue_safety", "min_m53_acceptability", "max_bolt_utilisation",
-                                 "max_counterweight_stress"])
+@pytest.mark.parametrize(
+    "key", ["min_fatigue_safety", "min_m53_acceptability", "max_bolt_utilisation", "max_counterweight_stress"]
+)
 def test_a_criterion_without_data_is_an_error(key):
     bare = (ThrowAssessment("1", (_group("crankpin_fillet_1", 10, 100e6, 120e6, None, None),)),)
-    crit = build_criteria({key: 1.5 if key.startswith("min") else "1 MPa" if key.endswith("stress") else 0.5},
-                          "t.toml")
+    crit = build_criteria({key: 1.5 if key.startswith("min") else "1 MPa" if key.endswith("stress") else 0.5}, "t.toml")
     with pytest.raises(InputError, match="cannot be evaluated: the model gives no") as e:
         evaluate_criteria(crit, bare, file="t.toml", overspeed=400.0)
     assert e.value.key == f"criteria.{key}"

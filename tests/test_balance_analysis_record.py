@@ -54,8 +54,16 @@ def _engine(sense=1, bank=0.0, throw_angle=0.0):
 
 
 def _settings(journal_radius=0.04, free="thickness", r_inner=0.05, shafts=None):
-    spec = CounterweightSpec(7500.0, free, 0.1, None if free == "r_inner" else r_inner, 0.0414285714 if free ==
-                             "r_inner" else None, math.pi, None, journal_radius)
+    spec = CounterweightSpec(
+        7500.0,
+        free,
+        0.1,
+        None if free == "r_inner" else r_inner,
+        0.0414285714 if free == "r_inner" else None,
+        math.pi,
+        None,
+        journal_radius,
+    )
     if shafts is None:
         shafts = (ShaftRequest("force", 2, 0.08, 0.2), ShaftRequest("couple", 2, 0.1, 0.15))
     return BalanceSettings(BalanceStrategy(1.0, 0.5, "per_throw"), 0.05, spec, shafts)
@@ -83,8 +91,11 @@ def test_result_fields_by_hand(res):
     assert res.residual is couple.residual
     r1, r2 = res.residual.total(1), res.residual.total(2)
     h = r1.force_hodograph()
-    assert (h.kind, h.major, h.counter_magnitude) == ("circle", pytest.approx(7000.0, rel=1e-9),
-                                                      pytest.approx(7000.0, rel=1e-9))
+    assert (h.kind, h.major, h.counter_magnitude) == (
+        "circle",
+        pytest.approx(7000.0, rel=1e-9),
+        pytest.approx(7000.0, rel=1e-9),
+    )
     assert r1.moment_hodograph().major == pytest.approx(350.0, rel=1e-9)
     assert r2.force_hodograph().kind == "zero" and r2.moment_hodograph().kind == "zero"
 
@@ -92,10 +103,27 @@ def test_result_fields_by_hand(res):
 def test_forces_table_rows_by_hand(res):
     rows = forces_table(res.forces)
     assert [(r["source"], r["order"]) for r in rows] == [
-        ("rotating", 1.0), ("reciprocating", 1.0), ("reciprocating", 2.0), ("reciprocating", 4.0),
-        ("reciprocating", 6.0), ("total", 1.0), ("total", 2.0), ("total", 4.0), ("total", 6.0)]
-    assert set(rows[0]) == {"source", "order", "force_max", "force_min", "force_kind", "force_tilt_deg",
-                            "moment_max", "moment_min", "moment_kind"}
+        ("rotating", 1.0),
+        ("reciprocating", 1.0),
+        ("reciprocating", 2.0),
+        ("reciprocating", 4.0),
+        ("reciprocating", 6.0),
+        ("total", 1.0),
+        ("total", 2.0),
+        ("total", 4.0),
+        ("total", 6.0),
+    ]
+    assert set(rows[0]) == {
+        "source",
+        "order",
+        "force_max",
+        "force_min",
+        "force_kind",
+        "force_tilt_deg",
+        "moment_max",
+        "moment_min",
+        "moment_kind",
+    }
     expect = {  # force max, min, kind; couple max, min, kind
         ("rotating", 1.0): (22000.0, 22000.0, "circle", 1100.0, 1100.0, "circle"),
         ("reciprocating", 1.0): (14000.0, 0.0, "line", 700.0, 0.0, "line"),
@@ -105,16 +133,23 @@ def test_forces_table_rows_by_hand(res):
         if (r["source"], r["order"]) in expect:
             fmax, fmin, fk, mmax, mmin, mk = expect[(r["source"], r["order"])]
             assert (r["force_max"], r["force_min"], r["moment_max"], r["moment_min"]) == pytest.approx(
-                (fmax, fmin, mmax, mmin), rel=1e-9, abs=1e-6)
+                (fmax, fmin, mmax, mmin), rel=1e-9, abs=1e-6
+            )
             assert (r["force_kind"], r["moment_kind"]) == (fk, mk)
     rec2 = rows[2]
     assert (rec2["force_max"], rec2["moment_max"]) == pytest.approx((F2, 0.05 * F2), rel=SERIES)
     assert rec2["force_tilt_deg"] == pytest.approx(90.0, abs=1e-9)  # along +y: 90 deg from +x
     # the first order of the rotating source is always listed
     assert [(r["source"], r["order"]) for r in forces_table(res.forces, orders=(2.0,))] == [
-        ("rotating", 1.0), ("reciprocating", 2.0), ("total", 2.0)]
+        ("rotating", 1.0),
+        ("reciprocating", 2.0),
+        ("total", 2.0),
+    ]
     assert [(r["source"], r["order"]) for r in forces_table(res.forces, orders=(4.0,))] == [
-        ("rotating", 1.0), ("reciprocating", 4.0), ("total", 4.0)]
+        ("rotating", 1.0),
+        ("reciprocating", 4.0),
+        ("total", 4.0),
+    ]
 
 
 def test_forces_table_of_the_residual_keeps_every_total_row(res):
@@ -123,9 +158,19 @@ def test_forces_table_of_the_residual_keeps_every_total_row(res):
     every reported order stay, the cancelled order 2 among them with zeros."""
     rows = forces_table(res.residual)
     keys = [(r["source"], r["order"]) for r in rows]
-    assert keys == [("rotating", 1.0), ("reciprocating", 1.0), ("reciprocating", 2.0), ("reciprocating", 4.0),
-                    ("reciprocating", 6.0), ("counterweights", 1.0), ("balance_shafts", 2.0),
-                    ("total", 1.0), ("total", 2.0), ("total", 4.0), ("total", 6.0)]
+    assert keys == [
+        ("rotating", 1.0),
+        ("reciprocating", 1.0),
+        ("reciprocating", 2.0),
+        ("reciprocating", 4.0),
+        ("reciprocating", 6.0),
+        ("counterweights", 1.0),
+        ("balance_shafts", 2.0),
+        ("total", 1.0),
+        ("total", 2.0),
+        ("total", 4.0),
+        ("total", 6.0),
+    ]
     cw = rows[5]
     assert (cw["force_max"], cw["moment_max"]) == pytest.approx((29000.0, 1450.0), rel=1e-12)
     assert rows[6]["force_max"] == pytest.approx(F2, rel=SERIES)
@@ -153,11 +198,24 @@ def test_exact_peak_at_a_tdc_on_the_half_degree_grid():
 def test_json_record_key_by_key(res):
     data = result_to_dict(res)
     json.dumps(data)  # plain JSON types only
-    assert set(data) == {"engine", "speed_rad_s", "reference_z_m", "free_forces", "exact_reciprocating", "strategy",
-                         "counterweights", "balance_shafts", "residual"}
+    assert set(data) == {
+        "engine",
+        "speed_rad_s",
+        "reference_z_m",
+        "free_forces",
+        "exact_reciprocating",
+        "strategy",
+        "counterweights",
+        "balance_shafts",
+        "residual",
+    }
     assert (data["engine"], data["speed_rad_s"], data["reference_z_m"]) == ("hand-one", W, 0.05)
-    assert data["strategy"] == {"rotating_fraction": 1.0, "reciprocating_fraction": 0.5, "couple": "per_throw",
-                                "planes_m": []}
+    assert data["strategy"] == {
+        "rotating_fraction": 1.0,
+        "reciprocating_fraction": 0.5,
+        "couple": "per_throw",
+        "planes_m": [],
+    }
     assert data["exact_reciprocating"] == pytest.approx({"force_max": 17500.0, "moment_max": 875.0}, rel=1e-9)
     # free forces by source: only the orders a source has
     ff = data["free_forces"]
@@ -175,7 +233,13 @@ def test_json_record_key_by_key(res):
     c0, c1 = data["counterweights"]
     assert set(c1) == {"shaft", "z_m", "unbalance_kg_m", "angle_deg", "angle_on_shaft_deg", "sector"}
     assert (c0["shaft"], c0["z_m"], c0["unbalance_kg_m"], c0["angle_deg"], c0["angle_on_shaft_deg"], c0["sector"]) == (
-        "main", -0.1, 0.0, 0.0, 0.0, None)
+        "main",
+        -0.1,
+        0.0,
+        0.0,
+        0.0,
+        None,
+    )
     assert (c1["z_m"], c1["angle_deg"], c1["angle_on_shaft_deg"]) == (0.1, pytest.approx(180.0), pytest.approx(180.0))
     assert c1["unbalance_kg_m"] == pytest.approx(0.18125, rel=1e-14)
     assert c1["sector"]["thickness_mm"] == pytest.approx(41.428571, rel=1e-7)
@@ -185,8 +249,16 @@ def test_json_record_key_by_key(res):
     assert (fs["component"], fs["order"], cs["component"], cs["order"]) == ("force", 2, "couple", 2)
     assert fs["roll_moment_n_m"] == pytest.approx(0.0, abs=1e-9)
     plus = fs["shafts"][0]
-    assert set(plus) == {"name", "speed_ratio", "unbalance_kg_m", "angle_deg", "z_m", "position_m", "on_crankshaft",
-                         "constraint"}
+    assert set(plus) == {
+        "name",
+        "speed_ratio",
+        "unbalance_kg_m",
+        "angle_deg",
+        "z_m",
+        "position_m",
+        "on_crankshaft",
+        "constraint",
+    }
     assert (plus["name"], plus["speed_ratio"], plus["on_crankshaft"], plus["z_m"]) == ("force2_plus", 2, False, [0.05])
     assert plus["unbalance_kg_m"] == pytest.approx(F2 / 1.28e6, rel=SERIES)
     assert abs(plus["angle_deg"]) == pytest.approx(180.0, abs=1e-12)
@@ -256,12 +328,13 @@ def test_first_order_rows_of_counterweights_and_yoke_are_always_listed(res):
     """Asked for order 2 only, the table still lists the first order of the sources that
     have one by construction: the counterweights (29000 N, above) and, on the Nordberg
     radial engine of seed 000 (example 16's yoke), the synchronising yoke."""
-    from fe_crank.balance import free_forces
-
     from _balance_helpers import engine
+
+    from fe_crank.balance import free_forces
 
     keys = [(r["source"], r["order"]) for r in forces_table(res.residual, orders=(2.0,))]
     assert ("counterweights", 1.0) in keys and ("rotating", 1.0) in keys
-    yoke = [r for r in forces_table(free_forces(engine("nordberg_radial.toml"), W), orders=(2.0,))
-            if r["source"] == "yoke"]
+    yoke = [
+        r for r in forces_table(free_forces(engine("nordberg_radial.toml"), W), orders=(2.0,)) if r["source"] == "yoke"
+    ]
     assert [r["order"] for r in yoke][0] == 1.0 and yoke[0]["force_max"] > 0.0

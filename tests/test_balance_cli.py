@@ -102,10 +102,15 @@ def test_counterweight_that_cannot_fit_exits_2(tmp_path, capsys):
 
 def test_negative_fraction_exits_2(tmp_path, capsys):
     p = tmp_path / "neg.toml"
-    p.write_text(write_case(tmp_path).read_text().replace("reciprocating_fraction = 0.5", "reciprocating_fraction = -0.5"))
+    p.write_text(
+        write_case(tmp_path).read_text().replace("reciprocating_fraction = 0.5", "reciprocating_fraction = -0.5")
+    )
     check_error(["balance", str(p)], capsys, "reciprocating_fraction", str(p))
-    check_error(["balance", str(ENGINES / "inline4.toml"), "--speed", "3000 rpm", "--fraction", "-0.2"], capsys,
-                "reciprocating_fraction")
+    check_error(
+        ["balance", str(ENGINES / "inline4.toml"), "--speed", "3000 rpm", "--fraction", "-0.2"],
+        capsys,
+        "reciprocating_fraction",
+    )
 
 
 def test_empty_engine_exits_2(tmp_path, capsys):

@@ -27,8 +27,11 @@ def _two_shafts():
     ``A1``, so sizing shaft ``b`` passes over throws of shaft ``a`` first.  Each loaded
     throw: m_rot = 2 + 0.75 = 2.75 kg, m_rot R = 0.1375 kg m."""
     shafts = (model.Shaft("a"), model.Shaft("b", sense=-1, phase=PHASE, centre=(0.3, 0.1)))
-    throws = (model.Throw("A0", "a", 0.5, 0.05, -0.1, 0.0), model.Throw("A1", "a", 0.0, 0.05, 0.0, 2.0),
-              model.Throw("B1", "b", 0.0, 0.05, 0.1, 2.0))
+    throws = (
+        model.Throw("A0", "a", 0.5, 0.05, -0.1, 0.0),
+        model.Throw("A1", "a", 0.0, 0.05, 0.0, 2.0),
+        model.Throw("B1", "b", 0.0, 0.05, 0.1, 2.0),
+    )
     cyls = (model.Cylinder("1", "A1", 0.09, _rod(), 1.5), model.Cylinder("2", "B1", 0.09, _rod(), 1.5))
     return model.Engine("two-shaft", 4, shafts, throws, cyls)
 
@@ -100,8 +103,13 @@ def test_a_zero_design_adds_no_terms_and_reports_angle_zero():
 
 
 def _one_throw():
-    return model.Engine("single", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, 0.05, 0.0, 2.0),),
-                        (model.Cylinder("1", "1", 0.09, _rod(), 1.5),))
+    return model.Engine(
+        "single",
+        4,
+        (model.Shaft("main"),),
+        (model.Throw("1", "main", 0.0, 0.05, 0.0, 2.0),),
+        (model.Cylinder("1", "1", 0.09, _rod(), 1.5),),
+    )
 
 
 def _planes(planes):
@@ -150,12 +158,18 @@ def test_per_throw_webs_either_side_of_the_throw():
 
 def test_strategy_and_sizing_refusals_in_full():
     cases = [
-        (lambda: BalanceStrategy(couple="whole_shaft", planes=(0.1,)), "balance.planes",
-         "whole_shaft couple balance needs at least two counterweight planes"),
+        (
+            lambda: BalanceStrategy(couple="whole_shaft", planes=(0.1,)),
+            "balance.planes",
+            "whole_shaft couple balance needs at least two counterweight planes",
+        ),
         (lambda: BalanceStrategy(web_offset=-0.01), "balance.web_offset", "web_offset cannot be negative"),
         (lambda: counterweight_mass(1.0, 0.0, 10.0), "balance", "counterweight radius and speed must be positive"),
-        (lambda: _planes((0.1, 0.1)), "balance.planes",
-         "counterweight planes must lie at two or more distinct axial positions"),
+        (
+            lambda: _planes((0.1, 0.1)),
+            "balance.planes",
+            "counterweight planes must lie at two or more distinct axial positions",
+        ),
     ]
     for make, key, reason in cases:
         with pytest.raises(InputError) as err:

@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 import pytest
+from _balance_helpers import engine
 
 from fe_crank import model
 from fe_crank.balance import (
@@ -18,14 +19,17 @@ from fe_crank.balance import (
 from fe_crank.balance.mechanism import reciprocating_mass, rotating_mass
 from fe_crank.errors import InputError
 
-from _balance_helpers import engine
-
 W = 400.0
 
 
 def single():
-    return model.Engine("single", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, 0.05, 0.0, 2.0),),
-                        (model.Cylinder("1", "1", 0.09, model.Rod(0.2, 1.0, 0.05), 1.5),))
+    return model.Engine(
+        "single",
+        4,
+        (model.Shaft("main"),),
+        (model.Throw("1", "main", 0.0, 0.05, 0.0, 2.0),),
+        (model.Cylinder("1", "1", 0.09, model.Rod(0.2, 1.0, 0.05), 1.5),),
+    )
 
 
 def test_single_cylinder_fraction_of_first_order():
@@ -60,9 +64,16 @@ def test_counterweight_mass_formula():
     assert counterweight_mass(1000.0, 0.1, 100.0) == pytest.approx(1000.0 / (0.1 * 100.0**2))
 
 
-@pytest.mark.parametrize("bad", [dict(reciprocating_fraction=-0.1), dict(rotating_fraction=-1.0),
-                                 dict(reciprocating_fraction=1.5), dict(couple="sideways"),
-                                 dict(couple="whole_shaft", planes=(0.1,))])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        dict(reciprocating_fraction=-0.1),
+        dict(rotating_fraction=-1.0),
+        dict(reciprocating_fraction=1.5),
+        dict(couple="sideways"),
+        dict(couple="whole_shaft", planes=(0.1,)),
+    ],
+)
 def test_bad_strategy_is_refused(bad):
     with pytest.raises(InputError):
         BalanceStrategy(**bad)
@@ -98,8 +109,9 @@ def test_sector_that_cannot_fit_is_refused_with_a_clear_reason():
     with pytest.raises(InputError, match="beyond the envelope"):
         solve_sector(0.05, free="r_outer", r_inner=0.03, thickness=0.02, angle=math.pi, density=7400.0, envelope=0.08)
     with pytest.raises(InputError, match="inside the journal"):
-        solve_sector(0.03, free="r_inner", r_outer=0.07, thickness=0.02, angle=math.pi, density=7400.0,
-                     journal_radius=0.04)
+        solve_sector(
+            0.03, free="r_inner", r_outer=0.07, thickness=0.02, angle=math.pi, density=7400.0, journal_radius=0.04
+        )
     with pytest.raises(InputError, match="cannot fit"):
         solve_sector(0.5, free="angle", r_outer=0.07, r_inner=0.03, thickness=0.02, density=7400.0)
     with pytest.raises(InputError, match="360"):
@@ -115,13 +127,16 @@ def test_empty_engine_and_idle_shaft_are_refused():
         free_forces(idle, W)
 
 
-@pytest.mark.parametrize("layout, component, order", [
-    ("inline4.toml", "force", 2),  # Lanchester: two shafts at +-2 omega
-    ("single", "force", 1),
-    ("v4_90_seed003_base.toml", "couple", 1),  # one shaft at -omega plus a crank pair (seed 002)
-    ("inline2_180.toml", "couple", 2),
-    ("napier_deltic_section.toml", "force", 1),
-])
+@pytest.mark.parametrize(
+    "layout, component, order",
+    [
+        ("inline4.toml", "force", 2),  # Lanchester: two shafts at +-2 omega
+        ("single", "force", 1),
+        ("v4_90_seed003_base.toml", "couple", 1),  # one shaft at -omega plus a crank pair (seed 002)
+        ("inline2_180.toml", "couple", 2),
+        ("napier_deltic_section.toml", "force", 1),
+    ],
+)
 def test_balance_shafts_cancel_the_targeted_component(layout, component, order):
     e = single() if layout == "single" else engine(layout)
     ff = free_forces(e, W)

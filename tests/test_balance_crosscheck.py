@@ -8,13 +8,12 @@ import math
 
 import numpy as np
 import pytest
+from _balance_helpers import engine, radial
 
 from fe_crank.balance import free_forces
 from fe_crank.balance.mechanism import reciprocating_mass
 from fe_crank.dynamics import cylinder_angle
 from fe_crank.kinematics import piston_motion
-
-from _balance_helpers import engine, radial
 
 W = 250.0
 N = 720

@@ -6,12 +6,11 @@ import math
 
 import numpy as np
 import pytest
+from _balance_helpers import engine
 
 from fe_crank import model
 from fe_crank.balance import free_forces
 from fe_crank.balance.forces import reciprocating_terms, rotating_terms
-
-from _balance_helpers import engine
 
 W = 400.0
 
@@ -21,8 +20,13 @@ def _rod():
 
 
 def _single(bank=0.0, offset=0.0, z=0.0):
-    return model.Engine("single", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, 0.05, z, 2.0),),
-                        (model.Cylinder("1", "1", 0.09, _rod(), 1.5, bank_angle=bank, pin_offset=offset),))
+    return model.Engine(
+        "single",
+        4,
+        (model.Shaft("main"),),
+        (model.Throw("1", "main", 0.0, 0.05, z, 2.0),),
+        (model.Cylinder("1", "1", 0.09, _rod(), 1.5, bank_angle=bank, pin_offset=offset),),
+    )
 
 
 def test_labels_and_scales_of_a_single_cylinder_by_hand():
@@ -73,8 +77,7 @@ def test_roll_moment_of_an_off_centre_shaft():
     (the main shaft's throw carries no rotating mass and a massless rod)."""
     shafts = (model.Shaft("main"), model.Shaft("aux", centre=(0.1, -0.3)))
     throws = (model.Throw("m", "main", 0.0, 0.05), model.Throw("a", "aux", 0.0, 0.05, 0.0, 2.0))
-    cyls = (model.Cylinder("m", "m", 0.09, model.Rod(0.2, 0.0, 0.05), 1.5),
-            model.Cylinder("a", "a", 0.09, _rod(), 1.5))
+    cyls = (model.Cylinder("m", "m", 0.09, model.Rod(0.2, 0.0, 0.05), 1.5), model.Cylinder("a", "a", 0.09, _rod(), 1.5))
     rot = free_forces(model.Engine("two", 4, shafts, throws, cyls), W).term("rotating", 1)
     assert rot.force_hodograph().major == pytest.approx(22000.0, rel=1e-12)
     np.testing.assert_allclose(rot.moment[2], 0.1 * rot.force[1] + 0.3 * rot.force[0], rtol=1e-13, atol=1e-9)
@@ -100,8 +103,7 @@ def test_cylinder_without_reciprocating_mass_does_not_hide_the_next():
     (0.75 + 1.75) * 0.05 * 400^2 = 20000 N (throw 2), 28000 N."""
     shafts = (model.Shaft("main"),)
     throws = (model.Throw("1", "main", 0.0, 0.05, 0.0, 1.0), model.Throw("2", "main", math.pi, 0.05))
-    cyls = (model.Cylinder("1", "1", 0.09, model.Rod(0.2, 0.0, 0.05), 0.0),
-            model.Cylinder("2", "2", 0.09, _rod(), 1.5))
+    cyls = (model.Cylinder("1", "1", 0.09, model.Rod(0.2, 0.0, 0.05), 0.0), model.Cylinder("2", "2", 0.09, _rod(), 1.5))
     ff = free_forces(model.Engine("pair", 4, shafts, throws, cyls), W)
     np.testing.assert_allclose(np.hypot(*ff.term("reciprocating", 1).force.T), [0.0, 14000.0], rtol=1e-12, atol=1e-6)
     assert ff.force_scale == pytest.approx(28000.0, rel=1e-14)

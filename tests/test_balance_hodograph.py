@@ -63,7 +63,9 @@ def test_degenerate_kinds_at_force_scale_and_tiny_scale():
     """The kind thresholds are relative (1e-9 of the major semi-axis) at any scale."""
     # a line with a 1e-11 relative minor axis at 5e4 N: Fx = 5e4 cos, Fy = 5e-7 sin -> "line"
     h = hodograph(5e4, 0.0, 0.0, 5e-7)
-    assert h.kind == "line" and h.major == pytest.approx(5e4) and h.minor == pytest.approx(5e-7, abs=1e-10)  # round-off of p - q: eps * 5e4 ~ 1e-11
+    assert (
+        h.kind == "line" and h.major == pytest.approx(5e4) and h.minor == pytest.approx(5e-7, abs=1e-10)
+    )  # round-off of p - q: eps * 5e4 ~ 1e-11
     assert h.tilt == pytest.approx(0.0, abs=1e-12)
     # a circle with a 1e-11 relative eccentricity: Fx = 5e4 sin, Fy = (5e4 + 1e-6) cos -> "circle", tilt 0
     h = hodograph(0.0, 5e4, 5e4 + 1e-6, 0.0)

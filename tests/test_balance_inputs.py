@@ -8,26 +8,39 @@ import numpy as np
 import pytest
 
 from fe_crank import model
-from fe_crank.balance import BalanceStrategy, counterweight_mass, free_forces, rocker_counterweight_force
-from fe_crank.balance import size_counterweights
+from fe_crank.balance import (
+    BalanceStrategy,
+    counterweight_mass,
+    free_forces,
+    rocker_counterweight_force,
+    size_counterweights,
+)
 from fe_crank.errors import InputError
 
 
 def _single():
-    return model.Engine("single", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, 0.05, 0.0, 2.0),),
-                        (model.Cylinder("1", "1", 0.09, model.Rod(0.2, 1.0, 0.05), 1.5),))
+    return model.Engine(
+        "single",
+        4,
+        (model.Shaft("main"),),
+        (model.Throw("1", "main", 0.0, 0.05, 0.0, 2.0),),
+        (model.Cylinder("1", "1", 0.09, model.Rod(0.2, 1.0, 0.05), 1.5),),
+    )
 
 
-@pytest.mark.parametrize("kwargs, message, key", [
-    (dict(rotating_fraction=-1.0), "must be a fraction >= 0", "balance.rotating_fraction"),
-    (dict(rotating_fraction=math.inf), "must be a fraction >= 0", "balance.rotating_fraction"),
-    (dict(reciprocating_fraction=math.nan), "must be a fraction >= 0", "balance.reciprocating_fraction"),
-    (dict(reciprocating_fraction=-0.1), "must be a fraction >= 0", "balance.reciprocating_fraction"),
-    (dict(reciprocating_fraction=1.5), "cannot exceed 1", "balance.reciprocating_fraction"),
-    (dict(couple="sideways"), "'sideways' is not one of", "balance.couple"),
-    (dict(couple="whole_shaft", planes=(0.1,)), "needs at least two counterweight planes", "balance.planes"),
-    (dict(web_offset=-0.01), "web_offset cannot be negative", "balance.web_offset"),
-])
+@pytest.mark.parametrize(
+    "kwargs, message, key",
+    [
+        (dict(rotating_fraction=-1.0), "must be a fraction >= 0", "balance.rotating_fraction"),
+        (dict(rotating_fraction=math.inf), "must be a fraction >= 0", "balance.rotating_fraction"),
+        (dict(reciprocating_fraction=math.nan), "must be a fraction >= 0", "balance.reciprocating_fraction"),
+        (dict(reciprocating_fraction=-0.1), "must be a fraction >= 0", "balance.reciprocating_fraction"),
+        (dict(reciprocating_fraction=1.5), "cannot exceed 1", "balance.reciprocating_fraction"),
+        (dict(couple="sideways"), "'sideways' is not one of", "balance.couple"),
+        (dict(couple="whole_shaft", planes=(0.1,)), "needs at least two counterweight planes", "balance.planes"),
+        (dict(web_offset=-0.01), "web_offset cannot be negative", "balance.web_offset"),
+    ],
+)
 def test_bad_strategy_is_refused_by_message_and_key(kwargs, message, key):
     with pytest.raises(InputError, match=message) as err:
         BalanceStrategy(**kwargs)
@@ -82,10 +95,18 @@ def test_empty_engine_and_idle_shaft_are_refused_by_key():
     assert err.value.key == "shafts.spare"
 
 
-@pytest.mark.parametrize("angle, wrapped", [
-    (0.5, 0.5), (1.5 * math.pi, -0.5 * math.pi), (-1.5 * math.pi, 0.5 * math.pi),
-    (math.pi, math.pi), (-math.pi, math.pi), (4.5 * math.pi, 0.5 * math.pi), (-4.5 * math.pi, -0.5 * math.pi),
-])
+@pytest.mark.parametrize(
+    "angle, wrapped",
+    [
+        (0.5, 0.5),
+        (1.5 * math.pi, -0.5 * math.pi),
+        (-1.5 * math.pi, 0.5 * math.pi),
+        (math.pi, math.pi),
+        (-math.pi, math.pi),
+        (4.5 * math.pi, 0.5 * math.pi),
+        (-4.5 * math.pi, -0.5 * math.pi),
+    ],
+)
 def test_counterweight_angles_are_wrapped_into_minus_pi_to_pi(angle, wrapped):
     """Counterweight angles are reported in (-pi, pi]: 3 pi/2 is -pi/2, -pi is pi, 9 pi/2 is
     pi/2 (subtract whole turns of 2 pi by hand)."""

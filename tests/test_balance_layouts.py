@@ -4,12 +4,11 @@ import math
 
 import numpy as np
 import pytest
+from _balance_helpers import engine, radial
 
 from fe_crank.balance import BalanceStrategy, free_forces, size_counterweights
 from fe_crank.balance.mechanism import crank_angle_global, reciprocating_mass
 from fe_crank.kinematics import harmonic_coefficients
-
-from _balance_helpers import engine, radial
 
 W = 314.159  # rad/s (3000 rpm)
 

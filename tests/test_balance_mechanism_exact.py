@@ -19,9 +19,13 @@ from fe_crank.errors import InputError
 
 
 def _single(r, l, offset=0.0, bank=0.0, sense=1):
-    return model.Engine("single", 4, (model.Shaft("main", sense=sense),), (model.Throw("1", "main", 0.0, r),),
-                        (model.Cylinder("1", "1", 0.09, model.Rod(l, 1.0, l / 4), 1.5, bank_angle=bank,
-                                        pin_offset=offset),))
+    return model.Engine(
+        "single",
+        4,
+        (model.Shaft("main", sense=sense),),
+        (model.Throw("1", "main", 0.0, r),),
+        (model.Cylinder("1", "1", 0.09, model.Rod(l, 1.0, l / 4), 1.5, bank_angle=bank, pin_offset=offset),),
+    )
 
 
 @pytest.mark.parametrize("sense", [1, -1])
@@ -53,12 +57,30 @@ def _radial(master_offset, sense=1, master_of_b="M", throw_of_b="1"):
     """Master M along +y (l = 0.4 m, pin offset e), articulated A at 90 deg on M's rod
     (link radius 0.05 m, link angle 90 deg, rod 0.35 m); an optional third cylinder B."""
     throws = (model.Throw("1", "main", 0.0, 0.1), model.Throw("2", "main", math.pi, 0.1, 0.2))
-    cyls = [model.Cylinder("M", "1", 0.1, model.Rod(0.4, 2.0, 0.1), 1.0, pin_offset=master_offset),
-            model.Cylinder("A", "1", 0.1, model.Rod(0.35, 1.0, 0.1), 1.0, bank_angle=math.pi / 2,
-                           articulation=model.Articulation("M", 0.05, math.pi / 2))]
+    cyls = [
+        model.Cylinder("M", "1", 0.1, model.Rod(0.4, 2.0, 0.1), 1.0, pin_offset=master_offset),
+        model.Cylinder(
+            "A",
+            "1",
+            0.1,
+            model.Rod(0.35, 1.0, 0.1),
+            1.0,
+            bank_angle=math.pi / 2,
+            articulation=model.Articulation("M", 0.05, math.pi / 2),
+        ),
+    ]
     if master_of_b is not None:
-        cyls.append(model.Cylinder("B", throw_of_b, 0.1, model.Rod(0.35, 1.0, 0.1), 1.0, bank_angle=math.pi,
-                                   articulation=model.Articulation(master_of_b, 0.05, math.pi)))
+        cyls.append(
+            model.Cylinder(
+                "B",
+                throw_of_b,
+                0.1,
+                model.Rod(0.35, 1.0, 0.1),
+                1.0,
+                bank_angle=math.pi,
+                articulation=model.Articulation(master_of_b, 0.05, math.pi),
+            )
+        )
     return model.Engine("radial", 4, (model.Shaft("main", sense=sense),), throws, tuple(cyls))
 
 
@@ -82,8 +104,9 @@ def test_articulated_big_end_without_offset_at_a_quarter_turn_by_hand():
     gamma = atan2(-0.1, sqrt(0.15)); link pin (0.1, 0) + 0.05 u(gamma + 90 deg)."""
     be = big_end(_radial(0.0, master_of_b=None), "A", math.pi / 2)
     gamma = math.atan2(-0.1, math.sqrt(0.15))
-    np.testing.assert_allclose(be, [0.1 + 0.05 * math.sin(gamma + math.pi / 2), 0.05 * math.cos(gamma + math.pi / 2)],
-                               rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(
+        be, [0.1 + 0.05 * math.sin(gamma + math.pi / 2), 0.05 * math.cos(gamma + math.pi / 2)], rtol=1e-12, atol=1e-15
+    )
 
 
 def test_rod_that_cannot_reach_the_axis_is_refused_in_full():
@@ -91,8 +114,10 @@ def test_rod_that_cannot_reach_the_axis_is_refused_in_full():
     with pytest.raises(InputError) as err:
         piston_positions(_single(0.3, 0.25), "1", np.linspace(0.0, 2 * math.pi, 9))
     assert err.value.key == "cylinders.1"
-    assert err.value.reason == ("cylinder '1': the connecting rod (250 mm) cannot reach the cylinder axis at every "
-                                "crank angle; check rod length, offset and articulation")
+    assert err.value.reason == (
+        "cylinder '1': the connecting rod (250 mm) cannot reach the cylinder axis at every "
+        "crank angle; check rod length, offset and articulation"
+    )
 
 
 def test_rod_exactly_square_to_the_axis_is_refused():

@@ -39,8 +39,13 @@ def test_merge_thresholds_by_hand():
     With the 1e-3 N m moment threshold a moment of 0.5 N m is kept."""
     ftol = ROUNDOFF * SCALE
     assert ftol == pytest.approx(1.0, rel=1e-15)
-    terms = [_term("rotating", 1, 0.5, 1.5), _term("reciprocating", 2, 3.0, 2.0 * ftol),
-             _term("yoke", 1, ftol, 4.0), _term("rotating", 2, 0.5, 0.0), _term("rotating", 2, 0.25, 0.0)]
+    terms = [
+        _term("rotating", 1, 0.5, 1.5),
+        _term("reciprocating", 2, 3.0, 2.0 * ftol),
+        _term("yoke", 1, ftol, 4.0),
+        _term("rotating", 2, 0.5, 0.0),
+        _term("rotating", 2, 0.25, 0.0),
+    ]
     out = _by_source(_merge(terms, SCALE, 2.0))
     assert len(out) == 4
     np.testing.assert_array_equal(out[("rotating", 1.0)].force, 0.0)  # 0.5 N < 1 N
@@ -78,8 +83,11 @@ def test_orders_are_told_apart_to_the_ninth_decimal():
     """Orders 1.5 (a shaft geared at 1.5) and 2 are distinct orders, and 2 and 2 + 1e-12 the
     same one (float noise of ``k n``)."""
     f = np.array([[1.0, 0.0], [0.0, 1.0]])
-    terms = (point_term("rotating", 1.5, f, (0.0, 0.0, 0.0)), point_term("rotating", 2.0, 2 * f, (0.0, 0.0, 0.0)),
-             point_term("rotating", 2.0 + 1e-12, 3 * f, (0.0, 0.0, 0.0)))
+    terms = (
+        point_term("rotating", 1.5, f, (0.0, 0.0, 0.0)),
+        point_term("rotating", 2.0, 2 * f, (0.0, 0.0, 0.0)),
+        point_term("rotating", 2.0 + 1e-12, 3 * f, (0.0, 0.0, 0.0)),
+    )
     ff = FreeForces("hand", 100.0, 0.0, terms, 1.0, 1.0)
     assert ff.orders == (1.5, 2.0)
     np.testing.assert_array_equal(ff.term("rotating", 1.5).force, f)
@@ -88,8 +96,13 @@ def test_orders_are_told_apart_to_the_ninth_decimal():
 
 def _single():
     rod = model.Rod(0.2, 1.0, 0.05)  # l = 0.2 m, c/l = 0.25: m_j = 1.5 + 0.25 = 1.75 kg
-    return model.Engine("single", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, 0.05, 0.0, 2.0),),
-                        (model.Cylinder("1", "1", 0.09, rod, 1.5),))
+    return model.Engine(
+        "single",
+        4,
+        (model.Shaft("main"),),
+        (model.Throw("1", "main", 0.0, 0.05, 0.0, 2.0),),
+        (model.Cylinder("1", "1", 0.09, rod, 1.5),),
+    )
 
 
 def test_kmax_limits_the_reciprocating_orders_and_keeps_the_highest():

@@ -43,15 +43,18 @@ def test_narrow_and_full_angles_and_light_materials_are_accepted():
     assert annular_sector(0.5, 0.0, 1.0, PI, 0.5).mass == pytest.approx(0.5 * PI / 2 * 0.25, rel=1e-14)
 
 
-@pytest.mark.parametrize("args, reason", [
-    ((0.07, -0.01, 0.02, PI, 7800.0), "outer radius 70 mm must exceed inner radius -10 mm >= 0"),
-    ((0.05, 0.05, 0.02, PI, 7800.0), "outer radius 50 mm must exceed inner radius 50 mm >= 0"),
-    ((0.07, 0.03, 0.0, PI, 7800.0), "thickness must be positive (got 0 mm)"),
-    ((0.07, 0.03, -0.002, PI, 7800.0), "thickness must be positive (got -2 mm)"),
-    ((0.07, 0.03, 0.02, 0.0, 7800.0), "included angle must lie in (0, 360] deg (got 0 deg)"),
-    ((0.07, 0.03, 0.02, 7.0, 7800.0), "included angle must lie in (0, 360] deg (got 401.07 deg)"),
-    ((0.07, 0.03, 0.02, PI, 0.0), "density must be positive (got 0.0)"),
-])
+@pytest.mark.parametrize(
+    "args, reason",
+    [
+        ((0.07, -0.01, 0.02, PI, 7800.0), "outer radius 70 mm must exceed inner radius -10 mm >= 0"),
+        ((0.05, 0.05, 0.02, PI, 7800.0), "outer radius 50 mm must exceed inner radius 50 mm >= 0"),
+        ((0.07, 0.03, 0.0, PI, 7800.0), "thickness must be positive (got 0 mm)"),
+        ((0.07, 0.03, -0.002, PI, 7800.0), "thickness must be positive (got -2 mm)"),
+        ((0.07, 0.03, 0.02, 0.0, 7800.0), "included angle must lie in (0, 360] deg (got 0 deg)"),
+        ((0.07, 0.03, 0.02, 7.0, 7800.0), "included angle must lie in (0, 360] deg (got 401.07 deg)"),
+        ((0.07, 0.03, 0.02, PI, 0.0), "density must be positive (got 0.0)"),
+    ],
+)
 def test_sector_refusals_in_full(args, reason):
     """Lengths are reported in mm (x 1e3), angles in degrees (7 rad = 401.07 deg)."""
     err = _refused(annular_sector, *args)
@@ -89,29 +92,47 @@ def test_inverse_design_at_its_limits_by_hand():
 G = dict(r_outer=0.5, r_inner=0.0, thickness=1.0, angle=PI, density=1.5)
 
 
-@pytest.mark.parametrize("call, reason", [
-    (dict(unbalance=0.1, free="diameter", **G),
-     "free dimension 'diameter' is not one of ('r_outer', 'r_inner', 'thickness', 'angle')"),
-    (dict(unbalance=0.0, free="thickness", **G), "required unbalance must be positive (got 0.0 kg m)"),
-    (dict(unbalance=0.1, free="thickness", r_outer=0.5, density=1.5), "to solve for thickness give r_inner, angle"),
-    (dict(unbalance=0.1, free="thickness", **{**G, "density": 0.0}), "density must be positive (got 0.0)"),
-    # U > 0.125: even r2 = 0 gives only (2/3) 1.5 * 1 * 1 * 0.5^3 = 0.125 kg m
-    (dict(unbalance=0.2, free="r_inner", **{k: v for k, v in G.items() if k != "r_inner"}),
-     "even a full sector out to r_outer = 500 mm gives only 0.125 kg m, 0.2 kg m required"),
-    # b = 0.5 m, 60 deg (sin 30 deg = 0.5): 1 * 0.5 * 0.5 * 0.125 = 0.03125 kg m
-    (dict(unbalance=0.05, free="r_inner", r_outer=0.5, thickness=0.5, angle=PI / 3, density=1.5),
-     "even a full sector out to r_outer = 500 mm gives only 0.03125 kg m, 0.05 kg m required"),
-    # sin(a/2) = 0.2 / 0.125 = 1.6 > 1: the half ring gives 0.2 / 1.6 = 0.125 kg m
-    (dict(unbalance=0.2, free="angle", **{k: v for k, v in G.items() if k != "angle"}),
-     "needs 0.2 kg m but a 180 deg sector of these radii and thickness gives only 0.125 kg m "
-     "(a wider angle gives less): the counterweight cannot fit"),
-    (dict(unbalance=0.1, free="thickness", **{**G, "angle": 7.0}), "needs an included angle of 401.1 deg > 360 deg"),
-    (dict(unbalance=0.1, free="thickness", envelope=0.4, **G),
-     "needs an outer radius of 500 mm, beyond the envelope of 400 mm: the counterweight cannot provide the "
-     "required unbalance; widen, thicken or use a denser material"),
-    (dict(unbalance=0.1, free="thickness", journal_radius=0.032, **{**G, "r_inner": 0.03}),
-     "needs an inner radius of 30 mm, inside the journal radius 32 mm"),
-])
+@pytest.mark.parametrize(
+    "call, reason",
+    [
+        (
+            dict(unbalance=0.1, free="diameter", **G),
+            "free dimension 'diameter' is not one of ('r_outer', 'r_inner', 'thickness', 'angle')",
+        ),
+        (dict(unbalance=0.0, free="thickness", **G), "required unbalance must be positive (got 0.0 kg m)"),
+        (dict(unbalance=0.1, free="thickness", r_outer=0.5, density=1.5), "to solve for thickness give r_inner, angle"),
+        (dict(unbalance=0.1, free="thickness", **{**G, "density": 0.0}), "density must be positive (got 0.0)"),
+        # U > 0.125: even r2 = 0 gives only (2/3) 1.5 * 1 * 1 * 0.5^3 = 0.125 kg m
+        (
+            dict(unbalance=0.2, free="r_inner", **{k: v for k, v in G.items() if k != "r_inner"}),
+            "even a full sector out to r_outer = 500 mm gives only 0.125 kg m, 0.2 kg m required",
+        ),
+        # b = 0.5 m, 60 deg (sin 30 deg = 0.5): 1 * 0.5 * 0.5 * 0.125 = 0.03125 kg m
+        (
+            dict(unbalance=0.05, free="r_inner", r_outer=0.5, thickness=0.5, angle=PI / 3, density=1.5),
+            "even a full sector out to r_outer = 500 mm gives only 0.03125 kg m, 0.05 kg m required",
+        ),
+        # sin(a/2) = 0.2 / 0.125 = 1.6 > 1: the half ring gives 0.2 / 1.6 = 0.125 kg m
+        (
+            dict(unbalance=0.2, free="angle", **{k: v for k, v in G.items() if k != "angle"}),
+            "needs 0.2 kg m but a 180 deg sector of these radii and thickness gives only 0.125 kg m "
+            "(a wider angle gives less): the counterweight cannot fit",
+        ),
+        (
+            dict(unbalance=0.1, free="thickness", **{**G, "angle": 7.0}),
+            "needs an included angle of 401.1 deg > 360 deg",
+        ),
+        (
+            dict(unbalance=0.1, free="thickness", envelope=0.4, **G),
+            "needs an outer radius of 500 mm, beyond the envelope of 400 mm: the counterweight cannot provide the "
+            "required unbalance; widen, thicken or use a denser material",
+        ),
+        (
+            dict(unbalance=0.1, free="thickness", journal_radius=0.032, **{**G, "r_inner": 0.03}),
+            "needs an inner radius of 30 mm, inside the journal radius 32 mm",
+        ),
+    ],
+)
 def test_inverse_design_refusals_in_full(call, reason):
     call = dict(call)  # the parameter is shared between runs: leave it intact
     u = call.pop("unbalance")
@@ -128,8 +149,16 @@ def test_sector_record_in_report_units():
     U = (2/3) 7400 * 0.019 * (0.071^3 - 0.032^3) = 93.733333 * 0.000325143 = 0.03047674 kg m,
     r_c = U / m = 34.353 mm."""
     d = annular_sector(0.071, 0.032, 0.019, PI, 7400.0).as_dict()
-    assert set(d) == {"r_outer_mm", "r_inner_mm", "thickness_mm", "angle_deg", "density_kg_m3", "mass_kg",
-                      "centroid_radius_mm", "unbalance_kg_m"}
+    assert set(d) == {
+        "r_outer_mm",
+        "r_inner_mm",
+        "thickness_mm",
+        "angle_deg",
+        "density_kg_m3",
+        "mass_kg",
+        "centroid_radius_mm",
+        "unbalance_kg_m",
+    }
     assert (d["r_outer_mm"], d["r_inner_mm"], d["thickness_mm"]) == pytest.approx((71.0, 32.0, 19.0), rel=1e-12)
     assert d["angle_deg"] == pytest.approx(180.0, rel=1e-12)
     assert d["density_kg_m3"] == 7400.0

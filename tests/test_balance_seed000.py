@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 import pytest
+from _balance_helpers import engine
 
 from fe_crank.balance import (
     BalanceStrategy,
@@ -16,8 +17,6 @@ from fe_crank.balance import (
 )
 from fe_crank.balance.mechanism import reciprocating_mass, rotating_mass
 from fe_crank.kinematics import harmonic_coefficients
-
-from _balance_helpers import engine
 
 W = 150.0
 

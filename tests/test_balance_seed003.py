@@ -5,12 +5,11 @@ import math
 
 import numpy as np
 import pytest
+from _balance_helpers import engine
 
 from fe_crank.balance import BalanceStrategy, annular_sector, free_forces, size_counterweights, solve_sector
 from fe_crank.dynamics import cylinder_angle
 from fe_crank.kinematics import harmonic_coefficients
-
-from _balance_helpers import engine
 
 W = 300.0
 M_A, M_B, R, L = 0.62, 1.844, 0.033, 0.128  # table 1
@@ -107,7 +106,9 @@ def test_counterweight_moment_balance_eq_11_and_the_L2_misprint(pneumatic):
         assert cw.unbalance == pytest.approx(need, rel=2e-4)
         assert cw.mass_at(0.034) == pytest.approx(0.887, abs=1e-3)
     # outer and inner counterweight on the same side form the couple; front and rear are opposite
-    assert abs(math.remainder(design.counterweights[0].angle - design.counterweights[3].angle, 2 * math.pi)) == pytest.approx(math.pi)
+    assert abs(
+        math.remainder(design.counterweights[0].angle - design.counterweights[3].angle, 2 * math.pi)
+    ) == pytest.approx(math.pi)
     assert design.residual.total(1).moment_hodograph().kind == "zero"
     assert design.residual.total(1).force_hodograph().kind == "zero"
     # the seed's sector provides it with a 1 % margin

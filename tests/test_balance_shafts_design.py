@@ -57,8 +57,13 @@ def test_single_cylinder_secondary_force_by_a_pair_at_twice_the_speed():
     -2 each take half: U (2 omega)^2 = F_2 / 2, U = 1778.145 / 800^2 = 2.778352e-3 kg m,
     pointing -y at theta = 0 (against the force at its peak); checked to 1e-4, so that an
     error of 1 % in U (or omega instead of 2 omega: a factor 4) fails."""
-    e = model.Engine("single", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, 0.05),),
-                     (model.Cylinder("1", "1", 0.09, model.Rod(0.2, 1.0, 0.05), 1.5),))
+    e = model.Engine(
+        "single",
+        4,
+        (model.Shaft("main"),),
+        (model.Throw("1", "main", 0.0, 0.05),),
+        (model.Cylinder("1", "1", 0.09, model.Rod(0.2, 1.0, 0.05), 1.5),),
+    )
     ff = free_forces(e, 400.0)
     d = balance_shafts(ff, "force", 2)
     assert [(s.name, s.speed_ratio) for s in d.shafts] == [("force2_plus", 2), ("force2_minus", -2)]
@@ -89,8 +94,10 @@ def test_line_force_pair_every_field_by_hand():
         assert u(s.angle) == pytest.approx((0.0, -1.0), abs=1e-15)
         assert s.position == pytest.approx((x, 0.0), abs=1e-15)
         assert s.z == (0.3,) and s.on_crankshaft is False
-        assert s.constraint == ("axes parallel to the crank axis and symmetric about it, in the plane across the "
-                                "force line; unbalance in the plane of the force resultant")
+        assert s.constraint == (
+            "axes parallel to the crank axis and symmetric about it, in the plane across the "
+            "force line; unbalance in the plane of the force resultant"
+        )
     own = d.residual.term("balance_shafts", 2)
     np.testing.assert_allclose(own.force, [[0.0, 0.0], [-1000.0, 0.0]], atol=1e-12)
     np.testing.assert_allclose(own.moment, 0.0, atol=1e-12)
@@ -110,8 +117,9 @@ def test_ellipse_pair_is_placed_across_its_major_axis():
     d = balance_shafts(record(force_term(1, p, q)), "force", 1, offset=0.05)
     plus, minus = d.shafts
     assert (plus.name, plus.speed_ratio, minus.name, minus.speed_ratio) == ("force1_plus", 1, "force1_minus", -1)
-    assert plus.position == pytest.approx((0.05 * math.sin(math.radians(140)), 0.05 * math.cos(math.radians(140))),
-                                          abs=1e-15)
+    assert plus.position == pytest.approx(
+        (0.05 * math.sin(math.radians(140)), 0.05 * math.cos(math.radians(140))), abs=1e-15
+    )
     assert plus.position == pytest.approx((0.0321394, -0.0383022), abs=1e-7)
     assert minus.position == pytest.approx((-0.0321394, 0.0383022), abs=1e-7)
     assert (plus.unbalance, minus.unbalance) == pytest.approx((0.06, 0.02), rel=1e-14)
@@ -191,8 +199,9 @@ def test_first_order_couple_takes_a_crank_pair_and_one_shaft(sense):
     d = balance_shafts(record(couple_term(1, 200j, 200j)), "couple", 1, reference_sense=sense)
     crank = next(s for s in d.shafts if s.on_crankshaft)
     other = next(s for s in d.shafts if not s.on_crankshaft)
-    assert [s.name for s in d.shafts] == (["couple1_crank", "couple1_minus"] if sense == 1
-                                          else ["couple1_minus", "couple1_crank"])
+    assert [s.name for s in d.shafts] == (
+        ["couple1_crank", "couple1_minus"] if sense == 1 else ["couple1_minus", "couple1_crank"]
+    )
     assert (crank.speed_ratio, crank.position) == (1, (0.0, 0.0))
     assert crank.constraint == "counterweight pair on the crankshaft (seed 002: one balance shaft plus a crank pair)"
     assert other.speed_ratio == -1 and math.hypot(*other.position) == pytest.approx(0.1, rel=1e-14)
@@ -248,13 +257,16 @@ def test_shaft_terms_cancel_only_the_selected_sources():
     assert (t.kind, t.major) == ("circle", pytest.approx(700.0, rel=1e-12))
 
 
-@pytest.mark.parametrize("kwargs, key, reason", [
-    ({"component": "torque"}, "balance.shafts.component", "'torque' is not one of ('force', 'couple')"),
-    ({"order": 3}, "balance.shafts.order", "balance shafts are for orders 1 and 2 (got 3)"),
-    ({"offset": -0.01}, "balance.shafts", "offset must be >= 0 and span > 0"),
-    ({"span": 0.0}, "balance.shafts", "offset must be >= 0 and span > 0"),
-    ({"offset": math.nan}, "balance.shafts", "offset must be >= 0 and span > 0"),
-])
+@pytest.mark.parametrize(
+    "kwargs, key, reason",
+    [
+        ({"component": "torque"}, "balance.shafts.component", "'torque' is not one of ('force', 'couple')"),
+        ({"order": 3}, "balance.shafts.order", "balance shafts are for orders 1 and 2 (got 3)"),
+        ({"offset": -0.01}, "balance.shafts", "offset must be >= 0 and span > 0"),
+        ({"span": 0.0}, "balance.shafts", "offset must be >= 0 and span > 0"),
+        ({"offset": math.nan}, "balance.shafts", "offset must be >= 0 and span > 0"),
+    ],
+)
 def test_refusals_in_full(kwargs, key, reason):
     args = {"component": "force", "order": 2, **kwargs}
     with pytest.raises(InputError) as err:
@@ -289,7 +301,10 @@ def test_free_placement_fields_and_refusals_in_full():
     with pytest.raises(InputError) as err:
         balance_shafts(couple, "couple", 1, positions=[(0.0, 1e-6), (0.0, 0.1)])
     assert (err.value.key, err.value.reason) == (
-        key, "couple1_crank is a counterweight pair on the crankshaft: its position is the crank axis (0, 0)")
+        key,
+        "couple1_crank is a counterweight pair on the crankshaft: its position is the crank axis (0, 0)",
+    )
     d = balance_shafts(couple, "couple", 1, positions=[(0.0, 0.0), (0.0, 0.1)])
-    assert d.shafts[0].constraint == ("counterweight pair on the crankshaft (seed 002: one balance shaft plus a "
-                                      "crank pair); placed as given")
+    assert d.shafts[0].constraint == (
+        "counterweight pair on the crankshaft (seed 002: one balance shaft plus a crank pair); placed as given"
+    )

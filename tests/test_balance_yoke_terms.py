@@ -25,9 +25,13 @@ def test_yoke_terms_of_a_phased_off_centre_shaft_by_hand():
     * theta = 0:    (0, 0.4 * 2000, -0.1 * 2000) = (0, 800, -200) N m
     * theta = pi/2: (-0.4 * -1560, 0, 0.3 * -1560) = (624, 0, -468) N m"""
     rod = model.Rod(0.4, 0.0, 0.1)
-    e = model.Engine("phased", 4, (model.Shaft("main", phase=math.pi / 6, centre=(0.3, 0.1)),),
-                     (model.Throw("1", "main", math.pi / 3, 0.05, 0.0, 0.0),),
-                     (model.Cylinder("1", "1", 0.1, rod, 1.0, bank_angle=math.pi / 2),))
+    e = model.Engine(
+        "phased",
+        4,
+        (model.Shaft("main", phase=math.pi / 6, centre=(0.3, 0.1)),),
+        (model.Throw("1", "main", math.pi / 3, 0.05, 0.0, 0.0),),
+        (model.Cylinder("1", "1", 0.1, rod, 1.0, bank_angle=math.pi / 2),),
+    )
     yoke = model.Yoke(100.0, 0.2, 0.176, math.asin(0.25), 0.0, 0.4)
     (term,) = yoke_terms(e, yoke, 10.0)
     assert (term.source, term.order) == ("yoke", 1.0)

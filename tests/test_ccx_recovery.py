@@ -18,7 +18,7 @@ from skfem.assembly import Dofs
 from fe_crank.fe.stress import stress_at_selected_nodes
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-from ccx_recovery import GAUSS_A, GAUSS_B, calculix_recovery  # noqa: E402
+from ccx_recovery import GAUSS_A, GAUSS_B, calculix_recovery
 
 E, NU = 210e9, 0.3
 
@@ -34,7 +34,7 @@ def test_extrapolation_coefficients_are_calculix_table():
     # -0.30902 (5 digits): both must agree to their last digit (5e-6 catches a swapped a/b)
     assert abs((1.0 - GAUSS_B) / (GAUSS_A - GAUSS_B) - 1.92705) < 5e-6
     assert abs(-GAUSS_B / (GAUSS_A - GAUSS_B) + 0.30902) < 5e-6
-    assert abs(GAUSS_A + 3.0 * GAUSS_B - 1.0) < 1e-15          # barycentric coordinates sum to 1
+    assert abs(GAUSS_A + 3.0 * GAUSS_B - 1.0) < 1e-15  # barycentric coordinates sum to 1
 
 
 def test_linear_stress_recovered_exactly():
@@ -51,8 +51,16 @@ def test_linear_stress_recovered_exactly():
     lam, mu = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
     exx, eyy, ezz, exy, eyz = 2 * x, x, 2 * z + y, y / 2, z / 2
     tr = exx + eyy + ezz
-    expected = np.stack([2 * mu * exx + lam * tr, 2 * mu * eyy + lam * tr, 2 * mu * ezz + lam * tr,
-                         2 * mu * exy, 2 * mu * eyz, np.zeros_like(x)])
+    expected = np.stack(
+        [
+            2 * mu * exx + lam * tr,
+            2 * mu * eyy + lam * tr,
+            2 * mu * ezz + lam * tr,
+            2 * mu * exy,
+            2 * mu * eyz,
+            np.zeros_like(x),
+        ]
+    )
     assert np.abs(s - expected).max() < 1e-9 * np.abs(expected).max()
 
 

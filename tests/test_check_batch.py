@@ -14,17 +14,16 @@ import signal
 import subprocess
 import sys
 import textwrap
-import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
 
+from fe_crank.check import batch_exit_code, find_loadcases, run_case, run_cases
 from fe_crank.cli import main
-from fe_crank.check import CheckOptions, batch_exit_code, find_loadcases, run_case, run_cases
 from fe_crank.files import write_atomic
-from fe_crank.results import CaseResult, CriterionResult
 from fe_crank.report.junit import junit_xml
+from fe_crank.results import CaseResult, CriterionResult
 
 DATA = Path(__file__).parent / "data"
 BROKEN = [DATA / "broken_units.toml", DATA / "broken_syntax.toml"]
@@ -135,10 +134,12 @@ def test_process_pool_gives_the_same_results_as_serial(tmp_path):
 
 def test_dask_local_cluster_gives_the_same_results_as_serial(tmp_path):
     import distributed  # dask[distributed] is a declared dependency
+
     cases = [BROKEN[0], DATA / "early_stop_no_geometry.toml"]
     serial = run_cases(cases, tmp_path / "s")
-    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
-                                  dashboard_address=None) as cluster:
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster:
         on_dask = run_cases(cases, tmp_path / "d", scheduler=cluster.scheduler_address)
     assert [_comparable(r) for r in serial] == [_comparable(r) for r in on_dask]
     assert (tmp_path / "d" / "broken_units" / "case.json").exists()
@@ -172,8 +173,9 @@ def test_killed_run_leaves_no_partial_report(tmp_path):
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     # first case runs normally (its own process, no slow hook), second one is slowed
     assert main(["check", str(BROKEN[0]), "-o", str(out)]) == 2
-    proc = subprocess.Popen([sys.executable, str(script), str(out), str(BROKEN[1])],
-                            stdout=subprocess.PIPE, text=True, env=env)
+    proc = subprocess.Popen(
+        [sys.executable, str(script), str(out), str(BROKEN[1])], stdout=subprocess.PIPE, text=True, env=env
+    )
     try:
         line = proc.stdout.readline()
         assert line.strip() == "WRITTEN"

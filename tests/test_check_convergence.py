@@ -27,16 +27,29 @@ def test_mesh_section_convergence_key():
 
 def test_check_with_convergence_study(tmp_path):
     out = tmp_path / "reports"
-    code = main(["check", str(DATA / "small_pass.toml"), "-o", str(out), "--mesh-size", "test", "--convergence",
-                 "--no-render", "--no-vtu", "--cache-dir", str(tmp_path / "cache")])
+    code = main(
+        [
+            "check",
+            str(DATA / "small_pass.toml"),
+            "-o",
+            str(out),
+            "--mesh-size",
+            "test",
+            "--convergence",
+            "--no-render",
+            "--no-vtu",
+            "--cache-dir",
+            str(tmp_path / "cache"),
+        ]
+    )
     doc = json.loads((out / "small_pass" / "results.json").read_text())
     case = json.loads((out / "small_pass" / "case.json").read_text())
     from fe_crank.assess.results import load_schema
 
     jsonschema.validate(doc, load_schema())
     assert doc["support_model"].startswith("statically determinate")
-    (key, study), = doc["mesh_convergence"].items()
-    assert study["levels"] == [1.0, 1.5, 2.0]                      # the test preset's r/1 times 1, 1.5, 2
+    ((key, study),) = doc["mesh_convergence"].items()
+    assert study["levels"] == [1.0, 1.5, 2.0]  # the test preset's r/1 times 1, 1.5, 2
     assert set(study["peaks"]) >= {"peak pin force"}
     for name, peaks in study["peaks"].items():
         assert study["changes"][name][-1] == pytest.approx(abs(peaks[2] - peaks[1]) / peaks[2])

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from fe_crank.cli import main
 from fe_crank.check import CheckOptions, run_cases
+from fe_crank.cli import main
 from fe_crank.report.render import image_statistics
 
 pytestmark = pytest.mark.heavy  # two meshes' worth of FE solves and renders
@@ -23,8 +23,20 @@ CASES = [DATA / "small_pass.toml", DATA / "failing_overspeed.toml", DATA / "brok
 def batch(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("e2e")
     out, junit, cache = tmp / "reports", tmp / "junit.xml", tmp / "cache"
-    code = main(["check", *map(str, CASES), "-o", str(out), "--junit", str(junit), "--mesh-size", "test",
-                 "--cache-dir", str(cache)])
+    code = main(
+        [
+            "check",
+            *map(str, CASES),
+            "-o",
+            str(out),
+            "--junit",
+            str(junit),
+            "--mesh-size",
+            "test",
+            "--cache-dir",
+            str(cache),
+        ]
+    )
     return code, out, junit, cache
 
 
@@ -45,8 +57,17 @@ def test_exit_codes_0_and_1_without_the_broken_case(batch, tmp_path):
 def test_files_of_a_computed_case(batch):
     _, out, _, _ = batch
     folder = out / "small_pass"
-    for name in ("results.json", "case.json", "report.html", "throw1.vtu", "throw1_von_mises.png",
-                 "throw1_hotspot.png", "throw1_overspeed.png", "crankpin_polar.png", "torque.png"):
+    for name in (
+        "results.json",
+        "case.json",
+        "report.html",
+        "throw1.vtu",
+        "throw1_von_mises.png",
+        "throw1_hotspot.png",
+        "throw1_overspeed.png",
+        "crankpin_polar.png",
+        "torque.png",
+    ):
         assert (folder / name).is_file(), name
     assert not (out / "broken_units" / "results.json").exists()  # no assessment, no results document
     assert not [p for p in out.iterdir() if p.name.startswith(".")]  # no temporary left behind
@@ -54,6 +75,7 @@ def test_files_of_a_computed_case(batch):
 
 def test_results_json_validates_against_the_schema(batch):
     import jsonschema  # a declared dependency: a failed import must fail the test
+
     from fe_crank.assess.results import load_schema
 
     _, out, _, _ = batch
@@ -90,10 +112,12 @@ def test_rendered_pictures_are_not_blank(batch):
 
 def test_dask_local_cluster_gives_the_serial_results(batch, tmp_path):
     import distributed  # dask[distributed] is a declared dependency
+
     _, out, _, cache = batch
     opts = CheckOptions(mesh_size="test", cache_dir=str(cache), render=False, write_vtu=False)
-    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
-                                  dashboard_address=None) as cluster:
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster:
         on_dask = run_cases(CASES[:2], tmp_path / "d", opts, scheduler=cluster.scheduler_address)
     for r in on_dask:
         serial = json.loads((out / Path(r.source).stem / "case.json").read_text())
@@ -114,8 +138,19 @@ def test_sigkill_during_the_computation_leaves_no_report(tmp_path):
     import time
 
     out = tmp_path / "reports"
-    cmd = [sys.executable, "-c", "from fe_crank.cli import entry; entry()", "check", str(CASES[0]), "-o", str(out),
-           "--mesh-size", "test", "--cache-dir", str(tmp_path / "cache")]
+    cmd = [
+        sys.executable,
+        "-c",
+        "from fe_crank.cli import entry; entry()",
+        "check",
+        str(CASES[0]),
+        "-o",
+        str(out),
+        "--mesh-size",
+        "test",
+        "--cache-dir",
+        str(tmp_path / "cache"),
+    ]
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env={**os.environ})
     try:
         deadline = time.monotonic() + 60

@@ -13,8 +13,11 @@ SCRIPT = Path(__file__).resolve().parents[1] / "benchmarks" / "compare_results.p
 def _tree(root: Path, value: float, seconds: float, status: str = "pass") -> Path:
     case = root / "case_a"
     case.mkdir(parents=True)
-    doc = {"case": "a", "source_file": str(root / "a.toml"),
-           "criteria": [{"name": "criteria.min_static_safety", "value": value, "passed": True}]}
+    doc = {
+        "case": "a",
+        "source_file": str(root / "a.toml"),
+        "criteria": [{"name": "criteria.min_static_safety", "value": value, "passed": True}],
+    }
     (case / "results.json").write_text(json.dumps(doc))
     (case / "case.json").write_text(json.dumps({"status": status, "exit_code": 0, "worst": "x", "seconds": seconds}))
     return root

@@ -14,19 +14,21 @@ import dataclasses
 
 import numpy as np
 import pytest
+from conftest import ROOT
+from verification_meshes import Steel
 
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.convergence import _reusable, fillet_convergence, peak_fillet_stress
+from fe_crank.fe.convergence import (  # FILLETS: the four shaft fillets of a throw
+    FILLETS,
+    _reusable,
+    fillet_convergence,
+    peak_fillet_stress,
+)
 from fe_crank.fe.supports import boundary_facets
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS, mesh_throw
 
-from conftest import ROOT
-from verification_meshes import Steel
-
 pytestmark = pytest.mark.heavy  # two meshes of the shipped throw, three factorisations
-
-from fe_crank.fe.convergence import FILLETS  # the four shaft fillets of a throw
 
 
 @pytest.fixture(scope="module")
@@ -53,18 +55,19 @@ def test_peak_at_the_fillet_nodes_equals_the_whole_mesh_average(check_solution):
     _, units = check_solution
     u = units.displacement("pin_-y")
     peak, where = peak_fillet_stress(units, u)
-    vm = units.von_mises(units.stress_at_nodes(u))      # every node of the mesh, then the fillets
+    vm = units.von_mises(units.stress_at_nodes(u))  # every node of the mesh, then the fillets
     mesh, basis = units.mesh, units.system.basis
     full = {f: vm[basis.get_dofs(boundary_facets(mesh, f, "test")).all()].max() for f in FILLETS}
     best = max(full, key=full.get)
     assert where == best
-    assert peak == pytest.approx(full[best], rel=1e-12)   # summation order of the nodal average only
+    assert peak == pytest.approx(full[best], rel=1e-12)  # summation order of the nodal average only
 
 
 def test_first_level_reuses_the_check_solution(geometry, cache, check_solution):
     tm, units = check_solution
-    reused = fillet_convergence(geometry, Steel(), base=PRESETS["test"], factors=(1.0, 2.0), cache_dir=cache,
-                                first=check_solution)
+    reused = fillet_convergence(
+        geometry, Steel(), base=PRESETS["test"], factors=(1.0, 2.0), cache_dir=cache, first=check_solution
+    )
     fresh = fillet_convergence(geometry, Steel(), base=PRESETS["test"], factors=(1.0, 2.0), cache_dir=cache)
     # one mesh and one solve fewer: the first level is the check's (its factor is released,
     # so a solve there would have raised), the second is solved as before
@@ -89,9 +92,10 @@ def test_reuse_only_for_the_same_mesh_support_and_cases(check_solution):
     opts = FeOptions(cases=("pin_-y", "torque"))
     assert _reusable(check_solution, tm.options, opts)
     finer = dataclasses.replace(tm.options, fillet_divisions=tm.options.fillet_divisions * 1.5)
-    assert not _reusable(check_solution, finer, opts)                                   # another mesh
-    assert not _reusable(check_solution, tm.options, FeOptions(cases=("pin_y",)))       # a case not solved
-    assert not _reusable(check_solution, tm.options,
-                         dataclasses.replace(opts, torque_reaction="end_1"))             # another support
+    assert not _reusable(check_solution, finer, opts)  # another mesh
+    assert not _reusable(check_solution, tm.options, FeOptions(cases=("pin_y",)))  # a case not solved
+    assert not _reusable(
+        check_solution, tm.options, dataclasses.replace(opts, torque_reaction="end_1")
+    )  # another support
     assert not _reusable(None, tm.options, opts)
     assert np.all(np.isfinite(units.displacement("torque")))

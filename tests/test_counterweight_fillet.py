@@ -5,7 +5,6 @@ under a counterweight stress criterion, and the counterweight stress under refin
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import shutil
 from pathlib import Path
@@ -41,6 +40,7 @@ def _small(fillet: str | None = "3 mm", **cw_over) -> dict:
 
 # ---------------------------------------------------------------- input
 
+
 def test_fillet_radius_parsed_with_its_unit_and_refused_without():
     g = geometry_from_dict(_small("3 mm"), "g.toml")
     assert [cw.fillet_radius for cw in g.throw().counterweights] == [0.003, 0.003]
@@ -49,11 +49,14 @@ def test_fillet_radius_parsed_with_its_unit_and_refused_without():
         geometry_from_dict(_small(3), "g.toml")  # a bare number: which unit?
 
 
-@pytest.mark.parametrize(("fillet", "over", "why"), [
-    ("0 mm", {}, "must be positive"),
-    ("10 mm", {}, "does not fit"),                     # = the thickness (10 mm)
-    ("2 mm", {"thickness": "9 mm"}, "1 mm step"),      # a 1 mm step to the web's face cannot take it
-])
+@pytest.mark.parametrize(
+    ("fillet", "over", "why"),
+    [
+        ("0 mm", {}, "must be positive"),
+        ("10 mm", {}, "does not fit"),  # = the thickness (10 mm)
+        ("2 mm", {"thickness": "9 mm"}, "1 mm step"),  # a 1 mm step to the web's face cannot take it
+    ],
+)
 def test_fillet_radius_that_cannot_be_built_is_refused(fillet, over, why):
     with pytest.raises(GeometryError, match=why) as exc:
         geometry_from_dict(_small(fillet, **over), "g.toml")
@@ -62,8 +65,11 @@ def test_fillet_radius_that_cannot_be_built_is_refused(fillet, over, why):
 
 def _case_folder(tmp_path: Path, drop_fillet: bool) -> Path:
     """The shipped seed-001 load case with its engine and geometry copied beside it."""
-    for sub, name in (("engines", "single_cylinder_seed001.toml"), ("geometry", "single_cylinder_seed001.toml"),
-                      ("loadcases", "single_cylinder_seed001.toml")):
+    for sub, name in (
+        ("engines", "single_cylinder_seed001.toml"),
+        ("geometry", "single_cylinder_seed001.toml"),
+        ("loadcases", "single_cylinder_seed001.toml"),
+    ):
         (tmp_path / sub).mkdir(exist_ok=True)
         shutil.copy(ROOT / sub / name, tmp_path / sub / name)
     geo = tmp_path / "geometry" / "single_cylinder_seed001.toml"
@@ -89,6 +95,7 @@ def test_counterweight_stress_criterion_refuses_a_sharp_counterweight(tmp_path):
 
 # ---------------------------------------------------------------- the fillet's material
 
+
 @pytest.mark.heavy
 def test_fillet_material_in_closed_form_and_in_the_counterweight_part():
     """Each right-angled re-entrant corner, rounded with radius r_c, gains the area between
@@ -110,6 +117,7 @@ def test_fillet_material_in_closed_form_and_in_the_counterweight_part():
 
 # ---------------------------------------------------------------- stress under refinement
 
+
 def _cw_peak(geometry: dict, options) -> tuple[float, float, bool]:
     """(peak von Mises over the counterweight groups under the unit centrifugal load
     omega = 1 rad/s, Pa; the largest edge on the counterweight fillet faces, m (0 when
@@ -126,8 +134,14 @@ def _cw_peak(geometry: dict, options) -> tuple[float, float, bool]:
     units = solve_unit_cases(tm, mat, FeOptions(cases=("centrifugal",)))
     groups = assessed_groups(units)
     ids = np.unique(np.concatenate([v for k, v in groups.items() if k.startswith(("counterweight", "junction"))]))
-    s = stress_at_selected_nodes(units.mesh, [units.displacement("centrifugal")], mat.youngs_modulus,
-                                 mat.poisson_ratio, ids, dofs=units.system.basis.dofs)[0]
+    s = stress_at_selected_nodes(
+        units.mesh,
+        [units.displacement("centrifugal")],
+        mat.youngs_modulus,
+        mat.poisson_ratio,
+        ids,
+        dofs=units.system.basis.dofs,
+    )[0]
     vm = von_mises(s)
     peak_node = ids[int(np.argmax(vm))]
     m = tm.mesh
@@ -136,8 +150,10 @@ def _cw_peak(geometry: dict, options) -> tuple[float, float, bool]:
         if name in (m.boundaries or {}):
             f = m.facets[:, m.boundaries[name]]
             p = m.p
-            edge = max(edge, max(float(np.linalg.norm(p[:, f[i]] - p[:, f[j]], axis=0).max())
-                                 for i, j in ((0, 1), (1, 2), (0, 2))))
+            edge = max(
+                edge,
+                max(float(np.linalg.norm(p[:, f[i]] - p[:, f[j]], axis=0).max()) for i, j in ((0, 1), (1, 2), (0, 2))),
+            )
             on_fillet |= bool(np.isin(peak_node, units.system.basis.get_dofs(facets=m.boundaries[name]).all()))
     return float(vm.max()), edge, on_fillet
 
@@ -187,9 +203,13 @@ def test_convergence_study_follows_the_counterweight_fillets():
     from fe_crank.mesh import MeshOptions
 
     g = geometry_from_dict(_small("3 mm"), "g.toml")
-    study = fillet_convergence(g, load_material("C45"), base=MeshOptions(coarse_divisions=1.5, fillet_divisions=1.0,
-                                                                         grading=2.0),
-                               factors=(1.0, 2.0), loads={"spin": {"centrifugal": 1.0}})
+    study = fillet_convergence(
+        g,
+        load_material("C45"),
+        base=MeshOptions(coarse_divisions=1.5, fillet_divisions=1.0, grading=2.0),
+        factors=(1.0, 2.0),
+        loads={"spin": {"centrifugal": 1.0}},
+    )
     name = COUNTERWEIGHT_PREFIX + "spin"
     assert set(study.changes) == {"spin", name}
     assert all(w.startswith("counterweight_fillet_") for w in (lv.where[name] for lv in study.levels))

@@ -24,14 +24,25 @@ def seed(request):
 def _single(offset=0.0, inertia=0.02, sense=1, gas=None, bank=0.0, phase=0.0):
     r, l = 0.064, 0.307
     if gas is None:
-        gas = wiebe_cycle(bore=0.092, r=r, l=l, compression_ratio=8.5, intake_pressure=0.09e6,
-                          exhaust_pressure=0.11e6, heat_released=1800.0, combustion_start=np.radians(-15),
-                          combustion_duration=np.radians(50))
+        gas = wiebe_cycle(
+            bore=0.092,
+            r=r,
+            l=l,
+            compression_ratio=8.5,
+            intake_pressure=0.09e6,
+            exhaust_pressure=0.11e6,
+            heat_released=1800.0,
+            combustion_start=np.radians(-15),
+            combustion_duration=np.radians(50),
+        )
     return model.Engine(
-        name="single", strokes=4, shafts=(model.Shaft("main", sense=sense, phase=phase),),
+        name="single",
+        strokes=4,
+        shafts=(model.Shaft("main", sense=sense, phase=phase),),
         throws=(model.Throw("1", "main", 0.0, r, 0.0, 0.17),),
-        cylinders=(model.Cylinder("1", "1", 0.092, model.Rod(l, 1.9, 0.138, inertia), 1.1,
-                                  bank_angle=bank, pin_offset=offset),),
+        cylinders=(
+            model.Cylinder("1", "1", 0.092, model.Rod(l, 1.9, 0.138, inertia), 1.1, bank_angle=bank, pin_offset=offset),
+        ),
         gas=gas,
     )
 
@@ -46,9 +57,12 @@ def test_virtual_power_at_every_grid_angle(offset, inertia):
     cyl = eng.cylinders[0]
     m = piston_motion(cf.phi, 0.064, 0.307, op.speed, offset=offset, rod_cg=0.138)
     J = 1.9 * 0.138 * (0.307 - 0.138) if inertia is None else inertia
-    power = (cf.gas * m.v - cyl.piston_mass * m.a * m.v
-             - 1.9 * np.sum(m.rod_cg_acceleration * m.rod_cg_velocity, axis=1)
-             - J * m.beta_ddot * m.beta_dot)
+    power = (
+        cf.gas * m.v
+        - cyl.piston_mass * m.a * m.v
+        - 1.9 * np.sum(m.rod_cg_acceleration * m.rod_cg_velocity, axis=1)
+        - J * m.beta_ddot * m.beta_dot
+    )
     scale = np.max(np.abs(power))
     np.testing.assert_allclose(res.torque * op.speed, power, atol=1e-11 * scale)
 
@@ -97,9 +111,18 @@ def test_torque_equals_minus_balancing_moment_of_force_analysis(seed):
     res = analyse(seed.engine, seed.operating, step=np.radians(5.0))
     cyl = seed.engine.cylinders[0]
     cf = res.cylinders["1"]
-    ks = analyse_position(cf.phi, r=0.064, l=cyl.rod.length, omega=seed.operating.speed, gas_force=cf.gas,
-                          piston_mass=cyl.piston_mass, rod_mass=cyl.rod.mass, rod_cg=cyl.rod.cg_from_big_end,
-                          rod_inertia=cyl.rod.inertia_cg, gravity=(0.0, 0.0))
+    ks = analyse_position(
+        cf.phi,
+        r=0.064,
+        l=cyl.rod.length,
+        omega=seed.operating.speed,
+        gas_force=cf.gas,
+        piston_mass=cyl.piston_mass,
+        rod_mass=cyl.rod.mass,
+        rod_cg=cyl.rod.cg_from_big_end,
+        rod_inertia=cyl.rod.inertia_cg,
+        gravity=(0.0, 0.0),
+    )
     np.testing.assert_allclose(res.torque, -ks.balancing_moment, atol=1e-10 * np.abs(res.torque).max())
     # force of the rod on the crankpin = -R12 (crank on rod), in the throw frame (x, y) = (tangential, radial)
     pin = res.throws["1"].pin_force
@@ -190,11 +213,13 @@ def test_bearing_split_and_centrifugal_force(seed):
     the centrifugal force of the throw's rotating mass (engine frame)."""
     res = analyse(seed.engine, seed.operating, step=np.radians(5.0))
     th = res.throws["1"]
-    np.testing.assert_allclose(th.bearing_front + th.bearing_rear,
-                               _to_engine(th.pin_force, th.angle_global)
-                               + 0.1714 * 0.064 * seed.operating.speed**2
-                               * np.stack([np.sin(th.angle_global), np.cos(th.angle_global)], 1), rtol=1e-12,
-                               atol=1e-9)
+    np.testing.assert_allclose(
+        th.bearing_front + th.bearing_rear,
+        _to_engine(th.pin_force, th.angle_global)
+        + 0.1714 * 0.064 * seed.operating.speed**2 * np.stack([np.sin(th.angle_global), np.cos(th.angle_global)], 1),
+        rtol=1e-12,
+        atol=1e-9,
+    )
     np.testing.assert_allclose(np.hypot(*(th.bearing_front).T), np.hypot(*(th.bearing_rear).T))
 
 
@@ -211,8 +236,18 @@ def test_inconsistent_firing_offset_is_reported(seed):
 
 
 def test_wiebe_cycle_without_heat_is_the_polytrope():
-    g = wiebe_cycle(bore=0.092, r=0.064, l=0.307, compression_ratio=8.5, intake_pressure=1e5, exhaust_pressure=1e5,
-                    heat_released=0.0, combustion_start=0.0, combustion_duration=1.0, k=1.35)
+    g = wiebe_cycle(
+        bore=0.092,
+        r=0.064,
+        l=0.307,
+        compression_ratio=8.5,
+        intake_pressure=1e5,
+        exhaust_pressure=1e5,
+        heat_released=0.0,
+        combustion_start=0.0,
+        combustion_duration=1.0,
+        k=1.35,
+    )
     closed = (g.angle <= np.pi) | (g.angle >= 3 * np.pi)
     V = cylinder_volume(g.angle, 0.092, 0.064, 0.307, 8.5)
     pv = g.pressure[closed] * V[closed] ** 1.35
@@ -224,9 +259,19 @@ def test_wiebe_cycle_without_heat_is_the_polytrope():
 def test_wiebe_cycle_with_fast_combustion_at_tdc_gives_otto_efficiency():
     """Heat released in 1 deg at TDC, no pumping loop: work = Q (1 - eps^(1-k)) (Otto cycle)."""
     Q, eps, k = 1000.0, 8.5, 1.35
-    g = wiebe_cycle(bore=0.092, r=0.064, l=0.307, compression_ratio=eps, intake_pressure=1e5, exhaust_pressure=1e5,
-                    heat_released=Q, combustion_start=np.radians(-0.5), combustion_duration=np.radians(1.0),
-                    k=k, n=3601)
+    g = wiebe_cycle(
+        bore=0.092,
+        r=0.064,
+        l=0.307,
+        compression_ratio=eps,
+        intake_pressure=1e5,
+        exhaust_pressure=1e5,
+        heat_released=Q,
+        combustion_start=np.radians(-0.5),
+        combustion_duration=np.radians(1.0),
+        k=k,
+        n=3601,
+    )
     phi = np.linspace(0, 4 * np.pi, 400001)
     V = cylinder_volume(phi, 0.092, 0.064, 0.307, eps)
     p = pressure_at(g, phi, 4 * np.pi)

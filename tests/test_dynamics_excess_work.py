@@ -26,8 +26,13 @@ def test_excess_energy_is_the_periodic_trapezoid_of_a_pure_second_order_torque()
     (relative size lambda) stay below it; pairing each sample with the one two steps on
     instead of the next (a shifted trapezoid) reads 29 % low and fails."""
     r, l = 0.05, 50.0
-    e = model.Engine("yoke-limit", 2, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, r, 0.0, 0.0),),
-                     (model.Cylinder("1", "1", 0.1, model.Rod(l, 0.0, l / 2), 2.0),))
+    e = model.Engine(
+        "yoke-limit",
+        2,
+        (model.Shaft("main"),),
+        (model.Throw("1", "main", 0.0, r, 0.0, 0.0),),
+        (model.Cylinder("1", "1", 0.1, model.Rod(l, 0.0, l / 2), 2.0),),
+    )
     res = analyse(e, model.OperatingPoint(100.0), step=2 * math.pi / 16)
     assert res.theta.size == 16
     g = (math.pi / 8) / math.tan(math.pi / 8)

@@ -67,8 +67,7 @@ def test_slider_crank_at_tdc_by_hand_for_a_scalar_angle():
     rod force = F_g - m_p a = 10000 - 937.5 = 9062.5 N.  A scalar angle gives scalars."""
     from fe_crank.slider_crank import solve_cylinder
 
-    sol = solve_cylinder(0.0, r=0.05, l=0.2, omega=100.0, gas_force=10000.0, piston_mass=1.5,
-                         rod_mass=1.0, rod_cg=0.05)
+    sol = solve_cylinder(0.0, r=0.05, l=0.2, omega=100.0, gas_force=10000.0, piston_mass=1.5, rod_mass=1.0, rod_cg=0.05)
     for name in ("rod_force", "side_thrust", "tangential", "radial", "torque"):
         assert np.shape(sol[name]) == ()
     assert float(sol["radial"]) == pytest.approx(-8531.25, rel=1e-13)
@@ -96,8 +95,10 @@ def test_firing_offset_off_its_tdc_is_reported_even_when_small(seed, offset_deg,
     cyl = replace(seed.engine.cylinders[0], firing_offset=np.radians(offset_deg))
     res = analyse(replace(seed.engine, cylinders=(cyl,)), seed.operating, step=np.radians(10))
     (w,) = res.warnings
-    assert w == (f"cylinder {cyl.name}: firing_offset {offset_deg:.6g} deg is not at its TDC (crank "
-                 f"{off_tdc:.6g} deg from the axis); the gas table is applied from the nearest TDC")
+    assert w == (
+        f"cylinder {cyl.name}: firing_offset {offset_deg:.6g} deg is not at its TDC (crank "
+        f"{off_tdc:.6g} deg from the axis); the gas table is applied from the nearest TDC"
+    )
     cyl = replace(seed.engine.cylinders[0], firing_offset=np.radians(360.0))
     assert not analyse(replace(seed.engine, cylinders=(cyl,)), seed.operating, step=np.radians(10)).warnings
 
@@ -125,8 +126,7 @@ def test_inline_four_cylinder_records_against_independent_relations(request, see
     for cyl in lc.engine.cylinders:
         cf = res.cylinders[cyl.name]
         assert (cf.name, cf.throw) == (cyl.name, cyl.throw)
-        np.testing.assert_allclose(cf.gas_angle, np.mod(res.theta - cyl.firing_offset, 4 * np.pi),
-                                   rtol=0, atol=1e-9)
+        np.testing.assert_allclose(cf.gas_angle, np.mod(res.theta - cyl.firing_offset, 4 * np.pi), rtol=0, atol=1e-9)
         r, l = lc.engine.throw(cyl.throw).crank_radius, cyl.rod.length
         phi = cf.motion.phi
         np.testing.assert_allclose(phi, cf.phi, rtol=0, atol=0)
@@ -135,10 +135,12 @@ def test_inline_four_cylinder_records_against_independent_relations(request, see
         np.testing.assert_allclose(cf.volume_swept, np.pi / 4 * cyl.bore**2 * s, rtol=1e-12, atol=1e-18)
         beta = cf.motion.beta
         axial = (cf.rod_force + cf.side_thrust * np.sin(beta)) / np.cos(beta)
-        np.testing.assert_allclose(axial, cf.gas - cyl.piston_mass * cf.motion.a, rtol=1e-12,
-                                   atol=1e-9 * np.max(np.abs(cf.gas)))
-        works.append(np.sum(0.5 * (cf.pressure + np.roll(cf.pressure, -1)) * (np.roll(cf.volume_swept, -1)
-                                                                             - cf.volume_swept)))
+        np.testing.assert_allclose(
+            axial, cf.gas - cyl.piston_mass * cf.motion.a, rtol=1e-12, atol=1e-9 * np.max(np.abs(cf.gas))
+        )
+        works.append(
+            np.sum(0.5 * (cf.pressure + np.roll(cf.pressure, -1)) * (np.roll(cf.volume_swept, -1) - cf.volume_swept))
+        )
     assert works[0] > 100.0  # J: a working engine
     np.testing.assert_allclose(works, works[0], rtol=1e-3)  # four equal cylinders
     work_torque = np.sum(res.torque) * res.cycle / res.theta.size

@@ -24,8 +24,19 @@ ENV = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "PYVISTA_OFF_SCREEN": "true"}
 
 
 def check_cmd(out: Path, cache: Path, *extra) -> list[str]:
-    return FE_CRANK + ["check", str(CASE), "-o", str(out), "--cache-dir", str(cache), "--mesh-size", "test",
-                       "--no-render", "--no-vtu", *map(str, extra)]
+    return FE_CRANK + [
+        "check",
+        str(CASE),
+        "-o",
+        str(out),
+        "--cache-dir",
+        str(cache),
+        "--mesh-size",
+        "test",
+        "--no-render",
+        "--no-vtu",
+        *map(str, extra),
+    ]
 
 
 def leftovers(out: Path, cache: Path) -> list[str]:
@@ -70,8 +81,7 @@ def test_kill_at_each_stage_then_rerun(tmp_path):
     out, cache = tmp_path / "out", tmp_path / "cache"
 
     def partial_files():
-        return out.exists() and any(p.is_dir() and ".partial-" in p.name and any(p.iterdir())
-                                    for p in out.iterdir())
+        return out.exists() and any(p.is_dir() and ".partial-" in p.name and any(p.iterdir()) for p in out.iterdir())
 
     def meshing():
         return cache.exists() and any(p.name.startswith(".") for p in cache.iterdir())
@@ -96,11 +106,9 @@ def test_kill_at_each_stage_then_rerun(tmp_path):
 def test_damaged_cache_entry_is_rebuilt(tmp_path):
     """A truncated mesh.npz, then a garbled stats.json: each is discarded and the
     mesh rebuilt with the same element count (gmsh is deterministic for one input)."""
-    from fe_crank.io.geometry import load_geometry
-    from fe_crank.mesh import mesh_throw
-
     from fe_crank.geometry.estimate import estimate_elements
-    from fe_crank.mesh import resolve_options
+    from fe_crank.io.geometry import load_geometry
+    from fe_crank.mesh import mesh_throw, resolve_options
 
     g = load_geometry(GEOM)
     first = mesh_throw(g, size="test", cache_dir=tmp_path)
@@ -129,8 +137,10 @@ def test_two_writers_to_one_output_folder(tmp_path, shared_cache):
     """Two `fe-crank check` processes on the same case and output folder at once:
     both finish, the report is one complete run's, nothing temporary is left."""
     out, cache = tmp_path / "out", shared_cache
-    procs = [subprocess.Popen(check_cmd(out, cache), env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                              text=True) for _ in range(2)]
+    procs = [
+        subprocess.Popen(check_cmd(out, cache), env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        for _ in range(2)
+    ]
     for p in procs:
         _, err = p.communicate(timeout=900)
         assert p.returncode == 0, err
@@ -139,15 +149,27 @@ def test_two_writers_to_one_output_folder(tmp_path, shared_cache):
     assert leftovers(out, cache) == []
 
 
-@pytest.mark.parametrize("args, words", [
-    (["-o", "/sys/fe-crank-reports"], ["--output", "cannot write"]),
-    (["--junit", "/sys/fe-crank-junit.xml"], ["--junit", "cannot write"]),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["-o", "/sys/fe-crank-reports"], ["--output", "cannot write"]),
+        (["--junit", "/sys/fe-crank-junit.xml"], ["--junit", "cannot write"]),
+    ],
+)
 def test_read_only_outputs_refused_before_work(tmp_path, args, words):
     if not Path("/sys").is_dir():
         pytest.skip("needs a read-only file system")
-    cmd = FE_CRANK + ["check", str(CASE), "--cache-dir", str(tmp_path / "c"), "--mesh-size", "test",
-                      "-o", str(tmp_path / "out"), *args]
+    cmd = FE_CRANK + [
+        "check",
+        str(CASE),
+        "--cache-dir",
+        str(tmp_path / "c"),
+        "--mesh-size",
+        "test",
+        "-o",
+        str(tmp_path / "out"),
+        *args,
+    ]
     t0 = time.monotonic()
     r = subprocess.run(cmd, env=ENV, capture_output=True, text=True, timeout=300)
     assert r.returncode == 2 and "Traceback" not in r.stderr
@@ -170,13 +192,27 @@ def test_hostile_files_in_a_folder_do_not_stop_the_valid_case(tmp_path, shared_c
     (d / "binary.toml").write_bytes(bytes(range(256)))
     (d / "hang.toml").write_text(CASE.read_text().replace('speed = "3000 rpm"', 'speed = "9**9**9 rpm"'))
     out = tmp_path / "out"
-    cmd = FE_CRANK + ["check", str(d), "-o", str(out), "--cache-dir", str(shared_cache), "--mesh-size", "test",
-                      "--no-render", "--no-vtu"]
+    cmd = FE_CRANK + [
+        "check",
+        str(d),
+        "-o",
+        str(out),
+        "--cache-dir",
+        str(shared_cache),
+        "--mesh-size",
+        "test",
+        "--no-render",
+        "--no-vtu",
+    ]
     r = subprocess.run(cmd, env=ENV, capture_output=True, text=True, timeout=900)
     assert r.returncode == 2, r.stderr
     assert "Traceback" not in r.stderr + r.stdout
-    for name, words in (("bomb.toml", "nested deeper"), ("loop.toml", "symbolic-link loop"),
-                        ("binary.toml", "binary"), ("hang.toml", "operating.speed")):
+    for name, words in (
+        ("bomb.toml", "nested deeper"),
+        ("loop.toml", "symbolic-link loop"),
+        ("binary.toml", "binary"),
+        ("hang.toml", "operating.speed"),
+    ):
         line = next(ln for ln in r.stderr.splitlines() if name in ln)
         assert words in line, line
     assert_complete(out)

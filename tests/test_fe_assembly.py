@@ -5,14 +5,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet2, asm
-from skfem.models.elasticity import lame_parameters as skfem_lame, linear_elasticity
+from skfem.models.elasticity import lame_parameters as skfem_lame
+from skfem.models.elasticity import linear_elasticity
 
 from fe_crank.errors import InputError, SolverError
 from fe_crank.fe import bearing_support, centrifugal, elasticity, factorise
 from fe_crank.fe.assembly import assemble_foundation, assemble_stiffness
+from fe_crank.fe.forms import lame_parameters
 from fe_crank.fe.loads import centrifugal_load
 from fe_crank.fe.supports import radial_direction
-from fe_crank.fe.forms import lame_parameters
 
 E, NU = 210e9, 0.3
 
@@ -30,11 +31,11 @@ def test_stiffness_equals_skfem_linear_elasticity(ball):
     a wrong index or factor shows at 1e-2 or more) and symmetric to round-off (7e-17)."""
     b = Basis(ball, ElementTetP2(), intorder=2)
     vb = Basis(ball, ElementVector(ElementTetP2()), intorder=2)
-    K = assemble_stiffness(b, E, NU, chunk=37)                  # several chunks
+    K = assemble_stiffness(b, E, NU, chunk=37)  # several chunks
     K_ref = asm(linear_elasticity(*skfem_lame(E, NU)), vb)
     assert abs(K - K_ref).max() < 1e-14 * abs(K_ref).max()
     assert abs(K - K.T).max() < 1e-14 * abs(K_ref).max()
-    K_form = asm(elasticity(E, NU), vb)                          # our reference form too
+    K_form = asm(elasticity(E, NU), vb)  # our reference form too
     assert abs(K - K_form).max() < 1e-14 * abs(K_ref).max()
 
 
@@ -98,8 +99,10 @@ def test_solvers_reach_the_same_solution(ball, method):
     b = Basis(ball, ElementTetP2(), intorder=2)
     K = assemble_stiffness(b, E, NU).tocsr()
     f = centrifugal_load(b, 7850.0, 100.0)
-    fixed = (3 * b.get_dofs(ball.facets_satisfying(lambda p: p[2] < -0.5, boundaries_only=True)).all()[:, None]
-             + np.arange(3)).ravel()
+    fixed = (
+        3 * b.get_dofs(ball.facets_satisfying(lambda p: p[2] < -0.5, boundaries_only=True)).all()[:, None]
+        + np.arange(3)
+    ).ravel()
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
     Kr = K[free][:, free]
     x_ref = np.linalg.solve(Kr.toarray(), f[free])
@@ -115,7 +118,7 @@ def test_singular_matrix_and_nan_are_solver_errors(ball):
     b = Basis(ball, ElementTetP2(), intorder=2)
     K = assemble_stiffness(b, E, NU)
     f = np.zeros(K.shape[0])
-    f[::3] = 1.0                                  # unbalanced load on a free body
+    f[::3] = 1.0  # unbalanced load on a free body
     with pytest.raises(SolverError):
         factorise(K, "superlu").solve(f)
     with pytest.raises(SolverError, match="NaN"):

@@ -6,22 +6,21 @@ supported beam (reactions by statics, moment by the lever arm), written out in e
 
 from __future__ import annotations
 
-
 import numpy as np
 import pytest
 from skfem import ElementTetP2
+from verification_meshes import Steel, simple_throw
 
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.supports import _robust_mapping
-from verification_meshes import Steel, simple_throw
 
 # simple_throw defaults (m): journals d 50 x 30, webs 80 wide x 20 thick (box), pin d 45 x 30
 # at R = 45; axial layout: journal_1 [-65, -35] mm, web_1 [-35, -15], pin [-15, 15], ...
 L_J, T_W, L_P, B_W, R_CRANK = 0.030, 0.020, 0.030, 0.080, 0.045
-Z1 = -(L_P / 2 + T_W + L_J)              # main-bearing centre of journal_1: the end face, -65 mm
+Z1 = -(L_P / 2 + T_W + L_J)  # main-bearing centre of journal_1: the end face, -65 mm
 Z2 = -Z1
-Z_WEB1 = -(L_P / 2 + T_W / 2)            # web_1 centre plane, -25 mm
-WEB_Y = (-0.05 * 0.7, R_CRANK + 0.05 * 0.7)   # web box in y: [-0.7 d_j, R + 0.7 d_j]
+Z_WEB1 = -(L_P / 2 + T_W / 2)  # web_1 centre plane, -25 mm
+WEB_Y = (-0.05 * 0.7, R_CRANK + 0.05 * 0.7)  # web box in y: [-0.7 d_j, R + 0.7 d_j]
 
 
 @pytest.fixture(scope="module")
@@ -45,7 +44,7 @@ def section_resultants(unit, u, z):
     mesh, E, nu = unit.mesh, unit.material.youngs_modulus, unit.material.poisson_ratio
     lam, mu = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
     p, t = mesh.p, mesh.t[:4]
-    d = p[2, t] - z                                       # (4, ne) signed distances
+    d = p[2, t] - z  # (4, ne) signed distances
     cut = np.flatnonzero((d.min(axis=0) < 0) & (d.max(axis=0) > 0))
     tri_pts, tri_w, tri_el = [], [], []
     for e in cut:
@@ -65,17 +64,17 @@ def section_resultants(unit, u, z):
                 tri_pts.append(0.5 * (v[q[0]] + v[q[1]]))
                 tri_w.append(area / 3)
                 tri_el.append(e)
-    x = np.array(tri_pts).T                                # (3, nq)
+    x = np.array(tri_pts).T  # (3, nq)
     w, el = np.array(tri_w), np.array(tri_el)
     mp = _robust_mapping(mesh)
-    X = mp.invF(x[:, :, None], tind=el)                    # (3, nq, 1)
-    J = mp.invDF(X, tind=el)[:, :, :, 0]                   # (3, 3, nq): d(ref)/d(x)
+    X = mp.invF(x[:, :, None], tind=el)  # (3, nq, 1)
+    J = mp.invDF(X, tind=el)[:, :, :, 0]  # (3, 3, nq): d(ref)/d(x)
     elem, dofs = ElementTetP2(), unit.system.basis.element_dofs
-    grad = np.zeros((3, 3, x.shape[1]))                    # grad[i, j] = d u_i / d x_j
+    grad = np.zeros((3, 3, x.shape[1]))  # grad[i, j] = d u_i / d x_j
     for a in range(10):
-        dphi = elem.lbasis(X[:, :, 0], a)[1]               # (3, nq) reference gradient
+        dphi = elem.lbasis(X[:, :, 0], a)[1]  # (3, nq) reference gradient
         g = np.einsum("kjq,kq->jq", J, dphi)
-        ua = u.reshape(-1, 3)[dofs[a, el]].T               # (3, nq)
+        ua = u.reshape(-1, 3)[dofs[a, el]].T  # (3, nq)
         grad += ua[:, None, :] * g[None, :, :]
     szz = lam * np.trace(grad) + 2 * mu * grad[2, 2]
     return np.sum(w * szz), np.sum(w * szz * x[1]), -np.sum(w * szz * x[0])
@@ -96,7 +95,7 @@ def test_reactions_are_the_simply_supported_beam_values(unit):
         # line of action: M = z_c e_z x R -> M_x = -z_c R_y, M_y = z_c R_x
         for r, zc in ((r1, Z1), (r2, Z2)):
             z_res = (r[4] * r[0] - r[3] * r[1]) / (r[0] ** 2 + r[1] ** 2)
-            assert z_res == pytest.approx(zc, abs=1e-4)      # 0.1 mm: the facetted surface only
+            assert z_res == pytest.approx(zc, abs=1e-4)  # 0.1 mm: the facetted surface only
     assert unit.bearing_centres["journal_1"] == pytest.approx(Z1, abs=1e-4)
     assert unit.bearing_centres["journal_2"] == pytest.approx(Z2, abs=1e-4)
     assert "statically determinate" in unit.support_model
@@ -149,7 +148,7 @@ def test_no_stiffness_parameter_enters(throw, unit):
         assert np.abs(s1 - s0).max() < 1e-7 * np.abs(s0).max()
     # torque taken off at end_1 instead: the pin cases' bending is unchanged, only the torque path moves
     front = solve_unit_cases(throw, Steel(), FeOptions(cases=("pin_-y", "torque"), torque_reaction="end_1"))
-    assert front.cases["torque"].applied[5] == pytest.approx(-1.0, rel=1e-12)   # enters at end_2 now
+    assert front.cases["torque"].applied[5] == pytest.approx(-1.0, rel=1e-12)  # enters at end_2 now
     assert front.cases["torque"].reactions["end_1"][5] == pytest.approx(1.0, rel=1e-9)
     s0 = unit.stress_at_nodes(unit.displacement("pin_-y"))
     s1 = front.stress_at_nodes(front.displacement("pin_-y"))
@@ -165,8 +164,7 @@ def test_foundation_needs_a_stated_stiffness_and_is_stiffness_dependent(throw):
         solve_unit_cases(throw, Steel(), FeOptions(support="rigid", cases=("pin_-y",)))
     k = 210e9 / 0.05
     a = solve_unit_cases(throw, Steel(), FeOptions(support="foundation", bearing_stiffness=k, cases=("pin_-y",)))
-    b = solve_unit_cases(throw, Steel(), FeOptions(support="foundation", bearing_stiffness=k / 10,
-                                                   cases=("pin_-y",)))
+    b = solve_unit_cases(throw, Steel(), FeOptions(support="foundation", bearing_stiffness=k / 10, cases=("pin_-y",)))
     assert "foundation" in a.support_model and a.bearing_stiffness == k
     ca = a.cases["pin_-y"]
     assert ca.equilibrium_error < 1e-6

@@ -17,15 +17,22 @@ import numpy as np
 import pytest
 import scipy.sparse.linalg as spla
 from skfem import Basis, ElementTetP2
+from verification_meshes import _mapped_tensor_mesh, _mesh, _name_surfaces
 
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_stiffness
-from fe_crank.fe.determinate import (DeterminateLayout, _resultants, bearing_surface_load, determinate_support,
-                                     face_centre, point_constraints, transfer_moment_load)
+from fe_crank.fe.determinate import (
+    DeterminateLayout,
+    _resultants,
+    bearing_surface_load,
+    determinate_support,
+    face_centre,
+    point_constraints,
+    transfer_moment_load,
+)
 from fe_crank.fe.loads import pin_pressure_load
 from fe_crank.fe.supports import rigid_body_modes
 from fe_crank.gmsh_io import gmsh_session
-from verification_meshes import _mapped_tensor_mesh, _mesh, _name_surfaces
 
 H, Z1, Z2, LJ = 0.01, -0.05, 0.05, 0.02
 TOL = 1e-12
@@ -38,14 +45,18 @@ def _square_bar():
         return (np.abs(np.abs(x[0]) - H) < tol) | (np.abs(np.abs(x[1]) - H) < tol)
 
     return _mapped_tensor_mesh(
-        np.linspace(-H, H, 3), np.linspace(-H, H, 3), np.array([Z1, Z1 + LJ, -0.01, 0.01, Z2 - LJ, Z2]),
-        lambda p: p, {
+        np.linspace(-H, H, 3),
+        np.linspace(-H, H, 3),
+        np.array([Z1, Z1 + LJ, -0.01, 0.01, Z2 - LJ, Z2]),
+        lambda p: p,
+        {
             "end_1": lambda x: np.abs(x[2] - Z1) < tol,
             "end_2": lambda x: np.abs(x[2] - Z2) < tol,
             "journal_1": lambda x: lateral(x) & (x[2] < Z1 + LJ),
             "journal_2": lambda x: lateral(x) & (x[2] > Z2 - LJ),
             "crankpin": lambda x: lateral(x) & (np.abs(x[2]) < Z2 - LJ),
-        })
+        },
+    )
 
 
 @pytest.fixture(scope="module")
@@ -60,10 +71,10 @@ def support(bar):
     return determinate_support(bar, DeterminateLayout())
 
 
-def _resultant(f, x, about=np.zeros(3)):
+def _resultant(f, x, about=(0.0, 0.0, 0.0)):
     """(F, M about ``about``) of a nodal load vector, written out here."""
     F = f.reshape(-1, 3)
-    return np.concatenate([F.sum(axis=0), np.cross(x.T - about, F).sum(axis=0)])
+    return np.concatenate([F.sum(axis=0), np.cross(x.T - np.asarray(about), F).sum(axis=0)])
 
 
 def test_layout_defaults_are_the_documented_ones():
@@ -86,7 +97,7 @@ def test_bearing_weights_are_the_p2_facet_integrals(bar):
     nz = w[np.abs(w) > 1e-14]
     assert np.all(np.isclose(nz, 1 / 48, rtol=1e-12) | np.isclose(nz, 1 / 24, rtol=1e-12))
     n48, n24 = np.isclose(nz, 1 / 48, rtol=1e-12).sum(), np.isclose(nz, 1 / 24, rtol=1e-12).sum()
-    assert n48 + 2 * n24 == 16 * 3                         # 16 triangles x 3 mid-edge nodes
+    assert n48 + 2 * n24 == 16 * 3  # 16 triangles x 3 mid-edge nodes
     # the weights' centroid is the area centroid (P2 interpolates x exactly)
     np.testing.assert_allclose(bar.doflocs @ w, c, rtol=0, atol=1e-15)
     np.testing.assert_allclose(face_centre(bar, "end_1"), (0.0, 0.0, Z1), rtol=0, atol=1e-15)
@@ -100,7 +111,7 @@ def test_transfer_moment_load_by_hand():
     M = (0, 0, 2): theta = (0, 0, 2); f_i = w_i theta x d_i, e.g. at d = (1, 0, 0):
     (0, 0, 2) x (1, 0, 0) / 4 = (0, 0.5, 0).  M = (1, 0, 0): theta = (2, 0, 0), at
     d = (0, 1, 0): (2, 0, 0) x (0, 1, 0) / 4 = (0, 0, 0.5), at d = (1, 0, 0): 0."""
-    c = np.array([5.0, -3.0, 2.0])                  # anywhere: only d = x - c matters
+    c = np.array([5.0, -3.0, 2.0])  # anywhere: only d = x - c matters
     d = np.array([[1.0, 0, 0], [0, 1.0, 0], [-1.0, 0, 0], [0, -1.0, 0], [0.3, 0.7, 0.1]])
     x = (d + c).T
     w = np.array([0.25, 0.25, 0.25, 0.25, 0.0])
@@ -129,7 +140,7 @@ def test_resultants_by_hand():
 def _point_load(bar, at, P):
     i = int(np.flatnonzero(np.all(np.isclose(bar.doflocs.T, at, atol=1e-12), axis=1))[0])
     f = np.zeros(3 * bar.N)
-    f[3 * i:3 * i + 3] = P
+    f[3 * i : 3 * i + 3] = P
     return f
 
 
@@ -153,8 +164,17 @@ def test_columns_reactions_and_their_resultants_by_statics(bar, support):
     np.testing.assert_allclose(s.centres["journal_1"], (0, 0, Z1), atol=1e-15)
     np.testing.assert_allclose(s.centres["journal_2"], (0, 0, Z2), atol=1e-15)
     # each column: a unit force at its bearing centre, moment r x e = (-z e_y, z e_x, 0); the torque (0,..,1)
-    A_hand = np.array([[1, 0, 0, 0, Z1, 0], [0, 1, 0, -Z1, 0, 0], [1, 0, 0, 0, Z2, 0], [0, 1, 0, -Z2, 0, 0],
-                       [0, 0, 1, 0, 0, 0], [0, 0, 0, 0, 0, 1]], float).T
+    A_hand = np.array(
+        [
+            [1, 0, 0, 0, Z1, 0],
+            [0, 1, 0, -Z1, 0, 0],
+            [1, 0, 0, 0, Z2, 0],
+            [0, 1, 0, -Z2, 0, 0],
+            [0, 0, 1, 0, 0, 0],
+            [0, 0, 0, 0, 0, 1],
+        ],
+        float,
+    ).T
     np.testing.assert_allclose(s.A, A_hand, rtol=0, atol=TOL)
     G = s.G.toarray()
     for k in range(6):
@@ -229,7 +249,7 @@ def test_three_points_take_a_3_2_1_set():
     held = point_constraints(P, np.arange(3))
     assert held.shape == (6,) and len(set(held.tolist())) == 6 and held.max() < 9
     assert held.dtype.kind == "i"
-    assert abs(np.linalg.det(rigid_body_modes(P)[held])) > 0.1     # |det| of a 3-2-1 set here: 1
+    assert abs(np.linalg.det(rigid_body_modes(P)[held])) > 0.1  # |det| of a 3-2-1 set here: 1
 
 
 def test_point_constraint_choice_does_not_depend_on_the_unit_of_length(bar):
@@ -255,8 +275,7 @@ def test_refusals(bar):
     assert line.size >= 6
     with pytest.raises(MeshError) as e:
         point_constraints(x, line)
-    assert str(e.value) == ("cannot pick six point constraints against the rigid-body modes "
-                            "(end faces degenerate?)")
+    assert str(e.value) == ("cannot pick six point constraints against the rigid-body modes (end faces degenerate?)")
     with pytest.raises(MeshError, match="boundary 'end_3'"):
         determinate_support(bar, DeterminateLayout(), candidate_faces=("end_1", "end_3"))
 
@@ -268,7 +287,7 @@ def _round_bar(size=0.008):
         a = occ.addCylinder(0, 0, Z1, 0, 0, LJ, 0.02)
         b = occ.addCylinder(0, 0, Z1 + LJ, 0, 0, 0.06, 0.02)
         c = occ.addCylinder(0, 0, Z2 - LJ, 0, 0, LJ, 0.02)
-        occ.fragment([(3, a)], [(3, b), (3, c)])    # three conformal volumes: the side faces stay apart
+        occ.fragment([(3, a)], [(3, b), (3, c)])  # three conformal volumes: the side faces stay apart
         occ.synchronize()
 
         def classify(kind, cm, bb):

@@ -6,19 +6,20 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from conftest import ROOT
+from verification_meshes import Steel
 
 from fe_crank.assess import m53
 from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.convergence import fillet_convergence, peak_fillet_stress
+from fe_crank.fe.convergence import (
+    FILLETS,  # the four shaft fillets of a throw
+    fillet_convergence,
+    peak_fillet_stress,
+)
 from fe_crank.fe.supports import boundary_facets
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS, mesh_throw
-
-from conftest import ROOT
-from verification_meshes import Steel
-
-from fe_crank.fe.convergence import FILLETS  # the four shaft fillets of a throw
 
 
 @pytest.fixture(scope="module")
@@ -48,10 +49,10 @@ def test_reactions_at_the_bearing_centres_of_the_shipped_throw(geometry, solved)
     zc = -(0.018 + 0.022 + 0.025)
     for j, z in (("journal_1", zc), ("journal_2", -zc)):
         r = c.reactions[j]
-        assert r[1] == pytest.approx(0.5, abs=1e-4)        # mesh asymmetry of the oil bore only
+        assert r[1] == pytest.approx(0.5, abs=1e-4)  # mesh asymmetry of the oil bore only
         assert -r[3] / r[1] == pytest.approx(z, abs=1e-5)  # line of action: M_x = -z R_y
         assert u.bearing_centres[j] == pytest.approx(z, abs=1e-5)
-    assert np.abs(c.reactions["point_constraints"]).max() < 1e-9     # N and N m, for a 1 N load
+    assert np.abs(c.reactions["point_constraints"]).max() < 1e-9  # N and N m, for a 1 N load
     assert c.equilibrium_error < 1e-6 and u.cases["torque"].equilibrium_error < 1e-6
 
 
@@ -81,8 +82,7 @@ def test_fillet_stress_of_three_point_bending_against_ur_m53(geometry, solved):
     s = u.stress_at_nodes(c.displacement)
     p = u.principal(s)
     mag = np.maximum(np.abs(p[0]), np.abs(p[2]))
-    expected = {"crankpin": m53.alpha_b(rel_p) * s_bn,
-                "journal": m53.beta_b(rel_j) * s_bn + m53.beta_q(rel_j) * s_qn}
+    expected = {"crankpin": m53.alpha_b(rel_p) * s_bn, "journal": m53.beta_b(rel_j) * s_bn + m53.beta_q(rel_j) * s_qn}
     for f in FILLETS:
         nodes = u.system.basis.get_dofs(boundary_facets(tm.mesh, f, "test")).all()
         ref = expected[f.split("_")[0]]

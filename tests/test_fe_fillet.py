@@ -11,15 +11,15 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from verification_meshes import stepped_shaft
 
 from fe_crank.fe import Coupling, build_system
 from fe_crank.fe.stress import averaging_indicator, principal, stress_at_nodes
-from verification_meshes import stepped_shaft
 
 E, NU = 210e9, 0.3
 ALL6 = ("ux", "uy", "uz", "rx", "ry", "rz")
 D_SMALL, D_LARGE, R_FILLET = 0.02, 0.03, 0.004
-FILLET_SIZES = (1.0, 1 / 2, 1 / 3, 1 / 4, 1 / 6)      # element size on the fillet / r
+FILLET_SIZES = (1.0, 1 / 2, 1 / 3, 1 / 4, 1 / 6)  # element size on the fillet / r
 
 
 def roark_kt_bending(d: float, D: float, r: float) -> float:
@@ -28,11 +28,19 @@ def roark_kt_bending(d: float, D: float, r: float) -> float:
     q = h / r
     s = np.sqrt(q)
     if q <= 2.0:
-        c = (0.927 + 1.149 * s - 0.086 * q, 0.015 - 3.281 * s + 0.837 * q,
-             0.847 + 1.716 * s - 0.506 * q, -0.790 + 0.417 * s - 0.246 * q)
+        c = (
+            0.927 + 1.149 * s - 0.086 * q,
+            0.015 - 3.281 * s + 0.837 * q,
+            0.847 + 1.716 * s - 0.506 * q,
+            -0.790 + 0.417 * s - 0.246 * q,
+        )
     else:
-        c = (1.225 + 0.831 * s - 0.010 * q, -3.790 + 0.958 * s - 0.257 * q,
-             7.374 - 4.834 * s + 0.862 * q, -3.809 + 3.046 * s - 0.595 * q)
+        c = (
+            1.225 + 0.831 * s - 0.010 * q,
+            -3.790 + 0.958 * s - 0.257 * q,
+            7.374 - 4.834 * s + 0.862 * q,
+            -3.809 + 3.046 * s - 0.595 * q,
+        )
     x = 2 * h / D
     return c[0] + c[1] * x + c[2] * x**2 + c[3] * x**3
 
@@ -63,17 +71,17 @@ def series():
 
 @pytest.mark.heavy
 def test_fillet_kt_matches_roark_within_5_percent(series):
-    h, kt, ind, _ = series[3]                        # fillet elements r/4 (M53 guidance)
+    h, kt, ind, _ = series[3]  # fillet elements r/4 (M53 guidance)
     assert kt == pytest.approx(roark_kt_bending(D_SMALL, D_LARGE, R_FILLET), rel=0.05)
-    assert abs(ind) < 0.05                           # M53 averaged vs unaveraged check
+    assert abs(ind) < 0.05  # M53 averaged vs unaveraged check
 
 
 @pytest.mark.heavy
 def test_fillet_peak_stress_converges_with_a_fitted_rate(series):
     h = np.array([x[0] for x in series])
     kt = np.array([x[1] for x in series])
-    err = np.abs(kt[:-1] - kt[-1])                   # against the finest mesh
+    err = np.abs(kt[:-1] - kt[-1])  # against the finest mesh
     rate = np.polyfit(np.log(h[:-1]), np.log(err), 1)[0]
     assert rate > 1.0
-    assert np.all(np.diff(kt) > -0.005 * kt[-1])     # monotone from below, up to noise
-    assert err[-1] < 0.01 * kt[-1]                   # r/4 within 1 % of r/6
+    assert np.all(np.diff(kt) > -0.005 * kt[-1])  # monotone from below, up to noise
+    assert err[-1] < 0.01 * kt[-1]  # r/4 within 1 % of r/6

@@ -8,11 +8,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2
+from test_fe_determinate_statics import _square_bar
 
 from fe_crank.errors import MeshError
 from fe_crank.fe.determinate import DeterminateLayout, bearing_surface_load, determinate_support, face_centre
 from fe_crank.fe.loads import face_torque_load, pin_centre, pin_pressure_load, pin_surface
-from test_fe_determinate_statics import _square_bar
 
 HAVE = "crankpin, end_1, end_2, journal_1, journal_2"
 
@@ -34,10 +34,11 @@ def test_missing_boundaries_are_named_with_what_needed_them(bar):
         (lambda: face_torque_load(bar, 1.0, boundary="nope"), "the torque load"),
         (lambda: bearing_surface_load(bar, "nope"), "a bearing support"),
         (lambda: face_centre(bar, "nope"), "a main-bearing centre"),
-        (lambda: determinate_support(bar, DeterminateLayout(), candidate_faces=("end_1", "nope")),
-         "the point constraints"),
-        (lambda: determinate_support(bar, DeterminateLayout(centre_faces=("end_1", "nope"))),
-         "a main-bearing centre"),
+        (
+            lambda: determinate_support(bar, DeterminateLayout(), candidate_faces=("end_1", "nope")),
+            "the point constraints",
+        ),
+        (lambda: determinate_support(bar, DeterminateLayout(centre_faces=("end_1", "nope"))), "a main-bearing centre"),
         (lambda: determinate_support(bar, DeterminateLayout(torque_face="nope")), "the torque load"),
     ]
     for call, needed_by in cases:
@@ -65,6 +66,8 @@ def test_a_degenerate_pin_surface_is_a_mesh_error():
     flat = replace(m, doflocs=p)
     with pytest.raises(MeshError) as e:
         pin_centre(flat, "journal_1")
-    assert str(e.value) == ("the crankpin load: the curved elements under the surface are too distorted to map "
-                            "its quadrature points (a degenerate element (vertices in one plane)); remesh with a "
-                            "finer or better-shaped mesh")
+    assert str(e.value) == (
+        "the crankpin load: the curved elements under the surface are too distorted to map "
+        "its quadrature points (a degenerate element (vertices in one plane)); remesh with a "
+        "finer or better-shaped mesh"
+    )

@@ -22,11 +22,17 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, LinearForm, asm
 from skfem.helpers import dot
+from verification_meshes import box_beam, round_bar
 
 from fe_crank.errors import InputError, MeshError
-from fe_crank.fe.loads import (SURFACE_INTORDER, centrifugal_load, face_torque_load, pin_centre,
-                               pin_pressure_load, pin_surface)
-from verification_meshes import box_beam, round_bar
+from fe_crank.fe.loads import (
+    SURFACE_INTORDER,
+    centrifugal_load,
+    face_torque_load,
+    pin_centre,
+    pin_pressure_load,
+    pin_surface,
+)
 
 RHO, OMEGA = 7850.0, 30.0
 R, L, CX, CY = 0.020, 0.030, 0.004, 0.045
@@ -61,8 +67,7 @@ def test_centrifugal_resultant_and_moment_about_the_crank_axis(box):
     #   = 565.2 (-0.01 x 0.01, 0.1 x 0.01, 0) = (-0.05652, 0.5652, 0) N m
     f = centrifugal_load(box, RHO, OMEGA)
     np.testing.assert_allclose(f.reshape(-1, 3).sum(axis=0), (56.52, 5.652, 0.0), rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(_moment(f, box.doflocs, np.zeros(3)), (-0.05652, 0.5652, 0.0), rtol=1e-12,
-                               atol=1e-13)
+    np.testing.assert_allclose(_moment(f, box.doflocs, np.zeros(3)), (-0.05652, 0.5652, 0.0), rtol=1e-12, atol=1e-13)
     # low density and speed are valid too: rho omega^2 = 0.5 x 0.25 = 0.125 -> F = 0.125 V (0.1, 0.01, 0)
     g = centrifugal_load(box, 0.5, 0.5)
     np.testing.assert_allclose(g.reshape(-1, 3).sum(axis=0), (1e-6, 1e-7, 0.0), rtol=1e-12, atol=1e-20)
@@ -76,13 +81,13 @@ def test_centrifugal_about_an_inclined_offset_axis(box):
     k = RHO * OMEGA**2
     d = c - p
     F_ref = k * V * (d - a * (a @ d))
-    S = V * (np.outer(d, d) + np.diag(Ls**2) / 12)        # int (x - p)(x - p)^T dV
-    M_ref = k * np.cross(a, S @ a)                        # int (x-p) x [d - a (a.d)] = int (a.d)(a x d)
+    S = V * (np.outer(d, d) + np.diag(Ls**2) / 12)  # int (x - p)(x - p)^T dV
+    M_ref = k * np.cross(a, S @ a)  # int (x-p) x [d - a (a.d)] = int (a.d)(a x d)
     f = centrifugal_load(box, RHO, OMEGA, axis_point=tuple(p), axis=(2.0, 4.0, 4.0))
     F = f.reshape(-1, 3).sum(axis=0)
     np.testing.assert_allclose(F, F_ref, rtol=1e-12, atol=1e-12 * np.abs(F_ref).max())
     np.testing.assert_allclose(_moment(f, box.doflocs, p), M_ref, rtol=1e-12, atol=1e-12 * np.abs(M_ref).max())
-    assert abs(F @ a) < 1e-12 * np.linalg.norm(F)         # no force along the axis
+    assert abs(F @ a) < 1e-12 * np.linalg.norm(F)  # no force along the axis
 
 
 def test_centrifugal_refusals_name_the_key():
@@ -122,8 +127,9 @@ def test_pin_centre_and_surface(pin):
 
 def _traction_vector(pin, p0, arc, half):
     """The documented traction t = -p0 cos(pi psi/(2 psi0)) n_r, assembled by scikit-fem."""
-    fb = FacetBasis(pin.mesh, ElementVector(ElementTetP2()), facets=pin.mesh.boundaries["crankpin"],
-                    intorder=SURFACE_INTORDER)
+    fb = FacetBasis(
+        pin.mesh, ElementVector(ElementTetP2()), facets=pin.mesh.boundaries["crankpin"], intorder=SURFACE_INTORDER
+    )
 
     @LinearForm
     def form(v, w):
@@ -136,10 +142,13 @@ def _traction_vector(pin, p0, arc, half):
     return asm(form, fb)
 
 
-@pytest.mark.parametrize("force, half, integral", [
-    ((300.0, -400.0), None, 1.2),                          # default 60 deg: 1 + 1/5
-    ((-150.0, 80.0), np.deg2rad(45.0), 2 * np.sqrt(2) / 3),  # 45 deg: sqrt(2)/2 + sqrt(2)/6
-])
+@pytest.mark.parametrize(
+    "force, half, integral",
+    [
+        ((300.0, -400.0), None, 1.2),  # default 60 deg: 1 + 1/5
+        ((-150.0, 80.0), np.deg2rad(45.0), 2 * np.sqrt(2) / 3),  # 45 deg: sqrt(2)/2 + sqrt(2)/6
+    ],
+)
 def test_pin_pressure_against_the_cosine_law(pin, force, half, integral):
     F = np.array(force)
     kw = {} if half is None else {"half_angle": half}
@@ -156,7 +165,7 @@ def test_pin_pressure_against_the_cosine_law(pin, force, half, integral):
     assert info.peak_pressure == pytest.approx(np.linalg.norm(F) / (integral * R * L), rel=1e-3)
     # arc centre opposite the force, angles from +y towards +x; off by the mesh asymmetry only
     fdir = np.arctan2(F[0], F[1])
-    assert abs(np.angle(np.exp(1j * (info.arc_centre - fdir - np.pi)))) < 5e-4   # measured 2.3e-5 rad
+    assert abs(np.angle(np.exp(1j * (info.arc_centre - fdir - np.pi)))) < 5e-4  # measured 2.3e-5 rad
     # the load vector is the documented traction law, assembled independently
     ref = _traction_vector(pin, info.peak_pressure, info.arc_centre, psi0)
     assert np.abs(f - ref).max() < 1e-12 * np.abs(ref).max()
@@ -178,8 +187,12 @@ def test_pin_pressure_with_a_prepared_surface_and_the_default_centre(pin):
 
 
 def test_pin_pressure_refusals(pin):
-    for bad, text in (((1.0, 2.0, 3.0), "(1.0, 2.0, 3.0)"), ((float("nan"), 1.0), "(nan, 1.0)"),
-                      ((1.0, float("inf")), "(1.0, inf)"), ((0.0, 0.0), "(0.0, 0.0)")):
+    for bad, text in (
+        ((1.0, 2.0, 3.0), "(1.0, 2.0, 3.0)"),
+        ((float("nan"), 1.0), "(nan, 1.0)"),
+        ((1.0, float("inf")), "(1.0, inf)"),
+        ((0.0, 0.0), "(0.0, 0.0)"),
+    ):
         with pytest.raises(InputError) as e:
             pin_pressure_load(pin, bad)
         assert str(e.value) == f"pin force must be a non-zero finite (Fx, Fy), got {text}"
@@ -196,7 +209,7 @@ def test_face_torque_is_the_round_shaft_shear_flow(pin):
     f = face_torque_load(pin, T, boundary="end_2", centre=(CX, CY))
     m = _moment(f, pin.doflocs, c)
     assert m[2] == pytest.approx(T, rel=1e-12)
-    assert np.abs(m[:2]).max() < 1e-12 * T                 # in-plane forces on the plane z = L
+    assert np.abs(m[:2]).max() < 1e-12 * T  # in-plane forces on the plane z = L
     # net force: T/J int (-dy, dx) dA = 2 T A e / (pi R^4) for a centroid error e; the
     # facetted disk's centroid lies on the axis to round-off here (measured 4e-14 N), while a
     # wrong sign or centre gives forces of order T / R = 600 N
@@ -204,8 +217,9 @@ def test_face_torque_is_the_round_shaft_shear_flow(pin):
     assert np.abs(F).max() < 1e-9 and F[2] == 0.0
     # the shear flow itself: t = T r e_theta / J, J = pi R^4 / 2 = 2.513274e-7 m^4 for R = 20 mm
     J = np.pi * R**4 / 2
-    fb = FacetBasis(pin.mesh, ElementVector(ElementTetP2()), facets=pin.mesh.boundaries["end_2"],
-                    intorder=SURFACE_INTORDER)
+    fb = FacetBasis(
+        pin.mesh, ElementVector(ElementTetP2()), facets=pin.mesh.boundaries["end_2"], intorder=SURFACE_INTORDER
+    )
 
     @LinearForm
     def form(v, w):
@@ -219,4 +233,4 @@ def test_face_torque_is_the_round_shaft_shear_flow(pin):
     # about the origin (default centre) the same face takes T as well, its lever being (CX, CY)
     g = face_torque_load(pin, T, boundary="end_2")
     assert _moment(g, pin.doflocs, np.zeros(3))[2] == pytest.approx(T, rel=1e-12)
-    assert np.linalg.norm(g.reshape(-1, 3).sum(axis=0)) > 0.1 * T / R   # off-axis: J about the origin
+    assert np.linalg.norm(g.reshape(-1, 3).sum(axis=0)) > 0.1 * T / R  # off-axis: J about the origin

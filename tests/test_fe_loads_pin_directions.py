@@ -12,8 +12,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fe_crank.fe.pin_directions import (AXIS_NAMES, STEP_DEG, pin_case_weights, pin_cases, pin_direction,
-                                        pin_name, unit_force)
+from fe_crank.fe.pin_directions import (
+    AXIS_NAMES,
+    STEP_DEG,
+    pin_case_weights,
+    pin_cases,
+    pin_direction,
+    pin_name,
+    unit_force,
+)
 
 REL = 1e-12
 
@@ -25,17 +32,41 @@ def test_names_of_the_directions():
     for not_pin in ("pin_360", "pin_999", "pin_30", "pin_0300", "pin_+x", "torque", "centrifugal", "xpin_030"):
         assert pin_direction(not_pin) is None, not_pin
     # pin_name: whole degrees mod 360, the axis names on the axes, three digits otherwise
-    expected = {0: "pin_x", 90: "pin_y", 180: "pin_-x", 270: "pin_-y", 30: "pin_030", 5: "pin_005",
-                359: "pin_359", 360: "pin_x", 390: "pin_030", -30: "pin_330", -90: "pin_-y", 720: "pin_x"}
+    expected = {
+        0: "pin_x",
+        90: "pin_y",
+        180: "pin_-x",
+        270: "pin_-y",
+        30: "pin_030",
+        5: "pin_005",
+        359: "pin_359",
+        360: "pin_x",
+        390: "pin_030",
+        -30: "pin_330",
+        -90: "pin_-y",
+        720: "pin_x",
+    }
     for deg, name in expected.items():
         assert pin_name(deg) == name, deg
-    assert pin_name(30.7) == "pin_030"          # int() truncates
+    assert pin_name(30.7) == "pin_030"  # int() truncates
 
 
 def test_default_and_other_direction_sets():
     assert STEP_DEG == 30
-    assert pin_cases() == ("pin_x", "pin_030", "pin_060", "pin_y", "pin_120", "pin_150",
-                           "pin_-x", "pin_210", "pin_240", "pin_-y", "pin_300", "pin_330")
+    assert pin_cases() == (
+        "pin_x",
+        "pin_030",
+        "pin_060",
+        "pin_y",
+        "pin_120",
+        "pin_150",
+        "pin_-x",
+        "pin_210",
+        "pin_240",
+        "pin_-y",
+        "pin_300",
+        "pin_330",
+    )
     assert pin_cases(90) == ("pin_x", "pin_y", "pin_-x", "pin_-y")
     assert pin_cases(360) == ("pin_x",)
     assert pin_cases(120) == ("pin_x", "pin_120", "pin_240")
@@ -79,11 +110,15 @@ def test_weights_of_the_default_twelve_directions_by_the_sine_rule():
     # F = 0: no weight
     # F = 100 N at 20 deg: between the first two directions, 0 and 30 deg:
     #   a(0) = 100 sin(10) / 0.5 = 34.72963553,  b(30) = 100 sin(20) / 0.5 = 68.40402867
-    F = np.array([[1000 * np.cos(np.deg2rad(40)), 1000 * np.sin(np.deg2rad(40))],
-                  [0.0, 500.0],
-                  [200 * np.cos(np.deg2rad(-10)), 200 * np.sin(np.deg2rad(-10))],
-                  [0.0, 0.0],
-                  [100 * np.cos(np.deg2rad(20)), 100 * np.sin(np.deg2rad(20))]])
+    F = np.array(
+        [
+            [1000 * np.cos(np.deg2rad(40)), 1000 * np.sin(np.deg2rad(40))],
+            [0.0, 500.0],
+            [200 * np.cos(np.deg2rad(-10)), 200 * np.sin(np.deg2rad(-10))],
+            [0.0, 0.0],
+            [100 * np.cos(np.deg2rad(20)), 100 * np.sin(np.deg2rad(20))],
+        ]
+    )
     W = pin_case_weights(F, names)
     assert W.shape == (5, 12)
     want = np.zeros((5, 12))
@@ -91,7 +126,7 @@ def test_weights_of_the_default_twelve_directions_by_the_sine_rule():
     want[0, idx["pin_030"]], want[0, idx["pin_060"]] = 684.0402867, 347.2963553
     want[1, idx["pin_y"]] = 500.0
     want[2, idx["pin_330"]], want[2, idx["pin_x"]] = 69.45927107, 136.8080573
-    np.testing.assert_allclose(W, want, rtol=1e-9, atol=1e-9)     # 10 digits written above
+    np.testing.assert_allclose(W, want, rtol=1e-9, atol=1e-9)  # 10 digits written above
     # and exactly the force back (the weights of the unit forces)
     E = np.array([unit_force(n) for n in names])
     np.testing.assert_allclose(W @ E, F, rtol=0, atol=1e-12 * 1000)
@@ -124,8 +159,7 @@ def test_one_and_two_directions_are_signed_decompositions():
     np.testing.assert_array_equal(pin_case_weights((0.0, -250.0), ["pin_y"]), [[-250.0]])
     np.testing.assert_allclose(pin_case_weights([[4.0, 0.0], [-2.5, 0.0]], ["pin_x"]), [[4.0], [-2.5]], rtol=REL)
     # along 30 deg: F = 10 (cos 30, sin 30) -> 10 (the across part Fx sin 30 - Fy cos 30 is 0)
-    np.testing.assert_allclose(pin_case_weights(10 * np.array(unit_force("pin_030")), ["pin_030"]), [[10.0]],
-                               rtol=REL)
+    np.testing.assert_allclose(pin_case_weights(10 * np.array(unit_force("pin_030")), ["pin_030"]), [[10.0]], rtol=REL)
     np.testing.assert_array_equal(pin_case_weights((0.0, 0.0), ["pin_y"]), [[0.0]])
     # the across part may be round-off only, 1e-9 of the along part: 250 N along pin_y with
     # 2e-7 N across passes (threshold 2.5e-7), 3e-7 N is refused
@@ -143,8 +177,9 @@ def test_one_and_two_directions_are_signed_decompositions():
     np.testing.assert_allclose(pin_case_weights((3.0, -4.0), ["pin_x", "pin_y"]), [[3.0, -4.0]], rtol=REL)
     # pin_x and pin_060, F = (0, 1): b sin 60 = 1 -> b = 2/sqrt(3) = 1.1547005384,
     # a + b/2 = 0 -> a = -1/sqrt(3) = -0.5773502692
-    np.testing.assert_allclose(pin_case_weights((0.0, 1.0), ["pin_x", "pin_060"]),
-                               [[-0.5773502691896258, 1.1547005383792517]], rtol=REL)
+    np.testing.assert_allclose(
+        pin_case_weights((0.0, 1.0), ["pin_x", "pin_060"]), [[-0.5773502691896258, 1.1547005383792517]], rtol=REL
+    )
     for parallel in (["pin_x", "pin_-x"], ["pin_y", "pin_-y"]):
         with pytest.raises(ValueError) as e:
             pin_case_weights((1.0, 1.0), parallel)
@@ -165,12 +200,14 @@ def test_refused_sets():
     # gaps: 0, 30, 60 leaves 300 deg; 0, 90, 180 leaves exactly 180 deg (refused: >= 180)
     with pytest.raises(ValueError) as e:
         pin_case_weights((0.0, 1.0), ["pin_x", "pin_030", "pin_060"])
-    assert str(e.value) == ("pin unit cases ['pin_x', 'pin_030', 'pin_060'] leave a gap of 300 deg: "
-                            "every gap must be < 180 deg")
+    assert str(e.value) == (
+        "pin unit cases ['pin_x', 'pin_030', 'pin_060'] leave a gap of 300 deg: every gap must be < 180 deg"
+    )
     with pytest.raises(ValueError, match="leave a gap of 180 deg"):
         pin_case_weights((0.0, 1.0), ["pin_x", "pin_y", "pin_-x"])
     # 0, 90, 181 leaves 179 deg at most: accepted, F at 270 between 181 and 360
     W = pin_case_weights((0.0, -1.0), ["pin_x", "pin_y", "pin_181"])
     # dl = 179 deg: a(181) = sin(90)/sin(179), b(0) = sin(89)/sin(179)
-    np.testing.assert_allclose(W, [[np.sin(np.deg2rad(89)) / np.sin(np.deg2rad(179)), 0.0,
-                                     1.0 / np.sin(np.deg2rad(179))]], rtol=REL)
+    np.testing.assert_allclose(
+        W, [[np.sin(np.deg2rad(89)) / np.sin(np.deg2rad(179)), 0.0, 1.0 / np.sin(np.deg2rad(179))]], rtol=REL
+    )

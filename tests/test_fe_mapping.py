@@ -27,7 +27,7 @@ def test_inverse_map_recovers_reference_points():
     b = rng.dirichlet(np.ones(4), size=(ne, 6))
     b[:, 3:, 0] = 0.0
     b /= b.sum(axis=-1, keepdims=True)
-    X = np.moveaxis(b[..., 1:], -1, 0)        # (3, ne, 6)
+    X = np.moveaxis(b[..., 1:], -1, 0)  # (3, ne, 6)
     x = mp.F(X, np.arange(ne))
     Y = mp.invF(x, np.arange(ne))
     assert np.abs(Y - X).max() < 1e-10
@@ -45,7 +45,7 @@ def test_facet_integrals_agree_with_scikit_fem_where_it_converges():
 def test_degenerate_element_is_a_mesh_error():
     m = MeshTet2.from_mesh(MeshTet())
     p = m.doflocs.copy()
-    p[2] = 0.0                                  # flatten the cube: every tetrahedron degenerate
+    p[2] = 0.0  # flatten the cube: every tetrahedron degenerate
     flat = MeshTet2(p, m.t)
     with pytest.raises(MeshError, match="too distorted"):
         facet_basis(flat, ElementTetP2(), flat.boundary_facets(), 2, "the flattened cube")
@@ -67,10 +67,11 @@ def test_shared_bases_are_bit_for_bit_the_scikit_fem_ones():
     for a, b in zip(ours.basis, ref.basis):
         assert np.array_equal(a[0].grad, b[0].grad) and np.array_equal(np.asarray(a[0]), np.asarray(b[0]))
     facets = m.boundary_facets()
-    for _ in range(2):                           # a second build on the same mesh: the memos are cleared
+    for _ in range(2):  # a second build on the same mesh: the memos are cleared
         fb = facet_basis(m, ElementTetP2(), facets, 4, "test")
-        fresh = FacetBasis(m, ElementTetP2(), mapping=RobustIsoparametric(m, m.elem(), m.bndelem),
-                           facets=facets, intorder=4)
+        fresh = FacetBasis(
+            m, ElementTetP2(), mapping=RobustIsoparametric(m, m.elem(), m.bndelem), facets=facets, intorder=4
+        )
         assert np.array_equal(fb.dx, fresh.dx)
         assert np.array_equal(np.asarray(fb.normals), np.asarray(fresh.normals))
         assert np.array_equal(np.asarray(fb.global_coordinates()), np.asarray(fresh.global_coordinates()))

@@ -6,11 +6,11 @@ import meshio
 import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2
+from verification_meshes import annulus_sector
 
-from fe_crank.fe import build_system, Dirichlet, max_shear, principal, von_mises
+from fe_crank.fe import Dirichlet, build_system, max_shear, principal, von_mises
 from fe_crank.fe.loads import centrifugal_load
 from fe_crank.fe.stress import averaging_indicator, stress_at_nodes, stress_at_quadrature
-from verification_meshes import annulus_sector
 from fe_crank.fe.vtu import write_fields
 
 E, NU = 210e9, 0.3
@@ -30,8 +30,13 @@ def test_invariants_of_a_known_tensor():
 @pytest.fixture(scope="module")
 def disk():
     mesh = annulus_sector(0.05, 0.15, 0.005, nr=4, nt=6)
-    s = build_system(mesh, E, NU, solver="superlu", dirichlet=[
-        Dirichlet("sym_x", (1,)), Dirichlet("sym_y", (0,)), Dirichlet("bottom", (2,))])
+    s = build_system(
+        mesh,
+        E,
+        NU,
+        solver="superlu",
+        dirichlet=[Dirichlet("sym_x", (1,)), Dirichlet("sym_y", (0,)), Dirichlet("bottom", (2,))],
+    )
     u = s.solve(centrifugal_load(s.basis, 7850.0, 1000.0))
     return mesh, s, u
 
@@ -64,7 +69,7 @@ def test_quadrature_and_nodal_stress_agree_on_a_smooth_field(disk):
     sn = stress_at_nodes(mesh, u, E, NU)
     # integrals of sigma_xx + sigma_yy (= sigma_r + sigma_t) over the body agree
     vol_q = np.sum((sq[0] + sq[1]) * b.dx)
-    nodal = (sn[0] + sn[1])[b.element_dofs]                 # (10, ne) at the nodes
+    nodal = (sn[0] + sn[1])[b.element_dofs]  # (10, ne) at the nodes
     # interpolate the nodal field and integrate it with the same rule
     vals = sum(nodal[a][:, None] * np.asarray(b.basis[a][0]) for a in range(10))
     vol_n = np.sum(vals * b.dx)

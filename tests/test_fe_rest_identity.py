@@ -13,12 +13,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from verification_meshes import Steel, simple_throw
 
 from fe_crank.fe import solve_unit_cases, symsolve
+from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
 from fe_crank.fe.supports import Coupling, Foundation
 from fe_crank.fe.system import build_system
-from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
-from verification_meshes import Steel, simple_throw
 
 
 @pytest.fixture(scope="module")
@@ -57,8 +57,7 @@ def _reactions_whole(system, u, f):
     if system.point_dofs.size:
         rp = np.zeros_like(u)
         pos = np.searchsorted(system.rows, system.point_dofs)
-        rp[system.point_dofs] = (system.K_rows[pos] @ u + (system.Ks @ u)[system.point_dofs]
-                                 - f[system.point_dofs])
+        rp[system.point_dofs] = system.K_rows[pos] @ u + (system.Ks @ u)[system.point_dofs] - f[system.point_dofs]
         out["point_constraints"] = _resultant_whole(rp, x, np.unique(system.point_dofs // 3))
     return out
 
@@ -81,7 +80,7 @@ def test_determinate_reactions_and_applied_equal_the_whole_vector_formulas(throw
         _assert_same(system.reactions(u, f), _reactions_whole(system, u, f))
         err, _ = system.equilibrium_error(u, f)
         assert err == system.equilibrium_error(u, f, applied=ref)[0] < 1e-9
-    for name, case in unit.cases.items():     # the records of the stage itself
+    for name, case in unit.cases.items():  # the records of the stage itself
         assert np.array_equal(case.applied, _applied_whole(system, _load(unit, name))[0]), name
 
 
@@ -89,18 +88,24 @@ def _load(unit, name):
     basis = unit.system.basis
     if name == "centrifugal":
         return centrifugal_load(basis, 7850.0, 1.0)
-    from fe_crank.fe.loads import face_torque_load, pin_pressure_load as ppl
+    from fe_crank.fe.loads import face_torque_load
+    from fe_crank.fe.loads import pin_pressure_load as ppl
     from fe_crank.fe.pin_directions import unit_force
+
     if name == "torque":
         return face_torque_load(basis, -1.0, boundary=unit.options.torque_face)
-    return ppl(basis, unit_force(name), boundary=unit.options.pin_boundary,
-               half_angle=unit.options.pin_half_angle)[0]
+    return ppl(basis, unit_force(name), boundary=unit.options.pin_boundary, half_angle=unit.options.pin_half_angle)[0]
 
 
 def test_foundation_and_coupling_reactions_equal_the_whole_vector_formulas(throw):
     mesh = getattr(throw, "mesh", throw)
-    system = build_system(mesh, 210e9, 0.3, foundations=[Foundation("journal_1", 1e13), Foundation("journal_2", 1e13)],
-                          couplings=[Coupling("end_2", fixed=("uz", "rz"))])
+    system = build_system(
+        mesh,
+        210e9,
+        0.3,
+        foundations=[Foundation("journal_1", 1e13), Foundation("journal_2", 1e13)],
+        couplings=[Coupling("end_2", fixed=("uz", "rz"))],
+    )
     f = pin_pressure_load(system.basis, (1.0e4, 2.0e4))[0]
     u = system.solve(f)
     _assert_same(system.reactions(u, f), _reactions_whole(system, u, f))
@@ -110,11 +115,15 @@ def test_foundation_and_coupling_reactions_equal_the_whole_vector_formulas(throw
 def shipped(tmp_path_factory):
     """The shipped seed-001 throw at ``test``: curved P2 elements, mirrored across z = 0."""
     from conftest import ROOT
+
     from fe_crank.io.geometry import load_geometry
     from fe_crank.mesh import mesh_throw
 
-    return mesh_throw(load_geometry(ROOT / "geometry" / "single_cylinder_seed001.toml"), size="test",
-                      cache_dir=tmp_path_factory.mktemp("meshes"))
+    return mesh_throw(
+        load_geometry(ROOT / "geometry" / "single_cylinder_seed001.toml"),
+        size="test",
+        cache_dir=tmp_path_factory.mktemp("meshes"),
+    )
 
 
 def test_part_stiffness_equals_the_part_basis_route(shipped):
@@ -133,8 +142,7 @@ def test_part_stiffness_equals_the_part_basis_route(shipped):
     part = np.flatnonzero(basis.doflocs[2, el[:4]].mean(axis=0) > 0)
     nodes = np.unique(el[:, part])
     ldofs = (3 * nodes[:, None] + np.arange(3)).ravel()
-    pb = Basis(mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs,
-               elements=part)
+    pb = Basis(mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs, elements=part)
     former = sp.triu(assemble_stiffness(pb, 210e9, 0.3)[ldofs][:, ldofs], format="csr")
     former.sort_indices()
     now = sp.triu(part_stiffness(basis, part, nodes, 210e9, 0.3), format="csr")
@@ -180,12 +188,12 @@ def test_component_matrices_equal_the_former_masking():
     explicit-zero couplings) against the former masking -- a copy of the half's triangle
     per component, the entry's row from an nnz-long row array: the same CSR bit for bit."""
     import scipy.sparse as sp
+    from symmetric_meshes import mirrored_throw
 
     from fe_crank.fe.assembly import part_stiffness
     from fe_crank.fe.bases import cell_basis
     from fe_crank.fe.symmetry import mesh_mirror
     from fe_crank.fe.symsolve import build_symmetric_solver
-    from symmetric_meshes import mirrored_throw
 
     throw = mirrored_throw((0, 2), size=0.016)
     basis = cell_basis(throw.mesh, 2)
@@ -203,9 +211,9 @@ def test_component_matrices_equal_the_former_masking():
         A = Kq.copy()
         A.data[comp.constrained[rows] | comp.constrained[A.indices]] = 0.0
         A.data[A.indptr[:-1][comp.constrained]] = 1.0
-        if comp.factor.matrix is None:                          # PARDISO, CHOLMOD: the upper triangle
+        if comp.factor.matrix is None:  # PARDISO, CHOLMOD: the upper triangle
             want, got = A, comp.factor._upper
-        else:                                                   # SuperLU: the whole matrix
+        else:  # SuperLU: the whole matrix
             want, got = (A + A.T - sp.diags(A.diagonal())).tocsr(), comp.factor.matrix.tocsr()
             want.sort_indices()
             got.sort_indices()
@@ -222,8 +230,10 @@ def test_upper_triangle_equals_scipy_triu(shipped):
     from fe_crank.fe.bases import cell_basis
 
     K = assemble_stiffness(cell_basis(shipped.mesh, 2), 210e9, 0.3)
-    S = sp.csr_matrix((np.array([1.0, 0.0, 2.0, 3.0, 4.0, 5.0]), np.array([1, 2, 0, 3, 1, 2]),
-                       np.array([0, 0, 2, 4, 6, 6, 6])), shape=(6, 6))
+    S = sp.csr_matrix(
+        (np.array([1.0, 0.0, 2.0, 3.0, 4.0, 5.0]), np.array([1, 2, 0, 3, 1, 2]), np.array([0, 0, 2, 4, 6, 6, 6])),
+        shape=(6, 6),
+    )
     for M in (K, S):
         want, got = sp.triu(M, format="csr"), upper_triangle(M)
         assert want.shape == got.shape

@@ -17,8 +17,15 @@ import pytest
 from skfem import Basis, ElementTetP2
 
 from fe_crank.fe.assembly import assemble_stiffness
-from fe_crank.fe.scf import (PRINCIPAL_LIMIT, Peak, scf_stresses, solve_bending_torsion, solve_three_point,
-                             tau_equiv, web_centres_from_mesh)
+from fe_crank.fe.scf import (
+    PRINCIPAL_LIMIT,
+    Peak,
+    scf_stresses,
+    solve_bending_torsion,
+    solve_three_point,
+    tau_equiv,
+    web_centres_from_mesh,
+)
 from fe_crank.fe.stress import von_mises
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import MeshOptions, mesh_throw

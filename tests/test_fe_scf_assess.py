@@ -25,9 +25,16 @@ from fe_crank.mesh import MeshOptions, mesh_throw
 
 ROOT = Path(__file__).resolve().parents[1]
 # tests/data/geometry_small.toml as UR M53 sees it (B: stadium web 40 mm wide)
-SMALL = m53.M53Geometry(pin_diameter=0.028, journal_diameter=0.032, crank_radius=0.02, web_thickness=0.012,
-                        web_width=0.04, pin_fillet_radius=0.0025, journal_fillet_radius=0.0025,
-                        bearing_to_web=0.018)
+SMALL = m53.M53Geometry(
+    pin_diameter=0.028,
+    journal_diameter=0.032,
+    crank_radius=0.02,
+    web_thickness=0.012,
+    web_width=0.04,
+    pin_fillet_radius=0.0025,
+    journal_fillet_radius=0.0025,
+    bearing_to_web=0.018,
+)
 
 
 def _peak(group, value):
@@ -45,14 +52,27 @@ def test_factors_against_hand_computed_nominal_stresses():
     sigma_3P = 28000 Pa: beta_Q = (28000 - 9375 * 2.688) / 1041.667 = 2.688,
     beta_BQ = 28000 / 9375 = 2.98667."""
     st = ScfStresses(
-        bending={"crankpin_fillet_1": _peak("crankpin_fillet_1", 2.5e6), "crankpin_fillet_2": _peak("crankpin_fillet_2", 2.4e6),
-                 "journal_fillet_1": _peak("journal_fillet_1", 2.7e6), "journal_fillet_2": _peak("journal_fillet_2", 2.8e6)},
-        torsion={"crankpin_fillet_1": _peak("crankpin_fillet_1", 4.0e5), "crankpin_fillet_2": _peak("crankpin_fillet_2", 3.9e5),
-                 "journal_fillet_1": _peak("journal_fillet_1", 3.0e5), "journal_fillet_2": _peak("journal_fillet_2", 2.0e5)},
-        three_point={"journal_fillet_1": _peak("journal_fillet_1", 28000.0),
-                     "journal_fillet_2": _peak("journal_fillet_2", 27000.0)},
-        reaction={"end_1": 0.5, "end_2": 0.5}, lever={"end_1": 0.018, "end_2": 0.018},
-        equilibrium_error={"bending": 0.0}, n_dof=0)
+        bending={
+            "crankpin_fillet_1": _peak("crankpin_fillet_1", 2.5e6),
+            "crankpin_fillet_2": _peak("crankpin_fillet_2", 2.4e6),
+            "journal_fillet_1": _peak("journal_fillet_1", 2.7e6),
+            "journal_fillet_2": _peak("journal_fillet_2", 2.8e6),
+        },
+        torsion={
+            "crankpin_fillet_1": _peak("crankpin_fillet_1", 4.0e5),
+            "crankpin_fillet_2": _peak("crankpin_fillet_2", 3.9e5),
+            "journal_fillet_1": _peak("journal_fillet_1", 3.0e5),
+            "journal_fillet_2": _peak("journal_fillet_2", 2.0e5),
+        },
+        three_point={
+            "journal_fillet_1": _peak("journal_fillet_1", 28000.0),
+            "journal_fillet_2": _peak("journal_fillet_2", 27000.0),
+        },
+        reaction={"end_1": 0.5, "end_2": 0.5},
+        lever={"end_1": 0.018, "end_2": 0.018},
+        equilibrium_error={"bending": 0.0},
+        n_dof=0,
+    )
     fe, quality, details = factors(st, SMALL)
     assert fe["alpha_B"] == pytest.approx(2.400, rel=1e-12)
     assert fe["beta_B"] == pytest.approx(2.688, rel=1e-12)
@@ -78,14 +98,29 @@ def test_the_verdict_does_not_depend_on_the_beta_b_beta_q_split():
     (beta_B 2.688, beta_Q 2.688, beta_BQ 2.98667) with F_R = 20 kN cos(theta):
     sigma_BFN = 10 kN x 0.018 / 9.6e-7 = 187.5 MPa, sigma_BG = 2.98667 x 187.5 = 560.0 MPa."""
     st = ScfStresses(
-        bending={g: _peak(g, v) for g, v in zip(("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1",
-                                                  "journal_fillet_2"), (2.5e6, 2.4e6, 2.7e6, 2.8e6))},
-        torsion={g: _peak(g, v) for g, v in zip(("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1",
-                                                  "journal_fillet_2"), (4.0e5, 3.9e5, 3.0e5, 2.0e5))},
-        three_point={"journal_fillet_1": _peak("journal_fillet_1", 28000.0),
-                     "journal_fillet_2": _peak("journal_fillet_2", 27000.0)},
-        reaction={"end_1": 0.5, "end_2": 0.5}, lever={"end_1": 0.018, "end_2": 0.018},
-        equilibrium_error={"bending": 0.0}, n_dof=0)
+        bending={
+            g: _peak(g, v)
+            for g, v in zip(
+                ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2"),
+                (2.5e6, 2.4e6, 2.7e6, 2.8e6),
+            )
+        },
+        torsion={
+            g: _peak(g, v)
+            for g, v in zip(
+                ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2"),
+                (4.0e5, 3.9e5, 3.0e5, 2.0e5),
+            )
+        },
+        three_point={
+            "journal_fillet_1": _peak("journal_fillet_1", 28000.0),
+            "journal_fillet_2": _peak("journal_fillet_2", 27000.0),
+        },
+        reaction={"end_1": 0.5, "end_2": 0.5},
+        lever={"end_1": 0.018, "end_2": 0.018},
+        equilibrium_error={"bending": 0.0},
+        n_dof=0,
+    )
     fe, _, _ = factors(st, SMALL)
     theta = np.deg2rad(np.arange(720.0))
     nom = m53.nominal_stresses(SMALL, 2e4 * np.cos(theta), np.zeros(720))
@@ -106,8 +141,11 @@ def big_fillet(tmp_path_factory):
     """geometry_small with 3.8 mm fillets: r/D = 3.8/28 = 0.1357 > 0.13, outside UR M53 3.1."""
     g = load_geometry(ROOT / "tests" / "data" / "geometry_small.toml")
     g = dataclasses.replace(g, crankpin_fillet=0.0038, journal_fillet=0.0038)
-    tm = mesh_throw(g, size=MeshOptions(coarse_divisions=1.2, fillet_divisions=0.8, grading=2.5),
-                    cache_dir=tmp_path_factory.mktemp("cache"))
+    tm = mesh_throw(
+        g,
+        size=MeshOptions(coarse_divisions=1.2, fillet_divisions=0.8, grading=2.5),
+        cache_dir=tmp_path_factory.mktemp("cache"),
+    )
     return g, tm
 
 
@@ -125,8 +163,19 @@ def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet):
     theta = np.deg2rad(np.arange(720.0))
     unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     pin = np.column_stack([np.zeros(720), 2e4 * np.cos(theta)])
-    t = assess_throw("1", unit, theta, pin, 300.0 * np.sin(theta), omega=0.0, overspeed=None, material=material,
-                     crank_radius=0.02, m53_geometry=geo, scf=provider)
+    t = assess_throw(
+        "1",
+        unit,
+        theta,
+        pin,
+        300.0 * np.sin(theta),
+        omega=0.0,
+        overspeed=None,
+        material=material,
+        crank_radius=0.02,
+        m53_geometry=geo,
+        scf=provider,
+    )
     r = cache[("throw", geo)]
     assert len(cache) == 1 and provider() is r
     pin_f, jou_f = t.m53
@@ -150,8 +199,19 @@ def test_m53_route_inside_the_range_never_runs_the_scf_mode():
     def no_scf():
         raise AssertionError("SCF mode solved for a throw inside the empirical range")
 
-    t = assess_throw("1", unit, theta, pin, 300.0 * np.sin(theta), omega=0.0, overspeed=None,
-                     material=load_material("42CrMo4"), crank_radius=0.02, m53_geometry=SMALL, scf=no_scf)
+    t = assess_throw(
+        "1",
+        unit,
+        theta,
+        pin,
+        300.0 * np.sin(theta),
+        omega=0.0,
+        overspeed=None,
+        material=load_material("42CrMo4"),
+        crank_radius=0.02,
+        m53_geometry=SMALL,
+        scf=no_scf,
+    )
     assert all(f.scf_source.startswith("empirical") for f in t.m53)
     assert t.m53[0].scf_bending == pytest.approx(m53.alpha_b(SMALL.related("pin")), rel=1e-12)
     assert math.isfinite(t.m53[1].acceptability)
@@ -171,7 +231,7 @@ def test_scf_mode_asks_for_r_over_4_fillet_elements(big_fillet):
     g, tm = big_fillet
     fine_enough = dataclasses.replace(tm, options=PRESETS["medium"])
     assert scf_mesh(fine_enough, g) is fine_enough
-    assert scf_mesh(tm.mesh, g) is tm.mesh          # a bare mesh: used as it is
+    assert scf_mesh(tm.mesh, g) is tm.mesh  # a bare mesh: used as it is
 
 
 @pytest.mark.heavy

@@ -66,8 +66,13 @@ print(json.dumps({"footprint": footprint, "growth": rss() - base}))
 
 
 def _measure(kind: str) -> dict:
-    out = subprocess.run([sys.executable, "-c", _SCRIPT, kind], capture_output=True, text=True, timeout=300,
-                         env={"OPENBLAS_NUM_THREADS": "1", "PATH": "/usr/bin:/bin"})
+    out = subprocess.run(
+        [sys.executable, "-c", _SCRIPT, kind],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={"OPENBLAS_NUM_THREADS": "1", "PATH": "/usr/bin:/bin"},
+    )
     assert out.returncode == 0, out.stderr
     return json.loads(out.stdout.strip().splitlines()[-1])
 
@@ -75,8 +80,8 @@ def _measure(kind: str) -> dict:
 @pytest.mark.parametrize("kind", ["single", "shared"])
 def test_a_dropped_pardiso_factor_is_released(kind):
     m = _measure(kind)
-    assert m["footprint"] > 20e6                   # the measurement sees the factor at all
-    assert m["growth"] < 0.5 * m["footprint"]      # kept factors: about 4 footprints
+    assert m["footprint"] > 20e6  # the measurement sees the factor at all
+    assert m["growth"] < 0.5 * m["footprint"]  # kept factors: about 4 footprints
 
 
 def test_free_then_drop_releases_once():
@@ -90,6 +95,6 @@ def test_free_then_drop_releases_once():
     K = (sp.diags([-np.ones(99), 2.5 * np.ones(100), -np.ones(99)], [-1, 0, 1])).tocsr()
     fac = factorise(K, "pardiso")
     fac.free()
-    assert not fac._finalizer.alive           # the release ran, and will not run again
+    assert not fac._finalizer.alive  # the release ran, and will not run again
     del fac
-    gc.collect()                              # no second phase -1 on the released handle
+    gc.collect()  # no second phase -1 on the released handle

@@ -14,6 +14,8 @@ import logging
 
 import numpy as np
 import pytest
+from symmetric_meshes import MirroredThrow, mirrored_throw
+from verification_meshes import Steel, simple_throw
 
 from fe_crank.errors import InputError, SolverError
 from fe_crank.fe import FeOptions, solve_unit_cases
@@ -21,8 +23,6 @@ from fe_crank.fe.input import parse_fe
 from fe_crank.fe.supports import rigid_body_modes
 from fe_crank.fe.symmetry import component, reflect, verify_mirror
 from fe_crank.fe.symsolve import mode_characters
-from symmetric_meshes import MirroredThrow, mirrored_throw
-from verification_meshes import Steel, simple_throw
 
 REL = 1e-10
 
@@ -38,8 +38,7 @@ def pair(request):
 def test_symmetric_solve_equals_full_solve(pair):
     planes, throw, sym, full = pair
     k = len(planes)
-    assert f"solved on {2 ** k} symmetry components of the {'half' if k == 1 else 'quarter'}" \
-        in sym.solver_description
+    assert f"solved on {2**k} symmetry components of the {'half' if k == 1 else 'quarter'}" in sym.solver_description
     assert "symmetry" not in full.solver_description
     assert sym.n_dof == full.n_dof
     assert set(sym.cases) == set(full.cases)
@@ -50,9 +49,10 @@ def test_symmetric_solve_equals_full_solve(pair):
         assert np.abs(ss - sf).max() <= REL * np.abs(sf).max(), name
         assert sym.cases[name].equilibrium_error < 1e-8
         for who, r in full.cases[name].reactions.items():
-            if who != "point_constraints":      # the determinate reactions are those of the load
-                np.testing.assert_allclose(sym.cases[name].reactions[who], r, rtol=0,
-                                           atol=1e-9 * np.abs(full.cases[name].applied).max())
+            if who != "point_constraints":  # the determinate reactions are those of the load
+                np.testing.assert_allclose(
+                    sym.cases[name].reactions[who], r, rtol=0, atol=1e-9 * np.abs(full.cases[name].applied).max()
+                )
 
 
 def test_mirror_is_exact_and_names_map(pair):
@@ -61,16 +61,16 @@ def test_mirror_is_exact_and_names_map(pair):
     mirror, why = verify_mirror(basis.doflocs, basis.element_dofs, planes)
     assert mirror is not None, why
     x = basis.doflocs
-    tol = 1e-15 * np.ptp(x, axis=1).max()      # round-off of the dof locations (found: 2e-17 of the size)
+    tol = 1e-15 * np.ptp(x, axis=1).max()  # round-off of the dof locations (found: 2e-17 of the size)
     for a in planes:
         p = mirror.perm[a]
         y = x[:, p]
-        assert np.abs(y[a] + x[a]).max() <= tol                # the image of a node is its mirror point
+        assert np.abs(y[a] + x[a]).max() <= tol  # the image of a node is its mirror point
         others = [c for c in range(3) if c != a]
         assert np.abs(y[others] - x[others]).max() <= tol
         assert np.abs(x[a, mirror.on_plane[a]]).max() <= tol
         assert np.all(p[p] == np.arange(p.size))
-    if 2 in planes:   # the z mirror swaps journal_1 and journal_2: equal areas (same facets mirrored)
+    if 2 in planes:  # the z mirror swaps journal_1 and journal_2: equal areas (same facets mirrored)
         m = throw.mesh
         assert m.boundaries["journal_1"].size == m.boundaries["journal_2"].size
 
@@ -83,7 +83,7 @@ def test_symmetric_load_has_no_antisymmetric_component(pair):
     basis = sym.system.basis
     mirror, _ = verify_mirror(basis.doflocs, basis.element_dofs, planes)
     x = basis.doflocs
-    tol = 1e-15 * np.ptp(x, axis=1).max()      # round-off of the dof locations (v is a position)
+    tol = 1e-15 * np.ptp(x, axis=1).max()  # round-off of the dof locations (v is a position)
     v = np.stack([x[0], x[1], np.zeros_like(x[0])], axis=1).ravel()
     ez = np.zeros((x.shape[1], 3))
     ez[:, 2] = 1.0
@@ -120,10 +120,11 @@ def test_rigid_mode_characters_match_the_reflections(pair):
 
 
 def test_non_symmetric_mesh_falls_back_and_says_why(caplog):
-    throw = simple_throw(size=0.014)          # meshed whole: not an exact mirror image
+    throw = simple_throw(size=0.014)  # meshed whole: not an exact mirror image
     with caplog.at_level(logging.WARNING, logger="fe_crank.fe.symmetry"):
-        sol = solve_unit_cases(MirroredThrow(mesh=throw, symmetry=(0, 2)), Steel(), FeOptions(cases=("pin_y",
-                                                                                                       "torque")))
+        sol = solve_unit_cases(
+            MirroredThrow(mesh=throw, symmetry=(0, 2)), Steel(), FeOptions(cases=("pin_y", "torque"))
+        )
     assert "symmetry" not in sol.solver_description
     assert "not" in caplog.text and "solving the full model" in caplog.text
     assert sol.cases["pin_y"].equilibrium_error < 1e-8
@@ -136,7 +137,7 @@ def test_a_moved_node_breaks_the_mirror():
     basis = Basis(throw.mesh, ElementTetP2())
     x = basis.doflocs.copy()
     i = int(np.argmax(x[0]))
-    x[1, i] += 1e-7                          # 1e-7 m: far above round-off, far below an element
+    x[1, i] += 1e-7  # 1e-7 m: far above round-off, far below an element
     mirror, why = verify_mirror(x, basis.element_dofs, (0,))
     assert mirror is None and "no mirror image" in why
     mirror, why = verify_mirror(basis.doflocs, basis.element_dofs, (0,))
@@ -148,8 +149,11 @@ def test_a_moved_node_breaks_the_mirror():
 
 def test_foundation_support_is_solved_on_the_full_model():
     throw = mirrored_throw((0, 2), size=0.02)
-    sol = solve_unit_cases(throw, Steel(), FeOptions(support="foundation", bearing_stiffness=4.2e12,
-                                                     cases=("pin_-y", "centrifugal", "torque")))
+    sol = solve_unit_cases(
+        throw,
+        Steel(),
+        FeOptions(support="foundation", bearing_stiffness=4.2e12, cases=("pin_-y", "centrifugal", "torque")),
+    )
     assert "symmetry" not in sol.solver_description
 
 
@@ -166,7 +170,7 @@ def test_free_releases_every_component():
 def test_symmetry_switch_is_read_from_the_fe_section():
     assert parse_fe({"symmetry": False}, "case.toml").symmetry is False
     assert parse_fe({}, "case.toml").symmetry is True
-    with pytest.raises(InputError) as err:          # a string is refused, not read as a boolean
+    with pytest.raises(InputError) as err:  # a string is refused, not read as a boolean
         parse_fe({"symmetry": "no"}, "case.toml")
     assert err.value.key == "fe.symmetry" and "case.toml" in str(err.value)
 

@@ -6,12 +6,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
+from verification_meshes import Steel, simple_throw
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
 from fe_crank.fe.solvers import factorise
-from verification_meshes import Steel, simple_throw
 
 
 @pytest.fixture(scope="module")
@@ -25,8 +25,22 @@ def unit(throw):
 
 
 def test_every_unit_case_balances_its_reactions(unit):
-    assert set(unit.cases) == {"centrifugal", "torque", "pin_x", "pin_030", "pin_060", "pin_y", "pin_120", "pin_150",
-                               "pin_-x", "pin_210", "pin_240", "pin_-y", "pin_300", "pin_330"}
+    assert set(unit.cases) == {
+        "centrifugal",
+        "torque",
+        "pin_x",
+        "pin_030",
+        "pin_060",
+        "pin_y",
+        "pin_120",
+        "pin_150",
+        "pin_-x",
+        "pin_210",
+        "pin_240",
+        "pin_-y",
+        "pin_300",
+        "pin_330",
+    }
     for case in unit.cases.values():
         assert case.equilibrium_error < 1e-6
         total = case.applied + sum(case.reactions.values())
@@ -47,7 +61,7 @@ def test_pin_pressure_integrates_exactly_to_the_force(throw, unit):
     # pin d = 45 mm, L = 30 mm (the faceted mesh surface gives ~0.1 % less area)
     psi0 = np.deg2rad(60.0)
     a = np.pi / (2 * psi0)
-    integral = (np.sin((a - 1) * psi0) / (a - 1) + np.sin((a + 1) * psi0) / (a + 1))
+    integral = np.sin((a - 1) * psi0) / (a - 1) + np.sin((a + 1) * psi0) / (a + 1)
     p0_expected = 1.0 / (0.03 * 0.0225 * integral)
     assert unit.pin["pin_y"].peak_pressure == pytest.approx(p0_expected, rel=0.01)
 
@@ -98,7 +112,7 @@ def test_superposition_of_pin_cases(unit):
 
 
 def test_missing_boundary_is_a_clear_error(throw):
-    mesh = type(throw)(throw.doflocs, throw.t)   # no named groups
+    mesh = type(throw)(throw.doflocs, throw.t)  # no named groups
     with pytest.raises(MeshError, match="no boundary 'journal_1'"):
         solve_unit_cases(mesh, Steel())
 
@@ -111,11 +125,11 @@ def test_zero_speed_centrifugal_is_an_input_error(unit):
 def test_unsupported_rigid_mode_is_a_solver_error(unit):
     from fe_crank.fe.assembly import assemble_stiffness
 
-    K = assemble_stiffness(unit.system.basis, 210e9, 0.3)   # elastic stiffness alone: six rigid-body modes
+    K = assemble_stiffness(unit.system.basis, 210e9, 0.3)  # elastic stiffness alone: six rigid-body modes
     with pytest.raises(SolverError):
         fac = factorise(K, "superlu")
         f = np.zeros(K.shape[0])
-        f[0] = 1.0                                 # unbalanced load
+        f[0] = 1.0  # unbalanced load
         fac.solve(f)
 
 
@@ -145,13 +159,14 @@ def test_material_without_density_is_an_input_error(throw):
 
 def test_foundation_support_carries_the_same_resultants(throw, unit):
     """The explicit foundation option: loads still balance exactly, each journal about half."""
-    found = solve_unit_cases(throw, Steel(), FeOptions(support="foundation", bearing_stiffness=4.2e12,
-                                                       cases=("pin_-y",)))
+    found = solve_unit_cases(
+        throw, Steel(), FeOptions(support="foundation", bearing_stiffness=4.2e12, cases=("pin_-y",))
+    )
     assert found.bearing_stiffness == 4.2e12 and unit.bearing_stiffness is None
     c = found.cases["pin_-y"]
     assert c.equilibrium_error < 1e-6
     fy = c.reactions["journal_1"][1] + c.reactions["journal_2"][1]
-    assert fy == pytest.approx(1.0, rel=1e-6)          # the load is -1 N along y
+    assert fy == pytest.approx(1.0, rel=1e-6)  # the load is -1 N along y
     # symmetric throw: each journal carries about half
     assert c.reactions["journal_1"][1] == pytest.approx(0.5, rel=0.05)
 
@@ -162,10 +177,15 @@ def test_foundation_on_the_loaded_arc_only(throw):
     from fe_crank.fe.loads import pin_pressure_load
 
     k = 210e9 / 0.05
-    arc = (np.pi, np.deg2rad(60))                    # -y side: the pin is pushed towards -y
-    s = build_system(throw, 210e9, 0.3, solver="superlu",
-                     foundations=[Foundation("journal_1", k, arc), Foundation("journal_2", k, arc)],
-                     couplings=[Coupling("end_2", fixed=("ux", "uz", "rz"))])
+    arc = (np.pi, np.deg2rad(60))  # -y side: the pin is pushed towards -y
+    s = build_system(
+        throw,
+        210e9,
+        0.3,
+        solver="superlu",
+        foundations=[Foundation("journal_1", k, arc), Foundation("journal_2", k, arc)],
+        couplings=[Coupling("end_2", fixed=("ux", "uz", "rz"))],
+    )
     f, _ = pin_pressure_load(s.basis, (0.0, -1000.0))
     u = s.solve(f)
     err, reac = s.equilibrium_error(u, f)
@@ -174,7 +194,7 @@ def test_foundation_on_the_loaded_arc_only(throw):
     rs = -(s.Ks @ u).reshape(-1, 3)
     loaded = np.flatnonzero(np.linalg.norm(rs, axis=1) > 0)
     ang = np.arctan2(s.points[0, loaded], s.points[1, loaded])
-    assert np.all(np.abs(np.angle(np.exp(1j * (ang - np.pi)))) < np.deg2rad(90))   # arc + one element
+    assert np.all(np.abs(np.angle(np.exp(1j * (ang - np.pi)))) < np.deg2rad(90))  # arc + one element
 
 
 def test_explicit_pin_centre_gives_the_same_load(throw, unit):

@@ -26,13 +26,61 @@ from fe_crank.cli import main
 from fe_crank.errors import FeCrankError
 
 ROOT = Path(__file__).resolve().parents[1]
-BASES = (sorted(ROOT.glob("loadcases/*.toml")) + [ROOT / "tests" / "data" / "small_pass.toml"]
-         + sorted(ROOT.glob("geometry/*.toml"))
-         + [ROOT / "engines" / "single_cylinder_seed001.toml", ROOT / "engines" / "v4_90_seed003_pneumatic.toml"])
-UNITS = ["mm", "m", "rpm", "1/min", "1/s", "Hz", "rad/s", "deg", "rad", "kg", "MPa", "bar", "N", "N*m",
-         "kg*m**2", "kg/m^3", "J", "", "furlong", "m**9", "(((m)))", "**9**9", "%"]
-EXTREMES = [0, -1, 10**30, -(10**30), 1e308, -1e308, 1e-308, 0.0, -0.0, math.inf, -math.inf, math.nan,
-            True, "", "x" * 200, "1e300 mm", "-5 mm", "0 rpm", "nan rpm", [], {}, [[[]]]]
+BASES = (
+    sorted(ROOT.glob("loadcases/*.toml"))
+    + [ROOT / "tests" / "data" / "small_pass.toml"]
+    + sorted(ROOT.glob("geometry/*.toml"))
+    + [ROOT / "engines" / "single_cylinder_seed001.toml", ROOT / "engines" / "v4_90_seed003_pneumatic.toml"]
+)
+UNITS = [
+    "mm",
+    "m",
+    "rpm",
+    "1/min",
+    "1/s",
+    "Hz",
+    "rad/s",
+    "deg",
+    "rad",
+    "kg",
+    "MPa",
+    "bar",
+    "N",
+    "N*m",
+    "kg*m**2",
+    "kg/m^3",
+    "J",
+    "",
+    "furlong",
+    "m**9",
+    "(((m)))",
+    "**9**9",
+    "%",
+]
+EXTREMES = [
+    0,
+    -1,
+    10**30,
+    -(10**30),
+    1e308,
+    -1e308,
+    1e-308,
+    0.0,
+    -0.0,
+    math.inf,
+    -math.inf,
+    math.nan,
+    True,
+    "",
+    "x" * 200,
+    "1e300 mm",
+    "-5 mm",
+    "0 rpm",
+    "nan rpm",
+    [],
+    {},
+    [[[]]],
+]
 
 
 class Hang(Exception):
@@ -107,11 +155,14 @@ def mutated_case(draw):
         elif kind == "unit" and isinstance(value, str) and " " in value:
             new = value.split(" ", 1)[0] + " " + draw(st.sampled_from(UNITS))
         elif kind == "number" and isinstance(value, str) and " " in value:
-            num = draw(st.floats(allow_nan=True, allow_infinity=True) | st.integers(-10**40, 10**40))
+            num = draw(st.floats(allow_nan=True, allow_infinity=True) | st.integers(-(10**40), 10**40))
             new = f"{num} {value.split(' ', 1)[1]}"
         else:
-            new = draw(st.one_of(st.integers(), st.floats(), st.text(max_size=20), st.booleans(),
-                                 st.lists(st.integers(), max_size=3)))
+            new = draw(
+                st.one_of(
+                    st.integers(), st.floats(), st.text(max_size=20), st.booleans(), st.lists(st.integers(), max_size=3)
+                )
+            )
         _set(data, path, new)
     return base, data
 
@@ -142,8 +193,13 @@ def _run_bounded(fn, seconds: int):
         signal.signal(signal.SIGALRM, old)
 
 
-_FUZZ = settings(max_examples=120, deadline=None, derandomize=True, database=None,
-                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+_FUZZ = settings(
+    max_examples=120,
+    deadline=None,
+    derandomize=True,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture],
+)
 
 
 @_FUZZ
@@ -159,8 +215,13 @@ def test_validate_never_crashes(tree, capsys, case):
         assert str(p) in err or "fuzzed.toml" in err or ".toml" in err
 
 
-@settings(max_examples=15, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+@settings(
+    max_examples=15,
+    deadline=None,
+    derandomize=True,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture],
+)
 @given(mutated_case())
 def test_dynamics_results_finite(tree, case):
     """Cases that validate: the dynamics stage gives finite forces and torques or a

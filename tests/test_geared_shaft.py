@@ -105,11 +105,17 @@ def test_geared_shaft_free_forces(geared):
     # order 1: y = 1 kg * 0.04 m * 100^2 = 400 N; x = 0
     np.testing.assert_allclose(_row_amplitudes(ff.term("reciprocating", 1)), [0.0, 400.0], rtol=1e-9, atol=1e-9)
     # order 2: x = geared first harmonic 0.5 * 0.02 * 200^2 = 400 N; y = crank 400 A_2 = 101.6 N
-    np.testing.assert_allclose(_row_amplitudes(ff.term("reciprocating", 2)),
-                               [M_AUX * R_AUX * (2 * OMEGA) ** 2, M_CRANK * R_CRANK * OMEGA**2 * A2], rtol=3e-4)
+    np.testing.assert_allclose(
+        _row_amplitudes(ff.term("reciprocating", 2)),
+        [M_AUX * R_AUX * (2 * OMEGA) ** 2, M_CRANK * R_CRANK * OMEGA**2 * A2],
+        rtol=3e-4,
+    )
     # order 4: x = geared second harmonic 400 A_2; y = crank 400 |A_4| = 1.636 N
-    np.testing.assert_allclose(_row_amplitudes(ff.term("reciprocating", 4)),
-                               [M_AUX * R_AUX * (2 * OMEGA) ** 2 * A2, M_CRANK * R_CRANK * OMEGA**2 * A4], rtol=3e-3)
+    np.testing.assert_allclose(
+        _row_amplitudes(ff.term("reciprocating", 4)),
+        [M_AUX * R_AUX * (2 * OMEGA) ** 2 * A2, M_CRANK * R_CRANK * OMEGA**2 * A4],
+        rtol=3e-3,
+    )
 
 
 def test_geared_shaft_dynamics(geared):
@@ -133,6 +139,10 @@ def test_geared_shaft_torque_is_reduced_to_the_crank_by_its_speed_ratio(geared):
     """Power equivalence: the aux shaft turns at 2 omega, so its torque T_aux counts as
     2 T_aux on the crankshaft (T omega = T_crank omega + T_aux 2 omega)."""
     res = analyse(geared, model.OperatingPoint(speed=OMEGA), step=math.radians(2.0))
-    np.testing.assert_allclose(res.torque, res.shaft_torque["crank"] + 2.0 * res.shaft_torque["aux"],
-                               rtol=1e-13, atol=1e-12 * np.max(np.abs(res.torque)))
+    np.testing.assert_allclose(
+        res.torque,
+        res.shaft_torque["crank"] + 2.0 * res.shaft_torque["aux"],
+        rtol=1e-13,
+        atol=1e-12 * np.max(np.abs(res.torque)),
+    )
     assert np.max(np.abs(res.shaft_torque["aux"])) > 1.0  # N m: the geared shaft does carry torque

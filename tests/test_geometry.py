@@ -37,6 +37,7 @@ def _base(**over) -> dict:
 
 # ---------------------------------------------------------------- files and units
 
+
 @pytest.mark.parametrize("path", sorted((ROOT / "geometry").glob("*.toml")), ids=lambda p: p.name)
 def test_geometry_files_load(path):
     g = load_geometry(path)
@@ -102,6 +103,7 @@ def test_unknown_key_refused():
 
 # ---------------------------------------------------------------- impossible geometry, one test per rule
 
+
 def test_zero_size_refused():
     with pytest.raises(GeometryError, match="crankpin.length: must be positive"):
         geometry_from_dict(_base(crankpin={"length": "0 mm"}))
@@ -119,7 +121,9 @@ def test_negative_fillet_refused():
 
 def test_pin_fillet_larger_than_web_allows():
     # stadium half-width 30 mm around a pin of radius 20 mm leaves 10 mm for the fillet
-    with pytest.raises(GeometryError, match="crankpin.fillet_radius: fillet radius 12 mm is larger than the web allows"):
+    with pytest.raises(
+        GeometryError, match="crankpin.fillet_radius: fillet radius 12 mm is larger than the web allows"
+    ):
         geometry_from_dict(_base(crankpin={"fillet_radius": "12 mm"}))
 
 
@@ -185,6 +189,7 @@ def test_distance_to_sector_closed_form():
 
 
 # ---------------------------------------------------------------- mass properties vs closed forms
+
 
 def _hull_area(a: float, b: float, R: float) -> tuple[float, float]:
     """Area and centroid y of the convex hull of circles (0,0,a) and (0,R,b), independent formula."""
@@ -299,8 +304,10 @@ def test_seed003_counterweight_sized_by_balance_stage_matches_in_cad():
     sized = solve_sector(need, free="thickness", r_outer=0.071, r_inner=0.032, angle=math.pi, density=7400.0)
     g = load_geometry(SEED003)
     spec = g.throws[0]
-    cws = tuple(dataclasses.replace(c, thickness=sized.thickness, fillet_radius=None)  # a sector, as sized
-                for c in spec.counterweights)
+    cws = tuple(
+        dataclasses.replace(c, thickness=sized.thickness, fillet_radius=None)  # a sector, as sized
+        for c in spec.counterweights
+    )
     g_sized = dataclasses.replace(g, throws=(dataclasses.replace(spec, counterweights=cws),))
     mp = mass_properties(g_sized)
     for web in (1, 2):
@@ -328,12 +335,18 @@ def _undercut_volumes(c: float, r: float, u: float) -> tuple[float, float]:
 
 def test_undercut_fillet_volumes_match_pappus():
     g0 = geometry_from_dict(_base())
-    g1 = geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm", "undercut": "1 mm"},
-                                  journal={"fillet_radius": "3 mm", "undercut": "0.5 mm"}))
+    g1 = geometry_from_dict(
+        _base(
+            crankpin={"fillet_radius": "3 mm", "undercut": "1 mm"},
+            journal={"fillet_radius": "3 mm", "undercut": "0.5 mm"},
+        )
+    )
     m0, m1 = mass_properties(g0), mass_properties(g1)
     add_p, groove_p = _undercut_volumes(0.020, 0.003, 0.001)
     add_j, groove_j = _undercut_volumes(0.025, 0.003, 0.0005)
-    assert _undercut_volumes(0.02, 0.003, 0.0)[0] == pytest.approx(2 * math.pi * (0.02 + 0.003 * (10 - 3 * math.pi) / (3 * (4 - math.pi))) * 0.003**2 * (1 - math.pi / 4))
+    assert _undercut_volumes(0.02, 0.003, 0.0)[0] == pytest.approx(
+        2 * math.pi * (0.02 + 0.003 * (10 - 3 * math.pi) / (3 * (4 - math.pi))) * 0.003**2 * (1 - math.pi / 4)
+    )
     dv = {k: m1.parts[k].volume - m0.parts[k].volume for k in m0.parts}
     assert dv["crankpin"] == pytest.approx(2 * add_p, rel=1e-3)
     assert dv["journal_1"] == pytest.approx(add_j, rel=1e-3)
@@ -341,7 +354,9 @@ def test_undercut_fillet_volumes_match_pappus():
 
 
 def test_undercut_deeper_than_fillet_refused():
-    with pytest.raises(GeometryError, match="crankpin.undercut: undercut 3 mm must be smaller than the fillet radius 3 mm"):
+    with pytest.raises(
+        GeometryError, match="crankpin.undercut: undercut 3 mm must be smaller than the fillet radius 3 mm"
+    ):
         geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm", "undercut": "3 mm"}))
 
 

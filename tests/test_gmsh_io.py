@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from skfem import Basis, ElementTetP2, Functional, FacetBasis
+from skfem import Basis, ElementTetP2, FacetBasis, Functional
 
 from fe_crank.errors import MeshError
 from fe_crank.gmsh_io import corner_jacobians, gmsh_session, model_to_skfem
@@ -79,7 +79,9 @@ def test_quadratic_tet_conversion_groups_volume_and_node_order():
     vol = Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(basis)
     exact = 1.0 + np.pi * 0.3**2 * 0.5
     assert vol == pytest.approx(exact, rel=2e-4)
-    vol_pin = Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(Basis(mesh, ElementTetP2(), elements=mesh.subdomains["pin"]))
+    vol_pin = Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(
+        Basis(mesh, ElementTetP2(), elements=mesh.subdomains["pin"])
+    )
     assert vol_pin == pytest.approx(np.pi * 0.3**2 * 0.5, rel=5e-4)
 
     # boundary areas: bottom face 1, mantle 2 pi r h

@@ -59,8 +59,16 @@ def test_seed_files_load(root):
     assert e.cylinders[0].rod.length == pytest.approx(0.307)
     assert lc.operating.speed == pytest.approx(2800 * np.pi / 30)  # 293.215 rad/s (seed: 293.07 with pi = 3.14)
     assert e.gas is not None and e.gas.pressure.max() > 3e6
-    assert main(["validate", str(root / "loadcases/single_cylinder_seed001.toml"),
-                 str(root / "engines/single_cylinder_seed001.toml")]) == 0
+    assert (
+        main(
+            [
+                "validate",
+                str(root / "loadcases/single_cylinder_seed001.toml"),
+                str(root / "engines/single_cylinder_seed001.toml"),
+            ]
+        )
+        == 0
+    )
 
 
 def test_good_file_loads(tmp_path):
@@ -70,34 +78,98 @@ def test_good_file_loads(tmp_path):
 
 
 BAD = [
-    ("missing key", lambda e, c: (e.replace('bore = "92 mm"\n', ""), c), "engine.toml", "cylinders[0].bore",
-     "required key is missing"),
-    ("unknown key", lambda e, c: (e.replace('bore = "92 mm"', 'bore = "92 mm"\nboree = "92 mm"'), c),
-     "engine.toml", "cylinders[0].boree", "unknown key"),
-    ("value without unit", lambda e, c: (e.replace('"92 mm"', "92"), c), "engine.toml", "cylinders[0].bore",
-     "without a unit"),
-    ("unit-less string", lambda e, c: (e, c.replace('"2800 rpm"', '"2800"')), "case.toml", "operating.speed",
-     "has no unit"),
-    ("wrong dimension", lambda e, c: (e.replace('crank_radius = "64 mm"', 'stroke = "66 kg"'), c), "engine.toml",
-     "throws[0].stroke", "is a mass, not a length"),
-    ("negative size", lambda e, c: (e.replace('"92 mm"', '"-92 mm"'), c), "engine.toml", "cylinders[0]",
-     "bore must be positive"),
-    ("zero size", lambda e, c: (e.replace('"64 mm"', '"0 mm"'), c), "engine.toml", "throws[0]",
-     "crank radius must be positive"),
-    ("rod shorter than crank", lambda e, c: (e.replace('"307 mm"', '"50 mm"').replace('"138 mm"', '"20 mm"'), c), "engine.toml",
-     "cylinders[0].rod_length", "must exceed crank radius"),
-    ("firing order names a missing cylinder", lambda e, c: (e.replace('strokes = 4', 'strokes = 4\nfiring_order = ["1", "7"]'), c),
-     "engine.toml", "firing_order[1]", "'7'"),
-    ("malformed TOML", lambda e, c: (e.replace('name = "1"', 'name = "1'), c), "engine.toml", "line",
-     "malformed TOML"),
-    ("unknown top-level key in the load case", lambda e, c: (e, c + 'speeed = "1 rpm"\n'), "case.toml", "speeed",
-     "unknown key"),
-    ("missing operating point", lambda e, c: (e, c.replace('[operating]\nspeed = "2800 rpm"\n', "")), "case.toml",
-     "operating", "required key is missing"),
-    ("gas unit wrong", lambda e, c: (e.replace('pressure_unit = "MPa"', 'pressure_unit = "mm"'), c), "engine.toml",
-     "gas", "not a pressure unit"),
-    ("gas beyond the cycle", lambda e, c: (e.replace("[720, 4.0]", "[800, 4.0]"), c), "engine.toml",
-     "gas.points", "within one cycle"),
+    (
+        "missing key",
+        lambda e, c: (e.replace('bore = "92 mm"\n', ""), c),
+        "engine.toml",
+        "cylinders[0].bore",
+        "required key is missing",
+    ),
+    (
+        "unknown key",
+        lambda e, c: (e.replace('bore = "92 mm"', 'bore = "92 mm"\nboree = "92 mm"'), c),
+        "engine.toml",
+        "cylinders[0].boree",
+        "unknown key",
+    ),
+    (
+        "value without unit",
+        lambda e, c: (e.replace('"92 mm"', "92"), c),
+        "engine.toml",
+        "cylinders[0].bore",
+        "without a unit",
+    ),
+    (
+        "unit-less string",
+        lambda e, c: (e, c.replace('"2800 rpm"', '"2800"')),
+        "case.toml",
+        "operating.speed",
+        "has no unit",
+    ),
+    (
+        "wrong dimension",
+        lambda e, c: (e.replace('crank_radius = "64 mm"', 'stroke = "66 kg"'), c),
+        "engine.toml",
+        "throws[0].stroke",
+        "is a mass, not a length",
+    ),
+    (
+        "negative size",
+        lambda e, c: (e.replace('"92 mm"', '"-92 mm"'), c),
+        "engine.toml",
+        "cylinders[0]",
+        "bore must be positive",
+    ),
+    (
+        "zero size",
+        lambda e, c: (e.replace('"64 mm"', '"0 mm"'), c),
+        "engine.toml",
+        "throws[0]",
+        "crank radius must be positive",
+    ),
+    (
+        "rod shorter than crank",
+        lambda e, c: (e.replace('"307 mm"', '"50 mm"').replace('"138 mm"', '"20 mm"'), c),
+        "engine.toml",
+        "cylinders[0].rod_length",
+        "must exceed crank radius",
+    ),
+    (
+        "firing order names a missing cylinder",
+        lambda e, c: (e.replace("strokes = 4", 'strokes = 4\nfiring_order = ["1", "7"]'), c),
+        "engine.toml",
+        "firing_order[1]",
+        "'7'",
+    ),
+    ("malformed TOML", lambda e, c: (e.replace('name = "1"', 'name = "1'), c), "engine.toml", "line", "malformed TOML"),
+    (
+        "unknown top-level key in the load case",
+        lambda e, c: (e, c + 'speeed = "1 rpm"\n'),
+        "case.toml",
+        "speeed",
+        "unknown key",
+    ),
+    (
+        "missing operating point",
+        lambda e, c: (e, c.replace('[operating]\nspeed = "2800 rpm"\n', "")),
+        "case.toml",
+        "operating",
+        "required key is missing",
+    ),
+    (
+        "gas unit wrong",
+        lambda e, c: (e.replace('pressure_unit = "MPa"', 'pressure_unit = "mm"'), c),
+        "engine.toml",
+        "gas",
+        "not a pressure unit",
+    ),
+    (
+        "gas beyond the cycle",
+        lambda e, c: (e.replace("[720, 4.0]", "[800, 4.0]"), c),
+        "engine.toml",
+        "gas.points",
+        "within one cycle",
+    ),
 ]
 
 
@@ -122,7 +194,7 @@ def test_bad_input_one_message_naming_file_and_key(tmp_path, capsys, label, edit
 
 def test_gas_csv_round_trip(tmp_path):
     ang = np.linspace(0, 720, 73)
-    p = 0.1 + 4.0 * np.exp(-((ang - 370) / 30) ** 2)
+    p = 0.1 + 4.0 * np.exp(-(((ang - 370) / 30) ** 2))
     lines = ["angle [deg], pressure [MPa]"] + [f"{a:.10g}, {q:.10g}" for a, q in zip(ang, p)]
     (tmp_path / "p.csv").write_text("\n".join(lines) + "\n")
     eng = ENGINE.split("[gas]")[0] + '[gas]\nmodel = "csv"\nfile = "p.csv"\n'
@@ -139,7 +211,9 @@ def test_gas_csv_round_trip(tmp_path):
 
 
 def test_gas_wiebe_model_input(tmp_path):
-    eng = ENGINE.split("[gas]")[0] + """[gas]
+    eng = (
+        ENGINE.split("[gas]")[0]
+        + """[gas]
 model = "wiebe"
 compression_ratio = 8.5
 intake_pressure = "0.09 MPa"
@@ -148,6 +222,7 @@ heat_released = "1.8 kJ"
 combustion_start = "-15 deg"
 combustion_duration = "50 deg"
 """
+    )
     e = load_engine(_write(tmp_path, eng).parent / "engine.toml")
     assert 3e6 < e.gas.pressure.max() < 8e6
     with pytest.raises(InputError, match=r"engine\.toml: gas\.heat_released"):

@@ -51,11 +51,14 @@ def validate_refuses(capsys, path, *words) -> str:
 # ---------------------------------------------------------------- parsing
 
 
-@pytest.mark.parametrize("deep", [
-    "x = " + "[" * 5000 + "]" * 5000,                      # arrays
-    "x = " + "{a = " * 3000 + "1" + "}" * 3000,            # inline tables
-    "[" + ".".join(["a"] * 3000) + "]\nb = 1",             # dotted tables
-])
+@pytest.mark.parametrize(
+    "deep",
+    [
+        "x = " + "[" * 5000 + "]" * 5000,  # arrays
+        "x = " + "{a = " * 3000 + "1" + "}" * 3000,  # inline tables
+        "[" + ".".join(["a"] * 3000) + "]\nb = 1",  # dotted tables
+    ],
+)
 def test_deep_nesting_refused(tmp_path, capsys, deep):
     p = case_dir(tmp_path, SMALL + "\n" + deep + "\n")
     validate_refuses(capsys, p, "nested deeper than 12")
@@ -90,20 +93,23 @@ def test_bom_is_accepted(tmp_path, capsys):
 # ---------------------------------------------------------------- numbers
 
 
-@pytest.mark.parametrize("old, new, key", [
-    ("min_static_safety = 1.5", "min_static_safety = nan", "criteria.min_static_safety"),
-    ("min_static_safety = 1.5", "min_static_safety = inf", "criteria.min_static_safety"),
-    ('speed = "3000 rpm"', 'speed = "rpm"', "operating.speed"),
-    ('speed = "3000 rpm"', 'speed = "9**9**9 rpm"', "operating.speed"),
-    ('speed = "3000 rpm"', 'speed = "2**2**20 rpm"', "operating.speed"),
-    ('speed = "3000 rpm"', 'speed = "1e999 rpm"', "operating.speed"),
-    ('speed = "3000 rpm"', 'speed = "3000 1/s"', "operating.speed"),
-    ('bore = "50 mm"', 'bore = "1e30 mm"', "bore"),
-    ('bore = "50 mm"', 'bore = "nan mm"', "bore"),
-    ('bore = "50 mm"', 'bore = "50 m**999"', "bore"),
-    ('bore = "50 mm"', 'bore = "50 ((((mm))))"', "bore"),
-    ('bore = "50 mm"', "bore = " + '"' + "5" * 80 + ' mm"', "bore"),
-])
+@pytest.mark.parametrize(
+    "old, new, key",
+    [
+        ("min_static_safety = 1.5", "min_static_safety = nan", "criteria.min_static_safety"),
+        ("min_static_safety = 1.5", "min_static_safety = inf", "criteria.min_static_safety"),
+        ('speed = "3000 rpm"', 'speed = "rpm"', "operating.speed"),
+        ('speed = "3000 rpm"', 'speed = "9**9**9 rpm"', "operating.speed"),
+        ('speed = "3000 rpm"', 'speed = "2**2**20 rpm"', "operating.speed"),
+        ('speed = "3000 rpm"', 'speed = "1e999 rpm"', "operating.speed"),
+        ('speed = "3000 rpm"', 'speed = "3000 1/s"', "operating.speed"),
+        ('bore = "50 mm"', 'bore = "1e30 mm"', "bore"),
+        ('bore = "50 mm"', 'bore = "nan mm"', "bore"),
+        ('bore = "50 mm"', 'bore = "50 m**999"', "bore"),
+        ('bore = "50 mm"', 'bore = "50 ((((mm))))"', "bore"),
+        ('bore = "50 mm"', "bore = " + '"' + "5" * 80 + ' mm"', "bore"),
+    ],
+)
 def test_bad_numbers_refused_quickly(tmp_path, capsys, old, new, key):
     assert old in SMALL
     p = case_dir(tmp_path, SMALL.replace(old, new))
@@ -113,22 +119,33 @@ def test_bad_numbers_refused_quickly(tmp_path, capsys, old, new, key):
     assert "must not be negative" not in err
 
 
-@pytest.mark.parametrize("table", [
-    'points = [[0.0, 0.1], [360.0, nan], [720.0, 0.1]]',
-    'points = [[0.0, 0.1], [360.0, inf], [720.0, 0.1]]',
-])
+@pytest.mark.parametrize(
+    "table",
+    [
+        "points = [[0.0, 0.1], [360.0, nan], [720.0, 0.1]]",
+        "points = [[0.0, 0.1], [360.0, inf], [720.0, 0.1]]",
+    ],
+)
 def test_non_finite_gas_table_refused(tmp_path, capsys, table):
     gas = f'\n[engine.gas]\nangle_unit = "deg"\npressure_unit = "MPa"\n{table}\n'
     p = case_dir(tmp_path, SMALL.replace("[material]", gas + "\n[material]"))
     validate_refuses(capsys, p, "engine.gas.points", "finite")
 
 
-@pytest.mark.parametrize("key, value", [("wiebe_a", "inf"), ("wiebe_m", "nan"), ("compression_ratio", "inf"),
-                                        ("k", "nan")])
+@pytest.mark.parametrize(
+    "key, value", [("wiebe_a", "inf"), ("wiebe_m", "nan"), ("compression_ratio", "inf"), ("k", "nan")]
+)
 def test_non_finite_wiebe_refused(tmp_path, capsys, key, value):
-    gas = {"model": '"wiebe"', "compression_ratio": "9.0", "intake_pressure": '"1 bar"',
-           "exhaust_pressure": '"1.1 bar"', "heat_released": '"500 J"', "combustion_start": '"-10 deg"',
-           "combustion_duration": '"60 deg"', key: value}
+    gas = {
+        "model": '"wiebe"',
+        "compression_ratio": "9.0",
+        "intake_pressure": '"1 bar"',
+        "exhaust_pressure": '"1.1 bar"',
+        "heat_released": '"500 J"',
+        "combustion_start": '"-10 deg"',
+        "combustion_duration": '"60 deg"',
+        key: value,
+    }
     body = "\n".join(f"{k} = {v}" for k, v in gas.items())
     p = case_dir(tmp_path, SMALL.replace("[material]", f"\n[engine.gas]\n{body}\n\n[material]"))
     validate_refuses(capsys, p, f"engine.gas.{key}", "finite")
@@ -139,12 +156,18 @@ def test_non_finite_wiebe_refused(tmp_path, capsys, key, value):
 RPM = 2 * math.pi / 60
 
 
-@pytest.mark.parametrize("text, rad_s", [
-    ("2800 rpm", 2800 * RPM), ("2800 1/min", 2800 * RPM), ("2800 min^-1", 2800 * RPM),
-    ("2800 rev/min", 2800 * RPM), ("2800 r/min", 2800 * RPM),
-    ("50 Hz", 50 * 2 * math.pi),     # Hz of a shaft: revolutions per second
-    ("293.2 rad/s", 293.2),
-])
+@pytest.mark.parametrize(
+    "text, rad_s",
+    [
+        ("2800 rpm", 2800 * RPM),
+        ("2800 1/min", 2800 * RPM),
+        ("2800 min^-1", 2800 * RPM),
+        ("2800 rev/min", 2800 * RPM),
+        ("2800 r/min", 2800 * RPM),
+        ("50 Hz", 50 * 2 * math.pi),  # Hz of a shaft: revolutions per second
+        ("293.2 rad/s", 293.2),
+    ],
+)
 def test_rotational_speed_spellings(text, rad_s):
     """2800 rpm = 2800 * 2 pi / 60 = 293.215 rad/s by hand; '1/min' used to give 1/60 of
     it in rad/s (446 rpm).  Relative 1e-12: only rounding may differ."""
@@ -267,14 +290,22 @@ def test_output_is_an_existing_file(tmp_path, capsys):
 
 
 def test_junit_is_a_folder(tmp_path, capsys):
-    refused(capsys, ["check", ROOT / "tests" / "data" / "small_pass.toml", "-o", tmp_path / "r",
-                     "--junit", tmp_path], "--junit", "is a folder")
+    refused(
+        capsys,
+        ["check", ROOT / "tests" / "data" / "small_pass.toml", "-o", tmp_path / "r", "--junit", tmp_path],
+        "--junit",
+        "is a folder",
+    )
 
 
 @pytest.mark.skipif(not Path("/sys").is_dir(), reason="needs a read-only file system")
 def test_output_in_a_read_only_place(tmp_path, capsys):
-    refused(capsys, ["check", ROOT / "tests" / "data" / "small_pass.toml", "-o", "/sys/fe-crank-reports"],
-            "--output", "cannot write")
+    refused(
+        capsys,
+        ["check", ROOT / "tests" / "data" / "small_pass.toml", "-o", "/sys/fe-crank-reports"],
+        "--output",
+        "cannot write",
+    )
 
 
 # ---------------------------------------------------------------- geometry
@@ -283,13 +314,19 @@ def test_output_in_a_read_only_place(tmp_path, capsys):
 def test_counterweight_inside_the_web_refused():
     """A 60-deg sector r 10..18 mm on a 40 mm stadium web (journal-end radius 20 mm):
     every point within 18 mm of the axis lies in the web, so it adds nothing."""
-    from fe_crank.errors import GeometryError
-    from fe_crank.io.geometry import geometry_from_dict
     import tomllib
 
+    from fe_crank.errors import GeometryError
+    from fe_crank.io.geometry import geometry_from_dict
+
     d = tomllib.loads(GEOM)
-    d["counterweight"] = {"webs": [1], "outer_radius": "18 mm", "inner_radius": "10 mm",
-                          "angle": "60 deg", "thickness": "12 mm"}
+    d["counterweight"] = {
+        "webs": [1],
+        "outer_radius": "18 mm",
+        "inner_radius": "10 mm",
+        "angle": "60 deg",
+        "thickness": "12 mm",
+    }
     with pytest.raises(GeometryError, match="wholly inside the web") as e:
         geometry_from_dict(d, "g.toml")
     assert e.value.key == "counterweight"
@@ -319,7 +356,7 @@ def test_tiny_fillet_refused_before_meshing(tmp_path):
 def test_mesh_section_max_elements(tmp_path):
     p = case_dir(tmp_path, SMALL + '\n[mesh]\nsize = "test"\nmax_elements = 10\n')
     assert load_loadcase(p).extras["mesh"].max_elements == 10
-    p.write_text(SMALL + '\n[mesh]\nmax_elements = -1\n')
+    p.write_text(SMALL + "\n[mesh]\nmax_elements = -1\n")
     with pytest.raises(InputError, match="positive whole number") as e:
         load_loadcase(p)
     assert e.value.key == "mesh.max_elements"
@@ -328,8 +365,9 @@ def test_mesh_section_max_elements(tmp_path):
 def test_error_inside_an_included_file_names_the_including_key(tmp_path, capsys):
     p = case_dir(tmp_path)
     (p.parent / "geometry_small.toml").write_text(GEOM.replace('crank_radius = "20 mm"', 'crank_radius = "20"'))
-    err = validate_refuses(capsys, p, "geometry_small.toml", "crank_radius", "has no unit",
-                           f"(included by {p}: geometry)")
+    err = validate_refuses(
+        capsys, p, "geometry_small.toml", "crank_radius", "has no unit", f"(included by {p}: geometry)"
+    )
     assert err.count("\n") == 1  # one message
 
 

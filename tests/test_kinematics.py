@@ -2,8 +2,8 @@
 harmonic series against the exact motion."""
 
 import numpy as np
-from scipy.integrate import quad
 import pytest
+from scipy.integrate import quad
 
 from fe_crank.errors import GeometryError
 from fe_crank.kinematics import harmonic_coefficients, piston_motion, piston_motion_harmonic
@@ -159,14 +159,39 @@ SEED_POS = np.arange(13)
 # table 5: S_B [m], v_B [m/s], a_B [m/s^2] (two-harmonic columns v' + v'', a' + a'')
 SEED_T5_S = [0, 0.0072, 0.0273, 0.0577, 0.0910, 0.1180, 0.1280, 0.1180, 0.0910, 0.0577, 0.0273, 0.0072, 0]
 SEED_T5_V = [0, 7.610, 14.550, 18.756, 17.930, 11.070, 0, -11.07, -17.930, -18.756, -14.55, -7.610, 0]
-SEED_T5_A = [4351.80, 4187.77, 3321.08, 1145.20, -2175.8, -5333.0, -6242.2, -5333.0, -2175.8, 1145.2,
-             3321.08, 4187.77, 4351.80]
+SEED_T5_A = [
+    4351.80,
+    4187.77,
+    3321.08,
+    1145.20,
+    -2175.8,
+    -5333.0,
+    -6242.2,
+    -5333.0,
+    -2175.8,
+    1145.2,
+    3321.08,
+    4187.77,
+    4351.80,
+]
 SEED_T5_V1 = [0, 9.380, 16.240, 18.756, 16.240, 9.380, 0, -9.38, -16.240, -18.756, -16.240, -9.380, 0]
 SEED_T5_V2 = [0, -1.69, -1.69, 0, 1.69, 1.69, 0, -1.69, -1.69, 0, 1.69, 1.69, 0]
-SEED_T5_A1 = [5496.96, 4760.37, 2748.48, 0, -2748.48, -4760.37, -5496.96, -4760.37, -2748.48, 0, 2748.48,
-              4760.37, 5496.96]
-SEED_T5_A2 = [-1145.2, -572.6, 572.6, 1145.2, 572.6, -572.6, -1145.2, -572.6, 572.6, 1145.2, 572.6, -572.6,
-              -1145.2]
+SEED_T5_A1 = [
+    5496.96,
+    4760.37,
+    2748.48,
+    0,
+    -2748.48,
+    -4760.37,
+    -5496.96,
+    -4760.37,
+    -2748.48,
+    0,
+    2748.48,
+    4760.37,
+    5496.96,
+]
+SEED_T5_A2 = [-1145.2, -572.6, 572.6, 1145.2, 572.6, -572.6, -1145.2, -572.6, 572.6, 1145.2, 572.6, -572.6, -1145.2]
 
 
 def _seed_phi():
@@ -243,8 +268,15 @@ def test_harmonic_motion_keeps_the_exact_rod_and_crankpin_fields():
     for m in (h.phi, h.s, h.v, h.a):
         assert m.dtype == np.float64
     np.testing.assert_array_equal(h.phi, phi.astype(float))
-    for name in ("beta", "beta_dot", "beta_ddot", "rod_cg_velocity", "rod_cg_acceleration",
-                 "crankpin_velocity", "crankpin_acceleration"):
+    for name in (
+        "beta",
+        "beta_dot",
+        "beta_ddot",
+        "rod_cg_velocity",
+        "rod_cg_acceleration",
+        "crankpin_velocity",
+        "crankpin_acceleration",
+    ):
         np.testing.assert_array_equal(getattr(h, name), getattr(ex, name))
     # two orders at phi = 1 rad: s = r (1 - cos 1) + r A_2/4 (1 - cos 2), A_2 exact
     a2 = harmonic_coefficients(R / L, (2,))[2]

@@ -116,10 +116,12 @@ def test_crankpin_vectors_closed_form_and_rod_cg_zero_without_a_distance():
     m = piston_motion(phi, r, 0.2, omega)
     np.testing.assert_allclose(m.crankpin_velocity[1], [-0.5, 0.0], rtol=0, atol=1e-15)
     np.testing.assert_allclose(m.crankpin_acceleration[1], [0.0, -5.0], rtol=0, atol=1e-15)
-    np.testing.assert_allclose(m.crankpin_velocity, r * omega * np.stack([-np.sin(phi), np.cos(phi)], -1),
-                               rtol=1e-15, atol=1e-16)
-    np.testing.assert_allclose(m.crankpin_acceleration, -r * omega**2 * np.stack([np.cos(phi), np.sin(phi)], -1),
-                               rtol=1e-15, atol=1e-15)
+    np.testing.assert_allclose(
+        m.crankpin_velocity, r * omega * np.stack([-np.sin(phi), np.cos(phi)], -1), rtol=1e-15, atol=1e-16
+    )
+    np.testing.assert_allclose(
+        m.crankpin_acceleration, -r * omega**2 * np.stack([np.cos(phi), np.sin(phi)], -1), rtol=1e-15, atol=1e-15
+    )
     for vec in (m.rod_cg_velocity, m.rod_cg_acceleration):
         assert vec.shape == (3, 2)
         np.testing.assert_array_equal(vec, 0.0)

@@ -9,8 +9,17 @@ from fe_crank.kinetostatics import analyse_position, mechanical_efficiency, virt
 
 # seed 001/004 mechanism; crank mass 0.4284 kg with its centre at 0.4 r (seed 004 eq. 104,
 # seed 001 eq. 15); rod J_S2 = 0.02 kg m^2 (seed 004); the other values chosen
-MECH = dict(r=0.064, l=0.307, omega=293.07, piston_mass=1.1, rod_mass=1.9, rod_cg=0.138, rod_inertia=0.02,
-            crank_mass=0.4284, crank_cg=0.4 * 0.064)
+MECH = dict(
+    r=0.064,
+    l=0.307,
+    omega=293.07,
+    piston_mass=1.1,
+    rod_mass=1.9,
+    rod_cg=0.138,
+    rod_inertia=0.02,
+    crank_mass=0.4284,
+    crank_cg=0.4 * 0.064,
+)
 
 
 def _cross(a, b):
@@ -61,8 +70,18 @@ def test_static_mechanism_closed_form():
     M_b = -F r sin(phi + beta) / cos(beta) (the classical torque, reversed)."""
     phi = np.linspace(0.1, 3.0, 30)
     F = 10000.0
-    r = analyse_position(phi, r=0.064, l=0.307, omega=1.0, gas_force=F, piston_mass=0, rod_mass=0, rod_cg=0.1,
-                         rod_inertia=0, gravity=(0, 0))
+    r = analyse_position(
+        phi,
+        r=0.064,
+        l=0.307,
+        omega=1.0,
+        gas_force=F,
+        piston_mass=0,
+        rod_mass=0,
+        rod_cg=0.1,
+        rod_inertia=0,
+        gravity=(0, 0),
+    )
     b = r.motion.beta
     np.testing.assert_allclose(np.abs(r.R03[:, 1]), F * np.tan(b), rtol=1e-12)
     np.testing.assert_allclose(np.linalg.norm(r.R12, axis=1), F / np.cos(b), rtol=1e-12)
@@ -75,11 +94,13 @@ def test_friction_efficiency_closed_form():
     n = 720
     phi = 2 * np.pi * np.arange(n) / n
     F0, w, r, l = 5000.0, 300.0, 0.064, 0.307
-    probe = analyse_position(phi, r=r, l=l, omega=w, gas_force=0.0, piston_mass=0, rod_mass=0, rod_cg=0.1,
-                             rod_inertia=0, gravity=(0, 0))
+    probe = analyse_position(
+        phi, r=r, l=l, omega=w, gas_force=0.0, piston_mass=0, rod_mass=0, rod_cg=0.1, rod_inertia=0, gravity=(0, 0)
+    )
     F = np.where(probe.motion.v > 0, F0, 0.0)
-    res = analyse_position(phi, r=r, l=l, omega=w, gas_force=F, piston_mass=0, rod_mass=0, rod_cg=0.1,
-                           rod_inertia=0, gravity=(0, 0))
+    res = analyse_position(
+        phi, r=r, l=l, omega=w, gas_force=F, piston_mass=0, rod_mass=0, rod_cg=0.1, rod_inertia=0, gravity=(0, 0)
+    )
     fr, d1, dA, dB = 0.15, 0.040, 0.040, 0.020  # seed 004 values
     out = mechanical_efficiency(res, friction_coefficient=fr, d_O1=d1, d_A=dA, d_B=dB)
     b, bd, v = probe.motion.beta, probe.motion.beta_dot, probe.motion.v

@@ -63,12 +63,22 @@ def test_record_names_and_shapes_for_scalar_and_2d_angles():
     """Every applied load and couple by name at its point; the points and velocities of O,
     A, B, S1, S2 (O the fixed origin: zero); shapes (..., 2) for a scalar angle and for a
     (2, 3) array of angles; the three balancing moments agree on the 2-D array too."""
-    mech = dict(r=R, l=L, omega=100.0, piston_mass=1.0, rod_mass=1.5, rod_cg=0.05, rod_inertia=0.01,
-                crank_mass=2.0, crank_cg=0.01)
+    mech = dict(
+        r=R,
+        l=L,
+        omega=100.0,
+        piston_mass=1.0,
+        rod_mass=1.5,
+        rod_cg=0.05,
+        rod_inertia=0.01,
+        crank_mass=2.0,
+        crank_cg=0.01,
+    )
     res = analyse_position(0.3, gas_force=5000.0, **mech)
     assert set(res.loads) == {"gas", "inertia_3", "weight_3", "inertia_2", "weight_2", "inertia_1", "weight_1"}
-    assert [res.loads[k][0] for k in ("gas", "inertia_3", "weight_3", "inertia_2", "weight_2", "inertia_1",
-                                      "weight_1")] == ["B", "B", "B", "S2", "S2", "S1", "S1"]
+    assert [
+        res.loads[k][0] for k in ("gas", "inertia_3", "weight_3", "inertia_2", "weight_2", "inertia_1", "weight_1")
+    ] == ["B", "B", "B", "S2", "S2", "S1", "S1"]
     assert set(res.couples) == {"inertia_2"}
     assert set(res.points) == set(res.velocities) == {"O", "A", "B", "S1", "S2"}
     for key in ("O", "A", "B", "S1", "S2"):
@@ -76,8 +86,9 @@ def test_record_names_and_shapes_for_scalar_and_2d_angles():
     np.testing.assert_array_equal(res.points["O"], [0.0, 0.0])
     np.testing.assert_array_equal(res.velocities["O"], [0.0, 0.0])
     # S2 at c/l = 0.25 of the way from A to B
-    np.testing.assert_allclose(res.points["S2"], res.points["A"] + 0.25 * (res.points["B"] - res.points["A"]),
-                               rtol=1e-14)
+    np.testing.assert_allclose(
+        res.points["S2"], res.points["A"] + 0.25 * (res.points["B"] - res.points["A"]), rtol=1e-14
+    )
     for name in ("R12", "R03", "R23", "R01", "R01_couple"):
         assert getattr(res, name).shape == (2,)
     phi = np.array([[0.3, 1.0, 2.0], [3.0, 4.0, 5.5]])
@@ -118,10 +129,12 @@ def test_efficiency_limits_and_refusals_in_full():
     eff = mechanical_efficiency(res, friction_coefficient=0.0, d_O1=0.0, d_A=0.0, d_B=0.0)
     assert eff.driving_power == pytest.approx(0.1 / math.pi, rel=1e-4)
     assert eff.efficiency == 1.0
-    for kw in (dict(friction_coefficient=-0.01, d_O1=0.1, d_A=0.1, d_B=0.1),
-               dict(friction_coefficient=0.01, d_O1=-0.1, d_A=0.1, d_B=0.1),
-               dict(friction_coefficient=0.01, d_O1=0.1, d_A=-0.1, d_B=0.1),
-               dict(friction_coefficient=0.01, d_O1=0.1, d_A=0.1, d_B=-0.1)):
+    for kw in (
+        dict(friction_coefficient=-0.01, d_O1=0.1, d_A=0.1, d_B=0.1),
+        dict(friction_coefficient=0.01, d_O1=-0.1, d_A=0.1, d_B=0.1),
+        dict(friction_coefficient=0.01, d_O1=0.1, d_A=-0.1, d_B=0.1),
+        dict(friction_coefficient=0.01, d_O1=0.1, d_A=0.1, d_B=-0.1),
+    ):
         with pytest.raises(InputError) as err:
             mechanical_efficiency(res, **kw)
         assert err.value.reason == "friction coefficient and journal diameters cannot be negative"

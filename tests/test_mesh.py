@@ -18,8 +18,17 @@ ROOT = Path(__file__).resolve().parents[1]
 SEED003 = ROOT / "geometry" / "v4_90_pneumatic_seed003.toml"
 SEED001 = ROOT / "geometry" / "single_cylinder_seed001.toml"
 
-BOUNDARIES = {"journal_1", "journal_2", "crankpin", "crankpin_fillet_1", "crankpin_fillet_2",
-              "journal_fillet_1", "journal_fillet_2", "end_1", "end_2"}
+BOUNDARIES = {
+    "journal_1",
+    "journal_2",
+    "crankpin",
+    "crankpin_fillet_1",
+    "crankpin_fillet_2",
+    "journal_fillet_1",
+    "journal_fillet_2",
+    "end_1",
+    "end_2",
+}
 SUBDOMAINS = {"counterweight_1", "counterweight_2", "web_1", "web_2", "crankpin", "journal_1", "journal_2"}
 
 ONE = Functional(lambda w: 1.0 + 0.0 * w.x[0])
@@ -41,7 +50,9 @@ def test_named_groups_present_and_non_empty(seed001_test_mesh):
     # subdomains partition the elements
     allel = np.concatenate(list(m.subdomains.values()))
     assert np.array_equal(np.sort(allel), np.arange(m.nelements))
-    assert tm.fillet_radii == {k: 0.004 for k in ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")}
+    assert tm.fillet_radii == dict.fromkeys(
+        ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2"), 0.004
+    )
 
 
 def test_mesh_volumes_match_the_solid(seed001_test_mesh):
@@ -63,7 +74,7 @@ def test_boundary_areas(seed001_test_mesh):
     g, tm = seed001_test_mesh
     m = tm.mesh
     rj = g.journal_diameter / 2
-    area = lambda name: ONE.assemble(FacetBasis(m, ElementTetP2(), facets=m.boundaries[name]))  # noqa: E731
+    area = lambda name: ONE.assemble(FacetBasis(m, ElementTetP2(), facets=m.boundaries[name]))
     assert area("end_1") == pytest.approx(np.pi * rj**2, rel=1e-3)
     assert area("journal_2") == pytest.approx(2 * np.pi * rj * (g.journal_length - g.journal_fillet), rel=2e-3)
 
@@ -148,7 +159,12 @@ def test_fillet_elements_at_most_r_over_4(tmp_path):
     """IACS UR M53 guidance: element edge in every fillet <= r/4 (coarse preset, seed 003)."""
     g = load_geometry(SEED003)
     tm = mesh_throw(g, size="coarse", cache_dir=tmp_path)
-    assert set(tm.stats.fillet_max_edge) == {"crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2"}
+    assert set(tm.stats.fillet_max_edge) == {
+        "crankpin_fillet_1",
+        "crankpin_fillet_2",
+        "journal_fillet_1",
+        "journal_fillet_2",
+    }
     for name, h in tm.stats.fillet_max_edge.items():
         assert h <= tm.fillet_radii[name] / 4, name
     # and the mesher's own edge lengths agree with an independent computation
@@ -162,7 +178,9 @@ def test_cli_mesh_bad_geometry_exits_2(tmp_path, capsys):
     from fe_crank.cli import main
 
     bad = tmp_path / "bad.toml"
-    bad.write_text(SEED003.read_text().replace('fillet_radius = "3 mm"   # assumed\n\n[web]', 'fillet_radius = "9 mm"\n\n[web]'))
+    bad.write_text(
+        SEED003.read_text().replace('fillet_radius = "3 mm"   # assumed\n\n[web]', 'fillet_radius = "9 mm"\n\n[web]')
+    )
     assert main(["mesh", str(bad), "-o", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert "crankpin.fillet_radius" in err and "Traceback" not in err
@@ -172,7 +190,9 @@ def test_cli_mesh_bad_geometry_exits_2(tmp_path, capsys):
 def test_cli_mesh_writes_statistics_and_picture(tmp_path, capsys):
     from fe_crank.cli import main
 
-    rc = main(["mesh", str(SEED003), "-o", str(tmp_path / "out"), "--mesh-size", "test", "--cache-dir", str(tmp_path / "c")])
+    rc = main(
+        ["mesh", str(SEED003), "-o", str(tmp_path / "out"), "--mesh-size", "test", "--cache-dir", str(tmp_path / "c")]
+    )
     assert rc == 0
     out = capsys.readouterr().out
     # the 180-deg sector of seed 003, 0.8872 kg, plus the material of its two 4 mm transition
@@ -194,8 +214,12 @@ def test_undercut_fillets_mesh_with_named_groups(tmp_path):
 
     from fe_crank.io.geometry import geometry_from_dict
 
-    g = geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm", "undercut": "1 mm"},
-                                 counterweight={"outer_radius": "70 mm", "inner_radius": "20 mm", "angle": "120 deg"}))
+    g = geometry_from_dict(
+        _base(
+            crankpin={"fillet_radius": "3 mm", "undercut": "1 mm"},
+            counterweight={"outer_radius": "70 mm", "inner_radius": "20 mm", "angle": "120 deg"},
+        )
+    )
     tm = mesh_throw(g, size="test", cache_dir=tmp_path)
     assert {"crankpin_fillet_1", "crankpin_fillet_2"} <= set(tm.mesh.boundaries)
     assert all(v.size > 0 for v in tm.mesh.boundaries.values())

@@ -19,7 +19,7 @@ from fe_crank.mesh import PRESETS, mesh_throw
 from fe_crank.mesh.mirror import mirror_all, mirror_mesh, swap_side
 
 sys.path.insert(0, str(Path(__file__).parent))
-from test_geometry import _base  # noqa: E402
+from test_geometry import _base
 
 ROOT = Path(__file__).resolve().parents[1]
 SEED001 = ROOT / "geometry" / "single_cylinder_seed001.toml"
@@ -49,7 +49,7 @@ def _check_self_image(m, axis: int, rename) -> None:
     """Nodes, elements, subdomains and boundaries map onto themselves under x_axis -> -x_axis."""
     img = _image_index(m.doflocs.T, axis)
     assert np.all(img >= 0), "a node without an exact mirror image"
-    key = lambda a: np.sort(a, axis=0).T.tolist()  # noqa: E731
+    key = lambda a: np.sort(a, axis=0).T.tolist()
     elements = {tuple(r): i for i, r in enumerate(key(m.t))}
     eimg = np.array([elements.get(tuple(r), -1) for r in key(img[m.t])])
     assert np.all(eimg >= 0), "an element without a mirror image"
@@ -80,10 +80,15 @@ def test_unit_cube_mirrored_by_hand():
     assert np.array_equal(np.sign(J[48:]), np.sign(J[:48])) and np.all(J != 0)
     assert sorted(full.boundaries) == ["end_1", "end_2"] and sorted(full.subdomains) == ["web_1", "web_2"]
     assert np.all(full.p[0, full.facets[:, full.boundaries["end_2"]]] == -1.0)
-    assert full.boundary_facets().size == 2 * cube.boundary_facets().size - 2 * 8  # the 8 facets of x = 0 became interior
+    assert (
+        full.boundary_facets().size == 2 * cube.boundary_facets().size - 2 * 8
+    )  # the 8 facets of x = 0 became interior
     _check_self_image(full, 0, swap_side)
     # and a second plane: [-1,1]x[0,1]x[-1,1], volume 4
-    both = mirror_all(MeshTet2.from_mesh(MeshTet.init_tensor(np.linspace(0, 1, 3), np.linspace(0, 1, 3), np.linspace(-1, 0, 3))), (0, 2))
+    both = mirror_all(
+        MeshTet2.from_mesh(MeshTet.init_tensor(np.linspace(0, 1, 3), np.linspace(0, 1, 3), np.linspace(-1, 0, 3))),
+        (0, 2),
+    )
     assert _volume(both) == pytest.approx(4.0, rel=1e-12) and both.nvertices == 5 * 3 * 5
 
 
@@ -159,7 +164,11 @@ def test_seed001_positive_jacobians_and_quality_near_unmirrored(seed001):
     assert tm.stats.min_quality >= 0.8 * plain.stats.min_quality
     assert tm.stats.min_jacobian_ratio >= 0.8 * plain.stats.min_jacobian_ratio
     s = tm.stats
-    assert (s.nodes, s.elements, s.p2_dofs) == (tm.mesh.doflocs.shape[1], tm.mesh.nelements, 3 * tm.mesh.doflocs.shape[1])
+    assert (s.nodes, s.elements, s.p2_dofs) == (
+        tm.mesh.doflocs.shape[1],
+        tm.mesh.nelements,
+        3 * tm.mesh.doflocs.shape[1],
+    )
 
 
 def test_seed001_msh_and_vtu_are_the_whole_mesh(seed001):
@@ -194,8 +203,12 @@ def test_seed001_symmetry_survives_the_cache(seed001):
 
 
 def test_oblique_bore_gets_only_z():
-    g = geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm", "oil_bore": {"diameter": "6 mm", "angle": "45 deg"}},
-                                 journal={"fillet_radius": "3 mm"}))
+    g = geometry_from_dict(
+        _base(
+            crankpin={"fillet_radius": "3 mm", "oil_bore": {"diameter": "6 mm", "angle": "45 deg"}},
+            journal={"fillet_radius": "3 mm"},
+        )
+    )
     tm = mesh_throw(g, size=SYM, cache_dir=None)
     assert tm.symmetry == (2,)
     _check_self_image(tm.mesh, 2, swap_side)
@@ -204,12 +217,19 @@ def test_oblique_bore_gets_only_z():
 
 
 def test_counterweight_on_one_web_gets_only_x():
-    g = geometry_from_dict(_base(crankpin={"fillet_radius": "3 mm"}, journal={"fillet_radius": "3 mm"},
-                                 counterweight={"outer_radius": "70 mm", "inner_radius": "20 mm", "angle": "120 deg", "webs": [1]}))
+    g = geometry_from_dict(
+        _base(
+            crankpin={"fillet_radius": "3 mm"},
+            journal={"fillet_radius": "3 mm"},
+            counterweight={"outer_radius": "70 mm", "inner_radius": "20 mm", "angle": "120 deg", "webs": [1]},
+        )
+    )
     tm = mesh_throw(g, size=SYM, cache_dir=None)
     assert tm.symmetry == (0,)
     _check_self_image(tm.mesh, 0, lambda n: n)
     assert "counterweight_1" in tm.mesh.subdomains and "counterweight_2" not in tm.mesh.subdomains
     mp = mass_properties(g)
     assert _volume(tm.mesh) == pytest.approx(mp.total.volume, rel=2e-4)
-    assert _volume(tm.mesh, tm.mesh.subdomains["counterweight_1"]) == pytest.approx(mp.parts["counterweight_1"].volume, rel=1e-3)
+    assert _volume(tm.mesh, tm.mesh.subdomains["counterweight_1"]) == pytest.approx(
+        mp.parts["counterweight_1"].volume, rel=1e-3
+    )

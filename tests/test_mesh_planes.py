@@ -14,7 +14,7 @@ from fe_crank.io.geometry import geometry_from_dict, load_geometry
 from fe_crank.mesh.planes import bore_axis_aligned, symmetry_planes
 
 sys.path.insert(0, str(Path(__file__).parent))
-from test_geometry import _base  # noqa: E402
+from test_geometry import _base
 
 ROOT = Path(__file__).resolve().parents[1]
 CW = {"outer_radius": "70 mm", "inner_radius": "20 mm", "angle": "120 deg"}
@@ -37,8 +37,12 @@ def test_different_counterweights_break_z():
     g = geometry_from_dict(_base(counterweight={**CW, "webs": [1, 2]}))
     t = g.throws[0]
     cw1, cw2 = t.counterweights
-    for field, value in (("outer_radius", cw2.outer_radius + 1e-3), ("inner_radius", cw2.inner_radius - 1e-3),
-                         ("angle", cw2.angle + 1e-6), ("thickness", cw2.thickness - 1e-4)):
+    for field, value in (
+        ("outer_radius", cw2.outer_radius + 1e-3),
+        ("inner_radius", cw2.inner_radius - 1e-3),
+        ("angle", cw2.angle + 1e-6),
+        ("thickness", cw2.thickness - 1e-4),
+    ):
         other = dataclasses.replace(t, counterweights=(cw1, dataclasses.replace(cw2, **{field: value})))
         assert symmetry_planes(g, other) == (0,), field
 
@@ -53,12 +57,29 @@ def test_bolt_data_do_not_change_the_solid():
     g = geometry_from_dict(_base(counterweight={**CW, "webs": [1, 2]}))
     t = g.throws[0]
     cw1, cw2 = t.counterweights
-    bolted = dataclasses.replace(cw1, bolted=dataclasses.replace(load_geometry(ROOT / "geometry" / "inline4.toml").throws[0].counterweights[0].bolted))
+    bolted = dataclasses.replace(
+        cw1,
+        bolted=dataclasses.replace(
+            load_geometry(ROOT / "geometry" / "inline4.toml").throws[0].counterweights[0].bolted
+        ),
+    )
     assert symmetry_planes(g, dataclasses.replace(t, counterweights=(bolted, cw2))) == (0, 2)
 
 
-@pytest.mark.parametrize("deg, x_sym", [(0, True), (90, True), (180, True), (270, True), (-90, True),
-                                        (45, False), (30, False), (135, False), (89.9, False)])
+@pytest.mark.parametrize(
+    "deg, x_sym",
+    [
+        (0, True),
+        (90, True),
+        (180, True),
+        (270, True),
+        (-90, True),
+        (45, False),
+        (30, False),
+        (135, False),
+        (89.9, False),
+    ],
+)
 def test_oil_bore_along_x_or_y_keeps_x_oblique_breaks_it(deg, x_sym):
     g = geometry_from_dict(_base(crankpin={"oil_bore": {"diameter": "5 mm", "angle": f"{deg} deg"}}))
     assert symmetry_planes(g) == ((0, 2) if x_sym else (2,))
@@ -71,19 +92,23 @@ def test_bore_angle_tolerance_is_round_off_only():
 
 
 def test_oblique_bore_and_one_sided_counterweight_leave_no_plane():
-    g = geometry_from_dict(_base(crankpin={"oil_bore": {"diameter": "5 mm", "angle": "45 deg"}},
-                                 counterweight={**CW, "webs": [1]}))
+    g = geometry_from_dict(
+        _base(crankpin={"oil_bore": {"diameter": "5 mm", "angle": "45 deg"}}, counterweight={**CW, "webs": [1]})
+    )
     assert symmetry_planes(g) == ()
 
 
-@pytest.mark.parametrize("name, planes", [
-    # bore at 90 deg (along x), equal counterweights on both webs of every throw
-    ("single_cylinder_seed001.toml", {"1": (0, 2)}),
-    # no bore, four equal 180-deg counterweights
-    ("v4_90_pneumatic_seed003.toml", {"1": (0, 2), "2": (0, 2)}),
-    # bore at 90 deg; bolted counterweights on both webs of throws 1 and 4, the shaft-wide ones on 2 and 3
-    ("inline4.toml", {"1": (0, 2), "2": (0, 2), "3": (0, 2), "4": (0, 2)}),
-])
+@pytest.mark.parametrize(
+    "name, planes",
+    [
+        # bore at 90 deg (along x), equal counterweights on both webs of every throw
+        ("single_cylinder_seed001.toml", {"1": (0, 2)}),
+        # no bore, four equal 180-deg counterweights
+        ("v4_90_pneumatic_seed003.toml", {"1": (0, 2), "2": (0, 2)}),
+        # bore at 90 deg; bolted counterweights on both webs of throws 1 and 4, the shaft-wide ones on 2 and 3
+        ("inline4.toml", {"1": (0, 2), "2": (0, 2), "3": (0, 2), "4": (0, 2)}),
+    ],
+)
 def test_shipped_geometries(name, planes):
     g = load_geometry(ROOT / "geometry" / name)
     assert {t.name: symmetry_planes(g, t) for t in g.throws} == planes

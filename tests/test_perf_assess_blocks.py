@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2
+from verification_meshes import Steel, simple_throw
 
 from fe_crank.assess import assessed_groups, unit_stresses
 from fe_crank.assess.fatigue import max_and_first
@@ -34,7 +35,6 @@ from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.forms import lame_parameters
 from fe_crank.fe.stress import elements_of_nodes, node_gradients, stress_at_selected_nodes
 from fe_crank.io.material import load_material
-from verification_meshes import Steel, simple_throw
 
 
 @pytest.fixture(scope="module")
@@ -52,14 +52,18 @@ def _reference_nodal_stress(units, u, nodes):
     X = np.asarray(e.doflocs, float).T
     els = elements_of_nodes(dofs.element_dofs, nodes, units.points.shape[1])
     nb = Basis(mesh, e, quadrature=(X, np.full(X.shape[1], 0.1)), elements=els, dofs=dofs, disable_doflocs=True)
-    G = np.stack([b[0].grad for b in nb.basis])                    # (10, 3, ne, 10)
+    G = np.stack([b[0].grad for b in nb.basis])  # (10, 3, ne, 10)
     ed = nb.element_dofs
     H = np.einsum("aei,ajeq->ijeq", u.reshape(-1, 3)[ed], G)
     eps = 0.5 * (H + H.transpose(1, 0, 2, 3))
     lam, mu = lame_parameters(units.material.youngs_modulus, units.material.poisson_ratio)
     tr = eps[0, 0] + eps[1, 1] + eps[2, 2]
-    s = np.stack([2 * mu * eps[i, j] + (lam * tr if i == j else 0.0)
-                  for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))])   # (6, ne, 10)
+    s = np.stack(
+        [
+            2 * mu * eps[i, j] + (lam * tr if i == j else 0.0)
+            for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))
+        ]
+    )  # (6, ne, 10)
     local = np.full(units.points.shape[1], -1)
     local[nodes] = np.arange(nodes.size)
     loc = local[ed.T]
@@ -85,8 +89,14 @@ def test_selected_nodal_stress_equals_the_plain_computation_bitwise(units):
     ids = np.unique(np.concatenate(list(groups.values())))
     m = units.material
     cases = list(units.cases)
-    got = stress_at_selected_nodes(units.mesh, [units.displacement(c) for c in cases], m.youngs_modulus,
-                                   m.poisson_ratio, ids, dofs=units.system.basis.dofs)
+    got = stress_at_selected_nodes(
+        units.mesh,
+        [units.displacement(c) for c in cases],
+        m.youngs_modulus,
+        m.poisson_ratio,
+        ids,
+        dofs=units.system.basis.dofs,
+    )
     for j, c in enumerate(cases):
         ref = _reference_nodal_stress(units, units.displacement(c), ids)
         assert np.array_equal(got[j], ref), c
@@ -95,12 +105,12 @@ def test_selected_nodal_stress_equals_the_plain_computation_bitwise(units):
 def test_von_mises_planes_is_the_plain_formula_bitwise():
     rng = np.random.default_rng(7)
     planes = rng.normal(size=(6, 50, 9)) * 1e8
-    hist = planes.transpose(1, 0, 2)                           # (n_t, 6, n)
+    hist = planes.transpose(1, 0, 2)  # (n_t, 6, n)
     centre = rng.normal(size=(6, 9)) * 1e8
     assert np.array_equal(von_mises_planes(planes), von_mises(hist))
     assert np.array_equal(von_mises_planes(planes, centre), von_mises(hist - centre[None]))
     buf = np.empty(planes.shape)
-    for c in (None, centre, None):                             # a reused scratch array
+    for c in (None, centre, None):  # a reused scratch array
         ref = von_mises(hist) if c is None else von_mises(hist - c[None])
         assert np.array_equal(von_mises_planes(planes, c, buf), ref)
     # a non-contiguous view of the planes gives the same
@@ -117,12 +127,12 @@ def test_von_mises_planes_is_the_plain_formula_bitwise():
 
 def test_max_and_first_is_max_and_argmax():
     rng = np.random.default_rng(3)
-    d = np.round(rng.random((40, 30)) * 4)                      # many exact ties
+    d = np.round(rng.random((40, 30)) * 4)  # many exact ties
     d[5, 7] = np.nan
     r, first = max_and_first(d)
     assert np.array_equal(r, d.max(axis=0), equal_nan=True)
     np.testing.assert_array_equal(first, d.argmax(axis=0))
-    assert first[7] == 5                                       # a NaN column: its first NaN, as argmax
+    assert first[7] == 5  # a NaN column: its first NaN, as argmax
 
 
 def _coefficients(units, us, n=72):
@@ -190,7 +200,7 @@ def test_group_peak_bound_holds_and_the_extreme_is_the_full_evaluations(units):
         bound = peak_bound(us, co, nodes)
         assert np.all(full <= bound * (1 + 1e-12)), g
         pos, peak, arg = group_peak(us, co, nodes)
-        assert pos.size < nodes.size, g                        # it did prune
+        assert pos.size < nodes.size, g  # it did prune
         k_full = int(first_extreme(full, "max"))
         k = int(first_extreme(peak, "max"))
         assert pos[k] == k_full and peak[k] == full[k_full] and arg[k] == full_arg[k_full], g

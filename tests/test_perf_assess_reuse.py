@@ -36,7 +36,7 @@ def test_equal_throw_solids_are_built_once_with_the_same_counterweight_data(inli
     assert names == ["1", "2", "3", "4"]
     solids: list = []
     shared = {n: counterweights_of(inline4, n, 0.1 * i, "main", None, solids=solids) for i, n in enumerate(names)}
-    assert len(solids) == 2                                 # {1, 4} and {2, 3}
+    assert len(solids) == 2  # {1, 4} and {2, 3}
     for i, n in enumerate(names):
         own = counterweights_of(inline4, n, 0.1 * i, "main", None)
         assert shared[n] == own and own, n
@@ -50,4 +50,4 @@ def test_a_different_counterweight_is_another_solid(inline4):
     a = counterweights_of(g, "1", 0.0, "main", None, solids=solids)
     b = counterweights_of(g, "5", 0.0, "main", None, solids=solids)
     assert len(solids) == 2
-    assert b[0].built_unbalance < a[0].built_unbalance      # the smaller sector, its own build
+    assert b[0].built_unbalance < a[0].built_unbalance  # the smaller sector, its own build

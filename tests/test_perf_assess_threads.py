@@ -20,6 +20,7 @@ import threading
 
 import numpy as np
 import pytest
+from verification_meshes import Steel, simple_throw
 
 from fe_crank.assess import assessed_groups, unit_stresses
 from fe_crank.assess.case import assess_throw
@@ -29,7 +30,6 @@ from fe_crank.assess.workers import run_blocks
 from fe_crank.check.options import CheckOptions, assess_threads, cores_available
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.io.material import load_material
-from verification_meshes import Steel, simple_throw
 
 FIELDS = ("node_ids", "max_von_mises", "amplitude", "mean", "fatigue_safety", "gough_pollard_safety")
 
@@ -48,7 +48,7 @@ def _loads(n=72):
 
 
 def _same_group(a, b):
-    assert a == b                                   # dataclass equality: every extreme, factor, safety
+    assert a == b  # dataclass equality: every extreme, factor, safety
     for k in FIELDS:
         assert np.array_equal(a.fields[k], b.fields[k]), k
 
@@ -56,7 +56,7 @@ def _same_group(a, b):
 def test_unit_stresses_on_threads_equal_one_thread_bitwise(units):
     groups = assessed_groups(units)
     one = unit_stresses(units, groups)
-    for threads in (2, 4, 50):                       # 50: more threads than cases, one case each
+    for threads in (2, 4, 50):  # 50: more threads than cases, one case each
         got = unit_stresses(units, groups, threads=threads)
         assert got.cases == one.cases
         assert np.array_equal(got.stress, one.stress), threads
@@ -70,7 +70,7 @@ def test_assess_group_on_threads_equals_one_thread_bitwise(units):
     mat = load_material("42CrMo4")
     kw = dict(crank_radius=0.045, overspeed=360.0, overspeed_coefficients=1.44 * co, chunk=16)
     for g in sorted(us.groups):
-        assert us.groups[g].size > 3 * 16, g          # several blocks per group, so threads interleave
+        assert us.groups[g].size > 3 * 16, g  # several blocks per group, so threads interleave
         one = assess_group(us, g, co, th, mat, **kw)
         for threads in (2, 3):
             _same_group(assess_group(us, g, co, th, mat, threads=threads, **kw), one)
@@ -102,11 +102,11 @@ def test_run_blocks_calls_every_item_once_with_a_buffer_per_thread():
 
     run_blocks(fn, range(200), threads=3)
     assert sorted(seen) == list(range(200))
-    assert all(len(o) == 1 for o in owners.values())      # no scratch dict shared by two threads
+    assert all(len(o) == 1 for o in owners.values())  # no scratch dict shared by two threads
     assert 1 <= len(owners) <= 3
     seen.clear()
     run_blocks(fn, range(5), threads=1)
-    assert seen == list(range(5))                          # one thread: in order
+    assert seen == list(range(5))  # one thread: in order
 
 
 def test_run_blocks_raises_a_blocks_error():
@@ -121,7 +121,7 @@ def test_run_blocks_raises_a_blocks_error():
 def test_assess_threads_share_the_affinity_among_the_batch_processes():
     cores = len(os.sched_getaffinity(0))
     assert cores_available() == cores
-    assert assess_threads(CheckOptions()) == cores                       # one process: every core
+    assert assess_threads(CheckOptions()) == cores  # one process: every core
     assert assess_threads(CheckOptions(), processes=2) == max(1, cores // 2)
-    assert assess_threads(CheckOptions(), processes=cores + 1) == 1     # never 0
-    assert assess_threads(CheckOptions(assess_threads=3), processes=2) == 3   # an explicit value wins
+    assert assess_threads(CheckOptions(), processes=cores + 1) == 1  # never 0
+    assert assess_threads(CheckOptions(assess_threads=3), processes=2) == 3  # an explicit value wins

@@ -13,10 +13,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2
+from verification_meshes import simple_throw
 
 from fe_crank.fe.loads import pin_centre, pin_pressure_load, pin_surface
 from fe_crank.fe.pin_directions import pin_cases, unit_force
-from verification_meshes import simple_throw
 
 
 @pytest.fixture(scope="module")

@@ -13,17 +13,23 @@ Real gmsh mesh with real fillets, real scikit-fem solves (the FE stage's unit ca
 
 from __future__ import annotations
 
-
 import numpy as np
 import pytest
+from verification_meshes import Steel, simple_throw
 
 from fe_crank.assess import assessed_groups, unit_stresses
 from fe_crank.assess.recovery import recovery_ratios
 from fe_crank.assess.stress import von_mises as vm_nodes
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.stress import (averaging_indicator, element_nodal_stress, elements_of_nodes,
-                                stress_at_nodes, stress_at_quadrature, stress_at_selected_nodes, von_mises)
-from verification_meshes import Steel, simple_throw
+from fe_crank.fe.stress import (
+    averaging_indicator,
+    element_nodal_stress,
+    elements_of_nodes,
+    stress_at_nodes,
+    stress_at_quadrature,
+    stress_at_selected_nodes,
+    von_mises,
+)
 
 REL = 1e-12
 
@@ -37,8 +43,9 @@ def units():
 
 def _full(units, case):
     m = units.material
-    return stress_at_nodes(units.mesh, units.displacement(case), m.youngs_modulus, m.poisson_ratio,
-                           dofs=units.system.basis.dofs)
+    return stress_at_nodes(
+        units.mesh, units.displacement(case), m.youngs_modulus, m.poisson_ratio, dofs=units.system.basis.dofs
+    )
 
 
 def test_selected_nodes_equal_the_whole_mesh_average(units):
@@ -47,8 +54,15 @@ def test_selected_nodes_equal_the_whole_mesh_average(units):
     ids = np.unique(np.concatenate(list(groups.values())))
     m = units.material
     cases = list(units.cases)
-    part = stress_at_selected_nodes(units.mesh, [units.displacement(c) for c in cases], m.youngs_modulus,
-                                    m.poisson_ratio, ids, dofs=units.system.basis.dofs, chunk=97)  # many chunks
+    part = stress_at_selected_nodes(
+        units.mesh,
+        [units.displacement(c) for c in cases],
+        m.youngs_modulus,
+        m.poisson_ratio,
+        ids,
+        dofs=units.system.basis.dofs,
+        chunk=97,
+    )  # many chunks
     for j, c in enumerate(cases):
         ref = _full(units, c)[:, ids]
         assert np.abs(part[j] - ref).max() <= REL * np.abs(ref).max(), c

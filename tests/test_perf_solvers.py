@@ -29,8 +29,10 @@ def system():
     ball = MeshTet2.init_ball(nrefs=1)
     b = Basis(ball, ElementTetP2(), intorder=2)
     K = assemble_stiffness(b, 210e9, 0.3).tocsr()
-    fixed = (3 * b.get_dofs(ball.facets_satisfying(lambda p: p[2] < -0.5, boundaries_only=True)).all()[:, None]
-             + np.arange(3)).ravel()
+    fixed = (
+        3 * b.get_dofs(ball.facets_satisfying(lambda p: p[2] < -0.5, boundaries_only=True)).all()[:, None]
+        + np.arange(3)
+    ).ravel()
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
     f = np.random.default_rng(3).normal(size=(free.size, 3))
     return K[free][:, free], f
@@ -71,7 +73,7 @@ def test_neither_direct_solver_falls_back_to_iterative_with_a_note(system, monke
     assert solvers.choose_method("auto", 10) == "superlu"
     assert solvers.choose_method("auto", 10**6) == "amg"
     assert "much slower" in solvers.fallback_note("auto", 10**6)
-    assert solvers.fallback_note("superlu", 10**6) is None          # asked for: no fallback
+    assert solvers.fallback_note("superlu", 10**6) is None  # asked for: no fallback
 
 
 def test_cholmod_refuses_an_indefinite_matrix():
@@ -93,7 +95,7 @@ def test_free_releases_the_factor_and_refuses_a_later_solve(system):
     assert fac.nnz == nnz and fac.description == desc
     with pytest.raises(SolverError, match="released"):
         fac.solve(f)
-    fac.free()                                          # twice is harmless
+    fac.free()  # twice is harmless
     assert np.all(np.isfinite(x))
 
 
@@ -120,8 +122,8 @@ def test_pardiso_out_of_core_writes_its_factor_to_disk_and_solves_as_in_core(sys
 
 def test_auto_goes_out_of_core_only_above_the_threshold():
     pytest.importorskip("pypardiso")
-    assert solvers.choose_method("auto", solvers.OOC_MIN_DOF) == "pardiso"        # medium (1.0-1.15M DOF)
-    assert solvers.choose_method("auto", solvers.OOC_MIN_DOF + 1) == "pardiso_ooc"   # fine (2.9M DOF)
+    assert solvers.choose_method("auto", solvers.OOC_MIN_DOF) == "pardiso"  # medium (1.0-1.15M DOF)
+    assert solvers.choose_method("auto", solvers.OOC_MIN_DOF + 1) == "pardiso_ooc"  # fine (2.9M DOF)
 
 
 def sp_triu(K):

@@ -28,12 +28,19 @@ def run(tmp_path_factory):
     # a case that stops after loading (no geometry) but has criteria: JUnit must still list them
     text = (DATA / "early_stop_no_geometry.toml").read_text()
     stop = tmp / "stops_with_criteria.toml"
-    stop.write_text(text + '\n[material]\nname = "42CrMo4"\n\n[criteria]\nmin_static_safety = 1.5\nmin_fatigue_safety = 1.3\n')
+    stop.write_text(
+        text + '\n[material]\nname = "42CrMo4"\n\n[criteria]\nmin_static_safety = 1.5\nmin_fatigue_safety = 1.3\n'
+    )
     log = io.StringIO()
     logger = setup_logging(0, log)
     try:
-        results = fe_crank.check([DATA / "small_pass.toml", stop], tmp / "reports", mesh_size="test",
-                                 cache_dir=tmp / "cache", junit=tmp / "junit.xml")
+        results = fe_crank.check(
+            [DATA / "small_pass.toml", stop],
+            tmp / "reports",
+            mesh_size="test",
+            cache_dir=tmp / "cache",
+            junit=tmp / "junit.xml",
+        )
     finally:
         for h in list(logger.handlers):
             logger.removeHandler(h)
@@ -64,8 +71,11 @@ def test_vtu_has_quadratic_cells_and_the_criterion_peak(run):
     groups = {g["max_von_mises"]["group"]: g for t in doc["throws"] for g in t["groups"]}
     angle = float(m.field_data["crank_angle_deg"][0])
     gid = {k.split(":", 1)[1]: int(v[0]) for k, v in m.field_data.items() if k.startswith("assessed_group:")}
-    drawn = [g for g in groups.values() if g["max_von_mises"]["angle_deg"] is not None
-             and abs(g["max_von_mises"]["angle_deg"] - angle) < 1e-9]
+    drawn = [
+        g
+        for g in groups.values()
+        if g["max_von_mises"]["angle_deg"] is not None and abs(g["max_von_mises"]["angle_deg"] - angle) < 1e-9
+    ]
     assert drawn
     for g in drawn:
         name = g["max_von_mises"]["group"]
@@ -78,8 +88,16 @@ def test_vtu_has_quadratic_cells_and_the_criterion_peak(run):
     s_os = crit["criteria.min_overspeed_safety"]["value"]
     vm_os = m.point_data["von_mises_overspeed_Pa"][m.point_data["assessed_group"] >= 0]
     assert np.nanmax(vm_os) == pytest.approx(ys / s_os, rel=1e-9)
-    for name in ("displacement_m", "stress_Pa", "principal_1_Pa", "principal_3_Pa", "fatigue_amplitude_Pa",
-                 "fatigue_mean_Pa", "fatigue_safety", "boundary"):
+    for name in (
+        "displacement_m",
+        "stress_Pa",
+        "principal_1_Pa",
+        "principal_3_Pa",
+        "fatigue_amplitude_Pa",
+        "fatigue_mean_Pa",
+        "fatigue_safety",
+        "boundary",
+    ):
         assert name in m.point_data
     assert m.point_data["stress_Pa"].shape == (len(m.points), 6)
     assert "subdomain" in m.cell_data and any(k.startswith("subdomain:") for k in m.field_data)
@@ -140,7 +158,7 @@ def _junit_problems(root) -> list[str]:
         for c in cases:
             if not (c.get("name") and c.get("classname") and num.match(c.get("time", ""))):
                 bad.append("testcase attrs")
-            if set(ch.tag for ch in c) - {"failure", "error", "skipped", "system-out", "system-err"}:
+            if {ch.tag for ch in c} - {"failure", "error", "skipped", "system-out", "system-err"}:
                 bad.append("testcase child")
     return bad
 
@@ -171,6 +189,8 @@ def test_log_has_a_line_per_finished_stage_and_case(run):
     lines = log.splitlines()
     for stage in ("load", "dynamics", "balance", "mesh", "fe", "assess", "report"):
         assert any(re.search(rf"INFO small_pass: {stage} done in \d+\.\d s$", ln) for ln in lines), stage
-    assert any(re.search(r"INFO small_pass: PASS \(worst criteria\.\w+, margin [+-]\d+\.\d %\) in \d+\.\d s$", ln)
-               for ln in lines)
+    assert any(
+        re.search(r"INFO small_pass: PASS \(worst criteria\.\w+, margin [+-]\d+\.\d %\) in \d+\.\d s$", ln)
+        for ln in lines
+    )
     assert any("WARNING stops_with_criteria: ERROR" in ln for ln in lines)

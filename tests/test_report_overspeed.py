@@ -54,8 +54,9 @@ def case(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("overspeed")
     (tmp / "geometry_small.toml").write_text((DATA / "geometry_small.toml").read_text() + COUNTERWEIGHT)
     text = (DATA / "small_pass.toml").read_text()
-    text = text.replace("min_overspeed_safety = 1.5", 'min_overspeed_safety = 1.5\n'
-                        'max_counterweight_overspeed_stress = "200 MPa"')
+    text = text.replace(
+        "min_overspeed_safety = 1.5", 'min_overspeed_safety = 1.5\nmax_counterweight_overspeed_stress = "200 MPa"'
+    )
     (tmp / "case.toml").write_text(text)
     lc = load_loadcase(tmp / "case.toml")
     dyn = analyse(lc.engine, lc.operating)
@@ -64,12 +65,17 @@ def case(tmp_path_factory):
     units = solve_unit_cases(mesh, lc.material, lc.fe)
     a = assess.assess_case(lc, dyn, bal, {"1": mesh}, {"1": units})
     crit = _criteria_of(a)
-    res = CaseResult(lc.name, str(tmp / "case.toml"), "pass" if all(c.passed for c in crit) else "fail",
-                     criteria=crit)
+    res = CaseResult(lc.name, str(tmp / "case.toml"), "pass" if all(c.passed for c in crit) else "fail", criteria=crit)
     out = tmp / "out"
     out.mkdir()
-    so = {"loadcase": lc, "dynamics": dyn, "balance": bal, "meshes": {"1": mesh}, "units": {"1": units},
-          "assessment": a}
+    so = {
+        "loadcase": lc,
+        "dynamics": dyn,
+        "balance": bal,
+        "meshes": {"1": mesh},
+        "units": {"1": units},
+        "assessment": a,
+    }
     write_case_report(out, res, so, options=CheckOptions())
     return out, lc, dyn, units, a
 
@@ -85,8 +91,9 @@ def _overspeed_von_mises(lc, dyn, units, nodes) -> tuple[np.ndarray, np.ndarray]
     best = None
     for cyc in overspeed_cycles(lc, dyn):
         tl = cyc.dynamics.throws["1"]
-        c = load_coefficients(tl.pin_force, tl.torque_front, lc.operating.overspeed, cases=us.cases,
-                              torque_mz=us.torque_mz)
+        c = load_coefficients(
+            tl.pin_force, tl.torque_front, lc.operating.overspeed, cases=us.cases, torque_mz=us.torque_mz
+        )
         s = combine(us.stress[:, :, j], c)  # (n_angles, 6, n)
         vm = von_mises(s.transpose(1, 0, 2))  # (6, n_angles, n) -> (n_angles, n)
         if best is None or vm.max() > best[1].max():
@@ -175,8 +182,11 @@ def test_overspeed_picture_marks_the_table_peak_and_the_counterweight_maximum(ca
         j = int(np.argmax(h[i]))
         if best is None or h[i, j] > best[0]:
             best = (h[i, j], g.group, units.points[:, ids[j]])
-    cw = re.search(r"black: the largest von Mises of (\w+) in this state, ([0-9.e+]+) MPa at "
-                   r"\(([-0-9., ]+)\) mm", cap)
+    cw = re.search(
+        r"black: the largest von Mises of (\w+) in this state, ([0-9.e+]+) MPa at "
+        r"\(([-0-9., ]+)\) mm",
+        cap,
+    )
     assert cw, cap
     assert cw.group(1) == best[1]
     assert float(cw.group(2)) == pytest.approx(best[0] / 1e6, rel=5e-4)

@@ -9,8 +9,8 @@ from pathlib import Path
 from fe_crank.notes import Note, from_stage
 from fe_crank.provenance import input_files, input_hash
 from fe_crank.report.html import criteria_table, header_html
-from fe_crank.results import CaseResult, CriterionResult
 from fe_crank.report.quality import case_notes
+from fe_crank.results import CaseResult, CriterionResult
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -28,14 +28,18 @@ def test_stage_outputs_contribute_their_notes_and_warnings():
         notes = ("overspeed: centrifugal alone", Note("targeted", "assumption", ("min_static_safety",)))
 
     got = from_stage("dynamics", Stage())
-    assert [(n.level, n.text) for n in got] == [("warning", "engine has no gas pressure"),
-                                               ("assumption", "overspeed: centrifugal alone"),
-                                               ("assumption", "targeted")]
+    assert [(n.level, n.text) for n in got] == [
+        ("warning", "engine has no gas pressure"),
+        ("assumption", "overspeed: centrifugal alone"),
+        ("assumption", "targeted"),
+    ]
 
 
 def test_test_mesh_averaging_and_missing_fast_solver_are_flagged():
-    prov = {"mesh": {"preset": "test", "sign_off": False, "sign_off_rule": "coarse or finer"},
-            "solver": {"used": ["superlu"], "requested": "auto", "fast_available": False}}
+    prov = {
+        "mesh": {"preset": "test", "sign_off": False, "sign_off_rule": "coarse or finer"},
+        "solver": {"used": ["superlu"], "requested": "auto", "fast_available": False},
+    }
     # 6.1 % > the 5 % of UR M53's FE appendix; 4.9 % is within it
     so = {"averaging": {"1": {"journal_fillet_1": 0.061, "crankpin_fillet_1": 0.049}}}
     texts = [n.text for n in case_notes(so, prov)]
@@ -51,8 +55,7 @@ def test_test_mesh_averaging_and_missing_fast_solver_are_flagged():
 def test_the_banner_and_the_notes_sit_beside_the_verdict():
     c = CriterionResult("criteria.min_fatigue_safety", True, 2.0, 1.5, 2.0 / 1.5 - 1)
     s = CriterionResult("criteria.min_static_safety", True, 4.0, 2.0, 1.0)
-    r = CaseResult("c", "c.toml", "pass", criteria=(c, s),
-                   provenance={"mesh": {"preset": "test", "sign_off": False}})
+    r = CaseResult("c", "c.toml", "pass", criteria=(c, s), provenance={"mesh": {"preset": "test", "sign_off": False}})
     notes = [Note("averaging 6.1 % > 5 %", criteria=("criteria.min_fatigue_safety",)), Note("case-wide")]
     head, tab = header_html(r, notes), criteria_table(r, notes)
     assert "NOT A SIGN-OFF (test mesh)" in head and "case-wide" in head and "averaging" not in head

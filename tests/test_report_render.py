@@ -8,8 +8,15 @@ import pytest
 from skfem import Basis, ElementTetP2, MeshTet, MeshTet2
 
 from fe_crank.fe.vtu import quadratic_tet_mesh, write_vtu
-from fe_crank.report.render import (exaggeration_factor, grid_of, image_statistics, iso_direction, nice_length,
-                                    nice_range, render_field)
+from fe_crank.report.render import (
+    exaggeration_factor,
+    grid_of,
+    image_statistics,
+    iso_direction,
+    nice_length,
+    nice_range,
+    render_field,
+)
 
 
 def test_exaggeration_draws_the_largest_displacement_as_the_chosen_fraction():
@@ -67,9 +74,16 @@ def test_colour_bar_reaches_the_mid_edge_peak(cube, tmp_path):
 
 def test_render_is_not_blank_and_the_blank_control_is(cube, tmp_path):
     mesh, _ = cube
-    v = render_field(tmp_path / "vm.png", grid_of(mesh), "f_MPa", title="von Mises [MPa]",
-                     displacement="displacement_m", scale=1000.0, hotspot=np.array([1.0, 1.0, 1.0]),
-                     window_size=(400, 300))
+    v = render_field(
+        tmp_path / "vm.png",
+        grid_of(mesh),
+        "f_MPa",
+        title="von Mises [MPa]",
+        displacement="displacement_m",
+        scale=1000.0,
+        hotspot=np.array([1.0, 1.0, 1.0]),
+        window_size=(400, 300),
+    )
     assert v.exaggeration == 1000.0
     st = image_statistics(v.file)
     assert st["coverage"] > 0.15 and st["std"] > 0.05 and st["colours"] > 200
@@ -83,9 +97,15 @@ def test_render_is_not_blank_and_the_blank_control_is(cube, tmp_path):
 
 def test_close_up_fills_the_frame(cube, tmp_path):
     mesh, _ = cube
-    v = render_field(tmp_path / "close.png", grid_of(mesh), "f_MPa", title="MPa",
-                     hotspot=np.array([1.0, 1.0, 1.0]), focus=(np.array([1.0, 1.0, 1.0]), 0.2),
-                     window_size=(400, 300))
+    v = render_field(
+        tmp_path / "close.png",
+        grid_of(mesh),
+        "f_MPa",
+        title="MPa",
+        hotspot=np.array([1.0, 1.0, 1.0]),
+        focus=(np.array([1.0, 1.0, 1.0]), 0.2),
+        window_size=(400, 300),
+    )
     assert image_statistics(v.file)["coverage"] > 0.6
 
 
@@ -102,8 +122,12 @@ def test_colour_bar_has_its_own_strip_and_never_covers_the_close_up(cube, tmp_pa
     import matplotlib.image as mpimg
 
     mesh, _ = cube
-    kw = dict(title="von Mises [MPa]", hotspot=np.array([1.0, 1.0, 1.0]), window_size=(500, 380),
-              focus=(np.array([1.0, 1.0, 1.0]), 0.2))
+    kw = dict(
+        title="von Mises [MPa]",
+        hotspot=np.array([1.0, 1.0, 1.0]),
+        window_size=(500, 380),
+        focus=(np.array([1.0, 1.0, 1.0]), 0.2),
+    )
     with_bar = render_field(tmp_path / "bar.png", grid_of(mesh), "f_MPa", **kw)
     part_only = render_field(tmp_path / "part.png", grid_of(mesh), "f_MPa", show_bar=False, **kw)
     img_bar, img_part = (np.asarray(mpimg.imread(str(v.file)), float) for v in (with_bar, part_only))

@@ -11,18 +11,17 @@ import numpy as np
 import pytest
 from skfem import MeshTet, MeshTet2
 
-from fe_crank.io.loadcase import load_loadcase
+import fe_crank.assess as assess
+import fe_crank.dynamics as dynamics
+import fe_crank.fe as fe
 from fe_crank.check import CheckOptions
 from fe_crank.check.stages import _criteria_of
-from fe_crank.results import CaseResult
+from fe_crank.io.loadcase import load_loadcase
 from fe_crank.report import write_case_report
 from fe_crank.report.render import image_statistics
+from fe_crank.results import CaseResult
 
 pytestmark = pytest.mark.heavy  # one small FE solve and six renders: about 9 s
-
-import fe_crank.fe as fe
-import fe_crank.dynamics as dynamics
-import fe_crank.assess as assess
 
 R, L = 0.02, 0.12
 
@@ -65,14 +64,19 @@ def _bar() -> MeshTet2:
     def side(x):
         return (x[2] > e) & (x[2] < L - e)
 
-    m2 = m2.with_boundaries({
-        "end_1": lambda x: np.abs(x[2]) < e, "end_2": lambda x: np.abs(x[2] - L) < e,
-        "journal_1": lambda x: side(x) & (x[2] < L / 3), "journal_2": lambda x: side(x) & (x[2] > 2 * L / 3),
-        "crankpin": lambda x: side(x) & (x[2] > L / 3) & (x[2] < 2 * L / 3),
-        "crankpin_fillet_1": lambda x: side(x) & (np.abs(x[2] - L / 3) < L / 12),
-    })
-    return m2.with_subdomains({"counterweight_1": lambda x: x[2] < L / 6,
-                               "web_1": lambda x: (x[2] > L / 6) & (x[2] < L / 3)})
+    m2 = m2.with_boundaries(
+        {
+            "end_1": lambda x: np.abs(x[2]) < e,
+            "end_2": lambda x: np.abs(x[2] - L) < e,
+            "journal_1": lambda x: side(x) & (x[2] < L / 3),
+            "journal_2": lambda x: side(x) & (x[2] > 2 * L / 3),
+            "crankpin": lambda x: side(x) & (x[2] > L / 3) & (x[2] < 2 * L / 3),
+            "crankpin_fillet_1": lambda x: side(x) & (np.abs(x[2] - L / 3) < L / 12),
+        }
+    )
+    return m2.with_subdomains(
+        {"counterweight_1": lambda x: x[2] < L / 6, "web_1": lambda x: (x[2] > L / 6) & (x[2] < L / 3)}
+    )
 
 
 @pytest.fixture(scope="module")
@@ -95,6 +99,7 @@ def report(tmp_path_factory):
 
 def test_results_json_follows_the_assessment_schema(report):
     import jsonschema  # a declared dependency: a failed import must fail the test
+
     from fe_crank.assess.results import load_schema
 
     out, a, _, res = report
@@ -107,8 +112,14 @@ def test_results_json_follows_the_assessment_schema(report):
 def test_every_section_and_every_picture(report):
     out, _, _, _ = report
     html = (out / "report.html").read_text()
-    for heading in ("Verdict", "Inputs and assumptions", "Kinematics, forces and torque",
-                    "Stresses and safety factors", "Stress field renders", "Mesh statistics and FE quality"):
+    for heading in (
+        "Verdict",
+        "Inputs and assumptions",
+        "Kinematics, forces and torque",
+        "Stresses and safety factors",
+        "Stress field renders",
+        "Mesh statistics and FE quality",
+    ):
         assert f"<h2>{heading}" in html
     imgs = re.findall(r'<img src="([^"]+)"', html)
     assert len(imgs) >= 4 and all(s.startswith("data:image/png;base64,") for s in imgs)  # embedded
@@ -138,10 +149,15 @@ def test_vtu_field_matches_the_assessment_at_the_critical_angle(report):
     angle = ext.angle if ext.angle is not None else g.max_von_mises.angle  # the angle the report draws
     i = int(np.argmin(np.abs(dyn.theta - angle)))
     us = assess.unit_stresses(units)
-    c = load_coefficients(dyn.throws["1"].pin_force[i:i + 1], dyn.throws["1"].torque_front[i:i + 1], dyn.speed,
-                          cases=us.cases, torque_mz=us.torque_mz)
+    c = load_coefficients(
+        dyn.throws["1"].pin_force[i : i + 1],
+        dyn.throws["1"].torque_front[i : i + 1],
+        dyn.speed,
+        cases=us.cases,
+        torque_mz=us.torque_mz,
+    )
     j = int(np.searchsorted(us.node_ids, ext.node))
-    s = combine(us.stress[:, :, j:j + 1], c)[0, :, 0]
+    s = combine(us.stress[:, :, j : j + 1], c)[0, :, 0]
     vm_assess = float(units.von_mises(s[:, None])[0])
     vm_vtu = float(grid.point_data["von_mises_Pa"][ext.node])
     assert vm_assess > 0

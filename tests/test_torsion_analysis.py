@@ -29,8 +29,17 @@ def rigid_settings(case):
     damping to ground (it would take torque from the rigid-body speed fluctuation)."""
     t = case.extras["torsion"]
     fly = dataclasses.replace(t.flywheel, stiffness=1e12, inertia=10.0)
-    return dataclasses.replace(t, damper=None, pulley=None, driven=(), flywheel=fly, speed_steps=11, cylinder_damping=0.0,
-                               assess_speed="operating", throw_stiffness="fe")
+    return dataclasses.replace(
+        t,
+        damper=None,
+        pulley=None,
+        driven=(),
+        flywheel=fly,
+        speed_steps=11,
+        cylinder_damping=0.0,
+        assess_speed="operating",
+        throw_stiffness="fe",
+    )
 
 
 def test_rigid_limit_gives_back_the_quasi_static_journal_torque(case):
@@ -39,8 +48,7 @@ def test_rigid_limit_gives_back_the_quasi_static_journal_torque(case):
     determinate journal torque of the dynamics stage, UR M53 2.1), the vibratory part
     vanishes (relative 1e-6: throw inertia 1e-9 kg m^2 x (12 omega)^2 / k terms)."""
     throws = [t.name for t in case.engine.throws]
-    res = analyse_torsion(case, settings=rigid_settings(case), inertias={n: 1e-9 for n in throws},
-                          fe_stiffness=1e12)
+    res = analyse_torsion(case, settings=rigid_settings(case), inertias=dict.fromkeys(throws, 1e-09), fe_stiffness=1e12)
     dyn = dynamics.analyse(case.engine, case.operating)
     new = with_vibratory_torque(dyn, res)
     for name, tl in dyn.throws.items():
@@ -57,7 +65,7 @@ def test_journal_torques_with_vibration(case):
     """The shipped genset: the journal torques handed to the assessment keep the
     quasi-static mean and add a vibratory part; at the governing speed of each journal
     the total M_TN is the largest of the range."""
-    res = analyse_torsion(case, inertias={n: 0.012 for n in ("1", "2", "3", "4")})
+    res = analyse_torsion(case, inertias=dict.fromkeys(("1", "2", "3", "4"), 0.012))
     dyn = dynamics.analyse(case.engine, case.operating)
     new = with_vibratory_torque(dyn, res)
     for name, tl in dyn.throws.items():
@@ -75,8 +83,15 @@ def test_cli_writes_json_and_pictures(tmp_path, capsys):
     assert main(["torsion", str(CASE), "-o", str(out)]) == 0
     data = json.loads((out / "torsion.json").read_text())
     assert len(data["natural_frequencies_hz"]) == 7
-    assert set(data["vibratory_torque_vs_speed"]) == {"damper-pulley", "pulley-1", "1-2", "2-3", "3-4",
-                                                      "4-flywheel", "flywheel-generator"}
+    assert set(data["vibratory_torque_vs_speed"]) == {
+        "damper-pulley",
+        "pulley-1",
+        "1-2",
+        "2-3",
+        "3-4",
+        "4-flywheel",
+        "flywheel-generator",
+    }
     assert len(data["speeds_rpm"]) == len(data["vibratory_torque_vs_speed"]["1-2"])
     assert data["mode_shapes"]["mode_1"][0] == pytest.approx(1.0) or max(map(abs, data["mode_shapes"]["mode_1"])) == 1
     for png in ("campbell.png", "torsion_response.png", "torsion_modes.png"):

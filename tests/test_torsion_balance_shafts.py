@@ -5,15 +5,13 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
+from _balance_helpers import engine
 
 from fe_crank.balance import balance_shafts, free_forces
 from fe_crank.balance.analysis import analyse_balance
 from fe_crank.errors import InputError
 from fe_crank.io.balance import parse_balance
-
-from _balance_helpers import engine
 
 W = 400.0
 
@@ -68,10 +66,13 @@ def test_asymmetric_pair(second_order):
     assert [s.position for s in d.shafts] == [(0.09, 0.05), (-0.03, -0.07)]
 
 
-@pytest.mark.parametrize("positions, reason", [
-    ([(0.06, 0.04)], "needs 2 shaft(s)"),
-    ([(0.06, 0.04), (0.0, 0.0)], "cannot sit on the crank axis"),
-])
+@pytest.mark.parametrize(
+    "positions, reason",
+    [
+        ([(0.06, 0.04)], "needs 2 shaft(s)"),
+        ([(0.06, 0.04), (0.0, 0.0)], "cannot sit on the crank axis"),
+    ],
+)
 def test_placements_that_cannot_cancel_are_refused(second_order, positions, reason):
     e, ff, f2 = second_order
     with pytest.raises(InputError) as err:
@@ -82,25 +83,25 @@ def test_placements_that_cannot_cancel_are_refused(second_order, positions, reas
 def test_crank_pair_must_stay_on_the_crank_axis():
     e = engine("v4_90_seed003_base.toml")
     with pytest.raises(InputError, match="counterweight pair on the crankshaft"):
-        balance_shafts(free_forces(e, W), "couple", 1, sources=("reciprocating",),
-                       positions=[(0.05, 0.0), (0.0, 0.1)])
+        balance_shafts(free_forces(e, W), "couple", 1, sources=("reciprocating",), positions=[(0.05, 0.0), (0.0, 0.1)])
 
 
 def test_balance_section_positions_and_roll_moment_reported(second_order, tmp_path):
     """[[balance.shafts]] positions in mm -> SI; the analysis reports the roll moment and
     names the section's key when the placement is refused."""
     e, ff, f2 = second_order
-    table = {"shafts": [{"component": "force", "order": 2,
-                         "positions": [["60 mm", "40 mm"], ["-60 mm", "-20 mm"]]}]}
+    table = {"shafts": [{"component": "force", "order": 2, "positions": [["60 mm", "40 mm"], ["-60 mm", "-20 mm"]]}]}
     settings = parse_balance(table, tmp_path / "case.toml")
     assert settings.shafts[0].positions == ((0.06, 0.04), (-0.06, -0.02))
     res = analyse_balance(e, W, settings)
     assert res.shafts[0].roll_moment == pytest.approx(0.5 * f2 * 0.06, rel=1e-6)
-    bad = parse_balance({"shafts": [{"component": "force", "order": 2, "positions": [["60 mm", "40 mm"]]}]},
-                        tmp_path / "case.toml")
+    bad = parse_balance(
+        {"shafts": [{"component": "force", "order": 2, "positions": [["60 mm", "40 mm"]]}]}, tmp_path / "case.toml"
+    )
     with pytest.raises(InputError) as err:
         analyse_balance(e, W, bad)
     assert err.value.key == "balance.shafts[0].positions"
     with pytest.raises(InputError, match="length"):
-        parse_balance({"shafts": [{"component": "force", "order": 2, "positions": [["60", "40 mm"]]}]},
-                      tmp_path / "case.toml")
+        parse_balance(
+            {"shafts": [{"component": "force", "order": 2, "positions": [["60", "40 mm"]]}]}, tmp_path / "case.toml"
+        )

@@ -35,8 +35,20 @@ def test_check_uses_quasi_static_plus_vibratory_journal_torque(tmp_path):
     stage directly (independent of the assessment code): the larger of the two
     journals of throw 1, quasi-static + vibratory at the governing speed."""
     out = tmp_path / "reports"
-    code = main(["check", str(CASE), "-o", str(out), "--mesh-size", "test", "--cache-dir", str(tmp_path / "cache"),
-                 "--no-render", "--no-vtu"])
+    code = main(
+        [
+            "check",
+            str(CASE),
+            "-o",
+            str(out),
+            "--mesh-size",
+            "test",
+            "--cache-dir",
+            str(tmp_path / "cache"),
+            "--no-render",
+            "--no-vtu",
+        ]
+    )
     assert code in (0, 1)
     folder = out / "small_torsion"
     tv = json.loads((folder / "torsion.json").read_text())

@@ -56,8 +56,9 @@ def test_truncated_synthesis_to_order_12_is_close(case):
     assert err < 0.05 * np.abs(cf.torque).max()
 
 
-@pytest.mark.parametrize("engine_file, majors", [("inline4.toml", (2, 4, 6, 8, 10, 12)),
-                                                 ("inline6.toml", (3, 6, 9, 12))])
+@pytest.mark.parametrize(
+    "engine_file, majors", [("inline4.toml", (2, 4, 6, 8, 10, 12)), ("inline6.toml", (3, 6, 9, 12))]
+)
 def test_inline_phase_sums_major_orders_add_minor_cancel(engine_file, majors):
     """Four-stroke in-line engines with even firing (Ker Wilson vol. 2; Den Hartog sec. 5.8
     'phase diagrams'): with equal amplitudes the order-n vectors of all cylinders add for

@@ -10,8 +10,9 @@ from fe_crank.torsion.model import TorsionModel
 
 
 def two_discs(J1, J2, k, *, c=0.0, eta=0.0):
-    return TorsionModel(("a", "b"), np.array([J1, J2]), np.array([k]), np.array([eta]), np.array([c]),
-                        np.zeros(2), ("a-b",), {})
+    return TorsionModel(
+        ("a", "b"), np.array([J1, J2]), np.array([k]), np.array([eta]), np.array([c]), np.zeros(2), ("a-b",), {}
+    )
 
 
 @pytest.mark.parametrize("zeta", [0.01, 0.05, 0.2])
@@ -63,15 +64,19 @@ def test_forced_response_at_resonance_and_its_synthesis():
 
     J1, J2, k, T, eta = 0.02, 0.15, 4e5, 100.0, 0.04
     mu = J1 * J2 / (J1 + J2)
-    m = TorsionModel(("a", "b"), np.array([J1, J2]), np.array([k]), np.array([eta]), np.zeros(1), np.zeros(2),
-                     ("a-b",), {"a": 0})
-    h = CylinderHarmonics(np.array([0.0, 1.0]), {"c": np.array([0.0, T])}, {"c": np.zeros(2)}, 100.0,
-                          2 * np.pi, {"c": "a"})
+    m = TorsionModel(
+        ("a", "b"), np.array([J1, J2]), np.array([k]), np.array([eta]), np.zeros(1), np.zeros(2), ("a-b",), {"a": 0}
+    )
+    h = CylinderHarmonics(
+        np.array([0.0, 1.0]), {"c": np.array([0.0, T])}, {"c": np.zeros(2)}, 100.0, 2 * np.pi, {"c": "a"}
+    )
     w = np.sqrt(k / mu)
     r = forced_response(m, h, [0.5 * w, w], [1.0])
     static = T * J2 / (J1 + J2)
     assert abs(r.segment[1, 0, 0]) / static == pytest.approx(np.hypot(1, eta) / eta, rel=1e-10)
-    assert abs(r.segment[0, 0, 0]) / static == pytest.approx(np.hypot(1, eta) / abs(1 - 0.25 + 0j + 1j * eta), rel=1e-10)
+    assert abs(r.segment[0, 0, 0]) / static == pytest.approx(
+        np.hypot(1, eta) / abs(1 - 0.25 + 0j + 1j * eta), rel=1e-10
+    )
     theta = np.linspace(0, 2 * np.pi, 361)[:-1]
     syn = r.synthesis(1, theta)[0]
     assert 0.5 * np.ptp(syn) == pytest.approx(abs(r.segment[1, 0, 0]), rel=1e-4)

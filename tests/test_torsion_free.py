@@ -13,8 +13,16 @@ from fe_crank.torsion.model import TorsionModel
 def chain(J, k, eta=None):
     J, k = np.asarray(J, float), np.asarray(k, float)
     eta = np.zeros(k.size) if eta is None else np.asarray(eta, float)
-    return TorsionModel(tuple(f"m{i}" for i in range(J.size)), J, k, eta, np.zeros(k.size), np.zeros(J.size),
-                        tuple(f"s{i}" for i in range(k.size)), {})
+    return TorsionModel(
+        tuple(f"m{i}" for i in range(J.size)),
+        J,
+        k,
+        eta,
+        np.zeros(k.size),
+        np.zeros(J.size),
+        tuple(f"s{i}" for i in range(k.size)),
+        {},
+    )
 
 
 def test_two_discs():

@@ -16,8 +16,16 @@ from fe_crank.torsion.model import TorsionModel
 
 def chain(J, k):
     J, k = np.asarray(J, float), np.asarray(k, float)
-    return TorsionModel(tuple(f"m{i}" for i in range(J.size)), J, k, np.zeros(k.size), np.zeros(k.size),
-                        np.zeros(J.size), tuple(f"s{i}" for i in range(k.size)), {})
+    return TorsionModel(
+        tuple(f"m{i}" for i in range(J.size)),
+        J,
+        k,
+        np.zeros(k.size),
+        np.zeros(k.size),
+        np.zeros(J.size),
+        tuple(f"s{i}" for i in range(k.size)),
+        {},
+    )
 
 
 def test_holzer_table_of_two_discs_by_hand():

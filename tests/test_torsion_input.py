@@ -45,21 +45,36 @@ def test_stiffness_in_kn_m_per_degree_is_converted(tmp_path):
     assert load_loadcase(p).extras["torsion"].flywheel.stiffness == pytest.approx(57295.7795, rel=1e-9)
 
 
-@pytest.mark.parametrize("old, new, key, reason", [
-    ('inertia = "0.15 kg*m^2"', 'inertia = "-0.15 kg*m^2"', "torsion.flywheel", "inertia must be positive"),
-    ('stiffness = "4e5 N*m/rad"', 'stiffness = "-4e5 N*m/rad"', "torsion.flywheel", "stiffness must be positive"),
-    ('stiffness = "4e5 N*m/rad"', 'stiffness = "4e5 N*m"', "torsion.flywheel.stiffness", "per angle"),
-    ("shaft_loss_factor = 0.025", "shaft_loss_factor = 0.5", "torsion", "shaft_loss_factor must lie in [0, 0.2]"),
-    ("shaft_loss_factor = 0.025", "shaft_loss_factor = -0.01", "torsion", "shaft_loss_factor must lie"),
-    ("loss_factor = 0.3", "loss_factor = 1.5", "torsion.driven[0]", "loss_factor must lie in [0, 1.0]"),
-    ('cylinder_damping = "0.2 N*m*s/rad"', 'cylinder_damping = "0.2 N*m*s"', "torsion.cylinder_damping", "per angle"),
-    ('stiffness = "8e3 N*m/rad"          # flexible rubber coupling', "", "torsion.driven[0]",
-     "a driven machine needs the stiffness"),
-    ("shaft_loss_factor = 0.025          # dynamic magnifier 40, the low-damping end (docs/torsion.md)", "",
-     "torsion.shaft_loss_factor", "required key is missing"),
-    ('speed_range = ["800 rpm", "3600 rpm"]', 'speed_range = ["3600 rpm", "800 rpm"]', "torsion",
-     "increasing"),
-])
+@pytest.mark.parametrize(
+    "old, new, key, reason",
+    [
+        ('inertia = "0.15 kg*m^2"', 'inertia = "-0.15 kg*m^2"', "torsion.flywheel", "inertia must be positive"),
+        ('stiffness = "4e5 N*m/rad"', 'stiffness = "-4e5 N*m/rad"', "torsion.flywheel", "stiffness must be positive"),
+        ('stiffness = "4e5 N*m/rad"', 'stiffness = "4e5 N*m"', "torsion.flywheel.stiffness", "per angle"),
+        ("shaft_loss_factor = 0.025", "shaft_loss_factor = 0.5", "torsion", "shaft_loss_factor must lie in [0, 0.2]"),
+        ("shaft_loss_factor = 0.025", "shaft_loss_factor = -0.01", "torsion", "shaft_loss_factor must lie"),
+        ("loss_factor = 0.3", "loss_factor = 1.5", "torsion.driven[0]", "loss_factor must lie in [0, 1.0]"),
+        (
+            'cylinder_damping = "0.2 N*m*s/rad"',
+            'cylinder_damping = "0.2 N*m*s"',
+            "torsion.cylinder_damping",
+            "per angle",
+        ),
+        (
+            'stiffness = "8e3 N*m/rad"          # flexible rubber coupling',
+            "",
+            "torsion.driven[0]",
+            "a driven machine needs the stiffness",
+        ),
+        (
+            "shaft_loss_factor = 0.025          # dynamic magnifier 40, the low-damping end (docs/torsion.md)",
+            "",
+            "torsion.shaft_loss_factor",
+            "required key is missing",
+        ),
+        ('speed_range = ["800 rpm", "3600 rpm"]', 'speed_range = ["3600 rpm", "800 rpm"]', "torsion", "increasing"),
+    ],
+)
 def test_bad_input_names_file_key_and_reason(tmp_path, old, new, key, reason):
     p = variant(tmp_path, old, new)
     with pytest.raises(InputError) as err:

@@ -13,7 +13,6 @@ import numpy as np
 from fe_crank.gmsh_io import gmsh_session, model_to_skfem
 
 
-
 @dataclass(frozen=True)
 class Steel:
     """Structural steel for the verification models (SI)."""
@@ -21,6 +20,7 @@ class Steel:
     youngs_modulus: float = 210e9
     poisson_ratio: float = 0.3
     density: float = 7850.0
+
 
 def _mesh(gmsh, size_min: float, size_max: float, refine: dict | None = None):
     gmsh.option.setNumber("Mesh.MeshSizeMin", size_min)
@@ -63,8 +63,9 @@ def _name_surfaces(gmsh, classify):
     gmsh.model.addPhysicalGroup(3, vols, name="body")
 
 
-def round_bar(diameter: float = 0.02, length: float = 0.08, size: float = 0.004, *, centre=(0.0, 0.0),
-              lateral: str = "surface"):
+def round_bar(
+    diameter: float = 0.02, length: float = 0.08, size: float = 0.004, *, centre=(0.0, 0.0), lateral: str = "surface"
+):
     """Solid round bar parallel to z through ``centre`` (x, y), from z = 0 to ``length``:
     boundaries end_1, end_2 and ``lateral`` (the cylindrical surface)."""
     with gmsh_session() as gmsh:
@@ -82,16 +83,33 @@ def round_bar(diameter: float = 0.02, length: float = 0.08, size: float = 0.004,
         return _mesh(gmsh, size * 0.5, size)
 
 
-def simple_throw(*, journal_d=0.05, pin_d=0.045, radius=0.045, journal_len=0.03, web_t=0.02,
-                 pin_len=0.03, web_w=0.08, size=0.008, fillet=0.0, fillet_size=None):
+def simple_throw(
+    *,
+    journal_d=0.05,
+    pin_d=0.045,
+    radius=0.045,
+    journal_len=0.03,
+    web_t=0.02,
+    pin_len=0.03,
+    web_w=0.08,
+    size=0.008,
+    fillet=0.0,
+    fillet_size=None,
+):
     """A crank throw with box webs (throw frame: crank axis z, pin centre on +y at ``radius``).
 
     Boundaries: journal_1, journal_2, crankpin, end_1, end_2, other; with ``fillet`` > 0 also
     crankpin_fillet_1/2 and journal_fillet_1/2 (element size ``fillet_size``, default r/2).
     """
     z0 = -(journal_len + web_t + pin_len / 2)
-    zs = [z0, z0 + journal_len, z0 + journal_len + web_t, z0 + journal_len + web_t + pin_len,
-          z0 + journal_len + 2 * web_t + pin_len, z0 + 2 * journal_len + 2 * web_t + pin_len]
+    zs = [
+        z0,
+        z0 + journal_len,
+        z0 + journal_len + web_t,
+        z0 + journal_len + web_t + pin_len,
+        z0 + journal_len + 2 * web_t + pin_len,
+        z0 + 2 * journal_len + 2 * web_t + pin_len,
+    ]
     with gmsh_session() as gmsh:
         occ = gmsh.model.occ
         j1 = occ.addCylinder(0, 0, zs[0], 0, 0, journal_len, journal_d / 2)
@@ -103,14 +121,22 @@ def simple_throw(*, journal_d=0.05, pin_d=0.045, radius=0.045, journal_len=0.03,
         occ.synchronize()
         fillet_names = {}
         if fillet > 0:
-            wanted = {(zs[1], 0.0, journal_d / 2): "journal_fillet_1", (zs[2], radius, pin_d / 2): "crankpin_fillet_1",
-                      (zs[3], radius, pin_d / 2): "crankpin_fillet_2", (zs[4], 0.0, journal_d / 2): "journal_fillet_2"}
+            wanted = {
+                (zs[1], 0.0, journal_d / 2): "journal_fillet_1",
+                (zs[2], radius, pin_d / 2): "crankpin_fillet_1",
+                (zs[3], radius, pin_d / 2): "crankpin_fillet_2",
+                (zs[4], 0.0, journal_d / 2): "journal_fillet_2",
+            }
             edges = []
             for _, c in gmsh.model.getEntities(1):
                 bb = np.array(gmsh.model.getBoundingBox(1, c))
-                for (z, yc, rad) in wanted:
-                    if (abs(bb[2] - z) < 1e-6 and abs(bb[5] - z) < 1e-6 and abs(bb[3] - rad) < 1e-6
-                            and abs(0.5 * (bb[1] + bb[4]) - yc) < 1e-6):
+                for z, yc, rad in wanted:
+                    if (
+                        abs(bb[2] - z) < 1e-6
+                        and abs(bb[5] - z) < 1e-6
+                        and abs(bb[3] - rad) < 1e-6
+                        and abs(0.5 * (bb[1] + bb[4]) - yc) < 1e-6
+                    ):
                         edges.append(c)
             occ.fillet([out[0][1]], edges, [fillet])
             occ.synchronize()
@@ -122,7 +148,7 @@ def simple_throw(*, journal_d=0.05, pin_d=0.045, radius=0.045, journal_len=0.03,
             if abs(bb[2] - zs[5]) < 1e-6 and abs(bb[5] - zs[5]) < 1e-6:
                 return "end_2"
             if kind not in ("Cylinder", "Plane") and fillet_names:
-                for (z, yc, rad), name in fillet_names.items():
+                for (z, yc, _rad), name in fillet_names.items():
                     if abs(c[2] - z) < 2 * fillet and abs(0.5 * (bb[1] + bb[4]) - yc) < 2 * fillet:
                         return name
             if kind == "Cylinder":
@@ -136,8 +162,7 @@ def simple_throw(*, journal_d=0.05, pin_d=0.045, radius=0.045, journal_len=0.03,
         _name_surfaces(gmsh, classify)
         if fillet > 0:
             fs = fillet_size if fillet_size is not None else fillet / 2
-            surf = [t for (_, t) in gmsh.model.getEntities(2)
-                    if gmsh.model.getType(2, t) not in ("Cylinder", "Plane")]
+            surf = [t for (_, t) in gmsh.model.getEntities(2) if gmsh.model.getType(2, t) not in ("Cylinder", "Plane")]
             return _mesh(gmsh, min(fs, size), size, refine={"surfaces": surf, "size": fs, "dist_max": 4 * fillet})
         return _mesh(gmsh, size * 0.5, size)
 
@@ -167,7 +192,7 @@ def annulus_sector(r_inner=0.05, r_outer=0.15, thickness=0.005, angle=np.pi / 2,
     Lamé stress field.  Boundaries: ``bore`` (r = r_inner), ``rim``, ``sym_x`` (theta = 0: the plane y = 0),
     ``sym_y`` (theta = angle: x = 0 for a quarter), ``bottom`` (z = 0), ``top``.
     """
-    r = r_inner * (r_outer / r_inner) ** np.linspace(0.0, 1.0, nr + 1)   # geometric: fine at the bore
+    r = r_inner * (r_outer / r_inner) ** np.linspace(0.0, 1.0, nr + 1)  # geometric: fine at the bore
     t = np.linspace(0.0, angle, nt + 1)
     z = np.linspace(0.0, thickness, nz + 1)
     tol = 1e-12
@@ -175,14 +200,20 @@ def annulus_sector(r_inner=0.05, r_outer=0.15, thickness=0.005, angle=np.pi / 2,
     def mapping(p):
         return np.vstack([p[0] * np.cos(p[1]), p[0] * np.sin(p[1]), p[2]])
 
-    return _mapped_tensor_mesh(r, t, z, mapping, {
-        "bore": lambda x: np.abs(x[0] - r_inner) < tol,
-        "rim": lambda x: np.abs(x[0] - r_outer) < tol,
-        "sym_x": lambda x: np.abs(x[1]) < tol,
-        "sym_y": lambda x: np.abs(x[1] - angle) < tol,
-        "bottom": lambda x: np.abs(x[2]) < tol,
-        "top": lambda x: np.abs(x[2] - thickness) < tol,
-    })
+    return _mapped_tensor_mesh(
+        r,
+        t,
+        z,
+        mapping,
+        {
+            "bore": lambda x: np.abs(x[0] - r_inner) < tol,
+            "rim": lambda x: np.abs(x[0] - r_outer) < tol,
+            "sym_x": lambda x: np.abs(x[1]) < tol,
+            "sym_y": lambda x: np.abs(x[1] - angle) < tol,
+            "bottom": lambda x: np.abs(x[2]) < tol,
+            "top": lambda x: np.abs(x[2] - thickness) < tol,
+        },
+    )
 
 
 def box_beam(length=0.2, height=0.02, width=0.02, *, nx=20, ny=2, nz=2):
@@ -191,17 +222,21 @@ def box_beam(length=0.2, height=0.02, width=0.02, *, nx=20, ny=2, nz=2):
     Boundaries: ``root`` (x = 0), ``tip`` (x = length), ``top`` (z = height), ``bottom``.
     """
     tol = 1e-12
-    return _mapped_tensor_mesh(np.linspace(0, length, nx + 1), np.linspace(0, width, ny + 1),
-                               np.linspace(0, height, nz + 1), lambda p: p, {
-                                   "root": lambda x: np.abs(x[0]) < tol,
-                                   "tip": lambda x: np.abs(x[0] - length) < tol,
-                                   "top": lambda x: np.abs(x[2] - height) < tol,
-                                   "bottom": lambda x: np.abs(x[2]) < tol,
-                               })
+    return _mapped_tensor_mesh(
+        np.linspace(0, length, nx + 1),
+        np.linspace(0, width, ny + 1),
+        np.linspace(0, height, nz + 1),
+        lambda p: p,
+        {
+            "root": lambda x: np.abs(x[0]) < tol,
+            "tip": lambda x: np.abs(x[0] - length) < tol,
+            "top": lambda x: np.abs(x[2] - height) < tol,
+            "bottom": lambda x: np.abs(x[2]) < tol,
+        },
+    )
 
 
-def stepped_shaft(d=0.02, D=0.03, r=0.003, *, len_small=0.04, len_large=0.045, size=0.004,
-                  fillet_size=None):
+def stepped_shaft(d=0.02, D=0.03, r=0.003, *, len_small=0.04, len_large=0.045, size=0.004, fillet_size=None):
     """Round shaft with a shoulder: diameter d on 0 <= z <= len_small, D beyond, fillet r.
 
     Boundaries: ``end_1`` (z = 0, small end), ``end_2``, ``fillet`` (the toroidal fillet
@@ -235,7 +270,7 @@ def stepped_shaft(d=0.02, D=0.03, r=0.003, *, len_small=0.04, len_large=0.045, s
             return "surface"
 
         _name_surfaces(gmsh, classify)
-        fillet = [t for (dim, t) in gmsh.model.getEntities(2)
-                  if gmsh.model.getType(2, t) not in ("Cylinder", "Plane")]
-        return _mesh(gmsh, min(fs, size), size, refine={"surfaces": fillet, "size": fs,
-                                                        "dist_min": 0.0, "dist_max": 4 * r})
+        fillet = [t for (dim, t) in gmsh.model.getEntities(2) if gmsh.model.getType(2, t) not in ("Cylinder", "Plane")]
+        return _mesh(
+            gmsh, min(fs, size), size, refine={"surfaces": fillet, "size": fs, "dist_min": 0.0, "dist_max": 4 * r}
+        )

@@ -16,6 +16,19 @@ from fe_crank.assess.m53 import M53Geometry
 from fe_crank.assess.results import to_json
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
 
-__all__ = ["assess_case", "to_json", "Assessment", "ThrowAssessment", "assess_throw", "evaluate_criteria",
-           "UnitStresses", "load_coefficients", "unit_stresses", "assessed_groups", "M53Geometry",
-           "CounterweightData", "ASSESSED_BOUNDARIES", "COUNTERWEIGHTS"]
+__all__ = [
+    "assess_case",
+    "to_json",
+    "Assessment",
+    "ThrowAssessment",
+    "assess_throw",
+    "evaluate_criteria",
+    "UnitStresses",
+    "load_coefficients",
+    "unit_stresses",
+    "assessed_groups",
+    "M53Geometry",
+    "CounterweightData",
+    "ASSESSED_BOUNDARIES",
+    "COUNTERWEIGHTS",
+]

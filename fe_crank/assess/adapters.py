@@ -23,15 +23,36 @@ from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.m53 import M53Geometry
 
 #: ISO 898-1 tensile stress area (mm^2) of coarse-pitch metric threads by nominal d (mm)
-STRESS_AREA_MM2 = {8: 36.6, 10: 58.0, 12: 84.3, 14: 115.0, 16: 157.0, 18: 192.0, 20: 245.0, 22: 303.0,
-                   24: 353.0, 27: 459.0, 30: 561.0, 33: 694.0, 36: 817.0}
+STRESS_AREA_MM2 = {
+    8: 36.6,
+    10: 58.0,
+    12: 84.3,
+    14: 115.0,
+    16: 157.0,
+    18: 192.0,
+    20: 245.0,
+    22: 303.0,
+    24: 353.0,
+    27: 459.0,
+    30: 561.0,
+    33: 694.0,
+    36: 817.0,
+}
 
 
 def m53_geometry_of(geometry) -> M53Geometry | None:
     """UR M53 dimensions of a ``fe_crank.geometry.spec.CrankGeometry`` (None if not one)."""
     g = geometry
-    need = ("crankpin_diameter", "journal_diameter", "crank_radius", "web_thickness", "web",
-            "crankpin_fillet", "journal_fillet", "journal_length")
+    need = (
+        "crankpin_diameter",
+        "journal_diameter",
+        "crank_radius",
+        "web_thickness",
+        "web",
+        "crankpin_fillet",
+        "journal_fillet",
+        "journal_length",
+    )
     if g is None or not all(hasattr(g, k) for k in need):
         return None
     d, dg, r = g.crankpin_diameter, g.journal_diameter, g.crank_radius
@@ -39,12 +60,19 @@ def m53_geometry_of(geometry) -> M53Geometry | None:
     rj, rp = g.web.journal_end_radius, g.web.pin_end_radius
     width = 2.0 * (rj + (rp - rj) * min(max(y_mid / r, 0.0), 1.0))
     bore = getattr(g, "oil_bore", None)
-    return M53Geometry(pin_diameter=d, journal_diameter=dg, crank_radius=r, web_thickness=g.web_thickness,
-                       web_width=width, pin_fillet_radius=g.crankpin_fillet, journal_fillet_radius=g.journal_fillet,
-                       bearing_to_web=g.journal_length + 0.5 * g.web_thickness,
-                       pin_length=getattr(g, "crankpin_length", 0.0),
-                       oil_bore_diameter=0.0 if bore is None else bore.diameter,
-                       oil_bore_angle=0.0 if bore is None else bore.angle)
+    return M53Geometry(
+        pin_diameter=d,
+        journal_diameter=dg,
+        crank_radius=r,
+        web_thickness=g.web_thickness,
+        web_width=width,
+        pin_fillet_radius=g.crankpin_fillet,
+        journal_fillet_radius=g.journal_fillet,
+        bearing_to_web=g.journal_length + 0.5 * g.web_thickness,
+        pin_length=getattr(g, "crankpin_length", 0.0),
+        oil_bore_diameter=0.0 if bore is None else bore.diameter,
+        oil_bore_angle=0.0 if bore is None else bore.angle,
+    )
 
 
 def stress_area(diameter: float) -> float:
@@ -56,8 +84,9 @@ def stress_area(diameter: float) -> float:
     return math.pi / 4.0 * (0.88 * diameter) ** 2
 
 
-def counterweights_of(geometry, geometry_throw: str | None, axial_position: float, shaft: str,
-                      balance, *, solids: list | None = None) -> tuple[CounterweightData, ...]:
+def counterweights_of(
+    geometry, geometry_throw: str | None, axial_position: float, shaft: str, balance, *, solids: list | None = None
+) -> tuple[CounterweightData, ...]:
     """Counterweight data of one throw, grouped by the balance plane they serve.
 
     Counterweights of the throw that are nearest to the same balance counterweight are
@@ -93,16 +122,22 @@ def counterweights_of(geometry, geometry_throw: str | None, axial_position: floa
     out = []
     for items in groups.values():
         mass = sum(p.mass for _, p, _ in items)
-        mr = math.hypot(sum(p.unbalance_vector[0] for _, p, _ in items), sum(p.unbalance_vector[1] for _, p, _ in items))
+        mr = math.hypot(
+            sum(p.unbalance_vector[0] for _, p, _ in items), sum(p.unbalance_vector[1] for _, p, _ in items)
+        )
         plane = items[0][2]
         bolted = [cw.bolted for cw, _, _ in items if cw.bolted is not None]
         capacity = None
         if bolted and all(b.yield_strength is not None for b in bolted):
             capacity = sum(b.count * stress_area(b.diameter) * b.yield_strength for b in bolted)
-        out.append(CounterweightData(
-            name="+".join(f"counterweight_{cw.web}" for cw, _, _ in items), mass=mass,
-            centroid_radius=mr / mass if mass > 0 else 0.0,
-            required_unbalance=None if plane is None else plane.unbalance,
-            bolted=bool(bolted), bolt_capacity=capacity,
-        ))
+        out.append(
+            CounterweightData(
+                name="+".join(f"counterweight_{cw.web}" for cw, _, _ in items),
+                mass=mass,
+                centroid_radius=mr / mass if mass > 0 else 0.0,
+                required_unbalance=None if plane is None else plane.unbalance,
+                bolted=bool(bolted),
+                bolt_capacity=capacity,
+            )
+        )
     return tuple(out)

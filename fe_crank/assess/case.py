@@ -57,14 +57,28 @@ def fe_scfs(scf) -> dict[str, dict[str, float]]:
     return scf.for_assessment()
 
 
-def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np.ndarray, torque: np.ndarray,
-                 *, omega: float, sense: int = 1, overspeed: float | None, material, crank_radius: float,
-                 m53_geometry: m53.M53Geometry | None = None, m53_additional: float = 10e6, m53_ke: float = 1.0,
-                 fe_scf: dict[str, dict[str, float]] | None = None, scf=None,
-                 counterweights: tuple[CounterweightData, ...] = (),
-                 torque_rear: np.ndarray | None = None,
-                 overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None,
-                 threads: int = 1) -> ThrowAssessment:
+def assess_throw(
+    name: str,
+    unit: UnitStresses,
+    theta: np.ndarray,
+    pin_force: np.ndarray,
+    torque: np.ndarray,
+    *,
+    omega: float,
+    sense: int = 1,
+    overspeed: float | None,
+    material,
+    crank_radius: float,
+    m53_geometry: m53.M53Geometry | None = None,
+    m53_additional: float = 10e6,
+    m53_ke: float = 1.0,
+    fe_scf: dict[str, dict[str, float]] | None = None,
+    scf=None,
+    counterweights: tuple[CounterweightData, ...] = (),
+    torque_rear: np.ndarray | None = None,
+    overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None,
+    threads: int = 1,
+) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
     ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
@@ -82,30 +96,46 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
     (several gas states of the overspeed condition, ``assess.overspeed.overspeed_cycles``)
     is checked as one longer history: the overspeed result is the worst over all of them.
     ``threads``: each group's node blocks on that many threads (``assess_group``)."""
-    coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense,
-                               torque_mz=unit.torque_mz)
+    coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
     coeffs_os = None
     if overspeed is not None:
         if overspeed_loads is None:
             scale = (overspeed / omega) ** 2 if omega > 0 else 1.0
             overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float))
         cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
-        coeffs_os = np.vstack([load_coefficients(p, t, overspeed, cases=unit.cases, sense=sense,
-                                                 torque_mz=unit.torque_mz) for p, t in cycles])
+        coeffs_os = np.vstack(
+            [
+                load_coefficients(p, t, overspeed, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
+                for p, t in cycles
+            ]
+        )
         theta_os = np.tile(np.asarray(theta), len(cycles))  # the angle of the worst row, whichever cycle
     dp = m53_geometry.pin_diameter if m53_geometry is not None else None
     dj = m53_geometry.journal_diameter if m53_geometry is not None else None
     groups = tuple(
-        assess_group(unit, g, coeffs, np.asarray(theta) if coeffs_os is None else theta_os, material,
-                     crank_radius=crank_radius, overspeed=overspeed,
-                     overspeed_coefficients=coeffs_os, diameter=section_diameter(g, dp, dj), threads=threads)
-        for g in sorted(unit.groups) if len(unit.groups[g])
+        assess_group(
+            unit,
+            g,
+            coeffs,
+            np.asarray(theta) if coeffs_os is None else theta_os,
+            material,
+            crank_radius=crank_radius,
+            overspeed=overspeed,
+            overspeed_coefficients=coeffs_os,
+            diameter=section_diameter(g, dp, dj),
+            threads=threads,
+        )
+        for g in sorted(unit.groups)
+        if len(unit.groups[g])
     )
     fillets, nominal = (), None
     if m53_geometry is not None and material.tensile_strength is not None and material.m53_k is not None:
         scf_note = None
-        if fe_scf is None and scf is not None and any(
-                m53.out_of_range(m53_geometry.related(f)) for f in ("pin", "journal")):
+        if (
+            fe_scf is None
+            and scf is not None
+            and any(m53.out_of_range(m53_geometry.related(f)) for f in ("pin", "journal"))
+        ):
             result = scf()
             fe_scf, scf_note = fe_scfs(result), result.summary()
         m53_torque = torque
@@ -114,18 +144,31 @@ def assess_throw(name: str, unit: UnitStresses, theta: np.ndarray, pin_force: np
         nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque, ke=m53_ke)
         try:
             fillets = tuple(
-                m53.assess_fillet(m53_geometry, nominal, f, tensile=material.tensile_strength, k=material.m53_k,
-                                  additional=m53_additional, fe_scf=(fe_scf or {}).get(f))
+                m53.assess_fillet(
+                    m53_geometry,
+                    nominal,
+                    f,
+                    tensile=material.tensile_strength,
+                    k=material.m53_k,
+                    additional=m53_additional,
+                    fe_scf=(fe_scf or {}).get(f),
+                )
                 for f in ("pin", "journal")
             )
         except ValueError as exc:  # outside the range and no FE SCFs
             raise InputError(f"throw {name}: {exc}", key="geometry") from None
         if scf_note:  # say which FE SCFs: the appendix's SCF mode and its mesh verdict
-            fillets = tuple(dataclasses.replace(f, scf_source=f"{scf_note}; outside the UR M53 validity range: "
-                                                + "; ".join(f.out_of_range)) if f.out_of_range else f
-                            for f in fillets)
-        outlet = m53_oil_bore.assess_outlet(m53_geometry, nominal, pin_force, tensile=material.tensile_strength,
-                                            k=material.m53_k)
+            fillets = tuple(
+                dataclasses.replace(
+                    f, scf_source=f"{scf_note}; outside the UR M53 validity range: " + "; ".join(f.out_of_range)
+                )
+                if f.out_of_range
+                else f
+                for f in fillets
+            )
+        outlet = m53_oil_bore.assess_outlet(
+            m53_geometry, nominal, pin_force, tensile=material.tensile_strength, k=material.m53_k
+        )
         fillets += (outlet,) if outlet is not None else ()
     cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
     return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)))
@@ -155,8 +198,9 @@ def _pick(throws, getter, worst):
     return best
 
 
-def evaluate_criteria(criteria, throws: tuple[ThrowAssessment, ...], *, file: str = "",
-                      overspeed: float | None = None) -> tuple[CriterionResult, ...]:
+def evaluate_criteria(
+    criteria, throws: tuple[ThrowAssessment, ...], *, file: str = "", overspeed: float | None = None
+) -> tuple[CriterionResult, ...]:
     """Each limit of ``criteria`` -> a verdict.  A criterion that cannot be evaluated
     (no data for it) is an InputError naming its key: it never passes silently."""
     from fe_crank.io.criteria import QUANTITIES
@@ -173,32 +217,56 @@ def evaluate_criteria(criteria, throws: tuple[ThrowAssessment, ...], *, file: st
                 raise InputError("needs operating.overspeed", file=file, key=lim.key)
             got = _pick(throws, lambda g: (g.overspeed_safety, g.max_von_mises_overspeed), "min")
         elif q == "fatigue_safety":
-            got = _pick(throws, lambda g: None if g.fatigue_safety is None else
-                        (g.fatigue_safety.value, g.fatigue_safety), "min")
+            got = _pick(
+                throws,
+                lambda g: None if g.fatigue_safety is None else (g.fatigue_safety.value, g.fatigue_safety),
+                "min",
+            )
         elif q == "gough_pollard_safety":
-            got = _pick(throws, lambda g: None if g.gough_pollard_safety is None else
-                        (g.gough_pollard_safety.value, g.gough_pollard_safety), "min")
+            got = _pick(
+                throws,
+                lambda g: (
+                    None if g.gough_pollard_safety is None else (g.gough_pollard_safety.value, g.gough_pollard_safety)
+                ),
+                "min",
+            )
         elif q in ("counterweight_stress", "counterweight_overspeed_stress"):
             unit = "Pa"
             if q == "counterweight_overspeed_stress" and overspeed is None:
                 raise InputError("needs operating.overspeed", file=file, key=lim.key)
             attr = "max_von_mises" if q == "counterweight_stress" else "max_von_mises_overspeed"
-            got = _pick(throws, lambda g: (getattr(g, attr).value, getattr(g, attr))
-                        if g.group.startswith(STATIC_ONLY_PREFIXES) else None, "max")
+            got = _pick(
+                throws,
+                lambda g, attr=attr: (
+                    (getattr(g, attr).value, getattr(g, attr)) if g.group.startswith(STATIC_ONLY_PREFIXES) else None
+                ),
+                "max",
+            )
         elif q == "m53_acceptability":
-            vals = [(f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
-                    for t in throws for f in t.m53]
+            vals = [
+                (f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
+                for t in throws
+                for f in t.m53
+            ]
             got = min(vals) if vals else None
         elif q in ("unbalance_error", "bolt_utilisation"):
             attr = q
-            vals = [(getattr(c, attr), f"throw {t.name}, {c.name}") for t in throws for c in t.counterweights
-                    if getattr(c, attr) is not None]
+            vals = [
+                (getattr(c, attr), f"throw {t.name}, {c.name}")
+                for t in throws
+                for c in t.counterweights
+                if getattr(c, attr) is not None
+            ]
             got = max(vals) if vals else None
         if got is None:
-            raise InputError(f"cannot be evaluated: the model gives no {q.replace('_', ' ')} "
-                             "(missing geometry, mesh group, balance requirement or bolt data)",
-                             file=file, key=lim.key)
+            raise InputError(
+                f"cannot be evaluated: the model gives no {q.replace('_', ' ')} "
+                "(missing geometry, mesh group, balance requirement or bolt data)",
+                file=file,
+                key=lim.key,
+            )
         value, where = got
-        out.append(judge(lim.key, q, lim.sense, value, lim.value, unit=unit, location=where,
-                         description=QUANTITIES[q].meaning))
+        out.append(
+            judge(lim.key, q, lim.sense, value, lim.value, unit=unit, location=where, description=QUANTITIES[q].meaning)
+        )
     return tuple(out)

@@ -27,8 +27,12 @@ from dataclasses import dataclass
 from statistics import NormalDist
 
 #: Shigley table 6-2: surface finish -> (a [MPa], b)
-SURFACE = {"ground": (1.58, -0.085), "machined": (4.51, -0.265), "hot_rolled": (57.7, -0.718),
-           "as_forged": (272.0, -0.995)}
+SURFACE = {
+    "ground": (1.58, -0.085),
+    "machined": (4.51, -0.265),
+    "hot_rolled": (57.7, -0.718),
+    "as_forged": (272.0, -0.995),
+}
 #: size factor used when the section diameter is unknown (eq. 6-20 at 254 mm)
 SIZE_FALLBACK_DIAMETER = 0.254
 
@@ -79,15 +83,31 @@ def factors(material, diameter: float | None = None) -> FatigueFactors:
     R_m, size from the diameter)."""
     ks = material.surface_factor
     if ks is None:
-        ks = surface_factor(material.surface_finish, material.tensile_strength) \
-            if material.tensile_strength is not None else 1.0
+        ks = (
+            surface_factor(material.surface_finish, material.tensile_strength)
+            if material.tensile_strength is not None
+            else 1.0
+        )
     kb = material.size_factor if material.size_factor is not None else size_factor(diameter)
-    return FatigueFactors(ks, kb, reliability_factor(material.reliability), material.treatment_factor,
-                          material.notch_support_factor, None if material.size_factor is not None else diameter)
+    return FatigueFactors(
+        ks,
+        kb,
+        reliability_factor(material.reliability),
+        material.treatment_factor,
+        material.notch_support_factor,
+        None if material.size_factor is not None else diameter,
+    )
 
 
-__all__ = ["SURFACE", "surface_factor", "size_factor", "reliability_factor", "FatigueFactors", "factors",
-           "material_rows"]
+__all__ = [
+    "SURFACE",
+    "surface_factor",
+    "size_factor",
+    "reliability_factor",
+    "FatigueFactors",
+    "factors",
+    "material_rows",
+]
 
 
 def material_rows(material) -> list[list[str]]:
@@ -95,11 +115,20 @@ def material_rows(material) -> list[list[str]]:
     if material is None or not hasattr(material, "reliability"):
         return []
     ff = factors(material, None)
-    ka = (f"{ff.surface:.3f} (given)" if material.surface_factor is not None else
-          f"{ff.surface:.3f} ({material.surface_finish}, Shigley eq. 6-19)")
-    kb = (f"{material.size_factor:.3f} (given)" if material.size_factor is not None else
-          "per section from its diameter (Shigley eq. 6-20; see the fatigue table)")
-    return [["surface factor k_a", ka], ["size factor k_b", kb],
-            ["reliability factor k_e", f"{ff.reliability:.3f} ({material.reliability:.4g}, Shigley table 6-5)"],
-            ["treatment factor", f"{ff.treatment:.3f}"],
-            ["notch support factor", f"{ff.notch_support:.3f} (FE route; 1 = no credit)"]]
+    ka = (
+        f"{ff.surface:.3f} (given)"
+        if material.surface_factor is not None
+        else f"{ff.surface:.3f} ({material.surface_finish}, Shigley eq. 6-19)"
+    )
+    kb = (
+        f"{material.size_factor:.3f} (given)"
+        if material.size_factor is not None
+        else "per section from its diameter (Shigley eq. 6-20; see the fatigue table)"
+    )
+    return [
+        ["surface factor k_a", ka],
+        ["size factor k_b", kb],
+        ["reliability factor k_e", f"{ff.reliability:.3f} ({material.reliability:.4g}, Shigley table 6-5)"],
+        ["treatment factor", f"{ff.treatment:.3f}"],
+        ["notch support factor", f"{ff.notch_support:.3f} (FE route; 1 = no credit)"],
+    ]

@@ -66,8 +66,9 @@ def max_and_first(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return r, first
 
 
-def amplitude_mean(history: np.ndarray, iterations: int = 16, stride: int = 4,
-                   block: int = NODE_BLOCK) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def amplitude_mean(
+    history: np.ndarray, iterations: int = 16, stride: int = 4, block: int = NODE_BLOCK
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Amplitude, mean tensor and a lower bound of the amplitude of a stress path.
 
     ``history`` (n_t, 6, n).  The amplitude is the radius R(c) = max_t vM(S(t) - c) of a
@@ -95,14 +96,13 @@ def amplitude_mean(history: np.ndarray, iterations: int = 16, stride: int = 4,
     on the memory layout of ``history``).
     """
     n = history.shape[-1]
-    planes = history.transpose(1, 0, 2)                  # (6, n_t, n) view
+    planes = history.transpose(1, 0, 2)  # (6, n_t, n) view
     if n <= block:
         return _amplitude_block(np.ascontiguousarray(planes), iterations, stride)
     amp, mean, lower = np.empty(n), np.empty((6, n)), np.empty(n)
     for s in range(0, n, block):
         sl = slice(s, s + block)
-        amp[sl], mean[:, sl], lower[sl] = _amplitude_block(np.ascontiguousarray(planes[:, :, sl]), iterations,
-                                                           stride)
+        amp[sl], mean[:, sl], lower[sl] = _amplitude_block(np.ascontiguousarray(planes[:, :, sl]), iterations, stride)
     return amp, mean, lower
 
 
@@ -111,7 +111,7 @@ def _amplitude_block(planes: np.ndarray, iterations: int, stride: int):
     lo, hi = planes.min(axis=1), planes.max(axis=1)
     c = 0.5 * (lo + hi)
     buf = np.empty(planes.shape)
-    d0 = von_mises_planes(planes, c, buf)               # (n_t, n), about the mid-range
+    d0 = von_mises_planes(planes, c, buf)  # (n_t, n), about the mid-range
     best_r, far = max_and_first(d0)
     best_c = c.copy()
     cols = np.arange(planes.shape[-1])
@@ -127,7 +127,7 @@ def _amplitude_block(planes: np.ndarray, iterations: int, stride: int):
         cc = c[:, todo]
         # the start's distances on the sub-sampled path are rows of the whole path's
         r, far = max_and_first(d0[::step] if todo.all() else d0[::step][:, todo])
-        cands, radii = [cc], [r]            # radius of each candidate on the sub-sampled path
+        cands, radii = [cc], [r]  # radius of each candidate on the sub-sampled path
         sub = np.arange(h.shape[-1])
         for k in range(iterations):
             cc = cc + (hs[:, far, sub] - cc) / (k + 2.0)
@@ -170,8 +170,9 @@ def goodman_safety(sigma_a: np.ndarray, sigma_m: np.ndarray, endurance: float, t
         return np.where(demand > 0, 1.0 / np.where(demand > 0, demand, 1.0), np.inf)
 
 
-def gough_pollard_safety(sigma_a, sigma_m, tau_a, tau_m, endurance_bending: float, endurance_torsion: float,
-                         tensile: float) -> np.ndarray:
+def gough_pollard_safety(
+    sigma_a, sigma_m, tau_a, tau_m, endurance_bending: float, endurance_torsion: float, tensile: float
+) -> np.ndarray:
     """n from (sigma_a/sigma_e')^2 + (tau_a/tau_e')^2 = 1/n^2 with Goodman-corrected limits.
 
     sigma_e' = sigma_e (1 - max(sigma_m, 0)/R_m), tau_e' = tau_e (1 - |tau_m|/tau_u),
@@ -207,7 +208,7 @@ def bending_torsion(history: np.ndarray, points: np.ndarray, axis_point: tuple[f
     # signed variation tensor: the deviation from the time mean where it is largest
     dev = {k: v - v.mean(axis=0) for k, v in c.items() if k in ("rr", "zz", "rz")}
     size = np.sqrt(dev["rr"] ** 2 + dev["zz"] ** 2 + 2 * dev["rz"] ** 2)
-    at = max_and_first(size)[1]                          # first angle of the largest
+    at = max_and_first(size)[1]  # first angle of the largest
     cols = np.arange(size.shape[1])
     rr_a, zz_a, rz_a = (dev[k][at, cols] for k in ("rr", "zz", "rz"))
     # eigenvector of the largest-magnitude eigenvalue of [[rr, rz], [rz, zz]]

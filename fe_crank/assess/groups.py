@@ -68,12 +68,15 @@ def unit_stresses(units, groups: dict[str, np.ndarray] | None = None, *, threads
     spent once more per extra thread)."""
     groups = assessed_groups(units) if groups is None else groups
     if not groups:
-        raise InputError("the mesh has none of the assessed groups "
-                         f"({', '.join(ASSESSED_BOUNDARIES + COUNTERWEIGHTS)})", key="geometry")
+        raise InputError(
+            f"the mesh has none of the assessed groups ({', '.join(ASSESSED_BOUNDARIES + COUNTERWEIGHTS)})",
+            key="geometry",
+        )
     ids = np.unique(np.concatenate(list(groups.values())))
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
     cases = tuple(c for c in units.cases if c in ("centrifugal", "torque") or pin_direction(c) is not None)
-    stress = _recover(units, cases, ids, threads)   # = stress_at_nodes(u_c)[:, ids], assessed elements only
+    stress = _recover(units, cases, ids, threads)  # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
-    return UnitStresses(stress=stress, points=np.asarray(units.points)[:, ids], groups=local, node_ids=ids,
-                        cases=cases, torque_mz=mz)
+    return UnitStresses(
+        stress=stress, points=np.asarray(units.points)[:, ids], groups=local, node_ids=ids, cases=cases, torque_mz=mz
+    )

@@ -39,19 +39,25 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, th
         raise InputError("the assessment needs a [material] section", file=lc.source_file, key="material")
     criteria = lc.criteria
     if criteria is None or not criteria.limits:
-        raise InputError("the assessment needs a [criteria] section with at least one limit",
-                         file=lc.source_file, key="criteria")
+        raise InputError(
+            "the assessment needs a [criteria] section with at least one limit", file=lc.source_file, key="criteria"
+        )
     omega, overspeed = lc.operating.speed, lc.operating.overspeed
     notes = [
         "stresses: linear elastic FE, nodal averages; histories by unit-load superposition (exact)",
         "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration "
-        + ("included: quasi-static + vibratory journal torque ([torsion], docs/torsion.md)" if "torsion" in lc.extras
-           else "not included (no [torsion] section)"),
+        + (
+            "included: quasi-static + vibratory journal torque ([torsion], docs/torsion.md)"
+            if "torsion" in lc.extras
+            else "not included (no [torsion] section)"
+        ),
     ]
     ke = m53.ke_factor(lc.engine.strokes)
     if lc.engine.strokes == 2:
-        notes.append("UR M53 route: two-stroke engine, K_e = 0.8 on the web's nominal bending and compressive "
-                     "stresses (UR M53 2.1.2.1); not applied to the FE route nor to the oil-bore outlet")
+        notes.append(
+            "UR M53 route: two-stroke engine, K_e = 0.8 on the web's nominal bending and compressive "
+            "stresses (UR M53 2.1.2.1); not applied to the FE route nor to the oil-bore outlet"
+        )
     cycles_os = overspeed_cycles(lc, dynamics)
     if cycles_os:
         notes.insert(1, describe_overspeed(lc))
@@ -77,23 +83,48 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, th
             cws = _hook(lc.geometry, "counterweights", tname)
             if cws is None:
                 gthrow = getattr(throw_meshes.get(key), "throw", None)
-                cws = counterweights_of(lc.geometry, gthrow, throw.axial_position, throw.shaft, balance,
-                                        solids=solids)
-            throws.append(assess_throw(
-                tname, unit, dynamics.theta, tl.pin_force, tl.torque_front, omega=omega, sense=sense,
-                overspeed=overspeed, material=material, crank_radius=throw.crank_radius, m53_geometry=m53g,
-                m53_additional=criteria.m53_additional_bending, m53_ke=ke, counterweights=tuple(cws),
-                torque_rear=tl.torque_rear, threads=threads,
-                overspeed_loads=[(c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front)
-                                 for c in cycles_os] or None,
-                scf=None if m53g is None else scf_provider(
-                    scf_cache, key, throw_meshes.get(key, units.mesh), lc.geometry, material, m53g,
-                    solver=getattr(lc.fe, "solver", None) or "auto"),
-            ))
+                cws = counterweights_of(lc.geometry, gthrow, throw.axial_position, throw.shaft, balance, solids=solids)
+            throws.append(
+                assess_throw(
+                    tname,
+                    unit,
+                    dynamics.theta,
+                    tl.pin_force,
+                    tl.torque_front,
+                    omega=omega,
+                    sense=sense,
+                    overspeed=overspeed,
+                    material=material,
+                    crank_radius=throw.crank_radius,
+                    m53_geometry=m53g,
+                    m53_additional=criteria.m53_additional_bending,
+                    m53_ke=ke,
+                    counterweights=tuple(cws),
+                    torque_rear=tl.torque_rear,
+                    threads=threads,
+                    overspeed_loads=[
+                        (c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front) for c in cycles_os
+                    ]
+                    or None,
+                    scf=None
+                    if m53g is None
+                    else scf_provider(
+                        scf_cache,
+                        key,
+                        throw_meshes.get(key, units.mesh),
+                        lc.geometry,
+                        material,
+                        m53g,
+                        solver=getattr(lc.fe, "solver", None) or "auto",
+                    ),
+                )
+            )
             if m53g is None:
                 notes.append(f"throw {tname}: no UR M53 dimensions from the geometry; M53 route not run")
             elif m53g.oil_bore_diameter > 0 and m53_oil_bore.in_range(m53g) is not None:
-                notes.append(f"throw {tname}: UR M53 oil-bore outlet not assessed empirically "
-                             f"({m53_oil_bore.in_range(m53g)}); FE route only (group oil_bore)")
+                notes.append(
+                    f"throw {tname}: UR M53 oil-bore outlet not assessed empirically "
+                    f"({m53_oil_bore.in_range(m53g)}); FE route only (group oil_bore)"
+                )
     verdicts = evaluate_criteria(criteria, tuple(throws), file=lc.source_file, overspeed=overspeed)
     return Assessment(lc.name, lc.source_file, omega, overspeed, material, tuple(throws), verdicts, tuple(notes))

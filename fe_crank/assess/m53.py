@@ -105,9 +105,15 @@ def alpha_b(rel: dict[str, float]) -> float:
     """Crankpin fillet bending SCF alpha_B = 2.6914 f(s,w) f(w) f(b) f(r) f(d_G) f(d_H) f(recess) (3.2)."""
     s, w, b, r, dg, dh = (rel[k] for k in ("s", "w", "b", "r", "dG", "dH"))
     u = 1.0 - s
-    fsw = (-4.1883 + 29.2004 * w - 77.5925 * w**2 + 91.9454 * w**3 - 40.0416 * w**4
-           + u * (9.5440 - 58.3480 * w + 159.3415 * w**2 - 192.5846 * w**3 + 85.2916 * w**4)
-           + u**2 * (-3.8399 + 25.0444 * w - 70.5571 * w**2 + 87.0328 * w**3 - 39.1832 * w**4))
+    fsw = (
+        -4.1883
+        + 29.2004 * w
+        - 77.5925 * w**2
+        + 91.9454 * w**3
+        - 40.0416 * w**4
+        + u * (9.5440 - 58.3480 * w + 159.3415 * w**2 - 192.5846 * w**3 + 85.2916 * w**4)
+        + u**2 * (-3.8399 + 25.0444 * w - 70.5571 * w**2 + 87.0328 * w**3 - 39.1832 * w**4)
+    )
     fw = 2.1790 * w**0.7171
     fb = 0.6840 - 0.0077 * b + 0.1473 * b**2
     fr = 0.2081 * r ** (-0.5231)
@@ -129,8 +135,13 @@ def beta_b(rel: dict[str, float]) -> float:
     """Journal fillet bending SCF beta_B = 2.7146 f_B(s,w) f_B(w) f_B(b) f_B(r) f_B(d_G) f_B(d_H) f(recess) (3.3)."""
     s, w, b, r, dg, dh = (rel[k] for k in ("s", "w", "b", "r", "dG", "dH"))
     u = 1.0 - s
-    fsw = (-1.7625 + 2.9821 * w - 1.5276 * w**2 + u * (5.1169 - 5.8089 * w + 3.1391 * w**2)
-           + u**2 * (-2.1567 + 2.3297 * w - 1.2952 * w**2))
+    fsw = (
+        -1.7625
+        + 2.9821 * w
+        - 1.5276 * w**2
+        + u * (5.1169 - 5.8089 * w + 3.1391 * w**2)
+        + u**2 * (-2.1567 + 2.3297 * w - 1.2952 * w**2)
+    )
     fw = 2.2422 * w**0.7548
     fb = 0.5616 + 0.1197 * b + 0.1176 * b**2
     fr = 0.1908 * r ** (-0.5568)
@@ -160,8 +171,12 @@ def fatigue_strength(tensile: float, diameter: float, fillet_radius: float, k: f
     rm = tensile / 1e6
     d = diameter * 1e3
     rx = max(fillet_radius * 1e3, 2.0)
-    return 1e6 * k * (0.42 * rm + 39.3) * (0.264 + 1.073 * d**-0.2 + (785.0 - rm) / 4900.0
-                                           + (196.0 / rm) * math.sqrt(1.0 / rx))
+    return (
+        1e6
+        * k
+        * (0.42 * rm + 39.3)
+        * (0.264 + 1.073 * d**-0.2 + (785.0 - rm) / 4900.0 + (196.0 / rm) * math.sqrt(1.0 / rx))
+    )
 
 
 def equivalent_stress(bending: float, torsion: float, additional: float) -> float:
@@ -241,8 +256,16 @@ class M53Fillet:
     out_of_range: tuple[str, ...] = ()
 
 
-def assess_fillet(geo: M53Geometry, nominal: NominalStresses, fillet: str, *, tensile: float, k: float,
-                  additional: float = 10e6, fe_scf: dict[str, float] | None = None) -> M53Fillet:
+def assess_fillet(
+    geo: M53Geometry,
+    nominal: NominalStresses,
+    fillet: str,
+    *,
+    tensile: float,
+    k: float,
+    additional: float = 10e6,
+    fe_scf: dict[str, float] | None = None,
+) -> M53Fillet:
     """UR M53 for one fillet.  Outside the validity range the FE SCFs ``fe_scf``
     (keys ``bending``, ``shear``, ``torsion``) are used and the result says so; if they
     are not given either, a ValueError names the out-of-range dimensions."""
@@ -258,8 +281,10 @@ def assess_fillet(geo: M53Geometry, nominal: NominalStresses, fillet: str, *, te
         scf = {"bending": fe_scf["bending"], "shear": fe_scf.get("shear", 0.0), "torsion": fe_scf["torsion"]}
         source = "FE (geometry outside the UR M53 validity range: " + "; ".join(bad) + ")"
     else:
-        raise ValueError(f"{fillet} fillet outside the UR M53 validity range ({'; '.join(bad)}) "
-                         "and no FE stress concentration factors given")
+        raise ValueError(
+            f"{fillet} fillet outside the UR M53 validity range ({'; '.join(bad)}) "
+            "and no FE stress concentration factors given"
+        )
     tau_n = nominal.torsion_pin if fillet == "pin" else nominal.torsion_journal
     bending = scf["bending"] * nominal.bending + scf["shear"] * nominal.shear
     torsion = scf["torsion"] * tau_n
@@ -267,8 +292,19 @@ def assess_fillet(geo: M53Geometry, nominal: NominalStresses, fillet: str, *, te
     diameter = geo.pin_diameter if fillet == "pin" else geo.journal_diameter
     radius = geo.pin_fillet_radius if fillet == "pin" else geo.journal_fillet_radius
     sdw = fatigue_strength(tensile, diameter, radius, k)
-    return M53Fillet(fillet, source, scf["bending"], scf["shear"], scf["torsion"], bending, torsion, sv, sdw,
-                     sdw / sv if sv > 0 else math.inf, tuple(bad))
+    return M53Fillet(
+        fillet,
+        source,
+        scf["bending"],
+        scf["shear"],
+        scf["torsion"],
+        bending,
+        torsion,
+        sv,
+        sdw,
+        sdw / sv if sv > 0 else math.inf,
+        tuple(bad),
+    )
 
 
 def web_section_modulus(geo: M53Geometry) -> float:
@@ -283,5 +319,5 @@ def web_area(geo: M53Geometry) -> float:
 
 def polar_section_modulus(geo: M53Geometry, fillet: str) -> float:
     """W_P = pi/16 (D^4 - D_BH^4)/D (pin) or pi/16 (D_G^4 - D_BG^4)/D_G (journal) (UR M53 2.2.2), m^3."""
-    d, bore = ((geo.pin_diameter, geo.pin_bore) if fillet == "pin" else (geo.journal_diameter, geo.journal_bore))
+    d, bore = (geo.pin_diameter, geo.pin_bore) if fillet == "pin" else (geo.journal_diameter, geo.journal_bore)
     return math.pi / 16.0 * (d**4 - bore**4) / d

@@ -90,8 +90,9 @@ def equivalent_stress(bending: float, torsion: float) -> float:
     return b / 3.0 + 2.0 / 3.0 * math.sqrt(b**2 + 2.25 * torsion**2)
 
 
-def assess_outlet(geo: M53Geometry, nominal: NominalStresses, pin_force, *, tensile: float,
-                  k: float) -> M53Fillet | None:
+def assess_outlet(
+    geo: M53Geometry, nominal: NominalStresses, pin_force, *, tensile: float, k: float
+) -> M53Fillet | None:
     """UR M53 result at the oil-bore outlet (``fillet`` = "oil_bore"), or None when the
     geometry has no oil bore or d_O is outside 3.4's range (see ``in_range``)."""
     if geo.oil_bore_diameter <= 0 or in_range(geo) is not None:

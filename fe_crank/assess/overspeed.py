@@ -94,5 +94,7 @@ def describe(loadcase) -> str:
     gas = states[0] if len(states) == 1 else " and ".join(f"({w})" for w in states) + ", the worse of the two"
     if _mode(loadcase) == "motored" and len(states) == 1:
         gas += " (the gas data give no compression ratio and intake pressure for a motored curve)"
-    return (f"overspeed: whole cycle recomputed at {op.overspeed * 30 / 3.141592653589793:.0f} rpm "
-            f"(rod and piston inertia and crank body force at omega_os^2; gas: {gas}); worst angle")
+    return (
+        f"overspeed: whole cycle recomputed at {op.overspeed * 30 / 3.141592653589793:.0f} rpm "
+        f"(rod and piston inertia and crank body force at omega_os^2; gas: {gas}); worst angle"
+    )

@@ -46,13 +46,14 @@ def peak_bound(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, 
     a = np.abs(np.atleast_2d(np.asarray(coefficients, float)))
     out = np.empty(len(nodes))
     for s in range(0, len(nodes), chunk):
-        v = von_mises(unit.stress[:, :, nodes[s:s + chunk]])          # (n_cases, k)
-        out[s:s + chunk] = (a @ v).max(axis=0)
+        v = von_mises(unit.stress[:, :, nodes[s : s + chunk]])  # (n_cases, k)
+        out[s : s + chunk] = (a @ v).max(axis=0)
     return out
 
 
-def group_peak(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray,
-               block: int = 128) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def group_peak(
+    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, block: int = 128
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(positions in ``nodes`` evaluated, ascending; their peak sigma_v over the cycle;
     the first angle index within ``TIE_RTOL`` of it) -- every node that can hold the
     group's largest peak or tie with it (module docstring)."""
@@ -64,9 +65,9 @@ def group_peak(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray,
     buf = None
     for s in range(0, nodes.size, block):
         if np.isfinite(best) and bound[order[s]] < best - TIE_RTOL * abs(best):
-            break                                    # bounds descend: no node left can reach the band
-        pos = order[s:s + block]
-        for idx, planes in iter_planes(unit, coefficients, nodes[pos], block):
+            break  # bounds descend: no node left can reach the band
+        pos = order[s : s + block]
+        for _idx, planes in iter_planes(unit, coefficients, nodes[pos], block):
             buf = buf if buf is not None and buf.shape == planes.shape else np.empty(planes.shape)
             p, a = max_over_cycle(von_mises_planes(planes, buf=buf))
         done.append(pos)

@@ -21,8 +21,9 @@ from fe_crank.fe.stress import stress_at_quadrature, stress_at_selected_nodes
 RATIO_LIMIT = 1.25
 
 
-def recovery_ratios(units, groups: dict[str, np.ndarray], cases=("pin_y", "torque"), *,
-                    unit: UnitStresses | None = None) -> dict[str, float]:
+def recovery_ratios(
+    units, groups: dict[str, np.ndarray], cases=("pin_y", "torque"), *, unit: UnitStresses | None = None
+) -> dict[str, float]:
     """Group -> max over ``cases`` of (peak nodal vM / peak quadrature-point vM).
 
     Both stresses are recovered only where they are compared: the nodal averages at the
@@ -37,28 +38,43 @@ def recovery_ratios(units, groups: dict[str, np.ndarray], cases=("pin_y", "torqu
     mesh = units.mesh
     basis = units.system.basis
     mat = units.material
-    present = {name: (np.asarray(nodes), mesh.boundaries[name]) for name, nodes in groups.items()
-               if len((mesh.boundaries or {}).get(name, ())) > 0}
+    present = {
+        name: (np.asarray(nodes), mesh.boundaries[name])
+        for name, nodes in groups.items()
+        if len((mesh.boundaries or {}).get(name, ())) > 0
+    }
     out: dict[str, float] = {}
     if not present:
         return out
     cases = [c for c in cases if c in units.cases]
     if not cases:
         return out
-    if unit is not None and all(c in unit.cases for c in cases) and all(
+    if (
+        unit is not None
+        and all(c in unit.cases for c in cases)
+        and all(
             name in unit.groups and np.array_equal(unit.node_ids[unit.groups[name]], nodes)
-            for name, (nodes, _) in present.items()):
-        nodal = {(case, name): unit.stress[unit.cases.index(case)][:, unit.groups[name]]
-                 for case in cases for name in present}
+            for name, (nodes, _) in present.items()
+        )
+    ):
+        nodal = {
+            (case, name): unit.stress[unit.cases.index(case)][:, unit.groups[name]]
+            for case in cases
+            for name in present
+        }
     else:
         ids = np.unique(np.concatenate([nodes for nodes, _ in present.values()]))
-        nodal_all = stress_at_selected_nodes(mesh, [units.displacement(c) for c in cases], mat.youngs_modulus,
-                                             mat.poisson_ratio, ids, dofs=basis.dofs)
-        nodal = {(case, name): nodal_all[j][:, np.searchsorted(ids, nodes)]
-                 for j, case in enumerate(cases) for name, (nodes, _) in present.items()}
+        nodal_all = stress_at_selected_nodes(
+            mesh, [units.displacement(c) for c in cases], mat.youngs_modulus, mat.poisson_ratio, ids, dofs=basis.dofs
+        )
+        nodal = {
+            (case, name): nodal_all[j][:, np.searchsorted(ids, nodes)]
+            for j, case in enumerate(cases)
+            for name, (nodes, _) in present.items()
+        }
     for case in cases:
         u = units.displacement(case)
-        for name, (nodes, facets) in present.items():
+        for name, (_nodes, facets) in present.items():
             els = np.unique(mesh.f2t[0, facets])
             quad = stress_at_quadrature(basis, u, mat.youngs_modulus, mat.poisson_ratio, elements=els)
             q = float(von_mises(quad.reshape(6, -1)[None])[0].max())
@@ -69,7 +85,10 @@ def recovery_ratios(units, groups: dict[str, np.ndarray], cases=("pin_y", "torqu
 
 
 def recovery_notes(ratios: dict[str, float], limit: float = RATIO_LIMIT) -> list[str]:
-    return [f"stress recovery: peak nodal stress at {g} is {r:.2f} x the peak at the quadrature points of "
-            f"its elements (unit cases); nodal peaks there are extrapolation artefacts of the mesh, treat its "
-            f"safety factors as unreliable (finer or better-shaped fillet elements)"
-            for g, r in sorted(ratios.items()) if r > limit]
+    return [
+        f"stress recovery: peak nodal stress at {g} is {r:.2f} x the peak at the quadrature points of "
+        f"its elements (unit cases); nodal peaks there are extrapolation artefacts of the mesh, treat its "
+        f"safety factors as unreliable (finer or better-shaped fillet elements)"
+        for g, r in sorted(ratios.items())
+        if r > limit
+    ]

@@ -27,23 +27,38 @@ def _num(x):
 def _extreme(e):
     if e is None:
         return None
-    return {"value": _num(e.value), "group": e.group, "node": e.node, "point": [float(c) for c in e.point],
-            "angle_deg": None if e.angle is None else math.degrees(e.angle)}
+    return {
+        "value": _num(e.value),
+        "group": e.group,
+        "node": e.node,
+        "point": [float(c) for c in e.point],
+        "angle_deg": None if e.angle is None else math.degrees(e.angle),
+    }
 
 
 def _group(g):
     return {
-        "group": g.group, "n_nodes": g.n_nodes,
+        "group": g.group,
+        "n_nodes": g.n_nodes,
         "max_von_mises": _extreme(g.max_von_mises),
         "max_von_mises_overspeed": _extreme(g.max_von_mises_overspeed),
-        "static_safety": _num(g.static_safety), "overspeed_safety": _num(g.overspeed_safety),
-        "fatigue_safety": _extreme(g.fatigue_safety), "gough_pollard_safety": _extreme(g.gough_pollard_safety),
-        "amplitude_at_critical": _num(g.amplitude_at_critical), "mean_at_critical": _num(g.mean_at_critical),
-        "fatigue_factors": None if g.fatigue_factors is None else {
-            "surface": g.fatigue_factors.surface, "size": g.fatigue_factors.size,
-            "reliability": g.fatigue_factors.reliability, "treatment": g.fatigue_factors.treatment,
-            "notch_support": g.fatigue_factors.notch_support, "product": g.fatigue_factors.product,
-            "diameter": _num(g.fatigue_factors.diameter)},
+        "static_safety": _num(g.static_safety),
+        "overspeed_safety": _num(g.overspeed_safety),
+        "fatigue_safety": _extreme(g.fatigue_safety),
+        "gough_pollard_safety": _extreme(g.gough_pollard_safety),
+        "amplitude_at_critical": _num(g.amplitude_at_critical),
+        "mean_at_critical": _num(g.mean_at_critical),
+        "fatigue_factors": None
+        if g.fatigue_factors is None
+        else {
+            "surface": g.fatigue_factors.surface,
+            "size": g.fatigue_factors.size,
+            "reliability": g.fatigue_factors.reliability,
+            "treatment": g.fatigue_factors.treatment,
+            "notch_support": g.fatigue_factors.notch_support,
+            "product": g.fatigue_factors.product,
+            "diameter": _num(g.fatigue_factors.diameter),
+        },
     }
 
 
@@ -56,28 +71,48 @@ def _material(m):
     if m.size_factor is not None:
         common *= m.size_factor
     return {
-        "name": m.name, "source": m.source,
-        "yield_strength": _num(m.yield_strength), "tensile_strength": _num(m.tensile_strength),
+        "name": m.name,
+        "source": m.source,
+        "yield_strength": _num(m.yield_strength),
+        "tensile_strength": _num(m.tensile_strength),
         "fatigue_limit_bending": _num(m.fatigue_limit_bending),
-        "fatigue_limit_torsion": _num(m.fatigue_limit_torsion), "fatigue_factor": common,
+        "fatigue_limit_torsion": _num(m.fatigue_limit_torsion),
+        "fatigue_factor": common,
         "surface_finish": None if m.surface_factor is not None else m.surface_finish,
-        "surface_factor": ff.surface, "size_factor": _num(m.size_factor), "reliability": m.reliability,
-        "reliability_factor": ff.reliability, "treatment_factor": ff.treatment,
+        "surface_factor": ff.surface,
+        "size_factor": _num(m.size_factor),
+        "reliability": m.reliability,
+        "reliability_factor": ff.reliability,
+        "treatment_factor": ff.treatment,
         "notch_support_factor": ff.notch_support,
     }
 
 
 def _m53(f):
-    return {"fillet": f.fillet, "scf_source": f.scf_source, "scf_bending": f.scf_bending,
-            "scf_shear": f.scf_shear, "scf_torsion": f.scf_torsion, "bending": f.bending, "torsion": f.torsion,
-            "equivalent": f.equivalent, "fatigue_strength": f.fatigue_strength,
-            "acceptability": _num(f.acceptability), "out_of_range": list(f.out_of_range)}
+    return {
+        "fillet": f.fillet,
+        "scf_source": f.scf_source,
+        "scf_bending": f.scf_bending,
+        "scf_shear": f.scf_shear,
+        "scf_torsion": f.scf_torsion,
+        "bending": f.bending,
+        "torsion": f.torsion,
+        "equivalent": f.equivalent,
+        "fatigue_strength": f.fatigue_strength,
+        "acceptability": _num(f.acceptability),
+        "out_of_range": list(f.out_of_range),
+    }
 
 
 def _cw(c):
-    return {"name": c.name, "built_unbalance": c.built_unbalance, "required_unbalance": _num(c.required_unbalance),
-            "unbalance_error": _num(c.unbalance_error), "bolt_load": _num(c.bolt_load),
-            "bolt_utilisation": _num(c.bolt_utilisation)}
+    return {
+        "name": c.name,
+        "built_unbalance": c.built_unbalance,
+        "required_unbalance": _num(c.required_unbalance),
+        "unbalance_error": _num(c.unbalance_error),
+        "bolt_load": _num(c.bolt_load),
+        "bolt_utilisation": _num(c.bolt_utilisation),
+    }
 
 
 def to_json(assessment: Assessment) -> dict:
@@ -94,19 +129,37 @@ def to_json(assessment: Assessment) -> dict:
         "overspeed_rpm": None if a.overspeed is None else a.overspeed * 30.0 / math.pi,
         "material": _material(m),
         "criteria": [
-            {"name": c.name, "quantity": c.quantity, "sense": c.sense, "value": _num(c.value),
-             "limit": c.limit, "margin": _num(c.margin), "passed": c.passed, "unit": c.unit,
-             "location": c.location, "description": c.description}
+            {
+                "name": c.name,
+                "quantity": c.quantity,
+                "sense": c.sense,
+                "value": _num(c.value),
+                "limit": c.limit,
+                "margin": _num(c.margin),
+                "passed": c.passed,
+                "unit": c.unit,
+                "location": c.location,
+                "description": c.description,
+            }
             for c in a.criteria
         ],
         "throws": [
-            {"name": t.name, "n_angles": t.n_angles, "groups": [_group(g) for g in t.groups],
-             "m53": [_m53(f) for f in t.m53],
-             "m53_nominal": None if t.m53_nominal is None else {
-                 "bending": t.m53_nominal.bending, "shear": t.m53_nominal.shear,
-                 "torsion_pin": t.m53_nominal.torsion_pin, "torsion_journal": t.m53_nominal.torsion_journal,
-                 "ke": t.m53_nominal.ke},
-             "counterweights": [_cw(c) for c in t.counterweights]}
+            {
+                "name": t.name,
+                "n_angles": t.n_angles,
+                "groups": [_group(g) for g in t.groups],
+                "m53": [_m53(f) for f in t.m53],
+                "m53_nominal": None
+                if t.m53_nominal is None
+                else {
+                    "bending": t.m53_nominal.bending,
+                    "shear": t.m53_nominal.shear,
+                    "torsion_pin": t.m53_nominal.torsion_pin,
+                    "torsion_journal": t.m53_nominal.torsion_journal,
+                    "ke": t.m53_nominal.ke,
+                },
+                "counterweights": [_cw(c) for c in t.counterweights],
+            }
             for t in a.throws
         ],
         "notes": list(a.notes),

@@ -44,7 +44,7 @@ class ScfResult:
     empirical: dict[str, float | None]
     out_of_range: dict[str, tuple[str, ...]]
     quality: dict[str, dict]
-    element_size: dict[str, float]          # fillet group -> longest element edge / r (ThrowMesh only)
+    element_size: dict[str, float]  # fillet group -> longest element edge / r (ThrowMesh only)
     stresses: ScfStresses
     details: dict = field(default_factory=dict)
 
@@ -55,22 +55,27 @@ class ScfResult:
     @property
     def mesh_ok(self) -> bool:
         """Fillet elements <= r/4 (where known) and every peak meets a 2.3 criterion."""
-        return (all(v <= ELEMENT_SIZE_LIMIT * (1 + 1e-9) for v in self.element_size.values())
-                and all(q["mesh_ok"] for q in self.quality.values()))
+        return all(v <= ELEMENT_SIZE_LIMIT * (1 + 1e-9) for v in self.element_size.values()) and all(
+            q["mesh_ok"] for q in self.quality.values()
+        )
 
     def for_assessment(self) -> dict[str, dict[str, float]]:
         """The ``fe_scf`` dictionaries that ``fe_crank.assess.m53.assess_fillet`` takes."""
         f = self.fe
-        return {"pin": {"bending": f["alpha_B"], "shear": 0.0, "torsion": f["alpha_T"]},
-                "journal": {"bending": f["beta_B"], "shear": f["beta_Q"], "torsion": f["beta_T"]}}
+        return {
+            "pin": {"bending": f["alpha_B"], "shear": 0.0, "torsion": f["alpha_T"]},
+            "journal": {"bending": f["beta_B"], "shear": f["beta_Q"], "torsion": f["beta_T"]},
+        }
 
     def summary(self) -> str:
         """One line for ``scf_source``: the appendix, the mesh verdict and the worst checks."""
         worst_p = max(q["principal_ratio"] for q in self.quality.values())
         worst_a = max(q["averaging"] for q in self.quality.values())
         size = max(self.element_size.values()) if self.element_size else None
-        parts = [f"principal criterion max {100 * worst_p:.1f} % (< 3 %)",
-                 f"averaging max {100 * worst_a:.1f} % (< 5 %)"]
+        parts = [
+            f"principal criterion max {100 * worst_p:.1f} % (< 3 %)",
+            f"averaging max {100 * worst_a:.1f} % (< 5 %)",
+        ]
         if size is not None:
             parts.append(f"fillet elements <= r/{1 / size:.1f} (r/4 required)")
         verdict = "mesh accepted" if self.mesh_ok else "mesh NOT accepted, refine"
@@ -78,9 +83,15 @@ class ScfResult:
 
 
 def _quality(peak) -> dict:
-    return {"group": peak.group, "point": peak.point, "principal_ratio": peak.principal_ratio,
-            "averaging": peak.averaging, "principal_ok": peak.principal_ok, "averaging_ok": peak.averaging_ok,
-            "mesh_ok": peak.mesh_ok}
+    return {
+        "group": peak.group,
+        "point": peak.point,
+        "principal_ratio": peak.principal_ratio,
+        "averaging": peak.averaging,
+        "principal_ok": peak.principal_ok,
+        "averaging_ok": peak.averaging_ok,
+        "mesh_ok": peak.mesh_ok,
+    }
 
 
 def _worst(peaks: dict, groups):
@@ -91,24 +102,43 @@ def factors(st: ScfStresses, geo: m53.M53Geometry) -> tuple[dict[str, float], di
     """SCFs of UR M53 App. III from unit-load stress measures (module docstring)."""
     w_eq, area = m53.web_section_modulus(geo), m53.web_area(geo)
     wp = {"pin": m53.polar_section_modulus(geo, "pin"), "journal": m53.polar_section_modulus(geo, "journal")}
-    sigma_n, tau_n = 1.0 / w_eq, {k: 1.0 / v for k, v in wp.items()}    # M = T = 1 N m
+    sigma_n, tau_n = 1.0 / w_eq, {k: 1.0 / v for k, v in wp.items()}  # M = T = 1 N m
     pb, jb = _worst(st.bending, PIN_FILLETS), _worst(st.bending, JOURNAL_FILLETS)
     pt, jt = _worst(st.torsion, PIN_FILLETS), _worst(st.torsion, JOURNAL_FILLETS)
-    fe = {"alpha_B": pb.value / sigma_n, "beta_B": jb.value / sigma_n,
-          "alpha_T": pt.value / tau_n["pin"], "beta_T": jt.value / tau_n["journal"]}
+    fe = {
+        "alpha_B": pb.value / sigma_n,
+        "beta_B": jb.value / sigma_n,
+        "alpha_T": pt.value / tau_n["pin"],
+        "beta_T": jt.value / tau_n["journal"],
+    }
     per_side = []
     for side, g in zip(("end_1", "end_2"), JOURNAL_FILLETS):
         q, lever = st.reaction[side], st.lever[side]
         s3p = st.three_point[g].value
         s_n3p, s_q3p = q * lever / w_eq, q / area
-        per_side.append({"side": side, "group": g, "sigma_3P": s3p, "Q_3P": q, "L": lever,
-                         "sigma_N3P": s_n3p, "sigma_Q3P": s_q3p,
-                         "beta_Q": (s3p - s_n3p * fe["beta_B"]) / s_q3p, "beta_BQ": s3p / s_n3p})
+        per_side.append(
+            {
+                "side": side,
+                "group": g,
+                "sigma_3P": s3p,
+                "Q_3P": q,
+                "L": lever,
+                "sigma_N3P": s_n3p,
+                "sigma_Q3P": s_q3p,
+                "beta_Q": (s3p - s_n3p * fe["beta_B"]) / s_q3p,
+                "beta_BQ": s3p / s_n3p,
+            }
+        )
     fe["beta_Q"] = max(s["beta_Q"] for s in per_side)
     fe["beta_BQ"] = max(s["beta_BQ"] for s in per_side)
     q3 = max(st.three_point.values(), key=lambda p: p.value)
-    quality = {"alpha_B": _quality(pb), "beta_B": _quality(jb), "alpha_T": _quality(pt), "beta_T": _quality(jt),
-               "beta_Q": _quality(q3)}
+    quality = {
+        "alpha_B": _quality(pb),
+        "beta_B": _quality(jb),
+        "alpha_T": _quality(pt),
+        "beta_T": _quality(jt),
+        "beta_Q": _quality(q3),
+    }
     return fe, quality, {"three_point": per_side}
 
 
@@ -116,9 +146,13 @@ def empirical(geo: m53.M53Geometry) -> tuple[dict[str, float | None], dict[str, 
     """UR M53 3.2/3.3 empirical SCFs of the same throw, None outside the validity range (3.1)."""
     rel_p, rel_j = geo.related("pin"), geo.related("journal")
     bad_p, bad_j = tuple(m53.out_of_range(rel_p)), tuple(m53.out_of_range(rel_j))
-    emp = {"alpha_B": None if bad_p else m53.alpha_b(rel_p), "alpha_T": None if bad_p else m53.alpha_t(rel_p),
-           "beta_B": None if bad_j else m53.beta_b(rel_j), "beta_T": None if bad_j else m53.alpha_t(rel_j),
-           "beta_Q": None if bad_j else m53.beta_q(rel_j)}
+    emp = {
+        "alpha_B": None if bad_p else m53.alpha_b(rel_p),
+        "alpha_T": None if bad_p else m53.alpha_t(rel_p),
+        "beta_B": None if bad_j else m53.beta_b(rel_j),
+        "beta_T": None if bad_j else m53.alpha_t(rel_j),
+        "beta_Q": None if bad_j else m53.beta_q(rel_j),
+    }
     return emp, {"pin": bad_p, "journal": bad_j}
 
 
@@ -135,12 +169,16 @@ def _element_size(throw_mesh) -> dict[str, float]:
     stats = getattr(throw_mesh, "stats", None)
     if stats is None:
         return {}
-    return {g: h / stats.fillet_radii[g] for g, h in stats.fillet_max_edge.items()
-            if g in (*PIN_FILLETS, *JOURNAL_FILLETS) and stats.fillet_radii.get(g)}
+    return {
+        g: h / stats.fillet_radii[g]
+        for g, h in stats.fillet_max_edge.items()
+        if g in (*PIN_FILLETS, *JOURNAL_FILLETS) and stats.fillet_radii.get(g)
+    }
 
 
-def compute_scf(throw_mesh, material, geo: m53.M53Geometry, *, web_centres: tuple[float, float] | None = None,
-                solver: str = "auto") -> ScfResult:
+def compute_scf(
+    throw_mesh, material, geo: m53.M53Geometry, *, web_centres: tuple[float, float] | None = None, solver: str = "auto"
+) -> ScfResult:
     """SCF mode on one throw mesh (UR M53 App. III), SCFs beside the empirical ones.
 
     ``throw_mesh``: a ``fe_crank.mesh.ThrowMesh`` (from ``mesh_throw``: its fillet element
@@ -153,8 +191,15 @@ def compute_scf(throw_mesh, material, geo: m53.M53Geometry, *, web_centres: tupl
     st = scf_stresses(throw_mesh, material, web_centres=web_centres, solver=solver)
     fe, quality, details = factors(st, geo)
     emp, bad = empirical(geo)
-    return ScfResult(fe=fe, empirical=emp, out_of_range=bad, quality=quality,
-                     element_size=_element_size(throw_mesh), stresses=st, details=details)
+    return ScfResult(
+        fe=fe,
+        empirical=emp,
+        out_of_range=bad,
+        quality=quality,
+        element_size=_element_size(throw_mesh),
+        stresses=st,
+        details=details,
+    )
 
 
 def scf_mesh_options(options):
@@ -180,8 +225,9 @@ def scf_mesh(throw_mesh, geometry):
     return mesh_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)
 
 
-def scf_provider(cache: dict, key, throw_mesh, geometry, material, geo: m53.M53Geometry, *, solver: str = "auto",
-                 remesh: bool = True):
+def scf_provider(
+    cache: dict, key, throw_mesh, geometry, material, geo: m53.M53Geometry, *, solver: str = "auto", remesh: bool = True
+):
     """A callable for ``assess_throw(scf=...)``: SCF mode on the load case's own throw mesh
     (``scf_mesh``: re-meshed at r/4 in the fillets when coarser, unless ``remesh`` is False),
     solved once per mesh ``key`` and M53 dimensions."""

@@ -38,8 +38,9 @@ def von_mises_path(history: np.ndarray, centre: np.ndarray | None = None) -> np.
     return von_mises_planes(history.transpose(1, 0, 2), centre)
 
 
-def von_mises_planes(planes: np.ndarray, centre: np.ndarray | None = None, buf: np.ndarray | None = None,
-                     out: np.ndarray | None = None) -> np.ndarray:
+def von_mises_planes(
+    planes: np.ndarray, centre: np.ndarray | None = None, buf: np.ndarray | None = None, out: np.ndarray | None = None
+) -> np.ndarray:
     """vM(S(t) - c) of a stress path given as component planes ``planes`` (6, n_t, n),
     about ``centre`` (6, n) (None: about zero); shape (n_t, n).
 
@@ -51,9 +52,9 @@ def von_mises_planes(planes: np.ndarray, centre: np.ndarray | None = None, buf: 
     """
     if centre is not None:
         d = np.subtract(planes, centre[:, None, :], out=buf)
-        tmp = d[1]                                      # d_yy is not needed after d_yy - d_zz
+        tmp = d[1]  # d_yy is not needed after d_yy - d_zz
         shear = d[3:]
-    else:                                               # about zero: the planes themselves
+    else:  # about zero: the planes themselves
         d = planes
         tmp = np.empty(planes.shape[1:])
         shear = np.empty((3,) + planes.shape[1:]) if buf is None else buf[3:]
@@ -78,9 +79,7 @@ def von_mises_planes(planes: np.ndarray, centre: np.ndarray | None = None, buf: 
 def to_matrix(s: np.ndarray) -> np.ndarray:
     """(..., 6, n) -> (..., n, 3, 3) symmetric tensors."""
     xx, yy, zz, xy, yz, xz = (s[..., i, :] for i in range(6))
-    m = np.stack(
-        [np.stack([xx, xy, xz], -1), np.stack([xy, yy, yz], -1), np.stack([xz, yz, zz], -1)], -2
-    )
+    m = np.stack([np.stack([xx, xy, xz], -1), np.stack([xy, yy, yz], -1), np.stack([xz, yz, zz], -1)], -2)
     return m
 
 
@@ -91,8 +90,12 @@ def principal(s: np.ndarray) -> np.ndarray:
     return np.moveaxis(_principal(np.moveaxis(s, -2, 0)), 0, -2)
 
 
-def cylindrical(s: np.ndarray, points: np.ndarray, axis_point: tuple[float, float],
-                which: tuple[str, ...] = ("rr", "tt", "zz", "rt", "tz", "rz")) -> dict[str, np.ndarray]:
+def cylindrical(
+    s: np.ndarray,
+    points: np.ndarray,
+    axis_point: tuple[float, float],
+    which: tuple[str, ...] = ("rr", "tt", "zz", "rt", "tz", "rz"),
+) -> dict[str, np.ndarray]:
     """Components in the cylindrical frame (r, theta, z) of an axis parallel to z.
 
     ``points`` (3, n) are the node coordinates; ``axis_point`` (x, y) a point of the

@@ -16,8 +16,8 @@ F (``fe_crank.fe.pin_directions``), ``S_t`` the stress of 1 N m through the thro
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Iterator
 
 import numpy as np
 
@@ -57,13 +57,25 @@ def unit_nodal_stress(units, cases, node_ids) -> np.ndarray:
     basis for all cases (``fe_crank.fe.stress.stress_at_selected_nodes``).
     """
     mat = units.material
-    return stress_at_selected_nodes(units.mesh, [units.displacement(c) for c in cases], mat.youngs_modulus,
-                                    mat.poisson_ratio, node_ids, dofs=units.system.basis.dofs)
+    return stress_at_selected_nodes(
+        units.mesh,
+        [units.displacement(c) for c in cases],
+        mat.youngs_modulus,
+        mat.poisson_ratio,
+        node_ids,
+        dofs=units.system.basis.dofs,
+    )
 
 
-def load_coefficients(pin_force: np.ndarray, torque: np.ndarray, omega: float, *,
-                      cases: tuple[str, ...] = UNIT_CASES, sense: int = 1,
-                      torque_mz: float = -1.0) -> np.ndarray:
+def load_coefficients(
+    pin_force: np.ndarray,
+    torque: np.ndarray,
+    omega: float,
+    *,
+    cases: tuple[str, ...] = UNIT_CASES,
+    sense: int = 1,
+    torque_mz: float = -1.0,
+) -> np.ndarray:
     """Coefficients (n_angles, len(cases)) of the unit cases over the cycle.
 
     ``pin_force`` (n, 2) in the throw frame [N]; ``torque`` (n,) the torque through the
@@ -113,17 +125,19 @@ def stress_history(unit: UnitStresses, coefficients: np.ndarray, nodes=slice(Non
     return combine(unit.stress[:, :, nodes], coefficients)
 
 
-def iter_histories(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray,
-                   chunk: int = 2048) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+def iter_histories(
+    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, chunk: int = 2048
+) -> Iterator[tuple[np.ndarray, np.ndarray]]:
     """Yield (node indices, history (n_t, 6, k)) in chunks, to bound memory."""
     nodes = np.asarray(nodes)
     for start in range(0, nodes.size, chunk):
-        idx = nodes[start:start + chunk]
+        idx = nodes[start : start + chunk]
         yield idx, stress_history(unit, coefficients, idx)
 
 
-def iter_planes(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray,
-                block: int = 128) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+def iter_planes(
+    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, block: int = 128
+) -> Iterator[tuple[np.ndarray, np.ndarray]]:
     """Yield (node indices, history planes (6, n_t, k)) ``block`` nodes at a time: the
     history of ``stress_history`` with the component axis first, each component's
     (n_t, k) plane contiguous (component j: coefficients (n_t, n_cases) times that
@@ -134,7 +148,7 @@ def iter_planes(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray,
     if c.shape[1] != unit.stress.shape[0]:
         raise ValueError(f"{c.shape[1]} coefficients for {unit.stress.shape[0]} unit cases")
     for start in range(0, nodes.size, block):
-        idx = nodes[start:start + block]
+        idx = nodes[start : start + block]
         u = unit.stress[:, :, idx]
         planes = np.empty((6, c.shape[0], idx.size))
         for j in range(6):

@@ -87,20 +87,34 @@ def section_diameter(group: str, pin_diameter: float | None, journal_diameter: f
     return None
 
 
-def _extreme(values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str, *, worst: str,
-             angles: np.ndarray | None = None) -> Extreme:
-    k = int(first_extreme(values, worst)) if np.isfinite(values).all() else \
-        int(np.argmax(values) if worst == "max" else np.argmin(values))
+def _extreme(
+    values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str, *, worst: str, angles: np.ndarray | None = None
+) -> Extreme:
+    k = (
+        int(first_extreme(values, worst))
+        if np.isfinite(values).all()
+        else int(np.argmax(values) if worst == "max" else np.argmin(values))
+    )
     node = int(unit.node_ids[idx[k]]) if unit.node_ids is not None else int(idx[k])
     pt = tuple(float(c) for c in unit.points[:, idx[k]])
     ang = float(angles[k]) if angles is not None else None
     return Extreme(float(values[k]), group, node, pt, ang)
 
 
-def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta: np.ndarray, material, *,
-                 crank_radius: float, overspeed: float | None, chunk: int = fatigue.NODE_BLOCK,
-                 overspeed_coefficients: np.ndarray | None = None,
-                 diameter: float | None = None, threads: int = 1) -> GroupResult:
+def assess_group(
+    unit: UnitStresses,
+    group: str,
+    coefficients: np.ndarray,
+    theta: np.ndarray,
+    material,
+    *,
+    crank_radius: float,
+    overspeed: float | None,
+    chunk: int = fatigue.NODE_BLOCK,
+    overspeed_coefficients: np.ndarray | None = None,
+    diameter: float | None = None,
+    threads: int = 1,
+) -> GroupResult:
     """Static and fatigue results of one node group.  ``material`` needs yield strength
     for the static part and the fatigue properties for the fatigue part (None skips).
     ``overspeed_coefficients`` (n_angles, n_cases): the unit-case coefficients of the
@@ -112,8 +126,11 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
-    do_fatigue = not group.startswith(STATIC_ONLY_PREFIXES) and material.fatigue_limit_bending is not None \
+    do_fatigue = (
+        not group.startswith(STATIC_ONLY_PREFIXES)
+        and material.fatigue_limit_bending is not None
         and material.tensile_strength is not None
+    )
     axis = _axis_for(group, crank_radius)
     do_gp = do_fatigue and axis is not None and material.fatigue_limit_torsion is not None
     ff = factors(material, diameter) if do_fatigue else None
@@ -129,9 +146,9 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
         # every criterion reads the same history, ``chunk`` nodes at a time as its six
         # component planes (6, n_t, k): cache-resident and contiguous for every pass; the
         # block writes its own slice only (``workers.run_blocks``)
-        idx = nodes[pos:pos + chunk]
+        idx = nodes[pos : pos + chunk]
         sl = slice(pos, pos + idx.size)
-        ((_, planes),) = iter_planes(unit, coefficients, idx, chunk)     # one block
+        ((_, planes),) = iter_planes(unit, coefficients, idx, chunk)  # one block
         buf = scratch_array(scratch, "buf", planes.shape)
         hist = planes.transpose(1, 0, 2)  # (n_t, 6, k) view
         vm_max[sl], vm_arg[sl] = max_over_cycle(von_mises_planes(planes, buf=buf))  # over (n_t, k)
@@ -143,8 +160,15 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
             sig, tau = fatigue.bending_torsion(hist, unit.points[:, idx], axis)
             s_a, s_m = fatigue.half_range(sig)
             t_a, t_m = fatigue.half_range(tau)
-            gp[sl] = fatigue.gough_pollard_safety(s_a, s_m, t_a, t_m, k * material.fatigue_limit_bending,
-                                                  k * material.fatigue_limit_torsion, material.tensile_strength)
+            gp[sl] = fatigue.gough_pollard_safety(
+                s_a,
+                s_m,
+                t_a,
+                t_m,
+                k * material.fatigue_limit_bending,
+                k * material.fatigue_limit_torsion,
+                material.tensile_strength,
+            )
 
     run_blocks(block, range(0, nodes.size, chunk), threads)
     worst = _extreme(vm_max, nodes, unit, group, worst="max", angles=theta[vm_arg])
@@ -167,7 +191,25 @@ def assess_group(unit: UnitStresses, group: str, coefficients: np.ndarray, theta
     if do_gp:
         gpe = _extreme(gp, nodes, unit, group, worst="min")
     ids = unit.node_ids[nodes] if unit.node_ids is not None else nodes
-    fields = {"node_ids": ids, "max_von_mises": vm_max, "amplitude": sa_eq, "mean": sm_eq,
-              "fatigue_safety": good, "gough_pollard_safety": gp}
-    return GroupResult(group, int(nodes.size), worst, os_ext, float(static),
-                       None if os_safety is None else float(os_safety), fat, gpe, amp, mean, ff, fields)
+    fields = {
+        "node_ids": ids,
+        "max_von_mises": vm_max,
+        "amplitude": sa_eq,
+        "mean": sm_eq,
+        "fatigue_safety": good,
+        "gough_pollard_safety": gp,
+    }
+    return GroupResult(
+        group,
+        int(nodes.size),
+        worst,
+        os_ext,
+        float(static),
+        None if os_safety is None else float(os_safety),
+        fat,
+        gpe,
+        amp,
+        mean,
+        ff,
+        fields,
+    )

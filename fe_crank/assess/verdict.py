@@ -10,14 +10,32 @@ from fe_crank.results import CriterionResult
 __all__ = ["CriterionResult", "judge"]
 
 
-def judge(name: str, quantity: str, sense: str, value: float, limit: float, *, unit: str = "",
-          location: str = "", description: str = "") -> CriterionResult:
+def judge(
+    name: str,
+    quantity: str,
+    sense: str,
+    value: float,
+    limit: float,
+    *,
+    unit: str = "",
+    location: str = "",
+    description: str = "",
+) -> CriterionResult:
     if sense == "min":
         passed = value >= limit
         margin = value / limit - 1.0 if limit > 0 else math.inf
     else:
         passed = value <= limit
         margin = 1.0 - value / limit if limit > 0 else (math.inf if value <= 0 else -math.inf)
-    return CriterionResult(name=name, quantity=quantity, sense=sense, value=float(value), limit=float(limit),
-                           margin=float(margin), passed=bool(passed), unit=unit, location=location,
-                           description=description)
+    return CriterionResult(
+        name=name,
+        quantity=quantity,
+        sense=sense,
+        value=float(value),
+        limit=float(limit),
+        margin=float(margin),
+        passed=bool(passed),
+        unit=unit,
+        location=location,
+        description=description,
+    )

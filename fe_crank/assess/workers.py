@@ -18,7 +18,7 @@ buffers per extra thread (a few MB).
 from __future__ import annotations
 
 import threading
-from typing import Callable, Iterable
+from collections.abc import Callable, Iterable
 
 
 def run_blocks(fn: Callable[[object, dict], None], items: Iterable, threads: int = 1) -> None:

@@ -44,19 +44,34 @@ def analyse_balance(engine: Engine, speed: float, settings=None) -> BalanceResul
         if spec is None or cw.unbalance <= 0.0:
             sectors.append(None)
             continue
-        sectors.append(solve_sector(
-            cw.unbalance, free=spec.free, r_outer=spec.r_outer, r_inner=spec.r_inner,
-            thickness=spec.thickness, angle=spec.angle, density=spec.density,
-            envelope=spec.envelope, journal_radius=spec.journal_radius,
-            key=f"balance.counterweight (plane {i + 1}, z = {cw.z * 1e3:.4g} mm, shaft {cw.shaft!r})",
-        ))
+        sectors.append(
+            solve_sector(
+                cw.unbalance,
+                free=spec.free,
+                r_outer=spec.r_outer,
+                r_inner=spec.r_inner,
+                thickness=spec.thickness,
+                angle=spec.angle,
+                density=spec.density,
+                envelope=spec.envelope,
+                journal_radius=spec.journal_radius,
+                key=f"balance.counterweight (plane {i + 1}, z = {cw.z * 1e3:.4g} mm, shaft {cw.shaft!r})",
+            )
+        )
     residual = design.residual
     shaft_designs = []
     ref_sense = engine.shafts[0].sense
     for i, req in enumerate(settings.shafts if settings is not None else ()):
         try:
-            d = balance_shafts(residual, req.component, req.order, reference_sense=ref_sense,
-                               offset=req.offset, span=req.span, positions=getattr(req, "positions", None))
+            d = balance_shafts(
+                residual,
+                req.component,
+                req.order,
+                reference_sense=ref_sense,
+                offset=req.offset,
+                span=req.span,
+                positions=getattr(req, "positions", None),
+            )
         except InputError as exc:
             if exc.key != "balance.shafts.positions":
                 raise
@@ -86,9 +101,19 @@ def forces_table(ff: FreeForces, orders=REPORTED_ORDERS) -> list[dict]:
             fh, mh = t.force_hodograph(), t.moment_hodograph()
             if name != "total" and fh.major == 0.0 and mh.major == 0.0:
                 continue
-            rows.append({"source": name, "order": k, "force_max": fh.major, "force_min": fh.minor,
-                         "force_kind": fh.kind, "force_tilt_deg": math.degrees(fh.tilt),
-                         "moment_max": mh.major, "moment_min": mh.minor, "moment_kind": mh.kind})
+            rows.append(
+                {
+                    "source": name,
+                    "order": k,
+                    "force_max": fh.major,
+                    "force_min": fh.minor,
+                    "force_kind": fh.kind,
+                    "force_tilt_deg": math.degrees(fh.tilt),
+                    "moment_max": mh.major,
+                    "moment_min": mh.minor,
+                    "moment_kind": mh.kind,
+                }
+            )
     return rows
 
 
@@ -101,11 +126,15 @@ def exact_peak(ff: FreeForces, sources=("reciprocating",)) -> dict:
 
 def result_to_dict(res: BalanceResult) -> dict:
     """JSON-ready summary (SI units; angles in degrees as the keys say)."""
+
     def by_source(ff: FreeForces) -> dict:
         out = {}
         for s in ff.sources:
-            out[s] = [_term_dict(ff, k, (s,)) for k in REPORTED_ORDERS if ff.total(k, (s,)).force.any()
-                      or ff.total(k, (s,)).moment.any()]
+            out[s] = [
+                _term_dict(ff, k, (s,))
+                for k in REPORTED_ORDERS
+                if ff.total(k, (s,)).force.any() or ff.total(k, (s,)).moment.any()
+            ]
         out["total"] = [_term_dict(ff, k, None) for k in REPORTED_ORDERS]
         return out
 
@@ -122,17 +151,35 @@ def result_to_dict(res: BalanceResult) -> dict:
             "planes_m": list(res.design.strategy.planes),
         },
         "counterweights": [
-            {"shaft": c.shaft, "z_m": c.z, "unbalance_kg_m": c.unbalance, "angle_deg": math.degrees(c.angle),
-             "angle_on_shaft_deg": math.degrees(c.angle_on_shaft),
-             "sector": s.as_dict() if s is not None else None}
+            {
+                "shaft": c.shaft,
+                "z_m": c.z,
+                "unbalance_kg_m": c.unbalance,
+                "angle_deg": math.degrees(c.angle),
+                "angle_on_shaft_deg": math.degrees(c.angle_on_shaft),
+                "sector": s.as_dict() if s is not None else None,
+            }
             for c, s in zip(res.design.counterweights, res.sectors)
         ],
         "balance_shafts": [
-            {"component": d.component, "order": d.order, "shafts": [
-                {"name": s.name, "speed_ratio": s.speed_ratio, "unbalance_kg_m": s.unbalance,
-                 "angle_deg": math.degrees(s.angle), "z_m": list(s.z), "position_m": list(s.position),
-                 "on_crankshaft": s.on_crankshaft, "constraint": s.constraint} for s in d.shafts],
-             "roll_moment_n_m": d.roll_moment}
+            {
+                "component": d.component,
+                "order": d.order,
+                "shafts": [
+                    {
+                        "name": s.name,
+                        "speed_ratio": s.speed_ratio,
+                        "unbalance_kg_m": s.unbalance,
+                        "angle_deg": math.degrees(s.angle),
+                        "z_m": list(s.z),
+                        "position_m": list(s.position),
+                        "on_crankshaft": s.on_crankshaft,
+                        "constraint": s.constraint,
+                    }
+                    for s in d.shafts
+                ],
+                "roll_moment_n_m": d.roll_moment,
+            }
             for d in res.shafts
         ],
         "residual": by_source(res.residual)["total"],

@@ -54,7 +54,9 @@ class BalanceStrategy:
             if not (math.isfinite(v) and v >= 0.0):
                 raise InputError(f"must be a fraction >= 0 (got {v})", key=f"balance.{name}")
         if self.reciprocating_fraction > 1.0:
-            raise InputError(f"cannot exceed 1 (got {self.reciprocating_fraction})", key="balance.reciprocating_fraction")
+            raise InputError(
+                f"cannot exceed 1 (got {self.reciprocating_fraction})", key="balance.reciprocating_fraction"
+            )
         if self.couple not in COUPLE_MODES:
             raise InputError(f"{self.couple!r} is not one of {COUPLE_MODES}", key="balance.couple")
         if self.couple == "whole_shaft" and len(self.planes) < 2:
@@ -128,7 +130,9 @@ def _throw_targets(engine: Engine, strategy: BalanceStrategy, shaft: str):
         if t.shaft != shaft:
             continue
         mj = sum(reciprocating_mass(c) for c in engine.cylinders if c.throw == t.name)
-        u = (strategy.rotating_fraction * rotating_mass(engine, t.name) + strategy.reciprocating_fraction * mj) * t.crank_radius
+        u = (
+            strategy.rotating_fraction * rotating_mass(engine, t.name) + strategy.reciprocating_fraction * mj
+        ) * t.crank_radius
         out.append((t, u * np.exp(1j * (sh.phase + sh.sense * t.angle))))  # pin direction at theta = 0
     return out
 
@@ -139,7 +143,10 @@ def _planes_for_shaft(engine: Engine, strategy: BalanceStrategy, shaft: str) -> 
         out = []
         for t, u in targets:
             if strategy.web_offset > 0.0:
-                out += [(t.axial_position - strategy.web_offset, -u / 2.0), (t.axial_position + strategy.web_offset, -u / 2.0)]
+                out += [
+                    (t.axial_position - strategy.web_offset, -u / 2.0),
+                    (t.axial_position + strategy.web_offset, -u / 2.0),
+                ]
             else:
                 out.append((t.axial_position, -u))
         return out
@@ -177,5 +184,9 @@ def size_counterweights(
             if mag == 0.0:
                 continue
             force = rotating_force(mag * (sh.speed_ratio * speed) ** 2, psi, sh.sense)
-            terms.append(point_term("counterweights", sh.speed_ratio, force, (sh.centre[0], sh.centre[1], z - before.reference_z)))
+            terms.append(
+                point_term(
+                    "counterweights", sh.speed_ratio, force, (sh.centre[0], sh.centre[1], z - before.reference_z)
+                )
+            )
     return CounterweightDesign(strategy, tuple(cws), before, before.with_terms(terms))

@@ -40,8 +40,18 @@ from fe_crank.model import Engine
 REPORTED_ORDERS = (1.0, 2.0, 4.0, 6.0)
 SOURCES = ("rotating", "reciprocating", "yoke", "counterweights", "balance_shafts")
 
-__all__ = ["REPORTED_ORDERS", "SOURCES", "FreeForces", "OrderTerm", "free_forces", "point_term",
-           "reciprocating_terms", "rotating_force", "rotating_terms", "zero_term"]
+__all__ = [
+    "REPORTED_ORDERS",
+    "SOURCES",
+    "FreeForces",
+    "OrderTerm",
+    "free_forces",
+    "point_term",
+    "reciprocating_terms",
+    "rotating_force",
+    "rotating_terms",
+    "zero_term",
+]
 
 
 @dataclass(frozen=True)
@@ -58,8 +68,12 @@ class FreeForces:
     def _clean(self, t: OrderTerm) -> OrderTerm:
         ftol = ROUNDOFF * self.force_scale
         mtol = ftol * max(self.length_scale, 1e-3)
-        return OrderTerm(t.source, t.order, np.where(np.abs(t.force) < ftol, 0.0, t.force),
-                         np.where(np.abs(t.moment) < mtol, 0.0, t.moment))
+        return OrderTerm(
+            t.source,
+            t.order,
+            np.where(np.abs(t.force) < ftol, 0.0, t.force),
+            np.where(np.abs(t.moment) < mtol, 0.0, t.moment),
+        )
 
     @property
     def sources(self) -> tuple[str, ...]:
@@ -97,7 +111,7 @@ class FreeForces:
                 m += mt
         return f, m
 
-    def with_terms(self, extra) -> "FreeForces":
+    def with_terms(self, extra) -> FreeForces:
         """A copy with more terms (counterweights, balance shafts) added."""
         return replace(self, terms=self.terms + tuple(extra))
 
@@ -124,7 +138,9 @@ def rotating_terms(engine: Engine, speed: float, reference_z: float = 0.0) -> li
         if mag == 0.0:
             continue
         force = rotating_force(mag, sh.phase + sh.sense * t.angle, sh.sense)
-        out.append(point_term("rotating", sh.speed_ratio, force, (sh.centre[0], sh.centre[1], t.axial_position - reference_z)))
+        out.append(
+            point_term("rotating", sh.speed_ratio, force, (sh.centre[0], sh.centre[1], t.axial_position - reference_z))
+        )
     return out
 
 
@@ -183,7 +199,9 @@ def _scales(engine: Engine, speed: float) -> tuple[float, float]:
         w2 = (sh.speed_ratio * speed) ** 2
         f += rotating_mass(engine, t.name) * t.crank_radius * w2
         f += sum(reciprocating_mass(c) for c in engine.cylinders if c.throw == t.name) * t.crank_radius * w2
-    lev = max([abs(t.axial_position) for t in engine.throws] + [abs(v) for s in engine.shafts for v in s.centre] + [0.0])
+    lev = max(
+        [abs(t.axial_position) for t in engine.throws] + [abs(v) for s in engine.shafts for v in s.centre] + [0.0]
+    )
     return max(f, 1e-300), lev
 
 

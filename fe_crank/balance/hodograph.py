@@ -103,6 +103,16 @@ def hodograph(a: float, b: float, c: float, d: float) -> Hodograph:
         if tilt <= -math.pi / 2.0 + 1e-15:
             tilt += math.pi
     return Hodograph(
-        a, b, c, d, major, minor, tilt,
-        pm, math.atan2(p.imag, p.real), qm, math.atan2(q.imag, q.real), kind,
+        a,
+        b,
+        c,
+        d,
+        major,
+        minor,
+        tilt,
+        pm,
+        math.atan2(p.imag, p.real),
+        qm,
+        math.atan2(q.imag, q.real),
+        kind,
     )

@@ -78,7 +78,8 @@ def big_end(engine: Engine, cylinder: str, theta) -> np.ndarray:
         )
     xm = _slider(crank, master, sh.sense)
     pin = xm[..., None] * direction(master.bank_angle) + master.pin_offset * sh.sense * direction(
-        master.bank_angle + np.pi / 2.0)
+        master.bank_angle + np.pi / 2.0
+    )
     rod = pin - crank
     gamma = np.arctan2(rod[..., 0], rod[..., 1])
     return crank + cyl.articulation.link_radius * direction(gamma + cyl.articulation.link_angle)

@@ -22,8 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.balance.terms import OrderTerm, point_term, rotating_force
 from fe_crank.balance.mechanism import direction
+from fe_crank.balance.terms import OrderTerm, point_term, rotating_force
 from fe_crank.errors import InputError
 from fe_crank.model import Engine, Yoke
 

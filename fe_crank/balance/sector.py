@@ -40,17 +40,22 @@ class SectorProperties:
 
     def as_dict(self) -> dict:
         return {
-            "r_outer_mm": self.r_outer * 1e3, "r_inner_mm": self.r_inner * 1e3,
-            "thickness_mm": self.thickness * 1e3, "angle_deg": math.degrees(self.angle),
-            "density_kg_m3": self.density, "mass_kg": self.mass,
-            "centroid_radius_mm": self.centroid_radius * 1e3, "unbalance_kg_m": self.unbalance,
+            "r_outer_mm": self.r_outer * 1e3,
+            "r_inner_mm": self.r_inner * 1e3,
+            "thickness_mm": self.thickness * 1e3,
+            "angle_deg": math.degrees(self.angle),
+            "density_kg_m3": self.density,
+            "mass_kg": self.mass,
+            "centroid_radius_mm": self.centroid_radius * 1e3,
+            "unbalance_kg_m": self.unbalance,
         }
 
 
 def _check(r_outer, r_inner, thickness, angle, density, key="counterweight"):
     if not (r_inner >= 0.0 and r_outer > r_inner):
         raise InputError(
-            f"outer radius {r_outer * 1e3:.4g} mm must exceed inner radius {r_inner * 1e3:.4g} mm >= 0", key=key)
+            f"outer radius {r_outer * 1e3:.4g} mm must exceed inner radius {r_inner * 1e3:.4g} mm >= 0", key=key
+        )
     if not thickness > 0.0:
         raise InputError(f"thickness must be positive (got {thickness * 1e3:.4g} mm)", key=key)
     if not 0.0 < angle <= 2.0 * math.pi + 1e-12:
@@ -109,7 +114,8 @@ def solve_sector(
             raise InputError(
                 f"even a full sector out to r_outer = {r_outer * 1e3:.4g} mm gives only "
                 f"{k3 * thickness * math.sin(angle / 2) * r_outer**3:.4g} kg m, {unbalance:.4g} kg m required",
-                key=key)
+                key=key,
+            )
         r_inner = rest ** (1.0 / 3.0)
     else:
         s = unbalance / (k3 * thickness * (r_outer**3 - r_inner**3))
@@ -117,7 +123,8 @@ def solve_sector(
             raise InputError(
                 f"needs {unbalance:.4g} kg m but a 180 deg sector of these radii and thickness gives only "
                 f"{unbalance / s:.4g} kg m (a wider angle gives less): the counterweight cannot fit",
-                key=key)
+                key=key,
+            )
         angle = 2.0 * math.asin(s)
     if angle > 2.0 * math.pi + 1e-12:
         raise InputError(f"needs an included angle of {math.degrees(angle):.4g} deg > 360 deg", key=key)
@@ -125,9 +132,11 @@ def solve_sector(
         raise InputError(
             f"needs an outer radius of {r_outer * 1e3:.4g} mm, beyond the envelope of {envelope * 1e3:.4g} mm: "
             "the counterweight cannot provide the required unbalance; widen, thicken or use a denser material",
-            key=key)
+            key=key,
+        )
     if journal_radius is not None and r_inner < journal_radius * (1.0 - 1e-12):
         raise InputError(
-            f"needs an inner radius of {r_inner * 1e3:.4g} mm, inside the journal radius "
-            f"{journal_radius * 1e3:.4g} mm", key=key)
+            f"needs an inner radius of {r_inner * 1e3:.4g} mm, inside the journal radius {journal_radius * 1e3:.4g} mm",
+            key=key,
+        )
     return annular_sector(r_outer, r_inner, thickness, angle, density)

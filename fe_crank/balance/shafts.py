@@ -143,8 +143,10 @@ def balance_shafts(
         if component == "force":
             u = -part / (order * w) ** 2  # w = y + i x encoding, cancels the part
             z = (zr,)
-            constraint = ("axes parallel to the crank axis and symmetric about it, in the plane across the "
-                          "force line; unbalance in the plane of the force resultant")
+            constraint = (
+                "axes parallel to the crank axis and symmetric about it, in the plane across the "
+                "force line; unbalance in the plane of the force resultant"
+            )
         else:
             # pair +U at zr + span/2, -U at zr - span/2: w_M = -i span w_F  ->  w_F = i w_M / span
             u = 1j * (-part) / span / (order * w) ** 2
@@ -162,8 +164,9 @@ def balance_shafts(
     for sh, sense in designs:
         terms += _terms_for(sh, sense, order, w, zr)
     mz = sum((t.moment[2] for t in terms), start=[0.0, 0.0])
-    return BalanceShaftDesign(component, order, tuple(s for s, _ in designs), forces.with_terms(terms),
-                              float(math.hypot(mz[0], mz[1])))
+    return BalanceShaftDesign(
+        component, order, tuple(s for s, _ in designs), forces.with_terms(terms), float(math.hypot(mz[0], mz[1]))
+    )
 
 
 def _place(designs, positions, component: str, order: int):
@@ -175,15 +178,18 @@ def _place(designs, positions, component: str, order: int):
     if len(positions) != len(designs):
         raise InputError(
             f"the order-{order} {component} needs {len(designs)} shaft(s) "
-            f"({', '.join(s.name for s, _ in designs)}); give one position each", key=key)
+            f"({', '.join(s.name for s, _ in designs)}); give one position each",
+            key=key,
+        )
     out = []
     for (sh, sense), (x, y) in zip(designs, positions):
         if not (math.isfinite(x) and math.isfinite(y)):
             raise InputError("positions must be finite", key=key)
         on_axis = math.hypot(x, y) < 1e-9
         if sh.on_crankshaft and not on_axis:
-            raise InputError(f"{sh.name} is a counterweight pair on the crankshaft: its position is the crank "
-                             "axis (0, 0)", key=key)
+            raise InputError(
+                f"{sh.name} is a counterweight pair on the crankshaft: its position is the crank axis (0, 0)", key=key
+            )
         if not sh.on_crankshaft and on_axis:
             raise InputError(f"balance shaft {sh.name} cannot sit on the crank axis", key=key)
         out.append((dataclasses.replace(sh, position=(x, y), constraint=sh.constraint + "; placed as given"), sense))

@@ -42,7 +42,7 @@ class OrderTerm:
         (a, b), (c, d) = self.moment[:2]
         return hodograph(a, b, c, d)
 
-    def __add__(self, other: "OrderTerm") -> "OrderTerm":
+    def __add__(self, other: OrderTerm) -> OrderTerm:
         return OrderTerm(self.source, self.order, self.force + other.force, self.moment + other.moment)
 
 

@@ -23,6 +23,7 @@ from fe_crank.check.options import STAGES, CheckOptions
 from fe_crank.check.publish import case_slug, clean_stale_partials
 from fe_crank.check.stages import throw_keys
 
+
 class _CallablePackage(types.ModuleType):
     """``fe_crank.check(...)`` runs ``fe_crank.check.api.check``; the package stays a package."""
 
@@ -33,6 +34,15 @@ class _CallablePackage(types.ModuleType):
 sys.modules[__name__].__class__ = _CallablePackage
 
 __all__ = [
-    "STAGES", "CheckOptions", "batch_exit_code", "case_slug", "clean_stale_partials", "find_loadcases",
-    "is_loadcase_file", "run_case", "run_cases", "throw_keys", "unique_slugs",
+    "STAGES",
+    "CheckOptions",
+    "batch_exit_code",
+    "case_slug",
+    "clean_stale_partials",
+    "find_loadcases",
+    "is_loadcase_file",
+    "run_case",
+    "run_cases",
+    "throw_keys",
+    "unique_slugs",
 ]

@@ -11,8 +11,8 @@ no process-wide state is changed (no logging configuration: the caller's applies
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Iterable
 
 from fe_crank.check.batch import run_cases
 from fe_crank.check.discovery import find_loadcases
@@ -27,9 +27,18 @@ def load_case(path: str | Path):
     return load_loadcase(path)
 
 
-def check(paths: str | Path | Iterable[str | Path], output: str | Path = "reports", *,
-          mesh_size: str | None = None, cache_dir: str | Path = ".cache/meshes", jobs: int = 1,
-          scheduler=None, render: bool = True, write_vtu: bool = True, junit: str | Path | None = None) -> list:
+def check(
+    paths: str | Path | Iterable[str | Path],
+    output: str | Path = "reports",
+    *,
+    mesh_size: str | None = None,
+    cache_dir: str | Path = ".cache/meshes",
+    jobs: int = 1,
+    scheduler=None,
+    render: bool = True,
+    write_vtu: bool = True,
+    junit: str | Path | None = None,
+) -> list:
     """Check load cases end to end, as ``fe-crank check`` does; returns one
     ``CaseResult`` per case (``.status`` "pass" | "fail" | "error", ``.criteria``,
     ``.worst``, ``.folder`` with report.html, results.json, the ``.vtu`` fields).

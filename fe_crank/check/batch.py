@@ -12,9 +12,9 @@ import hashlib
 import logging
 import os
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import asdict
 from pathlib import Path
-from typing import Callable, Sequence
 
 from fe_crank.check.case import run_case
 from fe_crank.check.discovery import unique_slugs
@@ -63,9 +63,18 @@ def run_cases(
     def done(i: int, r: CaseResult) -> None:
         results[i] = r
         w = r.worst
-        log.log(logging.WARNING if r.status == STATUS_ERROR else logging.INFO, "%s: %s%s in %.1f s", slugs[i],
-                r.status.upper(), f" (worst {w.name}, margin {100 * w.margin:+.1f} %)" if w else
-                f": {r.message.splitlines()[0]}" if r.message else "", r.seconds)
+        log.log(
+            logging.WARNING if r.status == STATUS_ERROR else logging.INFO,
+            "%s: %s%s in %.1f s",
+            slugs[i],
+            r.status.upper(),
+            f" (worst {w.name}, margin {100 * w.margin:+.1f} %)"
+            if w
+            else f": {r.message.splitlines()[0]}"
+            if r.message
+            else "",
+            r.seconds,
+        )
         if on_result is not None:
             on_result(r)
 
@@ -103,7 +112,9 @@ def _result_or_crash(fut, path: Path) -> CaseResult:
         return fut.result()
     except Exception as exc:
         return CaseResult(
-            name=path.stem, source=str(path), status=STATUS_ERROR,
+            name=path.stem,
+            source=str(path),
+            status=STATUS_ERROR,
             message=f"the worker running this case stopped: {type(exc).__name__}: {exc}",
             error_stage="worker",
         )
@@ -123,7 +134,11 @@ def _run_dask(paths, slugs, out_dir: Path, options, scheduler, done) -> None:
         futs = {}
         for i, (p, s) in enumerate(zip(paths, slugs)):
             f = client.submit(
-                _run_case_job, os.path.abspath(p), str(out_dir.resolve()), options, s,
+                _run_case_job,
+                os.path.abspath(p),
+                str(out_dir.resolve()),
+                options,
+                s,
                 key=f"fe-crank-{s}-{hashlib.sha1(os.path.abspath(p).encode()).hexdigest()[:8]}-{time.time_ns()}",
                 pure=False,
             )

@@ -15,8 +15,8 @@ import shutil
 import tempfile
 import time
 import traceback
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable
 
 from fe_crank.check.options import CheckOptions
 from fe_crank.check.publish import PARTIAL_MARK, _publish, case_slug
@@ -26,9 +26,9 @@ from fe_crank.fe import convergence
 from fe_crank.files import write_atomic
 from fe_crank.notes import Note
 from fe_crank.provenance import collect, now_utc
-from fe_crank.report.quality import case_notes
 from fe_crank.report import write_case_report
 from fe_crank.report.html import write_error_report
+from fe_crank.report.quality import case_notes
 from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CaseResult
 
 
@@ -37,8 +37,7 @@ def _refuse_nan(criteria) -> None:
     (an infinite safety factor of an unloaded part is legitimate and is kept)."""
     for c in criteria:
         if any(x != x for x in (c.value, c.limit, c.margin)):
-            raise FeCrankError(f"criterion {c.name}: the computation gave NaN (not a number); "
-                               "the case is not assessed")
+            raise FeCrankError(f"criterion {c.name}: the computation gave NaN (not a number); the case is not assessed")
 
 
 def run_case(
@@ -88,9 +87,19 @@ def run_case(
             name = stage_out["loadcase"].name
         prov, notes, planned = _provenance(path, stage_out, options, started)
         partial = CaseResult(
-            name=name, source=str(path), status=status, message=message, criteria=criteria,
-            timings=tuple(run.timings), folder="", seconds=0.0, error_stage=error_stage,
-            started=started, provenance=prov, warnings=notes, planned_criteria=planned,
+            name=name,
+            source=str(path),
+            status=status,
+            message=message,
+            criteria=criteria,
+            timings=tuple(run.timings),
+            folder="",
+            seconds=0.0,
+            error_stage=error_stage,
+            started=started,
+            provenance=prov,
+            warnings=notes,
+            planned_criteria=planned,
         )
         try:
             run.timed("report", _write_report, tmp, partial, stage_out, options, trace)
@@ -101,8 +110,12 @@ def run_case(
             partial = _as_error(partial, f"internal error in the report stage: {type(exc).__name__}: {exc}", "report")
             _write_minimal(tmp, partial, traceback.format_exc())
         final = CaseResult(
-            **{**_fields(partial), "timings": tuple(run.timings), "seconds": time.perf_counter() - t0,
-               "folder": str(out_dir / slug)}
+            **{
+                **_fields(partial),
+                "timings": tuple(run.timings),
+                "seconds": time.perf_counter() - t0,
+                "folder": str(out_dir / slug),
+            }
         )
         write_atomic(tmp / "case.json", json.dumps(final.to_dict(), indent=2, default=_json_default, allow_nan=False))
         _publish(tmp, out_dir / slug)

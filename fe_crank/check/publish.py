@@ -13,7 +13,6 @@ import shutil
 import time
 from pathlib import Path
 
-
 PARTIAL_MARK = ".partial-"
 
 

@@ -8,11 +8,10 @@ from __future__ import annotations
 
 import dataclasses
 import logging
-
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
 
 from fe_crank.assess import assess_case
 from fe_crank.balance.analysis import analyse_balance
@@ -26,7 +25,6 @@ from fe_crank.mesh import mesh_throw, resolve_options
 from fe_crank.results import CriterionResult, StageTime
 from fe_crank.throw_scope import ALL_THROWS
 from fe_crank.torsion.stage import dynamics_for_assessment, torsion_stage
-
 
 log = logging.getLogger(__name__)
 
@@ -59,8 +57,7 @@ class _Run:
 def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
     """Run the computational stages, filling ``out`` with each stage's output as it
     finishes (so that a report of a case that stopped shows what did run)."""
-    lc = out["loadcase"] = run.timed("load", load_loadcase, run.path,
-                                     allow_outside_paths=options.allow_outside_paths)
+    lc = out["loadcase"] = run.timed("load", load_loadcase, run.path, allow_outside_paths=options.allow_outside_paths)
     out["dynamics"] = run.timed("dynamics", _dynamics_stage, lc)
     out["balance"] = run.timed("balance", _balance_stage, lc)
     out["meshes"] = run.timed("mesh", _mesh_stage, lc, options)
@@ -71,8 +68,15 @@ def _compute(run: _Run, options: CheckOptions, out: dict) -> dict:
     section = lc.extras.get("mesh") or MeshSection()
     flag = options.convergence if options.convergence is not None else section.convergence
     if convergence.wanted(flag, options.mesh_size or section.size):
-        out["mesh_convergence"] = run.timed("convergence", convergence.check_studies, lc, out["meshes"],
-                                            out["dynamics"], cache_dir=options.cache_dir, units=out["units"])
+        out["mesh_convergence"] = run.timed(
+            "convergence",
+            convergence.check_studies,
+            lc,
+            out["meshes"],
+            out["dynamics"],
+            cache_dir=options.cache_dir,
+            units=out["units"],
+        )
     return out
 
 
@@ -128,7 +132,9 @@ def throw_keys(lc) -> dict[str, str]:
     if sorted(names) != sorted(engine):
         raise InputError(
             f"the geometry's throws {names} must be the engine's throws {engine} "
-            "(or give one throw that stands for all)", file=lc.source_file, key="geometry",
+            "(or give one throw that stands for all)",
+            file=lc.source_file,
+            key="geometry",
         )
     return {n: n for n in engine}
 
@@ -146,12 +152,16 @@ def _mesh_stage(lc, options: CheckOptions):
     by the hash of its inputs: equal throws are meshed once)."""
     if lc.geometry is None:
         raise InputError(
-            "the stress check needs a crank geometry: add geometry = \"../geometry/<file>.toml\"",
-            file=lc.source_file, key="geometry",
+            'the stress check needs a crank geometry: add geometry = "../geometry/<file>.toml"',
+            file=lc.source_file,
+            key="geometry",
         )
     section = lc.extras.get("mesh") or MeshSection()
-    kwargs = {"cache_dir": options.cache_dir, "size": options.mesh_size or section.size,
-              "max_elements": options.max_elements or section.max_elements}
+    kwargs = {
+        "cache_dir": options.cache_dir,
+        "size": options.mesh_size or section.size,
+        "max_elements": options.max_elements or section.max_elements,
+    }
     if not section.symmetric:  # [mesh] symmetric = false: mesh a symmetric throw whole (docs/geometry.md)
         kwargs["size"] = dataclasses.replace(resolve_options(kwargs["size"]), symmetric=False)
     return {key: mesh_throw(lc.geometry, throw=name, **kwargs) for key, name in throw_keys(lc).items()}
@@ -180,10 +190,16 @@ def _criteria_of(assessment) -> tuple[CriterionResult, ...]:
     for c in getattr(assessment, "criteria", ()):
         out.append(
             CriterionResult(
-                name=str(c.name), passed=bool(c.passed), value=float(c.value), limit=float(c.limit),
-                margin=float(c.margin), description=str(getattr(c, "description", "")),
-                location=str(getattr(c, "location", "")), unit=str(getattr(c, "unit", "")),
-                quantity=str(getattr(c, "quantity", "")), sense=str(getattr(c, "sense", "")),
+                name=str(c.name),
+                passed=bool(c.passed),
+                value=float(c.value),
+                limit=float(c.limit),
+                margin=float(c.margin),
+                description=str(getattr(c, "description", "")),
+                location=str(getattr(c, "location", "")),
+                unit=str(getattr(c, "unit", "")),
+                quantity=str(getattr(c, "quantity", "")),
+                sense=str(getattr(c, "sense", "")),
             )
         )
     return tuple(out)

@@ -20,9 +20,9 @@ import argparse
 import sys
 from types import ModuleType
 
-from fe_crank.version import __version__
 from fe_crank.cli import balance, check, dynamics, mesh, torsion, validate
 from fe_crank.errors import FeCrankError
+from fe_crank.version import __version__
 
 EXIT_PASS, EXIT_FAIL, EXIT_ERROR = 0, 1, 2
 
@@ -40,8 +40,9 @@ def common_options() -> argparse.ArgumentParser:
     """The options every subcommand takes (an argparse parent parser)."""
     c = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     g = c.add_mutually_exclusive_group()
-    g.add_argument("-v", "--verbose", action="count", default=0,
-                   help="more log lines (-v: debug details); logs go to stderr")
+    g.add_argument(
+        "-v", "--verbose", action="count", default=0, help="more log lines (-v: debug details); logs go to stderr"
+    )
     g.add_argument("-q", "--quiet", action="store_true", help="log warnings and errors only")
     return c
 
@@ -55,8 +56,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"fe-crank {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     for name, (module, help_text) in COMMANDS.items():
-        sp = sub.add_parser(name, help=help_text, description=help_text, allow_abbrev=False,
-                            parents=[common_options()])
+        sp = sub.add_parser(name, help=help_text, description=help_text, allow_abbrev=False, parents=[common_options()])
         module.add_arguments(sp)
         sp.set_defaults(_module=module)
     return p

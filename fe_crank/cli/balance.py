@@ -20,15 +20,30 @@ from fe_crank.report.stage_plots import plot_hodographs
 
 def add_arguments(p) -> None:
     p.add_argument("file", type=Path, help="load-case or engine .toml file")
-    p.add_argument("-o", "--output", type=Path, default=Path("reports"), metavar="DIR",
-                   help="folder for balance.json and the hodograph PNGs (default: reports/)")
+    p.add_argument(
+        "-o",
+        "--output",
+        type=Path,
+        default=Path("reports"),
+        metavar="DIR",
+        help="folder for balance.json and the hodograph PNGs (default: reports/)",
+    )
     p.add_argument("--speed", default=None, help='speed for an engine file, with its unit, e.g. "3000 rpm"')
-    p.add_argument("--fraction", type=float, default=None,
-                   help="share of the first-order reciprocating mass balanced by counterweights (engine file)")
-    p.add_argument("--couple", choices=("per_throw", "whole_shaft"), default=None,
-                   help="counterweight couple balance (engine file)")
-    p.add_argument("--planes", default=None,
-                   help='counterweight planes for whole_shaft, e.g. "-100 mm, 100 mm" (engine file)')
+    p.add_argument(
+        "--fraction",
+        type=float,
+        default=None,
+        help="share of the first-order reciprocating mass balanced by counterweights (engine file)",
+    )
+    p.add_argument(
+        "--couple",
+        choices=("per_throw", "whole_shaft"),
+        default=None,
+        help="counterweight couple balance (engine file)",
+    )
+    p.add_argument(
+        "--planes", default=None, help='counterweight planes for whole_shaft, e.g. "-100 mm, 100 mm" (engine file)'
+    )
     p.add_argument("--no-plots", action="store_true", help="skip the hodograph PNGs")
 
 
@@ -78,35 +93,57 @@ def _fmt(x: float) -> str:
 def format_report(res) -> str:
     from fe_crank.balance.analysis import forces_table
 
-    lines = [f"balance of '{res.engine}' at {res.speed * 30 / math.pi:.0f} rpm "
-             f"(moments about z = {res.forces.reference_z * 1e3:.4g} mm)", "",
-             "free forces and moments (amplitudes: semi-axes of the hodograph ellipse)",
-             f"{'source':<15}{'order':>6} {'F max N':>10} {'F min N':>10} {'kind':>8} {'tilt deg':>9} "
-             f"{'M max N m':>10} {'M min N m':>10} {'kind':>8}"]
+    lines = [
+        f"balance of '{res.engine}' at {res.speed * 30 / math.pi:.0f} rpm "
+        f"(moments about z = {res.forces.reference_z * 1e3:.4g} mm)",
+        "",
+        "free forces and moments (amplitudes: semi-axes of the hodograph ellipse)",
+        f"{'source':<15}{'order':>6} {'F max N':>10} {'F min N':>10} {'kind':>8} {'tilt deg':>9} "
+        f"{'M max N m':>10} {'M min N m':>10} {'kind':>8}",
+    ]
     for r in forces_table(res.forces):
-        lines.append(f"{r['source']:<15}{r['order']:>6g} {_fmt(r['force_max'])} {_fmt(r['force_min'])} "
-                     f"{r['force_kind']:>8} {r['force_tilt_deg']:9.2f} {_fmt(r['moment_max'])} "
-                     f"{_fmt(r['moment_min'])} {r['moment_kind']:>8}")
+        lines.append(
+            f"{r['source']:<15}{r['order']:>6g} {_fmt(r['force_max'])} {_fmt(r['force_min'])} "
+            f"{r['force_kind']:>8} {r['force_tilt_deg']:9.2f} {_fmt(r['moment_max'])} "
+            f"{_fmt(r['moment_min'])} {r['moment_kind']:>8}"
+        )
     from fe_crank.balance.analysis import exact_peak
 
     ex = exact_peak(res.forces)
-    lines.append(f"{'recip. exact':<15}{'all':>6} {_fmt(ex['force_max'])} {'':>10} {'peak':>8} {'':>9} "
-                 f"{_fmt(ex['moment_max'])}")
+    lines.append(
+        f"{'recip. exact':<15}{'all':>6} {_fmt(ex['force_max'])} {'':>10} {'peak':>8} {'':>9} {_fmt(ex['moment_max'])}"
+    )
     st = res.design.strategy
-    lines += ["", f"counterweights: rotating {st.rotating_fraction:g}, first-order reciprocating "
-              f"{st.reciprocating_fraction:g}, couple {st.couple}",
-              f"{'shaft':<8}{'z mm':>9} {'m r kg m':>10} {'angle deg':>10}  sector"]
+    lines += [
+        "",
+        f"counterweights: rotating {st.rotating_fraction:g}, first-order reciprocating "
+        f"{st.reciprocating_fraction:g}, couple {st.couple}",
+        f"{'shaft':<8}{'z mm':>9} {'m r kg m':>10} {'angle deg':>10}  sector",
+    ]
     for cw, sec in zip(res.design.counterweights, res.sectors):
-        s = "" if sec is None else (f"r1 {sec.r_outer * 1e3:.1f} r2 {sec.r_inner * 1e3:.1f} b {sec.thickness * 1e3:.1f} mm "
-                                    f"{math.degrees(sec.angle):.1f} deg: m {sec.mass:.4g} kg at {sec.centroid_radius * 1e3:.2f} mm")
-        lines.append(f"{cw.shaft:<8}{cw.z * 1e3:9.2f} {cw.unbalance:10.4g} {math.degrees(cw.angle_on_shaft):10.2f}  {s}")
+        s = (
+            ""
+            if sec is None
+            else (
+                f"r1 {sec.r_outer * 1e3:.1f} r2 {sec.r_inner * 1e3:.1f} b {sec.thickness * 1e3:.1f} mm "
+                f"{math.degrees(sec.angle):.1f} deg: m {sec.mass:.4g} kg at {sec.centroid_radius * 1e3:.2f} mm"
+            )
+        )
+        lines.append(
+            f"{cw.shaft:<8}{cw.z * 1e3:9.2f} {cw.unbalance:10.4g} {math.degrees(cw.angle_on_shaft):10.2f}  {s}"
+        )
     for d in res.shafts:
         lines += ["", f"balance shafts for the order-{d.order} {d.component}:"]
         for s in d.shafts:
-            lines.append(f"  {s.name:<16} speed {s.speed_ratio:+d} x crank, m r {s.unbalance:.4g} kg m at "
-                         f"{math.degrees(s.angle):.1f} deg, z {', '.join(f'{z * 1e3:.1f}' for z in s.z)} mm; {s.constraint}")
-    lines += ["", "residual after counterweights and balance shafts (all sources)",
-              f"{'order':>6} {'F max N':>10} {'M max N m':>10}"]
+            lines.append(
+                f"  {s.name:<16} speed {s.speed_ratio:+d} x crank, m r {s.unbalance:.4g} kg m at "
+                f"{math.degrees(s.angle):.1f} deg, z {', '.join(f'{z * 1e3:.1f}' for z in s.z)} mm; {s.constraint}"
+            )
+    lines += [
+        "",
+        "residual after counterweights and balance shafts (all sources)",
+        f"{'order':>6} {'F max N':>10} {'M max N m':>10}",
+    ]
     for r in forces_table(res.residual):
         if r["source"] == "total":
             lines.append(f"{r['order']:>6g} {_fmt(r['force_max'])} {_fmt(r['moment_max'])}")

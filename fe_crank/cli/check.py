@@ -16,38 +16,83 @@ from fe_crank.mesh.options import DEFAULT_CACHE_DIR, PRESETS
 
 
 def add_arguments(p) -> None:
-    p.add_argument("paths", nargs="+", type=Path, metavar="PATH",
-                   help="load-case files, or folders searched for *.toml files with an [operating] table")
-    p.add_argument("-o", "--output", type=Path, default=Path("reports"), metavar="DIR",
-                   help="folder for the per-case reports (default: reports/)")
+    p.add_argument(
+        "paths",
+        nargs="+",
+        type=Path,
+        metavar="PATH",
+        help="load-case files, or folders searched for *.toml files with an [operating] table",
+    )
+    p.add_argument(
+        "-o",
+        "--output",
+        type=Path,
+        default=Path("reports"),
+        metavar="DIR",
+        help="folder for the per-case reports (default: reports/)",
+    )
     p.add_argument("--junit", type=Path, metavar="FILE", help="also write JUnit XML (one test per criterion)")
-    p.add_argument("-j", "--jobs", type=int, default=1, metavar="N",
-                   help="run cases in N local processes (default 1: in this process)")
-    p.add_argument("--dask-scheduler", metavar="ADDRESS",
-                   help="run the cases on an existing Dask distributed cluster, e.g. tcp://10.0.0.5:8786")
-    p.add_argument("--mesh-size", choices=tuple(PRESETS), default=None,
-                   help="mesh preset (default coarse: fillet elements <= r/4, IACS UR M53 guidance; "
-                        "test is for quick trials only)")
-    p.add_argument("--cache-dir", default=str(DEFAULT_CACHE_DIR), metavar="DIR",
-                   help=f"mesh cache folder shared by every case and worker (default: {DEFAULT_CACHE_DIR}, relative "
-                        "to the working directory; resolved before cases are sent to processes or Dask workers)")
+    p.add_argument(
+        "-j",
+        "--jobs",
+        type=int,
+        default=1,
+        metavar="N",
+        help="run cases in N local processes (default 1: in this process)",
+    )
+    p.add_argument(
+        "--dask-scheduler",
+        metavar="ADDRESS",
+        help="run the cases on an existing Dask distributed cluster, e.g. tcp://10.0.0.5:8786",
+    )
+    p.add_argument(
+        "--mesh-size",
+        choices=tuple(PRESETS),
+        default=None,
+        help="mesh preset (default coarse: fillet elements <= r/4, IACS UR M53 guidance; "
+        "test is for quick trials only)",
+    )
+    p.add_argument(
+        "--cache-dir",
+        default=str(DEFAULT_CACHE_DIR),
+        metavar="DIR",
+        help=f"mesh cache folder shared by every case and worker (default: {DEFAULT_CACHE_DIR}, relative "
+        "to the working directory; resolved before cases are sent to processes or Dask workers)",
+    )
     p.add_argument("--no-render", action="store_true", help="skip the pyvista pictures (faster)")
     p.add_argument("--no-vtu", action="store_true", help="do not write the .vtu result fields")
-    p.add_argument("--allow-outside-paths", action="store_true",
-                   help="let engine/geometry/CSV paths leave the load case's folder tree (refused by default)")
-    p.add_argument("--max-elements", type=int, metavar="N",
-                   help="raise the limit on the estimated element count of a mesh (docs/limits.md)")
-    p.add_argument("--convergence", action=argparse.BooleanOptionalAction, default=None,
-                   help="hot-spot convergence study: fillets meshed at r/4, r/6, r/8 (from the preset), "
-                        "peak change <= 5 %% (default: the load case's [mesh] convergence, on unless the mesh is test)")
+    p.add_argument(
+        "--allow-outside-paths",
+        action="store_true",
+        help="let engine/geometry/CSV paths leave the load case's folder tree (refused by default)",
+    )
+    p.add_argument(
+        "--max-elements",
+        type=int,
+        metavar="N",
+        help="raise the limit on the estimated element count of a mesh (docs/limits.md)",
+    )
+    p.add_argument(
+        "--convergence",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="hot-spot convergence study: fillets meshed at r/4, r/6, r/8 (from the preset), "
+        "peak change <= 5 %% (default: the load case's [mesh] convergence, on unless the mesh is test)",
+    )
 
 
 def _options(args):
     from fe_crank.check import CheckOptions
 
-    return CheckOptions(mesh_size=args.mesh_size, cache_dir=str(args.cache_dir), render=not args.no_render,
-                        write_vtu=not args.no_vtu, allow_outside_paths=args.allow_outside_paths,
-                        max_elements=args.max_elements, convergence=args.convergence)
+    return CheckOptions(
+        mesh_size=args.mesh_size,
+        cache_dir=str(args.cache_dir),
+        render=not args.no_render,
+        write_vtu=not args.no_vtu,
+        allow_outside_paths=args.allow_outside_paths,
+        max_elements=args.max_elements,
+        convergence=args.convergence,
+    )
 
 
 def _row(r) -> list[str]:
@@ -56,8 +101,14 @@ def _row(r) -> list[str]:
     if r.status == "error":
         first = r.message.splitlines()[0] if r.message else ""
         return [case, "-", "-", "ERROR", f"{r.seconds:.1f} s", first]
-    return [case, w.name.removeprefix("criteria.") if w else "-", f"{100 * w.margin:+.1f} %" if w else "-", r.status.upper(),
-            f"{r.seconds:.1f} s", ""]
+    return [
+        case,
+        w.name.removeprefix("criteria.") if w else "-",
+        f"{100 * w.margin:+.1f} %" if w else "-",
+        r.status.upper(),
+        f"{r.seconds:.1f} s",
+        "",
+    ]
 
 
 HEADER = ["case", "worst criterion", "margin", "verdict", "time", "note"]
@@ -99,8 +150,9 @@ def run(args) -> int:
     options = _options(args)
     paths = find_loadcases(args.paths)
     if not paths:
-        raise InputError("no load-case files (*.toml with an [operating] table) found in "
-                         + ", ".join(map(str, args.paths)))
+        raise InputError(
+            "no load-case files (*.toml with an [operating] table) found in " + ", ".join(map(str, args.paths))
+        )
     tty = sys.stdout.isatty()
     t0 = time.perf_counter()
     try:
@@ -109,16 +161,18 @@ def run(args) -> int:
         else:
             results = run_cases(paths, args.output, options, jobs=args.jobs, scheduler=args.dask_scheduler)
     except OSError as exc:  # the output folder went away or became read-only during the run
-        raise InputError(f"cannot write the reports: {exc.strerror or type(exc).__name__}",
-                         file=str(args.output), key="--output") from None
+        raise InputError(
+            f"cannot write the reports: {exc.strerror or type(exc).__name__}", file=str(args.output), key="--output"
+        ) from None
     if args.junit:
         from fe_crank.report.junit import write_junit
 
         try:
             write_junit(args.junit, results)
         except OSError as exc:
-            raise InputError(f"cannot write the JUnit XML: {exc.strerror or type(exc).__name__}",
-                             file=str(args.junit), key="--junit") from None
+            raise InputError(
+                f"cannot write the JUnit XML: {exc.strerror or type(exc).__name__}", file=str(args.junit), key="--junit"
+            ) from None
     if tty:
         from rich.console import Console
 
@@ -127,9 +181,11 @@ def run(args) -> int:
         print(format_plain(results))
     code = batch_exit_code(results)
     n = {s: sum(r.status == s for r in results) for s in ("pass", "fail", "error")}
-    print(f"{len(results)} case(s): {n['pass']} pass, {n['fail']} fail, {n['error']} error "
-          f"in {time.perf_counter() - t0:.1f} s; reports in {args.output}/"
-          + (f"; JUnit XML in {args.junit}" if args.junit else ""))
+    print(
+        f"{len(results)} case(s): {n['pass']} pass, {n['fail']} fail, {n['error']} error "
+        f"in {time.perf_counter() - t0:.1f} s; reports in {args.output}/"
+        + (f"; JUnit XML in {args.junit}" if args.junit else "")
+    )
     for r in results:
         if r.status == "error":
             where = "" if r.source in r.message else f"{r.source}: "
@@ -157,8 +213,9 @@ def check_output_paths(output: Path, junit: Path | None) -> None:
         except PermissionError:
             raise InputError("cannot write there: permission denied", file=str(folder), key=key) from None
         except OSError as exc:
-            raise InputError(f"cannot write there: {exc.strerror or type(exc).__name__}", file=str(folder),
-                             key=key) from None
+            raise InputError(
+                f"cannot write there: {exc.strerror or type(exc).__name__}", file=str(folder), key=key
+            ) from None
 
     if output.exists() and not output.is_dir():
         raise InputError("is an existing file, expected a folder", file=str(output), key="--output")
@@ -178,8 +235,14 @@ def _run_with_progress(paths, args, options):
 
     from fe_crank.check import run_cases
 
-    with Progress(SpinnerColumn(), TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                  TimeElapsedColumn(), transient=True) as progress:
+    with Progress(
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        transient=True,
+    ) as progress:
         task = progress.add_task("checking", total=len(paths))
 
         def on_stage(path: str, stage: str) -> None:
@@ -188,5 +251,12 @@ def _run_with_progress(paths, args, options):
         def on_result(r) -> None:
             progress.advance(task)
 
-        return run_cases(paths, args.output, options, jobs=args.jobs, scheduler=args.dask_scheduler,
-                         on_result=on_result, on_stage=on_stage)
+        return run_cases(
+            paths,
+            args.output,
+            options,
+            jobs=args.jobs,
+            scheduler=args.dask_scheduler,
+            on_result=on_result,
+            on_stage=on_stage,
+        )

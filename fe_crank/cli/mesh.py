@@ -16,16 +16,34 @@ from fe_crank.mesh import DEFAULT_CACHE_DIR, PRESETS
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("geometry", help="geometry file (geometry/*.toml)")
-    p.add_argument("-o", "--output", default="reports", metavar="DIR",
-                   help="folder for the picture and mesh copies (default: reports/)")
+    p.add_argument(
+        "-o",
+        "--output",
+        default="reports",
+        metavar="DIR",
+        help="folder for the picture and mesh copies (default: reports/)",
+    )
     p.add_argument("--throw", default=None, help="throw name to mesh, or 'all' (default: the first throw)")
-    p.add_argument("--mesh-size", default="coarse", choices=sorted(PRESETS),
-                   help="mesh preset (default coarse: fillet elements <= r/4; test is for quick trials only)")
-    p.add_argument("--cache-dir", default=str(DEFAULT_CACHE_DIR), metavar="DIR",
-                   help=f"mesh cache folder (default: {DEFAULT_CACHE_DIR}, relative to the working directory)")
+    p.add_argument(
+        "--mesh-size",
+        default="coarse",
+        choices=sorted(PRESETS),
+        help="mesh preset (default coarse: fillet elements <= r/4; test is for quick trials only)",
+    )
+    p.add_argument(
+        "--cache-dir",
+        default=str(DEFAULT_CACHE_DIR),
+        metavar="DIR",
+        help=f"mesh cache folder (default: {DEFAULT_CACHE_DIR}, relative to the working directory)",
+    )
     p.add_argument("--no-render", action="store_true", help="do not render the PNG")
-    p.add_argument("--max-elements", type=int, default=None, metavar="N",
-                   help="raise the limit on the estimated element count (docs/limits.md)")
+    p.add_argument(
+        "--max-elements",
+        type=int,
+        default=None,
+        metavar="N",
+        help="raise the limit on the estimated element count (docs/limits.md)",
+    )
 
 
 def render_png(vtu_path: Path, png_path: Path, title: str = "") -> None:
@@ -35,7 +53,15 @@ def render_png(vtu_path: Path, png_path: Path, title: str = "") -> None:
     grid = pv.read(str(vtu_path))
     surf = grid.extract_surface(nonlinear_subdivision=1, algorithm="dataset_surface")
     pl = pv.Plotter(off_screen=True, window_size=(1200, 900))
-    pl.add_mesh(surf, scalars="subdomain", show_edges=True, edge_color="black", line_width=0.3, cmap="tab10", show_scalar_bar=False)
+    pl.add_mesh(
+        surf,
+        scalars="subdomain",
+        show_edges=True,
+        edge_color="black",
+        line_width=0.3,
+        cmap="tab10",
+        show_scalar_bar=False,
+    )
     if title:
         pl.add_text(title, font_size=10)
     pl.view_vector((1.0, 0.6, -1.3), viewup=(0.0, 1.0, 0.0))  # front-right, from above; crankpin up
@@ -65,22 +91,30 @@ def run(args: argparse.Namespace) -> int:
 
             raise InputError(str(exc.args[0]), file=args.geometry, key="--throw") from None
     stem = Path(args.geometry).stem
-    print(f"{g.name}  ({len(g.throws)} throw(s), R = {g.crank_radius * 1e3:g} mm, pin/journal overlap {g.pin_overlap * 1e3:.3g} mm)")
+    print(
+        f"{g.name}  ({len(g.throws)} throw(s), R = {g.crank_radius * 1e3:g} mm, pin/journal overlap {g.pin_overlap * 1e3:.3g} mm)"
+    )
     for spec in throws:
         mp = mass_properties(g, spec)
         tot = mp.total
-        print(f"throw {spec.name} (angle {spec.angle * 57.29577951308232:g} deg): mass {tot.mass:.4g} kg, "
-              f"centroid y {tot.centroid[1] * 1e3:.4g} mm, unbalance m r {tot.unbalance * 1e3:.4g} kg mm, "
-              f"J_z {tot.inertia_axis:.4g} kg m^2")
+        print(
+            f"throw {spec.name} (angle {spec.angle * 57.29577951308232:g} deg): mass {tot.mass:.4g} kg, "
+            f"centroid y {tot.centroid[1] * 1e3:.4g} mm, unbalance m r {tot.unbalance * 1e3:.4g} kg mm, "
+            f"J_z {tot.inertia_axis:.4g} kg m^2"
+        )
         for web in (1, 2):
             part = mp.parts.get(f"counterweight_{web}")
             if part is not None:
-                print(f"  counterweight_{web}: mass {part.mass:.4g} kg at r_c {abs(part.centroid[1]) * 1e3:.4g} mm, m r {part.unbalance * 1e3:.4g} kg mm")
+                print(
+                    f"  counterweight_{web}: mass {part.mass:.4g} kg at r_c {abs(part.centroid[1]) * 1e3:.4g} mm, m r {part.unbalance * 1e3:.4g} kg mm"
+                )
         tm = mesh_throw(g, spec, size=args.mesh_size, cache_dir=args.cache_dir, max_elements=args.max_elements)
         s = tm.stats
-        print(f"  mesh ({args.mesh_size}{', cached' if s.from_cache else ''}): {s.nodes} nodes, {s.elements} quadratic tets, "
-              f"{s.p2_dofs} P2 DOFs, min quality {s.min_quality:.3g}, {s.straightened} elements straightened, "
-              f"built in {s.build_seconds:.1f} s")
+        print(
+            f"  mesh ({args.mesh_size}{', cached' if s.from_cache else ''}): {s.nodes} nodes, {s.elements} quadratic tets, "
+            f"{s.p2_dofs} P2 DOFs, min quality {s.min_quality:.3g}, {s.straightened} elements straightened, "
+            f"built in {s.build_seconds:.1f} s"
+        )
         if s.symmetry:  # exact mirror image across these planes (docs/geometry.md)
             print("  mirrored across " + ", ".join({0: "x = 0", 2: "z = 0"}[a] for a in s.symmetry))
         for name, h in s.fillet_max_edge.items():

@@ -19,13 +19,27 @@ from fe_crank.files import write_atomic
 
 def add_arguments(p) -> None:
     p.add_argument("file", type=Path, help="load-case .toml file with a [torsion] section")
-    p.add_argument("-o", "--output", type=Path, default=Path("reports"), metavar="DIR",
-                   help="output folder (created if missing; default: reports/)")
-    p.add_argument("--fe-stiffness", action="store_true",
-                   help="also measure the throw stiffness on the FE throw model and report it beside Carter's")
+    p.add_argument(
+        "-o",
+        "--output",
+        type=Path,
+        default=Path("reports"),
+        metavar="DIR",
+        help="output folder (created if missing; default: reports/)",
+    )
+    p.add_argument(
+        "--fe-stiffness",
+        action="store_true",
+        help="also measure the throw stiffness on the FE throw model and report it beside Carter's",
+    )
     p.add_argument("--mesh-size", default=None, help="mesh preset for --fe-stiffness (default: the case's [mesh])")
-    p.add_argument("--cache-dir", type=Path, default=Path(".cache/meshes"), metavar="DIR",
-                   help="mesh cache folder (default: .cache/meshes)")
+    p.add_argument(
+        "--cache-dir",
+        type=Path,
+        default=Path(".cache/meshes"),
+        metavar="DIR",
+        help="mesh cache folder (default: .cache/meshes)",
+    )
     p.add_argument("--no-plots", action="store_true", help="write the JSON only")
 
 
@@ -65,8 +79,10 @@ def run(args) -> int:
     write_atomic(out / "torsion.json", json.dumps(data, indent=1, allow_nan=False))
     if not args.no_plots:
         write_plots(res, out)
-    print(f"{lc.name}: {res.model.size} masses, natural frequencies [Hz]: "
-          + ", ".join(f"{f:.1f}" for f in res.modes.frequencies_hz[1:6]))
+    print(
+        f"{lc.name}: {res.model.size} masses, natural frequencies [Hz]: "
+        + ", ".join(f"{f:.1f}" for f in res.modes.frequencies_hz[1:6])
+    )
     k = res.stiffness
     line = f"throw stiffness (FE span): Carter {k['carter']:.4g} N m/rad"
     if "fe" in k:
@@ -76,8 +92,10 @@ def run(args) -> int:
     from fe_crank.torsion.report import governing_table
 
     for r in governing_table(res):
-        print(f"{r['segment']:<22}{r['max_half_range']:>16.4g}{r['governing_speed_rpm']:>10.0f}"
-              f"{r['vibratory_half_range_at_governing']:>17.4g}{r['half_range_at_operating']:>14.4g}")
+        print(
+            f"{r['segment']:<22}{r['max_half_range']:>16.4g}{r['governing_speed_rpm']:>10.0f}"
+            f"{r['vibratory_half_range_at_governing']:>17.4g}{r['half_range_at_operating']:>14.4g}"
+        )
     print(f"flywheel speed fluctuation at {res.operating_speed * RPM:.0f} rpm: {100 * res.flywheel_fluctuation:.3g} %")
     print(f"written: {out / 'torsion.json'}")
     return 0

@@ -11,8 +11,11 @@ from fe_crank.io.base import read_toml
 
 def add_arguments(p) -> None:
     p.add_argument("files", nargs="+", type=Path, help="load-case, engine or geometry .toml files")
-    p.add_argument("--allow-outside-paths", action="store_true",
-                   help="let engine/geometry/CSV paths leave the load case's folder tree (refused by default)")
+    p.add_argument(
+        "--allow-outside-paths",
+        action="store_true",
+        help="let engine/geometry/CSV paths leave the load case's folder tree (refused by default)",
+    )
 
 
 def _kind(data: dict) -> str:

@@ -14,7 +14,24 @@ from fe_crank.fe.unit_cases import CASES, FeOptions, UnitCase, UnitSolutions, so
 from fe_crank.fe.vtu import write_fields
 
 __all__ = [
-    "CASES", "Coupling", "write_fields", "Dirichlet", "FeOptions", "Foundation", "System", "UnitCase", "UnitSolutions",
-    "bearing_support", "build_system", "centrifugal", "elasticity", "factorise", "lame_parameters",
-    "max_shear", "principal", "solve_unit_cases", "stress_at_nodes", "von_mises",
+    "CASES",
+    "Coupling",
+    "write_fields",
+    "Dirichlet",
+    "FeOptions",
+    "Foundation",
+    "System",
+    "UnitCase",
+    "UnitSolutions",
+    "bearing_support",
+    "build_system",
+    "centrifugal",
+    "elasticity",
+    "factorise",
+    "lame_parameters",
+    "max_shear",
+    "principal",
+    "solve_unit_cases",
+    "stress_at_nodes",
+    "von_mises",
 ]

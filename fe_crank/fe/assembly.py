@@ -63,7 +63,7 @@ def unique_inverse(key: np.ndarray, key_bound: int) -> tuple[np.ndarray, np.ndar
     packed |= np.arange(n, dtype=np.int64)
     packed.sort()
     order = packed & ((1 << shift) - 1)
-    packed >>= shift                                    # the sorted keys
+    packed >>= shift  # the sorted keys
     first = np.empty(n, bool)
     first[0] = True
     np.not_equal(packed[1:], packed[:-1], out=first[1:])
@@ -93,8 +93,9 @@ def block_pattern(edofs: np.ndarray, n_nodes: int) -> tuple[np.ndarray, np.ndarr
     return indptr, indices, pos.reshape(ne, m * m)
 
 
-def assemble_stiffness(basis: Basis, youngs_modulus: float, poisson_ratio: float,
-                       *, chunk: int = CHUNK) -> sp.csr_matrix:
+def assemble_stiffness(
+    basis: Basis, youngs_modulus: float, poisson_ratio: float, *, chunk: int = CHUNK
+) -> sp.csr_matrix:
     """Stiffness matrix of isotropic linear elasticity on a scalar ``basis``.
 
     K_(a i)(b j) = sum_q w_q [ lambda g_a,i g_b,j + mu (delta_ij g_a . g_b + g_a,j g_b,i) ]
@@ -104,12 +105,20 @@ def assemble_stiffness(basis: Basis, youngs_modulus: float, poisson_ratio: float
     ``ElementVector(basis.elem)`` (tested).  Element blocks (a, b) of 3x3 are summed into a
     block-sparse (BSR) matrix over the scalar connectivity, then converted to CSR.
     """
-    return stiffness_from_gradients(_gradients(basis), basis.dx, basis.element_dofs, basis.N,
-                                    youngs_modulus, poisson_ratio, chunk=chunk)
+    return stiffness_from_gradients(
+        _gradients(basis), basis.dx, basis.element_dofs, basis.N, youngs_modulus, poisson_ratio, chunk=chunk
+    )
 
 
-def part_stiffness(basis: Basis, elements: np.ndarray, nodes: np.ndarray, youngs_modulus: float,
-                   poisson_ratio: float, *, chunk: int = CHUNK) -> sp.csr_matrix:
+def part_stiffness(
+    basis: Basis,
+    elements: np.ndarray,
+    nodes: np.ndarray,
+    youngs_modulus: float,
+    poisson_ratio: float,
+    *,
+    chunk: int = CHUNK,
+) -> sp.csr_matrix:
     """Stiffness (3 n, 3 n) of the elements ``elements`` of ``basis`` in the numbering of
     ``nodes`` (sorted, every node of those elements; node ``nodes[i]`` is local node i).
 
@@ -124,8 +133,9 @@ def part_stiffness(basis: Basis, elements: np.ndarray, nodes: np.ndarray, youngs
     for a, b in enumerate(basis.basis):
         np.take(b[0].grad, elements, axis=1, out=g[a])
     edofs = np.searchsorted(nodes, basis.element_dofs[:, elements])
-    return stiffness_from_gradients(g, basis.dx[elements], edofs, nodes.size, youngs_modulus, poisson_ratio,
-                                    chunk=chunk)
+    return stiffness_from_gradients(
+        g, basis.dx[elements], edofs, nodes.size, youngs_modulus, poisson_ratio, chunk=chunk
+    )
 
 
 def upper_triangle(K: sp.csr_matrix) -> sp.csr_matrix:
@@ -139,8 +149,16 @@ def upper_triangle(K: sp.csr_matrix) -> sp.csr_matrix:
     return sp.csr_matrix((K.data[keep], K.indices[keep], kept_before[K.indptr]), shape=K.shape)
 
 
-def stiffness_from_gradients(g_all: np.ndarray, dx_all: np.ndarray, element_dofs: np.ndarray, N: int,
-                             youngs_modulus: float, poisson_ratio: float, *, chunk: int = CHUNK) -> sp.csr_matrix:
+def stiffness_from_gradients(
+    g_all: np.ndarray,
+    dx_all: np.ndarray,
+    element_dofs: np.ndarray,
+    N: int,
+    youngs_modulus: float,
+    poisson_ratio: float,
+    *,
+    chunk: int = CHUNK,
+) -> sp.csr_matrix:
     """The kernel of :func:`assemble_stiffness`: gradients g_all (m, 3, ne, nq), weights
     dx_all (ne, nq), scalar element dofs (m, ne) numbered below N."""
     lam, mu = lame_parameters(youngs_modulus, poisson_ratio)
@@ -155,14 +173,14 @@ def stiffness_from_gradients(g_all: np.ndarray, dx_all: np.ndarray, element_dofs
         n = sl.stop - sl.start
         g = g_all[:, :, sl, :]
         gw = g * dx_all[None, None, sl, :]
-        gg = np.einsum("akeq,bkeq->eab", gw, g, optimize=True)       # g_a . g_b
-        ab = np.einsum("aieq,bjeq->ijeab", gw, g, optimize=True)     # g_a,i g_b,j
+        gg = np.einsum("akeq,bkeq->eab", gw, g, optimize=True)  # g_a . g_b
+        ab = np.einsum("aieq,bjeq->ijeab", gw, g, optimize=True)  # g_a,i g_b,j
         p = pos[sl].ravel()
         k, t = kij[:n], tmp[:n]
         for i in range(3):
             for j in range(3):
-                np.multiply(ab[i, j], lam, out=k)                     # lam g_a,i g_b,j
-                np.multiply(ab[j, i], mu, out=t)                      # + mu g_a,j g_b,i
+                np.multiply(ab[i, j], lam, out=k)  # lam g_a,i g_b,j
+                np.multiply(ab[j, i], mu, out=t)  # + mu g_a,j g_b,i
                 np.add(k, t, out=k)
                 if i == j:
                     np.multiply(gg, mu, out=t)
@@ -180,9 +198,9 @@ def assemble_body_load(basis: Basis, force_density) -> np.ndarray:
     """
     x = np.asarray(basis.global_coordinates())
     f = np.asarray(force_density(x), float)
-    N = _values(basis)                                    # (m, ne, nq)
+    N = _values(basis)  # (m, ne, nq)
     fe = np.einsum("aeq,ieq,eq->eai", N, f, basis.dx)
-    dofs = vector_dofs(basis.element_dofs.T)              # (ne, m, 3)
+    dofs = vector_dofs(basis.element_dofs.T)  # (ne, m, 3)
     return np.bincount(dofs.ravel(), fe.ravel(), minlength=3 * basis.N)
 
 
@@ -210,7 +228,7 @@ def assemble_foundation(fbasis: FacetBasis, stiffness: float, direction) -> sp.c
     x = np.asarray(fbasis.global_coordinates())
     n = np.asarray(fbasis.normals)
     d = np.asarray(direction(x, n), float)
-    N = _values(fbasis)                                   # (m, nf, nq)
+    N = _values(fbasis)  # (m, nf, nq)
     m = N.shape[0]
     w = fbasis.dx * stiffness
     ke = np.einsum("aeq,beq,ieq,jeq,eq->eaibj", N, N, d, d, w, optimize=True)

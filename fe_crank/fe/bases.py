@@ -76,14 +76,14 @@ class RobustIsoparametric(MappingIsoparametric):
     def _newton_inverse(self, x, tind, newton_max_iters, newton_tol):
         mesh_ = self.mesh
         t = mesh_.t[:4] if tind is None else mesh_.t[:4, tind]
-        P = mesh_.p[:, t]                                # (3, 4, ne)
+        P = mesh_.p[:, t]  # (3, 4, ne)
         A = np.stack([P[:, 1] - P[:, 0], P[:, 2] - P[:, 0], P[:, 3] - P[:, 0]], axis=1)  # (3, 3, ne)
         try:
             Ainv = np.linalg.inv(A.transpose(2, 0, 1))  # (ne, 3, 3)
         except np.linalg.LinAlgError:
             raise InverseMapError("a degenerate element (vertices in one plane)") from None
         X = np.einsum("eij,jeq->ieq", Ainv, x - P[:, 0][:, :, None])
-        h = np.linalg.norm(A, axis=0).max(axis=0)       # (ne,) longest edge from vertex 0
+        h = np.linalg.norm(A, axis=0).max(axis=0)  # (ne,) longest edge from vertex 0
         for _ in range(newton_max_iters):
             r = x - self.F(X, tind)
             dX = np.einsum("ijeq,jeq->ieq", self.invDF(X, tind), r)
@@ -221,11 +221,20 @@ def facet_basis(mesh, elem, facets, intorder: int, what: str) -> FacetBasis:
     """
     mapping = _robust_mapping(mesh)
     try:
-        return FacetBasis(mesh, elem, mapping=mapping, facets=facets, intorder=intorder,
-                          dofs=mesh_dofs(mesh, elem), disable_doflocs=True)
+        return FacetBasis(
+            mesh,
+            elem,
+            mapping=mapping,
+            facets=facets,
+            intorder=intorder,
+            dofs=mesh_dofs(mesh, elem),
+            disable_doflocs=True,
+        )
     except (InverseMapError, np.linalg.LinAlgError) as exc:
-        raise MeshError(f"{what}: the curved elements under the surface are too distorted to map its "
-                        f"quadrature points ({exc}); remesh with a finer or better-shaped mesh") from None
+        raise MeshError(
+            f"{what}: the curved elements under the surface are too distorted to map its "
+            f"quadrature points ({exc}); remesh with a finer or better-shaped mesh"
+        ) from None
     finally:
         if mapping is not None:
             mapping.clear_memo()

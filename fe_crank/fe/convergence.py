@@ -52,14 +52,14 @@ DEFAULT_LOADS = {"pin_-y": {"pin_-y": 1.0}, "torque": {"torque": 1.0}}
 class ConvergenceLevel:
     """One mesh of the study: its fillet size and the peak fillet stress of each load set."""
 
-    fillet_divisions: float             # fillet element edge = r / fillet_divisions
+    fillet_divisions: float  # fillet element edge = r / fillet_divisions
     n_dof: int
-    fillet_max_edge: dict[str, float]   # m, longest triangle edge on each fillet (mesh statistics)
-    peaks: dict[str, float]             # load set -> peak von Mises on the fillets, Pa (and the
-                                        # counterweight fillets' entries, COUNTERWEIGHT_PREFIX)
-    where: dict[str, str]               # load set -> fillet of the peak
+    fillet_max_edge: dict[str, float]  # m, longest triangle edge on each fillet (mesh statistics)
+    peaks: dict[str, float]  # load set -> peak von Mises on the fillets, Pa (and the
+    # counterweight fillets' entries, COUNTERWEIGHT_PREFIX)
+    where: dict[str, str]  # load set -> fillet of the peak
     seconds: float
-    reused: bool = False                # the check's own mesh and solution (no mesh, no solve)
+    reused: bool = False  # the check's own mesh and solution (no mesh, no solve)
 
 
 @dataclass(frozen=True)
@@ -69,7 +69,7 @@ class ConvergenceStudy:
     levels: tuple[ConvergenceLevel, ...]
     loads: dict[str, dict[str, float]]
     tolerance: float
-    changes: dict[str, list[float]] = field(default_factory=dict)   # load set -> change of each step
+    changes: dict[str, list[float]] = field(default_factory=dict)  # load set -> change of each step
 
     @property
     def change(self) -> float:
@@ -136,14 +136,18 @@ def peak_fillet_stresses(units, fields: dict[str, np.ndarray], fillets=FILLETS) 
     to the last bits of the summation order), with one node basis for all fields.
     """
     mesh, basis = units.mesh, units.system.basis
-    groups = {name: basis.get_dofs(boundary_facets(mesh, name, "the convergence study")).all()
-              for name in fillets if name in (mesh.boundaries or {})}
+    groups = {
+        name: basis.get_dofs(boundary_facets(mesh, name, "the convergence study")).all()
+        for name in fillets
+        if name in (mesh.boundaries or {})
+    }
     if not groups:
         raise ValueError(f"the mesh has none of the fillet surfaces {fillets}")
     ids = np.unique(np.concatenate(list(groups.values())))
     mat = units.material
-    s = stress_at_selected_nodes(mesh, list(fields.values()), mat.youngs_modulus, mat.poisson_ratio, ids,
-                                 dofs=basis.dofs)
+    s = stress_at_selected_nodes(
+        mesh, list(fields.values()), mat.youngs_modulus, mat.poisson_ratio, ids, dofs=basis.dofs
+    )
     out = {}
     for j, key in enumerate(fields):
         vm = von_mises(s[j])
@@ -156,9 +160,19 @@ def peak_fillet_stresses(units, fields: dict[str, np.ndarray], fillets=FILLETS) 
     return out
 
 
-def fillet_convergence(geometry, material, *, throw=None, base=None, factors=FACTORS, loads=None,
-                       fe_options: FeOptions | None = None, tolerance: float = TOLERANCE,
-                       cache_dir=None, first=None) -> ConvergenceStudy:
+def fillet_convergence(
+    geometry,
+    material,
+    *,
+    throw=None,
+    base=None,
+    factors=FACTORS,
+    loads=None,
+    fe_options: FeOptions | None = None,
+    tolerance: float = TOLERANCE,
+    cache_dir=None,
+    first=None,
+) -> ConvergenceStudy:
     """Mesh ``throw`` of ``geometry`` at fillet sizes r/(n f), f in ``factors``, and compare peaks.
 
     ``base``: the ``MeshOptions`` (or preset name) of the first level, n its
@@ -195,17 +209,32 @@ def fillet_convergence(geometry, material, *, throw=None, base=None, factors=FAC
             got.update({COUNTERWEIGHT_PREFIX + name: v for name, v in cw.items()})
         peaks = {name: v[0] for name, v in got.items()}
         where = {name: v[1] for name, v in got.items()}
-        levels.append(ConvergenceLevel(fillet_divisions=mopt.fillet_divisions, n_dof=units.n_dof,
-                                       fillet_max_edge=dict(tm.stats.fillet_max_edge), peaks=peaks,
-                                       where=where, seconds=time.perf_counter() - t0, reused=reuse))
+        levels.append(
+            ConvergenceLevel(
+                fillet_divisions=mopt.fillet_divisions,
+                n_dof=units.n_dof,
+                fillet_max_edge=dict(tm.stats.fillet_max_edge),
+                peaks=peaks,
+                where=where,
+                seconds=time.perf_counter() - t0,
+                reused=reuse,
+            )
+        )
         lv = levels[-1]
-        log.info("convergence level r/%g: %d DOF, %.1f s%s", lv.fillet_divisions, lv.n_dof, lv.seconds,
-                 " (the check's own mesh and solution)" if reuse else "")
+        log.info(
+            "convergence level r/%g: %d DOF, %.1f s%s",
+            lv.fillet_divisions,
+            lv.n_dof,
+            lv.seconds,
+            " (the check's own mesh and solution)" if reuse else "",
+        )
         if not reuse:
             units.system.factorisation.free()
             del units
-    changes = {name: [abs(b.peaks[name] - a.peaks[name]) / b.peaks[name] for a, b in zip(levels, levels[1:])]
-               for name in levels[0].peaks}
+    changes = {
+        name: [abs(b.peaks[name] - a.peaks[name]) / b.peaks[name] for a, b in zip(levels, levels[1:])]
+        for name in levels[0].peaks
+    }
     return ConvergenceStudy(levels=tuple(levels), loads=loads, tolerance=tolerance, changes=changes)
 
 
@@ -220,9 +249,19 @@ def _reusable(first, mesh_options, fe_options: FeOptions) -> bool:
     if getattr(tm, "options", None) != mesh_options:
         return False
     done = units.options
-    same = all(getattr(done, k) == getattr(fe_options, k) for k in
-               ("support", "bearing_stiffness", "torque_reaction", "journals", "pin_boundary", "pin_centre",
-                "pin_half_angle", "intorder"))
+    same = all(
+        getattr(done, k) == getattr(fe_options, k)
+        for k in (
+            "support",
+            "bearing_stiffness",
+            "torque_reaction",
+            "journals",
+            "pin_boundary",
+            "pin_centre",
+            "pin_half_angle",
+            "intorder",
+        )
+    )
     return same and all(c in units.cases for c in fe_options.cases)
 
 
@@ -231,8 +270,9 @@ def wanted(flag: bool | None, preset: str) -> bool:
     return bool(flag) if flag is not None else preset != "test"
 
 
-def check_studies(lc, meshes: dict, dynamics, *, cache_dir=None, units: dict | None = None
-                  ) -> dict[str, ConvergenceStudy]:
+def check_studies(
+    lc, meshes: dict, dynamics, *, cache_dir=None, units: dict | None = None
+) -> dict[str, ConvergenceStudy]:
     """The check stage's study for each distinct throw mesh (``meshes``: key -> ThrowMesh).
 
     Loads from ``check_loads`` (the throws the key stands for: the engine throw of that
@@ -247,9 +287,16 @@ def check_studies(lc, meshes: dict, dynamics, *, cache_dir=None, units: dict | N
             continue
         tls = [dynamics.throws[key]] if key in dynamics.throws else list(dynamics.throws.values())
         first = (tm, units[key]) if units and key in units else None
-        study = fillet_convergence(lc.geometry, lc.material, throw=tm.throw, base=tm.options,
-                                   loads=check_loads(tls, lc.operating.speed), fe_options=lc.fe,
-                                   cache_dir=cache_dir, first=first)
+        study = fillet_convergence(
+            lc.geometry,
+            lc.material,
+            throw=tm.throw,
+            base=tm.options,
+            loads=check_loads(tls, lc.operating.speed),
+            fe_options=lc.fe,
+            cache_dir=cache_dir,
+            first=first,
+        )
         out[key] = done[tm.key] = study
     return out
 
@@ -264,8 +311,15 @@ def criterion(studies: dict[str, ConvergenceStudy]):
     name = max(st.changes, key=lambda n: st.changes[n][-1])
     a, b = st.levels[-2], st.levels[-1]
     return CriterionResult(
-        name="mesh_convergence.max_peak_change", passed=st.converged, value=st.change, limit=st.tolerance,
-        margin=1.0 - st.change / st.tolerance, unit="", quantity="mesh_convergence", sense="max",
+        name="mesh_convergence.max_peak_change",
+        passed=st.converged,
+        value=st.change,
+        limit=st.tolerance,
+        margin=1.0 - st.change / st.tolerance,
+        unit="",
+        quantity="mesh_convergence",
+        sense="max",
         location=f"throw {key}, {b.where[name]}, {name}, r/{a.fillet_divisions:g} -> r/{b.fillet_divisions:g}",
         description="relative change of the peak von Mises stress on the shaft (and counterweight) fillets at the last fillet refinement "
-                    "(hot-spot convergence study, docs/fe.md)")
+        "(hot-spot convergence study, docs/fe.md)",
+    )

@@ -74,13 +74,13 @@ class DeterminateSupport:
     """The distributed unit reactions of a layout on one basis and their resultants."""
 
     layout: DeterminateLayout
-    centres: dict[str, np.ndarray]      # journal -> main-bearing centre (reference point of its coupling)
-    names: tuple[str, ...]              # reaction components, e.g. "journal_1.Fx", ..., "end_2.Mz"
-    owner: tuple[str, ...]              # support each component belongs to
-    G: sp.csc_matrix                    # (3 N, 6) nodal loads of a unit value of each component (sparse)
-    A: np.ndarray                       # (6, 6) resultants (F, M about the origin) of the columns of G
-    held: np.ndarray                    # (6,) vector dofs of the point constraints
-    points: np.ndarray                  # (3, N) node coordinates
+    centres: dict[str, np.ndarray]  # journal -> main-bearing centre (reference point of its coupling)
+    names: tuple[str, ...]  # reaction components, e.g. "journal_1.Fx", ..., "end_2.Mz"
+    owner: tuple[str, ...]  # support each component belongs to
+    G: sp.csc_matrix  # (3 N, 6) nodal loads of a unit value of each component (sparse)
+    A: np.ndarray  # (6, 6) resultants (F, M about the origin) of the columns of G
+    held: np.ndarray  # (6,) vector dofs of the point constraints
+    points: np.ndarray  # (3, N) node coordinates
 
     def reactions(self, f: np.ndarray) -> np.ndarray:
         """Reaction components (6,) or (6, k) that balance the load(s) f: R = -A^-1 (F, M)."""
@@ -116,11 +116,17 @@ def bearing_surface_load(basis, boundary: str) -> tuple[np.ndarray, np.ndarray, 
     exactly on the isoparametric surface) and the area A.
     """
     mesh = basis.mesh
-    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "a bearing support"),
-                     SURFACE_INTORDER, f"the bearing support on {boundary}")
+    fb = facet_basis(
+        mesh,
+        ElementTetP2(),
+        boundary_facets(mesh, boundary, "a bearing support"),
+        SURFACE_INTORDER,
+        f"the bearing support on {boundary}",
+    )
     area = float(fb.dx.sum())
-    f = assemble_surface_load(fb, lambda x, n: np.stack([np.ones_like(x[0]) / area,
-                                                         np.zeros_like(x[0]), np.zeros_like(x[0])]))
+    f = assemble_surface_load(
+        fb, lambda x, n: np.stack([np.ones_like(x[0]) / area, np.zeros_like(x[0]), np.zeros_like(x[0])])
+    )
     w = f.reshape(-1, 3)[:, 0]
     x = np.asarray(fb.global_coordinates())
     centre = np.einsum("ieq,eq->i", x, fb.dx) / area
@@ -130,8 +136,13 @@ def bearing_surface_load(basis, boundary: str) -> tuple[np.ndarray, np.ndarray, 
 def face_centre(basis, boundary: str) -> np.ndarray:
     """Area centroid of a named face (the main-bearing centre on an end face)."""
     mesh = basis.mesh
-    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "a main-bearing centre"),
-                     SURFACE_INTORDER, f"the bearing centre on {boundary}")
+    fb = facet_basis(
+        mesh,
+        ElementTetP2(),
+        boundary_facets(mesh, boundary, "a main-bearing centre"),
+        SURFACE_INTORDER,
+        f"the bearing centre on {boundary}",
+    )
     x = np.asarray(fb.global_coordinates())
     return np.einsum("ieq,eq->i", x, fb.dx) / float(fb.dx.sum())
 
@@ -142,7 +153,7 @@ def transfer_moment_load(w: np.ndarray, x: np.ndarray, c: np.ndarray, moment: np
     sum to 1 with centroid c (sum_i w_i d_i = 0) they sum to zero force and to the moment
     M about c (any point)."""
     on = np.flatnonzero(w)
-    d = x[:, on].T - c                                           # (n, 3)
+    d = x[:, on].T - c  # (n, 3)
     wi = w[on]
     inertia = np.einsum("i,i->", wi, np.einsum("ij,ij->i", d, d)) * np.eye(3) - np.einsum("i,ij,ik->jk", wi, d, d)
     theta = np.linalg.solve(inertia, moment)
@@ -158,20 +169,18 @@ def point_constraints(points: np.ndarray, candidates: np.ndarray) -> np.ndarray:
     nodes (B^T, 6 x 3n): the first six pivots are the best-conditioned choice of rows,
     so that B[held] is invertible (checked).
     """
-    B = rigid_body_modes(points[:, candidates])                  # (3 n, 6)
+    B = rigid_body_modes(points[:, candidates])  # (3 n, 6)
     scale = np.ptp(points, axis=1).max()
-    B[:, 3:] /= scale                                            # rotations in length units
+    B[:, 3:] /= scale  # rotations in length units
     _, R, piv = sla.qr(B.T, pivoting=True, mode="economic")
     rows = piv[:6]
     if abs(R[5, 5]) < 1e-6 * abs(R[0, 0]):
-        raise MeshError("cannot pick six point constraints against the rigid-body modes "
-                        "(end faces degenerate?)")
+        raise MeshError("cannot pick six point constraints against the rigid-body modes (end faces degenerate?)")
     node = candidates[rows // 3]
     return 3 * node + rows % 3
 
 
-def determinate_support(basis, layout: DeterminateLayout, *, candidate_faces=("end_1", "end_2")
-                        ) -> DeterminateSupport:
+def determinate_support(basis, layout: DeterminateLayout, *, candidate_faces=("end_1", "end_2")) -> DeterminateSupport:
     """Distributed unit reactions, their resultants and the point constraints (module doc)."""
     mesh = basis.mesh
     N = basis.N
@@ -198,12 +207,16 @@ def determinate_support(basis, layout: DeterminateLayout, *, candidate_faces=("e
     owner.append(layout.torque_face)
     G = np.column_stack(cols)
     A = _resultants(G, x)
-    G = sp.csc_matrix(G)                 # non-zero on the bearing surfaces and the torque face only
+    G = sp.csc_matrix(G)  # non-zero on the bearing surfaces and the torque face only
     if np.linalg.cond(A) > 1e10:
         raise SolverError("determinate supports cannot balance every load (bearing centres coincide?)")
-    cand = np.unique(np.concatenate([basis.get_dofs(boundary_facets(mesh, f, "the point constraints")).all()
-                                     for f in candidate_faces]))
+    cand = np.unique(
+        np.concatenate(
+            [basis.get_dofs(boundary_facets(mesh, f, "the point constraints")).all() for f in candidate_faces]
+        )
+    )
     held = point_constraints(x, cand)
-    sup = DeterminateSupport(layout=layout, centres=centres, names=tuple(names), owner=tuple(owner),
-                             G=G, A=A, held=held, points=x)
+    sup = DeterminateSupport(
+        layout=layout, centres=centres, names=tuple(names), owner=tuple(owner), G=G, A=A, held=held, points=x
+    )
     return sup

@@ -40,7 +40,7 @@ class EquilibriumChecks:
         if self.determinate is not None:
             R = self.determinate.reactions(f)
             out.update(self.determinate.reaction_resultants(R))
-            f_rows = f_rows + self._rows_of(self.determinate.G) @ R       # (f + G R)[rows]
+            f_rows = f_rows + self._rows_of(self.determinate.G) @ R  # (f + G R)[rows]
         if self.foundation_dofs:
             rs = -(self.Ks @ u)
             for name, sdofs in self.foundation_dofs.items():

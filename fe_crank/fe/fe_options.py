@@ -54,7 +54,7 @@ class FeOptions:
     journals: tuple[str, str] = ("journal_1", "journal_2")
     torque_reaction: str = "end_2"
     pin_boundary: str = "crankpin"
-    pin_centre: tuple[float, float] | None = None   # (x, y) of the pin axis; None: centroid of the pin surface
+    pin_centre: tuple[float, float] | None = None  # (x, y) of the pin axis; None: centroid of the pin surface
     intorder: int = 2
     symmetry: bool = True
 
@@ -76,16 +76,23 @@ TORQUE_ENDS = ("end_2", "end_1")
 def check_support_options(options: FeOptions) -> None:
     """Refuse a support model that is not fully stated."""
     if options.support not in SUPPORTS:
-        raise InputError(f"unknown support {options.support!r}; pick 'determinate' (statically determinate, "
-                         f"the default) or 'foundation' (with bearing_stiffness)", key="fe.support")
+        raise InputError(
+            f"unknown support {options.support!r}; pick 'determinate' (statically determinate, "
+            f"the default) or 'foundation' (with bearing_stiffness)",
+            key="fe.support",
+        )
     if options.torque_reaction not in TORQUE_ENDS:
-        raise InputError(f"unknown torque_reaction {options.torque_reaction!r}; pick 'end_2' or 'end_1'",
-                         key="fe.torque_reaction")
+        raise InputError(
+            f"unknown torque_reaction {options.torque_reaction!r}; pick 'end_2' or 'end_1'", key="fe.torque_reaction"
+        )
     if options.support == "foundation":
         k = options.bearing_stiffness
         if k is None or not k > 0:
-            raise InputError("support = 'foundation' needs bearing_stiffness > 0 (N/m^3, from the oil film and "
-                             "housing; docs/fe.md says how to derive it)", key="fe.bearing_stiffness")
+            raise InputError(
+                "support = 'foundation' needs bearing_stiffness > 0 (N/m^3, from the oil film and "
+                "housing; docs/fe.md says how to derive it)",
+                key="fe.bearing_stiffness",
+            )
     elif options.bearing_stiffness is not None:
         raise InputError("bearing_stiffness applies to support = 'foundation' only", key="fe.bearing_stiffness")
 
@@ -94,13 +101,17 @@ def support_text(options: FeOptions, centres: dict[str, float]) -> str:
     """The support model in one line (``UnitSolutions.support_model``)."""
     j1, j2 = options.journals
     if options.support == "foundation":
-        return (f"radial elastic foundation k = {options.bearing_stiffness:.4g} N/m^3 on {j1} and {j2} "
-                f"(statically indeterminate); torque and axial force reacted at {options.reaction_face} "
-                f"(rigid coupling)")
+        return (
+            f"radial elastic foundation k = {options.bearing_stiffness:.4g} N/m^3 on {j1} and {j2} "
+            f"(statically indeterminate); torque and axial force reacted at {options.reaction_face} "
+            f"(rigid coupling)"
+        )
     zs = ", ".join(f"{centres[j] * 1e3:.2f}" for j in options.journals)
-    return (f"statically determinate (IACS UR M53 2.1): {j1} and {j2} on distributing (RBE3) couplings to "
-            f"simple supports at the bearing centres z = {zs} mm (radial at both, axial at "
-            f"{axial_journal(options)}); torque reacted at {options.reaction_face}")
+    return (
+        f"statically determinate (IACS UR M53 2.1): {j1} and {j2} on distributing (RBE3) couplings to "
+        f"simple supports at the bearing centres z = {zs} mm (radial at both, axial at "
+        f"{axial_journal(options)}); torque reacted at {options.reaction_face}"
+    )
 
 
 def axial_journal(options: FeOptions) -> str:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 from skfem import BilinearForm, LinearForm
-from skfem.helpers import ddot, dot, sym_grad, trace, eye
+from skfem.helpers import ddot, dot, eye, sym_grad, trace
 
 from fe_crank.errors import InputError
 
@@ -22,8 +22,7 @@ def lame_parameters(youngs_modulus: float, poisson_ratio: float) -> tuple[float,
     if not youngs_modulus > 0:
         raise InputError(f"Young's modulus must be > 0, got {youngs_modulus!r}", key="material.youngs_modulus")
     if not -1.0 < poisson_ratio < 0.5:
-        raise InputError(f"Poisson's ratio must lie in (-1, 0.5), got {poisson_ratio!r}",
-                         key="material.poisson_ratio")
+        raise InputError(f"Poisson's ratio must lie in (-1, 0.5), got {poisson_ratio!r}", key="material.poisson_ratio")
     lam = youngs_modulus * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio))
     mu = youngs_modulus / (2.0 * (1.0 + poisson_ratio))
     return lam, mu

@@ -25,11 +25,12 @@ from fe_crank.fe.unit_cases import CASES, FeOptions
 from fe_crank.io.base import Strict, validate
 from fe_crank.io.units import Angle, StiffnessPerArea
 
-
-RENAMED = {"elastic": "the radial foundation is now support = \"foundation\" with an explicit bearing_stiffness; "
-                      "the default \"determinate\" needs no stiffness",
-           "rigid": "the penalty (\"rigid\") bearing was removed: use the default \"determinate\" "
-                    "(simple supports at the bearing centres)"}
+RENAMED = {
+    "elastic": 'the radial foundation is now support = "foundation" with an explicit bearing_stiffness; '
+    'the default "determinate" needs no stiffness',
+    "rigid": 'the penalty ("rigid") bearing was removed: use the default "determinate" '
+    "(simple supports at the bearing centres)",
+}
 
 
 class FeInput(Strict):
@@ -39,7 +40,7 @@ class FeInput(Strict):
     solver: Literal["auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu"] = "auto"
     pin_half_angle: Angle = Field(default=FeOptions.pin_half_angle, gt=0, le=1.5707963267948966)
     cases: tuple[str, ...] = CASES
-    symmetry: StrictBool = True   # true or false only: a string such as "no" is refused, not read
+    symmetry: StrictBool = True  # true or false only: a string such as "no" is refused, not read
 
     @model_validator(mode="after")
     def _check(self):
@@ -53,25 +54,35 @@ class FeInput(Strict):
         try:  # the pin cases must carry a force in any direction
             pin_case_weights(np.array([[np.cos(a), np.sin(a)] for a in np.deg2rad(np.arange(0, 360, 5))]), pins)
         except ValueError as exc:
-            raise ValueError(f"the pin unit cases {pins} cannot carry a crankpin force in every direction "
-                             f"({exc}); list at least three directions less than 180 deg apart") from None
+            raise ValueError(
+                f"the pin unit cases {pins} cannot carry a crankpin force in every direction "
+                f"({exc}); list at least three directions less than 180 deg apart"
+            ) from None
         if self.support == "foundation" and self.bearing_stiffness is None:
-            raise ValueError("support = \"foundation\" needs bearing_stiffness (N/m^3, from the oil film and "
-                             "housing: docs/fe.md)")
+            raise ValueError(
+                'support = "foundation" needs bearing_stiffness (N/m^3, from the oil film and housing: docs/fe.md)'
+            )
         if self.support != "foundation" and self.bearing_stiffness is not None:
-            raise ValueError("bearing_stiffness applies to support = \"foundation\" only")
+            raise ValueError('bearing_stiffness applies to support = "foundation" only')
         return self
 
 
 def parse_fe(value: object, file: str | Path, key: str = "fe") -> FeOptions:
     """Section parser registered as ``SECTIONS["fe"]``."""
     if not isinstance(value, dict):
-        raise InputError("must be a table, e.g. [fe] support = \"elastic\"", file=str(file), key=key)
+        raise InputError('must be a table, e.g. [fe] support = "elastic"', file=str(file), key=key)
     support = value.get("support")
     if isinstance(support, str) and support in RENAMED:
-        raise InputError(f"support = {support!r} is no longer offered: {RENAMED[support]}", file=str(file),
-                         key=f"{key}.support")
+        raise InputError(
+            f"support = {support!r} is no longer offered: {RENAMED[support]}", file=str(file), key=f"{key}.support"
+        )
     raw = validate(FeInput, value, file, key)
-    return FeOptions(support=raw.support, bearing_stiffness=raw.bearing_stiffness, solver=raw.solver,
-                     pin_half_angle=raw.pin_half_angle, cases=tuple(raw.cases),
-                     torque_reaction=raw.torque_reaction, symmetry=raw.symmetry)
+    return FeOptions(
+        support=raw.support,
+        bearing_stiffness=raw.bearing_stiffness,
+        solver=raw.solver,
+        pin_half_angle=raw.pin_half_angle,
+        cases=tuple(raw.cases),
+        torque_reaction=raw.torque_reaction,
+        symmetry=raw.symmetry,
+    )

@@ -17,8 +17,9 @@ from fe_crank.fe.supports import boundary_facets, facet_basis
 SURFACE_INTORDER = 4
 
 
-def centrifugal_load(basis, density: float, omega: float, *, axis_point=(0.0, 0.0, 0.0),
-                     axis=(0.0, 0.0, 1.0)) -> np.ndarray:
+def centrifugal_load(
+    basis, density: float, omega: float, *, axis_point=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0)
+) -> np.ndarray:
     """Centrifugal body force f = rho omega^2 r_perp (d'Alembert, rotating frame).
 
     r_perp: the position's component perpendicular to the axis through ``axis_point``.
@@ -30,8 +31,7 @@ def centrifugal_load(basis, density: float, omega: float, *, axis_point=(0.0, 0.
     if not density > 0:
         raise InputError(f"density must be > 0, got {density!r}", key="material.density")
     if not omega > 0:
-        raise InputError(f"a centrifugal load needs a speed > 0, got omega = {omega!r} rad/s",
-                         key="operating.speed")
+        raise InputError(f"a centrifugal load needs a speed > 0, got omega = {omega!r} rad/s", key="operating.speed")
     a = np.asarray(axis, float) / np.linalg.norm(axis)
     p = np.asarray(axis_point, float)
 
@@ -47,11 +47,11 @@ def centrifugal_load(basis, density: float, omega: float, *, axis_point=(0.0, 0.
 class PinPressure:
     """What :func:`pin_pressure_load` applied: peak pressure per newton and arc centre."""
 
-    peak_pressure: float      # Pa for the given force
-    arc_centre: float         # rad, angle of the arc centre from +y towards +x
-    half_angle: float         # rad
+    peak_pressure: float  # Pa for the given force
+    arc_centre: float  # rad, angle of the arc centre from +y towards +x
+    half_angle: float  # rad
     centre: tuple[float, float]  # pin axis (x, y)
-    resultant: np.ndarray     # (3,) integral of the traction
+    resultant: np.ndarray  # (3,) integral of the traction
 
 
 @dataclass(frozen=True)
@@ -95,14 +95,25 @@ def _centroid_xy(fb, x) -> np.ndarray:
 
 def pin_centre(mesh, boundary: str = "crankpin") -> np.ndarray:
     """Pin axis (x, y) as the area centroid of the pin surface (a full cylinder)."""
-    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the crankpin load"),
-                    SURFACE_INTORDER, "the crankpin load")
+    fb = facet_basis(
+        mesh,
+        ElementTetP2(),
+        boundary_facets(mesh, boundary, "the crankpin load"),
+        SURFACE_INTORDER,
+        "the crankpin load",
+    )
     return _centroid_xy(fb, np.asarray(fb.global_coordinates()))
 
 
-def pin_pressure_load(basis, force, *, boundary: str = "crankpin", centre=None,
-                      half_angle: float = np.deg2rad(60.0),
-                      surface: PinSurface | None = None) -> tuple[np.ndarray, PinPressure]:
+def pin_pressure_load(
+    basis,
+    force,
+    *,
+    boundary: str = "crankpin",
+    centre=None,
+    half_angle: float = np.deg2rad(60.0),
+    surface: PinSurface | None = None,
+) -> tuple[np.ndarray, PinPressure]:
     """Crankpin bearing load: a cosine pressure over +-half_angle that integrates to ``force``.
 
     p(psi) = p0 cos(pi psi / (2 psi_0)) for |psi| < psi_0, psi measured about the pin axis
@@ -155,8 +166,13 @@ def pin_pressure_load(basis, force, *, boundary: str = "crankpin", centre=None,
 
     f = assemble_surface_load(fb, traction)
     res = f.reshape(-1, 3).sum(axis=0)
-    return f, PinPressure(peak_pressure=float(p0), arc_centre=float(a1), half_angle=float(half_angle),
-                          centre=(float(c[0]), float(c[1])), resultant=res)
+    return f, PinPressure(
+        peak_pressure=float(p0),
+        arc_centre=float(a1),
+        half_angle=float(half_angle),
+        centre=(float(c[0]), float(c[1])),
+        resultant=res,
+    )
 
 
 def face_torque_load(basis, torque: float, *, boundary: str, centre=None) -> np.ndarray:

@@ -33,7 +33,7 @@ def out_of_core(solver) -> str:
     os.environ["MKL_PARDISO_OOC_PATH"] = os.path.join(folder, "")
     if "MKL_PARDISO_OOC_MAX_CORE_SIZE" not in os.environ:
         os.environ["MKL_PARDISO_OOC_MAX_CORE_SIZE"] = str(int(OOC_CORE_SHARE * _memory_bytes() / 2**20))
-    os.environ.setdefault("MKL_PARDISO_OOC_KEEP_FILE", "0")     # files deleted when the factor is released
+    os.environ.setdefault("MKL_PARDISO_OOC_KEEP_FILE", "0")  # files deleted when the factor is released
     solver.iparm[0] = 1
     solver.iparm[1] = 2
     solver.iparm[9] = 8

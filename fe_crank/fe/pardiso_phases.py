@@ -19,7 +19,7 @@ def pardiso_factorize(solver, A: sp.csr_matrix) -> float:
     and symbolic factorisation) then 22 (numerical factorisation), the same work as its
     phase 12; returns the seconds of the analysis."""
     solver._check_A(A)
-    solver.factorized_A = solver._hash_csr_matrix(A)   # ``solve`` then reuses the factor (phase 33)
+    solver.factorized_A = solver._hash_csr_matrix(A)  # ``solve`` then reuses the factor (phase 33)
     b = np.zeros((A.shape[0], 1))
     t0 = time.perf_counter()
     solver.set_phase(11)
@@ -45,7 +45,7 @@ class SharedAnalysis:
         self.solver = solver
         self.maxfct = int(maxfct)
         self.n = A.shape[0]
-        self.ia = A.indptr.astype(np.int32) + 1                     # 1-based (iparm(35) = 0)
+        self.ia = A.indptr.astype(np.int32) + 1  # 1-based (iparm(35) = 0)
         self.ja = A.indices.astype(np.int32) + 1
         self.live: set[int] = set()
         t0 = time.perf_counter()
@@ -64,18 +64,29 @@ class SharedAnalysis:
         err = ctypes.c_int32(0)
         i32, f64 = ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_double)
         data = np.ascontiguousarray(data, dtype=float)
-        s._mkl_pardiso(s.pt.ctypes.data_as(ctypes.POINTER(s._pt_type[0])), ctypes.byref(ctypes.c_int32(self.maxfct)),
-                       ctypes.byref(ctypes.c_int32(mnum)), ctypes.byref(ctypes.c_int32(s.mtype)),
-                       ctypes.byref(ctypes.c_int32(phase)), ctypes.byref(ctypes.c_int32(self.n)),
-                       data.ctypes.data_as(f64), self.ia.ctypes.data_as(i32), self.ja.ctypes.data_as(i32),
-                       s.perm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
-                       s.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)), b.ctypes.data_as(f64),
-                       x.ctypes.data_as(f64), ctypes.byref(err))
+        s._mkl_pardiso(
+            s.pt.ctypes.data_as(ctypes.POINTER(s._pt_type[0])),
+            ctypes.byref(ctypes.c_int32(self.maxfct)),
+            ctypes.byref(ctypes.c_int32(mnum)),
+            ctypes.byref(ctypes.c_int32(s.mtype)),
+            ctypes.byref(ctypes.c_int32(phase)),
+            ctypes.byref(ctypes.c_int32(self.n)),
+            data.ctypes.data_as(f64),
+            self.ia.ctypes.data_as(i32),
+            self.ja.ctypes.data_as(i32),
+            s.perm.ctypes.data_as(i32),
+            ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
+            s.iparm.ctypes.data_as(i32),
+            ctypes.byref(ctypes.c_int32(0)),
+            b.ctypes.data_as(f64),
+            x.ctypes.data_as(f64),
+            ctypes.byref(err),
+        )
         if err.value != 0:
             raise PyPardisoError(err.value)
         return np.ascontiguousarray(x)
 
-    def factor(self, mnum: int, A: sp.csr_matrix) -> "SharedMember":
+    def factor(self, mnum: int, A: sp.csr_matrix) -> SharedMember:
         """Phase 22 of matrix ``mnum`` (values of ``A``, the common pattern)."""
         if not (np.array_equal(A.indptr + 1, self.ia) and np.array_equal(A.indices + 1, self.ja)):
             raise ValueError("a matrix of another sparsity pattern cannot share the analysis")

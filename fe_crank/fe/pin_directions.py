@@ -105,7 +105,7 @@ def pin_case_weights(force: np.ndarray, names) -> np.ndarray:
         raise ValueError(f"pin unit cases {names} leave a gap of {gaps.max():g} deg: every gap must be < 180 deg")
     mag = np.hypot(F[:, 0], F[:, 1])
     psi = np.mod(np.rad2deg(np.arctan2(F[:, 1], F[:, 0])), 360.0)
-    k = np.searchsorted(sd, psi, side="right") - 1           # -1: below the first direction
+    k = np.searchsorted(sd, psi, side="right") - 1  # -1: below the first direction
     lo = np.where(k < 0, sd[-1] - 360.0, sd[np.maximum(k, 0)])
     kn = np.where(k < 0, 0, (k + 1) % len(sd))
     hi = sd[kn] + np.where((k >= 0) & (kn == 0), 360.0, 0.0)

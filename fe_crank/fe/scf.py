@@ -51,8 +51,8 @@ from fe_crank.fe.system import EQUILIBRIUM_TOL, build_system
 ALL6 = ("ux", "uy", "uz", "rx", "ry", "rz")
 PIN_FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2")
 JOURNAL_FILLETS = ("journal_fillet_1", "journal_fillet_2")
-PRINCIPAL_LIMIT = 0.03   # UR M53 App. III 2.3.1
-AVERAGING_LIMIT = 0.05   # UR M53 App. III 2.3.2
+PRINCIPAL_LIMIT = 0.03  # UR M53 App. III 2.3.1
+AVERAGING_LIMIT = 0.05  # UR M53 App. III 2.3.2
 
 
 def tau_equiv(s: np.ndarray) -> np.ndarray:
@@ -69,11 +69,11 @@ class Peak:
     """Largest value of a stress measure over one fillet and the mesh checks at that node."""
 
     group: str
-    value: float                # Pa per unit load
+    value: float  # Pa per unit load
     node: int
     point: tuple[float, float, float]
-    principal_ratio: float      # min|s_i| / max|s_i| at the node (2.3.1: < 0.03)
-    averaging: float            # max over the node's elements |s_el - s_avg| / s_avg (2.3.2: < 0.05)
+    principal_ratio: float  # min|s_i| / max|s_i| at the node (2.3.1: < 0.03)
+    averaging: float  # max over the node's elements |s_el - s_avg| / s_avg (2.3.2: < 0.05)
 
     @property
     def principal_ok(self) -> bool:
@@ -123,7 +123,7 @@ def _peaks(mesh, u, E, nu, groups, measure: str, basis) -> dict[str, Peak]:
     s_avg = _average(s_el, nodes, n)
     f = MEASURES[measure]
     m_avg = f(s_avg)
-    m_el = f(s_el)                                        # (10, ne)
+    m_el = f(s_el)  # (10, ne)
     out = {}
     for g in groups:
         fn = np.unique(dofs.get_facet_dofs(boundary_facets(mesh, g, "the SCF mode")).all())
@@ -132,16 +132,23 @@ def _peaks(mesh, u, E, nu, groups, measure: str, basis) -> dict[str, Peak]:
         at = nodes == i
         dev = np.abs(m_el[at] - m_avg[i]).max() / m_avg[i] if m_avg[i] > 0 else 0.0
         x = basis.doflocs[:, i]
-        out[g] = Peak(g, float(m_avg[i]), i, tuple(float(c) for c in x),
-                      float(p.min() / p.max()) if p.max() > 0 else 0.0, float(dev))
+        out[g] = Peak(
+            g,
+            float(m_avg[i]),
+            i,
+            tuple(float(c) for c in x),
+            float(p.min() / p.max()) if p.max() > 0 else 0.0,
+            float(dev),
+        )
     return out
 
 
 def _pin_traction_load(basis, force_y: float, boundary: str = "crankpin") -> np.ndarray:
     """Uniform traction (0, F/A, 0) over the pin surface: a distributing coupling of F (App. III 3.3.1)."""
     mesh = basis.mesh
-    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the 3-point bending load"),
-                     4, "the 3-point bending load")
+    fb = facet_basis(
+        mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the 3-point bending load"), 4, "the 3-point bending load"
+    )
     area = float(fb.dx.sum())
 
     def traction(x, n):
@@ -170,14 +177,26 @@ def solve_three_point(mesh, E: float, nu: float, *, solver: str = "auto"):
 
     Returns the ``System``, the displacement and the load vector.
     """
-    system = build_system(mesh, E, nu, solver=solver, couplings=[
-        Coupling("end_1", fixed=("ux", "uy", "uz", "rz")), Coupling("end_2", fixed=("ux", "uy"))])
+    system = build_system(
+        mesh,
+        E,
+        nu,
+        solver=solver,
+        couplings=[Coupling("end_1", fixed=("ux", "uy", "uz", "rz")), Coupling("end_2", fixed=("ux", "uy"))],
+    )
     f = _pin_traction_load(system.basis, -1.0)
     return system, system.solve(f), f
 
 
-def scf_stresses(throw_mesh, material, *, web_centres: tuple[float, float], solver: str = "auto",
-                 pin_fillets=PIN_FILLETS, journal_fillets=JOURNAL_FILLETS) -> ScfStresses:
+def scf_stresses(
+    throw_mesh,
+    material,
+    *,
+    web_centres: tuple[float, float],
+    solver: str = "auto",
+    pin_fillets=PIN_FILLETS,
+    journal_fillets=JOURNAL_FILLETS,
+) -> ScfStresses:
     """Solve the three UR M53 App. III cases for unit loads (see module docstring).
 
     ``throw_mesh``: a ``ThrowMesh`` or ``MeshTet2`` with boundaries ``end_1``, ``end_2``
@@ -209,9 +228,16 @@ def scf_stresses(throw_mesh, material, *, web_centres: tuple[float, float], solv
     refs = {k: np.asarray(v, float) for k, v in sys2.ref_points.items()}
     lever = {side: abs(float(zc) - refs[side][2]) for side, zc in zip(("end_1", "end_2"), web_centres)}
     reaction = {side: abs(float(reac[side][1])) for side in ("end_1", "end_2")}
-    return ScfStresses(bending=bending, torsion=torsion, three_point=three, reaction=reaction, lever=lever,
-                       equilibrium_error=eq, n_dof=n_dof,
-                       support_points={k: tuple(float(c) for c in v) for k, v in refs.items()})
+    return ScfStresses(
+        bending=bending,
+        torsion=torsion,
+        three_point=three,
+        reaction=reaction,
+        lever=lever,
+        equilibrium_error=eq,
+        n_dof=n_dof,
+        support_points={k: tuple(float(c) for c in v) for k, v in refs.items()},
+    )
 
 
 def web_centres_from_mesh(throw_mesh, web_thickness: float, journal_fillets=JOURNAL_FILLETS) -> tuple[float, float]:

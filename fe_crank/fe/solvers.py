@@ -50,7 +50,7 @@ SUPERLU_MAX_DOF = 60_000
 DESCRIPTIONS = {
     "pardiso": "MKL PARDISO (pypardiso), sparse Cholesky, factorised once",
     "pardiso_ooc": "MKL PARDISO (pypardiso), sparse Cholesky, factorised once, out of core where the factor "
-                   "does not fit in memory",
+    "does not fit in memory",
     "cholmod": "CHOLMOD (SuiteSparse, via cholespy), supernodal Cholesky, factorised once",
     "superlu": "SciPy SuperLU, sparse LU, factorised once",
     "amg": "conjugate gradients with pyamg smoothed-aggregation preconditioner (rigid-body modes)",
@@ -63,7 +63,7 @@ def pardiso_available() -> bool:
     """True where pypardiso (and MKL) import."""
     try:
         import pypardiso  # noqa: F401
-    except Exception:  # noqa: BLE001 - any import failure means "not available"
+    except Exception:
         return False
     return True
 
@@ -72,7 +72,7 @@ def cholmod_available() -> bool:
     """True where cholespy (CHOLMOD) imports."""
     try:
         import cholespy  # noqa: F401
-    except Exception:  # noqa: BLE001 - any import failure means "not available"
+    except Exception:
         return False
     return True
 
@@ -82,9 +82,11 @@ def fallback_note(method: str, n_dof: int) -> str | None:
     if method != "auto" or pardiso_available():
         return None
     chosen = choose_method("auto", n_dof)
-    return (f"pypardiso (MKL PARDISO) is not installed; using {DESCRIPTIONS[chosen]} instead"
-            + ("" if chosen == "cholmod" else ", much slower on large meshes")
-            + ". Install it with: pip install pypardiso (x86-64)")
+    return (
+        f"pypardiso (MKL PARDISO) is not installed; using {DESCRIPTIONS[chosen]} instead"
+        + ("" if chosen == "cholmod" else ", much slower on large meshes")
+        + ". Install it with: pip install pypardiso (x86-64)"
+    )
 
 
 def choose_method(method: str, n_dof: int) -> str:
@@ -95,8 +97,9 @@ def choose_method(method: str, n_dof: int) -> str:
         raise InputError(f"unknown solver {method!r}; pick one of {', '.join(METHODS)}", key="fe.solver")
     if method != "auto":
         if method == "pardiso_ooc" and not pardiso_available():
-            raise InputError("solver 'pardiso_ooc' needs pypardiso (MKL PARDISO): pip install pypardiso",
-                             key="fe.solver")
+            raise InputError(
+                "solver 'pardiso_ooc' needs pypardiso (MKL PARDISO): pip install pypardiso", key="fe.solver"
+            )
         return method
     if pardiso_available():
         return "pardiso_ooc" if n_dof > OOC_MIN_DOF else "pardiso"
@@ -117,10 +120,10 @@ class Factorisation:
     _near_null: np.ndarray | None = field(default=None, repr=False)
     amg_rtol: float = 1e-10
     amg_maxiter: int = 2000
-    note: str | None = None               # why this method ran when ``auto`` fell back from PARDISO
-    _nnz: int | None = field(default=None, repr=False)   # kept by ``free``
+    note: str | None = None  # why this method ran when ``auto`` fell back from PARDISO
+    _nnz: int | None = field(default=None, repr=False)  # kept by ``free``
     _ooc_dir: str | None = field(default=None, repr=False)  # PARDISO's factor files (pardiso_ooc)
-    analysis_time: float = 0.0            # PARDISO: its phase 1 (reordering, symbolic), part of setup_time
+    analysis_time: float = 0.0  # PARDISO: its phase 1 (reordering, symbolic), part of setup_time
     _finalizer: object = field(default=None, repr=False, compare=False)
 
     def own_external(self) -> None:
@@ -144,8 +147,9 @@ class Factorisation:
         if not np.all(np.isfinite(B)):
             raise SolverError("load vector contains NaN or Inf")
         if self._impl is None:
-            raise SolverError(f"{self.method}: the factorisation was released (Factorisation.free); "
-                              "factorise again to solve")
+            raise SolverError(
+                f"{self.method}: the factorisation was released (Factorisation.free); factorise again to solve"
+            )
         if self.method in ("pardiso", "pardiso_ooc"):
             X = self._solve_pardiso(B)
         elif self.method == "superlu":
@@ -178,11 +182,18 @@ class Factorisation:
         def count(_):
             info["it"] += 1
 
-        x, flag = spla.cg(self.matrix, b, rtol=self.amg_rtol, maxiter=self.amg_maxiter,
-                          M=self._impl.aspreconditioner(cycle="V"), callback=count)
+        x, flag = spla.cg(
+            self.matrix,
+            b,
+            rtol=self.amg_rtol,
+            maxiter=self.amg_maxiter,
+            M=self._impl.aspreconditioner(cycle="V"),
+            callback=count,
+        )
         if flag != 0:
-            raise SolverError(f"AMG-preconditioned CG did not converge in {info['it']} iterations "
-                              f"(rtol {self.amg_rtol:g})")
+            raise SolverError(
+                f"AMG-preconditioned CG did not converge in {info['it']} iterations (rtol {self.amg_rtol:g})"
+            )
         return x
 
     def _check(self, B, X):
@@ -194,8 +205,10 @@ class Factorisation:
         rel = np.where(nb > 0, nr / np.where(nb > 0, nb, 1.0), nr)
         tol = self.residual_tol if self.method != "amg" else max(self.residual_tol, 10 * self.amg_rtol)
         if np.any(rel > tol):
-            raise SolverError(f"{self.method}: relative residual {rel.max():.3e} exceeds {tol:g} "
-                              "(singular stiffness: is the body supported against every rigid-body mode?)")
+            raise SolverError(
+                f"{self.method}: relative residual {rel.max():.3e} exceeds {tol:g} "
+                "(singular stiffness: is the body supported against every rigid-body mode?)"
+            )
 
     @property
     def nnz(self) -> int:
@@ -209,7 +222,7 @@ class Factorisation:
     def _matvec(self, X):
         if self.matrix is not None:
             return self.matrix @ X
-        U = self._upper                      # pardiso/cholmod keep one triangle: K = U + U^T - D
+        U = self._upper  # pardiso/cholmod keep one triangle: K = U + U^T - D
         return U @ X + U.T @ X - self._diag[:, None] * X
 
     def free(self):
@@ -220,7 +233,7 @@ class Factorisation:
             return
         self._nnz = self.nnz
         if self._finalizer is not None:
-            self._finalizer()                # runs once: a later garbage collection does nothing
+            self._finalizer()  # runs once: a later garbage collection does nothing
         elif self.method in ("pardiso", "pardiso_ooc"):
             _release_external(self._impl, self._ooc_dir)
         self._impl = None
@@ -235,8 +248,15 @@ def _release_external(impl, ooc_dir: str | None) -> None:
         shutil.rmtree(ooc_dir, ignore_errors=True)
 
 
-def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarray | None = None,
-              residual_tol: float = 1e-8, amg_rtol: float = 1e-10, upper: bool = False) -> Factorisation:
+def factorise(
+    K: sp.spmatrix,
+    method: str = "auto",
+    *,
+    near_nullspace: np.ndarray | None = None,
+    residual_tol: float = 1e-8,
+    amg_rtol: float = 1e-10,
+    upper: bool = False,
+) -> Factorisation:
     """Prepare the SPD matrix ``K`` for repeated solves with ``method`` (see module doc).
 
     ``near_nullspace`` (n, 6): rigid-body modes for smoothed aggregation (Vanek, Mandel &
@@ -251,18 +271,19 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
     n = K.shape[0]
     if n == 0:
         raise SolverError("empty system: every degree of freedom is constrained")
-    if np.any(np.diff(K.indptr) == 0):   # for an upper triangle: no diagonal and no coupling to later dofs
+    if np.any(np.diff(K.indptr) == 0):  # for an upper triangle: no diagonal and no coupling to later dofs
         raise SolverError("singular stiffness: a degree of freedom has no stiffness (empty row)")
     chosen = choose_method(method, n)
     if upper and chosen not in ("pardiso", "pardiso_ooc", "cholmod"):
         raise ValueError(f"an upper triangle cannot be factorised by {chosen}: it needs the whole matrix")
     note = fallback_note(method, n)
-    if note and note not in _warned:                 # once per process: batch runs solve many meshes
+    if note and note not in _warned:  # once per process: batch runs solve many meshes
         _warned.add(note)
         log.warning("fe-crank: %s", note)
     t0 = time.perf_counter()
-    fac = Factorisation(matrix=K, method=chosen, setup_time=0.0, residual_tol=residual_tol, amg_rtol=amg_rtol,
-                        note=note)
+    fac = Factorisation(
+        matrix=K, method=chosen, setup_time=0.0, residual_tol=residual_tol, amg_rtol=amg_rtol, note=note
+    )
     if chosen in ("pardiso", "pardiso_ooc"):
         import pypardiso
         from pypardiso.pardiso_wrapper import PyPardisoError
@@ -275,25 +296,32 @@ def factorise(K: sp.spmatrix, method: str = "auto", *, near_nullspace: np.ndarra
         try:
             fac.analysis_time = pardiso_factorize(solver, tri)
         except PyPardisoError as exc:
-            raise SolverError(f"PARDISO factorisation failed (matrix not positive definite: "
-                              f"unsupported rigid-body mode?): {exc}") from exc
+            raise SolverError(
+                f"PARDISO factorisation failed (matrix not positive definite: unsupported rigid-body mode?): {exc}"
+            ) from exc
         fac._impl = solver
         fac.own_external()
         fac._upper = tri
         fac._diag = K.diagonal()
-        fac.matrix = None                    # only the upper triangle is kept (memory)
+        fac.matrix = None  # only the upper triangle is kept (memory)
     elif chosen == "cholmod":
         from cholespy import CholeskySolverD, MatrixType
 
-        lower = K.T.tocsc() if upper else sp.tril(K, format="csc")   # CHOLMOD reads the lower triangle (stype -1)
+        lower = K.T.tocsc() if upper else sp.tril(K, format="csc")  # CHOLMOD reads the lower triangle (stype -1)
         lower.sort_indices()
         try:
-            fac._impl = CholeskySolverD(n, lower.indptr.astype(np.int32), lower.indices.astype(np.int32),
-                                        np.ascontiguousarray(lower.data, dtype=float), MatrixType.CSC)
-        except Exception as exc:  # noqa: BLE001 - cholespy raises plain exceptions
-            raise SolverError(f"CHOLMOD factorisation failed (matrix not positive definite: "
-                              f"unsupported rigid-body mode?): {exc}") from exc
-        fac._upper = lower.T.tocsr()                   # the same triangle as CSR upper (for residuals)
+            fac._impl = CholeskySolverD(
+                n,
+                lower.indptr.astype(np.int32),
+                lower.indices.astype(np.int32),
+                np.ascontiguousarray(lower.data, dtype=float),
+                MatrixType.CSC,
+            )
+        except Exception as exc:
+            raise SolverError(
+                f"CHOLMOD factorisation failed (matrix not positive definite: unsupported rigid-body mode?): {exc}"
+            ) from exc
+        fac._upper = lower.T.tocsr()  # the same triangle as CSR upper (for residuals)
         fac._diag = K.diagonal()
         fac.matrix = None
     elif chosen == "superlu":

@@ -24,7 +24,7 @@ def _stress_from_gradients(G: np.ndarray, edofs: np.ndarray, u: np.ndarray, lam:
     in turn (the order ``np.einsum("aei,ajeq->ijeq")`` takes, so the same bits, at about
     two thirds of its time).
     """
-    U = u.reshape(-1, 3)[edofs]                      # (m, ne, 3)
+    U = u.reshape(-1, 3)[edofs]  # (m, ne, 3)
     return _hooke(_grad_u(U, G, lambda a, i: U[a, :, i][None, :, None]), lam, mu)
 
 
@@ -55,7 +55,7 @@ def _stress_at_pairs(Gp: np.ndarray, edofs: np.ndarray, u: np.ndarray, lam: floa
     """sigma (6, P) at P (element, point) pairs: gradients Gp (m, 3, P), element dofs (m, P).
     The operations of ``_stress_from_gradients``, value by value."""
     base = 3 * edofs
-    U = [u[base + i] for i in range(3)]             # U[i][a, p]: u_i at local node a of pair p
+    U = [u[base + i] for i in range(3)]  # U[i][a, p]: u_i at local node a of pair p
     return _hooke(_grad_u(U, Gp, lambda a, i: U[i][a][None, :]), lam, mu)
 
 
@@ -83,12 +83,12 @@ def node_bases(mesh, dofs=None, chunk: int = NODE_CHUNK, elements=None):
     element indices to visit (ascending; default all).
     """
     e = ElementTetP2()
-    X = np.asarray(e.doflocs, float).T               # (3, m) reference nodes
+    X = np.asarray(e.doflocs, float).T  # (3, m) reference nodes
     W = np.full(X.shape[1], 1.0 / X.shape[1])
     dofs = _node_dofs(mesh, dofs)
     elements = np.arange(mesh.t.shape[1]) if elements is None else np.asarray(elements)
     for start in range(0, elements.size, chunk):
-        idx = elements[start:start + chunk]
+        idx = elements[start : start + chunk]
         yield idx, Basis(mesh, e, quadrature=(X, W), elements=idx, dofs=dofs, disable_doflocs=True)
 
 
@@ -104,13 +104,13 @@ def node_gradients(mesh, dofs=None, chunk: int = NODE_CHUNK, elements=None):
     ``CellBasis`` evaluates it for each of its m functions).
     """
     e = ElementTetP2()
-    X = np.asarray(e.doflocs, float).T               # (3, m) reference nodes
+    X = np.asarray(e.doflocs, float).T  # (3, m) reference nodes
     dofs = _node_dofs(mesh, dofs)
     mapping = mesh._mapping()
     elements = np.arange(mesh.t.shape[1]) if elements is None else np.asarray(elements)
     dphi = [e.lbasis(X, a)[1] for a in range(X.shape[1])]
     for start in range(0, elements.size, chunk):
-        idx = elements[start:start + chunk]
+        idx = elements[start : start + chunk]
         invDF = mapping.invDF(X, idx)
         G = np.stack([np.einsum("ijkl,il->jkl", invDF, d) for d in dphi])
         yield idx, G, dofs.element_dofs[:, idx]
@@ -124,8 +124,9 @@ def elements_of_nodes(element_dofs: np.ndarray, nodes, n_nodes: int) -> np.ndarr
     return np.flatnonzero(mask[element_dofs].any(axis=0))
 
 
-def element_nodal_stress(mesh, u: np.ndarray, youngs_modulus: float, poisson_ratio: float,
-                         *, dofs=None, elements=None) -> tuple[np.ndarray, np.ndarray]:
+def element_nodal_stress(
+    mesh, u: np.ndarray, youngs_modulus: float, poisson_ratio: float, *, dofs=None, elements=None
+) -> tuple[np.ndarray, np.ndarray]:
     """Unaveraged stress at each element's nodes: (6, m, ne) and the node numbers (m, ne).
 
     ``elements``: only these elements (ascending), columns in that order.
@@ -137,7 +138,7 @@ def element_nodal_stress(mesh, u: np.ndarray, youngs_modulus: float, poisson_rat
     pos = 0
     for idx, G, ed in node_gradients(mesh, dofs, elements=elements):
         sl = slice(pos, pos + idx.size)
-        s = _stress_from_gradients(G, ed, u, lam, mu)   # (6, n, m): points = nodes
+        s = _stress_from_gradients(G, ed, u, lam, mu)  # (6, n, m): points = nodes
         out[:, :, sl] = s.transpose(0, 2, 1)
         nodes[:, sl] = ed
         pos += idx.size
@@ -156,8 +157,9 @@ def stress_at_nodes(mesh, u: np.ndarray, youngs_modulus: float, poisson_ratio: f
     return _average(s, nodes, u.size // 3)
 
 
-def stress_at_selected_nodes(mesh, displacements, youngs_modulus: float, poisson_ratio: float, nodes,
-                             *, dofs=None, chunk: int = NODE_CHUNK) -> np.ndarray:
+def stress_at_selected_nodes(
+    mesh, displacements, youngs_modulus: float, poisson_ratio: float, nodes, *, dofs=None, chunk: int = NODE_CHUNK
+) -> np.ndarray:
     """Averaged nodal stress of several fields at ``nodes`` only: (k, 6, len(nodes)).
 
     ``displacements``: k interleaved displacement vectors (a sequence or an array (k, 3 N)).
@@ -177,9 +179,9 @@ def stress_at_selected_nodes(mesh, displacements, youngs_modulus: float, poisson
     local[nodes] = np.arange(nodes.size)
     out = np.zeros((len(U), 6, nodes.size))
     count = np.zeros(nodes.size)
-    for _, G, ed in node_gradients(mesh, dofs, chunk, elements=elements):   # ed (m, nc)
-        loc = local[ed.T]                                 # (nc, m), -1 where not selected
-        e_p, q_p = np.nonzero(loc >= 0)                   # (element, local node) pairs kept, element-major
+    for _, G, ed in node_gradients(mesh, dofs, chunk, elements=elements):  # ed (m, nc)
+        loc = local[ed.T]  # (nc, m), -1 where not selected
+        e_p, q_p = np.nonzero(loc >= 0)  # (element, local node) pairs kept, element-major
         where = loc[e_p, q_p]
         count += np.bincount(where, minlength=nodes.size)
         # the stress only where it is averaged: at the kept pairs (the same operations on
@@ -187,8 +189,8 @@ def stress_at_selected_nodes(mesh, displacements, youngs_modulus: float, poisson
         S = np.empty((len(U), 6, e_p.size))
         for b in range(0, e_p.size, PAIR_BLOCK):
             sl = slice(b, b + PAIR_BLOCK)
-            Gp = G[:, :, e_p[sl], q_p[sl]]                # (m, 3, p)
-            ep = ed[:, e_p[sl]]                           # (m, p)
+            Gp = G[:, :, e_p[sl], q_p[sl]]  # (m, 3, p)
+            ep = ed[:, e_p[sl]]  # (m, p)
             for j, u in enumerate(U):
                 S[j, :, sl] = _stress_at_pairs(Gp, ep, u, lam, mu)
         for j in range(len(U)):
@@ -199,29 +201,28 @@ def stress_at_selected_nodes(mesh, displacements, youngs_modulus: float, poisson
     return out / count
 
 
-def stress_at_quadrature(basis: Basis, u: np.ndarray, youngs_modulus: float, poisson_ratio: float,
-                         *, elements=None) -> np.ndarray:
+def stress_at_quadrature(
+    basis: Basis, u: np.ndarray, youngs_modulus: float, poisson_ratio: float, *, elements=None
+) -> np.ndarray:
     """Stress (6, ne, nq) at the quadrature points of ``basis`` (scalar P2); ``elements``:
     only these elements of the basis (in that order)."""
     lam, mu = lame_parameters(youngs_modulus, poisson_ratio)
     if elements is None:
         return _stress_from_gradients(_gradients(basis), basis.element_dofs, u, lam, mu)
-    G = np.stack([b[0].grad[:, elements] for b in basis.basis])   # slice first: no whole-mesh copy
+    G = np.stack([b[0].grad[:, elements] for b in basis.basis])  # slice first: no whole-mesh copy
     return _stress_from_gradients(G, basis.element_dofs[:, elements], u, lam, mu)
 
 
 def von_mises(s: np.ndarray) -> np.ndarray:
     """sigma_v = sqrt(((s1-s2)^2 + (s2-s3)^2 + (s3-s1)^2)/2 + 3 (t12^2 + t23^2 + t31^2)) (von Mises 1913)."""
     sxx, syy, szz, sxy, syz, szx = s
-    return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
-                   + 3.0 * (sxy**2 + syz**2 + szx**2))
+    return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * (sxy**2 + syz**2 + szx**2))
 
 
 def tensor(s: np.ndarray) -> np.ndarray:
     """Symmetric 3x3 tensors (..., 3, 3) from Voigt stress (6, ...)."""
     sxx, syy, szz, sxy, syz, szx = s
-    return np.stack([np.stack([sxx, sxy, szx], -1), np.stack([sxy, syy, syz], -1),
-                     np.stack([szx, syz, szz], -1)], -2)
+    return np.stack([np.stack([sxx, sxy, szx], -1), np.stack([sxy, syy, syz], -1), np.stack([szx, syz, szz], -1)], -2)
 
 
 def principal(s: np.ndarray) -> np.ndarray:
@@ -236,8 +237,9 @@ def max_shear(s: np.ndarray) -> np.ndarray:
     return 0.5 * (p[0] - p[2])
 
 
-def averaging_indicator(mesh, u: np.ndarray, youngs_modulus: float, poisson_ratio: float,
-                        groups, *, dofs=None) -> dict[str, float]:
+def averaging_indicator(
+    mesh, u: np.ndarray, youngs_modulus: float, poisson_ratio: float, groups, *, dofs=None
+) -> dict[str, float]:
     """IACS UR M53 FE-appendix mesh check for each fillet boundary in ``groups``.
 
     At the node of the fillet with the highest averaged von Mises stress, the largest

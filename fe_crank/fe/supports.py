@@ -21,8 +21,15 @@ from skfem import ElementTetP2
 
 from fe_crank.errors import MeshError
 from fe_crank.fe.assembly import assemble_foundation
-from fe_crank.fe.bases import (InverseMapError, RobustIsoparametric, _robust_mapping, cell_basis,  # noqa: F401
-                               facet_basis, mesh_dofs, prime_edge_tables)
+from fe_crank.fe.bases import (  # noqa: F401
+    InverseMapError,
+    RobustIsoparametric,
+    _robust_mapping,
+    cell_basis,
+    facet_basis,
+    mesh_dofs,
+    prime_edge_tables,
+)
 
 REF_DOFS = ("ux", "uy", "uz", "rx", "ry", "rz")
 
@@ -88,7 +95,7 @@ def assemble_foundation_matrix(mesh, found: Foundation, intorder: int = 4) -> sp
     if found.arc is not None:
         x = np.asarray(fb.global_coordinates())
         centre, half = found.arc
-        ang = np.arctan2(x[0], x[1])           # from +y towards +x
+        ang = np.arctan2(x[0], x[1])  # from +y towards +x
         dang = np.angle(np.exp(1j * (ang - centre)))
         k = found.stiffness * (np.abs(dang) <= half)
     return assemble_foundation(fb, k, radial_direction)

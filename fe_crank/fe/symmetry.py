@@ -39,7 +39,7 @@ class Mirror:
 
     axes: tuple[int, ...]
     perm: dict[int, np.ndarray]
-    on_plane: dict[int, np.ndarray]          # (N,) bool: node on plane a (its own image)
+    on_plane: dict[int, np.ndarray]  # (N,) bool: node on plane a (its own image)
 
     @property
     def group(self) -> list[tuple[tuple[int, ...], np.ndarray, np.ndarray]]:
@@ -116,8 +116,10 @@ def verify_mirror(points: np.ndarray, element_nodes: np.ndarray, axes) -> tuple[
         d, idx = tree.query(y.T, distance_upper_bound=tol)
         name = f"{AXIS_NAMES[a]} = 0"
         if np.any(~np.isfinite(d)):
-            return None, (f"{np.count_nonzero(~np.isfinite(d))} of {N} nodes have no mirror image across "
-                          f"{name} within {MATCH_TOL:g} of the model size")
+            return None, (
+                f"{np.count_nonzero(~np.isfinite(d))} of {N} nodes have no mirror image across "
+                f"{name} within {MATCH_TOL:g} of the model size"
+            )
         if np.any(idx[idx] != np.arange(N)):
             return None, f"the node map across {name} is not an involution (coincident nodes?)"
         fixed = idx == np.arange(N)
@@ -144,6 +146,9 @@ def mesh_mirror(mesh, basis, axes) -> Mirror | None:
         return None
     mirror, why = verify_mirror(basis.doflocs, basis.element_dofs, axes)
     if mirror is None:
-        log.warning("fe-crank: the mesh was meant to be mirror-symmetric (%s) but is not: %s; solving the "
-                    "full model", ", ".join(f"{AXIS_NAMES.get(a, a)} = 0" for a in axes), why)
+        log.warning(
+            "fe-crank: the mesh was meant to be mirror-symmetric (%s) but is not: %s; solving the full model",
+            ", ".join(f"{AXIS_NAMES.get(a, a)} = 0" for a in axes),
+            why,
+        )
     return mirror

@@ -71,8 +71,8 @@ def mode_characters(axes) -> np.ndarray:
 @dataclass
 class Component:
     chars: dict[int, int]
-    constrained: np.ndarray              # (3 n_Q,) bool: plane conditions and held dofs
-    held: np.ndarray                     # local dofs held against the component's rigid modes
+    constrained: np.ndarray  # (3 n_Q,) bool: plane conditions and held dofs
+    held: np.ndarray  # local dofs held against the component's rigid modes
     factor: Factorisation | None = None
 
 
@@ -82,11 +82,11 @@ class SymmetricSolver:
     of the package reads (``method``, ``description``, ``nnz``, ``free``, ``setup_time``)."""
 
     mirror: Mirror
-    nodes: np.ndarray                    # (n_Q,) full node numbers of the part
-    weights: np.ndarray                  # (n_Q,) 2^-m, m = planes the node lies on
+    nodes: np.ndarray  # (n_Q,) full node numbers of the part
+    weights: np.ndarray  # (n_Q,) 2^-m, m = planes the node lies on
     components: list[Component]
-    points: np.ndarray                   # (3, N) all nodes
-    held_full: np.ndarray                # (6,) the full model's point dofs
+    points: np.ndarray  # (3, N) all nodes
+    held_full: np.ndarray  # (6,) the full model's point dofs
     method: str
     setup_time: float = 0.0
     note: str | None = None
@@ -97,8 +97,10 @@ class SymmetricSolver:
         k = len(self.mirror.axes)
         d = DESCRIPTIONS.get(self.method, self.method)
         part = "half" if k == 1 else "quarter"
-        s = (f"{d}; solved on {2 ** k} symmetry components of the {part} of the mesh (mirror plane{'s' if k > 1 else ''} "
-             f"{self.mirror.describe()}, {3 * self.nodes.size} dofs each)")
+        s = (
+            f"{d}; solved on {2**k} symmetry components of the {part} of the mesh (mirror plane{'s' if k > 1 else ''} "
+            f"{self.mirror.describe()}, {3 * self.nodes.size} dofs each)"
+        )
         return s if not self.note else f"{s} ({self.note})"
 
     @property
@@ -124,15 +126,16 @@ class SymmetricSolver:
         group = self.mirror.group
         for comp in self.components:
             b = np.zeros((self.nodes.size, 3, k))
-            for planes, p, s in group:           # f_e at the part's nodes: 2^-k sum_g chi(g) (g f)
+            for planes, p, s in group:  # f_e at the part's nodes: 2^-k sum_g chi(g) (g f)
                 b += character_of(comp.chars, planes) * s[None, :, None] * Fn[p[self.nodes]]
             b *= self.weights[:, None, None] / len(group)
             b = b.reshape(-1, k)
             b[comp.constrained] = 0.0
             q = comp.factor.solve(b).reshape(self.nodes.size, 3, k)
-            for planes, p, s in group:           # u_e = sum_g chi(g) g q, each image once
-                U[p[self.nodes]] += (character_of(comp.chars, planes) * self.weights)[:, None, None] \
-                    * s[None, :, None] * q
+            for planes, p, s in group:  # u_e = sum_g chi(g) g q, each image once
+                U[p[self.nodes]] += (
+                    (character_of(comp.chars, planes) * self.weights)[:, None, None] * s[None, :, None] * q
+                )
         U = U.reshape(3 * N, k)
         _remove_rigid_fit(self.points, self.held_full, U)
         return U
@@ -171,7 +174,7 @@ def pick_held(x: np.ndarray, free: np.ndarray, modes: list[int]) -> np.ndarray:
     if not modes:
         return np.zeros(0, int)
     B = rigid_body_modes(x)
-    B[:, 3:] /= np.ptp(x, axis=1).max()                            # rotations in length units
+    B[:, 3:] /= np.ptp(x, axis=1).max()  # rotations in length units
     B = B[:, modes]
     rows = np.flatnonzero(free)
     _, R, piv = sla.qr(B[rows].T, pivoting=True, mode="economic")
@@ -181,9 +184,16 @@ def pick_held(x: np.ndarray, free: np.ndarray, modes: list[int]) -> np.ndarray:
     return rows[piv[:r]]
 
 
-def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson_ratio: float,
-                           held_full: np.ndarray, solver: str = "auto", *,
-                           share_ordering: bool | None = None) -> SymmetricSolver | None:
+def build_symmetric_solver(
+    basis,
+    mirror: Mirror,
+    youngs_modulus: float,
+    poisson_ratio: float,
+    held_full: np.ndarray,
+    solver: str = "auto",
+    *,
+    share_ordering: bool | None = None,
+) -> SymmetricSolver | None:
     """Assemble the part's stiffness once and factorise each component (module doc).
 
     Returns None (logged) when the method is not a direct one this path supports.
@@ -191,14 +201,13 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
     n_full = 3 * basis.N
     method = choose_method(solver, n_full)
     if method not in METHODS:
-        log.info("fe-crank: the %s solver runs on the full model (symmetry components need a direct solver)",
-                 method)
+        log.info("fe-crank: the %s solver runs on the full model (symmetry components need a direct solver)", method)
         return None
     timings = {}
     t0 = time.perf_counter()
     x = basis.doflocs
     el = basis.element_dofs
-    centroid = x[:, el[:4]].mean(axis=1)                           # (3, ne)
+    centroid = x[:, el[:4]].mean(axis=1)  # (3, ne)
     part = np.flatnonzero(np.all([centroid[a] > 0 for a in mirror.axes], axis=0))
     if part.size * 2 ** len(mirror.axes) != el.shape[1]:
         log.warning("fe-crank: the mirror halves do not partition the elements; solving the full model")
@@ -207,7 +216,7 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
     m = np.zeros(nodes.size, int)
     for a in mirror.axes:
         m += mirror.on_plane[a][nodes]
-    weights = 0.5 ** m
+    weights = 0.5**m
     # the part's stiffness in its own numbering, from the whole basis's gradients (no basis
     # of its own, no whole-size matrix): the matrix K[ldofs][:, ldofs] of the part's elements
     K = part_stiffness(basis, part, nodes, youngs_modulus, poisson_ratio)
@@ -224,7 +233,7 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
         for a, e in chars.items():
             on = mirror.on_plane[a][nodes]
             for c in range(3):
-                if (c == a) != (e == -1):                          # sign of component c under R_a != e_a
+                if (c == a) != (e == -1):  # sign of component c under R_a != e_a
                     allowed[on, c] = False
         modes = [j for j in range(6) if all(mchars[j, i] == chars[a] for i, a in enumerate(mirror.axes))]
         held = pick_held(x[:, nodes], allowed.ravel(), modes)
@@ -236,10 +245,10 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
     share = SHARE_ORDERING if share_ordering is None else share_ordering
     matrices = []
     for i, comp in enumerate(comps):
-        A = Kq if i == len(comps) - 1 else Kq.copy()               # the last one takes the part's own
-        cut = np.repeat(comp.constrained, row_len) | comp.constrained[A.indices]   # row or column held
-        A.data[cut] = 0.0                                          # explicit zeros: the pattern stays
-        diag = A.indptr[:-1]                                       # upper triangle, sorted: diagonal first
+        A = Kq if i == len(comps) - 1 else Kq.copy()  # the last one takes the part's own
+        cut = np.repeat(comp.constrained, row_len) | comp.constrained[A.indices]  # row or column held
+        A.data[cut] = 0.0  # explicit zeros: the pattern stays
+        diag = A.indptr[:-1]  # upper triangle, sorted: diagonal first
         if not np.array_equal(A.indices[diag], np.arange(A.shape[0])):
             raise SolverError("the part's stiffness lacks a diagonal entry")
         A.data[diag[comp.constrained]] = 1.0
@@ -250,14 +259,22 @@ def build_symmetric_solver(basis, mirror: Mirror, youngs_modulus: float, poisson
             comp.factor = fac
     else:
         for comp, A in zip(comps, matrices):
-            if method == "superlu":                                # SuperLU needs the whole matrix
+            if method == "superlu":  # SuperLU needs the whole matrix
                 A = (A + A.T - sp.diags(A.diagonal())).tocsr()
             comp.factor = factorise(A, method, upper=method != "superlu")
     timings["factorisation"] = time.perf_counter() - t0
     timings["analysis"] = sum(c.factor.analysis_time for c in comps)
-    return SymmetricSolver(mirror=mirror, nodes=nodes, weights=weights, components=comps, points=x,
-                           held_full=np.asarray(held_full, int), method=method,
-                           setup_time=timings["factorisation"], timings=timings)
+    return SymmetricSolver(
+        mirror=mirror,
+        nodes=nodes,
+        weights=weights,
+        components=comps,
+        points=x,
+        held_full=np.asarray(held_full, int),
+        method=method,
+        setup_time=timings["factorisation"],
+        timings=timings,
+    )
 
 
 def _pardiso_solver():
@@ -265,13 +282,13 @@ def _pardiso_solver():
     user iparm values only with iparm(1) = 1; as ``pardiso_ooc.out_of_core``)."""
     import pypardiso
 
-    if "solver" not in _TEMPLATE:            # finding and loading mkl_rt takes ~0.6 s: once per process
+    if "solver" not in _TEMPLATE:  # finding and loading mkl_rt takes ~0.6 s: once per process
         _TEMPLATE["solver"] = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
     solver = copy.copy(_TEMPLATE["solver"])
-    solver.pt = np.zeros_like(solver.pt)     # a handle of its own
+    solver.pt = np.zeros_like(solver.pt)  # a handle of its own
     solver.iparm = np.zeros_like(solver.iparm)
     solver.iparm[0] = 1
-    solver.iparm[1] = 2                      # METIS nested dissection
+    solver.iparm[1] = 2  # METIS nested dissection
     solver.iparm[9] = 8
     solver.iparm[17] = -1
     return solver
@@ -287,8 +304,12 @@ def _pardiso_shared(matrices) -> list[Factorisation]:
         for k, A in enumerate(matrices):
             t0 = time.perf_counter()
             member = shared.factor(k + 1, A)
-            fac = Factorisation(matrix=None, method="pardiso", setup_time=time.perf_counter() - t0,
-                                analysis_time=shared.analysis_time if k == 0 else 0.0)
+            fac = Factorisation(
+                matrix=None,
+                method="pardiso",
+                setup_time=time.perf_counter() - t0,
+                analysis_time=shared.analysis_time if k == 0 else 0.0,
+            )
             fac._impl, fac._upper, fac._diag = member, A, A.diagonal()
             fac.own_external()
             out.append(fac)

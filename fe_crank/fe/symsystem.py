@@ -35,8 +35,9 @@ def stiffness_rows(basis, youngs_modulus: float, poisson_ratio: float, rows: np.
     """Rows ``rows`` (vector dofs) of the full stiffness K, (len(rows), 3 N), assembled on the
     elements that contain their nodes only."""
     elements = elements_of_nodes(basis.element_dofs, np.unique(rows // 3), basis.N)
-    sub = Basis(basis.mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs,
-                elements=elements)
+    sub = Basis(
+        basis.mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs, elements=elements
+    )
     return assemble_stiffness(sub, youngs_modulus, poisson_ratio)[rows].tocsr()
 
 
@@ -52,32 +53,35 @@ def selection(n: int, held: np.ndarray) -> sp.csr_matrix:
     return sp.csr_matrix((np.ones(m), np.arange(m), indptr), shape=(n, m))
 
 
-def determinate_system(mesh, youngs_modulus: float, poisson_ratio: float, layout, axes=(), *,
-                       solver: str = "auto", intorder: int = 2) -> System:
+def determinate_system(
+    mesh, youngs_modulus: float, poisson_ratio: float, layout, axes=(), *, solver: str = "auto", intorder: int = 2
+) -> System:
     """The System of the determinate supports ``layout``: on the symmetry components across
     ``axes`` (the mesh's stated mirror planes) where they verify, else the full model."""
     t0 = time.perf_counter()
-    basis = cell_basis(mesh, intorder)    # the whole mesh's P2 basis, built once (fe.bases)
+    basis = cell_basis(mesh, intorder)  # the whole mesh's P2 basis, built once (fe.bases)
     sup = determinate_support(basis, layout)
     if axes:
         system = symmetric_system(basis, sup, youngs_modulus, poisson_ratio, axes, solver, t0)
         if system is not None:
             return system
     t_pre = time.perf_counter() - t0
-    system = build_system(mesh, youngs_modulus, poisson_ratio, determinate=sup, solver=solver, intorder=intorder,
-                          basis=basis)
+    system = build_system(
+        mesh, youngs_modulus, poisson_ratio, determinate=sup, solver=solver, intorder=intorder, basis=basis
+    )
     system.timings["assembly"] += t_pre
     return system
 
 
-def symmetric_system(basis, sup, youngs_modulus: float, poisson_ratio: float, axes, solver: str,
-                     t_start: float) -> System | None:
+def symmetric_system(
+    basis, sup, youngs_modulus: float, poisson_ratio: float, axes, solver: str, t_start: float
+) -> System | None:
     """The determinate ``System`` solved on the symmetry components across ``axes``, or None
     (logged why)."""
     mirror = mesh_mirror(basis.mesh, basis, axes)
     if mirror is None:
         return None
-    t_pre = time.perf_counter() - t_start             # basis and determinate supports
+    t_pre = time.perf_counter() - t_start  # basis and determinate supports
     solver_ = build_symmetric_solver(basis, mirror, youngs_modulus, poisson_ratio, sup.held, solver)
     if solver_ is None:
         return None
@@ -87,10 +91,29 @@ def symmetric_system(basis, sup, youngs_modulus: float, poisson_ratio: float, ax
     n = 3 * basis.N
     P = selection(n, rows)
     t = solver_.timings
-    timings = {"assembly": t_pre + t["assembly"], "constraints": t["constraints"] + time.perf_counter() - t0,
-               "factorisation": t["factorisation"]}
+    timings = {
+        "assembly": t_pre + t["assembly"],
+        "constraints": t["constraints"] + time.perf_counter() - t0,
+        "factorisation": t["factorisation"],
+    }
     log.info("fe-crank: %s", solver_.description)
-    return System(mesh=basis.mesh, basis=basis, K_rows=K_rows, rows=rows, Ks=sp.csr_matrix((n, n)), P=P,
-                  foundations=(), couplings=(), ref_points={}, ref_columns={}, slave_dofs={},
-                  dirichlet_dofs=np.zeros(0, int), foundation_dofs={}, factorisation=solver_,
-                  point_dofs=rows, determinate=sup, timings=timings, symmetric=solver_)
+    return System(
+        mesh=basis.mesh,
+        basis=basis,
+        K_rows=K_rows,
+        rows=rows,
+        Ks=sp.csr_matrix((n, n)),
+        P=P,
+        foundations=(),
+        couplings=(),
+        ref_points={},
+        ref_columns={},
+        slave_dofs={},
+        dirichlet_dofs=np.zeros(0, int),
+        foundation_dofs={},
+        factorisation=solver_,
+        point_dofs=rows,
+        determinate=sup,
+        timings=timings,
+        symmetric=solver_,
+    )

@@ -21,8 +21,17 @@ from fe_crank.fe.assembly import assemble_stiffness
 from fe_crank.fe.determinate import DeterminateSupport, determinate_support
 from fe_crank.fe.equilibrium import EquilibriumChecks
 from fe_crank.fe.solvers import Factorisation, choose_method, factorise
-from fe_crank.fe.supports import (REF_DOFS, Coupling, Foundation, assemble_foundation_matrix,
-                                  boundary_facets, cell_basis, coupling_rows, face_centroid, rigid_body_modes)
+from fe_crank.fe.supports import (
+    REF_DOFS,
+    Coupling,
+    Foundation,
+    assemble_foundation_matrix,
+    boundary_facets,
+    cell_basis,
+    coupling_rows,
+    face_centroid,
+    rigid_body_modes,
+)
 
 EQUILIBRIUM_TOL = 1e-6
 
@@ -33,22 +42,22 @@ class System(EquilibriumChecks):
 
     mesh: object
     basis: Basis
-    K_rows: sp.csr_matrix             # rows of the elastic stiffness at constrained dofs
-    rows: np.ndarray                  # those dofs (coupling slaves and held dofs)
-    Ks: sp.csr_matrix                 # foundations (full)
-    P: sp.csr_matrix                  # full <- reduced
+    K_rows: sp.csr_matrix  # rows of the elastic stiffness at constrained dofs
+    rows: np.ndarray  # those dofs (coupling slaves and held dofs)
+    Ks: sp.csr_matrix  # foundations (full)
+    P: sp.csr_matrix  # full <- reduced
     foundations: tuple[Foundation, ...]
     couplings: tuple[Coupling, ...]
     ref_points: dict[str, np.ndarray]
-    ref_columns: dict[str, dict[str, int]]   # coupling -> ref dof name -> reduced column (free only)
-    slave_dofs: dict[str, np.ndarray]        # coupling -> scalar dofs
-    dirichlet_dofs: np.ndarray               # full vector dofs held at zero
-    foundation_dofs: dict[str, np.ndarray]   # foundation boundary -> scalar dofs
+    ref_columns: dict[str, dict[str, int]]  # coupling -> ref dof name -> reduced column (free only)
+    slave_dofs: dict[str, np.ndarray]  # coupling -> scalar dofs
+    dirichlet_dofs: np.ndarray  # full vector dofs held at zero
+    foundation_dofs: dict[str, np.ndarray]  # foundation boundary -> scalar dofs
     factorisation: Factorisation
     point_dofs: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # single vector dofs held
-    determinate: DeterminateSupport | None = None   # reactions applied as loads (fe.determinate)
+    determinate: DeterminateSupport | None = None  # reactions applied as loads (fe.determinate)
     timings: dict[str, float] = field(default_factory=dict)
-    symmetric: object | None = None   # fe.symsolve.SymmetricSolver: solved on symmetry components
+    symmetric: object | None = None  # fe.symsolve.SymmetricSolver: solved on symmetry components
 
     @property
     def n_dof(self) -> int:
@@ -75,9 +84,9 @@ class System(EquilibriumChecks):
     def solve(self, f: np.ndarray, ref_loads: list[dict] | None = None) -> np.ndarray:
         """Full displacement vectors for load vectors f (n_full,) or (n_full, k)."""
         F = f[:, None] if f.ndim == 1 else f
-        if self.determinate is not None:           # the statically determinate reactions as loads
+        if self.determinate is not None:  # the statically determinate reactions as loads
             F = self.determinate.self_equilibrated(F)[0]
-        if self.symmetric is not None:             # determinate only: no reference loads
+        if self.symmetric is not None:  # determinate only: no reference loads
             U = self.symmetric.solve(F)
             return U[:, 0] if f.ndim == 1 else U
         refs = ref_loads or [None] * F.shape[1]
@@ -87,9 +96,20 @@ class System(EquilibriumChecks):
         return U[:, 0] if f.ndim == 1 else U
 
 
-def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
-                 foundations=(), couplings=(), dirichlet=(), held_dofs=(), determinate=None,
-                 solver: str = "auto", intorder: int = 2, basis: Basis | None = None) -> System:
+def build_system(
+    mesh,
+    youngs_modulus: float,
+    poisson_ratio: float,
+    *,
+    foundations=(),
+    couplings=(),
+    dirichlet=(),
+    held_dofs=(),
+    determinate=None,
+    solver: str = "auto",
+    intorder: int = 2,
+    basis: Basis | None = None,
+) -> System:
     """Assemble K (vectorised), the supports and the transformation; factorise once.
 
     ``held_dofs``: single vector dofs (3 node + component) held at zero.
@@ -137,8 +157,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
             raise MeshError(f"boundary {c.boundary!r}: nodes already belong to another coupling or fixed set")
         owner[s] = ci
         slave[c.boundary] = s
-        refp[c.boundary] = (np.asarray(c.ref_point, float) if c.ref_point is not None
-                            else face_centroid(mesh, facets))
+        refp[c.boundary] = np.asarray(c.ref_point, float) if c.ref_point is not None else face_centroid(mesh, facets)
         bad = set(c.fixed) - set(REF_DOFS)
         if bad:
             raise MeshError(f"coupling {c.boundary!r}: unknown dofs {sorted(bad)}; pick from {REF_DOFS}")
@@ -151,7 +170,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     refcols = {}
     for c in couplings:
         s = slave[c.boundary]
-        T = coupling_rows(basis.doflocs[:, s] - refp[c.boundary][:, None])   # (ns, 3, 6)
+        T = coupling_rows(basis.doflocs[:, s] - refp[c.boundary][:, None])  # (ns, 3, 6)
         cmap = {}
         for k, dof in enumerate(REF_DOFS):
             if dof in c.fixed:
@@ -171,7 +190,7 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     Kr = _reduced(K, Ks, P, free, direct=direct)
     rows = np.union1d(np.flatnonzero(is_slave), np.flatnonzero(held))
     K_rows = K[rows]
-    del K                                    # the full matrix is not kept: memory for the factor
+    del K  # the full matrix is not kept: memory for the factor
     timings["constraints"] = time.perf_counter() - t0
 
     near_null = None
@@ -182,11 +201,25 @@ def build_system(mesh, youngs_modulus: float, poisson_ratio: float, *,
     fac = factorise(Kr, solver, near_nullspace=near_null, upper=direct)
     del Kr
     timings["factorisation"] = time.perf_counter() - t0
-    return System(mesh=mesh, basis=basis, K_rows=K_rows, rows=rows, Ks=Ks.tocsr(), P=P, foundations=tuple(foundations),
-                  couplings=tuple(couplings), ref_points=refp, ref_columns=refcols, slave_dofs=slave,
-                  dirichlet_dofs=np.concatenate(ddofs) if ddofs else np.zeros(0, int),
-                  foundation_dofs=fdofs, factorisation=fac, timings=timings, point_dofs=point_dofs,
-                  determinate=sup)
+    return System(
+        mesh=mesh,
+        basis=basis,
+        K_rows=K_rows,
+        rows=rows,
+        Ks=Ks.tocsr(),
+        P=P,
+        foundations=tuple(foundations),
+        couplings=tuple(couplings),
+        ref_points=refp,
+        ref_columns=refcols,
+        slave_dofs=slave,
+        dirichlet_dofs=np.concatenate(ddofs) if ddofs else np.zeros(0, int),
+        foundation_dofs=fdofs,
+        factorisation=fac,
+        timings=timings,
+        point_dofs=point_dofs,
+        determinate=sup,
+    )
 
 
 def _reduced(K, Ks, P, free, *, direct: bool):
@@ -199,10 +232,10 @@ def _reduced(K, Ks, P, free, *, direct: bool):
     are dropped as the products drop them, so the pattern, hence PARDISO's ordering and
     its factor, are the same.
     """
-    if P.shape[1] == free.size:              # no coupling columns: P is the selection of ``free``
+    if P.shape[1] == free.size:  # no coupling columns: P is the selection of ``free``
         A = K if Ks.nnz == 0 else K + Ks
         if direct:
-            A = sp.triu(A, format="csr")     # the triangle of a principal submatrix is the submatrix of the triangle
+            A = sp.triu(A, format="csr")  # the triangle of a principal submatrix is the submatrix of the triangle
         Kr = A[free][:, free].tocsr()
     else:
         Kr = (P.T @ (K + Ks) @ P).tocsr()
@@ -218,7 +251,7 @@ def _reduce_modes(B, free, refcols, refp) -> np.ndarray:
     Br = np.zeros((free.size + sum(len(c) for c in refcols.values()), 6))
     Br[: free.size] = B[free]
     for name, cmap in refcols.items():
-        at_ref = rigid_body_modes(refp[name][:, None])     # (3, 6): u0 of each mode
+        at_ref = rigid_body_modes(refp[name][:, None])  # (3, 6): u0 of each mode
         for dof, col in cmap.items():
             k = REF_DOFS.index(dof)
             if k < 3:

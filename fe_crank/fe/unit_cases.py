@@ -26,16 +26,26 @@ import numpy as np
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
-from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
-from fe_crank.fe.fe_options import (CASES, PIN_FORCES, SUPPORTS, TORQUE_ENDS, FeOptions, Material,  # noqa: F401
-                                     axial_journal, check_support_options, support_text)
-from fe_crank.fe.pin_directions import pin_case_weights, pin_direction, unit_force
 from fe_crank.fe.determinate import POINT_REACTION_TOL, DeterminateLayout
-from fe_crank.fe.symsystem import determinate_system
+from fe_crank.fe.fe_options import (  # noqa: F401
+    CASES,
+    PIN_FORCES,
+    SUPPORTS,
+    TORQUE_ENDS,
+    FeOptions,
+    Material,
+    axial_journal,
+    check_support_options,
+    support_text,
+)
+from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
+from fe_crank.fe.pin_directions import pin_case_weights, pin_direction, unit_force
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets
+from fe_crank.fe.symsystem import determinate_system
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
 
 log = logging.getLogger(__name__)
+
 
 @dataclass(frozen=True)
 class UnitCase:
@@ -58,9 +68,9 @@ class UnitSolutions:
     options: FeOptions
     cases: dict[str, UnitCase]
     pin: dict[str, PinPressure]
-    bearing_stiffness: float | None          # N/m^3, "foundation" only
-    support_model: str = ""                  # one-line statement of the support model (report, results.json)
-    bearing_centres: dict[str, float] = field(default_factory=dict)   # journal -> z of its bearing centre, m
+    bearing_stiffness: float | None  # N/m^3, "foundation" only
+    support_model: str = ""  # one-line statement of the support model (report, results.json)
+    bearing_centres: dict[str, float] = field(default_factory=dict)  # journal -> z of its bearing centre, m
     timings: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -106,18 +116,21 @@ class UnitSolutions:
 
     def stress_at_nodes(self, u: np.ndarray) -> np.ndarray:
         """Averaged nodal stress (6, n_nodes), Voigt order xx yy zz xy yz zx, Pa."""
-        return _stress.stress_at_nodes(self.mesh, u, self.material.youngs_modulus,
-                                       self.material.poisson_ratio, dofs=self.system.basis.dofs)
+        return _stress.stress_at_nodes(
+            self.mesh, u, self.material.youngs_modulus, self.material.poisson_ratio, dofs=self.system.basis.dofs
+        )
 
     def element_nodal_stress(self, u: np.ndarray):
         """Unaveraged stress at element nodes (6, 10, ne) and node numbers (10, ne)."""
-        return _stress.element_nodal_stress(self.mesh, u, self.material.youngs_modulus,
-                                            self.material.poisson_ratio, dofs=self.system.basis.dofs)
+        return _stress.element_nodal_stress(
+            self.mesh, u, self.material.youngs_modulus, self.material.poisson_ratio, dofs=self.system.basis.dofs
+        )
 
     def averaging_indicator(self, u: np.ndarray, groups) -> dict[str, float]:
         """M53 averaged-vs-unaveraged check per fillet group (see stress.averaging_indicator)."""
-        return _stress.averaging_indicator(self.mesh, u, self.material.youngs_modulus,
-                                           self.material.poisson_ratio, groups, dofs=self.system.basis.dofs)
+        return _stress.averaging_indicator(
+            self.mesh, u, self.material.youngs_modulus, self.material.poisson_ratio, groups, dofs=self.system.basis.dofs
+        )
 
     von_mises = staticmethod(_stress.von_mises)
     principal = staticmethod(_stress.principal)
@@ -130,8 +143,9 @@ def journal_diameter(mesh, boundary: str) -> float:
 
     from fe_crank.fe.supports import facet_basis
 
-    fb = facet_basis(mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the bearing support"),
-                     2, "the bearing support")
+    fb = facet_basis(
+        mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the bearing support"), 2, "the bearing support"
+    )
     x = np.asarray(fb.global_coordinates())
     return float(2.0 * np.sum(np.hypot(x[0], x[1]) * fb.dx) / fb.dx.sum())
 
@@ -159,8 +173,11 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     options = options or FeOptions()
     unknown = [c for c in options.cases if c not in ("centrifugal", "torque") and pin_direction(c) is None]
     if unknown:
-        raise InputError(f"unknown unit cases {sorted(unknown)}; pick from centrifugal, torque and pin cases "
-                         f"by direction (pin_x, pin_y, pin_-x, pin_-y, pin_<deg> as pin_030)", key="fe.cases")
+        raise InputError(
+            f"unknown unit cases {sorted(unknown)}; pick from centrifugal, torque and pin cases "
+            f"by direction (pin_x, pin_y, pin_-x, pin_-y, pin_<deg> as pin_030)",
+            key="fe.cases",
+        )
     mesh = _throw_mesh(throw_mesh)
     for attr in ("youngs_modulus", "poisson_ratio", "density"):
         if not hasattr(material, attr):
@@ -178,15 +195,23 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     axes = tuple(getattr(throw_mesh, "symmetry", None) or ()) if options.symmetry else ()
     if options.support == "foundation":
         if axes:
-            log.info("fe-crank: the foundation support is solved on the full model (symmetry components: "
-                     "determinate supports only)")
-        system = build_system(mesh, E, nu, foundations=[Foundation(j, options.bearing_stiffness)
-                                                        for j in options.journals],
-                              couplings=[Coupling(options.reaction_face, fixed=("uz", "rz"))],
-                              solver=options.solver, intorder=options.intorder)
+            log.info(
+                "fe-crank: the foundation support is solved on the full model (symmetry components: "
+                "determinate supports only)"
+            )
+        system = build_system(
+            mesh,
+            E,
+            nu,
+            foundations=[Foundation(j, options.bearing_stiffness) for j in options.journals],
+            couplings=[Coupling(options.reaction_face, fixed=("uz", "rz"))],
+            solver=options.solver,
+            intorder=options.intorder,
+        )
     else:
-        layout = DeterminateLayout(journals=tuple(options.journals), torque_face=options.reaction_face,
-                                   axial=axial_journal(options))
+        layout = DeterminateLayout(
+            journals=tuple(options.journals), torque_face=options.reaction_face, axial=axial_journal(options)
+        )
         system = determinate_system(mesh, E, nu, layout, axes, solver=options.solver, intorder=options.intorder)
     basis = system.basis
     t0 = time.perf_counter()
@@ -198,15 +223,24 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         elif name == "torque":
             # +1 N m in the positive sense of rotation (from +y towards +x), i.e. M_z = -1 N m
             loads[name] = face_torque_load(basis, -1.0, boundary=options.torque_face)
-            desc[name] = (f"1 N m in the sense of rotation (M_z = -1 N m) on {options.torque_face}, "
-                          f"reacted at {options.reaction_face}")
+            desc[name] = (
+                f"1 N m in the sense of rotation (M_z = -1 N m) on {options.torque_face}, "
+                f"reacted at {options.reaction_face}"
+            )
         else:
-            if surface is None:   # the pin surface's facet basis, built once for all directions
+            if surface is None:  # the pin surface's facet basis, built once for all directions
                 surface = pin_surface(basis, options.pin_boundary, options.pin_centre)
-            loads[name], pins[name] = pin_pressure_load(basis, unit_force(name), boundary=options.pin_boundary,
-                                                        half_angle=options.pin_half_angle, surface=surface)
-            desc[name] = f"1 N on {options.pin_boundary} at {pin_direction(name)} deg from +x, cosine pressure +-" \
-                         f"{np.rad2deg(options.pin_half_angle):.0f} deg"
+            loads[name], pins[name] = pin_pressure_load(
+                basis,
+                unit_force(name),
+                boundary=options.pin_boundary,
+                half_angle=options.pin_half_angle,
+                surface=surface,
+            )
+            desc[name] = (
+                f"1 N on {options.pin_boundary} at {pin_direction(name)} deg from +x, cosine pressure +-"
+                f"{np.rad2deg(options.pin_half_angle):.0f} deg"
+            )
     names = list(loads)
     t_loads = time.perf_counter() - t0
     t0 = time.perf_counter()
@@ -214,23 +248,44 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     t_solve = time.perf_counter() - t0
     cases = {}
     for i, name in enumerate(names):
-        applied = system.applied(loads[name])       # once per case: the error, the point check, the record
+        applied = system.applied(loads[name])  # once per case: the error, the point check, the record
         err, reac = system.equilibrium_error(U[:, i], loads[name], applied=applied)
         if "point_constraints" in reac:
             _check_point_reactions(reac["point_constraints"], applied, name)
         if not err < EQUILIBRIUM_TOL:
-            raise SolverError(f"unit case {name!r}: reactions do not balance the loads "
-                              f"(relative error {err:.2e} > {EQUILIBRIUM_TOL:g})")
-        cases[name] = UnitCase(name=name, description=desc[name], displacement=U[:, i], applied=applied[0],
-                               reactions=reac, equilibrium_error=err)
+            raise SolverError(
+                f"unit case {name!r}: reactions do not balance the loads "
+                f"(relative error {err:.2e} > {EQUILIBRIUM_TOL:g})"
+            )
+        cases[name] = UnitCase(
+            name=name,
+            description=desc[name],
+            displacement=U[:, i],
+            applied=applied[0],
+            reactions=reac,
+            equilibrium_error=err,
+        )
     timings = dict(system.timings)
-    timings.update(analysis=getattr(system.factorisation, "analysis_time", 0.0), loads=t_loads, solve=t_solve, solve_per_case=t_solve / max(len(names), 1),
-                   total=time.perf_counter() - t_all)
+    timings.update(
+        analysis=getattr(system.factorisation, "analysis_time", 0.0),
+        loads=t_loads,
+        solve=t_solve,
+        solve_per_case=t_solve / max(len(names), 1),
+        total=time.perf_counter() - t_all,
+    )
     sup = system.determinate
     centres = {j: float(c[2]) for j, c in sup.centres.items()} if sup is not None else {}
-    return UnitSolutions(system=system, material=material, options=options, cases=cases, pin=pins,
-                         bearing_stiffness=options.bearing_stiffness, support_model=support_text(options, centres),
-                         bearing_centres=centres, timings=timings)
+    return UnitSolutions(
+        system=system,
+        material=material,
+        options=options,
+        cases=cases,
+        pin=pins,
+        bearing_stiffness=options.bearing_stiffness,
+        support_model=support_text(options, centres),
+        bearing_centres=centres,
+        timings=timings,
+    )
 
 
 def _check_point_reactions(point: np.ndarray, applied, name: str) -> None:
@@ -241,5 +296,7 @@ def _check_point_reactions(point: np.ndarray, applied, name: str) -> None:
     pf = np.linalg.norm(point[:3]) / fs if fs > 0 else np.linalg.norm(point[:3])
     pm = np.linalg.norm(point[3:]) / ms if ms > 0 else np.linalg.norm(point[3:])
     if max(pf, pm) > POINT_REACTION_TOL:
-        raise SolverError(f"unit case {name!r}: the point constraints carry a reaction ({max(pf, pm):.2e} of "
-                          f"the load): the determinate reactions do not balance the load")
+        raise SolverError(
+            f"unit case {name!r}: the point constraints carry a reaction ({max(pf, pm):.2e} of "
+            f"the load): the determinate reactions do not balance the load"
+        )

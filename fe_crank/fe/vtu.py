@@ -10,8 +10,15 @@ import numpy as np
 from fe_crank.fe.stress import VOIGT, max_shear, principal, von_mises
 from fe_crank.vtu import positively_oriented, quadratic_tet_mesh, region_ids, write_vtu
 
-__all__ = ["boundary_point_ids", "positively_oriented", "quadratic_tet_mesh", "region_ids", "stress_fields",
-           "write_fields", "write_vtu"]
+__all__ = [
+    "boundary_point_ids",
+    "positively_oriented",
+    "quadratic_tet_mesh",
+    "region_ids",
+    "stress_fields",
+    "write_fields",
+    "write_vtu",
+]
 
 
 def boundary_point_ids(skmesh, basis) -> tuple[np.ndarray, dict]:
@@ -38,8 +45,13 @@ def stress_fields(stress: np.ndarray, suffix: str = "") -> dict[str, np.ndarray]
     return {k.replace("_Pa", f"{suffix}_Pa") if suffix else k: v for k, v in out.items()}
 
 
-def write_fields(path: str | Path, basis, u: np.ndarray | None = None, stress: np.ndarray | None = None,
-                 extra: dict[str, np.ndarray] | None = None) -> Path:
+def write_fields(
+    path: str | Path,
+    basis,
+    u: np.ndarray | None = None,
+    stress: np.ndarray | None = None,
+    extra: dict[str, np.ndarray] | None = None,
+) -> Path:
     """Write displacement ``displacement_m`` (3 per node), stress ``stress_Pa`` (n, 6,
     Voigt) and the derived scalars of ``stress_fields`` to ``path`` (.vtu), with the
     region ids of ``basis.mesh`` when it has named groups.
@@ -57,8 +69,7 @@ def write_fields(path: str | Path, basis, u: np.ndarray | None = None, stress: n
     if getattr(basis.mesh, "boundaries", None):
         data["boundary"], bf = boundary_point_ids(basis.mesh, basis)
         fdata.update(bf)
-    mesh = quadratic_tet_mesh(basis.doflocs, basis.element_dofs, point_data=data, cell_data=cdata,
-                              field_data=fdata)
+    mesh = quadratic_tet_mesh(basis.doflocs, basis.element_dofs, point_data=data, cell_data=cdata, field_data=fdata)
     return write_vtu(path, mesh)
 
 

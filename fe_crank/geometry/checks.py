@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 from fe_crank.errors import GeometryError
-from fe_crank.geometry.spec import CrankGeometry, CounterweightSpec
+from fe_crank.geometry.spec import CounterweightSpec, CrankGeometry
 
 
 def _fail(g: CrankGeometry, key: str, reason: str) -> GeometryError:
@@ -102,22 +102,46 @@ def check_geometry(g: CrankGeometry) -> None:
             raise _fail(g, key, f"cannot be negative (got {v * 1e3:g} mm)")
     rp, rj = g.crankpin_diameter / 2, g.journal_diameter / 2
     if g.web.pin_end_radius < rp:
-        raise _fail(g, "web", f"the web's pin end (radius {g.web.pin_end_radius * 1e3:g} mm) does not cover the crankpin (radius {rp * 1e3:g} mm)")
+        raise _fail(
+            g,
+            "web",
+            f"the web's pin end (radius {g.web.pin_end_radius * 1e3:g} mm) does not cover the crankpin (radius {rp * 1e3:g} mm)",
+        )
     if g.web.journal_end_radius < rj:
-        raise _fail(g, "web", f"the web's journal end (radius {g.web.journal_end_radius * 1e3:g} mm) does not cover the journal (radius {rj * 1e3:g} mm)")
+        raise _fail(
+            g,
+            "web",
+            f"the web's journal end (radius {g.web.journal_end_radius * 1e3:g} mm) does not cover the journal (radius {rj * 1e3:g} mm)",
+        )
     # fillets
     rf = g.crankpin_fillet
     room = g.web.pin_end_radius - rp
     if rf >= room and rf > 0:
-        raise _fail(g, "crankpin.fillet_radius", f"fillet radius {rf * 1e3:g} mm is larger than the web allows around the pin ({room * 1e3:g} mm between pin and web edge)")
+        raise _fail(
+            g,
+            "crankpin.fillet_radius",
+            f"fillet radius {rf * 1e3:g} mm is larger than the web allows around the pin ({room * 1e3:g} mm between pin and web edge)",
+        )
     if rf >= g.crankpin_length / 2 and rf > 0:
-        raise _fail(g, "crankpin.fillet_radius", f"two fillets of {rf * 1e3:g} mm do not fit on a crankpin {g.crankpin_length * 1e3:g} mm long")
+        raise _fail(
+            g,
+            "crankpin.fillet_radius",
+            f"two fillets of {rf * 1e3:g} mm do not fit on a crankpin {g.crankpin_length * 1e3:g} mm long",
+        )
     rf = g.journal_fillet
     room = g.web.journal_end_radius - rj
     if rf >= room and rf > 0:
-        raise _fail(g, "journal.fillet_radius", f"fillet radius {rf * 1e3:g} mm is larger than the web allows around the journal ({room * 1e3:g} mm between journal and web edge)")
+        raise _fail(
+            g,
+            "journal.fillet_radius",
+            f"fillet radius {rf * 1e3:g} mm is larger than the web allows around the journal ({room * 1e3:g} mm between journal and web edge)",
+        )
     if rf >= g.journal_length and rf > 0:
-        raise _fail(g, "journal.fillet_radius", f"fillet {rf * 1e3:g} mm does not fit on a journal {g.journal_length * 1e3:g} mm long")
+        raise _fail(
+            g,
+            "journal.fillet_radius",
+            f"fillet {rf * 1e3:g} mm does not fit on a journal {g.journal_length * 1e3:g} mm long",
+        )
     for part, rf, u, r0, r_end in (
         ("crankpin", g.crankpin_fillet, g.crankpin_undercut, rp, g.web.pin_end_radius),
         ("journal", g.journal_fillet, g.journal_undercut, rj, g.web.journal_end_radius),
@@ -126,19 +150,39 @@ def check_geometry(g: CrankGeometry) -> None:
             raise _fail(g, f"{part}.undercut", f"cannot be negative (got {u * 1e3:g} mm)")
         if u > 0.0:
             if not u < rf:
-                raise _fail(g, f"{part}.undercut", f"undercut {u * 1e3:g} mm must be smaller than the fillet radius {rf * 1e3:g} mm")
+                raise _fail(
+                    g,
+                    f"{part}.undercut",
+                    f"undercut {u * 1e3:g} mm must be smaller than the fillet radius {rf * 1e3:g} mm",
+                )
             if u >= g.web_thickness:
-                raise _fail(g, f"{part}.undercut", f"undercut {u * 1e3:g} mm is deeper than the web ({g.web_thickness * 1e3:g} mm)")
+                raise _fail(
+                    g,
+                    f"{part}.undercut",
+                    f"undercut {u * 1e3:g} mm is deeper than the web ({g.web_thickness * 1e3:g} mm)",
+                )
             outer = r0 + rf + math.sqrt(rf**2 - (rf - u) ** 2)
             if outer >= r_end:
-                raise _fail(g, f"{part}.undercut", f"the undercut groove reaches radius {outer * 1e3:.3g} mm, beyond the web edge ({r_end * 1e3:g} mm)")
+                raise _fail(
+                    g,
+                    f"{part}.undercut",
+                    f"the undercut groove reaches radius {outer * 1e3:.3g} mm, beyond the web edge ({r_end * 1e3:g} mm)",
+                )
     if g.require_overlap and g.pin_overlap <= 0.0:
-        raise _fail(g, "require_overlap", f"crankpin and journal do not overlap: (d_j + d_p)/2 - R = {g.pin_overlap * 1e3:.3g} mm <= 0")
+        raise _fail(
+            g,
+            "require_overlap",
+            f"crankpin and journal do not overlap: (d_j + d_p)/2 - R = {g.pin_overlap * 1e3:.3g} mm <= 0",
+        )
     if g.oil_bore is not None:
         if not (g.oil_bore.diameter > 0.0):
             raise _fail(g, "crankpin.oil_bore.diameter", "must be positive")
         if g.oil_bore.diameter >= rp:
-            raise _fail(g, "crankpin.oil_bore.diameter", f"oil bore {g.oil_bore.diameter * 1e3:g} mm too large for a crankpin of radius {rp * 1e3:g} mm")
+            raise _fail(
+                g,
+                "crankpin.oil_bore.diameter",
+                f"oil bore {g.oil_bore.diameter * 1e3:g} mm too large for a crankpin of radius {rp * 1e3:g} mm",
+            )
     if not g.throws:
         raise _fail(g, "throws", "a crankshaft needs at least one throw")
     names = [t.name for t in g.throws]
@@ -160,30 +204,58 @@ def _check_counterweight(g: CrankGeometry, cw: CounterweightSpec, key: str) -> N
         if not (math.isfinite(v) and v > 0.0):
             raise _fail(g, f"{key}.{name}", f"must be positive (got {v:g} in SI units)")
     if not 0.0 < cw.angle < 2 * math.pi:
-        raise _fail(g, f"{key}.angle", f"included angle must be between 0 and 360 deg (got {math.degrees(cw.angle):g} deg)")
+        raise _fail(
+            g, f"{key}.angle", f"included angle must be between 0 and 360 deg (got {math.degrees(cw.angle):g} deg)"
+        )
     if cw.inner_radius >= cw.outer_radius:
-        raise _fail(g, f"{key}.inner_radius", f"inner radius {cw.inner_radius * 1e3:g} mm must be smaller than the outer radius {cw.outer_radius * 1e3:g} mm")
+        raise _fail(
+            g,
+            f"{key}.inner_radius",
+            f"inner radius {cw.inner_radius * 1e3:g} mm must be smaller than the outer radius {cw.outer_radius * 1e3:g} mm",
+        )
     if cw.inner_radius >= g.web.journal_end_radius:
-        raise _fail(g, f"{key}.inner_radius", f"counterweight (inner radius {cw.inner_radius * 1e3:g} mm) does not touch the web (journal end radius {g.web.journal_end_radius * 1e3:g} mm): it would float")
+        raise _fail(
+            g,
+            f"{key}.inner_radius",
+            f"counterweight (inner radius {cw.inner_radius * 1e3:g} mm) does not touch the web (journal end radius {g.web.journal_end_radius * 1e3:g} mm): it would float",
+        )
     if cw.thickness > g.web_thickness + g.crankpin_length / 2:
-        raise _fail(g, f"{key}.thickness", f"counterweight {cw.thickness * 1e3:g} mm thick reaches past the crankpin mid-plane")
+        raise _fail(
+            g, f"{key}.thickness", f"counterweight {cw.thickness * 1e3:g} mm thick reaches past the crankpin mid-plane"
+        )
     if cw.thickness <= g.web_thickness and sector_inside_web(g, cw):
-        raise _fail(g, key, "counterweight lies wholly inside the web outline: it adds no material "
-                    "(its m r would be web material counted twice); make its outer radius reach beyond the web")
+        raise _fail(
+            g,
+            key,
+            "counterweight lies wholly inside the web outline: it adds no material "
+            "(its m r would be web material counted twice); make its outer radius reach beyond the web",
+        )
     clearance = distance_to_sector((0.0, g.crank_radius), cw) - (g.crankpin_diameter / 2 + g.crankpin_fillet)
     if clearance <= 0.0:
-        raise _fail(g, key, f"counterweight overlaps the crankpin or its fillet by {-clearance * 1e3:.3g} mm (reduce its angle or outer radius)")
+        raise _fail(
+            g,
+            key,
+            f"counterweight overlaps the crankpin or its fillet by {-clearance * 1e3:.3g} mm (reduce its angle or outer radius)",
+        )
     rc = cw.fillet_radius
     if rc is not None:
         room = min(cw.thickness, cw.outer_radius - g.web.journal_end_radius, clearance)
         if not (math.isfinite(rc) and rc > 0.0):
             raise _fail(g, f"{key}.fillet_radius", f"must be positive (got {rc:g} in SI units)")
         if rc >= room:
-            raise _fail(g, f"{key}.fillet_radius", f"{rc * 1e3:g} mm does not fit: it must be smaller than the "
-                        f"counterweight's thickness, its overhang beyond the web and its clearance to the "
-                        f"crankpin fillet ({room * 1e3:.3g} mm here)")
+            raise _fail(
+                g,
+                f"{key}.fillet_radius",
+                f"{rc * 1e3:g} mm does not fit: it must be smaller than the "
+                f"counterweight's thickness, its overhang beyond the web and its clearance to the "
+                f"crankpin fillet ({room * 1e3:.3g} mm here)",
+            )
         step = abs(cw.thickness - g.web_thickness)
         if 0.0 < step <= rc:
-            raise _fail(g, f"{key}.fillet_radius", f"{rc * 1e3:g} mm does not fit on the {step * 1e3:.3g} mm step "
-                        "between the counterweight's and the web's faces: make the counterweight as thick as the "
-                        "web or the step larger than the fillet radius")
+            raise _fail(
+                g,
+                f"{key}.fillet_radius",
+                f"{rc * 1e3:g} mm does not fit on the {step * 1e3:.3g} mm step "
+                "between the counterweight's and the web's faces: make the counterweight as thick as the "
+                "web or the step larger than the fillet radius",
+            )

@@ -55,8 +55,9 @@ def _concave(gmsh, solid: int, curve: int, eps: float) -> tuple[bool, float]:
     return inside / _RING > _CONCAVE, float(p[2])
 
 
-def junction_edges(gmsh, solid: int, cws: dict[int, CounterweightSpec], exclude: set[int],
-                   eps: float) -> list[tuple[int, float]]:
+def junction_edges(
+    gmsh, solid: int, cws: dict[int, CounterweightSpec], exclude: set[int], eps: float
+) -> list[tuple[int, float]]:
     """(edge, radius) of every concave edge of the fused throw that is not in ``exclude``
     (the pin and journal circles), on the side (z < 0: web 1) of a counterweight with a
     ``fillet_radius``.  Before the shaft fillets the only other concave edges of the
@@ -89,8 +90,9 @@ def fill_tools(occ, g: CrankGeometry, cw: CounterweightSpec, web_prism, sector_p
     z0 = -zw if cw.web == 1 else zw - h
     box = occ.addBox(-big, -big, z0, 2 * big, 2 * big, h)
     web = web_prism(occ, g, -zw if cw.web == 1 else zp)
-    pin = occ.addCylinder(0.0, g.crank_radius, -big, 0.0, 0.0, 2 * big,
-                          g.crankpin_diameter / 2 + g.crankpin_fillet * (1 + 1e-6) + 1e-9)
+    pin = occ.addCylinder(
+        0.0, g.crank_radius, -big, 0.0, 0.0, 2 * big, g.crankpin_diameter / 2 + g.crankpin_fillet * (1 + 1e-6) + 1e-9
+    )
     sector = sector_prism(occ, cw, -zw if cw.web == 1 else zw - cw.thickness)
     out, _ = occ.cut([(3, box)], [(3, web), (3, pin), (3, sector)])
     return [tag for dim, tag in out if dim == 3]

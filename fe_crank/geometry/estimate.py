@@ -57,7 +57,7 @@ def hull_area(a: float, b: float, d: float, n: int = 720) -> float:
 def _layers(area: float, h0: float, size_max: float, grading: float) -> float:
     if h0 >= size_max:
         return 0.0
-    return _RHO * area / (2.0 * grading) * (h0 ** -2 - size_max ** -2)
+    return _RHO * area / (2.0 * grading) * (h0**-2 - size_max**-2)
 
 
 def estimate_elements(g, spec, opt) -> int:
@@ -93,11 +93,17 @@ def check_element_budget(g, spec, opt, max_elements: int | None = None) -> int:
     limit = MAX_ELEMENTS if max_elements is None else int(max_elements)
     n = estimate_elements(g, spec, opt)
     if n > limit:
-        fillets = [(r, k) for k, r in (("crankpin.fillet_radius", g.crankpin_fillet),
-                                         ("journal.fillet_radius", g.journal_fillet)) if r > 0]
+        fillets = [
+            (r, k)
+            for k, r in (("crankpin.fillet_radius", g.crankpin_fillet), ("journal.fillet_radius", g.journal_fillet))
+            if r > 0
+        ]
         key = min(fillets)[1] if fillets else None
         raise GeometryError(
             f"the mesh would have about {n:.3g} elements, more than the limit {limit:.3g} "
             "(a fillet radius or mesh size far too small?); raise it with --max-elements or "
-            "[mesh] max_elements in the load case (docs/limits.md)", file=getattr(g, "file", None) or None, key=key)
+            "[mesh] max_elements in the load case (docs/limits.md)",
+            file=getattr(g, "file", None) or None,
+            key=key,
+        )
     return n

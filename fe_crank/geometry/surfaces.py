@@ -23,7 +23,9 @@ def _radii(gmsh, s: int, cx: float, cy: float) -> list[float]:
     return out
 
 
-def classify_surfaces(gmsh, g: CrankGeometry, volumes: set[int], tol: float, *, cut: tuple[int, ...] = ()) -> dict[str, list[int]]:
+def classify_surfaces(
+    gmsh, g: CrankGeometry, volumes: set[int], tol: float, *, cut: tuple[int, ...] = ()
+) -> dict[str, list[int]]:
     """Name the outer surfaces by where they lie (bounding boxes in the throw frame).
 
     ``cut``: the solid is the fundamental part ``x >= 0`` (0 in ``cut``) / ``z <= 0`` (2 in
@@ -81,13 +83,26 @@ def classify_surfaces(gmsh, g: CrankGeometry, volumes: set[int], tol: float, *, 
         elif kind == "Cylinder":
             if near(x0, -rj) and near(x1, rj) and near(y0, -rj) and near(y1, rj) and abs(zc) > zw:
                 out[f"journal_{side}"].append(s)
-            elif near(x0, -rp) and near(x1, rp) and near(y0, R - rp) and near(y1, R + rp) and z1 <= zp + tl and z0 >= -zp - tl:
+            elif (
+                near(x0, -rp)
+                and near(x1, rp)
+                and near(y0, R - rp)
+                and near(y1, R + rp)
+                and z1 <= zp + tl
+                and z0 >= -zp - tl
+            ):
                 out["crankpin"].append(s)
             elif cut and abs(zc) > zw and all(near(r, rj) for r in _radii(gmsh, s, 0.0, 0.0)):
                 out[f"journal_{side}"].append(s)  # a cut may split the journal into several faces
             elif cut and z1 <= zp + tl and z0 >= -zp - tl and all(near(r, rp) for r in _radii(gmsh, s, 0.0, R)):
                 out["crankpin"].append(s)
-            elif g.oil_bore is not None and z1 <= zp + tl and z0 >= -zp - tl and abs(xc) < rp + tl and abs(yc - R) < rp + tl:
+            elif (
+                g.oil_bore is not None
+                and z1 <= zp + tl
+                and z0 >= -zp - tl
+                and abs(xc) < rp + tl
+                and abs(yc - R) < rp + tl
+            ):
                 out["oil_bore"].append(s)
     out.pop("unnamed", None)
     for name, tags in out.items():

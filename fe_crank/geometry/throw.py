@@ -161,7 +161,9 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
     fused, _ = occ.fuse([(3, parts[0])], [(3, p) for p in parts[1:]])
     occ.synchronize()
     if len(fused) != 1:
-        raise GeometryError(f"the throw's parts do not form one solid ({len(fused)} pieces)", file=g.file or None, key="throws")
+        raise GeometryError(
+            f"the throw's parts do not form one solid ({len(fused)} pieces)", file=g.file or None, key="throws"
+        )
     solid = fused[0][1]
 
     fillets = []
@@ -183,7 +185,9 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
         edges = _edges_on_circle(gmsh, cx, cy, z, r, tol)
         circles.update(edges)
         if not edges:
-            raise GeometryError(f"no edge found where the fillet of {rf * 1e3:g} mm should go (z = {z * 1e3:g} mm)", file=g.file or None)
+            raise GeometryError(
+                f"no edge found where the fillet of {rf * 1e3:g} mm should go (z = {z * 1e3:g} mm)", file=g.file or None
+            )
         fillets += edges
         radii += [rf] * len(edges)
     # counterweight-to-web transition fillets (cw_fillet.py): every other concave edge
@@ -220,7 +224,9 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
         if 0 in cut:  # a bore along x or y (the caller checked): exact direction, exactly symmetric
             dx, dy = float(round(dx)), float(round(dy))
         half = 2.0 * rp
-        bore = occ.addCylinder(-half * dx, R - half * dy, 0.0, 2 * half * dx, 2 * half * dy, 0.0, g.oil_bore.diameter / 2)
+        bore = occ.addCylinder(
+            -half * dx, R - half * dy, 0.0, 2 * half * dx, 2 * half * dy, 0.0, g.oil_bore.diameter / 2
+        )
         out, _ = occ.cut([(3, solid)], [(3, bore)])
         occ.synchronize()
         solid = out[0][1]
@@ -277,11 +283,14 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
         volumes = {k: v for k, v in volumes.items() if not (k.endswith("_2") and not v)}
     surfaces = classify_surfaces(gmsh, g, keep, tol, cut=cut)
     for web in sorted(cws):
-        if cws[web].fillet_radius and not (2 in cut and web == 2):   # web 2 is the mirror image of web 1
+        if cws[web].fillet_radius and not (2 in cut and web == 2):  # web 2 is the mirror image of web 1
             faces = fillet_faces(gmsh, cw_pieces[web] - sector_pieces, keep)
             if not faces:
-                raise GeometryError(f"the counterweight fillet on web {web} left no surface", file=g.file or None,
-                                    key="counterweight.fillet_radius")
+                raise GeometryError(
+                    f"the counterweight fillet on web {web} left no surface",
+                    file=g.file or None,
+                    key="counterweight.fillet_radius",
+                )
             surfaces[f"counterweight_fillet_{web}"] = faces
     for name, tags in volumes.items():
         if not tags:

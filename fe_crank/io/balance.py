@@ -126,15 +126,25 @@ def parse_balance(value: object, file: str | Path, key: str = "balance") -> Bala
         raise InputError("must be a table", file=str(file), key=key)
     raw = validate(BalanceInput, value, file, key)
     try:
-        strategy = BalanceStrategy(raw.rotating_fraction, raw.reciprocating_fraction, raw.couple,
-                                   tuple(raw.planes), raw.web_offset)
+        strategy = BalanceStrategy(
+            raw.rotating_fraction, raw.reciprocating_fraction, raw.couple, tuple(raw.planes), raw.web_offset
+        )
     except InputError as exc:
         raise InputError(exc.reason, file=str(file), key=exc.key) from None
     cw = None
     if raw.counterweight is not None:
         c = raw.counterweight
-        cw = CounterweightSpec(c.density, c.free, c.r_outer, c.r_inner, c.thickness, c.angle, c.envelope, c.journal_radius)
-    shafts = tuple(ShaftRequest(s.component, s.order, s.offset, s.span,
-                                None if s.positions is None else tuple(tuple(p) for p in s.positions))
-                   for s in raw.shafts)
+        cw = CounterweightSpec(
+            c.density, c.free, c.r_outer, c.r_inner, c.thickness, c.angle, c.envelope, c.journal_radius
+        )
+    shafts = tuple(
+        ShaftRequest(
+            s.component,
+            s.order,
+            s.offset,
+            s.span,
+            None if s.positions is None else tuple(tuple(p) for p in s.positions),
+        )
+        for s in raw.shafts
+    )
     return BalanceSettings(strategy, raw.reference_z, cw, shafts)

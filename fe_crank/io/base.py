@@ -46,7 +46,7 @@ def _reason(err: dict) -> str:
     msg = err.get("msg", "invalid")
     kind = err.get("type", "")
     if msg.startswith("Value error, "):
-        msg = msg[len("Value error, "):]
+        msg = msg[len("Value error, ") :]
     if kind == "missing":
         return "required key is missing"
     if kind == "extra_forbidden":  # the value is never shown: it may come from any file
@@ -116,10 +116,12 @@ def read_text(path: str | Path, what: str = "file") -> str:
             raise InputError(f"{what} cannot be read: symbolic-link loop", file=str(p)) from None
         raise InputError(f"{what} cannot be read: {exc.strerror or type(exc).__name__}", file=str(p)) from None
     if len(raw) > limit:
-        raise InputError(f"{what} larger than {limit} bytes (the limit; FE_CRANK_MAX_FILE_BYTES raises it, "
-                         "docs/limits.md)", file=str(p))
+        raise InputError(
+            f"{what} larger than {limit} bytes (the limit; FE_CRANK_MAX_FILE_BYTES raises it, docs/limits.md)",
+            file=str(p),
+        )
     if raw.startswith(_BOM):
-        raw = raw[len(_BOM):]
+        raw = raw[len(_BOM) :]
     if b"\x00" in raw:
         raise InputError(f"is a binary file, expected a {what}", file=str(p))
     try:
@@ -136,12 +138,12 @@ def check_tree(data: Any, file: str | Path, prefix: str = "") -> None:
     while stack:
         node, key, depth = stack.pop()
         if isinstance(node, float) and not math.isfinite(node):
-            raise InputError("must be a finite number (inf and nan are not accepted)", file=str(file),
-                             key=key or None)
+            raise InputError("must be a finite number (inf and nan are not accepted)", file=str(file), key=key or None)
         if isinstance(node, (dict, list)):
             if depth >= MAX_DEPTH:
-                raise InputError(f"tables and arrays nested deeper than {MAX_DEPTH} levels", file=str(file),
-                                 key=key or None)
+                raise InputError(
+                    f"tables and arrays nested deeper than {MAX_DEPTH} levels", file=str(file), key=key or None
+                )
             items = node.items() if isinstance(node, dict) else enumerate(node)
             for k, v in items:
                 sub = f"{key}[{k}]" if isinstance(k, int) else (f"{key}.{k}" if key else str(k))
@@ -224,8 +226,10 @@ def resolve_reference(value: str, relative_to: str | Path, *, key: str = "") -> 
     if not inside:
         raise InputError(
             f"the path {value!r} leads outside the load case's folder tree ({root}); such paths are refused "
-            f"unless --allow-outside-paths (or {ALLOW_OUTSIDE_ENV}=1) is given", file=str(relative_to),
-            key=key or None)
+            f"unless --allow-outside-paths (or {ALLOW_OUTSIDE_ENV}=1) is given",
+            file=str(relative_to),
+            key=key or None,
+        )
     return p
 
 

@@ -40,25 +40,34 @@ class Quantity:
 
 
 QUANTITIES: dict[str, Quantity] = {
-    "static_safety": Quantity("min", None, ("yield_strength",),
-                              "yield strength / max von Mises over the cycle"),
-    "overspeed_safety": Quantity("min", None, ("yield_strength",),
-                                 "yield strength / max von Mises over the cycle at overspeed (inertia and body force at omega_os^2)"),
-    "fatigue_safety": Quantity("min", None, ("fatigue_limit_bending", "tensile_strength"),
-                               "equivalent (von Mises) amplitude and signed mean, modified Goodman"),
+    "static_safety": Quantity("min", None, ("yield_strength",), "yield strength / max von Mises over the cycle"),
+    "overspeed_safety": Quantity(
+        "min",
+        None,
+        ("yield_strength",),
+        "yield strength / max von Mises over the cycle at overspeed (inertia and body force at omega_os^2)",
+    ),
+    "fatigue_safety": Quantity(
+        "min",
+        None,
+        ("fatigue_limit_bending", "tensile_strength"),
+        "equivalent (von Mises) amplitude and signed mean, modified Goodman",
+    ),
     "gough_pollard_safety": Quantity(
-        "min", None, ("fatigue_limit_bending", "fatigue_limit_torsion", "tensile_strength"),
-        "Gough-Pollard ellipse quadrant of bending and torsion amplitudes, Goodman-corrected limits"),
-    "m53_acceptability": Quantity("min", None, ("tensile_strength", "m53_k"),
-                                  "IACS UR M53 acceptability factor Q = sigma_DW / sigma_V"),
-    "counterweight_stress": Quantity("max", "pressure", (),
-                                     "max von Mises in a counterweight and its junction over the cycle"),
-    "counterweight_overspeed_stress": Quantity("max", "pressure", (),
-                                               "max von Mises in a counterweight at overspeed"),
-    "unbalance_error": Quantity("max", None, (),
-                                "|built m r - required m r| / required m r per counterweight plane"),
-    "bolt_utilisation": Quantity("max", None, (),
-                                 "counterweight bolt load m r omega^2 at overspeed / bolt capacity"),
+        "min",
+        None,
+        ("fatigue_limit_bending", "fatigue_limit_torsion", "tensile_strength"),
+        "Gough-Pollard ellipse quadrant of bending and torsion amplitudes, Goodman-corrected limits",
+    ),
+    "m53_acceptability": Quantity(
+        "min", None, ("tensile_strength", "m53_k"), "IACS UR M53 acceptability factor Q = sigma_DW / sigma_V"
+    ),
+    "counterweight_stress": Quantity(
+        "max", "pressure", (), "max von Mises in a counterweight and its junction over the cycle"
+    ),
+    "counterweight_overspeed_stress": Quantity("max", "pressure", (), "max von Mises in a counterweight at overspeed"),
+    "unbalance_error": Quantity("max", None, (), "|built m r - required m r| / required m r per counterweight plane"),
+    "bolt_utilisation": Quantity("max", None, (), "counterweight bolt load m r omega^2 at overspeed / bolt capacity"),
 }
 
 #: option key -> unit kind
@@ -116,15 +125,20 @@ def build_criteria(value: object, file: str | Path, key: str = "criteria") -> Cr
             raise InputError(
                 f"not a criterion: write min_<quantity> or max_<quantity> (quantities: {sorted(QUANTITIES)}) "
                 f"or an option ({sorted(OPTIONS)})",
-                file=str(file), key=full,
+                file=str(file),
+                key=full,
             )
         q = QUANTITIES.get(quantity)
         if q is None:
-            raise InputError(f"unknown quantity {quantity!r}; known quantities are {sorted(QUANTITIES)}",
-                             file=str(file), key=full)
+            raise InputError(
+                f"unknown quantity {quantity!r}; known quantities are {sorted(QUANTITIES)}", file=str(file), key=full
+            )
         if q.sense != sense:
-            raise InputError(f"{quantity} takes a {q.sense}imum, not a {sense}imum: write {q.sense}_{quantity}",
-                             file=str(file), key=full)
+            raise InputError(
+                f"{quantity} takes a {q.sense}imum, not a {sense}imum: write {q.sense}_{quantity}",
+                file=str(file),
+                key=full,
+            )
         if q.unit_kind is None:
             val = _number(v, file, full)
         else:
@@ -150,7 +164,8 @@ def check_material(criteria: Criteria, material, file: str | Path) -> None:
             raise InputError(
                 f"needs material property {', '.join(missing)}, which material {material.name!r} does not give; "
                 f"set material.{missing[0]} in the load case or drop the criterion",
-                file=str(file), key=ckey,
+                file=str(file),
+                key=ckey,
             )
 
 
@@ -167,5 +182,13 @@ def parse_criteria(value: object, file: str | Path, key: str = "criteria") -> Cr
     return crit
 
 
-__all__ = ["Criteria", "Limit", "Quantity", "QUANTITIES", "OPTIONS", "build_criteria", "check_material",
-           "parse_criteria"]
+__all__ = [
+    "Criteria",
+    "Limit",
+    "Quantity",
+    "QUANTITIES",
+    "OPTIONS",
+    "build_criteria",
+    "check_material",
+    "parse_criteria",
+]

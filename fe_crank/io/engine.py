@@ -165,26 +165,30 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
         if t.shaft not in shaft_names:
             raise InputError(
                 f"names shaft {t.shaft!r}, which is not defined (shafts: {sorted(shaft_names)})",
-                file=str(file), key=f"{pre}throws[{i}].shaft",
+                file=str(file),
+                key=f"{pre}throws[{i}].shaft",
             )
     names = [c.name for c in cylinders]
     for i, c in enumerate(cylinders):
         if c.throw not in throws:
             raise InputError(
                 f"names throw {c.throw!r}, which is not defined (throws: {sorted(throws)})",
-                file=str(file), key=f"{pre}cylinders[{i}].throw",
+                file=str(file),
+                key=f"{pre}cylinders[{i}].throw",
             )
         r = throws[c.throw].radius
         if c.rod_length <= r + abs(c.pin_offset):
             raise InputError(
                 f"rod length {c.rod_length * 1e3:.4g} mm must exceed crank radius {r * 1e3:.4g} mm "
                 f"plus pin offset {abs(c.pin_offset) * 1e3:.4g} mm: the mechanism cannot turn",
-                file=str(file), key=f"{pre}cylinders[{i}].rod_length",
+                file=str(file),
+                key=f"{pre}cylinders[{i}].rod_length",
             )
         if c.articulation is not None and c.articulation.master not in names:
             raise InputError(
                 f"articulated rod names master {c.articulation.master!r}, which is not a cylinder",
-                file=str(file), key=f"{pre}cylinders[{i}].articulation.master",
+                file=str(file),
+                key=f"{pre}cylinders[{i}].articulation.master",
             )
     cycle = 4.0 * math.pi if raw.strokes == 4 else 2.0 * math.pi
     offsets: dict[str, float] = {}
@@ -192,19 +196,22 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
         if any(c.firing_offset is not None for c in cylinders):
             raise InputError(
                 "give either firing_order or a firing_offset for each cylinder, not both",
-                file=str(file), key=f"{pre}firing_order",
+                file=str(file),
+                key=f"{pre}firing_order",
             )
         for j, n in enumerate(raw.firing_order):
             if n not in names:
                 raise InputError(
                     f"names cylinder {n!r}, which does not exist (cylinders: {names})",
-                    file=str(file), key=f"{pre}firing_order[{j}]",
+                    file=str(file),
+                    key=f"{pre}firing_order[{j}]",
                 )
         if sorted(raw.firing_order) != sorted(names):
             missing = sorted(set(names) - set(raw.firing_order))
             raise InputError(
                 f"must name every cylinder exactly once (missing: {missing})",
-                file=str(file), key=f"{pre}firing_order",
+                file=str(file),
+                key=f"{pre}firing_order",
             )
         for j, n in enumerate(raw.firing_order):
             offsets[n] = j * cycle / len(names)
@@ -215,8 +222,13 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
     if raw.gas is not None:
         c0 = cylinders[0]
         gas = build_gas(
-            raw.gas, file, f"{pre}gas", strokes=raw.strokes, bore=c0.bore,
-            crank_radius=throws[c0.throw].radius, rod_length=c0.rod_length,
+            raw.gas,
+            file,
+            f"{pre}gas",
+            strokes=raw.strokes,
+            bore=c0.bore,
+            crank_radius=throws[c0.throw].radius,
+            rod_length=c0.rod_length,
         )
     return model.Engine(
         name=raw.name,
@@ -226,8 +238,7 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
             model.Shaft(s.name, s.sense, s.phase, (s.centre_x, s.centre_y), s.speed_ratio) for s in raw.shafts
         ),
         throws=tuple(
-            model.Throw(t.name, t.shaft, t.angle, t.radius, t.axial_position, t.rotating_mass)
-            for t in raw.throws
+            model.Throw(t.name, t.shaft, t.angle, t.radius, t.axial_position, t.rotating_mass) for t in raw.throws
         ),
         cylinders=tuple(
             model.Cylinder(
@@ -249,8 +260,14 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
         ),
         gas=gas,
         yoke=(
-            model.Yoke(raw.yoke.mass, raw.yoke.orbit_radius, raw.yoke.arm, raw.yoke.beta_max,
-                       raw.yoke.axis_angle, raw.yoke.axial_position)
+            model.Yoke(
+                raw.yoke.mass,
+                raw.yoke.orbit_radius,
+                raw.yoke.arm,
+                raw.yoke.beta_max,
+                raw.yoke.axis_angle,
+                raw.yoke.axial_position,
+            )
             if raw.yoke is not None
             else None
         ),

@@ -122,9 +122,10 @@ def _split_header(cell: str, file, key: str) -> str:
     if "[" not in cell or not cell.endswith("]"):
         raise InputError(
             f"CSV header cell {cell!r} must state its unit as 'name [unit]', e.g. 'angle [deg], pressure [MPa]'",
-            file=str(file), key=key,
+            file=str(file),
+            key=key,
         )
-    return cell[cell.index("[") + 1:-1].strip()
+    return cell[cell.index("[") + 1 : -1].strip()
 
 
 def read_gas_csv(path, *, crankcase_pressure: float = 101325.0, source: str = "") -> model.GasPressure:
@@ -148,8 +149,9 @@ def read_gas_csv(path, *, crankcase_pressure: float = 101325.0, source: str = ""
         except (ValueError, IndexError):
             raise InputError("is not two numbers", file=str(path), key=f"row {i}") from None
         if not all(np.isfinite(pt)):
-            raise InputError("must be two finite numbers (inf and nan are not accepted)", file=str(path),
-                             key=f"row {i}")
+            raise InputError(
+                "must be two finite numbers (inf and nan are not accepted)", file=str(path), key=f"row {i}"
+            )
         points.append(pt)
     try:
         table = GasTableInput(angle_unit=au, pressure_unit=pu, points=points, source=source or str(path.name))
@@ -167,12 +169,19 @@ def _with_motored(gas: model.GasPressure, raw: MotoredKeys, geom: dict) -> model
 
     from fe_crank.gas import motored_cycle
 
-    m = motored_cycle(compression_ratio=raw.compression_ratio, intake_pressure=raw.intake_pressure,
-                      n_poly=raw.polytropic_exponent, crankcase_pressure=gas.crankcase_pressure, **geom)
+    m = motored_cycle(
+        compression_ratio=raw.compression_ratio,
+        intake_pressure=raw.intake_pressure,
+        n_poly=raw.polytropic_exponent,
+        crankcase_pressure=gas.crankcase_pressure,
+        **geom,
+    )
     return replace(gas, motored=m)
 
 
-def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: float, rod_length: float) -> model.GasPressure:
+def build_gas(
+    data, file, key: str, *, strokes: int, bore: float, crank_radius: float, rod_length: float
+) -> model.GasPressure:
     """Validate a ``[gas]`` table (``model`` = table | csv | wiebe) and return the p(phi) table.
 
     The Wiebe model needs the cylinder geometry (first cylinder of the engine)."""
@@ -187,7 +196,8 @@ def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: 
         if ang[0] < -1e-9 or ang[-1] > cycle + 1e-9:
             raise InputError(
                 f"angles must lie within one cycle, 0 .. {np.degrees(cycle):.0f} deg from TDC firing",
-                file=str(file), key=f"{key}.points",
+                file=str(file),
+                key=f"{key}.points",
             )
         return _with_motored(model.GasPressure(ang, prs, raw.crankcase_pressure, raw.source), raw, geom)
     if kind == "csv":
@@ -197,26 +207,45 @@ def build_gas(data, file, key: str, *, strokes: int, bore: float, crank_radius: 
             state = "is a folder" if csv.is_dir() else "not found"
             raise InputError(f"the gas pressure CSV {raw.file!r} {state}", file=str(file), key=f"{key}.file")
         try:
-            return _with_motored(read_gas_csv(csv, crankcase_pressure=raw.crankcase_pressure, source=raw.source),
-                                 raw, geom)
+            return _with_motored(
+                read_gas_csv(csv, crankcase_pressure=raw.crankcase_pressure, source=raw.source), raw, geom
+            )
         except InputError as exc:
             if exc.key is None:  # the file as a whole: name the key that referenced it
-                raise InputError(f"the gas pressure CSV {raw.file!r}: {exc.reason}", file=str(file),
-                                 key=f"{key}.file") from None
+                raise InputError(
+                    f"the gas pressure CSV {raw.file!r}: {exc.reason}", file=str(file), key=f"{key}.file"
+                ) from None
             raise
     if kind == "wiebe":
         from fe_crank.gas import motored_cycle, wiebe_cycle
 
         raw = validate(GasWiebeInput, data, file, key)
         g = wiebe_cycle(
-            bore=bore, r=crank_radius, l=rod_length, compression_ratio=raw.compression_ratio,
-            intake_pressure=raw.intake_pressure, exhaust_pressure=raw.exhaust_pressure,
-            heat_released=raw.heat_released, combustion_start=raw.combustion_start,
-            combustion_duration=raw.combustion_duration, k=raw.k, wiebe_a=raw.wiebe_a, wiebe_m=raw.wiebe_m,
-            strokes=strokes, crankcase_pressure=raw.crankcase_pressure,
+            bore=bore,
+            r=crank_radius,
+            l=rod_length,
+            compression_ratio=raw.compression_ratio,
+            intake_pressure=raw.intake_pressure,
+            exhaust_pressure=raw.exhaust_pressure,
+            heat_released=raw.heat_released,
+            combustion_start=raw.combustion_start,
+            combustion_duration=raw.combustion_duration,
+            k=raw.k,
+            wiebe_a=raw.wiebe_a,
+            wiebe_m=raw.wiebe_m,
+            strokes=strokes,
+            crankcase_pressure=raw.crankcase_pressure,
         )
-        motored = motored_cycle(bore=bore, r=crank_radius, l=rod_length, compression_ratio=raw.compression_ratio,
-                                intake_pressure=raw.intake_pressure, exhaust_pressure=raw.exhaust_pressure,
-                                n_poly=raw.k, strokes=strokes, crankcase_pressure=raw.crankcase_pressure)
+        motored = motored_cycle(
+            bore=bore,
+            r=crank_radius,
+            l=rod_length,
+            compression_ratio=raw.compression_ratio,
+            intake_pressure=raw.intake_pressure,
+            exhaust_pressure=raw.exhaust_pressure,
+            n_poly=raw.k,
+            strokes=strokes,
+            crankcase_pressure=raw.crankcase_pressure,
+        )
         return model.GasPressure(g.angle, g.pressure, g.crankcase_pressure, raw.source or g.source, motored)
     raise InputError(f"unknown gas model {kind!r}; use 'table', 'csv' or 'wiebe'", file=str(file), key=f"{key}.model")

@@ -92,14 +92,14 @@ class WebInput(Strict):
     def _outline_keys(self):
         if self.outline == "stadium":
             if self.width is None:
-                raise ValueError("outline \"stadium\" needs width")
+                raise ValueError('outline "stadium" needs width')
             if self.journal_end_radius is not None or self.pin_end_radius is not None:
-                raise ValueError("outline \"stadium\" takes width only; use outline = \"pear\" for two end radii")
+                raise ValueError('outline "stadium" takes width only; use outline = "pear" for two end radii')
         else:
             if self.journal_end_radius is None or self.pin_end_radius is None:
-                raise ValueError("outline \"pear\" needs journal_end_radius and pin_end_radius")
+                raise ValueError('outline "pear" needs journal_end_radius and pin_end_radius')
             if self.width is not None:
-                raise ValueError("outline \"pear\" takes journal_end_radius and pin_end_radius, not width")
+                raise ValueError('outline "pear" takes journal_end_radius and pin_end_radius, not width')
         return self
 
 
@@ -157,8 +157,15 @@ def _counterweights(cw: CounterweightInput | None, web_thickness: float) -> tupl
         bolted = BoltedJoint(b.count, b.diameter, b.pitch_radius, b.preload, b.yield_strength)
     thickness = web_thickness if cw.thickness is None else cw.thickness
     return tuple(
-        CounterweightSpec(web=w, outer_radius=cw.outer_radius, inner_radius=cw.inner_radius, angle=cw.angle,
-                          thickness=thickness, bolted=bolted, fillet_radius=cw.fillet_radius)
+        CounterweightSpec(
+            web=w,
+            outer_radius=cw.outer_radius,
+            inner_radius=cw.inner_radius,
+            angle=cw.angle,
+            thickness=thickness,
+            bolted=bolted,
+            fillet_radius=cw.fillet_radius,
+        )
         for w in cw.webs
     )
 
@@ -226,9 +233,11 @@ def require_counterweight_fillets(g: CrankGeometry | None, quantities, file: str
                 key = f"throws[{i}].counterweight.fillet_radius" if len(g.throws) > 1 else "counterweight.fillet_radius"
                 raise InputError(
                     f"required by the criterion max_{wanted[0]} of {Path(file).name}: the transition radius "
-                    "between counterweight and web (e.g. fillet_radius = \"5 mm\"); a sharp edge there is a "
+                    'between counterweight and web (e.g. fillet_radius = "5 mm"); a sharp edge there is a '
                     "stress singularity whose FE stress grows without bound as the mesh is refined",
-                    file=g.file or str(file), key=key)
+                    file=g.file or str(file),
+                    key=key,
+                )
 
 
 def load_geometry(path: str | Path) -> CrankGeometry:
@@ -247,4 +256,4 @@ def parse_geometry(value: object, file: str | Path, key: str = "geometry") -> Cr
             raise with_include_context(exc, file, key) from None
     if isinstance(value, dict):
         return geometry_from_dict(value, file, key)
-    raise InputError("must be a file name, e.g. geometry = \"../geometry/x.toml\", or a table", file=str(file), key=key)
+    raise InputError('must be a file name, e.g. geometry = "../geometry/x.toml", or a table', file=str(file), key=key)

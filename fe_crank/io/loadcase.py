@@ -68,9 +68,7 @@ def _load(path: Path) -> model.LoadCase:
     known = head_keys | {"engine", "operating"} | set(SECTIONS)
     for key in data:
         if key not in known:
-            raise InputError(
-                f"unknown key; known keys are {sorted(known)}", file=str(path), key=_short(key)
-            )
+            raise InputError(f"unknown key; known keys are {sorted(known)}", file=str(path), key=_short(key))
     head = validate(LoadCaseHead, {k: v for k, v in data.items() if k in head_keys}, path)
     if "engine" not in data:
         raise InputError("required key is missing", file=str(path), key="engine")
@@ -83,7 +81,9 @@ def _load(path: Path) -> model.LoadCase:
         if key in data:
             sections[key] = parser(data[key], path, key)
     if sections.get("criteria") is not None:
-        require_counterweight_fillets(sections.get("geometry"), [lim.quantity for lim in sections["criteria"].limits], path)
+        require_counterweight_fillets(
+            sections.get("geometry"), [lim.quantity for lim in sections["criteria"].limits], path
+        )
     extras = {k: v for k, v in sections.items() if k not in ("geometry", "material", "criteria", "fe", "balance")}
     return model.LoadCase(
         name=head.name,

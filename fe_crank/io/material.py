@@ -113,8 +113,14 @@ def library() -> dict[str, dict]:
 
 
 def _check_positive(props: dict, file, key: str) -> None:
-    for k in ("youngs_modulus", "density", "yield_strength", "tensile_strength",
-              "fatigue_limit_bending", "fatigue_limit_torsion"):
+    for k in (
+        "youngs_modulus",
+        "density",
+        "yield_strength",
+        "tensile_strength",
+        "fatigue_limit_bending",
+        "fatigue_limit_torsion",
+    ):
         v = props.get(k)
         if v is not None and not v > 0:
             raise InputError(f"must be positive (got {v:g} SI)", file=str(file), key=f"{key}.{k}")
@@ -122,7 +128,8 @@ def _check_positive(props: dict, file, key: str) -> None:
     if ys is not None and ts is not None and ys > ts:
         raise InputError(
             f"yield strength {ys / 1e6:g} MPa exceeds tensile strength {ts / 1e6:g} MPa",
-            file=str(file), key=f"{key}.yield_strength",
+            file=str(file),
+            key=f"{key}.yield_strength",
         )
 
 
@@ -131,7 +138,7 @@ def parse_material(value: object, file: str | Path, key: str = "material") -> Ma
     if isinstance(value, str):
         value = {"name": value}
     if not isinstance(value, dict):
-        raise InputError("must be a table, e.g. [material] name = \"42CrMo4\"", file=str(file), key=key)
+        raise InputError('must be a table, e.g. [material] name = "42CrMo4"', file=str(file), key=key)
     raw = validate(MaterialInput, value, file, key)
     props: dict = {}
     source_parts = []
@@ -140,7 +147,8 @@ def parse_material(value: object, file: str | Path, key: str = "material") -> Ma
         if raw.name not in lib:
             raise InputError(
                 f"unknown material {raw.name!r}; the library ({library_path().name}) has {sorted(lib)}",
-                file=str(file), key=f"{key}.name",
+                file=str(file),
+                key=f"{key}.name",
             )
         props.update(lib[raw.name])
         source_parts.append(props.pop("source", ""))
@@ -156,7 +164,8 @@ def parse_material(value: object, file: str | Path, key: str = "material") -> Ma
         if props.get(k) is None:
             raise InputError(
                 "required (give name = a library material, or the value with its unit)",
-                file=str(file), key=f"{key}.{k}",
+                file=str(file),
+                key=f"{key}.{k}",
             )
     _check_positive(props, file, key)
     return Material(

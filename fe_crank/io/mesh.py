@@ -18,7 +18,7 @@ class MeshSection:
 
     size: str = "coarse"
     max_elements: int | None = None  # limit on the estimated element count (docs/limits.md)
-    convergence: bool | None = None   # hot-spot convergence study; None: on unless size = "test"
+    convergence: bool | None = None  # hot-spot convergence study; None: on unless size = "test"
     symmetric: bool = True  # mesh a mirror-symmetric throw's fundamental part and mirror it (MeshOptions.symmetric)
 
 
@@ -28,8 +28,11 @@ def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
         raise InputError('must be a table, e.g. [mesh] size = "coarse"', file=str(file), key=key)
     for k in value:
         if k not in ("size", "convergence", "max_elements", "symmetric"):
-            raise InputError("unknown key; the [mesh] table takes size, convergence, max_elements and symmetric",
-                             file=str(file), key=f"{key}.{k}")
+            raise InputError(
+                "unknown key; the [mesh] table takes size, convergence, max_elements and symmetric",
+                file=str(file),
+                key=f"{key}.{k}",
+            )
     conv = value.get("convergence")
     if conv is not None and not isinstance(conv, bool):
         raise InputError("must be true or false", file=str(file), key=f"{key}.convergence")
@@ -41,6 +44,7 @@ def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
         raise InputError("must be a positive whole number of elements", file=str(file), key=f"{key}.max_elements")
     size = value.get("size", "coarse")
     if size not in MESH_PRESETS:
-        raise InputError(f"unknown mesh size {size!r}; pick one of {list(MESH_PRESETS)}", file=str(file),
-                         key=f"{key}.size")
+        raise InputError(
+            f"unknown mesh size {size!r}; pick one of {list(MESH_PRESETS)}", file=str(file), key=f"{key}.size"
+        )
     return MeshSection(size=size, convergence=conv, max_elements=limit, symmetric=sym)

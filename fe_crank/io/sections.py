@@ -7,7 +7,8 @@ one line per section.
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 from fe_crank.fe.input import parse_fe
 from fe_crank.io.balance import parse_balance

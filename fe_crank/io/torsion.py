@@ -61,19 +61,21 @@ def _per_angle(kind: str, si: str, example: str):
 
     def parse(value: object) -> float:
         if isinstance(value, bool) or not isinstance(value, str):
-            raise ValueError(f"expected a torsional {kind} with its unit as a string, e.g. \"{example}\"; "
-                             "got a value without a unit")
+            raise ValueError(
+                f'expected a torsional {kind} with its unit as a string, e.g. "{example}"; got a value without a unit'
+            )
         try:
             q = ureg.Quantity(value.strip())
         except Exception:  # pint raises several unrelated classes
-            raise ValueError(f"cannot read this as a torsional {kind} (e.g. \"{example}\")") from None
+            raise ValueError(f'cannot read this as a torsional {kind} (e.g. "{example}")') from None
         units = dict(getattr(q, "_units", {}) or {})
         per_angle = any(u in ("radian", "degree", "revolution", "turn") and e < 0 for u, e in units.items())
         if not per_angle:
-            raise ValueError(f"a torsional {kind} is written per angle, e.g. \"{example}\" "
-                             "(without /rad it could be a torque)")
+            raise ValueError(
+                f'a torsional {kind} is written per angle, e.g. "{example}" (without /rad it could be a torque)'
+            )
         if not q.check(dims):
-            raise ValueError(f"not a torsional {kind} (e.g. \"{example}\")")
+            raise ValueError(f'not a torsional {kind} (e.g. "{example}")')
         out = float(q.to(si).magnitude)
         if not math.isfinite(out):
             raise ValueError(f"not a finite torsional {kind}")
@@ -133,8 +135,9 @@ class DrivenInput(Strict):
     @model_validator(mode="after")
     def _check(self):
         if self.stiffness is None:
-            raise ValueError("a driven machine needs the stiffness of its connection (shaft or coupling) "
-                             "to the previous mass")
+            raise ValueError(
+                "a driven machine needs the stiffness of its connection (shaft or coupling) to the previous mass"
+            )
         _positive(self, "inertia", "stiffness")
         _non_negative(self, "damping", "absolute_damping")
         if not 0.0 <= self.loss_factor <= MAX_COUPLING_LOSS_FACTOR:
@@ -160,12 +163,16 @@ class TorsionInput(Strict):
         if not 0 < lo < hi:
             raise ValueError("speed_range must be two increasing positive speeds")
         if not 0.0 <= self.shaft_loss_factor <= MAX_SHAFT_LOSS_FACTOR:
-            raise ValueError(f"shaft_loss_factor must lie in [0, {MAX_SHAFT_LOSS_FACTOR}] "
-                             "(a crank without damper: about 0.015-0.04, docs/torsion.md)")
+            raise ValueError(
+                f"shaft_loss_factor must lie in [0, {MAX_SHAFT_LOSS_FACTOR}] "
+                "(a crank without damper: about 0.015-0.04, docs/torsion.md)"
+            )
         _non_negative(self, "cylinder_damping")
         if self.shaft_loss_factor == 0.0 and self.cylinder_damping == 0.0:
-            raise ValueError("shaft_loss_factor and cylinder_damping are both zero: an undamped crank has "
-                             "unbounded resonances; state the damping")
+            raise ValueError(
+                "shaft_loss_factor and cylinder_damping are both zero: an undamped crank has "
+                "unbounded resonances; state the damping"
+            )
         if self.damper is not None and self.pulley is None:
             raise ValueError("a damper needs the pulley (hub) it is mounted on: give [torsion.pulley]")
         return self
@@ -206,7 +213,18 @@ def parse_torsion(value: object, file: str | Path, key: str = "torsion") -> Tors
     damper = None if d is None else Element("damper", d.inertia, d.stiffness, d.damping, d.loss_factor)
     pulley = None if raw.pulley is None else Element("pulley", raw.pulley.inertia, raw.pulley.stiffness)
     fly = Element("flywheel", raw.flywheel.inertia, raw.flywheel.stiffness)
-    driven = tuple(Element(x.name, x.inertia, x.stiffness, x.damping, x.loss_factor, x.absolute_damping)
-                   for x in raw.driven)
-    return TorsionSettings(tuple(raw.speed_range), raw.speed_steps, raw.throw_stiffness, raw.shaft_loss_factor,
-                           raw.cylinder_damping, raw.assess_speed, damper, pulley, fly, driven)
+    driven = tuple(
+        Element(x.name, x.inertia, x.stiffness, x.damping, x.loss_factor, x.absolute_damping) for x in raw.driven
+    )
+    return TorsionSettings(
+        tuple(raw.speed_range),
+        raw.speed_steps,
+        raw.throw_stiffness,
+        raw.shaft_loss_factor,
+        raw.cylinder_damping,
+        raw.assess_speed,
+        damper,
+        pulley,
+        fly,
+        driven,
+    )

@@ -58,25 +58,40 @@ KINDS: dict[str, tuple[str, str, str]] = {
 #: length, 1e6 rad/s ...): they only stop typing slips such as "1e30 mm" from
 #: reaching the geometry kernel or the solver.  docs/limits.md lists them.
 MAX_ABS: dict[str, float] = {
-    "length": 1e3, "mass": 1e7, "angle": 1e3, "speed": 1e6, "pressure": 1e13,
-    "force": 1e10, "moment": 1e10, "inertia": 1e7, "density": 1e6,
-    "stiffness_per_area": 1e20, "energy": 1e10, "unbalance": 1e5, "time": 1e7, "area": 1e6,
+    "length": 1e3,
+    "mass": 1e7,
+    "angle": 1e3,
+    "speed": 1e6,
+    "pressure": 1e13,
+    "force": 1e10,
+    "moment": 1e10,
+    "inertia": 1e7,
+    "density": 1e6,
+    "stiffness_per_area": 1e20,
+    "energy": 1e10,
+    "unbalance": 1e5,
+    "time": 1e7,
+    "area": 1e6,
 }
 
 _TAU = 2.0 * math.pi
 #: rotational-speed spelling (spaces removed, lower case) -> rad/s per unit.
 #: rpm = rev/min = r/min = 1/min = min^-1: 2 pi / 60;  Hz = rev/s = rps: 2 pi;  rad/s: 1.
 SPEED_UNITS: dict[str, float] = {
-    **{s: _TAU / 60.0 for s in ("rpm", "1/min", "min^-1", "min**-1", "min-1", "rev/min", "r/min", "revolution/minute")},
-    **{s: _TAU for s in ("hz", "rev/s", "r/s", "rps", "revolution/second")},
-    **{s: 1.0 for s in ("rad/s", "rad*s^-1", "rad*s**-1", "radian/second")},
+    **dict.fromkeys(
+        ("rpm", "1/min", "min^-1", "min**-1", "min-1", "rev/min", "r/min", "revolution/minute"), _TAU / 60.0
+    ),
+    **dict.fromkeys(("hz", "rev/s", "r/s", "rps", "revolution/second"), _TAU),
+    **dict.fromkeys(("rad/s", "rad*s^-1", "rad*s**-1", "radian/second"), 1.0),
     "deg/s": math.pi / 180.0,
 }
 _AMBIGUOUS_SPEED = ("1/s", "s^-1", "s**-1", "s-1", "1/second")
 
 _NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d{1,3})?")
-_UNIT_TOKEN = re.compile(r"\s*(?:(?P<name>[A-Za-z_°µμΩ%][A-Za-z0-9_°µμΩ]*)|(?P<pow>\*\*|\^)\s*(?P<exp>[+-]?\d+)"
-                         r"|(?P<op>[*/·])|(?P<one>1)(?=\s*/)|(?P<lp>\()|(?P<rp>\)))")
+_UNIT_TOKEN = re.compile(
+    r"\s*(?:(?P<name>[A-Za-z_°µμΩ%][A-Za-z0-9_°µμΩ]*)|(?P<pow>\*\*|\^)\s*(?P<exp>[+-]?\d+)"
+    r"|(?P<op>[*/·])|(?P<one>1)(?=\s*/)|(?P<lp>\()|(?P<rp>\)))"
+)
 
 
 def _clip(value: object) -> str:
@@ -132,14 +147,14 @@ def parse_unit(text: str) -> pint.Unit:
 def _split(value: str, kind: str, example: str) -> tuple[float, str]:
     text = value.strip()
     if len(text) > MAX_TEXT:
-        raise ValueError(f"a {kind} is at most {MAX_TEXT} characters, e.g. \"{example}\"")
+        raise ValueError(f'a {kind} is at most {MAX_TEXT} characters, e.g. "{example}"')
     m = _NUMBER.match(text)
     if not m:
-        raise ValueError(f"cannot read {_clip(value)} as a {kind}: it must start with a number, e.g. \"{example}\"")
+        raise ValueError(f'cannot read {_clip(value)} as a {kind}: it must start with a number, e.g. "{example}"')
     number = float(m.group(0))
-    unit = text[m.end():].strip()
+    unit = text[m.end() :].strip()
     if not unit:
-        raise ValueError(f"{_clip(value)} has no unit; write a {kind} with its unit, e.g. \"{example}\"")
+        raise ValueError(f'{_clip(value)} has no unit; write a {kind} with its unit, e.g. "{example}"')
     return number, unit
 
 
@@ -163,15 +178,16 @@ def _speed(number: float, unit: str, value: str, example: str) -> float:
     if key in SPEED_UNITS:
         return number * SPEED_UNITS[key]
     if key in _AMBIGUOUS_SPEED:
-        raise ValueError(f"{_clip(value)}: 1/s is ambiguous for a shaft speed (rev/s or rad/s?); "
-                         "write rpm, Hz (rev/s) or rad/s")
+        raise ValueError(
+            f"{_clip(value)}: 1/s is ambiguous for a shaft speed (rev/s or rad/s?); write rpm, Hz (rev/s) or rad/s"
+        )
     try:
         q = ureg.Quantity(1.0, parse_unit(unit))
     except ValueError as exc:
-        raise ValueError(f"cannot read {_clip(value)} as a speed (e.g. \"{example}\"): {exc}") from None
+        raise ValueError(f'cannot read {_clip(value)} as a speed (e.g. "{example}"): {exc}') from None
     if q.check("1/[time]"):
         raise ValueError(f"{_clip(value)}: write a rotational speed in rpm, 1/min, rev/min, Hz (rev/s) or rad/s")
-    raise ValueError(f"{_clip(value)} is {_article(_describe_dimension(q))}, not a rotational speed (e.g. \"{example}\")")
+    raise ValueError(f'{_clip(value)} is {_article(_describe_dimension(q))}, not a rotational speed (e.g. "{example}")')
 
 
 def to_si(value: object, kind: str) -> float:
@@ -185,9 +201,7 @@ def to_si(value: object, kind: str) -> float:
     dim, si_unit, example = KINDS[kind]
     if isinstance(value, bool) or not isinstance(value, str):
         shown = _clip(value) if isinstance(value, (int, float)) else type(value).__name__
-        raise ValueError(
-            f"expected a {kind} with its unit as a string, e.g. \"{example}\"; got {shown} without a unit"
-        )
+        raise ValueError(f'expected a {kind} with its unit as a string, e.g. "{example}"; got {shown} without a unit')
     number, unit = _split(value, kind, example)
     if not math.isfinite(number):
         raise ValueError(f"{_clip(value)} is not a finite {kind}")
@@ -197,21 +211,24 @@ def to_si(value: object, kind: str) -> float:
         try:
             u = parse_unit(unit)
         except ValueError as exc:
-            raise ValueError(f"cannot read {_clip(value)} as a {kind} (e.g. \"{example}\"): {exc}") from None
+            raise ValueError(f'cannot read {_clip(value)} as a {kind} (e.g. "{example}"): {exc}') from None
         q = ureg.Quantity(number, u)
         if kind == "angle":
             if not q.dimensionless or q.unitless:
-                raise ValueError(f"{_clip(value)} is not an angle (e.g. \"{example}\")")
+                raise ValueError(f'{_clip(value)} is not an angle (e.g. "{example}")')
             out = float(q.to("rad").magnitude)
         else:
             if not q.check(dim):
-                raise ValueError(f"{_clip(value)} is {_article(_describe_dimension(q))}, not a {kind} (e.g. \"{example}\")")
+                raise ValueError(
+                    f'{_clip(value)} is {_article(_describe_dimension(q))}, not a {kind} (e.g. "{example}")'
+                )
             out = float(q.to(si_unit).magnitude)
     if not math.isfinite(out):
         raise ValueError(f"{_clip(value)} is not a finite {kind}")
     if abs(out) > MAX_ABS[kind]:
-        raise ValueError(f"{_clip(value)} is beyond the largest accepted {kind}, {MAX_ABS[kind]:g} {si_unit} "
-                         "(docs/limits.md)")
+        raise ValueError(
+            f"{_clip(value)} is beyond the largest accepted {kind}, {MAX_ABS[kind]:g} {si_unit} (docs/limits.md)"
+        )
     return out
 
 

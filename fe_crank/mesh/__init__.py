@@ -29,6 +29,15 @@ from fe_crank.mesh.types import MeshStats, ThrowMesh
 from fe_crank.mesh.vtu import write_vtu
 
 __all__ = [
-    "CACHE_FORMAT", "DEFAULT_CACHE_DIR", "PRESETS", "STRAIGHTEN_BELOW", "MeshOptions", "MeshStats", "ThrowMesh",
-    "cache_key", "mesh_throw", "resolve_options", "write_vtu",
+    "CACHE_FORMAT",
+    "DEFAULT_CACHE_DIR",
+    "PRESETS",
+    "STRAIGHTEN_BELOW",
+    "MeshOptions",
+    "MeshStats",
+    "ThrowMesh",
+    "cache_key",
+    "mesh_throw",
+    "resolve_options",
+    "write_vtu",
 ]

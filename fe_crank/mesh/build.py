@@ -14,11 +14,18 @@ import numpy as np
 
 from fe_crank.errors import MeshError
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
+from fe_crank.mesh.cache import (
+    TMP_MARK,
+    _save_npz,
+    _stats_to_json,
+    cache_key,
+    clean_stale_cache_temps,
+    load_cache_entry,
+)
 from fe_crank.mesh.mirror import mirror_all, swap_side
 from fe_crank.mesh.msh import write_msh
-from fe_crank.mesh.planes import mesh_planes
-from fe_crank.mesh.cache import TMP_MARK, _save_npz, _stats_to_json, cache_key, clean_stale_cache_temps, load_cache_entry
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
+from fe_crank.mesh.planes import mesh_planes
 from fe_crank.mesh.quality import _fillet_max_edge, _jacobian_ratio, _straighten_poor, _tet_tags
 from fe_crank.mesh.sizing import _set_size_fields
 from fe_crank.mesh.types import MeshStats, ThrowMesh
@@ -37,7 +44,9 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
         _set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt)
         gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
         gmsh.option.setNumber("Mesh.Optimize", 1)
-        gmsh.option.setNumber("Mesh.OptimizeNetgen", 1)  # removes most boundary slivers (seed-001 coarse: 3866 -> 98 elements with Jacobian ratio < 0.1)
+        gmsh.option.setNumber(
+            "Mesh.OptimizeNetgen", 1
+        )  # removes most boundary slivers (seed-001 coarse: 3866 -> 98 elements with Jacobian ratio < 0.1)
         gmsh.option.setNumber("Mesh.ElementOrder", 1)
         try:
             gmsh.model.mesh.generate(3)
@@ -47,7 +56,9 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
             q = np.asarray(gmsh.model.mesh.getElementQualities(tags, "minSICN"))
             min_quality = float(q.min())
             if min_quality <= 0.0:
-                raise MeshError(f"{int(np.sum(q <= 0))} inverted linear tetrahedra (gmsh minSICN <= 0) in throw {spec.name!r}")
+                raise MeshError(
+                    f"{int(np.sum(q <= 0))} inverted linear tetrahedra (gmsh minSICN <= 0) in throw {spec.name!r}"
+                )
             gmsh.model.mesh.setOrder(2)
             if opt.optimize_high_order:
                 gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
@@ -88,7 +99,9 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
         for name, h in stats.fillet_max_edge.items():
             r = model.fillet_radii[name]
             if h > r / opt.fillet_divisions * (1 + 1e-9):
-                raise MeshError(f"fillet {name!r}: largest element edge {h * 1e3:.3g} mm exceeds r/{opt.fillet_divisions:g} = {r / opt.fillet_divisions * 1e3:.3g} mm")
+                raise MeshError(
+                    f"fillet {name!r}: largest element edge {h * 1e3:.3g} mm exceeds r/{opt.fillet_divisions:g} = {r / opt.fillet_divisions * 1e3:.3g} mm"
+                )
     return mesh, stats
 
 
@@ -146,13 +159,33 @@ def mesh_throw(
         atexit.register(shutil.rmtree, folder, True)  # no cache: the files live as long as the process
         mesh, stats = _build(geometry, spec, opt, folder, planes)
         write_vtu(folder / "throw.vtu", mesh)
-        return ThrowMesh(mesh, stats, dict(stats.fillet_radii), folder / "throw.msh", folder / "throw.vtu", spec.name, key, opt, stats.symmetry)
+        return ThrowMesh(
+            mesh,
+            stats,
+            dict(stats.fillet_radii),
+            folder / "throw.msh",
+            folder / "throw.vtu",
+            spec.name,
+            key,
+            opt,
+            stats.symmetry,
+        )
     root = Path(cache_dir)
     final = root / key
     hit = load_cache_entry(final)
     if hit is not None:
         mesh, stats = hit
-        return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt, stats.symmetry)
+        return ThrowMesh(
+            mesh,
+            stats,
+            dict(stats.fillet_radii),
+            final / "throw.msh",
+            final / "throw.vtu",
+            spec.name,
+            key,
+            opt,
+            stats.symmetry,
+        )
     root.mkdir(parents=True, exist_ok=True)
     clean_stale_cache_temps(root)
     tmp = Path(tempfile.mkdtemp(prefix=f".{key}{TMP_MARK}{os.getpid()}-", dir=root))
@@ -169,4 +202,14 @@ def mesh_throw(
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
-    return ThrowMesh(mesh, stats, dict(stats.fillet_radii), final / "throw.msh", final / "throw.vtu", spec.name, key, opt, stats.symmetry)
+    return ThrowMesh(
+        mesh,
+        stats,
+        dict(stats.fillet_radii),
+        final / "throw.msh",
+        final / "throw.vtu",
+        spec.name,
+        key,
+        opt,
+        stats.symmetry,
+    )

@@ -49,6 +49,7 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     text = json.dumps(payload, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()[:20]
 
+
 def _save_npz(path: Path, mesh) -> None:
     arrays = {"doflocs": mesh.doflocs, "t": mesh.t}
     for k, v in (mesh.boundaries or {}).items():

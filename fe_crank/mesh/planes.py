@@ -40,8 +40,13 @@ MESH_PLANES = (2,)
 
 
 def _same_sector(a: CounterweightSpec, b: CounterweightSpec) -> bool:
-    return ((a.outer_radius, a.inner_radius, a.angle, a.thickness, a.fillet_radius)
-            == (b.outer_radius, b.inner_radius, b.angle, b.thickness, b.fillet_radius))
+    return (a.outer_radius, a.inner_radius, a.angle, a.thickness, a.fillet_radius) == (
+        b.outer_radius,
+        b.inner_radius,
+        b.angle,
+        b.thickness,
+        b.fillet_radius,
+    )
 
 
 def z_symmetric(spec: ThrowSpec) -> bool:

@@ -72,5 +72,7 @@ def _straighten_poor(gmsh, throw_name: str, threshold: float = STRAIGHTEN_BELOW,
     tags = _tet_tags(gmsh)
     q = np.asarray(gmsh.model.mesh.getElementQualities(tags, "minSICN"))
     if np.any(q <= 0.0):
-        raise MeshError(f"{int(np.sum(q <= 0))} invalid quadratic tetrahedra remain in throw {throw_name!r} after straightening")
+        raise MeshError(
+            f"{int(np.sum(q <= 0))} invalid quadratic tetrahedra remain in throw {throw_name!r} after straightening"
+        )
     return len(changed)

@@ -61,7 +61,9 @@ def _surface_field(gmsh, tags: list[int], h: float, size_max: float, grading: fl
     return th
 
 
-def _set_size_fields(gmsh, geometry: CrankGeometry, surfaces: dict[str, list[int]], fillet_radii: dict[str, float], opt: MeshOptions) -> float:
+def _set_size_fields(
+    gmsh, geometry: CrankGeometry, surfaces: dict[str, list[int]], fillet_radii: dict[str, float], opt: MeshOptions
+) -> float:
     size_max = opt.size_max if opt.size_max is not None else geometry.crankpin_diameter / opt.coarse_divisions
     fields = []
     for name, r in fillet_radii.items():

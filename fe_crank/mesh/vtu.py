@@ -5,7 +5,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from fe_crank.vtu import quadratic_tet_mesh, region_ids, write_vtu as write
+from fe_crank.vtu import quadratic_tet_mesh, region_ids
+from fe_crank.vtu import write_vtu as write
 
 
 def write_vtu(path: Path, mesh) -> None:

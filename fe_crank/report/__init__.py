@@ -15,8 +15,8 @@ from pathlib import Path
 
 from fe_crank.fe import convergence
 from fe_crank.files import write_atomic
-from fe_crank.results import CaseResult
 from fe_crank.report.html import Page, criteria_table, esc, header_html, table, timings_table
+from fe_crank.results import CaseResult
 
 
 def _engine_rows(lc) -> list[list[object]]:
@@ -37,8 +37,12 @@ def _engine_rows(lc) -> list[list[object]]:
     if lc.operating.overspeed:
         rows.append(["overspeed", f"{lc.operating.overspeed * 30 / math.pi:.0f} rpm"])
     if e.gas is not None:
-        rows.append(["peak cylinder pressure", f"{e.gas.pressure.max() / 1e6:.2f} MPa (abs.)"
-                     + (f", source: {e.gas.source}" if e.gas.source else "")])
+        rows.append(
+            [
+                "peak cylinder pressure",
+                f"{e.gas.pressure.max() / 1e6:.2f} MPa (abs.)" + (f", source: {e.gas.source}" if e.gas.source else ""),
+            ]
+        )
     return rows
 
 
@@ -58,11 +62,18 @@ def _section_rows(obj) -> list[list[object]]:
             q = QUANTITIES.get(lim.quantity)
             unit = "MPa" if q is not None and q.unit_kind == "pressure" else ""
             val = lim.value / 1e6 if unit else lim.value
-            rows.append([lim.key.split(".")[-1], f"{'>=' if lim.sense == 'min' else '<='} {val:.4g} {unit}".strip()
-                         + (f"  ({q.meaning})" if q is not None else "")])
+            rows.append(
+                [
+                    lim.key.split(".")[-1],
+                    f"{'>=' if lim.sense == 'min' else '<='} {val:.4g} {unit}".strip()
+                    + (f"  ({q.meaning})" if q is not None else ""),
+                ]
+            )
         return rows
     if is_dataclass(obj):
-        return [[f.name, _fmt_property(f.name, getattr(obj, f.name))] for f in fields(obj) if not f.name.startswith("_")]
+        return [
+            [f.name, _fmt_property(f.name, getattr(obj, f.name))] for f in fields(obj) if not f.name.startswith("_")
+        ]
     return [["value", obj]]
 
 
@@ -86,7 +97,9 @@ def _fmt_property(name: str, v) -> object:
     return f"{v:.4g}"
 
 
-def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *, options=None, trace: str = "") -> None:
+def write_case_report(
+    folder: str | Path, result: CaseResult, stage_out: dict, *, options=None, trace: str = ""
+) -> None:
     """Write ``results.json``, pictures, fields and ``report.html`` into ``folder``."""
     folder = Path(folder)
     page = Page(f"fe-crank: {result.name}")
@@ -99,7 +112,11 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
         if lc.description:
             inputs.append(f"<p>{esc(lc.description)}</p>")
         inputs.append(table(["quantity", "value"], _engine_rows(lc)))
-        for title, obj in (("material", lc.material), ("acceptance criteria", lc.criteria), ("FE model and bearings", lc.fe)):
+        for title, obj in (
+            ("material", lc.material),
+            ("acceptance criteria", lc.criteria),
+            ("FE model and bearings", lc.fe),
+        ):
             rows = _section_rows(obj)
             if title == "material":
                 from fe_crank.assess.factors import material_rows
@@ -120,13 +137,22 @@ def write_case_report(folder: str | Path, result: CaseResult, stage_out: dict, *
     if stage_out.get("assessment") is not None:
         studies = stage_out.get("mesh_convergence")
         extra_criteria = (convergence.criterion(studies),) if studies else ()
-        write_atomic(folder / "results.json", results_json(stage_out["assessment"], fe_results(stage_out),
-                                                           extra_criteria, provenance=result.provenance, notes=notes))
+        write_atomic(
+            folder / "results.json",
+            results_json(
+                stage_out["assessment"],
+                fe_results(stage_out),
+                extra_criteria,
+                provenance=result.provenance,
+                notes=notes,
+            ),
+        )
     write_atomic(folder / "report.html", page.html(header_html(result, notes), folder=folder))
 
 
-def results_json(assessment, extra: dict | None = None, criteria=(), *, provenance: dict | None = None,
-                 notes=()) -> str:
+def results_json(
+    assessment, extra: dict | None = None, criteria=(), *, provenance: dict | None = None, notes=()
+) -> str:
     """``results.json``: the assessment's document (``fe_crank.assess.to_json``, schema
     ``fe_crank/data/results.schema.json``) plus ``extra`` top-level fields, ``criteria``
     (``CriterionResult``) of other stages, ``provenance`` (``fe_crank.provenance``) and

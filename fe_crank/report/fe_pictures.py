@@ -23,8 +23,10 @@ from fe_crank.report.overspeed_state import field_peak, throw_names
 from fe_crank.report.superposed import assessed_dynamics
 
 #: the overspeed gas assumption in words (``[operating] overspeed_gas``, fe_crank.assess.overspeed)
-GAS_WORDS = {"motored": "motored: no combustion, zero gauge gas pressure",
-             "as_operating": "gas as operating: the operating gas pressure table"}
+GAS_WORDS = {
+    "motored": "motored: no combustion, zero gauge gas pressure",
+    "as_operating": "gas as operating: the operating gas pressure table",
+}
 
 
 def _long_gas(words: str) -> str:
@@ -61,20 +63,24 @@ def fe_section(folder: Path, so: dict, options) -> list[str]:
         names = throw_names(keys, dyn)
         if len(names) > 1:  # identical throws share one FE model: drawn once, where it is most critical
             os_txt = "" if tf.overspeed is None else f", the overspeed state of throw {tf.overspeed.throw}"
-            out.append(f"<p>One FE model stands for throws {esc(', '.join(names))}, each assessed with its own "
-                       f"loads; it is drawn where it is most critical: the hot spot of throw {esc(tf.hotspot.throw)}"
-                       f"{esc(os_txt)}.</p>")
+            out.append(
+                f"<p>One FE model stands for throws {esc(', '.join(names))}, each assessed with its own "
+                f"loads; it is drawn where it is most critical: the hot spot of throw {esc(tf.hotspot.throw)}"
+                f"{esc(os_txt)}.</p>"
+            )
         tag = f"throw{_safe(tf.hotspot.throw)}"
         angle_txt = "" if tf.angle_deg is None else f" at crank angle {tf.angle_deg:.0f} deg"
         if write_vtu_files:
             write_vtu(Path(folder) / f"{tag}.vtu", tf.mesh)
-            out.append(f'<p>Fields for ParaView: <code>{tag}.vtu</code> (quadratic tetrahedra; displacement, stress '
-                       f"tensor, von Mises and principal stresses of throw {esc(tf.hotspot.throw)}{angle_txt} and, "
-                       "with the suffix <code>_overspeed</code>, in the governing overspeed state"
-                       + ("" if tf.overspeed is None else f" (throw {esc(tf.overspeed.throw)})")
-                       + "; fatigue amplitude, mean "
-                       "and safety over the cycle; subdomain, boundary and assessed-group ids; units in the field "
-                       "names).</p>")
+            out.append(
+                f"<p>Fields for ParaView: <code>{tag}.vtu</code> (quadratic tetrahedra; displacement, stress "
+                f"tensor, von Mises and principal stresses of throw {esc(tf.hotspot.throw)}{angle_txt} and, "
+                "with the suffix <code>_overspeed</code>, in the governing overspeed state"
+                + ("" if tf.overspeed is None else f" (throw {esc(tf.overspeed.throw)})")
+                + "; fatigue amplitude, mean "
+                "and safety over the cycle; subdomain, boundary and assessed-group ids; units in the field "
+                "names).</p>"
+            )
         if render:
             size = float(np.linalg.norm(np.ptp(np.asarray(units.points), axis=1)))
             grid = rd.grid_of(tf.mesh, _display(tf.mesh.point_data))
@@ -101,21 +107,39 @@ def _hotspot_figures(folder: Path, tag: str, tf, grid, size: float, angle_txt: s
     hp = np.asarray(crit.point, float)
     vm_hot = float(pd["von_mises_Pa"][crit.node]) / 1e6
     label = f"hot spot ({crit.what}) {vm_hot:.4g} MPa"
-    v = rd.render_field(folder / f"{tag}_von_mises.png", grid, "von_mises_MPa", title="von Mises [MPa]",
-                        displacement="displacement_m", scale=scale,
-                        hotspot=_drawn(tf, crit.node, "displacement_m", scale), hotspot_label=label,
-                        text=f"throw {throw}{angle_txt}; deformation x {scale:g}")
-    rd.render_field(folder / f"{tag}_hotspot.png", grid, "von_mises_MPa", title="von Mises [MPa]",
-                    hotspot=hp, hotspot_label=label, focus=(hp, max(0.12 * size, 1e-3)),
-                    text=f"close-up of {group}{angle_txt}, undeformed")
+    v = rd.render_field(
+        folder / f"{tag}_von_mises.png",
+        grid,
+        "von_mises_MPa",
+        title="von Mises [MPa]",
+        displacement="displacement_m",
+        scale=scale,
+        hotspot=_drawn(tf, crit.node, "displacement_m", scale),
+        hotspot_label=label,
+        text=f"throw {throw}{angle_txt}; deformation x {scale:g}",
+    )
+    rd.render_field(
+        folder / f"{tag}_hotspot.png",
+        grid,
+        "von_mises_MPa",
+        title="von Mises [MPa]",
+        hotspot=hp,
+        hotspot_label=label,
+        focus=(hp, max(0.12 * size, 1e-3)),
+        text=f"close-up of {group}{angle_txt}, undeformed",
+    )
     return [
-        Page.figure(f"{tag}_von_mises.png",
-                    f"Throw {throw}: von Mises stress{angle_txt} (largest von Mises of {group}), peak on the part "
-                    f"{v.peak:.4g} MPa, on the deformed shape; deformation exaggerated x {scale:g} (largest "
-                    f"displacement {umax * 1e6:.1f} um)"),
-        Page.figure(f"{tag}_hotspot.png",
-                    f"Close-up of {group} (undeformed): hot spot of the {crit.what} assessment at "
-                    f"({', '.join(f'{c * 1e3:.1f}' for c in hp)}) mm{angle_txt}, von Mises there {vm_hot:.4g} MPa"),
+        Page.figure(
+            f"{tag}_von_mises.png",
+            f"Throw {throw}: von Mises stress{angle_txt} (largest von Mises of {group}), peak on the part "
+            f"{v.peak:.4g} MPa, on the deformed shape; deformation exaggerated x {scale:g} (largest "
+            f"displacement {umax * 1e6:.1f} um)",
+        ),
+        Page.figure(
+            f"{tag}_hotspot.png",
+            f"Close-up of {group} (undeformed): hot spot of the {crit.what} assessment at "
+            f"({', '.join(f'{c * 1e3:.1f}' for c in hp)}) mm{angle_txt}, von Mises there {vm_hot:.4g} MPa",
+        ),
     ]
 
 
@@ -136,25 +160,36 @@ def _overspeed_figure(folder: Path, tag: str, tf, grid, size: float) -> list[str
         marks = ((_drawn(tf, node, "displacement_overspeed_m", scale), "counterweight max"),)
         key_txt = f"; black: max of {cw.group} {value / 1e6:.4g} MPa"
         ext = cw.max_von_mises_overspeed
-        cw_txt = (f"; black: the largest von Mises of {cw.group} in this state, {value / 1e6:.4g} MPa at "
-                  f"({', '.join(f'{c * 1e3:.1f}' for c in point)}) mm (its maximum over the overspeed cycle "
-                  f"{ext.value / 1e6:.4g} MPa" + ("" if ext.angle is None else f" at {np.degrees(ext.angle):.0f} deg")
-                  + ")")
+        cw_txt = (
+            f"; black: the largest von Mises of {cw.group} in this state, {value / 1e6:.4g} MPa at "
+            f"({', '.join(f'{c * 1e3:.1f}' for c in point)}) mm (its maximum over the overspeed cycle "
+            f"{ext.value / 1e6:.4g} MPa" + ("" if ext.angle is None else f" at {np.degrees(ext.angle):.0f} deg") + ")"
+        )
     when = f"{os_.rpm:.0f} rpm, crank angle {os_.angle_deg:.0f} deg"
-    v = rd.render_field(folder / f"{tag}_overspeed.png", grid, "von_mises_overspeed_MPa", title="von Mises [MPa]",
-                        displacement="displacement_overspeed_m", scale=scale,
-                        hotspot=_drawn(tf, os_.node, "displacement_overspeed_m", scale),
-                        hotspot_label="overspeed hot spot", marks=marks,
-                        text=f"throw {os_.throw} at overspeed {when} ({_short_gas(os_.gas)}); deformation x {scale:g}\n"
-                             f"magenta: overspeed hot spot, {os_.group} {vm_hot:.4g} MPa{key_txt}")
-    return [Page.figure(
-        f"{tag}_overspeed.png",
-        f"Throw {os_.throw} at overspeed {when}: the governing state of the overspeed check (the cycle recomputed "
-        f"at the overspeed with rod and piston inertia and the crank's own body force; "
-        f"{_long_gas(os_.gas)}), the crank angle of the largest von Mises of {os_.group} over that "
-        f"cycle; peak on the part {v.peak:.4g} MPa; magenta: the overspeed hot spot, {os_.group} at "
-        f"({', '.join(f'{c * 1e3:.1f}' for c in os_.point)}) mm, {vm_hot:.4g} MPa{safety}{cw_txt}; deformation exaggerated x {scale:g} (largest displacement "
-        f"{umax * 1e6:.1f} um)")]
+    v = rd.render_field(
+        folder / f"{tag}_overspeed.png",
+        grid,
+        "von_mises_overspeed_MPa",
+        title="von Mises [MPa]",
+        displacement="displacement_overspeed_m",
+        scale=scale,
+        hotspot=_drawn(tf, os_.node, "displacement_overspeed_m", scale),
+        hotspot_label="overspeed hot spot",
+        marks=marks,
+        text=f"throw {os_.throw} at overspeed {when} ({_short_gas(os_.gas)}); deformation x {scale:g}\n"
+        f"magenta: overspeed hot spot, {os_.group} {vm_hot:.4g} MPa{key_txt}",
+    )
+    return [
+        Page.figure(
+            f"{tag}_overspeed.png",
+            f"Throw {os_.throw} at overspeed {when}: the governing state of the overspeed check (the cycle recomputed "
+            f"at the overspeed with rod and piston inertia and the crank's own body force; "
+            f"{_long_gas(os_.gas)}), the crank angle of the largest von Mises of {os_.group} over that "
+            f"cycle; peak on the part {v.peak:.4g} MPa; magenta: the overspeed hot spot, {os_.group} at "
+            f"({', '.join(f'{c * 1e3:.1f}' for c in os_.point)}) mm, {vm_hot:.4g} MPa{safety}{cw_txt}; deformation exaggerated x {scale:g} (largest displacement "
+            f"{umax * 1e6:.1f} um)",
+        )
+    ]
 
 
 def _drawn(tf, node: int, displacement: str, scale: float) -> np.ndarray:

@@ -68,10 +68,16 @@ def critical(assessment, keys, dyn) -> HotSpot | None:
     for ti, t in enumerate(assessment.throws):
         if t.name not in names:
             continue
-        fat = [(_finite_key(g.fatigue_safety.value), ti, gi, t.name, g, g.fatigue_safety, "fatigue")
-               for gi, g in enumerate(t.groups) if g.fatigue_safety is not None and g.fatigue_safety.value is not None]
-        cands += fat or [(_finite_key(g.static_safety), ti, gi, t.name, g, g.max_von_mises, "static")
-                         for gi, g in enumerate(t.groups) if g.max_von_mises is not None]
+        fat = [
+            (_finite_key(g.fatigue_safety.value), ti, gi, t.name, g, g.fatigue_safety, "fatigue")
+            for gi, g in enumerate(t.groups)
+            if g.fatigue_safety is not None and g.fatigue_safety.value is not None
+        ]
+        cands += fat or [
+            (_finite_key(g.static_safety), ti, gi, t.name, g, g.max_von_mises, "static")
+            for gi, g in enumerate(t.groups)
+            if g.max_von_mises is not None
+        ]
     if not cands:
         return None
     _, _, _, throw, g, ext, what = min(cands, key=lambda c: c[:3])

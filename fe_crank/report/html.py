@@ -88,11 +88,15 @@ class Page:
             body.append(f"<h2>{esc(heading)}</h2>")
             body.extend(parts)
         return (
-            "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<title>{esc(self.title)}</title><style>{CSS}</style></head><body>\n"
-            + "\n".join(body)
-            + "\n</body></html>\n"
-        ) if folder is None else embed_images(self.html(head_html), folder)
+            (
+                '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+                f"<title>{esc(self.title)}</title><style>{CSS}</style></head><body>\n"
+                + "\n".join(body)
+                + "\n</body></html>\n"
+            )
+            if folder is None
+            else embed_images(self.html(head_html), folder)
+        )
 
 
 _IMG = re.compile(r'<img src="([^"]+)"')
@@ -120,13 +124,15 @@ def header_html(result: CaseResult, notes=()) -> str:
     rule, the warnings that concern the whole case, and where the result came from."""
     w = result.worst
     worst = f"worst criterion <b>{esc(w.name)}</b>, margin {100 * w.margin:+.1f} %" if w else ""
-    msg = f'<pre>{esc(result.message)}</pre>' if result.message else ""
+    msg = f"<pre>{esc(result.message)}</pre>" if result.message else ""
     mesh = (result.provenance or {}).get("mesh") or {}
     banner = ""
     if mesh.get("preset") and not mesh.get("sign_off"):
-        banner = (f'<div class="banner">NOT A SIGN-OFF (test mesh): mesh preset "{esc(mesh["preset"])}" is below '
-                  f'the sign-off rule ({esc(mesh.get("sign_off_rule", "coarse or finer"))}). Run with '
-                  "--mesh-size coarse or finer before trusting this verdict.</div>")
+        banner = (
+            f'<div class="banner">NOT A SIGN-OFF (test mesh): mesh preset "{esc(mesh["preset"])}" is below '
+            f"the sign-off rule ({esc(mesh.get('sign_off_rule', 'coarse or finer'))}). Run with "
+            "--mesh-size coarse or finer before trusting this verdict.</div>"
+        )
     case_wide = [n for n in notes if not n.criteria]
     return (
         f"{banner}<p>{badge(result.status)} &nbsp; {worst}</p>{notes_list(case_wide)}"
@@ -148,22 +154,49 @@ def provenance_table(prov: dict) -> str:
     if not prov:
         return ""
     mesh = prov.get("mesh") or {}
-    rows = [["fe-crank version", prov.get("version", "")], ["run started (UTC)", prov.get("started", "")],
-            ["input SHA-256 (load case and the files it refers to)", Raw(f"<code>{esc((prov.get('input') or {}).get('sha256'))}</code>")],
-            ["mesh preset", f"{mesh.get('preset')} ({'meets' if mesh.get('sign_off') else 'below'} the sign-off rule: "
-                            f"{mesh.get('sign_off_rule', '')})"]]
+    rows = [
+        ["fe-crank version", prov.get("version", "")],
+        ["run started (UTC)", prov.get("started", "")],
+        [
+            "input SHA-256 (load case and the files it refers to)",
+            Raw(f"<code>{esc((prov.get('input') or {}).get('sha256'))}</code>"),
+        ],
+        [
+            "mesh preset",
+            f"{mesh.get('preset')} ({'meets' if mesh.get('sign_off') else 'below'} the sign-off rule: "
+            f"{mesh.get('sign_off_rule', '')})",
+        ],
+    ]
     for key, st in (mesh.get("throws") or {}).items():
         if isinstance(st, dict):
-            rows.append([f"mesh {key}", f"{st.get('elements')} quadratic tetrahedra, {st.get('nodes')} nodes, "
-                                        f"{st.get('p2_dofs')} DOF, min quality {st.get('min_quality', float('nan')):.3g}"])
+            rows.append(
+                [
+                    f"mesh {key}",
+                    f"{st.get('elements')} quadratic tetrahedra, {st.get('nodes')} nodes, "
+                    f"{st.get('p2_dofs')} DOF, min quality {st.get('min_quality', float('nan')):.3g}",
+                ]
+            )
     solver = prov.get("solver") or {}
     if solver:
-        rows.append(["linear solver", f"{', '.join(solver.get('used') or [])} (requested {solver.get('requested')}; "
-                                      f"fast direct solver {'available' if solver.get('fast_available') else 'NOT available'})"])
+        rows.append(
+            [
+                "linear solver",
+                f"{', '.join(solver.get('used') or [])} (requested {solver.get('requested')}; "
+                f"fast direct solver {'available' if solver.get('fast_available') else 'NOT available'})",
+            ]
+        )
     for s in prov.get("support") or ():
         k = s.get("bearing_stiffness")
-        rows.append([f"support, throw {s.get('throw')}", s.get("model") or (f"{s.get('support')} journal support"
-                     + (f", k = {k:.3g} N/m^3" if isinstance(k, (int, float)) else ""))])
+        rows.append(
+            [
+                f"support, throw {s.get('throw')}",
+                s.get("model")
+                or (
+                    f"{s.get('support')} journal support"
+                    + (f", k = {k:.3g} N/m^3" if isinstance(k, (int, float)) else "")
+                ),
+            ]
+        )
     rows.append(["Python, platform", f"{prov.get('python')}, {prov.get('platform')}"])
     return "<details open><summary>Provenance</summary>" + table(["item", "value"], rows) + "</details>"
 
@@ -183,13 +216,23 @@ def criteria_table(result: CaseResult, notes=()) -> str:
     for c in sorted(result.criteria, key=lambda c: c.margin):
         (v, unit), (lim, _) = display(c.value, c.unit), display(c.limit, c.unit)
         mine = [n for n in notes if n.criteria and n.concerns(c.name)]
-        rows.append([
-            c.name, c.description, c.location, v, lim, unit,
-            f"{100 * c.margin:+.1f} %", Raw(badge(STATUS_PASS if c.passed else STATUS_FAIL)), Raw(notes_list(mine)),
-        ])
+        rows.append(
+            [
+                c.name,
+                c.description,
+                c.location,
+                v,
+                lim,
+                unit,
+                f"{100 * c.margin:+.1f} %",
+                Raw(badge(STATUS_PASS if c.passed else STATUS_FAIL)),
+                Raw(notes_list(mine)),
+            ]
+        )
     return table(
-        ["criterion", "what", "where", "value", "limit", "unit", "margin", "verdict", "warnings and assumptions"], rows,
-        num_cols={3, 4, 6}
+        ["criterion", "what", "where", "value", "limit", "unit", "margin", "verdict", "warnings and assumptions"],
+        rows,
+        num_cols={3, 4, 6},
     )
 
 

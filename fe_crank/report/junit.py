@@ -27,8 +27,8 @@ from __future__ import annotations
 import re
 import socket
 import xml.etree.ElementTree as ET
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 from fe_crank.files import write_atomic
 from fe_crank.results import STATUS_ERROR, CaseResult
@@ -54,10 +54,15 @@ def _properties(suite, r: CaseResult) -> None:
     prov = r.provenance or {}
     mesh = prov.get("mesh") or {}
     solver = prov.get("solver") or {}
-    items = [("source", r.source), ("version", prov.get("version")), ("started", r.started),
-             ("input_sha256", (prov.get("input") or {}).get("sha256")), ("mesh_preset", mesh.get("preset")),
-             ("sign_off", None if not mesh else str(bool(mesh.get("sign_off"))).lower()),
-             ("solver", ",".join(solver.get("used") or []) or None)]
+    items = [
+        ("source", r.source),
+        ("version", prov.get("version")),
+        ("started", r.started),
+        ("input_sha256", (prov.get("input") or {}).get("sha256")),
+        ("mesh_preset", mesh.get("preset")),
+        ("sign_off", None if not mesh else str(bool(mesh.get("sign_off"))).lower()),
+        ("solver", ",".join(solver.get("used") or []) or None),
+    ]
     for name, value in items:
         if value not in (None, ""):
             ET.SubElement(props, "property", name=name, value=str(value))
@@ -80,7 +85,7 @@ def junit_xml(results: Sequence[CaseResult], *, hostname: str | None = None) -> 
         n = f = e = 0
         by_name = {c.name: c for c in r.criteria}
         stage = f" (stage {r.error_stage})" if r.error_stage else ""
-        first = (r.message.splitlines()[0] if r.message else "error")
+        first = r.message.splitlines()[0] if r.message else "error"
         for name in names:
             tc = ET.SubElement(suite, "testcase", classname=cls, name=name, time=each)
             n += 1

@@ -104,17 +104,32 @@ def overspeed_state(units, assessment, dyn, lc, keys, dyn_os=None) -> OverspeedS
             best = (at_node, gas, d, index, u)
     _, gas, dyn_os, index, u = best
     theta = np.asarray(dyn_os.theta)
-    return OverspeedState(t.name, g.group, float(ext.value), g.overspeed_safety, int(ext.node),
-                          tuple(float(c) for c in ext.point),
-                          index, float(np.degrees(theta[index])), float(dyn_os.speed),
-                          gas, np.asarray(u),
-                          tuple(g for g in t.groups if g.group in COUNTERWEIGHTS))
+    return OverspeedState(
+        t.name,
+        g.group,
+        float(ext.value),
+        g.overspeed_safety,
+        int(ext.node),
+        tuple(float(c) for c in ext.point),
+        index,
+        float(np.degrees(theta[index])),
+        float(dyn_os.speed),
+        gas,
+        np.asarray(u),
+        tuple(g for g in t.groups if g.group in COUNTERWEIGHTS),
+    )
 
 
 def _von_mises_at(units, u: np.ndarray, node: int) -> float:
     """Averaged nodal von Mises of the field ``u`` at one mesh node, Pa."""
-    s = stress_at_selected_nodes(units.mesh, [u], units.material.youngs_modulus, units.material.poisson_ratio,
-                                 np.array([node]), dofs=units.system.basis.dofs)
+    s = stress_at_selected_nodes(
+        units.mesh,
+        [u],
+        units.material.youngs_modulus,
+        units.material.poisson_ratio,
+        np.array([node]),
+        dofs=units.system.basis.dofs,
+    )
     return float(von_mises(s[0])[0])
 
 

@@ -9,8 +9,8 @@ own plotting functions, which the report reuses.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -26,8 +26,9 @@ def figure(figsize: tuple[float, float]):
 
 
 def _save(fig, path: str | Path) -> Path:
-    from fe_crank.files import write_atomic
     import io
+
+    from fe_crank.files import write_atomic
 
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=110, bbox_inches="tight")

@@ -16,7 +16,7 @@
 
 from __future__ import annotations
 
-from fe_crank.notes import ASSUMPTION, WARNING, Note, from_stage, unique
+from fe_crank.notes import WARNING, Note, from_stage, unique
 from fe_crank.report.fields import critical
 from fe_crank.report.superposed import angle_index, assessed_dynamics, field_at_angle
 
@@ -26,8 +26,7 @@ AVERAGING_LIMIT = 0.05
 UNBALANCE_FLAG = 0.10
 
 FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2")
-STRESS_QUANTITIES = ("static_safety", "fatigue_safety", "gough_pollard_safety", "m53_acceptability",
-                     "overspeed_safety")
+STRESS_QUANTITIES = ("static_safety", "fatigue_safety", "gough_pollard_safety", "m53_acceptability", "overspeed_safety")
 FATIGUE_QUANTITIES = ("fatigue_safety", "gough_pollard_safety", "m53_acceptability")
 
 
@@ -71,31 +70,62 @@ def case_notes(stage_out: dict, provenance: dict | None = None) -> list[Note]:
     prov = provenance or {}
     mesh = prov.get("mesh") or {}
     if mesh.get("preset") and not mesh.get("sign_off"):
-        notes.append(Note(f"NOT A SIGN-OFF: mesh preset '{mesh['preset']}' is below the sign-off rule "
-                          f"({mesh.get('sign_off_rule', 'coarse or finer')}); use --mesh-size coarse",
-                          WARNING, (), "mesh"))
+        notes.append(
+            Note(
+                f"NOT A SIGN-OFF: mesh preset '{mesh['preset']}' is below the sign-off rule "
+                f"({mesh.get('sign_off_rule', 'coarse or finer')}); use --mesh-size coarse",
+                WARNING,
+                (),
+                "mesh",
+            )
+        )
     for key, ind in averaging(stage_out).items():
         for g, v in ind.items():
             if abs(v) > AVERAGING_LIMIT:
-                notes.append(Note(f"UR M53 averaging check failed at {g} (throw {key}): unaveraged vs averaged "
-                                  f"von Mises {100 * v:+.1f} % > 5 %; refine the fillet mesh",
-                                  WARNING, _names(a, STRESS_QUANTITIES), "fe quality"))
+                notes.append(
+                    Note(
+                        f"UR M53 averaging check failed at {g} (throw {key}): unaveraged vs averaged "
+                        f"von Mises {100 * v:+.1f} % > 5 %; refine the fillet mesh",
+                        WARNING,
+                        _names(a, STRESS_QUANTITIES),
+                        "fe quality",
+                    )
+                )
     lc = stage_out.get("loadcase")
     has_unbalance = any(c.quantity == "unbalance_error" for c in getattr(a, "criteria", ()))
     for t in getattr(a, "throws", ()):
         for c in t.counterweights:
             err = c.unbalance_error
             if err is not None and abs(err) > UNBALANCE_FLAG and not has_unbalance:
-                notes.append(Note(f"throw {t.name}, {c.name}: built m r differs from the required by "
-                                  f"{100 * err:+.0f} % (no unbalance_error criterion in the load case checks it)",
-                                  WARNING, (), "counterweights"))
+                notes.append(
+                    Note(
+                        f"throw {t.name}, {c.name}: built m r differs from the required by "
+                        f"{100 * err:+.0f} % (no unbalance_error criterion in the load case checks it)",
+                        WARNING,
+                        (),
+                        "counterweights",
+                    )
+                )
     engine = getattr(lc, "engine", None)
     if engine is not None and getattr(engine, "gas", None) is None and not any("gas" in n.text for n in notes):
-        notes.append(Note("inertia loads only: the engine has no gas pressure, so firing loads are missing "
-                          "(not a full fatigue check)", WARNING, _names(a, FATIGUE_QUANTITIES) or (), "dynamics"))
+        notes.append(
+            Note(
+                "inertia loads only: the engine has no gas pressure, so firing loads are missing "
+                "(not a full fatigue check)",
+                WARNING,
+                _names(a, FATIGUE_QUANTITIES) or (),
+                "dynamics",
+            )
+        )
     solver = prov.get("solver") or {}
     if solver and not solver.get("fast_available"):
-        notes.append(Note(f"the fast direct solver (MKL PARDISO, pip install 'fe-crank[fast]') is not available; "
-                          f"solved with {', '.join(solver.get('used') or ['?'])} (same results, slower)",
-                          WARNING, (), "fe"))
+        notes.append(
+            Note(
+                f"the fast direct solver (MKL PARDISO, pip install 'fe-crank[fast]') is not available; "
+                f"solved with {', '.join(solver.get('used') or ['?'])} (same results, slower)",
+                WARNING,
+                (),
+                "fe",
+            )
+        )
     return unique(notes)

@@ -143,26 +143,50 @@ def render_field(
         surf.points = surf.points + scale * np.asarray(surf.point_data[displacement])
     # the part in the left viewport, the colour bar alone in a strip on the right: the
     # bar can never cover the part, whatever the zoom
-    p = pv.Plotter(off_screen=True, window_size=list(window_size), shape=(1, 2),
-                   col_weights=[1.0 - BAR_STRIP, BAR_STRIP], border=False)
+    p = pv.Plotter(
+        off_screen=True,
+        window_size=list(window_size),
+        shape=(1, 2),
+        col_weights=[1.0 - BAR_STRIP, BAR_STRIP],
+        border=False,
+    )
     try:
         p.set_background("white")
         p.subplot(0, 0)
-        actor = p.add_mesh(surf, scalars=scalars, cmap="turbo", clim=(lo, hi), show_edges=False,
-                           smooth_shading=True, ambient=0.3, show_scalar_bar=False)
+        actor = p.add_mesh(
+            surf,
+            scalars=scalars,
+            cmap="turbo",
+            clim=(lo, hi),
+            show_edges=False,
+            smooth_shading=True,
+            ambient=0.3,
+            show_scalar_bar=False,
+        )
         if show_bar:
             p.subplot(0, 1)
-            p.add_scalar_bar(title=title.replace(" [", "\n["), mapper=actor.mapper, color="black", vertical=True,
-                             fmt=fmt, n_labels=n_labels, **BAR_PLACE, title_font_size=16, label_font_size=14)
+            p.add_scalar_bar(
+                title=title.replace(" [", "\n["),
+                mapper=actor.mapper,
+                color="black",
+                vertical=True,
+                fmt=fmt,
+                n_labels=n_labels,
+                **BAR_PLACE,
+                title_font_size=16,
+                label_font_size=14,
+            )
             p.subplot(0, 0)
         rad = (0.04 * focus[1]) if focus else 0.015 * surf.length
-        spots = ([(hotspot, hotspot_label, "magenta")] if hotspot is not None else []) \
-            + [(pt, lab, "black") for pt, lab in marks]
+        spots = ([(hotspot, hotspot_label, "magenta")] if hotspot is not None else []) + [
+            (pt, lab, "black") for pt, lab in marks
+        ]
         for pt, lab, colour in spots:
             hp = np.asarray(pt, float).reshape(3)
             p.add_mesh(pv.Sphere(radius=rad, center=hp), color=colour)
-            p.add_point_labels(hp[None, :], [lab], font_size=16, text_color="black",
-                               shape_opacity=0.6, always_visible=True)
+            p.add_point_labels(
+                hp[None, :], [lab], font_size=16, text_color="black", shape_opacity=0.6, always_visible=True
+            )
         head = f"peak on the part {peak:.4g} {unit}".rstrip()
         p.add_text("\n".join([head, text] if text else [head]), position="upper_left", font_size=10, color="black")
         p.add_axes(color="black", labels_off=False)
@@ -202,8 +226,7 @@ def iso_direction(centre: np.ndarray, points) -> np.ndarray:
     of cosines to the unit vectors from the part's ``centre`` to the points, the first
     point (the hot spot) weighted twice; ties and no points give (1, 1, 1) / sqrt(3),
     pyvista's default isometric direction.  Drawn with y (the crankpin side) up."""
-    octants = [np.array([sx, sy, sz], float) / math.sqrt(3.0)
-               for sx in (1, -1) for sy in (1, -1) for sz in (1, -1)]
+    octants = [np.array([sx, sy, sz], float) / math.sqrt(3.0) for sx in (1, -1) for sy in (1, -1) for sz in (1, -1)]
     units = []
     for i, pt in enumerate(points):
         v = np.asarray(pt, float).reshape(3) - np.asarray(centre, float).reshape(3)
@@ -254,8 +277,16 @@ def _scale_bar(p, bounds: np.ndarray) -> None:
     centre = corners.mean(axis=0)
     low = float(np.min((corners - centre) @ up)) - 0.03 * size
     a = centre + low * up - 0.5 * length * right
-    p.add_ruler(list(a), list(a + length * right), title=f"{length * 1e3:g} mm", number_labels=2, show_labels=False,
-                font_size_factor=0.8, label_color="black", tick_color="black")
+    p.add_ruler(
+        list(a),
+        list(a + length * right),
+        title=f"{length * 1e3:g} mm",
+        number_labels=2,
+        show_labels=False,
+        font_size_factor=0.8,
+        label_color="black",
+        tick_color="black",
+    )
 
 
 def image_statistics(path: str | Path) -> dict[str, float]:
@@ -267,5 +298,8 @@ def image_statistics(path: str | Path) -> dict[str, float]:
     img = np.asarray(mpimg.imread(str(path)))[..., :3].astype(float)
     bg = img[0, 0]
     differs = np.any(np.abs(img - bg) > 0.02, axis=-1)
-    return {"coverage": float(differs.mean()), "std": float(img.mean(axis=-1).std()),
-            "colours": float(len(np.unique((img * 255).astype(np.uint8).reshape(-1, 3), axis=0)))}
+    return {
+        "coverage": float(differs.mean()),
+        "std": float(img.mean(axis=-1).std()),
+        "colours": float(len(np.unique((img * 255).astype(np.uint8).reshape(-1, 3), axis=0))),
+    }

@@ -118,16 +118,25 @@ def plot_hodographs(res, out: Path) -> list[Path]:
             continue
         fig = figure((9, 4.5))
         axes = fig.subplots(1, 2)
-        for ax, keep, idx, what, unit in ((axes[0], keep_f, 0, "force", "kN"),
-                                          (axes[1], keep_m, 1, "couple (Mx, My)", "kN m")):
+        for ax, keep, idx, what, unit in (
+            (axes[0], keep_f, 0, "force", "kN"),
+            (axes[1], keep_m, 1, "couple (Mx, My)", "kN m"),
+        ):
             for src, t, style in keep:
                 v = t.evaluate(th / k)[idx]
                 lw = 1 if src in res.residual.sources else 2
                 ax.plot(v[:, 0] / 1e3, v[:, 1] / 1e3, style, label=src, lw=lw)
             ax.set_title(f"order {k:g} {what}")
             if not keep:
-                ax.text(0.5, 0.5, f"no free {what.split()[0]} of order {k:g}", ha="center", va="center",
-                        transform=ax.transAxes, color="0.4")
+                ax.text(
+                    0.5,
+                    0.5,
+                    f"no free {what.split()[0]} of order {k:g}",
+                    ha="center",
+                    va="center",
+                    transform=ax.transAxes,
+                    color="0.4",
+                )
                 ax.set_xticks([])
                 ax.set_yticks([])
                 continue

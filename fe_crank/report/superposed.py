@@ -36,6 +36,12 @@ def field_at_angle(units, dyn, lc, throw: str, index: int) -> np.ndarray:
     sense = lc.engine.shaft(lc.engine.throw(throw).shaft).sense
     cases = tuple(units.cases)
     mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
-    c = load_coefficients(tl.pin_force[index:index + 1], tl.torque_front[index:index + 1], dyn.speed,
-                          cases=cases, sense=sense, torque_mz=mz)[0]
+    c = load_coefficients(
+        tl.pin_force[index : index + 1],
+        tl.torque_front[index : index + 1],
+        dyn.speed,
+        cases=cases,
+        sense=sense,
+        torque_mz=mz,
+    )[0]
     return units.combine(dict(zip(cases, c)))

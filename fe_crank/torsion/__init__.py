@@ -12,7 +12,19 @@ from fe_crank.torsion.model import TorsionModel
 from fe_crank.torsion.stiffness import carter_throw_stiffness, fe_throw_stiffness
 
 __all__ = [
-    "Resonance", "TorsionResult", "analyse_torsion", "with_vibratory_torque", "build_model",
-    "cylinder_harmonics", "order_phase_sum", "forced_response", "m53_orders", "holzer_frequencies",
-    "holzer_table", "natural_modes", "TorsionModel", "carter_throw_stiffness", "fe_throw_stiffness",
+    "Resonance",
+    "TorsionResult",
+    "analyse_torsion",
+    "with_vibratory_torque",
+    "build_model",
+    "cylinder_harmonics",
+    "order_phase_sum",
+    "forced_response",
+    "m53_orders",
+    "holzer_frequencies",
+    "holzer_table",
+    "natural_modes",
+    "TorsionModel",
+    "carter_throw_stiffness",
+    "fe_throw_stiffness",
 ]

@@ -102,8 +102,9 @@ def speed_grid(lo: float, hi: float, steps: int, operating: float, resonances: l
     return np.unique(np.concatenate([grid, extra]))
 
 
-def analyse_torsion(loadcase, *, settings=None, inertias=None, fe_stiffness: float | None = None,
-                    step: float = np.radians(1.0)) -> TorsionResult:
+def analyse_torsion(
+    loadcase, *, settings=None, inertias=None, fe_stiffness: float | None = None, step: float = np.radians(1.0)
+) -> TorsionResult:
     """Run the torsional stage of ``loadcase`` (its ``[torsion]`` section, or ``settings``)."""
     settings = settings or loadcase.extras.get("torsion")
     if settings is None:
@@ -111,8 +112,9 @@ def analyse_torsion(loadcase, *, settings=None, inertias=None, fe_stiffness: flo
     lo, hi = settings.speed_range
     op = loadcase.operating.speed
     if not lo <= op <= hi:
-        raise InputError("speed_range must contain the operating speed", file=loadcase.source_file,
-                         key="torsion.speed_range")
+        raise InputError(
+            "speed_range must contain the operating speed", file=loadcase.source_file, key="torsion.speed_range"
+        )
     model = build_model(loadcase, settings, inertias=inertias, fe_stiffness=fe_stiffness)
     modes = natural_modes(model)
     harmonics = cylinder_harmonics(loadcase.engine, op, step=step)
@@ -128,8 +130,10 @@ def analyse_torsion(loadcase, *, settings=None, inertias=None, fe_stiffness: flo
     theta = harmonics.cycle * np.arange(n_theta) / n_theta  # the grid of fe_crank.dynamics
     half = np.zeros((speeds.size, model.size - 1))
     vib_half = np.zeros_like(half)
-    stiff = {"used": settings.throw_stiffness,
-             "carter": carter_throw_stiffness(loadcase.geometry, shear_modulus(loadcase.material))}
+    stiff = {
+        "used": settings.throw_stiffness,
+        "carter": carter_throw_stiffness(loadcase.geometry, shear_modulus(loadcase.material)),
+    }
     if fe_stiffness is not None:
         stiff["fe"] = fe_stiffness
     qs = []
@@ -143,9 +147,24 @@ def analyse_torsion(loadcase, *, settings=None, inertias=None, fe_stiffness: flo
     i_op = int(np.argmin(np.abs(speeds - op)))
     vel = response.velocity_synthesis(i_op, theta)[model.names.index("flywheel")]
     fluct = float((vel.max() - vel.min()) / op)
-    result = TorsionResult(model, modes, holzer_frequencies(model, 1.5 * modes.omega[-1]) / (2 * np.pi), harmonics,
-                           response, theta, half, vib_half, op, (lo, hi), tuple(res_list), fluct, stiff,
-                           settings.assess_speed, qs[0], qs[1])
+    result = TorsionResult(
+        model,
+        modes,
+        holzer_frequencies(model, 1.5 * modes.omega[-1]) / (2 * np.pi),
+        harmonics,
+        response,
+        theta,
+        half,
+        vib_half,
+        op,
+        (lo, hi),
+        tuple(res_list),
+        fluct,
+        stiff,
+        settings.assess_speed,
+        qs[0],
+        qs[1],
+    )
     syn = response.synthesis_all(theta)  # (n_speeds, n_seg, n_theta)
     half[:] = 0.5 * np.ptp(syn, axis=2)
     ratio = (speeds / harmonics.reference_speed) ** 2

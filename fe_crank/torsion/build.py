@@ -33,8 +33,11 @@ from fe_crank.torsion.stiffness import carter_throw_stiffness, shaft_stiffness, 
 def crank_throws(engine):
     """The throws of a single-shaft engine in axial order (refuses geared multi-shaft engines)."""
     if len(engine.shafts) != 1 or engine.shafts[0].speed_ratio != 1.0:
-        raise InputError("torsional analysis is for one crankshaft turning at the reference speed; "
-                         f"the engine has {len(engine.shafts)} shaft(s)", key="torsion")
+        raise InputError(
+            "torsional analysis is for one crankshaft turning at the reference speed; "
+            f"the engine has {len(engine.shafts)} shaft(s)",
+            key="torsion",
+        )
     return sorted(engine.throws, key=lambda t: t.axial_position)
 
 
@@ -81,7 +84,9 @@ def throw_inertias(loadcase) -> dict[str, float]:
     return out
 
 
-def pitch_stiffness(geometry, shear: float, pitch: float, *, method: str = "carter", fe_stiffness: float | None = None) -> float:
+def pitch_stiffness(
+    geometry, shear: float, pitch: float, *, method: str = "carter", fe_stiffness: float | None = None
+) -> float:
     """Stiffness (N m/rad) of one pitch between adjacent throw centres."""
     lj = pitch - geometry.crankpin_length - 2 * geometry.web_thickness
     if lj <= 0:
@@ -92,14 +97,17 @@ def pitch_stiffness(geometry, shear: float, pitch: float, *, method: str = "cart
         raise InputError("throw_stiffness = 'fe' needs the FE throw model", key="torsion.throw_stiffness")
     extra = pitch - throw_span(geometry)
     if extra < -1e-9:
-        raise InputError(f"throw pitch {pitch * 1e3:.4g} mm is shorter than the FE throw "
-                         f"{throw_span(geometry) * 1e3:.4g} mm", key="torsion.throw_stiffness")
+        raise InputError(
+            f"throw pitch {pitch * 1e3:.4g} mm is shorter than the FE throw {throw_span(geometry) * 1e3:.4g} mm",
+            key="torsion.throw_stiffness",
+        )
     flex = 1.0 / fe_stiffness + (max(extra, 0.0) / shaft_stiffness(shear, geometry.journal_diameter, 1.0))
     return 1.0 / flex
 
 
-def build_model(loadcase, settings, *, inertias: dict[str, float] | None = None,
-                fe_stiffness: float | None = None) -> TorsionModel:
+def build_model(
+    loadcase, settings, *, inertias: dict[str, float] | None = None, fe_stiffness: float | None = None
+) -> TorsionModel:
     """The chain of a load case (module docstring).  ``inertias`` overrides the throw
     inertias (tests, or a caller that has them); ``fe_stiffness`` the FE throw stiffness."""
     engine = loadcase.engine
@@ -134,8 +142,11 @@ def build_model(loadcase, settings, *, inertias: dict[str, float] | None = None,
         add(t.name, inertias[t.name], settings.cylinder_damping)
         if i + 1 < len(throws):
             pitch = throws[i + 1].axial_position - t.axial_position
-            join(f"{t.name}-{throws[i + 1].name}",
-                 pitch_stiffness(g, G, pitch, method=settings.throw_stiffness, fe_stiffness=fe_stiffness), eta)
+            join(
+                f"{t.name}-{throws[i + 1].name}",
+                pitch_stiffness(g, G, pitch, method=settings.throw_stiffness, fe_stiffness=fe_stiffness),
+                eta,
+            )
     join(f"{throws[-1].name}-flywheel", settings.flywheel.stiffness, eta)
     add("flywheel", settings.flywheel.inertia)
     prev = "flywheel"
@@ -143,5 +154,13 @@ def build_model(loadcase, settings, *, inertias: dict[str, float] | None = None,
         join(f"{prev}-{m.name}", m.stiffness, m.loss_factor if m.loss_factor is not None else eta, m.damping)
         add(m.name, m.inertia, m.absolute_damping)
         prev = m.name
-    return TorsionModel(tuple(names), np.array(J), np.array(k), np.array(lf), np.array(cseg), np.array(cabs),
-                        tuple(seg_names), throw_mass)
+    return TorsionModel(
+        tuple(names),
+        np.array(J),
+        np.array(k),
+        np.array(lf),
+        np.array(cseg),
+        np.array(cabs),
+        tuple(seg_names),
+        throw_mass,
+    )

@@ -80,8 +80,7 @@ def cylinder_harmonics(engine: model.Engine, speed: float, *, step: float = np.r
         _, c_all = fourier(cf.torque, full.cycle)
         inertia[name] = c_in
         gas[name] = c_all - c_in
-    return CylinderHarmonics(orders, gas, inertia, speed, full.cycle,
-                             {c.name: c.throw for c in engine.cylinders})
+    return CylinderHarmonics(orders, gas, inertia, speed, full.cycle, {c.name: c.throw for c in engine.cylinders})
 
 
 def order_phase_sum(engine: model.Engine, order: float) -> float:

@@ -39,8 +39,11 @@ def m53_orders(strokes: int) -> np.ndarray:
 
 def receptance(model: TorsionModel, frequency: float) -> np.ndarray:
     """``(K (1 + i eta) - Omega^2 J + i Omega C)`` at ``Omega = frequency`` rad/s."""
-    return (model.stiffness_matrix(hysteretic=True) - frequency**2 * model.mass_matrix()
-            + 1j * frequency * model.damping_matrix())
+    return (
+        model.stiffness_matrix(hysteretic=True)
+        - frequency**2 * model.mass_matrix()
+        + 1j * frequency * model.damping_matrix()
+    )
 
 
 def excitation_vector(model: TorsionModel, harmonics: CylinderHarmonics, speed: float, index: int) -> np.ndarray:

@@ -45,10 +45,13 @@ class TorsionModel:
 
     def __post_init__(self):
         n = len(self.names)
-        for key, arr, size in (("inertia", self.inertia, n), ("stiffness", self.stiffness, n - 1),
-                               ("loss_factor", self.loss_factor, n - 1),
-                               ("segment_damping", self.segment_damping, n - 1),
-                               ("absolute_damping", self.absolute_damping, n)):
+        for key, arr, size in (
+            ("inertia", self.inertia, n),
+            ("stiffness", self.stiffness, n - 1),
+            ("loss_factor", self.loss_factor, n - 1),
+            ("segment_damping", self.segment_damping, n - 1),
+            ("absolute_damping", self.absolute_damping, n),
+        ):
             a = np.asarray(arr, float)
             if a.shape != (size,) or not np.all(np.isfinite(a)):
                 raise InputError(f"needs {size} finite values (got shape {a.shape})", key=f"torsion.{key}")
@@ -88,7 +91,8 @@ class TorsionModel:
 
     def damping_matrix(self) -> np.ndarray:
         return self._chain(np.asarray(self.segment_damping, float), self.size) + np.diag(
-            np.asarray(self.absolute_damping, float))
+            np.asarray(self.absolute_damping, float)
+        )
 
     def segment_torque(self, angles: np.ndarray, omega: float | None = None) -> np.ndarray:
         """Torque in each segment from the mass angles ``angles`` (n, ...) (complex

@@ -105,8 +105,11 @@ def plot_modes(res, path: Path, count: int = 4) -> Path:
 def write_plots(res, folder: str | Path) -> list[Path]:
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    return [plot_campbell(res, folder / PNGS[0]), plot_response(res, folder / PNGS[1]),
-            plot_modes(res, folder / PNGS[2])]
+    return [
+        plot_campbell(res, folder / PNGS[0]),
+        plot_response(res, folder / PNGS[1]),
+        plot_modes(res, folder / PNGS[2]),
+    ]
 
 
 def governing_table(res) -> list[dict]:
@@ -116,11 +119,16 @@ def governing_table(res) -> list[dict]:
     rows = []
     for i, name in enumerate(res.model.segment_names):
         g = res.governing(i)
-        rows.append({"segment": name, "max_half_range": float(res.half_range[g, i]),
-                     "governing_speed_rpm": float(res.response.speeds[g] * RPM),
-                     "vibratory_half_range_at_governing": float(res.vibratory_half_range[g, i]),
-                     "half_range_at_operating": float(res.half_range[i_op, i]),
-                     "vibratory_half_range_at_operating": float(res.vibratory_half_range[i_op, i])})
+        rows.append(
+            {
+                "segment": name,
+                "max_half_range": float(res.half_range[g, i]),
+                "governing_speed_rpm": float(res.response.speeds[g] * RPM),
+                "vibratory_half_range_at_governing": float(res.vibratory_half_range[g, i]),
+                "half_range_at_operating": float(res.half_range[i_op, i]),
+                "vibratory_half_range_at_operating": float(res.vibratory_half_range[i_op, i]),
+            }
+        )
     return rows
 
 
@@ -128,16 +136,23 @@ def result_to_dict(res, *, curves: bool = True) -> dict:
     """JSON of a ``TorsionResult`` (SI, speeds also in rpm)."""
     m = res.model
     out = {
-        "masses": [{"name": n, "inertia": float(j), "absolute_damping": float(c)}
-                   for n, j, c in zip(m.names, m.inertia, m.absolute_damping)],
-        "segments": [{"name": n, "stiffness": float(k), "loss_factor": float(e), "damping": float(c)}
-                     for n, k, e, c in zip(m.segment_names, m.stiffness, m.loss_factor, m.segment_damping)],
+        "masses": [
+            {"name": n, "inertia": float(j), "absolute_damping": float(c)}
+            for n, j, c in zip(m.names, m.inertia, m.absolute_damping)
+        ],
+        "segments": [
+            {"name": n, "stiffness": float(k), "loss_factor": float(e), "damping": float(c)}
+            for n, k, e, c in zip(m.segment_names, m.stiffness, m.loss_factor, m.segment_damping)
+        ],
         "throw_stiffness": {k: (float(v) if not isinstance(v, str) else v) for k, v in res.stiffness.items()},
         "natural_frequencies_hz": _round(res.modes.frequencies_hz[1:]),
         "holzer_frequencies_hz": _round(res.holzer_hz),
         "mode_shapes": {f"mode_{r}": _round(res.modes.shapes[:, r]) for r in range(1, res.modes.omega.size)},
-        "resonances_in_range": [{"mode": r.mode, "order": r.order, "frequency_hz": r.frequency_hz,
-                                 "speed_rpm": r.speed * RPM} for r in res.resonances if r.in_range],
+        "resonances_in_range": [
+            {"mode": r.mode, "order": r.order, "frequency_hz": r.frequency_hz, "speed_rpm": r.speed * RPM}
+            for r in res.resonances
+            if r.in_range
+        ],
         "operating_speed_rpm": res.operating_speed * RPM,
         "speed_range_rpm": [res.speed_range[0] * RPM, res.speed_range[1] * RPM],
         "orders": _round(res.response.orders),
@@ -148,8 +163,9 @@ def result_to_dict(res, *, curves: bool = True) -> dict:
     }
     if curves:
         out["speeds_rpm"] = _round(res.response.speeds * RPM)
-        out["vibratory_torque_vs_speed"] = {n: _round(res.vibratory_half_range[:, i])
-                                           for i, n in enumerate(m.segment_names)}
+        out["vibratory_torque_vs_speed"] = {
+            n: _round(res.vibratory_half_range[:, i]) for i, n in enumerate(m.segment_names)
+        }
         out["torque_half_range_vs_speed"] = {n: _round(res.half_range[:, i]) for i, n in enumerate(m.segment_names)}
     return out
 
@@ -161,25 +177,39 @@ def html_fragment(res, folder: str | Path) -> str:
     rows = "".join(
         f"<tr><td>{e(r['segment'])}</td><td class=num>{r['max_half_range']:.4g}</td>"
         f"<td class=num>{r['governing_speed_rpm']:.0f}</td><td class=num>{r['vibratory_half_range_at_governing']:.4g}</td>"
-        f"<td class=num>{r['half_range_at_operating']:.4g}</td></tr>" for r in governing_table(res))
+        f"<td class=num>{r['half_range_at_operating']:.4g}</td></tr>"
+        for r in governing_table(res)
+    )
     freqs = ", ".join(f"{f:.1f}" for f in res.modes.frequencies_hz[1:6])
     n = min(res.holzer_hz.size, res.modes.omega.size - 1)
-    holzer = (f"Holzer's table agrees within {np.max(np.abs(res.holzer_hz[:n] / res.modes.frequencies_hz[1:n + 1] - 1)):.1e}"
-              if n == res.modes.omega.size - 1 else "Holzer's table found only some of the modes: check the model")
+    holzer = (
+        f"Holzer's table agrees within {np.max(np.abs(res.holzer_hz[:n] / res.modes.frequencies_hz[1 : n + 1] - 1)):.1e}"
+        if n == res.modes.omega.size - 1
+        else "Holzer's table found only some of the modes: check the model"
+    )
     k = res.stiffness
     stiff = f"Throw stiffness (FE span): Carter {k['carter']:.4g} N m/rad"
     if "fe" in k:
         stiff += f", FE {k['fe']:.4g} N m/rad (Carter/FE {k['carter'] / k['fe']:.3f})"
     stiff += f"; the model uses {k['used']}."
     inside = [r for r in res.resonances if r.in_range]
+
     def strength(r):  # largest vibratory M_TN of the segments at the resonance speed
         return float(res.vibratory_half_range[res.index(r.speed)].max())
 
     major = sorted(inside, key=strength, reverse=True)[:6]
-    res_txt = "; ".join(f"mode {r.mode} x order {r.order:g} at {r.speed * RPM:.0f} rpm (vibratory M_TN up to {strength(r):.3g} N m)"
-                        for r in major) or "none"
-    mode = ("the speed of the range where each journal's M_TN is largest (IACS UR M53 2.2.2)"
-            if res.assess_speed == "governing" else "the operating speed")
+    res_txt = (
+        "; ".join(
+            f"mode {r.mode} x order {r.order:g} at {r.speed * RPM:.0f} rpm (vibratory M_TN up to {strength(r):.3g} N m)"
+            for r in major
+        )
+        or "none"
+    )
+    mode = (
+        "the speed of the range where each journal's M_TN is largest (IACS UR M53 2.2.2)"
+        if res.assess_speed == "governing"
+        else "the operating speed"
+    )
     return (
         f"<p>Lumped-mass chain of {res.model.size} masses (docs/torsion.md). Natural frequencies: {e(freqs)} Hz "
         f"({e(holzer)}). {e(stiff)} Resonances inside {res.speed_range[0] * RPM:.0f}-{res.speed_range[1] * RPM:.0f} rpm "
@@ -197,9 +227,11 @@ def html_fragment(res, folder: str | Path) -> str:
 
 def quasi_static_note() -> str:
     """Report text for a case without ``[torsion]``."""
-    return ("<p>Not computed: the load case has no [torsion] section, so the journal torques are "
-            "quasi-static (rigid shaft, cumulative cylinder torque); IACS UR M53 2.2 asks for the vibratory "
-            "torque of a forced-vibration calculation (docs/torsion.md).</p>")
+    return (
+        "<p>Not computed: the load case has no [torsion] section, so the journal torques are "
+        "quasi-static (rigid shaft, cumulative cylinder torque); IACS UR M53 2.2 asks for the vibratory "
+        "torque of a forced-vibration calculation (docs/torsion.md).</p>"
+    )
 
 
 def report_section(folder, stage_out: dict, options=None) -> list[str]:

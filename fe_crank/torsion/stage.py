@@ -25,8 +25,9 @@ def torsion_stage(lc, units: dict | None = None):
     if first is not None and "torque" in first.cases:
         k_fe = fe_throw_stiffness(first)
     if settings.throw_stiffness == "fe" and k_fe is None:
-        raise InputError("throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file,
-                         key="torsion.throw_stiffness")
+        raise InputError(
+            "throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file, key="torsion.throw_stiffness"
+        )
     return analyse_torsion(lc, fe_stiffness=k_fe)
 
 

@@ -32,17 +32,32 @@ import numpy as np
 from fe_crank.errors import InputError
 
 
-def carter_equivalent_length(*, journal_diameter: float, journal_length: float, web_thickness: float,
-                             web_width: float, pin_diameter: float, pin_length: float,
-                             crank_radius: float) -> float:
+def carter_equivalent_length(
+    *,
+    journal_diameter: float,
+    journal_length: float,
+    web_thickness: float,
+    web_width: float,
+    pin_diameter: float,
+    pin_length: float,
+    crank_radius: float,
+) -> float:
     """Carter's equivalent length (m) of one throw, referred to the journal diameter."""
     dj, h, b = journal_diameter, web_thickness, web_width
-    for key, v in (("journal_diameter", dj), ("web_thickness", h), ("web_width", b),
-                   ("pin_diameter", pin_diameter), ("crank_radius", crank_radius)):
+    for key, v in (
+        ("journal_diameter", dj),
+        ("web_thickness", h),
+        ("web_width", b),
+        ("pin_diameter", pin_diameter),
+        ("crank_radius", crank_radius),
+    ):
         if not v > 0:
             raise InputError(f"must be positive for the throw stiffness (got {v} m)", key=f"geometry.{key}")
-    return ((journal_length + 0.8 * h) + 0.75 * pin_length * (dj / pin_diameter) ** 4
-            + 1.5 * crank_radius * dj**4 / (h * b**3))
+    return (
+        (journal_length + 0.8 * h)
+        + 0.75 * pin_length * (dj / pin_diameter) ** 4
+        + 1.5 * crank_radius * dj**4 / (h * b**3)
+    )
 
 
 def shaft_stiffness(shear_modulus: float, diameter: float, length: float) -> float:
@@ -63,10 +78,15 @@ def carter_throw_stiffness(geometry, shear_modulus: float, journal_length: float
     if m is None:
         raise InputError("the geometry lacks the dimensions of a crank throw", key="geometry")
     lj = 2.0 * geometry.journal_length if journal_length is None else journal_length
-    le = carter_equivalent_length(journal_diameter=m.journal_diameter, journal_length=lj,
-                                  web_thickness=m.web_thickness, web_width=m.web_width,
-                                  pin_diameter=m.pin_diameter, pin_length=geometry.crankpin_length,
-                                  crank_radius=m.crank_radius)
+    le = carter_equivalent_length(
+        journal_diameter=m.journal_diameter,
+        journal_length=lj,
+        web_thickness=m.web_thickness,
+        web_width=m.web_width,
+        pin_diameter=m.pin_diameter,
+        pin_length=geometry.crankpin_length,
+        crank_radius=m.crank_radius,
+    )
     return shaft_stiffness(shear_modulus, m.journal_diameter, le)
 
 
