@@ -182,7 +182,7 @@ def check_peaks(lc, tm, units) -> dict:
     from fe_crank.assess import assess_case
     from fe_crank.balance.analysis import analyse_balance
     from fe_crank.check.stages import throw_keys
-    from fe_crank.dynamics import analyse
+    from fe_crank.mechanism.dynamics import analyse
 
     keys = throw_keys(lc)
     if len(keys) != 1:  # the benchmark meshes one throw

@@ -79,8 +79,8 @@ def throw_cycles(loadcase_path: str, unit) -> dict:
     from fe_crank.assess.adapters import m53_geometry_of
     from fe_crank.assess.overspeed import overspeed_cycles
     from fe_crank.assess.superpose import load_coefficients
-    from fe_crank.dynamics import analyse
     from fe_crank.io.loadcase import load_loadcase
+    from fe_crank.mechanism.dynamics import analyse
 
     lc = load_loadcase(loadcase_path)
     dyn = analyse(lc.engine, lc.operating)

@@ -132,11 +132,11 @@ def main(argv=None) -> int:
     from fe_crank.assess.case import assess_throw
     from fe_crank.assess.stress import von_mises
     from fe_crank.assess.superpose import combine, load_coefficients, stress_history
-    from fe_crank.dynamics import analyse
     from fe_crank.fe.loads import pin_pressure_load
     from fe_crank.fe.unit_cases import FeOptions, solve_unit_cases
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.io.material import load_material
+    from fe_crank.mechanism.dynamics import analyse
 
     out = {}
     t0 = time.perf_counter()

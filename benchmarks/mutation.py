@@ -8,7 +8,7 @@ killed / (killed + survived); docs/testing.md records the last run and every sur
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py            # all modules
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py kinematics # one module
-    ... benchmarks/mutation.py kinematics --only 'fe_crank.kinematics.x_piston_motion__mutmut_*'
+    ... benchmarks/mutation.py kinematics --only 'fe_crank.mechanism.kinematics.x_piston_motion__mutmut_*'
 
 Needs `pip install mutmut` (>= 3) in the venv.  One worker (`--max-children 1`) by default:
 the machine is shared.

@@ -80,7 +80,7 @@ class GasPressure:
     ``angle`` is the cylinder's own crank angle from TDC firing, over one cycle
     (0 .. 4 pi for a four-stroke, 0 .. 2 pi for a two-stroke), increasing.
     The pressure acting on the piston's underside is ``crankcase_pressure``.
-    ``motored``: the same cylinder without combustion (``fe_crank.gas.motored_cycle``),
+    ``motored``: the same cylinder without combustion (``fe_crank.mechanism.gas.motored_cycle``),
     when the gas data give a compression ratio and the intake pressure; else None.
     """
 

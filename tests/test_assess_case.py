@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from skfem import MeshTet, MeshTet2
 
-import fe_crank.dynamics as dynamics
 import fe_crank.fe.unit_cases as fe
+import fe_crank.mechanism.dynamics as dynamics
 from fe_crank.assess import assess_case, assessed_groups, to_json
 from fe_crank.assess.results import load_schema
 from fe_crank.errors import InputError

@@ -29,9 +29,9 @@ import numpy as np
 import pytest
 
 from fe_crank.assess.overspeed import overspeed_dynamics
-from fe_crank.dynamics import analyse
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism.dynamics import analyse
 
 CASE = """
 name = "hand"
@@ -85,9 +85,9 @@ def _p_tdc():
 
 
 def test_motored_curve_closed_form():
-    """fe_crank.gas.motored_cycle against p = p_0 (V_BDC/V)^n: p_TDC = p_0 eps^n, p_BDC = p_0,
+    """fe_crank.mechanism.gas.motored_cycle against p = p_0 (V_BDC/V)^n: p_TDC = p_0 eps^n, p_BDC = p_0,
     and at 90 deg the volume ratio from the exact slider-crank by hand."""
-    from fe_crank.gas import motored_cycle
+    from fe_crank.mechanism.gas import motored_cycle
 
     assert _p_tdc() == pytest.approx(1.941902e6, rel=1e-6)
     g = motored_cycle(

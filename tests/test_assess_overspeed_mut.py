@@ -13,7 +13,7 @@ import pytest
 from test_assess_overspeed import _case, _hand, _table_case
 
 from fe_crank.assess.overspeed import describe, overspeed_cycles, overspeed_dynamics
-from fe_crank.dynamics import analyse
+from fe_crank.mechanism.dynamics import analyse
 
 
 def test_note_in_full_for_each_gas_state(tmp_path):

@@ -1,6 +1,6 @@
 """Independent cross-check: the time-domain sum of the exact inertia forces of all cylinders,
-from the mechanism stage's ``fe_crank.kinematics.piston_motion`` at the crank angles of
-``fe_crank.dynamics.cylinder_angle``, against the balance stage's sum over orders; and the
+from the mechanism stage's ``fe_crank.mechanism.kinematics.piston_motion`` at the crank angles of
+``fe_crank.mechanism.dynamics.cylinder_angle``, against the balance stage's sum over orders; and the
 order-k coefficients against the discrete Fourier transform of that time signal."""
 
 import dataclasses
@@ -12,8 +12,8 @@ from _balance_helpers import engine, radial
 
 from fe_crank.balance import free_forces
 from fe_crank.balance.mechanism import reciprocating_mass
-from fe_crank.dynamics import cylinder_angle
-from fe_crank.kinematics import piston_motion
+from fe_crank.mechanism.dynamics import cylinder_angle
+from fe_crank.mechanism.kinematics import piston_motion
 
 W = 250.0
 N = 720
@@ -126,7 +126,7 @@ def test_dynamics_stage_inertia_forces_sum_to_the_free_reciprocating_force(name)
     """The dynamics stage's per-cylinder inertia force (``-m_j a``, positive towards the crank
     axis) summed along the cylinder axes over its own cycle grid."""
     from fe_crank import model
-    from fe_crank.dynamics import analyse
+    from fe_crank.mechanism.dynamics import analyse
 
     e = CASES[name]()
     res = analyse(e, model.OperatingPoint(W))

@@ -8,7 +8,7 @@ from _balance_helpers import engine, radial
 
 from fe_crank.balance import BalanceStrategy, free_forces, size_counterweights
 from fe_crank.balance.mechanism import crank_angle_global, reciprocating_mass
-from fe_crank.kinematics import harmonic_coefficients
+from fe_crank.mechanism.kinematics import harmonic_coefficients
 
 W = 314.159  # rad/s (3000 rpm)
 

@@ -16,7 +16,7 @@ from fe_crank.balance import (
     yoke_inertia,
 )
 from fe_crank.balance.mechanism import reciprocating_mass, rotating_mass
-from fe_crank.kinematics import harmonic_coefficients
+from fe_crank.mechanism.kinematics import harmonic_coefficients
 
 W = 150.0
 

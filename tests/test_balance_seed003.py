@@ -8,8 +8,8 @@ import pytest
 from _balance_helpers import engine
 
 from fe_crank.balance import BalanceStrategy, annular_sector, free_forces, size_counterweights, solve_sector
-from fe_crank.dynamics import cylinder_angle
-from fe_crank.kinematics import harmonic_coefficients
+from fe_crank.mechanism.dynamics import cylinder_angle
+from fe_crank.mechanism.kinematics import harmonic_coefficients
 
 W = 300.0
 M_A, M_B, R, L = 0.62, 1.844, 0.033, 0.128  # table 1

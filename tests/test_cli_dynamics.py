@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from fe_crank.cli import main
-from fe_crank.dynamics import analyse
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism.dynamics import analyse
 
 CASE = "loadcases/single_cylinder_seed001.toml"
 

@@ -5,13 +5,13 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from kinetostatics import analyse_position
 
 from fe_crank import model
-from fe_crank.dynamics import analyse, solve_cylinder
-from fe_crank.gas import cylinder_volume, pressure_at, wiebe_cycle
 from fe_crank.io.loadcase import load_loadcase
-from fe_crank.kinematics import piston_motion
-from fe_crank.kinetostatics import analyse_position
+from fe_crank.mechanism.dynamics import analyse, solve_cylinder
+from fe_crank.mechanism.gas import cylinder_volume, pressure_at, wiebe_cycle
+from fe_crank.mechanism.kinematics import piston_motion
 
 SEED_CASE = "loadcases/single_cylinder_seed001.toml"
 

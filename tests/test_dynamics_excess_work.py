@@ -1,4 +1,4 @@
-"""Excess work of fe_crank.dynamics against the periodic trapezoid rule in closed form.
+"""Excess work of fe_crank.mechanism.dynamics against the periodic trapezoid rule in closed form.
 
 A crank ratio lambda = 1e-3 makes the reciprocating inertia torque a pure second order
 (the Scotch-yoke limit), ``T = -(B/2) sin 2 phi`` with ``B = m_p r^2 omega^2`` and mean 0;
@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from fe_crank import model
-from fe_crank.dynamics import analyse
+from fe_crank.mechanism.dynamics import analyse
 
 
 def test_excess_energy_is_the_periodic_trapezoid_of_a_pure_second_order_torque():

@@ -6,9 +6,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from fe_crank.dynamics import analyse
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism.dynamics import analyse
 
 SEED_CASE = "loadcases/single_cylinder_seed001.toml"
 
@@ -65,7 +65,7 @@ def test_slider_crank_at_tdc_by_hand_for_a_scalar_angle():
     m = 1 kg, c = 0.05 m (c/l = 0.25), F_g = 10 kN:
     radial = -10000 + 1.75 * 625 + 0.75 * 500 = -10000 + 1093.75 + 375 = -8531.25 N;
     rod force = F_g - m_p a = 10000 - 937.5 = 9062.5 N.  A scalar angle gives scalars."""
-    from fe_crank.slider_crank import solve_cylinder
+    from fe_crank.mechanism.slider_crank import solve_cylinder
 
     sol = solve_cylinder(0.0, r=0.05, l=0.2, omega=100.0, gas_force=10000.0, piston_mass=1.5, rod_mass=1.0, rod_cg=0.05)
     for name in ("rod_force", "side_thrust", "tangential", "radial", "torque"):

@@ -226,8 +226,8 @@ def test_validate_never_crashes(tree, capsys, case):
 def test_dynamics_results_finite(tree, case):
     """Cases that validate: the dynamics stage gives finite forces and torques or a
     FeCrankError, never NaN/inf."""
-    from fe_crank.dynamics import analyse
     from fe_crank.io.loadcase import load_loadcase
+    from fe_crank.mechanism.dynamics import analyse
 
     base, data = case
     p = _write(tree, base, data)

@@ -15,8 +15,8 @@ import pytest
 
 from fe_crank import model
 from fe_crank.balance import free_forces
-from fe_crank.dynamics import analyse
 from fe_crank.io.engine import load_engine
+from fe_crank.mechanism.dynamics import analyse
 
 OMEGA = 100.0  # rad/s of the crankshaft
 M_CRANK, R_CRANK, L_CRANK = 1.0, 0.04, 0.16  # piston kg, crank radius m, rod m (lam = 0.25)

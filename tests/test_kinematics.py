@@ -6,7 +6,7 @@ import pytest
 from scipy.integrate import quad
 
 from fe_crank.errors import GeometryError
-from fe_crank.kinematics import harmonic_coefficients, piston_motion, piston_motion_harmonic
+from fe_crank.mechanism.kinematics import harmonic_coefficients, piston_motion, piston_motion_harmonic
 
 R, L, OMEGA = 0.064, 0.307, 293.07  # seed 001
 

@@ -1,4 +1,4 @@
-"""Coefficient tables of fe_crank.kinematics against hand arithmetic and closed forms:
+"""Coefficient tables of fe_crank.mechanism.kinematics against hand arithmetic and closed forms:
 the Fourier transform helper on trigonometric polynomials whose coefficients are known
 exactly, the "leading" and "series" coefficient tables of Kolchin & Demidov ch. 2 /
 Taylor vol. 2 ch. 8 at lambda = 1/4 (exact binary fractions, so the comparisons are to
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from fe_crank.errors import GeometryError, InputError
-from fe_crank.kinematics import fourier_coefficients, harmonic_coefficients, piston_motion, sample_angles
+from fe_crank.mechanism.kinematics import fourier_coefficients, harmonic_coefficients, piston_motion, sample_angles
 
 LAM = 0.25
 

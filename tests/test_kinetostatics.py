@@ -3,9 +3,9 @@ to round-off; every body is in equilibrium; friction efficiency against closed f
 
 import numpy as np
 import pytest
+from kinetostatics import analyse_position, mechanical_efficiency, virtual_power_moment, zhukovsky_moment
 
 from fe_crank.errors import InputError
-from fe_crank.kinetostatics import analyse_position, mechanical_efficiency, virtual_power_moment, zhukovsky_moment
 
 # seed 001/004 mechanism; crank mass 0.4284 kg with its centre at 0.4 r (seed 004 eq. 104,
 # seed 001 eq. 15); rod J_S2 = 0.02 kg m^2 (seed 004); the other values chosen

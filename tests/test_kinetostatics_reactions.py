@@ -1,4 +1,4 @@
-"""Joint reactions of fe_crank.kinetostatics by hand: a massless slider-crank at 90 deg
+"""Joint reactions of kinetostatics by hand: a massless slider-crank at 90 deg
 under a gas force (a two-force rod), the crank's own inertia and weight, the record's
 names and shapes for scalar and 2-D angle arrays, and the refusals in full."""
 
@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 import pytest
+from kinetostatics import analyse_position, mechanical_efficiency, virtual_power_moment, zhukovsky_moment
 
 from fe_crank.errors import InputError
-from fe_crank.kinetostatics import analyse_position, mechanical_efficiency, virtual_power_moment, zhukovsky_moment
 
 R, L = 0.05, 0.2
 X = math.sqrt(L**2 - R**2)  # u of the piston pin at phi = 90 deg: sqrt(0.04 - 0.0025) = 0.193649 m

@@ -25,10 +25,10 @@ from fe_crank.assess.superpose import combine, load_coefficients
 from fe_crank.balance.analysis import analyse_balance
 from fe_crank.check import CheckOptions
 from fe_crank.check.stages import _criteria_of
-from fe_crank.dynamics import analyse
 from fe_crank.fe import solve_unit_cases
 from fe_crank.fe.stress import von_mises
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism.dynamics import analyse
 from fe_crank.mesh import mesh_throw
 from fe_crank.report import write_case_report
 from fe_crank.report.render import image_statistics

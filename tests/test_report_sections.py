@@ -12,8 +12,8 @@ import pytest
 from skfem import MeshTet, MeshTet2
 
 import fe_crank.assess as assess
-import fe_crank.dynamics as dynamics
 import fe_crank.fe as fe
+import fe_crank.mechanism.dynamics as dynamics
 from fe_crank.check import CheckOptions
 from fe_crank.check.stages import _criteria_of
 from fe_crank.io.loadcase import load_loadcase

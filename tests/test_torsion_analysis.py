@@ -10,9 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fe_crank import dynamics
 from fe_crank.cli import main
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism import dynamics
 from fe_crank.torsion import analyse_torsion, with_vibratory_torque
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fe_crank import dynamics
 from fe_crank.cli import main
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism import dynamics
 from fe_crank.torsion.report import report_section
 from fe_crank.torsion.stage import dynamics_for_assessment, torsion_stage
 

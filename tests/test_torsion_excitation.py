@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fe_crank import dynamics, model
 from fe_crank.io.engine import load_engine
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism import dynamics, model
 from fe_crank.torsion.excitation import cylinder_harmonics, order_phase_sum
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -23,7 +23,7 @@ def case():
 
 
 def test_synthesis_reproduces_the_dynamics_torque(case):
-    """All harmonics of the 720-point grid give back T(theta) of fe_crank.dynamics to
+    """All harmonics of the 720-point grid give back T(theta) of fe_crank.mechanism.dynamics to
     round-off (the discrete Fourier pair is exact), at the reference speed."""
     w = case.operating.speed
     h = cylinder_harmonics(case.engine, w)

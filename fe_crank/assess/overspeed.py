@@ -4,12 +4,12 @@ Every inertia force of the mechanism grows with omega^2: the reciprocating mass'
 m_j r omega^2 (cos phi + lambda cos 2 phi + ...), the rod's, and the crank's own body
 force (the FE centrifugal unit case, applied at omega_os^2 by the superposition).  The
 gas force does not.  So the overspeed check recomputes the whole cycle with the
-dynamics stage at omega_os (``fe_crank.dynamics.analyse``, exact slider-crank), with the
+dynamics stage at omega_os (``fe_crank.mechanism.dynamics.analyse``, exact slider-crank), with the
 gas load the load case states for the overspeed condition:
 
 * ``[operating] overspeed_gas = "motored"`` (default): no combustion.  A motored
   cylinder still compresses its charge: where the gas data give the compression ratio
-  and the intake/boost pressure (``GasPressure.motored``, ``fe_crank.gas.motored_cycle``:
+  and the intake/boost pressure (``GasPressure.motored``, ``fe_crank.mechanism.gas.motored_cycle``:
   p = p_0 (V_BDC/V)^n, p_TDC = p_0 eps^n, n = 1.35) the cycle is computed with that
   curve **and** with zero gauge gas pressure, and the check takes the worse of the two
   (the largest von Mises over both cycles).  The two bound the gas load from both
@@ -68,7 +68,7 @@ def overspeed_cycles(loadcase, dynamics) -> tuple[OverspeedCycle, ...]:
     op = loadcase.operating
     if op.overspeed is None:
         return ()
-    from fe_crank.dynamics import analyse
+    from fe_crank.mechanism.dynamics import analyse
 
     step = dynamics.cycle / dynamics.theta.size
     out = []

@@ -10,10 +10,10 @@ Internal-Combustion Engine in Theory and Practice* vol. 2, ch. 8; Heywood, App. 
     A6 = 9 lam^5/128
 
 (``lam = r / l``), truncated after ``lam^5`` (``series_coefficients``, implemented in
-``fe_crank.kinematics``).  For the balance sums fe-crank does not use
+``fe_crank.mechanism.kinematics``).  For the balance sums fe-crank does not use
 the truncated series: ``spectral_coefficients`` takes the exact piston position of any
 mechanism (offset pins, articulated rods) at ``N`` equally spaced crank angles, and its
-discrete Fourier transform (``fe_crank.kinematics.fourier_coefficients``, the one used
+discrete Fourier transform (``fe_crank.mechanism.kinematics.fourier_coefficients``, the one used
 for the exact ``harmonic_coefficients`` too) gives the coefficients of ``x(tau)``; twice differentiating
 term by term, order ``k`` of the acceleration is ``-k^2`` times order ``k`` of the
 position.  For a smooth periodic ``x`` the error decays exponentially with ``N``.
@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from fe_crank.kinematics import fourier_coefficients, series_coefficients
-from fe_crank.kinematics import sample_angles as _sample_angles
+from fe_crank.mechanism.kinematics import fourier_coefficients, series_coefficients
+from fe_crank.mechanism.kinematics import sample_angles as _sample_angles
 
 __all__ = ["SAMPLES", "acceleration_coefficients", "fourier_coefficients", "sample_angles", "series_coefficients"]
 
@@ -33,7 +33,7 @@ SAMPLES = 256
 
 
 def sample_angles(n: int = SAMPLES) -> np.ndarray:
-    """``n`` equally spaced angles over one revolution (``fe_crank.kinematics.sample_angles``)."""
+    """``n`` equally spaced angles over one revolution (``fe_crank.mechanism.kinematics.sample_angles``)."""
     return _sample_angles(n)
 
 

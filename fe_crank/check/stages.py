@@ -16,11 +16,11 @@ from pathlib import Path
 from fe_crank.assess import assess_case
 from fe_crank.balance.analysis import analyse_balance
 from fe_crank.check.options import CheckOptions, assess_threads
-from fe_crank.dynamics import analyse
 from fe_crank.errors import FeCrankError, InputError
 from fe_crank.fe import convergence, solve_unit_cases
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.mesh import MeshSection
+from fe_crank.mechanism.dynamics import analyse
 from fe_crank.mesh import mesh_throw, resolve_options
 from fe_crank.results import CriterionResult, StageTime
 from fe_crank.throw_scope import ALL_THROWS

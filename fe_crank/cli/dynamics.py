@@ -127,8 +127,8 @@ def result_to_dict(res, loadcase) -> dict:
 
 
 def run(args) -> int:
-    from fe_crank.dynamics import analyse
     from fe_crank.io.loadcase import load_loadcase
+    from fe_crank.mechanism.dynamics import analyse
 
     if not args.step > 0 or not np.isfinite(args.step):
         raise InputError(f"--step must be a positive number of degrees (got {args.step})", key="--step")

@@ -1,13 +1,13 @@
 """Gas-pressure input: a p(phi) table inline, or a CSV file beside the input file.
 
 Three forms (``model`` key): ``"table"`` (default, inline points), ``"csv"`` (a file
-beside the input file) and ``"wiebe"`` (the parametric cycle of ``fe_crank.gas``).
+beside the input file) and ``"wiebe"`` (the parametric cycle of ``fe_crank.mechanism.gas``).
 Units are explicit: the table states its angle and pressure units
 (``angle_unit = "deg"``, ``pressure_unit = "MPa"``); a CSV states them in its
 header (``angle [deg], pressure [MPa]``).  Pressures are absolute.
 
 The motored curve (no combustion, the overspeed check's ``overspeed_gas = "motored"``,
-``fe_crank.gas.motored_cycle``) needs the compression ratio and the intake/boost
+``fe_crank.mechanism.gas.motored_cycle``) needs the compression ratio and the intake/boost
 pressure: the ``wiebe`` model has them (its ``k`` is the exponent); a ``table`` or
 ``csv`` may state them with the optional keys ``compression_ratio`` and
 ``intake_pressure`` (both or neither) and ``polytropic_exponent`` (default 1.35).
@@ -90,7 +90,7 @@ class GasCsvInput(MotoredKeys):
 
 
 class GasWiebeInput(Strict):
-    """``model = "wiebe"``: closed-cycle polytropes with Wiebe heat release (fe_crank.gas.wiebe_cycle)."""
+    """``model = "wiebe"``: closed-cycle polytropes with Wiebe heat release (fe_crank.mechanism.gas.wiebe_cycle)."""
 
     model: Literal["wiebe"]
     compression_ratio: float = Field(gt=1.0)
@@ -167,7 +167,7 @@ def _with_motored(gas: model.GasPressure, raw: MotoredKeys, geom: dict) -> model
         return gas
     from dataclasses import replace
 
-    from fe_crank.gas import motored_cycle
+    from fe_crank.mechanism.gas import motored_cycle
 
     m = motored_cycle(
         compression_ratio=raw.compression_ratio,
@@ -217,7 +217,7 @@ def build_gas(
                 ) from None
             raise
     if kind == "wiebe":
-        from fe_crank.gas import motored_cycle, wiebe_cycle
+        from fe_crank.mechanism.gas import motored_cycle, wiebe_cycle
 
         raw = validate(GasWiebeInput, data, file, key)
         g = wiebe_cycle(

@@ -127,7 +127,7 @@ def analyse_torsion(
     speeds = speed_grid(lo, hi, settings.speed_steps, op, [x.speed for x in res_list])
     response = forced_response(model, harmonics, speeds, orders)
     n_theta = int(round(harmonics.cycle / step))
-    theta = harmonics.cycle * np.arange(n_theta) / n_theta  # the grid of fe_crank.dynamics
+    theta = harmonics.cycle * np.arange(n_theta) / n_theta  # the grid of fe_crank.mechanism.dynamics
     half = np.zeros((speeds.size, model.size - 1))
     vib_half = np.zeros_like(half)
     stiff = {

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from fe_crank.errors import InputError
-from fe_crank.kinematics import piston_motion
+from fe_crank.mechanism.kinematics import piston_motion
 from fe_crank.torsion.model import TorsionModel
 from fe_crank.torsion.stiffness import carter_throw_stiffness, shaft_stiffness, throw_span
 

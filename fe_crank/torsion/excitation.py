@@ -28,8 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank import dynamics as dyn
 from fe_crank import model
+from fe_crank.mechanism import dynamics as dyn
 
 
 @dataclass(frozen=True)

@@ -38,7 +38,7 @@ import numpy as np
 
 from fe_crank import model
 from fe_crank.errors import InputError
-from fe_crank.kinematics import piston_motion
+from fe_crank.mechanism.kinematics import piston_motion
 
 __all__ = ["pressure_at", "cylinder_volume", "wiebe_cycle", "motored_cycle", "MOTORED_EXPONENT"]
 
@@ -166,7 +166,7 @@ def wiebe_cycle(
         intake = (ang > 2 * np.pi) & (ang < 3 * np.pi)
         p = np.where(exhaust, exhaust_pressure, np.where(intake, intake_pressure, p))
     return model.GasPressure(
-        ang, p, crankcase_pressure, source="Wiebe heat release with polytropes (fe_crank.gas.wiebe_cycle)"
+        ang, p, crankcase_pressure, source="Wiebe heat release with polytropes (fe_crank.mechanism.gas.wiebe_cycle)"
     )
 
 
@@ -211,6 +211,6 @@ def motored_cycle(
         p = np.where(exhaust, p_ex, np.where(intake, intake_pressure, p))
     src = (
         f"motored: polytrope p = p_0 (V_BDC/V)^n, eps = {compression_ratio:g}, "
-        f"p_0 = {intake_pressure / 1e6:.4g} MPa, n = {n_poly:g} (fe_crank.gas.motored_cycle)"
+        f"p_0 = {intake_pressure / 1e6:.4g} MPa, n = {n_poly:g} (fe_crank.mechanism.gas.motored_cycle)"
     )
     return model.GasPressure(ang, np.asarray(p, float), crankcase_pressure, source=src)

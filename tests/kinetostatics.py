@@ -18,7 +18,7 @@ M omega_i = 0``, and by Zhukovsky's lever (the velocity plan turned through 90 d
 loaded with all forces, couples replaced by force pairs).  All three agree to
 round-off; the seed's 311.5 vs 298.9 N m (4 %) is a drawing error.
 
-Vectors are in the cylinder frame ``(u, w)`` of ``fe_crank.kinematics`` (u along the
+Vectors are in the cylinder frame ``(u, w)`` of ``fe_crank.mechanism.kinematics`` (u along the
 guide towards the head, w towards the side the crankpin moves to just after TDC);
 moments are positive in the sense of rotation.  ``gravity`` is the vector ``g`` in
 that frame (default: vertical cylinder, head up, ``(-9.81, 0)``).
@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank.errors import InputError
-from fe_crank.kinematics import PistonMotion, piston_motion
+from fe_crank.mechanism.kinematics import PistonMotion, piston_motion
 
 __all__ = [
     "KinetostaticResult",

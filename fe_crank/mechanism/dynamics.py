@@ -1,6 +1,6 @@
 """Engine dynamics over one working cycle: forces, torque, crankpin and bearing loads.
 
-Per cylinder the exact slider-crank dynamics of ``fe_crank.slider_crank`` (piston and
+Per cylinder the exact slider-crank dynamics of ``fe_crank.mechanism.slider_crank`` (piston and
 rigid rod at constant crank speed, no lambda series; Kolchin & Demidov, *Design of
 automotive engines*, ch. 4-5; Heywood, *Internal Combustion Engine Fundamentals*,
 sec. 2.2 and 13.2), with the gas force ``F_g = (p - p_cc) A`` of the engine's pressure
@@ -49,9 +49,9 @@ import numpy as np
 
 from fe_crank import model
 from fe_crank.errors import InputError
-from fe_crank.gas import pressure_at
-from fe_crank.kinematics import PistonMotion
-from fe_crank.slider_crank import solve_cylinder
+from fe_crank.mechanism.gas import pressure_at
+from fe_crank.mechanism.kinematics import PistonMotion
+from fe_crank.mechanism.slider_crank import solve_cylinder
 
 __all__ = [
     "CylinderForces",

@@ -13,17 +13,17 @@ Model (Kolchin & Demidov, *Design of automotive engines*, ch. 4-5; Heywood,
   of the rod on the piston pin, the side thrust and the force of the rod on the
   crankpin exactly (no lambda series).
 
-Frames as in ``fe_crank.kinematics``: ``u`` along the cylinder axis towards the head,
+Frames as in ``fe_crank.mechanism.kinematics``: ``u`` along the cylinder axis towards the head,
 ``w`` towards the side the crankpin moves to just after TDC.  The quantities returned
 (``rod_force``, ``side_thrust``, ``tangential``, ``radial``, ``torque``) are defined in
-``fe_crank.dynamics``, which applies this solution to every cylinder of an engine.
+``fe_crank.mechanism.dynamics``, which applies this solution to every cylinder of an engine.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from fe_crank.kinematics import piston_motion
+from fe_crank.mechanism.kinematics import piston_motion
 
 __all__ = ["solve_cylinder"]
 
@@ -52,7 +52,7 @@ def solve_cylinder(
 
     ``P`` is the force of the rod on the piston, ``Q`` the force of the crankpin on the
     rod.  Returns a dict with ``motion``, ``rod_force``, ``side_thrust``, ``tangential``,
-    ``radial``, ``torque`` (defined in ``fe_crank.dynamics``), each of the shape of ``phi``.
+    ``radial``, ``torque`` (defined in ``fe_crank.mechanism.dynamics``), each of the shape of ``phi``.
     """
     J = rod_mass * rod_cg * (l - rod_cg) if rod_inertia is None else rod_inertia
     m = piston_motion(phi, r, l, omega, offset=offset, rod_cg=rod_cg)
