@@ -129,9 +129,9 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     from fe_crank.assess import unit_stresses
-    from fe_crank.assess.case import assess_throw
     from fe_crank.assess.stress import von_mises
     from fe_crank.assess.superpose import combine, load_coefficients, stress_history
+    from fe_crank.assess.throw import assess_throw
     from fe_crank.fe.loads import pin_pressure_load
     from fe_crank.fe.unit_cases import FeOptions, solve_unit_cases
     from fe_crank.io.loadcase import load_loadcase

@@ -132,7 +132,7 @@ def _synthetic_group(n: int, seed: int = 2):
 
 def threaded(n: int, threads: int, repeat: int) -> None:
     from fe_crank.assess import fatigue
-    from fe_crank.assess.throw import assess_group
+    from fe_crank.assess.group import assess_group
     from fe_crank.assess.workers import run_blocks
     from fe_crank.io.material import load_material
 

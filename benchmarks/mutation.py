@@ -155,8 +155,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "assess.stress": ("fe_crank/assess/stress.py", _ASSESS_TESTS),
     "assess.peak": ("fe_crank/assess/peak.py", _ASSESS_TESTS),
     "assess.overspeed": ("fe_crank/assess/overspeed.py", _ASSESS_TESTS),
-    "assess.case": (
-        "fe_crank/assess/case.py",
+    "assess.throw": (
+        "fe_crank/assess/throw.py",
         _ASSESS_TESTS
         + [
             "tests/test_assess_verdict.py",
@@ -165,8 +165,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
             "tests/test_assess_m53_oil_bore.py",
         ],
     ),
-    "assess.throw": (
-        "fe_crank/assess/throw.py",
+    "assess.group": (
+        "fe_crank/assess/group.py",
         _ASSESS_TESTS + ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py"],
     ),
     "assess.groups": (

@@ -313,7 +313,7 @@ def test_overspeed_includes_rod_and_piston_inertia_hand_calc(tmp_path, solved):
         if "fillet" in g.group:
             assert ext.value > 3 * centrifugal_only[idx].max()
     # the TDC state alone, with the hand force as the overspeed load: equal at every group
-    from fe_crank.assess.case import assess_throw
+    from fe_crank.assess.throw import assess_throw
 
     t0 = assess_throw(
         "1",
@@ -343,8 +343,8 @@ def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
     proportional, S(theta) = c cos(theta) S_t, so the equivalent amplitude at every node
     is exactly |c| vM(S_t) (closed form for a proportional history)."""
     from fe_crank.assess import unit_stresses
-    from fe_crank.assess.case import assess_throw
     from fe_crank.assess.stress import von_mises
+    from fe_crank.assess.throw import assess_throw
     from fe_crank.io.material import load_material
 
     _, units = solved

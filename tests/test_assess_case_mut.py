@@ -1,4 +1,4 @@
-"""``assess.case`` on hand-built unit stresses: the overspeed load scaling, the groups
+"""``assess.throw`` on hand-built unit stresses: the overspeed load scaling, the groups
 taken, the UR M53 inputs (rear torque, K_e, sigma_add), the counterweight checks and
 every criterion's value and location, each against a hand value.
 
@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import m53
-from fe_crank.assess.case import assess_throw, evaluate_criteria
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.throw import assess_throw, evaluate_criteria
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material

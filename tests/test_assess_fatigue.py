@@ -17,10 +17,10 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import assess_throw, evaluate_criteria, to_json
-from fe_crank.assess.case import Assessment
 from fe_crank.assess.fatigue import goodman_safety, gough_pollard_safety
 from fe_crank.assess.results import load_schema
 from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.throw import Assessment
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
 

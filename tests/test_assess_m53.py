@@ -92,8 +92,8 @@ def test_validity_range_enforced_fe_scfs_used_outside():
 def test_m53_takes_the_journal_torque_with_the_larger_alternating_part():
     """A single throw at the free end carries no torque in front and the whole cylinder
     torque behind: UR M53 must see the rear one."""
-    from fe_crank.assess.case import assess_throw
     from fe_crank.assess.superpose import UnitStresses
+    from fe_crank.assess.throw import assess_throw
     from fe_crank.io.material import load_material
 
     theta = np.deg2rad(np.arange(720.0))
@@ -144,8 +144,8 @@ def test_ke_reaches_the_route_through_assess_throw_but_not_the_outlet():
     value, the oil-bore outlet's bending stress is the same for both."""
     import dataclasses
 
-    from fe_crank.assess.case import assess_throw
     from fe_crank.assess.superpose import UnitStresses
+    from fe_crank.assess.throw import assess_throw
     from fe_crank.io.material import load_material
 
     geo = dataclasses.replace(GEO, pin_length=0.08, oil_bore_diameter=0.01)

@@ -22,8 +22,8 @@ import pytest
 
 from fe_crank.assess import m53
 from fe_crank.assess import m53_oil_bore as ob
-from fe_crank.assess.case import assess_throw
 from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.throw import assess_throw
 from fe_crank.io.material import load_material
 
 GEO = m53.M53Geometry(
@@ -98,7 +98,7 @@ def test_validity_range_d_o():
 def test_outlet_in_the_throw_assessment_and_q_criterion():
     """assess_throw adds the outlet beside the fillets; the M53 Q criterion takes the
     smallest Q of the three and names the outlet when it governs."""
-    from fe_crank.assess.case import evaluate_criteria
+    from fe_crank.assess.throw import evaluate_criteria
     from fe_crank.io.criteria import build_criteria
 
     n = 8

@@ -211,8 +211,8 @@ def test_table_gas_motored_curve_only_with_its_data(tmp_path):
 def test_overspeed_takes_the_worse_of_several_cycles():
     """``assess_throw`` with two overspeed cycles: one node, sigma_xx = 1 Pa per N of pin_y;
     cycle A peaks at +100 N, cycle B at -300 N: von Mises 300 Pa, at B's angle."""
-    from fe_crank.assess.case import assess_throw
     from fe_crank.assess.superpose import UnitStresses
+    from fe_crank.assess.throw import assess_throw
     from fe_crank.io.material import load_material
 
     stress = np.zeros((3, 6, 1))

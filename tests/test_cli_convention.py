@@ -99,7 +99,7 @@ def test_ties_of_the_maximum_go_to_the_first_angle_whatever_the_last_digits():
     # runs report the same angle; a real difference (1e-6) still wins
     import numpy as np
 
-    from fe_crank.assess.throw import first_extreme
+    from fe_crank.assess.group import first_extreme
 
     base = np.array([[1.0, 5.0], [3.0, 2.0], [3.0 * (1 + 1e-13), 2.0]])
     assert list(first_extreme(base, "max")) == [1, 0]

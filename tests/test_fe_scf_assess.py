@@ -1,4 +1,4 @@
-"""SCF mode, factors and the UR M53 FE fallback (``fe_crank.assess.scf``, ``assess.case``).
+"""SCF mode, factors and the UR M53 FE fallback (``fe_crank.assess.scf``, ``assess.throw``).
 
 Factors against hand-computed nominal stresses (UR M53 2.1.2.1, 2.1.2.2, 2.2.2) and the
 appendix's definitions (App. III 3.1.3, 3.2.3, 3.3.3 method 1 and 2); the M53 route on a
@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import m53
-from fe_crank.assess.case import assess_throw
 from fe_crank.assess.scf import compute_scf, factors, scf_mesh, scf_mesh_options, scf_provider, web_centres_of
 from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.throw import assess_throw
 from fe_crank.fe.scf import Peak, ScfStresses
 from fe_crank.io.geometry import load_geometry
 from fe_crank.io.material import load_material

@@ -26,11 +26,11 @@ from verification_meshes import Steel, simple_throw
 
 from fe_crank.assess import assessed_groups, unit_stresses
 from fe_crank.assess.fatigue import max_and_first
+from fe_crank.assess.group import assess_group, first_extreme
 from fe_crank.assess.peak import group_peak, max_over_cycle, peak_bound
 from fe_crank.assess.recovery import recovery_ratios
 from fe_crank.assess.stress import von_mises, von_mises_planes
 from fe_crank.assess.superpose import iter_planes, load_coefficients, stress_history
-from fe_crank.assess.throw import assess_group, first_extreme
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.forms import lame_parameters
 from fe_crank.fe.stress import elements_of_nodes, node_gradients, stress_at_selected_nodes

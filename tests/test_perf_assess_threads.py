@@ -23,9 +23,9 @@ import pytest
 from verification_meshes import Steel, simple_throw
 
 from fe_crank.assess import assessed_groups, unit_stresses
-from fe_crank.assess.case import assess_throw
+from fe_crank.assess.group import assess_group
 from fe_crank.assess.superpose import load_coefficients
-from fe_crank.assess.throw import assess_group
+from fe_crank.assess.throw import assess_throw
 from fe_crank.assess.workers import run_blocks
 from fe_crank.check.options import CheckOptions, assess_threads, cores_available
 from fe_crank.fe import FeOptions, solve_unit_cases

@@ -13,8 +13,8 @@ import json
 import math
 from pathlib import Path
 
-from fe_crank.assess.case import SCHEMA_VERSION, Assessment
 from fe_crank.assess.factors import factors
+from fe_crank.assess.throw import SCHEMA_VERSION, Assessment
 
 
 def _num(x):

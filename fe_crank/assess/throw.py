@@ -1,215 +1,272 @@
-"""Assessment of one throw from its unit stresses and its load history (plain arrays).
-
-Static: sigma_v,max over the cycle at every assessed node.  Overspeed: the same over the
-cycle recomputed at the overspeed (``overspeed_coefficients``: the crank's own body force
-at omega_os^2 and the rod and piston forces of the overspeed cycle, whose inertia part
-scales with omega_os^2), the worst angle of that cycle.  Safety n_s = R_e / sigma_v,max.
-Fatigue: ``fatigue.py``.
-"""
+"""One load case: every throw's groups, UR M53, counterweights, criteria -> ``Assessment``."""
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from fe_crank.assess import fatigue
-from fe_crank.assess.factors import FatigueFactors, factors
-from fe_crank.assess.peak import TIE_RTOL, group_peak, max_over_cycle
-from fe_crank.assess.stress import von_mises_planes
-from fe_crank.assess.superpose import UnitStresses, iter_planes
-from fe_crank.assess.workers import run_blocks, scratch_array
+from fe_crank.assess import m53, m53_oil_bore
+from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
+from fe_crank.assess.group import STATIC_ONLY_PREFIXES, GroupResult, assess_group, section_diameter
+from fe_crank.assess.superpose import UnitStresses, load_coefficients
+from fe_crank.assess.verdict import CriterionResult, judge
+from fe_crank.errors import InputError
 
-#: groups assessed for fatigue with Gough-Pollard need a local axis: these prefixes use
-#: the crankpin axis (x, y) = (0, R); the journal fillets the crank axis (0, 0).
-PIN_AXIS_GROUPS = ("crankpin_fillet", "oil_bore", "crankpin")
-JOURNAL_AXIS_GROUPS = ("journal_fillet",)
-#: groups not assessed for fatigue (their own stress criteria apply)
-STATIC_ONLY_PREFIXES = ("counterweight", "junction")
+SCHEMA_VERSION = "1.1"  # 1.1: optional provenance and warnings (written by the report)
 
 
 @dataclass(frozen=True)
-class Extreme:
-    """A worst value and where it occurs."""
-
-    value: float
-    group: str
-    node: int  # mesh node id
-    point: tuple[float, float, float]
-    angle: float | None = None  # rad, cycle angle where it occurs (None: not angle-bound)
+class ThrowAssessment:
+    name: str
+    groups: tuple[GroupResult, ...]
+    m53: tuple[m53.M53Fillet, ...] = ()
+    m53_nominal: m53.NominalStresses | None = None
+    counterweights: tuple[CounterweightCheck, ...] = ()
+    n_angles: int = 0
 
 
 @dataclass(frozen=True)
-class GroupResult:
-    """Results of one node group (fillet, oil bore, counterweight, junction)."""
+class Assessment:
+    """Everything the assessment found for one load case."""
 
-    group: str
-    n_nodes: int
-    max_von_mises: Extreme  # over the cycle
-    max_von_mises_overspeed: Extreme | None
-    static_safety: float
-    overspeed_safety: float | None
-    fatigue_safety: Extreme | None  # von Mises + Goodman (min over the group)
-    gough_pollard_safety: Extreme | None
-    amplitude_at_critical: float | None = None  # sigma_a' at the fatigue-critical node, Pa
-    mean_at_critical: float | None = None  # sigma_m' there, Pa
-    fatigue_factors: FatigueFactors | None = None  # applied to the specimen fatigue limits
-    #: per-node arrays for reports/VTU (not in the JSON): "node_ids", "max_von_mises",
-    #: "amplitude", "mean" (equivalent sigma_a', signed sigma_m'), "fatigue_safety",
-    #: "gough_pollard_safety" (inf where not computed)
-    fields: dict = field(default_factory=dict, repr=False, compare=False)
+    case: str
+    source_file: str
+    speed: float  # rad/s
+    overspeed: float | None
+    material: object
+    throws: tuple[ThrowAssessment, ...]
+    criteria: tuple[CriterionResult, ...]
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.criteria)
 
 
-def _axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
-    if group.startswith(PIN_AXIS_GROUPS):
-        return (0.0, crank_radius)
-    if group.startswith(JOURNAL_AXIS_GROUPS):
-        return (0.0, 0.0)
-    return None
+def fe_scfs(scf) -> dict[str, dict[str, float]]:
+    """The ``fe_scf`` dictionaries of ``m53.assess_fillet`` from the SCF mode of the UR M53
+    FE appendix (``fe_crank.assess.scf.ScfResult``): alpha_B, alpha_T for the pin,
+    beta_B, beta_Q (method 1 of App. III 3.3.3), beta_T for the journal fillet, from the
+    appendix's own models and stress measures -- not from the cycle model's stresses,
+    whose supports and single radial case give neither the nominal-stress basis nor the
+    bending/shear split of UR M53.
+    """
+    return scf.for_assessment()
 
 
-def first_extreme(values: np.ndarray, worst: str = "max", axis: int = 0) -> np.ndarray:
-    """Index of the first value within ``TIE_RTOL`` of the max (min) along ``axis``."""
-    v = np.asarray(values, float)
-    e = v.max(axis=axis, keepdims=True) if worst == "max" else v.min(axis=axis, keepdims=True)
-    tol = TIE_RTOL * np.abs(e)
-    near = v >= e - tol if worst == "max" else v <= e + tol
-    return np.argmax(near, axis=axis)
-
-
-def section_diameter(group: str, pin_diameter: float | None, journal_diameter: float | None) -> float | None:
-    """Diameter of the section a group belongs to, for the size factor: the crankpin's
-    for its fillets and the oil bore, the journal's for the journal fillets."""
-    if group.startswith(PIN_AXIS_GROUPS):
-        return pin_diameter
-    if group.startswith(JOURNAL_AXIS_GROUPS):
-        return journal_diameter
-    return None
-
-
-def _extreme(
-    values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str, *, worst: str, angles: np.ndarray | None = None
-) -> Extreme:
-    k = (
-        int(first_extreme(values, worst))
-        if np.isfinite(values).all()
-        else int(np.argmax(values) if worst == "max" else np.argmin(values))
-    )
-    node = int(unit.node_ids[idx[k]]) if unit.node_ids is not None else int(idx[k])
-    pt = tuple(float(c) for c in unit.points[:, idx[k]])
-    ang = float(angles[k]) if angles is not None else None
-    return Extreme(float(values[k]), group, node, pt, ang)
-
-
-def assess_group(
+def assess_throw(
+    name: str,
     unit: UnitStresses,
-    group: str,
-    coefficients: np.ndarray,
     theta: np.ndarray,
-    material,
+    pin_force: np.ndarray,
+    torque: np.ndarray,
     *,
-    crank_radius: float,
+    omega: float,
+    sense: int = 1,
     overspeed: float | None,
-    chunk: int = fatigue.NODE_BLOCK,
-    overspeed_coefficients: np.ndarray | None = None,
-    diameter: float | None = None,
+    material,
+    crank_radius: float,
+    m53_geometry: m53.M53Geometry | None = None,
+    m53_additional: float = 10e6,
+    m53_ke: float = 1.0,
+    fe_scf: dict[str, dict[str, float]] | None = None,
+    scf=None,
+    counterweights: tuple[CounterweightData, ...] = (),
+    torque_rear: np.ndarray | None = None,
+    overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None,
     threads: int = 1,
-) -> GroupResult:
-    """Static and fatigue results of one node group.  ``material`` needs yield strength
-    for the static part and the fatigue properties for the fatigue part (None skips).
-    ``overspeed_coefficients`` (n_angles, n_cases): the unit-case coefficients of the
-    cycle at the overspeed (``load_coefficients`` of the overspeed pin force and torque
-    at omega_os); required when ``overspeed`` is given.  ``diameter``: the section
-    diameter for the size factor (``factors.factors``; None: its fallback).  ``threads``:
-    the node blocks run on that many threads (``workers.run_blocks``: the same results
-    bit for bit as one thread)."""
-    nodes = np.asarray(unit.groups[group])
-    if nodes.size == 0:
-        raise ValueError(f"node group {group!r} is empty")
-    do_fatigue = (
-        not group.startswith(STATIC_ONLY_PREFIXES)
-        and material.fatigue_limit_bending is not None
-        and material.tensile_strength is not None
-    )
-    axis = _axis_for(group, crank_radius)
-    do_gp = do_fatigue and axis is not None and material.fatigue_limit_torsion is not None
-    ff = factors(material, diameter) if do_fatigue else None
-    k = ff.product if ff is not None else 1.0
-    vm_max = np.empty(nodes.size)
-    vm_arg = np.empty(nodes.size, dtype=int)
-    good = np.full(nodes.size, np.inf)
-    sa_eq = np.zeros(nodes.size)
-    sm_eq = np.zeros(nodes.size)
-    gp = np.full(nodes.size, np.inf)
+) -> ThrowAssessment:
+    """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
+    throw frame and the torque through the front journal (n,) over the cycle angles
+    ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
+    larger alternating part, the one the throw's fillets carry.  Outside the validity
+    range of the empirical SCFs UR M53 takes FE SCFs: ``fe_scf`` as given, else
+    ``scf()`` (a callable returning the SCF mode's ``assess.scf.ScfResult``, called only then).
+    ``m53_ke``: UR M53 2.1.2.1's K_e on the web's nominal stresses (``m53.ke_factor``:
+    0.8 two-stroke, 1.0 four-stroke); the M53 route only, the FE route's stresses are not scaled.
 
-    def block(pos: int, scratch: dict) -> None:
-        # every criterion reads the same history, ``chunk`` nodes at a time as its six
-        # component planes (6, n_t, k): cache-resident and contiguous for every pass; the
-        # block writes its own slice only (``workers.run_blocks``)
-        idx = nodes[pos : pos + chunk]
-        sl = slice(pos, pos + idx.size)
-        ((_, planes),) = iter_planes(unit, coefficients, idx, chunk)  # one block
-        buf = scratch_array(scratch, "buf", planes.shape)
-        hist = planes.transpose(1, 0, 2)  # (n_t, 6, k) view
-        vm_max[sl], vm_arg[sl] = max_over_cycle(von_mises_planes(planes, buf=buf))  # over (n_t, k)
-        if do_fatigue:
-            a, m = fatigue.equivalent_amplitude_mean(hist)
-            sa_eq[sl], sm_eq[sl] = a, m
-            good[sl] = fatigue.goodman_safety(a, m, k * material.fatigue_limit_bending, material.tensile_strength)
-        if do_gp:
-            sig, tau = fatigue.bending_torsion(hist, unit.points[:, idx], axis)
-            s_a, s_m = fatigue.half_range(sig)
-            t_a, t_m = fatigue.half_range(tau)
-            gp[sl] = fatigue.gough_pollard_safety(
-                s_a,
-                s_m,
-                t_a,
-                t_m,
-                k * material.fatigue_limit_bending,
-                k * material.fatigue_limit_torsion,
-                material.tensile_strength,
-            )
-
-    run_blocks(block, range(0, nodes.size, chunk), threads)
-    worst = _extreme(vm_max, nodes, unit, group, worst="max", angles=theta[vm_arg])
-    ys = material.yield_strength
-    static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf
-    os_ext, os_safety = None, None
+    ``overspeed_loads`` = (pin force, front torque) of the cycle recomputed at the
+    overspeed (``assess_case`` runs the dynamics at omega_os with the load case's
+    ``overspeed_gas``).  Without it the operating pin force and torque are scaled by
+    (omega_os/omega)^2 whole: exact for the inertia part, an over-estimate of the gas
+    part (which does not grow with speed), so on the safe side.  A list of such pairs
+    (several gas states of the overspeed condition, ``assess.overspeed.overspeed_cycles``)
+    is checked as one longer history: the overspeed result is the worst over all of them.
+    ``threads``: each group's node blocks on that many threads (``assess_group``)."""
+    coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
+    coeffs_os = None
     if overspeed is not None:
-        if overspeed_coefficients is None:
-            raise ValueError("overspeed given without the overspeed cycle's coefficients")
-        # only the group's largest peak is reported: evaluated where it can occur (peak.py)
-        pos, vm_os, os_arg = group_peak(unit, overspeed_coefficients, nodes, chunk)
-        os_ext = _extreme(vm_os, nodes[pos], unit, group, worst="max", angles=theta[os_arg])
-        os_safety = ys / os_ext.value if (ys is not None and os_ext.value > 0) else np.inf
-    fat = gpe = None
-    amp = mean = None
-    if do_fatigue:
-        fat = _extreme(good, nodes, unit, group, worst="min")
-        j = int(np.argmin(good))
-        amp, mean = float(sa_eq[j]), float(sm_eq[j])
-    if do_gp:
-        gpe = _extreme(gp, nodes, unit, group, worst="min")
-    ids = unit.node_ids[nodes] if unit.node_ids is not None else nodes
-    fields = {
-        "node_ids": ids,
-        "max_von_mises": vm_max,
-        "amplitude": sa_eq,
-        "mean": sm_eq,
-        "fatigue_safety": good,
-        "gough_pollard_safety": gp,
-    }
-    return GroupResult(
-        group,
-        int(nodes.size),
-        worst,
-        os_ext,
-        float(static),
-        None if os_safety is None else float(os_safety),
-        fat,
-        gpe,
-        amp,
-        mean,
-        ff,
-        fields,
+        if overspeed_loads is None:
+            scale = (overspeed / omega) ** 2 if omega > 0 else 1.0
+            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float))
+        cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
+        coeffs_os = np.vstack(
+            [
+                load_coefficients(p, t, overspeed, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
+                for p, t in cycles
+            ]
+        )
+        theta_os = np.tile(np.asarray(theta), len(cycles))  # the angle of the worst row, whichever cycle
+    dp = m53_geometry.pin_diameter if m53_geometry is not None else None
+    dj = m53_geometry.journal_diameter if m53_geometry is not None else None
+    groups = tuple(
+        assess_group(
+            unit,
+            g,
+            coeffs,
+            np.asarray(theta) if coeffs_os is None else theta_os,
+            material,
+            crank_radius=crank_radius,
+            overspeed=overspeed,
+            overspeed_coefficients=coeffs_os,
+            diameter=section_diameter(g, dp, dj),
+            threads=threads,
+        )
+        for g in sorted(unit.groups)
+        if len(unit.groups[g])
     )
+    fillets, nominal = (), None
+    if m53_geometry is not None and material.tensile_strength is not None and material.m53_k is not None:
+        scf_note = None
+        if (
+            fe_scf is None
+            and scf is not None
+            and any(m53.out_of_range(m53_geometry.related(f)) for f in ("pin", "journal"))
+        ):
+            result = scf()
+            fe_scf, scf_note = fe_scfs(result), result.summary()
+        m53_torque = torque
+        if torque_rear is not None and m53.half_range(torque_rear) > m53.half_range(torque):
+            m53_torque = torque_rear
+        nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque, ke=m53_ke)
+        try:
+            fillets = tuple(
+                m53.assess_fillet(
+                    m53_geometry,
+                    nominal,
+                    f,
+                    tensile=material.tensile_strength,
+                    k=material.m53_k,
+                    additional=m53_additional,
+                    fe_scf=(fe_scf or {}).get(f),
+                )
+                for f in ("pin", "journal")
+            )
+        except ValueError as exc:  # outside the range and no FE SCFs
+            raise InputError(f"throw {name}: {exc}", key="geometry") from None
+        if scf_note:  # say which FE SCFs: the appendix's SCF mode and its mesh verdict
+            fillets = tuple(
+                dataclasses.replace(
+                    f, scf_source=f"{scf_note}; outside the UR M53 validity range: " + "; ".join(f.out_of_range)
+                )
+                if f.out_of_range
+                else f
+                for f in fillets
+            )
+        outlet = m53_oil_bore.assess_outlet(
+            m53_geometry, nominal, pin_force, tensile=material.tensile_strength, k=material.m53_k
+        )
+        fillets += (outlet,) if outlet is not None else ()
+    cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
+    return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)))
+
+
+def _where(throw: str, ext) -> str:
+    if ext is None:
+        return ""
+    p = ", ".join(f"{c * 1e3:.1f}" for c in ext.point)
+    s = f"throw {throw}, {ext.group}, node {ext.node} at ({p}) mm"
+    if ext.angle is not None:
+        s += f", {math.degrees(ext.angle):.0f} deg"
+    return s
+
+
+def _pick(throws, getter, worst):
+    """(value, location) of the worst non-None value of getter(throw, group) over all groups."""
+    best = None
+    for t in throws:
+        for g in t.groups:
+            got = getter(g)
+            if got is None:
+                continue
+            value, ext = got
+            if best is None or (value < best[0] if worst == "min" else value > best[0]):
+                best = (value, _where(t.name, ext))
+    return best
+
+
+def evaluate_criteria(
+    criteria, throws: tuple[ThrowAssessment, ...], *, file: str = "", overspeed: float | None = None
+) -> tuple[CriterionResult, ...]:
+    """Each limit of ``criteria`` -> a verdict.  A criterion that cannot be evaluated
+    (no data for it) is an InputError naming its key: it never passes silently."""
+    from fe_crank.io.criteria import QUANTITIES
+
+    out = []
+    for lim in criteria.limits:
+        q = lim.quantity
+        got = None
+        unit = ""
+        if q == "static_safety":
+            got = _pick(throws, lambda g: (g.static_safety, g.max_von_mises), "min")
+        elif q == "overspeed_safety":
+            if overspeed is None:
+                raise InputError("needs operating.overspeed", file=file, key=lim.key)
+            got = _pick(throws, lambda g: (g.overspeed_safety, g.max_von_mises_overspeed), "min")
+        elif q == "fatigue_safety":
+            got = _pick(
+                throws,
+                lambda g: None if g.fatigue_safety is None else (g.fatigue_safety.value, g.fatigue_safety),
+                "min",
+            )
+        elif q == "gough_pollard_safety":
+            got = _pick(
+                throws,
+                lambda g: (
+                    None if g.gough_pollard_safety is None else (g.gough_pollard_safety.value, g.gough_pollard_safety)
+                ),
+                "min",
+            )
+        elif q in ("counterweight_stress", "counterweight_overspeed_stress"):
+            unit = "Pa"
+            if q == "counterweight_overspeed_stress" and overspeed is None:
+                raise InputError("needs operating.overspeed", file=file, key=lim.key)
+            attr = "max_von_mises" if q == "counterweight_stress" else "max_von_mises_overspeed"
+            got = _pick(
+                throws,
+                lambda g, attr=attr: (
+                    (getattr(g, attr).value, getattr(g, attr)) if g.group.startswith(STATIC_ONLY_PREFIXES) else None
+                ),
+                "max",
+            )
+        elif q == "m53_acceptability":
+            vals = [
+                (f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
+                for t in throws
+                for f in t.m53
+            ]
+            got = min(vals) if vals else None
+        elif q in ("unbalance_error", "bolt_utilisation"):
+            attr = q
+            vals = [
+                (getattr(c, attr), f"throw {t.name}, {c.name}")
+                for t in throws
+                for c in t.counterweights
+                if getattr(c, attr) is not None
+            ]
+            got = max(vals) if vals else None
+        if got is None:
+            raise InputError(
+                f"cannot be evaluated: the model gives no {q.replace('_', ' ')} "
+                "(missing geometry, mesh group, balance requirement or bolt data)",
+                file=file,
+                key=lim.key,
+            )
+        value, where = got
+        out.append(
+            judge(lim.key, q, lim.sense, value, lim.value, unit=unit, location=where, description=QUANTITIES[q].meaning)
+        )
+    return tuple(out)

@@ -1,7 +1,7 @@
 """The governing overspeed state: what the overspeed picture and the ``_overspeed``
 fields of the ``.vtu`` file show.
 
-The overspeed criterion (``overspeed_safety``, ``fe_crank.assess.throw.assess_group``)
+The overspeed criterion (``overspeed_safety``, ``fe_crank.assess.group.assess_group``)
 is ``n = R_e / max sigma_v`` over the assessed groups and over the whole cycle
 recomputed at the overspeed omega_os (``fe_crank.assess.overspeed``: rod and piston
 inertia at omega_os, the crank's own body force at omega_os^2, the gas load of
