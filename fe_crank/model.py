@@ -20,7 +20,7 @@ Conventions (docs/architecture.md, "Conventions"):
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
@@ -168,22 +168,3 @@ class OperatingPoint:
     speed: float  # rad/s, of the reference shaft
     overspeed: float | None = None  # rad/s: the whole cycle (inertia, centrifugal) at this speed
     overspeed_gas: str = "motored"  # "motored" or "as_operating"
-
-
-@dataclass(frozen=True)
-class LoadCase:
-    """A whole load case as the core sees it.  Sections owned by later stages are
-    kept as their own frozen objects (``geometry``, ``material``, ``criteria``, ``fe``,
-    ``balance``); ``None`` where the file does not give them."""
-
-    name: str
-    source_file: str
-    engine: Engine
-    operating: OperatingPoint
-    description: str = ""
-    geometry: object | None = None
-    material: object | None = None
-    criteria: object | None = None
-    fe: object | None = None
-    balance: object | None = None
-    extras: dict = field(default_factory=dict)

@@ -5,19 +5,21 @@ mesh is below the sign-off rule, the UR M53 averaging check failed, a counterwei
 m r differs from the requirement, the fast solver was unavailable) or an unchecked
 assumption (inertia loads only, support model).  ``criteria`` names the criteria it
 concerns (their load-case keys, e.g. ``"criteria.min_fatigue_safety"`` or the short
-``"min_fatigue_safety"``); empty means the whole case.
+``"min_fatigue_safety"``); empty means the whole case.  ``throws`` names the throws it
+concerns (empty: not one throw's); notes that differ only in their throws are shown
+once with all of them (``grouped``).
 
-Any stage may add notes: a stage output (an object in the pipeline's ``stage_out``)
-with an attribute ``notes`` or ``warnings`` holding strings or ``Note`` objects
-contributes them (strings become case-wide notes of that stage, level "assumption"
-for ``notes`` and "warning" for ``warnings``); ``fe_crank.report.quality`` adds the
-checks of the outputs themselves.  The report shows each note beside the criteria it
-concerns, results.json lists them under ``warnings``, JUnit in each test's output.
+Stages add notes to their own results (the dynamics' ``warnings``, the assessment's
+``notes``); ``fe_crank.check.notes`` adds the checks of the outputs themselves and
+groups them.  The report shows each note beside the criteria it concerns, results.json
+lists them under ``warnings``, the JUnit XML under the test cases they concern.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+
+from fe_crank.throw_scope import ALL_THROWS, ThrowScope
 
 WARNING, ASSUMPTION = "warning", "assumption"
 
@@ -28,6 +30,17 @@ class Note:
     level: str = WARNING  # "warning" | "assumption"
     criteria: tuple[str, ...] = ()  # criterion names it concerns; () = the whole case
     source: str = ""  # the stage or check that raised it
+    throws: tuple[str, ...] = ()  # the throws it concerns; () = not one throw's
+
+    @property
+    def display(self) -> str:
+        """The sentence as shown: prefixed with the throws it concerns."""
+        if not self.throws:
+            return self.text
+        if any(isinstance(t, ThrowScope) for t in self.throws):  # a model standing for every throw
+            return f"{ALL_THROWS}: {self.text}"
+        names = ", ".join(str(t) for t in self.throws)
+        return f"{'throw' if len(self.throws) == 1 else 'throws'} {names}: {self.text}"
 
     def concerns(self, criterion: str) -> bool:
         """True when the note is case-wide or names ``criterion`` (full or short key)."""
@@ -37,27 +50,33 @@ class Note:
         return any(c == criterion or c.split(".")[-1] == short for c in self.criteria)
 
     def to_dict(self) -> dict:
-        return {"level": self.level, "text": self.text, "criteria": list(self.criteria), "source": self.source}
+        return {
+            "level": self.level,
+            "text": self.display,
+            "criteria": list(self.criteria),
+            "source": self.source,
+            "throws": [str(t) for t in self.throws],
+        }
 
 
-def from_stage(name: str, obj) -> list[Note]:
-    """The notes a stage output carries (see the module docstring)."""
+def from_strings(texts, level: str, source: str) -> list[Note]:
+    """Notes of a stage result that holds plain sentences (or ``Note`` objects)."""
+    return [t if isinstance(t, Note) else Note(t, level, (), source) for t in texts if t]
+
+
+def grouped(notes) -> list[Note]:
+    """Notes in order, each sentence once per level and criteria; notes that
+    differ only in their throws become one note naming all of them (in first-seen order)."""
     out: list[Note] = []
-    for attr, level in (("warnings", WARNING), ("notes", ASSUMPTION)):
-        for n in getattr(obj, attr, None) or ():
-            if isinstance(n, Note):
-                out.append(n)
-            elif isinstance(n, str) and n:
-                out.append(Note(n, level, (), name))
-    return out
-
-
-def unique(notes) -> list[Note]:
-    """Notes in order, each text once per level and criteria."""
-    seen, out = set(), []
+    index: dict[tuple, int] = {}
     for n in notes:
-        key = (n.text, n.level, n.criteria)
-        if key not in seen:
-            seen.add(key)
+        key = (n.text, n.level, n.criteria, bool(n.throws))
+        if key not in index:
+            index[key] = len(out)
             out.append(n)
+            continue
+        i = index[key]
+        extra = tuple(t for t in n.throws if t not in out[i].throws)
+        if extra:
+            out[i] = replace(out[i], throws=out[i].throws + extra)
     return out

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2, MeshTet, MeshTet2
 
-from fe_crank.fe.vtu import quadratic_tet_mesh, write_vtu
+from fe_crank.fe.result_fields import quadratic_tet_mesh, write_vtu
 from fe_crank.report.render import (
     exaggeration_factor,
     grid_of,

@@ -8,7 +8,7 @@
   main-bearing centre is the journal's end face and the distance to the web centre line
   is a = L_journal + W/2 (the same lever as the FE supports and SCF mode).  No axial bores, no recesses.
 * ``counterweights_of(...)``: per balance plane, the built m r of the throw's
-  counterweights (exact B-rep mass properties, ``fe_crank.geometry.mass``) against the
+  counterweights (exact B-rep mass properties of the geometry stage, ``fe_crank.geometry.mass``) against the
   balance stage's required m r (``CounterweightDesign.nearest``), and for bolted ones
   the bolt capacity n A_s R_e,bolt (A_s: ISO 898-1 tensile stress area of the coarse
   thread for M8-M36, else pi/4 (0.88 d)^2, within 6 % of the table over M8-M30).
@@ -16,11 +16,13 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.m53 import M53Geometry
+from fe_crank.balance.counterweights import CounterweightDesign
+from fe_crank.geometry.mass import MassProperties
+from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
 
 #: ISO 898-1 tensile stress area (mm^2) of coarse-pitch metric threads by nominal d (mm)
 STRESS_AREA_MM2 = {
@@ -40,26 +42,16 @@ STRESS_AREA_MM2 = {
 }
 
 
-def m53_geometry_of(geometry) -> M53Geometry | None:
-    """UR M53 dimensions of a ``fe_crank.geometry.spec.CrankGeometry`` (None if not one)."""
+def m53_geometry_of(geometry: CrankGeometry | None) -> M53Geometry | None:
+    """UR M53 dimensions of a ``fe_crank.geometry.spec.CrankGeometry`` (None without one)."""
     g = geometry
-    need = (
-        "crankpin_diameter",
-        "journal_diameter",
-        "crank_radius",
-        "web_thickness",
-        "web",
-        "crankpin_fillet",
-        "journal_fillet",
-        "journal_length",
-    )
-    if g is None or not all(hasattr(g, k) for k in need):
+    if g is None:
         return None
     d, dg, r = g.crankpin_diameter, g.journal_diameter, g.crank_radius
     y_mid = 0.5 * ((r - 0.5 * d) + 0.5 * dg)  # middle of the overlap (or of the gap)
     rj, rp = g.web.journal_end_radius, g.web.pin_end_radius
     width = 2.0 * (rj + (rp - rj) * min(max(y_mid / r, 0.0), 1.0))
-    bore = getattr(g, "oil_bore", None)
+    bore = g.oil_bore
     return M53Geometry(
         pin_diameter=d,
         journal_diameter=dg,
@@ -69,7 +61,7 @@ def m53_geometry_of(geometry) -> M53Geometry | None:
         pin_fillet_radius=g.crankpin_fillet,
         journal_fillet_radius=g.journal_fillet,
         bearing_to_web=g.journal_length + 0.5 * g.web_thickness,
-        pin_length=getattr(g, "crankpin_length", 0.0),
+        pin_length=g.crankpin_length,
         oil_bore_diameter=0.0 if bore is None else bore.diameter,
         oil_bore_angle=0.0 if bore is None else bore.angle,
     )
@@ -85,32 +77,17 @@ def stress_area(diameter: float) -> float:
 
 
 def counterweights_of(
-    geometry, geometry_throw: str | None, axial_position: float, shaft: str, balance, *, solids: list | None = None
+    spec: ThrowSpec, props: MassProperties, axial_position: float, shaft: str, design: CounterweightDesign | None
 ) -> tuple[CounterweightData, ...]:
-    """Counterweight data of one throw, grouped by the balance plane they serve.
+    """Counterweight data of one throw (its geometry ``spec`` and its CAD mass properties
+    ``props``, from the geometry stage), grouped by the balance plane they serve.
 
-    Counterweights of the throw that are nearest to the same balance counterweight are
-    summed (their m r add: both hang on -y); ``required_unbalance`` is that plane's
-    requirement, or None without a balance design.  ``solids``: a list shared by the
-    calls of one load case, of (throw spec without name and angle, mass properties):
-    throws that differ only in name and angle are one solid (``add_throw`` builds a
-    throw in its own frame from the geometry and the throw's counterweights), whose
-    mass properties are then computed once.
+    Counterweights of the throw that are nearest to the same balance counterweight of
+    ``design`` are summed (their m r add: both hang on -y); ``required_unbalance`` is that
+    plane's requirement, or None without a balance design.
     """
-    if geometry is None or not hasattr(geometry, "throw"):
-        return ()
-    spec = geometry.throw(geometry_throw)
     if not spec.counterweights:
         return ()
-    from fe_crank.geometry.mass import mass_properties
-
-    solid = dataclasses.replace(spec, name="", angle=0.0)
-    props = next((p for k, p in (solids or ()) if k == solid), None)
-    if props is None:
-        props = mass_properties(geometry, spec)
-        if solids is not None:
-            solids.append((solid, props))
-    design = getattr(balance, "design", None)
     groups: dict[object, list] = {}
     for cw in spec.counterweights:
         part = props.parts.get(f"counterweight_{cw.web}")

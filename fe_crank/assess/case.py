@@ -1,130 +1,206 @@
-"""``assess_case``: the assessment of one load case, every throw, its criteria."""
+"""``assess_case``: the assessment of one load case, every throw, its criteria.
+
+It takes what the earlier stages made (typed, ``AssessInputs``): the engine cycles
+(operating and overspeed, ``fe_crank.mechanism.cycles``; the journal torques with the
+vibratory torque when the torsional stage ran), the balance design, the counterweights'
+CAD mass properties (geometry stage), the FE unit solutions and, where UR M53's empirical
+SCFs are out of range, the SCF mode's result (FE stage).  It computes nothing any other
+stage owns.
+"""
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+
+from fe_crank import model
 from fe_crank.assess import m53, m53_oil_bore
-from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
+from fe_crank.assess.adapters import counterweights_of
+from fe_crank.assess.criteria import evaluate_criteria
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
-from fe_crank.assess.overspeed import describe as describe_overspeed
-from fe_crank.assess.overspeed import overspeed_cycles
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
-from fe_crank.assess.scf import scf_provider
-from fe_crank.assess.throw import Assessment, assess_throw, evaluate_criteria
+from fe_crank.assess.scf import ScfResult
+from fe_crank.assess.states import ModelStates, model_states
+from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.throw import ThrowAssessment, assess_throw
+from fe_crank.balance.analysis import BalanceResult
 from fe_crank.errors import InputError
+from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.geometry.mass import ThrowSolids
+from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.io.criteria import Criteria
+from fe_crank.io.material import Material
+from fe_crank.mechanism.cycles import EngineCycles
+from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.notes import ASSUMPTION, Note, grouped
+from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
-
-def _hook(obj, name, *args):
-    f = getattr(obj, name, None)
-    return f(*args) if callable(f) else None
+SCHEMA_VERSION = "1.1"  # 1.1: optional provenance and warnings (written by the report)
 
 
-def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, threads: int = 1) -> Assessment:
-    """Assess one load case.
+@dataclass(frozen=True)
+class AssessInputs:
+    """Everything ``assess_case`` reads, from the load case and the earlier stages.
 
-    ``throw_meshes`` and ``unit_solutions`` are dicts keyed alike
-    (``fe_crank.throw_scope``): a key is the name of one throw of the engine, or
-    ``ALL_THROWS``, the mesh then standing for every throw, each assessed on it with its
-    own loads.  Any other key is a ValueError.  UR M53 dimensions and the
-    counterweights' m r and bolts come from the ``CrankGeometry`` (``adapters.py``) and
-    the balance stage's ``BalanceResult.design``; a geometry object may instead offer
-    ``m53_geometry(throw) -> M53Geometry`` and ``counterweights(throw) ->
-    tuple[CounterweightData]``.  ``threads``: the node blocks of every group (and the
-    unit-stress recovery) on that many threads, the same results bit for bit as one
-    (``assess.workers``); the caller says how many cores are this case's.
-    """
-    lc = loadcase
-    material = lc.material
-    if material is None:
-        raise InputError("the assessment needs a [material] section", file=lc.source_file, key="material")
-    criteria = lc.criteria
-    if criteria is None or not criteria.limits:
-        raise InputError(
-            "the assessment needs a [criteria] section with at least one limit", file=lc.source_file, key="criteria"
-        )
-    omega, overspeed = lc.operating.speed, lc.operating.overspeed
-    notes = [
+    ``dynamics``: the operating cycle the stresses follow (its journal torques carry the
+    vibratory torque when the torsional stage ran); ``cycles``: the operating and
+    overspeed cycles of the dynamics stage; ``models``: FE model key -> geometry throw
+    name (the mesh plan); ``unit_solutions``: key -> unit solutions (keys sharing one
+    mesh share one object); ``scf``: key -> the SCF mode's result, for the models whose
+    UR M53 dimensions are outside the empirical range."""
+
+    case: str
+    source_file: str
+    engine: model.Engine
+    operating: model.OperatingPoint
+    material: Material
+    criteria: Criteria
+    geometry: CrankGeometry
+    cycles: EngineCycles
+    dynamics: DynamicsResult
+    balance: BalanceResult | None
+    models: dict[str, str]
+    unit_solutions: dict[str, UnitSolutions]
+    solids: ThrowSolids | None = None
+    m53_geometry: m53.M53Geometry | None = None
+    scf: dict[str, ScfResult] = field(default_factory=dict)
+    torsion: bool = False  # the journal torques carry the torsional stage's vibratory torque
+
+
+@dataclass(frozen=True)
+class Assessment:
+    """Everything the assessment found for one load case."""
+
+    case: str
+    source_file: str
+    speed: float  # rad/s
+    overspeed: float | None
+    material: Material
+    throws: tuple[ThrowAssessment, ...]
+    criteria: tuple[CriterionResult, ...]
+    notes: tuple[Note, ...] = field(default_factory=tuple)  # the assessment's assumptions
+    states: tuple[ModelStates, ...] = ()  # per FE model: the hot spot, overspeed state, averaging check
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.criteria)
+
+
+def _notes(a: AssessInputs) -> list[Note]:
+    texts = [
         "stresses: linear elastic FE, nodal averages; histories by unit-load superposition (exact)",
         "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration "
         + (
             "included: quasi-static + vibratory journal torque ([torsion], docs/torsion.md)"
-            if "torsion" in lc.extras
+            if a.torsion
             else "not included (no [torsion] section)"
         ),
     ]
-    ke = m53.ke_factor(lc.engine.strokes)
-    if lc.engine.strokes == 2:
-        notes.append(
+    if a.engine.strokes == 2:
+        texts.append(
             "UR M53 route: two-stroke engine, K_e = 0.8 on the web's nominal bending and compressive "
             "stresses (UR M53 2.1.2.1); not applied to the FE route nor to the oil-bore outlet"
         )
-    cycles_os = overspeed_cycles(lc, dynamics)
-    if cycles_os:
-        notes.insert(1, describe_overspeed(lc))
+    if a.cycles.overspeed:
+        texts.insert(1, a.cycles.overspeed_note)
+    return [_assumption(t) for t in texts]
+
+
+def _assumption(text: str, throws: tuple[str, ...] = ()) -> Note:
+    return Note(text, ASSUMPTION, (), "assessment", throws)
+
+
+def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
+    """Assess one load case.
+
+    ``a.models`` and ``a.unit_solutions`` are keyed alike (``fe_crank.throw_scope``): a key
+    is the name of one throw of the engine, or ``ALL_THROWS``, the model then standing for
+    every throw, each assessed on it with its own loads.  UR M53 dimensions come from
+    ``a.m53_geometry``; the counterweights' built m r from the geometry stage's mass properties
+    against the balance stage's required m r.  ``fields``: also recover the whole-mesh
+    stress of the states the report draws (``states.model_states``).
+    """
+    lim = a.criteria
+    if not lim.limits:
+        raise InputError(
+            "the assessment needs a [criteria] section with at least one limit", file=a.source_file, key="criteria"
+        )
+    omega, overspeed = a.operating.speed, a.operating.overspeed
+    notes = _notes(a)
+    ke = m53.ke_factor(a.engine.strokes)
+    senses = {t.name: a.engine.shaft(t.shaft).sense for t in a.engine.throws}
+    design = a.balance.design if a.balance is not None else None
     throws = []
-    scf_cache: dict = {}  # SCF mode (UR M53 App. III), solved only for a throw outside the empirical range
-    solved: dict = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
-    solids: list = []  # counterweight mass properties of equal throw solids (adapters.counterweights_of)
-    for key, units in unit_solutions.items():
+    solved: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
+    for key, units in a.unit_solutions.items():
         if id(units) not in solved:
             groups = assessed_groups(units)
-            unit = unit_stresses(units, groups, threads=threads)
-            boundary_groups = {g: units_nodes for g, units_nodes in groups.items() if g in ASSESSED_BOUNDARIES}
-            solved[id(units)] = unit, recovery_notes(recovery_ratios(units, boundary_groups, unit=unit))
-        unit, recovery = solved[id(units)]
-        notes.extend(f"mesh {key}: {n}" for n in recovery)
-        for tname in throws_of(key, dynamics.throws):
-            tl = dynamics.throws[tname]
-            throw = lc.engine.throw(tname)
-            sense = lc.engine.shaft(throw.shaft).sense
-            m53g = _hook(lc.geometry, "m53_geometry", tname)
-            if m53g is None:
-                m53g = m53_geometry_of(lc.geometry)
-            cws = _hook(lc.geometry, "counterweights", tname)
-            if cws is None:
-                gthrow = getattr(throw_meshes.get(key), "throw", None)
-                cws = counterweights_of(lc.geometry, gthrow, throw.axial_position, throw.shaft, balance, solids=solids)
+            unit = solved[id(units)] = unit_stresses(units, groups)
+            boundary_groups = {g: nodes for g, nodes in groups.items() if g in ASSESSED_BOUNDARIES}
+            notes.extend(
+                _assumption(f"mesh {key}: {n}")
+                for n in recovery_notes(recovery_ratios(units, boundary_groups, unit=unit))
+            )
+        unit = solved[id(units)]
+        spec = a.geometry.throw(a.models[key])
+        for tname in throws_of(key, a.dynamics.throws):
+            tl = a.dynamics.throws[tname]
+            throw = a.engine.throw(tname)
+            cws = (
+                counterweights_of(spec, a.solids.of(spec.name), throw.axial_position, throw.shaft, design)
+                if spec.counterweights and a.solids is not None
+                else ()
+            )
             throws.append(
                 assess_throw(
                     tname,
                     unit,
-                    dynamics.theta,
+                    a.dynamics.theta,
                     tl.pin_force,
                     tl.torque_front,
                     omega=omega,
-                    sense=sense,
+                    sense=senses[tname],
                     overspeed=overspeed,
-                    material=material,
+                    material=a.material,
                     crank_radius=throw.crank_radius,
-                    m53_geometry=m53g,
-                    m53_additional=criteria.m53_additional_bending,
+                    m53_geometry=a.m53_geometry,
+                    m53_additional=lim.m53_additional_bending,
                     m53_ke=ke,
-                    counterweights=tuple(cws),
+                    counterweights=cws,
                     torque_rear=tl.torque_rear,
-                    threads=threads,
                     overspeed_loads=[
-                        (c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front) for c in cycles_os
+                        (c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front)
+                        for c in a.cycles.overspeed
                     ]
                     or None,
-                    scf=None
-                    if m53g is None
-                    else scf_provider(
-                        scf_cache,
-                        key,
-                        throw_meshes.get(key, units.mesh),
-                        lc.geometry,
-                        material,
-                        m53g,
-                        solver=getattr(lc.fe, "solver", None) or "auto",
-                    ),
+                    scf=a.scf.get(key),
                 )
             )
-            if m53g is None:
-                notes.append(f"throw {tname}: no UR M53 dimensions from the geometry; M53 route not run")
-            elif m53g.oil_bore_diameter > 0 and m53_oil_bore.in_range(m53g) is not None:
+            if a.m53_geometry is None:
+                notes.append(_assumption("no UR M53 dimensions from the geometry; M53 route not run", (tname,)))
+            elif a.m53_geometry.oil_bore_diameter > 0 and m53_oil_bore.in_range(a.m53_geometry) is not None:
                 notes.append(
-                    f"throw {tname}: UR M53 oil-bore outlet not assessed empirically "
-                    f"({m53_oil_bore.in_range(m53g)}); FE route only (group oil_bore)"
+                    _assumption(
+                        f"UR M53 oil-bore outlet not assessed empirically "
+                        f"({m53_oil_bore.in_range(a.m53_geometry)}); FE route only (group oil_bore)",
+                        (tname,),
+                    )
                 )
-    verdicts = evaluate_criteria(criteria, tuple(throws), file=lc.source_file, overspeed=overspeed)
-    return Assessment(lc.name, lc.source_file, omega, overspeed, material, tuple(throws), verdicts, tuple(notes))
+    done = tuple(throws)
+    verdicts = evaluate_criteria(lim, done, file=a.source_file, overspeed=overspeed)
+    states = []
+    for keys, units in shared_models(a.unit_solutions):
+        st = model_states(keys, units, done, a.dynamics, a.cycles.overspeed, senses, fields=fields)
+        if st is not None:
+            states.append(st)
+    return Assessment(
+        a.case, a.source_file, omega, overspeed, a.material, done, verdicts, tuple(grouped(notes)), tuple(states)
+    )
+
+
+def shared_models(unit_solutions: dict[str, UnitSolutions]) -> list[tuple[tuple[str, ...], UnitSolutions]]:
+    """[(keys, unit solutions)] grouping the keys that share one FE solution, in order."""
+    groups: dict[int, tuple[list[str], UnitSolutions]] = {}
+    for k, u in unit_solutions.items():
+        groups.setdefault(id(u), ([], u))[0].append(k)
+    return [(tuple(keys), u) for keys, u in groups.values()]

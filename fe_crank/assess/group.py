@@ -113,16 +113,15 @@ def assess_group(
     chunk: int = fatigue.NODE_BLOCK,
     overspeed_coefficients: np.ndarray | None = None,
     diameter: float | None = None,
-    threads: int = 1,
 ) -> GroupResult:
     """Static and fatigue results of one node group.  ``material`` needs yield strength
     for the static part and the fatigue properties for the fatigue part (None skips).
     ``overspeed_coefficients`` (n_angles, n_cases): the unit-case coefficients of the
     cycle at the overspeed (``load_coefficients`` of the overspeed pin force and torque
     at omega_os); required when ``overspeed`` is given.  ``diameter``: the section
-    diameter for the size factor (``factors.factors``; None: its fallback).  ``threads``:
-    the node blocks run on that many threads (``workers.run_blocks``: the same results
-    bit for bit as one thread)."""
+    diameter for the size factor (``factors.factors``; None: its fallback).  The node
+    blocks run on the context's threads (``workers.run_blocks``: the same results bit for
+    bit as one thread)."""
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
@@ -170,7 +169,7 @@ def assess_group(
                 material.tensile_strength,
             )
 
-    run_blocks(block, range(0, nodes.size, chunk), threads)
+    run_blocks(block, range(0, nodes.size, chunk))
     worst = _extreme(vm_max, nodes, unit, group, worst="max", angles=theta[vm_arg])
     ys = material.yield_strength
     static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from fe_crank.assess.superpose import UnitStresses, unit_nodal_stress
-from fe_crank.assess.workers import run_blocks
+from fe_crank.assess.workers import run_blocks, thread_count
 from fe_crank.errors import InputError
 from fe_crank.fe.pin_directions import pin_direction
 
@@ -42,8 +42,10 @@ def assessed_groups(units) -> dict[str, np.ndarray]:
     return groups
 
 
-def _recover(units, cases: tuple[str, ...], ids: np.ndarray, threads: int) -> np.ndarray:
-    """``unit_nodal_stress(units, cases, ids)``, the cases split into ``threads`` sets."""
+def _recover(units, cases: tuple[str, ...], ids: np.ndarray) -> np.ndarray:
+    """``unit_nodal_stress(units, cases, ids)``, the cases split into as many sets as the
+    context has threads (``workers.thread_count``)."""
+    threads = thread_count()
     sets = [s for s in np.array_split(np.arange(len(cases)), max(1, min(int(threads), len(cases)))) if s.size]
     if len(sets) == 1:
         return unit_nodal_stress(units, cases, ids)
@@ -56,12 +58,12 @@ def _recover(units, cases: tuple[str, ...], ids: np.ndarray, threads: int) -> np
     return out
 
 
-def unit_stresses(units, groups: dict[str, np.ndarray] | None = None, *, threads: int = 1) -> UnitStresses:
+def unit_stresses(units, groups: dict[str, np.ndarray] | None = None) -> UnitStresses:
     """Nodal stresses of every solved unit case at the assessed nodes (FE stage's
     ``UnitSolutions``).  Stress recovery is linear in u, so these are exact unit fields.
 
-    ``threads`` > 1: the unit cases are split into that many sets, each recovered on its
-    own thread (``workers.run_blocks``).  Each case's averages are computed by the same
+    With several threads (``workers.threads``) the unit cases are split into that many
+    sets, each recovered on its own thread (``workers.run_blocks``).  Each case's averages are computed by the same
     operations on the same operands whichever set it is in (the recovery treats every
     displacement field on its own), so the result is the one-thread result bit for bit;
     each thread rebuilds the node gradients of the assessed elements (their cost is
@@ -75,7 +77,7 @@ def unit_stresses(units, groups: dict[str, np.ndarray] | None = None, *, threads
     ids = np.unique(np.concatenate(list(groups.values())))
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
     cases = tuple(c for c in units.cases if c in ("centrifugal", "torque") or pin_direction(c) is not None)
-    stress = _recover(units, cases, ids, threads)  # = stress_at_nodes(u_c)[:, ids], assessed elements only
+    stress = _recover(units, cases, ids)  # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
     return UnitStresses(
         stress=stress, points=np.asarray(units.points)[:, ids], groups=local, node_ids=ids, cases=cases, torque_mz=mz

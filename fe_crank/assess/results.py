@@ -13,8 +13,9 @@ import json
 import math
 from pathlib import Path
 
+from fe_crank.assess.case import SCHEMA_VERSION, Assessment
 from fe_crank.assess.factors import factors
-from fe_crank.assess.throw import SCHEMA_VERSION, Assessment
+from fe_crank.results import CriterionResult
 
 
 def _num(x):
@@ -115,6 +116,22 @@ def _cw(c):
     }
 
 
+def criterion_json(c: CriterionResult) -> dict:
+    """One criterion of results.json (an infinite value, an unloaded part's safety, is null)."""
+    return {
+        "name": c.name,
+        "quantity": c.quantity,
+        "sense": c.sense,
+        "value": _num(c.value),
+        "limit": c.limit,
+        "margin": _num(c.margin),
+        "passed": c.passed,
+        "unit": c.unit,
+        "location": c.location,
+        "description": c.description,
+    }
+
+
 def to_json(assessment: Assessment) -> dict:
     """The assessment as a JSON-ready dict following results.schema.json."""
     a = assessment
@@ -128,21 +145,7 @@ def to_json(assessment: Assessment) -> dict:
         "speed_rpm": a.speed * 30.0 / math.pi,
         "overspeed_rpm": None if a.overspeed is None else a.overspeed * 30.0 / math.pi,
         "material": _material(m),
-        "criteria": [
-            {
-                "name": c.name,
-                "quantity": c.quantity,
-                "sense": c.sense,
-                "value": _num(c.value),
-                "limit": c.limit,
-                "margin": _num(c.margin),
-                "passed": c.passed,
-                "unit": c.unit,
-                "location": c.location,
-                "description": c.description,
-            }
-            for c in a.criteria
-        ],
+        "criteria": [criterion_json(c) for c in a.criteria],
         "throws": [
             {
                 "name": t.name,
@@ -162,7 +165,7 @@ def to_json(assessment: Assessment) -> dict:
             }
             for t in a.throws
         ],
-        "notes": list(a.notes),
+        "notes": [n.display for n in a.notes],
     }
 
 

@@ -1,6 +1,6 @@
 """Independent blocks of the assessment on a pool of threads.
 
-The per-node criteria of a group (``throw.assess_group``) are computed block by block
+The per-node criteria of a group (``group.assess_group``) are computed block by block
 (``fatigue.NODE_BLOCK`` nodes at a time); a block reads only the unit stresses of its
 own nodes and writes only its own slice of the group's per-node arrays, so the blocks
 are independent.  numpy releases the global interpreter lock inside its array kernels
@@ -18,14 +18,37 @@ buffers per extra thread (a few MB).
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+
+#: threads of the assessment's blocks in the current context (``threads``)
+_THREADS: ContextVar[int] = ContextVar("fe_crank_assess_threads", default=1)
 
 
-def run_blocks(fn: Callable[[object, dict], None], items: Iterable, threads: int = 1) -> None:
-    """Call ``fn(item, scratch)`` for every item, on ``threads`` threads (1: in this
-    thread, in order).  ``scratch`` is a dict private to the calling thread, kept from
-    one item to the next (reusable buffers).  An exception of any item is raised here,
-    after the items already started have finished."""
+@contextmanager
+def threads(count: int) -> Iterator[None]:
+    """Within the block, ``run_blocks`` (and so every group's node blocks and the unit-stress
+    recovery) uses ``count`` threads: the check sets it once for a case, from the cores
+    the case may use."""
+    token = _THREADS.set(max(1, int(count)))
+    try:
+        yield
+    finally:
+        _THREADS.reset(token)
+
+
+def thread_count() -> int:
+    """The threads ``run_blocks`` uses in the current context (1 unless ``threads`` set it)."""
+    return _THREADS.get()
+
+
+def run_blocks(fn: Callable[[object, dict], None], items: Iterable, threads: int | None = None) -> None:
+    """Call ``fn(item, scratch)`` for every item, on ``threads`` threads (default: the
+    context's, ``thread_count``; 1: in this thread, in order).  ``scratch`` is a dict
+    private to the calling thread, kept from one item to the next (reusable buffers).  An
+    exception of any item is raised here, after the items already started have finished."""
+    threads = thread_count() if threads is None else threads
     items = list(items)
     if threads <= 1 or len(items) <= 1:
         scratch: dict = {}

@@ -2,10 +2,10 @@
 
     import fe_crank
     lc = fe_crank.load_case("loadcases/single_cylinder_seed001.toml")
-    results = fe_crank.check("loadcases/", output="reports/", mesh_size="test")
+    results = fe_crank.run_check("loadcases/", output="reports/", mesh_size="test")
     results[0].status, results[0].worst, results[0].folder
 
-The same functions as ``fe-crank validate`` / ``fe-crank check`` (``fe_crank.check``);
+The same functions as ``fe-crank validate`` / ``fe-crank check``;
 no process-wide state is changed (no logging configuration: the caller's applies).
 """
 
@@ -17,17 +17,18 @@ from pathlib import Path
 from fe_crank.check.batch import run_cases
 from fe_crank.check.discovery import find_loadcases
 from fe_crank.check.options import CheckOptions
-from fe_crank.io.loadcase import load_loadcase
+from fe_crank.io.loadcase import LoadCase, load_loadcase
+from fe_crank.records import CaseResult
 from fe_crank.report.junit import write_junit
 
 
-def load_case(path: str | Path):
-    """Read and validate one load-case file -> ``fe_crank.model.LoadCase`` (SI inside).
+def load_case(path: str | Path) -> LoadCase:
+    """Read and validate one load-case file -> ``fe_crank.io.loadcase.LoadCase`` (SI inside).
     Raises ``fe_crank.errors.InputError`` naming the file, the key and the reason."""
     return load_loadcase(path)
 
 
-def check(
+def run_check(
     paths: str | Path | Iterable[str | Path],
     output: str | Path = "reports",
     *,
@@ -38,7 +39,7 @@ def check(
     render: bool = True,
     write_vtu: bool = True,
     junit: str | Path | None = None,
-) -> list:
+) -> list[CaseResult]:
     """Check load cases end to end, as ``fe-crank check`` does; returns one
     ``CaseResult`` per case (``.status`` "pass" | "fail" | "error", ``.criteria``,
     ``.worst``, ``.folder`` with report.html, results.json, the ``.vtu`` fields).

@@ -21,7 +21,8 @@ from fe_crank.check.discovery import unique_slugs
 from fe_crank.check.options import CheckOptions, assess_threads
 from fe_crank.check.publish import clean_stale_partials
 from fe_crank.errors import InputError
-from fe_crank.results import STATUS_ERROR, CaseResult
+from fe_crank.records import CaseResult
+from fe_crank.results import STATUS_ERROR
 
 log = logging.getLogger(__name__)
 

@@ -1,9 +1,11 @@
 """One load case end to end: ``run_case(path, out_dir, options) -> CaseResult``.
 
-Reads top to bottom: load case -> dynamics -> balance -> mesh (cached) -> FE unit
-cases -> cycle assessment -> verdict -> report.  Every stage is timed.  Any
-``FeCrankError`` becomes a result with status ``"error"`` and its message; the
-batch never crashes on one bad case.  The case folder is published atomically
+Reads top to bottom: the stages (``fe_crank.check.stages.run_stages``: load -> dynamics
+-> balance -> geometry -> mesh -> FE -> torsion -> assessment -> convergence), the
+verdict (``fe_crank.check.verdict.decide``, built once from every criterion), the notes
+beside it (``fe_crank.check.notes``), the provenance, the report.  Every stage is timed.
+Any ``FeCrankError`` becomes a result with status ``"error"`` and its message; the batch
+never crashes on one bad case.  The case folder is published atomically
 (``fe_crank.check.publish``).
 """
 
@@ -16,28 +18,23 @@ import tempfile
 import time
 import traceback
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 
+from fe_crank.check.notes import case_notes
 from fe_crank.check.options import CheckOptions
+from fe_crank.check.provenance import collect
 from fe_crank.check.publish import PARTIAL_MARK, _publish, case_slug
-from fe_crank.check.stages import _compute, _criteria_of, _Run
+from fe_crank.check.stages import Run, run_stages
+from fe_crank.check.verdict import Verdict, decide
 from fe_crank.errors import FeCrankError
-from fe_crank.fe import convergence
 from fe_crank.files import write_atomic
-from fe_crank.notes import Note
-from fe_crank.provenance import collect, now_utc
+from fe_crank.mesh.plan import SIGN_OFF_RULE, preset_of
+from fe_crank.notes import WARNING, Note
+from fe_crank.records import CaseResult, now_utc
 from fe_crank.report import write_case_report
 from fe_crank.report.html import write_error_report
-from fe_crank.report.quality import case_notes
-from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CaseResult
-
-
-def _refuse_nan(criteria) -> None:
-    """A NaN in a criterion is an error of the case, never a verdict or a JSON value
-    (an infinite safety factor of an unloaded part is legitimate and is kept)."""
-    for c in criteria:
-        if any(x != x for x in (c.value, c.limit, c.margin)):
-            raise FeCrankError(f"criterion {c.name}: the computation gave NaN (not a number); the case is not assessed")
+from fe_crank.results import STATUS_ERROR
 
 
 def run_case(
@@ -59,63 +56,56 @@ def run_case(
     path = Path(path)
     out_dir = Path(out_dir)
     slug = slug or case_slug(path)
-    run = _Run(path, on_stage=on_stage)
+    run = Run(path, options, on_stage=on_stage)
     t0 = time.perf_counter()
     out_dir.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{slug}{PARTIAL_MARK}{os.getpid()}-", dir=out_dir))
     os.chmod(tmp, 0o755)
-    name, status, message, criteria, trace, stage_out = path.stem, STATUS_ERROR, "", (), "", {}
+    error, trace = "", ""
     started = now_utc()
     try:
         try:
-            _compute(run, options, stage_out)
-            name = stage_out["loadcase"].name
-            criteria = _criteria_of(stage_out["assessment"])
-            _refuse_nan(criteria)
-            if stage_out.get("mesh_convergence"):
-                criteria += (convergence.criterion(stage_out["mesh_convergence"]),)
-            status = STATUS_PASS if all(c.passed for c in criteria) else STATUS_FAIL
-            if not criteria:
-                status, message = STATUS_ERROR, "the assessment returned no criteria: nothing was checked"
+            run_stages(run)
         except FeCrankError as exc:
-            message = str(exc)
+            error = str(exc)
         except Exception as exc:  # a bug: report it, keep the batch going
-            message = f"internal error in the {run.stage or 'pipeline'} stage: {type(exc).__name__}: {exc}"
+            error = f"internal error in the {run.stage or 'pipeline'} stage: {type(exc).__name__}: {exc}"
             trace = traceback.format_exc()
-        error_stage = run.stage if status == STATUS_ERROR else ""
-        if "loadcase" in stage_out:
-            name = stage_out["loadcase"].name
-        prov, notes, planned = _provenance(path, stage_out, options, started)
+        out = run.out
+        verdict = decide(out, error)
+        lc = out.loadcase
+        files = lc.inputs if lc is not None else tuple(run.files_read)
+        preset = None if lc is None else preset_of(lc.mesh, options.mesh_size)
+        prov = collect(path, out, files, preset, started=started)
+        try:
+            notes = case_notes(out, preset=preset, sign_off=prov.mesh.sign_off, rule=SIGN_OFF_RULE, solver=prov.solver)
+        except FeCrankError as exc:  # a note that cannot be computed is itself a warning
+            notes = (Note(f"quality checks incomplete: {exc}"),)
         partial = CaseResult(
-            name=name,
+            name=lc.name if lc is not None else path.stem,
             source=str(path),
-            status=status,
-            message=message,
-            criteria=criteria,
+            status=verdict.status,
+            message=verdict.message,
+            criteria=verdict.criteria,
             timings=tuple(run.timings),
             folder="",
             seconds=0.0,
-            error_stage=error_stage,
+            error_stage=run.stage if verdict.status == STATUS_ERROR else "",
             started=started,
             provenance=prov,
-            warnings=notes,
-            planned_criteria=planned,
+            warnings=tuple(n for n in notes if n.level == WARNING),
+            planned_criteria=tuple(lim.key for lim in lc.criteria.limits) if lc is not None and lc.criteria else (),
         )
         try:
-            run.timed("report", _write_report, tmp, partial, stage_out, options, trace)
+            run.timed("report", write_case_report, tmp, partial, out, notes, options=options, trace=trace)
         except FeCrankError as exc:
             partial = _as_error(partial, f"report: {exc}", "report")
-            _write_minimal(tmp, partial, "")
+            write_error_report(tmp, partial, "")
         except Exception as exc:
             partial = _as_error(partial, f"internal error in the report stage: {type(exc).__name__}: {exc}", "report")
-            _write_minimal(tmp, partial, traceback.format_exc())
-        final = CaseResult(
-            **{
-                **_fields(partial),
-                "timings": tuple(run.timings),
-                "seconds": time.perf_counter() - t0,
-                "folder": str(out_dir / slug),
-            }
+            write_error_report(tmp, partial, traceback.format_exc())
+        final = replace(
+            partial, timings=tuple(run.timings), seconds=time.perf_counter() - t0, folder=str(out_dir / slug)
         )
         write_atomic(tmp / "case.json", json.dumps(final.to_dict(), indent=2, default=_json_default, allow_nan=False))
         _publish(tmp, out_dir / slug)
@@ -125,25 +115,8 @@ def run_case(
             shutil.rmtree(tmp, ignore_errors=True)
 
 
-def _provenance(path: Path, stage_out: dict, options, started: str):
-    """(provenance, warning texts, planned criterion names) of a case; the notes are
-    kept in ``stage_out["notes"]`` for the report.  Never fails the case."""
-    prov = collect(path, stage_out, options, started=started)
-    try:
-        stage_out["notes"] = case_notes(stage_out, prov)
-    except FeCrankError as exc:  # a note that cannot be computed is itself a warning
-        stage_out["notes"] = [Note(f"quality checks incomplete: {exc}")]
-    lc = stage_out.get("loadcase")
-    planned = tuple(lim.key for lim in getattr(getattr(lc, "criteria", None), "limits", ()) or ())
-    return prov, tuple(n.text for n in stage_out["notes"] if n.level == "warning"), planned
-
-
-def _fields(r: CaseResult) -> dict:
-    return {f: getattr(r, f) for f in r.__dataclass_fields__}
-
-
 def _as_error(r: CaseResult, message: str, stage: str) -> CaseResult:
-    return CaseResult(**{**_fields(r), "status": STATUS_ERROR, "message": message, "error_stage": stage})
+    return replace(r, status=STATUS_ERROR, message=message, error_stage=stage)
 
 
 def _json_default(o):
@@ -158,9 +131,4 @@ def _json_default(o):
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
 
 
-def _write_minimal(folder: Path, result: CaseResult, trace: str) -> None:
-    write_error_report(folder, result, trace)
-
-
-def _write_report(folder: Path, result: CaseResult, stage_out: dict, options: CheckOptions, trace: str) -> None:
-    write_case_report(folder, result, stage_out, options=options, trace=trace)
+__all__ = ["Verdict", "run_case"]

@@ -6,9 +6,6 @@ from dataclasses import dataclass
 
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR
 
-#: Stage names in the order they run (also the keys of ``CaseResult.timings``).
-STAGES = ("load", "dynamics", "balance", "mesh", "fe", "assess", "convergence", "report")
-
 
 @dataclass(frozen=True)
 class CheckOptions:

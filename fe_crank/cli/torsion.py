@@ -12,9 +12,13 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from fe_crank.errors import InputError
 from fe_crank.files import write_atomic
+
+if TYPE_CHECKING:
+    from fe_crank.io.loadcase import LoadCase
 
 
 def add_arguments(p) -> None:
@@ -43,20 +47,20 @@ def add_arguments(p) -> None:
     p.add_argument("--no-plots", action="store_true", help="write the JSON only")
 
 
-def fe_stiffness_of(lc, size: str | None, cache_dir) -> float:
+def fe_stiffness_of(lc: LoadCase, size: str | None, cache_dir) -> float:
     """Torsional stiffness of the load case's first throw on its FE model (N m/rad, FE span)."""
     import dataclasses
 
     from fe_crank.fe import solve_unit_cases
-    from fe_crank.fe.unit_cases import FeOptions
     from fe_crank.mesh import mesh_throw
+    from fe_crank.mesh.plan import preset_of
     from fe_crank.torsion.stiffness import fe_throw_stiffness
 
-    mesh_cfg = lc.extras.get("mesh")
-    size = size or getattr(mesh_cfg, "size", None) or (mesh_cfg if isinstance(mesh_cfg, str) else None) or "coarse"
+    if lc.geometry is None or lc.material is None:
+        raise InputError("the FE throw stiffness needs the geometry and the [material] section", file=lc.source_file)
     throw = lc.geometry.throws[0].name
-    tm = mesh_throw(lc.geometry, throw=throw, size=size, cache_dir=cache_dir)
-    opts = dataclasses.replace(lc.fe or FeOptions(), cases=("centrifugal", "torque"))
+    tm = mesh_throw(lc.geometry, throw=throw, size=preset_of(lc.mesh, size), cache_dir=cache_dir)
+    opts = dataclasses.replace(lc.fe, cases=("centrifugal", "torque"))
     return fe_throw_stiffness(solve_unit_cases(tm, lc.material, opts))
 
 
@@ -66,7 +70,7 @@ def run(args) -> int:
     from fe_crank.torsion.report import RPM, result_to_dict, write_plots
 
     lc = load_loadcase(args.file)
-    settings = lc.extras.get("torsion")
+    settings = lc.torsion
     if settings is None:
         raise InputError("the load case has no [torsion] section (docs/torsion.md)", file=str(args.file), key="torsion")
     k_fe = None

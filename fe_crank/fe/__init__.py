@@ -6,12 +6,12 @@ lower level: :func:`build_system`, :func:`factorise`, loads and supports.
 """
 
 from fe_crank.fe.forms import bearing_support, centrifugal, elasticity, lame_parameters
+from fe_crank.fe.result_fields import write_fields
 from fe_crank.fe.solvers import factorise
 from fe_crank.fe.stress import max_shear, principal, stress_at_nodes, von_mises
 from fe_crank.fe.supports import Coupling, Dirichlet, Foundation
 from fe_crank.fe.system import System, build_system
 from fe_crank.fe.unit_cases import CASES, FeOptions, UnitCase, UnitSolutions, solve_unit_cases
-from fe_crank.fe.vtu import write_fields
 
 __all__ = [
     "CASES",

@@ -32,9 +32,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from fe_crank.fe.fe_options import Material
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.supports import boundary_facets
-from fe_crank.fe.unit_cases import FeOptions, solve_unit_cases
+from fe_crank.fe.unit_cases import FeOptions, UnitSolutions, solve_unit_cases
+from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.mesh.types import ThrowMesh
 
 log = logging.getLogger(__name__)
 
@@ -271,29 +275,38 @@ def wanted(flag: bool | None, preset: str) -> bool:
 
 
 def check_studies(
-    lc, meshes: dict, dynamics, *, cache_dir=None, units: dict | None = None
+    geometry: CrankGeometry,
+    material: Material,
+    fe_options: FeOptions,
+    meshes: dict[str, ThrowMesh],
+    dynamics: DynamicsResult,
+    *,
+    cache_dir=None,
+    unit_solutions: dict[str, UnitSolutions] | None = None,
 ) -> dict[str, ConvergenceStudy]:
     """The check stage's study for each distinct throw mesh (``meshes``: key -> ThrowMesh).
 
     Loads from ``check_loads`` (the throws the key stands for: the engine throw of that
-    name, else all of them); the first level uses the check's own mesh options, and with
-    ``units`` (key -> the check's ``UnitSolutions``) the check's own solution on that mesh
-    (one mesh and one factorisation fewer).
+    name, else all of them) at the speed of ``dynamics``; the first level uses the
+    check's own mesh options, and with ``unit_solutions`` (key -> the check's
+    ``UnitSolutions``) the check's own solution on that mesh (one mesh and one
+    factorisation fewer).
     """
-    out, done = {}, {}
+    out: dict[str, ConvergenceStudy] = {}
+    done: dict[str, ConvergenceStudy] = {}
     for key, tm in meshes.items():
         if tm.key in done:
             out[key] = done[tm.key]
             continue
         tls = [dynamics.throws[key]] if key in dynamics.throws else list(dynamics.throws.values())
-        first = (tm, units[key]) if units and key in units else None
+        first = (tm, unit_solutions[key]) if unit_solutions and key in unit_solutions else None
         study = fillet_convergence(
-            lc.geometry,
-            lc.material,
+            geometry,
+            material,
             throw=tm.throw,
             base=tm.options,
-            loads=check_loads(tls, lc.operating.speed),
-            fe_options=lc.fe,
+            loads=check_loads(tls, dynamics.speed),
+            fe_options=fe_options,
             cache_dir=cache_dir,
             first=first,
         )

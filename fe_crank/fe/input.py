@@ -68,7 +68,7 @@ class FeInput(Strict):
 
 
 def parse_fe(value: object, file: str | Path, key: str = "fe") -> FeOptions:
-    """Section parser registered as ``SECTIONS["fe"]``."""
+    """Section parser of the load case's ``[fe]`` section (``fe_crank.io.sections``)."""
     if not isinstance(value, dict):
         raise InputError('must be a table, e.g. [fe] support = "elastic"', file=str(file), key=key)
     support = value.get("support")

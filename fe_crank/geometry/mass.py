@@ -94,3 +94,33 @@ def mass_properties(geometry: CrankGeometry, throw: ThrowSpec | str | int | None
     with gmsh_session():
         model = add_throw(geometry, spec)
         return model_mass_properties(model.volumes, geometry.density, spec.name)
+
+
+@dataclass(frozen=True)
+class ThrowSolids:
+    """Mass properties of the throws of one geometry, by geometry throw name.  Throws that
+    differ only in name and angle are one solid (the properties are in the throw's own
+    frame): it is built once and shared."""
+
+    by_throw: dict[str, MassProperties]
+
+    def of(self, throw: str) -> MassProperties:
+        return self.by_throw[throw]
+
+
+def throw_solids(geometry: CrankGeometry, throws: tuple[str, ...] | None = None) -> ThrowSolids:
+    """``mass_properties`` of the named geometry throws (all by default), each distinct
+    solid built once."""
+    import dataclasses
+
+    built: list[tuple[ThrowSpec, MassProperties]] = []
+    out = {}
+    for name in throws if throws is not None else tuple(t.name for t in geometry.throws):
+        spec = geometry.throw(name)
+        solid = dataclasses.replace(spec, name="", angle=0.0)
+        props = next((p for s, p in built if s == solid), None)
+        if props is None:
+            props = mass_properties(geometry, spec)
+            built.append((solid, props))
+        out[name] = props
+    return ThrowSolids(out)

@@ -121,7 +121,7 @@ class BalanceSettings:
 
 
 def parse_balance(value: object, file: str | Path, key: str = "balance") -> BalanceSettings:
-    """Parser registered as ``SECTIONS["balance"]``.  Raises InputError naming file and key."""
+    """Parser of the load case's ``[balance]`` section (``fe_crank.io.sections``).  Raises InputError naming file and key."""
     if not isinstance(value, dict):
         raise InputError("must be a table", file=str(file), key=key)
     raw = validate(BalanceInput, value, file, key)

@@ -10,11 +10,14 @@ load case's folder tree unless allowed (docs/limits.md).
 from __future__ import annotations
 
 import errno
+import hashlib
 import math
 import os
 import tomllib
+from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -91,12 +94,56 @@ def _limit(name: str, default: int) -> int:
         raise InputError(f"must be a whole number of bytes (got {raw[:20]!r})", key=name) from None
 
 
-def read_text(path: str | Path, what: str = "file") -> str:
+@dataclass(frozen=True)
+class InputFile:
+    """One input file as it was read: its resolved path and the SHA-256 of its bytes."""
+
+    path: Path
+    sha256: str
+
+
+#: the input files read within ``recording_inputs`` (None: not recording)
+_READ: ContextVar[list[InputFile] | None] = ContextVar("fe_crank_inputs_read", default=None)
+
+
+@contextmanager
+def recording_inputs() -> Iterator[list[InputFile]]:
+    """Within the block, every input file ``read_text`` opens is appended (once) to the
+    list yielded, even when its contents are then refused: the files a load case was
+    read from, for the provenance of its results."""
+    read: list[InputFile] = []
+    token = _READ.set(read)
+    try:
+        yield read
+    finally:
+        _READ.reset(token)
+
+
+def _record(p: Path) -> None:
+    read = _READ.get()
+    if read is None:
+        return
+    try:
+        path = p.resolve()
+    except (OSError, RuntimeError):  # a symbolic-link loop
+        path = Path(os.path.abspath(p))
+    if any(f.path == path for f in read):
+        return
+    digest = hashlib.sha256()
+    with p.open("rb") as fh:  # in blocks: an input of any size is hashed in bounded memory
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            digest.update(block)
+    read.append(InputFile(path, digest.hexdigest()))
+
+
+def read_text(path: str | Path, what: str = "file", *, record: bool = True) -> str:
     """Read a UTF-8 text input file (a leading byte-order mark is dropped).
 
     Refused with an ``InputError`` naming the file: missing, a folder, unreadable
     (permissions, a symbolic-link loop), larger than ``MAX_FILE_BYTES``, binary or
-    not UTF-8.  The file's contents never appear in the message.
+    not UTF-8.  The file's contents never appear in the message.  A file that could be
+    opened is recorded for the provenance (``recording_inputs``) unless ``record`` is
+    false (the package's own data files).
     """
     p = Path(path)
     limit = _limit("FE_CRANK_MAX_FILE_BYTES", MAX_FILE_BYTES)
@@ -105,6 +152,8 @@ def read_text(path: str | Path, what: str = "file") -> str:
             raise InputError(f"is a folder, expected a {what}", file=str(p))
         with p.open("rb") as fh:
             raw = fh.read(limit + 1)
+        if record:
+            _record(p)
     except InputError:
         raise
     except FileNotFoundError:
@@ -150,11 +199,11 @@ def check_tree(data: Any, file: str | Path, prefix: str = "") -> None:
                 stack.append((v, sub, depth + 1))
 
 
-def read_toml(path: str | Path) -> dict:
+def read_toml(path: str | Path, *, record: bool = True) -> dict:
     """Read a TOML input file: ``read_text`` refusals, malformed TOML, nesting deeper
     than ``MAX_DEPTH`` and non-finite numbers are an InputError naming the file."""
     p = Path(path)
-    text = read_text(p, "TOML file")
+    text = read_text(p, "TOML file", record=record)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

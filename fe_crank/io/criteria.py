@@ -170,7 +170,7 @@ def check_material(criteria: Criteria, material, file: str | Path) -> None:
 
 
 def parse_criteria(value: object, file: str | Path, key: str = "criteria") -> Criteria:
-    """Section parser registered as ``SECTIONS["criteria"]``: builds the criteria and
+    """Section parser of the load case's ``[criteria]`` section (``fe_crank.io.sections``): builds the criteria and
     checks them against the same file's ``[material]`` section."""
     crit = build_criteria(value, file, key)
     if any(crit.needed_properties().values()):

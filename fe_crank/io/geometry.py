@@ -247,7 +247,7 @@ def load_geometry(path: str | Path) -> CrankGeometry:
 
 
 def parse_geometry(value: object, file: str | Path, key: str = "geometry") -> CrankGeometry:
-    """Section parser registered as ``SECTIONS["geometry"]``: a path relative to the load case."""
+    """Section parser of the load case's ``[geometry]`` section (``fe_crank.io.sections``): a path relative to the load case."""
     if isinstance(value, str):
         p, data = read_included(value, file, key, "geometry file")
         try:

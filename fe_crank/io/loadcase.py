@@ -9,13 +9,15 @@
     speed = "2800 rpm"
     overspeed = "3360 rpm"
 
-Sections handled by later stages are parsed by the functions listed in
-``fe_crank.io.sections.SECTIONS`` (key -> callable(value, file, key) -> frozen object).  A top-level key
-that no stage knows is an error.
+Sections handled by later stages are parsed by their stages' parsers
+(``fe_crank.io.sections``) into the typed ``LoadCase``.  A top-level key that no stage
+knows is an error.
 """
 
 from __future__ import annotations
 
+import dataclasses
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
 
@@ -23,11 +25,42 @@ from pydantic import Field, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
-from fe_crank.io.base import Strict, input_root, read_toml, validate
+from fe_crank.fe.fe_options import FeOptions
+from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.io.balance import BalanceSettings
+from fe_crank.io.base import InputFile, Strict, input_root, read_toml, recording_inputs, validate
+from fe_crank.io.criteria import Criteria
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
-from fe_crank.io.sections import SECTIONS
+from fe_crank.io.material import Material
+from fe_crank.io.sections import SECTION_KEYS, parse_sections
+from fe_crank.io.torsion import TorsionSettings
 from fe_crank.io.units import Speed
+from fe_crank.mesh.options import MeshSection
+
+
+@dataclass(frozen=True)
+class LoadCase:
+    """A whole load case as the stages see it (SI floats, frozen): the engine, the
+    operating point and the sections of the file, each parsed by the stage that owns it;
+    ``None`` where the file does not give an optional section (``fe`` and ``mesh`` take
+    their defaults).  ``inputs``: every file the load case was read from (itself, the
+    engine, geometry and pressure-table files it names), resolved, with the SHA-256 of
+    its bytes, in the order read."""
+
+    name: str
+    source_file: str
+    engine: model.Engine
+    operating: model.OperatingPoint
+    description: str = ""
+    geometry: CrankGeometry | None = None
+    material: Material | None = None
+    criteria: Criteria | None = None
+    fe: FeOptions = field(default_factory=FeOptions)
+    balance: BalanceSettings | None = None
+    mesh: MeshSection = field(default_factory=MeshSection)
+    torsion: TorsionSettings | None = None
+    inputs: tuple[InputFile, ...] = ()
 
 
 class OperatingInput(Strict):
@@ -50,22 +83,31 @@ class LoadCaseHead(Strict):
     schema_version: int = 1
 
 
-def load_loadcase(path: str | Path, *, allow_outside_paths: bool | None = None) -> model.LoadCase:
+def load_loadcase(
+    path: str | Path, *, allow_outside_paths: bool | None = None, files_read: list[InputFile] | None = None
+) -> LoadCase:
     """Read, validate and convert one load-case file.  Raises InputError.
 
     Include paths (``engine``, ``geometry``, a gas CSV) must stay in the load case's
     folder tree unless ``allow_outside_paths`` (default: the environment variable
-    ``FE_CRANK_ALLOW_OUTSIDE_PATHS``); see ``fe_crank.io.base.resolve_reference``."""
-    with input_root(path, allow_outside_paths):
-        return _load(Path(path))
+    ``FE_CRANK_ALLOW_OUTSIDE_PATHS``); see ``fe_crank.io.base.resolve_reference``.
+    ``files_read``: a list that receives every input file opened, also when the load
+    case is refused (the provenance of an error)."""
+    with input_root(path, allow_outside_paths), recording_inputs() as read:
+        try:
+            lc = _load(Path(path))
+        finally:
+            if files_read is not None:
+                files_read.extend(read)
+    return dataclasses.replace(lc, inputs=tuple(read))
 
 
-def _load(path: Path) -> model.LoadCase:
+def _load(path: Path) -> LoadCase:
     data = read_toml(path)
     if not isinstance(data, dict):  # pragma: no cover - tomllib always returns a dict
         raise InputError("top level must be a table", file=str(path))
     head_keys = set(LoadCaseHead.model_fields)
-    known = head_keys | {"engine", "operating"} | set(SECTIONS)
+    known = head_keys | {"engine", "operating"} | set(SECTION_KEYS)
     for key in data:
         if key not in known:
             raise InputError(f"unknown key; known keys are {sorted(known)}", file=str(path), key=_short(key))
@@ -76,27 +118,23 @@ def _load(path: Path) -> model.LoadCase:
         raise InputError("required key is missing", file=str(path), key="operating")
     engine = engine_from_reference(data["engine"], path)
     op = validate(OperatingInput, data["operating"], path, "operating")
-    sections = {}
-    for key, parser in SECTIONS.items():
-        if key in data:
-            sections[key] = parser(data[key], path, key)
-    if sections.get("criteria") is not None:
-        require_counterweight_fillets(
-            sections.get("geometry"), [lim.quantity for lim in sections["criteria"].limits], path
-        )
-    extras = {k: v for k, v in sections.items() if k not in ("geometry", "material", "criteria", "fe", "balance")}
-    return model.LoadCase(
+    sections = parse_sections(data, path)
+    criteria, geometry = sections.criteria, sections.geometry
+    if criteria is not None:
+        require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
+    return LoadCase(
         name=head.name,
         source_file=str(path),
         description=head.description,
         engine=engine,
         operating=model.OperatingPoint(op.speed, op.overspeed, op.overspeed_gas),
-        geometry=sections.get("geometry"),
-        material=sections.get("material"),
-        criteria=sections.get("criteria"),
-        fe=sections.get("fe"),
-        balance=sections.get("balance"),
-        extras=extras,
+        geometry=geometry,
+        material=sections.material,
+        criteria=criteria,
+        fe=sections.fe or FeOptions(),
+        balance=sections.balance,
+        mesh=sections.mesh or MeshSection(),
+        torsion=sections.torsion,
     )
 
 

@@ -98,7 +98,7 @@ def library_path() -> Path:
 
 @lru_cache(maxsize=4)
 def _library(path: str) -> dict[str, dict]:
-    data = read_toml(path)
+    data = read_toml(path, record=False)  # package data, traced by the package version
     out = {}
     for name, entry in data.items():
         if not isinstance(entry, dict):
@@ -134,7 +134,7 @@ def _check_positive(props: dict, file, key: str) -> None:
 
 
 def parse_material(value: object, file: str | Path, key: str = "material") -> Material:
-    """Section parser registered as ``SECTIONS["material"]``."""
+    """Section parser of the load case's ``[material]`` section (``fe_crank.io.sections``)."""
     if isinstance(value, str):
         value = {"name": value}
     if not isinstance(value, dict):

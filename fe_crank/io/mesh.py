@@ -2,28 +2,14 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from fe_crank.errors import InputError
-from fe_crank.mesh.options import PRESETS
+from fe_crank.mesh.options import PRESETS, MeshSection
 
 MESH_PRESETS = tuple(PRESETS)
 
 
-@dataclass(frozen=True)
-class MeshSection:
-    """The load case's ``[mesh]`` table: ``size`` is a preset of ``fe_crank.mesh``
-    ("coarse", the default, keeps fillet elements within r/4 as IACS UR M53 asks;
-    "test" is for quick trials and demonstrations only)."""
-
-    size: str = "coarse"
-    max_elements: int | None = None  # limit on the estimated element count (docs/limits.md)
-    convergence: bool | None = None  # hot-spot convergence study; None: on unless size = "test"
-    symmetric: bool = True  # mesh a mirror-symmetric throw's fundamental part and mirror it (MeshOptions.symmetric)
-
-
 def parse_mesh_section(value: object, file, key: str = "mesh") -> MeshSection:
-    """Section parser registered as ``SECTIONS["mesh"]``: ``[mesh] size = "coarse"``."""
+    """Section parser of the load case's ``[mesh]`` section (``fe_crank.io.sections``): ``[mesh] size = "coarse"``."""
     if not isinstance(value, dict):
         raise InputError('must be a table, e.g. [mesh] size = "coarse"', file=str(file), key=key)
     for k in value:

@@ -205,7 +205,7 @@ class TorsionSettings:
 
 
 def parse_torsion(value: object, file: str | Path, key: str = "torsion") -> TorsionSettings:
-    """Parser registered as ``SECTIONS["torsion"]``.  Raises InputError naming file and key."""
+    """Parser of the load case's ``[torsion]`` section (``fe_crank.io.sections``).  Raises InputError naming file and key."""
     if not isinstance(value, dict):
         raise InputError("must be a table", file=str(file), key=key)
     raw = validate(TorsionInput, value, file, key)

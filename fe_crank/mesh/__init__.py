@@ -23,10 +23,10 @@ run, and an entry that cannot be read back whole is discarded and rebuilt.
 
 from fe_crank.mesh.build import mesh_throw
 from fe_crank.mesh.cache import cache_key
+from fe_crank.mesh.export import write_vtu
 from fe_crank.mesh.options import CACHE_FORMAT, DEFAULT_CACHE_DIR, PRESETS, MeshOptions, resolve_options
 from fe_crank.mesh.quality import STRAIGHTEN_BELOW
 from fe_crank.mesh.types import MeshStats, ThrowMesh
-from fe_crank.mesh.vtu import write_vtu
 
 __all__ = [
     "CACHE_FORMAT",

@@ -22,6 +22,7 @@ from fe_crank.mesh.cache import (
     clean_stale_cache_temps,
     load_cache_entry,
 )
+from fe_crank.mesh.export import write_vtu
 from fe_crank.mesh.mirror import mirror_all, swap_side
 from fe_crank.mesh.msh import write_msh
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
@@ -29,7 +30,6 @@ from fe_crank.mesh.planes import mesh_planes
 from fe_crank.mesh.quality import _fillet_max_edge, _jacobian_ratio, _straighten_poor, _tet_tags
 from fe_crank.mesh.sizing import _set_size_fields
 from fe_crank.mesh.types import MeshStats, ThrowMesh
-from fe_crank.mesh.vtu import write_vtu
 
 
 def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: Path, planes: tuple[int, ...] = ()):

@@ -59,3 +59,15 @@ def resolve_options(size: str | MeshOptions) -> MeshOptions:
         return PRESETS[size]
     except KeyError:
         raise MeshError(f"unknown mesh size {size!r}; pick one of {sorted(PRESETS)} or pass MeshOptions") from None
+
+
+@dataclass(frozen=True)
+class MeshSection:
+    """The load case's ``[mesh]`` table: ``size`` is a preset of ``fe_crank.mesh``
+    ("coarse", the default, keeps fillet elements within r/4 as IACS UR M53 asks;
+    "test" is for quick trials and demonstrations only)."""
+
+    size: str = "coarse"
+    max_elements: int | None = None  # limit on the estimated element count (docs/limits.md)
+    convergence: bool | None = None  # hot-spot convergence study; None: on unless size = "test"
+    symmetric: bool = True  # mesh a mirror-symmetric throw's fundamental part and mirror it (MeshOptions.symmetric)

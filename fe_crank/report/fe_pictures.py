@@ -3,7 +3,7 @@ and three renders drawn from those same fields, so file, pictures and tables agr
 
 * von Mises on the deformed throw at the governing crank angle of the hot spot;
 * a close-up of the hot spot's fillet (undeformed);
-* the governing overspeed state (``fe_crank.report.overspeed_state``): the cycle at the
+* the governing overspeed state (``fe_crank.assess.states``): the cycle at the
   overspeed with rod and piston inertia, at the crank angle where the overspeed check's
   governing value occurs, the hot spot and the counterweight maximum marked.
 """
@@ -15,14 +15,13 @@ from pathlib import Path
 
 import numpy as np
 
-from fe_crank.fe.vtu import write_vtu
+from fe_crank.fe.result_fields import write_vtu
+from fe_crank.outputs import CaseOutputs
 from fe_crank.report import render as rd
-from fe_crank.report.fields import shared_models, throw_fields
+from fe_crank.report.fields import field_peak, throw_fields
 from fe_crank.report.html import Page, esc
-from fe_crank.report.overspeed_state import field_peak, throw_names
-from fe_crank.report.superposed import assessed_dynamics
 
-#: the overspeed gas assumption in words (``[operating] overspeed_gas``, fe_crank.assess.overspeed)
+#: the overspeed gas assumption in words (``[operating] overspeed_gas``, fe_crank.mechanism.cycles)
 GAS_WORDS = {
     "motored": "motored: no combustion, zero gauge gas pressure",
     "as_operating": "gas as operating: the operating gas pressure table",
@@ -45,22 +44,21 @@ def _short_gas(words: str) -> str:
     return "gas as operating" if "operating" in words else words
 
 
-def fe_section(folder: Path, so: dict, options) -> list[str]:
+def fe_section(folder: Path, so: CaseOutputs, options) -> list[str]:
     """Per FE model: the ``.vtu`` file and the three pictures (module docstring)."""
-    units_by_key, a, lc = so.get("units"), so.get("assessment"), so.get("loadcase")
-    dyn = assessed_dynamics(so)
-    if not units_by_key or a is None or dyn is None:
+    a = so.assessment
+    units_by_key = so.unit_solutions
+    if not units_by_key or a is None:
         return []
-    render = getattr(options, "render", True)
-    write_vtu_files = getattr(options, "write_vtu", True)
+    render = options is None or options.render
+    write_vtu_files = options is None or options.write_vtu
     if not (render or write_vtu_files):
         return ["<p>Pictures and fields switched off for this run (--no-render --no-vtu).</p>"]
     out = []
-    for keys, units in shared_models(units_by_key):
-        tf = throw_fields(units, a, dyn, lc, keys)
-        if tf is None:
-            continue
-        names = throw_names(keys, dyn)
+    for st in a.states:
+        units = units_by_key[st.keys[0]]
+        tf = throw_fields(units, st, a.throws)
+        names = st.throws
         if len(names) > 1:  # identical throws share one FE model: drawn once, where it is most critical
             os_txt = "" if tf.overspeed is None else f", the overspeed state of throw {tf.overspeed.throw}"
             out.append(

@@ -15,7 +15,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from fe_crank.files import write_atomic
-from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CaseResult
+from fe_crank.records import CaseResult, Provenance
+from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS
 
 CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:2em auto;max-width:72em;
@@ -125,19 +126,18 @@ def header_html(result: CaseResult, notes=()) -> str:
     w = result.worst
     worst = f"worst criterion <b>{esc(w.name)}</b>, margin {100 * w.margin:+.1f} %" if w else ""
     msg = f"<pre>{esc(result.message)}</pre>" if result.message else ""
-    mesh = (result.provenance or {}).get("mesh") or {}
+    prov = result.provenance
     banner = ""
-    if mesh.get("preset") and not mesh.get("sign_off"):
+    if prov is not None and prov.mesh.preset and not prov.mesh.sign_off:
         banner = (
-            f'<div class="banner">NOT A SIGN-OFF (test mesh): mesh preset "{esc(mesh["preset"])}" is below '
-            f"the sign-off rule ({esc(mesh.get('sign_off_rule', 'coarse or finer'))}). Run with "
+            f'<div class="banner">NOT A SIGN-OFF (test mesh): mesh preset "{esc(prov.mesh.preset)}" is below '
+            f"the sign-off rule ({esc(prov.mesh.sign_off_rule)}). Run with "
             "--mesh-size coarse or finer before trusting this verdict.</div>"
         )
     case_wide = [n for n in notes if not n.criteria]
     return (
         f"{banner}<p>{badge(result.status)} &nbsp; {worst}</p>{notes_list(case_wide)}"
-        f'<p class="note">load case file <code>{esc(result.source)}</code></p>{msg}'
-        + provenance_table(result.provenance or {})
+        f'<p class="note">load case file <code>{esc(result.source)}</code></p>{msg}' + provenance_table(prov)
     )
 
 
@@ -146,58 +146,51 @@ def notes_list(notes) -> str:
     if not notes:
         return ""
     items = sorted(notes, key=lambda n: n.level != "warning")
-    return '<ul class="warn">' + "".join(f"<li><b>{esc(n.level)}</b>: {esc(n.text)}</li>" for n in items) + "</ul>"
+    return '<ul class="warn">' + "".join(f"<li><b>{esc(n.level)}</b>: {esc(n.display)}</li>" for n in items) + "</ul>"
 
 
-def provenance_table(prov: dict) -> str:
+def provenance_table(prov: Provenance | None) -> str:
     """What produced the result: version, date, input hash, mesh, solver, support."""
-    if not prov:
+    if prov is None:
         return ""
-    mesh = prov.get("mesh") or {}
+    mesh = prov.mesh
     rows = [
-        ["fe-crank version", prov.get("version", "")],
-        ["run started (UTC)", prov.get("started", "")],
+        ["fe-crank version", prov.version],
+        ["run started (UTC)", prov.started],
         [
-            "input SHA-256 (load case and the files it refers to)",
-            Raw(f"<code>{esc((prov.get('input') or {}).get('sha256'))}</code>"),
+            "input SHA-256 (load case and the files it was read from)",
+            Raw(f"<code>{esc(prov.input.sha256 or prov.input.error or '-')}</code>"),
         ],
         [
             "mesh preset",
-            f"{mesh.get('preset')} ({'meets' if mesh.get('sign_off') else 'below'} the sign-off rule: "
-            f"{mesh.get('sign_off_rule', '')})",
+            f"{mesh.preset} ({'meets' if mesh.sign_off else 'below'} the sign-off rule: {mesh.sign_off_rule})",
         ],
     ]
-    for key, st in (mesh.get("throws") or {}).items():
-        if isinstance(st, dict):
-            rows.append(
-                [
-                    f"mesh {key}",
-                    f"{st.get('elements')} quadratic tetrahedra, {st.get('nodes')} nodes, "
-                    f"{st.get('p2_dofs')} DOF, min quality {st.get('min_quality', float('nan')):.3g}",
-                ]
-            )
-    solver = prov.get("solver") or {}
-    if solver:
+    for key, st in mesh.throws.items():
+        rows.append(
+            [
+                f"mesh {key}",
+                f"{st.elements} quadratic tetrahedra, {st.nodes} nodes, {st.p2_dofs} DOF, "
+                f"min quality {st.min_quality:.3g}",
+            ]
+        )
+    if prov.solver is not None:
         rows.append(
             [
                 "linear solver",
-                f"{', '.join(solver.get('used') or [])} (requested {solver.get('requested')}; "
-                f"fast direct solver {'available' if solver.get('fast_available') else 'NOT available'})",
+                f"{', '.join(prov.solver.used)} (requested {prov.solver.requested}; "
+                f"fast direct solver {'available' if prov.solver.fast_available else 'NOT available'})",
             ]
         )
-    for s in prov.get("support") or ():
-        k = s.get("bearing_stiffness")
+    for s in prov.support:
+        k = s.bearing_stiffness
         rows.append(
             [
-                f"support, throw {s.get('throw')}",
-                s.get("model")
-                or (
-                    f"{s.get('support')} journal support"
-                    + (f", k = {k:.3g} N/m^3" if isinstance(k, (int, float)) else "")
-                ),
+                f"support, throw {s.throw}",
+                s.model or (f"{s.support} journal support" + (f", k = {k:.3g} N/m^3" if k is not None else "")),
             ]
         )
-    rows.append(["Python, platform", f"{prov.get('python')}, {prov.get('platform')}"])
+    rows.append(["Python, platform", f"{prov.python}, {prov.platform}"])
     return "<details open><summary>Provenance</summary>" + table(["item", "value"], rows) + "</details>"
 
 

@@ -9,8 +9,9 @@ Layout (the common JUnit schema that Jenkins, GitLab and GitHub reporters read):
         <testcase classname="fe-crank.<case file stem>" name="<criterion>" time="..">
           <failure message="..." type="criterion">...</failure>    (failed criterion)
           <error message="..." type="...">...</error>               (case that errored)
-          <system-out>value, limit, margin; warnings</system-out>
+          <system-out>value, limit, margin; the warnings of this criterion</system-out>
         </testcase>
+        <system-out>the warnings that concern the whole case</system-out>
       </testsuite>
     </testsuites>
 
@@ -31,7 +32,8 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from fe_crank.files import write_atomic
-from fe_crank.results import STATUS_ERROR, CaseResult
+from fe_crank.records import CaseResult, now_utc
+from fe_crank.results import STATUS_ERROR
 
 
 def _criterion_text(c) -> str:
@@ -51,18 +53,16 @@ def classname(r: CaseResult) -> str:
 
 def _properties(suite, r: CaseResult) -> None:
     props = ET.SubElement(suite, "properties")
-    prov = r.provenance or {}
-    mesh = prov.get("mesh") or {}
-    solver = prov.get("solver") or {}
-    items = [
-        ("source", r.source),
-        ("version", prov.get("version")),
-        ("started", r.started),
-        ("input_sha256", (prov.get("input") or {}).get("sha256")),
-        ("mesh_preset", mesh.get("preset")),
-        ("sign_off", None if not mesh else str(bool(mesh.get("sign_off"))).lower()),
-        ("solver", ",".join(solver.get("used") or []) or None),
-    ]
+    prov = r.provenance
+    items = [("source", r.source), ("started", r.started)]
+    if prov is not None:
+        items += [
+            ("version", prov.version),
+            ("input_sha256", prov.input.sha256),
+            ("mesh_preset", prov.mesh.preset),
+            ("sign_off", str(bool(prov.mesh.sign_off)).lower()),
+            ("solver", ",".join(prov.solver.used) if prov.solver is not None else None),
+        ]
     for name, value in items:
         if value not in (None, ""):
             ET.SubElement(props, "property", name=name, value=str(value))
@@ -77,7 +77,7 @@ def junit_xml(results: Sequence[CaseResult], *, hostname: str | None = None) -> 
         cls = classname(r)
         suite = ET.SubElement(root, "testsuite", name=cls.removeprefix("fe-crank."))
         _properties(suite, r)
-        warn = "\n".join(f"warning: {w}" for w in r.warnings)
+        case_wide = "\n".join(f"warning: {w.display}" for w in r.warnings if not w.criteria)
         errored = r.status == STATUS_ERROR
         names = [c.name for c in r.criteria] if not errored or r.criteria else list(r.planned_criteria)
         n_tests = len(names) + (1 if errored else 0)
@@ -99,13 +99,16 @@ def junit_xml(results: Sequence[CaseResult], *, hostname: str | None = None) -> 
                 fail = ET.SubElement(tc, "failure", message=_criterion_text(c), type="criterion")
                 fail.text = _criterion_text(c) + (f"\n{c.description}" if c.description else "")
             if c is not None:
-                ET.SubElement(tc, "system-out").text = _criterion_text(c) + (f"\n{warn}" if warn else "")
+                mine = "".join(f"\nwarning: {w.display}" for w in r.warnings if w.criteria and w.concerns(c.name))
+                ET.SubElement(tc, "system-out").text = _criterion_text(c) + mine
         if errored:
             tc = ET.SubElement(suite, "testcase", classname=cls, name="pipeline", time=each)
             n += 1
             e += 1
             err = ET.SubElement(tc, "error", message=first, type=f"error{stage}")
             err.text = r.message
+        if case_wide:  # the warnings of the whole case once, after its test cases (JUnit's order)
+            ET.SubElement(suite, "system-out").text = case_wide
         suite.set("tests", str(n))
         suite.set("failures", str(f))
         suite.set("errors", str(e))
@@ -125,8 +128,6 @@ def junit_xml(results: Sequence[CaseResult], *, hostname: str | None = None) -> 
 
 
 def _now() -> str:
-    from fe_crank.provenance import now_utc
-
     return now_utc()[:19]
 
 

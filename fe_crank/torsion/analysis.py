@@ -18,11 +18,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank.errors import InputError
+from fe_crank.io.torsion import TorsionSettings
 from fe_crank.torsion.build import build_model, shear_modulus
 from fe_crank.torsion.excitation import CylinderHarmonics, cylinder_harmonics
 from fe_crank.torsion.forced import ForcedResponse, forced_response
 from fe_crank.torsion.free import Modes, holzer_frequencies, natural_modes
-from fe_crank.torsion.model import TorsionModel
+from fe_crank.torsion.model import TorsionCase, TorsionModel
 from fe_crank.torsion.stiffness import carter_throw_stiffness
 
 
@@ -103,10 +104,17 @@ def speed_grid(lo: float, hi: float, steps: int, operating: float, resonances: l
 
 
 def analyse_torsion(
-    loadcase, *, settings=None, inertias=None, fe_stiffness: float | None = None, step: float = np.radians(1.0)
+    loadcase: TorsionCase,
+    *,
+    settings: TorsionSettings | None = None,
+    inertias: dict[str, float] | None = None,
+    fe_stiffness: float | None = None,
+    step: float = np.radians(1.0),
 ) -> TorsionResult:
-    """Run the torsional stage of ``loadcase`` (its ``[torsion]`` section, or ``settings``)."""
-    settings = settings or loadcase.extras.get("torsion")
+    """Run the torsional stage of ``loadcase`` (its ``[torsion]`` section, or ``settings``);
+    ``inertias``: the throws' inertias about the crank axis when the caller has them (the
+    check passes its geometry stage's CAD mass properties, ``build.throw_inertias``)."""
+    settings = settings or loadcase.torsion
     if settings is None:
         raise InputError("the load case has no [torsion] section", file=loadcase.source_file, key="torsion")
     lo, hi = settings.speed_range

@@ -25,8 +25,10 @@ from __future__ import annotations
 import numpy as np
 
 from fe_crank.errors import InputError
+from fe_crank.geometry.mass import ThrowSolids, throw_solids
+from fe_crank.io.torsion import TorsionSettings
 from fe_crank.mechanism.kinematics import piston_motion
-from fe_crank.torsion.model import TorsionModel
+from fe_crank.torsion.model import TorsionCase, TorsionModel
 from fe_crank.torsion.stiffness import carter_throw_stiffness, shaft_stiffness, throw_span
 
 
@@ -58,25 +60,22 @@ def shear_modulus(material) -> float:
     return material.youngs_modulus / (2.0 * (1.0 + material.poisson_ratio))
 
 
-def throw_inertias(loadcase) -> dict[str, float]:
-    """CAD inertia of every throw's geometry (kg m^2) + its cylinders' (module docstring)."""
-    from fe_crank.geometry.mass import mass_properties
-
+def throw_inertias(loadcase: TorsionCase, solids: ThrowSolids | None = None) -> dict[str, float]:
+    """CAD inertia of every throw's geometry (kg m^2) + its cylinders' (module docstring).
+    ``solids``: the geometry's mass properties when the caller has them (else built here,
+    each distinct throw solid once)."""
     g = loadcase.geometry
     if g is None:
         raise InputError("torsional analysis needs the crank geometry (key 'geometry')", key="geometry")
     engine = loadcase.engine
-    import dataclasses
-
     names = {t.name for t in g.throws}
-    cad_cache: dict = {}
+    throws = crank_throws(engine)
+    geometry_throw = {t.name: g.throw(t.name if t.name in names else None).name for t in throws}
+    if solids is None:
+        solids = throw_solids(g, tuple(sorted(set(geometry_throw.values()))))
     out = {}
-    for t in crank_throws(engine):
-        spec = g.throw(t.name if t.name in names else None)
-        key = dataclasses.replace(spec, name="", angle=0.0)  # J_z does not depend on the throw's angle
-        if key not in cad_cache:
-            cad_cache[key] = mass_properties(g, spec).total.inertia_axis
-        j = cad_cache[key]
+    for t in throws:
+        j = solids.of(geometry_throw[t.name]).total.inertia_axis  # J_z does not depend on the throw's angle
         for c in engine.cylinders:
             if c.throw == t.name:
                 j += reciprocating_inertia(c, t.crank_radius)
@@ -106,7 +105,11 @@ def pitch_stiffness(
 
 
 def build_model(
-    loadcase, settings, *, inertias: dict[str, float] | None = None, fe_stiffness: float | None = None
+    loadcase: TorsionCase,
+    settings: TorsionSettings,
+    *,
+    inertias: dict[str, float] | None = None,
+    fe_stiffness: float | None = None,
 ) -> TorsionModel:
     """The chain of a load case (module docstring).  ``inertias`` overrides the throw
     inertias (tests, or a caller that has them); ``fe_stiffness`` the FE throw stiffness."""

@@ -19,10 +19,34 @@ joins mass ``i`` and ``i + 1``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
+from fe_crank import model
 from fe_crank.errors import InputError
+from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.io.material import Material
+from fe_crank.io.torsion import TorsionSettings
+
+
+class TorsionCase(Protocol):
+    """What the torsional stage reads of a load case (``fe_crank.io.loadcase.LoadCase``
+    has it): the engine, the operating point, the crank geometry and material (throw
+    inertias and stiffnesses) and the ``[torsion]`` section."""
+
+    @property
+    def source_file(self) -> str: ...
+    @property
+    def engine(self) -> model.Engine: ...
+    @property
+    def operating(self) -> model.OperatingPoint: ...
+    @property
+    def geometry(self) -> CrankGeometry | None: ...
+    @property
+    def material(self) -> Material | None: ...
+    @property
+    def torsion(self) -> TorsionSettings | None: ...
 
 
 @dataclass(frozen=True)

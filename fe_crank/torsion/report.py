@@ -232,23 +232,3 @@ def quasi_static_note() -> str:
         "quasi-static (rigid shaft, cumulative cylinder torque); IACS UR M53 2.2 asks for the vibratory "
         "torque of a forced-vibration calculation (docs/torsion.md).</p>"
     )
-
-
-def report_section(folder, stage_out: dict, options=None) -> list[str]:
-    """Builder of the check report (``fe_crank.report.sections.BUILDERS``): the torsional
-    section with its PNGs and ``torsion.json`` (``result_to_dict``) in the case folder, or
-    the note that the check is quasi-static."""
-    import json
-
-    lc = stage_out.get("loadcase")
-    if lc is None:
-        return []
-    res = stage_out.get("torsion")
-    if res is None:
-        if "torsion" in lc.extras:
-            return ["<p>The case stopped before the torsional stage.</p>"]
-        return [quasi_static_note()]
-    folder = Path(folder)
-    data = {"load_case": lc.name, "source_file": lc.source_file, **result_to_dict(res)}
-    write_atomic(folder / "torsion.json", json.dumps(data, indent=1, allow_nan=False).encode())
-    return [html_fragment(res, folder)]

@@ -1,12 +1,12 @@
 """The mesh as a VTK file: quadratic tetrahedra with a ``subdomain`` cell array and the
-region ids, written by the project's one VTU writer (``fe_crank.vtu``)."""
+region ids, written by the project's one VTU writer (``fe_crank.vtu_writer``)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from fe_crank.vtu import quadratic_tet_mesh, region_ids
-from fe_crank.vtu import write_vtu as write
+from fe_crank.vtu_writer import quadratic_tet_mesh, region_ids
+from fe_crank.vtu_writer import write_vtu as write
 
 
 def write_vtu(path: Path, mesh) -> None:

@@ -1,4 +1,4 @@
-"""Result fields of the FE stage for the project's one VTU writer (``fe_crank.vtu``):
+"""Result fields of the FE stage for the project's one VTU writer (``fe_crank.vtu_writer``):
 stress fields with units in their names, boundary ids of the P2 nodes, ``write_fields``."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from fe_crank.fe.stress import VOIGT, max_shear, principal, von_mises
-from fe_crank.vtu import positively_oriented, quadratic_tet_mesh, region_ids, write_vtu
+from fe_crank.vtu_writer import positively_oriented, quadratic_tet_mesh, region_ids, write_vtu
 
 __all__ = [
     "boundary_point_ids",

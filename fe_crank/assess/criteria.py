@@ -1,0 +1,184 @@
+"""The load case's criteria evaluated on the throws' results: one evaluator per quantity.
+
+``EVALUATORS`` maps each quantity of ``fe_crank.io.criteria.QUANTITIES`` to the function
+that finds its worst value over every throw and where it occurs; ``evaluate_criteria``
+judges each limit of the load case with it (``verdict.judge``).  A criterion that cannot
+be evaluated (no data for it) is an ``InputError`` naming its key: it never passes
+silently.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from fe_crank.assess import m53_oil_bore
+from fe_crank.assess.group import STATIC_ONLY_PREFIXES, Extreme, GroupResult
+from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.assess.verdict import judge
+from fe_crank.errors import InputError
+from fe_crank.io.criteria import QUANTITIES, Criteria
+from fe_crank.results import CriterionResult
+
+#: (value, where) of a criterion's worst case, or None when the model gives none
+Found = tuple[float, str] | None
+
+
+def _where(throw: str, ext: Extreme | None) -> str:
+    if ext is None:
+        return ""
+    p = ", ".join(f"{c * 1e3:.1f}" for c in ext.point)
+    s = f"throw {throw}, {ext.group}, node {ext.node} at ({p}) mm"
+    if ext.angle is not None:
+        s += f", {math.degrees(ext.angle):.0f} deg"
+    return s
+
+
+def _over_groups(
+    throws: tuple[ThrowAssessment, ...], getter: Callable[[GroupResult], tuple[float, Extreme] | None], worst: str
+) -> Found:
+    """(value, location) of the worst non-None value of getter(group) over all groups
+    (the first of equals, in the throws' and groups' order)."""
+    best: Found = None
+    for t in throws:
+        for g in t.groups:
+            got = getter(g)
+            if got is None:
+                continue
+            value, ext = got
+            if best is None or (value < best[0] if worst == "min" else value > best[0]):
+                best = (value, _where(t.name, ext))
+    return best
+
+
+def _static(throws: tuple[ThrowAssessment, ...]) -> Found:
+    return _over_groups(throws, lambda g: (g.static_safety, g.max_von_mises), "min")
+
+
+def _overspeed(throws: tuple[ThrowAssessment, ...]) -> Found:
+    return _over_groups(
+        throws,
+        lambda g: (
+            None
+            if g.overspeed_safety is None or g.max_von_mises_overspeed is None
+            else (g.overspeed_safety, g.max_von_mises_overspeed)
+        ),
+        "min",
+    )
+
+
+def _goodman(throws: tuple[ThrowAssessment, ...]) -> Found:
+    return _over_groups(
+        throws, lambda g: None if g.fatigue_safety is None else (g.fatigue_safety.value, g.fatigue_safety), "min"
+    )
+
+
+def _gough_pollard(throws: tuple[ThrowAssessment, ...]) -> Found:
+    return _over_groups(
+        throws,
+        lambda g: None if g.gough_pollard_safety is None else (g.gough_pollard_safety.value, g.gough_pollard_safety),
+        "min",
+    )
+
+
+def _counterweight_stress(throws: tuple[ThrowAssessment, ...]) -> Found:
+    def get(g: GroupResult) -> tuple[float, Extreme] | None:
+        ext = g.max_von_mises
+        return (ext.value, ext) if g.group.startswith(STATIC_ONLY_PREFIXES) else None
+
+    return _over_groups(throws, get, "max")
+
+
+def _counterweight_overspeed_stress(throws: tuple[ThrowAssessment, ...]) -> Found:
+    def get(g: GroupResult) -> tuple[float, Extreme] | None:
+        ext = g.max_von_mises_overspeed
+        return (ext.value, ext) if ext is not None and g.group.startswith(STATIC_ONLY_PREFIXES) else None
+
+    return _over_groups(throws, get, "max")
+
+
+def _m53(throws: tuple[ThrowAssessment, ...]) -> Found:
+    vals = [
+        (f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
+        for t in throws
+        for f in t.m53
+    ]
+    return min(vals) if vals else None
+
+
+def _unbalance(throws: tuple[ThrowAssessment, ...]) -> Found:
+    vals = [
+        (c.unbalance_error, f"throw {t.name}, {c.name}")
+        for t in throws
+        for c in t.counterweights
+        if c.unbalance_error is not None
+    ]
+    return max(vals) if vals else None
+
+
+def _bolts(throws: tuple[ThrowAssessment, ...]) -> Found:
+    vals = [
+        (c.bolt_utilisation, f"throw {t.name}, {c.name}")
+        for t in throws
+        for c in t.counterweights
+        if c.bolt_utilisation is not None
+    ]
+    return max(vals) if vals else None
+
+
+@dataclass(frozen=True)
+class Evaluator:
+    """How a quantity is found on the throws' results: ``find`` gives (worst value,
+    location) or None; ``unit`` of the value ("" for a pure number); ``needs_overspeed``:
+    only defined with an overspeed."""
+
+    find: Callable[[tuple[ThrowAssessment, ...]], Found]
+    unit: str = ""
+    needs_overspeed: bool = False
+
+
+EVALUATORS: dict[str, Evaluator] = {
+    "static_safety": Evaluator(_static),
+    "overspeed_safety": Evaluator(_overspeed, needs_overspeed=True),
+    "fatigue_safety": Evaluator(_goodman),
+    "gough_pollard_safety": Evaluator(_gough_pollard),
+    "counterweight_stress": Evaluator(_counterweight_stress, unit="Pa"),
+    "counterweight_overspeed_stress": Evaluator(_counterweight_overspeed_stress, unit="Pa", needs_overspeed=True),
+    "m53_acceptability": Evaluator(_m53),
+    "unbalance_error": Evaluator(_unbalance),
+    "bolt_utilisation": Evaluator(_bolts),
+}
+
+
+def evaluate_criteria(
+    criteria: Criteria, throws: tuple[ThrowAssessment, ...], *, file: str = "", overspeed: float | None = None
+) -> tuple[CriterionResult, ...]:
+    """Each limit of ``criteria`` -> a verdict (module docstring)."""
+    out = []
+    for lim in criteria.limits:
+        ev = EVALUATORS[lim.quantity]
+        if ev.needs_overspeed and overspeed is None:
+            raise InputError("needs operating.overspeed", file=file, key=lim.key)
+        got = ev.find(throws)
+        if got is None:
+            raise InputError(
+                f"cannot be evaluated: the model gives no {lim.quantity.replace('_', ' ')} "
+                "(missing geometry, mesh group, balance requirement or bolt data)",
+                file=file,
+                key=lim.key,
+            )
+        value, where = got
+        out.append(
+            judge(
+                lim.key,
+                lim.quantity,
+                lim.sense,
+                value,
+                lim.value,
+                unit=ev.unit,
+                location=where,
+                description=QUANTITIES[lim.quantity].meaning,
+            )
+        )
+    return tuple(out)

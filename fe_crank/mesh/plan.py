@@ -1,0 +1,98 @@
+"""The mesh plan of a check, resolved once: which throw models are meshed, with which size.
+
+A geometry with a single throw stands for every throw of the engine (key ``ALL_THROWS``,
+``fe_crank.throw_scope``, each throw assessed on it with its own loads); so do several
+throws that differ only in name and angle; otherwise the geometry's throw names must be
+the engine's throw names, so that no throw goes unchecked.  The size is the command
+line's ``--mesh-size``, else the load case's ``[mesh] size`` (``coarse`` by default);
+``[mesh] symmetric = false`` meshes a mirror-symmetric throw whole.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+from fe_crank.errors import InputError
+from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
+from fe_crank.mesh.options import PRESETS, MeshOptions, MeshSection
+from fe_crank.throw_scope import ALL_THROWS
+
+#: mesh presets whose verdicts may be signed off (fillet elements <= r/4, IACS UR M53
+#: Appendix (FE) guidance on fillet resolution)
+SIGN_OFF_PRESETS = ("coarse", "medium", "fine")
+SIGN_OFF_RULE = "coarse or finer, fillet elements <= r/4"
+
+
+@dataclass(frozen=True)
+class MeshPlan:
+    """How a load case is meshed: ``preset`` (its name), the resolved ``options``, the
+    element-count limit, the cache folder and ``throws``: key -> geometry throw name (a
+    key is an engine throw's name, or ``ALL_THROWS``)."""
+
+    preset: str
+    options: MeshOptions
+    max_elements: int | None
+    cache_dir: str | None
+    throws: dict[str, str]
+
+    @property
+    def sign_off(self) -> bool:
+        """Whether the preset meets the sign-off rule (``SIGN_OFF_PRESETS``)."""
+        return self.preset in SIGN_OFF_PRESETS
+
+
+def preset_of(section: MeshSection, size: str | None = None) -> str:
+    """The preset a case is meshed with: ``size`` (the command line's), else the section's."""
+    return size or section.size
+
+
+def plan_meshes(
+    geometry: CrankGeometry,
+    engine_throws: tuple[str, ...],
+    section: MeshSection,
+    *,
+    size: str | None = None,
+    max_elements: int | None = None,
+    cache_dir: str | None = None,
+    file: str = "",
+) -> MeshPlan:
+    """The plan of one load case (module docstring); ``size``/``max_elements`` override the
+    section's.  An engine whose throws the geometry does not cover is an InputError."""
+    preset = preset_of(section, size)
+    options = PRESETS[preset]
+    if not section.symmetric:  # [mesh] symmetric = false: mesh a symmetric throw whole (docs/geometry.md)
+        options = dataclasses.replace(options, symmetric=False)
+    return MeshPlan(
+        preset=preset,
+        options=options,
+        max_elements=max_elements or section.max_elements,
+        cache_dir=cache_dir,
+        throws=throw_keys(geometry, engine_throws, file=file),
+    )
+
+
+def throw_keys(geometry: CrankGeometry, engine_throws: tuple[str, ...], *, file: str = "") -> dict[str, str]:
+    """Which geometry throw to mesh for each key handed to the assessment (module docstring)."""
+    names = [t.name for t in geometry.throws]
+    engine = list(engine_throws)
+    if len(names) == 1:
+        return {names[0] if engine == names else ALL_THROWS: names[0]}
+    if sorted(names) != sorted(engine) and _all_equal(geometry.throws):
+        # equal throws under other names (e.g. "1", "2" for the engine's "A", "B"):
+        # one model stands for every throw, each assessed with its own loads
+        return {ALL_THROWS: names[0]}
+    if sorted(names) != sorted(engine):
+        raise InputError(
+            f"the geometry's throws {names} must be the engine's throws {engine} "
+            "(or give one throw that stands for all)",
+            file=file,
+            key="geometry",
+        )
+    return {n: n for n in engine}
+
+
+def _all_equal(throws: tuple[ThrowSpec, ...]) -> bool:
+    """Throws that differ only in name and angle give the same throw model."""
+    norm = [dataclasses.replace(t, name="", angle=0.0) for t in throws]
+    return all(n == norm[0] for n in norm)

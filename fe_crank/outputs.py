@@ -1,0 +1,81 @@
+"""What the stages of one load case produce, one typed field per stage (``CaseOutputs``).
+
+The stages run in order (``fe_crank.check.stages``); each takes the frozen outputs of
+the stages before it and returns its own frozen result, which ``CaseOutputs`` collects.
+A case that stops keeps the outputs of the stages that ran, so its report shows them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from fe_crank.assess.case import Assessment
+from fe_crank.assess.m53 import M53Geometry
+from fe_crank.assess.scf import ScfResult
+from fe_crank.balance.analysis import BalanceResult
+from fe_crank.fe.convergence import ConvergenceStudy
+from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.geometry.mass import ThrowSolids
+from fe_crank.io.loadcase import LoadCase
+from fe_crank.mechanism.cycles import EngineCycles
+from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.mesh.plan import MeshPlan
+from fe_crank.mesh.types import ThrowMesh
+from fe_crank.torsion.analysis import TorsionResult
+
+
+@dataclass(frozen=True)
+class GeometryModel:
+    """The geometry stage: the mesh plan (which throw model stands for which engine
+    throw, meshed how), the UR M53 dimensions of the throw, and the CAD mass properties of
+    the throws whose counterweights or inertias a later stage needs (None: none needed)."""
+
+    plan: MeshPlan
+    m53: M53Geometry | None
+    solids: ThrowSolids | None = None
+
+
+@dataclass(frozen=True)
+class FeModels:
+    """The FE stage: unit solutions per model key (keys sharing one mesh share one
+    solution), and the UR M53 SCF mode's result per key where the empirical SCFs are
+    out of range."""
+
+    unit_solutions: dict[str, UnitSolutions]
+    scf: dict[str, ScfResult] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class TorsionOutput:
+    """The torsional stage: its result and the operating cycle whose journal torques carry
+    the vibratory torque (what the assessment takes)."""
+
+    result: TorsionResult
+    dynamics: DynamicsResult
+
+
+@dataclass(frozen=True)
+class CaseOutputs:
+    """The outputs of one load case's stages (None: the stage did not run)."""
+
+    loadcase: LoadCase | None = None
+    cycles: EngineCycles | None = None
+    balance: BalanceResult | None = None
+    geometry: GeometryModel | None = None
+    meshes: dict[str, ThrowMesh] | None = None
+    fe: FeModels | None = None
+    torsion: TorsionOutput | None = None
+    assessment: Assessment | None = None
+    convergence: dict[str, ConvergenceStudy] | None = None
+
+    @property
+    def assessed_dynamics(self) -> DynamicsResult | None:
+        """The operating cycle the assessment used: with the vibratory journal torque
+        when the torsional stage ran."""
+        if self.torsion is not None:
+            return self.torsion.dynamics
+        return self.cycles.operating if self.cycles is not None else None
+
+    @property
+    def unit_solutions(self) -> dict[str, UnitSolutions]:
+        return self.fe.unit_solutions if self.fe is not None else {}
