@@ -132,16 +132,16 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     design = a.balance.design if a.balance is not None else None
     throws = []
     solved: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
-    for key, units in a.unit_solutions.items():
-        if id(units) not in solved:
-            groups = assessed_groups(units)
-            unit = solved[id(units)] = unit_stresses(units, groups)
+    for key, unit_solutions in a.unit_solutions.items():
+        if id(unit_solutions) not in solved:
+            groups = assessed_groups(unit_solutions)
+            unit = solved[id(unit_solutions)] = unit_stresses(unit_solutions, groups)
             boundary_groups = {g: nodes for g, nodes in groups.items() if g in ASSESSED_BOUNDARIES}
             notes.extend(
                 _assumption(f"mesh {key}: {n}")
-                for n in recovery_notes(recovery_ratios(units, boundary_groups, unit=unit))
+                for n in recovery_notes(recovery_ratios(unit_solutions, boundary_groups, unit=unit))
             )
-        unit = solved[id(units)]
+        unit = solved[id(unit_solutions)]
         spec = a.geometry.throw(a.models[key])
         for tname in throws_of(key, a.dynamics.throws):
             tl = a.dynamics.throws[tname]
@@ -189,8 +189,8 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     done = tuple(throws)
     verdicts = evaluate_criteria(lim, done, file=a.source_file, overspeed=overspeed)
     states = []
-    for keys, units in shared_models(a.unit_solutions):
-        st = model_states(keys, units, done, a.dynamics, a.cycles.overspeed, senses, fields=fields)
+    for keys, unit_solutions in shared_models(a.unit_solutions):
+        st = model_states(keys, unit_solutions, done, a.dynamics, a.cycles.overspeed, senses, fields=fields)
         if st is not None:
             states.append(st)
     return Assessment(

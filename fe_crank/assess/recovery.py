@@ -16,13 +16,18 @@ import numpy as np
 from fe_crank.assess.stress import von_mises
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.fe.stress import stress_at_quadrature, stress_at_selected_nodes
+from fe_crank.fe.unit_cases import UnitSolutions
 
 #: ratios above this are reported
 RATIO_LIMIT = 1.25
 
 
 def recovery_ratios(
-    units, groups: dict[str, np.ndarray], cases=("pin_y", "torque"), *, unit: UnitStresses | None = None
+    unit_solutions: UnitSolutions,
+    groups: dict[str, np.ndarray],
+    cases=("pin_y", "torque"),
+    *,
+    unit: UnitStresses | None = None,
 ) -> dict[str, float]:
     """Group -> max over ``cases`` of (peak nodal vM / peak quadrature-point vM).
 
@@ -35,9 +40,9 @@ def recovery_ratios(
     average's additions may differ in the last bit, far below the two decimals the
     notes print).
     """
-    mesh = units.mesh
-    basis = units.system.basis
-    mat = units.material
+    mesh = unit_solutions.mesh
+    basis = unit_solutions.system.basis
+    mat = unit_solutions.material
     present = {
         name: (np.asarray(nodes), mesh.boundaries[name])
         for name, nodes in groups.items()
@@ -46,7 +51,7 @@ def recovery_ratios(
     out: dict[str, float] = {}
     if not present:
         return out
-    cases = [c for c in cases if c in units.cases]
+    cases = [c for c in cases if c in unit_solutions.cases]
     if not cases:
         return out
     if (
@@ -65,7 +70,12 @@ def recovery_ratios(
     else:
         ids = np.unique(np.concatenate([nodes for nodes, _ in present.values()]))
         nodal_all = stress_at_selected_nodes(
-            mesh, [units.displacement(c) for c in cases], mat.youngs_modulus, mat.poisson_ratio, ids, dofs=basis.dofs
+            mesh,
+            [unit_solutions.displacement(c) for c in cases],
+            mat.youngs_modulus,
+            mat.poisson_ratio,
+            ids,
+            dofs=basis.dofs,
         )
         nodal = {
             (case, name): nodal_all[j][:, np.searchsorted(ids, nodes)]
@@ -73,7 +83,7 @@ def recovery_ratios(
             for name, (nodes, _) in present.items()
         }
     for case in cases:
-        u = units.displacement(case)
+        u = unit_solutions.displacement(case)
         for name, (_nodes, facets) in present.items():
             els = np.unique(mesh.f2t[0, facets])
             quad = stress_at_quadrature(basis, u, mat.youngs_modulus, mat.poisson_ratio, elements=els)

@@ -24,6 +24,7 @@ import numpy as np
 from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
 from fe_crank.fe.stress import stress_at_selected_nodes
 from fe_crank.fe.unit_cases import CASES as UNIT_CASES  # the FE stage's default unit cases
+from fe_crank.fe.unit_cases import UnitSolutions
 
 
 @dataclass(frozen=True)
@@ -48,22 +49,22 @@ class UnitStresses:
         return self.stress.shape[-1]
 
 
-def unit_nodal_stress(units, cases, node_ids) -> np.ndarray:
-    """Averaged nodal stresses (n_cases, 6, n) of the unit cases ``cases`` of ``units`` (the FE
+def unit_nodal_stress(unit_solutions: UnitSolutions, cases, node_ids) -> np.ndarray:
+    """Averaged nodal stresses (n_cases, 6, n) of the unit cases ``cases`` of ``unit_solutions`` (the FE
     stage's ``UnitSolutions``) at the mesh nodes ``node_ids``, Voigt xx yy zz xy yz zx, Pa.
 
-    Equal to ``units.stress_at_nodes(u_c)[:, node_ids]`` for each case (the average at a node
+    Equal to ``unit_solutions.stress_at_nodes(u_c)[:, node_ids]`` for each case (the average at a node
     takes every element sharing it), computed on those elements only and with one node
     basis for all cases (``fe_crank.fe.stress.stress_at_selected_nodes``).
     """
-    mat = units.material
+    mat = unit_solutions.material
     return stress_at_selected_nodes(
-        units.mesh,
-        [units.displacement(c) for c in cases],
+        unit_solutions.mesh,
+        [unit_solutions.displacement(c) for c in cases],
         mat.youngs_modulus,
         mat.poisson_ratio,
         node_ids,
-        dofs=units.system.basis.dofs,
+        dofs=unit_solutions.system.basis.dofs,
     )
 
 

@@ -76,17 +76,18 @@ def collect(
     or, when the load case was refused, those read before); ``preset``: the mesh preset
     the case was (or would have been) meshed with, None before the load case was read."""
     meshes = out.meshes or {}
-    units = out.unit_solutions
+    unit_solutions = out.unit_solutions
     solver = None
-    if units:
+    if unit_solutions:
         solver = SolverRecord(
-            used=tuple(sorted({u.solver for u in units.values()})),
+            used=tuple(sorted({u.solver for u in unit_solutions.values()})),
             requested=out.loadcase.fe.solver if out.loadcase is not None else "auto",
             fast_available=bool(pardiso_available()),
-            described=tuple(sorted({u.solver_description for u in units.values()})),
+            described=tuple(sorted({u.solver_description for u in unit_solutions.values()})),
         )
     support = tuple(
-        SupportRecord(str(key), u.options.support, u.bearing_stiffness, u.support_model) for key, u in units.items()
+        SupportRecord(str(key), u.options.support, u.bearing_stiffness, u.support_model)
+        for key, u in unit_solutions.items()
     )
     return Provenance(
         version=__version__,

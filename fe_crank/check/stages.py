@@ -92,14 +92,14 @@ def run_stages(run: Run) -> None:
     run.keep(geometry=geo)
     meshes = run.timed("mesh", mesh_stage, lc, geo)
     run.keep(meshes=meshes)
-    units = run.timed("fe", fe_stage, lc, meshes)
-    run.keep(fe=FeModels(units))
+    unit_solutions = run.timed("fe", fe_stage, lc, meshes)
+    run.keep(fe=FeModels(unit_solutions))
     if needs_scf(lc, geo):
-        run.keep(fe=FeModels(units, run.timed("scf", scf_stage, lc, geo, meshes)))
+        run.keep(fe=FeModels(unit_solutions, run.timed("scf", scf_stage, lc, geo, meshes)))
     cycles = run.out.cycles
     assert cycles is not None
     if lc.torsion is not None:  # torsional vibration (docs/torsion.md): only with a [torsion] section
-        run.keep(torsion=run.timed("torsion", torsion_stage, lc, geo, units, cycles))
+        run.keep(torsion=run.timed("torsion", torsion_stage, lc, geo, unit_solutions, cycles))
     with threads(assess_threads_of(opts)):
         assessment = run.timed("assess", assess_stage, lc, run.out, opts.render or opts.write_vtu)
     run.keep(assessment=assessment)
@@ -114,7 +114,7 @@ def run_stages(run: Run) -> None:
                 meshes,
                 cycles.operating,
                 cache_dir=geo.plan.cache_dir,
-                unit_solutions=units,
+                unit_solutions=unit_solutions,
             )
         )
 
@@ -211,7 +211,7 @@ def scf_stage(lc: LoadCase, geo: GeometryModel, meshes: dict[str, ThrowMesh]) ->
 
 
 def torsion_stage(
-    lc: LoadCase, geo: GeometryModel, units: dict[str, UnitSolutions], cycles: EngineCycles
+    lc: LoadCase, geo: GeometryModel, unit_solutions: dict[str, UnitSolutions], cycles: EngineCycles
 ) -> TorsionOutput:
     """The torsional forced response (``torsion.analysis``) with the throws' inertias from
     the geometry stage's CAD mass properties; the FE throw stiffness is measured from the
@@ -219,7 +219,7 @@ def torsion_stage(
     when ``throw_stiffness = "fe"``)."""
     settings = lc.torsion
     assert settings is not None
-    first = next(iter(units.values()), None)
+    first = next(iter(unit_solutions.values()), None)
     k_fe = fe_throw_stiffness(first) if first is not None and "torque" in first.cases else None
     if settings.throw_stiffness == "fe" and k_fe is None:
         raise InputError(

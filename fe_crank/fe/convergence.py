@@ -127,19 +127,21 @@ def check_loads(throw_loads, omega: float) -> dict[str, dict[str, float]]:
     return loads
 
 
-def peak_fillet_stress(units, u: np.ndarray, fillets=FILLETS) -> tuple[float, str]:
+def peak_fillet_stress(unit_solutions: UnitSolutions, u: np.ndarray, fillets=FILLETS) -> tuple[float, str]:
     """Largest averaged nodal von Mises stress on the fillet surfaces present, and where."""
-    return peak_fillet_stresses(units, {"u": u}, fillets)["u"]
+    return peak_fillet_stresses(unit_solutions, {"u": u}, fillets)["u"]
 
 
-def peak_fillet_stresses(units, fields: dict[str, np.ndarray], fillets=FILLETS) -> dict[str, tuple[float, str]]:
+def peak_fillet_stresses(
+    unit_solutions: UnitSolutions, fields: dict[str, np.ndarray], fillets=FILLETS
+) -> dict[str, tuple[float, str]]:
     """``peak_fillet_stress`` of several displacement fields on one mesh: name -> (peak, fillet).
 
     The averaged nodal stress is recovered at the fillet nodes only, on the elements that
     share them (``stress.stress_at_selected_nodes``: the whole-mesh average at those nodes
     to the last bits of the summation order), with one node basis for all fields.
     """
-    mesh, basis = units.mesh, units.system.basis
+    mesh, basis = unit_solutions.mesh, unit_solutions.system.basis
     groups = {
         name: basis.get_dofs(boundary_facets(mesh, name, "the convergence study")).all()
         for name in fillets
@@ -148,7 +150,7 @@ def peak_fillet_stresses(units, fields: dict[str, np.ndarray], fillets=FILLETS) 
     if not groups:
         raise ValueError(f"the mesh has none of the fillet surfaces {fillets}")
     ids = np.unique(np.concatenate(list(groups.values())))
-    mat = units.material
+    mat = unit_solutions.material
     s = stress_at_selected_nodes(
         mesh, list(fields.values()), mat.youngs_modulus, mat.poisson_ratio, ids, dofs=basis.dofs
     )
@@ -202,21 +204,21 @@ def fillet_convergence(
         mopt = dataclasses.replace(base, fillet_divisions=base.fillet_divisions * f)
         reuse = _reusable(first, mopt, opts)
         if reuse:
-            tm, units = first
+            tm, unit_solutions = first
         else:
             tm = mesh_throw(geometry, throw=throw, size=mopt, cache_dir=cache_dir)
-            units = solve_unit_cases(tm, material, opts)
-        fields = {name: units.combine(w) for name, w in loads.items()}
-        got = peak_fillet_stresses(units, fields)
-        if any(n in (units.mesh.boundaries or {}) for n in COUNTERWEIGHT_FILLETS):
-            cw = peak_fillet_stresses(units, fields, COUNTERWEIGHT_FILLETS)
+            unit_solutions = solve_unit_cases(tm, material, opts)
+        fields = {name: unit_solutions.combine(w) for name, w in loads.items()}
+        got = peak_fillet_stresses(unit_solutions, fields)
+        if any(n in (unit_solutions.mesh.boundaries or {}) for n in COUNTERWEIGHT_FILLETS):
+            cw = peak_fillet_stresses(unit_solutions, fields, COUNTERWEIGHT_FILLETS)
             got.update({COUNTERWEIGHT_PREFIX + name: v for name, v in cw.items()})
         peaks = {name: v[0] for name, v in got.items()}
         where = {name: v[1] for name, v in got.items()}
         levels.append(
             ConvergenceLevel(
                 fillet_divisions=mopt.fillet_divisions,
-                n_dof=units.n_dof,
+                n_dof=unit_solutions.n_dof,
                 fillet_max_edge=dict(tm.stats.fillet_max_edge),
                 peaks=peaks,
                 where=where,
@@ -233,8 +235,8 @@ def fillet_convergence(
             " (the check's own mesh and solution)" if reuse else "",
         )
         if not reuse:
-            units.system.factorisation.free()
-            del units
+            unit_solutions.system.factorisation.free()
+            del unit_solutions
     changes = {
         name: [abs(b.peaks[name] - a.peaks[name]) / b.peaks[name] for a, b in zip(levels, levels[1:])]
         for name in levels[0].peaks
@@ -249,10 +251,10 @@ def _reusable(first, mesh_options, fe_options: FeOptions) -> bool:
     model and integration order, and every unit case needed."""
     if first is None:
         return False
-    tm, units = first
+    tm, unit_solutions = first
     if getattr(tm, "options", None) != mesh_options:
         return False
-    done = units.options
+    done = unit_solutions.options
     same = all(
         getattr(done, k) == getattr(fe_options, k)
         for k in (
@@ -266,7 +268,7 @@ def _reusable(first, mesh_options, fe_options: FeOptions) -> bool:
             "intorder",
         )
     )
-    return same and all(c in units.cases for c in fe_options.cases)
+    return same and all(c in unit_solutions.cases for c in fe_options.cases)
 
 
 def wanted(flag: bool | None, preset: str) -> bool:

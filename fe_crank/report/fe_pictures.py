@@ -56,8 +56,8 @@ def fe_section(folder: Path, so: CaseOutputs, options) -> list[str]:
         return ["<p>Pictures and fields switched off for this run (--no-render --no-vtu).</p>"]
     out = []
     for st in a.states:
-        units = units_by_key[st.keys[0]]
-        tf = throw_fields(units, st, a.throws)
+        unit_solutions = units_by_key[st.keys[0]]
+        tf = throw_fields(unit_solutions, st, a.throws)
         names = st.throws
         if len(names) > 1:  # identical throws share one FE model: drawn once, where it is most critical
             os_txt = "" if tf.overspeed is None else f", the overspeed state of throw {tf.overspeed.throw}"
@@ -80,7 +80,7 @@ def fe_section(folder: Path, so: CaseOutputs, options) -> list[str]:
                 "names).</p>"
             )
         if render:
-            size = float(np.linalg.norm(np.ptp(np.asarray(units.points), axis=1)))
+            size = float(np.linalg.norm(np.ptp(np.asarray(unit_solutions.points), axis=1)))
             grid = rd.grid_of(tf.mesh, _display(tf.mesh.point_data))
             out += _hotspot_figures(Path(folder), tag, tf, grid, size, angle_txt)
             if tf.overspeed is not None:

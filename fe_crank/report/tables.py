@@ -174,23 +174,23 @@ def mesh_quality_section(folder: Path, so: CaseOutputs, options) -> list[str]:
         return []
     averaging = {st.keys[0]: st.averaging for st in (so.assessment.states if so.assessment is not None else ())}
     out = []
-    for keys, units in shared_models(units_by_key):
+    for keys, unit_solutions in shared_models(units_by_key):
         throw = keys[0]
-        m = units.mesh
+        m = unit_solutions.mesh
         rows: list[list[object]] = [
             ["elements (quadratic tetrahedra)", m.t.shape[1]],
-            ["nodes", units.points.shape[1]],
-            ["degrees of freedom", units.n_dof],
-            ["solver", units.solver_description],
-            ["support model", units.support_model],
+            ["nodes", unit_solutions.points.shape[1]],
+            ["degrees of freedom", unit_solutions.n_dof],
+            ["solver", unit_solutions.solver_description],
+            ["support model", unit_solutions.support_model],
         ]
         tm = meshes.get(throw)
         if tm is not None:
             rows += mesh_stats_rows(tm.stats)
             rows += [[f"fillet radius {k}", f"{v * 1e3:.2f} mm"] for k, v in tm.fillet_radii.items()]
-        for name, c in units.cases.items():
+        for name, c in unit_solutions.cases.items():
             rows.append([f"equilibrium error, case {name}", f"{c.equilibrium_error:.2e}"])
-        for k, v in (units.timings or {}).items():
+        for k, v in (unit_solutions.timings or {}).items():
             rows.append([f"time: {k}", f"{v:.2f} s"])
         for g, v in averaging.get(throw, {}).items():
             rows.append(

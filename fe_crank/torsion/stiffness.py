@@ -30,6 +30,7 @@ import math
 import numpy as np
 
 from fe_crank.errors import InputError
+from fe_crank.fe.unit_cases import UnitSolutions
 
 
 def carter_equivalent_length(
@@ -103,14 +104,14 @@ def face_rotation(points: np.ndarray, displacement: np.ndarray, nodes: np.ndarra
     return float(np.sum(x * uy - y * ux) / np.sum(x * x + y * y))
 
 
-def fe_throw_stiffness(units, faces=("end_1", "end_2")) -> float:
+def fe_throw_stiffness(unit_solutions: UnitSolutions, faces=("end_1", "end_2")) -> float:
     """Torsional stiffness (N m/rad) of the FE throw between its end faces from the
     ``torque`` unit case of a ``UnitSolutions`` (module docstring)."""
-    if "torque" not in units.cases:
+    if "torque" not in unit_solutions.cases:
         raise InputError("the FE unit cases lack 'torque'", key="fe.cases")
-    case = units.cases["torque"]
-    mesh = units.mesh
-    pts = np.asarray(units.points)
+    case = unit_solutions.cases["torque"]
+    mesh = unit_solutions.mesh
+    pts = np.asarray(unit_solutions.points)
     rot = []
     for face in faces:
         nodes = np.unique(mesh.facets[:, mesh.boundaries[face]])
