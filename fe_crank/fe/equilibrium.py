@@ -84,12 +84,6 @@ class EquilibriumChecks:
         fn[np.searchsorted(nodes, self.point_dofs // 3), self.point_dofs % 3] = r
         return _resultant_of(fn, x=self.points[:, nodes].T)
 
-    def point_reactions(self, u: np.ndarray, f: np.ndarray) -> np.ndarray:
-        """Resultant (Fx..Mz about the origin) of the reactions at the single held dofs."""
-        pos = np.searchsorted(self.rows, self.point_dofs)
-        ks = np.zeros(pos.size) if self.Ks.nnz == 0 else (self.Ks @ u)[self.point_dofs]
-        return self._point_resultant(self.K_rows[pos] @ u + ks - f[self.point_dofs])
-
     def applied(self, f: np.ndarray, ref_loads: dict | None = None) -> tuple[np.ndarray, float, float]:
         """Resultant of the applied loads and the force and moment scales used for errors.
 

@@ -75,27 +75,10 @@ def _node_dofs(mesh, dofs):
     return dofs
 
 
-def node_bases(mesh, dofs=None, chunk: int = NODE_CHUNK, elements=None):
-    """Yield (element indices, scalar P2 basis whose 'quadrature points' are the element's nodes).
-
-    Chunks of ``chunk`` elements share one ``Dofs`` numbering (``dofs``, e.g. the solution
-    basis's ``.dofs``), so node numbers are those of the solution.  ``elements``: the
-    element indices to visit (ascending; default all).
-    """
-    e = ElementTetP2()
-    X = np.asarray(e.doflocs, float).T  # (3, m) reference nodes
-    W = np.full(X.shape[1], 1.0 / X.shape[1])
-    dofs = _node_dofs(mesh, dofs)
-    elements = np.arange(mesh.t.shape[1]) if elements is None else np.asarray(elements)
-    for start in range(0, elements.size, chunk):
-        idx = elements[start : start + chunk]
-        yield idx, Basis(mesh, e, quadrature=(X, W), elements=idx, dofs=dofs, disable_doflocs=True)
-
-
 def node_gradients(mesh, dofs=None, chunk: int = NODE_CHUNK, elements=None):
     """Yield (element indices, scalar P2 gradients (m, 3, ne, m) at the element's own nodes,
-    element dofs (m, ne)): what ``_gradients`` and ``element_dofs`` of ``node_bases`` give,
-    without building the basis.
+    element dofs (m, ne)): what a scalar P2 ``CellBasis`` whose quadrature points are the
+    element's nodes gives (its gradients and element dofs), without building the basis.
 
     grad phi_a = DF^-T grad_ref phi_a at every node of every element, from scikit-fem's
     own mapping (``mesh._mapping()``: its ``invDF`` and the element's ``lbasis``) with the

@@ -3,9 +3,9 @@
 ``build_system`` calls :func:`symmetric_system` when the mesh states mirror planes: the
 symmetry is verified on the P2 nodes and elements (``fe.symmetry``), the components are
 factorised on the fundamental part (``fe.symsolve``), and the result has the same face
-as the full model's System: ``solve``, ``reactions``, ``equilibrium_error``,
-``point_reactions`` (from the full stiffness's rows at the six point dofs, assembled on
-the elements around them: a row of K at node i has terms of the elements of i only),
+as the full model's System: ``solve``, ``reactions``, ``equilibrium_error`` (the point
+dofs' reactions from the full stiffness's rows at the six point dofs, assembled on the
+elements around them: a row of K at node i has terms of the elements of i only),
 ``n_dof`` (the full model's unknowns), ``factorisation.free()``, ``timings``.  Whenever
 the symmetric path does not apply it says why in the log and returns None: the full
 model is solved instead, never a wrong answer.
