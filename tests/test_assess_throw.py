@@ -1,6 +1,7 @@
-"""``assess.case`` on hand-built unit stresses: the overspeed load scaling, the groups
-taken, the UR M53 inputs (rear torque, K_e, sigma_add), the counterweight checks and
-every criterion's value and location, each against a hand value.
+"""``assess_throw`` and ``evaluate_criteria`` (``assess.case``) on hand-built unit
+stresses: the overspeed load scaling, the groups taken, the UR M53 inputs (rear torque,
+K_e, sigma_add), the counterweight checks and every criterion's value and location, each
+against a hand value.
 
 One node per group; unit stresses: 0.01 Pa per (rad/s)^2 of sigma_xx for the centrifugal
 case, 1 Pa per N of sigma_xx for pin_y, 2 Pa per N m of tau_xy for the torque.  The
