@@ -78,23 +78,18 @@ _TORSION_TESTS = [
 #: the fast tests of the cycle assessment (hand-built unit stresses, closed-form cycles, the
 #: one-cylinder dynamics and the small bar meshes of test_assess_superpose / test_assess_case;
 #: about 30 s in all): shared by superpose, stress, peak, overspeed and case as above.  The
-#: tests on the gmsh throw of test_perf_assess_blocks (20 s of meshing and solving) are left
-#: out except those on hand-built arrays.
+#: tests on the gmsh throw (marked heavy: 20 s of meshing and solving) are left out.
 _ASSESS_TESTS = [
     "tests/test_assess_superpose.py",
-    "tests/test_assess_superpose_mut.py",
-    "tests/test_assess_stress_mut.py",
-    "tests/test_assess_peak_mut.py",
+    "tests/test_assess_stress.py",
+    "tests/test_assess_amplitude.py",
+    "tests/test_assess_peak.py",
     "tests/test_assess_overspeed.py",
-    "tests/test_assess_overspeed_mut.py",
     "tests/test_assess_case.py",
-    "tests/test_assess_case_mut.py",
-    "tests/test_perf_assess.py",
+    "tests/test_assess_throw.py",
     "tests/test_stress_layouts.py",
-    "tests/test_assess_throw_mut.py",
-    "tests/test_perf_assess_blocks.py::test_von_mises_planes_is_the_plain_formula_bitwise",
-    "tests/test_perf_assess_blocks.py::test_max_and_first_is_max_and_argmax",
-    "tests/test_perf_assess_blocks.py::test_peak_bound_hand_value",
+    "tests/test_assess_group.py",
+    "tests/test_assess_fatigue.py::test_max_and_first_is_max_and_argmax",
 ]
 
 #: module -> (file to mutate, its fast tests)
@@ -171,11 +166,11 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     ),
     "assess.groups": (
         "fe_crank/assess/groups.py",
-        ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py", "tests/test_assess_superpose.py"],
+        ["tests/test_assess_groups.py", "tests/test_assess_case.py", "tests/test_assess_superpose.py"],
     ),
     "assess.recovery": (
         "fe_crank/assess/recovery.py",
-        ["tests/test_assess_groups_mut.py", "tests/test_assess_case.py"],
+        ["tests/test_assess_groups.py", "tests/test_assess_case.py"],
     ),
     # the FE load and support modules: tiny meshes only (a few seconds per test file); the
     # unit-case tests on the seed throw (tests/test_fe_unit_cases.py, test_fe_determinate*.py
@@ -186,7 +181,6 @@ MODULES: dict[str, tuple[str, list[str]]] = {
             "tests/test_fe_loads_closed_form.py",
             "tests/test_fe_determinate_statics.py",
             "tests/test_fe_loads_boundaries.py",
-            "tests/test_perf_loads.py",
             "tests/test_fe_assembly.py",
             "tests/test_fe_verification.py",
         ],
@@ -197,7 +191,7 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     ),
     "fe.pin_directions": (
         "fe_crank/fe/pin_directions.py",
-        ["tests/test_fe_loads_pin_directions.py", "tests/test_perf_loads.py"],
+        ["tests/test_fe_loads_pin_directions.py", "tests/test_fe_loads_closed_form.py"],
     ),
     "fe.forms": ("fe_crank/fe/forms.py", ["tests/test_fe_assembly.py", "tests/test_fe_verification.py"]),
 }

@@ -1,7 +1,8 @@
 """Logging of the command line (standard library ``logging``).
 
 Library modules only log (``logging.getLogger(__name__)``, names under ``fe_crank``);
-the command line configures the output once with ``setup_logging``:
+the command line configures the output for the time of one command with
+``command_logging`` (``setup_logging``, then the logger as it was):
 
 * on a terminal: a ``rich`` handler (time, level, message);
 * otherwise (a pipe, a CI log): one plain line per record,
@@ -15,6 +16,8 @@ from __future__ import annotations
 
 import logging
 import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 LOGGER = "fe_crank"
 PLAIN_FORMAT = "%(asctime)s %(levelname)s %(message)s"
@@ -52,3 +55,26 @@ def setup_logging(verbosity: int = 0, stream=None, *, rich: bool | None = None) 
     log.setLevel(level_for(verbosity))
     log.propagate = False
     return log
+
+
+@contextmanager
+def command_logging(verbosity: int = 0, stream=None, *, rich: bool | None = None) -> Iterator[logging.Logger]:
+    """``setup_logging`` for the time of one command (``fe_crank.cli.main``).
+
+    On exit the ``fe_crank`` logger gets back the handlers, level and propagation it had,
+    so that no handler outlives the command bound to a stream its caller may close since
+    (a test's captured stderr, a notebook's redirected output): a record logged later
+    would otherwise go to a closed file."""
+    log = logging.getLogger(LOGGER)
+    handlers, level, propagate = list(log.handlers), log.level, log.propagate
+    try:
+        yield setup_logging(verbosity, stream, rich=rich)
+    finally:
+        for h in list(log.handlers):
+            log.removeHandler(h)
+            if h not in handlers:
+                h.close()
+        for h in handlers:
+            log.addHandler(h)
+        log.setLevel(level)
+        log.propagate = propagate

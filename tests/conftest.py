@@ -16,3 +16,33 @@ SEEDS = ROOT.parent / "shared" / "seeds"
 @pytest.fixture
 def root() -> Path:
     return ROOT
+
+
+@pytest.fixture(scope="session")
+def filleted_throw():
+    """The FE stage's unit solutions of ``simple_throw`` with 4 mm fillets (real gmsh mesh,
+    12 mm elements, 4 mm at the fillets; SuperLU): centrifugal, four pin directions, torque."""
+    from verification_meshes import Steel, simple_throw
+
+    from fe_crank.fe import FeOptions, solve_unit_cases
+
+    mesh = simple_throw(size=0.012, fillet=0.004, fillet_size=0.004)
+    cases = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque")
+    return solve_unit_cases(mesh, Steel(), FeOptions(solver="superlu", cases=cases))
+
+
+@pytest.fixture(scope="session")
+def filleted_throw_cycle(filleted_throw):
+    """The unit stresses at the assessed nodes of ``filleted_throw`` and the load
+    coefficients of a 72-angle, 720-degree cycle: pin force (3 sin t, 20 cos t + 5) kN,
+    torque 400 sin 2t N m, 300 rad/s."""
+    import numpy as np
+
+    from fe_crank.assess import unit_stresses
+    from fe_crank.assess.superpose import load_coefficients
+
+    us = unit_stresses(filleted_throw)
+    th = np.linspace(0.0, 4 * np.pi, 72, endpoint=False)
+    pin = np.column_stack([3e3 * np.sin(th), 2e4 * np.cos(th) + 5e3])
+    co = load_coefficients(pin, 400.0 * np.sin(2 * th), 300.0, cases=us.cases, torque_mz=us.torque_mz)
+    return us, co

@@ -1,5 +1,13 @@
 """What the assessment takes from the geometry and balance stages: UR M53 dimensions,
-counterweight m r (checked against the annular-sector closed form) and bolt capacity."""
+counterweight m r (checked against the annular-sector closed form) and bolt capacity.
+
+The counterweights' mass properties (an OpenCASCADE build of the throw and its B-rep
+integrals, ``geometry.mass``) are computed once per distinct solid: throws that differ
+only in name and angle are one solid, because ``geometry.throw.add_throw`` builds a throw
+in its own frame from the geometry and the throw's counterweights.  Checked on the
+shipped inline-four geometry (throws 1 and 4 carry bolted counterweights at 0 deg, throws
+2 and 3 the default ones at 180 deg): two builds for four throws, and every throw's
+counterweight data equal (dataclass equality, exact) to its own build."""
 
 from __future__ import annotations
 
@@ -94,3 +102,30 @@ def test_counterweight_mr_against_sector_closed_form_and_bolts(seed001):
 def test_stress_area_table_and_fallback():
     assert stress_area(0.016) == pytest.approx(157e-6)
     assert stress_area(0.0165) == pytest.approx(math.pi / 4 * (0.88 * 0.0165) ** 2)
+
+
+@pytest.fixture(scope="module")
+def inline4(root):
+    return geo_io.load_geometry(root / "geometry" / "inline4.toml")
+
+
+def test_equal_throw_solids_are_built_once_with_the_same_counterweight_data(inline4):
+    names = [t.name for t in inline4.throws]
+    assert names == ["1", "2", "3", "4"]
+    solids: list = []
+    shared = {n: counterweights_of(inline4, n, 0.1 * i, "main", None, solids=solids) for i, n in enumerate(names)}
+    assert len(solids) == 2  # {1, 4} and {2, 3}
+    for i, n in enumerate(names):
+        own = counterweights_of(inline4, n, 0.1 * i, "main", None)
+        assert shared[n] == own and own, n
+
+
+def test_a_different_counterweight_is_another_solid(inline4):
+    t1 = inline4.throw("1")
+    cw = tuple(dataclasses.replace(c, outer_radius=c.outer_radius - 0.005) for c in t1.counterweights)
+    g = dataclasses.replace(inline4, throws=inline4.throws + (dataclasses.replace(t1, name="5", counterweights=cw),))
+    solids: list = []
+    a = counterweights_of(g, "1", 0.0, "main", None, solids=solids)
+    b = counterweights_of(g, "5", 0.0, "main", None, solids=solids)
+    assert len(solids) == 2
+    assert b[0].built_unbalance < a[0].built_unbalance  # the smaller sector, its own build

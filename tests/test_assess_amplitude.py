@@ -11,6 +11,11 @@ Closed forms (von Mises of a tensor difference, s_ij components):
 * rotating s_xx = s cos wt, s_yy = s sin wt: a circle of radius s about 0 in the (s_xx, s_yy)
   plane; vM(s cos a, s sin a, 0)^2 = s^2 (1 - sin a cos a), largest 1.5 s^2 at a = 135 deg,
   so the MCB (centre 0 by symmetry) has radius sqrt(3/2) s = 1.2247 s.
+
+On the paths of a whole cycle (``cycle_paths``: 14 unit cases combined as the check
+combines them, a third of the nodes proportional): the amplitude of a proportional path
+S_0 + sin(t) A is vM(A) times the half range of sin, and taking the nodes in blocks of any
+size gives the same bits.
 """
 
 from __future__ import annotations
@@ -114,3 +119,42 @@ def test_signed_mean_rules():
     got = signed_mean(cols)
     vm5 = np.sqrt(((200e6) ** 2 + 150e6**2 + 50e6**2) / 2)  # 180.3 MPa
     np.testing.assert_allclose(got, [100e6, np.sqrt(3) * 50e6, 30e6, -100e6, vm5], rtol=1e-12)
+
+
+def cycle_paths(n=300, n_t=720, seed=3):
+    """Non-proportional paths of 14 unit cases with cycle coefficients (as the check builds)."""
+    rng = np.random.default_rng(seed)
+    th = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
+    coeff = np.column_stack(
+        [np.full(n_t, 1e4)]
+        + [np.maximum(0.0, np.cos(th * k / 2 + k)) * 1e4 for k in range(12)]
+        + [1e3 * np.sin(3 * th)]
+    )
+    unit = rng.normal(size=(14, 6, n)) * 1e3
+    hist = np.tensordot(coeff, unit, axes=(1, 0))
+    # a third of the nodes proportional: S(t) = S_0 + sin(t) A
+    k = n // 3
+    hist[:, :, :k] = hist[:1, :, :k] + np.sin(th)[:, None, None] * unit[0, :, :k] * 1e4
+    return hist
+
+
+def test_amplitude_mean_independent_of_the_node_block():
+    h = cycle_paths()
+    whole = amplitude_mean(h, block=10_000)
+    for block in (1, 7, 256):
+        parts = amplitude_mean(h, block=block)
+        assert all(np.array_equal(a, b) for a, b in zip(whole, parts))
+
+
+def test_amplitude_mean_proportional_paths_exact():
+    # proportional S_0 + sin(t) A: the amplitude is vM(A) (max sin - min sin)/2 = vM(A)
+    # (sin reaches +-1 on the 720-sample grid to 1 - cos(0.5 deg) ~ 4e-5), and the
+    # lower bound equals it (the path is a segment through its mid-range)
+    h = cycle_paths()
+    k = h.shape[-1] // 3
+    th = np.linspace(0.0, 4 * np.pi, h.shape[0], endpoint=False)
+    A = (h[:, :, :k] - h[:1, :, :k])[np.argmax(np.sin(th))] / np.sin(th).max()
+    amp, _, lower = amplitude_mean(h[:, :, :k])
+    half = 0.5 * (np.sin(th).max() - np.sin(th).min())
+    np.testing.assert_allclose(amp, von_mises(A) * half, rtol=1e-12)
+    np.testing.assert_allclose(lower, amp, rtol=1e-12)

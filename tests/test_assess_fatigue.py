@@ -6,7 +6,8 @@ reversed bending M_a sin(theta) and a steady torque T_m, equal to the closed for
     vM + Goodman:  1/n = sigma_a / (k sigma_W) + sqrt(3) tau_m / R_m     (Shigley 6-66, 6-67, 6-46)
     Gough-Pollard: n = k sigma_W / sigma_a   (no normal mean, no shear amplitude)
 
-and the results document validates against its schema."""
+and the results document validates against its schema; ``max_and_first`` is numpy's
+max and argmax (first index of ties and of NaN)."""
 
 from __future__ import annotations
 
@@ -17,10 +18,10 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import assess_throw, evaluate_criteria, to_json
-from fe_crank.assess.fatigue import goodman_safety, gough_pollard_safety
+from fe_crank.assess.case import Assessment
+from fe_crank.assess.fatigue import goodman_safety, gough_pollard_safety, max_and_first
 from fe_crank.assess.results import load_schema
 from fe_crank.assess.superpose import UnitStresses
-from fe_crank.assess.throw import Assessment
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
 
@@ -135,3 +136,13 @@ def test_goodman_and_gough_pollard_scalars():
     # Goodman-corrected limits: sigma_m = R_m/2 halves sigma_e
     assert gough_pollard_safety(50e6, 400e6, 0.0, 0.0, 200e6, 100e6, 800e6) == pytest.approx(2.0)
     assert gough_pollard_safety(50e6, 900e6, 0.0, 0.0, 200e6, 100e6, 800e6) == 0.0
+
+
+def test_max_and_first_is_max_and_argmax():
+    rng = np.random.default_rng(3)
+    d = np.round(rng.random((40, 30)) * 4)  # many exact ties
+    d[5, 7] = np.nan
+    r, first = max_and_first(d)
+    assert np.array_equal(r, d.max(axis=0), equal_nan=True)
+    np.testing.assert_array_equal(first, d.argmax(axis=0))
+    assert first[7] == 5  # a NaN column: its first NaN, as argmax

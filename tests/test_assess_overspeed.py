@@ -18,20 +18,24 @@ p_TDC = p_0 eps^n = 0.1 MPa x 9^1.35 = 0.1 x exp(1.35 ln 9) = 0.1 x exp(2.966253
 = 1.941902 MPa (eps = 9, p_0 = 0.1 MPa, n = 1.35 = the Wiebe input's default k);
 gas force at the firing TDC (p_TDC - p_cc) A, A = pi/4 0.08^2 = 5.02655e-3 m^2:
 (1.941902 - 0.101325) MPa x A = 9251.8 N, towards the axis.
+
+Around the hand calculation: which cycles the overspeed check runs, on which grid, the
+note that says so (in full for each gas state), and the refusals.
 """
 
 from __future__ import annotations
 
 import math
 import textwrap
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from fe_crank.assess.overspeed import overspeed_dynamics
+from fe_crank.assess.overspeed import describe, overspeed_cycles, overspeed_dynamics
+from fe_crank.dynamics import analyse
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
-from fe_crank.mechanism.dynamics import analyse
 
 CASE = """
 name = "hand"
@@ -85,9 +89,9 @@ def _p_tdc():
 
 
 def test_motored_curve_closed_form():
-    """fe_crank.mechanism.gas.motored_cycle against p = p_0 (V_BDC/V)^n: p_TDC = p_0 eps^n, p_BDC = p_0,
+    """fe_crank.gas.motored_cycle against p = p_0 (V_BDC/V)^n: p_TDC = p_0 eps^n, p_BDC = p_0,
     and at 90 deg the volume ratio from the exact slider-crank by hand."""
-    from fe_crank.mechanism.gas import motored_cycle
+    from fe_crank.gas import motored_cycle
 
     assert _p_tdc() == pytest.approx(1.941902e6, rel=1e-6)
     g = motored_cycle(
@@ -211,8 +215,8 @@ def test_table_gas_motored_curve_only_with_its_data(tmp_path):
 def test_overspeed_takes_the_worse_of_several_cycles():
     """``assess_throw`` with two overspeed cycles: one node, sigma_xx = 1 Pa per N of pin_y;
     cycle A peaks at +100 N, cycle B at -300 N: von Mises 300 Pa, at B's angle."""
+    from fe_crank.assess.case import assess_throw
     from fe_crank.assess.superpose import UnitStresses
-    from fe_crank.assess.throw import assess_throw
     from fe_crank.io.material import load_material
 
     stress = np.zeros((3, 6, 1))
@@ -232,3 +236,85 @@ def test_overspeed_takes_the_worse_of_several_cycles():
     assert one.groups[0].max_von_mises_overspeed.value == pytest.approx(100.0, rel=1e-12)
     ext = both.groups[0].max_von_mises_overspeed
     assert ext.value == pytest.approx(300.0, rel=1e-12) and np.rad2deg(ext.angle) == pytest.approx(180.0)
+
+
+def test_note_in_full_for_each_gas_state(tmp_path):
+    """4200 rpm = 439.823 rad/s, printed back as 439.823 x 30 / pi = 4200 rpm."""
+    head = (
+        "overspeed: whole cycle recomputed at 4200 rpm (rod and piston inertia and crank body force at "
+        "omega_os^2; gas: "
+    )
+    lc = _case(tmp_path, 'overspeed_gas = "as_operating"')
+    assert describe(lc) == head + "the operating gas pressure table); worst angle"
+    lc = _table_case(tmp_path)
+    assert describe(lc) == head + (
+        "no combustion, zero gauge gas pressure (the gas data give no compression "
+        "ratio and intake pressure for a motored curve)); worst angle"
+    )
+    lc = _case(tmp_path)
+    src = lc.engine.gas.motored.source
+    assert describe(lc) == head + (
+        f"(no combustion, {src}) and (no combustion, zero gauge gas pressure), the worse of the two); worst angle"
+    )
+
+
+def test_cycles_and_their_order_grid_and_gas(tmp_path):
+    """Motored with the curve: (curve, zero gas), in that order, on the operating grid;
+    as_operating: one cycle with the operating table; no overspeed: none."""
+    lc = _case(tmp_path)
+    dyn = analyse(lc.engine, lc.operating)
+    cycles = overspeed_cycles(lc, dyn)
+    assert [c.gas for c in cycles] == [
+        f"no combustion, {lc.engine.gas.motored.source}",
+        "no combustion, zero gauge gas pressure",
+    ]
+    for c in cycles:
+        np.testing.assert_array_equal(c.dynamics.theta, dyn.theta)
+        assert c.dynamics.speed == lc.operating.overspeed
+    # the zero-gas cycle: no gas force in any cylinder
+    assert np.all(cycles[1].dynamics.cylinders["1"].gas == 0.0)
+    # the first cycle is the one overspeed_dynamics returns
+    assert overspeed_dynamics(lc, dyn) is not None
+    np.testing.assert_array_equal(
+        overspeed_dynamics(lc, dyn).throws["1"].pin_force, cycles[0].dynamics.throws["1"].pin_force
+    )
+    lc_op = _case(tmp_path, 'overspeed_gas = "as_operating"')
+    (one,) = overspeed_cycles(lc_op, dyn)
+    assert one.gas == "the operating gas pressure table"
+    # the operating gas at the firing TDC is in the overspeed cycle too (inertia x 1.44 minus gas)
+    i = int(np.argmin(np.abs(np.rad2deg(dyn.theta))))
+    gas = dyn.cylinders["1"].gas[i]
+    assert one.dynamics.throws["1"].pin_force[i, 1] == pytest.approx(_hand(4200) - gas, rel=1e-9)
+    none = replace(lc, operating=replace(lc.operating, overspeed=None))
+    assert overspeed_cycles(none, dyn) == () and overspeed_dynamics(none, dyn) is None
+
+
+def test_overspeed_grid_follows_a_coarser_operating_grid(tmp_path):
+    """An operating cycle on a 2-deg grid (360 angles over 720 deg): the overspeed cycles
+    use the same 360 angles."""
+    lc = _case(tmp_path)
+    dyn = analyse(lc.engine, lc.operating, step=math.radians(2.0))
+    assert dyn.theta.size == 360
+    for c in overspeed_cycles(lc, dyn):
+        np.testing.assert_allclose(c.dynamics.theta, dyn.theta, rtol=0, atol=1e-12)
+
+
+def test_unknown_gas_mode_is_refused_in_full(tmp_path):
+    lc = _case(tmp_path)
+    bad = replace(lc, operating=replace(lc.operating, overspeed_gas="full"))
+    dyn = analyse(lc.engine, lc.operating)
+    with pytest.raises(ValueError) as e:
+        overspeed_cycles(bad, dyn)
+    assert str(e.value) == "overspeed_gas must be one of ('motored', 'as_operating'), not 'full'"
+
+
+def test_an_operating_cycle_of_another_length_is_refused(tmp_path):
+    """The operating dynamics of a two-stroke version of the engine (360 angles over 360
+    deg) against the four-stroke load case: the overspeed cycle on the same step has 720
+    angles, not 360 -- refused rather than paired angle by angle."""
+    lc = _case(tmp_path)
+    two = analyse(replace(lc.engine, strokes=2), lc.operating)
+    assert two.theta.size == 360
+    with pytest.raises(ValueError) as e:
+        overspeed_cycles(lc, two)
+    assert str(e.value) == "overspeed cycle grid differs from the operating one"

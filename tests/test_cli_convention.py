@@ -6,11 +6,12 @@ from __future__ import annotations
 import argparse
 import io
 import logging
+import sys
 
 import pytest
 
 from fe_crank.cli import COMMANDS, _parser, main
-from fe_crank.logs import setup_logging
+from fe_crank.logs import command_logging, setup_logging
 
 #: the one name of each shared option, and names that must not come back
 CANONICAL = {"-o": "--output", "-v": "--verbose", "-q": "--quiet", "-j": "--jobs"}
@@ -55,7 +56,7 @@ def test_help_uses_the_same_option_names(name):
 def test_every_writing_subcommand_takes_output_with_the_same_default():
     for name, sp in _subparsers().items():
         acts = [a for a in sp._actions if "--output" in a.option_strings]
-        if name == "validate":
+        if name in ("validate", "compare"):
             assert not acts  # writes nothing
             continue
         assert len(acts) == 1 and acts[0].option_strings == ["-o", "--output"], name
@@ -81,16 +82,14 @@ def test_quiet_and_verbose_exclude_each_other(capsys):
 
 def test_plain_log_is_one_line_per_record_and_written_at_once():
     buf = io.StringIO()
-    log = setup_logging(0, buf)
-    logging.getLogger("fe_crank.check.stages").info("%s: %s done in %.1f s", "case", "mesh", 1.25)
-    assert buf.getvalue().count("\n") == 1  # already in the stream: no buffering until the batch ends
-    line = buf.getvalue().strip()
-    assert line.endswith("INFO case: mesh done in 1.2 s") and "\x1b[" not in line
-    setup_logging(-1, buf)
-    logging.getLogger("fe_crank.check.stages").info("hidden")
-    assert "hidden" not in buf.getvalue()
-    for h in list(log.handlers):
-        log.removeHandler(h)
+    with command_logging(0, buf):
+        logging.getLogger("fe_crank.check.stages").info("%s: %s done in %.1f s", "case", "mesh", 1.25)
+        assert buf.getvalue().count("\n") == 1  # already in the stream: no buffering until the batch ends
+        line = buf.getvalue().strip()
+        assert line.endswith("INFO case: mesh done in 1.2 s") and "\x1b[" not in line
+        setup_logging(-1, buf)
+        logging.getLogger("fe_crank.check.stages").info("hidden")
+        assert "hidden" not in buf.getvalue()
 
 
 def test_ties_of_the_maximum_go_to_the_first_angle_whatever_the_last_digits():
@@ -118,3 +117,22 @@ def test_the_top_level_api_survives_importing_the_check_package():
 
     assert callable(fe_crank.check) and case_module.run_case is fe_crank.check.run_case
     assert callable(fe_crank.load_case)
+
+
+def test_the_command_leaves_logging_as_it_found_it(monkeypatch):
+    """``main`` sets logging up for its own run only: afterwards the ``fe_crank`` logger has
+    the handlers, level and propagation it had, so no handler is left bound to a stream
+    the caller has closed since (as pytest closes a test's captured stderr): a record
+    logged later must not meet a closed file ("I/O operation on closed file")."""
+    log = logging.getLogger("fe_crank")
+    before = (list(log.handlers), log.level, log.propagate)
+    err = io.StringIO()
+    monkeypatch.setattr(sys, "stderr", err)
+    assert main(["validate", "missing.toml"]) == 2
+    assert "missing.toml: TOML file not found" in err.getvalue()
+    err.close()
+    assert (list(log.handlers), log.level, log.propagate) == before
+    later = io.StringIO()
+    monkeypatch.setattr(sys, "stderr", later)
+    logging.getLogger("fe_crank.check.stages").warning("a record after the command")
+    assert "Logging error" not in later.getvalue()

@@ -59,7 +59,10 @@ def test_peak_at_the_fillet_nodes_equals_the_whole_mesh_average(check_solution):
     mesh, basis = units.mesh, units.system.basis
     full = {f: vm[basis.get_dofs(boundary_facets(mesh, f, "test")).all()].max() for f in FILLETS}
     best = max(full, key=full.get)
-    assert where == best
+    # the throw is a mirror image across its mid-plane: a fillet and its mirror image carry
+    # equal peaks, and the summation order decides which of the two is found first
+    assert _mirror_pair(where) == _mirror_pair(best)
+    assert full[where] == pytest.approx(full[best], rel=1e-12)
     assert peak == pytest.approx(full[best], rel=1e-12)  # summation order of the nodal average only
 
 
@@ -83,8 +86,23 @@ def test_first_level_reuses_the_check_solution(geometry, cache, check_solution):
         # two solves of the same system: equal up to PARDISO's threaded round-off (2e-12 seen
         # on the seed-001 mesh with its counterweight fillets)
         assert reused.levels[1].peaks[name] == pytest.approx(fresh.levels[1].peaks[name], rel=1e-9)
-    assert reused.levels[0].where == fresh.levels[0].where
+    # where each peak is: the same fillet up to its mirror image (the throw is symmetric
+    # across its mid-plane, so a fillet and its mirror image carry equal peaks and the
+    # solve's round-off decides which of the two is reported), every peak to round-off
+    for level in (0, 1):
+        r, f = reused.levels[level], fresh.levels[level]
+        assert set(r.where) == set(f.where) == set(r.peaks)
+        for key in r.where:
+            assert _mirror_pair(r.where[key]) == _mirror_pair(f.where[key]), (level, key)
+            assert r.peaks[key] == pytest.approx(f.peaks[key], rel=1e-9), (level, key)
     assert reused.converged == fresh.converged
+
+
+def _mirror_pair(fillet: str) -> str:
+    """A fillet's name without its side: ``crankpin_fillet_1`` and ``crankpin_fillet_2``
+    are mirror images of each other across the throw's mid-plane."""
+    assert fillet.endswith(("_1", "_2")), fillet
+    return fillet[:-2]
 
 
 def test_reuse_only_for_the_same_mesh_support_and_cases(check_solution):

@@ -13,7 +13,12 @@
   2 sqrt(2)/3 at 45 deg (sqrt(2)/2 + sqrt(2)/6); the load vector against scikit-fem's own
   facet assembly of that traction law written out here;
 * end-face torque: moment about the axis equal to T to round-off, no net force (to the
-  mesh's centroid error), J against pi R^4 / 2.
+  mesh's centroid error), J against pi R^4 / 2;
+* on a throw (gmsh, curved P2): the crankpin surface prepared once (``pin_surface``) gives
+  every pin direction the load vector that ``pin_pressure_load`` builds with its own facet
+  basis and centre, to round-off (1e-14 of the largest entry; a wrong centre, normal or
+  angle array changes entries by percent); each vector's resultant is the unit force
+  (sum of nodal forces = int t dA, the P2 shape functions sum to one), to 1e-12 N.
 """
 
 from __future__ import annotations
@@ -22,7 +27,7 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, LinearForm, asm
 from skfem.helpers import dot
-from verification_meshes import box_beam, round_bar
+from verification_meshes import box_beam, round_bar, simple_throw
 
 from fe_crank.errors import InputError, MeshError
 from fe_crank.fe.loads import (
@@ -33,6 +38,7 @@ from fe_crank.fe.loads import (
     pin_pressure_load,
     pin_surface,
 )
+from fe_crank.fe.pin_directions import pin_cases, unit_force
 
 RHO, OMEGA = 7850.0, 30.0
 R, L, CX, CY = 0.020, 0.030, 0.004, 0.045
@@ -234,3 +240,31 @@ def test_face_torque_is_the_round_shaft_shear_flow(pin):
     g = face_torque_load(pin, T, boundary="end_2")
     assert _moment(g, pin.doflocs, np.zeros(3))[2] == pytest.approx(T, rel=1e-12)
     assert np.linalg.norm(g.reshape(-1, 3).sum(axis=0)) > 0.1 * T / R  # off-axis: J about the origin
+
+
+@pytest.fixture(scope="module")
+def throw():
+    return Basis(simple_throw(size=0.012), ElementTetP2(), intorder=2)
+
+
+def test_one_surface_for_all_directions_equals_a_surface_per_direction(throw):
+    surf = pin_surface(throw)
+    np.testing.assert_allclose(surf.centre, pin_centre(throw.mesh), rtol=0, atol=1e-15)
+    for name in pin_cases():
+        F = unit_force(name)
+        f_ref, p_ref = pin_pressure_load(throw, F)
+        f, p = pin_pressure_load(throw, F, surface=surf)
+        assert np.abs(f - f_ref).max() <= 1e-14 * np.abs(f_ref).max(), name
+        assert p.peak_pressure == pytest.approx(p_ref.peak_pressure, rel=1e-14)
+        assert p.arc_centre == pytest.approx(p_ref.arc_centre, abs=1e-14)
+        np.testing.assert_allclose(p.resultant[:2], F, rtol=0, atol=1e-12)
+        assert abs(p.resultant[2]) < 1e-12
+
+
+def test_a_given_centre_is_kept_by_the_prepared_surface(throw):
+    c = pin_centre(throw.mesh)
+    surf = pin_surface(throw, centre=(c[0], c[1]))
+    f, p = pin_pressure_load(throw, (0.0, 1.0), surface=surf)
+    f_ref, _ = pin_pressure_load(throw, (0.0, 1.0), centre=(c[0], c[1]))
+    assert p.centre == (c[0], c[1])
+    assert np.abs(f - f_ref).max() <= 1e-14 * np.abs(f_ref).max()

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import fe_crank
-from fe_crank.logs import setup_logging
+from fe_crank.logs import command_logging
 
 pytestmark = pytest.mark.heavy
 
@@ -32,8 +32,7 @@ def run(tmp_path_factory):
         text + '\n[material]\nname = "42CrMo4"\n\n[criteria]\nmin_static_safety = 1.5\nmin_fatigue_safety = 1.3\n'
     )
     log = io.StringIO()
-    logger = setup_logging(0, log)
-    try:
+    with command_logging(0, log):
         results = fe_crank.check(
             [DATA / "small_pass.toml", stop],
             tmp / "reports",
@@ -41,9 +40,6 @@ def run(tmp_path_factory):
             cache_dir=tmp / "cache",
             junit=tmp / "junit.xml",
         )
-    finally:
-        for h in list(logger.handlers):
-            logger.removeHandler(h)
     return tmp, {Path(r.source).stem: r for r in results}, log.getvalue()
 
 

@@ -20,8 +20,9 @@ import argparse
 import sys
 from types import ModuleType
 
-from fe_crank.cli import balance, check, dynamics, mesh, torsion, validate
+from fe_crank.cli import balance, check, compare, dynamics, mesh, torsion, validate
 from fe_crank.errors import FeCrankError
+from fe_crank.logs import command_logging
 from fe_crank.version import __version__
 
 EXIT_PASS, EXIT_FAIL, EXIT_ERROR = 0, 1, 2
@@ -33,6 +34,7 @@ COMMANDS: dict[str, tuple[ModuleType, str]] = {
     "mesh": (mesh, "build and mesh a crank geometry (cached); statistics and a picture"),
     "torsion": (torsion, "torsional vibration of the crank train: modes, Campbell, forced response"),
     "check": (check, "run load cases end to end and give verdicts (CI check)"),
+    "compare": (compare, "compare the numbers of two report folders of check; exit 0 equal, 1 different"),
 }
 
 
@@ -71,23 +73,22 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "command", None):
         parser.print_help(sys.stderr)
         return EXIT_ERROR
-    _setup_process(args)
-    try:
-        return int(args._module.run(args))
-    except FeCrankError as exc:
-        print(f"fe-crank {args.command}: error: {exc}", file=sys.stderr)
-        return EXIT_ERROR
-    except KeyboardInterrupt:
-        print("fe-crank: interrupted", file=sys.stderr)
-        return 130
+    # logging set up for this command only: the caller's logging is as it was afterwards
+    with command_logging(-1 if getattr(args, "quiet", False) else getattr(args, "verbose", 0)):
+        _setup_process()
+        try:
+            return int(args._module.run(args))
+        except FeCrankError as exc:
+            print(f"fe-crank {args.command}: error: {exc}", file=sys.stderr)
+            return EXIT_ERROR
+        except KeyboardInterrupt:
+            print("fe-crank: interrupted", file=sys.stderr)
+            return 130
 
 
-def _setup_process(args) -> None:
-    """Process-wide settings belong to the application, not the library: logging, and
-    VTK's own log kept to errors (no "bad X server connection" noise offscreen)."""
-    from fe_crank.logs import setup_logging
-
-    setup_logging(-1 if getattr(args, "quiet", False) else getattr(args, "verbose", 0))
+def _setup_process() -> None:
+    """Process-wide settings belong to the application, not the library: VTK's own log
+    kept to errors (no "bad X server connection" noise offscreen)."""
     try:
         from vtkmodules.vtkCommonCore import vtkLogger
 

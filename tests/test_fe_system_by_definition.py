@@ -1,12 +1,15 @@
-"""The FE stage's checks and rebuilds done without whole-vector temporaries give the same bits.
+"""The FE system's reactions, applied resultants and sparse building blocks against
+their definitions written out on whole arrays, bit for bit.
 
 Each reference below is the quantity's definition written on the whole vector (3 N
-entries), as the stage formed it before: the residual K u + K_s u - (f + G R) over every
-dof, then read at the constrained rows; the resultant of the applied loads from a copy
-of every node's force and position.  The stage now forms the same sums on the
-constrained rows only, in the same order, so the comparison is exact (``array_equal``,
-no tolerance): any change of a term or of its summation order shows as a difference in
-the last bits.
+entries): the residual K u + K_s u - (f + G R) over every dof, then read at the
+constrained rows; the resultant of the applied loads from a copy of every node's force
+and position; the half's stiffness from a basis on the half's elements; the selection of
+the free dofs as a COO matrix; the rigid motion built whole, then subtracted; the upper
+triangle by ``scipy.sparse.triu``.  The code forms the same sums on the constrained rows
+only (or in place, or from the whole basis), in the same order, so the comparison is
+exact (``array_equal``, no tolerance): any change of a term or of its summation order
+shows as a difference in the last bits.
 """
 
 from __future__ import annotations
@@ -113,7 +116,7 @@ def test_foundation_and_coupling_reactions_equal_the_whole_vector_formulas(throw
 
 @pytest.fixture(scope="module")
 def shipped(tmp_path_factory):
-    """The shipped seed-001 throw at ``test``: curved P2 elements, mirrored across z = 0."""
+    """The shipped single-cylinder throw at ``test``: curved P2 elements, mirrored across z = 0."""
     from conftest import ROOT
 
     from fe_crank.io.geometry import load_geometry
@@ -143,13 +146,13 @@ def test_part_stiffness_equals_the_part_basis_route(shipped):
     nodes = np.unique(el[:, part])
     ldofs = (3 * nodes[:, None] + np.arange(3)).ravel()
     pb = Basis(mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs, elements=part)
-    former = sp.triu(assemble_stiffness(pb, 210e9, 0.3)[ldofs][:, ldofs], format="csr")
-    former.sort_indices()
-    now = sp.triu(part_stiffness(basis, part, nodes, 210e9, 0.3), format="csr")
-    now.sort_indices()
-    assert former.shape == now.shape
+    defined = sp.triu(assemble_stiffness(pb, 210e9, 0.3)[ldofs][:, ldofs], format="csr")
+    defined.sort_indices()
+    got = sp.triu(part_stiffness(basis, part, nodes, 210e9, 0.3), format="csr")
+    got.sort_indices()
+    assert defined.shape == got.shape
     for a in ("indptr", "indices", "data"):
-        assert np.array_equal(getattr(former, a), getattr(now, a)), a
+        assert np.array_equal(getattr(defined, a), getattr(got, a)), a
 
 
 def test_selection_equals_the_coo_route():
@@ -160,11 +163,11 @@ def test_selection_equals_the_coo_route():
     n, held = 3000, np.array([5, 6, 17, 1200, 2999, 0])
     rows = np.unique(held)
     free = np.setdiff1d(np.arange(n), rows)
-    former = sp.csr_matrix((np.ones(free.size), (free, np.arange(free.size))), shape=(n, free.size))
-    now = selection(n, rows)
-    assert former.shape == now.shape
+    defined = sp.csr_matrix((np.ones(free.size), (free, np.arange(free.size))), shape=(n, free.size))
+    got = selection(n, rows)
+    assert defined.shape == got.shape
     for a in ("indptr", "indices", "data"):
-        assert np.array_equal(getattr(former, a), getattr(now, a)), a
+        assert np.array_equal(getattr(defined, a), getattr(got, a)), a
 
 
 def test_rigid_motion_removed_in_place_equals_the_whole_array_route():
@@ -176,16 +179,16 @@ def test_rigid_motion_removed_in_place_equals_the_whole_array_route():
     x = rng.uniform(-0.1, 0.1, (3, N))
     U = rng.normal(size=(3 * N, k))
     held = np.array([0, 1, 2, 3 * 40 + 1, 3 * 40 + 2, 3 * 977])
-    former = U - _rigid_fit_whole(x, held, U)
-    now = U.copy()
-    symsolve._remove_rigid_fit(x, held, now)
-    assert np.array_equal(former, now)
-    assert np.abs(now[held]).max() < 1e-12 * np.abs(U).max()
+    defined = U - _rigid_fit_whole(x, held, U)
+    got = U.copy()
+    symsolve._remove_rigid_fit(x, held, got)
+    assert np.array_equal(defined, got)
+    assert np.abs(got[held]).max() < 1e-12 * np.abs(U).max()
 
 
-def test_component_matrices_equal_the_former_masking():
+def test_component_matrices_equal_the_masked_half_triangle():
     """Each symmetry component's matrix (plane conditions and held dofs as unit rows with
-    explicit-zero couplings) against the former masking -- a copy of the half's triangle
+    explicit-zero couplings) against a masking of the half's triangle -- a copy of it
     per component, the entry's row from an nnz-long row array: the same CSR bit for bit."""
     import scipy.sparse as sp
     from symmetric_meshes import mirrored_throw
@@ -242,7 +245,7 @@ def test_upper_triangle_equals_scipy_triu(shipped):
 
 
 def _rigid_fit_whole(x, held, U):
-    """The rigid motion B a with (B a)[held] = U[held], built whole (the former route)."""
+    """The rigid motion B a with (B a)[held] = U[held], built whole."""
     a = symsolve._rigid_coefficients(x, held, U)
     Un = np.zeros((x.shape[1], 3, U.shape[1]))
     Un += a[None, :3, :]

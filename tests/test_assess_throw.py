@@ -1,6 +1,7 @@
-"""``assess.throw`` on hand-built unit stresses: the overspeed load scaling, the groups
-taken, the UR M53 inputs (rear torque, K_e, sigma_add), the counterweight checks and
-every criterion's value and location, each against a hand value.
+"""``assess_throw`` and ``evaluate_criteria`` (``assess.case``) on hand-built unit
+stresses: the overspeed load scaling, the groups taken, the UR M53 inputs (rear torque,
+K_e, sigma_add), the counterweight checks and every criterion's value and location, each
+against a hand value.
 
 One node per group; unit stresses: 0.01 Pa per (rad/s)^2 of sigma_xx for the centrifugal
 case, 1 Pa per N of sigma_xx for pin_y, 2 Pa per N m of tau_xy for the torque.  The
@@ -17,9 +18,9 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import m53
+from fe_crank.assess.case import assess_throw, evaluate_criteria
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.superpose import UnitStresses
-from fe_crank.assess.throw import assess_throw, evaluate_criteria
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material

@@ -4,6 +4,10 @@ values: von Mises, principal stresses, the 3x3 matrix and the cylindrical compon
 Every array has distinct sizes on its axes (2 angles, 6 components, 3 nodes) so that a
 wrong axis is a wrong shape or a wrong value, never a coincidence.  Tolerances: 1e-12
 relative (a few roundings of numbers below 1e3); a wrong term changes a value by O(1).
+
+The forms the assessment evaluates a cycle with, ``von_mises_path`` (into reused
+buffers) and ``von_mises_planes`` (on component planes), equal the plain formula bit for
+bit: they change where temporaries live, not the arithmetic.
 """
 
 from __future__ import annotations
@@ -12,6 +16,7 @@ import math
 
 import numpy as np
 import pytest
+from test_assess_amplitude import cycle_paths
 
 from fe_crank.assess.stress import cylindrical, principal, to_matrix, von_mises, von_mises_path, von_mises_planes
 
@@ -133,3 +138,47 @@ def test_cylindrical_components_by_hand_and_by_rotation():
     sub = cylindrical(s, pts, (1.0, 2.0), which=("tz", "rr"))
     assert list(sub) == ["rr", "tz"]
     np.testing.assert_array_equal(sub["tz"], cyl["tz"][0])
+
+
+def test_von_mises_path_hand_values():
+    # uniaxial 100 MPa: vM = 100 MPa; pure shear 50 MPa: vM = sqrt(3) 50 = 86.60 MPa;
+    # about a centre of uniaxial 40 MPa the uniaxial 100 MPa state is 60 MPa away
+    h = np.zeros((2, 6, 2))
+    h[0, 0, 0] = 100e6
+    h[1, 3, 1] = 50e6
+    vm = von_mises_path(h)
+    assert vm[0, 0] == 100e6
+    assert abs(vm[1, 1] - np.sqrt(3.0) * 50e6) <= 1e-15 * 86.6e6 * 4
+    centre = np.zeros((6, 2))
+    centre[0, 0] = 40e6
+    assert von_mises_path(h, centre)[0, 0] == 60e6
+
+
+def test_von_mises_path_equals_plain_formula_bitwise():
+    h = cycle_paths()
+    c = 0.5 * (h.min(axis=0) + h.max(axis=0))
+    assert np.array_equal(von_mises_path(h), von_mises(h))
+    assert np.array_equal(von_mises_path(h, c), von_mises(h - c[None]))
+
+
+def test_von_mises_planes_is_the_plain_formula_bitwise():
+    rng = np.random.default_rng(7)
+    planes = rng.normal(size=(6, 50, 9)) * 1e8
+    hist = planes.transpose(1, 0, 2)  # (n_t, 6, n)
+    centre = rng.normal(size=(6, 9)) * 1e8
+    assert np.array_equal(von_mises_planes(planes), von_mises(hist))
+    assert np.array_equal(von_mises_planes(planes, centre), von_mises(hist - centre[None]))
+    buf = np.empty(planes.shape)
+    for c in (None, centre, None):  # a reused scratch array
+        ref = von_mises(hist) if c is None else von_mises(hist - c[None])
+        assert np.array_equal(von_mises_planes(planes, c, buf), ref)
+    # a non-contiguous view of the planes gives the same
+    assert np.array_equal(von_mises_planes(planes[:, ::2]), von_mises(hist[::2]))
+    # hand value: uniaxial 100 MPa about a uniaxial 40 MPa centre is 60 MPa; pure shear
+    # 50 MPa about zero is sqrt(3) 50 MPa
+    p = np.zeros((6, 1, 2))
+    p[0, 0, 0], p[3, 0, 1] = 100e6, 50e6
+    c = np.zeros((6, 2))
+    c[0, 0] = 40e6
+    assert von_mises_planes(p, c)[0, 0] == 60e6
+    assert von_mises_planes(p)[0, 1] == pytest.approx(np.sqrt(3.0) * 50e6, rel=1e-15)
