@@ -7,7 +7,8 @@ only in name and angle are one solid, because ``geometry.throw.add_throw`` build
 in its own frame from the geometry and the throw's counterweights.  Checked on the
 shipped inline-four geometry (throws 1 and 4 carry bolted counterweights at 0 deg, throws
 2 and 3 the default ones at 180 deg): two builds for four throws, and every throw's
-counterweight data equal (dataclass equality, exact) to its own build."""
+counterweight data equal (dataclass equality, exact) to its own build (``throw_solids``,
+the geometry stage's)."""
 
 from __future__ import annotations
 
@@ -21,6 +22,7 @@ import fe_crank.geometry.spec as spec
 import fe_crank.io.geometry as geo_io
 from fe_crank.assess.adapters import counterweights_of, m53_geometry_of, stress_area
 from fe_crank.assess.m53 import out_of_range
+from fe_crank.geometry.mass import mass_properties, throw_solids
 
 
 @pytest.fixture(scope="module")
@@ -45,7 +47,7 @@ def test_m53_dimensions_of_seed001_crank(seed001):
     assert rel["s"] == pytest.approx(-0.18) and rel["w"] == pytest.approx(0.44)
     assert rel["b"] == pytest.approx(1.6) and rel["r"] == pytest.approx(0.08)
     assert out_of_range(rel) == []
-    assert m53_geometry_of(None) is None and m53_geometry_of(object()) is None
+    assert m53_geometry_of(None) is None
 
 
 def test_pear_web_width_at_mid_overlap(seed001):
@@ -66,8 +68,9 @@ class _Design:
         return self.plane
 
 
-class _Balance:
-    design = _Design()
+def _counterweights(g, design, throw=None, z=0.0, props=None):
+    spec = g.throw(throw)
+    return counterweights_of(spec, props or mass_properties(g, spec), z, "main", design)
 
 
 def test_counterweight_mr_against_sector_closed_form_and_bolts(seed001):
@@ -83,18 +86,18 @@ def test_counterweight_mr_against_sector_closed_form_and_bolts(seed001):
     )
     cw = seed001.throw().counterweights[0]
     s = sector.annular_sector(cw.outer_radius, cw.inner_radius, cw.thickness, cw.angle, seed001.density)
-    (data,) = counterweights_of(seed001, None, 0.0, "main", _Balance())
+    (data,) = _counterweights(seed001, _Design())
     # both webs' sectors serve the one balance plane: m r adds
     assert data.built_unbalance == pytest.approx(2 * s.unbalance, rel=1e-9)
     assert data.required_unbalance == 0.2 and not data.bolted
     bolt = spec.BoltedJoint(count=2, diameter=0.012, pitch_radius=0.05, yield_strength=640e6)
     cws = tuple(dataclasses.replace(c, bolted=bolt) for c in seed001.throw().counterweights)
     g2 = dataclasses.replace(seed001, throws=(dataclasses.replace(seed001.throw(), counterweights=cws),))
-    (d2,) = counterweights_of(g2, None, 0.0, "main", _Balance())
+    (d2,) = _counterweights(g2, _Design())
     # two counterweights x 2 bolts M12 (A_s = 84.3 mm^2, ISO 898-1) x 640 MPa
     assert d2.bolted and d2.bolt_capacity == pytest.approx(4 * 84.3e-6 * 640e6)
     # without a balance design each web stands alone, with no requirement
-    per_web = counterweights_of(g2, None, 0.0, "main", None)
+    per_web = _counterweights(g2, None)
     assert [d.name for d in per_web] == ["counterweight_1", "counterweight_2"]
     assert all(d.required_unbalance is None and d.bolt_capacity == pytest.approx(2 * 84.3e-6 * 640e6) for d in per_web)
 
@@ -112,20 +115,21 @@ def inline4(root):
 def test_equal_throw_solids_are_built_once_with_the_same_counterweight_data(inline4):
     names = [t.name for t in inline4.throws]
     assert names == ["1", "2", "3", "4"]
-    solids: list = []
-    shared = {n: counterweights_of(inline4, n, 0.1 * i, "main", None, solids=solids) for i, n in enumerate(names)}
-    assert len(solids) == 2  # {1, 4} and {2, 3}
+    solids = throw_solids(inline4)
+    by = solids.by_throw
+    assert by["1"] is by["4"] and by["2"] is by["3"] and by["1"] is not by["2"]  # {1, 4} and {2, 3}
     for i, n in enumerate(names):
-        own = counterweights_of(inline4, n, 0.1 * i, "main", None)
-        assert shared[n] == own and own, n
+        shared = _counterweights(inline4, None, n, 0.1 * i, solids.of(n))
+        own = _counterweights(inline4, None, n, 0.1 * i)
+        assert shared == own and own, n
 
 
 def test_a_different_counterweight_is_another_solid(inline4):
     t1 = inline4.throw("1")
     cw = tuple(dataclasses.replace(c, outer_radius=c.outer_radius - 0.005) for c in t1.counterweights)
     g = dataclasses.replace(inline4, throws=inline4.throws + (dataclasses.replace(t1, name="5", counterweights=cw),))
-    solids: list = []
-    a = counterweights_of(g, "1", 0.0, "main", None, solids=solids)
-    b = counterweights_of(g, "5", 0.0, "main", None, solids=solids)
-    assert len(solids) == 2
+    solids = throw_solids(g, ("1", "5"))
+    assert solids.of("1") is not solids.of("5")
+    a = _counterweights(g, None, "1", 0.0, solids.of("1"))
+    b = _counterweights(g, None, "5", 0.0, solids.of("5"))
     assert b[0].built_unbalance < a[0].built_unbalance  # the smaller sector, its own build

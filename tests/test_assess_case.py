@@ -3,16 +3,17 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import textwrap
 
 import jsonschema
 import numpy as np
 import pytest
+from pipeline import assess_inputs
 from skfem import MeshTet, MeshTet2
 
 import fe_crank.fe.unit_cases as fe
-import fe_crank.mechanism.dynamics as dynamics
 from fe_crank.assess import assess_case, assessed_groups, to_json
 from fe_crank.assess.results import load_schema
 from fe_crank.errors import InputError
@@ -84,9 +85,9 @@ def _run(tmp_path, solved, criteria):
     p = tmp_path / "c.toml"
     p.write_text(CASE.format(criteria=textwrap.dedent(criteria)))
     lc = load_loadcase(p)
-    dyn = dynamics.analyse(lc.engine, lc.operating)
-    mesh, units = solved
-    return lc, dyn, assess_case(lc, dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units})
+    _, units = solved
+    inputs = assess_inputs(lc, {ALL_THROWS: units})
+    return lc, inputs.dynamics, assess_case(inputs)
 
 
 def _max_von_mises_by_hand(solved, dyn, omega):
@@ -176,31 +177,18 @@ def test_criterion_that_cannot_be_evaluated_is_an_error(tmp_path, solved):
     assert e.value.key == "criteria.min_m53_acceptability" and "cannot be evaluated" in str(e.value)
 
 
-class _Geo:
-    """A geometry object offering the assessment's optional hooks."""
-
-    def __init__(self, m53_geometry, cws=()):
-        self._g, self._c = m53_geometry, cws
-
-    def m53_geometry(self, throw):
-        return self._g
-
-    def counterweights(self, throw):
-        return self._c
-
-
 def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solved):
-    import dataclasses
-
-    from fe_crank.assess import CounterweightData, M53Geometry, assess_case
+    from fe_crank.assess import CounterweightData, M53Geometry, assess_throw, evaluate_criteria, unit_stresses
+    from fe_crank.assess.scf import compute_scf
 
     p = tmp_path / "c.toml"
     p.write_text(
         CASE.format(criteria="min_m53_acceptability = 1.15\nmax_unbalance_error = 0.05\nmax_bolt_utilisation = 0.8")
     )
     lc = load_loadcase(p)
-    dyn = dynamics.analyse(lc.engine, lc.operating)
     mesh, units = solved
+    inputs = assess_inputs(lc, {ALL_THROWS: units})
+    dyn = inputs.dynamics
     inside = M53Geometry(
         pin_diameter=0.1,
         journal_diameter=0.12,
@@ -214,33 +202,59 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
     cw = CounterweightData(
         "counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026, bolted=True, bolt_capacity=20e3
     )
-    a = assess_case(
-        dataclasses.replace(lc, geometry=_Geo(inside, (cw,))), dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units}
+    tl = dyn.throws["1"]
+    throw = assess_throw(
+        "1",
+        unit_stresses(units),
+        dyn.theta,
+        tl.pin_force,
+        tl.torque_front,
+        omega=lc.operating.speed,
+        overspeed=lc.operating.overspeed,
+        material=lc.material,
+        crank_radius=0.02,
+        m53_geometry=inside,
+        counterweights=(cw,),
+        torque_rear=tl.torque_rear,
+        overspeed_loads=[
+            (c.dynamics.throws["1"].pin_force, c.dynamics.throws["1"].torque_front) for c in inputs.cycles.overspeed
+        ],
     )
-    pin = a.throws[0].m53[0]
+    criteria = evaluate_criteria(lc.criteria, (throw,), file=lc.source_file, overspeed=lc.operating.overspeed)
+    pin = throw.m53[0]
     # M53 sigma_DW = K (0.42 s_B + 39.3)[0.264 + 1.073 D^-0.2 + (785 - s_B)/4900 + 196/s_B sqrt(1/R_H)]
     # (N/mm2, mm), s_B = 900, D = 100, R_H = 5, K = 1.05 by hand:
     # 417.3 * (0.264 + 0.427169 - 0.023469 + 0.097393) = 417.3 * 0.765093 = 319.273; * 1.05 = 335.237 MPa
     assert pin.scf_source.startswith("empirical")
     assert pin.fatigue_strength == pytest.approx(335.237e6, rel=2e-6)
-    by = {c.quantity: c for c in a.criteria}
-    assert by["m53_acceptability"].value == min(f.acceptability for f in a.throws[0].m53)
+    by = {c.quantity: c for c in criteria}
+    assert by["m53_acceptability"].value == min(f.acceptability for f in throw.m53)
     # m r = 0.025 vs 0.026 required: error 1/26; bolt load m r omega_os^2 at 3600 rpm
     assert by["unbalance_error"].value == pytest.approx(1 / 26) and by["unbalance_error"].passed
     w = 3600 * np.pi / 30
     assert by["bolt_utilisation"].value == pytest.approx(0.025 * w**2 / 20e3)
     thin = dataclasses.replace(inside, web_thickness=0.015)
     # outside the range UR M53 needs the SCF mode of its FE appendix, which needs the four
-    # fillets of a real throw: the bar has two, so the case is refused, naming what is missing
-    # (tests/test_fe_scf_assess.py runs the FE route on a real throw)
+    # fillets of a real throw: the bar has two, so the SCF mode is refused, naming what is
+    # missing (tests/test_fe_scf_assess.py runs the FE route on a real throw)
     from fe_crank.errors import MeshError
 
     with pytest.raises(MeshError, match="no boundary 'journal_fillet_1', needed by the SCF mode"):
-        assess_case(
-            dataclasses.replace(lc, geometry=_Geo(thin, (cw,))), dyn, {}, {ALL_THROWS: mesh}, {ALL_THROWS: units}
+        compute_scf(mesh, lc.material, thin, solver="superlu")
+    # and without the SCF mode's factors the M53 route outside its range is refused
+    with pytest.raises(InputError, match="throw 1: "):
+        assess_throw(
+            "1",
+            unit_stresses(units),
+            dyn.theta,
+            tl.pin_force,
+            tl.torque_front,
+            omega=lc.operating.speed,
+            overspeed=None,
+            material=lc.material,
+            crank_radius=0.02,
+            m53_geometry=thin,
         )
-    doc = json.loads(json.dumps(to_json(a)))
-    jsonschema.validate(doc, load_schema())
 
 
 def test_stress_recovery_check(solved):
@@ -335,7 +349,7 @@ def test_overspeed_includes_rod_and_piston_inertia_hand_calc(tmp_path, solved):
     # R_e / (1.44 max vM_operating) -- the operating maximum re-superposed by hand
     worst = _max_von_mises_by_hand(solved, dyn, lc.operating.speed)
     assert a.criteria[0].value == pytest.approx(650e6 / (1.44 * worst), rel=1e-9)
-    assert any("overspeed: whole cycle recomputed at 3600 rpm" in n for n in a.notes)
+    assert any("overspeed: whole cycle recomputed at 3600 rpm" in n.text for n in a.notes)
 
 
 def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):

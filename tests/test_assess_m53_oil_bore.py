@@ -98,7 +98,7 @@ def test_validity_range_d_o():
 def test_outlet_in_the_throw_assessment_and_q_criterion():
     """assess_throw adds the outlet beside the fillets; the M53 Q criterion takes the
     smallest Q of the three and names the outlet when it governs."""
-    from fe_crank.assess.throw import evaluate_criteria
+    from fe_crank.assess.criteria import evaluate_criteria
     from fe_crank.io.criteria import build_criteria
 
     n = 8

@@ -1,4 +1,4 @@
-"""Overspeed cycle (fe_crank.assess.overspeed) against a hand calculation.
+"""Overspeed cycle (fe_crank.mechanism.cycles) against a hand calculation.
 
 Slider-crank at TDC (exact kinematics): piston acceleration a = r omega^2 (1 + lambda),
 lambda = r/l.  The rod as its dynamically equivalent two masses (no rod_inertia given:
@@ -32,10 +32,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from fe_crank.assess.overspeed import describe, overspeed_cycles, overspeed_dynamics
-from fe_crank.dynamics import analyse
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism.cycles import describe, overspeed_cycles
+from fe_crank.mechanism.dynamics import analyse
 
 CASE = """
 name = "hand"
@@ -89,9 +89,9 @@ def _p_tdc():
 
 
 def test_motored_curve_closed_form():
-    """fe_crank.gas.motored_cycle against p = p_0 (V_BDC/V)^n: p_TDC = p_0 eps^n, p_BDC = p_0,
+    """fe_crank.mechanism.gas.motored_cycle against p = p_0 (V_BDC/V)^n: p_TDC = p_0 eps^n, p_BDC = p_0,
     and at 90 deg the volume ratio from the exact slider-crank by hand."""
-    from fe_crank.gas import motored_cycle
+    from fe_crank.mechanism.gas import motored_cycle
 
     assert _p_tdc() == pytest.approx(1.941902e6, rel=1e-6)
     g = motored_cycle(
@@ -115,11 +115,11 @@ def test_motored_curve_closed_form():
 def test_motored_overspeed_checks_the_compression_curve_and_zero_gas(tmp_path):
     """Two overspeed cycles: the motored curve (firing TDC: inertia minus the compression
     force 9251.9 N by hand) and zero gas (both TDCs: inertia only); the notes name both."""
-    from fe_crank.assess.overspeed import describe, overspeed_cycles
+    from fe_crank.mechanism.cycles import describe, overspeed_cycles
 
     lc = _case(tmp_path)
     dyn = analyse(lc.engine, lc.operating)
-    cycles = overspeed_cycles(lc, dyn)
+    cycles = overspeed_cycles(lc.engine, lc.operating, dyn)
     assert len(cycles) == 2 and "p_0 (V_BDC/V)^n" in cycles[0].gas and "zero gauge" in cycles[1].gas
     pin = cycles[0].dynamics.throws["1"].pin_force
     deg = np.rad2deg(cycles[0].dynamics.theta)
@@ -131,19 +131,19 @@ def test_motored_overspeed_checks_the_compression_curve_and_zero_gas(tmp_path):
     # gas-exchange TDC: exhaust pressure 0.1013 MPa, (0.1013e6 - 101325) A = -0.1257 N
     i = int(np.argmin(np.abs(deg - 360.0)))
     assert pin[i, 1] == pytest.approx(_hand(4200) - (0.1013e6 - 101325.0) * area, rel=1e-9)
-    np.testing.assert_array_equal(overspeed_dynamics(lc, dyn).throws["1"].pin_force, pin)
-    note = describe(lc)
+    np.testing.assert_array_equal(overspeed_cycles(lc.engine, lc.operating, dyn)[0].dynamics.throws["1"].pin_force, pin)
+    note = describe(lc.engine, lc.operating)
     assert "eps = 9" in note and "n = 1.35" in note and "zero gauge" in note and "the worse of the two" in note
 
 
 def test_motored_overspeed_pin_force_at_both_tdcs_equals_hand_value(tmp_path):
     """The zero-gas cycle of the motored condition: inertia only at both TDCs."""
-    from fe_crank.assess.overspeed import overspeed_cycles
+    from fe_crank.mechanism.cycles import overspeed_cycles
 
     lc = _case(tmp_path)
     assert lc.operating.overspeed_gas == "motored"
     dyn = analyse(lc.engine, lc.operating)
-    os = overspeed_cycles(lc, dyn)[-1].dynamics
+    os = overspeed_cycles(lc.engine, lc.operating, dyn)[-1].dynamics
     pin = os.throws["1"].pin_force
     deg = np.rad2deg(os.theta)
     for tdc in (0.0, 360.0):
@@ -162,7 +162,7 @@ def test_motored_overspeed_pin_force_at_both_tdcs_equals_hand_value(tmp_path):
 def test_as_operating_keeps_the_gas_load(tmp_path):
     lc = _case(tmp_path, 'overspeed_gas = "as_operating"')
     dyn = analyse(lc.engine, lc.operating)
-    os = overspeed_dynamics(lc, dyn)
+    os = overspeed_cycles(lc.engine, lc.operating, dyn)[0].dynamics
     deg = np.rad2deg(os.theta)
     i = int(np.argmin(np.abs(deg - 0.0)))
     # firing TDC: the gas force (p - p_cc) A pushes the pin inward against the inertia pull
@@ -198,13 +198,13 @@ def test_table_gas_motored_curve_only_with_its_data(tmp_path):
     """A p(phi) table gives no motored curve unless it states compression ratio and intake
     pressure: then zero gas alone, and the note says why; with both keys the curve is the
     closed form; one key alone is refused, naming the file and key."""
-    from fe_crank.assess.overspeed import describe, overspeed_cycles
+    from fe_crank.mechanism.cycles import describe, overspeed_cycles
 
     lc = _table_case(tmp_path)
     assert lc.engine.gas.motored is None
     dyn = analyse(lc.engine, lc.operating)
-    assert len(overspeed_cycles(lc, dyn)) == 1
-    assert "no compression ratio and intake pressure" in describe(lc)
+    assert len(overspeed_cycles(lc.engine, lc.operating, dyn)) == 1
+    assert "no compression ratio and intake pressure" in describe(lc.engine, lc.operating)
     lc = _table_case(tmp_path, 'compression_ratio = 9.0\nintake_pressure = "0.1 MPa"')
     assert lc.engine.gas.motored.pressure.max() == pytest.approx(_p_tdc(), rel=1e-12)
     with pytest.raises(InputError) as e:
@@ -215,8 +215,8 @@ def test_table_gas_motored_curve_only_with_its_data(tmp_path):
 def test_overspeed_takes_the_worse_of_several_cycles():
     """``assess_throw`` with two overspeed cycles: one node, sigma_xx = 1 Pa per N of pin_y;
     cycle A peaks at +100 N, cycle B at -300 N: von Mises 300 Pa, at B's angle."""
-    from fe_crank.assess.case import assess_throw
     from fe_crank.assess.superpose import UnitStresses
+    from fe_crank.assess.throw import assess_throw
     from fe_crank.io.material import load_material
 
     stress = np.zeros((3, 6, 1))
@@ -245,15 +245,15 @@ def test_note_in_full_for_each_gas_state(tmp_path):
         "omega_os^2; gas: "
     )
     lc = _case(tmp_path, 'overspeed_gas = "as_operating"')
-    assert describe(lc) == head + "the operating gas pressure table); worst angle"
+    assert describe(lc.engine, lc.operating) == head + "the operating gas pressure table); worst angle"
     lc = _table_case(tmp_path)
-    assert describe(lc) == head + (
+    assert describe(lc.engine, lc.operating) == head + (
         "no combustion, zero gauge gas pressure (the gas data give no compression "
         "ratio and intake pressure for a motored curve)); worst angle"
     )
     lc = _case(tmp_path)
     src = lc.engine.gas.motored.source
-    assert describe(lc) == head + (
+    assert describe(lc.engine, lc.operating) == head + (
         f"(no combustion, {src}) and (no combustion, zero gauge gas pressure), the worse of the two); worst angle"
     )
 
@@ -263,7 +263,7 @@ def test_cycles_and_their_order_grid_and_gas(tmp_path):
     as_operating: one cycle with the operating table; no overspeed: none."""
     lc = _case(tmp_path)
     dyn = analyse(lc.engine, lc.operating)
-    cycles = overspeed_cycles(lc, dyn)
+    cycles = overspeed_cycles(lc.engine, lc.operating, dyn)
     assert [c.gas for c in cycles] == [
         f"no combustion, {lc.engine.gas.motored.source}",
         "no combustion, zero gauge gas pressure",
@@ -273,20 +273,19 @@ def test_cycles_and_their_order_grid_and_gas(tmp_path):
         assert c.dynamics.speed == lc.operating.overspeed
     # the zero-gas cycle: no gas force in any cylinder
     assert np.all(cycles[1].dynamics.cylinders["1"].gas == 0.0)
-    # the first cycle is the one overspeed_dynamics returns
-    assert overspeed_dynamics(lc, dyn) is not None
     np.testing.assert_array_equal(
-        overspeed_dynamics(lc, dyn).throws["1"].pin_force, cycles[0].dynamics.throws["1"].pin_force
+        overspeed_cycles(lc.engine, lc.operating, dyn)[0].dynamics.throws["1"].pin_force,
+        cycles[0].dynamics.throws["1"].pin_force,
     )
     lc_op = _case(tmp_path, 'overspeed_gas = "as_operating"')
-    (one,) = overspeed_cycles(lc_op, dyn)
+    (one,) = overspeed_cycles(lc_op.engine, lc_op.operating, dyn)
     assert one.gas == "the operating gas pressure table"
     # the operating gas at the firing TDC is in the overspeed cycle too (inertia x 1.44 minus gas)
     i = int(np.argmin(np.abs(np.rad2deg(dyn.theta))))
     gas = dyn.cylinders["1"].gas[i]
     assert one.dynamics.throws["1"].pin_force[i, 1] == pytest.approx(_hand(4200) - gas, rel=1e-9)
     none = replace(lc, operating=replace(lc.operating, overspeed=None))
-    assert overspeed_cycles(none, dyn) == () and overspeed_dynamics(none, dyn) is None
+    assert overspeed_cycles(none.engine, none.operating, dyn) == ()
 
 
 def test_overspeed_grid_follows_a_coarser_operating_grid(tmp_path):
@@ -295,7 +294,7 @@ def test_overspeed_grid_follows_a_coarser_operating_grid(tmp_path):
     lc = _case(tmp_path)
     dyn = analyse(lc.engine, lc.operating, step=math.radians(2.0))
     assert dyn.theta.size == 360
-    for c in overspeed_cycles(lc, dyn):
+    for c in overspeed_cycles(lc.engine, lc.operating, dyn):
         np.testing.assert_allclose(c.dynamics.theta, dyn.theta, rtol=0, atol=1e-12)
 
 
@@ -304,7 +303,7 @@ def test_unknown_gas_mode_is_refused_in_full(tmp_path):
     bad = replace(lc, operating=replace(lc.operating, overspeed_gas="full"))
     dyn = analyse(lc.engine, lc.operating)
     with pytest.raises(ValueError) as e:
-        overspeed_cycles(bad, dyn)
+        overspeed_cycles(bad.engine, bad.operating, dyn)
     assert str(e.value) == "overspeed_gas must be one of ('motored', 'as_operating'), not 'full'"
 
 
@@ -316,5 +315,5 @@ def test_an_operating_cycle_of_another_length_is_refused(tmp_path):
     two = analyse(replace(lc.engine, strokes=2), lc.operating)
     assert two.theta.size == 360
     with pytest.raises(ValueError) as e:
-        overspeed_cycles(lc, two)
+        overspeed_cycles(lc.engine, lc.operating, two)
     assert str(e.value) == "overspeed cycle grid differs from the operating one"

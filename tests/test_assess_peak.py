@@ -19,10 +19,10 @@ import math
 import numpy as np
 import pytest
 
+from fe_crank.assess.group import first_extreme
 from fe_crank.assess.peak import BOUND_RTOL, TIE_RTOL, group_peak, max_over_cycle, peak_bound
 from fe_crank.assess.stress import von_mises
 from fe_crank.assess.superpose import UnitStresses, stress_history
-from fe_crank.assess.throw import first_extreme
 
 
 def test_max_over_cycle_first_index_of_the_tie_band():

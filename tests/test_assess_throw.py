@@ -18,9 +18,10 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import m53
-from fe_crank.assess.case import assess_throw, evaluate_criteria
 from fe_crank.assess.counterweight import CounterweightData
+from fe_crank.assess.criteria import evaluate_criteria
 from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.throw import assess_throw
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
@@ -380,7 +381,7 @@ def test_fe_scfs_out_of_range_from_the_given_factors_or_the_scf_mode():
     kw = dict(omega=100.0, overspeed=None, material=MAT, crank_radius=0.09, m53_geometry=geo)
     given = assess_throw("1", unit, THETA, pin, np.zeros(4), fe_scf=fe_scf, **kw)
     assert list(given.m53) == ref
-    mode = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result, **kw)
+    mode = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result(), **kw)
     summary = (
         "FE, UR M53 App. III SCF mode (mesh accepted: principal criterion max 1.0 % (< 3 %); "
         "averaging max 2.0 % (< 5 %))"
@@ -392,7 +393,7 @@ def test_fe_scfs_out_of_range_from_the_given_factors_or_the_scf_mode():
     )
     # two reasons are joined by "; "
     geo2 = dataclasses.replace(geo, web_thickness=0.015)
-    two = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result, **dict(kw, m53_geometry=geo2))
+    two = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result(), **dict(kw, m53_geometry=geo2))
     assert two.m53[1].scf_source == (
         summary + "; outside the UR M53 validity range: w = 0.15 not in [0.2, 0.8]; r = 0.02 not in [0.03, 0.13]"
     )
@@ -459,7 +460,7 @@ def test_the_scf_mode_runs_when_only_the_pin_fillet_is_out_of_range():
         material=MAT,
         crank_radius=0.09,
         m53_geometry=geo,
-        scf=_scf_result,
+        scf=_scf_result(),
     )
     assert t.m53[0].scf_source.startswith("FE, UR M53 App. III SCF mode (mesh accepted")
     assert t.m53[0].scf_source.endswith("; outside the UR M53 validity range: r = 0.02 not in [0.03, 0.13]")

@@ -9,9 +9,10 @@ import math
 import pytest
 
 from fe_crank.assess.counterweight import CounterweightCheck
+from fe_crank.assess.criteria import evaluate_criteria
 from fe_crank.assess.group import Extreme, GroupResult
 from fe_crank.assess.m53 import M53Fillet
-from fe_crank.assess.throw import ThrowAssessment, evaluate_criteria
+from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.verdict import judge
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria

@@ -29,6 +29,7 @@ from fe_crank.assess.group import assess_group
 from fe_crank.assess.superpose import load_coefficients
 from fe_crank.assess.throw import assess_throw
 from fe_crank.assess.workers import run_blocks
+from fe_crank.assess.workers import threads as threads_context
 from fe_crank.check.options import CheckOptions, assess_threads, cores_available
 from fe_crank.io.material import load_material
 
@@ -52,7 +53,8 @@ def test_unit_stresses_on_threads_equal_one_thread_bitwise(filleted_throw):
     groups = assessed_groups(filleted_throw)
     one = unit_stresses(filleted_throw, groups)
     for threads in (2, 4, 50):  # 50: more threads than cases, one case each
-        got = unit_stresses(filleted_throw, groups, threads=threads)
+        with threads_context(threads):
+            got = unit_stresses(filleted_throw, groups)
         assert got.cases == one.cases
         assert np.array_equal(got.stress, one.stress), threads
         assert np.array_equal(got.node_ids, one.node_ids)
@@ -69,7 +71,8 @@ def test_assess_group_on_threads_equals_one_thread_bitwise(filleted_throw):
         assert us.groups[g].size > 3 * 16, g  # several blocks per group, so threads interleave
         one = assess_group(us, g, co, th, mat, **kw)
         for threads in (2, 3):
-            _same_group(assess_group(us, g, co, th, mat, threads=threads, **kw), one)
+            with threads_context(threads):
+                _same_group(assess_group(us, g, co, th, mat, **kw), one)
 
 
 @pytest.mark.heavy
@@ -100,7 +103,8 @@ def test_assess_throw_on_threads_equals_one_thread_bitwise(filleted_throw):
     mat = load_material("42CrMo4")
     kw = dict(omega=300.0, overspeed=360.0, material=mat, crank_radius=0.045)
     one = assess_throw("t", us, th, pin, torque, **kw)
-    two = assess_throw("t", us, th, pin, torque, threads=2, **kw)
+    with threads_context(2):
+        two = assess_throw("t", us, th, pin, torque, **kw)
     assert len(one.groups) == len(two.groups) > 0
     for a, b in zip(one.groups, two.groups):
         _same_group(a, b)

@@ -115,7 +115,7 @@ def test_the_top_level_api_survives_importing_the_check_package():
     import fe_crank.check.batch
     import fe_crank.check.case as case_module  # a submodule import still works
 
-    assert callable(fe_crank.check) and case_module.run_case is fe_crank.check.run_case
+    assert callable(fe_crank.run_check) and case_module.run_case is fe_crank.check.run_case
     assert callable(fe_crank.load_case)
 
 

@@ -15,13 +15,17 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import m53
-from fe_crank.assess.scf import compute_scf, factors, scf_mesh, scf_mesh_options, scf_provider, web_centres_of
+from fe_crank.assess.scf import ScfResult, compute_scf, factors, scf_mesh, scf_mesh_options, web_centres_of
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import assess_throw
+from fe_crank.check.stages import needs_scf
 from fe_crank.fe.scf import Peak, ScfStresses
 from fe_crank.io.geometry import load_geometry
+from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.material import load_material
 from fe_crank.mesh import MeshOptions, mesh_throw
+from fe_crank.mesh.plan import plan_meshes
+from fe_crank.outputs import GeometryModel
 
 ROOT = Path(__file__).resolve().parents[1]
 # tests/data/geometry_small.toml as UR M53 sees it (B: stadium web 40 mm wide)
@@ -150,16 +154,15 @@ def big_fillet(tmp_path_factory):
 
 
 def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet):
-    """Outside the empirical range the M53 route takes the SCF mode's factors (solved once
-    for both fillets) and its scf_source names the appendix, the mesh verdict (this mesh is
+    """Outside the empirical range the M53 route takes the SCF mode's factors (one SCF mode
+    for both fillets, solved by the check's SCF stage) and its scf_source names the appendix, the mesh verdict (this mesh is
     far coarser than r/4: not accepted) and the violated limit; the journal's alternating
     bending stress is beta_B sigma_BN + beta_Q sigma_QN (UR M53 5.1) with those factors."""
     g, tm = big_fillet
     geo = dataclasses.replace(SMALL, pin_fillet_radius=0.0038, journal_fillet_radius=0.0038)
     assert m53.out_of_range(geo.related("pin")) == ["r = 0.1357 not in [0.03, 0.13]"]
     material = load_material("42CrMo4")
-    cache = {}
-    provider = scf_provider(cache, "throw", tm, g, material, geo, remesh=False)  # fast: keep the coarse mesh
+    r = compute_scf(tm, material, geo, web_centres=web_centres_of(g))  # fast: the coarse mesh as it is
     theta = np.deg2rad(np.arange(720.0))
     unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     pin = np.column_stack([np.zeros(720), 2e4 * np.cos(theta)])
@@ -174,10 +177,8 @@ def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet):
         material=material,
         crank_radius=0.02,
         m53_geometry=geo,
-        scf=provider,
+        scf=r,
     )
-    r = cache[("throw", geo)]
-    assert len(cache) == 1 and provider() is r
     pin_f, jou_f = t.m53
     assert pin_f.scf_source.startswith("FE, UR M53 App. III SCF mode (mesh NOT accepted")
     assert "r = 0.1357 not in [0.03, 0.13]" in pin_f.scf_source
@@ -190,14 +191,14 @@ def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet):
     assert web_centres_of(g) == pytest.approx((-0.015, 0.015))
 
 
-def test_m53_route_inside_the_range_never_runs_the_scf_mode():
-    """Inside the range the empirical SCFs are used; the SCF mode is not even solved."""
+def test_m53_route_inside_the_range_never_runs_the_scf_mode(tmp_path):
+    """Inside the range the empirical SCFs are used, even when SCF-mode factors are at hand,
+    and the check does not solve the SCF mode (``check.stages.needs_scf``)."""
     theta = np.deg2rad(np.arange(720.0))
     unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     pin = np.column_stack([np.zeros(720), 2e4 * np.cos(theta)])
 
-    def no_scf():
-        raise AssertionError("SCF mode solved for a throw inside the empirical range")
+    no_scf = ScfResult(fe={}, empirical={}, out_of_range={}, quality={}, element_size={}, stresses=None)  # type: ignore[arg-type]
 
     t = assess_throw(
         "1",
@@ -215,6 +216,11 @@ def test_m53_route_inside_the_range_never_runs_the_scf_mode():
     assert all(f.scf_source.startswith("empirical") for f in t.m53)
     assert t.m53[0].scf_bending == pytest.approx(m53.alpha_b(SMALL.related("pin")), rel=1e-12)
     assert math.isfinite(t.m53[1].acceptability)
+    lc = load_loadcase(Path(__file__).parent / "data" / "small_pass.toml")
+    plan = plan_meshes(lc.geometry, ("1",), lc.mesh)
+    assert not needs_scf(lc, GeometryModel(plan, SMALL))
+    outside = dataclasses.replace(SMALL, pin_fillet_radius=0.0038)
+    assert needs_scf(lc, GeometryModel(plan, outside))
 
 
 def test_scf_mode_asks_for_r_over_4_fillet_elements(big_fillet):

@@ -355,7 +355,7 @@ def test_tiny_fillet_refused_before_meshing(tmp_path):
 
 def test_mesh_section_max_elements(tmp_path):
     p = case_dir(tmp_path, SMALL + '\n[mesh]\nsize = "test"\nmax_elements = 10\n')
-    assert load_loadcase(p).extras["mesh"].max_elements == 10
+    assert load_loadcase(p).mesh.max_elements == 10
     p.write_text(SMALL + "\n[mesh]\nmax_elements = -1\n")
     with pytest.raises(InputError, match="positive whole number") as e:
         load_loadcase(p)

@@ -1,23 +1,29 @@
 """Counterweight section of the report: required vs built m*r from the assessment's
-counterweight checks (a plain-data stand-in for the assessment object)."""
+counterweight checks (an assessment holding only them)."""
 
 from __future__ import annotations
 
-from types import SimpleNamespace
-
 import numpy as np
 
+from fe_crank.assess.case import Assessment
 from fe_crank.assess.counterweight import CounterweightData, check_counterweight
+from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.io.material import load_material
+from fe_crank.outputs import CaseOutputs
 from fe_crank.report.render import image_statistics
-from fe_crank.report.sections import counterweight_section
+from fe_crank.report.tables import counterweight_section
+
+
+def _outputs(*throws: ThrowAssessment) -> CaseOutputs:
+    a = Assessment("c", "c.toml", 314.16, None, load_material("C45"), throws, ())
+    return CaseOutputs(assessment=a)
 
 
 def test_required_vs_built_table_and_chart(tmp_path):
-    # seed 003: sector r1 71, r2 32 mm, 180 deg, b 19 mm, rho 7400 -> m = 0.887 kg at 34.3 mm
+    # the V4-90 counterweight (Voronkov): sector r1 71, r2 32 mm, 180 deg, b 19 mm, rho 7400 -> m = 0.887 kg at 34.3 mm
     built = CounterweightData("counterweight_1", mass=0.887, centroid_radius=0.0343, required_unbalance=0.03017)
     c = check_counterweight(built, omega=314.16, overspeed=None)
-    assessment = SimpleNamespace(throws=(SimpleNamespace(name="A", counterweights=(c,)),))
-    parts = counterweight_section(tmp_path, {"assessment": assessment}, None)
+    parts = counterweight_section(tmp_path, _outputs(ThrowAssessment("A", (), counterweights=(c,))), None)
     html = "".join(parts)
     assert "throw A: cw 1" in html
     # |0.887 * 0.0343 - 0.03017| / 0.03017 = 0.84 %
@@ -28,7 +34,6 @@ def test_required_vs_built_table_and_chart(tmp_path):
 
 
 def test_no_counterweights_no_section(tmp_path):
-    assessment = SimpleNamespace(throws=(SimpleNamespace(name="1", counterweights=()),))
-    assert counterweight_section(tmp_path, {"assessment": assessment}, None) == []
-    assert counterweight_section(tmp_path, {}, None) == []
+    assert counterweight_section(tmp_path, _outputs(ThrowAssessment("1", ())), None) == []
+    assert counterweight_section(tmp_path, CaseOutputs(), None) == []
     assert list(tmp_path.iterdir()) == []

@@ -33,7 +33,7 @@ def run(tmp_path_factory):
     )
     log = io.StringIO()
     with command_logging(0, log):
-        results = fe_crank.check(
+        results = fe_crank.run_check(
             [DATA / "small_pass.toml", stop],
             tmp / "reports",
             mesh_size="test",

@@ -1,12 +1,12 @@
 """The overspeed picture and the ``_overspeed`` VTU fields show the state the overspeed
 table judges: the cycle recomputed at the overspeed with rod and piston inertia
-(fe_crank.assess.overspeed), at the crank angle of the governing group's maximum.
+(fe_crank.mechanism.cycles), at the crank angle of the governing group's maximum.
 
 Real components: the small test throw of tests/data with two counterweights added,
 meshed by gmsh (``test`` preset), solved by scikit-fem, rendered offscreen by pyvista.
 The expected values come from an independent path: the assessment's unit stresses
 (recovered per unit case at the assessed nodes, then superposed over every angle of the
-overspeed cycle), where the report superposes the displacements of one angle and
+overspeed cycle), where the drawn state (fe_crank.assess.states) superposes the displacements of one angle and
 recovers the stress of the sum.
 """
 
@@ -18,21 +18,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from pipeline import stage_outputs, write_report
 
 import fe_crank.assess as assess
-from fe_crank.assess.overspeed import overspeed_cycles
 from fe_crank.assess.superpose import combine, load_coefficients
-from fe_crank.balance.analysis import analyse_balance
-from fe_crank.check import CheckOptions
-from fe_crank.check.stages import _criteria_of
-from fe_crank.fe import solve_unit_cases
 from fe_crank.fe.stress import von_mises
-from fe_crank.io.loadcase import load_loadcase
-from fe_crank.mechanism.dynamics import analyse
-from fe_crank.mesh import mesh_throw
-from fe_crank.report import write_case_report
+from fe_crank.mechanism.cycles import overspeed_cycles
 from fe_crank.report.render import image_statistics
-from fe_crank.results import CaseResult
 
 pytestmark = pytest.mark.heavy  # one test-preset mesh and solve, three renders: about 30 s
 
@@ -58,26 +50,11 @@ def case(tmp_path_factory):
         "min_overspeed_safety = 1.5", 'min_overspeed_safety = 1.5\nmax_counterweight_overspeed_stress = "200 MPa"'
     )
     (tmp / "case.toml").write_text(text)
-    lc = load_loadcase(tmp / "case.toml")
-    dyn = analyse(lc.engine, lc.operating)
-    bal = analyse_balance(lc.engine, lc.operating.speed, lc.balance)
-    mesh = mesh_throw(lc.geometry, throw="1", cache_dir=tmp / "cache", size="test")
-    units = solve_unit_cases(mesh, lc.material, lc.fe)
-    a = assess.assess_case(lc, dyn, bal, {"1": mesh}, {"1": units})
-    crit = _criteria_of(a)
-    res = CaseResult(lc.name, str(tmp / "case.toml"), "pass" if all(c.passed for c in crit) else "fail", criteria=crit)
+    so = stage_outputs(tmp / "case.toml", tmp / "cache")
     out = tmp / "out"
-    out.mkdir()
-    so = {
-        "loadcase": lc,
-        "dynamics": dyn,
-        "balance": bal,
-        "meshes": {"1": mesh},
-        "units": {"1": units},
-        "assessment": a,
-    }
-    write_case_report(out, res, so, options=CheckOptions())
-    return out, lc, dyn, units, a
+    write_report(out, so)
+    assert so.loadcase is not None and so.cycles is not None and so.assessment is not None
+    return out, so.loadcase, so.cycles.operating, so.unit_solutions["1"], so.assessment
 
 
 def _overspeed_von_mises(lc, dyn, units, nodes) -> tuple[np.ndarray, np.ndarray]:
@@ -89,7 +66,7 @@ def _overspeed_von_mises(lc, dyn, units, nodes) -> tuple[np.ndarray, np.ndarray]
     j = np.searchsorted(us.node_ids, nodes)
     assert np.array_equal(us.node_ids[j], nodes)
     best = None
-    for cyc in overspeed_cycles(lc, dyn):
+    for cyc in overspeed_cycles(lc.engine, lc.operating, dyn):
         tl = cyc.dynamics.throws["1"]
         c = load_coefficients(
             tl.pin_force, tl.torque_front, lc.operating.overspeed, cases=us.cases, torque_mz=us.torque_mz

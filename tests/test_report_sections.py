@@ -9,17 +9,15 @@ import re
 
 import numpy as np
 import pytest
+from pipeline import assess_inputs, write_report
 from skfem import MeshTet, MeshTet2
 
 import fe_crank.assess as assess
 import fe_crank.fe as fe
 import fe_crank.mechanism.dynamics as dynamics
-from fe_crank.check import CheckOptions
-from fe_crank.check.stages import _criteria_of
 from fe_crank.io.loadcase import load_loadcase
-from fe_crank.report import write_case_report
+from fe_crank.outputs import CaseOutputs, FeModels
 from fe_crank.report.render import image_statistics
-from fe_crank.results import CaseResult
 
 pytestmark = pytest.mark.heavy  # one small FE solve and six renders: about 9 s
 
@@ -84,16 +82,12 @@ def report(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("rep")
     (tmp / "c.toml").write_text(CASE)
     lc = load_loadcase(tmp / "c.toml")
-    dyn = dynamics.analyse(lc.engine, lc.operating)
-    mesh = _bar()
-    units = fe.solve_unit_cases(mesh, lc.material, fe.FeOptions(solver="superlu"))
-    a = assess.assess_case(lc, dyn, None, {"1": mesh}, {"1": units})
-    crit = _criteria_of(a)
-    res = CaseResult(lc.name, str(tmp / "c.toml"), "pass" if all(c.passed for c in crit) else "fail", criteria=crit)
+    units = fe.solve_unit_cases(_bar(), lc.material, fe.FeOptions(solver="superlu"))
+    inputs = assess_inputs(lc, {"1": units})
+    a = assess.assess_case(inputs, fields=True)
+    so = CaseOutputs(loadcase=lc, cycles=inputs.cycles, fe=FeModels({"1": units}), assessment=a)
     out = tmp / "out"
-    out.mkdir()
-    so = {"loadcase": lc, "dynamics": dyn, "meshes": {"1": mesh}, "units": {"1": units}, "assessment": a}
-    write_case_report(out, res, so, options=CheckOptions())
+    res = write_report(out, so)
     return out, a, units, res
 
 

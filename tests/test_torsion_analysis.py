@@ -27,7 +27,7 @@ def case():
 def rigid_settings(case):
     """Crank and flywheel joints 1e6 times stiffer, no damper/pulley/driven machine, no
     damping to ground (it would take torque from the rigid-body speed fluctuation)."""
-    t = case.extras["torsion"]
+    t = case.torsion
     fly = dataclasses.replace(t.flywheel, stiffness=1e12, inertia=10.0)
     return dataclasses.replace(
         t,

@@ -14,8 +14,9 @@ import pytest
 from fe_crank.cli import main
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
-from fe_crank.torsion.report import report_section
-from fe_crank.torsion.stage import dynamics_for_assessment, torsion_stage
+from fe_crank.outputs import CaseOutputs
+from fe_crank.report.sections import torsion_section
+from fe_crank.torsion.analysis import analyse_torsion, with_vibratory_torque
 
 DATA = Path(__file__).resolve().parent / "data"
 CASE = DATA / "small_torsion.toml"
@@ -23,9 +24,9 @@ CASE = DATA / "small_torsion.toml"
 
 def test_report_says_quasi_static_without_a_torsion_section(tmp_path):
     lc = load_loadcase(DATA / "small_pass.toml")
-    parts = report_section(tmp_path, {"loadcase": lc})
+    parts = torsion_section(tmp_path, CaseOutputs(loadcase=lc), None)
     assert "no [torsion] section" in parts[0] and "quasi-static" in parts[0]
-    assert torsion_stage(lc) is None
+    assert lc.torsion is None
 
 
 @pytest.mark.heavy
@@ -59,8 +60,8 @@ def test_check_uses_quasi_static_plus_vibratory_journal_torque(tmp_path):
     res = json.loads((folder / "results.json").read_text())
 
     lc = load_loadcase(CASE)
-    tors = torsion_stage(lc)  # Carter stiffness: the case says so; the FE value is only reported
-    dyn = dynamics_for_assessment(dynamics.analyse(lc.engine, lc.operating), tors)
+    tors = analyse_torsion(lc)  # Carter stiffness: the case says so; the FE value is only reported
+    dyn = with_vibratory_torque(dynamics.analyse(lc.engine, lc.operating), tors)
     quasi = dynamics.analyse(lc.engine, lc.operating)
     wp = math.pi / 16 * 0.032**3
     t1 = dyn.throws["1"]

@@ -8,9 +8,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from fe_crank import model
 from fe_crank.io.engine import load_engine
 from fe_crank.io.loadcase import load_loadcase
-from fe_crank.mechanism import dynamics, model
+from fe_crank.mechanism import dynamics
 from fe_crank.torsion.excitation import cylinder_harmonics, order_phase_sum
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -30,7 +30,7 @@ def variant(tmp_path, old: str, new: str) -> Path:
 
 
 def test_shipped_case_parses_to_si():
-    t = load_loadcase(CASE).extras["torsion"]
+    t = load_loadcase(CASE).torsion
     assert t.flywheel.inertia == pytest.approx(0.15)
     assert t.flywheel.stiffness == pytest.approx(4e5)
     assert t.cylinder_damping == pytest.approx(0.2)
@@ -42,7 +42,7 @@ def test_shipped_case_parses_to_si():
 def test_stiffness_in_kn_m_per_degree_is_converted(tmp_path):
     """1 kN m/deg = 1000 * 180 / pi N m/rad = 57295.78 N m/rad."""
     p = variant(tmp_path, 'stiffness = "4e5 N*m/rad"', 'stiffness = "1 kN*m/deg"')
-    assert load_loadcase(p).extras["torsion"].flywheel.stiffness == pytest.approx(57295.7795, rel=1e-9)
+    assert load_loadcase(p).torsion.flywheel.stiffness == pytest.approx(57295.7795, rel=1e-9)
 
 
 @pytest.mark.parametrize(

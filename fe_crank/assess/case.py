@@ -35,7 +35,7 @@ from fe_crank.notes import ASSUMPTION, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
-SCHEMA_VERSION = "1.1"  # 1.1: optional provenance and warnings (written by the report)
+SCHEMA_VERSION = "1.2"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws
 
 
 @dataclass(frozen=True)
@@ -45,7 +45,8 @@ class AssessInputs:
     ``dynamics``: the operating cycle the stresses follow (its journal torques carry the
     vibratory torque when the torsional stage ran); ``cycles``: the operating and
     overspeed cycles of the dynamics stage; ``models``: FE model key -> geometry throw
-    name (the mesh plan); ``unit_solutions``: key -> unit solutions (keys sharing one
+    name (the mesh plan; with ``geometry`` None, a model that is no throw of a crank
+    geometry, no counterweights are checked); ``unit_solutions``: key -> unit solutions (keys sharing one
     mesh share one object); ``scf``: key -> the SCF mode's result, for the models whose
     UR M53 dimensions are outside the empirical range."""
 
@@ -55,7 +56,7 @@ class AssessInputs:
     operating: model.OperatingPoint
     material: Material
     criteria: Criteria
-    geometry: CrankGeometry
+    geometry: CrankGeometry | None
     cycles: EngineCycles
     dynamics: DynamicsResult
     balance: BalanceResult | None
@@ -142,13 +143,13 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                 for n in recovery_notes(recovery_ratios(unit_solutions, boundary_groups, unit=unit))
             )
         unit = solved[id(unit_solutions)]
-        spec = a.geometry.throw(a.models[key])
+        spec = a.geometry.throw(a.models[key]) if a.geometry is not None else None
         for tname in throws_of(key, a.dynamics.throws):
             tl = a.dynamics.throws[tname]
             throw = a.engine.throw(tname)
             cws = (
                 counterweights_of(spec, a.solids.of(spec.name), throw.axial_position, throw.shaft, design)
-                if spec.counterweights and a.solids is not None
+                if spec is not None and spec.counterweights and a.solids is not None
                 else ()
             )
             throws.append(

@@ -223,20 +223,3 @@ def scf_mesh(throw_mesh, geometry):
     folder = Path(throw_mesh.msh_path).parent
     cache = folder.parent if folder.name == throw_mesh.key else None
     return mesh_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)
-
-
-def scf_provider(
-    cache: dict, key, throw_mesh, geometry, material, geo: m53.M53Geometry, *, solver: str = "auto", remesh: bool = True
-):
-    """A callable for ``assess_throw(scf=...)``: SCF mode on the load case's own throw mesh
-    (``scf_mesh``: re-meshed at r/4 in the fillets when coarser, unless ``remesh`` is False),
-    solved once per mesh ``key`` and M53 dimensions."""
-
-    def run() -> ScfResult:
-        k = (key, geo)
-        if k not in cache:
-            tm = scf_mesh(throw_mesh, geometry) if remesh else throw_mesh
-            cache[k] = compute_scf(tm, material, geo, web_centres=web_centres_of(geometry), solver=solver)
-        return cache[k]
-
-    return run

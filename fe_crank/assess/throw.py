@@ -10,6 +10,7 @@ import numpy as np
 from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
 from fe_crank.assess.group import GroupResult, assess_group, section_diameter
+from fe_crank.assess.m53 import M53Fillet, NominalStresses
 from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
 from fe_crank.errors import InputError
@@ -21,7 +22,7 @@ class ThrowAssessment:
     name: str
     groups: tuple[GroupResult, ...]
     m53: tuple[m53.M53Fillet, ...] = ()
-    m53_nominal: m53.NominalStresses | None = None
+    m53_nominal: NominalStresses | None = None
     counterweights: tuple[CounterweightCheck, ...] = ()
     n_angles: int = 0
 
@@ -105,7 +106,8 @@ def assess_throw(
         for g in sorted(unit.groups)
         if len(unit.groups[g])
     )
-    fillets, nominal = (), None
+    fillets: tuple[M53Fillet, ...] = ()
+    nominal: NominalStresses | None = None
     if m53_geometry is not None and material.tensile_strength is not None and material.m53_k is not None:
         scf_note = None
         if (

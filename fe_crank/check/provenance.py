@@ -17,6 +17,7 @@ from __future__ import annotations
 import hashlib
 import os
 import platform
+from functools import partial
 from pathlib import Path
 
 from fe_crank.fe.solvers import pardiso_available
@@ -46,14 +47,14 @@ def input_hash(path: str | Path, files: tuple[InputFile, ...] | list[InputFile])
     """The ``input`` record of the files a load case was read from (module docstring)."""
     base = _resolved(path).parent
     total = hashlib.sha256()
-    records = []
+    records: list[InputRecord] = []
     try:
         for f in sorted(files, key=lambda f: f.path):
             rel = _rel(f.path, base)
             total.update(rel.encode() + b"\0")
             one = hashlib.sha256()
             with f.path.open("rb") as fh:  # in blocks: an input of any size is hashed in bounded memory
-                for block in iter(lambda fh=fh: fh.read(1 << 20), b""):
+                for block in iter(partial(fh.read, 1 << 20), b""):
                     total.update(block)
                     one.update(block)
             if one.hexdigest() != f.sha256:

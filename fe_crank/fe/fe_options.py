@@ -24,9 +24,12 @@ PIN_FORCES = {name: unit_force(name) for name in pin_cases()}
 class Material(Protocol):
     """What the FE stage reads from a material (SI)."""
 
-    youngs_modulus: float
-    poisson_ratio: float
-    density: float
+    @property
+    def youngs_modulus(self) -> float: ...
+    @property
+    def poisson_ratio(self) -> float: ...
+    @property
+    def density(self) -> float: ...
 
 
 @dataclass(frozen=True)

@@ -64,7 +64,7 @@ class UnitSolutions:
     """All unit cases of one throw on one factorisation (see module doc)."""
 
     system: System
-    material: object
+    material: Material
     options: FeOptions
     cases: dict[str, UnitCase]
     pin: dict[str, PinPressure]

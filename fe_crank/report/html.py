@@ -11,6 +11,7 @@ from __future__ import annotations
 import base64
 import html
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -47,7 +48,7 @@ def badge(status: str) -> str:
     return f'<span class="badge {esc(status)}">{text}</span>'
 
 
-def table(header: list[str], rows: list[list[object]], *, num_cols: set[int] | None = None) -> str:
+def table(header: Sequence[str], rows: Sequence[Sequence[object]], *, num_cols: set[int] | None = None) -> str:
     """An HTML table; cells are escaped, columns in ``num_cols`` right-aligned."""
     num_cols = num_cols or set()
     out = ["<table><tr>" + "".join(f"<th>{esc(h)}</th>" for h in header) + "</tr>"]

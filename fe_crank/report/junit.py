@@ -54,7 +54,7 @@ def classname(r: CaseResult) -> str:
 def _properties(suite, r: CaseResult) -> None:
     props = ET.SubElement(suite, "properties")
     prov = r.provenance
-    items = [("source", r.source), ("started", r.started)]
+    items: list[tuple[str, str | None]] = [("source", r.source), ("started", r.started)]
     if prov is not None:
         items += [
             ("version", prov.version),
