@@ -1,7 +1,7 @@
 """Which nodal recovery is nearer the converged stress: fe-crank's or CalculiX's, as the
 fillet elements are refined.
 
-    .venv/bin/python benchmarks/ccx_reference.py --fillet-divisions 1 1.5 2 --json ref.json
+    .venv/bin/python benchmarks/verification/ccx_reference.py --fillet-divisions 1 1.5 2 --json ref.json
 
 For each refinement f (fillet element edge r / f, 6 f elements round the oil bore per pi;
 the bulk of the ``test`` preset: coarse divisions 1.5, grading 2.0; f = 1 is the

@@ -1,7 +1,7 @@
 """fe-crank against CalculiX on the same mesh and model: wall time, peak memory, answers.
 
-    .venv/bin/python benchmarks/calculix_compare.py --preset test
-    .venv/bin/python benchmarks/calculix_compare.py --preset medium --sets one all --ccx-sets one --json bench.json
+    .venv/bin/python benchmarks/verification/calculix_compare.py --preset test
+    .venv/bin/python benchmarks/verification/calculix_compare.py --preset medium --sets one all --ccx-sets one --json bench.json
 
 For one unit case (``pin_y``, set ``one``) and for all unit cases of the FE stage (set
 ``all``), each code runs in a process of its own (peak memory = that process's maximum
