@@ -30,7 +30,7 @@ test: $(STAMP)
 # test and coarse presets, figures and machine in reports/perf.json (benchmarks/README.md; the
 # CalculiX comparison, benchmarks/verification/, installs CalculiX and runs apart).
 bench: $(STAMP)
-	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/perf/run.py --loadcase loadcases/v4_90_seed003_operating.toml \
+	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/perf/run.py --loadcase loadcases/v4_90_pneumatic_operating.toml \
 		--preset test coarse --json reports/perf.json
 
 clean:

@@ -25,7 +25,7 @@ from fe_crank.assess.m53 import out_of_range
 
 @pytest.fixture(scope="module")
 def seed001(root):
-    return geo_io.load_geometry(root / "geometry" / "single_cylinder_seed001.toml")
+    return geo_io.load_geometry(root / "geometry" / "single_cylinder.toml")
 
 
 @pytest.fixture(scope="module")

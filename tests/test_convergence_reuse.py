@@ -38,7 +38,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def geometry():
-    return load_geometry(ROOT / "geometry" / "single_cylinder_seed001.toml")
+    return load_geometry(ROOT / "geometry" / "single_cylinder.toml")
 
 
 @pytest.fixture(scope="module")

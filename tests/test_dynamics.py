@@ -13,7 +13,7 @@ from fe_crank.io.loadcase import load_loadcase
 from fe_crank.kinematics import piston_motion
 from fe_crank.kinetostatics import analyse_position
 
-SEED_CASE = "loadcases/single_cylinder_seed001.toml"
+SEED_CASE = "loadcases/single_cylinder.toml"
 
 
 @pytest.fixture(scope="module")

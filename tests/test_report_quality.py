@@ -65,11 +65,11 @@ def test_the_banner_and_the_notes_sit_beside_the_verdict():
 
 
 def test_input_hash_follows_the_referenced_files():
-    case = ROOT / "loadcases" / "single_cylinder_seed001.toml"
+    case = ROOT / "loadcases" / "single_cylinder.toml"
     files = input_files(case)
     names = sorted(p.name for p in files)
     # the load case names its engine and geometry files
-    assert names == sorted(["single_cylinder_seed001.toml"] * 3)
+    assert names == sorted(["single_cylinder.toml"] * 3)
     h = hashlib.sha256()
     base = case.parent
     import os

@@ -175,7 +175,7 @@ def main(argv: list[str] | None = None) -> int:
         "--preset", nargs="+", action="extend", help="mesh presets (test, coarse, medium, fine); default test"
     )
     ap.add_argument("--only", default=",".join(STAGES), help=f"stages to run, comma-separated ({','.join(STAGES)})")
-    ap.add_argument("--loadcase", default=str(ROOT / "loadcases" / "single_cylinder_seed001.toml"))
+    ap.add_argument("--loadcase", default=str(ROOT / "loadcases" / "single_cylinder.toml"))
     ap.add_argument(
         "--cache-dir", default=str(ROOT / ".cache" / "meshes"), help="mesh cache of the fe and cycle stages"
     )

@@ -278,7 +278,7 @@ SETS = ("one", "all")
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--loadcase", default="loadcases/single_cylinder_seed001.toml")
+    ap.add_argument("--loadcase", default="loadcases/single_cylinder.toml")
     ap.add_argument("--preset", default="test")
     ap.add_argument("--work", default=None, help="folder for decks and results (default .cache/ccx_<preset>)")
     ap.add_argument("--threads", type=int, default=2)

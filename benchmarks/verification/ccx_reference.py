@@ -66,7 +66,7 @@ def level(loadcase: str, f: float) -> dict:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--loadcase", default="loadcases/single_cylinder_seed001.toml")
+    ap.add_argument("--loadcase", default="loadcases/single_cylinder.toml")
     ap.add_argument("--fillet-divisions", nargs="+", type=float, default=[1.0, 1.5, 2.0])
     ap.add_argument("--json", default=None, help="append the result to this file")
     ap.add_argument("--worker", type=float, help=argparse.SUPPRESS)
