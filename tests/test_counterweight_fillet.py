@@ -64,7 +64,7 @@ def test_fillet_radius_that_cannot_be_built_is_refused(fillet, over, why):
 
 
 def _case_folder(tmp_path: Path, drop_fillet: bool) -> Path:
-    """The shipped seed-001 load case with its engine and geometry copied beside it."""
+    """The shipped single-cylinder load case with its engine and geometry copied beside it."""
     for sub, name in (
         ("engines", "single_cylinder.toml"),
         ("geometry", "single_cylinder.toml"),
