@@ -22,19 +22,16 @@ demo: $(STAMP)
 
 test: $(STAMP)
 	$(VENV)/bin/lint-imports
-	$(VENV)/bin/ruff check fe_crank tests benchmarks
-	$(VENV)/bin/ruff format --check fe_crank tests benchmarks
+	$(VENV)/bin/ruff check fe_crank tests benchmarks tools
+	$(VENV)/bin/ruff format --check fe_crank tests benchmarks tools
 	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q
 
-# The benchmarks of docs/performance.md (a few minutes; the 1M-dof rows and the CalculiX
-# comparison, benchmarks/calculix_compare.py: see there).
+# The timings of docs/performance.md (a few minutes): mesh, FE stage, cycle and fatigue at the
+# test and coarse presets, figures and machine in reports/perf.json (benchmarks/README.md; the
+# CalculiX comparison, benchmarks/verification/, installs CalculiX and runs apart).
 bench: $(STAMP)
-	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/mesh_bench.py --levels test coarse
-	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/fe_solve.py --geometry geometry/v4_90_pneumatic_seed003.toml --preset coarse
-	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/cycle_bench.py --size 4 --angles 3
-	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/pin_loads.py --preset test
-	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/fatigue_bench.py --nodes 4096
-	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/scaling.py --levels 0 1 --full-recovery
+	OPENBLAS_NUM_THREADS=1 $(PY) benchmarks/perf/run.py --loadcase loadcases/v4_90_pneumatic_operating.toml \
+		--preset test coarse --json reports/perf.json
 
 clean:
 	rm -rf $(VENV) reports .cache

@@ -27,7 +27,7 @@ from fe_crank.geometry.mass import mass_properties, throw_solids
 
 @pytest.fixture(scope="module")
 def seed001(root):
-    return geo_io.load_geometry(root / "geometry" / "single_cylinder_seed001.toml")
+    return geo_io.load_geometry(root / "geometry" / "single_cylinder.toml")
 
 
 @pytest.fixture(scope="module")

@@ -42,7 +42,7 @@ offset = "80 mm"
 def write_case(tmp_path, envelope="75 mm", extra=""):
     p = tmp_path / "case.toml"
     # the engine beside the case: include paths stay in the load case's folder tree
-    (tmp_path / "engine.toml").write_bytes((ENGINES / "v4_90_seed003_pneumatic.toml").read_bytes())
+    (tmp_path / "engine.toml").write_bytes((ENGINES / "v4_90_pneumatic.toml").read_bytes())
     p.write_text(CASE.format(engine="engine.toml", envelope=envelope) + extra)
     return p
 

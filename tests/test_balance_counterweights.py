@@ -132,7 +132,7 @@ def test_empty_engine_and_idle_shaft_are_refused():
     [
         ("inline4.toml", "force", 2),  # Lanchester: two shafts at +-2 omega
         ("single", "force", 1),
-        ("v4_90_seed003_base.toml", "couple", 1),  # one shaft at -omega plus a crank pair (seed 002)
+        ("v4_90_base.toml", "couple", 1),  # one shaft at -omega plus a crank pair (seed 002)
         ("inline2_180.toml", "couple", 2),
         ("napier_deltic_section.toml", "force", 1),
     ],
@@ -160,7 +160,7 @@ def test_balance_shafts_cancel_the_targeted_component(layout, component, order):
 
 
 def test_first_order_couple_uses_one_shaft_and_a_crank_pair():
-    e = engine("v4_90_seed003_base.toml")
+    e = engine("v4_90_base.toml")
     d = balance_shafts(free_forces(e, W), "couple", 1, sources=("reciprocating",))
     kinds = sorted((s.on_crankshaft, s.speed_ratio) for s in d.shafts)
     assert kinds == [(False, -1), (True, 1)]

@@ -47,7 +47,7 @@ def offset_inline4():
 CASES = {
     "v8_crossplane": lambda: engine("v8_crossplane.toml"),
     "deltic": lambda: engine("napier_deltic_section.toml"),
-    "v4_pneumatic": lambda: engine("v4_90_seed003_pneumatic.toml"),
+    "v4_pneumatic": lambda: engine("v4_90_pneumatic.toml"),
     "inline4_offset": offset_inline4,
     "radial5": lambda: radial(5, piston=3.0),
 }

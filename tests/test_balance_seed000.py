@@ -75,7 +75,7 @@ def test_deltic_centrifugal_exceeds_first_and_second_order_several_times(deltic)
 
 @pytest.fixture(scope="module")
 def four_shaft():
-    e = engine("deltic_four_shaft_seed000.toml")
+    e = engine("deltic_four_shaft.toml")
     return e, free_forces(e, W)
 
 

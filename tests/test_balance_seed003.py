@@ -17,13 +17,13 @@ M_A, M_B, R, L = 0.62, 1.844, 0.033, 0.128  # table 1
 
 @pytest.fixture(scope="module")
 def pneumatic():
-    e = engine("v4_90_seed003_pneumatic.toml")
+    e = engine("v4_90_pneumatic.toml")
     return e, free_forces(e, W)
 
 
 @pytest.fixture(scope="module")
 def base():
-    e = engine("v4_90_seed003_base.toml")
+    e = engine("v4_90_base.toml")
     return e, free_forces(e, W)
 
 

@@ -203,7 +203,7 @@ def test_first_order_couple_takes_a_crank_pair_and_one_shaft(sense):
         ["couple1_crank", "couple1_minus"] if sense == 1 else ["couple1_minus", "couple1_crank"]
     )
     assert (crank.speed_ratio, crank.position) == (1, (0.0, 0.0))
-    assert crank.constraint == "counterweight pair on the crankshaft (seed 002: one balance shaft plus a crank pair)"
+    assert crank.constraint == "counterweight pair on the crankshaft (one balance shaft plus a crank pair)"
     assert other.speed_ratio == -1 and math.hypot(*other.position) == pytest.approx(0.1, rel=1e-14)
     assert (crank.unbalance, other.unbalance) == pytest.approx((0.1, 0.1), rel=1e-14)
     assert np.abs(d.residual.total(1).moment).max() < 1e-9
@@ -306,5 +306,5 @@ def test_free_placement_fields_and_refusals_in_full():
     )
     d = balance_shafts(couple, "couple", 1, positions=[(0.0, 0.0), (0.0, 0.1)])
     assert d.shafts[0].constraint == (
-        "counterweight pair on the crankshaft (seed 002: one balance shaft plus a crank pair); placed as given"
+        "counterweight pair on the crankshaft (one balance shaft plus a crank pair); placed as given"
     )

@@ -9,7 +9,7 @@ from fe_crank.cli import main
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.dynamics import analyse
 
-CASE = "loadcases/single_cylinder_seed001.toml"
+CASE = "loadcases/single_cylinder.toml"
 
 
 def test_dynamics_writes_json_and_plots(tmp_path, capsys, root):

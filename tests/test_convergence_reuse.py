@@ -38,7 +38,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def geometry():
-    return load_geometry(ROOT / "geometry" / "single_cylinder_seed001.toml")
+    return load_geometry(ROOT / "geometry" / "single_cylinder.toml")
 
 
 @pytest.fixture(scope="module")
@@ -84,7 +84,7 @@ def test_first_level_reuses_the_check_solution(geometry, cache, check_solution):
         # by round-off (relative residual < 1e-8 is checked; observed ~1e-13)
         assert reused.levels[0].peaks[name] == pytest.approx(fresh.levels[0].peaks[name], rel=1e-9)
         # two solves of the same system: equal up to PARDISO's threaded round-off (2e-12 seen
-        # on the seed-001 mesh with its counterweight fillets)
+        # on the single-cylinder mesh with its counterweight fillets)
         assert reused.levels[1].peaks[name] == pytest.approx(fresh.levels[1].peaks[name], rel=1e-9)
     # where each peak is: the same fillet up to its mirror image (the throw is symmetric
     # across its mid-plane, so a fillet and its mirror image carry equal peaks and the

@@ -64,20 +64,20 @@ def test_fillet_radius_that_cannot_be_built_is_refused(fillet, over, why):
 
 
 def _case_folder(tmp_path: Path, drop_fillet: bool) -> Path:
-    """The shipped seed-001 load case with its engine and geometry copied beside it."""
+    """The shipped single-cylinder load case with its engine and geometry copied beside it."""
     for sub, name in (
-        ("engines", "single_cylinder_seed001.toml"),
-        ("geometry", "single_cylinder_seed001.toml"),
-        ("loadcases", "single_cylinder_seed001.toml"),
+        ("engines", "single_cylinder.toml"),
+        ("geometry", "single_cylinder.toml"),
+        ("loadcases", "single_cylinder.toml"),
     ):
         (tmp_path / sub).mkdir(exist_ok=True)
         shutil.copy(ROOT / sub / name, tmp_path / sub / name)
-    geo = tmp_path / "geometry" / "single_cylinder_seed001.toml"
+    geo = tmp_path / "geometry" / "single_cylinder.toml"
     text = geo.read_text()
     if drop_fillet:
         lines = [ln for ln in text.splitlines() if not (ln.startswith("fillet_radius") and "counterweight" in ln)]
         geo.write_text("\n".join(lines) + "\n")
-    return tmp_path / "loadcases" / "single_cylinder_seed001.toml"
+    return tmp_path / "loadcases" / "single_cylinder.toml"
 
 
 def test_counterweight_stress_criterion_refuses_a_sharp_counterweight(tmp_path):
@@ -88,7 +88,7 @@ def test_counterweight_stress_criterion_refuses_a_sharp_counterweight(tmp_path):
     with pytest.raises(InputError) as exc:
         load_loadcase(case)
     assert exc.value.key == "counterweight.fillet_radius"
-    assert "single_cylinder_seed001.toml" in str(exc.value.file) and "geometry" in str(exc.value.file)
+    assert "single_cylinder.toml" in str(exc.value.file) and "geometry" in str(exc.value.file)
     assert "max_counterweight_overspeed_stress" in str(exc.value) and "singularity" in str(exc.value)
     assert main(["validate", str(case)]) == 2
 

@@ -13,7 +13,7 @@ from fe_crank.mechanism.dynamics import analyse, solve_cylinder
 from fe_crank.mechanism.gas import cylinder_volume, pressure_at, wiebe_cycle
 from fe_crank.mechanism.kinematics import piston_motion
 
-SEED_CASE = "loadcases/single_cylinder_seed001.toml"
+SEED_CASE = "loadcases/single_cylinder.toml"
 
 
 @pytest.fixture(scope="module")

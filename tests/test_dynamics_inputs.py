@@ -10,7 +10,7 @@ from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.dynamics import analyse
 
-SEED_CASE = "loadcases/single_cylinder_seed001.toml"
+SEED_CASE = "loadcases/single_cylinder.toml"
 
 
 @pytest.fixture(scope="module")

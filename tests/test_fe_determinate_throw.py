@@ -29,7 +29,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def geometry():
-    return load_geometry(ROOT / "geometry" / "single_cylinder_seed001.toml")
+    return load_geometry(ROOT / "geometry" / "single_cylinder.toml")
 
 
 @pytest.fixture(scope="module")
@@ -39,7 +39,7 @@ def solved(geometry, cache):
 
 
 def test_reactions_at_the_bearing_centres_of_the_shipped_throw(geometry, solved):
-    """geometry/single_cylinder_seed001.toml: pin 36 mm long, webs 22 mm, journals 25 mm
+    """geometry/single_cylinder.toml: pin 36 mm long, webs 22 mm, journals 25 mm
     with 4 mm fillets.  Journal_1 spans z = -(18 + 22 + 25) = -65 mm to -40 mm: half a main
     bearing (docs/geometry.md), so the main-bearing centre is the end face, -65 mm.  A unit
     pin force at z_p = 0 gives R_1 = R_2 = F (65 - 0) / 130 = 0.5 F, acting at -65 and

@@ -247,7 +247,7 @@ def test_scf_mode_against_the_ur_m53_empirical_factors(tmp_path):
     beta_T agree with the empirical formulas of UR M53 3.2/3.3 within 10 %, the scatter of
     those fits.  Mesh: fillet elements about r/2 (127 k dofs, to keep the test short); the
     appendix's binding criteria (2.3) hold at every peak, and the factors are within 3 %
-    of the r/4 (`coarse`, 497 k dofs) values measured with benchmarks/scf_table.py
+    of the r/4 (`coarse`, 497 k dofs) values measured with benchmarks/studies/scf_table.py
     (alpha_B 1.646, beta_B 1.571, alpha_T 1.670, beta_T 1.898).  beta_Q alone is a small
     difference of two large stresses (r/2: 1.67, r/4: 1.18, empirical 2.68); the journal
     fillet under the radial force as a whole, sigma_3P / sigma_N3P, is compared instead:

@@ -123,7 +123,7 @@ def shipped(tmp_path_factory):
     from fe_crank.mesh import mesh_throw
 
     return mesh_throw(
-        load_geometry(ROOT / "geometry" / "single_cylinder_seed001.toml"),
+        load_geometry(ROOT / "geometry" / "single_cylinder.toml"),
         size="test",
         cache_dir=tmp_path_factory.mktemp("meshes"),
     )

@@ -30,7 +30,7 @@ BASES = (
     sorted(ROOT.glob("loadcases/*.toml"))
     + [ROOT / "tests" / "data" / "small_pass.toml"]
     + sorted(ROOT.glob("geometry/*.toml"))
-    + [ROOT / "engines" / "single_cylinder_seed001.toml", ROOT / "engines" / "v4_90_seed003_pneumatic.toml"]
+    + [ROOT / "engines" / "single_cylinder.toml", ROOT / "engines" / "v4_90_pneumatic.toml"]
 )
 UNITS = [
     "mm",

@@ -15,7 +15,7 @@ from fe_crank.geometry.spec import CounterweightSpec
 from fe_crank.io.geometry import geometry_from_dict, load_geometry
 
 ROOT = Path(__file__).resolve().parents[1]
-SEED003 = ROOT / "geometry" / "v4_90_pneumatic_seed003.toml"
+SEED003 = ROOT / "geometry" / "v4_90_pneumatic.toml"
 
 
 def _base(**over) -> dict:
@@ -69,8 +69,8 @@ def test_geometry_section_of_a_loadcase(tmp_path):
 
     lc = tmp_path / "lc.toml"
     lc.write_text(
-        f'name = "x"\nengine = "{ROOT / "engines" / "single_cylinder_seed001.toml"}"\n'
-        f'geometry = "{ROOT / "geometry" / "single_cylinder_seed001.toml"}"\n'
+        f'name = "x"\nengine = "{ROOT / "engines" / "single_cylinder.toml"}"\n'
+        f'geometry = "{ROOT / "geometry" / "single_cylinder.toml"}"\n'
         '[operating]\nspeed = "2800 rpm"\n'
     )
     case = load_loadcase(lc, allow_outside_paths=True)  # absolute paths into the repository
@@ -296,7 +296,7 @@ def test_seed003_counterweight_sized_by_balance_stage_matches_in_cad():
     from fe_crank.balance import BalanceStrategy, size_counterweights, solve_sector
     from fe_crank.io.engine import load_engine
 
-    e = load_engine(ROOT / "engines" / "v4_90_seed003_pneumatic.toml")
+    e = load_engine(ROOT / "engines" / "v4_90_pneumatic.toml")
     planes = (-0.1085, -0.064, 0.064, 0.1085)
     design = size_counterweights(e, BalanceStrategy(1.0, 0.5, "whole_shaft", planes=planes), 300.0)
     need = design.counterweights[0].unbalance

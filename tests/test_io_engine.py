@@ -53,7 +53,7 @@ def _write(tmp_path, engine=ENGINE, case=CASE):
 
 
 def test_seed_files_load(root):
-    lc = load_loadcase(root / "loadcases/single_cylinder_seed001.toml")
+    lc = load_loadcase(root / "loadcases/single_cylinder.toml")
     e = lc.engine
     assert e.throws[0].crank_radius == pytest.approx(0.064)
     assert e.cylinders[0].rod.length == pytest.approx(0.307)
@@ -63,8 +63,8 @@ def test_seed_files_load(root):
         main(
             [
                 "validate",
-                str(root / "loadcases/single_cylinder_seed001.toml"),
-                str(root / "engines/single_cylinder_seed001.toml"),
+                str(root / "loadcases/single_cylinder.toml"),
+                str(root / "engines/single_cylinder.toml"),
             ]
         )
         == 0

@@ -246,7 +246,7 @@ def test_seed001_tables3_4_rod_motion_from_velocity_and_acceleration_plans():
     """Seed 001, tables 3 and 4 (graphical plans; the seed's table 6 puts their error at up to 5.5 %):
     rod angular velocity w2 and the centre-of-mass velocity/acceleration v_S2, a_S2 at
     positions 1..5.  The centre of mass 0.45 l from the big end is the one the plans
-    imply (engines/single_cylinder_seed001.toml)."""
+    imply (engines/single_cylinder.toml)."""
     pos = np.arange(1, 6)
     phi = np.pi + np.radians(30.0) * pos
     m = piston_motion(phi, R, L, SEED_OMEGA, rod_cg=0.138)

@@ -15,8 +15,8 @@ from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import MeshOptions, mesh_throw
 
 ROOT = Path(__file__).resolve().parents[1]
-SEED003 = ROOT / "geometry" / "v4_90_pneumatic_seed003.toml"
-SEED001 = ROOT / "geometry" / "single_cylinder_seed001.toml"
+SEED003 = ROOT / "geometry" / "v4_90_pneumatic.toml"
+SEED001 = ROOT / "geometry" / "single_cylinder.toml"
 
 BOUNDARIES = {
     "journal_1",
@@ -198,7 +198,7 @@ def test_cli_mesh_writes_statistics_and_picture(tmp_path, capsys):
     # the 180-deg sector of seed 003, 0.8872 kg, plus the material of its two 4 mm transition
     # fillets to the web (0.8 g, tests/test_counterweight_fillet.py checks such fills in closed form)
     assert "counterweight_1: mass 0.888 kg" in out and "P2 DOFs" in out
-    png = tmp_path / "out" / "v4_90_pneumatic_seed003_throw1.png"
+    png = tmp_path / "out" / "v4_90_pneumatic_throw1.png"
     assert png.exists() and png.stat().st_size > 10_000
     from PIL import Image
 

@@ -22,7 +22,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 from test_geometry import _base
 
 ROOT = Path(__file__).resolve().parents[1]
-SEED001 = ROOT / "geometry" / "single_cylinder_seed001.toml"
+SEED001 = ROOT / "geometry" / "single_cylinder.toml"
 SYM = dataclasses.replace(PRESETS["test"], symmetric=True)
 ONE = Functional(lambda w: 1.0 + 0.0 * w.x[0])
 

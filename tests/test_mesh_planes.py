@@ -102,9 +102,9 @@ def test_oblique_bore_and_one_sided_counterweight_leave_no_plane():
     "name, planes",
     [
         # bore at 90 deg (along x), equal counterweights on both webs of every throw
-        ("single_cylinder_seed001.toml", {"1": (0, 2)}),
+        ("single_cylinder.toml", {"1": (0, 2)}),
         # no bore, four equal 180-deg counterweights
-        ("v4_90_pneumatic_seed003.toml", {"1": (0, 2), "2": (0, 2)}),
+        ("v4_90_pneumatic.toml", {"1": (0, 2), "2": (0, 2)}),
         # bore at 90 deg; bolted counterweights on both webs of throws 1 and 4, the shaft-wide ones on 2 and 3
         ("inline4.toml", {"1": (0, 2), "2": (0, 2), "3": (0, 2), "4": (0, 2)}),
     ],
@@ -130,6 +130,6 @@ def test_meshes_are_mirrored_across_the_mid_plane_only():
     fillets' hot spots)."""
     from fe_crank.mesh.planes import mesh_planes
 
-    g = load_geometry(ROOT / "geometry" / "single_cylinder_seed001.toml")
+    g = load_geometry(ROOT / "geometry" / "single_cylinder.toml")
     assert symmetry_planes(g) == (0, 2)
     assert mesh_planes(g) == (2,)

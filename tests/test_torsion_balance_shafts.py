@@ -81,7 +81,7 @@ def test_placements_that_cannot_cancel_are_refused(second_order, positions, reas
 
 
 def test_crank_pair_must_stay_on_the_crank_axis():
-    e = engine("v4_90_seed003_base.toml")
+    e = engine("v4_90_base.toml")
     with pytest.raises(InputError, match="counterweight pair on the crankshaft"):
         balance_shafts(free_forces(e, W), "couple", 1, sources=("reciprocating",), positions=[(0.05, 0.0), (0.0, 0.1)])
 

@@ -10,7 +10,7 @@ first-order force.  A line oscillation ``m_j R omega^2 cos phi`` is the sum of a
 co-rotating and a counter-rotating vector of ``m_j R omega^2 / 2`` each; a counterweight
 ``f_rec m_j R`` removes ``2 f_rec`` of the co-rotating one.  With ``f_rec = 1/2`` a V90
 pin (whose first order is purely co-rotating) and a radial star (``P = P_omega + (i/2) P_I``,
-seed 000 eq. 160-161) are balanced completely.
+Liventsev eq. 160-161) are balanced completely.
 
 * ``per_throw``: each throw carries its own ``U_t``, split equally between its webs
   (planes ``z_t +- web_offset``): every throw is balanced in itself (no internal couple).
@@ -19,7 +19,7 @@ seed 000 eq. 160-161) are balanced completely.
   ``z_i``, ``U_i = A + sgn(z_i - z_mean) B``: a common part and an antisymmetric part,
   two complex unknowns from ``sum U_i = -S`` and ``sum z_i U_i = -M``.  With two planes
   this is the classical two-plane balance; with symmetric planes it gives equal
-  counterweights, as in seed 003 (four equal counterweights at the outer and inner webs:
+  counterweights, as in Voronkov's V4-90 pneumatic engine (four equal counterweights at the outer and inner webs:
   ``m r_c (L1 + L2) = (m_A + m_B) R l``).
 """
 
@@ -108,14 +108,14 @@ def _wrap(angle: float) -> float:
 
 
 def counterweight_mass(force: float, radius: float, omega: float) -> float:
-    """``m_pr = P / (r_pr omega^2)`` (seed 000, eq. 161)."""
+    """``m_pr = P / (r_pr omega^2)`` (Liventsev, eq. 161)."""
     if not (radius > 0.0 and omega > 0.0):
         raise InputError("counterweight radius and speed must be positive", key="balance")
     return force / (radius * omega**2)
 
 
 def radial_counterweight_mass(engine: Engine, throw: str, speed: float, radius: float) -> float:
-    """Radial engine: ``P = P_omega + (i/2) P_I``, ``m_pr = P / (r_pr omega^2)`` (seed 000, eq. 158-161)."""
+    """Radial engine: ``P = P_omega + (i/2) P_I``, ``m_pr = P / (r_pr omega^2)`` (Liventsev, eq. 158-161)."""
     t = engine.throw(throw)
     cyls = [c for c in engine.cylinders if c.throw == throw]
     p_rot = rotating_mass(engine, throw) * t.crank_radius * speed**2

@@ -20,7 +20,7 @@ Sources:
 * ``reciprocating``: ``m_j x''`` along each cylinder axis from the exact piston motion,
   split into orders by ``fe_crank.balance.harmonics`` (all orders up to ``kmax`` are kept,
   so their sum is the exact force to spectral accuracy);
-* ``yoke``: the Nordberg synchronising yoke where the engine has one (seed 000, eq. 162-164).
+* ``yoke``: the Nordberg synchronising yoke where the engine has one (Liventsev, eq. 162-164).
 """
 
 from __future__ import annotations

@@ -1,13 +1,13 @@
 """Hodograph of a harmonic plane vector: ellipse, tilt, co- and counter-rotating parts.
 
-A resultant of order ``k`` written as (Liventsev, seed 000, eqs. 152-157 and 112-117)::
+A resultant of order ``k`` written as (Liventsev, engines with complex kinematic schemes, eqs. 152-157 and 112-117)::
 
     Fx = a cos k theta + b sin k theta
     Fy = c cos k theta + d sin k theta
 
 traces an ellipse.  With ``B = ac + bd``, ``C = a^2 + b^2``, ``A = c^2 + d^2`` the
 principal axes are tilted from ``+x`` (towards ``+y``) by ``delta`` with
-``tan 2 delta = 2 B / (C - A)`` (seed 000, eqs. 112-114, 125; the tests use it as the
+``tan 2 delta = 2 B / (C - A)`` (Liventsev, eqs. 112-114, 125; the tests use it as the
 independent check).  The package takes the other route: the vector is the sum of a
 co-rotating vector (turning with the reference shaft, i.e. in the positive angle sense of
 ``fe_crank.model``) and a counter-rotating one; their lengths ``p`` and ``q`` give the
@@ -30,7 +30,7 @@ class Hodograph:
     ``kind`` is ``"zero"`` (no resultant), ``"line"`` (a straight-line oscillation,
     minor axis zero), ``"circle"`` (a pure rotating vector) or ``"ellipse"``.
     ``tilt`` is the angle of the major axis from ``+x`` towards ``+y`` (rad, in
-    ``(-pi/2, pi/2]``), i.e. the seed's delta.  ``co_magnitude`` / ``counter_magnitude``
+    ``(-pi/2, pi/2]``), i.e. Liventsev's delta.  ``co_magnitude`` / ``counter_magnitude``
     are the lengths of the co- and counter-rotating vectors and ``co_angle`` /
     ``counter_angle`` their directions at ``theta = 0`` in the engine's angle
     convention (from ``+y`` towards ``+x``).
@@ -92,7 +92,7 @@ def hodograph(a: float, b: float, c: float, d: float) -> Hodograph:
     else:
         kind = "ellipse"
     # major axis direction: where P e^{ikt} and Q e^{-ikt} line up, angle (arg P + arg Q)/2
-    # measured from +y towards +x; convert to the seed's angle from +x towards +y.
+    # measured from +y towards +x; convert to Liventsev's angle from +x towards +y.
     if kind in ("zero", "circle"):
         tilt = 0.0
     else:

@@ -1,7 +1,7 @@
 """Nordberg radial engine: inertia of the synchronising yoke and its rocker counterweights.
 
-Seed 000 (Liventsev, sec. 21, eqs. 162-166, example 16).  The yoke's centre of mass
-circles with the crank at the mean radius ``R_cp`` and oscillates along its axis
+Liventsev, engines with complex kinematic schemes, sec. 21, eqs. 162-166, example 16.  The
+yoke's centre of mass circles with the crank at the mean radius ``R_cp`` and oscillates along its axis
 ``zz`` with the half-stroke ``S/2 = l_ya sin(beta_max)`` (eq. 163), harmonically at the
 crank speed, so (eq. 162, 164)::
 
@@ -10,7 +10,7 @@ crank speed, so (eq. 162, 164)::
 
 Example 16: ``l_ya = 0.176 m``, ``beta_max = 14 deg 44 min``, ``m_ya = 100 kg``,
 ``omega^2 = 1740 s^-2``, ``R_cp = 0.2035 m`` -> ``S/2 = 45 mm``, ``P'_ya = 7.83 kN``,
-``P_omega_ya = 35.4 kN`` (the seed rounds ``S/2`` to 45 mm before multiplying; with the
+``P_omega_ya = 35.4 kN`` (Liventsev rounds ``S/2`` to 45 mm before multiplying; with the
 unrounded 44.76 mm the force is 7.79 kN).  The rocker counterweights cancel the yoke's
 pull on the rocker pins by the lever rule ``P_omega_pr l' = P_omega_ya l''`` (eq. 166).
 """

@@ -5,10 +5,10 @@ angle ``a``, density ``rho``), symmetric about its mid-line:
 
 * mass ``m = rho b (a/2) (r1^2 - r2^2)``;
 * centroid radius ``r_c = (2 sin(a/2) / (3 a/2)) (r1^3 - r2^3)/(r1^2 - r2^2)``
-  (for ``a = 180 deg`` this is ``4/(3 pi) (r1^3 - r2^3)/(r1^2 - r2^2)``; seed 003, fig. 4);
+  (for ``a = 180 deg`` this is ``4/(3 pi) (r1^3 - r2^3)/(r1^2 - r2^2)``; Voronkov, fig. 4);
 * unbalance ``U = m r_c = (2/3) rho b sin(a/2) (r1^3 - r2^3)``.
 
-Seed 003 (Voronkov): ``r1 = 71``, ``r2 = 32 mm``, ``b = 19 mm``, 180 deg, 7400 kg/m^3 ->
+Voronkov's V4-90 pneumatic engine: ``r1 = 71``, ``r2 = 32 mm``, ``b = 19 mm``, 180 deg, 7400 kg/m^3 ->
 ``m = 0.887 kg`` at ``r_c = 34.3 mm``.
 
 The inverse (``solve_sector``) solves ``U`` for one free dimension in closed form:

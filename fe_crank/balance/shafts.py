@@ -1,7 +1,8 @@
-"""Balance shafts for one free component (seed 002, Lanchester-type balancers).
+"""Balance shafts for one free component (Lanchester-type balancers).
 
-Rules of seed 002: shafts for first-order forces or couples turn at ``+-omega``, for
-second order at ``+-2 omega``.  A force needs two shafts turning in opposite senses,
+Rules (after "Concluding remarks on the use of balance shafts for balancing IC engines",
+a Russian engine-design text): shafts for first-order forces or couples turn at
+``+-omega``, for second order at ``+-2 omega``.  A force needs two shafts turning in opposite senses,
 parallel to the crank axis and symmetric about it, their counterweights in the plane of
 the force (for a straight-line force both unbalances are equal).  A first-order couple
 needs one shaft carrying a pair of opposed unbalances, the other pair sitting on the
@@ -17,7 +18,7 @@ and ``psi0 = arg(-P)``.  For a couple, a pair ``+U`` at ``z1``, ``-U`` at ``z2``
 ``U e^{i psi0} = -i P_M / (L (k omega)^2)``.
 
 Free placement: ``positions`` puts each shaft's axis anywhere in the cross-section
-(seed 002 allows the second-order pair at different heights).  The force of a shaft is
+(that text allows the second-order pair at different heights).  The force of a shaft is
 a free vector, so any placement cancels the force; what placement adds is the moment
 about the crank axis of forces acting on offset lines, ``M_z = sum (x_i F_y,i - y_i F_x,i)``.
 For a straight-line force along ``y`` the two shafts' ``x`` components cancel as forces
@@ -155,7 +156,7 @@ def balance_shafts(
         on_crank = component == "couple" and order == 1 and rel == 1
         if on_crank:
             pos = (0.0, 0.0)
-            constraint = "counterweight pair on the crankshaft (seed 002: one balance shaft plus a crank pair)"
+            constraint = "counterweight pair on the crankshaft (one balance shaft plus a crank pair)"
         name = f"{component}{order}_{'crank' if on_crank else ('plus' if rel > 0 else 'minus')}"
         designs.append((BalanceShaft(name, rel, abs(u), cmath.phase(u), z, pos, on_crank, constraint), sense))
     if positions is not None:

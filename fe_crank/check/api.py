@@ -1,7 +1,7 @@
 """The Python API in three calls, for notebooks and scripts.
 
     import fe_crank
-    lc = fe_crank.load_case("loadcases/single_cylinder_seed001.toml")
+    lc = fe_crank.load_case("loadcases/single_cylinder.toml")
     results = fe_crank.run_check("loadcases/", output="reports/", mesh_size="test")
     results[0].status, results[0].worst, results[0].folder
 

@@ -15,9 +15,9 @@ from skfem import Basis, FacetBasis
 from fe_crank.fe.forms import lame_parameters
 
 # Hand-written rather than the weak form because measured faster: 27x skfem asm(linear_elasticity)
-# (512 curved P2 tets, 2499 dofs, best of 3 in one run, load average 6; benchmarks/assembly_ratio.py),
+# (512 curved P2 tets, 2499 dofs, best of 3 in one run, load average 6, when it replaced asm),
 # same K to 4e-16.  The block pattern by a packed sort (``unique_inverse``) instead of np.unique:
-# 4.1 -> 3.1 CPU s for the whole kernel on the coarse seed-001 throw (114k elements, best of 3), K
+# 4.1 -> 3.1 CPU s for the whole kernel on the coarse single-cylinder throw (114k elements, best of 3), K
 # bit for bit the same.  Not taken: a kernel of the blocks a <= b only, mirrored (2.8 CPU s, K
 # exactly symmetric): it moves K by 3e-16 and the shipped figures by up to 5e-12.
 CHUNK = 20000  # elements per einsum chunk: ~60 MB of element matrices

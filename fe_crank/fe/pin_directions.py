@@ -6,9 +6,9 @@ built from the unit cases of the two neighbouring directions that bracket it,
 F = a e_k + b e_(k+1) with a, b >= 0 (sine rule), which is exact for the resultant and,
 with directions 30 deg apart, close to one arc centred on F.  With the four axis
 directions only (the first design) the two arcs are 90 deg apart and the von Mises
-stress at the crankpin fillets of the seed-001 throw differed from one arc on the
-resultant by up to 10 % (benchmarks/cycle_bench.py); with 12 directions the
-difference is given in docs/performance.md.  The superposed cycle is exact for this
+stress at the crankpin fillets of the shipped single-cylinder throw differed from one arc
+on the resultant by up to 10 %; with 12 directions the difference is given in
+docs/performance.md (``benchmarks/perf/run.py``, stage ``cycle``).  The superposed cycle is exact for this
 load model (piecewise linear in F), and a direct solve of the same model agrees with it
 to round-off.
 

@@ -2,7 +2,7 @@
 
 An engine file looks like::
 
-    name = "Single-cylinder four-stroke (seed 001)"
+    name = "Single-cylinder four-stroke engine"
     strokes = 4
 
     [[throws]]
@@ -109,7 +109,7 @@ class CylinderInput(Strict):
 
 
 class YokeInput(Strict):
-    """Nordberg synchronising yoke (seed 000, example 16); see ``fe_crank.model.Yoke``."""
+    """Nordberg synchronising yoke (Liventsev, example 16); see ``fe_crank.model.Yoke``."""
 
     mass: Mass
     orbit_radius: Length

@@ -2,7 +2,7 @@
 
 ::
 
-    name = "V4 90 deg pneumatic engine crank, seed 003"
+    name = "V4 90 deg pneumatic engine crank"
     density = "7400 kg/m^3"
     crank_radius = "33 mm"          # or: stroke = "66 mm"
     require_overlap = false         # true: refuse a pin that does not overlap the journal

@@ -3,7 +3,7 @@
 ::
 
     name = "single-cylinder at rated speed"
-    engine = "../engines/single_cylinder_seed001.toml"   # or an inline [engine] table
+    engine = "../engines/single_cylinder.toml"   # or an inline [engine] table
 
     [operating]
     speed = "2800 rpm"

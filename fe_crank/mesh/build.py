@@ -46,7 +46,7 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
         gmsh.option.setNumber("Mesh.Optimize", 1)
         gmsh.option.setNumber(
             "Mesh.OptimizeNetgen", 1
-        )  # removes most boundary slivers (seed-001 coarse: 3866 -> 98 elements with Jacobian ratio < 0.1)
+        )  # removes most boundary slivers (single-cylinder throw, coarse: 3866 -> 98 elements with Jacobian ratio < 0.1)
         gmsh.option.setNumber("Mesh.ElementOrder", 1)
         try:
             gmsh.model.mesh.generate(3)

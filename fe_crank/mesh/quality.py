@@ -46,11 +46,11 @@ def _straighten_poor(gmsh, throw_name: str, threshold: float = STRAIGHTEN_BELOW,
     of the order of the sagitta): its Jacobian falls to ~1e-3 of its maximum at a corner.
     The displacement solution barely notices, but stresses evaluated at such a corner
     (the nodal stresses the assessment reads) are extrapolations that overshoot by
-    10-100x; on the seed-001 throw 3.6 % of the elements were like that.  Elements with
+    10-100x; on the shipped single-cylinder throw 3.6 % of the elements were like that.  Elements with
     gmsh ``minSJ <= threshold`` are therefore made straight-sided, which is valid whenever
     the linear tetrahedron is (checked before); the geometric error is the sagitta
     ``h^2 / (8 r)`` of their curved edges (0.5 % of r at the r/4 fillet rule).  Measured
-    on the seed-001 throw (coarse): peak fillet stresses within 2 % of gmsh's high-order
+    on the single-cylinder throw (coarse): peak fillet stresses within 2 % of gmsh's high-order
     optimiser, at a fraction of its time.  Returns the number of elements changed.
     """
     changed: set[int] = set()

@@ -8,7 +8,7 @@ largest von Mises stress at the counterweight and junction nodes at ``--speed`` 
 where it is.  A stress that keeps growing as ``--corner-size`` shrinks is a singular
 (sharp re-entrant) edge; one that settles is a resolvable concentration.
 
-    python benchmarks/counterweight_hotspot.py geometry/single_cylinder_seed001.toml \
+    python benchmarks/studies/counterweight_hotspot.py geometry/single_cylinder.toml \
         --preset test --corner-size 1 --speed "3360 rpm"
 """
 

@@ -6,9 +6,9 @@ too long per mutant).  A mutant is *killed* when a test fails, *survived* otherw
 `timeout` counts as killed (the mutant made a test hang).  The score per module is
 killed / (killed + survived); docs/testing.md records the last run and every survivor.
 
-    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py            # all modules
-    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/mutation.py kinematics # one module
-    ... benchmarks/mutation.py kinematics --only 'fe_crank.mechanism.kinematics.x_piston_motion__mutmut_*'
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python tools/mutation.py            # all modules
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python tools/mutation.py kinematics # one module
+    ... tools/mutation.py kinematics --only 'fe_crank.mechanism.kinematics.x_piston_motion__mutmut_*'
 
 Needs `pip install mutmut` (>= 3) in the venv.  One worker (`--max-children 1`) by default:
 the machine is shared.

@@ -1,6 +1,6 @@
 """beta_Q of the SCF mode (UR M53 App. III 3.3.3, method 1): how well is it defined?
 
-    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/beta_q_study.py tests/data/geometry_small.toml \
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/studies/beta_q_study.py tests/data/geometry_small.toml \
         --journal 12 24 --preset coarse        # or --fillet-divisions 2 (r/2, faster)
 
 The same throw solved with two journal lengths, i.e. two levers L from the main-bearing

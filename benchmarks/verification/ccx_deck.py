@@ -93,7 +93,7 @@ def write_deck(path: Path, units, loads: dict[str, np.ndarray], output_nodes: np
     conn = c3d10_connectivity(sys_.basis.element_dofs, x)
     out = [
         "*HEADING",
-        "fe-crank throw model (benchmarks/calculix_compare.py)",
+        "fe-crank throw model (benchmarks/verification/calculix_compare.py)",
         "*NODE, NSET=NALL",
         _lines(np.column_stack([np.arange(1, N + 1), x.T]), "%d, %.13e, %.13e, %.13e"),
     ]

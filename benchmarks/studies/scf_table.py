@@ -1,6 +1,6 @@
 """SCF mode (UR M53 FE appendix) beside the UR M53 empirical SCFs, for geometry files.
 
-    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/scf_table.py geometry/*.toml --preset coarse
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/studies/scf_table.py geometry/*.toml --preset coarse
 
 For each geometry: its first throw meshed with ``mesh_throw`` (``--preset``; ``coarse`` or
 finer keeps fillet elements <= r/4 as the appendix asks), the three appendix cases solved,
@@ -72,7 +72,7 @@ def main() -> None:
         share = side["beta_Q"] * side["sigma_Q3P"] / side["sigma_3P"]
         print(
             f"  shear part beta_Q sigma_Q3P of sigma_3P: {100 * share:.1f} %, so a relative change of sigma_3P "
-            f"moves method 1's beta_Q {1 / share:.1f} times as much (benchmarks/beta_q_study.py)"
+            f"moves method 1's beta_Q {1 / share:.1f} times as much (benchmarks/studies/beta_q_study.py)"
         )
         print(f"  equilibrium {max(r.equilibrium_error.values()):.1e}; {r.summary()}")
 

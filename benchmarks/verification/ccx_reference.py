@@ -1,7 +1,7 @@
 """Which nodal recovery is nearer the converged stress: fe-crank's or CalculiX's, as the
 fillet elements are refined.
 
-    .venv/bin/python benchmarks/ccx_reference.py --fillet-divisions 1 1.5 2 --json ref.json
+    .venv/bin/python benchmarks/verification/ccx_reference.py --fillet-divisions 1 1.5 2 --json ref.json
 
 For each refinement f (fillet element edge r / f, 6 f elements round the oil bore per pi;
 the bulk of the ``test`` preset: coarse divisions 1.5, grading 2.0; f = 1 is the
@@ -66,7 +66,7 @@ def level(loadcase: str, f: float) -> dict:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--loadcase", default="loadcases/single_cylinder_seed001.toml")
+    ap.add_argument("--loadcase", default="loadcases/single_cylinder.toml")
     ap.add_argument("--fillet-divisions", nargs="+", type=float, default=[1.0, 1.5, 2.0])
     ap.add_argument("--json", default=None, help="append the result to this file")
     ap.add_argument("--worker", type=float, help=argparse.SUPPRESS)

@@ -1,7 +1,7 @@
 """fe-crank against CalculiX on the same mesh and model: wall time, peak memory, answers.
 
-    .venv/bin/python benchmarks/calculix_compare.py --preset test
-    .venv/bin/python benchmarks/calculix_compare.py --preset medium --sets one all --ccx-sets one --json bench.json
+    .venv/bin/python benchmarks/verification/calculix_compare.py --preset test
+    .venv/bin/python benchmarks/verification/calculix_compare.py --preset medium --sets one all --ccx-sets one --json bench.json
 
 For one unit case (``pin_y``, set ``one``) and for all unit cases of the FE stage (set
 ``all``), each code runs in a process of its own (peak memory = that process's maximum
@@ -278,7 +278,7 @@ SETS = ("one", "all")
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--loadcase", default="loadcases/single_cylinder_seed001.toml")
+    ap.add_argument("--loadcase", default="loadcases/single_cylinder.toml")
     ap.add_argument("--preset", default="test")
     ap.add_argument("--work", default=None, help="folder for decks and results (default .cache/ccx_<preset>)")
     ap.add_argument("--threads", type=int, default=2)

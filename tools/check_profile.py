@@ -7,8 +7,8 @@ VmRSS sampled every 50 ms by a thread, and the process's ``ru_maxrss``).  Option
 ``--profile FILE`` writes a cProfile of the whole run (read it with ``pstats``),
 ``--top N`` prints the N most expensive functions by cumulative time.
 
-    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/check_profile.py \
-        loadcases/single_cylinder_seed001.toml --preset coarse [--json out.json]
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python tools/check_profile.py \
+        loadcases/single_cylinder.toml --preset coarse [--json out.json]
 """
 
 from __future__ import annotations
