@@ -136,12 +136,12 @@ def _unit_loads(units, density: float) -> dict[str, np.ndarray]:
 
 def cycle(loadcase: str, preset: str, cache: str, solver: str, angles: int) -> dict:
     from fe_crank.assess import unit_stresses
-    from fe_crank.assess.case import assess_throw
     from fe_crank.assess.stress import von_mises
     from fe_crank.assess.superpose import load_coefficients, stress_history
-    from fe_crank.dynamics import analyse
+    from fe_crank.assess.throw import assess_throw
     from fe_crank.fe import solve_unit_cases
     from fe_crank.fe.loads import pin_pressure_load
+    from fe_crank.mechanism.dynamics import analyse
     from fe_crank.mesh import mesh_throw
 
     lc = _case(loadcase)
@@ -245,8 +245,9 @@ def fatigue(nodes: int, repeat: int, threads: int) -> dict:
 def _group_on_threads(n: int, repeat: int, threads: int) -> dict:
     """One group of ``n`` synthetic nodes assessed (superposition, static, both fatigue
     criteria, overspeed peak) on 1 and on ``threads`` threads (``assess.workers``)."""
+    from fe_crank.assess import workers
+    from fe_crank.assess.group import assess_group
     from fe_crank.assess.superpose import UnitStresses, load_coefficients
-    from fe_crank.assess.throw import assess_group
     from fe_crank.fe.unit_cases import CASES
     from fe_crank.io.material import load_material
 
@@ -266,17 +267,17 @@ def _group_on_threads(n: int, repeat: int, threads: int) -> dict:
     mat = load_material("42CrMo4")
 
     def run(k):
-        return assess_group(
-            us,
-            "journal_fillet_1",
-            co,
-            th,
-            mat,
-            crank_radius=0.0,
-            overspeed=330.0,
-            overspeed_coefficients=1.3 * co,
-            threads=k,
-        )
+        with workers.threads(k):
+            return assess_group(
+                us,
+                "journal_fillet_1",
+                co,
+                th,
+                mat,
+                crank_radius=0.0,
+                overspeed=330.0,
+                overspeed_coefficients=1.3 * co,
+            )
 
     w1, c1, one = _best(lambda: run(1), repeat)
     wn, cn, many = _best(lambda: run(threads), repeat)

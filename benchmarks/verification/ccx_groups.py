@@ -7,7 +7,7 @@ sigma_v,fe-crank| over the group's nodes relative to the group's largest fe-cran
 
 Over the cycle (all unit cases): each code's unit stresses superposed with the check's
 own coefficients (``superpose.load_coefficients``, the overspeed cycles of
-``assess.overspeed``) and assessed by the check's ``assess.group.assess_group``: the
+``mechanism.cycles``) and assessed by the check's ``assess.group.assess_group``: the
 static and overspeed peak sigma_v and the Goodman safety of each group, at the node the
 check reports (fe-crank's) and at each code's own worst node.  A third recovery,
 CalculiX's reproduced on fe-crank's displacements (``ccx_recovery``), shows that the
@@ -77,15 +77,15 @@ def throw_cycles(loadcase_path: str, unit) -> dict:
     """Per throw of the load case: the check's coefficients and arguments of ``assess_group``
     (the lines of ``assess_case`` / ``assess_throw`` that build them)."""
     from fe_crank.assess.adapters import m53_geometry_of
-    from fe_crank.assess.overspeed import overspeed_cycles
     from fe_crank.assess.superpose import load_coefficients
     from fe_crank.io.loadcase import load_loadcase
+    from fe_crank.mechanism.cycles import overspeed_cycles
     from fe_crank.mechanism.dynamics import analyse
 
     lc = load_loadcase(loadcase_path)
     dyn = analyse(lc.engine, lc.operating)
     omega, os_ = lc.operating.speed, lc.operating.overspeed
-    cyc = overspeed_cycles(lc, dyn)
+    cyc = overspeed_cycles(lc.engine, lc.operating, dyn)
     m53g = m53_geometry_of(lc.geometry)
     out = {}
     for tname, tl in dyn.throws.items():
