@@ -27,6 +27,7 @@ from fe_crank.io.base import Strict, input_root, read_toml, validate
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
 from fe_crank.io.sections import SECTIONS
+from fe_crank.io.torsion import check_torsion_engine
 from fe_crank.io.units import Speed
 
 
@@ -84,6 +85,8 @@ def _load(path: Path) -> model.LoadCase:
         require_counterweight_fillets(
             sections.get("geometry"), [lim.quantity for lim in sections["criteria"].limits], path
         )
+    if sections.get("torsion") is not None:
+        check_torsion_engine(sections["torsion"], engine, path)
     extras = {k: v for k, v in sections.items() if k not in ("geometry", "material", "criteria", "fe", "balance")}
     return model.LoadCase(
         name=head.name,

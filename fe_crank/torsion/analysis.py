@@ -121,7 +121,7 @@ def analyse_torsion(
     top = 12.0 if loadcase.engine.strokes == 4 else 15.0
     orders = harmonics.orders[(harmonics.orders > 0) & (harmonics.orders <= top + 1e-9)]
     res_list = []
-    for r, w in enumerate(modes.omega[1:], start=1):
+    for r, w in enumerate(modes.elastic_omega, start=1):
         for n in orders:
             res_list.append(Resonance(r, float(n), float(w / (2 * np.pi)), float(w / n), bool(lo <= w / n <= hi)))
     speeds = speed_grid(lo, hi, settings.speed_steps, op, [x.speed for x in res_list])
@@ -130,10 +130,9 @@ def analyse_torsion(
     theta = harmonics.cycle * np.arange(n_theta) / n_theta  # the grid of fe_crank.dynamics
     half = np.zeros((speeds.size, model.size - 1))
     vib_half = np.zeros_like(half)
-    stiff = {
-        "used": settings.throw_stiffness,
-        "carter": carter_throw_stiffness(loadcase.geometry, shear_modulus(loadcase.material)),
-    }
+    stiff = {"used": settings.throw_stiffness}
+    if settings.model == "cad":
+        stiff["carter"] = carter_throw_stiffness(loadcase.geometry, shear_modulus(loadcase.material))
     if fe_stiffness is not None:
         stiff["fe"] = fe_stiffness
     qs = []
@@ -145,7 +144,8 @@ def analyse_torsion(
             per_mass[model.throw_mass[throw]] += np.real(ph @ part[cyl][kept])
         qs.append(np.cumsum(per_mass, axis=0)[:-1])
     i_op = int(np.argmin(np.abs(speeds - op)))
-    vel = response.velocity_synthesis(i_op, theta)[model.names.index("flywheel")]
+    fly = "flywheel" if settings.model == "cad" else settings.flywheel_station
+    vel = response.velocity_synthesis(i_op, theta)[model.names.index(fly)]
     fluct = float((vel.max() - vel.min()) / op)
     result = TorsionResult(
         model,
