@@ -82,19 +82,6 @@ class TorsionResult:
         i = self.model.throw_mass[throw]
         return i - 1, i
 
-    def vibratory_journal_torque(self, throw: str) -> tuple[np.ndarray, np.ndarray, float, float]:
-        """Vibratory torque (front, rear) of a throw's journals over ``theta`` and the speeds
-        (rad/s) it is taken at: the operating speed, or (``assess_speed = "governing"``)
-        per journal the speed of the range where its total M_TN is largest."""
-        out = []
-        for seg in self.journal_segments(throw):
-            if seg < 0:
-                out.append((np.zeros_like(self.theta), self.operating_speed))
-                continue
-            s = self.index(self.operating_speed) if self.assess_speed == "operating" else self.governing(seg)
-            out.append((self.vibratory(s)[seg], float(self.response.speeds[s])))
-        return out[0][0], out[1][0], out[0][1], out[1][1]
-
 
 def speed_grid(lo: float, hi: float, steps: int, operating: float, resonances: list[float]) -> np.ndarray:
     grid = np.linspace(lo, hi, steps)
@@ -175,12 +162,21 @@ def analyse_torsion(
 
 def with_vibratory_torque(dynamics, result: TorsionResult):
     """A copy of the dynamics stage's result whose journal torques (``torque_front``,
-    ``torque_rear`` of every throw) are quasi-static + vibratory over the same cycle
-    grid: what the FE torque unit case and the UR M53 nominal torsional stress take."""
+    ``torque_rear`` of every throw) are the torsional stage's histories of those journals
+    (``fe_crank.torsion.handover.journal_torques``: one synthesis, quasi-static and
+    vibratory at one speed, the largest of the range), over the same cycle grid: what the
+    FE torque unit case and the UR M53 nominal torsional stress take.  A journal at the
+    free end (no segment in front of or behind the throw) keeps the dynamics stage's torque."""
+    from fe_crank.torsion.handover import journal_torques
+
     if not np.allclose(dynamics.theta, result.theta):
         raise ValueError("the torsional synthesis and the dynamics stage use different angle grids")
+    handed = journal_torques(result)
+    names = result.model.segment_names
     throws = {}
     for name, tl in dynamics.throws.items():
-        front, rear, _, _ = result.vibratory_journal_torque(name)
-        throws[name] = dataclasses.replace(tl, torque_front=tl.torque_front + front, torque_rear=tl.torque_rear + rear)
+        front, rear = result.journal_segments(name)
+        tf = handed[names[front]].history if front >= 0 else tl.torque_front
+        tr = handed[names[rear]].history if rear < len(names) else tl.torque_rear
+        throws[name] = dataclasses.replace(tl, torque_front=tf, torque_rear=tr)
     return dataclasses.replace(dynamics, throws=throws)
