@@ -23,6 +23,7 @@ from pydantic import Field, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
+from fe_crank.fe.input import check_torque_reaction
 from fe_crank.io.base import Strict, input_root, read_toml, validate
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
@@ -87,6 +88,8 @@ def _load(path: Path) -> model.LoadCase:
         )
     if sections.get("torsion") is not None:
         check_torsion_engine(sections["torsion"], engine, path)
+    if sections.get("fe") is not None:
+        check_torque_reaction(sections["fe"], engine, path)
     extras = {k: v for k, v in sections.items() if k not in ("geometry", "material", "criteria", "fe", "balance")}
     return model.LoadCase(
         name=head.name,
