@@ -17,9 +17,8 @@ that no stage knows is an error.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Literal
 
-from pydantic import Field, model_validator
+from pydantic import Field
 
 from fe_crank import model
 from fe_crank.errors import InputError
@@ -27,23 +26,9 @@ from fe_crank.fe.input import check_torque_reaction
 from fe_crank.io.base import Strict, input_root, read_toml, validate
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
+from fe_crank.io.operating import parse_operating
 from fe_crank.io.sections import SECTIONS
 from fe_crank.io.torsion import check_torsion_engine
-from fe_crank.io.units import Speed
-
-
-class OperatingInput(Strict):
-    speed: Speed
-    overspeed: Speed | None = None
-    overspeed_gas: Literal["motored", "as_operating"] = "motored"  # gas load at the overspeed
-
-    @model_validator(mode="after")
-    def _check(self):
-        if not self.speed > 0:
-            raise ValueError(f"speed must be positive (got {self.speed} rad/s)")
-        if self.overspeed is not None and self.overspeed < self.speed:
-            raise ValueError("overspeed must not be below the operating speed")
-        return self
 
 
 class LoadCaseHead(Strict):
@@ -77,7 +62,7 @@ def _load(path: Path) -> model.LoadCase:
     if "operating" not in data:
         raise InputError("required key is missing", file=str(path), key="operating")
     engine = engine_from_reference(data["engine"], path)
-    op = validate(OperatingInput, data["operating"], path, "operating")
+    engine, operating = parse_operating(data["operating"], engine, path)
     sections = {}
     for key, parser in SECTIONS.items():
         if key in data:
@@ -96,7 +81,7 @@ def _load(path: Path) -> model.LoadCase:
         source_file=str(path),
         description=head.description,
         engine=engine,
-        operating=model.OperatingPoint(op.speed, op.overspeed, op.overspeed_gas),
+        operating=operating,
         geometry=sections.get("geometry"),
         material=sections.get("material"),
         criteria=sections.get("criteria"),

@@ -90,9 +90,17 @@ def speed_grid(lo: float, hi: float, steps: int, operating: float, resonances: l
 
 
 def analyse_torsion(
-    loadcase, *, settings=None, inertias=None, fe_stiffness: float | None = None, step: float = np.radians(1.0)
+    loadcase,
+    *,
+    settings=None,
+    inertias=None,
+    fe_stiffness: float | None = None,
+    step: float = np.radians(1.0),
+    harmonics: CylinderHarmonics | None = None,
 ) -> TorsionResult:
-    """Run the torsional stage of ``loadcase`` (its ``[torsion]`` section, or ``settings``)."""
+    """Run the torsional stage of ``loadcase`` (its ``[torsion]`` section, or ``settings``);
+    ``harmonics``: the cylinders' torque harmonics when not those of the engine (a
+    misfire, ``fe_crank.torsion.misfire``)."""
     settings = settings or loadcase.extras.get("torsion")
     if settings is None:
         raise InputError("the load case has no [torsion] section", file=loadcase.source_file, key="torsion")
@@ -104,7 +112,7 @@ def analyse_torsion(
         )
     model = build_model(loadcase, settings, inertias=inertias, fe_stiffness=fe_stiffness)
     modes = natural_modes(model)
-    harmonics = cylinder_harmonics(loadcase.engine, op, step=step)
+    harmonics = harmonics or cylinder_harmonics(loadcase.engine, op, step=step)
     top = 12.0 if loadcase.engine.strokes == 4 else 15.0
     orders = harmonics.orders[(harmonics.orders > 0) & (harmonics.orders <= top + 1e-9)]
     res_list = []

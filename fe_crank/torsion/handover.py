@@ -42,6 +42,7 @@ class JournalTorque:
     form: str  # ALL_ORDERS or M53_ORDERS
     history: np.ndarray  # N m over the cycle grid of the synthesis, positive driving
     max_m_tn: float  # N m: the largest UR M53 M_TN of the segment over the speed range
+    case: str = "all cylinders firing"  # or "cylinder 3 misfiring" (fe_crank.torsion.misfire)
 
     @property
     def half_range(self) -> float:
