@@ -15,7 +15,7 @@ from fe_crank.cli import main
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.misfire import ZERO_GAUGE, misfire_cycles
-from fe_crank.torsion.misfire import FIRING, analyse_misfire
+from fe_crank.torsion.misfire import analyse_misfire
 
 ROOT = Path(__file__).resolve().parents[1]
 GENSET = ROOT / "loadcases" / "inline4_genset_torsion.toml"
