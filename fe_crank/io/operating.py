@@ -159,7 +159,7 @@ def parse_operating(
     if sweep is not None or diagrams:
         speeds = sweep if sweep is not None else tuple(sorted({raw.speed, *gas_speeds}))
         if diagrams:
-            for w, what in [(x, "of the sweep") for x in speeds] + [(raw.speed, "the operating speed")]:
+            for w, what in [(raw.speed, "the operating speed")] + [(x, "of the sweep") for x in speeds]:
                 if not gas_speeds[0] * (1 - 1e-12) <= w <= gas_speeds[-1] * (1 + 1e-12):
                     raise InputError(
                         f"no gas pressure for {w * 30 / np.pi:.6g} rpm ({what}): the diagrams cover "
