@@ -24,6 +24,7 @@ from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.fe.input import check_torque_reaction
 from fe_crank.io.base import Strict, input_root, read_toml, validate
+from fe_crank.io.criteria import check_m53_torque
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
 from fe_crank.io.operating import parse_operating
@@ -75,6 +76,8 @@ def _load(path: Path) -> model.LoadCase:
         check_torsion_engine(sections["torsion"], engine, path)
     if sections.get("fe") is not None:
         check_torque_reaction(sections["fe"], engine, path)
+    if sections.get("criteria") is not None:
+        check_m53_torque(sections["criteria"], engine, sections.get("torsion") is not None, path)
     extras = {k: v for k, v in sections.items() if k not in ("geometry", "material", "criteria", "fe", "balance")}
     return model.LoadCase(
         name=head.name,
