@@ -149,3 +149,51 @@ def test_bad_full_load_input_is_refused_with_file_and_key(tmp_path, capsys, oper
     assert reason in str(err.value)
     assert main(["validate", str(p)]) == 2
     assert "Traceback" not in capsys.readouterr().err
+
+
+RIGID = """
+[torsion]
+model = "lumped"
+speed_range = ["{lo} rpm", "3000 rpm"]
+speed_steps = 11
+
+[[torsion.stations]]
+name = "crank"
+inertia = "1e-9 kg*m^2"
+cylinders = ["1"]
+
+[[torsion.stations]]
+name = "flywheel"
+inertia = "10 kg*m^2"
+stiffness = "1e12 N*m/rad"
+loss_factor = 0.02
+"""
+
+
+def test_torsional_excitation_follows_the_full_load_curve(tmp_path):
+    """A crank of negligible inertia rigidly on a heavy flywheel: the shaft torque of the
+    synthesis at a speed between two diagrams is the cylinder torque of the dynamics
+    stage at that speed with the interpolated diagram (orders <= 12, an independent
+    run), not the operating speed's diagram."""
+    from fe_crank.full_load import dynamics_at
+    from fe_crank.torsion import analyse_torsion
+
+    lc = load_loadcase(write(tmp_path, 'speeds = ["1000 rpm", "3000 rpm"]' + two_tables() + RIGID.format(lo=1000)))
+    res = analyse_torsion(lc)
+    for rpm in (1000.0, 1400.0, 2600.0):
+        s = res.index(rpm * RPM)
+        w = float(res.response.speeds[s])
+        t = dynamics_at(lc.engine, lc.operating, w).cylinders["1"].torque
+        spec = np.fft.rfft(t)
+        spec[25:] = 0.0  # harmonic j = 2 n: orders above 12 dropped
+        ref = np.fft.irfft(spec, n=t.size)
+        syn = res.response.synthesis(s, res.theta)[0]
+        np.testing.assert_allclose(syn, ref, rtol=0, atol=1e-6 * np.abs(ref).max())
+    assert np.abs(res.vibratory(res.index(1400 * RPM))).max() < 1e-5 * np.abs(ref).max()
+
+
+def test_torsional_speed_range_beyond_the_diagrams_is_refused(tmp_path):
+    p = write(tmp_path, 'speeds = ["1000 rpm", "3000 rpm"]' + two_tables() + RIGID.format(lo=800))
+    with pytest.raises(InputError, match="beyond the full-load diagrams") as err:
+        load_loadcase(p)
+    assert err.value.key == "torsion.speed_range"

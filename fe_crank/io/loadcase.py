@@ -73,7 +73,7 @@ def _load(path: Path) -> model.LoadCase:
             sections.get("geometry"), [lim.quantity for lim in sections["criteria"].limits], path
         )
     if sections.get("torsion") is not None:
-        check_torsion_engine(sections["torsion"], engine, path)
+        check_torsion_engine(sections["torsion"], engine, path, full_load=operating.full_load)
     if sections.get("fe") is not None:
         check_torque_reaction(sections["fe"], engine, path)
     if sections.get("criteria") is not None:

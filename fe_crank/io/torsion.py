@@ -44,6 +44,7 @@ are required (docs/torsion.md gives typical values and their sources).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
@@ -268,7 +269,20 @@ def _parse_lumped(value: dict, file: str | Path, key: str) -> TorsionSettings:
     )
 
 
-def check_torsion_engine(settings: TorsionSettings, engine, file: str | Path, key: str = "torsion") -> None:
-    """Cross-checks of ``[torsion]`` against the load case's engine (InputError)."""
+def check_torsion_engine(
+    settings: TorsionSettings, engine, file: str | Path, key: str = "torsion", *, full_load=None
+) -> None:
+    """Cross-checks of ``[torsion]`` against the load case's engine and full-load curve
+    (the speed range within the per-speed diagrams: never extrapolated).  InputError."""
     if settings.model == "lumped":
         check_stations(settings.stations, engine, str(file), f"{key}.stations")
+    w = full_load.gas_speeds if full_load is not None else ()
+    lo, hi = settings.speed_range
+    if w and not (w[0] * (1 - 1e-12) <= lo and hi <= w[-1] * (1 + 1e-12)):
+        raise InputError(
+            f"the speed range {lo * 30 / math.pi:.6g}-{hi * 30 / math.pi:.6g} rpm reaches beyond the full-load "
+            f"diagrams ([[operating.gas]], {w[0] * 30 / math.pi:.6g}-{w[-1] * 30 / math.pi:.6g} rpm), which are "
+            "never extrapolated",
+            file=str(file),
+            key=f"{key}.speed_range",
+        )

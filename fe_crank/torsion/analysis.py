@@ -51,7 +51,7 @@ class TorsionResult:
     flywheel_fluctuation: float  # (w_max - w_min)/w_mean of the flywheel at the operating speed
     stiffness: dict  # "carter", "fe" (N m/rad per FE span) when known, "used"
     assess_speed: str
-    qs_gas: np.ndarray  # (n_seg, n_theta) quasi-static segment torque, gas part
+    qs_gas: np.ndarray  # (n_gas_parts, n_seg, n_theta) quasi-static segment torque, gas part per diagram
     qs_inertia: np.ndarray  # (n_seg, n_theta) inertia part at harmonics.reference_speed
 
     def index(self, speed: float) -> int:
@@ -70,8 +70,9 @@ class TorsionResult:
         the response (so that the vibratory part is the dynamic amplification of those
         orders; the orders above them stay in the quasi-static torque of the dynamics
         stage, taken as not amplified)."""
-        ratio = (self.response.speeds[s] / self.harmonics.reference_speed) ** 2
-        return self.qs_gas + ratio * self.qs_inertia
+        w = self.response.speeds[s]
+        ratio = (w / self.harmonics.reference_speed) ** 2
+        return np.tensordot(self.harmonics.gas_weights(w), self.qs_gas, axes=1) + ratio * self.qs_inertia
 
     def vibratory(self, s: int) -> np.ndarray:
         """Vibratory segment torques (n_seg, n_theta): synthesis less quasi-static."""
@@ -112,7 +113,7 @@ def analyse_torsion(
         )
     model = build_model(loadcase, settings, inertias=inertias, fe_stiffness=fe_stiffness)
     modes = natural_modes(model)
-    harmonics = harmonics or cylinder_harmonics(loadcase.engine, op, step=step)
+    harmonics = harmonics or cylinder_harmonics(loadcase.engine, op, step=step, full_load=loadcase.operating.full_load)
     top = 12.0 if loadcase.engine.strokes == 4 else 15.0
     orders = harmonics.orders[(harmonics.orders > 0) & (harmonics.orders <= top + 1e-9)]
     res_list = []
@@ -133,7 +134,7 @@ def analyse_torsion(
     qs = []
     kept = np.isin(harmonics.orders, np.concatenate([[0.0], orders]))
     ph = np.exp(1j * np.outer(theta, harmonics.orders[kept]))
-    for part in (harmonics.gas, harmonics.inertia):
+    for part in (*harmonics.gas_parts(), harmonics.inertia):
         per_mass = np.zeros((model.size, theta.size))
         for cyl, throw in harmonics.throw_of.items():
             per_mass[model.throw_mass[throw]] += np.real(ph @ part[cyl][kept])
@@ -157,13 +158,14 @@ def analyse_torsion(
         fluct,
         stiff,
         settings.assess_speed,
-        qs[0],
-        qs[1],
+        np.stack(qs[:-1]),
+        qs[-1],
     )
     syn = response.synthesis_all(theta)  # (n_speeds, n_seg, n_theta)
     half[:] = 0.5 * np.ptp(syn, axis=2)
     ratio = (speeds / harmonics.reference_speed) ** 2
-    syn -= qs[0][None] + ratio[:, None, None] * qs[1][None]  # vibratory part
+    weights = np.array([harmonics.gas_weights(w) for w in speeds])
+    syn -= np.einsum("sk,knt->snt", weights, result.qs_gas) + ratio[:, None, None] * qs[-1][None]  # vibratory part
     vib_half[:] = 0.5 * np.ptp(syn, axis=2)
     return result
 

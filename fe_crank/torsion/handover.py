@@ -50,27 +50,30 @@ class JournalTorque:
 
 
 def quasi_static_all_orders(result) -> tuple[np.ndarray, np.ndarray]:
-    """Rigid-shaft segment torques (n_seg, n_theta) of every harmonic of the cycle grid:
-    the gas part and the inertia part at ``harmonics.reference_speed`` (their synthesis
-    is the dynamics stage's cumulative journal torque to round-off)."""
+    """Rigid-shaft segment torques of every harmonic of the cycle grid: the gas part
+    (n_gas_parts, n_seg, n_theta), one per diagram of a full-load curve, and the inertia
+    part (n_seg, n_theta) at ``harmonics.reference_speed`` (their synthesis is the
+    dynamics stage's cumulative journal torque to round-off)."""
     h, m, theta = result.harmonics, result.model, result.theta
     phase = np.exp(1j * np.outer(theta, h.orders))
     out = []
-    for part in (h.gas, h.inertia):
+    for part in (*h.gas_parts(), h.inertia):
         per_mass = np.zeros((m.size, theta.size))
         for cyl, throw in h.throw_of.items():
             per_mass[m.throw_mass[throw]] += np.real(phase @ part[cyl])
         out.append(np.cumsum(per_mass, axis=0)[:-1])
-    return out[0], out[1]
+    return np.stack(out[:-1]), out[-1]
 
 
 def segment_histories(result, s: int, qs_all=None) -> tuple[np.ndarray, np.ndarray]:
     """(UR M53 synthesis, all-orders form) of every segment (n_seg, n_theta) at speed
     index ``s`` (module docstring)."""
     gas, inertia = quasi_static_all_orders(result) if qs_all is None else qs_all
-    ratio = (result.response.speeds[s] / result.harmonics.reference_speed) ** 2
+    w = result.response.speeds[s]
+    ratio = (w / result.harmonics.reference_speed) ** 2
     syn = result.response.synthesis(s, result.theta)
-    return syn, syn - result.quasi_static(s) + gas + ratio * inertia
+    quasi = np.tensordot(result.harmonics.gas_weights(w), gas, axes=1) + ratio * inertia
+    return syn, syn - result.quasi_static(s) + quasi
 
 
 def journal_torques(result) -> dict[str, JournalTorque]:

@@ -3,9 +3,9 @@ vibratory torque is to be considered with misfiring).
 
 The misfiring cylinder's gas torque is that of its motored pressure (or zero gauge
 pressure where the gas data give no motored curve, ``fe_crank.misfire.motored_gas``);
-its inertia torque and every other cylinder's torque are unchanged.  The harmonics of
-the misfiring cylinder are replaced (``misfire_harmonics``) and the whole torsional
-stage is run again on them (``analyse_misfire``: each named cylinder in turn).  A
+its inertia torque and every other cylinder's torque are unchanged.  The harmonics are
+computed with the misfiring cylinder motored (``misfire_harmonics``, with every diagram
+of a full-load curve) and the whole torsional stage is run again on them (``analyse_misfire``: each named cylinder in turn).  A
 misfire breaks the firing symmetry: orders that cancel with all cylinders firing (the
 minor orders of an in-line engine) are excited, so a resonance that is harmless in
 normal firing can govern.  ``MisfireTorsion.governing`` gives per segment the largest
@@ -20,10 +20,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank import dynamics, model
+from fe_crank import model
 from fe_crank.misfire import motored_gas
 from fe_crank.torsion.analysis import TorsionResult, analyse_torsion
-from fe_crank.torsion.excitation import CylinderHarmonics, cylinder_harmonics, fourier
+from fe_crank.torsion.excitation import CylinderHarmonics, cylinder_harmonics
 from fe_crank.torsion.handover import JournalTorque
 from fe_crank.torsion.handover import journal_torques as _journal_torques
 
@@ -31,17 +31,20 @@ FIRING = "all cylinders firing"
 
 
 def misfire_harmonics(
-    engine: model.Engine, harmonics: CylinderHarmonics, cylinder: str, *, step: float = np.radians(1.0)
+    engine: model.Engine,
+    speed: float,
+    cylinder: str,
+    *,
+    step: float = np.radians(1.0),
+    full_load: model.FullLoadCurve | None = None,
 ) -> tuple[CylinderHarmonics, str]:
-    """``harmonics`` with ``cylinder``'s gas part replaced by its motored gas torque (at
-    the harmonics' reference speed; the gas torque does not depend on speed), and the
-    misfiring cylinder's pressure in words."""
-    gas, words = motored_gas(engine.gas)
-    run = dynamics.analyse(
-        engine, model.OperatingPoint(harmonics.reference_speed), step=step, cylinder_gas={cylinder: gas}
+    """The cylinders' harmonics at reference ``speed`` with ``cylinder`` motored (its
+    motored curve of each diagram, or zero gauge pressure; ``fe_crank.misfire``), and
+    the misfiring cylinder's pressure in words."""
+    h = cylinder_harmonics(
+        engine, speed, step=step, full_load=full_load, cylinder_gas={cylinder: lambda d: motored_gas(d)[0]}
     )
-    _, c_all = fourier(run.cylinders[cylinder].torque, run.cycle)
-    return dataclasses.replace(harmonics, gas={**harmonics.gas, cylinder: c_all - harmonics.inertia[cylinder]}), words
+    return h, motored_gas(engine.gas)[1]
 
 
 @dataclass(frozen=True)
@@ -99,10 +102,10 @@ def analyse_misfire(loadcase, *, cylinders=None, step: float = np.radians(1.0), 
     ``analyse_torsion`` (``inertias``, ``fe_stiffness``, ``settings``)."""
     cylinders = loadcase.operating.misfire if cylinders is None else tuple(cylinders)
     firing = analyse_torsion(loadcase, step=step, **kwargs)
-    base = cylinder_harmonics(loadcase.engine, loadcase.operating.speed, step=step)
+    op = loadcase.operating
     cases = []
     for c in cylinders:
-        h, words = misfire_harmonics(loadcase.engine, base, c, step=step)
+        h, words = misfire_harmonics(loadcase.engine, op.speed, c, step=step, full_load=op.full_load)
         cases.append(MisfireCase(c, words, analyse_torsion(loadcase, step=step, harmonics=h, **kwargs)))
     return MisfireTorsion(firing, tuple(cases))
 
