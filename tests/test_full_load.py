@@ -197,3 +197,14 @@ def test_torsional_speed_range_beyond_the_diagrams_is_refused(tmp_path):
     with pytest.raises(InputError, match="beyond the full-load diagrams") as err:
         load_loadcase(p)
     assert err.value.key == "torsion.speed_range"
+
+
+def test_the_torsional_grid_holds_every_speed_of_the_sweep(tmp_path):
+    from fe_crank.torsion import analyse_torsion
+
+    lc = load_loadcase(
+        write(tmp_path, 'speeds = ["1000 rpm", "1234 rpm", "2777 rpm"]' + two_tables() + RIGID.format(lo=1000))
+    )
+    res = analyse_torsion(lc)
+    for w in lc.operating.full_load.speeds:
+        assert res.response.speeds[res.index(w)] == pytest.approx(w, rel=1e-12)

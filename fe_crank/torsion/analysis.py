@@ -7,7 +7,8 @@ four-stroke, 1 .. 15 for two-stroke engines), with the system's damping;
 ``M_TN = (M_Tmax - M_Tmin) / 2`` and the highest value over the speed range is used.
 The speed grid is uniform over ``speed_range`` plus the operating speed plus every
 resonance speed ``omega_r / n`` (mode ``r``, order ``n``) that falls in the range, so no
-resonance peak is stepped over.
+resonance peak is stepped over, plus the speeds of the full-load curve in the range (so
+that the torque flow at each speed of the sweep has its vibration, ``flow.torque_flow``).
 """
 
 from __future__ import annotations
@@ -120,7 +121,8 @@ def analyse_torsion(
     for r, w in enumerate(modes.elastic_omega, start=1):
         for n in orders:
             res_list.append(Resonance(r, float(n), float(w / (2 * np.pi)), float(w / n), bool(lo <= w / n <= hi)))
-    speeds = speed_grid(lo, hi, settings.speed_steps, op, [x.speed for x in res_list])
+    sweep = loadcase.operating.full_load.speeds if loadcase.operating.full_load is not None else ()
+    speeds = speed_grid(lo, hi, settings.speed_steps, op, [x.speed for x in res_list] + list(sweep))
     response = forced_response(model, harmonics, speeds, orders)
     n_theta = int(round(harmonics.cycle / step))
     theta = harmonics.cycle * np.arange(n_theta) / n_theta  # the grid of fe_crank.dynamics
