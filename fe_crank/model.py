@@ -158,13 +158,70 @@ def crank_angle_global(engine: Engine, throw_name: str, theta) -> np.ndarray:
 
 
 @dataclass(frozen=True)
+class FullLoadCurve:
+    """The speeds of the full-load curve and the gas pressure at each.
+
+    ``speeds`` (rad/s, increasing): every speed the check evaluates (the operating speed
+    among them).  ``gas_speeds`` and ``diagrams``: the indicator diagrams the load case
+    gives per speed (increasing speeds); between two the pressure is interpolated
+    linearly in speed at every crank angle, outside them there is none (never
+    extrapolated).  Without per-speed diagrams (``gas_speeds == ()``) ``default`` (the
+    engine's one diagram, the conservative reading of a source that gives one) serves
+    every speed."""
+
+    speeds: tuple[float, ...]
+    gas_speeds: tuple[float, ...] = ()
+    diagrams: tuple[GasPressure, ...] = ()
+    default: GasPressure | None = None
+    cycle: float = 4.0 * np.pi  # rad: the engine's cycle (the tables' period)
+
+    def gas_at(self, speed: float) -> GasPressure | None:
+        """The full-load diagram at ``speed`` (rad/s); ValueError outside the diagrams."""
+        if not self.gas_speeds:
+            return self.default
+        w = self.gas_speeds
+        if not w[0] * (1 - 1e-12) <= speed <= w[-1] * (1 + 1e-12):
+            raise ValueError(
+                f"no gas pressure at {speed * 30 / np.pi:.6g} rpm: the diagrams cover "
+                f"{w[0] * 30 / np.pi:.6g}-{w[-1] * 30 / np.pi:.6g} rpm (never extrapolated)"
+            )
+        i = int(np.clip(np.searchsorted(w, speed), 1, len(w) - 1))
+        t = float(np.clip((speed - w[i - 1]) / (w[i] - w[i - 1]), 0.0, 1.0))
+        if t in (0.0, 1.0):
+            return self.diagrams[i - 1 if t == 0.0 else i]
+        return interpolate_gas(self.diagrams[i - 1], self.diagrams[i], t, self.cycle)
+
+
+def interpolate_gas(a: GasPressure, b: GasPressure, t: float, cycle: float) -> GasPressure:
+    """``(1 - t) a + t b`` at every crank angle of both tables (periodic with ``cycle``,
+    as ``fe_crank.mechanism.gas.pressure_at`` reads them); the motored curves likewise when both
+    have one, else none."""
+    ang = np.unique(np.concatenate([a.angle, b.angle]))
+    pa = np.interp(ang, a.angle, a.pressure, period=cycle)
+    pb = np.interp(ang, b.angle, b.pressure, period=cycle)
+    motored = None
+    if a.motored is not None and b.motored is not None:
+        motored = interpolate_gas(a.motored, b.motored, t, cycle)
+    return GasPressure(
+        ang,
+        (1 - t) * pa + t * pb,
+        (1 - t) * a.crankcase_pressure + t * b.crankcase_pressure,
+        f"{1 - t:.4g} x ({a.source}) + {t:.4g} x ({b.source})",
+        motored,
+    )
+
+
+@dataclass(frozen=True)
 class OperatingPoint:
     """``overspeed_gas``: the gas load of the overspeed condition (the assessment
     recomputes the whole cycle at the overspeed): ``"motored"`` no combustion (the
     motored compression curve ``GasPressure.motored`` where the gas data allow it, and
     zero gauge pressure; ``fe_crank.assess.overspeed``); ``"as_operating"`` the operating
-    gas pressure table."""
+    gas pressure table.  ``full_load``: the full-load curve (speeds and their gas);
+    ``misfire``: the cylinders whose cutout (misfire) is checked, each in turn."""
 
     speed: float  # rad/s, of the reference shaft
     overspeed: float | None = None  # rad/s: the whole cycle (inertia, centrifugal) at this speed
     overspeed_gas: str = "motored"  # "motored" or "as_operating"
+    full_load: FullLoadCurve | None = None  # the speeds of the sweep and their gas; None: ``speed`` alone
+    misfire: tuple[str, ...] = ()  # cylinders cut out in turn (each alone motored), ``fe_crank.mechanism.misfire``

@@ -104,8 +104,8 @@ def test_firing_offset_off_its_tdc_is_reported_even_when_small(seed, offset_deg,
 
 
 def test_inline_four_cylinder_records_against_independent_relations(request, seed):
-    """Each cylinder record of the inline four (engines/inline4.toml, firing offsets 0, 180,
-    540, 360 deg; it has no pressure table, so the seed 001 table is lent to it) against
+    """Each cylinder record of the inline four (engines/inline4.toml, firing offsets 0, 540,
+    180, 360 deg; it has no pressure table, so the seed 001 table is lent to it) against
     relations the record must obey:
 
     * ``gas_angle = mod(theta - firing_offset, 720 deg)``: the gas table's angle is the

@@ -11,7 +11,10 @@ direction k of the throw frame (x tangential, y radial outward; 12 directions 30
 apart by default), ``a_k`` the weights of the two directions that bracket the pin force
 F (``fe_crank.fe.pin_directions``), ``S_t`` the stress of 1 N m through the throw, and
 ``F, T`` the crankpin force and the torque entering the throw at its front journal
-(``torque_front``) from the dynamics stage.
+(``torque_front``) from the dynamics stage.  With torsional vibration the throw's own
+inertia torque enters as the body force of its angular acceleration ``alpha(theta)``
+(unit case ``angular_acceleration``, + alpha S_a), so that the torque leaving at the rear
+journal is the torsional stage's (``fe_crank.torsion.flow``).
 """
 
 from __future__ import annotations
@@ -76,6 +79,7 @@ def load_coefficients(
     cases: tuple[str, ...] = UNIT_CASES,
     sense: int = 1,
     torque_mz: float = -1.0,
+    angular_acceleration: np.ndarray | None = None,
 ) -> np.ndarray:
     """Coefficients (n_angles, len(cases)) of the unit cases over the cycle.
 
@@ -88,6 +92,10 @@ def load_coefficients(
     Torque: the FE case applies a moment ``torque_mz`` about +z at the front face (the FE stage's case is 1 N m in the sense of rotation of a sense +1 shaft,
     M_z = -1 N m); the torque through the front journal acts about -sense z, so its
     coefficient is -sense * torque_front / torque_mz.
+    Angular acceleration (the ``angular_acceleration`` case, 1 rad/s^2 in the sense of
+    rotation of a sense +1 shaft): ``angular_acceleration`` (n,) rad/s^2 in the shaft's
+    sense (the throw's torsional vibration, ``fe_crank.torsion.flow``), coefficient
+    sense * alpha; zero when not given.
     """
     pin_force = np.asarray(pin_force, float)
     torque = np.asarray(torque, float)
@@ -102,6 +110,11 @@ def load_coefficients(
             cols.append(np.full(n, omega**2))
         elif name == "torque":
             cols.append(-sense * torque / torque_mz)
+        elif name == "angular_acceleration":
+            alpha = np.zeros(n) if angular_acceleration is None else np.asarray(angular_acceleration, float)
+            if alpha.shape != (n,):
+                raise ValueError(f"angular_acceleration must be (n,); got {alpha.shape}")
+            cols.append(sense * alpha)
         elif name in pins:
             cols.append(wp[:, pins.index(name)])
         else:

@@ -67,7 +67,7 @@ def fe_stiffness_of(lc: LoadCase, size: str | None, cache_dir) -> float:
 def run(args) -> int:
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.torsion import analyse_torsion
-    from fe_crank.torsion.report import RPM, result_to_dict, write_plots
+    from fe_crank.torsion.report import RPM, governing_table, result_to_dict, stiffness_text, write_plots
 
     lc = load_loadcase(args.file)
     settings = lc.torsion
@@ -85,15 +85,10 @@ def run(args) -> int:
         write_plots(res, out)
     print(
         f"{lc.name}: {res.model.size} masses, natural frequencies [Hz]: "
-        + ", ".join(f"{f:.1f}" for f in res.modes.frequencies_hz[1:6])
+        + ", ".join(f"{f:.1f}" for f in res.modes.elastic_hz[:5])
     )
-    k = res.stiffness
-    line = f"throw stiffness (FE span): Carter {k['carter']:.4g} N m/rad"
-    if "fe" in k:
-        line += f", FE {k['fe']:.4g} N m/rad (Carter/FE = {k['carter'] / k['fe']:.3f})"
-    print(line)
+    print(stiffness_text(res))
     print(f"{'segment':<22}{'max M_TN [N m]':>16}{'at [rpm]':>10}{'vibratory [N m]':>17}{'at op. [N m]':>14}")
-    from fe_crank.torsion.report import governing_table
 
     for r in governing_table(res):
         print(

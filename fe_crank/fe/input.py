@@ -86,3 +86,24 @@ def parse_fe(value: object, file: str | Path, key: str = "fe") -> FeOptions:
         torque_reaction=raw.torque_reaction,
         symmetry=raw.symmetry,
     )
+
+
+def check_torque_reaction(options: FeOptions, engine, file: str | Path, key: str = "fe.torque_reaction") -> None:
+    """A front power take-off (``torque_reaction = "end_1"``) on an engine with more than
+    one throw on a shaft is refused: the check's journal torques are summed from the
+    front end (the free end of a rear take-off), so the throw next to a front take-off
+    would get none of the engine's torque.  (``fe_crank.torsion.flow.torque_flow``
+    computes the flow for either end.)"""
+    if options.torque_reaction != "end_1":
+        return
+    per_shaft: dict[str, int] = {}
+    for t in engine.throws:
+        per_shaft[t.shaft] = per_shaft.get(t.shaft, 0) + 1
+    if max(per_shaft.values()) > 1:
+        raise InputError(
+            f"a front power take-off on a shaft with {max(per_shaft.values())} throws is not supported: the "
+            "assessment sums the journal torques from the front end; take the power off at the rear (end_2) "
+            "or check one throw",
+            file=str(file),
+            key=key,
+        )

@@ -175,6 +175,34 @@ def pin_pressure_load(
     )
 
 
+def angular_acceleration_load(basis, density: float, alpha: float = 1.0) -> np.ndarray:
+    """D'Alembert body force of an angular acceleration ``alpha`` (rad/s^2) about the crank
+    axis in the positive sense of rotation (about -z, ``fe_crank/model.py``):
+    a = alpha_vec x r = alpha (y, -x, 0), f = -rho a = rho alpha (-y, x, 0).  Its moment
+    about z is +alpha int rho (x^2 + y^2) dV = +alpha J_z: the throw's own inertia torque,
+    against the sense of rotation (torsional vibration, docs/torsion.md)."""
+    if not density > 0:
+        raise InputError(f"density must be > 0, got {density!r}", key="material.density")
+
+    def f(x):
+        return density * alpha * np.stack([-x[1], x[0], np.zeros_like(x[0])])
+
+    return assemble_body_load(basis, f)
+
+
+#: body-force unit cases: name -> (load vector of (basis, density), description)
+BODY_CASES = {
+    "centrifugal": (
+        lambda basis, rho: centrifugal_load(basis, rho, 1.0),
+        "centrifugal body force rho omega^2 r about z, omega = 1 rad/s",
+    ),
+    "angular_acceleration": (
+        lambda basis, rho: angular_acceleration_load(basis, rho, 1.0),
+        "inertia body force of 1 rad/s^2 in the sense of rotation, -rho alpha x r",
+    ),
+}
+
+
 def face_torque_load(basis, torque: float, *, boundary: str, centre=None) -> np.ndarray:
     """Torque about z on a face as the shear flow of a round shaft, t = T r e_theta / J.
 

@@ -23,6 +23,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from skfem import ElementTetP2
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
@@ -38,9 +39,9 @@ from fe_crank.fe.fe_options import (  # noqa: F401
     check_support_options,
     support_text,
 )
-from fe_crank.fe.loads import PinPressure, centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
+from fe_crank.fe.loads import BODY_CASES, PinPressure, face_torque_load, pin_pressure_load, pin_surface
 from fe_crank.fe.pin_directions import pin_case_weights, pin_direction, unit_force
-from fe_crank.fe.supports import Coupling, Foundation, boundary_facets
+from fe_crank.fe.supports import Coupling, Foundation, boundary_facets, facet_basis
 from fe_crank.fe.symsystem import determinate_system
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
 
@@ -139,10 +140,6 @@ class UnitSolutions:
 
 def journal_diameter(mesh, boundary: str) -> float:
     """2 x the mean distance of the journal surface from the crank axis (area-weighted)."""
-    from skfem import ElementTetP2
-
-    from fe_crank.fe.supports import facet_basis
-
     fb = facet_basis(
         mesh, ElementTetP2(), boundary_facets(mesh, boundary, "the bearing support"), 2, "the bearing support"
     )
@@ -160,7 +157,8 @@ def _throw_mesh(throw_mesh):
 def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None = None) -> UnitSolutions:
     """Assemble once, factorise once, solve the unit cases of ``options.cases``.
 
-    Cases: ``centrifugal`` (omega = 1 rad/s about z; scale by omega^2), pin cases by
+    Cases: ``centrifugal`` (omega = 1 rad/s about z; scale by omega^2), on request
+    ``angular_acceleration`` (1 rad/s^2 in the sense of rotation, ``loads.BODY_CASES``), pin cases by
     direction (1 N on the crankpin in the throw frame as a cosine pressure; a force is
     built from the two directions that bracket it, see ``UnitSolutions.pin_weights``),
     ``torque`` (1 N m in the positive sense of rotation, i.e. about -z, M_z = -1 N m,
@@ -171,10 +169,10 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     raises SolverError.
     """
     options = options or FeOptions()
-    unknown = [c for c in options.cases if c not in ("centrifugal", "torque") and pin_direction(c) is None]
+    unknown = [c for c in options.cases if c not in (*BODY_CASES, "torque") and pin_direction(c) is None]
     if unknown:
         raise InputError(
-            f"unknown unit cases {sorted(unknown)}; pick from centrifugal, torque and pin cases "
+            f"unknown unit cases {sorted(unknown)}; pick from centrifugal, angular_acceleration, torque and pin cases "
             f"by direction (pin_x, pin_y, pin_-x, pin_-y, pin_<deg> as pin_030)",
             key="fe.cases",
         )
@@ -217,9 +215,8 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     t0 = time.perf_counter()
     loads, desc, pins, surface = {}, {}, {}, None
     for name in options.cases:
-        if name == "centrifugal":
-            loads[name] = centrifugal_load(basis, material.density, 1.0)
-            desc[name] = "centrifugal body force rho omega^2 r about z, omega = 1 rad/s"
+        if name in BODY_CASES:
+            loads[name], desc[name] = BODY_CASES[name][0](basis, material.density), BODY_CASES[name][1]
         elif name == "torque":
             # +1 N m in the positive sense of rotation (from +y towards +x), i.e. M_z = -1 N m
             loads[name] = face_torque_load(basis, -1.0, boundary=options.torque_face)

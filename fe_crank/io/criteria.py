@@ -11,10 +11,17 @@ of ``QUANTITIES`` (a misspelt or unknown quantity is an error naming the key)::
     max_counterweight_stress = "150 MPa"
     max_unbalance_error = 0.05          # |built m r - required m r| / required
     m53_additional_bending = "10 MPa"   # option: UR M53 sigma_add (trunk piston engines)
+    m53_quasi_static_torque = true      # option: accept the quasi-static journal torque (below)
 
 A criterion that needs a material property the load case's material does not give
 (e.g. the M53 factor K of a cast iron) is an error naming the criterion and the
 property.
+
+UR M53 2.2 takes the nominal torsional stress from a forced-vibration calculation of the
+shaft system.  ``min_m53_acceptability`` on an engine with more than one cylinder needs
+the load case's ``[torsion]`` section, unless ``m53_quasi_static_torque = true`` says
+that the quasi-static journal torque is accepted instead (the M53 verdict is then not
+UR M53-conform, and says so); ``check_m53_torque``.
 """
 
 from __future__ import annotations
@@ -70,8 +77,8 @@ QUANTITIES: dict[str, Quantity] = {
     "bolt_utilisation": Quantity("max", None, (), "counterweight bolt load m r omega^2 at overspeed / bolt capacity"),
 }
 
-#: option key -> unit kind
-OPTIONS: dict[str, str] = {"m53_additional_bending": "pressure"}
+#: option key -> unit kind ("bool": true or false)
+OPTIONS: dict[str, str] = {"m53_additional_bending": "pressure", "m53_quasi_static_torque": "bool"}
 
 
 @dataclass(frozen=True)
@@ -86,6 +93,7 @@ class Limit:
 class Criteria:
     limits: tuple[Limit, ...]
     m53_additional_bending: float = 10e6  # Pa: UR M53 section 4, trunk piston engines
+    m53_quasi_static_torque: bool = False  # UR M53 route accepted with the quasi-static journal torque
 
     def limit(self, quantity: str) -> Limit | None:
         return next((lim for lim in self.limits if lim.quantity == quantity), None)
@@ -114,6 +122,11 @@ def build_criteria(value: object, file: str | Path, key: str = "criteria") -> Cr
     options = {}
     for k, v in value.items():
         full = f"{key}.{k}"
+        if OPTIONS.get(k) == "bool":
+            if not isinstance(v, bool):
+                raise InputError("must be true or false", file=str(file), key=full)
+            options[k] = v
+            continue
         if k in OPTIONS:
             try:
                 options[k] = to_si(v, OPTIONS[k])
@@ -169,6 +182,28 @@ def check_material(criteria: Criteria, material, file: str | Path) -> None:
             )
 
 
+def check_m53_torque(criteria: Criteria, engine, has_torsion: bool, file: str | Path, key: str = "criteria") -> None:
+    """UR M53 needs its torque (module docstring).  Raises InputError naming the key."""
+    m53 = criteria.limit("m53_acceptability")
+    if criteria.m53_quasi_static_torque and has_torsion:
+        raise InputError(
+            "the load case has a [torsion] section, whose vibratory torque UR M53 takes; "
+            "m53_quasi_static_torque applies only without one",
+            file=str(file),
+            key=f"{key}.m53_quasi_static_torque",
+        )
+    if m53 is None or has_torsion or criteria.m53_quasi_static_torque or len(engine.cylinders) < 2:
+        return
+    raise InputError(
+        f"UR M53 2.2 takes the torsional stress of an engine with {len(engine.cylinders)} cylinders from a "
+        "forced-vibration calculation: give the [torsion] section (docs/torsion.md), or set "
+        f"{key}.m53_quasi_static_torque = true to accept the quasi-static journal torque (the M53 verdict is "
+        "then not UR M53-conform)",
+        file=str(file),
+        key=m53.key,
+    )
+
+
 def parse_criteria(value: object, file: str | Path, key: str = "criteria") -> Criteria:
     """Section parser of the load case's ``[criteria]`` section (``fe_crank.io.sections``): builds the criteria and
     checks them against the same file's ``[material]`` section."""
@@ -189,6 +224,7 @@ __all__ = [
     "QUANTITIES",
     "OPTIONS",
     "build_criteria",
+    "check_m53_torque",
     "check_material",
     "parse_criteria",
 ]

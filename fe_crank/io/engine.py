@@ -19,8 +19,9 @@ An engine file looks like::
     throw = "1"
     ...
 
-``[[shafts]]`` may be omitted (one shaft called "main").  ``firing_order`` (names,
-evenly spaced over the cycle) and per-cylinder ``firing_offset`` are exclusive.
+``[[shafts]]`` may be omitted (one shaft called "main").  ``firing_order`` (names;
+alone: evenly spaced over the cycle) and per-cylinder ``firing_offset``: either or both,
+and when both they must agree (``fe_crank.io.firing``).
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ from pydantic import Field, model_validator
 from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.io.base import Strict, read_included, read_toml, validate, with_include_context
+from fe_crank.io.firing import firing_offsets
 from fe_crank.io.gas import build_gas
 from fe_crank.io.units import Angle, Inertia, Length, Mass
 
@@ -191,33 +193,14 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
                 key=f"{pre}cylinders[{i}].articulation.master",
             )
     cycle = 4.0 * math.pi if raw.strokes == 4 else 2.0 * math.pi
-    offsets: dict[str, float] = {}
-    if raw.firing_order is not None:
-        if any(c.firing_offset is not None for c in cylinders):
-            raise InputError(
-                "give either firing_order or a firing_offset for each cylinder, not both",
-                file=str(file),
-                key=f"{pre}firing_order",
-            )
-        for j, n in enumerate(raw.firing_order):
-            if n not in names:
-                raise InputError(
-                    f"names cylinder {n!r}, which does not exist (cylinders: {names})",
-                    file=str(file),
-                    key=f"{pre}firing_order[{j}]",
-                )
-        if sorted(raw.firing_order) != sorted(names):
-            missing = sorted(set(names) - set(raw.firing_order))
-            raise InputError(
-                f"must name every cylinder exactly once (missing: {missing})",
-                file=str(file),
-                key=f"{pre}firing_order",
-            )
-        for j, n in enumerate(raw.firing_order):
-            offsets[n] = j * cycle / len(names)
-    else:
-        for c in cylinders:
-            offsets[c.name] = c.firing_offset or 0.0
+    offsets = firing_offsets(
+        names,
+        raw.firing_order,
+        {c.name: c.firing_offset for c in cylinders},
+        cycle,
+        file=str(file),
+        key=f"{pre}firing_order",
+    )
     gas = None
     if raw.gas is not None:
         c0 = cylinders[0]

@@ -19,23 +19,23 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal
 
-from pydantic import Field, model_validator
+from pydantic import Field
 
 from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.fe.fe_options import FeOptions
+from fe_crank.fe.input import check_torque_reaction
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
 from fe_crank.io.base import InputFile, Strict, input_root, read_toml, recording_inputs, validate
-from fe_crank.io.criteria import Criteria
+from fe_crank.io.criteria import Criteria, check_m53_torque
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
 from fe_crank.io.material import Material
+from fe_crank.io.operating import parse_operating
 from fe_crank.io.sections import SECTION_KEYS, parse_sections
-from fe_crank.io.torsion import TorsionSettings
-from fe_crank.io.units import Speed
+from fe_crank.io.torsion import TorsionSettings, check_torsion_engine
 from fe_crank.mesh.options import MeshSection
 
 
@@ -61,20 +61,6 @@ class LoadCase:
     mesh: MeshSection = field(default_factory=MeshSection)
     torsion: TorsionSettings | None = None
     inputs: tuple[InputFile, ...] = ()
-
-
-class OperatingInput(Strict):
-    speed: Speed
-    overspeed: Speed | None = None
-    overspeed_gas: Literal["motored", "as_operating"] = "motored"  # gas load at the overspeed
-
-    @model_validator(mode="after")
-    def _check(self):
-        if not self.speed > 0:
-            raise ValueError(f"speed must be positive (got {self.speed} rad/s)")
-        if self.overspeed is not None and self.overspeed < self.speed:
-            raise ValueError("overspeed must not be below the operating speed")
-        return self
 
 
 class LoadCaseHead(Strict):
@@ -117,17 +103,23 @@ def _load(path: Path) -> LoadCase:
     if "operating" not in data:
         raise InputError("required key is missing", file=str(path), key="operating")
     engine = engine_from_reference(data["engine"], path)
-    op = validate(OperatingInput, data["operating"], path, "operating")
+    engine, operating = parse_operating(data["operating"], engine, path)
     sections = parse_sections(data, path)
     criteria, geometry = sections.criteria, sections.geometry
     if criteria is not None:
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
+    if sections.torsion is not None:
+        check_torsion_engine(sections.torsion, engine, path, full_load=operating.full_load)
+    if sections.fe is not None:
+        check_torque_reaction(sections.fe, engine, path)
+    if criteria is not None:
+        check_m53_torque(criteria, engine, sections.torsion is not None, path)
     return LoadCase(
         name=head.name,
         source_file=str(path),
         description=head.description,
         engine=engine,
-        operating=model.OperatingPoint(op.speed, op.overspeed, op.overspeed_gas),
+        operating=operating,
         geometry=geometry,
         material=sections.material,
         criteria=criteria,

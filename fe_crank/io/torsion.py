@@ -16,7 +16,7 @@
 
     [torsion.damper]                         # optional damper ring on the hub
     inertia = "0.01 kg*m^2"
-    stiffness = "3e4 N*m/rad"
+    stiffness = "3e4 N*m/rad"                # omitted: an untuned viscous (Houdaille) damper
     damping = "4 N*m*s/rad"                  # viscous, ring to hub
     loss_factor = 0.2                        # optional, rubber hysteresis
 
@@ -36,6 +36,10 @@ Torsional stiffness must be written per angle (``N*m/rad``, ``kN*m/deg``) and da
 per angular speed (``N*m*s/rad``): a bare ``N*m`` could be a torque, so it is refused.
 Damping is never defaulted for the crank: ``shaft_loss_factor`` and ``cylinder_damping``
 are required (docs/torsion.md gives typical values and their sources).
+
+``model = "lumped"``: the chain as an engine maker's stations instead
+(``fe_crank.io.torsion_lumped``); the keys above other than ``speed_range``,
+``speed_steps`` and ``assess_speed`` do not apply to it and are refused.
 """
 
 from __future__ import annotations
@@ -43,49 +47,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Literal
+from typing import Literal
 
-from pydantic import BeforeValidator, Field, model_validator
+from pydantic import Field, model_validator
 
 from fe_crank.errors import InputError
 from fe_crank.io.base import Strict, validate
-from fe_crank.io.units import Inertia, Speed, ureg
+from fe_crank.io.torsion_lumped import Station, check_stations, parse_stations
+from fe_crank.io.torsion_units import Damping, Stiffness
+from fe_crank.io.units import Inertia, Speed
 
 #: accepted range of a loss factor (dimensionless); above it a linear model is not credible
 MAX_SHAFT_LOSS_FACTOR = 0.2
 MAX_COUPLING_LOSS_FACTOR = 1.0
-
-
-def _per_angle(kind: str, si: str, example: str):
-    dims = {"stiffness": "[mass]*[length]**2/[time]**2", "damping": "[mass]*[length]**2/[time]"}[kind]
-
-    def parse(value: object) -> float:
-        if isinstance(value, bool) or not isinstance(value, str):
-            raise ValueError(
-                f'expected a torsional {kind} with its unit as a string, e.g. "{example}"; got a value without a unit'
-            )
-        try:
-            q = ureg.Quantity(value.strip())
-        except Exception:  # pint raises several unrelated classes
-            raise ValueError(f'cannot read this as a torsional {kind} (e.g. "{example}")') from None
-        units = dict(getattr(q, "_units", {}) or {})
-        per_angle = any(u in ("radian", "degree", "revolution", "turn") and e < 0 for u, e in units.items())
-        if not per_angle:
-            raise ValueError(
-                f'a torsional {kind} is written per angle, e.g. "{example}" (without /rad it could be a torque)'
-            )
-        if not q.check(dims):
-            raise ValueError(f'not a torsional {kind} (e.g. "{example}")')
-        out = float(q.to(si).magnitude)
-        if not math.isfinite(out):
-            raise ValueError(f"not a finite torsional {kind}")
-        return out
-
-    return BeforeValidator(parse)
-
-
-Stiffness = Annotated[float, _per_angle("stiffness", "N*m/rad", "2e5 N*m/rad")]
-Damping = Annotated[float, _per_angle("damping", "N*m*s/rad", "5 N*m*s/rad")]
 
 
 def _positive(obj, *keys):
@@ -112,15 +86,26 @@ class MassInput(Strict):
         return self
 
 
-class DamperInput(MassInput):
+class DamperInput(Strict):
+    """The damper ring on the hub: a rubber (tuned) damper with its ``stiffness``, or an
+    untuned viscous (Houdaille) damper without one (ring coupled by the silicone film's
+    ``damping`` alone, which must then be positive)."""
+
+    inertia: Inertia
+    stiffness: Stiffness | None = None
     damping: Damping
     loss_factor: float = 0.0
 
     @model_validator(mode="after")
     def _damping(self):
+        _positive(self, "inertia", "stiffness")
         _non_negative(self, "damping")
         if not 0.0 <= self.loss_factor <= MAX_COUPLING_LOSS_FACTOR:
             raise ValueError(f"loss_factor must lie in [0, {MAX_COUPLING_LOSS_FACTOR}]")
+        if self.stiffness is None and not self.damping > 0:
+            raise ValueError("a damper without stiffness (viscous, Houdaille) needs a positive damping")
+        if self.stiffness is None and self.loss_factor:
+            raise ValueError("a loss_factor needs the stiffness it damps (a viscous damper has none)")
         return self
 
 
@@ -190,27 +175,56 @@ class Element:
     absolute_damping: float = 0.0
 
 
+class LumpedInput(Strict):
+    """``model = "lumped"``: the chain as stations (``fe_crank.io.torsion_lumped``)."""
+
+    model: Literal["lumped"]
+    speed_range: tuple[Speed, Speed]
+    speed_steps: int = Field(561, ge=11, le=20001)
+    assess_speed: Literal["governing", "operating"] = "governing"
+    stations: list = Field(min_length=2)
+    flywheel_station: str | None = None
+
+    @model_validator(mode="after")
+    def _check(self):
+        lo, hi = self.speed_range
+        if not 0 < lo < hi:
+            raise ValueError("speed_range must be two increasing positive speeds")
+        return self
+
+
 @dataclass(frozen=True)
 class TorsionSettings:
+    """``model = "cad"`` (default): the chain built from the throw CAD, Carter or the FE
+    throw stiffness, and the elements below; ``"lumped"``: the ``stations`` as given
+    (the CAD keys are then None/empty)."""
+
     speed_range: tuple[float, float]
     speed_steps: int
     throw_stiffness: str
-    shaft_loss_factor: float
-    cylinder_damping: float
+    shaft_loss_factor: float | None
+    cylinder_damping: float | None
     assess_speed: str
     damper: Element | None  # ring; its segment joins it to the pulley
     pulley: Element | None  # hub; its segment joins it to throw 1
-    flywheel: Element  # its segment joins the last throw to it
+    flywheel: Element | None  # its segment joins the last throw to it (cad)
     driven: tuple[Element, ...]  # each segment joins the previous mass to it
+    model: str = "cad"
+    stations: tuple[Station, ...] = ()  # lumped
+    flywheel_station: str | None = None  # lumped: the station whose speed fluctuation is reported
 
 
 def parse_torsion(value: object, file: str | Path, key: str = "torsion") -> TorsionSettings:
     """Parser of the load case's ``[torsion]`` section (``fe_crank.io.sections``).  Raises InputError naming file and key."""
     if not isinstance(value, dict):
         raise InputError("must be a table", file=str(file), key=key)
-    raw = validate(TorsionInput, value, file, key)
+    if value.get("model", "cad") == "lumped":
+        return _parse_lumped(value, file, key)
+    if value.get("model", "cad") != "cad":
+        raise InputError("model must be 'cad' (default) or 'lumped'", file=str(file), key=f"{key}.model")
+    raw = validate(TorsionInput, {k: v for k, v in value.items() if k != "model"}, file, key)
     d = raw.damper
-    damper = None if d is None else Element("damper", d.inertia, d.stiffness, d.damping, d.loss_factor)
+    damper = None if d is None else Element("damper", d.inertia, d.stiffness or 0.0, d.damping, d.loss_factor)
     pulley = None if raw.pulley is None else Element("pulley", raw.pulley.inertia, raw.pulley.stiffness)
     fly = Element("flywheel", raw.flywheel.inertia, raw.flywheel.stiffness)
     driven = tuple(
@@ -228,3 +242,47 @@ def parse_torsion(value: object, file: str | Path, key: str = "torsion") -> Tors
         fly,
         driven,
     )
+
+
+def _parse_lumped(value: dict, file: str | Path, key: str) -> TorsionSettings:
+    raw = validate(LumpedInput, value, file, key)
+    stations = parse_stations(raw.stations, str(file), f"{key}.stations")
+    fly = raw.flywheel_station
+    if fly is not None and fly not in {s.name for s in stations}:
+        raise InputError(f"names station {fly!r}, which is not defined", file=str(file), key=f"{key}.flywheel_station")
+    if fly is None:
+        fly = next((s.name for s in stations if s.name == "flywheel"), max(stations, key=lambda s: s.inertia).name)
+    return TorsionSettings(
+        tuple(raw.speed_range),
+        raw.speed_steps,
+        "lumped",
+        None,
+        None,
+        raw.assess_speed,
+        None,
+        None,
+        None,
+        (),
+        model="lumped",
+        stations=stations,
+        flywheel_station=fly,
+    )
+
+
+def check_torsion_engine(
+    settings: TorsionSettings, engine, file: str | Path, key: str = "torsion", *, full_load=None
+) -> None:
+    """Cross-checks of ``[torsion]`` against the load case's engine and full-load curve
+    (the speed range within the per-speed diagrams: never extrapolated).  InputError."""
+    if settings.model == "lumped":
+        check_stations(settings.stations, engine, str(file), f"{key}.stations")
+    w = full_load.gas_speeds if full_load is not None else ()
+    lo, hi = settings.speed_range
+    if w and not (w[0] * (1 - 1e-12) <= lo and hi <= w[-1] * (1 + 1e-12)):
+        raise InputError(
+            f"the speed range {lo * 30 / math.pi:.6g}-{hi * 30 / math.pi:.6g} rpm reaches beyond the full-load "
+            f"diagrams ([[operating.gas]], {w[0] * 30 / math.pi:.6g}-{w[-1] * 30 / math.pi:.6g} rpm), which are "
+            "never extrapolated",
+            file=str(file),
+            key=f"{key}.speed_range",
+        )

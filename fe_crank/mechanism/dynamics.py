@@ -53,14 +53,7 @@ from fe_crank.mechanism.gas import pressure_at
 from fe_crank.mechanism.kinematics import PistonMotion
 from fe_crank.mechanism.slider_crank import solve_cylinder
 
-__all__ = [
-    "CylinderForces",
-    "ThrowLoads",
-    "DynamicsResult",
-    "analyse",
-    "solve_cylinder",
-    "cylinder_angle",
-]
+__all__ = ["CylinderForces", "ThrowLoads", "DynamicsResult", "analyse", "solve_cylinder", "cylinder_angle"]
 
 
 @dataclass(frozen=True)
@@ -146,6 +139,7 @@ def analyse(
     *,
     step: float = np.radians(1.0),
     speed_fluctuation: float = 0.01,
+    cylinder_gas: dict | None = None,
 ) -> DynamicsResult:
     """Forces and torques of the whole engine over one cycle (module docstring).
 
@@ -157,6 +151,9 @@ def analyse(
         Cycle-angle step, rad; the cycle is split into ``round(cycle / step)`` equal steps.
     speed_fluctuation : float
         Target coefficient ``delta`` for the flywheel inertia.
+    cylinder_gas : dict, optional
+        Cylinder name -> its own ``GasPressure`` (None: zero gauge pressure) instead of
+        the engine's, e.g. a misfiring cylinder's motored curve.
     """
     cycle = engine.cycle_angle
     theta = _grid(cycle, step)
@@ -180,9 +177,10 @@ def analyse(
                 "applied from the nearest TDC"
             )
         gas_angle = np.mod(phi - 2 * np.pi * turns, cycle)
-        if engine.gas is not None:
-            p = pressure_at(engine.gas, gas_angle, cycle)
-            pcc = engine.gas.crankcase_pressure
+        gas = (cylinder_gas or {}).get(cyl.name, engine.gas)
+        if gas is not None:
+            p = pressure_at(gas, gas_angle, cycle)
+            pcc = gas.crankcase_pressure
         else:
             p = np.full_like(theta, 101325.0)
             pcc = 101325.0

@@ -6,8 +6,12 @@ docs/torsion.md describes the model, its assumptions and sources."""
 from fe_crank.torsion.analysis import Resonance, TorsionResult, analyse_torsion, with_vibratory_torque
 from fe_crank.torsion.build import build_model
 from fe_crank.torsion.excitation import cylinder_harmonics, order_phase_sum
+from fe_crank.torsion.flow import fe_loads, torque_flow
 from fe_crank.torsion.forced import forced_response, m53_orders
 from fe_crank.torsion.free import holzer_frequencies, holzer_table, natural_modes
+from fe_crank.torsion.handover import journal_torques
+from fe_crank.torsion.lumped import lumped_model
+from fe_crank.torsion.misfire import analyse_misfire
 from fe_crank.torsion.model import TorsionModel
 from fe_crank.torsion.stiffness import carter_throw_stiffness, fe_throw_stiffness
 
@@ -20,6 +24,11 @@ __all__ = [
     "cylinder_harmonics",
     "order_phase_sum",
     "forced_response",
+    "fe_loads",
+    "torque_flow",
+    "journal_torques",
+    "lumped_model",
+    "analyse_misfire",
     "m53_orders",
     "holzer_frequencies",
     "holzer_table",

@@ -7,7 +7,8 @@ four-stroke, 1 .. 15 for two-stroke engines), with the system's damping;
 ``M_TN = (M_Tmax - M_Tmin) / 2`` and the highest value over the speed range is used.
 The speed grid is uniform over ``speed_range`` plus the operating speed plus every
 resonance speed ``omega_r / n`` (mode ``r``, order ``n``) that falls in the range, so no
-resonance peak is stepped over.
+resonance peak is stepped over, plus the speeds of the full-load curve in the range (so
+that the torque flow at each speed of the sweep has its vibration, ``flow.torque_flow``).
 """
 
 from __future__ import annotations
@@ -52,7 +53,7 @@ class TorsionResult:
     flywheel_fluctuation: float  # (w_max - w_min)/w_mean of the flywheel at the operating speed
     stiffness: dict  # "carter", "fe" (N m/rad per FE span) when known, "used"
     assess_speed: str
-    qs_gas: np.ndarray  # (n_seg, n_theta) quasi-static segment torque, gas part
+    qs_gas: np.ndarray  # (n_gas_parts, n_seg, n_theta) quasi-static segment torque, gas part per diagram
     qs_inertia: np.ndarray  # (n_seg, n_theta) inertia part at harmonics.reference_speed
 
     def index(self, speed: float) -> int:
@@ -71,8 +72,9 @@ class TorsionResult:
         the response (so that the vibratory part is the dynamic amplification of those
         orders; the orders above them stay in the quasi-static torque of the dynamics
         stage, taken as not amplified)."""
-        ratio = (self.response.speeds[s] / self.harmonics.reference_speed) ** 2
-        return self.qs_gas + ratio * self.qs_inertia
+        w = self.response.speeds[s]
+        ratio = (w / self.harmonics.reference_speed) ** 2
+        return np.tensordot(self.harmonics.gas_weights(w), self.qs_gas, axes=1) + ratio * self.qs_inertia
 
     def vibratory(self, s: int) -> np.ndarray:
         """Vibratory segment torques (n_seg, n_theta): synthesis less quasi-static."""
@@ -82,19 +84,6 @@ class TorsionResult:
         """Indices of the segments in front of and behind a throw's mass."""
         i = self.model.throw_mass[throw]
         return i - 1, i
-
-    def vibratory_journal_torque(self, throw: str) -> tuple[np.ndarray, np.ndarray, float, float]:
-        """Vibratory torque (front, rear) of a throw's journals over ``theta`` and the speeds
-        (rad/s) it is taken at: the operating speed, or (``assess_speed = "governing"``)
-        per journal the speed of the range where its total M_TN is largest."""
-        out = []
-        for seg in self.journal_segments(throw):
-            if seg < 0:
-                out.append((np.zeros_like(self.theta), self.operating_speed))
-                continue
-            s = self.index(self.operating_speed) if self.assess_speed == "operating" else self.governing(seg)
-            out.append((self.vibratory(s)[seg], float(self.response.speeds[s])))
-        return out[0][0], out[1][0], out[0][1], out[1][1]
 
 
 def speed_grid(lo: float, hi: float, steps: int, operating: float, resonances: list[float]) -> np.ndarray:
@@ -110,10 +99,13 @@ def analyse_torsion(
     inertias: dict[str, float] | None = None,
     fe_stiffness: float | None = None,
     step: float = np.radians(1.0),
+    harmonics: CylinderHarmonics | None = None,
 ) -> TorsionResult:
     """Run the torsional stage of ``loadcase`` (its ``[torsion]`` section, or ``settings``);
     ``inertias``: the throws' inertias about the crank axis when the caller has them (the
-    check passes its geometry stage's CAD mass properties, ``build.throw_inertias``)."""
+    check passes its geometry stage's CAD mass properties, ``build.throw_inertias``);
+    ``harmonics``: the cylinders' torque harmonics when not those of the engine (a misfire,
+    ``fe_crank.torsion.misfire``)."""
     settings = settings or loadcase.torsion
     if settings is None:
         raise InputError("the load case has no [torsion] section", file=loadcase.source_file, key="torsion")
@@ -125,35 +117,36 @@ def analyse_torsion(
         )
     model = build_model(loadcase, settings, inertias=inertias, fe_stiffness=fe_stiffness)
     modes = natural_modes(model)
-    harmonics = cylinder_harmonics(loadcase.engine, op, step=step)
+    harmonics = harmonics or cylinder_harmonics(loadcase.engine, op, step=step, full_load=loadcase.operating.full_load)
     top = 12.0 if loadcase.engine.strokes == 4 else 15.0
     orders = harmonics.orders[(harmonics.orders > 0) & (harmonics.orders <= top + 1e-9)]
     res_list = []
-    for r, w in enumerate(modes.omega[1:], start=1):
+    for r, w in enumerate(modes.elastic_omega, start=1):
         for n in orders:
             res_list.append(Resonance(r, float(n), float(w / (2 * np.pi)), float(w / n), bool(lo <= w / n <= hi)))
-    speeds = speed_grid(lo, hi, settings.speed_steps, op, [x.speed for x in res_list])
+    sweep = loadcase.operating.full_load.speeds if loadcase.operating.full_load is not None else ()
+    speeds = speed_grid(lo, hi, settings.speed_steps, op, [x.speed for x in res_list] + list(sweep))
     response = forced_response(model, harmonics, speeds, orders)
     n_theta = int(round(harmonics.cycle / step))
     theta = harmonics.cycle * np.arange(n_theta) / n_theta  # the grid of fe_crank.mechanism.dynamics
     half = np.zeros((speeds.size, model.size - 1))
     vib_half = np.zeros_like(half)
-    stiff = {
-        "used": settings.throw_stiffness,
-        "carter": carter_throw_stiffness(loadcase.geometry, shear_modulus(loadcase.material)),
-    }
+    stiff = {"used": settings.throw_stiffness}
+    if settings.model == "cad":
+        stiff["carter"] = carter_throw_stiffness(loadcase.geometry, shear_modulus(loadcase.material))
     if fe_stiffness is not None:
         stiff["fe"] = fe_stiffness
     qs = []
     kept = np.isin(harmonics.orders, np.concatenate([[0.0], orders]))
     ph = np.exp(1j * np.outer(theta, harmonics.orders[kept]))
-    for part in (harmonics.gas, harmonics.inertia):
+    for part in (*harmonics.gas_parts(), harmonics.inertia):
         per_mass = np.zeros((model.size, theta.size))
         for cyl, throw in harmonics.throw_of.items():
             per_mass[model.throw_mass[throw]] += np.real(ph @ part[cyl][kept])
         qs.append(np.cumsum(per_mass, axis=0)[:-1])
     i_op = int(np.argmin(np.abs(speeds - op)))
-    vel = response.velocity_synthesis(i_op, theta)[model.names.index("flywheel")]
+    fly = "flywheel" if settings.model == "cad" else settings.flywheel_station
+    vel = response.velocity_synthesis(i_op, theta)[model.names.index(fly)]
     fluct = float((vel.max() - vel.min()) / op)
     result = TorsionResult(
         model,
@@ -170,25 +163,35 @@ def analyse_torsion(
         fluct,
         stiff,
         settings.assess_speed,
-        qs[0],
-        qs[1],
+        np.stack(qs[:-1]),
+        qs[-1],
     )
     syn = response.synthesis_all(theta)  # (n_speeds, n_seg, n_theta)
     half[:] = 0.5 * np.ptp(syn, axis=2)
     ratio = (speeds / harmonics.reference_speed) ** 2
-    syn -= qs[0][None] + ratio[:, None, None] * qs[1][None]  # vibratory part
+    weights = np.array([harmonics.gas_weights(w) for w in speeds])
+    syn -= np.einsum("sk,knt->snt", weights, result.qs_gas) + ratio[:, None, None] * qs[-1][None]  # vibratory part
     vib_half[:] = 0.5 * np.ptp(syn, axis=2)
     return result
 
 
 def with_vibratory_torque(dynamics, result: TorsionResult):
     """A copy of the dynamics stage's result whose journal torques (``torque_front``,
-    ``torque_rear`` of every throw) are quasi-static + vibratory over the same cycle
-    grid: what the FE torque unit case and the UR M53 nominal torsional stress take."""
+    ``torque_rear`` of every throw) are the torsional stage's histories of those journals
+    (``fe_crank.torsion.handover.journal_torques``: one synthesis, quasi-static and
+    vibratory at one speed, the largest of the range), over the same cycle grid: what the
+    FE torque unit case and the UR M53 nominal torsional stress take.  A journal at the
+    free end (no segment in front of or behind the throw) keeps the dynamics stage's torque."""
+    from fe_crank.torsion.handover import journal_torques
+
     if not np.allclose(dynamics.theta, result.theta):
         raise ValueError("the torsional synthesis and the dynamics stage use different angle grids")
+    handed = journal_torques(result)
+    names = result.model.segment_names
     throws = {}
     for name, tl in dynamics.throws.items():
-        front, rear, _, _ = result.vibratory_journal_torque(name)
-        throws[name] = dataclasses.replace(tl, torque_front=tl.torque_front + front, torque_rear=tl.torque_rear + rear)
+        front, rear = result.journal_segments(name)
+        tf = handed[names[front]].history if front >= 0 else tl.torque_front
+        tr = handed[names[rear]].history if rear < len(names) else tl.torque_rear
+        throws[name] = dataclasses.replace(tl, torque_front=tf, torque_rear=tr)
     return dataclasses.replace(dynamics, throws=throws)

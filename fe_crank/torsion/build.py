@@ -28,6 +28,7 @@ from fe_crank.errors import InputError
 from fe_crank.geometry.mass import ThrowSolids, throw_solids
 from fe_crank.io.torsion import TorsionSettings
 from fe_crank.mechanism.kinematics import piston_motion
+from fe_crank.torsion.lumped import lumped_model
 from fe_crank.torsion.model import TorsionCase, TorsionModel
 from fe_crank.torsion.stiffness import carter_throw_stiffness, shaft_stiffness, throw_span
 
@@ -111,10 +112,13 @@ def build_model(
     inertias: dict[str, float] | None = None,
     fe_stiffness: float | None = None,
 ) -> TorsionModel:
-    """The chain of a load case (module docstring).  ``inertias`` overrides the throw
-    inertias (tests, or a caller that has them); ``fe_stiffness`` the FE throw stiffness."""
+    """The chain of a load case (module docstring; ``model = "lumped"``: the stated
+    stations, ``fe_crank.torsion.lumped``).  ``inertias`` overrides the throw inertias
+    (tests, or a caller that has them); ``fe_stiffness`` the FE throw stiffness."""
     engine = loadcase.engine
     throws = crank_throws(engine)
+    if settings.model == "lumped":
+        return lumped_model(engine, settings, file=loadcase.source_file)
     inertias = throw_inertias(loadcase) if inertias is None else inertias
     g = loadcase.geometry
     G = shear_modulus(loadcase.material)

@@ -35,7 +35,13 @@ from fe_crank.mechanism import dynamics as dyn
 @dataclass(frozen=True)
 class CylinderHarmonics:
     """Complex harmonics per cylinder: ``gas[c]`` and ``inertia[c]`` (n_orders,), the
-    latter at ``reference_speed``; ``orders`` (n_orders,) per revolution, 0 first."""
+    latter at ``reference_speed``; ``orders`` (n_orders,) per revolution, 0 first.
+
+    With a full-load curve of per-speed diagrams (``gas_speeds``, ``gas_nodes``: the gas
+    harmonics of each diagram) the gas part at a speed is interpolated linearly between
+    the two diagrams that bracket it: exact, since the gas torque is linear in the
+    pressure and the pressure is interpolated linearly in speed
+    (``fe_crank.model.FullLoadCurve``); ``gas`` is then the reference speed's."""
 
     orders: np.ndarray
     gas: dict
@@ -43,9 +49,27 @@ class CylinderHarmonics:
     reference_speed: float
     cycle: float
     throw_of: dict  # cylinder -> throw name
+    gas_speeds: tuple[float, ...] = ()
+    gas_nodes: tuple[dict, ...] = ()
+
+    def gas_weights(self, speed: float) -> np.ndarray:
+        """Weights of ``gas_nodes`` at ``speed`` (``[1.0]`` for the one diagram ``gas``)."""
+        if not self.gas_speeds:
+            return np.ones(1)
+        w = np.asarray(self.gas_speeds)
+        if not w[0] * (1 - 1e-9) <= speed <= w[-1] * (1 + 1e-9):
+            raise ValueError(f"no gas pressure at {speed * 30 / np.pi:.6g} rpm (the diagrams are never extrapolated)")
+        return np.array([np.interp(speed, w, e) for e in np.eye(w.size)]) if w.size > 1 else np.ones(1)
+
+    def gas_parts(self) -> tuple[dict, ...]:
+        """The gas harmonics the weights of ``gas_weights`` apply to."""
+        return self.gas_nodes if self.gas_speeds else (self.gas,)
+
+    def gas_at(self, cylinder: str, speed: float) -> np.ndarray:
+        return sum(wk * part[cylinder] for wk, part in zip(self.gas_weights(speed), self.gas_parts(), strict=True))
 
     def at_speed(self, cylinder: str, speed: float) -> np.ndarray:
-        return self.gas[cylinder] + (speed / self.reference_speed) ** 2 * self.inertia[cylinder]
+        return self.gas_at(cylinder, speed) + (speed / self.reference_speed) ** 2 * self.inertia[cylinder]
 
     def synthesise(self, cylinder: str, speed: float, theta: np.ndarray, orders=None) -> np.ndarray:
         """``T(theta)`` of one cylinder from its harmonics (all, or those in ``orders``)."""
@@ -67,20 +91,35 @@ def fourier(values: np.ndarray, cycle: float) -> tuple[np.ndarray, np.ndarray]:
     return orders, c
 
 
-def cylinder_harmonics(engine: model.Engine, speed: float, *, step: float = np.radians(1.0)) -> CylinderHarmonics:
-    """Gas and inertia harmonics of every cylinder's torque (module docstring)."""
+def cylinder_harmonics(
+    engine: model.Engine,
+    speed: float,
+    *,
+    step: float = np.radians(1.0),
+    full_load: model.FullLoadCurve | None = None,
+    cylinder_gas: dict | None = None,
+) -> CylinderHarmonics:
+    """Gas and inertia harmonics of every cylinder's torque (module docstring); with the
+    per-speed diagrams of ``full_load`` the gas part of each (``CylinderHarmonics``);
+    ``cylinder_gas``: cylinders with a gas of their own (a misfire: cylinder -> a
+    function of the diagram giving its gas, ``fe_crank.mechanism.misfire.motored_gas``)."""
     op = model.OperatingPoint(speed)
-    full = dyn.analyse(engine, op, step=step)
     no_gas = dyn.analyse(dataclasses.replace(engine, gas=None), op, step=step)
-    gas, inertia = {}, {}
-    orders = None
-    for name, cf in full.cylinders.items():
-        t_in = no_gas.cylinders[name].torque
-        orders, c_in = fourier(t_in, full.cycle)
-        _, c_all = fourier(cf.torque, full.cycle)
-        inertia[name] = c_in
-        gas[name] = c_all - c_in
-    return CylinderHarmonics(orders, gas, inertia, speed, full.cycle, {c.name: c.throw for c in engine.cylinders})
+    inertia, orders = {}, None
+    for name, cf in no_gas.cylinders.items():
+        orders, inertia[name] = fourier(cf.torque, no_gas.cycle)
+
+    def gas_of(diagram):
+        own = {c: f(diagram) for c, f in (cylinder_gas or {}).items()}
+        run = dyn.analyse(dataclasses.replace(engine, gas=diagram), op, step=step, cylinder_gas=own)
+        return {n: fourier(cf.torque, run.cycle)[1] - inertia[n] for n, cf in run.cylinders.items()}
+
+    throw_of = {c.name: c.throw for c in engine.cylinders}
+    if full_load is None or not full_load.gas_speeds:
+        return CylinderHarmonics(orders, gas_of(engine.gas), inertia, speed, no_gas.cycle, throw_of)
+    nodes = tuple(gas_of(d) for d in full_load.diagrams)
+    h = CylinderHarmonics(orders, {}, inertia, speed, no_gas.cycle, throw_of, full_load.gas_speeds, nodes)
+    return dataclasses.replace(h, gas={c: h.gas_at(c, speed) for c in inertia})
 
 
 def order_phase_sum(engine: model.Engine, order: float) -> float:

@@ -114,11 +114,13 @@ def forced_response(model: TorsionModel, harmonics: CylinderHarmonics, speeds, o
     index = [int(np.argmin(np.abs(harmonics.orders - o))) for o in orders]
     if not np.allclose(harmonics.orders[index], orders):
         raise ValueError("orders must be harmonics of the engine cycle")
-    # per-mass excitation, gas and inertia parts (n_mass, n_harmonics)
-    gas = np.zeros((model.size, harmonics.orders.size), complex)
-    inertia = np.zeros_like(gas)
+    # per-mass excitation, gas parts (one per diagram of a full-load curve) and inertia part (n_mass, n_harmonics)
+    parts = harmonics.gas_parts()
+    gas_parts = np.zeros((len(parts), model.size, harmonics.orders.size), complex)
+    inertia = np.zeros(gas_parts.shape[1:], complex)
     for cyl, throw in harmonics.throw_of.items():
-        gas[model.throw_mass[throw]] += harmonics.gas[cyl]
+        for k, part in enumerate(parts):
+            gas_parts[k, model.throw_mass[throw]] += part[cyl]
         inertia[model.throw_mass[throw]] += harmonics.inertia[cyl]
     kh, jm, cm = model.stiffness_matrix(hysteretic=True), model.mass_matrix(), model.damping_matrix()
     k = np.asarray(model.stiffness, float)
@@ -128,6 +130,7 @@ def forced_response(model: TorsionModel, harmonics: CylinderHarmonics, speeds, o
     ang = np.zeros((speeds.size, orders.size, model.size), complex)
     mean = np.zeros((speeds.size, model.size - 1))
     for s, w in enumerate(speeds):
+        gas = np.tensordot(harmonics.gas_weights(w), gas_parts, axes=1)
         t = gas + (w / harmonics.reference_speed) ** 2 * inertia
         mean[s] = np.cumsum(np.real(t[:, 0]))[:-1]
         f = (orders * w)[:, None, None]

@@ -10,6 +10,13 @@ in segment ``i`` is the sum of the inertia torques ``omega^2 J_j theta_j`` of th
 before it, and ``theta_{i+1} = theta_i - T_i / k_i``.  ``omega`` is natural when the
 residual torque after the last mass is zero (a free-free chain).  It is an independent
 check of the eigen-solution (no matrices).
+
+A segment without stiffness (the ring of an untuned viscous damper, coupled by its
+silicone film alone) separates the undamped chain into parts that turn freely against
+each other: each part has its own rigid-body mode at 0 Hz (``Modes.rigid`` of them, all
+dropped from the reports), and Holzer's table runs on each part.  These are the
+natural frequencies with the damper's film free (c -> 0); the forced response always
+uses the film's damping.
 """
 
 from __future__ import annotations
@@ -25,22 +32,35 @@ from fe_crank.torsion.model import TorsionModel
 
 @dataclass(frozen=True)
 class Modes:
-    omega: np.ndarray  # (m,) rad/s, ascending, the rigid-body mode (0) included
+    omega: np.ndarray  # (m,) rad/s, ascending, the rigid-body modes (0) included
     shapes: np.ndarray  # (n, m) columns normalised to max |x| = 1
+    rigid: int = 1  # number of rigid-body modes (one per freely turning part of the chain)
 
     @property
     def frequencies_hz(self) -> np.ndarray:
         return self.omega / (2 * np.pi)
 
+    @property
+    def elastic_omega(self) -> np.ndarray:
+        """Natural angular frequencies of the elastic modes (rad/s)."""
+        return self.omega[self.rigid :]
+
+    @property
+    def elastic_hz(self) -> np.ndarray:
+        return self.elastic_omega / (2 * np.pi)
+
 
 def natural_modes(model: TorsionModel) -> Modes:
     """Undamped natural frequencies and mode shapes of the chain (rigid mode first)."""
     lam, vec = eigh(model.stiffness_matrix(), model.mass_matrix())
+    rigid = len(model.components())
     lam = np.clip(lam, 0.0, None)
+    lam[:rigid] = 0.0  # round-off of the rigid-body modes
     omega = np.sqrt(lam)
     shapes = vec / np.max(np.abs(vec), axis=0)
-    shapes = shapes * np.where(shapes[0] < 0, -1.0, 1.0)
-    return Modes(omega, shapes)
+    lead = shapes[np.argmax(np.abs(shapes) > 1e-9, axis=0), np.arange(shapes.shape[1])]
+    shapes = shapes * np.where(lead < 0, -1.0, 1.0)
+    return Modes(omega, shapes, rigid)
 
 
 def holzer_table(model: TorsionModel, omega: float) -> dict[str, np.ndarray]:
@@ -70,10 +90,32 @@ def holzer_residual(model: TorsionModel, omega: float) -> float:
 
 def holzer_frequencies(model: TorsionModel, omega_max: float, *, samples: int = 4000) -> np.ndarray:
     """Natural frequencies (rad/s, > 0) below ``omega_max`` as the roots of the Holzer
-    residual: sign changes on a fine grid, then Brent's method to 1e-12 relative."""
+    residual: sign changes on a fine grid, then Brent's method to 1e-12 relative; on
+    each elastically connected part of the chain (module docstring)."""
+    parts = model.components()
+    if len(parts) > 1:
+        roots = [
+            holzer_frequencies(part_of(model, p), omega_max, samples=samples) for p in parts if p.stop - p.start > 1
+        ]
+        return np.sort(np.concatenate([np.zeros(0), *roots]))
     w = np.linspace(omega_max * 1e-6, omega_max, samples)
     r = np.array([holzer_residual(model, x) for x in w])
     roots = []
     for i in np.nonzero(np.sign(r[:-1]) * np.sign(r[1:]) < 0)[0]:
         roots.append(brentq(lambda x: holzer_residual(model, x), w[i], w[i + 1], xtol=1e-14, rtol=1e-13))
     return np.array(roots)
+
+
+def part_of(model: TorsionModel, part: slice) -> TorsionModel:
+    """The masses ``part`` of the chain and the segments between them."""
+    seg = slice(part.start, part.stop - 1)
+    return TorsionModel(
+        model.names[part],
+        np.asarray(model.inertia)[part],
+        np.asarray(model.stiffness)[seg],
+        np.asarray(model.loss_factor)[seg],
+        np.asarray(model.segment_damping)[seg],
+        np.asarray(model.absolute_damping)[part],
+        model.segment_names[seg],
+        {},
+    )

@@ -13,7 +13,9 @@ viscous damper or a coupling).  The shaft material's hysteresis enters as a loss
 modal damping ratio ``zeta = eta / 2`` at resonance.
 
 Masses are numbered from the free end (front, smaller z) to the driven end; segment ``i``
-joins mass ``i`` and ``i + 1``.
+joins mass ``i`` and ``i + 1``.  A segment may have no stiffness when it has a viscous
+damping: the ring of an untuned viscous (Houdaille) damper, coupled to its hub by the
+silicone film alone (Den Hartog sec. 3.9; Ker Wilson vol. 4).
 """
 
 from __future__ import annotations
@@ -83,14 +85,27 @@ class TorsionModel:
             raise InputError("a torsional model needs at least two masses", key="torsion")
         if np.any(self.inertia <= 0):
             raise InputError("every inertia must be positive", key="torsion.inertia")
-        if np.any(self.stiffness <= 0):
-            raise InputError("every segment stiffness must be positive", key="torsion.stiffness")
         if np.any(self.loss_factor < 0) or np.any(self.segment_damping < 0) or np.any(self.absolute_damping < 0):
             raise InputError("damping must not be negative", key="torsion.damping")
+        if np.any(self.stiffness < 0):
+            raise InputError("a segment stiffness must not be negative", key="torsion.stiffness")
+        if np.any((self.stiffness == 0) & (self.segment_damping <= 0)):
+            raise InputError(
+                "a segment without stiffness needs a viscous damping (an untuned viscous damper), "
+                "else the chain falls apart",
+                key="torsion.stiffness",
+            )
 
     @property
     def size(self) -> int:
         return len(self.names)
+
+    def components(self) -> list[slice]:
+        """The elastically connected parts of the chain (split at the segments without
+        stiffness), as slices of the masses: one part without a viscous-only segment."""
+        cuts = [i + 1 for i, k in enumerate(self.stiffness) if k == 0]
+        edges = [0, *cuts, self.size]
+        return [slice(a, b) for a, b in zip(edges[:-1], edges[1:], strict=True)]
 
     @staticmethod
     def _chain(values: np.ndarray, n: int) -> np.ndarray:

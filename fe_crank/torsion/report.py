@@ -52,7 +52,7 @@ def plot_campbell(res, path: Path) -> Path:
         ax.plot(x, n * x / 60.0, color="0.55" if major else "0.8", lw=0.8)
         ax.text(x[1], n * x[1] / 60.0, f"{n:g}", fontsize=6, va="center")
     fmax = n_max * 1.1 * hi * RPM / 60.0
-    for r, f in enumerate(res.modes.frequencies_hz[1:], start=1):
+    for r, f in enumerate(res.modes.elastic_hz, start=1):
         if f <= fmax:
             ax.axhline(f, color="C0", lw=1.2)
             ax.text(0.0, f, f" mode {r}: {f:.0f} Hz", fontsize=7, va="bottom", color="C0")
@@ -92,8 +92,10 @@ def plot_modes(res, path: Path, count: int = 4) -> Path:
     plt = _plt()
     fig, ax = plt.subplots(figsize=(6.4, 3.6))
     x = np.arange(res.model.size)
-    for r in range(1, min(count + 1, res.modes.omega.size)):
-        ax.plot(x, res.modes.shapes[:, r], "o-", ms=3, label=f"mode {r}: {res.modes.frequencies_hz[r]:.0f} Hz")
+    rigid = res.modes.rigid
+    for r in range(1, min(count + 1, res.modes.omega.size - rigid + 1)):
+        f = res.modes.frequencies_hz[rigid - 1 + r]
+        ax.plot(x, res.modes.shapes[:, rigid - 1 + r], "o-", ms=3, label=f"mode {r}: {f:.0f} Hz")
     ax.axhline(0.0, color="k", lw=0.6)
     ax.set_xticks(x, res.model.names, rotation=30, ha="right", fontsize=7)
     ax.set_ylabel("relative amplitude")
@@ -145,9 +147,12 @@ def result_to_dict(res, *, curves: bool = True) -> dict:
             for n, k, e, c in zip(m.segment_names, m.stiffness, m.loss_factor, m.segment_damping)
         ],
         "throw_stiffness": {k: (float(v) if not isinstance(v, str) else v) for k, v in res.stiffness.items()},
-        "natural_frequencies_hz": _round(res.modes.frequencies_hz[1:]),
+        "natural_frequencies_hz": _round(res.modes.elastic_hz),
         "holzer_frequencies_hz": _round(res.holzer_hz),
-        "mode_shapes": {f"mode_{r}": _round(res.modes.shapes[:, r]) for r in range(1, res.modes.omega.size)},
+        "mode_shapes": {
+            f"mode_{r}": _round(res.modes.shapes[:, res.modes.rigid - 1 + r])
+            for r in range(1, res.modes.elastic_omega.size + 1)
+        },
         "resonances_in_range": [
             {"mode": r.mode, "order": r.order, "frequency_hz": r.frequency_hz, "speed_rpm": r.speed * RPM}
             for r in res.resonances
@@ -170,6 +175,18 @@ def result_to_dict(res, *, curves: bool = True) -> dict:
     return out
 
 
+def stiffness_text(res) -> str:
+    """Where the throw stiffness comes from, with Carter's and the FE value when known."""
+    k = res.stiffness
+    if k["used"] == "lumped":
+        text = "Lumped model as stated (stations, stiffnesses and damping from the input)"
+        return text + (f"; FE throw stiffness {k['fe']:.4g} N m/rad for comparison" if "fe" in k else "")
+    text = f"Throw stiffness (FE span): Carter {k['carter']:.4g} N m/rad"
+    if "fe" in k:
+        text += f", FE {k['fe']:.4g} N m/rad (Carter/FE {k['carter'] / k['fe']:.3f})"
+    return text + f"; the model uses {k['used']}"
+
+
 def html_fragment(res, folder: str | Path) -> str:
     """The torsional section of the report: writes the PNGs into ``folder`` and returns HTML."""
     write_plots(res, folder)
@@ -180,18 +197,15 @@ def html_fragment(res, folder: str | Path) -> str:
         f"<td class=num>{r['half_range_at_operating']:.4g}</td></tr>"
         for r in governing_table(res)
     )
-    freqs = ", ".join(f"{f:.1f}" for f in res.modes.frequencies_hz[1:6])
-    n = min(res.holzer_hz.size, res.modes.omega.size - 1)
+    freqs = ", ".join(f"{f:.1f}" for f in res.modes.elastic_hz[:5])
+    elastic = res.modes.elastic_hz
+    n = min(res.holzer_hz.size, elastic.size)
     holzer = (
-        f"Holzer's table agrees within {np.max(np.abs(res.holzer_hz[:n] / res.modes.frequencies_hz[1 : n + 1] - 1)):.1e}"
-        if n == res.modes.omega.size - 1
+        f"Holzer's table agrees within {np.max(np.abs(res.holzer_hz[:n] / elastic[:n] - 1)):.1e}"
+        if n == elastic.size
         else "Holzer's table found only some of the modes: check the model"
     )
-    k = res.stiffness
-    stiff = f"Throw stiffness (FE span): Carter {k['carter']:.4g} N m/rad"
-    if "fe" in k:
-        stiff += f", FE {k['fe']:.4g} N m/rad (Carter/FE {k['carter'] / k['fe']:.3f})"
-    stiff += f"; the model uses {k['used']}."
+    stiff = stiffness_text(res) + "."
     inside = [r for r in res.resonances if r.in_range]
 
     def strength(r):  # largest vibratory M_TN of the segments at the resonance speed
