@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 
 from fe_crank import model
-from fe_crank.mechanism import dynamics
 from fe_crank.cli import main
 from fe_crank.errors import InputError
-from fe_crank.mechanism.full_load import dynamics_sweep, sweep_speeds
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism import dynamics
+from fe_crank.mechanism.full_load import dynamics_sweep, sweep_speeds
 
 RPM = np.pi / 30
 

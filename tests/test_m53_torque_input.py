@@ -45,7 +45,7 @@ def test_m53_on_a_multi_cylinder_engine_without_torsion_is_refused(tmp_path, cap
 
 
 def test_single_cylinder_needs_no_torsional_stage():
-    lc = load_loadcase(ROOT / "loadcases" / "single_cylinder_seed001.toml")
+    lc = load_loadcase(ROOT / "loadcases" / "single_cylinder.toml")
     assert lc.criteria.limit("m53_acceptability") is not None and not lc.criteria.m53_quasi_static_torque
 
 

@@ -10,10 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fe_crank.mechanism import dynamics
 from fe_crank.cli import main
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism import dynamics
 from fe_crank.mechanism.misfire import ZERO_GAUGE, misfire_cycles
 from fe_crank.torsion.misfire import analyse_misfire
 
@@ -104,7 +104,7 @@ def test_misfire_without_a_motored_curve_is_zero_gauge_pressure(tmp_path):
     """A pressure table without compression ratio (the seed table with its motored curve
     taken away): the misfiring cylinder's gas force is zero, its torque the inertia torque
     of the engine run without gas."""
-    p = variant(tmp_path, "single_cylinder_seed001.toml", "[operating]\n", '[operating]\nmisfire = "each"\n')
+    p = variant(tmp_path, "single_cylinder.toml", "[operating]\n", '[operating]\nmisfire = "each"\n')
     lc = load_loadcase(p)
     engine = dataclasses.replace(lc.engine, gas=dataclasses.replace(lc.engine.gas, motored=None))
     (cyc,) = misfire_cycles(engine, lc.operating)

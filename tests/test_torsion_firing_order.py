@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from fe_crank import model
-from fe_crank.mechanism import dynamics
 from fe_crank.io.engine import load_engine
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism import dynamics
 from fe_crank.torsion.excitation import cylinder_harmonics, order_phase_sum
 from fe_crank.torsion.forced import forced_response
 from fe_crank.torsion.model import TorsionModel
@@ -33,7 +33,7 @@ def inline6(order: str) -> model.Engine:
     or the same crank firing 1-2-3-6-5-4 (the offsets of cylinders 2/5 and 3/4 exchanged
     as the file had them)."""
     e = load_engine(ROOT / "engines" / "inline6.toml")
-    gas = load_loadcase(ROOT / "loadcases" / "single_cylinder_seed001.toml").engine.gas
+    gas = load_loadcase(ROOT / "loadcases" / "single_cylinder.toml").engine.gas
     e = dataclasses.replace(e, gas=gas)
     if order == "1-5-3-6-2-4":
         return e

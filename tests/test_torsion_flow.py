@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from fe_crank import model
-from fe_crank.mechanism import dynamics
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism import dynamics
 from fe_crank.torsion import analyse_torsion
 from fe_crank.torsion.flow import fe_loads, torque_flow
 
@@ -146,5 +146,5 @@ def test_front_take_off_on_a_multi_throw_engine_is_refused_at_input(tmp_path):
     with pytest.raises(InputError, match="front power take-off on a shaft with 4 throws") as err:
         load_loadcase(p)
     assert err.value.file == str(p) and err.value.key == "fe.torque_reaction"
-    one = _copy_case(tmp_path, "single_cylinder_seed001.toml", "[fe]\n", '[fe]\ntorque_reaction = "end_1"\n')
+    one = _copy_case(tmp_path, "single_cylinder.toml", "[fe]\n", '[fe]\ntorque_reaction = "end_1"\n')
     assert load_loadcase(one).fe.torque_reaction == "end_1"

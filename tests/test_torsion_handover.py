@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fe_crank.mechanism import dynamics
 from fe_crank.io.engine import load_engine
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism import dynamics
 from fe_crank.torsion import analyse_torsion, with_vibratory_torque
 from fe_crank.torsion.handover import ALL_ORDERS, journal_torques, segment_histories
 

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from fe_crank import model
-from fe_crank.mechanism import dynamics
 from fe_crank.cli import main
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism import dynamics
 from fe_crank.torsion import analyse_torsion
 from fe_crank.torsion.excitation import CylinderHarmonics
 from fe_crank.torsion.forced import forced_response
