@@ -3,6 +3,7 @@ for one geometry inside the validity range; the range is enforced (FE SCFs outsi
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -183,3 +184,19 @@ def test_default_additional_stress_sources_and_fe_shear_scf():
     assert j.scf_shear == 2.0
     assert j.bending == pytest.approx(3.0 * nom.bending + 2.0 * nom.shear, rel=1e-12)
     assert j.torsion == pytest.approx(1.5 * nom.torsion_journal, rel=1e-12)
+
+
+def test_beta_t_relates_the_journal_fillet_to_the_journal_diameter():
+    """UR M53 3.3 (KR Pt 5 Annex 5-3 3.(3)(C)(b)): beta_T = 0.8 f(r,s) f(b) f(w), alpha_T's
+    functions of 3.2 with r = R_G/D_G where pin and journal differ (s, w, b still over D).
+    GEO: R_G/D_G = 6/120 = 0.05 = R_H/D, so beta_T = alpha_T = 2.06864 (R_G/D = 0.06 would
+    give 0.06^-0.2408 = 1.96889, beta_T 1.97978: 4.3 % low).  With R_G = 9 mm:
+    r = 0.075, 0.075^-0.2408 = 1.86589, beta_T = 0.8 x 1.86589 x 1.055575 x 1.190741 = 1.87621."""
+    nom = m53.NominalStresses(bending=50e6, shear=5e6, torsion_pin=20e6, torsion_journal=15e6)
+    j = m53.assess_fillet(GEO, nom, "journal", tensile=800e6, k=1.0)
+    assert j.scf_torsion == pytest.approx(2.06864, rel=2e-5)
+    assert j.torsion == pytest.approx(2.06864 * 15e6, rel=2e-5)
+    wide = dataclasses.replace(GEO, journal_fillet_radius=0.009)
+    jw = m53.assess_fillet(wide, nom, "journal", tensile=800e6, k=1.0)
+    assert jw.scf_torsion == pytest.approx(1.87621, rel=2e-5)
+    assert m53.beta_t(wide.related("journal"), 0.075) == pytest.approx(1.87621, rel=2e-5)
