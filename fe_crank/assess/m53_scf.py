@@ -12,7 +12,10 @@ diameter D.
   in diameter or fillet radius (3.3; KR Annex 5-3 3.(3)(C)(b)); beta_T = alpha_T where they
   are equal (then R_G/D_G = R_H/D).
 
-alpha_T's f(b) = 7.8955 - 10.654 b + 5.3482 b^2 - 0.857 b^3: see ``F_B_CUBIC``.
+alpha_T's f(b) = 7.8955 - 10.654 b + 5.3482 b^2 - 0.85 b^3 as the Korean Register's
+reproduction prints it (``F_B_CUBIC``; an earlier version of this code had -0.857, of
+unrecorded origin; no second copy of the rule text could be read, and 0.85 is the
+conservative one: docs/assessment.md, "alpha_T's b^3 coefficient").
 """
 
 from __future__ import annotations
@@ -32,9 +35,9 @@ VALIDITY = {
 }
 
 
-#: the b^3 coefficient of alpha_T's (and beta_T's) f(b), UR M53 3.2 (docs/assessment.md,
-#: "alpha_T's b^3 coefficient", says which texts were compared and why this value)
-F_B_CUBIC = 0.857
+#: the b^3 coefficient of alpha_T's (and beta_T's) f(b), UR M53 3.2, as KR Pt 5 Annex 5-3
+#: prints it (docs/assessment.md, "alpha_T's b^3 coefficient": the texts sought, why 0.85)
+F_B_CUBIC = 0.85
 
 
 def out_of_range(rel: dict[str, float]) -> list[str]:
