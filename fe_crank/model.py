@@ -134,6 +134,11 @@ class Engine:
     gas: GasPressure | None = None  # same pressure curve for every cylinder, shifted by firing offset
     source: str = ""
     yoke: Yoke | None = None  # Nordberg synchronising yoke (balance stage), optional
+    #: "trunk_piston" (default) or "crosshead": sets UR M53's additional bending stress (section 4)
+    construction: Literal["trunk_piston", "crosshead"] = "trunk_piston"
+    #: False for a machine that burns nothing in its cylinders (air motor, compressor): the
+    #: UR M53 route, written for I.C. engines, is then an analogy (``assess.m53_basis``)
+    internal_combustion: bool = True
 
     @property
     def cycle_angle(self) -> float:

@@ -11,7 +11,7 @@ import numpy as np
 from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
-from fe_crank.assess.throw import STATIC_ONLY_PREFIXES, GroupResult, assess_group, section_diameter
+from fe_crank.assess.throw import SIGMA_ADD_GROUPS, STATIC_ONLY_PREFIXES, GroupResult, assess_group, section_diameter
 from fe_crank.assess.verdict import CriterionResult, judge
 from fe_crank.errors import InputError
 
@@ -85,6 +85,8 @@ def assess_throw(
     larger alternating part, the one the throw's fillets carry.  Outside the validity
     range of the empirical SCFs UR M53 takes FE SCFs: ``fe_scf`` as given, else
     ``scf()`` (a callable returning the SCF mode's ``assess.scf.ScfResult``, called only then).
+    ``m53_additional``: UR M53 4's sigma_add, Pa, on the fillets' alternating bending stress in
+    both routes (the FE route: ``assess_group``'s ``additional_bending``).
     ``m53_ke``: UR M53 2.1.2.1's K_e on the web's nominal stresses (``m53.ke_factor``:
     0.8 two-stroke, 1.0 four-stroke); the M53 route only, the FE route's stresses are not scaled.
 
@@ -124,6 +126,7 @@ def assess_throw(
             overspeed_coefficients=coeffs_os,
             diameter=section_diameter(g, dp, dj),
             threads=threads,
+            additional_bending=m53_additional if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
         )
         for g in sorted(unit.groups)
         if len(unit.groups[g])

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-from fe_crank.assess import m53, m53_oil_bore
+from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
 from fe_crank.assess.case import Assessment, assess_throw, evaluate_criteria
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
+from fe_crank.assess.m53_basis import m53_basis
 from fe_crank.assess.overspeed import describe as describe_overspeed
 from fe_crank.assess.overspeed import overspeed_cycles
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
@@ -52,12 +53,8 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, th
             else "not included (no [torsion] section)"
         ),
     ]
-    ke = m53.ke_factor(lc.engine.strokes)
-    if lc.engine.strokes == 2:
-        notes.append(
-            "UR M53 route: two-stroke engine, K_e = 0.8 on the web's nominal bending and compressive "
-            "stresses (UR M53 2.1.2.1); not applied to the FE route nor to the oil-bore outlet"
-        )
+    basis = m53_basis(lc.engine, material, criteria.m53_additional_bending, file=lc.source_file)
+    notes.extend(basis.notes)
     cycles_os = overspeed_cycles(lc, dynamics)
     if cycles_os:
         notes.insert(1, describe_overspeed(lc))
@@ -97,8 +94,8 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, th
                     material=material,
                     crank_radius=throw.crank_radius,
                     m53_geometry=m53g,
-                    m53_additional=criteria.m53_additional_bending,
-                    m53_ke=ke,
+                    m53_additional=basis.additional,
+                    m53_ke=basis.ke,
                     counterweights=tuple(cws),
                     torque_rear=tl.torque_rear,
                     threads=threads,

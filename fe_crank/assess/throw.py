@@ -26,6 +26,11 @@ PIN_AXIS_GROUPS = ("crankpin_fillet", "oil_bore", "crankpin")
 JOURNAL_AXIS_GROUPS = ("journal_fillet",)
 #: groups not assessed for fatigue (their own stress criteria apply)
 STATIC_ONLY_PREFIXES = ("counterweight", "junction")
+#: the shaft fillets, where UR M53 section 4's additional bending stress sigma_add
+#: (misalignment, bedplate deformation, axial and bending vibration: loads no single-throw
+#: model carries) is added to the alternating bending stress, in the FE route as in the M53
+#: route (5.2); not at the oil-bore outlet (5.2 has no sigma_add there)
+SIGMA_ADD_GROUPS = ("crankpin_fillet", "journal_fillet")
 
 
 @dataclass(frozen=True)
@@ -54,6 +59,7 @@ class GroupResult:
     amplitude_at_critical: float | None = None  # sigma_a' at the fatigue-critical node, Pa
     mean_at_critical: float | None = None  # sigma_m' there, Pa
     fatigue_factors: FatigueFactors | None = None  # applied to the specimen fatigue limits
+    additional_bending: float = 0.0  # Pa, UR M53 sigma_add added to the amplitudes (SIGMA_ADD_GROUPS)
     #: per-node arrays for reports/VTU (not in the JSON): "node_ids", "max_von_mises",
     #: "amplitude", "mean" (equivalent sigma_a', signed sigma_m'), "fatigue_safety",
     #: "gough_pollard_safety" (inf where not computed)
@@ -114,6 +120,7 @@ def assess_group(
     overspeed_coefficients: np.ndarray | None = None,
     diameter: float | None = None,
     threads: int = 1,
+    additional_bending: float = 0.0,
 ) -> GroupResult:
     """Static and fatigue results of one node group.  ``material`` needs yield strength
     for the static part and the fatigue properties for the fatigue part (None skips).
@@ -122,7 +129,11 @@ def assess_group(
     at omega_os); required when ``overspeed`` is given.  ``diameter``: the section
     diameter for the size factor (``factors.factors``; None: its fallback).  ``threads``:
     the node blocks run on that many threads (``workers.run_blocks``: the same results
-    bit for bit as one thread)."""
+    bit for bit as one thread).  ``additional_bending``: UR M53 4's sigma_add (Pa), added to
+    the alternating bending stress as 5.2 does: to the Gough-Pollard normal-stress amplitude
+    sigma_a, and to the equivalent amplitude sigma_a' of the Goodman criterion (the von Mises
+    amplitude of the path plus a uniaxial sigma_add is at most sigma_a' + sigma_add, so this is
+    an upper bound); the per-node ``amplitude`` field stays the FE's own."""
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
@@ -155,13 +166,15 @@ def assess_group(
         if do_fatigue:
             a, m = fatigue.equivalent_amplitude_mean(hist)
             sa_eq[sl], sm_eq[sl] = a, m
-            good[sl] = fatigue.goodman_safety(a, m, k * material.fatigue_limit_bending, material.tensile_strength)
+            good[sl] = fatigue.goodman_safety(
+                a + additional_bending, m, k * material.fatigue_limit_bending, material.tensile_strength
+            )
         if do_gp:
             sig, tau = fatigue.bending_torsion(hist, unit.points[:, idx], axis)
             s_a, s_m = fatigue.half_range(sig)
             t_a, t_m = fatigue.half_range(tau)
             gp[sl] = fatigue.gough_pollard_safety(
-                s_a,
+                s_a + additional_bending,
                 s_m,
                 t_a,
                 t_m,
@@ -211,5 +224,6 @@ def assess_group(
         amp,
         mean,
         ff,
-        fields,
+        fields=fields,
+        additional_bending=additional_bending if do_fatigue else 0.0,
     )

@@ -10,7 +10,8 @@ of ``QUANTITIES`` (a misspelt or unknown quantity is an error naming the key)::
     min_m53_acceptability = 1.15        # IACS UR M53 Q
     max_counterweight_stress = "150 MPa"
     max_unbalance_error = 0.05          # |built m r - required m r| / required
-    m53_additional_bending = "10 MPa"   # option: UR M53 sigma_add (trunk piston engines)
+    m53_additional_bending = "20 MPa"   # option: UR M53 sigma_add, not below section 4's value
+                                        # (10 MPa trunk piston, 30 MPa crosshead: the engine's construction)
 
 A criterion that needs a material property the load case's material does not give
 (e.g. the M53 factor K of a cast iron) is an error naming the criterion and the
@@ -85,7 +86,7 @@ class Limit:
 @dataclass(frozen=True)
 class Criteria:
     limits: tuple[Limit, ...]
-    m53_additional_bending: float = 10e6  # Pa: UR M53 section 4, trunk piston engines
+    m53_additional_bending: float | None = None  # Pa; None: UR M53 4 by the engine's construction
 
     def limit(self, quantity: str) -> Limit | None:
         return next((lim for lim in self.limits if lim.quantity == quantity), None)

@@ -19,7 +19,9 @@ An engine file looks like::
     throw = "1"
     ...
 
-``[[shafts]]`` may be omitted (one shaft called "main").  ``firing_order`` (names,
+``[[shafts]]`` may be omitted (one shaft called "main").  ``construction = "trunk_piston"``
+(default) or ``"crosshead"`` and ``internal_combustion = true`` (default) or ``false`` (an air
+motor, a compressor) say what UR M53 needs to know of the machine (``fe_crank.assess.m53_basis``).  ``firing_order`` (names,
 evenly spaced over the cycle) and per-cylinder ``firing_offset`` are exclusive.
 """
 
@@ -30,7 +32,7 @@ from pathlib import Path
 from typing import Literal
 
 import numpy as np
-from pydantic import Field, model_validator
+from pydantic import Field, StrictBool, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
@@ -136,6 +138,8 @@ class EngineInput(Strict):
     firing_order: list[str] | None = None
     gas: dict | None = None  # validated by fe_crank.io.gas.build_gas (model = table | csv | wiebe)
     yoke: YokeInput | None = None  # Nordberg synchronising yoke (balance stage)
+    construction: Literal["trunk_piston", "crosshead"] = "trunk_piston"  # UR M53 4: sigma_add
+    internal_combustion: StrictBool = True  # false: air motor, compressor (UR M53 by analogy)
 
 
 def _check_names(kind: str, names: list[str], file) -> None:
@@ -259,6 +263,8 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
             for c in cylinders
         ),
         gas=gas,
+        construction=raw.construction,
+        internal_combustion=raw.internal_combustion,
         yoke=(
             model.Yoke(
                 raw.yoke.mass,

@@ -8,6 +8,8 @@
     surface_finish = "ground"         # ground | machined (default) | hot_rolled | as_forged
     reliability = 0.99                # of the fatigue limits (default 0.99)
     size_factor = 0.85                # optional: else from each section's diameter
+    forging = "drop_forged"           # UR M53 6 factor K: drop_forged | continuous_grain_flow
+                                      # (K = 1.05) | free_form (1.0, also the default when not stated)
 
 Without ``name`` every property the assessment needs must be given inline.  The
 library itself is read with the same model, so a library entry with a bare number
@@ -57,7 +59,9 @@ class Material:
     reliability: float = 0.99  # -> k_e (Shigley table 6-5)
     treatment_factor: float = 1.0
     notch_support_factor: float = 1.0  # FKM n_sigma, FE route only; 1 = no credit
-    m53_k: float | None = None  # IACS UR M53 factor K
+    m53_k: float | None = None  # IACS UR M53 factor K (section 6), see ``forging``
+    kind: str | None = None  # "steel" | "cast_iron" (library); UR M53 covers steel only
+    forging: str | None = None  # the process stated for UR M53's K (``FORGING_K``); None: not stated
     description: str = ""
     source: str = ""
 
@@ -67,6 +71,13 @@ class Material:
 
 
 PROPERTY_NAMES = tuple(f.name for f in fields(Material) if f.name not in ("name", "description", "source"))
+
+#: UR M53 section 6, factor K of the fatigue strength by manufacturing process: "1.05 for
+#: continuous grain flow forged or drop-forged crankshafts, 1.0 for free form forged
+#: crankshafts (without continuous grain flow)"; values above 1 for the fillets only
+FORGING_K = {"drop_forged": 1.05, "continuous_grain_flow": 1.05, "free_form": 1.0}
+#: K of a steel crank whose load case does not state the process: the free-form value
+DEFAULT_FORGING_K = 1.0
 
 
 class MaterialInput(Strict):
@@ -86,6 +97,8 @@ class MaterialInput(Strict):
     treatment_factor: float | None = Field(default=None, gt=0.0, le=3.0)
     notch_support_factor: float | None = Field(default=None, ge=1.0, le=2.0)
     m53_k: float | None = Field(default=None, gt=0.0, le=2.0)
+    kind: Literal["steel", "cast_iron"] | None = None
+    forging: Literal["drop_forged", "continuous_grain_flow", "free_form"] | None = None
     source: str | None = None
 
     def given(self) -> dict:
@@ -168,6 +181,7 @@ def parse_material(value: object, file: str | Path, key: str = "material") -> Ma
                 key=f"{key}.{k}",
             )
     _check_positive(props, file, key)
+    _forging_factor(props, raw, file, key)
     return Material(
         name=raw.name or "custom",
         description=props.pop("description", ""),
@@ -176,9 +190,45 @@ def parse_material(value: object, file: str | Path, key: str = "material") -> Ma
     )
 
 
+def _forging_factor(props: dict, raw: MaterialInput, file, key: str) -> None:
+    """UR M53's K into ``props["m53_k"]``: a K given in the load case wins (with a stated
+    reason, e.g. 0.93 for cold-rolled cast steel), else the stated ``forging`` process
+    (``FORGING_K``), else 1.0 for a steel (free-form forged: the lower value, since the
+    process is not stated), else none (UR M53 covers steel only)."""
+    if raw.m53_k is not None and raw.forging is not None:
+        raise InputError(
+            "give either forging (the process, from which UR M53 section 6 sets K) or m53_k, not both",
+            file=str(file),
+            key=f"{key}.m53_k",
+        )
+    forging = props.get("forging")
+    if forging is not None and props.get("kind") != "steel":
+        raise InputError(
+            f"forging = {forging!r} applies to a forged steel; material {raw.name or 'custom'!r} is "
+            f'{props.get("kind") or "of no stated kind"} (set kind = "steel" for a custom steel)',
+            file=str(file),
+            key=f"{key}.forging",
+        )
+    if raw.m53_k is not None:
+        return
+    if forging is not None:
+        props["m53_k"] = FORGING_K[forging]
+    elif props.get("m53_k") is None and props.get("kind") == "steel":
+        props["m53_k"] = DEFAULT_FORGING_K
+
+
 def load_material(name: str, **overrides: object) -> Material:
     """A library material by name, overrides given as input strings (``"700 MPa"``)."""
     return parse_material({"name": name, **overrides}, library_path(), "material")
 
 
-__all__ = ["Material", "parse_material", "load_material", "library", "library_path", "PROPERTY_NAMES"]
+__all__ = [
+    "Material",
+    "parse_material",
+    "load_material",
+    "library",
+    "library_path",
+    "PROPERTY_NAMES",
+    "FORGING_K",
+    "DEFAULT_FORGING_K",
+]
