@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fe_crank.assess import fatigue
-from fe_crank.assess.factors import FatigueFactors, factors
+from fe_crank.assess.factors import FatigueFactors, factors, location_of
 from fe_crank.assess.peak import TIE_RTOL, group_peak, max_over_cycle
 from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
@@ -144,7 +144,7 @@ def assess_group(
     )
     axis = _axis_for(group, crank_radius)
     do_gp = do_fatigue and axis is not None and material.fatigue_limit_torsion is not None
-    ff = factors(material, diameter) if do_fatigue else None
+    ff = factors(material, diameter, location_of(group)) if do_fatigue else None
     k = ff.product if ff is not None else 1.0
     vm_max = np.empty(nodes.size)
     vm_arg = np.empty(nodes.size, dtype=int)
