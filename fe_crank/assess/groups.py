@@ -11,7 +11,15 @@ from fe_crank.errors import InputError
 from fe_crank.fe.pin_directions import pin_direction
 
 #: boundary groups assessed at their nodes; subdomains assessed with all their nodes
-ASSESSED_BOUNDARIES = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2", "oil_bore")
+ASSESSED_BOUNDARIES = (
+    "crankpin_fillet_1",
+    "crankpin_fillet_2",
+    "journal_fillet_1",
+    "journal_fillet_2",
+    "oil_bore",
+    "counterweight_fillet_1",  # the counterweight-to-web transition fillets (geometry/cw_fillet.py)
+    "counterweight_fillet_2",
+)
 COUNTERWEIGHTS = ("counterweight_1", "counterweight_2")
 
 

@@ -24,8 +24,12 @@ from fe_crank.assess.workers import run_blocks, scratch_array
 #: the crankpin axis (x, y) = (0, R); the journal fillets the crank axis (0, 0).
 PIN_AXIS_GROUPS = ("crankpin_fillet", "oil_bore", "crankpin")
 JOURNAL_AXIS_GROUPS = ("journal_fillet",)
-#: groups not assessed for fatigue (their own stress criteria apply)
+#: groups belonging to a counterweight: its stress criteria take their largest von Mises;
+#: they are not assessed for fatigue (their own stress criteria apply) except the
+#: counterweight's transition fillet (``CW_FILLET_PREFIX``), whose stress cycles with the
+#: pin force like the web's
 STATIC_ONLY_PREFIXES = ("counterweight", "junction")
+CW_FILLET_PREFIX = "counterweight_fillet"
 #: the shaft fillets, where UR M53 section 4's additional bending stress sigma_add
 #: (misalignment, bedplate deformation, axial and bending vibration: loads no single-throw
 #: model carries) is added to the alternating bending stress, in the FE route as in the M53
@@ -138,7 +142,7 @@ def assess_group(
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
     do_fatigue = (
-        not group.startswith(STATIC_ONLY_PREFIXES)
+        (group.startswith(CW_FILLET_PREFIX) or not group.startswith(STATIC_ONLY_PREFIXES))
         and material.fatigue_limit_bending is not None
         and material.tensile_strength is not None
     )
