@@ -69,6 +69,28 @@ QUANTITIES: dict[str, Quantity] = {
     "counterweight_overspeed_stress": Quantity("max", "pressure", (), "max von Mises in a counterweight at overspeed"),
     "unbalance_error": Quantity("max", None, (), "|built m r - required m r| / required m r per counterweight plane"),
     "bolt_utilisation": Quantity("max", None, (), "counterweight bolt load m r omega^2 at overspeed / bolt capacity"),
+    # VDI 2230 Part 1 (2015) of the bolted counterweight (fe_crank/assess/cw_joint.py)
+    "bolt_assembly_utilisation": Quantity(
+        "max", None, (), "VDI 2230 R7: equivalent assembly stress / R_p0.2 at the largest preload (<= 0.9)"
+    ),
+    "bolt_working_safety": Quantity(
+        "min", None, (), "VDI 2230 R8: R_p0.2 / equivalent bolt stress at the overspeed (>= 1.0)"
+    ),
+    "bolt_fatigue_safety": Quantity(
+        "min",
+        None,
+        (),
+        "VDI 2230 R9: thread endurance limit / bolt stress amplitude, starts and stops included (>= 1.2)",
+    ),
+    "bolt_separation_safety": Quantity(
+        "min", None, (), "smallest clamp load after embedding / clamp load the overspeed takes off (>= 1: no opening)"
+    ),
+    "bolt_slip_safety": Quantity(
+        "min",
+        None,
+        (),
+        "VDI 2230 R12: residual clamp load x friction / transverse load per bolt (>= 1.2, 1.8 alternating)",
+    ),
 }
 
 #: option key -> unit kind
