@@ -102,6 +102,9 @@ class Cylinder:
     pin_offset: float = 0.0  # m, desaxe: positive towards the side the crankpin moves to on the power stroke
     firing_offset: float = 0.0  # rad of cycle angle
     articulation: Articulation | None = None
+    #: m, axial position of the rod's big end on the crankpin from the pin's middle (+z to
+    #: the rear); None: the default layout (``fe_crank.fe.pin_patches.rod_positions``)
+    pin_position: float | None = None
 
     @property
     def piston_area(self) -> float:

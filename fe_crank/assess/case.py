@@ -8,9 +8,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fe_crank.assess import m53, m53_oil_bore
+from fe_crank.assess import m53, m53_oil_bore, m53_rods
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
-from fe_crank.assess.superpose import UnitStresses, load_coefficients
+from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
 from fe_crank.assess.throw import SIGMA_ADD_GROUPS, STATIC_ONLY_PREFIXES, GroupResult, assess_group, section_diameter
 from fe_crank.assess.verdict import CriterionResult, judge
 from fe_crank.errors import InputError
@@ -78,6 +78,7 @@ def assess_throw(
     torque_rear: np.ndarray | None = None,
     overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None,
     threads: int = 1,
+    rod_loads: tuple | None = None,
 ) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
@@ -97,18 +98,22 @@ def assess_throw(
     part (which does not grow with speed), so on the safe side.  A list of such pairs
     (several gas states of the overspeed condition, ``assess.overspeed.overspeed_cycles``)
     is checked as one longer history: the overspeed result is the worst over all of them.
-    ``threads``: each group's node blocks on that many threads (``assess_group``)."""
-    coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
+    ``threads``: each group's node blocks on that many threads (``assess_group``).
+    ``rod_loads``: (force (n, 2), place on the pin m) per rod (``fe.pin_patches``): UR M53's
+    moments rod by rod and, where the FE model has patch cases, each rod on its band; an
+    overspeed cycle is then (pin force, torque, rod loads)."""
+    coeffs = cycle_coefficients(unit, pin_force, torque, omega, sense=sense, rod_loads=rod_loads)
     coeffs_os = None
     if overspeed is not None:
         if overspeed_loads is None:
             scale = (overspeed / omega) ** 2 if omega > 0 else 1.0
-            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float))
+            rods_os = None if rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in rod_loads)
+            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float), rods_os)
         cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
         coeffs_os = np.vstack(
             [
-                load_coefficients(p, t, overspeed, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
-                for p, t in cycles
+                cycle_coefficients(unit, c[0], c[1], overspeed, sense=sense, rod_loads=c[2] if len(c) > 2 else None)
+                for c in cycles
             ]
         )
         theta_os = np.tile(np.asarray(theta), len(cycles))  # the angle of the worst row, whichever cycle
@@ -144,7 +149,10 @@ def assess_throw(
         m53_torque = torque
         if torque_rear is not None and m53.half_range(torque_rear) > m53.half_range(torque):
             m53_torque = torque_rear
-        nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque, ke=m53_ke)
+        if rod_loads is None:
+            nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque, ke=m53_ke)
+        else:  # each rod's bending-moment triangle at its own place (UR M53 2.1, m53_rods)
+            nominal = m53_rods.nominal_stresses_by_rod(m53_geometry, rod_loads, m53_torque, ke=m53_ke)[0]
         try:
             fillets = tuple(
                 m53.assess_fillet(
@@ -170,7 +178,7 @@ def assess_throw(
                 for f in fillets
             )
         outlet = m53_oil_bore.assess_outlet(
-            m53_geometry, nominal, pin_force, tensile=material.tensile_strength, k=material.m53_k
+            m53_geometry, nominal, pin_force, tensile=material.tensile_strength, k=material.m53_k, rod_loads=rod_loads
         )
         fillets += (outlet,) if outlet is not None else ()
     cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)

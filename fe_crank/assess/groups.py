@@ -8,7 +8,7 @@ import numpy as np
 from fe_crank.assess.superpose import UnitStresses, unit_nodal_stress
 from fe_crank.assess.workers import run_blocks
 from fe_crank.errors import InputError
-from fe_crank.fe.pin_directions import pin_direction
+from fe_crank.fe.pin_directions import patch_case, pin_direction
 
 #: boundary groups assessed at their nodes; subdomains assessed with all their nodes
 ASSESSED_BOUNDARIES = (
@@ -82,9 +82,19 @@ def unit_stresses(units, groups: dict[str, np.ndarray] | None = None, *, threads
         )
     ids = np.unique(np.concatenate(list(groups.values())))
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
-    cases = tuple(c for c in units.cases if c in ("centrifugal", "torque") or pin_direction(c) is not None)
+    cases = tuple(
+        c
+        for c in units.cases
+        if c in ("centrifugal", "torque") or pin_direction(c) is not None or patch_case(c) is not None
+    )
     stress = _recover(units, cases, ids, threads)  # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(units.cases["torque"].applied[5]) if "torque" in units.cases else -1.0
     return UnitStresses(
-        stress=stress, points=np.asarray(units.points)[:, ids], groups=local, node_ids=ids, cases=cases, torque_mz=mz
+        stress=stress,
+        points=np.asarray(units.points)[:, ids],
+        groups=local,
+        node_ids=ids,
+        cases=cases,
+        torque_mz=mz,
+        pin_patches=tuple(units.options.pin_patches),
     )

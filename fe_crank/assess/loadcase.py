@@ -12,12 +12,18 @@ from fe_crank.assess.overspeed import overspeed_cycles
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.scf import scf_provider
 from fe_crank.errors import InputError
+from fe_crank.fe.pin_patches import rod_loads, rod_positions
 from fe_crank.throw_scope import throws_of
 
 
 def _hook(obj, name, *args):
     f = getattr(obj, name, None)
     return f(*args) if callable(f) else None
+
+
+def _cycle(tl, places):
+    """(pin force, front torque, rod loads) of a throw's cycle (``assess_throw``'s overspeed)."""
+    return tl.pin_force, tl.torque_front, rod_loads(tl, places)
 
 
 def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, threads: int = 1) -> Assessment:
@@ -77,6 +83,9 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, th
             m53g = _hook(lc.geometry, "m53_geometry", tname)
             if m53g is None:
                 m53g = m53_geometry_of(lc.geometry)
+            pin_length = getattr(lc.geometry, "crankpin_length", None)  # None: the summed force at mid-pin
+            places = rod_positions(lc.engine, tname, pin_length) if pin_length else {}
+            rods = rod_loads(tl, places)
             cws = _hook(lc.geometry, "counterweights", tname)
             if cws is None:
                 gthrow = getattr(throw_meshes.get(key), "throw", None)
@@ -99,10 +108,8 @@ def assess_case(loadcase, dynamics, balance, throw_meshes, unit_solutions, *, th
                     counterweights=tuple(cws),
                     torque_rear=tl.torque_rear,
                     threads=threads,
-                    overspeed_loads=[
-                        (c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front) for c in cycles_os
-                    ]
-                    or None,
+                    overspeed_loads=[_cycle(c.dynamics.throws[tname], places) for c in cycles_os] or None,
+                    rod_loads=rods,
                     scf=None
                     if m53g is None
                     else scf_provider(

@@ -19,10 +19,10 @@ An engine file looks like::
     throw = "1"
     ...
 
-``[[shafts]]`` may be omitted (one shaft called "main").  ``construction = "trunk_piston"``
-(default) or ``"crosshead"`` and ``internal_combustion = true`` (default) or ``false`` (an air
-motor, a compressor) say what UR M53 needs to know of the machine (``fe_crank.assess.m53_basis``).  ``firing_order`` (names,
-evenly spaced over the cycle) and per-cylinder ``firing_offset`` are exclusive.
+``[[shafts]]`` may be omitted (one shaft "main"); ``firing_order`` (names, evenly spaced)
+and per-cylinder ``firing_offset`` are exclusive.  ``construction`` ("trunk_piston" default,
+"crosshead") and ``internal_combustion`` (true default; false: an air motor) are UR M53's
+(``assess.m53_basis``); a cylinder's ``pin_position``: its rod on the pin (``fe.pin_patches``).
 """
 
 from __future__ import annotations
@@ -31,7 +31,6 @@ import math
 from pathlib import Path
 from typing import Literal
 
-import numpy as np
 from pydantic import Field, StrictBool, model_validator
 
 from fe_crank import model
@@ -94,6 +93,7 @@ class CylinderInput(Strict):
     pin_offset: Length = 0.0
     firing_offset: Angle | None = None
     articulation: ArticulationInput | None = None
+    pin_position: Length | None = None  # big end's axial place on the pin from its middle
 
     @model_validator(mode="after")
     def _sizes(self):
@@ -143,11 +143,9 @@ class EngineInput(Strict):
 
 
 def _check_names(kind: str, names: list[str], file) -> None:
-    seen = set()
     for i, n in enumerate(names):
-        if n in seen:
+        if n in names[:i]:
             raise InputError(f"duplicate name {n!r}", file=str(file), key=f"{kind}[{i}].name")
-        seen.add(n)
 
 
 def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine:
@@ -254,6 +252,7 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
                 bank_angle=c.bank_angle,
                 pin_offset=c.pin_offset,
                 firing_offset=offsets[c.name],
+                pin_position=c.pin_position,
                 articulation=(
                     model.Articulation(c.articulation.master, c.articulation.link_radius, c.articulation.link_angle)
                     if c.articulation
@@ -297,4 +296,4 @@ def engine_from_reference(value: object, file: str | Path, key: str = "engine") 
     raise InputError("must be a path to an engine file or an inline [engine] table", file=str(file), key=key)
 
 
-__all__ = ["build_engine", "load_engine", "engine_from_reference", "EngineInput", "CylinderInput", "np"]
+__all__ = ["build_engine", "load_engine", "engine_from_reference", "EngineInput", "CylinderInput"]
