@@ -102,6 +102,9 @@ class Cylinder:
     pin_offset: float = 0.0  # m, desaxe: positive towards the side the crankpin moves to on the power stroke
     firing_offset: float = 0.0  # rad of cycle angle
     articulation: Articulation | None = None
+    #: m, axial position of the rod's big end on the crankpin from the pin's middle (+z to
+    #: the rear); None: the default layout (``fe_crank.fe.pin_patches.rod_positions``)
+    pin_position: float | None = None
 
     @property
     def piston_area(self) -> float:
@@ -134,6 +137,11 @@ class Engine:
     gas: GasPressure | None = None  # same pressure curve for every cylinder, shifted by firing offset
     source: str = ""
     yoke: Yoke | None = None  # Nordberg synchronising yoke (balance stage), optional
+    #: "trunk_piston" (default) or "crosshead": sets UR M53's additional bending stress (section 4)
+    construction: Literal["trunk_piston", "crosshead"] = "trunk_piston"
+    #: False for a machine that burns nothing in its cylinders (air motor, compressor): the
+    #: UR M53 route, written for I.C. engines, is then an analogy (``assess.m53_basis``)
+    internal_combustion: bool = True
 
     @property
     def cycle_angle(self) -> float:

@@ -114,6 +114,7 @@ def test_size_factor_per_section_in_the_assessment():
         material=mat,
         crank_radius=0.1,
         m53_geometry=geo,
+        m53_additional=0.0,  # the FE model's own stresses (UR M53 sigma_add: test_assess_m53_basis.py)
     )
     sa = 32 * 1000.0 / (np.pi * d**3)
     by = {g.group: g for g in t.groups}

@@ -62,8 +62,13 @@ def test_given_factors_win_and_no_tensile_strength_gives_no_surface_factor():
 
 def test_report_rows():
     # 42CrMo4 defaults: machined at 900 MPa 0.74355, per-section size, 99 %: 0.81389
+    # surfaces per location: the fillets machined by default, the oil bore drilled (table 6-2's
+    # machined constants), the counterweight fillet as forged: 272 x 900^-0.995 = 0.3131
     assert material_rows(load_material("42CrMo4")) == [
-        ["surface factor k_a", "0.744 (machined, Shigley eq. 6-19)"],
+        ["surface factor k_a, crankpin fillet", "0.744 (machined, Shigley eq. 6-19)"],
+        ["surface factor k_a, journal fillet", "0.744 (machined, Shigley eq. 6-19)"],
+        ["surface factor k_a, oil bore", "0.744 (drilled, Shigley eq. 6-19)"],
+        ["surface factor k_a, counterweight fillet", "0.313 (as_forged, Shigley eq. 6-19)"],
         ["size factor k_b", "per section from its diameter (Shigley eq. 6-20; see the fatigue table)"],
         ["reliability factor k_e", "0.814 (0.99, Shigley table 6-5)"],
         ["treatment factor", "1.000"],
@@ -72,8 +77,11 @@ def test_report_rows():
     rows = material_rows(
         load_material("C45", surface_factor=0.8, size_factor=0.9, reliability=0.9, treatment_factor=1.2)
     )
-    assert rows[:4] == [
-        ["surface factor k_a", "0.800 (given)"],
+    assert rows[:2] == [
+        ["surface factor k_a, crankpin fillet", "0.800 (given 0.8: material.surface_factor, every shaft fillet)"],
+        ["surface factor k_a, journal fillet", "0.800 (given 0.8: material.surface_factor, every shaft fillet)"],
+    ]
+    assert rows[4:7] == [
         ["size factor k_b", "0.900 (given)"],
         ["reliability factor k_e", "0.897 (0.9, Shigley table 6-5)"],
         ["treatment factor", "1.200"],

@@ -70,6 +70,7 @@ def test_bar_bending_plus_mean_torsion_closed_form():
         overspeed=None,
         material=mat,
         crank_radius=0.0,
+        m53_additional=0.0,  # the FE model's own stresses (UR M53 sigma_add: test_assess_m53_basis.py)
     )
     g = t.groups[0]
     sa = 32 * M_A / (np.pi * D**3)
@@ -119,7 +120,16 @@ def test_pure_torsion_gough_pollard_and_goodman():
     theta = np.deg2rad(np.arange(360.0))
     tq = 500.0 * np.cos(theta)
     t = assess_throw(
-        "1", _bar_units(), theta, np.zeros((360, 2)), tq, omega=0.0, overspeed=None, material=mat, crank_radius=0.0
+        "1",
+        _bar_units(),
+        theta,
+        np.zeros((360, 2)),
+        tq,
+        omega=0.0,
+        overspeed=None,
+        material=mat,
+        crank_radius=0.0,
+        m53_additional=0.0,  # the FE model's own stresses
     )
     ta = 16 * 500.0 / (np.pi * D**3)
     g = t.groups[0]

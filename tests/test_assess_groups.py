@@ -69,8 +69,8 @@ def test_a_mesh_without_assessed_groups_is_refused(units):
     assert e.value.key == "geometry"
     assert str(e.value) == (
         "geometry: the mesh has none of the assessed groups (crankpin_fillet_1, "
-        "crankpin_fillet_2, journal_fillet_1, journal_fillet_2, oil_bore, counterweight_1, "
-        "counterweight_2)"
+        "crankpin_fillet_2, journal_fillet_1, journal_fillet_2, oil_bore, counterweight_fillet_1, "
+        "counterweight_fillet_2, counterweight_1, counterweight_2)"
     )
 
 

@@ -10,7 +10,8 @@
 * ``counterweights_of(...)``: per balance plane, the built m r of the throw's
   counterweights (exact B-rep mass properties of the geometry stage, ``fe_crank.geometry.mass``) against the
   balance stage's required m r (``CounterweightDesign.nearest``), and for bolted ones
-  the bolt capacity n A_s R_e,bolt (A_s: ISO 898-1 tensile stress area of the coarse
+  each counterweight's joint with its own mass and radius (``joints``, VDI 2230:
+  ``assess.cw_joint``) and the bolt capacity n A_s R_e,bolt (A_s: ISO 898-1 tensile stress area of the coarse
   thread for M8-M36, else pi/4 (0.88 d)^2, within 6 % of the table over M8-M30).
 """
 
@@ -18,7 +19,8 @@ from __future__ import annotations
 
 import math
 
-from fe_crank.assess.counterweight import CounterweightData
+from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData
+from fe_crank.assess.cw_joint import yield_point
 from fe_crank.assess.m53 import M53Geometry
 from fe_crank.balance.counterweights import CounterweightDesign
 from fe_crank.geometry.mass import MassProperties
@@ -105,8 +107,15 @@ def counterweights_of(
         plane = items[0][2]
         bolted = [cw.bolted for cw, _, _ in items if cw.bolted is not None]
         capacity = None
-        if bolted and all(b.yield_strength is not None for b in bolted):
-            capacity = sum(b.count * stress_area(b.diameter) * b.yield_strength for b in bolted)
+        if bolted and all(b.yield_strength is not None or b.property_class is not None for b in bolted):
+            capacity = sum(b.count * stress_area(b.diameter) * yield_point(b) for b in bolted)
+        joints = tuple(
+            BoltedCounterweight(
+                f"counterweight_{cw.web}", cw.bolted, p.mass, math.hypot(*p.unbalance_vector[:2]) / p.mass
+            )
+            for cw, p, _ in items
+            if cw.bolted is not None and p.mass > 0
+        )
         out.append(
             CounterweightData(
                 name="+".join(f"counterweight_{cw.web}" for cw, _, _ in items),
@@ -115,6 +124,7 @@ def counterweights_of(
                 required_unbalance=None if plane is None else plane.unbalance,
                 bolted=bool(bolted),
                 bolt_capacity=capacity,
+                joints=joints,
             )
         )
     return tuple(out)

@@ -17,6 +17,7 @@ from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.adapters import counterweights_of
 from fe_crank.assess.criteria import evaluate_criteria
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
+from fe_crank.assess.m53_basis import M53Basis, m53_basis
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.states import ModelStates, model_states
@@ -24,13 +25,14 @@ from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment, assess_throw
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.errors import InputError
+from fe_crank.fe.pin_patches import rod_loads, rod_positions
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.geometry.mass import ThrowSolids
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.criteria import Criteria
 from fe_crank.io.material import Material
 from fe_crank.mechanism.cycles import EngineCycles
-from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.mechanism.dynamics import DynamicsResult, ThrowLoads
 from fe_crank.notes import ASSUMPTION, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
@@ -87,7 +89,7 @@ class Assessment:
         return all(c.passed for c in self.criteria)
 
 
-def _notes(a: AssessInputs) -> list[Note]:
+def _notes(a: AssessInputs, basis: M53Basis) -> list[Note]:
     texts = [
         "stresses: linear elastic FE, nodal averages; histories by unit-load superposition (exact)",
         "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration "
@@ -97,11 +99,7 @@ def _notes(a: AssessInputs) -> list[Note]:
             else "not included (no [torsion] section)"
         ),
     ]
-    if a.engine.strokes == 2:
-        texts.append(
-            "UR M53 route: two-stroke engine, K_e = 0.8 on the web's nominal bending and compressive "
-            "stresses (UR M53 2.1.2.1); not applied to the FE route nor to the oil-bore outlet"
-        )
+    texts.extend(basis.notes)
     if a.cycles.overspeed:
         texts.insert(1, a.cycles.overspeed_note)
     return [_assumption(t) for t in texts]
@@ -127,8 +125,8 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
             "the assessment needs a [criteria] section with at least one limit", file=a.source_file, key="criteria"
         )
     omega, overspeed = a.operating.speed, a.operating.overspeed
-    notes = _notes(a)
-    ke = m53.ke_factor(a.engine.strokes)
+    basis = m53_basis(a.engine, a.material, lim.m53_additional_bending, file=a.source_file)
+    notes = _notes(a, basis)
     senses = {t.name: a.engine.shaft(t.shaft).sense for t in a.engine.throws}
     design = a.balance.design if a.balance is not None else None
     throws = []
@@ -147,6 +145,9 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         for tname in throws_of(key, a.dynamics.throws):
             tl = a.dynamics.throws[tname]
             throw = a.engine.throw(tname)
+            # each rod at its place on the pin (UR M53 2.1); without a geometry, the summed
+            # force at mid-pin
+            places = rod_positions(a.engine, tname, a.geometry.crankpin_length) if a.geometry is not None else {}
             cws = (
                 counterweights_of(spec, a.solids.of(spec.name), throw.axial_position, throw.shaft, design)
                 if spec is not None and spec.counterweights and a.solids is not None
@@ -165,15 +166,12 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                     material=a.material,
                     crank_radius=throw.crank_radius,
                     m53_geometry=a.m53_geometry,
-                    m53_additional=lim.m53_additional_bending,
-                    m53_ke=ke,
+                    m53_additional=basis.additional,
+                    m53_ke=basis.ke,
                     counterweights=cws,
                     torque_rear=tl.torque_rear,
-                    overspeed_loads=[
-                        (c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front)
-                        for c in a.cycles.overspeed
-                    ]
-                    or None,
+                    overspeed_loads=[_cycle(c.dynamics.throws[tname], places) for c in a.cycles.overspeed] or None,
+                    rod_loads=rod_loads(tl, places),
                     scf=a.scf.get(key),
                 )
             )
@@ -197,6 +195,11 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     return Assessment(
         a.case, a.source_file, omega, overspeed, a.material, done, verdicts, tuple(grouped(notes)), tuple(states)
     )
+
+
+def _cycle(tl: ThrowLoads, places: dict[str, float]) -> tuple:
+    """(pin force, front torque, rod loads) of a throw's cycle (``assess_throw``'s overspeed)."""
+    return tl.pin_force, tl.torque_front, rod_loads(tl, places)
 
 
 def shared_models(unit_solutions: dict[str, UnitSolutions]) -> list[tuple[tuple[str, ...], UnitSolutions]]:

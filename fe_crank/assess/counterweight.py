@@ -12,6 +12,17 @@ from dataclasses import dataclass
 
 
 @dataclass(frozen=True)
+class BoltedCounterweight:
+    """One bolted counterweight for the VDI 2230 check (``assess.cw_joint``): its joint
+    (``geometry.spec.BoltedJoint``), its own mass and centre-of-mass radius (SI)."""
+
+    name: str
+    joint: object
+    mass: float
+    radius: float
+
+
+@dataclass(frozen=True)
 class CounterweightData:
     """What the geometry and balance stages say about one counterweight (SI)."""
 
@@ -21,6 +32,7 @@ class CounterweightData:
     required_unbalance: float | None = None  # kg m, from the balance stage
     bolted: bool = False
     bolt_capacity: float | None = None  # N, total over the counterweight's bolts
+    joints: tuple[BoltedCounterweight, ...] = ()  # the bolted ones, for VDI 2230
 
     @property
     def built_unbalance(self) -> float:

@@ -4,8 +4,11 @@ Source: Budynas & Nisbett, *Shigley's Mechanical Engineering Design*, 10th ed. (
 section 6-9, eq. 6-18: S_e = k_a k_b k_c k_d k_e k_f S'_e.  Here:
 
 * k_a, surface (eq. 6-19, table 6-2): k_a = a R_m^b, R_m in MPa, with
-  ground a = 1.58, b = -0.085; machined or cold-drawn 4.51, -0.265;
+  ground a = 1.58, b = -0.085; machined or cold-drawn 4.51, -0.265 (also a drilled hole);
   hot-rolled 57.7, -0.718; as-forged 272, -0.995.  Capped at 1 (a polished specimen).
+  Per assessed location (``Material.surface``): the shaft fillets take the load case's
+  common finish (default machined), the oil-bore outlet is drilled and the counterweight's
+  transition fillet as forged unless the load case states otherwise ([material.surface]).
 * k_b, size (eq. 6-20, rotating round section of diameter d):
   k_b = 1.24 d^-0.107 for 2.79 <= d <= 51 mm, 1.51 d^-0.157 for 51 < d <= 254 mm,
   1 below 2.79 mm; above 254 mm the 254-mm value.  The crank's sections are loaded
@@ -32,6 +35,7 @@ SURFACE = {
     "machined": (4.51, -0.265),
     "hot_rolled": (57.7, -0.718),
     "as_forged": (272.0, -0.995),
+    "drilled": (4.51, -0.265),  # a drilled hole: table 6-2's machined
 }
 #: size factor used when the section diameter is unknown (eq. 6-20 at 254 mm)
 SIZE_FALLBACK_DIAMETER = 0.254
@@ -71,23 +75,34 @@ class FatigueFactors:
     treatment: float
     notch_support: float
     diameter: float | None  # m, section diameter the size factor was taken for
+    surface_basis: str = ""  # the finish, or "given: <reason>"
 
     @property
     def product(self) -> float:
         return self.surface * self.size * self.reliability * self.treatment * self.notch_support
 
 
-def factors(material, diameter: float | None = None) -> FatigueFactors:
+def location_of(group: str) -> str | None:
+    """The surface location of an assessed group: ``crankpin_fillet_2`` -> ``crankpin_fillet``,
+    ``oil_bore`` -> ``oil_bore``; None for a group without a surface of its own (a subdomain)."""
+    for loc in ("crankpin_fillet", "journal_fillet", "oil_bore", "counterweight_fillet"):
+        if group == loc or group.startswith(loc + "_"):
+            return loc
+    return None
+
+
+def factors(material, diameter: float | None = None, location: str | None = None) -> FatigueFactors:
     """The factors of ``material`` (``fe_crank.io.material.Material``) for a section of
-    ``diameter``: given values win over the computed ones (surface from the finish and
-    R_m, size from the diameter)."""
-    ks = material.surface_factor
-    if ks is None:
-        ks = (
-            surface_factor(material.surface_finish, material.tensile_strength)
-            if material.tensile_strength is not None
-            else 1.0
-        )
+    ``diameter`` at ``location`` (``location_of``; None: the shaft fillets' common surface):
+    given values win over the computed ones (surface from the location's finish and R_m,
+    size from the diameter)."""
+    surf = material.surface(location)
+    if surf.factor is not None:
+        ks, basis = surf.factor, f"given {surf.factor:g}: {surf.reason}"
+    elif material.tensile_strength is not None:
+        ks, basis = surface_factor(surf.finish, material.tensile_strength), surf.finish
+    else:
+        ks, basis = 1.0, "no tensile strength: none"
     kb = material.size_factor if material.size_factor is not None else size_factor(diameter)
     return FatigueFactors(
         ks,
@@ -96,6 +111,7 @@ def factors(material, diameter: float | None = None) -> FatigueFactors:
         material.treatment_factor,
         material.notch_support_factor,
         None if material.size_factor is not None else diameter,
+        basis,
     )
 
 
@@ -106,6 +122,7 @@ __all__ = [
     "reliability_factor",
     "FatigueFactors",
     "factors",
+    "location_of",
     "material_rows",
 ]
 
@@ -115,18 +132,17 @@ def material_rows(material) -> list[list[str]]:
     if material is None or not hasattr(material, "reliability"):
         return []
     ff = factors(material, None)
-    ka = (
-        f"{ff.surface:.3f} (given)"
-        if material.surface_factor is not None
-        else f"{ff.surface:.3f} ({material.surface_finish}, Shigley eq. 6-19)"
-    )
+    ka = []
+    for loc in ("crankpin_fillet", "journal_fillet", "oil_bore", "counterweight_fillet"):
+        f = factors(material, None, loc)
+        how = f.surface_basis if f.surface_basis.startswith("given") else f"{f.surface_basis}, Shigley eq. 6-19"
+        ka.append([f"surface factor k_a, {loc.replace('_', ' ')}", f"{f.surface:.3f} ({how})"])
     kb = (
         f"{material.size_factor:.3f} (given)"
         if material.size_factor is not None
         else "per section from its diameter (Shigley eq. 6-20; see the fatigue table)"
     )
-    return [
-        ["surface factor k_a", ka],
+    return ka + [
         ["size factor k_b", kb],
         ["reliability factor k_e", f"{ff.reliability:.3f} ({material.reliability:.4g}, Shigley table 6-5)"],
         ["treatment factor", f"{ff.treatment:.3f}"],

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fe_crank.assess import fatigue
-from fe_crank.assess.factors import FatigueFactors, factors
+from fe_crank.assess.factors import FatigueFactors, factors, location_of
 from fe_crank.assess.peak import TIE_RTOL, group_peak, max_over_cycle
 from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
@@ -24,8 +24,17 @@ from fe_crank.assess.workers import run_blocks, scratch_array
 #: the crankpin axis (x, y) = (0, R); the journal fillets the crank axis (0, 0).
 PIN_AXIS_GROUPS = ("crankpin_fillet", "oil_bore", "crankpin")
 JOURNAL_AXIS_GROUPS = ("journal_fillet",)
-#: groups not assessed for fatigue (their own stress criteria apply)
+#: groups belonging to a counterweight: its stress criteria take their largest von Mises;
+#: they are not assessed for fatigue (their own stress criteria apply) except the
+#: counterweight's transition fillet (``CW_FILLET_PREFIX``), whose stress cycles with the
+#: pin force like the web's
 STATIC_ONLY_PREFIXES = ("counterweight", "junction")
+CW_FILLET_PREFIX = "counterweight_fillet"
+#: the shaft fillets, where UR M53 section 4's additional bending stress sigma_add
+#: (misalignment, bedplate deformation, axial and bending vibration: loads no single-throw
+#: model carries) is added to the alternating bending stress, in the FE route as in the M53
+#: route (5.2); not at the oil-bore outlet (5.2 has no sigma_add there)
+SIGMA_ADD_GROUPS = ("crankpin_fillet", "journal_fillet")
 
 
 @dataclass(frozen=True)
@@ -54,6 +63,7 @@ class GroupResult:
     amplitude_at_critical: float | None = None  # sigma_a' at the fatigue-critical node, Pa
     mean_at_critical: float | None = None  # sigma_m' there, Pa
     fatigue_factors: FatigueFactors | None = None  # applied to the specimen fatigue limits
+    additional_bending: float = 0.0  # Pa, UR M53 sigma_add added to the amplitudes (SIGMA_ADD_GROUPS)
     #: per-node arrays for reports/VTU (not in the JSON): "node_ids", "max_von_mises",
     #: "amplitude", "mean" (equivalent sigma_a', signed sigma_m'), "fatigue_safety",
     #: "gough_pollard_safety" (inf where not computed)
@@ -113,6 +123,7 @@ def assess_group(
     chunk: int = fatigue.NODE_BLOCK,
     overspeed_coefficients: np.ndarray | None = None,
     diameter: float | None = None,
+    additional_bending: float = 0.0,
 ) -> GroupResult:
     """Static and fatigue results of one node group.  ``material`` needs yield strength
     for the static part and the fatigue properties for the fatigue part (None skips).
@@ -121,18 +132,22 @@ def assess_group(
     at omega_os); required when ``overspeed`` is given.  ``diameter``: the section
     diameter for the size factor (``factors.factors``; None: its fallback).  The node
     blocks run on the context's threads (``workers.run_blocks``: the same results bit for
-    bit as one thread)."""
+    bit as one thread).  ``additional_bending``: UR M53 4's sigma_add (Pa), added to
+    the alternating bending stress as 5.2 does: to the Gough-Pollard normal-stress amplitude
+    sigma_a, and to the equivalent amplitude sigma_a' of the Goodman criterion (the von Mises
+    amplitude of the path plus a uniaxial sigma_add is at most sigma_a' + sigma_add, so this is
+    an upper bound); the per-node ``amplitude`` field stays the FE's own."""
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
     do_fatigue = (
-        not group.startswith(STATIC_ONLY_PREFIXES)
+        (group.startswith(CW_FILLET_PREFIX) or not group.startswith(STATIC_ONLY_PREFIXES))
         and material.fatigue_limit_bending is not None
         and material.tensile_strength is not None
     )
     axis = _axis_for(group, crank_radius)
     do_gp = do_fatigue and axis is not None and material.fatigue_limit_torsion is not None
-    ff = factors(material, diameter) if do_fatigue else None
+    ff = factors(material, diameter, location_of(group)) if do_fatigue else None
     k = ff.product if ff is not None else 1.0
     vm_max = np.empty(nodes.size)
     vm_arg = np.empty(nodes.size, dtype=int)
@@ -154,13 +169,15 @@ def assess_group(
         if do_fatigue:
             a, m = fatigue.equivalent_amplitude_mean(hist)
             sa_eq[sl], sm_eq[sl] = a, m
-            good[sl] = fatigue.goodman_safety(a, m, k * material.fatigue_limit_bending, material.tensile_strength)
+            good[sl] = fatigue.goodman_safety(
+                a + additional_bending, m, k * material.fatigue_limit_bending, material.tensile_strength
+            )
         if do_gp:
             sig, tau = fatigue.bending_torsion(hist, unit.points[:, idx], axis)
             s_a, s_m = fatigue.half_range(sig)
             t_a, t_m = fatigue.half_range(tau)
             gp[sl] = fatigue.gough_pollard_safety(
-                s_a,
+                s_a + additional_bending,
                 s_m,
                 t_a,
                 t_m,
@@ -210,5 +227,6 @@ def assess_group(
         amp,
         mean,
         ff,
-        fields,
+        fields=fields,
+        additional_bending=additional_bending if do_fatigue else 0.0,
     )

@@ -8,11 +8,19 @@ import numpy as np
 from fe_crank.assess.superpose import UnitStresses, unit_nodal_stress
 from fe_crank.assess.workers import run_blocks, thread_count
 from fe_crank.errors import InputError
-from fe_crank.fe.pin_directions import pin_direction
+from fe_crank.fe.pin_directions import patch_case, pin_direction
 from fe_crank.fe.unit_cases import UnitSolutions
 
 #: boundary groups assessed at their nodes; subdomains assessed with all their nodes
-ASSESSED_BOUNDARIES = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2", "oil_bore")
+ASSESSED_BOUNDARIES = (
+    "crankpin_fillet_1",
+    "crankpin_fillet_2",
+    "journal_fillet_1",
+    "journal_fillet_2",
+    "oil_bore",
+    "counterweight_fillet_1",  # the counterweight-to-web transition fillets (geometry/cw_fillet.py)
+    "counterweight_fillet_2",
+)
 COUNTERWEIGHTS = ("counterweight_1", "counterweight_2")
 
 
@@ -77,7 +85,11 @@ def unit_stresses(unit_solutions: UnitSolutions, groups: dict[str, np.ndarray] |
         )
     ids = np.unique(np.concatenate(list(groups.values())))
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
-    cases = tuple(c for c in unit_solutions.cases if c in ("centrifugal", "torque") or pin_direction(c) is not None)
+    cases = tuple(
+        c
+        for c in unit_solutions.cases
+        if c in ("centrifugal", "torque") or pin_direction(c) is not None or patch_case(c) is not None
+    )
     stress = _recover(unit_solutions, cases, ids)  # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0
     return UnitStresses(
@@ -87,4 +99,5 @@ def unit_stresses(unit_solutions: UnitSolutions, groups: dict[str, np.ndarray] |
         node_ids=ids,
         cases=cases,
         torque_mz=mz,
+        pin_patches=tuple(unit_solutions.options.pin_patches),
     )

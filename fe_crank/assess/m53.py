@@ -12,11 +12,8 @@ The formulas are in the rule's units: lengths in mm, stresses in N/mm^2 (MPa).  
 public functions here take and return SI (m, Pa) and convert inside.  Checked against
 the rule text as the Korean Register reproduces it clause by clause (Rules for the
 Classification of Steel Ships, Pt 5, Annex 5-3, 2025), which also gives K_e (2.1.2.1,
-``ke_factor``).  One difference there is unresolved: that text prints alpha_T's
-f(b) = 7.8955 - 10.654 b + 5.3482 b^2 - 0.85 b^3, this module keeps -0.857 b^3 (f(b) 2 %
-lower at b = 1.5, 6 % at b = 2.2).  The FE SCF mode sides with -0.857: on the throw of
-tests/test_fe_scf_assess.py (b = 1.43) FE alpha_T / empirical is 0.913 with it and 0.897
-with -0.85 (docs/assessment.md).
+``ke_factor``).  The SCFs of section 3 and their validity range are in ``m53_scf`` (and
+re-exported here).
 
 Related dimensions (section 3.1, all divided by the crankpin diameter D):
 r = R_H/D (pin fillet) or R_G/D (journal fillet), s = S/D (S: pin/journal overlap,
@@ -31,17 +28,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: (low, high) of each related dimension, UR M53 Rev.1 section 3.1
-VALIDITY = {
-    "s": (-math.inf, 0.5),  # below -0.5: evaluated at s = -0.5 (3.1)
-    "w": (0.2, 0.8),
-    "b": (1.1, 2.2),
-    "r": (0.03, 0.13),
-    "dG": (0.0, 0.8),
-    "dH": (0.0, 0.8),
-    "tH": (-0.3, 0.3),
-    "tG": (-0.3, 0.3),
-}
+from fe_crank.assess.m53_scf import (  # noqa: F401  (re-exported: the rule's SCFs)
+    F_B_CUBIC,
+    VALIDITY,
+    alpha_b,
+    alpha_t,
+    beta_b,
+    beta_q,
+    beta_t,
+    out_of_range,
+)
 
 
 @dataclass(frozen=True)
@@ -84,82 +80,6 @@ class M53Geometry:
             "tH": self.pin_recess / d,
             "tG": self.journal_recess / d,
         }
-
-
-def out_of_range(rel: dict[str, float]) -> list[str]:
-    """Related dimensions outside the validity range, as readable strings."""
-    bad = []
-    for k, (lo, hi) in VALIDITY.items():
-        v = rel[k]
-        if not lo - 1e-12 <= v <= hi + 1e-12:
-            bad.append(f"{k} = {v:.4g} not in [{lo}, {hi}]")
-    return bad
-
-
-def _recess(rel: dict[str, float]) -> float:
-    """f(recess) = 1 + (t_H + t_G)(1.8 + 3.2 s), not below 1 (3.2, 3.3)."""
-    return max(1.0, 1.0 + (rel["tH"] + rel["tG"]) * (1.8 + 3.2 * rel["s"]))
-
-
-def alpha_b(rel: dict[str, float]) -> float:
-    """Crankpin fillet bending SCF alpha_B = 2.6914 f(s,w) f(w) f(b) f(r) f(d_G) f(d_H) f(recess) (3.2)."""
-    s, w, b, r, dg, dh = (rel[k] for k in ("s", "w", "b", "r", "dG", "dH"))
-    u = 1.0 - s
-    fsw = (
-        -4.1883
-        + 29.2004 * w
-        - 77.5925 * w**2
-        + 91.9454 * w**3
-        - 40.0416 * w**4
-        + u * (9.5440 - 58.3480 * w + 159.3415 * w**2 - 192.5846 * w**3 + 85.2916 * w**4)
-        + u**2 * (-3.8399 + 25.0444 * w - 70.5571 * w**2 + 87.0328 * w**3 - 39.1832 * w**4)
-    )
-    fw = 2.1790 * w**0.7171
-    fb = 0.6840 - 0.0077 * b + 0.1473 * b**2
-    fr = 0.2081 * r ** (-0.5231)
-    fdg = 0.9993 + 0.27 * dg - 1.0211 * dg**2 + 0.5306 * dg**3
-    fdh = 0.9978 + 0.3145 * dh - 1.5241 * dh**2 + 2.4147 * dh**3
-    return 2.6914 * fsw * fw * fb * fr * fdg * fdh * _recess(rel)
-
-
-def alpha_t(rel: dict[str, float]) -> float:
-    """Torsional SCF alpha_T = 0.8 f(r,s) f(b) f(w) (3.2; with r = R_G/D it is beta_T of 3.3)."""
-    s, w, b, r = (rel[k] for k in ("s", "w", "b", "r"))
-    frs = r ** (-0.322 + 0.1015 * (1.0 - s))
-    fb = 7.8955 - 10.654 * b + 5.3482 * b**2 - 0.857 * b**3
-    fw = w ** (-0.145)
-    return 0.8 * frs * fb * fw
-
-
-def beta_b(rel: dict[str, float]) -> float:
-    """Journal fillet bending SCF beta_B = 2.7146 f_B(s,w) f_B(w) f_B(b) f_B(r) f_B(d_G) f_B(d_H) f(recess) (3.3)."""
-    s, w, b, r, dg, dh = (rel[k] for k in ("s", "w", "b", "r", "dG", "dH"))
-    u = 1.0 - s
-    fsw = (
-        -1.7625
-        + 2.9821 * w
-        - 1.5276 * w**2
-        + u * (5.1169 - 5.8089 * w + 3.1391 * w**2)
-        + u**2 * (-2.1567 + 2.3297 * w - 1.2952 * w**2)
-    )
-    fw = 2.2422 * w**0.7548
-    fb = 0.5616 + 0.1197 * b + 0.1176 * b**2
-    fr = 0.1908 * r ** (-0.5568)
-    fdg = 1.0012 - 0.6441 * dg + 1.2265 * dg**2
-    fdh = 1.0022 - 0.1903 * dh + 0.0073 * dh**2
-    return 2.7146 * fsw * fw * fb * fr * fdg * fdh * _recess(rel)
-
-
-def beta_q(rel: dict[str, float]) -> float:
-    """Journal fillet SCF for the radial (shear) force beta_Q = 3.0128 f_Q(s) f_Q(w) f_Q(b) f_Q(r) f_Q(d_H) f(recess) (3.3)."""
-    s, w, b, r, dh = (rel[k] for k in ("s", "w", "b", "r", "dH"))
-    u = 1.0 - s
-    fs = 0.4368 + 2.1630 * u - 1.5212 * u**2
-    fw = w / (0.0637 + 0.9369 * w)
-    fb = -0.5 + b
-    fr = 0.5331 * r ** (-0.2038)
-    fdh = 0.9937 - 1.1949 * dh + 1.7373 * dh**2
-    return 3.0128 * fs * fw * fb * fr * fdh * _recess(rel)
 
 
 def fatigue_strength(tensile: float, diameter: float, fillet_radius: float, k: float) -> float:
@@ -275,7 +195,8 @@ def assess_fillet(
         if fillet == "pin":
             scf = {"bending": alpha_b(rel), "shear": 0.0, "torsion": alpha_t(rel)}
         else:
-            scf = {"bending": beta_b(rel), "shear": beta_q(rel), "torsion": alpha_t(rel)}
+            r_g = geo.journal_fillet_radius / geo.journal_diameter  # beta_T: r = R_G/D_G (3.3)
+            scf = {"bending": beta_b(rel), "shear": beta_q(rel), "torsion": beta_t(rel, r_g)}
         source = f"empirical, UR M53 Rev.1 {'3.2' if fillet == 'pin' else '3.3'}"
     elif fe_scf is not None:
         scf = {"bending": fe_scf["bending"], "shear": fe_scf.get("shear", 0.0), "torsion": fe_scf["torsion"]}

@@ -46,6 +46,7 @@ import math
 import numpy as np
 
 from fe_crank.assess.m53 import M53Fillet, M53Geometry, NominalStresses, fatigue_strength, half_range
+from fe_crank.assess.m53_rods import moment_at_pin_middle
 
 #: d_O = D_O/D range of UR M53 3.1
 D_O_RANGE = (0.0, 0.2)
@@ -71,14 +72,20 @@ def in_range(geo: M53Geometry) -> str | None:
     return f"d_O = D_O/D = {d_o:.4g} not in [{lo}, {hi}] (UR M53 3.1)"
 
 
-def nominal_bending(geo: M53Geometry, pin_force) -> float:
+def nominal_bending(geo: M53Geometry, pin_force, rod_loads=None) -> float:
     """sigma_BON [Pa]: half range of M_BO / W_e over the cycle (UR M53 2.1.2.2, no K_e).
 
-    ``pin_force`` (n, 2): (tangential, radial) force on the crankpin in the throw frame."""
-    f = np.asarray(pin_force, float)
-    arm = geo.bearing_to_web + 0.5 * geo.web_thickness + 0.5 * geo.pin_length  # L/2
+    ``pin_force`` (n, 2): (tangential, radial) force on the crankpin in the throw frame, at
+    the pin's middle; ``rod_loads`` ((force (n, 2), place m) per rod): each rod at its own
+    place instead (``m53_rods.moment_at_pin_middle``, 2.1)."""
     a = geo.oil_bore_angle
-    m_bo = 0.5 * arm * (f[:, 1] * math.cos(a) + f[:, 0] * math.sin(a))
+    if rod_loads is not None:
+        m = moment_at_pin_middle(geo, rod_loads)
+        m_bo = m[:, 1] * math.cos(a) + m[:, 0] * math.sin(a)
+    else:
+        f = np.asarray(pin_force, float)
+        arm = geo.bearing_to_web + 0.5 * geo.web_thickness + 0.5 * geo.pin_length  # L/2
+        m_bo = 0.5 * arm * (f[:, 1] * math.cos(a) + f[:, 0] * math.sin(a))
     w_e = math.pi / 32.0 * (geo.pin_diameter**4 - geo.pin_bore**4) / geo.pin_diameter
     return half_range(m_bo) / w_e
 
@@ -91,7 +98,7 @@ def equivalent_stress(bending: float, torsion: float) -> float:
 
 
 def assess_outlet(
-    geo: M53Geometry, nominal: NominalStresses, pin_force, *, tensile: float, k: float
+    geo: M53Geometry, nominal: NominalStresses, pin_force, *, tensile: float, k: float, rod_loads=None
 ) -> M53Fillet | None:
     """UR M53 result at the oil-bore outlet (``fillet`` = "oil_bore"), or None when the
     geometry has no oil bore or d_O is outside 3.4's range (see ``in_range``)."""
@@ -99,7 +106,7 @@ def assess_outlet(
         return None
     d_o = geo.oil_bore_diameter / geo.pin_diameter
     gb, gt = gamma_b(d_o), gamma_t(d_o)
-    s_bo = gb * nominal_bending(geo, pin_force)
+    s_bo = gb * nominal_bending(geo, pin_force, rod_loads)
     t_to = gt * nominal.torsion_pin
     sv = equivalent_stress(s_bo, t_to)
     sdw = fatigue_strength(tensile, geo.pin_diameter, 0.5 * geo.oil_bore_diameter, min(k, 1.0))

@@ -51,7 +51,10 @@ def recovery_ratios(
     out: dict[str, float] = {}
     if not present:
         return out
-    cases = [c for c in cases if c in unit_solutions.cases]
+    # a model loaded per rod place (patch cases pin_y@k) is checked on each place's pin_y
+    cases = [c for c in cases if c in unit_solutions.cases] + [
+        k for c in cases for k in unit_solutions.cases if c not in unit_solutions.cases and k.startswith(c + "@")
+    ]
     if not cases:
         return out
     if (

@@ -59,6 +59,7 @@ def _group(g):
             "notch_support": g.fatigue_factors.notch_support,
             "product": g.fatigue_factors.product,
             "diameter": _num(g.fatigue_factors.diameter),
+            "surface_basis": g.fatigue_factors.surface_basis,
         },
     }
 

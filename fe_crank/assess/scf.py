@@ -150,7 +150,7 @@ def empirical(geo: m53.M53Geometry) -> tuple[dict[str, float | None], dict[str, 
         "alpha_B": None if bad_p else m53.alpha_b(rel_p),
         "alpha_T": None if bad_p else m53.alpha_t(rel_p),
         "beta_B": None if bad_j else m53.beta_b(rel_j),
-        "beta_T": None if bad_j else m53.alpha_t(rel_j),
+        "beta_T": None if bad_j else m53.beta_t(rel_j, geo.journal_fillet_radius / geo.journal_diameter),
         "beta_Q": None if bad_j else m53.beta_q(rel_j),
     }
     return emp, {"pin": bad_p, "journal": bad_j}

@@ -24,7 +24,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
+from fe_crank.fe.pin_directions import patch_case, pin_case_weights, pin_direction
+from fe_crank.fe.pin_patches import patch_forces
 from fe_crank.fe.stress import stress_at_selected_nodes
 from fe_crank.fe.unit_cases import CASES as UNIT_CASES  # the FE stage's default unit cases
 from fe_crank.fe.unit_cases import UnitSolutions
@@ -46,6 +47,7 @@ class UnitStresses:
     node_ids: np.ndarray | None = None
     cases: tuple[str, ...] = UNIT_CASES
     torque_mz: float = -1.0  # M_z of the unit torque case (FE stage: 1 N m in the sense of rotation)
+    pin_patches: tuple[tuple[float, float], ...] = ()  # the FE stage's rod-place bands (patch cases)
 
     @property
     def n_nodes(self) -> int:
@@ -80,6 +82,7 @@ def load_coefficients(
     sense: int = 1,
     torque_mz: float = -1.0,
     angular_acceleration: np.ndarray | None = None,
+    patch_forces: dict[int, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Coefficients (n_angles, len(cases)) of the unit cases over the cycle.
 
@@ -96,6 +99,8 @@ def load_coefficients(
     rotation of a sense +1 shaft): ``angular_acceleration`` (n,) rad/s^2 in the shaft's
     sense (the throw's torsional vibration, ``fe_crank.torsion.flow``), coefficient
     sense * alpha; zero when not given.
+    Patch cases ``<pin case>@<k>`` (one band per rod place, ``fe.pin_patches``) carry
+    ``patch_forces[k]`` (n, 2), the force of the rods bearing on band k, the same way.
     """
     pin_force = np.asarray(pin_force, float)
     torque = np.asarray(torque, float)
@@ -103,7 +108,19 @@ def load_coefficients(
     if pin_force.shape != (n, 2) or torque.shape != (n,):
         raise ValueError(f"pin_force must be (n, 2) and torque (n,); got {pin_force.shape}, {torque.shape}")
     pins = [c for c in cases if pin_direction(c) is not None]
-    wp = pin_case_weights(pin_force, pins)
+    patch: dict[str, np.ndarray] = {}
+    by_patch: dict[int, list[str]] = {}
+    for c in cases:
+        if patch_case(c) is not None:
+            by_patch.setdefault(patch_case(c)[0], []).append(c)
+    # the pin's force goes to the whole-pin cases, or rod by rod to the patch cases
+    wp = pin_case_weights(pin_force, pins) if pins or not by_patch else np.zeros((n, 0))
+    if by_patch and patch_forces is None:
+        raise ValueError("patch unit cases (one band per rod place) need each patch's force")
+    for k, names in by_patch.items():
+        f = np.asarray(patch_forces.get(k, np.zeros((n, 2))), float)
+        w = pin_case_weights(f, [c.partition("@")[0] for c in names])
+        patch.update({c: w[:, i] for i, c in enumerate(names)})
     cols = []
     for name in cases:
         if name == "centrifugal":
@@ -117,9 +134,24 @@ def load_coefficients(
             cols.append(sense * alpha)
         elif name in pins:
             cols.append(wp[:, pins.index(name)])
+        elif name in patch:
+            cols.append(patch[name])
         else:
             raise ValueError(f"unknown unit case {name!r}")
     return np.column_stack(cols)
+
+
+def cycle_coefficients(unit: UnitStresses, pin_force, torque, omega: float, *, sense: int = 1, rod_loads=None):
+    """``load_coefficients`` of ``unit``'s cases; with patch cases, the rods' forces go to the
+    bands of their places (``rod_loads``: (force (n, 2), place m) per rod, ``fe.pin_patches``)."""
+    patches = None
+    if any(patch_case(c) is not None for c in unit.cases):
+        if rod_loads is None:
+            raise ValueError("the FE model loads the pin per rod place: the rods' forces and places are needed")
+        patches = patch_forces(rod_loads, unit.pin_patches)
+    return load_coefficients(
+        pin_force, torque, omega, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz, patch_forces=patches
+    )
 
 
 def combine(unit: np.ndarray, coefficients: np.ndarray) -> np.ndarray:

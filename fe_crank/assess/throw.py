@@ -7,12 +7,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess import m53, m53_oil_bore
+from fe_crank.assess import m53, m53_oil_bore, m53_rods
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
-from fe_crank.assess.group import GroupResult, assess_group, section_diameter
+from fe_crank.assess.group import SIGMA_ADD_GROUPS, GroupResult, assess_group, section_diameter
 from fe_crank.assess.m53 import M53Fillet, NominalStresses
 from fe_crank.assess.scf import ScfResult
-from fe_crank.assess.superpose import UnitStresses, load_coefficients
+from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
 from fe_crank.errors import InputError
 from fe_crank.io.material import Material
 
@@ -57,7 +57,8 @@ def assess_throw(
     scf: ScfResult | None = None,
     counterweights: tuple[CounterweightData, ...] = (),
     torque_rear: np.ndarray | None = None,
-    overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None,
+    overspeed_loads: tuple | list | None = None,
+    rod_loads: tuple | None = None,
 ) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
@@ -65,6 +66,8 @@ def assess_throw(
     larger alternating part, the one the throw's fillets carry.  Outside the validity
     range of the empirical SCFs UR M53 takes FE SCFs: ``fe_scf`` as given, else those of
     ``scf`` (the SCF mode's ``assess.scf.ScfResult``, which the FE stage solves for such a throw).
+    ``m53_additional``: UR M53 4's sigma_add, Pa, on the fillets' alternating bending stress in
+    both routes (the FE route: ``assess_group``'s ``additional_bending``).
     ``m53_ke``: UR M53 2.1.2.1's K_e on the web's nominal stresses (``m53.ke_factor``:
     0.8 two-stroke, 1.0 four-stroke); the M53 route only, the FE route's stresses are not scaled.
 
@@ -74,18 +77,22 @@ def assess_throw(
     (omega_os/omega)^2 whole: exact for the inertia part, an over-estimate of the gas
     part (which does not grow with speed), so on the safe side.  A list of such pairs
     (several gas states of the overspeed condition, ``mechanism.cycles.overspeed_cycles``)
-    is checked as one longer history: the overspeed result is the worst over all of them."""
-    coeffs = load_coefficients(pin_force, torque, omega, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
+    is checked as one longer history: the overspeed result is the worst over all of them.
+    ``rod_loads``: (force (n, 2), place on the pin m) per rod (``fe.pin_patches``): UR M53's
+    moments rod by rod and, where the FE model has patch cases, each rod on its band; an
+    overspeed cycle is then (pin force, torque, rod loads)."""
+    coeffs = cycle_coefficients(unit, pin_force, torque, omega, sense=sense, rod_loads=rod_loads)
     coeffs_os = None
     if overspeed is not None:
         if overspeed_loads is None:
             scale = (overspeed / omega) ** 2 if omega > 0 else 1.0
-            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float))
+            rods_os = None if rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in rod_loads)
+            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float), rods_os)
         cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
         coeffs_os = np.vstack(
             [
-                load_coefficients(p, t, overspeed, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz)
-                for p, t in cycles
+                cycle_coefficients(unit, c[0], c[1], overspeed, sense=sense, rod_loads=c[2] if len(c) > 2 else None)
+                for c in cycles
             ]
         )
         theta_os = np.tile(np.asarray(theta), len(cycles))  # the angle of the worst row, whichever cycle
@@ -102,6 +109,7 @@ def assess_throw(
             overspeed=overspeed,
             overspeed_coefficients=coeffs_os,
             diameter=section_diameter(g, dp, dj),
+            additional_bending=m53_additional if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
         )
         for g in sorted(unit.groups)
         if len(unit.groups[g])
@@ -119,7 +127,10 @@ def assess_throw(
         m53_torque = torque
         if torque_rear is not None and m53.half_range(torque_rear) > m53.half_range(torque):
             m53_torque = torque_rear
-        nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque, ke=m53_ke)
+        if rod_loads is None:
+            nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque, ke=m53_ke)
+        else:  # each rod's bending-moment triangle at its own place (UR M53 2.1, m53_rods)
+            nominal = m53_rods.nominal_stresses_by_rod(m53_geometry, rod_loads, m53_torque, ke=m53_ke)[0]
         try:
             fillets = tuple(
                 m53.assess_fillet(
@@ -145,7 +156,7 @@ def assess_throw(
                 for f in fillets
             )
         outlet = m53_oil_bore.assess_outlet(
-            m53_geometry, nominal, pin_force, tensile=material.tensile_strength, k=material.m53_k
+            m53_geometry, nominal, pin_force, tensile=material.tensile_strength, k=material.m53_k, rod_loads=rod_loads
         )
         fillets += (outlet,) if outlet is not None else ()
     cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)

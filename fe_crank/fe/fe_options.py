@@ -60,6 +60,9 @@ class FeOptions:
     pin_centre: tuple[float, float] | None = None  # (x, y) of the pin axis; None: centroid of the pin surface
     intorder: int = 2
     symmetry: bool = True
+    #: axial bands (z_lo, z_hi), m, of the rods' places on the pin (``fe.pin_patches``): the
+    #: patch cases ``pin_<deg>@<k>`` load band k; empty: the whole pin
+    pin_patches: tuple[tuple[float, float], ...] = ()
 
     @property
     def reaction_face(self) -> str:

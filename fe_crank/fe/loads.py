@@ -113,6 +113,7 @@ def pin_pressure_load(
     centre=None,
     half_angle: float = np.deg2rad(60.0),
     surface: PinSurface | None = None,
+    band: tuple[float, float] | None = None,
 ) -> tuple[np.ndarray, PinPressure]:
     """Crankpin bearing load: a cosine pressure over +-half_angle that integrates to ``force``.
 
@@ -124,7 +125,10 @@ def pin_pressure_load(
     asymmetry only, typically < 1e-3 rad).  The cosine vanishes at the arc ends, which
     avoids the spurious peak of a uniform pressure that stops abruptly.
     ``surface``: a :func:`pin_surface` built once for several directions (then
-    ``boundary`` and ``centre`` are those it was built with).
+    ``boundary`` and ``centre`` are those it was built with).  ``band`` (z_lo, z_hi): the
+    pressure acts only where z lies in it (one rod's place on the pin, ``fe.pin_patches``);
+    its resultant is still ``force``, acting at the band's middle (a band of the whole pin
+    length is the whole-pin load).
     """
     F = np.asarray(force, float)
     if F.shape != (2,) or not np.all(np.isfinite(F)) or np.linalg.norm(F) == 0:
@@ -133,10 +137,11 @@ def pin_pressure_load(
         surface = pin_surface(basis, boundary, centre)
     fb, c, n, ang = surface.fb, surface.centre, surface.n_r, surface.angle
     fdir = np.arctan2(F[0], F[1])
+    inside = np.ones(ang.shape, bool) if band is None else (surface.x[2] >= band[0]) & (surface.x[2] <= band[1])
 
     def shape(centre_angle):
         psi = np.angle(np.exp(1j * (ang - centre_angle)))
-        return np.where(np.abs(psi) < half_angle, np.cos(0.5 * np.pi * psi / half_angle), 0.0)
+        return np.where(inside & (np.abs(psi) < half_angle), np.cos(0.5 * np.pi * psi / half_angle), 0.0)
 
     def resultant(centre_angle):
         t = -shape(centre_angle)[None] * n

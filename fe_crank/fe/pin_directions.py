@@ -14,7 +14,8 @@ to round-off.
 
 Names: ``pin_x``, ``pin_y``, ``pin_-x``, ``pin_-y`` are the directions 0, 90, 180 and
 270 deg (x tangential, y radial outward in the throw frame, angles from +x towards +y);
-any other direction is ``pin_<deg>`` with three digits (``pin_030``).
+any other direction is ``pin_<deg>`` with three digits (``pin_030``).  With several rod
+places on the pin (``fe.pin_patches``) each place's band has its own cases, ``<name>@<k>``.
 """
 
 from __future__ import annotations
@@ -50,9 +51,26 @@ def pin_cases(step: int = STEP_DEG) -> tuple[str, ...]:
     return tuple(pin_name(d) for d in range(0, 360, step))
 
 
+def patch_case(name: str) -> tuple[int, int] | None:
+    """(patch number k >= 1, direction in degrees) of a patch unit case ``<pin case>@<k>``
+    (``pin_030@2``: 1 N at 30 deg on the second rod place's band, ``fe.pin_patches``), else None."""
+    base, sep, k = name.partition("@")
+    d = pin_direction(base)
+    if not sep or d is None or not k.isdigit() or int(k) < 1:
+        return None
+    return int(k), d
+
+
+def patch_cases(n_patches: int, step: int = STEP_DEG) -> tuple[str, ...]:
+    """The pin cases of every patch: ``pin_x@1``, ``pin_030@1``, ..., ``pin_330@<n>``."""
+    return tuple(f"{c}@{k}" for k in range(1, n_patches + 1) for c in pin_cases(step))
+
+
 def unit_force(name: str) -> tuple[float, float]:
     """The unit force (Fx, Fy) of a pin case (exact on the axes)."""
     d = pin_direction(name)
+    if d is None and patch_case(name) is not None:
+        d = patch_case(name)[1]
     if d is None:
         raise ValueError(f"{name!r} is not a pin unit case")
     exact = {0: (1.0, 0.0), 90: (0.0, 1.0), 180: (-1.0, 0.0), 270: (0.0, -1.0)}

@@ -39,11 +39,12 @@ from fe_crank.fe.fe_options import (  # noqa: F401
     check_support_options,
     support_text,
 )
-from fe_crank.fe.loads import BODY_CASES, PinPressure, face_torque_load, pin_pressure_load, pin_surface
-from fe_crank.fe.pin_directions import pin_case_weights, pin_direction, unit_force
+from fe_crank.fe.loads import PinPressure
+from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets, facet_basis
 from fe_crank.fe.symsystem import determinate_system
 from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
+from fe_crank.fe.unit_loads import check_case_names, unit_loads
 
 log = logging.getLogger(__name__)
 
@@ -169,13 +170,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     raises SolverError.
     """
     options = options or FeOptions()
-    unknown = [c for c in options.cases if c not in (*BODY_CASES, "torque") and pin_direction(c) is None]
-    if unknown:
-        raise InputError(
-            f"unknown unit cases {sorted(unknown)}; pick from centrifugal, angular_acceleration, torque and pin cases "
-            f"by direction (pin_x, pin_y, pin_-x, pin_-y, pin_<deg> as pin_030)",
-            key="fe.cases",
-        )
+    check_case_names(options)
     mesh = _throw_mesh(throw_mesh)
     for attr in ("youngs_modulus", "poisson_ratio", "density"):
         if not hasattr(material, attr):
@@ -213,31 +208,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         system = determinate_system(mesh, E, nu, layout, axes, solver=options.solver, intorder=options.intorder)
     basis = system.basis
     t0 = time.perf_counter()
-    loads, desc, pins, surface = {}, {}, {}, None
-    for name in options.cases:
-        if name in BODY_CASES:
-            loads[name], desc[name] = BODY_CASES[name][0](basis, material.density), BODY_CASES[name][1]
-        elif name == "torque":
-            # +1 N m in the positive sense of rotation (from +y towards +x), i.e. M_z = -1 N m
-            loads[name] = face_torque_load(basis, -1.0, boundary=options.torque_face)
-            desc[name] = (
-                f"1 N m in the sense of rotation (M_z = -1 N m) on {options.torque_face}, "
-                f"reacted at {options.reaction_face}"
-            )
-        else:
-            if surface is None:  # the pin surface's facet basis, built once for all directions
-                surface = pin_surface(basis, options.pin_boundary, options.pin_centre)
-            loads[name], pins[name] = pin_pressure_load(
-                basis,
-                unit_force(name),
-                boundary=options.pin_boundary,
-                half_angle=options.pin_half_angle,
-                surface=surface,
-            )
-            desc[name] = (
-                f"1 N on {options.pin_boundary} at {pin_direction(name)} deg from +x, cosine pressure +-"
-                f"{np.rad2deg(options.pin_half_angle):.0f} deg"
-            )
+    loads, desc, pins = unit_loads(basis, material, options)
     names = list(loads)
     t_loads = time.perf_counter() - t0
     t0 = time.perf_counter()

@@ -45,15 +45,71 @@ class WebOutline:
     pin_end_radius: float
 
 
+#: ISO 261 coarse pitch (m) of the metric threads M8-M36 by nominal diameter (mm)
+_COARSE = {
+    8: 1.25,
+    10: 1.5,
+    12: 1.75,
+    14: 2.0,
+    16: 2.0,
+    18: 2.5,
+    20: 2.5,
+    22: 2.5,
+    24: 3.0,
+    27: 3.0,
+    30: 3.5,
+    33: 3.5,
+    36: 4.0,
+}
+#: the joint data the VDI 2230 check cannot do without
+VDI_REQUIRED = ("clamp_length", "bearing_diameter", "hole_diameter", "clamped_diameter", "tightening_factor")
+
+
 @dataclass(frozen=True)
 class BoltedJoint:
-    """Bolted counterweight: data for the assessment's bolt check (not modelled in FE)."""
+    """Bolted counterweight: the joint's data for the VDI 2230 check (``assess.cw_joint``).
+    The FE model does not model the joint: the counterweight is fused to the web (its
+    stiffness and mass are the counterweight's, its contact and bolts are not meshed)."""
 
     count: int
     diameter: float  # m, nominal thread diameter
     pitch_radius: float  # m, radius of the bolt positions from the crank axis
-    preload: float | None = None  # N per bolt
-    yield_strength: float | None = None  # Pa, bolt material
+    preload: float | None = None  # N per bolt: the upper assembly preload F_M,max (None: F_M,zul)
+    yield_strength: float | None = None  # Pa, bolt material (or property_class)
+    pitch: float | None = None  # m, thread pitch (None: ISO coarse)
+    property_class: str | None = None  # ISO 898-1: "8.8", "10.9", "12.9"
+    clamp_length: float | None = None  # m, l_K
+    bearing_diameter: float | None = None  # m, d_W of the head bearing
+    hole_diameter: float | None = None  # m, d_h of the clearance hole
+    clamped_diameter: float | None = None  # m, D_A: outside diameter of the clamped parts round the bolt
+    tightening_factor: float | None = None  # alpha_A = F_M,max / F_M,min (VDI 2230 table A8)
+    direction: str = "radial"  # bolt axis: "radial" (through the crank axis) or "axial"
+    tapped: bool = True  # screwed into the web (VDI's ESV); False: through-bolted with a nut
+    thread_friction: float = 0.10  # mu_G, its smallest value
+    head_friction: float = 0.10  # mu_K
+    interface_friction: float = 0.10  # mu_T between counterweight and web, its smallest value
+    roughness: str = "10_to_40"  # Rz class of the contact faces, um: below_10 | 10_to_40 | 40_to_160
+    rolled_after_heat_treatment: bool = False
+    load_introduction: float | None = None  # n of VDI 2230 5.2.2 (None: the bounds 1 and 0)
+    shank_length: float = 0.0  # m, unthreaded shank inside the clamp length
+    shank_diameter: float | None = None  # m (None: d)
+
+    @property
+    def thread_pitch(self) -> float:
+        """P: given, else the ISO coarse pitch of the diameter."""
+        if self.pitch is not None:
+            return self.pitch
+        p = _COARSE.get(round(self.diameter * 1e3))
+        if p is None or abs(self.diameter * 1e3 - round(self.diameter * 1e3)) > 1e-6:
+            raise ValueError(f"no coarse pitch for d = {self.diameter * 1e3:g} mm: state the pitch")
+        return p * 1e-3
+
+    def vdi_missing(self) -> list[str]:
+        """The keys the VDI 2230 check needs that the joint does not give."""
+        miss = [k for k in VDI_REQUIRED if getattr(self, k) is None]
+        if self.yield_strength is None and self.property_class is None:
+            miss.append("property_class")
+        return miss
 
 
 @dataclass(frozen=True)

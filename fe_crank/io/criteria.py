@@ -10,7 +10,8 @@ of ``QUANTITIES`` (a misspelt or unknown quantity is an error naming the key)::
     min_m53_acceptability = 1.15        # IACS UR M53 Q
     max_counterweight_stress = "150 MPa"
     max_unbalance_error = 0.05          # |built m r - required m r| / required
-    m53_additional_bending = "10 MPa"   # option: UR M53 sigma_add (trunk piston engines)
+    m53_additional_bending = "20 MPa"   # option: UR M53 sigma_add, not below section 4's value
+                                        # (10 MPa trunk piston, 30 MPa crosshead: the engine's construction)
     m53_quasi_static_torque = true      # option: accept the quasi-static journal torque (below)
 
 A criterion that needs a material property the load case's material does not give
@@ -75,6 +76,28 @@ QUANTITIES: dict[str, Quantity] = {
     "counterweight_overspeed_stress": Quantity("max", "pressure", (), "max von Mises in a counterweight at overspeed"),
     "unbalance_error": Quantity("max", None, (), "|built m r - required m r| / required m r per counterweight plane"),
     "bolt_utilisation": Quantity("max", None, (), "counterweight bolt load m r omega^2 at overspeed / bolt capacity"),
+    # VDI 2230 Part 1 (2015) of the bolted counterweight (fe_crank/assess/cw_joint.py)
+    "bolt_assembly_utilisation": Quantity(
+        "max", None, (), "VDI 2230 R7: equivalent assembly stress / R_p0.2 at the largest preload (<= 0.9)"
+    ),
+    "bolt_working_safety": Quantity(
+        "min", None, (), "VDI 2230 R8: R_p0.2 / equivalent bolt stress at the overspeed (>= 1.0)"
+    ),
+    "bolt_fatigue_safety": Quantity(
+        "min",
+        None,
+        (),
+        "VDI 2230 R9: thread endurance limit / bolt stress amplitude, starts and stops included (>= 1.2)",
+    ),
+    "bolt_separation_safety": Quantity(
+        "min", None, (), "smallest clamp load after embedding / clamp load the overspeed takes off (>= 1: no opening)"
+    ),
+    "bolt_slip_safety": Quantity(
+        "min",
+        None,
+        (),
+        "VDI 2230 R12: residual clamp load x friction / transverse load per bolt (>= 1.2, 1.8 alternating)",
+    ),
 }
 
 #: option key -> unit kind ("bool": true or false)
@@ -92,7 +115,7 @@ class Limit:
 @dataclass(frozen=True)
 class Criteria:
     limits: tuple[Limit, ...]
-    m53_additional_bending: float = 10e6  # Pa: UR M53 section 4, trunk piston engines
+    m53_additional_bending: float | None = None  # Pa; None: UR M53 4 by the engine's construction
     m53_quasi_static_torque: bool = False  # UR M53 route accepted with the quasi-static journal torque
 
     def limit(self, quantity: str) -> Limit | None:

@@ -22,6 +22,9 @@ An engine file looks like::
 ``[[shafts]]`` may be omitted (one shaft called "main").  ``firing_order`` (names;
 alone: evenly spaced over the cycle) and per-cylinder ``firing_offset``: either or both,
 and when both they must agree (``fe_crank.io.firing``).
+``construction`` ("trunk_piston" default, "crosshead") and ``internal_combustion`` (true
+default; false: an air motor) are UR M53's (``assess.m53_basis``); a cylinder's
+``pin_position``: its rod on the pin (``fe.pin_patches``).
 """
 
 from __future__ import annotations
@@ -30,8 +33,7 @@ import math
 from pathlib import Path
 from typing import Literal
 
-import numpy as np
-from pydantic import Field, model_validator
+from pydantic import Field, StrictBool, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
@@ -94,6 +96,7 @@ class CylinderInput(Strict):
     pin_offset: Length = 0.0
     firing_offset: Angle | None = None
     articulation: ArticulationInput | None = None
+    pin_position: Length | None = None  # big end's axial place on the pin from its middle
 
     @model_validator(mode="after")
     def _sizes(self):
@@ -138,14 +141,14 @@ class EngineInput(Strict):
     firing_order: list[str] | None = None
     gas: dict | None = None  # validated by fe_crank.io.gas.build_gas (model = table | csv | wiebe)
     yoke: YokeInput | None = None  # Nordberg synchronising yoke (balance stage)
+    construction: Literal["trunk_piston", "crosshead"] = "trunk_piston"  # UR M53 4: sigma_add
+    internal_combustion: StrictBool = True  # false: air motor, compressor (UR M53 by analogy)
 
 
 def _check_names(kind: str, names: list[str], file) -> None:
-    seen = set()
     for i, n in enumerate(names):
-        if n in seen:
+        if n in names[:i]:
             raise InputError(f"duplicate name {n!r}", file=str(file), key=f"{kind}[{i}].name")
-        seen.add(n)
 
 
 def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine:
@@ -233,6 +236,7 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
                 bank_angle=c.bank_angle,
                 pin_offset=c.pin_offset,
                 firing_offset=offsets[c.name],
+                pin_position=c.pin_position,
                 articulation=(
                     model.Articulation(c.articulation.master, c.articulation.link_radius, c.articulation.link_angle)
                     if c.articulation
@@ -242,6 +246,8 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
             for c in cylinders
         ),
         gas=gas,
+        construction=raw.construction,
+        internal_combustion=raw.internal_combustion,
         yoke=(
             model.Yoke(
                 raw.yoke.mass,
@@ -274,4 +280,4 @@ def engine_from_reference(value: object, file: str | Path, key: str = "engine") 
     raise InputError("must be a path to an engine file or an inline [engine] table", file=str(file), key=key)
 
 
-__all__ = ["build_engine", "load_engine", "engine_from_reference", "EngineInput", "CylinderInput", "np"]
+__all__ = ["build_engine", "load_engine", "engine_from_reference", "EngineInput", "CylinderInput"]

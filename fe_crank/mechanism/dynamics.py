@@ -22,8 +22,8 @@ just after TDC.  Reported per cylinder (arrays over the cycle grid):
   sense of rotation and radial outward from the shaft axis, N;
 * ``torque``: ``tangential * r``, N m, positive driving.
 
-Per throw: the crankpin load in the throw frame (x tangential for sense +1, y
-radially outward; all rods on the pin summed, crank's own rotating mass excluded),
+Per throw: the crankpin load in the throw frame (x tangential for sense +1, y radially
+outward; all rods summed, crank's own rotating mass excluded; each rod's own: ``rods``),
 the journal torques either side (cumulative from the free end, the front, of each
 shaft, statically determinate as in IACS UR M53) and the main-bearing loads from
 the simply supported split (the pin at mid-span between its two bearings, each
@@ -53,7 +53,7 @@ from fe_crank.mechanism.gas import pressure_at
 from fe_crank.mechanism.kinematics import PistonMotion
 from fe_crank.mechanism.slider_crank import solve_cylinder
 
-__all__ = ["CylinderForces", "ThrowLoads", "DynamicsResult", "analyse", "solve_cylinder", "cylinder_angle"]
+__all__ = ["CylinderForces", "RodLoad", "ThrowLoads", "DynamicsResult", "analyse", "solve_cylinder", "cylinder_angle"]
 
 
 @dataclass(frozen=True)
@@ -77,6 +77,16 @@ class CylinderForces:
 
 
 @dataclass(frozen=True)
+class RodLoad:
+    """One rod's force on the crankpin (n, 2), throw frame, and its stated place on the pin
+    (``Cylinder.pin_position``, m; None: the default layout, ``fe.pin_patches.rod_positions``)."""
+
+    cylinder: str
+    pin_force: np.ndarray
+    pin_position: float | None = None
+
+
+@dataclass(frozen=True)
 class ThrowLoads:
     name: str
     shaft: str
@@ -87,6 +97,7 @@ class ThrowLoads:
     torque_rear: np.ndarray
     bearing_front: np.ndarray  # (n, 2) engine frame (x, y): force of the shaft on the bearing
     bearing_rear: np.ndarray
+    rods: tuple[RodLoad, ...] = ()  # each rod's share of ``pin_force``, in the engine's order
 
     @property
     def pin_force_magnitude(self) -> np.ndarray:
@@ -230,13 +241,11 @@ def analyse(
         cumulative = np.zeros_like(theta)
         for t in on_shaft:
             cyls = [c for c in engine.cylinders if c.throw == t.name]
-            tq = np.zeros_like(theta)
-            pin = np.zeros((theta.size, 2))
-            for c in cyls:
-                cf = cylinders[c.name]
-                tq = tq + cf.torque
-                pin[:, 0] += shaft.sense * cf.tangential
-                pin[:, 1] += cf.radial
+            cf = [cylinders[c.name] for c in cyls]
+            xy = [np.column_stack([shaft.sense * f.tangential, f.radial]) for f in cf]
+            rods = tuple(RodLoad(c.name, f, c.pin_position) for c, f in zip(cyls, xy))
+            tq = sum((f.torque for f in cf), np.zeros_like(theta))
+            pin = sum((r.pin_force for r in rods), np.zeros((theta.size, 2)))
             gamma = model.crank_angle_global(engine, t.name, theta)
             ey = np.stack([np.sin(gamma), np.cos(gamma)], axis=-1)
             ex = np.stack([np.cos(gamma), -np.sin(gamma)], axis=-1)
@@ -255,6 +264,7 @@ def analyse(
                 torque_rear=cumulative.copy(),
                 bearing_front=0.5 * total_global,
                 bearing_rear=0.5 * total_global,
+                rods=rods,
             )
         shaft_torque[shaft.name] = cumulative
 
