@@ -209,8 +209,9 @@ def test_joints_from_the_geometry_and_the_cycle(tmp_path):
         "tightening_factor": 1.6,
     }
     g = geometry_from_dict(_geometry(**full), "g.toml")
-    cws = counterweights_of(g, None, 0.0, "main", None)  # no balance design: one entry per web
-    props = mass_properties(g, g.throw()).parts
+    whole = mass_properties(g, g.throw())
+    cws = counterweights_of(g.throw(), whole, 0.0, "main", None)  # no balance design: one entry per web
+    props = whole.parts
     assert [j.name for c in cws for j in c.joints] == ["counterweight_1", "counterweight_2"]
     cw = cws[0]
     for j in (j for c in cws for j in c.joints):
@@ -232,7 +233,7 @@ def test_joints_from_the_geometry_and_the_cycle(tmp_path):
     )
     assert len(checks) == 1 and checks[0].loads.transverse_max > 0
     bare = geometry_from_dict(_geometry(), "g.toml")
-    cw0 = counterweights_of(bare, None, 0.0, "main", None)[0]
+    cw0 = counterweights_of(bare.throw(), mass_properties(bare, bare.throw()), 0.0, "main", None)[0]
     with pytest.raises(InputError) as e:
         check_joints(cw0, omega=300.0, overspeed=None, e_clamped=210e9, file="g.toml")
     assert e.value.key == "counterweight.bolted" and "clamp_length" in str(e.value)

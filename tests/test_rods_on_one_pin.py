@@ -15,7 +15,8 @@ from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.errors import InputError
 from fe_crank.fe.pin_patches import patch_bands, patch_forces, pin_patch_options, rod_positions
 from fe_crank.io.loadcase import load_loadcase
-from fe_crank.mechanism import dynamics, model
+from fe_crank import model
+from fe_crank.mechanism import dynamics
 
 V4 = "loadcases/v4_90_pneumatic_operating.toml"
 
