@@ -16,8 +16,10 @@ from fe_crank import model
 from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.adapters import counterweights_of
 from fe_crank.assess.criteria import evaluate_criteria
+from fe_crank.assess.cw_joint import JOINT_QUANTITIES, cycle_speed_data
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
 from fe_crank.assess.m53_basis import M53Basis, m53_basis
+from fe_crank.assess.qualifiers import criterion_qualifiers
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.states import ModelStates, model_states
@@ -37,7 +39,7 @@ from fe_crank.notes import ASSUMPTION, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
-SCHEMA_VERSION = "1.2"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws
+SCHEMA_VERSION = "1.3"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws; 1.3: bolted joints (VDI 2230), sigma_add per group
 
 
 @dataclass(frozen=True)
@@ -129,6 +131,8 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     notes = _notes(a, basis)
     senses = {t.name: a.engine.shaft(t.shaft).sense for t in a.engine.throws}
     design = a.balance.design if a.balance is not None else None
+    # the bolted joints by VDI 2230 when a criterion asks for them (their data then required)
+    joint_speed = cycle_speed_data(a.dynamics) if any(q.quantity in JOINT_QUANTITIES for q in lim.limits) else None
     throws = []
     solved: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
     for key, unit_solutions in a.unit_solutions.items():
@@ -173,6 +177,8 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                     overspeed_loads=[_cycle(c.dynamics.throws[tname], places) for c in a.cycles.overspeed] or None,
                     rod_loads=rod_loads(tl, places),
                     scf=a.scf.get(key),
+                    joint_speed=joint_speed,
+                    geometry_file=a.geometry.file if a.geometry is not None else "",
                 )
             )
             if a.m53_geometry is None:
@@ -186,7 +192,13 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                     )
                 )
     done = tuple(throws)
-    verdicts = evaluate_criteria(lim, done, file=a.source_file, overspeed=overspeed)
+    verdicts = evaluate_criteria(
+        lim,
+        done,
+        file=a.source_file,
+        overspeed=overspeed,
+        qualifiers=criterion_qualifiers(basis, lim, torsion=a.torsion),
+    )
     states = []
     for keys, unit_solutions in shared_models(a.unit_solutions):
         st = model_states(keys, unit_solutions, done, a.dynamics, a.cycles.overspeed, senses, fields=fields)

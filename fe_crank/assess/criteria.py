@@ -14,7 +14,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from fe_crank.assess import m53_oil_bore
+from fe_crank.assess.cw_joint import JOINT_QUANTITIES
 from fe_crank.assess.group import STATIC_ONLY_PREFIXES, Extreme, GroupResult
+from fe_crank.assess.qualifiers import qualified
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.verdict import judge
 from fe_crank.errors import InputError
@@ -127,6 +129,21 @@ def _bolts(throws: tuple[ThrowAssessment, ...]) -> Found:
     return max(vals) if vals else None
 
 
+def _joint(quantity: str) -> Callable[[tuple[ThrowAssessment, ...]], Found]:
+    """The evaluator of a VDI 2230 quantity (``cw_joint.JOINT_QUANTITIES``: the
+    ``JointCheck`` field and its sense): the worst bolted joint over the throws, from the
+    joint checks the assessment made once (``ThrowAssessment.joints``)."""
+    attr, sense = JOINT_QUANTITIES[quantity]
+
+    def find(throws: tuple[ThrowAssessment, ...]) -> Found:
+        vals = [(float(getattr(j, attr)), f"throw {t.name}, {j.name} (per bolt)") for t in throws for j in t.joints]
+        if not vals:
+            return None
+        return min(vals, key=lambda v: v[0]) if sense == "min" else max(vals, key=lambda v: v[0])
+
+    return find
+
+
 @dataclass(frozen=True)
 class Evaluator:
     """How a quantity is found on the throws' results: ``find`` gives (worst value,
@@ -148,13 +165,21 @@ EVALUATORS: dict[str, Evaluator] = {
     "m53_acceptability": Evaluator(_m53),
     "unbalance_error": Evaluator(_unbalance),
     "bolt_utilisation": Evaluator(_bolts),
+    **{q: Evaluator(_joint(q)) for q in JOINT_QUANTITIES},
 }
 
 
 def evaluate_criteria(
-    criteria: Criteria, throws: tuple[ThrowAssessment, ...], *, file: str = "", overspeed: float | None = None
+    criteria: Criteria,
+    throws: tuple[ThrowAssessment, ...],
+    *,
+    file: str = "",
+    overspeed: float | None = None,
+    qualifiers: dict[str, str] | None = None,
 ) -> tuple[CriterionResult, ...]:
-    """Each limit of ``criteria`` -> a verdict (module docstring)."""
+    """Each limit of ``criteria`` -> a verdict (module docstring).  ``qualifiers``: quantity
+    -> words its verdict line carries after the location (``assess.qualifiers``)."""
+    qualifiers = qualifiers or {}
     out = []
     for lim in criteria.limits:
         ev = EVALUATORS[lim.quantity]
@@ -177,7 +202,7 @@ def evaluate_criteria(
                 value,
                 lim.value,
                 unit=ev.unit,
-                location=where,
+                location=qualified(where, qualifiers.get(lim.quantity, "")),
                 description=QUANTITIES[lim.quantity].meaning,
             )
         )

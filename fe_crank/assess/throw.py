@@ -9,6 +9,7 @@ import numpy as np
 
 from fe_crank.assess import m53, m53_oil_bore, m53_rods
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
+from fe_crank.assess.cw_joint import JointCheck, check_joints
 from fe_crank.assess.group import SIGMA_ADD_GROUPS, GroupResult, assess_group, section_diameter
 from fe_crank.assess.m53 import M53Fillet, NominalStresses
 from fe_crank.assess.scf import ScfResult
@@ -25,6 +26,7 @@ class ThrowAssessment:
     m53_nominal: NominalStresses | None = None
     counterweights: tuple[CounterweightCheck, ...] = ()
     n_angles: int = 0
+    joints: tuple[JointCheck, ...] = ()  # VDI 2230 of the bolted counterweights (when checked)
 
 
 def fe_scfs(scf: ScfResult) -> dict[str, dict[str, float]]:
@@ -59,6 +61,8 @@ def assess_throw(
     torque_rear: np.ndarray | None = None,
     overspeed_loads: tuple | list | None = None,
     rod_loads: tuple | None = None,
+    joint_speed: tuple[float, float] | None = None,
+    geometry_file: str = "",
 ) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
@@ -80,7 +84,10 @@ def assess_throw(
     is checked as one longer history: the overspeed result is the worst over all of them.
     ``rod_loads``: (force (n, 2), place on the pin m) per rod (``fe.pin_patches``): UR M53's
     moments rod by rod and, where the FE model has patch cases, each rod on its band; an
-    overspeed cycle is then (pin force, torque, rod loads)."""
+    overspeed cycle is then (pin force, torque, rod loads).
+    ``joint_speed``: (delta, max |alpha|) of the working cycle (``cw_joint.cycle_speed_data``):
+    the bolted counterweights' joints are checked by VDI 2230 (``cw_joint.check_joints``,
+    an ``InputError`` naming the keys a joint lacks, in ``geometry_file``); None: not checked."""
     coeffs = cycle_coefficients(unit, pin_force, torque, omega, sense=sense, rod_loads=rod_loads)
     coeffs_os = None
     if overspeed is not None:
@@ -160,4 +167,20 @@ def assess_throw(
         )
         fillets += (outlet,) if outlet is not None else ()
     cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
-    return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)))
+    joints: tuple[JointCheck, ...] = ()
+    if joint_speed is not None:
+        delta, alpha = joint_speed
+        joints = tuple(
+            j
+            for c in counterweights
+            for j in check_joints(
+                c,
+                omega=omega,
+                overspeed=overspeed,
+                e_clamped=material.youngs_modulus,
+                speed_fluctuation=delta,
+                angular_acceleration=alpha,
+                file=geometry_file,
+            )
+        )
+    return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)), joints)

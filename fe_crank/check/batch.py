@@ -21,6 +21,7 @@ from fe_crank.check.discovery import unique_slugs
 from fe_crank.check.options import CheckOptions, assess_threads
 from fe_crank.check.publish import clean_stale_partials
 from fe_crank.errors import InputError
+from fe_crank.notes import verdict_remarks
 from fe_crank.records import CaseResult
 from fe_crank.results import STATUS_ERROR
 
@@ -64,9 +65,10 @@ def run_cases(
     def done(i: int, r: CaseResult) -> None:
         results[i] = r
         w = r.worst
+        remarks = verdict_remarks(r.warnings)
         log.log(
             logging.WARNING if r.status == STATUS_ERROR else logging.INFO,
-            "%s: %s%s in %.1f s",
+            "%s: %s%s in %.1f s%s",
             slugs[i],
             r.status.upper(),
             f" (worst {w.name}, margin {100 * w.margin:+.1f} %)"
@@ -75,6 +77,7 @@ def run_cases(
             if r.message
             else "",
             r.seconds,
+            f" [{remarks}]" if remarks and r.status != STATUS_ERROR else "",
         )
         if on_result is not None:
             on_result(r)
