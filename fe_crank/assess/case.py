@@ -27,7 +27,7 @@ from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment, assess_throw
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.errors import InputError
-from fe_crank.fe.pin_patches import rod_loads, rod_positions
+from fe_crank.fe.pin_patches import engine_positions, rod_loads, rod_positions
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.geometry.mass import ThrowSolids
 from fe_crank.geometry.spec import CrankGeometry
@@ -199,9 +199,13 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         overspeed=overspeed,
         qualifiers=criterion_qualifiers(basis, lim, torsion=a.torsion),
     )
+    # each rod at its place on the pin in the drawn states too (the assessment's coefficients)
+    places_all = engine_positions(a.engine, a.geometry.crankpin_length) if a.geometry is not None else {}
     states = []
     for keys, unit_solutions in shared_models(a.unit_solutions):
-        st = model_states(keys, unit_solutions, done, a.dynamics, a.cycles.overspeed, senses, fields=fields)
+        st = model_states(
+            keys, unit_solutions, done, a.dynamics, a.cycles.overspeed, senses, fields=fields, places=places_all
+        )
         if st is not None:
             states.append(st)
     return Assessment(

@@ -28,8 +28,9 @@ import numpy as np
 
 from fe_crank.assess.group import GroupResult
 from fe_crank.assess.groups import COUNTERWEIGHTS
-from fe_crank.assess.superpose import load_coefficients
+from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
 from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.fe.pin_patches import rod_loads
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.mechanism.cycles import OverspeedCycle
@@ -106,20 +107,37 @@ def angle_index(dyn: DynamicsResult, angle: float | None) -> int:
 
 
 def field_at_angle(
-    unit_solutions: UnitSolutions, dyn: DynamicsResult, throw: str, index: int, sense: int
+    unit_solutions: UnitSolutions,
+    dyn: DynamicsResult,
+    throw: str,
+    index: int,
+    sense: int,
+    places: dict[str, float] | None = None,
 ) -> np.ndarray:
     """Displacement of the throw at cycle-angle index ``index`` of ``dyn`` (the operating
-    cycle, or an overspeed cycle: ``dyn.speed`` is the omega of its centrifugal term)."""
+    cycle, or an overspeed cycle: ``dyn.speed`` is the omega of its centrifugal term).
+    ``places``: each rod's place on the pin (``fe.pin_patches.rod_positions``): with the FE
+    model's patch cases, each rod's force goes to its band, as in the assessment
+    (``superpose.cycle_coefficients``, the same coefficients)."""
     tl = dyn.throws[throw]
     cases = tuple(unit_solutions.cases)
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0
-    c = load_coefficients(
-        tl.pin_force[index : index + 1],
-        tl.torque_front[index : index + 1],
-        dyn.speed,
+    one = slice(index, index + 1)
+    rods = rod_loads(tl, places or {})
+    unit = UnitStresses(
+        np.zeros((len(cases), 6, 0)),
+        np.zeros((3, 0)),
         cases=cases,
-        sense=sense,
         torque_mz=mz,
+        pin_patches=tuple(unit_solutions.options.pin_patches),
+    )
+    c = cycle_coefficients(
+        unit,
+        tl.pin_force[one],
+        tl.torque_front[one],
+        dyn.speed,
+        sense=sense,
+        rod_loads=None if rods is None else tuple((np.asarray(f)[one], e) for f, e in rods),
     )[0]
     return unit_solutions.combine(dict(zip(cases, c)))
 
@@ -192,9 +210,11 @@ def overspeed_state(
     names: list[str],
     cycles: tuple[OverspeedCycle, ...],
     senses: dict[str, int],
+    places: dict[str, dict[str, float]] | None = None,
 ) -> OverspeedState | None:
     """The governing overspeed state of one FE model (module docstring); None without an
-    overspeed cycle or an overspeed result.  ``senses``: each throw's shaft sense."""
+    overspeed cycle or an overspeed result.  ``senses``: each throw's shaft sense;
+    ``places``: throw -> its rods' places on the pin (``field_at_angle``)."""
     if not cycles:
         return None
     found = governing(throws, names)
@@ -209,7 +229,7 @@ def overspeed_state(
     for c in cycles:
         theta = np.asarray(c.dynamics.theta)
         index = int(np.argmin(np.abs(theta - ext.angle))) if ext.angle is not None else 0
-        u = field_at_angle(unit_solutions, c.dynamics, t.name, index, senses[t.name])
+        u = field_at_angle(unit_solutions, c.dynamics, t.name, index, senses[t.name], (places or {}).get(t.name))
         at_node = von_mises_at(unit_solutions, u, int(ext.node)) if len(cycles) > 1 else 0.0
         if best is None or at_node > best[0]:
             best = (at_node, c, index, u)
@@ -241,21 +261,23 @@ def model_states(
     senses: dict[str, int],
     *,
     fields: bool,
+    places: dict[str, dict[str, float]] | None = None,
 ) -> ModelStates | None:
     """The states of the FE model ``unit_solutions`` standing for the throws of ``keys``
     (module docstring); None when the assessment has no hot spot for it.  ``fields``:
     also recover the averaged nodal stress of both states on the whole mesh (for the
-    report's ``.vtu`` fields and pictures)."""
+    report's ``.vtu`` fields and pictures).  ``places``: throw -> its rods' places on the pin
+    (``fe.pin_patches.rod_positions``), for a model loaded per rod place."""
     names = throw_names(keys, dyn.throws)
     crit = critical(throws, names)
     if crit is None:
         return None
     index = angle_index(dyn, crit.angle)
-    u = field_at_angle(unit_solutions, dyn, crit.throw, index, senses[crit.throw])
+    u = field_at_angle(unit_solutions, dyn, crit.throw, index, senses[crit.throw], (places or {}).get(crit.throw))
     boundaries = unit_solutions.mesh.boundaries or {}
     fillets = [g for g in FILLETS if g in boundaries]
     averaging = {g: float(v) for g, v in unit_solutions.averaging_indicator(u, fillets).items()} if fillets else {}
-    os_state = overspeed_state(unit_solutions, throws, names, overspeed, senses)
+    os_state = overspeed_state(unit_solutions, throws, names, overspeed, senses, places)
     stress = None
     if fields:
         stress = unit_solutions.stress_at_nodes(u)

@@ -27,6 +27,7 @@ from fe_crank.balance.analysis import analyse_balance
 from fe_crank.check.options import CheckOptions
 from fe_crank.errors import InputError
 from fe_crank.fe import convergence, solve_unit_cases
+from fe_crank.fe.pin_patches import pin_patch_options
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.geometry.mass import throw_solids
 from fe_crank.io.base import InputFile
@@ -170,14 +171,16 @@ def mesh_stage(lc: LoadCase, geo: GeometryModel) -> dict[str, ThrowMesh]:
 
 def fe_stage(lc: LoadCase, meshes: dict[str, ThrowMesh]) -> dict[str, UnitSolutions]:
     """Unit load cases on one assembled stiffness per distinct throw mesh (throws with the
-    same mesh key share one solution)."""
+    same mesh key share one solution); with rods at more than one place on the pin, one
+    pressure patch per place (``fe.pin_patches.pin_patch_options``)."""
     if lc.material is None:
         raise InputError("the stress check needs a [material] section", file=lc.source_file, key="material")
     solved: dict[str, UnitSolutions] = {}
     out = {}
     for key, m in meshes.items():
         if m.key not in solved:
-            solved[m.key] = solve_unit_cases(m, lc.material, lc.fe)
+            # each rod on its own band of the pin where rods bear at more than one place
+            solved[m.key] = solve_unit_cases(m, lc.material, pin_patch_options(lc.fe, lc.engine, lc.geometry))
             # every unit case is solved: later stages combine displacements and never solve
             # again, so the factor (the largest allocation of the run) goes now
             solved[m.key].system.factorisation.free()
