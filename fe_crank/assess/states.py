@@ -5,7 +5,10 @@ superposition of the FE unit cases with the assessment's own coefficients
     u(theta) = omega^2 u_c + sum_k a_k(F(theta)) u_pk - sense T(theta) / M_z u_t
 
 Stress recovery is linear in u, so the stress of a state equals the assessment's
-superposed unit stresses at every node: pictures, fields and tables agree.
+superposed unit stresses at every node: pictures, fields and tables agree.  The
+displacement is kept in the frame of the supports (``fe.support_frame``: the main-bearing
+centres at rest, the torque face not turning), the rigid motion of the determinate solve
+removed: the report's VTU fields and deformed pictures show the deformation only.
 
 Per FE model (one model may stand for several throws, ``fe_crank.throw_scope``):
 
@@ -32,6 +35,7 @@ from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.fe.pin_patches import rod_loads
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
+from fe_crank.fe.support_frame import field_in_support_frame
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.mechanism.cycles import OverspeedCycle
 from fe_crank.mechanism.dynamics import DynamicsResult
@@ -118,7 +122,10 @@ def field_at_angle(
     cycle, or an overspeed cycle: ``dyn.speed`` is the omega of its centrifugal term).
     ``places``: each rod's place on the pin (``fe.pin_patches.rod_positions``): with the FE
     model's patch cases, each rod's force goes to its band, as in the assessment
-    (``superpose.cycle_coefficients``, the same coefficients)."""
+    (``superpose.cycle_coefficients``, the same coefficients).  The displacement is in the
+    frame of the supports (``fe.support_frame``: the rigid motion the determinate solve
+    leaves in removed, the main-bearing centres at rest), as the report writes and draws it;
+    its stresses are the solve's (a rigid motion has none)."""
     tl = dyn.throws[throw]
     cases = tuple(unit_solutions.cases)
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0
@@ -139,7 +146,7 @@ def field_at_angle(
         sense=sense,
         rod_loads=None if rods is None else tuple((np.asarray(f)[one], e) for f, e in rods),
     )[0]
-    return unit_solutions.combine(dict(zip(cases, c)))
+    return field_in_support_frame(unit_solutions, unit_solutions.combine(dict(zip(cases, c))))
 
 
 def _finite_key(v: float) -> float:
