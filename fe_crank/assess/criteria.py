@@ -38,10 +38,15 @@ def _where(throw: str, ext: Extreme | None) -> str:
 
 
 def _over_groups(
-    throws: tuple[ThrowAssessment, ...], getter: Callable[[GroupResult], tuple[float, Extreme] | None], worst: str
+    throws: tuple[ThrowAssessment, ...],
+    getter: Callable[[GroupResult], tuple[float, Extreme] | None],
+    worst: str,
+    factor: Callable[[str, str], float] | None = None,
 ) -> Found:
     """(value, location) of the worst non-None value of getter(group) over all groups
-    (the first of equals, in the throws' and groups' order)."""
+    (the first of equals, in the throws' and groups' order).  ``factor(throw, group)``: a
+    factor k >= 1 on the group's stresses (``over_groups``), a safety ("min") divided by it,
+    a stress ("max") multiplied."""
     best: Found = None
     for t in throws:
         for g in t.groups:
@@ -49,58 +54,75 @@ def _over_groups(
             if got is None:
                 continue
             value, ext = got
+            if factor is not None:
+                k = factor(t.name, g.group)
+                value = value / k if worst == "min" else value * k
             if best is None or (value < best[0] if worst == "min" else value > best[0]):
                 best = (value, _where(t.name, ext))
     return best
 
 
-def _static(throws: tuple[ThrowAssessment, ...]) -> Found:
-    return _over_groups(throws, lambda g: (g.static_safety, g.max_von_mises), "min")
+def _cw_stress(g: GroupResult) -> tuple[float, Extreme] | None:
+    ext = g.max_von_mises
+    return (ext.value, ext) if g.group.startswith(STATIC_ONLY_PREFIXES) else None
 
 
-def _overspeed(throws: tuple[ThrowAssessment, ...]) -> Found:
-    return _over_groups(
-        throws,
+def _cw_overspeed_stress(g: GroupResult) -> tuple[float, Extreme] | None:
+    ext = g.max_von_mises_overspeed
+    return (ext.value, ext) if ext is not None and g.group.startswith(STATIC_ONLY_PREFIXES) else None
+
+
+#: the quantities read from the FE groups' results: quantity -> (getter, worst)
+GROUP_QUANTITIES: dict[str, tuple[Callable[[GroupResult], tuple[float, Extreme] | None], str]] = {
+    "static_safety": (lambda g: (g.static_safety, g.max_von_mises), "min"),
+    "overspeed_safety": (
         lambda g: (
             None
             if g.overspeed_safety is None or g.max_von_mises_overspeed is None
             else (g.overspeed_safety, g.max_von_mises_overspeed)
         ),
         "min",
-    )
-
-
-def _goodman(throws: tuple[ThrowAssessment, ...]) -> Found:
-    return _over_groups(
-        throws, lambda g: None if g.fatigue_safety is None else (g.fatigue_safety.value, g.fatigue_safety), "min"
-    )
-
-
-def _gough_pollard(throws: tuple[ThrowAssessment, ...]) -> Found:
-    return _over_groups(
-        throws,
+    ),
+    "fatigue_safety": (
+        lambda g: None if g.fatigue_safety is None else (g.fatigue_safety.value, g.fatigue_safety),
+        "min",
+    ),
+    "gough_pollard_safety": (
         lambda g: None if g.gough_pollard_safety is None else (g.gough_pollard_safety.value, g.gough_pollard_safety),
         "min",
-    )
+    ),
+    "counterweight_stress": (_cw_stress, "max"),
+    "counterweight_overspeed_stress": (_cw_overspeed_stress, "max"),
+}
 
 
-def _counterweight_stress(throws: tuple[ThrowAssessment, ...]) -> Found:
-    def get(g: GroupResult) -> tuple[float, Extreme] | None:
-        ext = g.max_von_mises
-        return (ext.value, ext) if g.group.startswith(STATIC_ONLY_PREFIXES) else None
+def over_groups(
+    quantity: str, throws: tuple[ThrowAssessment, ...], factor: Callable[[str, str], float] | None = None
+) -> Found:
+    """The worst value of a group quantity (``GROUP_QUANTITIES``) over every throw's groups
+    and where it occurs; ``factor(throw, group)``: k on each group's stresses (the
+    convergence study's, ``fe_crank.check.converged``; None: the assessed values)."""
+    getter, worst = GROUP_QUANTITIES[quantity]
+    return _over_groups(throws, getter, worst, factor)
 
-    return _over_groups(throws, get, "max")
+
+def _group_evaluator(quantity: str) -> Callable[[tuple[ThrowAssessment, ...]], Found]:
+    return lambda throws: over_groups(quantity, throws)
 
 
-def _counterweight_overspeed_stress(throws: tuple[ThrowAssessment, ...]) -> Found:
-    def get(g: GroupResult) -> tuple[float, Extreme] | None:
-        ext = g.max_von_mises_overspeed
-        return (ext.value, ext) if ext is not None and g.group.startswith(STATIC_ONLY_PREFIXES) else None
-
-    return _over_groups(throws, get, "max")
+class Refused(Exception):
+    """A criterion the model's results must not judge (the reason is the message)."""
 
 
 def _m53(throws: tuple[ThrowAssessment, ...]) -> Found:
+    for t in throws:
+        for f in t.m53:
+            if not f.scf_accepted:  # UR M53 App. III rejected the SCF mode's mesh: no verdict on it
+                raise Refused(
+                    f"throw {t.name}, {m53_oil_bore.where(f.fillet)}: the FE SCFs come from a mesh UR M53 "
+                    f"App. III does not accept ({f.scf_source}); no UR M53 verdict is given on them "
+                    "(refine the mesh or bring the throw into the empirical range)"
+                )
     vals = [
         (f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
         for t in throws
@@ -156,12 +178,14 @@ class Evaluator:
 
 
 EVALUATORS: dict[str, Evaluator] = {
-    "static_safety": Evaluator(_static),
-    "overspeed_safety": Evaluator(_overspeed, needs_overspeed=True),
-    "fatigue_safety": Evaluator(_goodman),
-    "gough_pollard_safety": Evaluator(_gough_pollard),
-    "counterweight_stress": Evaluator(_counterweight_stress, unit="Pa"),
-    "counterweight_overspeed_stress": Evaluator(_counterweight_overspeed_stress, unit="Pa", needs_overspeed=True),
+    "static_safety": Evaluator(_group_evaluator("static_safety")),
+    "overspeed_safety": Evaluator(_group_evaluator("overspeed_safety"), needs_overspeed=True),
+    "fatigue_safety": Evaluator(_group_evaluator("fatigue_safety")),
+    "gough_pollard_safety": Evaluator(_group_evaluator("gough_pollard_safety")),
+    "counterweight_stress": Evaluator(_group_evaluator("counterweight_stress"), unit="Pa"),
+    "counterweight_overspeed_stress": Evaluator(
+        _group_evaluator("counterweight_overspeed_stress"), unit="Pa", needs_overspeed=True
+    ),
     "m53_acceptability": Evaluator(_m53),
     "unbalance_error": Evaluator(_unbalance),
     "bolt_utilisation": Evaluator(_bolts),
@@ -185,7 +209,10 @@ def evaluate_criteria(
         ev = EVALUATORS[lim.quantity]
         if ev.needs_overspeed and overspeed is None:
             raise InputError("needs operating.overspeed", file=file, key=lim.key)
-        got = ev.find(throws)
+        try:
+            got = ev.find(throws)
+        except Refused as exc:
+            raise InputError(f"cannot be evaluated: {exc}", file=file, key=lim.key) from None
         if got is None:
             raise InputError(
                 f"cannot be evaluated: the model gives no {lim.quantity.replace('_', ' ')} "

@@ -124,13 +124,13 @@ def assess_throw(
     fillets: tuple[M53Fillet, ...] = ()
     nominal: NominalStresses | None = None
     if m53_geometry is not None and material.tensile_strength is not None and material.m53_k is not None:
-        scf_note = None
+        scf_note, accepted = None, True
         if (
             fe_scf is None
             and scf is not None
             and any(m53.out_of_range(m53_geometry.related(f)) for f in ("pin", "journal"))
         ):
-            fe_scf, scf_note = fe_scfs(scf), scf.summary()
+            fe_scf, scf_note, accepted = fe_scfs(scf), scf.summary(), scf.mesh_ok
         m53_torque = torque
         if torque_rear is not None and m53.half_range(torque_rear) > m53.half_range(torque):
             m53_torque = torque_rear
@@ -156,7 +156,9 @@ def assess_throw(
         if scf_note:  # say which FE SCFs: the appendix's SCF mode and its mesh verdict
             fillets = tuple(
                 dataclasses.replace(
-                    f, scf_source=f"{scf_note}; outside the UR M53 validity range: " + "; ".join(f.out_of_range)
+                    f,
+                    scf_source=f"{scf_note}; outside the UR M53 validity range: " + "; ".join(f.out_of_range),
+                    scf_accepted=accepted,
                 )
                 if f.out_of_range
                 else f

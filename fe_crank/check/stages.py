@@ -21,7 +21,8 @@ from typing import TypeVar
 from fe_crank.assess import m53
 from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.assess.case import AssessInputs, Assessment, assess_case
-from fe_crank.assess.scf import ScfResult, compute_scf, scf_mesh, web_centres_of
+from fe_crank.assess.scf import ScfResult, web_centres_of
+from fe_crank.assess.scf_refine import accepted_scf
 from fe_crank.assess.workers import threads
 from fe_crank.balance.analysis import analyse_balance
 from fe_crank.check.options import CheckOptions
@@ -199,16 +200,15 @@ def needs_scf(lc: LoadCase, geo: GeometryModel) -> bool:
 
 def scf_stage(lc: LoadCase, geo: GeometryModel, meshes: dict[str, ThrowMesh]) -> dict[str, ScfResult]:
     """The SCF mode's three FE load cases on each distinct throw mesh (re-meshed at r/4 in
-    the fillets when the check's mesh is coarser, ``assess.scf.scf_mesh``)."""
+    the fillets when the check's mesh is coarser, then refined until UR M53 App. III accepts
+    the mesh, bounded: ``assess.scf_refine.accepted_scf``)."""
     g = _require_geometry(lc)
     assert lc.material is not None and geo.m53 is not None
     done: dict[str, ScfResult] = {}
     out = {}
     for key, m in meshes.items():
         if m.key not in done:
-            done[m.key] = compute_scf(
-                scf_mesh(m, g), lc.material, geo.m53, web_centres=web_centres_of(g), solver=lc.fe.solver
-            )
+            done[m.key] = accepted_scf(m, g, lc.material, geo.m53, web_centres=web_centres_of(g), solver=lc.fe.solver)
         out[key] = done[m.key]
     return out
 

@@ -41,7 +41,7 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
     t0 = time.perf_counter()
     with gmsh_session() as gmsh:
         model = add_throw(geometry, spec, cut=planes)
-        _set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt)
+        _set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt, model.volumes)
         gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
         gmsh.option.setNumber("Mesh.Optimize", 1)
         gmsh.option.setNumber(

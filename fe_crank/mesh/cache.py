@@ -37,10 +37,13 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     th.pop("name", None)
     for cw in th["counterweights"]:
         cw.pop("bolted", None)  # bolt data do not change the solid
+    opts = dataclasses.asdict(options)
+    if opts["web_divisions"] is None:  # the meshes made before the web control keep their keys
+        del opts["web_divisions"]
     payload = {
         "geometry": geo,
         "throw": th,
-        "options": dataclasses.asdict(options),
+        "options": opts,
         "fe_crank": __version__,
         "gmsh": gmsh.__version__,
         "format": CACHE_FORMAT,
