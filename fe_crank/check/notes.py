@@ -12,6 +12,8 @@
   fillet above 5 %, on the FE criteria located at that fillet (``fillet_criteria``; all
   the FE stress criteria when none is: a better-resolved peak there could govern them),
   named on the verdict line;
+* the FE stress criteria the hot-spot convergence study sets (``check.converged``): on
+  each, the factor and the estimate it rests on;
 * a counterweight whose built m r differs from the requirement by more than 10 % when
   the load case has no ``unbalance_error`` criterion to judge it;
 * an engine without gas pressure (inertia loads only), on the fatigue and M53 criteria
@@ -27,7 +29,8 @@ Notes that differ only in the throws they concern are shown once, naming the thr
 from __future__ import annotations
 
 from fe_crank.assess.case import Assessment
-from fe_crank.notes import NOT_A_SIGN_OFF, WARNING, Note, from_strings, grouped
+from fe_crank.check import converged
+from fe_crank.notes import ASSUMPTION, NOT_A_SIGN_OFF, WARNING, Note, from_strings, grouped
 from fe_crank.outputs import CaseOutputs
 from fe_crank.records import SolverRecord
 
@@ -118,6 +121,16 @@ def case_notes(
                         else "",
                     )
                 )
+    for r in converged.refinements(a.criteria, a.throws, out.convergence) if a is not None and out.convergence else ():
+        notes.append(
+            Note(
+                f"{r.criterion.split('.')[-1]} taken at the convergence study's estimate of the converged peak, "
+                f"not the assessed mesh's: {r.words} (no credit when the peak falls with refinement; docs/fe.md)",
+                ASSUMPTION,
+                (r.criterion,),
+                "convergence",
+            )
+        )
     has_unbalance = a is not None and any(c.quantity == "unbalance_error" for c in a.criteria)
     for t in a.throws if a is not None else ():
         for c in t.counterweights:
