@@ -34,8 +34,7 @@ import logging
 import time
 from dataclasses import dataclass, field
 
-import numpy as np
-
+from fe_crank.fe.convergence_loads import DEFAULT_LOADS, check_loads
 from fe_crank.fe.fe_options import Material
 from fe_crank.fe.surface_peaks import (  # noqa: F401 (FILLETS, peak_fillet_stress: the study's measures, named here too)
     COUNTERWEIGHT_FILLETS,
@@ -57,8 +56,6 @@ TOLERANCE = 0.05
 COUNTERWEIGHT_PREFIX = "counterweight fillets, "
 #: ... and on the oil bore's surface the entry "oil bore, X"
 OIL_BORE_PREFIX = "oil bore, "
-#: default loads: the radial crankpin force (firing direction, towards the axis) and the torque, 1 N / 1 N m
-DEFAULT_LOADS = {"pin_-y": {"pin_-y": 1.0}, "torque": {"torque": 1.0}}
 
 
 @dataclass(frozen=True)
@@ -122,33 +119,6 @@ class ConvergenceStudy:
             "tolerance": self.tolerance,
             "converged": self.converged,
         }
-
-
-def check_loads(throw_loads, omega: float) -> dict[str, dict[str, float]]:
-    """Load sets of the check's study from the dynamics of one or more throws.
-
-    ``throw_loads``: objects with ``pin_force`` (n, 2) in the throw frame (N) and
-    ``torque_front``/``torque_rear`` (n,) (N m), e.g. ``DynamicsResult.throws`` values.
-    "peak pin force": the largest crankpin force of the cycle (pin unit cases by the two
-    bracketing directions) with the centrifugal load at ``omega`` (rad/s); "peak torque":
-    the largest journal torque through the throw (skipped when zero).
-    """
-    from fe_crank.fe.pin_directions import pin_case_weights, pin_cases
-
-    best, tmax = None, 0.0
-    for tl in throw_loads:
-        F = np.asarray(tl.pin_force, float)
-        i = int(np.argmax(np.hypot(F[:, 0], F[:, 1])))
-        if best is None or np.hypot(*F[i]) > np.hypot(*best):
-            best = F[i]
-        tmax = max(tmax, float(np.abs(tl.torque_front).max()), float(np.abs(tl.torque_rear).max()))
-    names = pin_cases()
-    w = pin_case_weights(np.asarray(best, float)[None, :], names)[0]
-    pin = {n: float(x) for n, x in zip(names, w) if x != 0.0}
-    loads = {"peak pin force": {**pin, "centrifugal": float(omega) ** 2}}
-    if tmax > 0:
-        loads["peak torque"] = {"torque": tmax}
-    return loads
 
 
 def fillet_convergence(
