@@ -127,6 +127,7 @@ def test_oil_bore_without_credit_and_a_study_per_throw_found_by_name():
     a = _assessment([_group("oil_bore", 7, 200e6), _group("crankpin_fillet_1", 3, 150e6)], {"min_static_safety": 2.0})
     (c,) = refined(a.criteria, a.throws, {"1": st})
     assert c.value == 3.0 and "x1.000" in c.location and "oil-bore outlet" in c.location
+    assert "the peak falls with refinement: no credit taken" in c.location
     (same,) = refined(a.criteria, a.throws, {"2": st})  # no study for throw 1
     assert same == a.criteria[0]
     conv = criterion({"1": st})
@@ -162,6 +163,6 @@ def test_the_oil_bore_outlet_is_refined_and_followed_by_the_study(tmp_path):
         assert all(lv.peaks[n] > 0 for lv in st.levels)
     d = st.to_dict()
     assert d["bore_divisions"] == [6.0, 12.0] and set(bore) <= set(d["assessed_changes"])
-    k, basis, _ = surface_factor({"1": st}, "1", "oil_bore")
+    k, basis, _, _ = surface_factor({"1": st}, "1", "oil_bore")
     ratios = [st.levels[-1].peaks[n] / st.levels[0].peaks[n] for n in bore]
     assert k == pytest.approx(max(1.0, *ratios), rel=1e-12) and basis.startswith("finest level r/2")

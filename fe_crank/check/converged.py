@@ -61,10 +61,12 @@ class Refinement:
     surface: str  # "shaft fillets", "counterweight fillets", "oil-bore outlet"
     basis: str  # the estimate in words, e.g. "finest level r/8" or "Richardson extrapolation ..."
     load_set: str
+    ratio: float  # sigma_est / sigma_assessed before the floor at 1
 
     @property
     def words(self) -> str:
-        return f"x{self.factor:.3f} by the convergence study ({self.surface}: {self.basis}, {self.load_set})"
+        fall = "; the peak falls with refinement: no credit taken" if self.ratio < 1.0 else ""
+        return f"x{self.factor:.3f} by the convergence study ({self.surface}: {self.basis}, {self.load_set}{fall})"
 
 
 def richardson(h, s) -> tuple[float, float] | None:
@@ -121,9 +123,10 @@ def _in_surface(name: str, prefix: str) -> bool:
     return not name.startswith((COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX))
 
 
-def surface_factor(studies: dict, throw: str, group: str) -> tuple[float, str, str] | None:
-    """(k, the estimate in words, load set) of a group of a throw, or None when the study
-    does not follow its surface (module docstring): the load set with the largest k."""
+def surface_factor(studies: dict, throw: str, group: str) -> tuple[float, str, str, float] | None:
+    """(k, the estimate in words, load set, sigma_est / sigma_assessed) of a group of a
+    throw, or None when the study does not follow its surface (module docstring): the load
+    set with the largest ratio."""
     prefix = _surface(group)
     study = studies.get(throw, studies.get(ALL_THROWS))
     if prefix is None or study is None:
@@ -132,7 +135,7 @@ def surface_factor(studies: dict, throw: str, group: str) -> tuple[float, str, s
     if not found:
         return None
     (ratio, basis), load_set = max(found, key=lambda x: x[0][0])
-    return max(1.0, ratio), basis, load_set.removeprefix(prefix)
+    return max(1.0, ratio), basis, load_set.removeprefix(prefix), ratio
 
 
 def refine(
@@ -140,7 +143,7 @@ def refine(
 ) -> tuple[tuple[CriterionResult, ...], tuple[Refinement, ...]]:
     """``criteria`` with the FE stress criteria re-evaluated at the study's estimates
     (module docstring), and the factor each of them ends up at (its governing group's)."""
-    cache: dict[tuple[str, str], tuple[float, str, str] | None] = {}
+    cache: dict[tuple[str, str], tuple[float, str, str, float] | None] = {}
 
     def got(throw: str, group: str):
         if (throw, group) not in cache:
@@ -161,7 +164,7 @@ def refine(
         parts = where.split(", ")
         f = got(parts[0].removeprefix("throw "), parts[1]) if len(parts) > 1 else None
         if f is not None:
-            r = Refinement(c.name, f[0], SURFACES[_surface(parts[1])], f[1], f[2])
+            r = Refinement(c.name, f[0], SURFACES[_surface(parts[1])], f[1], f[2], f[3])
             made.append(r)
             where = f"{where}; {r.words}"
         out.append(
