@@ -14,11 +14,7 @@ from fe_crank.io.loadcase import load_loadcase
 
 
 def _fillet(q: float) -> M53Fillet:
-    import dataclasses
-
-    names = {f.name: 0.0 for f in dataclasses.fields(M53Fillet)}
-    names.update(fillet="pin", scf_source="empirical", acceptability=q, out_of_range=())
-    return M53Fillet(**names)
+    return M53Fillet("pin", "empirical", 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, q)
 
 
 def test_air_motor_m53_verdict_line_says_analogy(root):
