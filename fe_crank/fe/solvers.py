@@ -26,7 +26,6 @@ from fe_crank.errors import SolverError
 from fe_crank.fe.pardiso_ooc import out_of_core
 from fe_crank.fe.pardiso_phases import pardiso_factorize
 from fe_crank.fe.solver_choice import DESCRIPTIONS, choose_method, fallback_note
-from fe_crank.fe.solver_choice import pardiso_available as pardiso_available  # check.provenance reads it here
 
 log = logging.getLogger(__name__)
 _warned: set[str] = set()

@@ -23,7 +23,8 @@ from pydantic import Field, ValidationError, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
-from fe_crank.io.base import Strict, read_text, resolve_reference, validate, validation_to_input_error
+from fe_crank.io.base import Strict, read_text, validate, validation_to_input_error
+from fe_crank.io.includes import resolve_reference
 from fe_crank.io.units import Angle, Energy, Pressure, parse_unit, ureg
 
 
