@@ -20,7 +20,7 @@ import platform
 from functools import partial
 from pathlib import Path
 
-from fe_crank.fe.solvers import pardiso_available
+from fe_crank.fe.solver_choice import pardiso_available
 from fe_crank.io.base import InputFile
 from fe_crank.mesh.plan import SIGN_OFF_RULE
 from fe_crank.outputs import CaseOutputs

@@ -37,9 +37,10 @@ from pydantic import Field, StrictBool, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
-from fe_crank.io.base import Strict, read_included, read_toml, validate, with_include_context
+from fe_crank.io.base import Strict, read_toml, validate
 from fe_crank.io.firing import firing_offsets
 from fe_crank.io.gas import build_gas
+from fe_crank.io.includes import read_included, with_include_context
 from fe_crank.io.units import Angle, Inertia, Length, Mass
 
 

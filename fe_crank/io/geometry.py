@@ -63,7 +63,8 @@ from fe_crank.geometry.spec import (
     ThrowSpec,
     WebOutline,
 )
-from fe_crank.io.base import Strict, read_included, read_toml, validate, with_include_context
+from fe_crank.io.base import Strict, read_toml, validate
+from fe_crank.io.includes import read_included, with_include_context
 from fe_crank.io.units import Angle, Density, Force, Length, Pressure
 
 

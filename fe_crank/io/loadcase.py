@@ -28,10 +28,11 @@ from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
-from fe_crank.io.base import InputFile, Strict, input_root, read_toml, recording_inputs, validate
+from fe_crank.io.base import InputFile, Strict, read_toml, recording_inputs, validate
 from fe_crank.io.criteria import Criteria, check_m53_torque
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
+from fe_crank.io.includes import input_root
 from fe_crank.io.material import Material
 from fe_crank.io.operating import parse_operating
 from fe_crank.io.sections import SECTION_KEYS, parse_sections
@@ -76,7 +77,7 @@ def load_loadcase(
 
     Include paths (``engine``, ``geometry``, a gas CSV) must stay in the load case's
     folder tree unless ``allow_outside_paths`` (default: the environment variable
-    ``FE_CRANK_ALLOW_OUTSIDE_PATHS``); see ``fe_crank.io.base.resolve_reference``.
+    ``FE_CRANK_ALLOW_OUTSIDE_PATHS``); see ``fe_crank.io.includes.resolve_reference``.
     ``files_read``: a list that receives every input file opened, also when the load
     case is refused (the provenance of an error)."""
     with input_root(path, allow_outside_paths), recording_inputs() as read:

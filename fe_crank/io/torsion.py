@@ -227,11 +227,9 @@ def parse_torsion(value: object, file: str | Path, key: str = "torsion") -> Tors
     damper = None if d is None else Element("damper", d.inertia, d.stiffness or 0.0, d.damping, d.loss_factor)
     pulley = None if raw.pulley is None else Element("pulley", raw.pulley.inertia, raw.pulley.stiffness)
     fly = Element("flywheel", raw.flywheel.inertia, raw.flywheel.stiffness)
-    driven = tuple(
-        Element(x.name, x.inertia, x.stiffness, x.damping, x.loss_factor, x.absolute_damping) for x in raw.driven
-    )
+    driven = tuple(_driven(x) for x in raw.driven)
     return TorsionSettings(
-        tuple(raw.speed_range),
+        raw.speed_range,
         raw.speed_steps,
         raw.throw_stiffness,
         raw.shaft_loss_factor,
@@ -244,7 +242,13 @@ def parse_torsion(value: object, file: str | Path, key: str = "torsion") -> Tors
     )
 
 
-def _parse_lumped(value: dict, file: str | Path, key: str) -> TorsionSettings:
+def _driven(x: DrivenInput) -> Element:
+    """The chain element of a driven machine (its stiffness is required: ``DrivenInput._check``)."""
+    assert x.stiffness is not None  # refused by DrivenInput._check with its own message
+    return Element(x.name, x.inertia, x.stiffness, x.damping, x.loss_factor, x.absolute_damping)
+
+
+def _parse_lumped(value: dict[str, object], file: str | Path, key: str) -> TorsionSettings:
     raw = validate(LumpedInput, value, file, key)
     stations = parse_stations(raw.stations, str(file), f"{key}.stations")
     fly = raw.flywheel_station
@@ -253,7 +257,7 @@ def _parse_lumped(value: dict, file: str | Path, key: str) -> TorsionSettings:
     if fly is None:
         fly = next((s.name for s in stations if s.name == "flywheel"), max(stations, key=lambda s: s.inertia).name)
     return TorsionSettings(
-        tuple(raw.speed_range),
+        raw.speed_range,
         raw.speed_steps,
         "lumped",
         None,

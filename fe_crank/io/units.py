@@ -23,10 +23,11 @@ import math
 import re
 from typing import Annotated
 
+import numpy as np
 import pint
 from pydantic import BeforeValidator
 
-ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+ureg: pint.UnitRegistry[float | np.ndarray] = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 ureg.define("rpm = revolution / minute")  # pint's 'rpm' is already this; keep explicit
 
 #: longest accepted quantity or unit text (characters)
