@@ -70,9 +70,40 @@ def _edge_index(edges: np.ndarray, nv: int):
     return find
 
 
-def extrude(disc: Disc, levels) -> object:
+def round_disc(radius: float, size: float) -> Disc:
+    """A P2 triangle mesh of a disc (gmsh, element edge about ``size``), for round shafts
+    built of extruded pieces alone."""
+    from fe_crank.gmsh_io import gmsh_session
+
+    with gmsh_session() as gmsh:
+        gmsh.model.occ.addDisk(0.0, 0.0, 0.0, radius, radius)
+        gmsh.model.occ.synchronize()
+        gmsh.option.setNumber("Mesh.MeshSizeMax", size)
+        gmsh.option.setNumber("Mesh.MeshSizeMin", 0.5 * size)
+        gmsh.option.setNumber("Mesh.ElementOrder", 2)
+        gmsh.model.mesh.generate(2)
+        tags, xyz, _ = gmsh.model.mesh.getNodes()
+        _, _, conn = gmsh.model.mesh.getElements(2)
+    pos = {int(t): i for i, t in enumerate(tags)}
+    tri6 = np.array([pos[int(t)] for t in conn[0]]).reshape(-1, 6)  # corners, then (0,1) (1,2) (2,0)
+    xyz = xyz.reshape(-1, 3)
+    verts = np.unique(tri6[:, :3])
+    vmap = np.full(xyz.shape[0], -1)
+    vmap[verts] = np.arange(verts.size)
+    tri = vmap[tri6[:, :3]]
+    e = np.vstack([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
+    mids = np.concatenate([tri6[:, 3], tri6[:, 4], tri6[:, 5]])
+    key = np.minimum(e[:, 0], e[:, 1]) * verts.size + np.maximum(e[:, 0], e[:, 1])
+    _, first = np.unique(key, return_index=True)
+    edges, mid_nodes = e[first], mids[first]
+    xy = np.vstack([xyz[verts, :2], xyz[mid_nodes, :2]])
+    return Disc(xy=xy, tri=tri, edges=edges, mid=verts.size + np.arange(edges.shape[0]), nv=verts.size)
+
+
+def extrude(disc: Disc, levels, bands: dict[str, tuple[float, float]] | None = None) -> object:
     """Tetrahedral P2 mesh (``skfem.MeshTet2``) of the disc extruded through the z
-    ``levels`` (increasing); boundaries ``end_1``, ``end_2``, ``surface`` (module doc)."""
+    ``levels`` (increasing); boundaries ``end_1``, ``end_2``, ``surface`` (module doc) and,
+    for each of ``bands`` (name -> (z0, z1)), the lateral facets whose centroid lies in it."""
     from skfem import MeshTet2
 
     z = np.asarray(levels, float)
@@ -133,12 +164,19 @@ def extrude(disc: Disc, levels) -> object:
         raise MeshError("a degenerate prism in the extrusion (coincident levels or vertices)")
     t10[jac < 0] = t10[jac < 0][:, FLIP_TET10]
     mesh = MeshTet2(P.T.copy(), t10.T.astype(np.int32).copy())
-    return mesh.with_boundaries(_boundaries(mesh, z))
+    return mesh.with_boundaries(_boundaries(mesh, z, bands or {}))
 
 
-def _boundaries(mesh, z: np.ndarray) -> dict[str, np.ndarray]:
+def _boundaries(mesh, z: np.ndarray, bands) -> dict[str, np.ndarray]:
     bf = mesh.boundary_facets()
     fz = mesh.p[2][mesh.facets[:, bf]]
     first = np.all(fz == z[0], axis=0)
     last = np.all(fz == z[-1], axis=0)
-    return {"end_1": bf[first], "end_2": bf[last], "surface": bf[~first & ~last]}
+    out = {"end_1": bf[first], "end_2": bf[last], "surface": bf[~first & ~last]}
+    zc = fz.mean(axis=0)
+    for name, (z0, z1) in bands.items():
+        sel = ~first & ~last & (zc > z0) & (zc < z1)
+        if not np.any(sel):
+            raise MeshError(f"the band {name!r} ({z0:g} .. {z1:g} m) holds no lateral facet")
+        out[name] = bf[sel]
+    return out

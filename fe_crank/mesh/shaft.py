@@ -49,7 +49,8 @@ class Piece:
     angle: float  # rad, local frame -> shaft frame, from +y towards +x
     z: float  # m, local origin on the axis
     throw: str | None = None
-    stubs: tuple[str | None, str | None] = (None, None)  # bearing surfaces at end_1 / end_2
+    #: (surface, journal index) of each of its surfaces that is half a main bearing's journal
+    bearing_surfaces: tuple[tuple[str, int], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -130,11 +131,12 @@ def mesh_shaft(
             tm = mesh_throw(g, t.spec, size=opt, cache_dir=cache_dir, max_elements=max_elements)
             meshes[key], throw_meshes[key] = tm.mesh, tm
         keys.append(key)
-        pieces.append(Piece(f"throw {t.name}", "throw", key, a, t.z, t.name, ("journal_1", "journal_2")))
+        i = t.index
+        pieces.append(Piece(f"throw {t.name}", "throw", key, a, t.z, t.name, (("journal_1", i), ("journal_2", i + 1))))
     first, last = layout.journals[0], layout.journals[-1]
     h = _disc_edge(meshes[keys[0]])
     ends = []
-    if first.centre - first.z0 > JOIN_TOL * g.journal_diameter:
+    if first.centre - first.z0 > JOIN_TOL * g.journal_diameter:  # an outer half beyond the bearing
         ends.append(("front end", 0, first.z0, first.centre, "end_1"))
     if last.z1 - last.centre > JOIN_TOL * g.journal_diameter:
         ends.append(("rear end", -1, last.centre, last.z1, "end_2"))
@@ -144,7 +146,8 @@ def mesh_shaft(
         levels = np.linspace(z0, z1, max(1, math.ceil((z1 - z0) / h)) + 1)
         key = f"{name}@{keys[k]}"
         meshes[key] = extrude(disc, levels)
-        piece = Piece(name, "end", key, angles[k], 0.0, None, ("surface", None) if k == -1 else (None, "surface"))
+        journal = 0 if k == 0 else len(layout.throws)
+        piece = Piece(name, "end", key, angles[k], 0.0, None, (("surface", journal),))
         pieces.insert(0 if k == 0 else len(pieces), piece)
     sm = ShaftMesh(layout, meshes, throw_meshes, tuple(pieces), n, opt)
     _check_joints(sm)
@@ -164,7 +167,7 @@ def _joint(sm: ShaftMesh, k: int) -> tuple[np.ndarray, np.ndarray]:
     nb = _face_nodes(sm.meshes[b.mesh], "end_1")
     xa = sm.placed_points(k)[:, na].T
     xb = sm.placed_points(k + 1)[:, nb].T
-    r = sm.layout.geometry.journal_diameter / 2
+    r = float(np.max(np.hypot(xa[:, 0], xa[:, 1])))
     d, idx = cKDTree(xb).query(xa)
     if na.size != nb.size or np.any(d > JOIN_TOL * r) or np.unique(idx).size != idx.size:
         raise MeshError(
@@ -254,20 +257,13 @@ def _names(sm: ShaftMesh, whole, offsets) -> dict[str, np.ndarray]:
 
 
 def _label(sm: ShaftMesh, k: int, p: Piece, name: str, bearing_of: dict[int, str]) -> str | None:
-    journal = None
-    if p.kind == "throw":
-        i = [q for q in sm.pieces if q.kind == "throw"].index(p)
-        if name in ("journal_1", "journal_2"):
-            journal = i if name == "journal_1" else i + 1
-        elif name.startswith("end_"):
-            return {0: "end_front"}.get(k) if name == "end_1" else ("end_rear" if k == len(sm.pieces) - 1 else None)
-        else:
-            return f"{name}@{p.throw}"
-    else:
-        if name == "surface":
-            journal = 0 if k == 0 else len(sm.layout.throws)
-        elif (name == "end_1" and k == 0) or (name == "end_2" and k == len(sm.pieces) - 1):
-            return "end_front" if k == 0 else "end_rear"
-        else:
-            return None
-    return f"journal@{bearing_of[journal]}" if journal in bearing_of else f"journal@{journal}"
+    for surface, journal in p.bearing_surfaces:
+        if surface == name:
+            return f"journal@{bearing_of.get(journal, journal)}"
+    if name == "end_1" and k == 0:
+        return "end_front"
+    if name == "end_2" and k == len(sm.pieces) - 1:
+        return "end_rear"
+    if name.startswith("end_") or p.kind != "throw":
+        return None
+    return f"{name}@{p.throw}"
