@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from shaft_helpers import point_loads, reactions, round_shaft, three_moment
 
 from fe_crank.geometry.spec import BearingLaw
-from shaft_helpers import point_loads, reactions, round_shaft, three_moment
 
 SPAN, RADIUS = 0.32, 0.01
 
