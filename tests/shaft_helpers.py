@@ -101,3 +101,35 @@ def three_moment(spans: int, span: float, loads: dict[int, float]) -> np.ndarray
         R[i] += P[i] / 2 + (M[i + 1] - M[i]) / span
         R[i + 1] += P[i] / 2 + (M[i] - M[i + 1]) / span
     return R
+
+
+def small_engine(angles, pitch: float = 0.06, crank_radius: float = 0.02, names=None):
+    """An inline engine with one cylinder per throw at ``angles`` (rad), ``pitch`` apart
+    and centred on z = 0, four-stroke, even firing: the throws' inertia loads only."""
+    from fe_crank import model
+
+    n = len(angles)
+    names = names or [str(i + 1) for i in range(n)]
+    z0 = -0.5 * pitch * (n - 1)
+    throws = tuple(model.Throw(names[i], "main", a, crank_radius, z0 + i * pitch, 0.2) for i, a in enumerate(angles))
+    rod = model.Rod(0.08, 0.15, 0.02)
+    cylinders = tuple(
+        model.Cylinder(names[i], names[i], 0.04, rod, 0.12, 0.0, 0.0, 4 * np.pi * i / n) for i in range(n)
+    )
+    return model.Engine("small test engine", 4, (model.Shaft("main"),), throws, cylinders)
+
+
+def small_geometry(angles, counterweights: bool = True):
+    """tests/data/geometry_small_shaft.toml with throws at ``angles`` (rad)."""
+    import dataclasses
+    from pathlib import Path
+
+    from fe_crank.io.geometry import load_geometry
+
+    g = load_geometry(Path(__file__).parent / "data" / "geometry_small_shaft.toml")
+    spec = g.throws[0]
+    cws = spec.counterweights if counterweights else ()
+    throws = tuple(
+        dataclasses.replace(spec, name=str(i + 1), angle=a, counterweights=cws) for i, a in enumerate(angles)
+    )
+    return dataclasses.replace(g, throws=throws)

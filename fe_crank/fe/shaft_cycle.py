@@ -100,7 +100,7 @@ def solve_cycle(cases: ShaftCases, W: np.ndarray, laws) -> tuple[np.ndarray, np.
     red = list(cases.redundant)
     unit = [cases.index(f"{cases.model.bearings[j].name}.{c}") for j in red for c in "xy"]
     applied = [i for i in range(len(cases.names)) if i not in unit]
-    C = cases.d_rel[red][:, :, unit].reshape(2 * len(red), -1)
+    C = cases.d_rel[red][:, :, unit].reshape(2 * len(red), len(unit))
     Q = cases.base[:4][:, unit]
     z = np.array([b.z for b in cases.model.bearings])
     sysb = BearingSystem(tuple(laws), (A, B), tuple(red), C, Q, (z - z[A]) / (z[B] - z[A]))

@@ -205,7 +205,7 @@ def throw_at_bearings(
     return g if stub == g.journal_length else dataclasses.replace(g, journal_length=stub)
 
 
-def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str) -> tuple[MainBearing, ...]:
+def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str, ef: str) -> tuple[MainBearing, ...]:
     n = len(journals) - 1
     rf = g.journal_fillet
     entries = spec.bearings
@@ -216,7 +216,8 @@ def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str) -> tuple[Mai
         j = k if b is None else b.journal
         if j > n:
             raise InputError(
-                f"bearing {b.name!r} sits on journal {j}, but the shaft has journals 0 (front) to {n} (rear)",
+                f"bearing {b.name!r} sits on journal {j}, but with the {n} throw(s) of the engine {ef} the "
+                f"shaft has journals 0 (front) to {n} (rear)",
                 file=gf,
                 key=f"shaft.bearings[{k}].journal",
             )
@@ -268,7 +269,7 @@ def shaft_layout(
         a, b = zs[i - 1] + zw, zs[i] - zw
         journals.append(JournalSpan(i, a, b, 0.5 * (a + b)))
     journals.append(JournalSpan(len(zs), zs[-1] + zw, zs[-1] + zw + end_len, zs[-1] + zw + stub))
-    bearings = _bearings(spec, journals, g, gf)
+    bearings = _bearings(spec, journals, g, gf, ef)
     return ShaftLayout(
         geometry=tg,
         throws=throws,

@@ -1,0 +1,127 @@
+"""The whole-shaft model of real throws: equilibrium, symmetry and the counterweights by statics.
+
+Small shafts (tests/data/geometry_small_shaft.toml at the ``test`` mesh size) under the
+inertia loads of small engines (``tests/shaft_helpers.py``).  Independent references:
+the pin forces of the dynamics stage and the exact mass properties of the throws'
+solids (``geometry.mass``, B-rep integrals), never the model's own numbers.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from shaft_helpers import Steel, small_engine, small_geometry
+
+from fe_crank import model
+from fe_crank.dynamics import analyse
+from fe_crank.fe.shaft_cases import solve_cases
+from fe_crank.fe.shaft_cycle import ThrowCycleLoad, shaft_cycle
+from fe_crank.fe.shaft_model import build_shaft_model
+from fe_crank.geometry.mass import mass_properties
+from fe_crank.geometry.shaft import shaft_layout
+from fe_crank.mesh.shaft import mesh_shaft, rotation
+
+SPEED = 4000 * 2 * np.pi / 60
+
+
+def _run(angles, tmp_path_factory, *, counterweights=True):
+    g = small_geometry(angles, counterweights)
+    e = small_engine(angles)
+    layout = shaft_layout(g, e, geometry_file="g.toml", engine_file="e.toml")
+    sm = mesh_shaft(layout, size="test", cache_dir=tmp_path_factory.mktemp("cache"))
+    cases = solve_cases(build_shaft_model(sm, Steel()))
+    dyn = analyse(e, model.OperatingPoint(speed=SPEED))
+    mass = {t.name: mass_properties(layout.geometry, t.spec) for t in layout.throws}
+    loads = tuple(ThrowCycleLoad(t.name, dyn.throws[t.name].pin_force) for t in layout.throws)
+    psi = dyn.throws["1"].angle_global - layout.sense * layout.throws[0].angle
+    return layout, cases, dyn, mass, loads, psi
+
+
+@pytest.fixture(scope="module")
+def twin(tmp_path_factory):
+    return _run([0.0, np.pi / 2], tmp_path_factory)
+
+
+def _engine(v, psi):
+    c, s = np.cos(psi), np.sin(psi)
+    return np.stack([c * v[..., 0] + s * v[..., 1], -s * v[..., 0] + c * v[..., 1]], axis=-1)
+
+
+def test_bearing_loads_balance_the_pin_forces_and_the_centrifugal_force(twin):
+    """At every angle the loads on the bearings add up to the pin forces plus the shaft's
+    centrifugal force m e omega^2 (the exact mass properties of the solids)."""
+    layout, cases, dyn, mass, loads, psi = twin
+    res = shaft_cycle(cases, loads, dyn.theta, psi, SPEED, mass)
+    total = sum(b.load_n for b in res.bearings)
+    # the pin forces in the engine frame as the dynamics stage itself turns them: its
+    # simply supported bearing split carries pin force + rotating mass x R omega^2
+    pins = 0.0
+    for t, et in zip(layout.throws, small_engine([0.0, np.pi / 2]).throws):
+        tl = dyn.throws[t.name]
+        gamma = tl.angle_global
+        rot = et.rotating_mass * et.crank_radius * SPEED**2 * np.stack([np.sin(gamma), np.cos(gamma)], axis=-1)
+        pins = pins + tl.bearing_front + tl.bearing_rear - rot
+    me = sum(rotation(t.angle)[:2, :2] @ np.asarray(mass[t.name].total.unbalance_vector) for t in layout.throws)
+    centrifugal = _engine(np.broadcast_to(SPEED**2 * me, pins.shape), psi)
+    assert (
+        np.linalg.norm(me) > 0.01 * sum(mass[t.name].total.mass for t in layout.throws) * layout.geometry.crank_radius
+    )
+    scale = np.abs(centrifugal).max() + np.abs(pins).max()
+    assert np.abs(total - pins - centrifugal).max() < 2e-3 * scale
+
+
+@pytest.fixture(scope="module")
+def flat4(tmp_path_factory):
+    return _run([0.0, np.pi, np.pi, 0.0], tmp_path_factory)
+
+
+def test_a_mirror_symmetric_shaft_has_mirror_symmetric_bearing_loads(flat4):
+    """0/180/180/0 deg is its own mirror image across z = 0: under a load that is too
+    (the centrifugal forces alone, no pin force) bearing j carries what bearing 6 - j does."""
+    layout, cases, dyn, mass, loads, psi = flat4
+    zero = tuple(ThrowCycleLoad(t.throw, np.zeros_like(t.pin_force)) for t in loads)
+    res = shaft_cycle(cases, zero, dyn.theta, psi, SPEED, mass, counterweights=False)
+    F = np.array([b.load_n for b in res.bearings])
+    scale = np.abs(F).max()
+    assert scale > 0
+    assert np.allclose(F, F[::-1], atol=2e-3 * scale)
+
+
+def test_springs_and_rigid_bearings_carry_the_same_total(twin):
+    layout, cases, dyn, mass, loads, psi = twin
+    from fe_crank.geometry.spec import BearingLaw
+
+    rigid = shaft_cycle(cases, loads, dyn.theta, psi, SPEED, mass)
+    soft = shaft_cycle(cases, loads, dyn.theta, psi, SPEED, mass, laws=[BearingLaw("spring", 2e8)] * 3)
+    a = sum(b.load_n for b in rigid.bearings)
+    b = sum(b.load_n for b in soft.bearings)
+    assert np.allclose(a, b, atol=1e-9 * np.abs(a).max())
+    assert not np.allclose(rigid.bearings[1].load_n, soft.bearings[1].load_n, atol=1e-3 * np.abs(a).max())
+
+
+@pytest.fixture(scope="module")
+def single(tmp_path_factory):
+    return _run([0.0], tmp_path_factory)
+
+
+def test_counterweights_change_the_bearing_loads_by_their_centrifugal_shares(single):
+    """One throw on two bearings is statically determinate: switching the counterweights
+    on adds to each bearing's load the counterweights' centrifugal forces omega^2 U
+    (exact mass properties) in the shares of the lever rule, (z_B - z_cw) / (z_B - z_A)
+    and (z_cw - z_A) / (z_B - z_A)."""
+    layout, cases, dyn, mass, loads, psi = single
+    on = shaft_cycle(cases, loads, dyn.theta, psi, SPEED, mass, counterweights=True)
+    off = shaft_cycle(cases, loads, dyn.theta, psi, SPEED, mass, counterweights=False)
+    (a, b), t = layout.bearings, layout.throws[0]
+    expect = {a.name: 0.0, b.name: 0.0}
+    for web in (1, 2):
+        part = mass["1"].parts[f"counterweight_{web}"]
+        z = t.z + part.centroid[2]
+        force = _engine(np.broadcast_to(SPEED**2 * np.asarray(part.unbalance_vector), (psi.size, 2)), psi)
+        expect[a.name] = expect[a.name] + force * (b.z - z) / (b.z - a.z)
+        expect[b.name] = expect[b.name] + force * (z - a.z) / (b.z - a.z)
+    for x, y in zip(on.bearings, off.bearings):
+        change = x.load_n - y.load_n
+        scale = np.abs(expect[x.name]).max()
+        assert scale > 0
+        assert np.abs(change - expect[x.name]).max() < 2e-3 * scale
