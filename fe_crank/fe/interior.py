@@ -76,6 +76,8 @@ class Interior:
             A = _held_pattern(A, self.held)
             A = (A + A.T - sp.diags(A.diagonal())).tocsr()
             self.factor = factorise(A, method)
+        elif method == "pardiso":  # the direct handle of the symmetry components (one matrix)
+            self.factor = _pardiso_shared([_held_pattern(A, self.held)])[0]
         else:
             self.factor = factorise(_held_pattern(A, self.held), method, upper=True)
         self.method = method
@@ -104,6 +106,8 @@ class MirroredInterior:
         on = mirror.on_plane[2][nodes]
         self.nodes, self.weights, self.mirror = nodes, np.where(on, 0.5, 1.0), mirror
         self.N = basis.N
+        self._local = np.full(basis.N, -1)
+        self._local[nodes] = np.arange(nodes.size)
         K = upper_triangle(part_stiffness(basis, part, nodes, E, nu))
         K.sort_indices()
         held_face = np.zeros(basis.N, bool)
@@ -131,23 +135,32 @@ class MirroredInterior:
                 comp[2] = factorise(A, method, upper=method != "superlu")
         self.method = method
 
-    def solve_split(self, F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(u_sym, u_anti), each (3 N, k), of full loads F (3 N, k); their sum solves K_ii u = F."""
+    def solve_split(self, F, rows: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """(u_sym, u_anti), each (3 n, k), of full loads F (3 N, k; dense or sparse) at the
+        nodes ``rows`` (default all, n = N); their sum solves K_ii u = F."""
         k = F.shape[1]
-        Fn = F.reshape(self.N, 3, k)
+        rows = np.arange(self.N) if rows is None else np.asarray(rows)
         out = []
         for chars, held, fac in self.comps:
-            b = np.zeros((self.nodes.size, 3, k))
+            b = None
             for planes, p, s in self.mirror.group:
-                b += character_of(chars, planes) * s[None, :, None] * Fn[p[self.nodes]]
-            b *= self.weights[:, None, None] / len(self.mirror.group)
-            b = b.reshape(-1, k)
+                dofs = (3 * p[self.nodes][:, None] + np.arange(3)).ravel()
+                scale = character_of(chars, planes) * np.tile(s, self.nodes.size) * np.repeat(self.weights, 3)
+                part = (sp.diags(scale / len(self.mirror.group)) @ F[dofs]) if sp.issparse(F) else None
+                if part is None:
+                    part = (scale / len(self.mirror.group))[:, None] * np.asarray(F)[dofs]
+                b = part if b is None else b + part
+            b = b.toarray() if sp.issparse(b) else b
             b[held] = 0.0
             q = solve_checked(fac, b).reshape(self.nodes.size, 3, k)
-            U = np.zeros((self.N, 3, k))
+            del b
+            U = np.zeros((rows.size, 3, k))
             for planes, p, s in self.mirror.group:
-                U[p[self.nodes]] += (character_of(chars, planes) * self.weights)[:, None, None] * s[None, :, None] * q
-            out.append((-chars[2], U.reshape(3 * self.N, k)))
+                src = self._local[p[rows]]  # the part's node whose image under g is the row's node
+                ok = src >= 0
+                w = character_of(chars, planes) * self.weights[src[ok]]
+                U[ok] += w[:, None, None] * s[None, :, None] * q[src[ok]]
+            out.append((-chars[2], U.reshape(3 * rows.size, k)))
         return tuple(u for _, u in sorted(out, key=lambda t: t[0]))
 
     def solve(self, F: np.ndarray) -> np.ndarray:

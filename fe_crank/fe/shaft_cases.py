@@ -58,12 +58,6 @@ class ShaftCases:
         rec = (3 * c.rec_nodes[:, None] + np.arange(3)).ravel()
         return c.L[rec] @ (self.coef[piece] @ weights) + c.X_rec @ (self.V[piece] @ weights)
 
-    def field(self, piece: int, weights: np.ndarray) -> np.ndarray:
-        """The whole displacement field (3 N, k) of a piece (local frame): the interior from
-        one more solve (for pictures); here only its recovery part is kept, so the rest is
-        the local patterns' part plus X v where X is known (the end faces)."""
-        raise NotImplementedError
-
 
 def _terms(model: ShaftModel, loads: list[dict[tuple[int, str], float]]) -> list[np.ndarray]:
     out = []
