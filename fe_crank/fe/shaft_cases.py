@@ -46,6 +46,7 @@ class ShaftCases:
     d: np.ndarray  # (n_bearings, 3, n_cases) reference displacements, shaft frame
     d_rel: np.ndarray  # (n_bearings, 2, n_cases) radial, relative to the base line
     redundant: tuple[int, ...]  # bearing indices that are not base bearings
+    held: np.ndarray  # the six interface dofs held against the rigid-body modes
 
     def index(self, name: str) -> int:
         return self.names.index(name)
@@ -152,4 +153,4 @@ def solve_cases(model: ShaftModel, extra: dict[str, dict[tuple[int, str], float]
     za, zb = z[A], z[B]
     s = (z - za) / (zb - za)
     d_rel = d[:, :2] - (1 - s)[:, None, None] * d[A, :2][None] - s[:, None, None] * d[B, :2][None]
-    return ShaftCases(model, tuple(names), coef, V, R, (A, B), d, d_rel, redundant)
+    return ShaftCases(model, tuple(names), coef, V, R, (A, B), d, d_rel, redundant, held)

@@ -126,6 +126,8 @@ def condense(
     P = np.column_stack([patterns[n] for n in names])
     L = interior.solve(P)
     g = P[b] - K_b @ L
+    resultant = resultants(P, basis.doflocs)
+    del P  # the patterns live on in L, g and their resultants
     phi_names = tuple(functionals)
     Phi = sp.csr_matrix(np.vstack([functionals[n] for n in phi_names])) if phi_names else sp.csr_matrix((0, 3 * N))
     t["local_cases"] = time.perf_counter() - t0
@@ -185,7 +187,7 @@ def condense(
         names=names,
         L=L,
         g=g,
-        resultant=resultants(P, basis.doflocs),
+        resultant=resultant,
         rec_nodes=np.asarray(rec_nodes),
         X_rec=X_rec,
         phi_names=phi_names,

@@ -223,6 +223,19 @@ def join(sm: ShaftMesh):
     return whole.with_boundaries(_names(sm, whole, offsets))
 
 
+def node_maps(sm: ShaftMesh, whole) -> list[np.ndarray]:
+    """Per piece: the joined mesh's node number of each of its nodes (by position)."""
+    tree = cKDTree(np.asarray(whole.doflocs).T)
+    out = []
+    for k in range(len(sm.pieces)):
+        x = sm.placed_points(k).T
+        d, idx = tree.query(x)
+        if np.any(d > JOIN_TOL * np.ptp(x, axis=0).max()):
+            raise MeshError(f"{sm.pieces[k].name}: a node is not in the joined mesh")
+        out.append(idx)
+    return out
+
+
 def _tet10(mesh) -> np.ndarray:
     """(10, ne) P2 node numbers of the elements, scikit-fem order (corners, then edges)."""
     return np.vstack([mesh.t, mesh.nvertices + mesh.t2e])
