@@ -176,3 +176,20 @@ def test_condensed_fields_equal_a_direct_solve_of_the_joined_mesh(twin):
         mine = cases.recover(pp.index, np.eye(len(cases.names))[:, c])
         direct = pp.to_local(u[(3 * m[rec][:, None] + np.arange(3)).ravel()])
         assert np.abs(mine - direct).max() < 1e-8 * np.abs(direct).max()
+
+
+def test_web_moment_of_a_throw_on_two_bearings_is_the_beams(single):
+    """Pin force alone (centrifugal switched off by a vanishing speed): one throw on two
+    bearings is a simply supported beam, so at the web centres M = R_A (z_w - z_A) and
+    M = R_B (z_B - z_w), R_A = P (z_B - z_p) / (z_B - z_A), R_B = P - R_A."""
+    layout, cases, dyn, mass, loads, psi = single
+    res = shaft_cycle(cases, loads, dyn.theta, psi, 1e-6, mass)
+    (a, b), t = layout.bearings, layout.throws[0]
+    P = _engine(loads[0].pin_force, psi)  # throw "1" at 0 deg: its frame is the shaft's
+    RA = P * (b.z - t.z) / (b.z - a.z)
+    for w in res.webs:
+        lever = (w.z - a.z) if w.web == 1 else (b.z - w.z)
+        R = RA if w.web == 1 else P - RA
+        expect = lever * np.hypot(R[:, 0], R[:, 1])
+        got = np.hypot(*w.bending_moment_nm.T)
+        assert np.allclose(got, expect, atol=1e-6 * expect.max())

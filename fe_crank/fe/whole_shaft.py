@@ -137,7 +137,11 @@ def analyse_whole_shaft(
     cases = solve_cases(model)
     t["cases"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    mass = {th.name: mass_properties(layout.geometry, th.spec) for th in layout.throws}
+    by_shape: dict = {}  # the solid depends on the counterweights only (not on the name or angle)
+    for th in layout.throws:
+        if th.spec.counterweights not in by_shape:
+            by_shape[th.spec.counterweights] = mass_properties(layout.geometry, th.spec)
+    mass = {th.name: by_shape[th.spec.counterweights] for th in layout.throws}
     first = layout.throws[0]
     psi = np.asarray(dynamics.throws[first.name].angle_global) - layout.sense * first.angle
     loads = tuple(ThrowCycleLoad(th.name, dynamics.throws[th.name].pin_force) for th in layout.throws)
