@@ -167,3 +167,22 @@ def test_shaft_section_read_in_si():
     assert g.shaft.bearing_law.stiffness == pytest.approx(2e9)
     assert g.shaft.power_takeoff == "front"
     assert np.isfinite(g.shaft.nose.length)
+
+
+def test_explicit_bearings_on_some_journals(inline4):
+    _, e = inline4
+    g = _with_shaft(
+        {
+            "bearings": [
+                {"name": "F", "journal": 0},
+                {"name": "M", "journal": 2, "width": "30 mm", "bearing": {"model": "spring", "stiffness": "1e9 N/m"}},
+                {"name": "R", "journal": 4},
+            ],
+            "thrust_bearing": "M",
+        }
+    )
+    L = layout(g, e)
+    assert [b.name for b in L.bearings] == ["F", "M", "R"]
+    assert [b.z for b in L.bearings] == pytest.approx([-0.184, 0.0, 0.184])
+    assert L.bearings[1].width == pytest.approx(0.03) and L.bearings[1].law.stiffness == pytest.approx(1e9)
+    assert L.thrust_bearing.name == "M"
