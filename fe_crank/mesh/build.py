@@ -23,6 +23,7 @@ from fe_crank.mesh.cache import (
     load_cache_entry,
 )
 from fe_crank.mesh.export import write_vtu
+from fe_crank.mesh.interface import imprint_sectors
 from fe_crank.mesh.mirror import mirror_all, swap_side
 from fe_crank.mesh.msh import write_msh
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
@@ -41,6 +42,7 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
     t0 = time.perf_counter()
     with gmsh_session() as gmsh:
         model = add_throw(geometry, spec, cut=planes)
+        model = imprint_sectors(gmsh, model, opt.interface_sectors)
         _set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt)
         gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
         gmsh.option.setNumber("Mesh.Optimize", 1)

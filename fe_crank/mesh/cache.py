@@ -30,17 +30,20 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     from fe_crank.version import __version__
 
     geo = dataclasses.asdict(geometry)
-    for k in ("name", "description", "source", "file", "throws"):
+    for k in ("name", "description", "source", "file", "throws", "shaft"):  # shaft: ends and bearings
         geo.pop(k, None)
     th = dataclasses.asdict(throw)
     th.pop("angle", None)  # the throw frame does not depend on the throw's angle
     th.pop("name", None)
     for cw in th["counterweights"]:
         cw.pop("bolted", None)  # bolt data do not change the solid
+    opts = dataclasses.asdict(options)
+    if opts["interface_sectors"] == 1:
+        del opts["interface_sectors"]  # the key of every mesh without sectors stays as it was
     payload = {
         "geometry": geo,
         "throw": th,
-        "options": dataclasses.asdict(options),
+        "options": opts,
         "fe_crank": __version__,
         "gmsh": gmsh.__version__,
         "format": CACHE_FORMAT,

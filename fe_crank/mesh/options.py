@@ -33,6 +33,9 @@ class MeshOptions:
     size_max: float | None = None
     bore_divisions: float = 6.0  # elements round the oil bore circumference / pi
     optimize_high_order: bool = False  # gmsh's HighOrder optimiser can abort the process (uncaught C++ error)
+    interface_sectors: int = (
+        1  # end faces split into this many rotated-copy sectors (fe_crank.mesh.interface; whole shaft)
+    )
     symmetric: bool = True  # mesh the fundamental part of a mirror-symmetric throw and mirror it (fe_crank.mesh.planes; docs/geometry.md)
 
     def __post_init__(self):
@@ -40,6 +43,8 @@ class MeshOptions:
             v = getattr(self, name)
             if not (np.isfinite(v) and v > 0):
                 raise MeshError(f"mesh option {name} must be positive (got {v})")
+        if not 1 <= self.interface_sectors <= 24:
+            raise MeshError(f"mesh option interface_sectors must be 1 ... 24 (got {self.interface_sectors})")
         if self.size_max is not None and not self.size_max > 0:
             raise MeshError(f"mesh option size_max must be positive (got {self.size_max})")
 
