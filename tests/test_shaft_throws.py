@@ -13,12 +13,12 @@ import pytest
 from shaft_helpers import Steel, small_engine, small_geometry
 
 from fe_crank import model
-from fe_crank.dynamics import analyse
 from fe_crank.fe.shaft_cases import solve_cases
 from fe_crank.fe.shaft_cycle import ThrowCycleLoad, shaft_cycle
 from fe_crank.fe.shaft_model import build_shaft_model
 from fe_crank.geometry.mass import mass_properties
 from fe_crank.geometry.shaft import shaft_layout
+from fe_crank.mechanism.dynamics import analyse
 from fe_crank.mesh.shaft import mesh_shaft, rotation
 
 SPEED = 4000 * 2 * np.pi / 60

@@ -38,9 +38,9 @@ def run(args) -> dict:
     import numpy as np
 
     from fe_crank import model
-    from fe_crank.dynamics import analyse
     from fe_crank.fe.whole_shaft import analyse_whole_shaft
     from fe_crank.geometry.shaft import shaft_layout
+    from fe_crank.mechanism.dynamics import analyse
 
     t0 = time.perf_counter()
     if args.loadcase:

@@ -24,9 +24,9 @@ import scipy.sparse as sp
 
 from fe_crank.errors import SolverError
 from fe_crank.fe.assembly import part_stiffness, upper_triangle
+from fe_crank.fe.pardiso_shared import factorise_shared
 from fe_crank.fe.solvers import choose_method, factorise
 from fe_crank.fe.symmetry import character_of
-from fe_crank.fe.pardiso_shared import factorise_shared
 
 #: relative residual a block of solutions must meet (as ``Factorisation.residual_tol``)
 RESIDUAL_TOL = 1e-8
