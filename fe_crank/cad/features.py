@@ -48,6 +48,7 @@ class Cylinder:
     diameter: float
     z_min: float  # extent of the cylindrical faces along z
     z_max: float
+    bore_diameter: float = 0.0  # an axial bore along its axis (hollow pin or journal); 0: none
 
 
 @dataclass(frozen=True)

@@ -16,14 +16,16 @@ shaft in millimetres read as inches is 25.4 times too large).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
-from fe_crank.cad.axis import find_axis
+from fe_crank.cad.axis import Line, find_axis
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import CadFeatures, CadSource, CrankAxis
-from fe_crank.cad.read import read_cad
+from fe_crank.cad.read import ReadResult, read_cad
 from fe_crank.cad.shaft import RawThrow, find_throws
-from fe_crank.cad.survey import neighbours, survey
+from fe_crank.cad.survey import Face, neighbours, survey
 from fe_crank.cad.throw import throw_features
 from fe_crank.errors import InputError
 
@@ -54,6 +56,47 @@ def check_size(cad: CadInput, throws: tuple[RawThrow, ...], unit_text: str) -> N
                 )
 
 
+@dataclass(frozen=True, eq=False)
+class Prepared:
+    """Internal: the file read and its throws recognised, in the current gmsh model."""
+
+    read: ReadResult
+    tol: float
+    faces: dict[int, Face]
+    nbrs: dict[int, set[int]]
+    axis: Line
+    axis_faces: tuple[int, ...]
+    raw: tuple[RawThrow, ...]
+
+    def index(self, throw: str | int | None) -> int:
+        """0-based index of a throw given by name, index or None (the first)."""
+        if throw is None:
+            return 0
+        if isinstance(throw, int):
+            if not 0 <= throw < len(self.raw):
+                raise KeyError(f"throw index {throw} out of range (0..{len(self.raw) - 1})")
+            return throw
+        for i, t in enumerate(self.raw):
+            if t.name == throw:
+                return i
+        raise KeyError(f"no throw named {throw!r}; throws are {[t.name for t in self.raw]}")
+
+
+def prepare(gmsh, cad: CadInput) -> Prepared:
+    """Read the file into the current model and recognise its axis and throws."""
+    read = read_cad(gmsh, cad)
+    x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(3, read.shaft)
+    tol = TOL_REL * float(np.linalg.norm([x1 - x0, y1 - y0, z1 - z0]))
+    tags = [abs(t) for _, t in gmsh.model.getBoundary([(3, read.shaft)], combined=False, oriented=False)]
+    faces = survey(gmsh, sorted(set(tags)), tol)
+    nbrs = neighbours(faces)
+    axis, axis_faces = find_axis(faces, cad, tol)
+    raw = find_throws(faces, nbrs, axis, cad, tol)
+    unit_text = f"{read.unit.name} (stated by {'the file' if read.unit.stated_by == 'file' else 'length_unit'})"
+    check_size(cad, raw, unit_text)
+    return Prepared(read, tol, faces, nbrs, axis, axis_faces, raw)
+
+
 def recognise(cad: CadInput) -> CadFeatures:
     """Read ``cad.file`` and recognise every throw (see the module docstring).
 
@@ -63,31 +106,23 @@ def recognise(cad: CadInput) -> CadFeatures:
     from fe_crank.gmsh_io import gmsh_session
 
     with gmsh_session() as gmsh:
-        read = read_cad(gmsh, cad)
-        x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(3, read.shaft)
-        tol = TOL_REL * float(np.linalg.norm([x1 - x0, y1 - y0, z1 - z0]))
-        tags = [abs(t) for _, t in gmsh.model.getBoundary([(3, read.shaft)], combined=False, oriented=False)]
-        faces = survey(gmsh, sorted(set(tags)), tol)
-        nbrs = neighbours(faces)
-        axis, axis_faces = find_axis(faces, cad, tol)
-        raw = find_throws(faces, nbrs, axis, cad, tol)
-        unit_text = f"{read.unit.name} (stated by {'the file' if read.unit.stated_by == 'file' else 'length_unit'})"
-        check_size(cad, raw, unit_text)
+        p = prepare(gmsh, cad)
         throws = tuple(
-            throw_features(gmsh, read.shaft, faces, nbrs, axis, raw, i, cad, tol)[0] for i in range(len(raw))
+            throw_features(gmsh, p.read.shaft, p.faces, p.nbrs, p.axis, p.raw, i, cad, p.tol)[0]
+            for i in range(len(p.raw))
         )
-        bolted = tuple(model_mass_properties({"body": [b]}, cad.density).total for b in read.bolted)
+        bolted = tuple(model_mass_properties({"body": [b]}, cad.density).total for b in p.read.bolted)
     source = CadSource(
         file=cad.file.name,
-        sha256=read.sha256,
-        format=_FORMATS[read.kind],
-        unit=read.unit,
-        solids=read.solids,
+        sha256=p.read.sha256,
+        format=_FORMATS[p.read.kind],
+        unit=p.read.unit,
+        solids=p.read.solids,
         bodies=cad.bodies,
         density=cad.density,
         material=cad.material,
     )
     crank_axis = CrankAxis(
-        tuple(float(v) for v in axis.origin), tuple(float(v) for v in axis.e), tuple(int(t) for t in axis_faces)
+        tuple(float(v) for v in p.axis.origin), tuple(float(v) for v in p.axis.e), tuple(int(t) for t in p.axis_faces)
     )
     return CadFeatures(source, crank_axis, throws, bolted)

@@ -9,6 +9,7 @@
   outer face.  The bearing centre is the journal's middle, between the faces that bound
   it; a journal ending in a free end face of the shaft is half a bearing (fe-crank's
   throw files end so, docs/geometry.md) and its end face is the bearing centre;
+* axial bores (a hollow pin or journal): the widest hole along the pin's (journal's) axis;
 * oil bores: concave cylinders (holes) narrower than half the pin (journal) that meet the
   crankpin (a journal of the throw); every face on the same line with the same radius
   within the throw belongs to the bore.
@@ -56,6 +57,7 @@ class RawThrow:
     journals: tuple[Journal, Journal]
     journal_ends: tuple[End, End]  # the journals' ends at the webs (web outer faces)
     bores: tuple[tuple[Face, ...], ...]
+    axial_bores: tuple[float, float, float]  # m, diameter of a bore along the journal 1, pin, journal 2 axis (0: none)
 
     @property
     def mid(self) -> float:
@@ -196,6 +198,21 @@ def _bores(ctx: _Ctx, name: str, near: list[tuple[list[Face], float]], span: tup
     return tuple(out)
 
 
+def _axial_bore(ctx: _Ctx, line: Line, lo: float, hi: float) -> float:
+    """Diameter of the widest hole along ``line`` within [lo, hi] (a hollow pin or journal)."""
+    ax, tol = ctx.axis, ctx.tol
+    found = [
+        f.radius
+        for f in ctx.faces.values()
+        if f.kind == "cylinder"
+        and not f.convex
+        and line_of(f).same(line, tol)
+        and extent([f], ax)[0] < hi - tol
+        and extent([f], ax)[1] > lo + tol
+    ]
+    return 2.0 * max(found, default=0.0)
+
+
 def find_throws(faces: dict[int, Face], nbrs, axis: Line, cad: CadInput, tol: float) -> tuple[RawThrow, ...]:
     """Every throw of the shaft, front to rear."""
     ctx = _Ctx(faces, nbrs, axis, cad, tol)
@@ -218,5 +235,12 @@ def find_throws(faces: dict[int, Face], nbrs, axis: Line, cad: CadInput, tol: fl
         j2, e2 = _journal(ctx, cands, 2, rear.s_plane, name, "cad.faces.journal_2")
         near = [(list(pin), pin[0].radius), (list(j1.faces), j1.radius), (list(j2.faces), j2.radius)]
         bores = _bores(ctx, name, near, (min(j1.centre, j2.centre), max(j1.centre, j2.centre)))
-        out.append(RawThrow(name, tuple(pin), line, pin[0].radius, R, d / R, (front, rear), (j1, j2), (e1, e2), bores))
+        hollow = (
+            _axial_bore(ctx, axis, j1.lo, j1.hi),
+            _axial_bore(ctx, line, *extent(pin, axis)),
+            _axial_bore(ctx, axis, j2.lo, j2.hi),
+        )
+        out.append(
+            RawThrow(name, tuple(pin), line, pin[0].radius, R, d / R, (front, rear), (j1, j2), (e1, e2), bores, hollow)
+        )
     return tuple(out)

@@ -201,9 +201,10 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
         crank_radius=float(t.crank_radius),
         origin=_t(frame.origin),
         rotation=tuple(_t(r) for r in frame.rotation),
-        crankpin=_cylinder("crankpin", t.pin, t.pin_radius, axis, mid),
+        crankpin=_cylinder("crankpin", t.pin, t.pin_radius, axis, mid, t.axial_bores[1]),
         journals=tuple(
-            _cylinder(f"journal_{k + 1}", t.journals[k].faces, t.journals[k].radius, axis, mid) for k in (0, 1)
+            _cylinder(f"journal_{k + 1}", t.journals[k].faces, t.journals[k].radius, axis, mid, t.axial_bores[2 * k])
+            for k in (0, 1)
         ),
         fillets=fillets,
         oil_bores=tuple(_bore(b, frame, t, nbrs) for b in t.bores),
@@ -215,9 +216,10 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
     return feats, built, plan, frame
 
 
-def _cylinder(name, faces, radius, axis, mid) -> Cylinder:
+def _cylinder(name, faces, radius, axis, mid, bore) -> Cylinder:
     lo, hi = extent(faces, axis)
-    return Cylinder(name, tuple(sorted(f.tag for f in faces)), float(2 * radius), float(lo - mid), float(hi - mid))
+    tags = tuple(sorted(f.tag for f in faces))
+    return Cylinder(name, tags, float(2 * radius), float(lo - mid), float(hi - mid), float(bore))
 
 
 def _bore(bore: tuple[Face, ...], frame: Frame, t: RawThrow, nbrs) -> OilBore:
