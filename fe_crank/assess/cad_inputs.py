@@ -42,8 +42,24 @@ def _recess(cad: CadInput, throw: ThrowFeatures, kind: str, given: float | None)
     return 0.0
 
 
-def m53_geometry_of_cad(throw: ThrowFeatures, cad: CadInput) -> M53Geometry:
-    """UR M53 dimensions of a recognised throw (see the module docstring)."""
+def m53_scope(throw: ThrowFeatures, tol: float = 1e-6) -> str | None:
+    """Why UR M53's empirical formulas do not describe the throw, or None: a web with an
+    opening across the section where B is measured (a lightening hole) is not the solid
+    web the formulas were fitted to (the FE route still assesses it)."""
+    for w in throw.webs:
+        if w.solid_width < w.width - tol:
+            return (
+                f"web {w.side} has an opening across its section at the pin/journal overlap "
+                f"({w.solid_width * 1e3:.4g} mm of material in a width of {w.width * 1e3:.4g} mm)"
+            )
+    return None
+
+
+def m53_geometry_of_cad(throw: ThrowFeatures, cad: CadInput) -> M53Geometry | None:
+    """UR M53 dimensions of a recognised throw (see the module docstring); None when the
+    throw is outside the empirical formulas' scope (``m53_scope``)."""
+    if m53_scope(throw) is not None:
+        return None
     pin = [f.radius for f in throw.fillets if f.name.startswith("crankpin")]
     jou = [f.radius for f in throw.fillets if f.name.startswith("journal")]
     levers = [abs(b.z - 0.5 * (w.z_inner + w.z_outer)) for b, w in zip(throw.bearings, throw.webs)]

@@ -36,13 +36,21 @@ class End:
     def radius(self) -> float:
         return min((f.min_radius for f in self.fillet), default=0.0)
 
-    def undercut(self, axis: Line, sign: float) -> float:
+    def undercut(self, axis: Line, sign: float, tol: float) -> float:
         """Depth of the fillet beyond the web face, into the web (``sign`` -1: the end
-        looks towards smaller s)."""
+        looks towards smaller s); 0 within ``tol``.  A torus that dips below the face
+        reaches its spine plane's distance less its tube radius (exact); other faces
+        by their sample points."""
         if not self.fillet:
             return 0.0
-        s = np.concatenate([f.axial(axis.origin, axis.e) for f in self.fillet])
-        return float(max(0.0, np.max(sign * (s - self.s_plane))))
+        depth = 0.0
+        for f in self.fillet:
+            sampled = float(np.max(sign * (f.axial(axis.origin, axis.e) - self.s_plane)))
+            if sampled > tol and f.kind == "torus":
+                spine = float((f.origin - axis.origin) @ axis.e)
+                sampled = max(sampled, sign * (spine - self.s_plane) + f.minor)
+            depth = max(depth, sampled)
+        return depth if depth > tol else 0.0
 
 
 def normal_plane(f: Face, axis: Line) -> bool:
@@ -92,7 +100,7 @@ def walk(
         frontier = nxt
     if not planes:
         return End(tuple(fillet), (), float("nan"), tuple(stray))
-    s_planes = [float(p.axial(axis.origin, axis.e).mean()) for p in planes]
+    s_planes = [float(np.median(p.axial(axis.origin, axis.e))) for p in planes]  # exact on an axis-aligned plane
     # the web face is the nearest plane: farther ones reached through a blend are not it
     s0 = min(s_planes, key=lambda s: abs(s - end))
     web = tuple(p for p, s in zip(planes, s_planes) if abs(s - s0) <= tol)

@@ -92,7 +92,8 @@ class Web:
     z_outer: float
     thickness: float  # W, axial
     width: float  # B: the web's width (along x) at the middle of the pin/journal overlap, web mid-plane
-    side_radius: float  # the web's half width at the axis (y = 0+): where a counterweight begins
+    side_radius: float  # the web's rounded journal end (its half width at y = 0+): where a counterweight begins
+    solid_width: float  # material along B's line: less than B where the line crosses a hole in the web
 
 
 @dataclass(frozen=True)

@@ -34,34 +34,40 @@ class Frame:
     def direction(self, d: np.ndarray) -> np.ndarray:
         return self.rotation @ d
 
-    def move(self, occ, dimtags) -> None:
-        """Move shapes of the file frame into this frame: a translation by ``-origin`` and
-        a rotation by ``R`` (rigid OpenCASCADE transformations, exact for every surface
-        type; a general affine transformation would turn every surface into a B-spline
-        approximation: measured, it changed a throw's volume by 0.2 %)."""
-        from scipy.spatial.transform import Rotation
+    def prism(self, occ, corners, s0: float, s1: float, axis_origin: np.ndarray) -> int:
+        """A prism in the file frame: the polygon ``corners`` (x, y of this frame) in the
+        plane normal to the axis at shaft position ``s0`` (``p = axis_origin + s e``),
+        extruded to ``s1``.  When the axis runs along a coordinate axis of the file, the
+        polygon lies exactly in the plane of that coordinate = s0 (x and y have no
+        component along it) and the extrusion is exactly along it: the prism's end faces
+        coincide with the file's faces at the same position to the last bit."""
+        x, y, e = self.rotation
+        base = axis_origin + s0 * e
+        pts = [occ.addPoint(*map(float, base + a * x + b * y)) for a, b in corners]
+        loop = occ.addCurveLoop([occ.addLine(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))])
+        face = occ.addPlaneSurface([loop])
+        out = occ.extrude([(2, face)], *map(float, (s1 - s0) * e))
+        return next(t for d, t in out if d == 3)
 
-        o = [float(-c) for c in self.origin]
-        occ.translate(dimtags, *o)
-        v = Rotation.from_matrix(self.rotation).as_rotvec()
-        angle = float(np.linalg.norm(v))
-        if angle > 0:
-            occ.rotate(dimtags, 0.0, 0.0, 0.0, *(float(c) for c in v / angle), angle)
 
-
-def chord(gmsh, volume: int, frame: Frame, y: float, z: float, reach: float) -> tuple[float, float]:
-    """Smallest and largest x at which the line (y, z) of the throw frame runs in the
-    solid (OpenCASCADE's common of the line and the solid: exact); (0, 0) when it misses.
-    The solid is left as it was."""
+def chord(gmsh, volume: int, frame: Frame, y: float, z: float, reach: float) -> tuple[float, float, float]:
+    """Where the line (y, z) of the throw frame runs in the solid (OpenCASCADE's common
+    of the line and the solid: exact): its smallest and largest x, and the length of
+    line inside the solid (less than their difference where the line crosses a hole);
+    zeros when it misses.  The solid is left as it was."""
     occ = gmsh.model.occ
     p0, p1 = frame.to_file(np.array([[-reach, y, z], [reach, y, z]]))
     line = occ.addLine(occ.addPoint(*map(float, p0)), occ.addPoint(*map(float, p1)))
     out, _ = occ.intersect([(1, line)], [(3, volume)], removeObject=True, removeTool=False)
     occ.synchronize()
-    xs = []
+    xs, inside = [], 0.0
     for dim, c in out:
-        for _, p in gmsh.model.getBoundary([(dim, c)], combined=False):
-            xs.append(float(frame.to_throw(np.asarray(gmsh.model.getValue(0, p, [])))[0][0]))
+        ends = [
+            float(frame.to_throw(np.asarray(gmsh.model.getValue(0, p, [])))[0][0])
+            for _, p in gmsh.model.getBoundary([(dim, c)], combined=False)
+        ]
+        xs += ends
+        inside += max(ends) - min(ends) if ends else 0.0
     occ.remove(out, recursive=True)
     occ.synchronize()
-    return (min(xs), max(xs)) if xs else (0.0, 0.0)
+    return (min(xs), max(xs), inside) if xs else (0.0, 0.0, 0.0)

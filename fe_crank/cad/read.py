@@ -30,6 +30,7 @@ MAX_CAD_BYTES = 200_000_000
 MAX_FACES = 20_000
 _KINDS = {".step": "step", ".stp": "step", ".brep": "brep", ".brp": "brep", ".iges": "iges", ".igs": "iges"}
 _NAMES = {"step": "STEP", "brep": "BREP", "iges": "IGES"}
+_OCC_DEFAULT_UNIT = 1e-3  # m: OpenCASCADE's unit of imported STEP and IGES without a target unit
 
 
 @dataclass(frozen=True)
@@ -138,9 +139,11 @@ def read_cad(gmsh, cad: CadInput) -> ReadResult:
     """Read ``cad.file`` into the current (empty) gmsh model; see the module docstring."""
     digest = file_digest(cad)
     kind = file_kind(cad)
-    unit, factor = _unit(cad, kind)
     occ = gmsh.model.occ
-    gmsh.option.setString("Geometry.OCCTargetUnit", "M")
+    # STEP: OpenCASCADE converts the stated unit to metres.  IGES: its reader refuses a
+    # target unit until the IGES translator has run once in the process, so the numbers
+    # come in OpenCASCADE's default unit, the millimetre, and are scaled here
+    gmsh.option.setString("Geometry.OCCTargetUnit", "M" if kind != "iges" else "")
     if kind == "iges":  # IGES carries faces; sew them into solids
         gmsh.option.setNumber("Geometry.OCCSewFaces", 1)
         gmsh.option.setNumber("Geometry.OCCMakeSolids", 1)
@@ -150,6 +153,9 @@ def read_cad(gmsh, cad: CadInput) -> ReadResult:
         occ.synchronize()
     except Exception as exc:  # gmsh raises a bare Exception
         raise _fail(cad, f"OpenCASCADE could not read the {_NAMES[kind]} file: {exc}") from None
+    unit, factor = _unit(cad, kind)
+    if kind == "iges":
+        factor *= _OCC_DEFAULT_UNIT
     if factor != 1.0:
         occ.dilate(gmsh.model.getEntities(), 0.0, 0.0, 0.0, factor, factor, factor)
         occ.synchronize()

@@ -56,8 +56,9 @@ def feature_lines(features: CadFeatures) -> list[str]:
         for w in t.webs:
             out.append(
                 f"  web_{w.side}: inner {_faces(w.inner_faces)} at z {_mm(w.z_inner)}, outer {_faces(w.outer_faces)} "
-                f"at z {_mm(w.z_outer)}; thickness {_mm(w.thickness)}, width B {_mm(w.width)}, side radius "
-                f"{_mm(w.side_radius)}"
+                f"at z {_mm(w.z_outer)}; thickness {_mm(w.thickness)}, width B {_mm(w.width)}"
+                + (f" ({_mm(w.solid_width)} of it material)" if w.solid_width < w.width - 1e-9 else "")
+                + f", side radius {_mm(w.side_radius)}"
             )
         for b in t.oil_bores:
             out.append(

@@ -23,7 +23,7 @@ from fe_crank.cad.chains import End, extent
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import Arc, Bearing, Counterweight, Cylinder, Fillet, OilBore, ThrowFeatures, Web
 from fe_crank.cad.frame import Frame, chord
-from fe_crank.cad.model import Built, Plan, build_throw
+from fe_crank.cad.model import Built, Plan, build_throw, throw_mass
 from fe_crank.cad.shaft import RawThrow
 from fe_crank.cad.survey import Face, coverage
 from fe_crank.errors import InputError
@@ -33,7 +33,7 @@ def _t(v) -> tuple[float, float, float]:
     return tuple(float(c) for c in np.ravel(v))
 
 
-def _fillet(name: str, end: End, frame: Frame, mid: float, axis: Line, sign: float) -> Fillet | None:
+def _fillet(name: str, end: End, frame: Frame, mid: float, axis: Line, sign: float, tol: float) -> Fillet | None:
     if not end.fillet:
         return None
     arcs = tuple(
@@ -47,7 +47,7 @@ def _fillet(name: str, end: End, frame: Frame, mid: float, axis: Line, sign: flo
         float(end.radius()),
         arcs,
         float(end.s_plane - mid),
-        end.undercut(axis, sign),
+        end.undercut(axis, sign, tol),
     )
 
 
@@ -69,7 +69,7 @@ def _side_radius(gmsh, shaft, frame, faces, axis, z_mid, s_web, reach, R, r_jour
     if arcs:
         return float(min(arcs))
     d = 1e-3 * R
-    lo_x, hi_x = chord(gmsh, shaft, frame, d, z_mid, reach)
+    lo_x, hi_x, _ = chord(gmsh, shaft, frame, d, z_mid, reach)
     return float(math.hypot(min(-lo_x, hi_x), d))
 
 
@@ -96,8 +96,6 @@ def _cw_fillets(faces, frame, web, radius, z_range, lines, used, tol) -> list[Fa
 def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, ...], index: int, cad: CadInput, tol):
     """``(ThrowFeatures, Built, Plan, Frame)`` of throw ``index``; builds its parts in the
     current model (the caller removes the shaft before meshing them)."""
-    from fe_crank.geometry.mass import model_mass_properties
-
     t = raws[index]
     mid = t.mid
     frame = Frame.of(axis.origin, axis.e, t.u, mid)
@@ -119,7 +117,7 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
         zm = 0.5 * (zo + zi)
         rj = t.journals[k - 1].radius
         y_mid = 0.5 * ((t.crank_radius - t.pin_radius) + rj)
-        lo_x, hi_x = chord(gmsh, shaft, frame, y_mid, zm, reach)
+        lo_x, hi_x, solid_width = chord(gmsh, shaft, frame, y_mid, zm, reach)
         width = hi_x - lo_x
         s_web = sorted((zo + mid, zi + mid))
         r_side = _side_radius(gmsh, shaft, frame, faces, axis, zm, s_web, reach, t.crank_radius, rj, tol)
@@ -134,6 +132,7 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
                 float(abs(zi - zo)),
                 float(width),
                 r_side,
+                float(solid_width),
             )
         )
     cw_r = (cad.counterweight_radius,) * 2 if cad.counterweight_radius is not None else tuple(side_r)
@@ -161,16 +160,17 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
         cw_top.append(max([0.0] + ys))
     plan = Plan(
         t.name,
-        (z["b1"], z["b2"]),
+        mid,
+        (t.journals[0].centre, t.journals[1].centre),
         (t.journals[0].free_end, t.journals[1].free_end),
-        (z["zo1"], z["zi1"], z["zi2"], z["zo2"]),
+        (t.journal_ends[0].s_plane, t.ends[0].s_plane, t.ends[1].s_plane, t.journal_ends[1].s_plane),
         cw_r,
         tuple(cw_top),
         groups,
     )
-    built = build_throw(gmsh, shaft, frame, plan, tol, str(cad.file))
+    built = build_throw(gmsh, shaft, frame, axis.origin, plan, tol, str(cad.file))
     _check_groups(built, groups, cad, t.name)
-    mass = model_mass_properties(built.volumes, cad.density, t.name)
+    mass = throw_mass(gmsh, built.volumes, cad.density, frame, t.name)
     cws = tuple(
         Counterweight(
             k,
@@ -185,10 +185,10 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
     fillets = tuple(
         f
         for f in (
-            _fillet("crankpin_fillet_1", t.ends[0], frame, mid, axis, -1.0),
-            _fillet("crankpin_fillet_2", t.ends[1], frame, mid, axis, 1.0),
-            _fillet("journal_fillet_1", t.journal_ends[0], frame, mid, axis, 1.0),
-            _fillet("journal_fillet_2", t.journal_ends[1], frame, mid, axis, -1.0),
+            _fillet("crankpin_fillet_1", t.ends[0], frame, mid, axis, -1.0, tol),
+            _fillet("crankpin_fillet_2", t.ends[1], frame, mid, axis, 1.0, tol),
+            _fillet("journal_fillet_1", t.journal_ends[0], frame, mid, axis, 1.0, tol),
+            _fillet("journal_fillet_2", t.journal_ends[1], frame, mid, axis, -1.0, tol),
         )
         if f is not None
     )

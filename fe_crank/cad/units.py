@@ -1,6 +1,7 @@
 """The length unit a CAD file states, read from its text (no geometry kernel).
 
-* STEP (ISO 10303-21): the ``LENGTH_UNIT`` instances of the data section, either an SI
+* STEP (ISO 10303-21): the ``LENGTH_UNIT`` of the context the B-rep shape
+  representations are given in (``GLOBAL_UNIT_ASSIGNED_CONTEXT``), either an SI
   unit with its prefix (``( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) )``,
   ISO 10303-41 ``si_unit``) or a conversion-based unit (``CONVERSION_BASED_UNIT('INCH',
   #9)`` whose ``LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4), #10)`` gives its size in
@@ -84,23 +85,44 @@ def _step_size(inst: dict[str, str], ref: str, depth: int = 0) -> tuple[str, flo
     return None
 
 
-def step_unit(text: str) -> StatedUnit | None:
-    """The length unit a STEP file's text states (None: none; ``AmbiguousUnit``: several)."""
-    inst = _step_instances(text)
-    bases = set()  # units that only give the size of a conversion-based unit
+def _solid_contexts(inst: dict[str, str]) -> list[str]:
+    """Length units of the contexts the B-rep shape representations are given in."""
+    units = []
     for body in inst.values():
-        for cb in re.finditer(r"CONVERSION_BASED_UNIT\('[^']*',#(\d+)\)", body):
-            m = re.search(
-                r"LENGTH_MEASURE_WITH_UNIT\(LENGTH_MEASURE\([-+0-9.Ee]+\),#(\d+)\)", inst.get(cb.group(1), "")
+        if re.match(r"^\(?\w*BREP_SHAPE_REPRESENTATION\(|^\(?MANIFOLD_SURFACE_SHAPE_REPRESENTATION\(", body):
+            ctx = re.search(r"#(\d+)\)$", body)
+            refs = (
+                re.search(r"GLOBAL_UNIT_ASSIGNED_CONTEXT\(\(([#\d,]*)\)\)", inst.get(ctx.group(1), "")) if ctx else None
             )
-            if m:
-                bases.add(m.group(1))
+            if refs:
+                units += [
+                    r.strip("#") for r in refs.group(1).split(",") if "LENGTH_UNIT()" in inst.get(r.strip("#"), "")
+                ]
+    return units
+
+
+def step_unit(text: str) -> StatedUnit | None:
+    """The length unit a STEP file's text states for its solids (None: none;
+    ``AmbiguousUnit``: several).  The unit of the context of the B-rep shape
+    representations; a file without one: every length unit it declares (other than the
+    units that only size a conversion-based unit)."""
+    inst = _step_instances(text)
+    refs = _solid_contexts(inst)
+    if not refs:
+        bases = set()  # units that only give the size of a conversion-based unit
+        for body in inst.values():
+            for cb in re.finditer(r"CONVERSION_BASED_UNIT\('[^']*',#(\d+)\)", body):
+                m = re.search(
+                    r"LENGTH_MEASURE_WITH_UNIT\(LENGTH_MEASURE\([-+0-9.Ee]+\),#(\d+)\)", inst.get(cb.group(1), "")
+                )
+                if m:
+                    bases.add(m.group(1))
+        refs = [r for r, body in inst.items() if "LENGTH_UNIT()" in body and r not in bases]
     found = {}
-    for ref, body in inst.items():
-        if "LENGTH_UNIT()" in body and ref not in bases:
-            got = _step_size(inst, ref)
-            if got is not None:
-                found[round(got[1], 15)] = got
+    for ref in refs:
+        got = _step_size(inst, ref)
+        if got is not None:
+            found[round(got[1], 15)] = got
     if len(found) > 1:
         raise AmbiguousUnit(", ".join(sorted(n for n, _ in found.values())))
     if not found:
