@@ -19,6 +19,7 @@ import contextlib
 import hashlib
 import os
 from dataclasses import dataclass
+from pathlib import Path
 
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.units import AmbiguousUnit, declared_unit
@@ -135,21 +136,31 @@ def _quiet_stdout():
         os.close(fd)
 
 
+def _import(gmsh, path: Path, unit: str) -> None:
+    gmsh.option.setString("Geometry.OCCTargetUnit", unit)
+    try:
+        gmsh.model.occ.importShapes(str(path))
+    except Exception as exc:
+        if "target unit" not in str(exc) or unit != "MM":
+            raise
+        gmsh.option.setString("Geometry.OCCTargetUnit", "")  # the default: millimetres
+        gmsh.model.occ.importShapes(str(path))
+
+
 def read_cad(gmsh, cad: CadInput) -> ReadResult:
     """Read ``cad.file`` into the current (empty) gmsh model; see the module docstring."""
     digest = file_digest(cad)
     kind = file_kind(cad)
     occ = gmsh.model.occ
-    # STEP: OpenCASCADE converts the stated unit to metres.  IGES: its reader refuses a
-    # target unit until the IGES translator has run once in the process, so the numbers
-    # come in OpenCASCADE's default unit, the millimetre, and are scaled here
-    gmsh.option.setString("Geometry.OCCTargetUnit", "M" if kind != "iges" else "")
+    # STEP: OpenCASCADE converts the stated unit to metres.  IGES: in millimetres, scaled
+    # here; its reader refuses a target unit before a translator has run in the process
+    # (OpenCASCADE's unit setting is global), and then reads in its default, millimetres
     if kind == "iges":  # IGES carries faces; sew them into solids
         gmsh.option.setNumber("Geometry.OCCSewFaces", 1)
         gmsh.option.setNumber("Geometry.OCCMakeSolids", 1)
     try:
         with _quiet_stdout():
-            occ.importShapes(str(cad.file))
+            _import(gmsh, cad.file, "M" if kind != "iges" else "MM")
         occ.synchronize()
     except Exception as exc:  # gmsh raises a bare Exception
         raise _fail(cad, f"OpenCASCADE could not read the {_NAMES[kind]} file: {exc}") from None
