@@ -204,3 +204,28 @@ def turned_step(src: Path, dst: Path, order: tuple[int, int, int]) -> Path:
     text = re.sub(r"((?:CARTESIAN_POINT|DIRECTION)\('[^']*',)\(([^()]*)\)", turn, src.read_text())
     dst.write_text(text)
     return dst
+
+
+def pegged_step(g: CrankGeometry, path: Path, centre=(0.014, 0.025), radius=0.003, length=0.005) -> Path:
+    """A throw of ``g`` with a peg (a whole-round cylinder parallel to the crank axis, off
+    it, like a crankpin) standing on web 1's outer face: its free end has no web behind."""
+    with gmsh_session() as gmsh:
+        occ = gmsh.model.occ
+        solid, _ = throw_solid(g)
+        zw = g.crankpin_length / 2 + g.web_thickness
+        peg = occ.addCylinder(centre[0], centre[1], -zw - length, 0, 0, length, radius)
+        out, _ = occ.fuse([(3, solid)], [(3, peg)])
+        assert len(out) == 1
+        return _write(gmsh, path)
+
+
+def bolted_sector_step(path: Path, *, r1=0.06, angle=2.7925268031909276) -> Path:
+    """``plain_throw`` and, as separate solids, an annular-sector counterweight (the web's
+    end radius to ``r1``, 160 deg, as thick as the web) against each web's far side: a
+    STEP of three solids, the counterweights touching the shaft."""
+    with gmsh_session() as gmsh:
+        occ = gmsh.model.occ
+        plain_throw(gmsh)
+        for z0 in (-0.027, 0.013):
+            _sector(occ, 0.03, r1, angle, z0, 0.014)
+        return _write(gmsh, path)

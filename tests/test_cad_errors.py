@@ -10,7 +10,7 @@ import pytest
 from cad_files import _write, parametric_step, turned_step
 
 from fe_crank.cad import CadInput, mesh_cad_throw, recognise
-from fe_crank.errors import InputError
+from fe_crank.errors import GeometryError, InputError
 from fe_crank.gmsh_io import gmsh_session
 from fe_crank.io.geometry import load_geometry
 
@@ -123,6 +123,16 @@ def test_a_shaft_in_millimetres_stated_as_inches_is_refused_and_length_unit_sett
     t = recognise(cad(p, length_unit=1e-3, length_unit_text="mm")).throws[0]
     assert t.crank_radius == pytest.approx(0.064, abs=1e-9)
     assert t.journals[0].diameter == pytest.approx(0.060, abs=1e-9)
+
+
+@pytest.mark.heavy
+def test_a_mesh_over_the_element_budget_is_refused_before_gmsh_meshes(tmp_path, root):
+    g = load_geometry(root / "tests" / "data" / "geometry_small.toml")
+    p = parametric_step(g, tmp_path / "throw.step")
+    with pytest.raises(GeometryError) as e:
+        mesh_cad_throw(cad(p), size="test", cache_dir=tmp_path / "cache", max_elements=1000)
+    assert e.value.file == str(p) and "more than the limit" in str(e.value) and "--max-elements" in str(e.value)
+    assert not any((tmp_path / "cache").iterdir())  # nothing half-written
 
 
 @pytest.mark.heavy

@@ -20,7 +20,8 @@ import pytest
 from cad_files import parametric_step
 
 from fe_crank.assess.groups import unit_stresses
-from fe_crank.cad import CadInput, mesh_cad_throw
+from fe_crank.cad import CadInput, mesh_cad_throw, recognise
+from fe_crank.cad.mesh import estimate_cad_elements
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.stress import von_mises
 from fe_crank.io.geometry import load_geometry
@@ -61,6 +62,9 @@ def test_the_cad_mesh_of_an_exported_throw_matches_the_parametric_one(root, tmp_
     assert set(cad.mesh.subdomains) == set(param.mesh.subdomains)
     assert cad.fillet_radii == pytest.approx(param.fillet_radii, abs=1e-9)
     assert cad.msh_path.is_file() and cad.vtu_path.is_file()
+    # the element budget's estimate (fe_crank.geometry.estimate's rule) within a factor 3
+    n = estimate_cad_elements(recognise(CadInput(step, density=g.density)).throws[0], cad.options)
+    assert cad.stats.elements / 3 <= n <= 3 * cad.stats.elements
     again = mesh_cad_throw(CadInput(step, density=g.density), size="test", cache_dir=tmp_path / "cache")
     assert again.stats.from_cache and again.key == cad.key
     a, b = peaks(cad), peaks(param)

@@ -6,6 +6,8 @@ construction; BREP and IGES files of a throw."""
 from __future__ import annotations
 
 import dataclasses
+import hashlib
+import json
 import math
 import subprocess
 import sys
@@ -16,7 +18,7 @@ from cad_files import lightened_throw_step, parametric_step, recessed_throw_step
 
 from fe_crank.assess.cad_inputs import m53_geometry_of_cad, m53_scope
 from fe_crank.assess.groups import assessed_groups
-from fe_crank.cad import CadInput, feature_lines, mesh_cad_throw, recognise
+from fe_crank.cad import CadInput, cad_record, feature_lines, mesh_cad_throw, recognise
 from fe_crank.errors import InputError
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.gmsh_io import gmsh_session
@@ -182,3 +184,23 @@ def test_brep_and_iges_files_of_a_throw(root, tmp_path):
     # IGES carries B-spline surfaces only; OpenCASCADE integrates over them less exactly
     # (measured 0.4 % on this throw): the features are exact, the mass properties are not
     assert iges.throws[0].mass.total.mass == pytest.approx(step.mass.total.mass, rel=0.01)
+
+
+def test_counterweights_drawn_as_bodies_fused_or_kept_bolted(tmp_path):
+    r0, r1, angle, t = 0.03, 0.06, math.radians(160), 0.014
+    from cad_files import bolted_sector_step
+
+    path = bolted_sector_step(tmp_path / "bodies.step", r1=r1, angle=angle)
+    mr = RHO * t * 2 / 3 * math.sin(angle / 2) * (r1**3 - r0**3)  # annular sector, as above
+    fused = recognise(CadInput(path, density=RHO, bodies="fuse"))
+    assert fused.source.solids == 3 and fused.bolted == ()
+    assert [c.mass.unbalance for c in fused.throws[0].counterweights] == pytest.approx([mr, mr], rel=1e-6)
+    bolted = recognise(CadInput(path, density=RHO, bodies="bolted"))
+    assert bolted.throws[0].counterweights == ()  # the shaft alone: plain webs
+    assert sorted(b.web for b in bolted.bolted) == [1, 2] and {b.throw for b in bolted.bolted} == {"1"}
+    for b in bolted.bolted:
+        assert b.mass.unbalance == pytest.approx(mr, rel=1e-6) and b.mass.unbalance_vector[1] < 0
+    assert any(line.startswith("bolted body 1 (not in the FE model): throw 1") for line in feature_lines(bolted))
+    record = json.loads(json.dumps(cad_record(bolted)))  # the provenance's record is plain data
+    assert record["source"]["bodies"] == "bolted" and len(record["bolted"]) == 2
+    assert record["source"]["sha256"] == hashlib.sha256(path.read_bytes()).hexdigest()

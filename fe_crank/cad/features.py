@@ -71,6 +71,7 @@ class Fillet:
     arcs: tuple[Arc, ...]  # its faces that are tori (all of them for a rolling-ball fillet)
     web_face_z: float  # the web face it meets
     undercut: float  # depth it reaches into the web beyond the web face (0: tangent)
+    area: float = 0.0  # m^2, of its faces
 
 
 @dataclass(frozen=True)
@@ -113,6 +114,7 @@ class Counterweight:
     fillet_faces: tuple[int, ...]  # re-entrant rounded faces where it leaves the web
     fillet_radius: float | None  # smallest radius of those (None: none)
     mass: PartProperties
+    fillet_area: float = 0.0  # m^2
 
 
 @dataclass(frozen=True)
@@ -142,13 +144,24 @@ class ThrowFeatures:
 
 
 @dataclass(frozen=True)
+class BoltedBody:
+    """A separate solid kept out of the FE model (``[cad] bodies = "bolted"``): the throw
+    whose bearing centres enclose its centroid (or the nearest), the web on whose side it
+    lies, its mass properties in that throw's frame."""
+
+    throw: str
+    web: int
+    mass: PartProperties
+
+
+@dataclass(frozen=True)
 class CadFeatures:
     """Everything recognised in one CAD file: the record the provenance carries."""
 
     source: CadSource
     axis: CrankAxis
     throws: tuple[ThrowFeatures, ...]
-    bolted: tuple[PartProperties, ...] = ()  # bodies kept out of the FE model (bodies = "bolted")
+    bolted: tuple[BoltedBody, ...] = ()  # bodies kept out of the FE model (bodies = "bolted")
 
     def throw(self, which: str | int | None = None) -> ThrowFeatures:
         """A throw by name, by 0-based index, or the first one for ``None``."""

@@ -30,6 +30,7 @@ import numpy as np
 
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import ThrowFeatures
+from fe_crank.errors import GeometryError
 from fe_crank.mesh.fields import apply_fields, bore_field, surface_field, torus_distance, torus_field
 from fe_crank.mesh.generate import finish, generate, through_cache
 from fe_crank.mesh.options import _SAFETY, CACHE_FORMAT, DEFAULT_CACHE_DIR, MeshOptions, resolve_options
@@ -91,7 +92,35 @@ def _size_fields(gmsh, t: ThrowFeatures, surfaces: dict[str, list[int]], opt: Me
     return radii
 
 
-def _build(cad: CadInput, throw: str | None, opt: MeshOptions, folder: Path):
+def estimate_cad_elements(t: ThrowFeatures, opt: MeshOptions) -> int:
+    """Tetrahedra the mesh of ``t`` will have, estimated as ``fe_crank.geometry.estimate``
+    does for a parametric throw: ``rho V / size_max^3`` in the bulk plus the layers graded
+    from each refined face (the recognised fillets' own areas, the journals', the pin's
+    and the bores' surfaces)."""
+    from fe_crank.geometry.estimate import _RHO, _layers
+
+    size_max = opt.size_max if opt.size_max is not None else t.crankpin.diameter / opt.coarse_divisions
+    n = _RHO * t.mass.total.volume / size_max**3
+    for f in t.fillets:
+        if f.radius > 0:
+            n += _layers(f.area, _SAFETY * f.radius / opt.fillet_divisions, size_max, opt.grading)
+    for cw in t.counterweights:
+        if cw.fillet_radius:
+            n += _layers(cw.fillet_area, _SAFETY * cw.fillet_radius / opt.fillet_divisions, size_max, opt.grading)
+    for c in (t.crankpin, *t.journals):
+        r = c.diameter / 2
+        n += _layers(2 * np.pi * r * (c.z_max - c.z_min), 2 * np.pi * r / 12, size_max, opt.grading)
+    for b in t.oil_bores:
+        n += _layers(
+            np.pi * b.diameter * t.crankpin.diameter,
+            np.pi * b.diameter / (2 * opt.bore_divisions),
+            size_max,
+            opt.grading,
+        )
+    return int(np.ceil(n))
+
+
+def _build(cad: CadInput, throw: str | None, opt: MeshOptions, folder: Path, max_elements: int | None = None):
     from fe_crank.cad.recognise import prepare
     from fe_crank.cad.throw import throw_features
     from fe_crank.gmsh_io import gmsh_session, model_to_skfem
@@ -103,6 +132,17 @@ def _build(cad: CadInput, throw: str | None, opt: MeshOptions, folder: Path):
         feats, built, _, _ = throw_features(
             gmsh, prep.read.shaft, prep.faces, prep.nbrs, prep.axis, prep.raw, index, cad, prep.tol
         )
+        from fe_crank.geometry.estimate import MAX_ELEMENTS
+
+        limit = MAX_ELEMENTS if max_elements is None else int(max_elements)
+        n = estimate_cad_elements(feats, opt)
+        if n > limit:
+            raise GeometryError(
+                f"the mesh of throw {feats.name} would have about {n:.3g} elements, more than the limit {limit:.3g} "
+                f"(its smallest fillet radius is {min((f.radius for f in feats.fillets), default=0) * 1e3:.3g} mm); "
+                "raise it with --max-elements or [mesh] max_elements (docs/limits.md)",
+                file=str(cad.file),
+            )
         occ = gmsh.model.occ
         keep = {v for tags in built.volumes.values() for v in tags}
         occ.remove([(3, v) for _, v in gmsh.model.getEntities(3) if v not in keep], recursive=True)
@@ -126,12 +166,15 @@ def mesh_cad_throw(
     *,
     size: str | MeshOptions = "coarse",
     cache_dir: str | Path | None = DEFAULT_CACHE_DIR,
+    max_elements: int | None = None,
 ) -> ThrowMesh:
     """Mesh one throw (name, 0-based index or None for the first) of the CAD file
     ``cad`` with quadratic tetrahedra (cached); see the module docstring.
 
-    Raises ``InputError`` when the file cannot be read or recognised, ``MeshError`` when
-    gmsh fails or a mesh check does."""
+    ``max_elements``: limit on the element count estimated before meshing
+    (``estimate_cad_elements``; default ``fe_crank.geometry.estimate.MAX_ELEMENTS``).
+    Raises ``InputError`` when the file cannot be read or recognised (``GeometryError``
+    when the mesh would be too large), ``MeshError`` when gmsh fails or a mesh check does."""
     from fe_crank.cad.read import file_digest
 
     opt = resolve_options(size)
@@ -139,4 +182,4 @@ def mesh_cad_throw(
     name = throw if isinstance(throw, str) else ("" if throw is None else f"#{throw}")
     key = cad_cache_key(cad, sha, name, opt)
     label = throw if isinstance(throw, str) else (cad.throws[throw or 0] if cad.throws else str((throw or 0) + 1))
-    return through_cache(key, cache_dir, lambda folder: _build(cad, throw, opt, folder), label, opt)
+    return through_cache(key, cache_dir, lambda folder: _build(cad, throw, opt, folder, max_elements), label, opt)

@@ -22,7 +22,9 @@ import numpy as np
 
 from fe_crank.cad.axis import Line, find_axis
 from fe_crank.cad.config import CadInput
-from fe_crank.cad.features import CadFeatures, CadSource, CrankAxis
+from fe_crank.cad.features import BoltedBody, CadFeatures, CadSource, CrankAxis
+from fe_crank.cad.frame import Frame
+from fe_crank.cad.model import throw_mass
 from fe_crank.cad.read import ReadResult, read_cad
 from fe_crank.cad.shaft import RawThrow, find_throws
 from fe_crank.cad.survey import Face, neighbours, survey
@@ -91,10 +93,27 @@ def prepare(gmsh, cad: CadInput) -> Prepared:
     faces = survey(gmsh, sorted(set(tags)), tol)
     nbrs = neighbours(faces)
     axis, axis_faces = find_axis(faces, cad, tol)
-    raw = find_throws(faces, nbrs, axis, cad, tol)
+    raw = find_throws(
+        faces, nbrs, axis, cad, tol, lambda q: bool(gmsh.model.isInside(3, read.shaft, [float(c) for c in q]))
+    )
     unit_text = f"{read.unit.name} (stated by {'the file' if read.unit.stated_by == 'file' else 'length_unit'})"
     check_size(cad, raw, unit_text)
     return Prepared(read, tol, faces, nbrs, axis, axis_faces, raw)
+
+
+def _bolted(gmsh, body: int, p: Prepared, density: float) -> BoltedBody:
+    """A bolted body's mass properties in the frame of the throw it sits on: the one whose
+    bearing centres enclose its centroid, or the nearest."""
+    s = float((np.asarray(gmsh.model.occ.getCenterOfMass(3, body)) - p.axis.origin) @ p.axis.e)
+
+    def distance(t: RawThrow) -> float:
+        lo, hi = sorted((t.journals[0].centre, t.journals[1].centre))
+        return 0.0 if lo <= s <= hi else min(abs(s - lo), abs(s - hi))
+
+    t = min(p.raw, key=distance)
+    frame = Frame.of(p.axis.origin, p.axis.e, t.u, t.mid)
+    props = throw_mass(gmsh, {"body": [body]}, density, frame, t.name).total
+    return BoltedBody(t.name, 1 if props.centroid[2] < 0 else 2, props)
 
 
 def recognise(cad: CadInput) -> CadFeatures:
@@ -102,16 +121,15 @@ def recognise(cad: CadInput) -> CadFeatures:
 
     Raises ``InputError`` naming the file, the key that settles it and the reason when
     the file cannot be read or a feature cannot be recognised."""
-    from fe_crank.geometry.mass import model_mass_properties
     from fe_crank.gmsh_io import gmsh_session
 
     with gmsh_session() as gmsh:
         p = prepare(gmsh, cad)
+        bolted = tuple(_bolted(gmsh, b, p, cad.density) for b in p.read.bolted)  # before the throws drop them
         throws = tuple(
             throw_features(gmsh, p.read.shaft, p.faces, p.nbrs, p.axis, p.raw, i, cad, p.tol)[0]
             for i in range(len(p.raw))
         )
-        bolted = tuple(model_mass_properties({"body": [b]}, cad.density).total for b in p.read.bolted)
     source = CadSource(
         file=cad.file.name,
         sha256=p.read.sha256,

@@ -75,8 +75,9 @@ def feature_lines(features: CadFeatures) -> list[str]:
                 f"{cw.mass.unbalance * 1e3:.5g} kg mm{fr}"
             )
     for i, b in enumerate(features.bolted, start=1):
+        m = b.mass
         out.append(
-            f"bolted body {i} (not in the FE model): mass {b.mass:.5g} kg at z {_mm(b.centroid[2])} (file frame), m r "
-            f"{b.unbalance * 1e3:.5g} kg mm"
+            f"bolted body {i} (not in the FE model): throw {b.throw}, web {b.web}, mass {m.mass:.5g} kg at "
+            f"r {_mm(math.hypot(*m.centroid[:2]))}, m r {m.unbalance * 1e3:.5g} kg mm"
         )
     return out

@@ -48,6 +48,7 @@ def _fillet(name: str, end: End, frame: Frame, mid: float, axis: Line, sign: flo
         arcs,
         float(end.s_plane - mid),
         end.undercut(axis, sign, tol),
+        float(sum(f.area for f in end.fillet)),
     )
 
 
@@ -178,6 +179,7 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
             tuple(sorted(f.tag for f in cw_faces[k])),
             float(min(f.min_radius for f in cw_faces[k])) if cw_faces[k] else None,
             mass.parts[f"counterweight_{k}"],
+            float(sum(f.area for f in cw_faces[k])),
         )
         for k in (1, 2)
         if f"counterweight_{k}" in built.volumes
