@@ -6,7 +6,9 @@
   radii (the stress concentration factors of UR M53 3.2/3.3 grow as each falls), the
   longer lever from a bearing centre to its web's centre line.  B is the web's width
   measured across its mid-plane at the middle of the pin/journal overlap (UR M53 3.1),
-  on the solid itself.  D_BH, D_BG: axial bores recognised in the pin and journals.
+  on the solid itself; a web with an opening across that section (a lightening hole)
+  is outside the formulas' scope (``m53_scope``: no M53 dimensions, the FE route
+  assesses it).  D_BH, D_BG: axial bores recognised in the pin and journals.
   The recesses T_H, T_G are not measured: a fillet that reaches into the web
   (``Fillet.undercut > 0``) needs ``[cad] pin_recess`` / ``journal_recess`` as UR M53
   defines them; without a recessed fillet they are 0 unless given.
