@@ -12,7 +12,7 @@
   The recesses T_H, T_G are not measured: a fillet that reaches into the web
   (``Fillet.undercut > 0``) needs ``[cad] pin_recess`` / ``journal_recess`` as UR M53
   defines them; without a recessed fillet they are 0 unless given.
-* ``counterweights_of_cad(throw, axial_position, shaft, balance)``: per balance plane,
+* ``counterweights_of_cad(throw, axial_position, shaft, design)``: per balance plane,
   the built m r of the throw's counterweights (the B-rep's exact mass properties)
   against the balance stage's required m r (``CounterweightDesign.nearest``).
 """
@@ -23,6 +23,7 @@ import math
 
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.m53 import M53Geometry
+from fe_crank.balance.counterweights import CounterweightDesign
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import ThrowFeatures
 from fe_crank.errors import InputError
@@ -87,12 +88,11 @@ def m53_geometry_of_cad(throw: ThrowFeatures, cad: CadInput) -> M53Geometry | No
 
 
 def counterweights_of_cad(
-    throw: ThrowFeatures, axial_position: float, shaft: str, balance
+    throw: ThrowFeatures, axial_position: float, shaft: str, design: CounterweightDesign | None
 ) -> tuple[CounterweightData, ...]:
     """Counterweight data of a recognised throw, grouped by the balance plane they serve
     (as ``fe_crank.assess.adapters.counterweights_of``; drawn counterweights are integral:
     bolted bodies are kept out of the throw, ``CadFeatures.bolted``)."""
-    design = getattr(balance, "design", None)
     groups: dict[object, list] = {}
     for cw in throw.counterweights:
         z = axial_position + cw.mass.centroid[2]

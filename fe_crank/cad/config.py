@@ -22,6 +22,10 @@
     # [cad.faces."2"]            # a file with several throws: one table per throw name
     # crankpin = [41]
 
+In a load case, ``geometry = "crank.step"`` names the file and the load case's own
+``[cad]`` section (without ``file``) says how to read it; or ``geometry =
+"crank_cad.toml"`` names a TOML file holding the ``[cad]`` section above.
+
 Face numbers are gmsh's numbering of the file's faces after import (stable for a given
 file and gmsh version); fe-crank lists them with every recognised feature.
 """
@@ -79,6 +83,7 @@ class CadInput:
     journal_recess: float | None = None  # m, UR M53 T_G
     faces: tuple[FaceOverride, ...] = ()
     toml: str = ""  # the file holding the [cad] section ("" when built in Python)
+    file_key: str = "cad.file"  # the key that names the CAD file ("geometry" in a load case)
 
     def override(self, group: str, throw: str | None = None) -> FaceOverride | None:
         """The ``[cad.faces]`` entry for ``group`` of ``throw`` (a single-throw file's

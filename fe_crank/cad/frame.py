@@ -49,6 +49,47 @@ class Frame:
         out = occ.extrude([(2, face)], *map(float, (s1 - s0) * e))
         return next(t for d, t in out if d == 3)
 
+    def move_into(self, gmsh, volumes: list[int]) -> dict[int, int]:
+        """Move the volumes from the file frame into this frame (``p -> R (p - o)``: a
+        translation by ``-o``, then the rotation ``R`` about the origin as one turn about
+        its axis, both rigid, so OpenCASCADE keeps the surfaces analytic).  Volumes keep
+        their tags, faces get new ones: returns old face tag -> new (each volume's faces
+        are listed in the same order before and after; each pair is checked by its
+        centre of mass)."""
+        from scipy.spatial.transform import Rotation
+
+        occ = gmsh.model.occ
+
+        def faces() -> dict[int, list[int]]:
+            return {
+                v: [abs(t) for _, t in gmsh.model.getBoundary([(3, v)], combined=False, oriented=False)]
+                for v in volumes
+            }
+
+        before = faces()
+        centres = {f: np.asarray(occ.getCenterOfMass(2, f)) for fs in before.values() for f in fs}
+        dim_tags = [(3, v) for v in volumes]
+        if np.any(self.origin != 0.0):
+            occ.translate(dim_tags, *map(float, -self.origin))
+        turn = Rotation.from_matrix(self.rotation).as_rotvec()
+        angle = float(np.linalg.norm(turn))
+        if angle > 0.0:
+            occ.rotate(dim_tags, 0.0, 0.0, 0.0, *map(float, turn / angle), angle)
+        occ.synchronize()
+        after = faces()
+        out: dict[int, int] = {}
+        scale = max((float(np.linalg.norm(c)) for c in centres.values()), default=1.0)
+        for v in volumes:
+            if len(before[v]) != len(after[v]):
+                raise RuntimeError(f"volume {v} has other faces after the move")  # pragma: no cover
+            for a, b in zip(before[v], after[v], strict=True):
+                moved = self.to_throw(centres[a])[0]
+                if out.setdefault(a, b) != b or np.linalg.norm(np.asarray(occ.getCenterOfMass(2, b)) - moved) > 1e-9 * (
+                    1.0 + scale
+                ):
+                    raise RuntimeError(f"face {a} not found after the move into the throw frame")  # pragma: no cover
+        return out
+
 
 def chord(gmsh, volume: int, frame: Frame, y: float, z: float, reach: float) -> tuple[float, float, float]:
     """Where the line (y, z) of the throw frame runs in the solid (OpenCASCADE's common

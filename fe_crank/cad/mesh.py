@@ -13,7 +13,9 @@ Sizes (``fe_crank.mesh.fields``): every recognised fillet ``r / fillet_divisions
 largest fillet edge checked against ``r / fillet_divisions`` for presets with at least
 4 (IACS UR M53 App. III: at most r/4); oil bores ``pi d / (2 bore_divisions)``;
 counterweight fillets like the parametric ones.  The mesh is of the whole throw (no
-mirror planes: a drawn solid is not symmetric by construction).  Cached like the
+mirror planes: a drawn solid is not symmetric by construction), in the throw's THROW
+frame (``ThrowFeatures.rotation``/``origin``: the parts are moved there before meshing),
+as the FE stage and the assessment expect.  Cached like the
 parametric meshes, keyed by the file's SHA-256 and everything of ``[cad]`` that changes
 the solid.
 """
@@ -46,6 +48,7 @@ def cad_cache_key(cad: CadInput, sha256: str, throw: str, opt: MeshOptions) -> s
 
     payload = {
         "route": "cad",
+        "frame": "throw",
         "file": sha256,
         "cad": {
             "length_unit": cad.length_unit,
@@ -129,7 +132,7 @@ def _build(cad: CadInput, throw: str | None, opt: MeshOptions, folder: Path, max
     with gmsh_session() as gmsh:
         prep = prepare(gmsh, cad)
         index = prep.index(throw)
-        feats, built, _, _ = throw_features(
+        feats, built, _, frame = throw_features(
             gmsh, prep.read.shaft, prep.faces, prep.nbrs, prep.axis, prep.raw, index, cad, prep.tol
         )
         from fe_crank.geometry.estimate import MAX_ELEMENTS
@@ -147,11 +150,14 @@ def _build(cad: CadInput, throw: str | None, opt: MeshOptions, folder: Path, max
         keep = {v for tags in built.volumes.values() for v in tags}
         occ.remove([(3, v) for _, v in gmsh.model.getEntities(3) if v not in keep], recursive=True)
         occ.synchronize()
+        # the FE model and the size fields are in the throw frame (docs/contracts.md)
+        moved = frame.move_into(gmsh, sorted(keep))
+        surfaces = {name: [moved[s] for s in tags] for name, tags in built.surfaces.items()}
         for name, tags in built.volumes.items():
             gmsh.model.addPhysicalGroup(3, tags, name=name)
-        for name, tags in built.surfaces.items():
+        for name, tags in surfaces.items():
             gmsh.model.addPhysicalGroup(2, tags, name=name)
-        radii = _size_fields(gmsh, feats, built.surfaces, opt)
+        radii = _size_fields(gmsh, feats, surfaces, opt)
         min_quality, straightened = generate(gmsh, feats.name, cad.file.name, opt)
         mesh = model_to_skfem()
         gmsh.write(str(folder / "throw.msh"))

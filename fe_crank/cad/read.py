@@ -56,8 +56,8 @@ class ReadResult:
     bolted: tuple[int, ...]  # volume tags of bodies kept out of the shaft
 
 
-def _fail(cad: CadInput, reason: str, key: str = "cad.file") -> InputError:
-    return InputError(reason, file=str(cad.file), key=key)
+def _fail(cad: CadInput, reason: str, key: str | None = None) -> InputError:
+    return InputError(reason, file=str(cad.file), key=key or cad.file_key)
 
 
 def file_kind(cad: CadInput) -> str:

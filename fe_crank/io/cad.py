@@ -7,6 +7,14 @@ taken).  ``length_unit`` is a unit of length (``"mm"``, ``"in"``); ``axis`` one 
 ``"+x"`` ... ``"-z"`` or three numbers; ``[cad.faces]`` maps the feature names of
 ``fe_crank.cad.config.THROW_FACE_GROUPS`` and ``axis`` to lists of face numbers, in
 one table per throw name for a file with several throws.
+
+In a load case (``parse_geometry_source``): ``geometry = "crank.step"`` (a file with a
+CAD extension) is read as the load case's ``[cad]`` section says, ``file`` then being
+the ``geometry`` key's; ``geometry = "x.toml"`` is a CAD geometry when that file holds a
+``[cad]`` section (and nothing else), else a parametric geometry file
+(``fe_crank.io.geometry``).  The CAD file is checked (found, not empty, its format's
+header) and recorded with the load case's inputs when the load case is read; it is
+recognised by the check's geometry stage.
 """
 
 from __future__ import annotations
@@ -19,7 +27,17 @@ from pydantic import Field, field_validator, model_validator
 
 from fe_crank.cad.config import BODIES, THROW_FACE_GROUPS, CadInput, FaceOverride
 from fe_crank.errors import InputError
-from fe_crank.io.base import Strict, read_toml, resolve_reference, validate
+from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.io.base import (
+    Strict,
+    read_included,
+    read_toml,
+    record_file,
+    resolve_reference,
+    validate,
+    with_include_context,
+)
+from fe_crank.io.geometry import geometry_from_dict, parse_geometry
 from fe_crank.io.units import Density, Length, to_si
 
 _AXES = {f"{s}{a}": (s, a) for s in "+-" for a in "xyz"}
@@ -119,8 +137,9 @@ def _axis_vector(v) -> tuple[float, float, float] | None:
     return (v[0] / n, v[1] / n, v[2] / n)
 
 
-def cad_from_dict(data: dict, file: str | Path, prefix: str = "cad") -> CadInput:
-    """Validate a ``[cad]`` table (already read from TOML) into a ``CadInput``."""
+def cad_from_dict(data: dict, file: str | Path, prefix: str = "cad", *, file_key: str | None = None) -> CadInput:
+    """Validate a ``[cad]`` table (already read from TOML) into a ``CadInput``;
+    ``file_key``: the key that named the CAD file (default ``<prefix>.file``)."""
     raw = validate(CadSection, data, file, prefix)
     density, material = raw.density, raw.material
     if material is not None:
@@ -134,7 +153,8 @@ def cad_from_dict(data: dict, file: str | Path, prefix: str = "cad") -> CadInput
         density = lib[material].get("density")
         if density is None:
             raise InputError("the library entry gives no density", file=str(file), key=f"{prefix}.material")
-    path = resolve_reference(raw.file, file, key=f"{prefix}.file")
+    file_key = file_key or f"{prefix}.file"
+    path = resolve_reference(raw.file, file, key=file_key)
     return CadInput(
         file=path,
         density=float(density),
@@ -149,6 +169,7 @@ def cad_from_dict(data: dict, file: str | Path, prefix: str = "cad") -> CadInput
         journal_recess=raw.journal_recess,
         faces=_faces(raw.faces, raw.throws, str(file), prefix),
         toml=str(file),
+        file_key=file_key,
     )
 
 
@@ -158,3 +179,72 @@ def load_cad(path: str | Path) -> CadInput:
     if "cad" not in data or not isinstance(data["cad"], dict):
         raise InputError("no [cad] section", file=str(path), key="cad")
     return cad_from_dict(data["cad"], path)
+
+
+#: extensions of the CAD files ``fe_crank.cad`` reads
+CAD_SUFFIXES = (".step", ".stp", ".brep", ".brp", ".iges", ".igs")
+
+
+def _checked(cad: CadInput) -> CadInput:
+    """The CAD file found, not empty, its format's header (``cad.read.file_digest``), and
+    recorded with the load case's inputs."""
+    from fe_crank.cad.read import file_digest
+
+    file_digest(cad)
+    record_file(cad.file)
+    return cad
+
+
+def parse_geometry_source(data: dict, file: str | Path) -> CrankGeometry | CadInput | None:
+    """The load case's geometry (its ``geometry`` key and ``[cad]`` section, module
+    docstring): a parametric ``CrankGeometry``, a ``CadInput``, or None without one."""
+    value, section = data.get("geometry"), data.get("cad")
+    if value is None:
+        if section is not None:
+            raise InputError(
+                'a [cad] section says how to read the CAD file geometry names: add geometry = "<file>.step"',
+                file=str(file),
+                key="geometry",
+            )
+        return None
+    if isinstance(value, str) and Path(value).suffix.lower() in CAD_SUFFIXES:
+        if not isinstance(section, dict):
+            raise InputError(
+                "a CAD file as the geometry needs a [cad] table beside it: its density (or material) and, when the "
+                'file states none, its length unit (e.g. length_unit = "mm")',
+                file=str(file),
+                key="cad",
+            )
+        if "file" in section:
+            raise InputError(
+                "geometry names the CAD file; remove cad.file (or name a TOML file holding [cad] in geometry)",
+                file=str(file),
+                key="cad.file",
+            )
+        return _checked(cad_from_dict({**section, "file": value}, file, "cad", file_key="geometry"))
+    if section is not None:
+        raise InputError(
+            'a [cad] section goes with a CAD file as the geometry (geometry = "<file>.step"); a geometry TOML '
+            "file holds its own [cad]",
+            file=str(file),
+            key="cad",
+        )
+    if not isinstance(value, str):
+        return parse_geometry(value, file, "geometry")
+    p, included = read_included(value, file, "geometry", "geometry file")
+    try:
+        if "cad" not in included:
+            return geometry_from_dict(included, p)
+        others = sorted(k for k in included if k != "cad")
+        if others:
+            raise InputError(
+                "a CAD geometry file holds the [cad] section only (the parametric keys go in a geometry file "
+                "of their own)",
+                file=str(p),
+                key=str(others[0])[:40],
+            )
+        if not isinstance(included["cad"], dict):
+            raise InputError("must be a table", file=str(p), key="cad")
+        return _checked(cad_from_dict(included["cad"], p))
+    except InputError as exc:
+        raise with_include_context(exc, file, "geometry") from None
