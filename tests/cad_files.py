@@ -229,3 +229,46 @@ def bolted_sector_step(path: Path, *, r1=0.06, angle=2.7925268031909276) -> Path
         for z0 in (-0.027, 0.013):
             _sector(occ, 0.03, r1, angle, z0, 0.014)
         return _write(gmsh, path)
+
+
+SMALL_ENGINE = """
+[engine]
+name = "small single"
+strokes = 4
+
+[[engine.throws]]
+name = "1"
+crank_radius = "{radius}"
+
+[[engine.cylinders]]
+name = "1"
+throw = "1"
+bore = "50 mm"
+rod_length = "80 mm"
+rod_mass = "0.20 kg"
+rod_cg_from_big_end = "22 mm"
+piston_mass = "0.15 kg"
+"""
+
+
+def cad_loadcase(
+    folder: Path,
+    step: str,
+    *,
+    cad: str = 'density = "7850 kg/m^3"',
+    radius: str = "20 mm",
+    criteria: str = "min_static_safety = 1.5",
+    extra: str = "",
+    name: str = "case.toml",
+) -> Path:
+    """A load case in ``folder`` whose geometry is the CAD file ``step`` (relative to the
+    folder) read as ``cad`` (the lines of its ``[cad]`` section) says, with the small
+    single of ``tests/data/small_pass.toml`` of crank radius ``radius``."""
+    text = (
+        f'name = "{Path(step).stem} from CAD"\ngeometry = "{step}"\n\n[operating]\nspeed = "3000 rpm"\n'
+        f'overspeed = "3600 rpm"\n{SMALL_ENGINE.format(radius=radius)}\n[cad]\n{cad}\n\n'
+        f'[material]\nname = "42CrMo4"\n\n[criteria]\n{criteria}\n{extra}'
+    )
+    path = folder / name
+    path.write_text(text)
+    return path

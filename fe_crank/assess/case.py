@@ -36,7 +36,7 @@ from fe_crank.notes import ASSUMPTION, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
-SCHEMA_VERSION = "1.2"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws
+SCHEMA_VERSION = "1.3"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws; 1.3: provenance.cad
 
 
 @dataclass(frozen=True)

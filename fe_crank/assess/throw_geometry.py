@@ -85,7 +85,7 @@ def cad_throws(
         m53 = m53_geometry_of_cad(t, cad)
         note = None
         if m53 is None:
-            note = f"UR M53's empirical formulas do not describe the CAD throw {t.name}: {scope}"
+            note = f"UR M53's empirical formulas do not describe this throw of the CAD file: {scope}"
         centres = tuple(0.5 * (w.z_inner + w.z_outer) for w in t.webs)
         for tname in throws_of(key, [e.name for e in engine.throws]):
             throw = engine.throw(tname)
