@@ -201,6 +201,14 @@ def test_counterweights_drawn_as_bodies_fused_or_kept_bolted(tmp_path):
     for b in bolted.bolted:
         assert b.mass.unbalance == pytest.approx(mr, rel=1e-6) and b.mass.unbalance_vector[1] < 0
     assert any(line.startswith("bolted body 1 (not in the FE model): throw 1") for line in feature_lines(bolted))
+    # the bolted bodies' m r is the built m r of their webs' counterweights, and the bolts' load
+    from fe_crank import model
+    from fe_crank.assess.throw_geometry import cad_throws
+
+    engine = model.Engine("e", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, 0.03),), ())
+    cws = cad_throws(bolted, CadInput(path, density=RHO, bodies="bolted"), {"1": "1"}, engine, None)["1"].counterweights
+    assert sorted(c.name for c in cws) == ["bolted_body_1", "bolted_body_2"] and all(c.bolted for c in cws)
+    assert [c.built_unbalance for c in cws] == pytest.approx([mr, mr], rel=1e-6)
     record = json.loads(json.dumps(cad_record(bolted)))  # the provenance's record is plain data
     assert record["source"]["bodies"] == "bolted" and len(record["bolted"]) == 2
     assert record["source"]["sha256"] == hashlib.sha256(path.read_bytes()).hexdigest()

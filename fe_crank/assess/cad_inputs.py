@@ -12,9 +12,10 @@
   The recesses T_H, T_G are not measured: a fillet that reaches into the web
   (``Fillet.undercut > 0``) needs ``[cad] pin_recess`` / ``journal_recess`` as UR M53
   defines them; without a recessed fillet they are 0 unless given.
-* ``counterweights_of_cad(throw, axial_position, shaft, design)``: per balance plane,
-  the built m r of the throw's counterweights (the B-rep's exact mass properties)
-  against the balance stage's required m r (``CounterweightDesign.nearest``).
+* ``counterweights_of_cad(throw, axial_position, shaft, design, bolted)``: per balance
+  plane, the built m r of the throw's counterweights and of the bodies bolted to it (the
+  B-rep's exact mass properties) against the balance stage's required m r
+  (``CounterweightDesign.nearest``).
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.m53 import M53Geometry
 from fe_crank.balance.counterweights import CounterweightDesign
 from fe_crank.cad.config import CadInput
-from fe_crank.cad.features import ThrowFeatures
+from fe_crank.cad.features import BoltedBody, ThrowFeatures
 from fe_crank.errors import InputError
 
 
@@ -88,29 +89,38 @@ def m53_geometry_of_cad(throw: ThrowFeatures, cad: CadInput) -> M53Geometry | No
 
 
 def counterweights_of_cad(
-    throw: ThrowFeatures, axial_position: float, shaft: str, design: CounterweightDesign | None
+    throw: ThrowFeatures,
+    axial_position: float,
+    shaft: str,
+    design: CounterweightDesign | None,
+    bolted: tuple[tuple[int, BoltedBody], ...] = (),
 ) -> tuple[CounterweightData, ...]:
     """Counterweight data of a recognised throw, grouped by the balance plane they serve
-    (as ``fe_crank.assess.adapters.counterweights_of``; drawn counterweights are integral:
-    bolted bodies are kept out of the throw, ``CadFeatures.bolted``)."""
+    (as ``fe_crank.assess.adapters.counterweights_of``): its drawn counterweights and the
+    bodies bolted to it (``bolted``: (number in ``CadFeatures.bolted`` from 1, body) of
+    this throw; ``[cad] bodies = "bolted"``), whose m r adds to their plane's and whose
+    centrifugal force is the bolts' load (no bolt data: no utilisation)."""
+    parts = [(f"counterweight_{cw.web}", cw.mass, False, cw.web) for cw in throw.counterweights]
+    parts += [(f"bolted_body_{i}", b.mass, True, b.web) for i, b in bolted]
     groups: dict[object, list] = {}
-    for cw in throw.counterweights:
-        z = axial_position + cw.mass.centroid[2]
+    for name, mass, is_bolted, web in parts:
+        z = axial_position + mass.centroid[2]
         plane = design.nearest(shaft, z) if design is not None else None
-        groups.setdefault(id(plane) if plane is not None else cw.web, []).append((cw, plane))
+        groups.setdefault(id(plane) if plane is not None else web, []).append((name, mass, is_bolted, plane))
     out = []
     for items in groups.values():
-        mass = sum(cw.mass.mass for cw, _ in items)
+        mass = sum(m.mass for _, m, _, _ in items)
         mr = math.hypot(
-            sum(cw.mass.unbalance_vector[0] for cw, _ in items), sum(cw.mass.unbalance_vector[1] for cw, _ in items)
+            sum(m.unbalance_vector[0] for _, m, _, _ in items), sum(m.unbalance_vector[1] for _, m, _, _ in items)
         )
-        plane = items[0][1]
+        plane = items[0][3]
         out.append(
             CounterweightData(
-                name="+".join(f"counterweight_{cw.web}" for cw, _ in items),
+                name="+".join(name for name, _, _, _ in items),
                 mass=mass,
                 centroid_radius=mr / mass if mass > 0 else 0.0,
                 required_unbalance=None if plane is None else plane.unbalance,
+                bolted=any(b for _, _, b, _ in items),
             )
         )
     return tuple(out)

@@ -87,8 +87,9 @@ def cad_throws(
         if m53 is None:
             note = f"UR M53's empirical formulas do not describe this throw of the CAD file: {scope}"
         centres = tuple(0.5 * (w.z_inner + w.z_outer) for w in t.webs)
+        bolted = tuple((i, b) for i, b in enumerate(features.bolted, start=1) if b.throw == t.name)
         for tname in throws_of(key, [e.name for e in engine.throws]):
             throw = engine.throw(tname)
-            cws = counterweights_of_cad(t, throw.axial_position, throw.shaft, design)
+            cws = counterweights_of_cad(t, throw.axial_position, throw.shaft, design, bolted)
             out[tname] = ThrowGeometry(t.pin_length, (centres[0], centres[1]), m53, note, cws)
     return out
