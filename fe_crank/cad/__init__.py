@@ -6,10 +6,15 @@
   (``CadFeatures``, :mod:`fe_crank.cad.features`);
 * :mod:`fe_crank.cad.mesh` -- ``mesh_cad_throw``: a throw's ``fe_crank.mesh.ThrowMesh``
   with the parametric route's named groups and mesh rules;
-* :mod:`fe_crank.cad.record` -- the source and features for the provenance and the report.
+* :mod:`fe_crank.cad.record` -- the source and features for the provenance and the report;
+* :mod:`fe_crank.cad.engine` -- ``engine_keys``: the recognised throws against the engine's
+  (count, names, crank radius, angles), the mesh plan's keys;
+* :mod:`fe_crank.cad.source` -- ``mesh_source_throw``: a parametric or CAD throw meshed alike.
 
-The parser of the ``[cad]`` section is ``fe_crank.io.cad``; the UR M53 dimensions and
-counterweight data for the assessment are in ``fe_crank.assess.cad_inputs``.
+The parser of the ``[cad]`` section and of a load case's CAD geometry is
+``fe_crank.io.cad``; the UR M53 dimensions and counterweight data for the assessment are
+in ``fe_crank.assess.cad_inputs``; the check's geometry stage for a CAD file is
+``fe_crank.check.cad_geometry``.
 """
 
 from fe_crank.cad.config import CadInput, FaceOverride
