@@ -55,3 +55,31 @@ def test_fe_crank_mesh_takes_a_cad_file(tmp_path, capsys):
     assert (out / "throw_throw1.msh").is_file() and (out / "throw_throw1.vtu").is_file()
     assert main([*args, "--throw", "7"]) == 2
     assert "--throw: no throw named '7'" in capsys.readouterr().err
+
+
+def test_the_scf_mode_and_the_convergence_study_mesh_a_cad_throw(tmp_path):
+    """UR M53 App. III's SCF mode re-meshes the CAD throw at r/4 through ``mesh_cad_throw``
+    and takes the nominal stresses at the recognised webs' mid-planes (those of the
+    specification); the convergence study refines the CAD throw's fillets.  (The SCFs of
+    both routes on this throw at r/4: docs/geometry.md.)"""
+    from fe_crank import model
+    from fe_crank.assess.scf import scf_mesh, web_centres_of
+    from fe_crank.assess.throw_geometry import cad_throws
+    from fe_crank.cad import recognise
+    from fe_crank.fe.convergence import fillet_convergence
+    from fe_crank.io.material import load_material
+
+    g = load_geometry(ROOT / "tests" / "data" / "geometry_small.toml")
+    cad = CadInput(parametric_step(g, tmp_path / "throw.step"), density=g.density)
+    engine = model.Engine("e", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, g.crank_radius),), ())
+    tg = cad_throws(recognise(cad), cad, {"1": "1"}, engine, None)["1"]
+    assert tg.web_centres == pytest.approx(web_centres_of(g), abs=1e-9)
+    tm = mesh_cad_throw(cad, "1", size="test", cache_dir=tmp_path)
+    fine = scf_mesh(tm, cad)
+    assert fine.options.fillet_divisions == 4.0 and fine.throw == "1" and fine.key != tm.key
+    for name, h in fine.stats.fillet_max_edge.items():
+        assert h <= fine.fillet_radii[name] / 4 * (1 + 1e-9)
+    material = load_material("42CrMo4")
+    study = fillet_convergence(cad, material, throw="1", base=tm.options, factors=(1.0, 1.5), cache_dir=tmp_path)
+    a, b = study.levels
+    assert all(b.fillet_max_edge[k] < a.fillet_max_edge[k] for k in a.fillet_max_edge)
