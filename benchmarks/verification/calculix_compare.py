@@ -180,7 +180,7 @@ def check_peaks(lc, tm, units) -> dict:
     """The check's own assessment (``assess_case``) of this model: per throw and group, the
     node and value of the static peak it reports (the reference the comparison uses)."""
     from fe_crank.assess import AssessInputs, assess_case
-    from fe_crank.assess.adapters import m53_geometry_of
+    from fe_crank.assess.throw_geometry import parametric_throws
     from fe_crank.balance.analysis import analyse_balance
     from fe_crank.geometry.mass import throw_solids
     from fe_crank.mechanism.cycles import engine_cycles
@@ -191,6 +191,7 @@ def check_peaks(lc, tm, units) -> dict:
         return {}
     key, name = next(iter(keys.items()))
     cycles = engine_cycles(lc.engine, lc.operating)
+    balance = analyse_balance(lc.engine, lc.operating.speed, lc.balance)
     cws = tuple(t.name for t in lc.geometry.throws if t.counterweights)
     a = assess_case(
         AssessInputs(
@@ -200,14 +201,18 @@ def check_peaks(lc, tm, units) -> dict:
             operating=lc.operating,
             material=lc.material,
             criteria=lc.criteria,
-            geometry=lc.geometry,
             cycles=cycles,
             dynamics=cycles.operating,
-            balance=analyse_balance(lc.engine, lc.operating.speed, lc.balance),
+            balance=balance,
             models={key: name},
             unit_solutions={key: units},
-            solids=throw_solids(lc.geometry, cws) if cws else None,
-            m53_geometry=m53_geometry_of(lc.geometry),
+            throw_geometry=parametric_throws(
+                lc.geometry,
+                {key: name},
+                lc.engine,
+                throw_solids(lc.geometry, cws) if cws else None,
+                balance.design if balance is not None else None,
+            ),
         )
     )
     return {

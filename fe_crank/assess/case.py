@@ -2,8 +2,9 @@
 
 It takes what the earlier stages made (typed, ``AssessInputs``): the engine cycles
 (operating and overspeed, ``fe_crank.mechanism.cycles``; the journal torques with the
-vibratory torque when the torsional stage ran), the balance design, the counterweights'
-CAD mass properties (geometry stage), the FE unit solutions and, where UR M53's empirical
+vibratory torque when the torsional stage ran), the balance design, each throw's
+geometry (geometry stage: rods' places, UR M53 dimensions, counterweights' built and
+required m r, ``assess.throw_geometry``), the FE unit solutions and, where UR M53's empirical
 SCFs are out of range, the SCF mode's result (FE stage).  It computes nothing any other
 stage owns.
 """
@@ -13,8 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from fe_crank import model
-from fe_crank.assess import m53, m53_oil_bore
-from fe_crank.assess.adapters import counterweights_of
+from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.criteria import evaluate_criteria
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
 from fe_crank.assess.m53_basis import M53Basis, m53_basis
@@ -23,12 +23,11 @@ from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.states import ModelStates, model_states
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment, assess_throw
+from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.errors import InputError
 from fe_crank.fe.pin_patches import rod_loads, rod_positions
 from fe_crank.fe.unit_cases import UnitSolutions
-from fe_crank.geometry.mass import ThrowSolids
-from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.criteria import Criteria
 from fe_crank.io.material import Material
 from fe_crank.mechanism.cycles import EngineCycles
@@ -37,7 +36,7 @@ from fe_crank.notes import ASSUMPTION, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
-SCHEMA_VERSION = "1.2"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws
+SCHEMA_VERSION = "1.3"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws; 1.3: provenance.cad
 
 
 @dataclass(frozen=True)
@@ -47,9 +46,10 @@ class AssessInputs:
     ``dynamics``: the operating cycle the stresses follow (its journal torques carry the
     vibratory torque when the torsional stage ran); ``cycles``: the operating and
     overspeed cycles of the dynamics stage; ``models``: FE model key -> geometry throw
-    name (the mesh plan; with ``geometry`` None, a model that is no throw of a crank
-    geometry, no counterweights are checked); ``unit_solutions``: key -> unit solutions (keys sharing one
-    mesh share one object); ``scf``: key -> the SCF mode's result, for the models whose
+    name (the mesh plan); ``unit_solutions``: key -> unit solutions (keys sharing one
+    mesh share one object); ``throw_geometry``: engine throw name -> its geometry (the
+    geometry stage's; a throw without one, a model that is no throw of a crank geometry,
+    has its rods at mid-pin, no UR M53 route and no counterweights); ``scf``: key -> the SCF mode's result, for the models whose
     UR M53 dimensions are outside the empirical range."""
 
     case: str
@@ -58,14 +58,12 @@ class AssessInputs:
     operating: model.OperatingPoint
     material: Material
     criteria: Criteria
-    geometry: CrankGeometry | None
     cycles: EngineCycles
     dynamics: DynamicsResult
     balance: BalanceResult | None
     models: dict[str, str]
     unit_solutions: dict[str, UnitSolutions]
-    solids: ThrowSolids | None = None
-    m53_geometry: m53.M53Geometry | None = None
+    throw_geometry: dict[str, ThrowGeometry] = field(default_factory=dict)
     scf: dict[str, ScfResult] = field(default_factory=dict)
     torsion: bool = False  # the journal torques carry the torsional stage's vibratory torque
 
@@ -114,9 +112,9 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
 
     ``a.models`` and ``a.unit_solutions`` are keyed alike (``fe_crank.throw_scope``): a key
     is the name of one throw of the engine, or ``ALL_THROWS``, the model then standing for
-    every throw, each assessed on it with its own loads.  UR M53 dimensions come from
-    ``a.m53_geometry``; the counterweights' built m r from the geometry stage's mass properties
-    against the balance stage's required m r.  ``fields``: also recover the whole-mesh
+    every throw, each assessed on it with its own loads.  UR M53 dimensions and the
+    counterweights' built m r against the balance stage's required m r come from the
+    geometry stage (``a.throw_geometry``).  ``fields``: also recover the whole-mesh
     stress of the states the report draws (``states.model_states``).
     """
     lim = a.criteria
@@ -128,7 +126,6 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     basis = m53_basis(a.engine, a.material, lim.m53_additional_bending, file=a.source_file)
     notes = _notes(a, basis)
     senses = {t.name: a.engine.shaft(t.shaft).sense for t in a.engine.throws}
-    design = a.balance.design if a.balance is not None else None
     throws = []
     solved: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
     for key, unit_solutions in a.unit_solutions.items():
@@ -141,18 +138,14 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                 for n in recovery_notes(recovery_ratios(unit_solutions, boundary_groups, unit=unit))
             )
         unit = solved[id(unit_solutions)]
-        spec = a.geometry.throw(a.models[key]) if a.geometry is not None else None
         for tname in throws_of(key, a.dynamics.throws):
             tl = a.dynamics.throws[tname]
             throw = a.engine.throw(tname)
+            tg = a.throw_geometry.get(tname)
             # each rod at its place on the pin (UR M53 2.1); without a geometry, the summed
             # force at mid-pin
-            places = rod_positions(a.engine, tname, a.geometry.crankpin_length) if a.geometry is not None else {}
-            cws = (
-                counterweights_of(spec, a.solids.of(spec.name), throw.axial_position, throw.shaft, design)
-                if spec is not None and spec.counterweights and a.solids is not None
-                else ()
-            )
+            places = rod_positions(a.engine, tname, tg.crankpin_length) if tg is not None else {}
+            m53_geometry = tg.m53 if tg is not None else None
             throws.append(
                 assess_throw(
                     tname,
@@ -165,23 +158,24 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                     overspeed=overspeed,
                     material=a.material,
                     crank_radius=throw.crank_radius,
-                    m53_geometry=a.m53_geometry,
+                    m53_geometry=m53_geometry,
                     m53_additional=basis.additional,
                     m53_ke=basis.ke,
-                    counterweights=cws,
+                    counterweights=tg.counterweights if tg is not None else (),
                     torque_rear=tl.torque_rear,
                     overspeed_loads=[_cycle(c.dynamics.throws[tname], places) for c in a.cycles.overspeed] or None,
                     rod_loads=rod_loads(tl, places),
                     scf=a.scf.get(key),
                 )
             )
-            if a.m53_geometry is None:
-                notes.append(_assumption("no UR M53 dimensions from the geometry; M53 route not run", (tname,)))
-            elif a.m53_geometry.oil_bore_diameter > 0 and m53_oil_bore.in_range(a.m53_geometry) is not None:
+            if m53_geometry is None:
+                why = tg.m53_note if tg is not None and tg.m53_note else "no UR M53 dimensions from the geometry"
+                notes.append(_assumption(f"{why}; M53 route not run", (tname,)))
+            elif m53_geometry.oil_bore_diameter > 0 and m53_oil_bore.in_range(m53_geometry) is not None:
                 notes.append(
                     _assumption(
                         f"UR M53 oil-bore outlet not assessed empirically "
-                        f"({m53_oil_bore.in_range(a.m53_geometry)}); FE route only (group oil_bore)",
+                        f"({m53_oil_bore.in_range(m53_geometry)}); FE route only (group oil_bore)",
                         (tname,),
                     )
                 )

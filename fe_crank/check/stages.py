@@ -19,11 +19,14 @@ from pathlib import Path
 from typing import TypeVar
 
 from fe_crank.assess import m53
-from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.assess.case import AssessInputs, Assessment, assess_case
-from fe_crank.assess.scf import ScfResult, compute_scf, scf_mesh, web_centres_of
+from fe_crank.assess.scf import ScfResult, compute_scf, scf_mesh
+from fe_crank.assess.throw_geometry import parametric_throws
 from fe_crank.assess.workers import threads
-from fe_crank.balance.analysis import analyse_balance
+from fe_crank.balance.analysis import BalanceResult, analyse_balance
+from fe_crank.cad.config import CadInput
+from fe_crank.cad.source import GeometrySource, mesh_source_throw
+from fe_crank.check.cad_geometry import cad_geometry_stage
 from fe_crank.check.options import CheckOptions
 from fe_crank.errors import InputError
 from fe_crank.fe import convergence, solve_unit_cases
@@ -32,7 +35,6 @@ from fe_crank.geometry.mass import throw_solids
 from fe_crank.io.base import InputFile
 from fe_crank.io.loadcase import LoadCase, load_loadcase
 from fe_crank.mechanism.cycles import EngineCycles, engine_cycles
-from fe_crank.mesh import mesh_throw
 from fe_crank.mesh.plan import plan_meshes
 from fe_crank.mesh.types import ThrowMesh
 from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel, TorsionOutput
@@ -88,7 +90,7 @@ def run_stages(run: Run) -> None:
     run.keep(loadcase=lc)
     run.keep(cycles=run.timed("dynamics", engine_cycles, lc.engine, lc.operating, file=lc.source_file))
     run.keep(balance=run.timed("balance", analyse_balance, lc.engine, lc.operating.speed, lc.balance))
-    geo = run.timed("geometry", geometry_stage, lc, opts)
+    geo = run.timed("geometry", geometry_stage, lc, opts, run.out.balance)
     run.keep(geometry=geo)
     meshes = run.timed("mesh", mesh_stage, lc, geo)
     run.keep(meshes=meshes)
@@ -126,7 +128,7 @@ def assess_threads_of(options: CheckOptions) -> int:
     return assess_threads(options)
 
 
-def _require_geometry(lc: LoadCase):
+def _require_geometry(lc: LoadCase) -> GeometrySource:
     if lc.geometry is None:
         raise InputError(
             'the stress check needs a crank geometry: add geometry = "../geometry/<file>.toml"',
@@ -136,11 +138,15 @@ def _require_geometry(lc: LoadCase):
     return lc.geometry
 
 
-def geometry_stage(lc: LoadCase, options: CheckOptions) -> GeometryModel:
+def geometry_stage(lc: LoadCase, options: CheckOptions, balance: BalanceResult | None = None) -> GeometryModel:
     """The mesh plan (resolved once: preset, sizes, symmetry, which throw model for which
-    engine throw), the UR M53 dimensions, and the CAD mass properties of the throws
-    whose counterweights (assessment) or inertias (torsion) are needed."""
+    engine throw) and each engine throw's geometry for the assessment (UR M53 dimensions,
+    counterweights' built m r from the B-rep mass properties against ``balance``'s
+    required m r); the mass properties of the throws whose inertias the torsional stage
+    needs.  A CAD geometry: ``check.cad_geometry`` (recognised here, once)."""
     g = _require_geometry(lc)
+    if isinstance(g, CadInput):
+        return cad_geometry_stage(lc, g, options, balance)
     plan = plan_meshes(
         g,
         tuple(t.name for t in lc.engine.throws),
@@ -154,16 +160,18 @@ def geometry_stage(lc: LoadCase, options: CheckOptions) -> GeometryModel:
     if lc.torsion is not None:
         wanted = tuple(t.name for t in g.throws)
     solids = throw_solids(g, wanted) if wanted else None
-    return GeometryModel(plan, m53_geometry_of(g), solids)
+    design = balance.design if balance is not None else None
+    return GeometryModel(plan, parametric_throws(g, plan.throws, lc.engine, solids, design), solids)
 
 
 def mesh_stage(lc: LoadCase, geo: GeometryModel) -> dict[str, ThrowMesh]:
-    """Quadratic tetrahedral mesh of each throw model of the plan (``mesh_throw``, cached
-    by the hash of its inputs: equal throws are meshed once)."""
+    """Quadratic tetrahedral mesh of each throw model of the plan (``mesh_throw``, or
+    ``mesh_cad_throw`` for a CAD file; cached by the hash of its inputs: equal throws are
+    meshed once)."""
     g = _require_geometry(lc)
     p = geo.plan
     return {
-        key: mesh_throw(g, throw=name, size=p.options, cache_dir=p.cache_dir, max_elements=p.max_elements)
+        key: mesh_source_throw(g, name, size=p.options, cache_dir=p.cache_dir, max_elements=p.max_elements)
         for key, name in p.throws.items()
     }
 
@@ -188,23 +196,32 @@ def fe_stage(lc: LoadCase, meshes: dict[str, ThrowMesh]) -> dict[str, UnitSoluti
 def needs_scf(lc: LoadCase, geo: GeometryModel) -> bool:
     """UR M53 route outside its empirical SCFs' validity range: the SCF mode of the FE
     appendix (App. III) gives the factors (``assess.scf``)."""
-    mat, g = lc.material, geo.m53
-    if g is None or mat is None or mat.tensile_strength is None or mat.m53_k is None:
+    mat = lc.material
+    if mat is None or mat.tensile_strength is None or mat.m53_k is None:
         return False
-    return any(m53.out_of_range(g.related(f)) for f in ("pin", "journal"))
+    return any(
+        m53.out_of_range(g.related(f))
+        for g in (geo.m53_of(key) for key in geo.plan.throws)
+        if g is not None
+        for f in ("pin", "journal")
+    )
 
 
 def scf_stage(lc: LoadCase, geo: GeometryModel, meshes: dict[str, ThrowMesh]) -> dict[str, ScfResult]:
     """The SCF mode's three FE load cases on each distinct throw mesh (re-meshed at r/4 in
-    the fillets when the check's mesh is coarser, ``assess.scf.scf_mesh``)."""
+    the fillets when the check's mesh is coarser, ``assess.scf.scf_mesh``), the nominal
+    stresses at the webs' mid-planes of the geometry stage."""
     g = _require_geometry(lc)
-    assert lc.material is not None and geo.m53 is not None
+    assert lc.material is not None
     done: dict[str, ScfResult] = {}
     out = {}
     for key, m in meshes.items():
+        tg = geo.of_model(key)
+        if tg is None or tg.m53 is None:
+            continue
         if m.key not in done:
             done[m.key] = compute_scf(
-                scf_mesh(m, g), lc.material, geo.m53, web_centres=web_centres_of(g), solver=lc.fe.solver
+                scf_mesh(m, g), lc.material, tg.m53, web_centres=tg.web_centres, solver=lc.fe.solver
             )
         out[key] = done[m.key]
     return out
@@ -248,14 +265,12 @@ def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
         operating=lc.operating,
         material=lc.material,
         criteria=lc.criteria,
-        geometry=_require_geometry(lc),
         cycles=out.cycles,
         dynamics=dyn,
         balance=out.balance,
         models=out.geometry.plan.throws,
         unit_solutions=out.fe.unit_solutions,
-        solids=out.geometry.solids,
-        m53_geometry=out.geometry.m53,
+        throw_geometry=out.geometry.throws,
         scf=out.fe.scf,
         torsion=out.torsion is not None,
     )

@@ -52,12 +52,15 @@ def fe_stiffness_of(lc: LoadCase, size: str | None, cache_dir) -> float:
     import dataclasses
 
     from fe_crank.fe import solve_unit_cases
+    from fe_crank.geometry.spec import CrankGeometry
     from fe_crank.mesh import mesh_throw
     from fe_crank.mesh.plan import preset_of
     from fe_crank.torsion.stiffness import fe_throw_stiffness
 
-    if lc.geometry is None or lc.material is None:
-        raise InputError("the FE throw stiffness needs the geometry and the [material] section", file=lc.source_file)
+    if not isinstance(lc.geometry, CrankGeometry) or lc.material is None:
+        raise InputError(
+            "the FE throw stiffness needs a parametric geometry and the [material] section", file=lc.source_file
+        )
     throw = lc.geometry.throws[0].name
     tm = mesh_throw(lc.geometry, throw=throw, size=preset_of(lc.mesh, size), cache_dir=cache_dir)
     opts = dataclasses.replace(lc.fe, cases=("centrifugal", "torque"))

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from fe_crank.cad.config import CadInput
 from fe_crank.fe.fe_options import Material
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.supports import boundary_facets
@@ -179,7 +180,7 @@ def fillet_convergence(
     cache_dir=None,
     first=None,
 ) -> ConvergenceStudy:
-    """Mesh ``throw`` of ``geometry`` at fillet sizes r/(n f), f in ``factors``, and compare peaks.
+    """Mesh ``throw`` of ``geometry`` (parametric or a CAD file) at fillet sizes r/(n f), f in ``factors``, and compare peaks.
 
     ``base``: the ``MeshOptions`` (or preset name) of the first level, n its
     ``fillet_divisions``; ``loads``: {load set: {unit case: weight}} (default
@@ -190,7 +191,8 @@ def fillet_convergence(
     solving again, when it holds every unit case the loads need and was solved with the
     same support model.  Returns a :class:`ConvergenceStudy`.
     """
-    from fe_crank.mesh import PRESETS, MeshOptions, mesh_throw
+    from fe_crank.cad.source import mesh_source_throw
+    from fe_crank.mesh import PRESETS, MeshOptions
 
     if len(factors) < 2:
         raise ValueError("a convergence study needs at least two levels")
@@ -206,7 +208,7 @@ def fillet_convergence(
         if reuse:
             tm, unit_solutions = first
         else:
-            tm = mesh_throw(geometry, throw=throw, size=mopt, cache_dir=cache_dir)
+            tm = mesh_source_throw(geometry, throw, size=mopt, cache_dir=cache_dir)
             unit_solutions = solve_unit_cases(tm, material, opts)
         fields = {name: unit_solutions.combine(w) for name, w in loads.items()}
         got = peak_fillet_stresses(unit_solutions, fields)
@@ -277,7 +279,7 @@ def wanted(flag: bool | None, preset: str) -> bool:
 
 
 def check_studies(
-    geometry: CrankGeometry,
+    geometry: CrankGeometry | CadInput,
     material: Material,
     fe_options: FeOptions,
     meshes: dict[str, ThrowMesh],
