@@ -28,15 +28,8 @@ from pydantic import Field, field_validator, model_validator
 from fe_crank.cad.config import BODIES, THROW_FACE_GROUPS, CadInput, FaceOverride
 from fe_crank.errors import InputError
 from fe_crank.geometry.spec import CrankGeometry
-from fe_crank.io.base import (
-    Strict,
-    read_included,
-    read_toml,
-    record_file,
-    resolve_reference,
-    validate,
-    with_include_context,
-)
+from fe_crank.io.base import Strict, read_toml, record_file, validate
+from fe_crank.io.includes import read_included, resolve_reference, with_include_context
 from fe_crank.io.geometry import geometry_from_dict, parse_geometry
 from fe_crank.io.units import Density, Length, to_si
 
