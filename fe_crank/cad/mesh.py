@@ -123,7 +123,7 @@ def estimate_cad_elements(t: ThrowFeatures, opt: MeshOptions) -> int:
     return int(np.ceil(n))
 
 
-def _build(cad: CadInput, throw: str | None, opt: MeshOptions, folder: Path, max_elements: int | None = None):
+def _build(cad: CadInput, throw: str | int | None, opt: MeshOptions, folder: Path, max_elements: int | None = None):
     from fe_crank.cad.recognise import prepare
     from fe_crank.cad.throw import throw_features
     from fe_crank.gmsh_io import gmsh_session, model_to_skfem

@@ -140,7 +140,7 @@ def recognise(cad: CadInput) -> CadFeatures:
         density=cad.density,
         material=cad.material,
     )
-    crank_axis = CrankAxis(
-        tuple(float(v) for v in p.axis.origin), tuple(float(v) for v in p.axis.e), tuple(int(t) for t in p.axis_faces)
-    )
+    ox, oy, oz = (float(v) for v in p.axis.origin)
+    ex, ey, ez = (float(v) for v in p.axis.e)
+    crank_axis = CrankAxis((ox, oy, oz), (ex, ey, ez), tuple(int(t) for t in p.axis_faces))
     return CadFeatures(source, crank_axis, throws, bolted)

@@ -65,19 +65,19 @@ def feature_lines(features: CadFeatures) -> list[str]:
                 f"  oil_bore: {_faces(b.faces)}, diameter {_mm(b.diameter)}, angle {math.degrees(b.angle):.6g} deg, "
                 f"opens on {', '.join(b.ends_on) or 'nothing recognised'}"
             )
-        for b in t.bearings:
-            how = "free end face of the shaft" if b.free_end else "middle of the journal"
-            out.append(f"  bearing centre {b.side}: z {_mm(b.z)} ({how})")
+        for bearing in t.bearings:
+            how = "free end face of the shaft" if bearing.free_end else "middle of the journal"
+            out.append(f"  bearing centre {bearing.side}: z {_mm(bearing.z)} ({how})")
         for cw in t.counterweights:
             fr = f", fillets {_faces(cw.fillet_faces)} radius {_mm(cw.fillet_radius)}" if cw.fillet_radius else ""
             out.append(
                 f"  counterweight_{cw.web}: beyond r = {_mm(cw.radius)}, mass {cw.mass.mass:.5g} kg, m r "
                 f"{cw.mass.unbalance * 1e3:.5g} kg mm{fr}"
             )
-    for i, b in enumerate(features.bolted, start=1):
-        m = b.mass
+    for i, body in enumerate(features.bolted, start=1):
+        m = body.mass
         out.append(
-            f"bolted body {i} (not in the FE model): throw {b.throw}, web {b.web}, mass {m.mass:.5g} kg at "
+            f"bolted body {i} (not in the FE model): throw {body.throw}, web {body.web}, mass {m.mass:.5g} kg at "
             f"r {_mm(math.hypot(*m.centroid[:2]))}, m r {m.unbalance * 1e3:.5g} kg mm"
         )
     return out

@@ -123,7 +123,8 @@ def _pins(ctx: _Ctx) -> list[list[Face]]:
     ax, tol = ctx.axis, ctx.tol
     stated = [ov for ov in ctx.cad.faces if ov.group == "crankpin"]
     if stated:
-        groups = [ctx.given("crankpin", ov.throw, "cylinder") for ov in stated]
+        # every stated override names its faces, so ``given`` finds them
+        groups = [g for g in (ctx.given("crankpin", ov.throw, "cylinder") for ov in stated) if g is not None]
     else:
         par = [
             f

@@ -61,7 +61,7 @@ class Face:
 def _samples(gmsh, tag: int) -> tuple[np.ndarray, np.ndarray]:
     """Parameter pairs on the trimmed face and their points."""
     lo, hi = gmsh.model.getParametrizationBounds(2, tag)
-    uv = []
+    uv: list[float] = []
     for n in _GRID:
         uv = []
         for i in range(n):
@@ -197,7 +197,7 @@ def neighbours(faces: dict[int, Face]) -> dict[int, set[int]]:
     for f in faces.values():
         for c in f.curves:
             by_curve.setdefault(c, set()).add(f.tag)
-    out = {t: set() for t in faces}
+    out: dict[int, set[int]] = {t: set() for t in faces}
     for group in by_curve.values():
         for t in group:
             out[t] |= group - {t}

@@ -30,7 +30,8 @@ from fe_crank.errors import InputError
 
 
 def _t(v) -> tuple[float, float, float]:
-    return tuple(float(c) for c in np.ravel(v))
+    x, y, z = (float(c) for c in np.ravel(v))
+    return (x, y, z)
 
 
 def _fillet(name: str, end: End, frame: Frame, mid: float, axis: Line, sign: float, tol: float) -> Fillet | None:
@@ -165,8 +166,8 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
         (t.journals[0].centre, t.journals[1].centre),
         (t.journals[0].free_end, t.journals[1].free_end),
         (t.journal_ends[0].s_plane, t.ends[0].s_plane, t.ends[1].s_plane, t.journal_ends[1].s_plane),
-        cw_r,
-        tuple(cw_top),
+        (cw_r[0], cw_r[1]),
+        (cw_top[0], cw_top[1]),
         groups,
     )
     built = build_throw(gmsh, shaft, frame, axis.origin, plan, tol, str(cad.file))
@@ -202,16 +203,19 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
         angle=float(angle),
         crank_radius=float(t.crank_radius),
         origin=_t(frame.origin),
-        rotation=tuple(_t(r) for r in frame.rotation),
+        rotation=(_t(frame.rotation[0]), _t(frame.rotation[1]), _t(frame.rotation[2])),
         crankpin=_cylinder("crankpin", t.pin, t.pin_radius, axis, mid, t.axial_bores[1]),
-        journals=tuple(
-            _cylinder(f"journal_{k + 1}", t.journals[k].faces, t.journals[k].radius, axis, mid, t.axial_bores[2 * k])
-            for k in (0, 1)
+        journals=(
+            _cylinder("journal_1", t.journals[0].faces, t.journals[0].radius, axis, mid, t.axial_bores[0]),
+            _cylinder("journal_2", t.journals[1].faces, t.journals[1].radius, axis, mid, t.axial_bores[2]),
         ),
         fillets=fillets,
         oil_bores=tuple(_bore(b, frame, t, nbrs) for b in t.bores),
-        webs=tuple(webs),
-        bearings=tuple(Bearing(k + 1, float(z[f"b{k + 1}"]), t.journals[k].free_end) for k in (0, 1)),
+        webs=(webs[0], webs[1]),
+        bearings=(
+            Bearing(1, float(z["b1"]), t.journals[0].free_end),
+            Bearing(2, float(z["b2"]), t.journals[1].free_end),
+        ),
         counterweights=cws,
         mass=mass,
     )

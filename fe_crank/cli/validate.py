@@ -58,8 +58,8 @@ def validate_file(path: Path, allow_outside_paths: bool = False) -> str:
         return f"geometry '{getattr(g, 'name', path.stem)}'"
     if kind == "cad":
         from fe_crank.cad import recognise
-        from fe_crank.io.includes import input_root
         from fe_crank.io.cad import load_cad
+        from fe_crank.io.includes import input_root
 
         with input_root(path, allow_outside_paths or None):
             cad = load_cad(path)

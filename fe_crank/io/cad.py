@@ -25,12 +25,12 @@ from typing import Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from fe_crank.cad.config import BODIES, THROW_FACE_GROUPS, CadInput, FaceOverride
+from fe_crank.cad.config import THROW_FACE_GROUPS, CadInput, FaceOverride
 from fe_crank.errors import InputError
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.base import Strict, read_toml, record_file, validate
-from fe_crank.io.includes import read_included, resolve_reference, with_include_context
 from fe_crank.io.geometry import geometry_from_dict, parse_geometry
+from fe_crank.io.includes import read_included, resolve_reference, with_include_context
 from fe_crank.io.units import Density, Length, to_si
 
 _AXES = {f"{s}{a}": (s, a) for s in "+-" for a in "xyz"}
@@ -44,7 +44,7 @@ class CadSection(Strict):
     material: str | None = Field(default=None, min_length=1, max_length=200)
     axis: str | list[float] | None = None
     throws: list[str] | None = Field(default=None, min_length=1, max_length=64)
-    bodies: Literal[BODIES] = "one"
+    bodies: Literal["one", "fuse", "bolted"] = "one"  # fe_crank.cad.config.BODIES
     counterweight_radius: Length | None = None
     pin_recess: Length | None = None
     journal_recess: Length | None = None
@@ -146,6 +146,8 @@ def cad_from_dict(data: dict, file: str | Path, prefix: str = "cad", *, file_key
         density = lib[material].get("density")
         if density is None:
             raise InputError("the library entry gives no density", file=str(file), key=f"{prefix}.material")
+    if density is None:  # the section's validator asks for density or material
+        raise InputError("give density or material", file=str(file), key=f"{prefix}.density")
     file_key = file_key or f"{prefix}.file"
     path = resolve_reference(raw.file, file, key=file_key)
     return CadInput(
