@@ -10,18 +10,22 @@ stage owns.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from fe_crank import model
 from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.adapters import counterweights_of
-from fe_crank.assess.criteria import evaluate_criteria
+from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, StateResults, evaluate_criteria, wanted_extremes
+from fe_crank.assess.extremes import Running, Wanted
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
+from fe_crank.assess.loads import AssessedLoads, LoadState
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.states import ModelStates, model_states
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment, assess_throw
+from fe_crank.assess.workers import run_blocks
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.errors import InputError
 from fe_crank.fe.unit_cases import UnitSolutions
@@ -31,11 +35,11 @@ from fe_crank.io.criteria import Criteria
 from fe_crank.io.material import Material
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
-from fe_crank.notes import ASSUMPTION, Note, grouped
+from fe_crank.notes import ASSUMPTION, WARNING, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
-SCHEMA_VERSION = "1.2"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws
+SCHEMA_VERSION = "1.3"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws; 1.3: criteria per speed
 
 
 @dataclass(frozen=True)
@@ -59,13 +63,13 @@ class AssessInputs:
     geometry: CrankGeometry | None
     cycles: EngineCycles
     dynamics: DynamicsResult
+    loads: AssessedLoads
     balance: BalanceResult | None
     models: dict[str, str]
     unit_solutions: dict[str, UnitSolutions]
     solids: ThrowSolids | None = None
     m53_geometry: m53.M53Geometry | None = None
     scf: dict[str, ScfResult] = field(default_factory=dict)
-    torsion: bool = False  # the journal torques carry the torsional stage's vibratory torque
 
 
 @dataclass(frozen=True)
@@ -93,7 +97,7 @@ def _notes(a: AssessInputs) -> list[Note]:
         "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration "
         + (
             "included: quasi-static + vibratory journal torque ([torsion], docs/torsion.md)"
-            if a.torsion
+            if a.loads.torsion
             else "not included (no [torsion] section)"
         ),
     ]
@@ -104,7 +108,11 @@ def _notes(a: AssessInputs) -> list[Note]:
         )
     if a.cycles.overspeed:
         texts.insert(1, a.cycles.overspeed_note)
-    return [_assumption(t) for t in texts]
+    out = [_assumption(t) for t in texts]
+    m53_keys = tuple(lim.key for lim in a.criteria.limits if lim.quantity == "m53_acceptability")
+    if a.criteria.m53_quasi_static_torque and m53_keys:
+        out.append(Note(f"{NOT_CONFORM}: {QUASI_STATIC_M53}", WARNING, m53_keys, "assessment"))
+    return out
 
 
 def _assumption(text: str, throws: tuple[str, ...] = ()) -> Note:
@@ -128,55 +136,18 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         )
     omega, overspeed = a.operating.speed, a.operating.overspeed
     notes = _notes(a)
-    ke = m53.ke_factor(a.engine.strokes)
     senses = {t.name: a.engine.shaft(t.shaft).sense for t in a.engine.throws}
-    design = a.balance.design if a.balance is not None else None
-    throws = []
-    solved: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
+    units: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
     for key, unit_solutions in a.unit_solutions.items():
-        if id(unit_solutions) not in solved:
+        if id(unit_solutions) not in units:
             groups = assessed_groups(unit_solutions)
-            unit = solved[id(unit_solutions)] = unit_stresses(unit_solutions, groups)
+            unit = units[id(unit_solutions)] = unit_stresses(unit_solutions, groups)
             boundary_groups = {g: nodes for g, nodes in groups.items() if g in ASSESSED_BOUNDARIES}
             notes.extend(
                 _assumption(f"mesh {key}: {n}")
                 for n in recovery_notes(recovery_ratios(unit_solutions, boundary_groups, unit=unit))
             )
-        unit = solved[id(unit_solutions)]
-        spec = a.geometry.throw(a.models[key]) if a.geometry is not None else None
         for tname in throws_of(key, a.dynamics.throws):
-            tl = a.dynamics.throws[tname]
-            throw = a.engine.throw(tname)
-            cws = (
-                counterweights_of(spec, a.solids.of(spec.name), throw.axial_position, throw.shaft, design)
-                if spec is not None and spec.counterweights and a.solids is not None
-                else ()
-            )
-            throws.append(
-                assess_throw(
-                    tname,
-                    unit,
-                    a.dynamics.theta,
-                    tl.pin_force,
-                    tl.torque_front,
-                    omega=omega,
-                    sense=senses[tname],
-                    overspeed=overspeed,
-                    material=a.material,
-                    crank_radius=throw.crank_radius,
-                    m53_geometry=a.m53_geometry,
-                    m53_additional=lim.m53_additional_bending,
-                    m53_ke=ke,
-                    counterweights=cws,
-                    torque_rear=tl.torque_rear,
-                    overspeed_loads=[
-                        (c.dynamics.throws[tname].pin_force, c.dynamics.throws[tname].torque_front)
-                        for c in a.cycles.overspeed
-                    ]
-                    or None,
-                    scf=a.scf.get(key),
-                )
-            )
             if a.m53_geometry is None:
                 notes.append(_assumption("no UR M53 dimensions from the geometry; M53 route not run", (tname,)))
             elif a.m53_geometry.oil_bore_diameter > 0 and m53_oil_bore.in_range(a.m53_geometry) is not None:
@@ -187,16 +158,103 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                         (tname,),
                     )
                 )
-    done = tuple(throws)
-    verdicts = evaluate_criteria(lim, done, file=a.source_file, overspeed=overspeed)
+    done = _assess_state(a, units, a.loads.operating_state, senses, None)
+    others = [
+        (i, j)
+        for i, states in enumerate(a.loads.speeds)
+        for j in range(len(states))
+        if (i, j) != (a.loads.operating, 0)
+    ]
+    found: dict[tuple[int, int], tuple[ThrowAssessment, ...]] = {(a.loads.operating, 0): done}
+    wanted = wanted_extremes(a.criteria)
+
+    def one(ij, _scratch) -> None:  # each state on its own: independent, one thread each
+        found[ij] = _assess_state(a, units, a.loads.speeds[ij[0]][ij[1]], senses, wanted)
+
+    run_blocks(one, others)
+    sweep = [
+        StateResults(state.speed, state.case, found[(i, j)])
+        for i, states in enumerate(a.loads.speeds)
+        for j, state in enumerate(states)
+    ]
+    if len(a.loads.speeds) > 1 or len(sweep) > 1:
+        notes.append(_assumption(_sweep_note(a.loads)))
+    verdicts = evaluate_criteria(a.criteria, done, file=a.source_file, overspeed=overspeed, sweep=tuple(sweep))
     states = []
     for keys, unit_solutions in shared_models(a.unit_solutions):
-        st = model_states(keys, unit_solutions, done, a.dynamics, a.cycles.overspeed, senses, fields=fields)
+        st = model_states(keys, unit_solutions, done, a.loads.operating_state, a.loads.overspeed, senses, fields=fields)
         if st is not None:
             states.append(st)
     return Assessment(
         a.case, a.source_file, omega, overspeed, a.material, done, verdicts, tuple(grouped(notes)), tuple(states)
     )
+
+
+def _sweep_note(loads: AssessedLoads) -> str:
+    rpm = [w * 30.0 / math.pi for w in loads.speed_values]
+    states = len(loads.speeds[0])
+    text = (
+        f"full-load curve: every criterion but the overspeed ones at {len(rpm)} speeds, "
+        f"{rpm[0]:.0f}-{rpm[-1]:.0f} rpm, on the same unit stresses; a criterion's value is its worst speed"
+    )
+    if states > 1:
+        text += f"; at each speed all cylinders firing and {states - 1} misfire case(s), the worst governing"
+    return text
+
+
+def _assess_state(
+    a: AssessInputs,
+    units: dict[int, UnitStresses],
+    state: LoadState,
+    senses: dict[str, int],
+    extremes: Wanted | None,
+) -> tuple[ThrowAssessment, ...]:
+    """Every throw in one load state: in full (``extremes`` None: the operating speed's
+    firing state, with the overspeed cycles) or its extremes only."""
+    design = a.balance.design if a.balance is not None else None
+    ke = m53.ke_factor(a.engine.strokes)
+    lim = a.criteria
+    running = Running()  # the state's least fatigue values so far (extremes only)
+    out = []
+    for key, unit_solutions in a.unit_solutions.items():
+        unit = units[id(unit_solutions)]
+        spec = a.geometry.throw(a.models[key]) if a.geometry is not None else None
+        for tname in throws_of(key, a.dynamics.throws):
+            tc = state.throws[tname]
+            throw = a.engine.throw(tname)
+            cws = (
+                counterweights_of(spec, a.solids.of(spec.name), throw.axial_position, throw.shaft, design)
+                if spec is not None and spec.counterweights and a.solids is not None
+                else ()
+            )
+            overspeed_loads = [(s.throws[tname].pin_force, s.throws[tname].torque_in) for s in a.loads.overspeed]
+            out.append(
+                assess_throw(
+                    tname,
+                    unit,
+                    state.theta,
+                    tc.pin_force,
+                    tc.torque_in,
+                    omega=state.speed,
+                    sense=senses[tname],
+                    overspeed=a.operating.overspeed,
+                    material=a.material,
+                    crank_radius=throw.crank_radius,
+                    m53_geometry=a.m53_geometry,
+                    m53_additional=lim.m53_additional_bending,
+                    m53_ke=ke,
+                    counterweights=cws,
+                    torque_rear=tc.torque_out,
+                    overspeed_loads=overspeed_loads or None,
+                    scf=a.scf.get(key),
+                    angular_acceleration=tc.angular_acceleration,
+                    fe_pin_force=tc.fe_pin_force,
+                    m53_torques=a.loads.m53_torques.get(tname, ()),
+                    extremes=extremes,
+                    running=running,
+                )
+            )
+    return tuple(out)
 
 
 def shared_models(unit_solutions: dict[str, UnitSolutions]) -> list[tuple[tuple[str, ...], UnitSolutions]]:
