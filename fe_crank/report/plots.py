@@ -53,3 +53,21 @@ def plot_bars(path, labels: Sequence[str], series: Mapping[str, Sequence[float]]
         ax.set_ylim(0.0, 1.25 * top)  # room for the legend above the bars
     ax.legend(fontsize=8, ncol=len(series), loc="upper center")
     return _save(fig, path)
+
+
+def plot_against_speed(
+    path, speeds_rpm: Sequence[float], values: Sequence[float], limit: float, *, ylabel: str, title: str, worst: int
+) -> Path:
+    """A criterion's value at every speed of the full-load curve, its limit as a line and
+    its worst speed marked."""
+    fig = figure((6.0, 3.2))
+    ax = fig.add_subplot()
+    ax.plot(speeds_rpm, values, "o-", ms=3, label="value")
+    ax.axhline(limit, color="tab:red", ls="--", label=f"limit {limit:.4g}")
+    ax.plot([speeds_rpm[worst]], [values[worst]], "s", color="tab:red", label=f"worst, {speeds_rpm[worst]:.0f} rpm")
+    ax.set_xlabel("crank speed [rpm]")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(True, alpha=0.35)
+    ax.legend(fontsize=8)
+    return _save(fig, path)
