@@ -47,9 +47,12 @@ from fe_crank.assess.group import (
     _extreme,
 )
 from fe_crank.assess.peak import BOUND_RTOL, TIE_RTOL, group_peak, max_over_cycle
-from fe_crank.assess.stress import von_mises_planes
+from fe_crank.assess.stress import von_mises, von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
 
+#: nodes of one exact fatigue evaluation within a block: the least value found narrows
+#: the band for the next ones
+SUB_BLOCK = 32
 #: shear components (xy, yz, zx) count twice in a tensor's Frobenius norm
 _WEIGHTS = np.array([1.0, 1.0, 1.0, 2.0, 2.0, 2.0])[:, None]
 
@@ -96,11 +99,28 @@ def _goodman_lower(r: np.ndarray, m: np.ndarray, endurance: float, tensile: floa
     return fatigue.goodman_safety(amp * (1 + BOUND_RTOL), mean * (1 + BOUND_RTOL), endurance, tensile)
 
 
-def _goodman_radius_lower(radius: np.ndarray, m: np.ndarray, endurance: float, tensile: float) -> np.ndarray:
-    """As ``_goodman_lower`` with the path's radius about its mid-range tensor, which
-    ``fatigue.amplitude_mean`` returns or undercuts."""
-    mean = np.maximum(box_von_mises(m), box_principal(m))
-    return fatigue.goodman_safety(radius * (1 + BOUND_RTOL), mean * (1 + BOUND_RTOL), endurance, tensile)
+def _goodman_radius_lower(planes: np.ndarray, mid: np.ndarray, endurance: float, tensile: float) -> np.ndarray:
+    """Goodman's safety is at least this at each node of the path ``planes`` (6, n_t, n)
+    with mid-range tensor ``mid`` (6, n).  The amplitude returned by
+    ``fatigue.amplitude_mean`` is the radius R_0 about ``mid`` or smaller, with the centre
+    ``mid`` or one c of smaller radius.  In von Mises' (Euclidean, deviatoric) metric the
+    minimum circumscribed ball (centre c*, radius R*) has R(c)^2 >= R*^2 + |c - c*|^2 for
+    every centre c, and R* >= L, half the chord from the point farthest from ``mid`` to
+    the point farthest from it; so sigma_v(c) <= sigma_v(mid) + 2 sqrt(R_0^2 - L^2).  c is
+    ``mid`` or a convex combination of it and points of the path, so its hydrostatic
+    stress p is at most the largest of ``mid``'s and the path's; and the largest principal
+    stress is at most p + 2/3 sigma_v.  The signed mean sigma_m' is at most
+    max(sigma_v, p + 2/3 sigma_v) of these bounds."""
+    d0 = von_mises_planes(planes, mid)
+    radius, far = fatigue.max_and_first(d0)
+    cols = np.arange(planes.shape[-1])
+    chord = 0.5 * von_mises_planes(planes, planes[:, far, cols]).max(axis=0)
+    up, down = 1 + BOUND_RTOL, 1 - BOUND_RTOL
+    shift = 2.0 * np.sqrt(np.maximum((radius * up) ** 2 - (chord * down) ** 2, 0.0))
+    vm = von_mises(mid) * up + shift
+    hydro = np.maximum((mid[0] + mid[1] + mid[2]) / 3.0, ((planes[0] + planes[1] + planes[2]) / 3.0).max(axis=0))
+    mean = np.maximum(vm, hydro + np.abs(hydro) * BOUND_RTOL + 2.0 / 3.0 * vm)
+    return fatigue.goodman_safety(radius * up, mean * up, endurance, tensile)
 
 
 def _gough_pollard_lower(amp, mean, endurance_b: float, endurance_t: float, tensile: float) -> np.ndarray:
@@ -119,16 +139,20 @@ def _runs(coefficients: np.ndarray) -> np.ndarray:
     return np.concatenate([[0], np.cumsum(change)])
 
 
-def _coefficient_box(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray):
-    """(half widths, largest magnitudes (6, n) of the box of the path; bounds of the half
-    range and of the magnitude of any component of the tensor in a unit direction (n,))
-    of ``nodes`` (module docstring).  The box of the whole cycle is the union of the
-    boxes of its runs (``_runs``: within a run only the cases loaded there vary, so each
-    run's box is tighter): within run r the tensor lies within sum_c h_c |U_c|_F = f_r
-    of C_r (Frobenius), so a directional component's half range is at most
-    max_r f_r + max_{r,s} |C_r - C_s|_F / 2 and its magnitude at most max_r (|C_r|_F + f_r)."""
+def _coefficient_box(
+    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, *, runs: bool = True, directional: bool = False
+):
+    """(half widths, largest magnitudes (6, n) of the box of the path; with
+    ``directional`` also bounds of the half range and of the magnitude of any component
+    of the tensor in a unit direction (n,), else None) of ``nodes`` (module docstring).
+    With ``runs`` the box of the whole cycle is the union of the boxes of its runs
+    (``_runs``: within a run only the cases loaded there vary, so each run's box is
+    tighter), else the whole cycle is one run.  Within run r the tensor lies within
+    sum_c h_c |U_c|_F = f_r of C_r (Frobenius), so a directional component's half range
+    is at most max_r f_r + max_{r,s} |C_r - C_s|_F / 2 and its magnitude at most
+    max_r (|C_r|_F + f_r)."""
     c = np.atleast_2d(np.asarray(coefficients, float))
-    run = _runs(c)
+    run = _runs(c) if runs else np.zeros(c.shape[0], dtype=int)
     n_runs = int(run[-1]) + 1
     hi = np.full((n_runs, c.shape[1]), -np.inf)
     lo = np.full((n_runs, c.shape[1]), np.inf)
@@ -142,6 +166,8 @@ def _coefficient_box(unit: UnitStresses, coefficients: np.ndarray, nodes: np.nda
     top, bottom = (centre_r + rho_r).max(axis=0), (centre_r - rho_r).min(axis=0)
     rho = 0.5 * (top - bottom)
     big = np.maximum(np.abs(top), np.abs(bottom))
+    if not directional:
+        return rho, big, None, None
     fro_u = np.sqrt(np.einsum("j,cjn->cn", _WEIGHTS[:, 0], u**2))
     fro_r = h @ fro_u  # (n_runs, n): |S(t) - C_r|_F within run r
     spread = _frobenius(centre_r.max(axis=0) - centre_r.min(axis=0))  # >= |C_r - C_s|_F
@@ -228,7 +254,9 @@ def group_extremes(
         and axis is not None
         and material.fatigue_limit_torsion is not None
     )
-    rho, big, fro_h, fro_c = _coefficient_box(unit, coefficients, nodes)
+    # the fatigue groups' box of the runs (the fatigue search's first bound); the static
+    # groups' one box of the whole cycle (only the peak's prefilter)
+    rho, big, fro_h, fro_c = _coefficient_box(unit, coefficients, nodes, runs=do_fatigue or do_gp, directional=do_gp)
     pos, vm, arg = _static_peak(unit, coefficients, nodes, box_von_mises(big), block)
     worst = _extreme(vm, nodes[pos], unit, group, worst="max", angles=np.asarray(theta)[arg])
     ys = material.yield_strength
@@ -250,18 +278,23 @@ def group_extremes(
             keep = _goodman_lower(0.5 * (hi - lo), big2, se, rm) <= band
             if not keep.any():
                 return np.inf
-            # the radius about the mid range bounds the amplitude more tightly
-            planes, p, big2 = planes[:, :, keep], p[keep], big2[:, keep]
-            radius = von_mises_planes(planes, 0.5 * (hi + lo)[:, keep]).max(axis=0)
-            keep = _goodman_radius_lower(radius, big2, se, rm) <= band
-            if not keep.any():
-                return np.inf
-            a, m = fatigue.equivalent_amplitude_mean(planes[:, :, keep].transpose(1, 0, 2))
-            q = p[keep]
-            sa[q], sm[q] = a, m
-            good[q] = fatigue.goodman_safety(a, m, se, rm)
-            done[q] = True
-            found = float(good[q].min())
+            # the radius about the mid range and the centre's distance from it (MCB)
+            planes, p = planes[:, :, keep], p[keep]
+            lower = _goodman_radius_lower(planes, 0.5 * (hi + lo)[:, keep], se, rm)
+            found = np.inf
+            order = np.argsort(lower, kind="stable")
+            for s in range(0, order.size, SUB_BLOCK):  # in increasing bound: the band narrows as it goes
+                band = min(band, _band(_band(found)))
+                sub = order[s : s + SUB_BLOCK]
+                sub = np.sort(sub[lower[sub] <= band])
+                if sub.size == 0:
+                    break
+                a, m = fatigue.equivalent_amplitude_mean(planes[:, :, sub].transpose(1, 0, 2))
+                q = p[sub]
+                sa[q], sm[q] = a, m
+                good[q] = fatigue.goodman_safety(a, m, se, rm)
+                done[q] = True
+                found = min(found, float(good[q].min()))
             return found
 
         start = running.fatigue
