@@ -53,6 +53,8 @@ from fe_crank.assess.superpose import UnitStresses, iter_planes
 #: nodes of one exact fatigue evaluation within a block: the least value found narrows
 #: the band for the next ones
 SUB_BLOCK = 32
+#: nodes per exact evaluation of the static peak (its bound is tight: few blocks)
+STATIC_BLOCK = 32
 #: shear components (xy, yz, zx) count twice in a tensor's Frobenius norm
 _WEIGHTS = np.array([1.0, 1.0, 1.0, 2.0, 2.0, 2.0])[:, None]
 
@@ -202,11 +204,11 @@ def _static_peak(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray
     tie band of the largest peak of the ``block`` nodes of the largest bounds (the
     others can neither hold the group's peak nor tie with it); positions into ``nodes``."""
     bound = bound * (1 + BOUND_RTOL)
-    seed = np.argsort(-bound, kind="stable")[:block]
+    seed = np.argsort(-bound, kind="stable")[:STATIC_BLOCK]
     ((_, planes),) = iter_planes(unit, coefficients, nodes[seed], seed.size)
     best = float(max_over_cycle(von_mises_planes(planes))[0].max())
     keep = np.flatnonzero(bound >= best - TIE_RTOL * abs(best)) if np.isfinite(best) else np.arange(nodes.size)
-    pos, vm, arg = group_peak(unit, coefficients, nodes[keep], block)
+    pos, vm, arg = group_peak(unit, coefficients, nodes[keep], STATIC_BLOCK)
     return keep[pos], vm, arg
 
 

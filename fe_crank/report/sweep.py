@@ -34,32 +34,23 @@ def sweep_section(folder: Path, so: CaseOutputs, options) -> list[str]:
             f"({a.speed * RPM:.0f} rpm).</p>"
         )
         header = ["speed [rpm]"]
-        columns = []
+        columns, panels, captions = [], [], []
         for c in swept:
             k, unit = _scale(c.unit)
             short = c.name.split(".")[-1]
             values = [k * p.value for p in c.per_speed]
             raw = [p.value for p in c.per_speed]
             worst = raw.index(min(raw) if c.sense == "min" else max(raw))
-            name = f"speed_{short}.png"
-            plot_against_speed(
-                Path(folder) / name,
-                [p.speed_rpm for p in c.per_speed],
-                values,
-                k * c.limit,
-                ylabel=f"{short} [{unit}]" if unit else short,
-                title=f"{short} over the full-load curve",
-                worst=worst,
+            label = f"{short} [{unit}]" if unit else short
+            panels.append((label, values, k * c.limit, worst))
+            captions.append(
+                f"{c.name} ({c.description}): limit {k * c.limit:.4g} {unit}, worst "
+                f"{values[worst]:.4g} at {c.per_speed[worst].speed_rpm:.0f} rpm ({c.per_speed[worst].location})"
             )
-            out.append(
-                Page.figure(
-                    name,
-                    f"{c.name}: {c.description}; limit {k * c.limit:.4g} {unit}; worst at "
-                    f"{c.per_speed[worst].speed_rpm:.0f} rpm ({c.per_speed[worst].location})",
-                )
-            )
-            header.append(f"{short} [{unit}]" if unit else short)
+            header.append(label)
             columns.append(values)
+        plot_against_speed(Path(folder) / "speed_criteria.png", speeds, panels)
+        out.append(Page.figure("speed_criteria.png", "; ".join(captions)))
         rows = [[f"{w:.0f}"] + [f"{col[i]:.4g}" for col in columns] for i, w in enumerate(speeds)]
         out.append(table(header, rows, num_cols=set(range(len(header)))))
     if so.torsion is not None and so.torsion.misfire is not None:
