@@ -38,10 +38,9 @@ from fe_crank.mesh.plan import plan_meshes
 from fe_crank.mesh.types import ThrowMesh
 from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel, TorsionOutput
 from fe_crank.results import StageTime
-from fe_crank.throw_scope import throws_of
 from fe_crank.torsion.analysis import with_vibratory_torque
 from fe_crank.torsion.build import throw_inertias
-from fe_crank.torsion.loads import assessed_loads
+from fe_crank.torsion.loads import assessed_loads, fe_inertias
 from fe_crank.torsion.misfire import analyse_misfire
 from fe_crank.torsion.stiffness import fe_throw_stiffness
 
@@ -251,7 +250,7 @@ def torsion_stage(
         reaction=lc.fe.torque_reaction,
         torsion=mis.firing,
         misfire_torsion={c.cylinder: c.result for c in mis.cases},
-        fe_inertia=fe_inertias(unit_solutions, cycles),
+        fe_inertia=fe_inertias(unit_solutions, cycles.operating.throws),
         handed=handed,
     )
     return TorsionOutput(
@@ -260,17 +259,6 @@ def torsion_stage(
         misfire=mis if mis.cases else None,
         loads=loads,
     )
-
-
-def fe_inertias(unit_solutions: dict[str, UnitSolutions], cycles: EngineCycles) -> dict[str, float]:
-    """Throw name -> the moment about the axis of its FE model's ``angular_acceleration``
-    unit case (the meshed throw's J_z, kg m^2)."""
-    out = {}
-    for key, u in unit_solutions.items():
-        if "angular_acceleration" in u.cases:
-            for name in throws_of(key, cycles.operating.throws):
-                out[name] = float(u.cases["angular_acceleration"].applied[5])
-    return out
 
 
 def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:

@@ -19,8 +19,10 @@ from __future__ import annotations
 
 from fe_crank import model
 from fe_crank.assess.loads import FIRING, AssessedLoads, LoadState, ThrowCycle, misfire_label
+from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.throw_scope import throws_of
 from fe_crank.torsion.analysis import TorsionResult
 from fe_crank.torsion.flow import fe_loads, torque_flow
 from fe_crank.torsion.handover import JournalTorque
@@ -54,6 +56,18 @@ def load_state(
         )
         throws[name] = ThrowCycle(pin, f.torque_in, f.torque_out, fl.angular_acceleration, fl.pin_force)
     return LoadState(dynamics.speed, case, dynamics.theta, throws)
+
+
+def fe_inertias(unit_solutions: dict[str, UnitSolutions], throws) -> dict[str, float]:
+    """Throw name -> the moment about the axis of its FE model's ``angular_acceleration``
+    unit case (the meshed throw's J_z, kg m^2); ``throws``: the engine's throw names
+    (``fe_crank.throw_scope.throws_of`` resolves a model key standing for all)."""
+    out = {}
+    for key, u in unit_solutions.items():
+        if "angular_acceleration" in u.cases:
+            for name in throws_of(key, throws):
+                out[name] = float(u.cases["angular_acceleration"].applied[5])
+    return out
 
 
 def m53_journal_torques(torsion: TorsionResult, handed: dict[str, JournalTorque]) -> dict[str, tuple]:
@@ -101,4 +115,4 @@ def assessed_loads(
     return AssessedLoads(tuple(speeds), cycles.operating_index, overspeed, m53, torsion is not None)
 
 
-__all__ = ["load_state", "assessed_loads", "m53_journal_torques"]
+__all__ = ["load_state", "assessed_loads", "m53_journal_torques", "fe_inertias"]
