@@ -2,7 +2,7 @@
 every criterion's per-speed values against single-speed checks of the same case run one
 by one (the sweep's pruned evaluation against the exhaustive one), misfire as part of
 each speed's worst case, the UR M53 marking, the box bounds and the input the wiring
-needs (torsion: tests/test_sweep_torsion.py)."""
+needs (torsion: tests/test_torsion_sweep.py)."""
 
 from __future__ import annotations
 
