@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from fe_crank.assess.case import Assessment
+from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.m53 import M53Geometry
 from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.throw_geometry import ThrowGeometry
@@ -25,6 +26,7 @@ from fe_crank.mesh.plan import MeshPlan
 from fe_crank.mesh.types import ThrowMesh
 from fe_crank.throw_scope import throws_of
 from fe_crank.torsion.analysis import TorsionResult
+from fe_crank.torsion.misfire import MisfireTorsion
 
 
 @dataclass(frozen=True)
@@ -64,11 +66,16 @@ class FeModels:
 
 @dataclass(frozen=True)
 class TorsionOutput:
-    """The torsional stage: its result and the operating cycle whose journal torques carry
-    the vibratory torque (what the assessment takes)."""
+    """The torsional stage: its result with every cylinder firing, the operating cycle
+    whose journal torques are UR M53's hand-over (the largest half range over the speed
+    range and every case, ``torsion.handover``), the misfire cases (None without), and
+    the loads of every speed of the sweep with their vibration (what the assessment
+    superposes, ``torsion.loads``)."""
 
     result: TorsionResult
     dynamics: DynamicsResult
+    misfire: MisfireTorsion | None = None
+    loads: AssessedLoads | None = None
 
 
 @dataclass(frozen=True)

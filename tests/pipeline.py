@@ -19,6 +19,7 @@ from fe_crank.mesh.plan import SIGN_OFF_RULE
 from fe_crank.outputs import CaseOutputs
 from fe_crank.records import CaseResult
 from fe_crank.report import write_case_report
+from fe_crank.torsion.loads import assessed_loads
 
 
 def stage_outputs(path: str | Path, cache_dir: str | Path, *, mesh_size: str = "test", **options) -> CaseOutputs:
@@ -67,6 +68,7 @@ def assess_inputs(
         criteria=lc.criteria,
         cycles=cycles,
         dynamics=cycles.operating,
+        loads=assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction),
         balance=balance,
         models=models,
         unit_solutions=unit_solutions,

@@ -185,6 +185,7 @@ def check_peaks(lc, tm, units) -> dict:
     from fe_crank.geometry.mass import throw_solids
     from fe_crank.mechanism.cycles import engine_cycles
     from fe_crank.mesh.plan import throw_keys
+    from fe_crank.torsion.loads import assessed_loads
 
     keys = throw_keys(lc.geometry, tuple(t.name for t in lc.engine.throws))
     if len(keys) != 1:  # the benchmark meshes one throw
@@ -203,7 +204,8 @@ def check_peaks(lc, tm, units) -> dict:
             criteria=lc.criteria,
             cycles=cycles,
             dynamics=cycles.operating,
-            balance=balance,
+            loads=assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction),
+            balance=analyse_balance(lc.engine, lc.operating.speed, lc.balance),
             models={key: name},
             unit_solutions={key: units},
             throw_geometry=parametric_throws(

@@ -2,21 +2,23 @@
 
 It takes what the earlier stages made (typed, ``AssessInputs``): the engine cycles
 (operating and overspeed, ``fe_crank.mechanism.cycles``; the journal torques with the
-vibratory torque when the torsional stage ran), the balance design, each throw's
-geometry (geometry stage: rods' places, UR M53 dimensions, counterweights' built and
-required m r, ``assess.throw_geometry``), the FE unit solutions and, where UR M53's empirical
+vibratory torque when the torsional stage ran), the balance design, the counterweights'
+CAD mass properties (geometry stage), the FE unit solutions and, where UR M53's empirical
 SCFs are out of range, the SCF mode's result (FE stage).  It computes nothing any other
 stage owns.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from fe_crank import model
-from fe_crank.assess import m53_oil_bore
-from fe_crank.assess.criteria import evaluate_criteria
+from fe_crank.assess import m53, m53_oil_bore
+from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, StateResults, evaluate_criteria, wanted_extremes
+from fe_crank.assess.extremes import Running, Wanted
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
+from fe_crank.assess.loads import AssessedLoads, LoadState
 from fe_crank.assess.m53_basis import M53Basis, m53_basis
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.scf import ScfResult
@@ -24,6 +26,7 @@ from fe_crank.assess.states import ModelStates, model_states
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment, assess_throw
 from fe_crank.assess.throw_geometry import ThrowGeometry
+from fe_crank.assess.workers import run_blocks
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.errors import InputError
 from fe_crank.fe.pin_patches import rod_loads, rod_positions
@@ -31,12 +34,12 @@ from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.io.criteria import Criteria
 from fe_crank.io.material import Material
 from fe_crank.mechanism.cycles import EngineCycles
-from fe_crank.mechanism.dynamics import DynamicsResult, ThrowLoads
-from fe_crank.notes import ASSUMPTION, Note, grouped
+from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.notes import ASSUMPTION, WARNING, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
-SCHEMA_VERSION = "1.3"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws; 1.3: provenance.cad
+SCHEMA_VERSION = "1.3"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws; 1.3: provenance.cad, criteria per speed
 
 
 @dataclass(frozen=True)
@@ -45,12 +48,13 @@ class AssessInputs:
 
     ``dynamics``: the operating cycle the stresses follow (its journal torques carry the
     vibratory torque when the torsional stage ran); ``cycles``: the operating and
-    overspeed cycles of the dynamics stage; ``models``: FE model key -> geometry throw
+    overspeed cycles of the dynamics stage; ``loads``: what the assessment superposes at
+    every speed and load state (``assess.loads``); ``models``: FE model key -> geometry throw
     name (the mesh plan); ``unit_solutions``: key -> unit solutions (keys sharing one
     mesh share one object); ``throw_geometry``: engine throw name -> its geometry (the
     geometry stage's; a throw without one, a model that is no throw of a crank geometry,
-    has its rods at mid-pin, no UR M53 route and no counterweights); ``scf``: key -> the SCF mode's result, for the models whose
-    UR M53 dimensions are outside the empirical range."""
+    has its rods at mid-pin, no UR M53 route and no counterweights); ``scf``: key -> the
+    SCF mode's result, for the models whose UR M53 dimensions are outside the empirical range."""
 
     case: str
     source_file: str
@@ -60,12 +64,12 @@ class AssessInputs:
     criteria: Criteria
     cycles: EngineCycles
     dynamics: DynamicsResult
+    loads: AssessedLoads
     balance: BalanceResult | None
     models: dict[str, str]
     unit_solutions: dict[str, UnitSolutions]
     throw_geometry: dict[str, ThrowGeometry] = field(default_factory=dict)
     scf: dict[str, ScfResult] = field(default_factory=dict)
-    torsion: bool = False  # the journal torques carry the torsional stage's vibratory torque
 
 
 @dataclass(frozen=True)
@@ -93,14 +97,18 @@ def _notes(a: AssessInputs, basis: M53Basis) -> list[Note]:
         "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration "
         + (
             "included: quasi-static + vibratory journal torque ([torsion], docs/torsion.md)"
-            if a.torsion
+            if a.loads.torsion
             else "not included (no [torsion] section)"
         ),
     ]
     texts.extend(basis.notes)
     if a.cycles.overspeed:
         texts.insert(1, a.cycles.overspeed_note)
-    return [_assumption(t) for t in texts]
+    out = [_assumption(t) for t in texts]
+    m53_keys = tuple(lim.key for lim in a.criteria.limits if lim.quantity == "m53_acceptability")
+    if a.criteria.m53_quasi_static_torque and m53_keys:
+        out.append(Note(f"{NOT_CONFORM}: {QUASI_STATIC_M53}", WARNING, m53_keys, "assessment"))
+    return out
 
 
 def _assumption(text: str, throws: tuple[str, ...] = ()) -> Note:
@@ -126,48 +134,19 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     basis = m53_basis(a.engine, a.material, lim.m53_additional_bending, file=a.source_file)
     notes = _notes(a, basis)
     senses = {t.name: a.engine.shaft(t.shaft).sense for t in a.engine.throws}
-    throws = []
-    solved: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
+    units: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
     for key, unit_solutions in a.unit_solutions.items():
-        if id(unit_solutions) not in solved:
+        if id(unit_solutions) not in units:
             groups = assessed_groups(unit_solutions)
-            unit = solved[id(unit_solutions)] = unit_stresses(unit_solutions, groups)
+            unit = units[id(unit_solutions)] = unit_stresses(unit_solutions, groups)
             boundary_groups = {g: nodes for g, nodes in groups.items() if g in ASSESSED_BOUNDARIES}
             notes.extend(
                 _assumption(f"mesh {key}: {n}")
                 for n in recovery_notes(recovery_ratios(unit_solutions, boundary_groups, unit=unit))
             )
-        unit = solved[id(unit_solutions)]
         for tname in throws_of(key, a.dynamics.throws):
-            tl = a.dynamics.throws[tname]
-            throw = a.engine.throw(tname)
             tg = a.throw_geometry.get(tname)
-            # each rod at its place on the pin (UR M53 2.1); without a geometry, the summed
-            # force at mid-pin
-            places = rod_positions(a.engine, tname, tg.crankpin_length) if tg is not None else {}
             m53_geometry = tg.m53 if tg is not None else None
-            throws.append(
-                assess_throw(
-                    tname,
-                    unit,
-                    a.dynamics.theta,
-                    tl.pin_force,
-                    tl.torque_front,
-                    omega=omega,
-                    sense=senses[tname],
-                    overspeed=overspeed,
-                    material=a.material,
-                    crank_radius=throw.crank_radius,
-                    m53_geometry=m53_geometry,
-                    m53_additional=basis.additional,
-                    m53_ke=basis.ke,
-                    counterweights=tg.counterweights if tg is not None else (),
-                    torque_rear=tl.torque_rear,
-                    overspeed_loads=[_cycle(c.dynamics.throws[tname], places) for c in a.cycles.overspeed] or None,
-                    rod_loads=rod_loads(tl, places),
-                    scf=a.scf.get(key),
-                )
-            )
             if m53_geometry is None:
                 why = tg.m53_note if tg is not None and tg.m53_note else "no UR M53 dimensions from the geometry"
                 notes.append(_assumption(f"{why}; M53 route not run", (tname,)))
@@ -179,11 +158,31 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                         (tname,),
                     )
                 )
-    done = tuple(throws)
-    verdicts = evaluate_criteria(lim, done, file=a.source_file, overspeed=overspeed)
+    done = _assess_state(a, units, a.loads.operating_state, senses, basis, None)
+    others = [
+        (i, j)
+        for i, states in enumerate(a.loads.speeds)
+        for j in range(len(states))
+        if (i, j) != (a.loads.operating, 0)
+    ]
+    found: dict[tuple[int, int], tuple[ThrowAssessment, ...]] = {(a.loads.operating, 0): done}
+    wanted = wanted_extremes(a.criteria)
+
+    def one(ij, _scratch) -> None:  # each state on its own: independent, one thread each
+        found[ij] = _assess_state(a, units, a.loads.speeds[ij[0]][ij[1]], senses, basis, wanted)
+
+    run_blocks(one, others)
+    sweep = [
+        StateResults(state.speed, state.case, found[(i, j)])
+        for i, states in enumerate(a.loads.speeds)
+        for j, state in enumerate(states)
+    ]
+    if len(a.loads.speeds) > 1 or len(sweep) > 1:
+        notes.append(_assumption(_sweep_note(a.loads)))
+    verdicts = evaluate_criteria(a.criteria, done, file=a.source_file, overspeed=overspeed, sweep=tuple(sweep))
     states = []
     for keys, unit_solutions in shared_models(a.unit_solutions):
-        st = model_states(keys, unit_solutions, done, a.dynamics, a.cycles.overspeed, senses, fields=fields)
+        st = model_states(keys, unit_solutions, done, a.loads.operating_state, a.loads.overspeed, senses, fields=fields)
         if st is not None:
             states.append(st)
     return Assessment(
@@ -191,9 +190,71 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     )
 
 
-def _cycle(tl: ThrowLoads, places: dict[str, float]) -> tuple:
-    """(pin force, front torque, rod loads) of a throw's cycle (``assess_throw``'s overspeed)."""
-    return tl.pin_force, tl.torque_front, rod_loads(tl, places)
+def _sweep_note(loads: AssessedLoads) -> str:
+    rpm = [w * 30.0 / math.pi for w in loads.speed_values]
+    states = len(loads.speeds[0])
+    text = (
+        f"full-load curve: every criterion but the overspeed ones at {len(rpm)} speeds, "
+        f"{rpm[0]:.0f}-{rpm[-1]:.0f} rpm, on the same unit stresses; a criterion's value is its worst speed"
+    )
+    if states > 1:
+        text += f"; at each speed all cylinders firing and {states - 1} misfire case(s), the worst governing"
+    return text
+
+
+def _assess_state(
+    a: AssessInputs,
+    units: dict[int, UnitStresses],
+    state: LoadState,
+    senses: dict[str, int],
+    basis: M53Basis,
+    extremes: Wanted | None,
+) -> tuple[ThrowAssessment, ...]:
+    """Every throw in one load state: in full (``extremes`` None: the operating speed's
+    firing state, with the overspeed cycles) or its extremes only.  Each rod bears at its
+    place on the pin (UR M53 2.1, ``fe.pin_patches``); without a throw geometry, the
+    summed force at mid-pin."""
+    running = Running()  # the state's least fatigue values so far (extremes only)
+    out = []
+    for key, unit_solutions in a.unit_solutions.items():
+        unit = units[id(unit_solutions)]
+        for tname in throws_of(key, a.dynamics.throws):
+            tc = state.throws[tname]
+            throw = a.engine.throw(tname)
+            tg = a.throw_geometry.get(tname)
+            places = rod_positions(a.engine, tname, tg.crankpin_length) if tg is not None else {}
+            overspeed_loads = [
+                (s.throws[tname].pin_force, s.throws[tname].torque_in, rod_loads(s.throws[tname], places))
+                for s in a.loads.overspeed
+            ]
+            out.append(
+                assess_throw(
+                    tname,
+                    unit,
+                    state.theta,
+                    tc.pin_force,
+                    tc.torque_in,
+                    omega=state.speed,
+                    sense=senses[tname],
+                    overspeed=a.operating.overspeed,
+                    material=a.material,
+                    crank_radius=throw.crank_radius,
+                    m53_geometry=tg.m53 if tg is not None else None,
+                    m53_additional=basis.additional,
+                    m53_ke=basis.ke,
+                    counterweights=tg.counterweights if tg is not None else (),
+                    torque_rear=tc.torque_out,
+                    overspeed_loads=overspeed_loads or None,
+                    scf=a.scf.get(key),
+                    angular_acceleration=tc.angular_acceleration,
+                    fe_pin_force=tc.fe_pin_force,
+                    m53_torques=a.loads.m53_torques.get(tname, ()),
+                    extremes=extremes,
+                    running=running,
+                    rod_loads=rod_loads(tc, places),
+                )
+            )
+    return tuple(out)
 
 
 def shared_models(unit_solutions: dict[str, UnitSolutions]) -> list[tuple[tuple[str, ...], UnitSolutions]]:

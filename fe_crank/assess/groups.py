@@ -12,16 +12,10 @@ from fe_crank.fe.pin_directions import patch_case, pin_direction
 from fe_crank.fe.unit_cases import UnitSolutions
 
 #: boundary groups assessed at their nodes; subdomains assessed with all their nodes
-ASSESSED_BOUNDARIES = (
-    "crankpin_fillet_1",
-    "crankpin_fillet_2",
-    "journal_fillet_1",
-    "journal_fillet_2",
-    "oil_bore",
-    "counterweight_fillet_1",  # the counterweight-to-web transition fillets (geometry/cw_fillet.py)
-    "counterweight_fillet_2",
-)
+ASSESSED_BOUNDARIES = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2", "oil_bore")
 COUNTERWEIGHTS = ("counterweight_1", "counterweight_2")
+#: the unit cases besides the pin cases that the superposition takes (``superpose.load_coefficients``)
+SUPERPOSED = ("centrifugal", "torque", "angular_acceleration")
 
 
 def _element_nodes(unit_solutions: UnitSolutions, elements) -> np.ndarray:
@@ -88,7 +82,7 @@ def unit_stresses(unit_solutions: UnitSolutions, groups: dict[str, np.ndarray] |
     cases = tuple(
         c
         for c in unit_solutions.cases
-        if c in ("centrifugal", "torque") or pin_direction(c) is not None or patch_case(c) is not None
+        if c in SUPERPOSED or pin_direction(c) is not None or patch_case(c) is not None
     )
     stress = _recover(unit_solutions, cases, ids)  # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0

@@ -28,12 +28,11 @@ import numpy as np
 
 from fe_crank.assess.group import GroupResult
 from fe_crank.assess.groups import COUNTERWEIGHTS
+from fe_crank.assess.loads import LoadState
 from fe_crank.assess.superpose import load_coefficients
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.unit_cases import UnitSolutions
-from fe_crank.mechanism.cycles import OverspeedCycle
-from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.throw_scope import throws_of
 
 #: the shaft fillets whose averaging indicator is checked (UR M53 App. III 2.3)
@@ -98,28 +97,29 @@ def throw_names(keys, throws: dict) -> list[str]:
     return [n for n in throws if n in wanted]
 
 
-def angle_index(dyn: DynamicsResult, angle: float | None) -> int:
+def angle_index(state: LoadState, angle: float | None) -> int:
     """Index of the cycle angle nearest ``angle`` (the first of equals)."""
     if angle is None:
         return 0
-    return int(np.argmin(np.abs(np.asarray(dyn.theta) - angle)))
+    return int(np.argmin(np.abs(np.asarray(state.theta) - angle)))
 
 
-def field_at_angle(
-    unit_solutions: UnitSolutions, dyn: DynamicsResult, throw: str, index: int, sense: int
-) -> np.ndarray:
-    """Displacement of the throw at cycle-angle index ``index`` of ``dyn`` (the operating
-    cycle, or an overspeed cycle: ``dyn.speed`` is the omega of its centrifugal term)."""
-    tl = dyn.throws[throw]
+def field_at_angle(unit_solutions: UnitSolutions, state: LoadState, throw: str, index: int, sense: int) -> np.ndarray:
+    """Displacement of the throw at cycle-angle index ``index`` of the load state
+    ``state`` (the operating cycle, or an overspeed cycle: ``state.speed`` is the omega
+    of its centrifugal term), with the assessment's loads (``assess.loads.ThrowCycle``)."""
+    tc = state.throws[throw]
     cases = tuple(unit_solutions.cases)
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0
+    alpha = tc.angular_acceleration
     c = load_coefficients(
-        tl.pin_force[index : index + 1],
-        tl.torque_front[index : index + 1],
-        dyn.speed,
+        tc.fe_pin[index : index + 1],
+        tc.torque_in[index : index + 1],
+        state.speed,
         cases=cases,
         sense=sense,
         torque_mz=mz,
+        angular_acceleration=None if alpha is None else alpha[index : index + 1],
     )[0]
     return unit_solutions.combine(dict(zip(cases, c)))
 
@@ -190,7 +190,7 @@ def overspeed_state(
     unit_solutions: UnitSolutions,
     throws: tuple[ThrowAssessment, ...],
     names: list[str],
-    cycles: tuple[OverspeedCycle, ...],
+    cycles: tuple[LoadState, ...],
     senses: dict[str, int],
 ) -> OverspeedState | None:
     """The governing overspeed state of one FE model (module docstring); None without an
@@ -207,15 +207,15 @@ def overspeed_state(
     # take the cycle whose state at theta* reaches the table's value at its node.
     best = None
     for c in cycles:
-        theta = np.asarray(c.dynamics.theta)
+        theta = np.asarray(c.theta)
         index = int(np.argmin(np.abs(theta - ext.angle))) if ext.angle is not None else 0
-        u = field_at_angle(unit_solutions, c.dynamics, t.name, index, senses[t.name])
+        u = field_at_angle(unit_solutions, c, t.name, index, senses[t.name])
         at_node = von_mises_at(unit_solutions, u, int(ext.node)) if len(cycles) > 1 else 0.0
         if best is None or at_node > best[0]:
             best = (at_node, c, index, u)
     assert best is not None
     _, cycle, index, u = best
-    theta = np.asarray(cycle.dynamics.theta)
+    theta = np.asarray(cycle.theta)
     return OverspeedState(
         t.name,
         g.group,
@@ -225,8 +225,8 @@ def overspeed_state(
         tuple(float(c) for c in ext.point),
         index,
         float(np.degrees(theta[index])),
-        float(cycle.dynamics.speed),
-        cycle.gas,
+        float(cycle.speed),
+        cycle.case,
         np.asarray(u),
         tuple(gr for gr in t.groups if gr.group in COUNTERWEIGHTS),
     )
@@ -236,14 +236,15 @@ def model_states(
     keys: tuple[str, ...],
     unit_solutions: UnitSolutions,
     throws: tuple[ThrowAssessment, ...],
-    dyn: DynamicsResult,
-    overspeed: tuple[OverspeedCycle, ...],
+    dyn: LoadState,
+    overspeed: tuple[LoadState, ...],
     senses: dict[str, int],
     *,
     fields: bool,
 ) -> ModelStates | None:
     """The states of the FE model ``unit_solutions`` standing for the throws of ``keys``
-    (module docstring); None when the assessment has no hot spot for it.  ``fields``:
+    (module docstring) in the load state ``dyn`` (the operating speed, all cylinders
+    firing) and the overspeed cycles; None when the assessment has no hot spot for it.  ``fields``:
     also recover the averaged nodal stress of both states on the whole mesh (for the
     report's ``.vtu`` fields and pictures)."""
     names = throw_names(keys, dyn.throws)

@@ -30,6 +30,7 @@ from fe_crank.check.cad_geometry import cad_geometry_stage
 from fe_crank.check.options import CheckOptions
 from fe_crank.errors import InputError
 from fe_crank.fe import convergence, solve_unit_cases
+from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.geometry.mass import throw_solids
 from fe_crank.io.base import InputFile
@@ -39,8 +40,10 @@ from fe_crank.mesh.plan import plan_meshes
 from fe_crank.mesh.types import ThrowMesh
 from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel, TorsionOutput
 from fe_crank.results import StageTime
-from fe_crank.torsion.analysis import analyse_torsion, with_vibratory_torque
+from fe_crank.torsion.analysis import with_vibratory_torque
 from fe_crank.torsion.build import throw_inertias
+from fe_crank.torsion.loads import assessed_loads, fe_inertias
+from fe_crank.torsion.misfire import analyse_misfire
 from fe_crank.torsion.stiffness import fe_throw_stiffness
 
 log = logging.getLogger(__name__)
@@ -176,16 +179,26 @@ def mesh_stage(lc: LoadCase, geo: GeometryModel) -> dict[str, ThrowMesh]:
     }
 
 
+def fe_options(lc: LoadCase) -> FeOptions:
+    """The FE stage's options: the load case's, with the ``angular_acceleration`` unit case
+    when the torsional stage runs (the throw's vibratory inertia torque as a body force,
+    ``fe_crank.torsion.flow``)."""
+    if lc.torsion is None or "angular_acceleration" in lc.fe.cases:
+        return lc.fe
+    return dataclasses.replace(lc.fe, cases=(*lc.fe.cases, "angular_acceleration"))
+
+
 def fe_stage(lc: LoadCase, meshes: dict[str, ThrowMesh]) -> dict[str, UnitSolutions]:
     """Unit load cases on one assembled stiffness per distinct throw mesh (throws with the
-    same mesh key share one solution)."""
+    same mesh key share one solution); ``fe_options`` says which."""
     if lc.material is None:
         raise InputError("the stress check needs a [material] section", file=lc.source_file, key="material")
+    options = fe_options(lc)
     solved: dict[str, UnitSolutions] = {}
     out = {}
     for key, m in meshes.items():
         if m.key not in solved:
-            solved[m.key] = solve_unit_cases(m, lc.material, lc.fe)
+            solved[m.key] = solve_unit_cases(m, lc.material, options)
             # every unit case is solved: later stages combine displacements and never solve
             # again, so the factor (the largest allocation of the run) goes now
             solved[m.key].system.factorisation.free()
@@ -231,9 +244,13 @@ def torsion_stage(
     lc: LoadCase, geo: GeometryModel, unit_solutions: dict[str, UnitSolutions], cycles: EngineCycles
 ) -> TorsionOutput:
     """The torsional forced response (``torsion.analysis``) with the throws' inertias from
-    the geometry stage's CAD mass properties; the FE throw stiffness is measured from the
-    torque unit case when it is there (the report shows it beside Carter's; it is used
-    when ``throw_stiffness = "fe"``)."""
+    the geometry stage's CAD mass properties, with every cylinder firing and with each
+    misfire case of ``[operating] misfire`` (``torsion.misfire.analyse_misfire``); the FE
+    throw stiffness is measured from the torque unit case when it is there (the report
+    shows it beside Carter's; it is used when ``throw_stiffness = "fe"``).  Hands over the
+    loads of every speed of the sweep and state with their vibration
+    (``torsion.loads.assessed_loads``) and UR M53's journal torques (the largest half
+    range over the speed range and every case, ``torsion.handover``)."""
     settings = lc.torsion
     assert settings is not None
     first = next(iter(unit_solutions.values()), None)
@@ -242,8 +259,23 @@ def torsion_stage(
         raise InputError(
             "throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file, key="torsion.throw_stiffness"
         )
-    result = analyse_torsion(lc, inertias=throw_inertias(lc, geo.solids), fe_stiffness=k_fe)
-    return TorsionOutput(result, with_vibratory_torque(cycles.operating, result))
+    mis = analyse_misfire(lc, inertias=throw_inertias(lc, geo.solids), fe_stiffness=k_fe)
+    handed = mis.journal_torques()
+    loads = assessed_loads(
+        lc.engine,
+        cycles,
+        reaction=lc.fe.torque_reaction,
+        torsion=mis.firing,
+        misfire_torsion={c.cylinder: c.result for c in mis.cases},
+        fe_inertia=fe_inertias(unit_solutions, cycles.operating.throws),
+        handed=handed,
+    )
+    return TorsionOutput(
+        mis.firing,
+        with_vibratory_torque(cycles.operating, mis.firing, handed=handed),
+        misfire=mis if mis.cases else None,
+        loads=loads,
+    )
 
 
 def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
@@ -256,8 +288,9 @@ def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
             "the assessment needs a [criteria] section with at least one limit", file=lc.source_file, key="criteria"
         )
     assert out.cycles is not None and out.geometry is not None and out.fe is not None
-    dyn = out.assessed_dynamics
-    assert dyn is not None
+    loads = out.torsion.loads if out.torsion is not None else None
+    if loads is None:  # rigid shaft: the torque flow of each speed and state for the power take-off end
+        loads = assessed_loads(lc.engine, out.cycles, reaction=lc.fe.torque_reaction)
     inputs = AssessInputs(
         case=lc.name,
         source_file=lc.source_file,
@@ -266,12 +299,12 @@ def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
         material=lc.material,
         criteria=lc.criteria,
         cycles=out.cycles,
-        dynamics=dyn,
+        dynamics=out.cycles.operating,
+        loads=loads,
         balance=out.balance,
         models=out.geometry.plan.throws,
         unit_solutions=out.fe.unit_solutions,
         throw_geometry=out.geometry.throws,
         scf=out.fe.scf,
-        torsion=out.torsion is not None,
     )
     return assess_case(inputs, fields=fields)

@@ -124,7 +124,7 @@ def _load(path: Path) -> LoadCase:
     if sections.torsion is not None:
         check_torsion_engine(sections.torsion, engine, path, full_load=operating.full_load)
     if sections.fe is not None:
-        check_torque_reaction(sections.fe, engine, path)
+        check_torque_reaction(sections.fe, engine, path, torsion=sections.torsion is not None)
     if criteria is not None:
         check_m53_torque(criteria, engine, sections.torsion is not None, path)
     return LoadCase(
