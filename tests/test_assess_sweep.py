@@ -126,15 +126,13 @@ def _inputs(lc, out) -> AssessInputs:
         operating=lc.operating,
         material=lc.material,
         criteria=lc.criteria,
-        geometry=lc.geometry,
         cycles=cycles,
         dynamics=cycles.operating,
         loads=assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction),
         balance=out.balance,
         models=out.geometry.plan.throws,
         unit_solutions=out.fe.unit_solutions,
-        solids=out.geometry.solids,
-        m53_geometry=out.geometry.m53,
+        throw_geometry=out.geometry.throws,
     )
 
 

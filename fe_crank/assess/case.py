@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass, field
 
 from fe_crank import model
-from fe_crank.assess import m53, m53_oil_bore
+from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, StateResults, evaluate_criteria, wanted_extremes
 from fe_crank.assess.extremes import Running, Wanted
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
