@@ -24,6 +24,7 @@ test: $(STAMP)
 	$(VENV)/bin/lint-imports
 	$(VENV)/bin/ruff check fe_crank tests benchmarks tools
 	$(VENV)/bin/ruff format --check fe_crank tests benchmarks tools
+	$(VENV)/bin/mypy
 	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q
 
 # The timings of docs/performance.md (a few minutes): mesh, FE stage, cycle and fatigue at the

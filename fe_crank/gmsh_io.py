@@ -26,6 +26,7 @@ import contextlib
 import threading
 from collections.abc import Iterator
 from dataclasses import dataclass
+from types import ModuleType
 
 import numpy as np
 
@@ -40,7 +41,7 @@ _OWNER: dict[str, int] = {}
 
 
 @contextlib.contextmanager
-def gmsh_session(*, threads: int = 1, verbosity: int = 2) -> Iterator[object]:
+def gmsh_session(*, threads: int = 1, verbosity: int = 2) -> Iterator[ModuleType]:
     """Initialise gmsh for the body of a ``with`` block and finalise it afterwards.
 
     Parameters

@@ -32,7 +32,7 @@ import pytest
 from skfem import Basis, ElementTetP2, MeshTet2
 
 from fe_crank.errors import SolverError
-from fe_crank.fe import solvers
+from fe_crank.fe import solver_choice, solvers
 from fe_crank.fe.assembly import assemble_stiffness
 
 needs_cholmod = pytest.mark.skipif(importlib.util.find_spec("cholespy") is None, reason="cholespy not installed")
@@ -59,7 +59,7 @@ def test_without_pardiso_auto_falls_back_to_cholmod_and_says_so(system, monkeypa
     K, f = system
     monkeypatch.setitem(sys.modules, "pypardiso", None)
     monkeypatch.setattr(solvers, "_warned", set())
-    assert not solvers.pardiso_available()
+    assert not solver_choice.pardiso_available()
     with caplog.at_level(logging.WARNING, logger="fe_crank.fe.solvers"):
         fac = solvers.factorise(K, "auto")
     assert fac.method == "cholmod"
@@ -87,10 +87,10 @@ def test_neither_direct_solver_falls_back_to_iterative_with_a_note(system, monke
     monkeypatch.setitem(sys.modules, "pypardiso", None)
     monkeypatch.setitem(sys.modules, "cholespy", None)
     monkeypatch.setattr(solvers, "_warned", set())
-    assert solvers.choose_method("auto", 10) == "superlu"
-    assert solvers.choose_method("auto", 10**6) == "amg"
-    assert "much slower" in solvers.fallback_note("auto", 10**6)
-    assert solvers.fallback_note("superlu", 10**6) is None  # asked for: no fallback
+    assert solver_choice.choose_method("auto", 10) == "superlu"
+    assert solver_choice.choose_method("auto", 10**6) == "amg"
+    assert "much slower" in solver_choice.fallback_note("auto", 10**6)
+    assert solver_choice.fallback_note("superlu", 10**6) is None  # asked for: no fallback
 
 
 @needs_cholmod
@@ -141,8 +141,8 @@ def test_pardiso_out_of_core_writes_its_factor_to_disk_and_solves_as_in_core(sys
 
 def test_auto_goes_out_of_core_only_above_the_threshold():
     pytest.importorskip("pypardiso")
-    assert solvers.choose_method("auto", solvers.OOC_MIN_DOF) == "pardiso"  # medium (1.0-1.15M DOF)
-    assert solvers.choose_method("auto", solvers.OOC_MIN_DOF + 1) == "pardiso_ooc"  # fine (2.9M DOF)
+    assert solver_choice.choose_method("auto", solver_choice.OOC_MIN_DOF) == "pardiso"  # medium (1.0-1.15M DOF)
+    assert solver_choice.choose_method("auto", solver_choice.OOC_MIN_DOF + 1) == "pardiso_ooc"  # fine (2.9M DOF)
 
 
 def sp_triu(K):
@@ -156,7 +156,7 @@ import gc, json, sys
 import numpy as np
 import scipy.sparse as sp
 from fe_crank.fe.solvers import factorise
-from fe_crank.fe.symsolve import _pardiso_shared
+from fe_crank.fe.pardiso_shared import factorise_shared
 
 def rss():
     with open("/proc/self/statm") as fh:
@@ -179,7 +179,7 @@ def single():
 def shared():
     U1, U2 = sp.triu(K1, format="csr"), sp.triu(K2, format="csr")
     U1.sort_indices(); U2.sort_indices()
-    facs = _pardiso_shared([U1, U2])
+    facs = factorise_shared([U1, U2])
     assert np.allclose(K2 @ facs[1].solve(b), b)
     return facs
 

@@ -195,7 +195,7 @@ def test_one_shared_analysis_equals_separate_factorisations(monkeypatch):
 
 @pytest.mark.parametrize("method", ["superlu", "cholmod"])
 def test_other_direct_solvers_on_the_components(method):
-    from fe_crank.fe.solvers import cholmod_available
+    from fe_crank.fe.solver_choice import cholmod_available
 
     if method == "cholmod" and not cholmod_available():
         pytest.skip("cholespy not installed")

@@ -4,11 +4,24 @@
 that finds its worst value over every throw and where it occurs; ``evaluate_criteria``
 judges each limit of the load case with it (``verdict.judge``).  A criterion that cannot
 be evaluated (no data for it) is an ``InputError`` naming its key: it never passes
-silently.
+silently; one the model's results must not judge (UR M53 on FE SCFs of a mesh UR M53
+App. III rejects) is refused with the reason.
+
+Over a full-load curve (``speeds.StateResults`` of every speed and load state) a
+criterion that depends on speed (``Evaluator.speed == "sweep"``: the FE stress criteria,
+UR M53, the counterweights and their bolted joints) is evaluated at every speed: its
+value at a speed is the worst of the load states there (all cylinders firing, each
+misfire case), its verdict the worst speed, reported with that speed (``per_speed``
+lists them all, ``speeds.over_sweep``).  The overspeed criteria are evaluated at the
+overspeed (one speed); the unbalance error does not depend on speed.  ``locate`` is that
+search for one quantity; the convergence study's factor on the groups' stresses
+(``check.converged``) goes through it too.  The verdict line's qualifiers
+(``assess.qualifiers``) follow the location of the worst speed.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -17,14 +30,18 @@ from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.cw_joint import JOINT_QUANTITIES
 from fe_crank.assess.group import STATIC_ONLY_PREFIXES, Extreme, GroupResult
 from fe_crank.assess.qualifiers import qualified
+from fe_crank.assess.speeds import RPM, Found, StateResults, over_sweep
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.verdict import judge
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import QUANTITIES, Criteria
-from fe_crank.results import CriterionResult
+from fe_crank.results import CriterionResult, SpeedValue
 
-#: (value, where) of a criterion's worst case, or None when the model gives none
-Found = tuple[float, str] | None
+NOT_CONFORM = "not UR M53-conform"
+QUASI_STATIC_M53 = (
+    "the quasi-static journal torque accepted by m53_quasi_static_torque = true: UR M53 2.2.2 asks for "
+    "the torsional vibration over the speed range, which was not computed"
+)
 
 
 def _where(throw: str, ext: Extreme | None) -> str:
@@ -166,31 +183,68 @@ def _joint(quantity: str) -> Callable[[tuple[ThrowAssessment, ...]], Found]:
     return find
 
 
+#: where a quantity is evaluated: at every speed of the sweep, at the overspeed, at none
+SWEEP, OVERSPEED, NO_SPEED = "sweep", "overspeed", "none"
+
+
 @dataclass(frozen=True)
 class Evaluator:
     """How a quantity is found on the throws' results: ``find`` gives (worst value,
     location) or None; ``unit`` of the value ("" for a pure number); ``needs_overspeed``:
-    only defined with an overspeed."""
+    only defined with an overspeed; ``speed``: SWEEP (every speed of the full-load curve),
+    OVERSPEED or NO_SPEED (independent of speed)."""
 
     find: Callable[[tuple[ThrowAssessment, ...]], Found]
     unit: str = ""
     needs_overspeed: bool = False
+    speed: str = SWEEP
 
 
 EVALUATORS: dict[str, Evaluator] = {
     "static_safety": Evaluator(_group_evaluator("static_safety")),
-    "overspeed_safety": Evaluator(_group_evaluator("overspeed_safety"), needs_overspeed=True),
+    "overspeed_safety": Evaluator(_group_evaluator("overspeed_safety"), needs_overspeed=True, speed=OVERSPEED),
     "fatigue_safety": Evaluator(_group_evaluator("fatigue_safety")),
     "gough_pollard_safety": Evaluator(_group_evaluator("gough_pollard_safety")),
     "counterweight_stress": Evaluator(_group_evaluator("counterweight_stress"), unit="Pa"),
     "counterweight_overspeed_stress": Evaluator(
-        _group_evaluator("counterweight_overspeed_stress"), unit="Pa", needs_overspeed=True
+        _group_evaluator("counterweight_overspeed_stress"), unit="Pa", needs_overspeed=True, speed=OVERSPEED
     ),
     "m53_acceptability": Evaluator(_m53),
-    "unbalance_error": Evaluator(_unbalance),
+    "unbalance_error": Evaluator(_unbalance, speed=NO_SPEED),
     "bolt_utilisation": Evaluator(_bolts),
     **{q: Evaluator(_joint(q)) for q in JOINT_QUANTITIES},
 }
+
+
+def locate(
+    quantity: str,
+    sense: str,
+    throws: tuple[ThrowAssessment, ...],
+    *,
+    sweep: tuple[StateResults, ...] = (),
+    overspeed: float | None = None,
+    factor: Callable[[str, str], float] | None = None,
+) -> tuple[float, str, float | None, tuple[SpeedValue, ...]] | None:
+    """(worst value, where, its speed in rpm or None, per-speed values) of ``quantity``:
+    over the sweep for a speed-dependent quantity (``throws`` then unused), on ``throws``
+    (the operating speed's, with the overspeed) otherwise; None when the model gives none.
+    ``factor(throw, group)``: k on the groups' stresses of a group quantity (``over_groups``).
+    A criterion the results must not judge raises ``Refused``."""
+    ev = EVALUATORS[quantity]
+    find = ev.find
+    if factor is not None and quantity in GROUP_QUANTITIES:
+
+        def find(th: tuple[ThrowAssessment, ...]) -> Found:
+            return over_groups(quantity, th, factor)
+
+    if ev.speed == SWEEP and sweep:
+        return over_sweep(find, sense, sweep)
+    got = find(throws)
+    if got is None:
+        return None
+    if ev.speed == OVERSPEED and overspeed is not None:
+        return got[0], got[1], overspeed * RPM, (SpeedValue(overspeed * RPM, got[0], got[1]),)
+    return got[0], got[1], None, ()
 
 
 def evaluate_criteria(
@@ -199,10 +253,14 @@ def evaluate_criteria(
     *,
     file: str = "",
     overspeed: float | None = None,
+    sweep: tuple[StateResults, ...] = (),
     qualifiers: dict[str, str] | None = None,
 ) -> tuple[CriterionResult, ...]:
-    """Each limit of ``criteria`` -> a verdict (module docstring).  ``qualifiers``: quantity
-    -> words its verdict line carries after the location (``assess.qualifiers``)."""
+    """Each limit of ``criteria`` -> a verdict (module docstring).  ``throws``: the
+    operating speed's results (with the overspeed); ``sweep``: every speed and state of
+    the full-load curve (the operating speed's firing state among them), () for the
+    operating speed alone.  ``qualifiers``: quantity -> words its verdict line carries
+    after the location (``assess.qualifiers``)."""
     qualifiers = qualifiers or {}
     out = []
     for lim in criteria.limits:
@@ -210,27 +268,29 @@ def evaluate_criteria(
         if ev.needs_overspeed and overspeed is None:
             raise InputError("needs operating.overspeed", file=file, key=lim.key)
         try:
-            got = ev.find(throws)
+            found = locate(lim.quantity, lim.sense, throws, sweep=sweep, overspeed=overspeed)
         except Refused as exc:
             raise InputError(f"cannot be evaluated: {exc}", file=file, key=lim.key) from None
-        if got is None:
+        if found is None:
             raise InputError(
                 f"cannot be evaluated: the model gives no {lim.quantity.replace('_', ' ')} "
                 "(missing geometry, mesh group, balance requirement or bolt data)",
                 file=file,
                 key=lim.key,
             )
-        value, where = got
-        out.append(
-            judge(
-                lim.key,
-                lim.quantity,
-                lim.sense,
-                value,
-                lim.value,
-                unit=ev.unit,
-                location=qualified(where, qualifiers.get(lim.quantity, "")),
-                description=QUANTITIES[lim.quantity].meaning,
-            )
+        value, where, speed_rpm, per_speed = found
+        meaning = QUANTITIES[lim.quantity].meaning
+        if lim.quantity == "m53_acceptability" and criteria.m53_quasi_static_torque:
+            meaning = f"{meaning}; {NOT_CONFORM} ({QUASI_STATIC_M53})"
+        verdict = judge(
+            lim.key,
+            lim.quantity,
+            lim.sense,
+            value,
+            lim.value,
+            unit=ev.unit,
+            location=qualified(where, qualifiers.get(lim.quantity, "")),
+            description=meaning,
         )
+        out.append(dataclasses.replace(verdict, per_speed=per_speed, speed_rpm=speed_rpm))
     return tuple(out)

@@ -22,6 +22,8 @@ ASSESSED_BOUNDARIES = (
     "counterweight_fillet_2",
 )
 COUNTERWEIGHTS = ("counterweight_1", "counterweight_2")
+#: the unit cases besides the pin cases that the superposition takes (``superpose.load_coefficients``)
+SUPERPOSED = ("centrifugal", "torque", "angular_acceleration")
 
 
 def _element_nodes(unit_solutions: UnitSolutions, elements) -> np.ndarray:
@@ -86,9 +88,7 @@ def unit_stresses(unit_solutions: UnitSolutions, groups: dict[str, np.ndarray] |
     ids = np.unique(np.concatenate(list(groups.values())))
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
     cases = tuple(
-        c
-        for c in unit_solutions.cases
-        if c in ("centrifugal", "torque") or pin_direction(c) is not None or patch_case(c) is not None
+        c for c in unit_solutions.cases if c in SUPERPOSED or pin_direction(c) is not None or patch_case(c) is not None
     )
     stress = _recover(unit_solutions, cases, ids)  # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0

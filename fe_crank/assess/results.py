@@ -156,6 +156,8 @@ def criterion_json(c: CriterionResult) -> dict:
         "unit": c.unit,
         "location": c.location,
         "description": c.description,
+        "speed_rpm": c.speed_rpm,
+        "per_speed": [{"speed_rpm": p.speed_rpm, "value": _num(p.value), "location": p.location} for p in c.per_speed],
     }
 
 

@@ -31,9 +31,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from fe_crank.assess import m53
+from fe_crank.cad.config import CadInput
+from fe_crank.cad.source import mesh_source_throw
 from fe_crank.fe.scf import JOURNAL_FILLETS, PIN_FILLETS, ScfStresses, scf_stresses, web_centres_from_mesh
 from fe_crank.fe.web_mesh import MIN_ELEMENTS_ACROSS, WebElements, web_elements_across, web_groups
-from fe_crank.mesh import mesh_throw
+from fe_crank.geometry.spec import CrankGeometry
 
 ELEMENT_SIZE_LIMIT = 0.25  # fillet element edge / r, UR M53 App. III 2.1
 
@@ -176,12 +178,9 @@ def empirical(geo: m53.M53Geometry) -> tuple[dict[str, float | None], dict[str, 
     return emp, {"pin": bad_p, "journal": bad_j}
 
 
-def web_centres_of(geometry) -> tuple[float, float] | None:
+def web_centres_of(geometry: CrankGeometry) -> tuple[float, float]:
     """Web centre planes z = -+(L_pin/2 + W/2) of a ``CrankGeometry`` (docs/contracts.md axial layout)."""
-    try:
-        z = 0.5 * geometry.crankpin_length + 0.5 * geometry.web_thickness
-    except AttributeError:
-        return None
+    z = 0.5 * geometry.crankpin_length + 0.5 * geometry.web_thickness
     return (-z, z)
 
 
@@ -234,15 +233,15 @@ def scf_mesh_options(options):
 
 
 def scf_mesh(throw_mesh, geometry):
-    """The throw mesh the SCF mode runs on: the load case's ``mesh_throw`` mesh, or, when that
-    mesh is coarser than r/4 in the fillets (e.g. the ``test`` preset), the same throw of
-    ``geometry`` meshed again with ``scf_mesh_options`` (same cache).  A mesh without
-    options or a geometry that cannot be meshed here is used as it is (its ``mesh_ok`` says
-    whether the appendix accepts it)."""
+    """The throw mesh the SCF mode runs on: the load case's mesh, or, when that mesh is
+    coarser than r/4 in the fillets (e.g. the ``test`` preset), the same throw of
+    ``geometry`` (a ``CrankGeometry`` or a CAD file's ``CadInput``) meshed again with
+    ``scf_mesh_options`` (same cache).  A mesh without options or a geometry that cannot
+    be meshed here is used as it is (its ``mesh_ok`` says whether the appendix accepts it)."""
     opt = getattr(throw_mesh, "options", None)
     want = scf_mesh_options(opt)
-    if want is opt or not hasattr(geometry, "throw") or getattr(throw_mesh, "throw", None) is None:
+    if want is opt or not isinstance(geometry, CrankGeometry | CadInput) or getattr(throw_mesh, "throw", None) is None:
         return throw_mesh
     folder = Path(throw_mesh.msh_path).parent
     cache = folder.parent if folder.name == throw_mesh.key else None
-    return mesh_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)
+    return mesh_source_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)

@@ -24,8 +24,10 @@ from pathlib import Path
 
 from fe_crank.assess import m53
 from fe_crank.assess.scf import ScfResult, compute_scf, scf_mesh
+from fe_crank.cad.config import CadInput
+from fe_crank.cad.source import mesh_source_throw
 from fe_crank.fe.web_mesh import MIN_ELEMENTS_ACROSS
-from fe_crank.mesh import mesh_throw
+from fe_crank.geometry.spec import CrankGeometry
 
 MAX_REFINEMENTS = 3
 FILLET_STEP = 1.5
@@ -71,19 +73,25 @@ def accepted_scf(
     max_refinements: int = MAX_REFINEMENTS,
 ) -> ScfResult:
     """The SCF mode (``scf.compute_scf``) on the check's ``throw_mesh`` (a ``ThrowMesh`` of
-    ``geometry``), refined until UR M53 App. III accepts the mesh or ``max_refinements``
-    new meshes were made (module docstring)."""
+    ``geometry``: a ``CrankGeometry`` or a CAD file's ``CadInput``), refined until UR M53
+    App. III accepts the mesh or ``max_refinements`` new meshes were made (module docstring)."""
     mesh = scf_mesh(throw_mesh, geometry)
     tried: list[str] = []
     while True:
         result = compute_scf(mesh, material, geo, web_centres=web_centres, solver=solver)
         opts = getattr(mesh, "options", None)
-        if result.mesh_ok or len(tried) >= max_refinements or opts is None or not hasattr(geometry, "throw"):
+        if (
+            result.mesh_ok
+            or len(tried) >= max_refinements
+            or opts is None
+            or not isinstance(geometry, CrankGeometry | CadInput)
+        ):
             return dataclasses.replace(result, refinement=tuple(tried))
         new, why = refined_options(opts, result)
         tried.append(f"{_words(opts)}: {why}")
         folder = Path(mesh.msh_path).parent
-        mesh = mesh_throw(geometry, mesh.throw, size=new, cache_dir=folder.parent if folder.name == mesh.key else None)
+        cache = folder.parent if folder.name == mesh.key else None
+        mesh = mesh_source_throw(geometry, mesh.throw, size=new, cache_dir=cache)
 
 
 __all__ = ["MAX_REFINEMENTS", "FILLET_STEP", "refined_options", "accepted_scf"]

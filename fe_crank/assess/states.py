@@ -31,14 +31,12 @@ import numpy as np
 
 from fe_crank.assess.group import GroupResult
 from fe_crank.assess.groups import COUNTERWEIGHTS
+from fe_crank.assess.loads import LoadState
 from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.fe.pin_patches import rod_loads
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.support_frame import field_in_support_frame
 from fe_crank.fe.unit_cases import UnitSolutions
-from fe_crank.mechanism.cycles import OverspeedCycle
-from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.throw_scope import throws_of
 
 #: the shaft fillets whose averaging indicator is checked (UR M53 App. III 2.3)
@@ -103,34 +101,36 @@ def throw_names(keys, throws: dict) -> list[str]:
     return [n for n in throws if n in wanted]
 
 
-def angle_index(dyn: DynamicsResult, angle: float | None) -> int:
+def angle_index(state: LoadState, angle: float | None) -> int:
     """Index of the cycle angle nearest ``angle`` (the first of equals)."""
     if angle is None:
         return 0
-    return int(np.argmin(np.abs(np.asarray(dyn.theta) - angle)))
+    return int(np.argmin(np.abs(np.asarray(state.theta) - angle)))
 
 
 def field_at_angle(
     unit_solutions: UnitSolutions,
-    dyn: DynamicsResult,
+    state: LoadState,
     throw: str,
     index: int,
     sense: int,
     places: dict[str, float] | None = None,
 ) -> np.ndarray:
-    """Displacement of the throw at cycle-angle index ``index`` of ``dyn`` (the operating
-    cycle, or an overspeed cycle: ``dyn.speed`` is the omega of its centrifugal term).
-    ``places``: each rod's place on the pin (``fe.pin_patches.rod_positions``): with the FE
-    model's patch cases, each rod's force goes to its band, as in the assessment
-    (``superpose.cycle_coefficients``, the same coefficients).  The displacement is in the
-    frame of the supports (``fe.support_frame``: the rigid motion the determinate solve
-    leaves in removed, the main-bearing centres at rest), as the report writes and draws it;
-    its stresses are the solve's (a rigid motion has none)."""
-    tl = dyn.throws[throw]
+    """Displacement of the throw at cycle-angle index ``index`` of the load state
+    ``state`` (the operating cycle, or an overspeed cycle: ``state.speed`` is the omega
+    of its centrifugal term), with the assessment's loads (``assess.loads.ThrowCycle``)
+    and coefficients (``superpose.cycle_coefficients``).  ``places``: each rod's place on
+    the pin (``fe.pin_patches.rod_positions``): with the FE model's patch cases, each rod's
+    force goes to its band, as in the assessment.  The displacement is in the frame of the
+    supports (``fe.support_frame``: the rigid motion the determinate solve leaves in
+    removed, the main-bearing centres at rest), as the report writes and draws it; its
+    stresses are the solve's (a rigid motion has none)."""
+    tc = state.throws[throw]
     cases = tuple(unit_solutions.cases)
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0
     one = slice(index, index + 1)
-    rods = rod_loads(tl, places or {})
+    alpha = tc.angular_acceleration
+    rods = tc.fe_rod_loads(places or {})
     unit = UnitStresses(
         np.zeros((len(cases), 6, 0)),
         np.zeros((3, 0)),
@@ -140,11 +140,13 @@ def field_at_angle(
     )
     c = cycle_coefficients(
         unit,
-        tl.pin_force[one],
-        tl.torque_front[one],
-        dyn.speed,
+        tc.fe_pin[one],
+        tc.torque_in[one],
+        state.speed,
         sense=sense,
         rod_loads=None if rods is None else tuple((np.asarray(f)[one], e) for f, e in rods),
+        angular_acceleration=None if alpha is None else alpha[one],
+        vibration=tc.fe_pin_force is not None and not tc.fe_rods,
     )[0]
     return field_in_support_frame(unit_solutions, unit_solutions.combine(dict(zip(cases, c))))
 
@@ -215,7 +217,7 @@ def overspeed_state(
     unit_solutions: UnitSolutions,
     throws: tuple[ThrowAssessment, ...],
     names: list[str],
-    cycles: tuple[OverspeedCycle, ...],
+    cycles: tuple[LoadState, ...],
     senses: dict[str, int],
     places: dict[str, dict[str, float]] | None = None,
 ) -> OverspeedState | None:
@@ -234,15 +236,15 @@ def overspeed_state(
     # take the cycle whose state at theta* reaches the table's value at its node.
     best = None
     for c in cycles:
-        theta = np.asarray(c.dynamics.theta)
+        theta = np.asarray(c.theta)
         index = int(np.argmin(np.abs(theta - ext.angle))) if ext.angle is not None else 0
-        u = field_at_angle(unit_solutions, c.dynamics, t.name, index, senses[t.name], (places or {}).get(t.name))
+        u = field_at_angle(unit_solutions, c, t.name, index, senses[t.name], (places or {}).get(t.name))
         at_node = von_mises_at(unit_solutions, u, int(ext.node)) if len(cycles) > 1 else 0.0
         if best is None or at_node > best[0]:
             best = (at_node, c, index, u)
     assert best is not None
     _, cycle, index, u = best
-    theta = np.asarray(cycle.dynamics.theta)
+    theta = np.asarray(cycle.theta)
     return OverspeedState(
         t.name,
         g.group,
@@ -252,8 +254,8 @@ def overspeed_state(
         tuple(float(c) for c in ext.point),
         index,
         float(np.degrees(theta[index])),
-        float(cycle.dynamics.speed),
-        cycle.gas,
+        float(cycle.speed),
+        cycle.case,
         np.asarray(u),
         tuple(gr for gr in t.groups if gr.group in COUNTERWEIGHTS),
     )
@@ -263,18 +265,19 @@ def model_states(
     keys: tuple[str, ...],
     unit_solutions: UnitSolutions,
     throws: tuple[ThrowAssessment, ...],
-    dyn: DynamicsResult,
-    overspeed: tuple[OverspeedCycle, ...],
+    dyn: LoadState,
+    overspeed: tuple[LoadState, ...],
     senses: dict[str, int],
     *,
     fields: bool,
     places: dict[str, dict[str, float]] | None = None,
 ) -> ModelStates | None:
     """The states of the FE model ``unit_solutions`` standing for the throws of ``keys``
-    (module docstring); None when the assessment has no hot spot for it.  ``fields``:
-    also recover the averaged nodal stress of both states on the whole mesh (for the
-    report's ``.vtu`` fields and pictures).  ``places``: throw -> its rods' places on the pin
-    (``fe.pin_patches.rod_positions``), for a model loaded per rod place."""
+    (module docstring) in the load state ``dyn`` (the operating speed, all cylinders
+    firing) and the overspeed cycles; None when the assessment has no hot spot for it.
+    ``fields``: also recover the averaged nodal stress of both states on the whole mesh
+    (for the report's ``.vtu`` fields and pictures).  ``places``: throw -> its rods' places
+    on the pin (``fe.pin_patches.rod_positions``), for a model loaded per rod place."""
     names = throw_names(keys, dyn.throws)
     crit = critical(throws, names)
     if crit is None:

@@ -141,16 +141,40 @@ def load_coefficients(
     return np.column_stack(cols)
 
 
-def cycle_coefficients(unit: UnitStresses, pin_force, torque, omega: float, *, sense: int = 1, rod_loads=None):
+def cycle_coefficients(
+    unit: UnitStresses,
+    pin_force,
+    torque,
+    omega: float,
+    *,
+    sense: int = 1,
+    rod_loads=None,
+    angular_acceleration=None,
+    vibration: bool = False,
+):
     """``load_coefficients`` of ``unit``'s cases; with patch cases, the rods' forces go to the
-    bands of their places (``rod_loads``: (force (n, 2), place m) per rod, ``fe.pin_patches``)."""
+    bands of their places (``rod_loads``: (force (n, 2), place m) per rod, ``fe.pin_patches``).
+    ``angular_acceleration`` and ``vibration`` (``pin_force`` then carries the cylinders'
+    vibratory inertia torque as a tangential force, ``torsion.flow.fe_loads``): the throw's
+    torsional vibration; the rods' own forces do not carry that torque, so a model loaded per
+    rod place is refused with it unless ``rod_loads`` are the rods' forces with their shares
+    of it (then ``vibration`` False: ``assess.loads.ThrowCycle.fe_rods``)."""
     patches = None
     if any(patch_case(c) is not None for c in unit.cases):
         if rod_loads is None:
             raise ValueError("the FE model loads the pin per rod place: the rods' forces and places are needed")
+        if vibration:
+            raise ValueError("the FE model loads the pin per rod place, which the vibratory pin force cannot load")
         patches = patch_forces(rod_loads, unit.pin_patches)
     return load_coefficients(
-        pin_force, torque, omega, cases=unit.cases, sense=sense, torque_mz=unit.torque_mz, patch_forces=patches
+        pin_force,
+        torque,
+        omega,
+        cases=unit.cases,
+        sense=sense,
+        torque_mz=unit.torque_mz,
+        patch_forces=patches,
+        angular_acceleration=angular_acceleration,
     )
 
 

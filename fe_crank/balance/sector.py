@@ -103,40 +103,42 @@ def solve_sector(
         raise InputError(f"to solve for {free} give {', '.join(missing)}", key=key)
     if not density > 0.0:
         raise InputError(f"density must be positive (got {density})", key=key)
+    # the given dimensions (checked above); the free one is nan until solved for below
+    ro, ri, t, phi = (math.nan if v is None else v for v in (r_outer, r_inner, thickness, angle))
     k3 = 2.0 / 3.0 * density
     if free == "thickness":
-        thickness = unbalance / (k3 * math.sin(angle / 2.0) * (r_outer**3 - r_inner**3))
+        t = unbalance / (k3 * math.sin(phi / 2.0) * (ro**3 - ri**3))
     elif free == "r_outer":
-        r_outer = (r_inner**3 + unbalance / (k3 * thickness * math.sin(angle / 2.0))) ** (1.0 / 3.0)
+        ro = (ri**3 + unbalance / (k3 * t * math.sin(phi / 2.0))) ** (1.0 / 3.0)
     elif free == "r_inner":
-        rest = r_outer**3 - unbalance / (k3 * thickness * math.sin(angle / 2.0))
+        rest = ro**3 - unbalance / (k3 * t * math.sin(phi / 2.0))
         if rest < 0.0:
             raise InputError(
-                f"even a full sector out to r_outer = {r_outer * 1e3:.4g} mm gives only "
-                f"{k3 * thickness * math.sin(angle / 2) * r_outer**3:.4g} kg m, {unbalance:.4g} kg m required",
+                f"even a full sector out to r_outer = {ro * 1e3:.4g} mm gives only "
+                f"{k3 * t * math.sin(phi / 2) * ro**3:.4g} kg m, {unbalance:.4g} kg m required",
                 key=key,
             )
-        r_inner = rest ** (1.0 / 3.0)
+        ri = rest ** (1.0 / 3.0)
     else:
-        s = unbalance / (k3 * thickness * (r_outer**3 - r_inner**3))
+        s = unbalance / (k3 * t * (ro**3 - ri**3))
         if s > 1.0:
             raise InputError(
                 f"needs {unbalance:.4g} kg m but a 180 deg sector of these radii and thickness gives only "
                 f"{unbalance / s:.4g} kg m (a wider angle gives less): the counterweight cannot fit",
                 key=key,
             )
-        angle = 2.0 * math.asin(s)
-    if angle > 2.0 * math.pi + 1e-12:
-        raise InputError(f"needs an included angle of {math.degrees(angle):.4g} deg > 360 deg", key=key)
-    if envelope is not None and r_outer > envelope * (1.0 + 1e-12):
+        phi = 2.0 * math.asin(s)
+    if phi > 2.0 * math.pi + 1e-12:
+        raise InputError(f"needs an included angle of {math.degrees(phi):.4g} deg > 360 deg", key=key)
+    if envelope is not None and ro > envelope * (1.0 + 1e-12):
         raise InputError(
-            f"needs an outer radius of {r_outer * 1e3:.4g} mm, beyond the envelope of {envelope * 1e3:.4g} mm: "
+            f"needs an outer radius of {ro * 1e3:.4g} mm, beyond the envelope of {envelope * 1e3:.4g} mm: "
             "the counterweight cannot provide the required unbalance; widen, thicken or use a denser material",
             key=key,
         )
-    if journal_radius is not None and r_inner < journal_radius * (1.0 - 1e-12):
+    if journal_radius is not None and ri < journal_radius * (1.0 - 1e-12):
         raise InputError(
-            f"needs an inner radius of {r_inner * 1e3:.4g} mm, inside the journal radius {journal_radius * 1e3:.4g} mm",
+            f"needs an inner radius of {ri * 1e3:.4g} mm, inside the journal radius {journal_radius * 1e3:.4g} mm",
             key=key,
         )
-    return annular_sector(r_outer, r_inner, thickness, angle, density)
+    return annular_sector(ro, ri, t, phi, density)

@@ -131,6 +131,7 @@ def balance_shafts(
     p, q = rotating_parts(a, b, c, d)
     scale = max(abs(p) + abs(q), 1e-300)
     designs: list[tuple[BalanceShaft, int]] = []
+    z: tuple[float, ...]  # axial positions of a shaft's unbalances: one (force) or a pair (couple)
     if abs(p) + abs(q) == 0.0:
         return BalanceShaftDesign(component, order, (), forces)
     # direction of the major axis (engine convention): where the two vectors line up

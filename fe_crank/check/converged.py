@@ -21,7 +21,11 @@ A safety factor (static, overspeed, fatigue, Gough-Pollard) is divided by k -- e
 the static ones, conservative for Goodman (UR M53's sigma_add does not grow) -- and a
 stress limit (counterweight stresses) multiplied by it; groups the study does not follow
 (the counterweight bodies, their junctions) keep k = 1.  The worst group after this may be
-another than the assessed mesh's; the criterion's location names it and the factor.
+another than the assessed mesh's; the criterion's location names it and the factor.  Over a
+full-load curve the factors apply at every speed and load state (a group's k is the same
+at every speed: the study measures the mesh, whose refinement ratio a load's magnitude does
+not change), and the criterion is the worst speed again (``assess.criteria.locate``), each
+speed's value scaled in ``per_speed``.
 
 The study's own criterion, ``mesh_convergence``: the assessed mesh and the finest level
 must agree within the tolerance (5 %) for every load set, else the sign-off fails as not
@@ -30,10 +34,12 @@ converged.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
-from fe_crank.assess.criteria import over_groups
+from fe_crank.assess.criteria import locate
+from fe_crank.assess.qualifiers import qualified
 from fe_crank.assess.verdict import judge
 from fe_crank.fe.convergence import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceStudy
 from fe_crank.results import CriterionResult
@@ -139,10 +145,19 @@ def surface_factor(studies: dict, throw: str, group: str) -> tuple[float, str, s
 
 
 def refine(
-    criteria: tuple[CriterionResult, ...], throws, studies: dict
+    criteria: tuple[CriterionResult, ...],
+    throws,
+    studies: dict,
+    *,
+    sweep: tuple = (),
+    overspeed: float | None = None,
+    qualifiers: dict[str, str] | None = None,
 ) -> tuple[tuple[CriterionResult, ...], tuple[Refinement, ...]]:
     """``criteria`` with the FE stress criteria re-evaluated at the study's estimates
-    (module docstring), and the factor each of them ends up at (its governing group's)."""
+    (module docstring), and the factor each of them ends up at (its governing group's).
+    ``throws``, ``sweep``, ``overspeed``, ``qualifiers``: the assessment's (``Assessment``:
+    the operating speed's throws, every speed and load state, the overspeed, the verdict
+    line's words)."""
     cache: dict[tuple[str, str], tuple[float, str, str, float] | None] = {}
 
     def got(throw: str, group: str):
@@ -156,31 +171,42 @@ def refine(
 
     out, made = [], []
     for c in criteria:
-        found = over_groups(c.quantity, throws, factor) if c.quantity in SCALED else None
+        found = (
+            locate(c.quantity, c.sense, throws, sweep=sweep, overspeed=overspeed, factor=factor)
+            if c.quantity in SCALED
+            else None
+        )
         if found is None:
             out.append(c)
             continue
-        value, where = found
+        value, where, speed_rpm, per_speed = found
         parts = where.split(", ")
         f = got(parts[0].removeprefix("throw "), parts[1]) if len(parts) > 1 else None
         if f is not None:
-            r = Refinement(c.name, f[0], SURFACES[_surface(parts[1])], f[1], f[2], f[3])
+            r = Refinement(c.name, f[0], SURFACES[_surface(parts[1]) or ""], f[1], f[2], f[3])
             made.append(r)
             where = f"{where}; {r.words}"
-        out.append(
-            judge(c.name, c.quantity, c.sense, value, c.limit, unit=c.unit, location=where, description=c.description)
+        where = qualified(where, (qualifiers or {}).get(c.quantity, ""))
+        verdict = judge(
+            c.name, c.quantity, c.sense, value, c.limit, unit=c.unit, location=where, description=c.description
         )
+        out.append(dataclasses.replace(verdict, per_speed=per_speed, speed_rpm=speed_rpm))
     return tuple(out), tuple(made)
 
 
-def refined(criteria: tuple[CriterionResult, ...], throws, studies: dict) -> tuple[CriterionResult, ...]:
-    """``criteria`` taken at the study's estimates (``refine``)."""
-    return refine(criteria, throws, studies)[0]
+def refined(criteria: tuple[CriterionResult, ...], throws, studies: dict, **assessed) -> tuple[CriterionResult, ...]:
+    """``criteria`` taken at the study's estimates (``refine``; ``assessed``: its keywords)."""
+    return refine(criteria, throws, studies, **assessed)[0]
 
 
-def refinements(criteria: tuple[CriterionResult, ...], throws, studies: dict) -> tuple[Refinement, ...]:
-    """The factor each FE stress criterion is taken at (``refine``)."""
-    return refine(criteria, throws, studies)[1]
+def refinements(criteria: tuple[CriterionResult, ...], throws, studies: dict, **assessed) -> tuple[Refinement, ...]:
+    """The factor each FE stress criterion is taken at (``refine``; ``assessed``: its keywords)."""
+    return refine(criteria, throws, studies, **assessed)[1]
+
+
+def of_assessment(a) -> dict:
+    """``refine``'s keywords from an ``assess.case.Assessment``."""
+    return {"sweep": a.sweep, "overspeed": a.overspeed, "qualifiers": a.qualifiers}
 
 
 def criterion(studies: dict[str, ConvergenceStudy]) -> CriterionResult:
@@ -208,4 +234,14 @@ def criterion(studies: dict[str, ConvergenceStudy]) -> CriterionResult:
     )
 
 
-__all__ = ["Refinement", "richardson", "estimate", "surface_factor", "refine", "refinements", "refined", "criterion"]
+__all__ = [
+    "Refinement",
+    "richardson",
+    "estimate",
+    "surface_factor",
+    "refine",
+    "refinements",
+    "refined",
+    "of_assessment",
+    "criterion",
+]

@@ -98,7 +98,7 @@ def case_notes(
         )
     for st in a.states if a is not None else ():
         for g, v in st.averaging.items():
-            if abs(v) > AVERAGING_LIMIT:
+            if abs(v) > AVERAGING_LIMIT and a is not None:
                 located = fillet_criteria(a, g, st.throws)
                 concerns = located or _names(a, FE_STRESS_QUANTITIES)
                 text = (
@@ -121,7 +121,12 @@ def case_notes(
                         else "",
                     )
                 )
-    for r in converged.refinements(a.criteria, a.throws, out.convergence) if a is not None and out.convergence else ():
+    found = (
+        converged.refinements(a.criteria, a.throws, out.convergence, **converged.of_assessment(a))
+        if a is not None and out.convergence
+        else ()
+    )
+    for r in found:
         notes.append(
             Note(
                 f"{r.criterion.split('.')[-1]} taken at the convergence study's estimate of the converged peak, "

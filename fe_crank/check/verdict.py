@@ -45,7 +45,8 @@ def decide(out: CaseOutputs, error: str = "") -> Verdict:
     a = out.assessment
     criteria = a.criteria if a is not None else ()
     if out.convergence:
-        criteria = converged.refined(criteria, a.throws if a is not None else (), out.convergence)
+        if a is not None:
+            criteria = converged.refined(criteria, a.throws, out.convergence, **converged.of_assessment(a))
         criteria += (converged.criterion(out.convergence),)
     nan = _nan_criterion(criteria)
     if nan:

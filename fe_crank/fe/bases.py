@@ -47,9 +47,10 @@ class RobustIsoparametric(MappingIsoparametric):
     """
 
     def clear_memo(self) -> None:
-        self._invdf_memo = None
-        self._invf_memo = None
-        self._cache = {}
+        # (argument, element list, result) of the last call; None: nothing kept
+        self._invdf_memo: tuple[np.ndarray, np.ndarray | None, np.ndarray] | None = None
+        self._invf_memo: tuple[np.ndarray, np.ndarray | None, np.ndarray] | None = None
+        self._cache: dict[int, np.ndarray] = {}  # the parent's Jacobians, by a hash of (i, j, X, tind)
 
     @staticmethod
     def _same(a, b) -> bool:

@@ -34,6 +34,7 @@ import logging
 import time
 from dataclasses import dataclass, field
 
+from fe_crank.cad.config import CadInput
 from fe_crank.fe.convergence_loads import DEFAULT_LOADS, check_loads
 from fe_crank.fe.fe_options import Material
 from fe_crank.fe.surface_peaks import (  # noqa: F401 (FILLETS, peak_fillet_stress: the study's measures, named here too)
@@ -134,7 +135,7 @@ def fillet_convergence(
     cache_dir=None,
     first=None,
 ) -> ConvergenceStudy:
-    """Mesh ``throw`` of ``geometry`` at fillet sizes r/(n f) (and oil-bore divisions n_b f),
+    """Mesh ``throw`` of ``geometry`` (parametric or a CAD file) at fillet sizes r/(n f) (and oil-bore divisions n_b f),
     f in ``factors``, and compare peaks.
 
     ``base``: the ``MeshOptions`` (or preset name) of the first level, n its
@@ -146,7 +147,8 @@ def fillet_convergence(
     solving again, when it holds every unit case the loads need and was solved with the
     same support model.  Returns a :class:`ConvergenceStudy`.
     """
-    from fe_crank.mesh import PRESETS, MeshOptions, mesh_throw
+    from fe_crank.cad.source import mesh_source_throw
+    from fe_crank.mesh import PRESETS, MeshOptions
 
     if len(factors) < 2:
         raise ValueError("a convergence study needs at least two levels")
@@ -164,7 +166,7 @@ def fillet_convergence(
         if reuse:
             tm, unit_solutions = first
         else:
-            tm = mesh_throw(geometry, throw=throw, size=mopt, cache_dir=cache_dir)
+            tm = mesh_source_throw(geometry, throw, size=mopt, cache_dir=cache_dir)
             unit_solutions = solve_unit_cases(tm, material, opts)
         fields = {name: unit_solutions.combine(w) for name, w in loads.items()}
         got = peak_fillet_stresses(unit_solutions, fields)
@@ -239,7 +241,7 @@ def wanted(flag: bool | None, preset: str) -> bool:
 
 
 def check_studies(
-    geometry: CrankGeometry,
+    geometry: CrankGeometry | CadInput,
     material: Material,
     fe_options: FeOptions,
     meshes: dict[str, ThrowMesh],

@@ -13,15 +13,39 @@ term lives there): the same sums, in the same order, as on the whole vector.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
+import scipy.sparse as sp
+
+from fe_crank.fe.determinate import DeterminateSupport
+from fe_crank.fe.supports import Coupling
+
+#: generalised loads (Fx, Fy, Fz, Mx, My, Mz) at couplings' reference points, by boundary
+RefLoads = Mapping[str, np.ndarray]
 
 
 class EquilibriumChecks:
-    """The reaction and equilibrium methods of ``System`` (its fields: ``points``, ``rows``,
-    ``K_rows``, ``Ks``, ``determinate``, ``foundation_dofs``, ``couplings``, ``slave_dofs``,
-    ``ref_points``, ``dirichlet_dofs``, ``point_dofs``)."""
+    """The reaction and equilibrium methods of ``System``, on the fields declared here
+    (``System``'s, see there)."""
 
-    def reactions(self, u: np.ndarray, f: np.ndarray, ref_loads: dict | None = None) -> dict[str, np.ndarray]:
+    rows: np.ndarray
+    K_rows: sp.csr_matrix
+    Ks: sp.csr_matrix
+    determinate: DeterminateSupport | None
+    foundation_dofs: dict[str, np.ndarray]
+    couplings: tuple[Coupling, ...]
+    slave_dofs: dict[str, np.ndarray]
+    ref_points: dict[str, np.ndarray]
+    dirichlet_dofs: np.ndarray
+    point_dofs: np.ndarray
+
+    @property
+    def points(self) -> np.ndarray:
+        """Coordinates (3, N) of the nodes (``System.points``)."""
+        raise NotImplementedError
+
+    def reactions(self, u: np.ndarray, f: np.ndarray, ref_loads: RefLoads | None = None) -> dict[str, np.ndarray]:
         """Resultant reaction on the body of each support, (Fx, Fy, Fz, Mx, My, Mz) about the origin.
 
         Foundations: the spring forces -K_s u.  Couplings and Dirichlet sets: the nodal
@@ -35,7 +59,7 @@ class EquilibriumChecks:
         those of the whole-vector formulas without their 3 N-long temporaries.
         """
         x = self.points
-        out = {}
+        out: dict[str, np.ndarray] = {}
         f_rows = f[self.rows]
         if self.determinate is not None:
             R = self.determinate.reactions(f)
@@ -62,7 +86,7 @@ class EquilibriumChecks:
             out["point_constraints"] = self._point_resultant(r_rows[np.searchsorted(self.rows, self.point_dofs)])
         return out
 
-    def _rows_of(self, M):
+    def _rows_of(self, M: sp.spmatrix) -> sp.csr_matrix:
         """M[rows] (sparse), kept: the same rows are read for every case."""
         key = ("rows", id(M))
         memo = self.__dict__.setdefault("_memo", {})
@@ -84,7 +108,7 @@ class EquilibriumChecks:
         fn[np.searchsorted(nodes, self.point_dofs // 3), self.point_dofs % 3] = r
         return _resultant_of(fn, x=self.points[:, nodes].T)
 
-    def applied(self, f: np.ndarray, ref_loads: dict | None = None) -> tuple[np.ndarray, float, float]:
+    def applied(self, f: np.ndarray, ref_loads: RefLoads | None = None) -> tuple[np.ndarray, float, float]:
         """Resultant of the applied loads and the force and moment scales used for errors.
 
         One cross product x_i x f_i serves the moment and the moment scale."""
@@ -100,7 +124,14 @@ class EquilibriumChecks:
             mscale += np.linalg.norm(g[3:])
         return res, fscale, mscale
 
-    def equilibrium_error(self, u, f, ref_loads=None, *, applied=None) -> tuple[float, dict[str, np.ndarray]]:
+    def equilibrium_error(
+        self,
+        u: np.ndarray,
+        f: np.ndarray,
+        ref_loads: RefLoads | None = None,
+        *,
+        applied: tuple[np.ndarray, float, float] | None = None,
+    ) -> tuple[float, dict[str, np.ndarray]]:
         """max(|sum F|/F_scale, |sum M|/M_scale) of applied loads plus reactions, and the reactions.
 
         F_scale is the sum of the magnitudes of the nodal loads, M_scale the sum of the
@@ -125,6 +156,6 @@ def _resultant_of(fn: np.ndarray, x: np.ndarray) -> np.ndarray:
     return np.concatenate([fn.sum(axis=0), np.cross(x, fn).sum(axis=0)])
 
 
-def _generalised_at_origin(load, x0) -> np.ndarray:
+def _generalised_at_origin(load: np.ndarray, x0: np.ndarray) -> np.ndarray:
     load = np.asarray(load, float)
     return np.concatenate([load[:3], load[3:] + np.cross(x0, load[:3])])

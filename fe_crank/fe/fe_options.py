@@ -40,7 +40,7 @@ class FeOptions:
     bearing_stiffness: N/m^3, the foundation's stiffness per area ("foundation" only, required there).
     torque_reaction: the end face that reacts the torque (where the power is taken off):
     "end_2" (default, rear/flywheel side) or "end_1"; the ``torque`` unit case enters at the other.
-    solver: "auto" | "pardiso" | "pardiso_ooc" | "cholmod" | "amg" | "superlu" (``fe.solvers``).
+    solver: "auto" | "pardiso" | "pardiso_ooc" | "cholmod" | "amg" | "superlu" (``fe.solver_choice``).
     cases: which unit cases to solve: "centrifugal", "torque" and pin cases by direction
     ("pin_x", "pin_y", "pin_-x", "pin_-y", "pin_<deg>"; see ``pin_directions``).
     pin_half_angle: rad, half width of the cosine pressure arc.

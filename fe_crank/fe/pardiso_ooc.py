@@ -1,5 +1,5 @@
 """MKL PARDISO out of core (``[fe] solver = "pardiso_ooc"``, and ``auto`` above
-``solvers.OOC_MIN_DOF`` unknowns): the factor is kept in files when it does not fit the
+``solver_choice.OOC_MIN_DOF`` unknowns): the factor is kept in files when it does not fit the
 in-core budget.
 
 MKL takes its out-of-core settings from environment variables only

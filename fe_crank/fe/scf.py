@@ -136,7 +136,7 @@ def _peaks(mesh, u, E, nu, groups, measure: str, basis) -> dict[str, Peak]:
             g,
             float(m_avg[i]),
             i,
-            tuple(float(c) for c in x),
+            (float(x[0]), float(x[1]), float(x[2])),
             float(p.min() / p.max()) if p.max() > 0 else 0.0,
             float(dev),
         )
@@ -236,7 +236,7 @@ def scf_stresses(
         lever=lever,
         equilibrium_error=eq,
         n_dof=n_dof,
-        support_points={k: tuple(float(c) for c in v) for k, v in refs.items()},
+        support_points={k: (float(v[0]), float(v[1]), float(v[2])) for k, v in refs.items()},
     )
 
 

@@ -1,25 +1,8 @@
 """Factorise (or precondition) a stiffness matrix once; solve many load cases against it.
 
-Methods
--------
-``pardiso``  MKL PARDISO through pypardiso, symmetric positive-definite type (mtype 2)
-             on the upper triangle; the factorisation is computed once (phase 12) and
-             every right-hand side reuses it (phase 33).  Default where it imports.
-``pardiso_ooc``  the same, out of core where the factor does not fit in memory (MKL
-             PARDISO's iparm(60) = 1: in core if the factor fits ``MKL_PARDISO_OOC_MAX_CORE_SIZE``
-             MB, default 60 % of the machine's memory, else its factor on disk in a temporary
-             folder, ``FE_CRANK_OOC_DIR`` or the system's); ``auto`` takes it above
-             ``OOC_MIN_DOF`` unknowns (the ``fine`` preset), so every smaller run is unchanged.
-``cholmod``  CHOLMOD supernodal Cholesky (SuiteSparse) through cholespy, whose wheels bundle
-             CHOLMOD, METIS and a reference BLAS (no system package); the lower
-             triangle is factorised once and every right-hand side reuses it.  The
-             fallback where pypardiso does not install (docs/performance.md).
-``amg``      conjugate gradients preconditioned by pyamg smoothed aggregation with the
-             rigid-body modes as near-nullspace (pure pip, low memory, slow per case).
-``superlu``  SciPy SuperLU: always available; for small systems.
-
-``auto`` picks pardiso, else cholmod, else SuperLU (small) or AMG-CG (large), and says so:
-a fallback is logged as a warning and recorded in ``Factorisation.note``.
+The method (``fe.solver_choice``: MKL PARDISO in or out of core, CHOLMOD, AMG-CG, SuperLU)
+is resolved by :func:`~fe_crank.fe.solver_choice.choose_method`; a fallback of ``auto`` is
+logged as a warning (once per process) and recorded in ``Factorisation.note``.
 
 Every solution is checked: finite, and relative residual ||K x - b|| / ||b|| below
 ``residual_tol``; otherwise :class:`~fe_crank.errors.SolverError`.
@@ -33,79 +16,19 @@ import time
 import warnings
 import weakref
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from fe_crank.errors import InputError, SolverError
+from fe_crank.errors import SolverError
 from fe_crank.fe.pardiso_ooc import out_of_core
 from fe_crank.fe.pardiso_phases import pardiso_factorize
+from fe_crank.fe.solver_choice import DESCRIPTIONS, choose_method, fallback_note
 
-METHODS = ("auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu")
-#: above this many unknowns ``auto`` lets PARDISO go out of core when its factor does not fit
-#: (the ``fine`` preset, 2.9M DOF, needs ~27 GB in core; ``medium``, 1.0-1.15M DOF, 8 GB)
-OOC_MIN_DOF = 1_500_000
-SUPERLU_MAX_DOF = 60_000
-DESCRIPTIONS = {
-    "pardiso": "MKL PARDISO (pypardiso), sparse Cholesky, factorised once",
-    "pardiso_ooc": "MKL PARDISO (pypardiso), sparse Cholesky, factorised once, out of core where the factor "
-    "does not fit in memory",
-    "cholmod": "CHOLMOD (SuiteSparse, via cholespy), supernodal Cholesky, factorised once",
-    "superlu": "SciPy SuperLU, sparse LU, factorised once",
-    "amg": "conjugate gradients with pyamg smoothed-aggregation preconditioner (rigid-body modes)",
-}
 log = logging.getLogger(__name__)
 _warned: set[str] = set()
-
-
-def pardiso_available() -> bool:
-    """True where pypardiso (and MKL) import."""
-    try:
-        import pypardiso  # noqa: F401
-    except Exception:
-        return False
-    return True
-
-
-def cholmod_available() -> bool:
-    """True where cholespy (CHOLMOD) imports."""
-    try:
-        import cholespy  # noqa: F401
-    except Exception:
-        return False
-    return True
-
-
-def fallback_note(method: str, n_dof: int) -> str | None:
-    """Why ``auto`` did not pick PARDISO, or None when it did (or a method was asked for)."""
-    if method != "auto" or pardiso_available():
-        return None
-    chosen = choose_method("auto", n_dof)
-    return (
-        f"pypardiso (MKL PARDISO) is not installed; using {DESCRIPTIONS[chosen]} instead"
-        + ("" if chosen == "cholmod" else ", much slower on large meshes")
-        + ". Install it with: pip install pypardiso (x86-64)"
-    )
-
-
-def choose_method(method: str, n_dof: int) -> str:
-    """Resolve ``auto``: pardiso where it imports (``pardiso_ooc`` above ``OOC_MIN_DOF``
-    unknowns), else cholmod where cholespy imports, else SuperLU for small and AMG-CG for
-    large systems."""
-    if method not in METHODS:
-        raise InputError(f"unknown solver {method!r}; pick one of {', '.join(METHODS)}", key="fe.solver")
-    if method != "auto":
-        if method == "pardiso_ooc" and not pardiso_available():
-            raise InputError(
-                "solver 'pardiso_ooc' needs pypardiso (MKL PARDISO): pip install pypardiso", key="fe.solver"
-            )
-        return method
-    if pardiso_available():
-        return "pardiso_ooc" if n_dof > OOC_MIN_DOF else "pardiso"
-    if cholmod_available():
-        return "cholmod"
-    return "superlu" if n_dof <= SUPERLU_MAX_DOF else "amg"
 
 
 @dataclass
@@ -116,7 +39,9 @@ class Factorisation:
     method: str
     setup_time: float
     residual_tol: float = 1e-8
-    _impl: object = field(default=None, repr=False)
+    # the third-party solver (pypardiso's PyPardisoSolver or a shared handle's member, cholespy's
+    # CholeskySolverD, SciPy's SuperLU, pyamg's MultilevelSolver): untyped packages
+    _impl: Any = field(default=None, repr=False)
     _near_null: np.ndarray | None = field(default=None, repr=False)
     amg_rtol: float = 1e-10
     amg_maxiter: int = 2000
@@ -124,7 +49,11 @@ class Factorisation:
     _nnz: int | None = field(default=None, repr=False)  # kept by ``free``
     _ooc_dir: str | None = field(default=None, repr=False)  # PARDISO's factor files (pardiso_ooc)
     analysis_time: float = 0.0  # PARDISO: its phase 1 (reordering, symbolic), part of setup_time
-    _finalizer: object = field(default=None, repr=False, compare=False)
+    _finalizer: weakref.finalize | None = field(default=None, repr=False, compare=False)
+    # what a direct method keeps of the matrix (residuals: K = U + U^T - D): its upper triangle U
+    # and its diagonal D
+    _upper: sp.csr_matrix | None = field(default=None, repr=False, compare=False)
+    _diag: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     def own_external(self) -> None:
         """Tie what PARDISO holds outside Python's memory (the factor in MKL's own memory,
@@ -164,7 +93,7 @@ class Factorisation:
         self._check(B, X)
         return X[:, 0] if single else X
 
-    def _solve_pardiso(self, B):
+    def _solve_pardiso(self, B: np.ndarray) -> np.ndarray:
         from pypardiso.pardiso_wrapper import PyPardisoError
 
         try:
@@ -174,12 +103,12 @@ class Factorisation:
         except (PyPardisoError, Warning) as exc:
             raise SolverError(f"PARDISO solve failed: {exc}") from exc
 
-    def _solve_amg(self, b):
+    def _solve_amg(self, b: np.ndarray) -> np.ndarray:
         if not np.any(b):
             return np.zeros_like(b)
         info = {"it": 0}
 
-        def count(_):
+        def count(_: np.ndarray) -> None:
             info["it"] += 1
 
         x, flag = spla.cg(
@@ -196,7 +125,7 @@ class Factorisation:
             )
         return x
 
-    def _check(self, B, X):
+    def _check(self, B: np.ndarray, X: np.ndarray) -> None:
         if not np.all(np.isfinite(X)):
             raise SolverError(f"{self.method}: solution contains NaN or Inf (singular or unsupported model?)")
         R = self._matvec(X) - B
@@ -217,15 +146,17 @@ class Factorisation:
             return self._nnz
         if self.matrix is not None:
             return int(self.matrix.nnz)
+        assert self._upper is not None  # a direct method keeps the triangle in place of the matrix
         return int(2 * self._upper.nnz - self._upper.shape[0])
 
-    def _matvec(self, X):
+    def _matvec(self, X: np.ndarray) -> np.ndarray:
         if self.matrix is not None:
             return self.matrix @ X
         U = self._upper  # pardiso/cholmod keep one triangle: K = U + U^T - D
+        assert U is not None and self._diag is not None  # kept in place of the matrix
         return U @ X + U.T @ X - self._diag[:, None] * X
 
-    def free(self):
+    def free(self) -> None:
         """Release the factorisation's memory (PARDISO keeps it in MKL's own memory).
         The matrix goes too; the method, its description and ``nnz`` stay; ``solve``
         raises ``SolverError`` afterwards."""
@@ -240,7 +171,7 @@ class Factorisation:
         self.matrix = self._upper = self._diag = self._near_null = None
 
 
-def _release_external(impl, ooc_dir: str | None) -> None:
+def _release_external(impl: Any, ooc_dir: str | None) -> None:
     """Free a PARDISO factor (phase -1, or phase 0 of one member of a shared handle) and
     remove its out-of-core factor files."""
     impl.free_memory(everything=True)

@@ -6,6 +6,8 @@ sigma = 2 mu eps + lambda tr(eps) I with eps = sym(grad u) (Hooke's law).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from skfem import Basis, ElementTetP2
 
@@ -25,10 +27,10 @@ def _stress_from_gradients(G: np.ndarray, edofs: np.ndarray, u: np.ndarray, lam:
     two thirds of its time).
     """
     U = u.reshape(-1, 3)[edofs]  # (m, ne, 3)
-    return _hooke(_grad_u(U, G, lambda a, i: U[a, :, i][None, :, None]), lam, mu)
+    return _hooke(_grad_u(G, lambda a, i: U[a, :, i][None, :, None]), lam, mu)
 
 
-def _grad_u(U: np.ndarray, G: np.ndarray, coef) -> np.ndarray:
+def _grad_u(G: np.ndarray, coef: Callable[[int, int], np.ndarray]) -> np.ndarray:
     """H_ij = du_i/dx_j = sum_a U_ai G_aj..., a = 0, 1, ... in turn; ``coef(a, i)`` is U_ai
     shaped to broadcast against G[a] (3, ...)."""
     H = np.empty((3,) + G.shape[1:])
@@ -56,7 +58,7 @@ def _stress_at_pairs(Gp: np.ndarray, edofs: np.ndarray, u: np.ndarray, lam: floa
     The operations of ``_stress_from_gradients``, value by value."""
     base = 3 * edofs
     U = [u[base + i] for i in range(3)]  # U[i][a, p]: u_i at local node a of pair p
-    return _hooke(_grad_u(U, Gp, lambda a, i: U[i][a][None, :]), lam, mu)
+    return _hooke(_grad_u(Gp, lambda a, i: U[i][a][None, :]), lam, mu)
 
 
 #: (element, node) pairs per block of ``stress_at_selected_nodes`` (the block's gradients,

@@ -27,12 +27,11 @@ Every component matrix keeps the pattern of the part's stiffness (all 3 n_Q dofs
 constrained ones become rows with a unit diagonal and explicit-zero couplings), so one
 MKL PARDISO handle holds all their factors (``maxfct`` = 2^k): the analysis (phase 11,
 the METIS reordering and the symbolic factorisation) runs once and each component only
-needs its numerical factorisation (phase 22) (``pardiso_phases.SharedAnalysis``).
+needs its numerical factorisation (phase 22) (``fe.pardiso_shared``).
 """
 
 from __future__ import annotations
 
-import copy
 import logging
 import time
 from dataclasses import dataclass, field
@@ -43,8 +42,9 @@ import scipy.sparse as sp
 
 from fe_crank.errors import SolverError
 from fe_crank.fe.assembly import part_stiffness, upper_triangle
-from fe_crank.fe.pardiso_phases import SharedAnalysis
-from fe_crank.fe.solvers import DESCRIPTIONS, Factorisation, choose_method, factorise
+from fe_crank.fe.pardiso_shared import factorise_shared
+from fe_crank.fe.solver_choice import DESCRIPTIONS, choose_method
+from fe_crank.fe.solvers import Factorisation, factorise
 from fe_crank.fe.supports import rigid_body_modes
 from fe_crank.fe.symmetry import Mirror, character_of
 
@@ -53,7 +53,6 @@ log = logging.getLogger(__name__)
 METHODS = ("pardiso", "cholmod", "superlu")
 #: one PARDISO analysis for every component (module doc); False: each its own (for comparison)
 SHARE_ORDERING = True
-_TEMPLATE: dict[str, object] = {}
 
 
 def mode_characters(axes) -> np.ndarray:
@@ -73,7 +72,7 @@ class Component:
     chars: dict[int, int]
     constrained: np.ndarray  # (3 n_Q,) bool: plane conditions and held dofs
     held: np.ndarray  # local dofs held against the component's rigid modes
-    factor: Factorisation | None = None
+    factor: Factorisation
 
 
 @dataclass
@@ -109,34 +108,33 @@ class SymmetricSolver:
 
     @property
     def nnz(self) -> int:
-        return int(sum(c.factor.nnz for c in self.components if c.factor is not None))
+        return int(sum(c.factor.nnz for c in self.components))
 
-    def free(self):
+    def free(self) -> None:
         """Release every component's factorisation (``Factorisation.free``)."""
         for c in self.components:
-            if c.factor is not None:
-                c.factor.free()
+            c.factor.free()
 
     def solve(self, F: np.ndarray) -> np.ndarray:
         """Full displacements (3 N, k) of self-equilibrated full loads F (3 N, k)."""
         N = self.points.shape[1]
         k = F.shape[1]
         Fn = F.reshape(N, 3, k)
-        U = np.zeros((N, 3, k))
+        Un = np.zeros((N, 3, k))
         group = self.mirror.group
         for comp in self.components:
-            b = np.zeros((self.nodes.size, 3, k))
+            bn = np.zeros((self.nodes.size, 3, k))
             for planes, p, s in group:  # f_e at the part's nodes: 2^-k sum_g chi(g) (g f)
-                b += character_of(comp.chars, planes) * s[None, :, None] * Fn[p[self.nodes]]
-            b *= self.weights[:, None, None] / len(group)
-            b = b.reshape(-1, k)
+                bn += character_of(comp.chars, planes) * s[None, :, None] * Fn[p[self.nodes]]
+            bn *= self.weights[:, None, None] / len(group)
+            b = bn.reshape(-1, k)
             b[comp.constrained] = 0.0
             q = comp.factor.solve(b).reshape(self.nodes.size, 3, k)
             for planes, p, s in group:  # u_e = sum_g chi(g) g q, each image once
-                U[p[self.nodes]] += (
+                Un[p[self.nodes]] += (
                     (character_of(comp.chars, planes) * self.weights)[:, None, None] * s[None, :, None] * q
                 )
-        U = U.reshape(3 * N, k)
+        U = Un.reshape(3 * N, k)
         _remove_rigid_fit(self.points, self.held_full, U)
         return U
 
@@ -203,7 +201,7 @@ def build_symmetric_solver(
     if method not in METHODS:
         log.info("fe-crank: the %s solver runs on the full model (symmetry components need a direct solver)", method)
         return None
-    timings = {}
+    timings: dict[str, float] = {}
     t0 = time.perf_counter()
     x = basis.doflocs
     el = basis.element_dofs
@@ -227,7 +225,7 @@ def build_symmetric_solver(
     t0 = time.perf_counter()
     mchars = mode_characters(mirror.axes)
     row_len = np.diff(Kq.indptr)
-    comps = []
+    spaces = []  # (characters, constrained dofs, held dofs) of each component
     for chars in mirror.characters:
         allowed = np.ones((nodes.size, 3), bool)
         for a, e in chars.items():
@@ -239,29 +237,30 @@ def build_symmetric_solver(
         held = pick_held(x[:, nodes], allowed.ravel(), modes)
         cons = ~allowed.ravel()
         cons[held] = True
-        comps.append(Component(chars=chars, constrained=cons, held=held))
+        spaces.append((chars, cons, held))
     timings["constraints"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     share = SHARE_ORDERING if share_ordering is None else share_ordering
     matrices = []
-    for i, comp in enumerate(comps):
-        A = Kq if i == len(comps) - 1 else Kq.copy()  # the last one takes the part's own
-        cut = np.repeat(comp.constrained, row_len) | comp.constrained[A.indices]  # row or column held
+    for i, (_, cons, _) in enumerate(spaces):
+        A = Kq if i == len(spaces) - 1 else Kq.copy()  # the last one takes the part's own
+        cut = np.repeat(cons, row_len) | cons[A.indices]  # row or column held
         A.data[cut] = 0.0  # explicit zeros: the pattern stays
         diag = A.indptr[:-1]  # upper triangle, sorted: diagonal first
         if not np.array_equal(A.indices[diag], np.arange(A.shape[0])):
             raise SolverError("the part's stiffness lacks a diagonal entry")
-        A.data[diag[comp.constrained]] = 1.0
+        A.data[diag[cons]] = 1.0
         matrices.append(A)
     del Kq
     if method == "pardiso" and share:
-        for comp, fac in zip(comps, _pardiso_shared(matrices)):
-            comp.factor = fac
+        factors = factorise_shared(matrices)
     else:
-        for comp, A in zip(comps, matrices):
+        factors = []
+        for A in matrices:
             if method == "superlu":  # SuperLU needs the whole matrix
                 A = (A + A.T - sp.diags(A.diagonal())).tocsr()
-            comp.factor = factorise(A, method, upper=method != "superlu")
+            factors.append(factorise(A, method, upper=method != "superlu"))
+    comps = [Component(chars, cons, held, fac) for (chars, cons, held), fac in zip(spaces, factors)]
     timings["factorisation"] = time.perf_counter() - t0
     timings["analysis"] = sum(c.factor.analysis_time for c in comps)
     return SymmetricSolver(
@@ -275,44 +274,3 @@ def build_symmetric_solver(
         setup_time=timings["factorisation"],
         timings=timings,
     )
-
-
-def _pardiso_solver():
-    """A fresh PyPardisoSolver (SPD) with MKL's defaults for a real SPD matrix stated (MKL reads
-    user iparm values only with iparm(1) = 1; as ``pardiso_ooc.out_of_core``)."""
-    import pypardiso
-
-    if "solver" not in _TEMPLATE:  # finding and loading mkl_rt takes ~0.6 s: once per process
-        _TEMPLATE["solver"] = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
-    solver = copy.copy(_TEMPLATE["solver"])
-    solver.pt = np.zeros_like(solver.pt)  # a handle of its own
-    solver.iparm = np.zeros_like(solver.iparm)
-    solver.iparm[0] = 1
-    solver.iparm[1] = 2  # METIS nested dissection
-    solver.iparm[9] = 8
-    solver.iparm[17] = -1
-    return solver
-
-
-def _pardiso_shared(matrices) -> list[Factorisation]:
-    """The component matrices (one pattern) factorised on one PARDISO handle: one analysis."""
-    from pypardiso.pardiso_wrapper import PyPardisoError
-
-    out = []
-    try:
-        shared = SharedAnalysis(_pardiso_solver(), matrices[0], len(matrices))
-        for k, A in enumerate(matrices):
-            t0 = time.perf_counter()
-            member = shared.factor(k + 1, A)
-            fac = Factorisation(
-                matrix=None,
-                method="pardiso",
-                setup_time=time.perf_counter() - t0,
-                analysis_time=shared.analysis_time if k == 0 else 0.0,
-            )
-            fac._impl, fac._upper, fac._diag = member, A, A.diagonal()
-            fac.own_external()
-            out.append(fac)
-    except PyPardisoError as exc:
-        raise SolverError(f"PARDISO factorisation of a symmetry component failed: {exc}") from exc
-    return out

@@ -10,6 +10,7 @@ rigid-body mode.  Loads: f_r = P^T f + (generalised loads at reference dofs).
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -19,8 +20,9 @@ from skfem import Basis
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_stiffness
 from fe_crank.fe.determinate import DeterminateSupport, determinate_support
-from fe_crank.fe.equilibrium import EquilibriumChecks
-from fe_crank.fe.solvers import Factorisation, choose_method, factorise
+from fe_crank.fe.equilibrium import EquilibriumChecks, RefLoads
+from fe_crank.fe.solver_choice import choose_method
+from fe_crank.fe.solvers import Factorisation, factorise
 from fe_crank.fe.supports import (
     REF_DOFS,
     Coupling,
@@ -32,6 +34,7 @@ from fe_crank.fe.supports import (
     face_centroid,
     rigid_body_modes,
 )
+from fe_crank.fe.symsolve import SymmetricSolver
 
 EQUILIBRIUM_TOL = 1e-6
 
@@ -53,11 +56,11 @@ class System(EquilibriumChecks):
     slave_dofs: dict[str, np.ndarray]  # coupling -> scalar dofs
     dirichlet_dofs: np.ndarray  # full vector dofs held at zero
     foundation_dofs: dict[str, np.ndarray]  # foundation boundary -> scalar dofs
-    factorisation: Factorisation
+    factorisation: Factorisation | SymmetricSolver  # SymmetricSolver: the one of ``symmetric``
     point_dofs: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # single vector dofs held
     determinate: DeterminateSupport | None = None  # reactions applied as loads (fe.determinate)
     timings: dict[str, float] = field(default_factory=dict)
-    symmetric: object | None = None  # fe.symsolve.SymmetricSolver: solved on symmetry components
+    symmetric: SymmetricSolver | None = None  # solved on symmetry components (fe.symsystem)
 
     @property
     def n_dof(self) -> int:
@@ -69,7 +72,7 @@ class System(EquilibriumChecks):
         """Coordinates (3, N) of the P2 nodes (scalar dofs)."""
         return self.basis.doflocs
 
-    def reduce(self, f: np.ndarray, ref_loads: dict[str, np.ndarray] | None = None) -> np.ndarray:
+    def reduce(self, f: np.ndarray, ref_loads: RefLoads | None = None) -> np.ndarray:
         """Reduced load vector P^T f plus generalised loads at free reference dofs."""
         fr = self.P.T @ f
         for name, load in (ref_loads or {}).items():
@@ -81,7 +84,7 @@ class System(EquilibriumChecks):
                     fr[cols[dof]] += load[k]
         return fr
 
-    def solve(self, f: np.ndarray, ref_loads: list[dict] | None = None) -> np.ndarray:
+    def solve(self, f: np.ndarray, ref_loads: Sequence[RefLoads | None] | None = None) -> np.ndarray:
         """Full displacement vectors for load vectors f (n_full,) or (n_full, k)."""
         F = f[:, None] if f.ndim == 1 else f
         if self.determinate is not None:  # the statically determinate reactions as loads
@@ -89,7 +92,7 @@ class System(EquilibriumChecks):
         if self.symmetric is not None:  # determinate only: no reference loads
             U = self.symmetric.solve(F)
             return U[:, 0] if f.ndim == 1 else U
-        refs = ref_loads or [None] * F.shape[1]
+        refs: Sequence[RefLoads | None] = ref_loads or [None] * F.shape[1]
         Fr = np.column_stack([self.reduce(F[:, k], refs[k]) for k in range(F.shape[1])])
         Q = self.factorisation.solve(Fr)
         U = self.P @ Q
@@ -163,9 +166,9 @@ def build_system(
             raise MeshError(f"coupling {c.boundary!r}: unknown dofs {sorted(bad)}; pick from {REF_DOFS}")
     is_slave = np.repeat(owner >= 0, 3)
     free = np.flatnonzero(~is_slave & ~held)
-    rows = [free]
-    cols = [np.arange(free.size)]
-    vals = [np.ones(free.size)]
+    p_rows = [free]  # the entries of P
+    p_cols = [np.arange(free.size)]
+    p_vals = [np.ones(free.size)]
     ncol = free.size
     refcols = {}
     for c in couplings:
@@ -179,12 +182,12 @@ def build_system(
             r = (3 * s[:, None] + np.arange(3)).ravel()
             v = T[:, :, k].ravel()
             nz = v != 0.0
-            rows.append(r[nz])
-            cols.append(np.full(nz.sum(), ncol))
-            vals.append(v[nz])
+            p_rows.append(r[nz])
+            p_cols.append(np.full(nz.sum(), ncol))
+            p_vals.append(v[nz])
             ncol += 1
         refcols[c.boundary] = cmap
-    P = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, ncol))
+    P = sp.csr_matrix((np.concatenate(p_vals), (np.concatenate(p_rows), np.concatenate(p_cols))), shape=(n, ncol))
     method = choose_method(solver, ncol)
     direct = method in ("pardiso", "pardiso_ooc", "cholmod")
     Kr = _reduced(K, Ks, P, free, direct=direct)

@@ -84,6 +84,8 @@ def fill_tools(occ, g: CrankGeometry, cw: CounterweightSpec, web_prism, sector_p
     ``d_p/2 + r_f``.  In the throw, that region holds only the material the fillets
     add.  ``web_prism(occ, g, z0)``, ``sector_prism(occ, cw, z0)``: the builders of
     ``throw.py``."""
+    if cw.fillet_radius is None:
+        raise ValueError("a counterweight without a fillet_radius has no fillet material")
     zp = g.crankpin_length / 2
     zw = zp + g.web_thickness
     h = cw.thickness + cw.fillet_radius

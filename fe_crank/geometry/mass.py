@@ -45,7 +45,7 @@ class MassProperties:
 def _combine(items: list[tuple[float, np.ndarray, np.ndarray]], rho: float) -> PartProperties:
     """Sum volumes (V, centroid, inertia about own centroid per unit density)."""
     V = sum(v for v, _, _ in items)
-    c = sum(v * cc for v, cc, _ in items) / V
+    c: np.ndarray = sum((v * cc for v, cc, _ in items), np.zeros(3)) / V
     J = np.zeros((3, 3))
     for v, cc, Jc in items:
         d = cc - c
@@ -56,10 +56,10 @@ def _combine(items: list[tuple[float, np.ndarray, np.ndarray]], rho: float) -> P
     return PartProperties(
         volume=float(V),
         mass=float(m),
-        centroid=tuple(float(x) for x in c),
+        centroid=(float(c[0]), float(c[1]), float(c[2])),
         unbalance=float(m * np.sqrt(r2)),
         unbalance_vector=(float(m * c[0]), float(m * c[1])),
-        inertia=tuple(tuple(float(x) for x in row) for row in J),
+        inertia=tuple((float(row[0]), float(row[1]), float(row[2])) for row in J),
         inertia_axis=float(J[2, 2] + m * r2),
     )
 

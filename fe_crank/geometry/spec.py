@@ -137,6 +137,59 @@ class OilBore:
 
 
 @dataclass(frozen=True)
+class PlainCylinder:
+    """A plain cylinder on the crank axis (front nose, flywheel flange)."""
+
+    diameter: float
+    length: float
+
+
+BEARING_MODELS = ("rigid", "spring", "clearance")
+
+
+@dataclass(frozen=True)
+class BearingLaw:
+    """Radial law of a main bearing in the whole-shaft model (``fe_crank.fe.bearings``).
+
+    ``rigid``: the journal's reference point does not move radially; ``spring``: force
+    = -stiffness x displacement (bearing, shell and housing in series, N/m);
+    ``clearance``: no force while the journal moves less than ``clearance`` (radial, m),
+    beyond it the contact stiffness ``stiffness`` (N/m) on the excess.
+    """
+
+    model: str = "rigid"
+    stiffness: float | None = None
+    clearance: float = 0.0
+
+
+@dataclass(frozen=True)
+class BearingInput:
+    """A main bearing as the geometry file states it: ``journal`` 0 is the front end
+    journal, i (1 .. n - 1) the journal between throws i and i + 1, n the rear end."""
+
+    name: str
+    journal: int
+    width: float | None = None  # m, for the specific load; None: the journal's cylindrical length
+    law: BearingLaw | None = None  # None: the shaft's default
+
+
+@dataclass(frozen=True)
+class ShaftSpec:
+    """The ``[shaft]`` section of a geometry file: what lies beyond the throws and how
+    the shaft is supported (``fe_crank.geometry.shaft`` resolves it against the engine)."""
+
+    pitch: float | None = None  # m, stated throw pitch (checked against the engine)
+    end_journal_length: float | None = None  # m, outer web face to the end of an end journal
+    nose: PlainCylinder | None = None  # front, beyond the front end journal
+    flange: PlainCylinder | None = None  # rear, beyond the rear end journal
+    bearing_width: float | None = None  # m, default width of every bearing
+    bearing_law: BearingLaw = BearingLaw()
+    bearings: tuple[BearingInput, ...] | None = None  # None: one at every journal
+    thrust_bearing: str | None = None  # None: the bearing nearest the power take-off
+    power_takeoff: str = "rear"  # "rear" (flywheel end) or "front"
+
+
+@dataclass(frozen=True)
 class ThrowSpec:
     name: str
     angle: float  # rad, position on the shaft (model.Throw.angle)
@@ -163,6 +216,7 @@ class CrankGeometry:
     crankpin_undercut: float = 0.0  # m, depth of the fillet's recess into the web (0: tangent fillet)
     journal_undercut: float = 0.0
     require_overlap: bool = False
+    shaft: ShaftSpec | None = None  # the [shaft] section (whole-shaft model), None when absent
     description: str = ""
     source: str = ""
     file: str = ""

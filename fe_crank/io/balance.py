@@ -143,7 +143,7 @@ def parse_balance(value: object, file: str | Path, key: str = "balance") -> Bala
             s.order,
             s.offset,
             s.span,
-            None if s.positions is None else tuple(tuple(p) for p in s.positions),
+            None if s.positions is None else tuple(s.positions),
         )
         for s in raw.shafts
     )

@@ -3,8 +3,8 @@
 Every input model forbids unknown keys: a misspelt key is an error, not ignored.
 Validation errors become one ``InputError`` naming the file, the key path and the
 reason (a number may be shown, never a string or table read from a file).  File
-reading is bounded (``MAX_FILE_BYTES``, ``MAX_DEPTH``) and include paths stay in the
-load case's folder tree unless allowed (docs/limits.md).
+reading is bounded (``MAX_FILE_BYTES``, ``MAX_DEPTH``; docs/limits.md); the rules of
+include paths are in ``io.includes``.
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from pydantic import BaseModel, ConfigDict, ValidationError
+from pydantic_core import ErrorDetails
 
 from fe_crank.errors import InputError
 
@@ -45,7 +46,7 @@ def key_path(loc: tuple[Any, ...]) -> str:
     return out
 
 
-def _reason(err: dict) -> str:
+def _reason(err: ErrorDetails) -> str:
     msg = err.get("msg", "invalid")
     kind = err.get("type", "")
     if msg.startswith("Value error, "):
@@ -136,6 +137,12 @@ def _record(p: Path) -> None:
     read.append(InputFile(path, digest.hexdigest()))
 
 
+def record_file(path: str | Path) -> None:
+    """Record an input file that is not read as text (a CAD file, read by OpenCASCADE)
+    for the provenance, as ``read_text`` records the files it reads (``recording_inputs``)."""
+    _record(Path(path))
+
+
 def read_text(path: str | Path, what: str = "file", *, record: bool = True) -> str:
     """Read a UTF-8 text input file (a leading byte-order mark is dropped).
 
@@ -199,7 +206,7 @@ def check_tree(data: Any, file: str | Path, prefix: str = "") -> None:
                 stack.append((v, sub, depth + 1))
 
 
-def read_toml(path: str | Path, *, record: bool = True) -> dict:
+def read_toml(path: str | Path, *, record: bool = True) -> dict[str, Any]:
     """Read a TOML input file: ``read_text`` refusals, malformed TOML, nesting deeper
     than ``MAX_DEPTH`` and non-finite numbers are an InputError naming the file."""
     p = Path(path)
@@ -219,91 +226,3 @@ def validate(model: type[M], data: Any, file: str | Path, prefix: str = "") -> M
         return model.model_validate(data)
     except ValidationError as exc:
         raise validation_to_input_error(exc, file, prefix) from None
-
-
-#: the folder tree include paths must stay in, and whether paths outside it are allowed
-_ROOT: ContextVar[Path | None] = ContextVar("fe_crank_input_root", default=None)
-_ALLOW_OUTSIDE: ContextVar[bool | None] = ContextVar("fe_crank_allow_outside", default=None)
-ALLOW_OUTSIDE_ENV = "FE_CRANK_ALLOW_OUTSIDE_PATHS"
-
-
-def folder_tree(path: str | Path) -> Path:
-    """The folder tree of an input file: the parent of its folder, so that the usual
-    layout (``loadcases/``, ``engines/``, ``geometry/`` side by side) is inside it.
-    The folder as named (a load case that is a link counts where the link is)."""
-    return Path(os.path.abspath(path)).parent.resolve().parent
-
-
-def outside_allowed() -> bool:
-    v = _ALLOW_OUTSIDE.get()
-    if v is None:
-        return os.environ.get(ALLOW_OUTSIDE_ENV, "").strip().lower() in ("1", "true", "yes")
-    return v
-
-
-@contextmanager
-def input_root(path: str | Path, allow_outside: bool | None = None):
-    """Within the block, include paths must resolve into ``folder_tree(path)``
-    unless ``allow_outside`` (default: the ``FE_CRANK_ALLOW_OUTSIDE_PATHS`` variable)."""
-    t1 = _ROOT.set(folder_tree(path))
-    t2 = _ALLOW_OUTSIDE.set(allow_outside)
-    try:
-        yield
-    finally:
-        _ROOT.reset(t1)
-        _ALLOW_OUTSIDE.reset(t2)
-
-
-def resolve_reference(value: str, relative_to: str | Path, *, key: str = "") -> Path:
-    """A path in a file is relative to that file's folder.
-
-    It must resolve (symbolic links followed) into the folder tree of the load case
-    being read (``input_root``; without one, of ``relative_to``), or the option
-    ``--allow-outside-paths`` must be given.  The refusal is the same whether the
-    target exists or not, and nothing is read from it.
-    """
-    p = Path(value)
-    if not p.is_absolute():
-        p = Path(relative_to).parent / p
-    if outside_allowed():
-        return p
-    root = _ROOT.get() or folder_tree(relative_to)
-    try:
-        inside = p.resolve().is_relative_to(root)
-    except (OSError, RuntimeError):  # a symbolic-link loop
-        inside = False
-    if not inside:
-        raise InputError(
-            f"the path {value!r} leads outside the load case's folder tree ({root}); such paths are refused "
-            f"unless --allow-outside-paths (or {ALLOW_OUTSIDE_ENV}=1) is given",
-            file=str(relative_to),
-            key=key or None,
-        )
-    return p
-
-
-def with_include_context(exc: InputError, file: str | Path, key: str) -> InputError:
-    """``exc`` (raised for an included file) with "(included by FILE: KEY)" added, so
-    that the message also names the reference that brought the file in."""
-    suffix = f"(included by {file}: {key})"
-    if "\n" in exc.reason:
-        new = type(exc)(f"{exc.reason}\n{suffix}")
-        new.file, new.key = exc.file, exc.key
-        return new
-    return type(exc)(f"{exc.reason} {suffix}", file=exc.file, key=exc.key)
-
-
-def read_included(value: str, relative_to: str | Path, key: str, what: str) -> tuple[Path, dict]:
-    """Resolve an include (``engine = "..."``), read it as TOML.  A file that cannot
-    be read is reported against the referencing file and key; errors inside the
-    included file name that file and its own keys."""
-    p = resolve_reference(value, relative_to, key=key)
-    if not p.is_file():
-        state = "is a folder" if p.is_dir() else "not found"
-        raise InputError(f"the {what} {value!r} {state}", file=str(relative_to), key=key)
-    try:
-        return p, read_toml(p)
-    except InputError as exc:
-        if exc.key is None:  # the file as a whole: say who referenced it
-            raise InputError(f"the {what} {value!r}: {exc.reason}", file=str(relative_to), key=key) from None
-        raise

@@ -16,14 +16,15 @@ pressure: the ``wiebe`` model has them (its ``k`` is the exponent); a ``table`` 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from pydantic import Field, ValidationError, model_validator
 
 from fe_crank import model
 from fe_crank.errors import InputError
-from fe_crank.io.base import Strict, read_text, resolve_reference, validate, validation_to_input_error
+from fe_crank.io.base import Strict, read_text, validate, validation_to_input_error
+from fe_crank.io.includes import resolve_reference
 from fe_crank.io.units import Angle, Energy, Pressure, parse_unit, ureg
 
 
@@ -35,7 +36,7 @@ class MotoredKeys(Strict):
     polytropic_exponent: float = Field(default=1.35, gt=1.0, lt=2.0)
 
     @model_validator(mode="after")
-    def _pair(self):
+    def _pair(self) -> MotoredKeys:
         if (self.compression_ratio is None) != (self.intake_pressure is None):
             raise ValueError("compression_ratio and intake_pressure go together (the motored compression curve)")
         if self.intake_pressure is not None and not self.intake_pressure > 0:
@@ -52,7 +53,7 @@ class GasTableInput(MotoredKeys):
     source: str = ""
 
     @model_validator(mode="after")
-    def _check(self):
+    def _check(self) -> GasTableInput:
         try:
             a = ureg.Quantity(1.0, parse_unit(self.angle_unit))
         except ValueError as exc:
@@ -106,7 +107,7 @@ class GasWiebeInput(Strict):
     source: str = ""
 
     @model_validator(mode="after")
-    def _check(self):
+    def _check(self) -> GasWiebeInput:
         for key in ("intake_pressure", "exhaust_pressure"):
             if not getattr(self, key) > 0:
                 raise ValueError(f"{key} must be a positive absolute pressure")
@@ -117,7 +118,7 @@ class GasWiebeInput(Strict):
         return self
 
 
-def _split_header(cell: str, file, key: str) -> str:
+def _split_header(cell: str, file: str | Path, key: str) -> str:
     cell = cell.strip()
     if "[" not in cell or not cell.endswith("]"):
         raise InputError(
@@ -128,7 +129,7 @@ def _split_header(cell: str, file, key: str) -> str:
     return cell[cell.index("[") + 1 : -1].strip()
 
 
-def read_gas_csv(path, *, crankcase_pressure: float = 101325.0, source: str = "") -> model.GasPressure:
+def read_gas_csv(path: str | Path, *, crankcase_pressure: float = 101325.0, source: str = "") -> model.GasPressure:
     """Read ``angle [unit], pressure [unit]`` CSV (absolute pressure) into a table."""
     path = Path(path)
     lines = read_text(path, "gas pressure CSV").splitlines()
@@ -161,9 +162,12 @@ def read_gas_csv(path, *, crankcase_pressure: float = 101325.0, source: str = ""
     return model.GasPressure(ang, prs, crankcase_pressure, table.source)
 
 
-def _with_motored(gas: model.GasPressure, raw: MotoredKeys, geom: dict) -> model.GasPressure:
-    """``gas`` with its motored curve when the input states compression ratio and intake pressure."""
-    if raw.compression_ratio is None:
+def _with_motored(
+    gas: model.GasPressure, raw: MotoredKeys, *, bore: float, crank_radius: float, rod_length: float, strokes: int
+) -> model.GasPressure:
+    """``gas`` with its motored curve when the input states compression ratio and intake pressure
+    (both or neither: ``MotoredKeys``)."""
+    if raw.compression_ratio is None or raw.intake_pressure is None:
         return gas
     from dataclasses import replace
 
@@ -174,13 +178,16 @@ def _with_motored(gas: model.GasPressure, raw: MotoredKeys, geom: dict) -> model
         intake_pressure=raw.intake_pressure,
         n_poly=raw.polytropic_exponent,
         crankcase_pressure=gas.crankcase_pressure,
-        **geom,
+        bore=bore,
+        r=crank_radius,
+        l=rod_length,
+        strokes=strokes,
     )
     return replace(gas, motored=m)
 
 
 def build_gas(
-    data, file, key: str, *, strokes: int, bore: float, crank_radius: float, rod_length: float
+    data: Any, file: str | Path, key: str, *, strokes: int, bore: float, crank_radius: float, rod_length: float
 ) -> model.GasPressure:
     """Validate a ``[gas]`` table (``model`` = table | csv | wiebe) and return the p(phi) table.
 
@@ -188,10 +195,9 @@ def build_gas(
     if not isinstance(data, dict):
         raise InputError("must be a table", file=str(file), key=key)
     kind = data.get("model", "table")
-    geom = {"bore": bore, "r": crank_radius, "l": rod_length, "strokes": strokes}
     if kind == "table":
-        raw = validate(GasTableInput, data, file, key)
-        ang, prs = raw.arrays_si()
+        table = validate(GasTableInput, data, file, key)
+        ang, prs = table.arrays_si()
         cycle = 4.0 * np.pi if strokes == 4 else 2.0 * np.pi
         if ang[0] < -1e-9 or ang[-1] > cycle + 1e-9:
             raise InputError(
@@ -199,21 +205,33 @@ def build_gas(
                 file=str(file),
                 key=f"{key}.points",
             )
-        return _with_motored(model.GasPressure(ang, prs, raw.crankcase_pressure, raw.source), raw, geom)
+        return _with_motored(
+            model.GasPressure(ang, prs, table.crankcase_pressure, table.source),
+            table,
+            bore=bore,
+            crank_radius=crank_radius,
+            rod_length=rod_length,
+            strokes=strokes,
+        )
     if kind == "csv":
-        raw = validate(GasCsvInput, data, file, key)
-        csv = resolve_reference(raw.file, file, key=f"{key}.file")
+        ref = validate(GasCsvInput, data, file, key)
+        csv = resolve_reference(ref.file, file, key=f"{key}.file")
         if not csv.is_file():
             state = "is a folder" if csv.is_dir() else "not found"
-            raise InputError(f"the gas pressure CSV {raw.file!r} {state}", file=str(file), key=f"{key}.file")
+            raise InputError(f"the gas pressure CSV {ref.file!r} {state}", file=str(file), key=f"{key}.file")
         try:
             return _with_motored(
-                read_gas_csv(csv, crankcase_pressure=raw.crankcase_pressure, source=raw.source), raw, geom
+                read_gas_csv(csv, crankcase_pressure=ref.crankcase_pressure, source=ref.source),
+                ref,
+                bore=bore,
+                crank_radius=crank_radius,
+                rod_length=rod_length,
+                strokes=strokes,
             )
         except InputError as exc:
             if exc.key is None:  # the file as a whole: name the key that referenced it
                 raise InputError(
-                    f"the gas pressure CSV {raw.file!r}: {exc.reason}", file=str(file), key=f"{key}.file"
+                    f"the gas pressure CSV {ref.file!r}: {exc.reason}", file=str(file), key=f"{key}.file"
                 ) from None
             raise
     if kind == "wiebe":

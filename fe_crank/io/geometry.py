@@ -41,6 +41,8 @@
     angle = "0 deg"
     # counterweight = { ... }       # per-throw override; counterweight = false for none
 
+    [shaft]                         # optional: the whole shaft (fe_crank.io.shaft has the keys)
+
 The load case refers to the file with ``geometry = "../geometry/x.toml"`` (relative
 to the load case).  Impossible geometries are refused here, before gmsh runs
 (``fe_crank.geometry.checks``).
@@ -63,7 +65,9 @@ from fe_crank.geometry.spec import (
     ThrowSpec,
     WebOutline,
 )
-from fe_crank.io.base import Strict, read_included, read_toml, validate, with_include_context
+from fe_crank.io.base import Strict, read_toml, validate
+from fe_crank.io.includes import read_included, with_include_context
+from fe_crank.io.shaft import ShaftInput, shaft_spec
 from fe_crank.io.units import Angle, Density, Force, Length, Pressure
 
 
@@ -180,6 +184,7 @@ class GeometryInput(Strict):
     web: WebInput
     counterweight: CounterweightInput | None = None
     throws: list[ThrowInput] | None = None
+    shaft: ShaftInput | None = None  # whole-shaft model: ends, bearings (fe_crank.io.shaft)
 
     @model_validator(mode="after")
     def _radius(self):
@@ -248,6 +253,7 @@ def geometry_from_dict(data: dict, file: str | Path = "<geometry>", prefix: str 
         crankpin_undercut=raw.crankpin.undercut,
         journal_undercut=raw.journal.undercut,
         require_overlap=raw.require_overlap,
+        shaft=shaft_spec(raw.shaft),
         file=str(file),
     )
     check_geometry(g)

@@ -23,15 +23,17 @@ from pathlib import Path
 from pydantic import Field
 
 from fe_crank import model
+from fe_crank.cad.config import CadInput
 from fe_crank.errors import InputError
 from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
-from fe_crank.io.base import InputFile, Strict, input_root, read_toml, recording_inputs, validate
+from fe_crank.io.base import InputFile, Strict, read_toml, recording_inputs, validate
 from fe_crank.io.criteria import Criteria, check_m53_torque
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
+from fe_crank.io.includes import input_root, resolve_reference
 from fe_crank.io.material import Material
 from fe_crank.io.operating import parse_operating
 from fe_crank.io.sections import SECTION_KEYS, parse_sections
@@ -44,16 +46,19 @@ class LoadCase:
     """A whole load case as the stages see it (SI floats, frozen): the engine, the
     operating point and the sections of the file, each parsed by the stage that owns it;
     ``None`` where the file does not give an optional section (``fe`` and ``mesh`` take
-    their defaults).  ``inputs``: every file the load case was read from (itself, the
-    engine, geometry and pressure-table files it names), resolved, with the SHA-256 of
-    its bytes, in the order read."""
+    their defaults).  ``geometry``: a parametric geometry, or a CAD file with what its
+    ``[cad]`` section states (``fe_crank.io.cad``; recognised by the check's geometry
+    stage).  ``inputs``: every file the load case was read from (itself, the engine,
+    geometry, CAD and pressure-table files it names), resolved, with the SHA-256 of its
+    bytes, in the order read; ``engine_file``: the file the engine was read from (the
+    load case itself for an inline ``[engine]``)."""
 
     name: str
     source_file: str
     engine: model.Engine
     operating: model.OperatingPoint
     description: str = ""
-    geometry: CrankGeometry | None = None
+    geometry: CrankGeometry | CadInput | None = None
     material: Material | None = None
     criteria: Criteria | None = None
     fe: FeOptions = field(default_factory=FeOptions)
@@ -61,6 +66,7 @@ class LoadCase:
     mesh: MeshSection = field(default_factory=MeshSection)
     torsion: TorsionSettings | None = None
     inputs: tuple[InputFile, ...] = ()
+    engine_file: str = ""
 
 
 class LoadCaseHead(Strict):
@@ -76,7 +82,7 @@ def load_loadcase(
 
     Include paths (``engine``, ``geometry``, a gas CSV) must stay in the load case's
     folder tree unless ``allow_outside_paths`` (default: the environment variable
-    ``FE_CRANK_ALLOW_OUTSIDE_PATHS``); see ``fe_crank.io.base.resolve_reference``.
+    ``FE_CRANK_ALLOW_OUTSIDE_PATHS``); see ``fe_crank.io.includes.resolve_reference``.
     ``files_read``: a list that receives every input file opened, also when the load
     case is refused (the provenance of an error)."""
     with input_root(path, allow_outside_paths), recording_inputs() as read:
@@ -106,12 +112,19 @@ def _load(path: Path) -> LoadCase:
     engine, operating = parse_operating(data["operating"], engine, path)
     sections = parse_sections(data, path)
     criteria, geometry = sections.criteria, sections.geometry
-    if criteria is not None:
+    if criteria is not None and isinstance(geometry, CrankGeometry):
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
+    if sections.torsion is not None and isinstance(geometry, CadInput):
+        raise InputError(
+            "the torsional model takes its throws' inertias and stiffness from a parametric geometry; with a CAD "
+            "geometry it is not available: check the torsional vibration with a parametric geometry of the shaft",
+            file=str(path),
+            key="torsion",
+        )
     if sections.torsion is not None:
         check_torsion_engine(sections.torsion, engine, path, full_load=operating.full_load)
     if sections.fe is not None:
-        check_torque_reaction(sections.fe, engine, path)
+        check_torque_reaction(sections.fe, engine, path, torsion=sections.torsion is not None)
     if criteria is not None:
         check_m53_torque(criteria, engine, sections.torsion is not None, path)
     return LoadCase(
@@ -127,6 +140,9 @@ def _load(path: Path) -> LoadCase:
         balance=sections.balance,
         mesh=sections.mesh or MeshSection(),
         torsion=sections.torsion,
+        engine_file=str(resolve_reference(data["engine"], path, key="engine"))
+        if isinstance(data["engine"], str)
+        else str(path),
     )
 
 

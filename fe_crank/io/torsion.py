@@ -227,11 +227,9 @@ def parse_torsion(value: object, file: str | Path, key: str = "torsion") -> Tors
     damper = None if d is None else Element("damper", d.inertia, d.stiffness or 0.0, d.damping, d.loss_factor)
     pulley = None if raw.pulley is None else Element("pulley", raw.pulley.inertia, raw.pulley.stiffness)
     fly = Element("flywheel", raw.flywheel.inertia, raw.flywheel.stiffness)
-    driven = tuple(
-        Element(x.name, x.inertia, x.stiffness, x.damping, x.loss_factor, x.absolute_damping) for x in raw.driven
-    )
+    driven = tuple(_driven(x) for x in raw.driven)
     return TorsionSettings(
-        tuple(raw.speed_range),
+        raw.speed_range,
         raw.speed_steps,
         raw.throw_stiffness,
         raw.shaft_loss_factor,
@@ -244,7 +242,13 @@ def parse_torsion(value: object, file: str | Path, key: str = "torsion") -> Tors
     )
 
 
-def _parse_lumped(value: dict, file: str | Path, key: str) -> TorsionSettings:
+def _driven(x: DrivenInput) -> Element:
+    """The chain element of a driven machine (its stiffness is required: ``DrivenInput._check``)."""
+    assert x.stiffness is not None  # refused by DrivenInput._check with its own message
+    return Element(x.name, x.inertia, x.stiffness, x.damping, x.loss_factor, x.absolute_damping)
+
+
+def _parse_lumped(value: dict[str, object], file: str | Path, key: str) -> TorsionSettings:
     raw = validate(LumpedInput, value, file, key)
     stations = parse_stations(raw.stations, str(file), f"{key}.stations")
     fly = raw.flywheel_station
@@ -253,7 +257,7 @@ def _parse_lumped(value: dict, file: str | Path, key: str) -> TorsionSettings:
     if fly is None:
         fly = next((s.name for s in stations if s.name == "flywheel"), max(stations, key=lambda s: s.inertia).name)
     return TorsionSettings(
-        tuple(raw.speed_range),
+        raw.speed_range,
         raw.speed_steps,
         "lumped",
         None,
@@ -273,7 +277,8 @@ def check_torsion_engine(
     settings: TorsionSettings, engine, file: str | Path, key: str = "torsion", *, full_load=None
 ) -> None:
     """Cross-checks of ``[torsion]`` against the load case's engine and full-load curve
-    (the speed range within the per-speed diagrams: never extrapolated).  InputError."""
+    (the speed range within the per-speed diagrams: never extrapolated; every speed of
+    the sweep within the speed range, where the forced response is known).  InputError."""
     if settings.model == "lumped":
         check_stations(settings.stations, engine, str(file), f"{key}.stations")
     w = full_load.gas_speeds if full_load is not None else ()
@@ -283,6 +288,16 @@ def check_torsion_engine(
             f"the speed range {lo * 30 / math.pi:.6g}-{hi * 30 / math.pi:.6g} rpm reaches beyond the full-load "
             f"diagrams ([[operating.gas]], {w[0] * 30 / math.pi:.6g}-{w[-1] * 30 / math.pi:.6g} rpm), which are "
             "never extrapolated",
+            file=str(file),
+            key=f"{key}.speed_range",
+        )
+    sweep = full_load.speeds if full_load is not None else ()
+    out = [x for x in sweep if not lo * (1 - 1e-12) <= x <= hi * (1 + 1e-12)]
+    if out:
+        raise InputError(
+            f"the full-load curve's speed {out[0] * 30 / math.pi:.6g} rpm lies outside the speed range "
+            f"{lo * 30 / math.pi:.6g}-{hi * 30 / math.pi:.6g} rpm: every speed of the sweep takes its torsional "
+            "vibration from this range",
             file=str(file),
             key=f"{key}.speed_range",
         )

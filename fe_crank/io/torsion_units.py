@@ -10,6 +10,7 @@ import math
 from pathlib import Path
 from typing import Annotated
 
+import pint
 from pydantic import BeforeValidator
 
 from fe_crank.errors import InputError
@@ -29,7 +30,7 @@ def _parse_per_angle(value: object, kind: str) -> float:
             f'expected a torsional {kind} with its unit as a string, e.g. "{example}"; got a value without a unit'
         )
     try:
-        q = ureg.Quantity(value.strip())
+        q: pint.Quantity[float] = ureg.Quantity(value.strip())  # a parsed number: int or float
     except Exception:  # pint raises several unrelated classes
         raise ValueError(f'cannot read this as a torsional {kind} (e.g. "{example}")') from None
     units = dict(getattr(q, "_units", {}) or {})

@@ -23,10 +23,11 @@ import math
 import re
 from typing import Annotated
 
+import numpy as np
 import pint
 from pydantic import BeforeValidator
 
-ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+ureg: pint.UnitRegistry[float | np.ndarray] = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 ureg.define("rpm = revolution / minute")  # pint's 'rpm' is already this; keep explicit
 
 #: longest accepted quantity or unit text (characters)
@@ -52,6 +53,7 @@ KINDS: dict[str, tuple[str, str, str]] = {
     "unbalance": ("[mass]*[length]", "kg*m", "0.03 kg*m"),
     "time": ("[time]", "s", "0.1 s"),
     "area": ("[length]**2", "m**2", "12 mm^2"),
+    "stiffness": ("[mass]/[time]**2", "N/m", "5e8 N/m"),
 }
 
 #: kind -> largest accepted absolute SI value.  Far beyond any crankshaft (a 1 km
@@ -72,6 +74,7 @@ MAX_ABS: dict[str, float] = {
     "unbalance": 1e5,
     "time": 1e7,
     "area": 1e6,
+    "stiffness": 1e16,
 }
 
 _TAU = 2.0 * math.pi
@@ -253,3 +256,4 @@ StiffnessPerArea = Annotated[float, _validator("stiffness_per_area")]
 Energy = Annotated[float, _validator("energy")]
 Unbalance = Annotated[float, _validator("unbalance")]
 Area = Annotated[float, _validator("area")]
+Stiffness = Annotated[float, _validator("stiffness")]

@@ -30,7 +30,7 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     from fe_crank.version import __version__
 
     geo = dataclasses.asdict(geometry)
-    for k in ("name", "description", "source", "file", "throws"):
+    for k in ("name", "description", "source", "file", "throws", "shaft"):  # shaft: ends and bearings
         geo.pop(k, None)
     th = dataclasses.asdict(throw)
     th.pop("angle", None)  # the throw frame does not depend on the throw's angle
@@ -40,6 +40,8 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     opts = dataclasses.asdict(options)
     if opts["web_divisions"] is None:  # the meshes made before the web control keep their keys
         del opts["web_divisions"]
+    if opts["interface_sectors"] == 1:
+        del opts["interface_sectors"]  # the key of every mesh without sectors stays as it was
     payload = {
         "geometry": geo,
         "throw": th,

@@ -33,6 +33,9 @@ class MeshOptions:
     size_max: float | None = None
     bore_divisions: float = 6.0  # elements round the oil bore circumference / pi
     optimize_high_order: bool = False  # gmsh's HighOrder optimiser can abort the process (uncaught C++ error)
+    interface_sectors: int = (
+        1  # end faces split into this many rotated-copy sectors (fe_crank.mesh.interface; whole shaft)
+    )
     symmetric: bool = True  # mesh the fundamental part of a mirror-symmetric throw and mirror it (fe_crank.mesh.planes; docs/geometry.md)
     #: elements across the web thickness W: edge <= W / web_divisions in the webs (UR M53 App.
     #: III 2.2 asks for at least 6 in its SCF models, ``fe.web_mesh``); None: no web control
@@ -45,6 +48,8 @@ class MeshOptions:
                 raise MeshError(f"mesh option {name} must be positive (got {v})")
         if self.web_divisions is not None and not (np.isfinite(self.web_divisions) and self.web_divisions > 0):
             raise MeshError(f"mesh option web_divisions must be positive (got {self.web_divisions})")
+        if not 1 <= self.interface_sectors <= 24:
+            raise MeshError(f"mesh option interface_sectors must be 1 ... 24 (got {self.interface_sectors})")
         if self.size_max is not None and not self.size_max > 0:
             raise MeshError(f"mesh option size_max must be positive (got {self.size_max})")
 

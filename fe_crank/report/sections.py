@@ -22,6 +22,7 @@ from fe_crank.outputs import CaseOutputs
 from fe_crank.report.fe_pictures import fe_section
 from fe_crank.report.html import Page, esc, table
 from fe_crank.report.stage_plots import dynamics_plots, plot_hodographs
+from fe_crank.report.sweep import sweep_section
 from fe_crank.report.tables import assessment_section, counterweight_section, mesh_quality_section
 from fe_crank.torsion.report import html_fragment, quasi_static_note, result_to_dict
 
@@ -172,6 +173,7 @@ BUILDERS = [
     ("Torsional vibration of the crank train", torsion_section),
     ("Balance: free forces, hodographs, counterweights", balance_section),
     ("Counterweights: required vs built m*r", counterweight_section),
+    ("The full-load curve: criteria against speed", sweep_section),
     ("Stresses and safety factors by location", assessment_section),
     ("Stress field renders", fe_section),
     ("Mesh statistics and FE quality", mesh_quality_section),

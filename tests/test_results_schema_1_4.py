@@ -1,4 +1,4 @@
-"""results.json 1.3 against its schema: the bolted joints per bolt, sigma_add per group and
+"""results.json 1.4 against its schema: the bolted joints per bolt, sigma_add per group and
 the oil-bore outlet's UR M53 result (a shipped case with an oil bore writes one)."""
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ def test_joints_sigma_add_and_the_oil_bore_outlet_validate():
     t = ThrowAssessment("1", (g,), m53=(bore,), joints=(joint,))
     doc = to_json(Assessment("c", "c.toml", 300.0, None, load_material("C45"), (t,), ()))
     jsonschema.validate(doc, load_schema())
-    assert doc["schema_version"] == "1.3"
+    assert doc["schema_version"] == "1.4"
     (j,) = doc["throws"][0]["joints"]
     assert (
         j["separation_safety"] == joint.separation_safety and j["axial_load_overspeed"] == joint.loads.axial_overspeed

@@ -1,0 +1,163 @@
+"""The whole-shaft model's typed entry point: main-bearing loads and web moments over the cycle.
+
+``analyse_whole_shaft(layout, material, dynamics, size=...)`` meshes the shaft
+(``mesh.shaft``), condenses it onto its bearing-centre planes (``fe.shaft_model``), solves
+the unit cases on the determinate base (``fe.shaft_cases``) and superposes them over the
+dynamics stage's cycle with the bearings' laws (``fe.shaft_cycle``), with the
+counterweights as built and without them.  ``dynamics``: the dynamics stage's result
+(``theta``, ``speed`` and per throw ``pin_force`` (n, 2) in the throw frame and
+``angle_global``).  ``WholeShaftResult.to_dict()`` gives the fields of results.json.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fe_crank.fe.shaft_cases import ShaftCases, solve_cases
+from fe_crank.fe.shaft_cycle import BearingLoads, ShaftCycle, ThrowCycleLoad, WebMoment, shaft_cycle
+from fe_crank.fe.shaft_model import ShaftFeOptions, build_shaft_model
+from fe_crank.geometry.mass import mass_properties
+from fe_crank.geometry.shaft import ShaftLayout
+from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions
+from fe_crank.mesh.shaft import mesh_shaft
+
+
+@dataclass(frozen=True)
+class BearingResult:
+    with_counterweights: BearingLoads
+    without_counterweights: BearingLoads
+
+    @property
+    def name(self) -> str:
+        return self.with_counterweights.name
+
+    def to_dict(self, angles: np.ndarray) -> dict:
+        a, b = self.with_counterweights, self.without_counterweights
+        return {
+            "name": a.name,
+            "z": a.z,
+            "width": a.width,
+            "crank_angle_deg": [float(x) for x in angles],
+            "load_n": a.load_n.tolist(),
+            "peak_n": a.peak_n,
+            "peak_angle_deg": a.peak_angle_deg,
+            "mean_n": a.mean_n,
+            "specific_load_pa": a.specific_load_pa,
+            "mean_specific_load_pa": a.mean_specific_load_pa,
+            "without_counterweights": {
+                "load_n": b.load_n.tolist(),
+                "peak_n": b.peak_n,
+                "peak_angle_deg": b.peak_angle_deg,
+                "mean_n": b.mean_n,
+                "specific_load_pa": b.specific_load_pa,
+            },
+        }
+
+
+@dataclass(frozen=True)
+class WebResult:
+    with_counterweights: WebMoment
+    without_counterweights: WebMoment
+
+    def to_dict(self) -> dict:
+        a, b = self.with_counterweights, self.without_counterweights
+        return {
+            "throw": a.throw,
+            "web": a.web,
+            "z": a.z,
+            "bending_moment_nm": a.bending_moment_nm.tolist(),
+            "without_counterweights": {"bending_moment_nm": b.bending_moment_nm.tolist()},
+        }
+
+
+@dataclass(frozen=True)
+class WholeShaftResult:
+    crank_angle_deg: np.ndarray
+    speed: float  # rad/s
+    n_dof: int
+    bearings: tuple[BearingResult, ...]
+    webs: tuple[WebResult, ...]
+    support_model: str
+    cycles: tuple[ShaftCycle, ShaftCycle]  # with, without counterweights (weights for stresses)
+    timings: dict[str, float] = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        return {
+            "support_model": self.support_model,
+            "n_dof": self.n_dof,
+            "speed_rad_s": self.speed,
+            "main_bearings": [b.to_dict(self.crank_angle_deg) for b in self.bearings],
+            "webs": [w.to_dict() for w in self.webs],
+        }
+
+
+def support_text(layout: ShaftLayout) -> str:
+    laws = {b.law for b in layout.bearings}
+    if len(laws) == 1:
+        law = next(iter(laws))
+        if law.model == "rigid":
+            how = "rigid"
+        elif law.model == "spring":
+            how = f"radial springs of {law.stiffness:.3g} N/m"
+        else:
+            how = f"radial clearance {law.clearance * 1e6:.3g} um, contact stiffness {law.stiffness:.3g} N/m"
+    else:
+        how = "laws per bearing"
+    thrust = layout.thrust_bearing.name
+    return (
+        f"whole shaft on {len(layout.bearings)} main bearings ({how}), each a reference point at its "
+        f"centre with a distributing coupling to its journal; thrust bearing {thrust}; the torque leaves "
+        f"at the {layout.power_takeoff} end"
+    )
+
+
+def analyse_whole_shaft(
+    layout: ShaftLayout,
+    material,
+    dynamics,
+    *,
+    size: str | MeshOptions = "coarse",
+    cache_dir=DEFAULT_CACHE_DIR,
+    options: ShaftFeOptions | None = None,
+    laws=None,
+) -> tuple[WholeShaftResult, ShaftCases]:
+    """The whole shaft over the cycle (module doc); also returns the unit cases (stresses
+    by superposition: ``ShaftCases.recover`` with ``WholeShaftResult.cycles[i].weights``)."""
+    t = {}
+    t0 = time.perf_counter()
+    sm = mesh_shaft(layout, size=size, cache_dir=cache_dir)
+    t["mesh"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    model = build_shaft_model(sm, material, options)
+    t["condensation"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    cases = solve_cases(model)
+    t["cases"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    by_shape: dict = {}  # the solid depends on the counterweights only (not on the name or angle)
+    for th in layout.throws:
+        if th.spec.counterweights not in by_shape:
+            by_shape[th.spec.counterweights] = mass_properties(layout.geometry, th.spec)
+    mass = {th.name: by_shape[th.spec.counterweights] for th in layout.throws}
+    first = layout.throws[0]
+    psi = np.asarray(dynamics.throws[first.name].angle_global) - layout.sense * first.angle
+    loads = tuple(ThrowCycleLoad(th.name, dynamics.throws[th.name].pin_force) for th in layout.throws)
+    on, off = (
+        shaft_cycle(cases, loads, dynamics.theta, psi, dynamics.speed, mass, counterweights=cw, laws=laws)
+        for cw in (True, False)
+    )
+    t["cycle"] = time.perf_counter() - t0
+    result = WholeShaftResult(
+        crank_angle_deg=on.crank_angle_deg,
+        speed=float(dynamics.speed),
+        n_dof=sm.n_dof,
+        bearings=tuple(BearingResult(a, b) for a, b in zip(on.bearings, off.bearings)),
+        webs=tuple(WebResult(a, b) for a, b in zip(on.webs, off.webs)),
+        support_model=support_text(layout),
+        cycles=(on, off),
+        timings={**t, **{f"condensation.{k}": v for k, v in model.timings.items()}},
+    )
+    return result, cases

@@ -1,0 +1,120 @@
+"""The ``[shaft]`` section of a geometry file -> ``fe_crank.geometry.spec.ShaftSpec`` (SI).
+
+::
+
+    [shaft]
+    pitch = "92 mm"                  # optional: checked against the engine's axial positions
+    end_journal_length = "34 mm"     # optional: outer web face to the end of an end journal
+                                     # (default: twice the half-gap, a bearing centred as the inner ones)
+    nose = { diameter = "40 mm", length = "45 mm" }      # optional, front
+    flange = { diameter = "100 mm", length = "16 mm" }   # optional, rear
+    bearing_width = "26 mm"          # optional: default width of every main bearing
+    bearing = { model = "rigid" }    # default law; or { model = "spring", stiffness = "1e9 N/m" }
+                                     # or { model = "clearance", clearance = "40 um", stiffness = "2e9 N/m" }
+    thrust_bearing = "3"             # optional: default the bearing nearest the power take-off
+    power_takeoff = "rear"           # "rear" (flywheel end, default) or "front"
+
+    [[shaft.bearings]]               # optional: default one bearing at every journal, named 1, 2, ...
+    name = "1"
+    journal = 0                      # 0 front end journal, i between throws i and i + 1, n rear end
+    width = "24 mm"                  # optional
+    bearing = { model = "spring", stiffness = "8e8 N/m" }   # optional: this bearing's law
+
+A negative stiffness or clearance, a spring or clearance bearing without its
+stiffness, two bearings on one journal or with one name are refused here; a bearing on
+a journal the shaft does not have and a thrust bearing that names no bearing are refused
+where the engine gives the journals (``fe_crank.geometry.shaft``).
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from fe_crank.geometry.spec import BearingInput, BearingLaw, PlainCylinder, ShaftSpec
+from fe_crank.io.base import Strict
+from fe_crank.io.units import Length, Stiffness
+
+
+class CylinderInput(Strict):
+    diameter: Length = Field(gt=0)
+    length: Length = Field(gt=0)
+
+
+class BearingLawInput(Strict):
+    model: Literal["rigid", "spring", "clearance"] = "rigid"
+    stiffness: Stiffness | None = Field(default=None, gt=0)
+    clearance: Length | None = Field(default=None, ge=0)
+
+    @model_validator(mode="after")
+    def _keys(self):
+        if self.model == "rigid" and (self.stiffness is not None or self.clearance is not None):
+            raise ValueError('a "rigid" bearing takes no stiffness or clearance')
+        if self.model in ("spring", "clearance") and self.stiffness is None:
+            raise ValueError(f'a "{self.model}" bearing needs its radial stiffness, e.g. stiffness = "1e9 N/m"')
+        if self.model == "spring" and self.clearance is not None:
+            raise ValueError('a "spring" bearing takes no clearance (model = "clearance" does)')
+        if self.model == "clearance" and self.clearance is None:
+            raise ValueError('a "clearance" bearing needs its radial clearance, e.g. clearance = "40 um"')
+        return self
+
+    def law(self) -> BearingLaw:
+        return BearingLaw(self.model, self.stiffness, self.clearance or 0.0)
+
+
+class BearingEntry(Strict):
+    name: str = Field(min_length=1, max_length=64)
+    journal: int = Field(ge=0, le=1000)
+    width: Length | None = Field(default=None, gt=0)
+    bearing: BearingLawInput | None = None
+
+
+class ShaftInput(Strict):
+    pitch: Length | None = Field(default=None, gt=0)
+    end_journal_length: Length | None = Field(default=None, gt=0)
+    nose: CylinderInput | None = None
+    flange: CylinderInput | None = None
+    bearing_width: Length | None = Field(default=None, gt=0)
+    bearing: BearingLawInput = BearingLawInput()
+    bearings: list[BearingEntry] | None = Field(default=None, min_length=2, max_length=1000)
+    thrust_bearing: str | None = Field(default=None, min_length=1, max_length=64)
+    power_takeoff: Literal["rear", "front"] = "rear"
+
+    @model_validator(mode="after")
+    def _unique(self):
+        if self.bearings:
+            names = [b.name for b in self.bearings]
+            journals = [b.journal for b in self.bearings]
+            if len(set(names)) < len(names):
+                raise ValueError("two bearings with one name")
+            if len(set(journals)) < len(journals):
+                raise ValueError("two bearings on one journal")
+        return self
+
+
+def shaft_spec(raw: ShaftInput | None) -> ShaftSpec | None:
+    """The validated section as the frozen ``ShaftSpec`` (None when the file has none)."""
+    if raw is None:
+        return None
+
+    def cyl(c: CylinderInput | None) -> PlainCylinder | None:
+        return None if c is None else PlainCylinder(c.diameter, c.length)
+
+    bearings = None
+    if raw.bearings:
+        bearings = tuple(
+            BearingInput(b.name, b.journal, b.width, None if b.bearing is None else b.bearing.law())
+            for b in sorted(raw.bearings, key=lambda b: b.journal)
+        )
+    return ShaftSpec(
+        pitch=raw.pitch,
+        end_journal_length=raw.end_journal_length,
+        nose=cyl(raw.nose),
+        flange=cyl(raw.flange),
+        bearing_width=raw.bearing_width,
+        bearing_law=raw.bearing.law(),
+        bearings=bearings,
+        thrust_bearing=raw.thrust_bearing,
+        power_takeoff=raw.power_takeoff,
+    )
