@@ -14,6 +14,8 @@ import pytest
 from fe_crank.assess.case import Assessment
 from fe_crank.assess.criteria import evaluate_criteria
 from fe_crank.assess.group import Extreme, GroupResult
+from fe_crank.assess.loads import FIRING
+from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.check.converged import criterion, refined, richardson, surface_factor
 from fe_crank.check.verdict import decide
@@ -166,3 +168,23 @@ def test_the_oil_bore_outlet_is_refined_and_followed_by_the_study(tmp_path):
     k, basis, _, _ = surface_factor({"1": st}, "1", "oil_bore")
     ratios = [st.levels[-1].peaks[n] / st.levels[0].peaks[n] for n in bore]
     assert k == pytest.approx(max(1.0, *ratios), rel=1e-12) and basis.startswith("finest level r/2")
+
+
+def test_the_study_scales_every_speed_of_the_full_load_curve():
+    """Over a sweep the study's factor applies at every speed and the worst speed is found
+    again: at 1000 rpm the studied journal fillet (3.0, x1.1 -> 2.727) falls below the
+    unstudied junction that governed at 2000 rpm (2.927), so the verdict moves to 1000 rpm;
+    each speed's value in ``per_speed`` is scaled alike."""
+    st = _study({"peak pin force": [100.0, 105.0, 110.0]})  # equal steps: the finest level, k = 1.1
+    low = (ThrowAssessment("1", (_group("journal_fillet_2", 3, 200e6), _group("junction_1", 13, 190e6))),)
+    high = (ThrowAssessment("1", (_group("journal_fillet_2", 3, 170e6), _group("junction_1", 13, 205e6))),)
+    w_low, w_high = 1000 * math.pi / 30, 2000 * math.pi / 30
+    sweep = (StateResults(w_low, FIRING, low), StateResults(w_high, FIRING, high))
+    crit = evaluate_criteria(build_criteria({"min_static_safety": 2.0}, "c.toml"), high, sweep=sweep)
+    assert crit[0].value == pytest.approx(600 / 205) and crit[0].speed_rpm == pytest.approx(2000)
+    a = Assessment("c", "c.toml", w_high, None, load_material("C45"), high, crit, sweep=sweep)
+    (c, _) = decide(CaseOutputs(assessment=a, convergence={ALL_THROWS: st})).criteria
+    assert c.value == pytest.approx(3.0 / 1.1, rel=1e-12) and c.speed_rpm == pytest.approx(1000)
+    assert c.location.startswith("throw 1, journal_fillet_2") and "; 1000 rpm; x1.100 by the convergence" in c.location
+    assert [p.value for p in c.per_speed] == pytest.approx([3.0 / 1.1, 600 / 205], rel=1e-12)
+    assert [p.speed_rpm for p in c.per_speed] == pytest.approx([1000, 2000])
