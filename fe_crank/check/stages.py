@@ -16,7 +16,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TypeVar
+from typing import TypeVar, cast
 
 from fe_crank.assess import m53
 from fe_crank.assess.case import AssessInputs, Assessment, assess_case
@@ -47,6 +47,7 @@ from fe_crank.torsion.analysis import with_vibratory_torque
 from fe_crank.torsion.build import throw_inertias
 from fe_crank.torsion.loads import assessed_loads, fe_inertias
 from fe_crank.torsion.misfire import analyse_misfire
+from fe_crank.torsion.model import TorsionCase
 from fe_crank.torsion.stiffness import fe_throw_stiffness
 
 log = logging.getLogger(__name__)
@@ -268,7 +269,8 @@ def torsion_stage(
         raise InputError(
             "throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file, key="torsion.throw_stiffness"
         )
-    mis = analyse_misfire(lc, inertias=throw_inertias(lc, geo.solids), fe_stiffness=k_fe)
+    # a CAD geometry with [torsion] is refused at input (io.loadcase): the case is a TorsionCase
+    mis = analyse_misfire(lc, inertias=throw_inertias(cast(TorsionCase, lc), geo.solids), fe_stiffness=k_fe)
     handed = mis.journal_torques()
     loads = assessed_loads(
         lc.engine,

@@ -108,6 +108,13 @@ class WebInput(Strict):
                 raise ValueError('outline "pear" takes journal_end_radius and pin_end_radius, not width')
         return self
 
+    def end_radii(self) -> tuple[float, float]:
+        """(journal end, pin end) radius of the outline (the validator gave one form)."""
+        if self.width is not None:
+            return self.width / 2, self.width / 2
+        assert self.journal_end_radius is not None and self.pin_end_radius is not None
+        return self.journal_end_radius, self.pin_end_radius
+
 
 class BoltedInput(Strict):
     """A bolted counterweight's joint (docs/assessment.md, "The bolted counterweight")."""
@@ -218,10 +225,7 @@ def _counterweights(cw: CounterweightInput | None, web_thickness: float) -> tupl
 def geometry_from_dict(data: dict, file: str | Path = "<geometry>", prefix: str = "") -> CrankGeometry:
     """Validate a geometry table (already read from TOML) and check it."""
     raw = validate(GeometryInput, data, file, prefix)
-    if raw.web.outline == "stadium":
-        web = WebOutline("stadium", raw.web.width / 2, raw.web.width / 2)
-    else:
-        web = WebOutline("pear", raw.web.journal_end_radius, raw.web.pin_end_radius)
+    web = WebOutline(raw.web.outline, *raw.web.end_radii())
     default_cw = _counterweights(raw.counterweight, raw.web.thickness)
     throws_in = raw.throws if raw.throws else [ThrowInput()]
     throws = []
@@ -239,7 +243,7 @@ def geometry_from_dict(data: dict, file: str | Path = "<geometry>", prefix: str 
         description=raw.description,
         source=raw.source,
         density=raw.density,
-        crank_radius=raw.crank_radius if raw.crank_radius is not None else raw.stroke / 2,
+        crank_radius=raw.crank_radius if raw.crank_radius is not None else (raw.stroke or 0.0) / 2,
         journal_diameter=raw.journal.diameter,
         journal_length=raw.journal.length,
         crankpin_diameter=raw.crankpin.diameter,

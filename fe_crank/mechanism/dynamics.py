@@ -268,7 +268,7 @@ def analyse(
             )
         shaft_torque[shaft.name] = cumulative
 
-    torque = sum(shaft_torque[s.name] * s.speed_ratio for s in engine.shafts)
+    torque = np.sum([shaft_torque[s.name] * s.speed_ratio for s in engine.shafts], axis=0)
     mean_torque = float(np.mean(torque))
     power = mean_torque * omega
     if abs(mean_torque) > 0:
