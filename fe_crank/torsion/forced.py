@@ -46,14 +46,6 @@ def receptance(model: TorsionModel, frequency: float) -> np.ndarray:
     )
 
 
-def excitation_vector(model: TorsionModel, harmonics: CylinderHarmonics, speed: float, index: int) -> np.ndarray:
-    """Complex torque on each mass for harmonic ``index`` at ``speed``."""
-    t = np.zeros(model.size, complex)
-    for cyl, throw in harmonics.throw_of.items():
-        t[model.throw_mass[throw]] += harmonics.at_speed(cyl, speed)[index]
-    return t
-
-
 @dataclass(frozen=True)
 class ForcedResponse:
     """Response over ``speeds`` (rad/s) for ``orders``.
