@@ -26,13 +26,14 @@ from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
+from fe_crank.geometry.shaft import throw_at_bearings
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
 from fe_crank.io.base import InputFile, Strict, read_toml, recording_inputs, validate
 from fe_crank.io.criteria import Criteria, check_m53_torque
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
-from fe_crank.io.includes import input_root
+from fe_crank.io.includes import input_root, resolve_reference
 from fe_crank.io.material import Material
 from fe_crank.io.operating import parse_operating
 from fe_crank.io.sections import SECTION_KEYS, parse_sections
@@ -54,6 +55,8 @@ class LoadCase:
     engine: model.Engine
     operating: model.OperatingPoint
     description: str = ""
+    #: the throw as the checks take it: the geometry file's, its journal stubs reaching the
+    #: engine's main-bearing centres (``geometry.shaft.throw_at_bearings``)
     geometry: CrankGeometry | None = None
     material: Material | None = None
     criteria: Criteria | None = None
@@ -62,6 +65,7 @@ class LoadCase:
     mesh: MeshSection = field(default_factory=MeshSection)
     torsion: TorsionSettings | None = None
     inputs: tuple[InputFile, ...] = ()
+    engine_file: str = ""  # the file the engine was read from (the load case itself when inline)
 
 
 class LoadCaseHead(Strict):
@@ -107,6 +111,11 @@ def _load(path: Path) -> LoadCase:
     engine, operating = parse_operating(data["operating"], engine, path)
     sections = parse_sections(data, path)
     criteria, geometry = sections.criteria, sections.geometry
+    engine_file = _engine_file(data["engine"], path)
+    if geometry is not None:  # one shaft in both files; bearing centres from the engine
+        geometry = throw_at_bearings(
+            geometry, engine, geometry_file=geometry.file or str(path), engine_file=engine_file
+        )
     if criteria is not None:
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
     if sections.torsion is not None:
@@ -128,7 +137,13 @@ def _load(path: Path) -> LoadCase:
         balance=sections.balance,
         mesh=sections.mesh or MeshSection(),
         torsion=sections.torsion,
+        engine_file=engine_file,
     )
+
+
+def _engine_file(value: object, path: Path) -> str:
+    """The engine file a load case names (the load case itself for an inline table)."""
+    return str(resolve_reference(value, path, key="engine")) if isinstance(value, str) else str(path)
 
 
 def _short(key: object) -> str:
