@@ -21,7 +21,7 @@ from fe_crank.assess.m53_basis import M53Basis, m53_basis
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.states import ModelStates, model_states
-from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.superpose import UnitStresses, inertia_acceleration
 from fe_crank.assess.throw import ThrowAssessment, assess_throw
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.errors import InputError
@@ -153,6 +153,11 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                 if spec is not None and spec.counterweights and a.solids is not None
                 else ()
             )
+            alpha = (  # the throw's vibratory inertia torque as the body force of its angular acceleration
+                inertia_acceleration(tl.torque_front, tl.torque_rear, tl.torque, unit.inertia_mz)
+                if "angular_acceleration" in unit.cases
+                else None
+            )
             throws.append(
                 assess_throw(
                     tname,
@@ -173,6 +178,7 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                     overspeed_loads=[_cycle(c.dynamics.throws[tname], places) for c in a.cycles.overspeed] or None,
                     rod_loads=rod_loads(tl, places),
                     scf=a.scf.get(key),
+                    angular_acceleration=alpha,
                 )
             )
             if a.m53_geometry is None:

@@ -88,10 +88,17 @@ def unit_stresses(unit_solutions: UnitSolutions, groups: dict[str, np.ndarray] |
     cases = tuple(
         c
         for c in unit_solutions.cases
-        if c in ("centrifugal", "torque") or pin_direction(c) is not None or patch_case(c) is not None
+        if c in ("centrifugal", "torque", "angular_acceleration")
+        or pin_direction(c) is not None
+        or patch_case(c) is not None
     )
     stress = _recover(unit_solutions, cases, ids)  # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0
+    jz = (
+        float(unit_solutions.cases["angular_acceleration"].applied[5])
+        if "angular_acceleration" in unit_solutions.cases
+        else 0.0
+    )
     return UnitStresses(
         stress=stress,
         points=np.asarray(unit_solutions.points)[:, ids],
@@ -99,5 +106,6 @@ def unit_stresses(unit_solutions: UnitSolutions, groups: dict[str, np.ndarray] |
         node_ids=ids,
         cases=cases,
         torque_mz=mz,
+        inertia_mz=jz,
         pin_patches=tuple(unit_solutions.options.pin_patches),
     )

@@ -28,7 +28,7 @@ import numpy as np
 
 from fe_crank.assess.group import GroupResult
 from fe_crank.assess.groups import COUNTERWEIGHTS
-from fe_crank.assess.superpose import load_coefficients
+from fe_crank.assess.superpose import inertia_acceleration, load_coefficients
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.unit_cases import UnitSolutions
@@ -113,13 +113,25 @@ def field_at_angle(
     tl = dyn.throws[throw]
     cases = tuple(unit_solutions.cases)
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0
+    at = slice(index, index + 1)
+    alpha = (  # the throw's vibratory inertia torque, as the assessment carries it
+        inertia_acceleration(
+            tl.torque_front[at],
+            tl.torque_rear[at],
+            tl.torque[at],
+            unit_solutions.cases["angular_acceleration"].applied[5],
+        )
+        if "angular_acceleration" in unit_solutions.cases
+        else None
+    )
     c = load_coefficients(
-        tl.pin_force[index : index + 1],
-        tl.torque_front[index : index + 1],
+        tl.pin_force[at],
+        tl.torque_front[at],
         dyn.speed,
         cases=cases,
         sense=sense,
         torque_mz=mz,
+        angular_acceleration=alpha,
     )[0]
     return unit_solutions.combine(dict(zip(cases, c)))
 

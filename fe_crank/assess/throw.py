@@ -59,6 +59,7 @@ def assess_throw(
     torque_rear: np.ndarray | None = None,
     overspeed_loads: tuple | list | None = None,
     rod_loads: tuple | None = None,
+    angular_acceleration: np.ndarray | None = None,
 ) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
@@ -80,8 +81,12 @@ def assess_throw(
     is checked as one longer history: the overspeed result is the worst over all of them.
     ``rod_loads``: (force (n, 2), place on the pin m) per rod (``fe.pin_patches``): UR M53's
     moments rod by rod and, where the FE model has patch cases, each rod on its band; an
-    overspeed cycle is then (pin force, torque, rod loads)."""
-    coeffs = cycle_coefficients(unit, pin_force, torque, omega, sense=sense, rod_loads=rod_loads)
+    overspeed cycle is then (pin force, torque, rod loads).  ``angular_acceleration`` (n,)
+    rad/s^2 on the ``angular_acceleration`` unit case (``superpose.inertia_acceleration``:
+    the throw's vibratory inertia torque, so that its rear journal carries its own torque)."""
+    coeffs = cycle_coefficients(
+        unit, pin_force, torque, omega, sense=sense, rod_loads=rod_loads, angular_acceleration=angular_acceleration
+    )
     coeffs_os = None
     if overspeed is not None:
         if overspeed_loads is None:

@@ -175,9 +175,12 @@ def fe_stage(lc: LoadCase, meshes: dict[str, ThrowMesh]) -> dict[str, UnitSoluti
         raise InputError("the stress check needs a [material] section", file=lc.source_file, key="material")
     solved: dict[str, UnitSolutions] = {}
     out = {}
+    fe = lc.fe
+    if lc.torsion is not None and "angular_acceleration" not in fe.cases:  # the throws' vibratory inertia torque
+        fe = dataclasses.replace(fe, cases=(*fe.cases, "angular_acceleration"))
     for key, m in meshes.items():
         if m.key not in solved:
-            solved[m.key] = solve_unit_cases(m, lc.material, lc.fe)
+            solved[m.key] = solve_unit_cases(m, lc.material, fe)
             # every unit case is solved: later stages combine displacements and never solve
             # again, so the factor (the largest allocation of the run) goes now
             solved[m.key].system.factorisation.free()
