@@ -15,11 +15,12 @@ from dataclasses import dataclass, field
 from fe_crank import model
 from fe_crank.assess import m53, m53_oil_bore
 from fe_crank.assess.adapters import counterweights_of
-from fe_crank.assess.criteria import evaluate_criteria
+from fe_crank.assess.criteria import ModelValue, evaluate_criteria, model_values
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
 from fe_crank.assess.m53_basis import M53Basis, m53_basis
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.scf import ScfResult
+from fe_crank.assess.shaft import ShaftAssessment
 from fe_crank.assess.states import ModelStates, model_states
 from fe_crank.assess.superpose import UnitStresses, inertia_acceleration
 from fe_crank.assess.throw import ThrowAssessment, assess_throw
@@ -37,7 +38,9 @@ from fe_crank.notes import ASSUMPTION, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
-SCHEMA_VERSION = "1.2"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws
+#: 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws;
+#: 1.3: the whole-shaft model (``whole_shaft``) and each criterion's value in each model (``criteria_by_model``)
+SCHEMA_VERSION = "1.3"
 
 
 @dataclass(frozen=True)
@@ -68,6 +71,7 @@ class AssessInputs:
     m53_geometry: m53.M53Geometry | None = None
     scf: dict[str, ScfResult] = field(default_factory=dict)
     torsion: bool = False  # the journal torques carry the torsional stage's vibratory torque
+    shaft: ShaftAssessment | None = None  # the whole-shaft model's results (its stage), when it ran
 
 
 @dataclass(frozen=True)
@@ -83,6 +87,7 @@ class Assessment:
     criteria: tuple[CriterionResult, ...]
     notes: tuple[Note, ...] = field(default_factory=tuple)  # the assessment's assumptions
     states: tuple[ModelStates, ...] = ()  # per FE model: the hot spot, overspeed state, averaging check
+    by_model: tuple[ModelValue, ...] = ()  # with the whole shaft: each criterion's value in each model
 
     @property
     def passed(self) -> bool:
@@ -192,14 +197,24 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                     )
                 )
     done = tuple(throws)
-    verdicts = evaluate_criteria(lim, done, file=a.source_file, overspeed=overspeed)
+    verdicts = evaluate_criteria(lim, done, file=a.source_file, overspeed=overspeed, shaft=a.shaft)
+    by_model = model_values(lim, done, a.shaft) if a.shaft is not None else ()
     states = []
     for keys, unit_solutions in shared_models(a.unit_solutions):
         st = model_states(keys, unit_solutions, done, a.dynamics, a.cycles.overspeed, senses, fields=fields)
         if st is not None:
             states.append(st)
     return Assessment(
-        a.case, a.source_file, omega, overspeed, a.material, done, verdicts, tuple(grouped(notes)), tuple(states)
+        a.case,
+        a.source_file,
+        omega,
+        overspeed,
+        a.material,
+        done,
+        verdicts,
+        tuple(grouped(notes)),
+        tuple(states),
+        by_model,
     )
 
 

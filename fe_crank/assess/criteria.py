@@ -5,6 +5,12 @@ that finds its worst value over every throw and where it occurs; ``evaluate_crit
 judges each limit of the load case with it (``verdict.judge``).  A criterion that cannot
 be evaluated (no data for it) is an ``InputError`` naming its key: it never passes
 silently.
+
+With the whole-shaft model (``assess.shaft.ShaftAssessment``) a stress quantity is found
+on both models' throws (the per-throw model, UR M53's determinate one, and the whole
+shaft on its bearings) and the criterion takes the worse of the two, its location naming
+the model (``model_values``: both, for the report); the main-bearing quantities are the
+whole shaft's alone.
 """
 
 from __future__ import annotations
@@ -15,6 +21,7 @@ from dataclasses import dataclass
 
 from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.group import STATIC_ONLY_PREFIXES, Extreme, GroupResult
+from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, ShaftAssessment
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.verdict import judge
 from fe_crank.errors import InputError
@@ -127,15 +134,48 @@ def _bolts(throws: tuple[ThrowAssessment, ...]) -> Found:
     return max(vals) if vals else None
 
 
+def _bearing_load(bearings) -> Found:
+    vals = [
+        (b.with_counterweights.peak_n, f"main bearing {b.name}, {b.with_counterweights.peak_angle_deg:.0f} deg")
+        for b in bearings
+    ]
+    return max(vals) if vals else None
+
+
+def _bearing_specific_load(bearings) -> Found:
+    vals = [
+        (
+            b.with_counterweights.specific_load_pa,
+            f"main bearing {b.name} (peak / (d w), w = {b.with_counterweights.width * 1e3:.4g} mm), "
+            f"{b.with_counterweights.peak_angle_deg:.0f} deg",
+        )
+        for b in bearings
+    ]
+    return max(vals) if vals else None
+
+
 @dataclass(frozen=True)
 class Evaluator:
-    """How a quantity is found on the throws' results: ``find`` gives (worst value,
-    location) or None; ``unit`` of the value ("" for a pure number); ``needs_overspeed``:
-    only defined with an overspeed."""
+    """How a quantity is found: ``find`` on the throws' results of a model (worst value,
+    location) or None; ``bearings`` on the whole shaft's main bearings (quantities of the
+    whole-shaft model alone, ``find`` None); ``unit`` of the value ("" for a pure number);
+    ``needs_overspeed``: only defined with an overspeed."""
 
-    find: Callable[[tuple[ThrowAssessment, ...]], Found]
+    find: Callable[[tuple[ThrowAssessment, ...]], Found] | None
     unit: str = ""
     needs_overspeed: bool = False
+    bearings: Callable[[tuple], Found] | None = None
+
+
+@dataclass(frozen=True)
+class ModelValue:
+    """A criterion's worst value in one model and where it occurs (``model_values``)."""
+
+    criterion: str  # the criterion's key
+    model: str  # PER_THROW or WHOLE_SHAFT
+    value: float
+    location: str
+    governs: bool  # the criterion took this model's value
 
 
 EVALUATORS: dict[str, Evaluator] = {
@@ -148,27 +188,79 @@ EVALUATORS: dict[str, Evaluator] = {
     "m53_acceptability": Evaluator(_m53),
     "unbalance_error": Evaluator(_unbalance),
     "bolt_utilisation": Evaluator(_bolts),
+    "main_bearing_load": Evaluator(None, unit="N", bearings=_bearing_load),
+    "main_bearing_specific_load": Evaluator(None, unit="Pa", bearings=_bearing_specific_load),
 }
 
 
+def _found(ev: Evaluator, throws, shaft: ShaftAssessment | None) -> list[tuple[str, float, str]]:
+    """(model, worst value, location) of a quantity in each model that gives it."""
+    out = []
+    got = ev.find(throws) if ev.find is not None else None
+    if got is not None:
+        out.append((PER_THROW, *got))
+    if shaft is not None:
+        got = ev.find(shaft.throws) if ev.find is not None else ev.bearings(shaft.bearings) if ev.bearings else None
+        if got is not None:
+            out.append((WHOLE_SHAFT, *got))
+    return out
+
+
+def _worse(found: list[tuple[str, float, str]], sense: str) -> tuple[str, float, str]:
+    """The entry with the worse value (the lower for a "min" criterion); the first of equals."""
+    best = found[0]
+    for f in found[1:]:
+        if (f[1] < best[1]) if sense == "min" else (f[1] > best[1]):
+            best = f
+    return best
+
+
+def model_values(
+    criteria: Criteria, throws: tuple[ThrowAssessment, ...], shaft: ShaftAssessment | None
+) -> tuple[ModelValue, ...]:
+    """Each criterion's worst value in each model that gives it, and which one governs
+    (the report's table of the two models)."""
+    out = []
+    for lim in criteria.limits:
+        found = _found(EVALUATORS[lim.quantity], throws, shaft)
+        if not found:
+            continue
+        worst = _worse(found, lim.sense)
+        out.extend(ModelValue(lim.key, m, v, w, (m, v, w) == worst) for m, v, w in found)
+    return tuple(out)
+
+
 def evaluate_criteria(
-    criteria: Criteria, throws: tuple[ThrowAssessment, ...], *, file: str = "", overspeed: float | None = None
+    criteria: Criteria,
+    throws: tuple[ThrowAssessment, ...],
+    *,
+    file: str = "",
+    overspeed: float | None = None,
+    shaft: ShaftAssessment | None = None,
 ) -> tuple[CriterionResult, ...]:
-    """Each limit of ``criteria`` -> a verdict (module docstring)."""
+    """Each limit of ``criteria`` -> a verdict (module docstring); ``shaft``: the whole-shaft
+    model's results, when it ran (a criterion then takes the worse of the two models)."""
     out = []
     for lim in criteria.limits:
         ev = EVALUATORS[lim.quantity]
         if ev.needs_overspeed and overspeed is None:
             raise InputError("needs operating.overspeed", file=file, key=lim.key)
-        got = ev.find(throws)
-        if got is None:
+        found = _found(ev, throws, shaft)
+        if not found:
+            missing = (
+                "the whole-shaft model, which runs for an engine of several throws on one shaft or a geometry "
+                "with a [shaft] section"
+                if ev.find is None
+                else "missing geometry, mesh group, balance requirement or bolt data"
+            )
             raise InputError(
-                f"cannot be evaluated: the model gives no {lim.quantity.replace('_', ' ')} "
-                "(missing geometry, mesh group, balance requirement or bolt data)",
+                f"cannot be evaluated: the model gives no {lim.quantity.replace('_', ' ')} ({missing})",
                 file=file,
                 key=lim.key,
             )
-        value, where = got
+        model, value, where = _worse(found, lim.sense)
+        if shaft is not None:
+            where = f"{model}: {where}"
         out.append(
             judge(
                 lim.key,

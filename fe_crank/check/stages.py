@@ -3,7 +3,8 @@
 load -> dynamics (operating and overspeed cycles) -> balance -> geometry (mesh plan, UR
 M53 dimensions, CAD mass properties) -> mesh (cached) -> FE unit cases -> SCF mode (only
 where UR M53's empirical SCFs are out of range) -> torsion (with a ``[torsion]``
-section) -> assessment -> hot-spot convergence study (sign-off meshes).  Each stage is a
+section) -> whole shaft (several throws on one shaft, or a ``[shaft]`` section:
+``check.shaft_stage``) -> assessment -> hot-spot convergence study (sign-off meshes).  Each stage is a
 plain typed call into its package, timed on its own; no stage computes what another
 owns, and each reads only the outputs of the stages before it (``CaseOutputs``).
 """
@@ -24,6 +25,7 @@ from fe_crank.assess.case import AssessInputs, Assessment, assess_case
 from fe_crank.assess.scf import ScfResult, compute_scf, scf_mesh, web_centres_of
 from fe_crank.assess.workers import threads
 from fe_crank.balance.analysis import analyse_balance
+from fe_crank.check import shaft_stage
 from fe_crank.check.options import CheckOptions
 from fe_crank.errors import InputError
 from fe_crank.fe import convergence, solve_unit_cases
@@ -100,6 +102,12 @@ def run_stages(run: Run) -> None:
     assert cycles is not None
     if lc.torsion is not None:  # torsional vibration (docs/torsion.md): only with a [torsion] section
         run.keep(torsion=run.timed("torsion", torsion_stage, lc, geo, unit_solutions, cycles))
+    if shaft_stage.wanted(lc):  # the whole shaft on its bearings (docs/shaft.md)
+        with threads(assess_threads_of(opts)):
+            shaft = run.timed(
+                "whole_shaft", shaft_stage.whole_shaft_stage, lc, geo, run.out, opts.render or opts.write_vtu
+            )
+        run.keep(whole_shaft=shaft)
     with threads(assess_threads_of(opts)):
         assessment = run.timed("assess", assess_stage, lc, run.out, opts.render or opts.write_vtu)
     run.keep(assessment=assessment)
@@ -150,6 +158,8 @@ def geometry_stage(lc: LoadCase, options: CheckOptions) -> GeometryModel:
         cache_dir=options.cache_dir,
         file=lc.source_file,
     )
+    if shaft_stage.wanted(lc):  # the per-throw model meshes the whole shaft's throws (one cached mesh each)
+        plan = dataclasses.replace(plan, options=shaft_stage.throw_mesh_options(lc, plan.options))
     wanted = tuple(sorted({t.name for t in g.throws if t.counterweights}))
     if lc.torsion is not None:
         wanted = tuple(t.name for t in g.throws)
@@ -261,5 +271,6 @@ def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
         m53_geometry=out.geometry.m53,
         scf=out.fe.scf,
         torsion=out.torsion is not None,
+        shaft=out.whole_shaft.assessment if out.whole_shaft is not None else None,
     )
     return assess_case(inputs, fields=fields)

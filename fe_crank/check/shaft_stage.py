@@ -1,0 +1,126 @@
+"""The whole-shaft stage: every throw of the shaft in one model on all its main bearings.
+
+It runs for an engine of several throws on one shaft, and for a single throw whose
+geometry states its shaft (a ``[shaft]`` section), after the FE and torsional stages and
+before the assessment (docs/shaft.md):
+
+* the shaft placed by the engine (``geometry.shaft.shaft_layout``; a geometry of one
+  throw stands for every throw, ``for_engine_throws``), meshed, condensed and solved on
+  its bearings over the operating cycle, with and without counterweights, and over the
+  overspeed cycles (``fe.whole_shaft.analyse_whole_shaft``); each journal carries its own
+  torque (``torque_flow``: the journal torques the assessment takes, with the torsional
+  stage's vibratory torque when it ran);
+* its throws' fillets, oil bores and counterweight junctions assessed by the per-throw
+  model's code (``assess.shaft``), for the criteria beside the per-throw model;
+* the whole mesh's state at the angle of its largest von Mises stress, for the report's
+  picture and ``.vtu`` (``fe.shaft_fields``), when those are wanted.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fe_crank.assess.m53_basis import m53_basis
+from fe_crank.assess.shaft import ShaftAssessment, assess_shaft_throws
+from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.fe.shaft_fields import shaft_fields
+from fe_crank.fe.shaft_model import ShaftFeOptions
+from fe_crank.fe.whole_shaft import analyse_whole_shaft
+from fe_crank.geometry.shaft import ShaftLayout, for_engine_throws, shaft_layout
+from fe_crank.io.loadcase import LoadCase
+from fe_crank.mesh.options import MeshOptions
+from fe_crank.mesh.shaft import place, shaft_options
+from fe_crank.outputs import CaseOutputs, GeometryModel, ShaftHotSpot, WholeShaftOutput
+
+
+def wanted(lc: LoadCase) -> bool:
+    """Whether the whole-shaft stage runs: an engine of one shaft whose throws the engine
+    spreads along the axis (two or more), or a geometry with a ``[shaft]`` section."""
+    g, e = lc.geometry, lc.engine
+    if g is None or lc.material is None or len(e.shafts) != 1:
+        return False
+    z = [t.axial_position for t in e.throws]
+    return g.shaft is not None or (len(z) > 1 and max(z) - min(z) > 0)
+
+
+def layout_of(lc: LoadCase) -> ShaftLayout:
+    """The shaft of the load case placed by its engine (a geometry of one throw stands for
+    every throw, ``geometry.shaft.for_engine_throws``)."""
+    g = lc.geometry
+    assert g is not None
+    return shaft_layout(
+        for_engine_throws(g, lc.engine),
+        lc.engine,
+        geometry_file=g.file or lc.source_file,
+        engine_file=lc.engine_file or lc.source_file,
+    )
+
+
+def throw_mesh_options(lc: LoadCase, options: MeshOptions) -> MeshOptions:
+    """The per-throw model's mesh options when the whole shaft runs: the whole shaft's
+    (``mesh.shaft.shaft_options``: end faces split into rotated-copy sectors), so that both
+    models mesh each throw once (one cached mesh)."""
+    return shaft_options(layout_of(lc), options)
+
+
+def governing(throws: tuple[ThrowAssessment, ...], layout: ShaftLayout) -> ShaftHotSpot | None:
+    """The largest von Mises stress over the cycle on the whole shaft's throws and where
+    it is (the first of equals), its point placed in the shaft frame."""
+    best = None
+    for t in throws:
+        for g in t.groups:
+            e = g.max_von_mises
+            if e.angle is not None and (best is None or e.value > best[1].value):
+                best = (t.name, e)
+    if best is None:
+        return None
+    name, e = best
+    th = next(t for t in layout.throws if t.name == name)
+    p = place(np.asarray(e.point, float)[:, None], layout.sense * th.angle, th.z)[:, 0]
+    return ShaftHotSpot(
+        name, e.group, float(np.degrees(e.angle)), float(e.value), (float(p[0]), float(p[1]), float(p[2]))
+    )
+
+
+def whole_shaft_stage(lc: LoadCase, geo: GeometryModel, out: CaseOutputs, fields: bool) -> WholeShaftOutput:
+    """The stage (module doc); ``fields``: also the whole mesh's state at the governing
+    angle (the report's picture and ``.vtu``)."""
+    g, mat = lc.geometry, lc.material
+    assert g is not None and mat is not None and out.cycles is not None
+    dyn = out.assessed_dynamics
+    assert dyn is not None
+    layout = layout_of(lc)
+    overspeed = tuple(c.dynamics for c in out.cycles.overspeed) if lc.operating.overspeed is not None else ()
+    options = ShaftFeOptions(solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry)
+    result, cases = analyse_whole_shaft(
+        layout,
+        mat,
+        dyn,
+        size=geo.plan.options,
+        cache_dir=geo.plan.cache_dir,
+        options=options,
+        torque_flow=lc.torsion is not None,
+        overspeed=overspeed,
+        max_elements=geo.plan.max_elements,
+    )
+    stated = lc.criteria.m53_additional_bending if lc.criteria is not None else None
+    basis = m53_basis(lc.engine, mat, stated, file=lc.source_file)
+    m53 = geo.m53
+    throws = assess_shaft_throws(
+        cases,
+        result,
+        dyn.theta,
+        mat,
+        crank_radius=g.crank_radius,
+        overspeed=lc.operating.overspeed,
+        pin_diameter=None if m53 is None else m53.pin_diameter,
+        journal_diameter=None if m53 is None else m53.journal_diameter,
+        additional_bending=basis.additional,
+    )
+    worst = governing(throws, layout)
+    state = None
+    if fields and worst is not None:
+        cases.model.release_recovery()  # the assessed nodes' fields are taken: their memory goes first
+        k = int(np.argmin(np.abs(np.degrees(np.asarray(dyn.theta)) - worst.angle_deg)))
+        state = shaft_fields(cases, result.cycles[0].weights[k], mat, lc.fe.solver, mark=np.asarray(worst.point))
+    return WholeShaftOutput(layout, result, ShaftAssessment(throws, result.bearings), worst, state)
