@@ -26,7 +26,7 @@ from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.fe.shaft_fields import shaft_fields
 from fe_crank.fe.shaft_model import ShaftFeOptions
 from fe_crank.fe.whole_shaft import analyse_whole_shaft
-from fe_crank.geometry.shaft import ShaftLayout, for_engine_throws, shaft_layout
+from fe_crank.geometry.shaft import ShaftLayout, engine_shaft_layout, whole_shaft_wanted
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mesh.options import MeshOptions
 from fe_crank.mesh.shaft import place, shaft_options
@@ -34,25 +34,18 @@ from fe_crank.outputs import CaseOutputs, GeometryModel, ShaftHotSpot, WholeShaf
 
 
 def wanted(lc: LoadCase) -> bool:
-    """Whether the whole-shaft stage runs: an engine of one shaft whose throws the engine
-    spreads along the axis (two or more), or a geometry with a ``[shaft]`` section."""
-    g, e = lc.geometry, lc.engine
-    if g is None or lc.material is None or len(e.shafts) != 1:
-        return False
-    z = [t.axial_position for t in e.throws]
-    return g.shaft is not None or (len(z) > 1 and max(z) - min(z) > 0)
+    """Whether the whole-shaft stage runs (``geometry.shaft.whole_shaft_wanted``: several
+    throws on one shaft, or a ``[shaft]`` section) for a load case with a material."""
+    return lc.material is not None and whole_shaft_wanted(lc.geometry, lc.engine)
 
 
 def layout_of(lc: LoadCase) -> ShaftLayout:
     """The shaft of the load case placed by its engine (a geometry of one throw stands for
-    every throw, ``geometry.shaft.for_engine_throws``)."""
+    every throw, ``geometry.shaft.engine_shaft_layout``)."""
     g = lc.geometry
     assert g is not None
-    return shaft_layout(
-        for_engine_throws(g, lc.engine),
-        lc.engine,
-        geometry_file=g.file or lc.source_file,
-        engine_file=lc.engine_file or lc.source_file,
+    return engine_shaft_layout(
+        g, lc.engine, geometry_file=g.file or lc.source_file, engine_file=lc.engine_file or lc.source_file
     )
 
 

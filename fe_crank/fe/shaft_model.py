@@ -196,7 +196,7 @@ def build_shaft_model(
     layout = sm.layout
     last = len(sm.pieces) - 1
     pto = 0 if layout.power_takeoff == "front" else last
-    pto_face = "end_1" if pto == 0 else "end_2"
+    pto_face = "end_1" if layout.power_takeoff == "front" else "end_2"  # a single piece has both
     faces = ("end_1", "end_2")  # torque patterns on both end faces of every piece: one condensation per mesh
     done: dict[tuple, tuple] = {}
     pieces, moments = [], {}

@@ -345,3 +345,18 @@ def shaft_layout(
         geometry_file=gf,
         engine_file=ef,
     )
+
+
+def whole_shaft_wanted(g: CrankGeometry | None, engine) -> bool:
+    """Whether a check builds the whole shaft: an engine of one shaft whose throws the
+    engine spreads along the axis (two or more), or a geometry with a ``[shaft]`` section."""
+    if g is None or len(engine.shafts) != 1:
+        return False
+    z = [t.axial_position for t in engine.throws]
+    return g.shaft is not None or (len(z) > 1 and max(z) - min(z) > 0)
+
+
+def engine_shaft_layout(g: CrankGeometry, engine, *, geometry_file: str, engine_file: str) -> ShaftLayout:
+    """The whole shaft of a load case: ``shaft_layout`` of the geometry with one throw per
+    engine throw (``for_engine_throws``)."""
+    return shaft_layout(for_engine_throws(g, engine), engine, geometry_file=geometry_file, engine_file=engine_file)

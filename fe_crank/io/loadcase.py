@@ -26,7 +26,7 @@ from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
-from fe_crank.geometry.shaft import throw_at_bearings
+from fe_crank.geometry.shaft import engine_shaft_layout, throw_at_bearings, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
 from fe_crank.io.base import InputFile, Strict, read_toml, recording_inputs, validate
@@ -113,9 +113,10 @@ def _load(path: Path) -> LoadCase:
     criteria, geometry = sections.criteria, sections.geometry
     engine_file = _engine_file(data["engine"], path)
     if geometry is not None:  # one shaft in both files; bearing centres from the engine
-        geometry = throw_at_bearings(
-            geometry, engine, geometry_file=geometry.file or str(path), engine_file=engine_file
-        )
+        gfile = geometry.file or str(path)
+        geometry = throw_at_bearings(geometry, engine, geometry_file=gfile, engine_file=engine_file)
+        if whole_shaft_wanted(geometry, engine):  # the whole shaft's refusals at input too
+            engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
     if criteria is not None:
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
     if sections.torsion is not None:
