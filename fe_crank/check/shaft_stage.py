@@ -18,6 +18,9 @@ before the assessment (docs/shaft.md):
 
 from __future__ import annotations
 
+import dataclasses
+import time
+
 import numpy as np
 
 from fe_crank.assess.m53_basis import m53_basis
@@ -84,7 +87,9 @@ def whole_shaft_stage(lc: LoadCase, geo: GeometryModel, out: CaseOutputs, fields
     assert dyn is not None
     layout = layout_of(lc)
     overspeed = tuple(c.dynamics for c in out.cycles.overspeed) if lc.operating.overspeed is not None else ()
-    options = ShaftFeOptions(solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry)
+    options = ShaftFeOptions(
+        solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry, keep_factors=fields
+    )
     result, cases = analyse_whole_shaft(
         layout,
         mat,
@@ -96,6 +101,19 @@ def whole_shaft_stage(lc: LoadCase, geo: GeometryModel, out: CaseOutputs, fields
         overspeed=overspeed,
         max_elements=geo.plan.max_elements,
     )
+    try:
+        return _assessed(lc, geo, layout, dyn, result, cases, fields)
+    finally:
+        cases.model.free_factors()
+
+
+def _assessed(
+    lc: LoadCase, geo: GeometryModel, layout: ShaftLayout, dyn, result, cases, fields: bool
+) -> WholeShaftOutput:
+    """The whole shaft's throws assessed and its governing state (``whole_shaft_stage``)."""
+    mat, g = lc.material, lc.geometry
+    assert mat is not None and g is not None
+    t0 = time.perf_counter()
     stated = lc.criteria.m53_additional_bending if lc.criteria is not None else None
     basis = m53_basis(lc.engine, mat, stated, file=lc.source_file)
     m53 = geo.m53
@@ -111,9 +129,13 @@ def whole_shaft_stage(lc: LoadCase, geo: GeometryModel, out: CaseOutputs, fields
         additional_bending=basis.additional,
     )
     worst = governing(throws, layout)
+    t = {"assessment": time.perf_counter() - t0}
     state = None
     if fields and worst is not None:
+        t0 = time.perf_counter()
         cases.model.release_recovery()  # the assessed nodes' fields are taken: their memory goes first
         k = int(np.argmin(np.abs(np.degrees(np.asarray(dyn.theta)) - worst.angle_deg)))
         state = shaft_fields(cases, result.cycles[0].weights[k], mat, lc.fe.solver, mark=np.asarray(worst.point))
+        t["fields"] = time.perf_counter() - t0
+    result = dataclasses.replace(result, timings={**result.timings, **t})
     return WholeShaftOutput(layout, result, ShaftAssessment(throws, result.bearings), worst, state)

@@ -7,9 +7,9 @@ displacements v is, exactly as there,
 
     u = sum_p a_p L_p + X v,   X v = [-K_ii^-1 K_ib v; v],
 
-so each distinct piece is factorised once more (its interior, end faces held: the
-factorisation of the condensation, freed after it to bound the memory) and solved once
-per placed piece; the nodal stress (averaged over the elements sharing a node,
+so each distinct piece's interior (end faces held) is solved once per placed piece, on
+the factorisation the condensation kept (``ShaftFeOptions.keep_factors``) or, without it,
+on its own once more; the nodal stress (averaged over the elements sharing a node,
 ``fe.stress``) is turned into the shaft frame and the pieces are joined on the conforming
 whole mesh (``mesh.shaft.join``; a node on a joint plane takes the mean of its two pieces).
 """
@@ -59,13 +59,16 @@ def piece_fields(cases: ShaftCases, weights: np.ndarray, material, solver: str =
         by_cond.setdefault(id(pp.cond), []).append(k)
     for ks in by_cond.values():
         cond = model.pieces[ks[0]].cond
-        K_b = stiffness_rows(cond.basis, material.youngs_modulus, material.poisson_ratio, cond.b)
         V = np.column_stack([cases.V[k] @ weights for k in ks])
-        interior = _interior(cond, material, solver)
-        try:
-            U = interior.solve(np.asarray(-(K_b.T @ V)))
-        finally:
-            interior.free()
+        if cond.interior is not None:  # kept from the condensation
+            U = cond.interior.solve(np.asarray(-(cond.K_b.T @ V)))
+        else:
+            K_b = stiffness_rows(cond.basis, material.youngs_modulus, material.poisson_ratio, cond.b)
+            interior = _interior(cond, material, solver)
+            try:
+                U = interior.solve(np.asarray(-(K_b.T @ V)))
+            finally:
+                interior.free()
         for j, k in enumerate(ks):
             u = U[:, j] + cond.L @ (cases.coef[k] @ weights)
             u[cond.b] = V[:, j]

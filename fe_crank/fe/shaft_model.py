@@ -43,6 +43,9 @@ class ShaftFeOptions:
     #: counterweight fillets and junctions)
     recover: tuple[str, ...] | None = None
     symmetry: bool = True  # mirrored throws condensed on their two symmetry components
+    #: keep each distinct piece's factorisation after its condensation, for whole fields
+    #: (``fe.shaft_fields``; ``ShaftModel.free_factors`` releases them)
+    keep_factors: bool = False
 
 
 @dataclass
@@ -102,6 +105,11 @@ class ShaftModel:
     def n_dof(self) -> int:
         return self.mesh.n_dof
 
+    def free_factors(self) -> None:
+        """Release the factorisations kept for whole fields (``ShaftFeOptions.keep_factors``)."""
+        for pp in self.pieces:
+            pp.cond.free()
+
     def release_recovery(self) -> None:
         """Drop the condensed fields at the recovery nodes (``Condensed.X_rec``, the model's
         largest arrays) once the stresses there are taken; ``ShaftCases.recover`` then no
@@ -150,6 +158,7 @@ def _condense_piece(mesh, kind: str, stubs, torque_faces, material, opt: ShaftFe
         basis=basis,
         mirrored=mirrored,
         solver=opt.solver,
+        keep=opt.keep_factors,
     )
     return cond, moments
 
