@@ -28,9 +28,9 @@ from fe_crank.assess.group import SIGMA_ADD_GROUPS, assess_group, section_diamet
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import run_blocks, thread_count
-from fe_crank.fe.nodal_stress import stress_of_fields
 from fe_crank.fe.node_groups import node_groups
 from fe_crank.fe.shaft_cases import ShaftCases
+from fe_crank.fe.stress import stress_at_selected_nodes
 from fe_crank.fe.whole_shaft import BearingResult, WholeShaftResult
 
 #: the label of each model in the criteria's locations and the report
@@ -59,20 +59,17 @@ def piece_unit_stresses(cases: ShaftCases, piece: int, material) -> UnitStresses
     if np.setdiff1d(ids, rec).size:
         raise ValueError("the condensed throw keeps no field at some of its assessed nodes")
     n = len(cases.names)
+    rows = (3 * rec[:, None] + np.arange(3)).ravel()
     stress = np.empty((n, 6, ids.size))
     sets = [x for x in np.array_split(np.arange(n), max(1, min(thread_count(), n))) if x.size]
 
-    def block(sel: np.ndarray, _scratch: dict) -> None:  # each case's stress alone: any thread count, same values
+    def block(sel: np.ndarray, _scratch: dict) -> None:  # each case's stress alone: any thread count, same bits
         w = np.zeros((n, sel.size))
         w[sel, np.arange(sel.size)] = 1.0
-        stress[sel] = stress_of_fields(
-            c.mesh,
-            rec,
-            cases.recover(piece, w),
-            material.youngs_modulus,
-            material.poisson_ratio,
-            ids,
-            dofs=c.basis.dofs,
+        u = np.zeros((sel.size, 3 * c.basis.N))  # full-length fields, zero away from the recovery nodes
+        u[:, rows] = cases.recover(piece, w).T
+        stress[sel] = stress_at_selected_nodes(
+            c.mesh, u, material.youngs_modulus, material.poisson_ratio, ids, dofs=c.basis.dofs
         )
 
     run_blocks(block, sets, len(sets))
