@@ -22,6 +22,8 @@ from dataclasses import dataclass, replace
 from fe_crank.throw_scope import ALL_THROWS, ThrowScope
 
 WARNING, ASSUMPTION = "warning", "assumption"
+#: how a note that keeps a verdict from being a sign-off starts its verdict-line words
+NOT_A_SIGN_OFF = "not a sign-off"
 
 
 @dataclass(frozen=True)
@@ -31,6 +33,7 @@ class Note:
     criteria: tuple[str, ...] = ()  # criterion names it concerns; () = the whole case
     source: str = ""  # the stage or check that raised it
     throws: tuple[str, ...] = ()  # the throws it concerns; () = not one throw's
+    verdict: str = ""  # the words shown on the verdict line ("" = shown beside its criteria only)
 
     @property
     def display(self) -> str:
@@ -80,3 +83,18 @@ def grouped(notes) -> list[Note]:
         if extra:
             out[i] = replace(out[i], throws=out[i].throws + extra)
     return out
+
+
+def blocks_sign_off(note: Note) -> bool:
+    """The note says the verdict is not a sign-off (test mesh, a foundation support)."""
+    return note.verdict.startswith(NOT_A_SIGN_OFF)
+
+
+def verdict_remarks(notes) -> str:
+    """The words the verdict line carries after PASS/FAIL: the verdict-line words of the
+    notes (``Note.verdict``), the not-a-sign-off ones first, each once, "; " between."""
+    seen: list[str] = []
+    for n in sorted((n for n in notes if n.verdict), key=lambda n: not blocks_sign_off(n)):
+        if n.verdict not in seen:
+            seen.append(n.verdict)
+    return "; ".join(seen)

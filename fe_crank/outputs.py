@@ -10,10 +10,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from fe_crank.assess.case import Assessment
+from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.m53 import M53Geometry
 from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.shaft import ShaftAssessment
+from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
+from fe_crank.cad.features import CadFeatures
 from fe_crank.fe.convergence import ConvergenceStudy
 from fe_crank.fe.shaft_fields import ShaftFields
 from fe_crank.fe.unit_cases import UnitSolutions
@@ -25,18 +28,34 @@ from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.mesh.plan import MeshPlan
 from fe_crank.mesh.types import ThrowMesh
+from fe_crank.throw_scope import throws_of
 from fe_crank.torsion.analysis import TorsionResult
+from fe_crank.torsion.misfire import MisfireTorsion
 
 
 @dataclass(frozen=True)
 class GeometryModel:
     """The geometry stage: the mesh plan (which throw model stands for which engine
-    throw, meshed how), the UR M53 dimensions of the throw, and the CAD mass properties of
-    the throws whose counterweights or inertias a later stage needs (None: none needed)."""
+    throw, meshed how), each engine throw's geometry as the assessment reads it (UR M53
+    dimensions, counterweights, rods' places, ``assess.throw_geometry``), the B-rep mass
+    properties of the parametric throws whose inertias the torsional stage needs (None:
+    none needed), and, for a CAD geometry, everything recognised in the file."""
 
     plan: MeshPlan
-    m53: M53Geometry | None
+    throws: dict[str, ThrowGeometry]
     solids: ThrowSolids | None = None
+    cad: CadFeatures | None = None
+
+    def of_model(self, key: str) -> ThrowGeometry | None:
+        """The geometry of the throw model ``key`` (of the plan): that of the first
+        engine throw it stands for (the throws a model stands for share its geometry)."""
+        names = throws_of(key, self.throws)
+        return self.throws[names[0]] if names else None
+
+    def m53_of(self, key: str) -> M53Geometry | None:
+        """The UR M53 dimensions of the throw model ``key``."""
+        tg = self.of_model(key)
+        return tg.m53 if tg is not None else None
 
 
 @dataclass(frozen=True)
@@ -51,11 +70,16 @@ class FeModels:
 
 @dataclass(frozen=True)
 class TorsionOutput:
-    """The torsional stage: its result and the operating cycle whose journal torques carry
-    the vibratory torque (what the assessment takes)."""
+    """The torsional stage: its result with every cylinder firing, the operating cycle
+    whose journal torques are UR M53's hand-over (the largest half range over the speed
+    range and every case, ``torsion.handover``), the misfire cases (None without), and
+    the loads of every speed of the sweep with their vibration (what the assessment
+    superposes, ``torsion.loads``)."""
 
     result: TorsionResult
     dynamics: DynamicsResult
+    misfire: MisfireTorsion | None = None
+    loads: AssessedLoads | None = None
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,8 @@ from dataclasses import asdict, dataclass, field
 from datetime import UTC, datetime
 from typing import Any
 
+from fe_crank.cad.features import CadFeatures
+from fe_crank.cad.record import cad_record
 from fe_crank.mesh.types import MeshStats
 from fe_crank.notes import Note
 from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CriterionResult, StageTime
@@ -78,7 +80,8 @@ class SupportRecord:
 
 @dataclass(frozen=True)
 class Provenance:
-    """What produced a result: version, date, input hash, mesh, solver, support model."""
+    """What produced a result: version, date, input hash, mesh, solver, support model;
+    for a CAD geometry, the file (name, SHA-256, unit) and everything recognised in it."""
 
     version: str
     started: str
@@ -88,13 +91,14 @@ class Provenance:
     mesh: MeshRecord
     solver: SolverRecord | None = None
     support: tuple[SupportRecord, ...] = ()
+    cad: CadFeatures | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """The ``provenance`` record of results.json and case.json (docs/results.md)."""
         inputs: dict[str, Any] = {"sha256": self.input.sha256, "files": [asdict(f) for f in self.input.files]}
         if self.input.error is not None:
             inputs["error"] = self.input.error
-        return {
+        out = {
             "package": "fe-crank",
             "version": self.version,
             "started": self.started,
@@ -117,6 +121,9 @@ class Provenance:
             },
             "support": [asdict(s) for s in self.support],
         }
+        if self.cad is not None:
+            out["cad"] = _plain(cad_record(self.cad))
+        return out
 
 
 def _plain(x: Any) -> Any:

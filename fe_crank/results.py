@@ -14,6 +14,16 @@ STATUS_PASS, STATUS_FAIL, STATUS_ERROR = "pass", "fail", "error"
 
 
 @dataclass(frozen=True)
+class SpeedValue:
+    """A criterion's worst value at one speed of the full-load curve (or at the
+    overspeed), rpm, and where it occurs."""
+
+    speed_rpm: float
+    value: float
+    location: str = ""
+
+
+@dataclass(frozen=True)
 class CriterionResult:
     """One acceptance criterion of a load case: the assessment's verdict, as the
     check, the report and ``case.json`` read it.
@@ -22,6 +32,9 @@ class CriterionResult:
     a safety factor) and ``1 - value / limit`` for a "not above" one ("max": a
     stress, a residual unbalance): a criterion passes when its margin is not
     negative.  ``name`` is the criterion's key, e.g. "criteria.min_fatigue_safety".
+    ``per_speed``: its worst value at each speed it was evaluated at (every speed of the
+    full-load curve, or the overspeed; () for a criterion that does not depend on
+    speed); ``speed_rpm`` the speed of ``value`` (None: no speed).
     """
 
     name: str
@@ -34,6 +47,8 @@ class CriterionResult:
     unit: str = ""
     quantity: str = ""
     sense: str = ""  # "min" | "max"
+    per_speed: tuple[SpeedValue, ...] = ()
+    speed_rpm: float | None = None
 
 
 @dataclass(frozen=True)

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.assess.case import AssessInputs
+from fe_crank.assess.throw_geometry import parametric_throws
 from fe_crank.check.notes import case_notes
 from fe_crank.check.options import CheckOptions
 from fe_crank.check.stages import Run, run_stages
@@ -19,6 +19,7 @@ from fe_crank.mesh.plan import SIGN_OFF_RULE
 from fe_crank.outputs import CaseOutputs
 from fe_crank.records import CaseResult
 from fe_crank.report import write_case_report
+from fe_crank.torsion.loads import assessed_loads
 
 
 def stage_outputs(path: str | Path, cache_dir: str | Path, *, mesh_size: str = "test", **options) -> CaseOutputs:
@@ -49,12 +50,15 @@ def assess_inputs(
     lc: LoadCase, unit_solutions: dict, *, models: dict | None = None, balance=None, **kw
 ) -> AssessInputs:
     """``AssessInputs`` of a load case for hand-picked FE unit solutions (key -> solution):
-    the cycles by the dynamics stage's ``engine_cycles``, the counterweights' CAD mass
-    properties and the UR M53 dimensions from the geometry, as the check's stages give them."""
+    the cycles by the dynamics stage's ``engine_cycles``, each throw's geometry (the
+    counterweights' mass properties, the UR M53 dimensions) as the geometry stage gives it."""
     assert lc.material is not None and lc.criteria is not None
     cycles = engine_cycles(lc.engine, lc.operating)
     g = lc.geometry
     names = tuple(t.name for t in g.throws if t.counterweights) if g is not None else ()
+    models = models or dict.fromkeys(unit_solutions, g.throws[0].name if g is not None else "")
+    solids = throw_solids(g, names) if g is not None and names else None
+    design = balance.design if balance is not None else None
     args = dict(
         case=lc.name,
         source_file=lc.source_file,
@@ -62,14 +66,13 @@ def assess_inputs(
         operating=lc.operating,
         material=lc.material,
         criteria=lc.criteria,
-        geometry=lc.geometry,
         cycles=cycles,
         dynamics=cycles.operating,
+        loads=assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction),
         balance=balance,
-        models=models or dict.fromkeys(unit_solutions, g.throws[0].name if g is not None else ""),
+        models=models,
         unit_solutions=unit_solutions,
-        solids=throw_solids(g, names) if g is not None and names else None,
-        m53_geometry=m53_geometry_of(g),
+        throw_geometry=parametric_throws(g, models, lc.engine, solids, design) if g is not None else {},
     )
     args.update(kw)
     return AssessInputs(**args)

@@ -108,6 +108,10 @@ def test_convergence_study_refines_the_fillets(geometry, solved, cache):
     assert study.levels[1].n_dof > study.levels[0].n_dof
     d = study.to_dict()
     assert d["fillet_size"] == ["r/1", "r/2"] and d["converged"] == study.converged
-    # the seed-001 counterweights' transition fillets are followed as load sets of their own
-    assert set(d["peaks"]) == {"pin_-y", "torque", "counterweight fillets, pin_-y", "counterweight fillets, torque"}
+    # the counterweights' transition fillets and the oil-bore outlet are followed as load sets of their own
+    assert set(d["peaks"]) == {
+        *("pin_-y", "torque", "counterweight fillets, pin_-y", "counterweight fillets, torque"),
+        *("oil bore, pin_-y", "oil bore, torque"),
+    }
+    assert d["bore_divisions"] == [6.0, 12.0] and study.assessed_change == study.change  # two levels
     assert len(d["peaks"]["torque"]) == 2

@@ -18,6 +18,7 @@ from fe_crank.assess import m53
 from fe_crank.assess.scf import ScfResult, compute_scf, factors, scf_mesh, scf_mesh_options, web_centres_of
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import assess_throw
+from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.check.stages import needs_scf
 from fe_crank.fe.scf import Peak, ScfStresses
 from fe_crank.io.geometry import load_geometry
@@ -218,9 +219,13 @@ def test_m53_route_inside_the_range_never_runs_the_scf_mode(tmp_path):
     assert math.isfinite(t.m53[1].acceptability)
     lc = load_loadcase(Path(__file__).parent / "data" / "small_pass.toml")
     plan = plan_meshes(lc.geometry, ("1",), lc.mesh)
-    assert not needs_scf(lc, GeometryModel(plan, SMALL))
+
+    def model(geo):
+        return GeometryModel(plan, {"1": ThrowGeometry(lc.geometry.crankpin_length, web_centres_of(lc.geometry), geo)})
+
+    assert not needs_scf(lc, model(SMALL))
     outside = dataclasses.replace(SMALL, pin_fillet_radius=0.0038)
-    assert needs_scf(lc, GeometryModel(plan, outside))
+    assert needs_scf(lc, model(outside))
 
 
 def test_scf_mode_asks_for_r_over_4_fillet_elements(big_fillet):

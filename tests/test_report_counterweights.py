@@ -37,3 +37,21 @@ def test_no_counterweights_no_section(tmp_path):
     assert counterweight_section(tmp_path, _outputs(ThrowAssessment("1", ())), None) == []
     assert counterweight_section(tmp_path, CaseOutputs(), None) == []
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_bolted_joints_vdi_2230_table(tmp_path):
+    """The joints the assessment checked, per bolt: the hand-calculated M12 10.9 example of
+    test_assess_cw_joint (S_F 1.1327, S_D 5.2705, S_sep 2.1914, S_G 16.932, Phi_K 0.12936)."""
+    from test_assess_cw_joint import JOINT, _loads
+
+    from fe_crank.assess.cw_joint import check_joint
+
+    j = check_joint("counterweight_1", JOINT, _loads(), 210e9)
+    built = CounterweightData("counterweight_1", mass=2.0, centroid_radius=0.06)
+    c = check_counterweight(built, omega=314.16, overspeed=None)
+    html = "".join(
+        counterweight_section(tmp_path, _outputs(ThrowAssessment("1", (), counterweights=(c,), joints=(j,))), None)
+    )
+    assert "VDI 2230" in html and "throw 1: counterweight_1" in html
+    for text in ("1.133", "5.271", "2.191", "16.932", "0.129", "64.90 / 40.56"):
+        assert text in html, text

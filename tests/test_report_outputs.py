@@ -186,7 +186,12 @@ def test_log_has_a_line_per_finished_stage_and_case(run):
     for stage in ("load", "dynamics", "balance", "mesh", "fe", "assess", "report"):
         assert any(re.search(rf"INFO small_pass: {stage} done in \d+\.\d s$", ln) for ln in lines), stage
     assert any(
-        re.search(r"INFO small_pass: PASS \(worst criteria\.\w+, margin [+-]\d+\.\d %\) in \d+\.\d s$", ln)
+        # the verdict line carries its remarks: a test mesh is not a sign-off
+        re.search(
+            r"INFO small_pass: PASS \(worst criteria\.\w+, margin [+-]\d+\.\d %\) in \d+\.\d s "
+            r"\[not a sign-off: test mesh \(preset 'test'\).*\]$",
+            ln,
+        )
         for ln in lines
     )
     assert any("WARNING stops_with_criteria: ERROR" in ln for ln in lines)

@@ -47,8 +47,8 @@ def test_rod_places_on_the_pin(v4):
     cyls = tuple(dataclasses.replace(c, pin_position=0.0) for c in lc.engine.cylinders)
     forked = dataclasses.replace(lc.engine, cylinders=cyls)
     assert set(rod_positions(forked, "A", 0.044).values()) == {0.0}
-    assert pin_patch_options(None, forked, lc.geometry).pin_patches == ()
-    split = pin_patch_options(None, lc.engine, lc.geometry)
+    assert pin_patch_options(None, forked, lc.geometry.crankpin_length).pin_patches == ()
+    split = pin_patch_options(None, lc.engine, lc.geometry.crankpin_length)
     np.testing.assert_allclose(split.pin_patches, [(-0.022, 0.0), (0.0, 0.022)], atol=1e-15)
     assert len(split.cases) == 2 + 24 and "pin_030@2" in split.cases
     # an articulated rod bears through its master's big end

@@ -148,31 +148,3 @@ def test_front_take_off_on_a_multi_throw_engine_is_refused_at_input(tmp_path):
     assert err.value.file == str(p) and err.value.key == "fe.torque_reaction"
     one = _copy_case(tmp_path, "single_cylinder.toml", "[fe]\n", '[fe]\ntorque_reaction = "end_1"\n')
     assert load_loadcase(one).fe.torque_reaction == "end_1"
-
-
-@pytest.mark.heavy
-def test_check_throws_carry_the_handed_over_journal_torques(tmp_path):
-    """tests/data/small_torsion.toml through the check's own stages: the FE stage solves
-    the angular-acceleration case, and with the assessment's coefficients (the front
-    journal's torque on the torque face, the pin force, and the rest of the rear journal's
-    torque as the throw's inertia body force, ``superpose.inertia_acceleration``) the torque
-    reacted at every throw's rear face is the torsional stage's rear journal torque at every
-    angle: both journals carry their own torque (without the body force they would not)."""
-    from pipeline import stage_outputs
-
-    from fe_crank.assess.groups import unit_stresses
-    from fe_crank.assess.superpose import cycle_coefficients, inertia_acceleration
-
-    out = stage_outputs(ROOT / "tests" / "data" / "small_torsion.toml", tmp_path, render=False, write_vtu=False)
-    dyn = out.assessed_dynamics
-    (units,) = {id(u): u for u in out.unit_solutions.values()}.values()
-    assert "angular_acceleration" in units.cases
-    unit = unit_stresses(units)
-    mz = np.array([units.cases[k].reactions["end_2"][5] for k in unit.cases])
-    for tl in dyn.throws.values():
-        alpha = inertia_acceleration(tl.torque_front, tl.torque_rear, tl.torque, unit.inertia_mz)
-        c = cycle_coefficients(unit, tl.pin_force, tl.torque_front, dyn.speed, angular_acceleration=alpha)
-        scale = np.abs(tl.torque_rear).max()
-        np.testing.assert_allclose(c @ mz, tl.torque_rear, rtol=0, atol=1e-6 * scale)
-        without = cycle_coefficients(unit, tl.pin_force, tl.torque_front, dyn.speed)
-        assert np.abs(without @ mz - tl.torque_rear).max() > 1e-3 * scale

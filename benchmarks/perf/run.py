@@ -1,11 +1,13 @@
 """Timing harness of fe-crank's stages: the figures of docs/performance.md, with the machine.
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/perf/run.py --preset test \\
-        [--preset coarse ...] [--only mesh,fe,cycle,fatigue] [--loadcase FILE] [--json FILE]
+        [--preset coarse ...] [--only mesh,fe,cycle,fatigue,sweep] [--loadcase FILE] [--json FILE]
 
 For each preset, each of ``mesh``, ``fe`` and ``cycle`` runs in a process of its own
 (its own peak memory) on the load case's first throw; ``fatigue`` runs once on synthetic
-paths (``stages.py`` says what each one times).  With two presets or more, the exponent
+paths (``stages.py`` says what each one times); ``sweep`` checks the load case at its
+operating speed and over ``--sweep-speeds`` speeds of ``--sweep-range`` on the same
+mesh (``sweep.py``: what the full-load sweep adds to the check).  With two presets or more, the exponent
 b of t = a n^b (least squares of log t on log n, n = DOF) is fitted to each FE figure,
 and ``--plot FILE`` draws them.  Prints one line per stage and preset as it finishes and
 writes every figure, the command, the date, the git commit and the machine (CPU, cores,
@@ -29,7 +31,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-STAGES = ("mesh", "fe", "cycle", "fatigue")
+STAGES = ("mesh", "fe", "cycle", "fatigue", "sweep")
 FE_FIGURES = ("assembly_s", "factorisation_s", "solves_s", "recovery_s", "fe_total_s", "peak_rss_mb")
 
 
@@ -130,6 +132,11 @@ def _child(args) -> dict:
         return stages.fe(args.loadcase, preset, args.cache_dir, args.solver, not args.no_symmetry)
     if stage == "cycle":
         return stages.cycle(args.loadcase, preset, args.cache_dir, args.solver, args.angles)
+    if stage == "sweep":
+        import sweep
+
+        lo, hi = (float(x) for x in args.sweep_range.split(","))
+        return sweep.sweep(args.loadcase, preset, args.cache_dir, args.sweep_speeds, lo, hi, args.repeat)
     return stages.fatigue(args.nodes, args.repeat, args.threads)
 
 
@@ -147,6 +154,7 @@ def _run(stage: str, preset: str, args) -> dict:
         args.cache_dir,
     ]
     cmd += ["--solver", args.solver, "--angles", str(args.angles), "--nodes", str(args.nodes)]
+    cmd += ["--sweep-speeds", str(args.sweep_speeds), "--sweep-range", args.sweep_range]
     cmd += ["--repeat", str(args.repeat), "--threads", str(args.threads)] + (
         ["--no-symmetry"] if args.no_symmetry else []
     )
@@ -183,7 +191,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-symmetry", action="store_true", help="fe stage: the whole model, not the symmetry components")
     ap.add_argument("--angles", type=int, default=3, help="cycle stage: crank angles solved directly")
     ap.add_argument("--nodes", type=int, default=4096, help="fatigue stage: synthetic nodes")
-    ap.add_argument("--repeat", type=int, default=3, help="fatigue stage: best of this many runs")
+    ap.add_argument("--repeat", type=int, default=3, help="fatigue and sweep stages: best of this many runs")
+    ap.add_argument("--sweep-speeds", type=int, default=20, help="sweep stage: speeds of the sweep")
+    ap.add_argument("--sweep-range", default="1000,2800", help="sweep stage: lowest,highest speed in rpm")
     ap.add_argument("--threads", type=int, default=0, help="fatigue stage: also one group on 1 and on N threads")
     ap.add_argument("--timeout", type=float, default=3600.0, help="seconds per stage and preset")
     ap.add_argument("--json", default=str(ROOT / "reports" / "perf.json"), help="where the figures go")

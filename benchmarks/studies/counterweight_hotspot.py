@@ -45,9 +45,10 @@ def main(argv=None):
     from fe_crank.io.geometry import load_geometry
     from fe_crank.io.material import load_material
     from fe_crank.io.units import to_si
+    from fe_crank.mesh.fields import surface_field
     from fe_crank.mesh.options import _SAFETY, resolve_options
     from fe_crank.mesh.quality import _straighten_poor
-    from fe_crank.mesh.sizing import _set_size_fields, _surface_field, counterweight_fillet_radius
+    from fe_crank.mesh.sizing import _set_size_fields, counterweight_fillet_radius
     from fe_crank.mesh.types import MeshStats, ThrowMesh
 
     ap = argparse.ArgumentParser()
@@ -85,7 +86,7 @@ def main(argv=None):
             for name, tags in model.surfaces.items():
                 if name.startswith("counterweight_fillet_"):
                     r = counterweight_fillet_radius(g, int(name[-1]))
-                    extra.append(_surface_field(gmsh, tags, _SAFETY * r / a.cw_divisions, size_max, opt.grading))
+                    extra.append(surface_field(gmsh, tags, _SAFETY * r / a.cw_divisions, size_max, opt.grading))
             mn = fld.add("Min")
             fld.setNumbers(mn, "FieldsList", extra)
             fld.setAsBackgroundMesh(mn)

@@ -180,17 +180,19 @@ def check_peaks(lc, tm, units) -> dict:
     """The check's own assessment (``assess_case``) of this model: per throw and group, the
     node and value of the static peak it reports (the reference the comparison uses)."""
     from fe_crank.assess import AssessInputs, assess_case
-    from fe_crank.assess.adapters import m53_geometry_of
+    from fe_crank.assess.throw_geometry import parametric_throws
     from fe_crank.balance.analysis import analyse_balance
     from fe_crank.geometry.mass import throw_solids
     from fe_crank.mechanism.cycles import engine_cycles
     from fe_crank.mesh.plan import throw_keys
+    from fe_crank.torsion.loads import assessed_loads
 
     keys = throw_keys(lc.geometry, tuple(t.name for t in lc.engine.throws))
     if len(keys) != 1:  # the benchmark meshes one throw
         return {}
     key, name = next(iter(keys.items()))
     cycles = engine_cycles(lc.engine, lc.operating)
+    balance = analyse_balance(lc.engine, lc.operating.speed, lc.balance)
     cws = tuple(t.name for t in lc.geometry.throws if t.counterweights)
     a = assess_case(
         AssessInputs(
@@ -200,14 +202,19 @@ def check_peaks(lc, tm, units) -> dict:
             operating=lc.operating,
             material=lc.material,
             criteria=lc.criteria,
-            geometry=lc.geometry,
             cycles=cycles,
             dynamics=cycles.operating,
+            loads=assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction),
             balance=analyse_balance(lc.engine, lc.operating.speed, lc.balance),
             models={key: name},
             unit_solutions={key: units},
-            solids=throw_solids(lc.geometry, cws) if cws else None,
-            m53_geometry=m53_geometry_of(lc.geometry),
+            throw_geometry=parametric_throws(
+                lc.geometry,
+                {key: name},
+                lc.engine,
+                throw_solids(lc.geometry, cws) if cws else None,
+                balance.design if balance is not None else None,
+            ),
         )
     )
     return {

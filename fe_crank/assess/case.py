@@ -10,68 +10,38 @@ stage owns.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
-from fe_crank import model
-from fe_crank.assess import m53, m53_oil_bore
-from fe_crank.assess.adapters import counterweights_of
-from fe_crank.assess.criteria import ModelValue, evaluate_criteria, model_values
+from fe_crank.assess import m53_oil_bore
+from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, evaluate_criteria, model_values
+from fe_crank.assess.cw_joint import JOINT_QUANTITIES
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
+from fe_crank.assess.inputs import AssessInputs
+from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.m53_basis import M53Basis, m53_basis
+from fe_crank.assess.qualifiers import criterion_qualifiers
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
-from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.shaft import ShaftAssessment
+from fe_crank.assess.shaft_criteria import ModelValue
+from fe_crank.assess.speeds import StateResults, wanted_extremes
+from fe_crank.assess.state_throws import assess_state, places_of, state_dynamics
 from fe_crank.assess.states import ModelStates, model_states
-from fe_crank.assess.superpose import UnitStresses, inertia_acceleration
-from fe_crank.assess.throw import ThrowAssessment, assess_throw
-from fe_crank.balance.analysis import BalanceResult
+from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.assess.workers import run_blocks
 from fe_crank.errors import InputError
-from fe_crank.fe.pin_patches import rod_loads, rod_positions
 from fe_crank.fe.unit_cases import UnitSolutions
-from fe_crank.geometry.mass import ThrowSolids
-from fe_crank.geometry.spec import CrankGeometry
-from fe_crank.io.criteria import Criteria
 from fe_crank.io.material import Material
-from fe_crank.mechanism.cycles import EngineCycles
-from fe_crank.mechanism.dynamics import DynamicsResult, ThrowLoads
-from fe_crank.notes import ASSUMPTION, Note, grouped
+from fe_crank.notes import ASSUMPTION, WARNING, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
 #: 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws;
-#: 1.3: the whole-shaft model (``whole_shaft``) and each criterion's value in each model (``criteria_by_model``)
-SCHEMA_VERSION = "1.3"
-
-
-@dataclass(frozen=True)
-class AssessInputs:
-    """Everything ``assess_case`` reads, from the load case and the earlier stages.
-
-    ``dynamics``: the operating cycle the stresses follow (its journal torques carry the
-    vibratory torque when the torsional stage ran); ``cycles``: the operating and
-    overspeed cycles of the dynamics stage; ``models``: FE model key -> geometry throw
-    name (the mesh plan; with ``geometry`` None, a model that is no throw of a crank
-    geometry, no counterweights are checked); ``unit_solutions``: key -> unit solutions (keys sharing one
-    mesh share one object); ``scf``: key -> the SCF mode's result, for the models whose
-    UR M53 dimensions are outside the empirical range."""
-
-    case: str
-    source_file: str
-    engine: model.Engine
-    operating: model.OperatingPoint
-    material: Material
-    criteria: Criteria
-    geometry: CrankGeometry | None
-    cycles: EngineCycles
-    dynamics: DynamicsResult
-    balance: BalanceResult | None
-    models: dict[str, str]
-    unit_solutions: dict[str, UnitSolutions]
-    solids: ThrowSolids | None = None
-    m53_geometry: m53.M53Geometry | None = None
-    scf: dict[str, ScfResult] = field(default_factory=dict)
-    torsion: bool = False  # the journal torques carry the torsional stage's vibratory torque
-    shaft: ShaftAssessment | None = None  # the whole-shaft model's results (its stage), when it ran
+#: 1.3: provenance.cad, criteria per speed; 1.4: bolted joints (VDI 2230), sigma_add per group;
+#: 1.5: the whole-shaft model (``whole_shaft``: main-bearing loads at every speed, web moments) and
+#: each criterion's value in each model (``criteria_by_model``)
+SCHEMA_VERSION = "1.5"
 
 
 @dataclass(frozen=True)
@@ -87,7 +57,10 @@ class Assessment:
     criteria: tuple[CriterionResult, ...]
     notes: tuple[Note, ...] = field(default_factory=tuple)  # the assessment's assumptions
     states: tuple[ModelStates, ...] = ()  # per FE model: the hot spot, overspeed state, averaging check
+    sweep: tuple[StateResults, ...] = ()  # every speed and load state of the full-load curve (the verdict's)
+    qualifiers: dict[str, str] = field(default_factory=dict)  # quantity -> its verdict line's words
     by_model: tuple[ModelValue, ...] = ()  # with the whole shaft: each criterion's value in each model
+    shaft: ShaftAssessment | None = None  # the whole-shaft model's results the criteria read
 
     @property
     def passed(self) -> bool:
@@ -100,14 +73,18 @@ def _notes(a: AssessInputs, basis: M53Basis) -> list[Note]:
         "UR M53 nominal torsion from the journal torque (side with the larger alternating part); torsional vibration "
         + (
             "included: quasi-static + vibratory journal torque ([torsion], docs/torsion.md)"
-            if a.torsion
+            if a.loads.torsion
             else "not included (no [torsion] section)"
         ),
     ]
     texts.extend(basis.notes)
     if a.cycles.overspeed:
         texts.insert(1, a.cycles.overspeed_note)
-    return [_assumption(t) for t in texts]
+    out = [_assumption(t) for t in texts]
+    m53_keys = tuple(lim.key for lim in a.criteria.limits if lim.quantity == "m53_acceptability")
+    if a.criteria.m53_quasi_static_torque and m53_keys:
+        out.append(Note(f"{NOT_CONFORM}: {QUASI_STATIC_M53}", WARNING, m53_keys, "assessment"))
+    return out
 
 
 def _assumption(text: str, throws: tuple[str, ...] = ()) -> Note:
@@ -119,9 +96,9 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
 
     ``a.models`` and ``a.unit_solutions`` are keyed alike (``fe_crank.throw_scope``): a key
     is the name of one throw of the engine, or ``ALL_THROWS``, the model then standing for
-    every throw, each assessed on it with its own loads.  UR M53 dimensions come from
-    ``a.m53_geometry``; the counterweights' built m r from the geometry stage's mass properties
-    against the balance stage's required m r.  ``fields``: also recover the whole-mesh
+    every throw, each assessed on it with its own loads.  UR M53 dimensions and the
+    counterweights' built m r against the balance stage's required m r come from the
+    geometry stage (``a.throw_geometry``).  ``fields``: also recover the whole-mesh
     stress of the states the report draws (``states.model_states``).
     """
     lim = a.criteria
@@ -133,75 +110,74 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     basis = m53_basis(a.engine, a.material, lim.m53_additional_bending, file=a.source_file)
     notes = _notes(a, basis)
     senses = {t.name: a.engine.shaft(t.shaft).sense for t in a.engine.throws}
-    design = a.balance.design if a.balance is not None else None
-    throws = []
-    solved: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
+    units: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
     for key, unit_solutions in a.unit_solutions.items():
-        if id(unit_solutions) not in solved:
+        if id(unit_solutions) not in units:
             groups = assessed_groups(unit_solutions)
-            unit = solved[id(unit_solutions)] = unit_stresses(unit_solutions, groups)
+            unit = units[id(unit_solutions)] = unit_stresses(unit_solutions, groups)
             boundary_groups = {g: nodes for g, nodes in groups.items() if g in ASSESSED_BOUNDARIES}
             notes.extend(
                 _assumption(f"mesh {key}: {n}")
                 for n in recovery_notes(recovery_ratios(unit_solutions, boundary_groups, unit=unit))
             )
-        unit = solved[id(unit_solutions)]
-        spec = a.geometry.throw(a.models[key]) if a.geometry is not None else None
         for tname in throws_of(key, a.dynamics.throws):
-            tl = a.dynamics.throws[tname]
-            throw = a.engine.throw(tname)
-            # each rod at its place on the pin (UR M53 2.1); without a geometry, the summed
-            # force at mid-pin
-            places = rod_positions(a.engine, tname, a.geometry.crankpin_length) if a.geometry is not None else {}
-            cws = (
-                counterweights_of(spec, a.solids.of(spec.name), throw.axial_position, throw.shaft, design)
-                if spec is not None and spec.counterweights and a.solids is not None
-                else ()
-            )
-            alpha = (  # the throw's vibratory inertia torque as the body force of its angular acceleration
-                inertia_acceleration(tl.torque_front, tl.torque_rear, tl.torque, unit.inertia_mz)
-                if "angular_acceleration" in unit.cases
-                else None
-            )
-            throws.append(
-                assess_throw(
-                    tname,
-                    unit,
-                    a.dynamics.theta,
-                    tl.pin_force,
-                    tl.torque_front,
-                    omega=omega,
-                    sense=senses[tname],
-                    overspeed=overspeed,
-                    material=a.material,
-                    crank_radius=throw.crank_radius,
-                    m53_geometry=a.m53_geometry,
-                    m53_additional=basis.additional,
-                    m53_ke=basis.ke,
-                    counterweights=cws,
-                    torque_rear=tl.torque_rear,
-                    overspeed_loads=[_cycle(c.dynamics.throws[tname], places) for c in a.cycles.overspeed] or None,
-                    rod_loads=rod_loads(tl, places),
-                    scf=a.scf.get(key),
-                    angular_acceleration=alpha,
-                )
-            )
-            if a.m53_geometry is None:
-                notes.append(_assumption("no UR M53 dimensions from the geometry; M53 route not run", (tname,)))
-            elif a.m53_geometry.oil_bore_diameter > 0 and m53_oil_bore.in_range(a.m53_geometry) is not None:
+            tg = a.throw_geometry.get(tname)
+            m53_geometry = tg.m53 if tg is not None else None
+            if m53_geometry is None:
+                why = tg.m53_note if tg is not None and tg.m53_note else "no UR M53 dimensions from the geometry"
+                notes.append(_assumption(f"{why}; M53 route not run", (tname,)))
+            elif m53_geometry.oil_bore_diameter > 0 and m53_oil_bore.in_range(m53_geometry) is not None:
                 notes.append(
                     _assumption(
                         f"UR M53 oil-bore outlet not assessed empirically "
-                        f"({m53_oil_bore.in_range(a.m53_geometry)}); FE route only (group oil_bore)",
+                        f"({m53_oil_bore.in_range(m53_geometry)}); FE route only (group oil_bore)",
                         (tname,),
                     )
                 )
-    done = tuple(throws)
-    verdicts = evaluate_criteria(lim, done, file=a.source_file, overspeed=overspeed, shaft=a.shaft)
-    by_model = model_values(lim, done, a.shaft) if a.shaft is not None else ()
+    # the bolted joints by VDI 2230 when a criterion asks (their data then required), at every speed
+    joints = any(q.quantity in JOINT_QUANTITIES for q in a.criteria.limits)
+    cycles = state_dynamics(a) if joints else None
+    done = assess_state(a, units, a.loads.operating_state, senses, basis, None, cycles)
+    others = [
+        (i, j)
+        for i, states in enumerate(a.loads.speeds)
+        for j in range(len(states))
+        if (i, j) != (a.loads.operating, 0)
+    ]
+    found: dict[tuple[int, int], tuple[ThrowAssessment, ...]] = {(a.loads.operating, 0): done}
+    wanted = wanted_extremes(a.criteria)
+
+    def one(ij, _scratch) -> None:  # each state on its own: independent, one thread each
+        found[ij] = assess_state(a, units, a.loads.speeds[ij[0]][ij[1]], senses, basis, wanted, cycles)
+
+    run_blocks(one, others)
+    sweep = [
+        StateResults(state.speed, state.case, found[(i, j)])
+        for i, states in enumerate(a.loads.speeds)
+        for j, state in enumerate(states)
+    ]
+    if len(a.loads.speeds) > 1 or len(sweep) > 1:
+        notes.append(_assumption(_sweep_note(a.loads)))
+    qualifiers = criterion_qualifiers(basis, a.criteria, torsion=a.loads.torsion)
+    verdicts = evaluate_criteria(
+        a.criteria,
+        done,
+        file=a.source_file,
+        overspeed=overspeed,
+        sweep=tuple(sweep),
+        qualifiers=qualifiers,
+        shaft=a.shaft,
+    )
+    by_model = (
+        model_values(a.criteria, done, a.shaft, sweep=tuple(sweep), overspeed=overspeed) if a.shaft is not None else ()
+    )
+    # each rod at its place on the pin in the drawn states too (the assessment's coefficients)
+    places = {t: places_of(a, t) for t in a.loads.operating_state.throws}
     states = []
     for keys, unit_solutions in shared_models(a.unit_solutions):
-        st = model_states(keys, unit_solutions, done, a.dynamics, a.cycles.overspeed, senses, fields=fields)
+        st = model_states(
+            keys, unit_solutions, done, a.loads.operating_state, a.loads.overspeed, senses, fields=fields, places=places
+        )
         if st is not None:
             states.append(st)
     return Assessment(
@@ -214,13 +190,23 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         verdicts,
         tuple(grouped(notes)),
         tuple(states),
+        tuple(sweep),
+        qualifiers,
         by_model,
+        a.shaft,
     )
 
 
-def _cycle(tl: ThrowLoads, places: dict[str, float]) -> tuple:
-    """(pin force, front torque, rod loads) of a throw's cycle (``assess_throw``'s overspeed)."""
-    return tl.pin_force, tl.torque_front, rod_loads(tl, places)
+def _sweep_note(loads: AssessedLoads) -> str:
+    rpm = [w * 30.0 / math.pi for w in loads.speed_values]
+    states = len(loads.speeds[0])
+    text = (
+        f"full-load curve: every criterion but the overspeed ones at {len(rpm)} speeds, "
+        f"{rpm[0]:.0f}-{rpm[-1]:.0f} rpm, on the same unit stresses; a criterion's value is its worst speed"
+    )
+    if states > 1:
+        text += f"; at each speed all cylinders firing and {states - 1} misfire case(s), the worst governing"
+    return text
 
 
 def shared_models(unit_solutions: dict[str, UnitSolutions]) -> list[tuple[tuple[str, ...], UnitSolutions]]:

@@ -4,229 +4,166 @@
 that finds its worst value over every throw and where it occurs; ``evaluate_criteria``
 judges each limit of the load case with it (``verdict.judge``).  A criterion that cannot
 be evaluated (no data for it) is an ``InputError`` naming its key: it never passes
-silently.
+silently; one the model's results must not judge (UR M53 on FE SCFs of a mesh UR M53
+App. III rejects) is refused with the reason.
 
-With the whole-shaft model (``assess.shaft.ShaftAssessment``) a stress quantity is found
-on both models' throws (the per-throw model, UR M53's determinate one, and the whole
-shaft on its bearings) and the criterion takes the worse of the two, its location naming
-the model (``model_values``: both, for the report); the main-bearing quantities are the
-whole shaft's alone.
+Over a full-load curve (``speeds.StateResults`` of every speed and load state) a
+criterion that depends on speed (``Evaluator.speed == "sweep"``: the FE stress criteria,
+UR M53, the counterweights and their bolted joints) is evaluated at every speed: its
+value at a speed is the worst of the load states there (all cylinders firing, each
+misfire case), its verdict the worst speed, reported with that speed (``per_speed``
+lists them all, ``speeds.over_sweep``).  The overspeed criteria are evaluated at the
+overspeed (one speed); the unbalance error does not depend on speed.  ``locate`` is that
+search for one quantity; the convergence study's factor on the groups' stresses
+(``check.converged``) goes through it too.  The verdict line's qualifiers
+(``assess.qualifiers``) follow the location of the worst speed.  With the whole-shaft
+model a criterion takes the worse of the two models at each speed and the main-bearing
+quantities are the whole shaft's (``assess.shaft_criteria``).
 """
 
 from __future__ import annotations
 
-import math
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from fe_crank.assess import m53_oil_bore
-from fe_crank.assess.group import STATIC_ONLY_PREFIXES, Extreme, GroupResult
-from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, ShaftAssessment
+from fe_crank.assess.cw_joint import JOINT_QUANTITIES
+from fe_crank.assess.finders import (
+    GROUP_QUANTITIES,
+    Refused,
+    bolts,
+    group_finder,
+    joint_finder,
+    m53_acceptability,
+    over_groups,
+    unbalance,
+)
+from fe_crank.assess.qualifiers import qualified
+from fe_crank.assess.shaft import ShaftAssessment
+from fe_crank.assess.shaft_criteria import Located, ModelValue, combined, model_pair, no_throw_value, whole_shaft
+from fe_crank.assess.speeds import RPM, Found, StateResults, over_sweep
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.verdict import judge
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import QUANTITIES, Criteria
-from fe_crank.results import CriterionResult
+from fe_crank.results import CriterionResult, SpeedValue
 
-#: (value, where) of a criterion's worst case, or None when the model gives none
-Found = tuple[float, str] | None
-
-
-def _where(throw: str, ext: Extreme | None) -> str:
-    if ext is None:
-        return ""
-    p = ", ".join(f"{c * 1e3:.1f}" for c in ext.point)
-    s = f"throw {throw}, {ext.group}, node {ext.node} at ({p}) mm"
-    if ext.angle is not None:
-        s += f", {math.degrees(ext.angle):.0f} deg"
-    return s
+NOT_CONFORM = "not UR M53-conform"
+QUASI_STATIC_M53 = (
+    "the quasi-static journal torque accepted by m53_quasi_static_torque = true: UR M53 2.2.2 asks for "
+    "the torsional vibration over the speed range, which was not computed"
+)
 
 
-def _over_groups(
-    throws: tuple[ThrowAssessment, ...], getter: Callable[[GroupResult], tuple[float, Extreme] | None], worst: str
-) -> Found:
-    """(value, location) of the worst non-None value of getter(group) over all groups
-    (the first of equals, in the throws' and groups' order)."""
-    best: Found = None
-    for t in throws:
-        for g in t.groups:
-            got = getter(g)
-            if got is None:
-                continue
-            value, ext = got
-            if best is None or (value < best[0] if worst == "min" else value > best[0]):
-                best = (value, _where(t.name, ext))
-    return best
-
-
-def _static(throws: tuple[ThrowAssessment, ...]) -> Found:
-    return _over_groups(throws, lambda g: (g.static_safety, g.max_von_mises), "min")
-
-
-def _overspeed(throws: tuple[ThrowAssessment, ...]) -> Found:
-    return _over_groups(
-        throws,
-        lambda g: (
-            None
-            if g.overspeed_safety is None or g.max_von_mises_overspeed is None
-            else (g.overspeed_safety, g.max_von_mises_overspeed)
-        ),
-        "min",
-    )
-
-
-def _goodman(throws: tuple[ThrowAssessment, ...]) -> Found:
-    return _over_groups(
-        throws, lambda g: None if g.fatigue_safety is None else (g.fatigue_safety.value, g.fatigue_safety), "min"
-    )
-
-
-def _gough_pollard(throws: tuple[ThrowAssessment, ...]) -> Found:
-    return _over_groups(
-        throws,
-        lambda g: None if g.gough_pollard_safety is None else (g.gough_pollard_safety.value, g.gough_pollard_safety),
-        "min",
-    )
-
-
-def _counterweight_stress(throws: tuple[ThrowAssessment, ...]) -> Found:
-    def get(g: GroupResult) -> tuple[float, Extreme] | None:
-        ext = g.max_von_mises
-        return (ext.value, ext) if g.group.startswith(STATIC_ONLY_PREFIXES) else None
-
-    return _over_groups(throws, get, "max")
-
-
-def _counterweight_overspeed_stress(throws: tuple[ThrowAssessment, ...]) -> Found:
-    def get(g: GroupResult) -> tuple[float, Extreme] | None:
-        ext = g.max_von_mises_overspeed
-        return (ext.value, ext) if ext is not None and g.group.startswith(STATIC_ONLY_PREFIXES) else None
-
-    return _over_groups(throws, get, "max")
-
-
-def _m53(throws: tuple[ThrowAssessment, ...]) -> Found:
-    vals = [
-        (f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
-        for t in throws
-        for f in t.m53
-    ]
-    return min(vals) if vals else None
-
-
-def _unbalance(throws: tuple[ThrowAssessment, ...]) -> Found:
-    vals = [
-        (c.unbalance_error, f"throw {t.name}, {c.name}")
-        for t in throws
-        for c in t.counterweights
-        if c.unbalance_error is not None
-    ]
-    return max(vals) if vals else None
-
-
-def _bolts(throws: tuple[ThrowAssessment, ...]) -> Found:
-    vals = [
-        (c.bolt_utilisation, f"throw {t.name}, {c.name}")
-        for t in throws
-        for c in t.counterweights
-        if c.bolt_utilisation is not None
-    ]
-    return max(vals) if vals else None
-
-
-def _bearing_load(bearings) -> Found:
-    vals = [
-        (b.with_counterweights.peak_n, f"main bearing {b.name}, {b.with_counterweights.peak_angle_deg:.0f} deg")
-        for b in bearings
-    ]
-    return max(vals) if vals else None
-
-
-def _bearing_specific_load(bearings) -> Found:
-    vals = [
-        (
-            b.with_counterweights.specific_load_pa,
-            f"main bearing {b.name} (peak / (d w), w = {b.with_counterweights.width * 1e3:.4g} mm), "
-            f"{b.with_counterweights.peak_angle_deg:.0f} deg",
-        )
-        for b in bearings
-    ]
-    return max(vals) if vals else None
+#: where a quantity is evaluated: at every speed of the sweep, at the overspeed, at none
+SWEEP, OVERSPEED, NO_SPEED = "sweep", "overspeed", "none"
 
 
 @dataclass(frozen=True)
 class Evaluator:
-    """How a quantity is found: ``find`` on the throws' results of a model (worst value,
-    location) or None; ``bearings`` on the whole shaft's main bearings (quantities of the
-    whole-shaft model alone, ``find`` None); ``unit`` of the value ("" for a pure number);
-    ``needs_overspeed``: only defined with an overspeed."""
+    """How a quantity is found on the throws' results: ``find`` gives (worst value,
+    location) or None; ``unit`` of the value ("" for a pure number); ``needs_overspeed``:
+    only defined with an overspeed; ``speed``: SWEEP (every speed of the full-load curve),
+    OVERSPEED or NO_SPEED (independent of speed)."""
 
-    find: Callable[[tuple[ThrowAssessment, ...]], Found] | None
+    find: Callable[[tuple[ThrowAssessment, ...]], Found]
     unit: str = ""
     needs_overspeed: bool = False
-    bearings: Callable[[tuple], Found] | None = None
-
-
-@dataclass(frozen=True)
-class ModelValue:
-    """A criterion's worst value in one model and where it occurs (``model_values``)."""
-
-    criterion: str  # the criterion's key
-    model: str  # PER_THROW or WHOLE_SHAFT
-    value: float
-    location: str
-    governs: bool  # the criterion took this model's value
+    speed: str = SWEEP
 
 
 EVALUATORS: dict[str, Evaluator] = {
-    "static_safety": Evaluator(_static),
-    "overspeed_safety": Evaluator(_overspeed, needs_overspeed=True),
-    "fatigue_safety": Evaluator(_goodman),
-    "gough_pollard_safety": Evaluator(_gough_pollard),
-    "counterweight_stress": Evaluator(_counterweight_stress, unit="Pa"),
-    "counterweight_overspeed_stress": Evaluator(_counterweight_overspeed_stress, unit="Pa", needs_overspeed=True),
-    "m53_acceptability": Evaluator(_m53),
-    "unbalance_error": Evaluator(_unbalance),
-    "bolt_utilisation": Evaluator(_bolts),
-    "main_bearing_load": Evaluator(None, unit="N", bearings=_bearing_load),
-    "main_bearing_specific_load": Evaluator(None, unit="Pa", bearings=_bearing_specific_load),
+    "static_safety": Evaluator(group_finder("static_safety")),
+    "overspeed_safety": Evaluator(group_finder("overspeed_safety"), needs_overspeed=True, speed=OVERSPEED),
+    "fatigue_safety": Evaluator(group_finder("fatigue_safety")),
+    "gough_pollard_safety": Evaluator(group_finder("gough_pollard_safety")),
+    "counterweight_stress": Evaluator(group_finder("counterweight_stress"), unit="Pa"),
+    "counterweight_overspeed_stress": Evaluator(
+        group_finder("counterweight_overspeed_stress"), unit="Pa", needs_overspeed=True, speed=OVERSPEED
+    ),
+    "m53_acceptability": Evaluator(m53_acceptability),
+    "unbalance_error": Evaluator(unbalance, speed=NO_SPEED),
+    "bolt_utilisation": Evaluator(bolts),
+    **{q: Evaluator(joint_finder(q)) for q in JOINT_QUANTITIES},
+    "main_bearing_load": Evaluator(no_throw_value, unit="N"),  # the whole shaft's (shaft_criteria)
+    "main_bearing_specific_load": Evaluator(no_throw_value, unit="Pa"),
 }
 
 
-def _found(ev: Evaluator, throws, shaft: ShaftAssessment | None) -> list[tuple[str, float, str]]:
-    """(model, worst value, location) of a quantity in each model that gives it."""
-    out = []
-    got = ev.find(throws) if ev.find is not None else None
-    if got is not None:
-        out.append((PER_THROW, *got))
-    if shaft is not None:
-        got = ev.find(shaft.throws) if ev.find is not None else ev.bearings(shaft.bearings) if ev.bearings else None
-        if got is not None:
-            out.append((WHOLE_SHAFT, *got))
-    return out
+def _parts(
+    quantity: str,
+    sense: str,
+    throws: tuple[ThrowAssessment, ...],
+    sweep: tuple[StateResults, ...],
+    overspeed: float | None,
+    factor: Callable[[str, str], float] | None,
+    shaft: ShaftAssessment | None,
+) -> tuple[Located | None, Located | None]:
+    """``locate`` in the per-throw model and in the whole shaft (None without it)."""
+    ev = EVALUATORS[quantity]
+    find = ev.find
+    if factor is not None and quantity in GROUP_QUANTITIES:
+
+        def find(th: tuple[ThrowAssessment, ...]) -> Found:
+            return over_groups(quantity, th, factor)
+
+    per: Located | None
+    if ev.speed == SWEEP and sweep:
+        per = over_sweep(find, sense, sweep)
+    else:
+        got = find(throws)
+        if got is None:
+            per = None
+        elif ev.speed == OVERSPEED and overspeed is not None:
+            per = got[0], got[1], overspeed * RPM, (SpeedValue(overspeed * RPM, got[0], got[1]),)
+        else:
+            per = got[0], got[1], None, ()
+    if shaft is None:
+        return per, None
+    at = shaft.speed * RPM if ev.speed == SWEEP and shaft.speed is not None and sweep else None
+    if ev.speed == OVERSPEED and overspeed is not None:
+        at = overspeed * RPM
+    return per, whole_shaft(quantity, sense, find, shaft, speed_rpm=at)
 
 
-def _worse(found: list[tuple[str, float, str]], sense: str) -> tuple[str, float, str]:
-    """The entry with the worse value (the lower for a "min" criterion); the first of equals."""
-    best = found[0]
-    for f in found[1:]:
-        if (f[1] < best[1]) if sense == "min" else (f[1] > best[1]):
-            best = f
-    return best
+def locate(
+    quantity: str,
+    sense: str,
+    throws: tuple[ThrowAssessment, ...],
+    *,
+    sweep: tuple[StateResults, ...] = (),
+    overspeed: float | None = None,
+    factor: Callable[[str, str], float] | None = None,
+    shaft: ShaftAssessment | None = None,
+) -> Located | None:
+    """(worst value, where, its speed in rpm or None, per-speed values) of ``quantity``:
+    over the sweep for a speed-dependent quantity (``throws`` then unused), on ``throws``
+    (the operating speed's, with the overspeed) otherwise; None when the model gives none.
+    ``factor(throw, group)``: k on the groups' stresses of a group quantity (``over_groups``;
+    the whole shaft's throws are meshed as the per-throw model's, the same k).  ``shaft``:
+    the worse of both models, located by model (``shaft_criteria.combined``).  A criterion
+    the results must not judge raises ``Refused``."""
+    per, whole = _parts(quantity, sense, throws, sweep, overspeed, factor, shaft)
+    return per if shaft is None else combined(per, whole, sense)
 
 
 def model_values(
-    criteria: Criteria, throws: tuple[ThrowAssessment, ...], shaft: ShaftAssessment | None
+    criteria: Criteria,
+    throws: tuple[ThrowAssessment, ...],
+    shaft: ShaftAssessment,
+    *,
+    sweep: tuple[StateResults, ...] = (),
+    overspeed: float | None = None,
 ) -> tuple[ModelValue, ...]:
     """Each criterion's worst value in each model that gives it, and which one governs
     (the report's table of the two models)."""
-    out = []
+    out: list[ModelValue] = []
     for lim in criteria.limits:
-        found = _found(EVALUATORS[lim.quantity], throws, shaft)
-        if not found:
+        try:
+            per, whole = _parts(lim.quantity, lim.sense, throws, sweep, overspeed, None, shaft)
+        except Refused:
             continue
-        worst = _worse(found, lim.sense)
-        out.extend(ModelValue(lim.key, m, v, w, (m, v, w) == worst) for m, v, w in found)
+        out.extend(model_pair(lim.key, per, whole, lim.sense))
     return tuple(out)
 
 
@@ -236,21 +173,31 @@ def evaluate_criteria(
     *,
     file: str = "",
     overspeed: float | None = None,
+    sweep: tuple[StateResults, ...] = (),
+    qualifiers: dict[str, str] | None = None,
     shaft: ShaftAssessment | None = None,
 ) -> tuple[CriterionResult, ...]:
     """Each limit of ``criteria`` -> a verdict (module docstring); ``shaft``: the whole-shaft
-    model's results, when it ran (a criterion then takes the worse of the two models)."""
+    model's results, when it ran (each criterion the worse of the two models).  ``throws``: the
+    operating speed's results (with the overspeed); ``sweep``: every speed and state of
+    the full-load curve (the operating speed's firing state among them), () for the
+    operating speed alone.  ``qualifiers``: quantity -> words its verdict line carries
+    after the location (``assess.qualifiers``)."""
+    qualifiers = qualifiers or {}
     out = []
     for lim in criteria.limits:
         ev = EVALUATORS[lim.quantity]
         if ev.needs_overspeed and overspeed is None:
             raise InputError("needs operating.overspeed", file=file, key=lim.key)
-        found = _found(ev, throws, shaft)
-        if not found:
+        try:
+            found = locate(lim.quantity, lim.sense, throws, sweep=sweep, overspeed=overspeed, shaft=shaft)
+        except Refused as exc:
+            raise InputError(f"cannot be evaluated: {exc}", file=file, key=lim.key) from None
+        if found is None:
             missing = (
                 "the whole-shaft model, which runs for an engine of several throws on one shaft or a geometry "
                 "with a [shaft] section"
-                if ev.find is None
+                if ev.find is no_throw_value
                 else "missing geometry, mesh group, balance requirement or bolt data"
             )
             raise InputError(
@@ -258,19 +205,19 @@ def evaluate_criteria(
                 file=file,
                 key=lim.key,
             )
-        model, value, where = _worse(found, lim.sense)
-        if shaft is not None:
-            where = f"{model}: {where}"
-        out.append(
-            judge(
-                lim.key,
-                lim.quantity,
-                lim.sense,
-                value,
-                lim.value,
-                unit=ev.unit,
-                location=where,
-                description=QUANTITIES[lim.quantity].meaning,
-            )
+        value, where, speed_rpm, per_speed = found
+        meaning = QUANTITIES[lim.quantity].meaning
+        if lim.quantity == "m53_acceptability" and criteria.m53_quasi_static_torque:
+            meaning = f"{meaning}; {NOT_CONFORM} ({QUASI_STATIC_M53})"
+        verdict = judge(
+            lim.key,
+            lim.quantity,
+            lim.sense,
+            value,
+            lim.value,
+            unit=ev.unit,
+            location=qualified(where, qualifiers.get(lim.quantity, "")),
+            description=meaning,
         )
+        out.append(dataclasses.replace(verdict, per_speed=per_speed, speed_rpm=speed_rpm))
     return tuple(out)

@@ -158,14 +158,23 @@ def check_joint(name: str, joint, loads: JointLoads, e_clamped: float) -> JointC
     )
 
 
-def cycle_speed_data(dynamics) -> tuple[float, float]:
-    """(delta, max |alpha|) of the working cycle from the dynamics stage: the coefficient of
-    speed fluctuation its flywheel inertia J was sized for, and the largest angular
-    acceleration alpha = (T - T_mean) / J (torque reduced to the reference shaft)."""
-    j = float(dynamics.flywheel_inertia)
+def cycle_speed_data(dynamics, flywheel_inertia: float | None = None) -> tuple[float, float]:
+    """(delta, max |alpha|) of a cycle from the dynamics stage, the largest angular
+    acceleration alpha = (T - T_mean) / J (torque reduced to the reference shaft).
+
+    Without ``flywheel_inertia``: the operating cycle, J its flywheel inertia sized for the
+    coefficient of speed fluctuation delta.  With it (the operating cycle's J: the one
+    flywheel), a cycle at another speed of the full-load curve or a misfire case: that
+    cycle's delta = dE / (J omega^2) with dE its excess energy (the same flywheel at another
+    speed and torque)."""
+    if flywheel_inertia is None:
+        j, delta = float(dynamics.flywheel_inertia), float(dynamics.speed_fluctuation)
+    else:
+        j = float(flywheel_inertia)
+        delta = float(dynamics.excess_energy) / (j * float(dynamics.speed) ** 2) if j > 0 else 0.0
     if not j > 0:
-        return float(dynamics.speed_fluctuation), 0.0
-    return float(dynamics.speed_fluctuation), float(max(abs(dynamics.torque - dynamics.mean_torque))) / j
+        return delta, 0.0
+    return delta, float(max(abs(dynamics.torque - dynamics.mean_torque))) / j
 
 
 def check_joints(

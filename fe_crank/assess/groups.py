@@ -12,7 +12,10 @@ from fe_crank.fe.node_groups import ASSESSED_BOUNDARIES, COUNTERWEIGHTS, node_gr
 from fe_crank.fe.pin_directions import patch_case, pin_direction
 from fe_crank.fe.unit_cases import UnitSolutions
 
-__all__ = ["ASSESSED_BOUNDARIES", "COUNTERWEIGHTS", "assessed_groups", "unit_stresses"]
+#: the unit cases besides the pin cases that the superposition takes (``superpose.load_coefficients``)
+SUPERPOSED = ("centrifugal", "torque", "angular_acceleration")
+
+__all__ = ["ASSESSED_BOUNDARIES", "COUNTERWEIGHTS", "SUPERPOSED", "assessed_groups", "unit_stresses"]
 
 
 def assessed_groups(unit_solutions: UnitSolutions) -> dict[str, np.ndarray]:
@@ -57,19 +60,10 @@ def unit_stresses(unit_solutions: UnitSolutions, groups: dict[str, np.ndarray] |
     ids = np.unique(np.concatenate(list(groups.values())))
     local = {k: np.searchsorted(ids, v) for k, v in groups.items()}
     cases = tuple(
-        c
-        for c in unit_solutions.cases
-        if c in ("centrifugal", "torque", "angular_acceleration")
-        or pin_direction(c) is not None
-        or patch_case(c) is not None
+        c for c in unit_solutions.cases if c in SUPERPOSED or pin_direction(c) is not None or patch_case(c) is not None
     )
     stress = _recover(unit_solutions, cases, ids)  # = stress_at_nodes(u_c)[:, ids], assessed elements only
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0
-    jz = (
-        float(unit_solutions.cases["angular_acceleration"].applied[5])
-        if "angular_acceleration" in unit_solutions.cases
-        else 0.0
-    )
     return UnitStresses(
         stress=stress,
         points=np.asarray(unit_solutions.points)[:, ids],
@@ -77,6 +71,5 @@ def unit_stresses(unit_solutions: UnitSolutions, groups: dict[str, np.ndarray] |
         node_ids=ids,
         cases=cases,
         torque_mz=mz,
-        inertia_mz=jz,
         pin_patches=tuple(unit_solutions.options.pin_patches),
     )

@@ -174,6 +174,7 @@ class M53Fillet:
     fatigue_strength: float  # sigma_DW, Pa
     acceptability: float  # Q
     out_of_range: tuple[str, ...] = ()
+    scf_accepted: bool = True  # False: FE SCFs of a mesh UR M53 App. III does not accept (no verdict)
 
 
 def assess_fillet(

@@ -62,6 +62,7 @@ def _group(g):
         "overspeed_safety": _num(g.overspeed_safety),
         "fatigue_safety": _extreme(g.fatigue_safety),
         "gough_pollard_safety": _extreme(g.gough_pollard_safety),
+        "additional_bending": g.additional_bending,
         "amplitude_at_critical": _num(g.amplitude_at_critical),
         "mean_at_critical": _num(g.mean_at_critical),
         "fatigue_factors": None
@@ -132,6 +133,31 @@ def _cw(c):
     }
 
 
+def _joint(j):
+    """One bolted counterweight's VDI 2230 results, per bolt (``cw_joint.JointCheck``)."""
+    ld = j.loads
+    return {
+        "name": j.name,
+        "preload_max": j.preload_max,
+        "preload_min": j.preload_min,
+        "embedding_loss": j.embedding_loss,
+        "load_factor": j.load_factor,
+        "tightening_torque": j.tightening_torque,
+        "axial_load_max": ld.axial_max,
+        "axial_load_min": ld.axial_min,
+        "axial_load_overspeed": ld.axial_overspeed,
+        "transverse_load_max": ld.transverse_max,
+        "assembly_utilisation": j.assembly_utilisation,
+        "working_safety": _num(j.working_safety),
+        "fatigue_amplitude": j.fatigue_amplitude,
+        "endurance_limit": j.endurance_limit,
+        "fatigue_safety": _num(j.fatigue_safety),
+        "residual_clamp": j.residual_clamp,
+        "separation_safety": _num(j.separation_safety),
+        "slip_safety": _num(j.slip_safety),
+    }
+
+
 def criterion_json(c: CriterionResult) -> dict:
     """One criterion of results.json (an infinite value, an unloaded part's safety, is null)."""
     return {
@@ -145,6 +171,8 @@ def criterion_json(c: CriterionResult) -> dict:
         "unit": c.unit,
         "location": c.location,
         "description": c.description,
+        "speed_rpm": c.speed_rpm,
+        "per_speed": [{"speed_rpm": p.speed_rpm, "value": _num(p.value), "location": p.location} for p in c.per_speed],
     }
 
 
@@ -178,6 +206,7 @@ def to_json(assessment: Assessment) -> dict:
                     "ke": t.m53_nominal.ke,
                 },
                 "counterweights": [_cw(c) for c in t.counterweights],
+                **({"joints": [_joint(j) for j in t.joints]} if t.joints else {}),
             }
             for t in a.throws
         ],

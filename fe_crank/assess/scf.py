@@ -16,9 +16,12 @@ for unit loads; here its stress measures are divided by the nominal stresses of 
   Each web with its own reaction, lever and journal-fillet peak; the larger factor is kept.
 
 The assessment uses method 1 (beta_B and beta_Q separately, as in UR M53 5.1's
-sigma_BG = beta_B sigma_BN + beta_Q sigma_QN).  Mesh checks (2.1, 2.3): fillet elements
-<= r/4 and, at each peak, the principal-stress (< 3 %) or the averaged/unaveraged (< 5 %)
-criterion; ``ScfResult.mesh_ok`` says whether the appendix would accept the mesh.
+sigma_BG = beta_B sigma_BN + beta_Q sigma_QN).  Mesh checks (2.1-2.3): fillet elements
+<= r/4, at least 6 elements across the web thickness (``fe.web_mesh``) and, at each peak,
+the principal-stress (< 3 %) or the averaged/unaveraged (< 5 %) criterion;
+``ScfResult.mesh_ok`` says whether the appendix would accept the mesh.  The check's SCF
+stage refines until it does (``assess.scf_refine``); factors of a mesh the appendix does not
+accept never enter a verdict (the M53 criterion is refused, ``assess.criteria``).
 """
 
 from __future__ import annotations
@@ -28,8 +31,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from fe_crank.assess import m53
+from fe_crank.cad.config import CadInput
+from fe_crank.cad.source import mesh_source_throw
 from fe_crank.fe.scf import JOURNAL_FILLETS, PIN_FILLETS, ScfStresses, scf_stresses, web_centres_from_mesh
-from fe_crank.mesh import mesh_throw
+from fe_crank.fe.web_mesh import MIN_ELEMENTS_ACROSS, WebElements, web_elements_across, web_groups
+from fe_crank.geometry.spec import CrankGeometry
 
 ELEMENT_SIZE_LIMIT = 0.25  # fillet element edge / r, UR M53 App. III 2.1
 
@@ -47,6 +53,13 @@ class ScfResult:
     element_size: dict[str, float]  # fillet group -> longest element edge / r (ThrowMesh only)
     stresses: ScfStresses
     details: dict = field(default_factory=dict)
+    web_elements: tuple[WebElements, ...] = ()  # App. III 2.2, per web (meshes with web subdomains)
+    refinement: tuple[str, ...] = ()  # the meshes tried before this one and why each was refined
+
+    @property
+    def web_ok(self) -> bool:
+        """At least 6 elements across each web's thickness (where measured)."""
+        return all(w.ok for w in self.web_elements)
 
     @property
     def equilibrium_error(self) -> dict[str, float]:
@@ -54,10 +67,14 @@ class ScfResult:
 
     @property
     def mesh_ok(self) -> bool:
-        """Fillet elements <= r/4 (where known) and every peak meets a 2.3 criterion."""
-        return all(v <= ELEMENT_SIZE_LIMIT * (1 + 1e-9) for v in self.element_size.values()) and all(
-            q["mesh_ok"] for q in self.quality.values()
-        )
+        """Fillet elements <= r/4 (where known), >= 6 elements across the webs (where
+        measured) and every peak meets a 2.3 criterion."""
+        return self.size_ok and self.web_ok and all(q["mesh_ok"] for q in self.quality.values())
+
+    @property
+    def size_ok(self) -> bool:
+        """Fillet elements <= r/4 (where known)."""
+        return all(v <= ELEMENT_SIZE_LIMIT * (1 + 1e-9) for v in self.element_size.values())
 
     def for_assessment(self) -> dict[str, dict[str, float]]:
         """The ``fe_scf`` dictionaries that ``fe_crank.assess.m53.assess_fillet`` takes."""
@@ -78,6 +95,11 @@ class ScfResult:
         ]
         if size is not None:
             parts.append(f"fillet elements <= r/{1 / size:.1f} (r/4 required)")
+        if self.web_elements:
+            across = min(w.across for w in self.web_elements)
+            parts.append(f"{across:.1f} elements across the web (>= {MIN_ELEMENTS_ACROSS} required)")
+        if self.refinement:
+            parts.append(f"after {len(self.refinement)} refinement(s)")
         verdict = "mesh accepted" if self.mesh_ok else "mesh NOT accepted, refine"
         return f"FE, UR M53 App. III SCF mode ({verdict}: {'; '.join(parts)})"
 
@@ -156,12 +178,9 @@ def empirical(geo: m53.M53Geometry) -> tuple[dict[str, float | None], dict[str, 
     return emp, {"pin": bad_p, "journal": bad_j}
 
 
-def web_centres_of(geometry) -> tuple[float, float] | None:
+def web_centres_of(geometry: CrankGeometry) -> tuple[float, float]:
     """Web centre planes z = -+(L_pin/2 + W/2) of a ``CrankGeometry`` (docs/contracts.md axial layout)."""
-    try:
-        z = 0.5 * geometry.crankpin_length + 0.5 * geometry.web_thickness
-    except AttributeError:
-        return None
+    z = 0.5 * geometry.crankpin_length + 0.5 * geometry.web_thickness
     return (-z, z)
 
 
@@ -191,6 +210,8 @@ def compute_scf(
     st = scf_stresses(throw_mesh, material, web_centres=web_centres, solver=solver)
     fe, quality, details = factors(st, geo)
     emp, bad = empirical(geo)
+    mesh = getattr(throw_mesh, "mesh", throw_mesh)
+    webs = web_groups(mesh)
     return ScfResult(
         fe=fe,
         empirical=emp,
@@ -199,6 +220,7 @@ def compute_scf(
         element_size=_element_size(throw_mesh),
         stresses=st,
         details=details,
+        web_elements=web_elements_across(mesh, webs, geo.web_thickness) if webs else (),
     )
 
 
@@ -211,15 +233,15 @@ def scf_mesh_options(options):
 
 
 def scf_mesh(throw_mesh, geometry):
-    """The throw mesh the SCF mode runs on: the load case's ``mesh_throw`` mesh, or, when that
-    mesh is coarser than r/4 in the fillets (e.g. the ``test`` preset), the same throw of
-    ``geometry`` meshed again with ``scf_mesh_options`` (same cache).  A mesh without
-    options or a geometry that cannot be meshed here is used as it is (its ``mesh_ok`` says
-    whether the appendix accepts it)."""
+    """The throw mesh the SCF mode runs on: the load case's mesh, or, when that mesh is
+    coarser than r/4 in the fillets (e.g. the ``test`` preset), the same throw of
+    ``geometry`` (a ``CrankGeometry`` or a CAD file's ``CadInput``) meshed again with
+    ``scf_mesh_options`` (same cache).  A mesh without options or a geometry that cannot
+    be meshed here is used as it is (its ``mesh_ok`` says whether the appendix accepts it)."""
     opt = getattr(throw_mesh, "options", None)
     want = scf_mesh_options(opt)
-    if want is opt or not hasattr(geometry, "throw") or getattr(throw_mesh, "throw", None) is None:
+    if want is opt or not isinstance(geometry, CrankGeometry | CadInput) or getattr(throw_mesh, "throw", None) is None:
         return throw_mesh
     folder = Path(throw_mesh.msh_path).parent
     cache = folder.parent if folder.name == throw_mesh.key else None
-    return mesh_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)
+    return mesh_source_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)

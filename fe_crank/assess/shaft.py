@@ -39,13 +39,28 @@ WHOLE_SHAFT = "whole-shaft model"
 
 
 @dataclass(frozen=True)
+class BearingState:
+    """The main bearings' loads (with and without counterweights) in one load state at one
+    speed of the full-load sweep (rad/s; ``case``: ``assess.loads.FIRING`` or a misfire)."""
+
+    speed: float
+    case: str
+    bearings: tuple[BearingResult, ...]
+
+
+@dataclass(frozen=True)
 class ShaftAssessment:
-    """What the criteria read from the whole-shaft model: its throws' group results (the
+    """What the criteria read from the whole-shaft model: its throws' group results at the
+    operating speed ``speed`` (rad/s; None: not stated) and its overspeed cycles (the
     per-throw model's groups, ``ThrowAssessment.groups``; no UR M53, no counterweight
-    checks) and its main bearings' loads with and without counterweights."""
+    checks), its main bearings' loads with and without counterweights at the operating
+    speed, and at every speed and load state of the sweep (``sweep``; () : the operating
+    speed alone)."""
 
     throws: tuple[ThrowAssessment, ...]
     bearings: tuple[BearingResult, ...]
+    speed: float | None = None
+    sweep: tuple[BearingState, ...] = ()
 
 
 def piece_unit_stresses(cases: ShaftCases, piece: int, material) -> UnitStresses:
@@ -90,14 +105,15 @@ def assess_shaft_throws(
     *,
     crank_radius: float,
     overspeed: float | None,
-    pin_diameter: float | None = None,
-    journal_diameter: float | None = None,
+    diameters: dict[str, tuple[float | None, float | None]] | None = None,
     additional_bending: float = 0.0,
 ) -> tuple[ThrowAssessment, ...]:
     """Every throw of the whole shaft assessed with the per-throw model's group code
     (module doc), with the counterweights as built; ``theta`` the cycle's angles (rad);
-    ``overspeed`` (rad/s) with ``result.overspeed``'s cycles; ``additional_bending``: UR
-    M53 4's sigma_add on the shaft fillets (as the per-throw model)."""
+    ``overspeed`` (rad/s) with ``result.overspeed``'s cycles; ``diameters``: throw name ->
+    (pin, journal) diameter for the size factor (UR M53's dimensions; None: the factor's
+    fallback); ``additional_bending``: UR M53 4's sigma_add on the shaft fillets (as the
+    per-throw model)."""
     coeffs = result.cycles[0].weights
     theta = np.asarray(theta, float)
     coeffs_os, theta_os = None, theta
@@ -111,6 +127,7 @@ def assess_shaft_throws(
         if pp.kind != "throw":
             continue
         unit = piece_unit_stresses(cases, k, material)
+        pin_diameter, journal_diameter = (diameters or {}).get(str(pp.throw), (None, None))
         groups = tuple(
             assess_group(
                 unit,

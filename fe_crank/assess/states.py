@@ -5,7 +5,10 @@ superposition of the FE unit cases with the assessment's own coefficients
     u(theta) = omega^2 u_c + sum_k a_k(F(theta)) u_pk - sense T(theta) / M_z u_t
 
 Stress recovery is linear in u, so the stress of a state equals the assessment's
-superposed unit stresses at every node: pictures, fields and tables agree.
+superposed unit stresses at every node: pictures, fields and tables agree.  The
+displacement is kept in the frame of the supports (``fe.support_frame``: the main-bearing
+centres at rest, the torque face not turning), the rigid motion of the determinate solve
+removed: the report's VTU fields and deformed pictures show the deformation only.
 
 Per FE model (one model may stand for several throws, ``fe_crank.throw_scope``):
 
@@ -28,12 +31,12 @@ import numpy as np
 
 from fe_crank.assess.group import GroupResult
 from fe_crank.assess.groups import COUNTERWEIGHTS
-from fe_crank.assess.superpose import inertia_acceleration, load_coefficients
+from fe_crank.assess.loads import LoadState
+from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
+from fe_crank.fe.support_frame import field_in_support_frame
 from fe_crank.fe.unit_cases import UnitSolutions
-from fe_crank.mechanism.cycles import OverspeedCycle
-from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.throw_scope import throws_of
 
 #: the shaft fillets whose averaging indicator is checked (UR M53 App. III 2.3)
@@ -98,42 +101,54 @@ def throw_names(keys, throws: dict) -> list[str]:
     return [n for n in throws if n in wanted]
 
 
-def angle_index(dyn: DynamicsResult, angle: float | None) -> int:
+def angle_index(state: LoadState, angle: float | None) -> int:
     """Index of the cycle angle nearest ``angle`` (the first of equals)."""
     if angle is None:
         return 0
-    return int(np.argmin(np.abs(np.asarray(dyn.theta) - angle)))
+    return int(np.argmin(np.abs(np.asarray(state.theta) - angle)))
 
 
 def field_at_angle(
-    unit_solutions: UnitSolutions, dyn: DynamicsResult, throw: str, index: int, sense: int
+    unit_solutions: UnitSolutions,
+    state: LoadState,
+    throw: str,
+    index: int,
+    sense: int,
+    places: dict[str, float] | None = None,
 ) -> np.ndarray:
-    """Displacement of the throw at cycle-angle index ``index`` of ``dyn`` (the operating
-    cycle, or an overspeed cycle: ``dyn.speed`` is the omega of its centrifugal term)."""
-    tl = dyn.throws[throw]
+    """Displacement of the throw at cycle-angle index ``index`` of the load state
+    ``state`` (the operating cycle, or an overspeed cycle: ``state.speed`` is the omega
+    of its centrifugal term), with the assessment's loads (``assess.loads.ThrowCycle``)
+    and coefficients (``superpose.cycle_coefficients``).  ``places``: each rod's place on
+    the pin (``fe.pin_patches.rod_positions``): with the FE model's patch cases, each rod's
+    force goes to its band, as in the assessment.  The displacement is in the frame of the
+    supports (``fe.support_frame``: the rigid motion the determinate solve leaves in
+    removed, the main-bearing centres at rest), as the report writes and draws it; its
+    stresses are the solve's (a rigid motion has none)."""
+    tc = state.throws[throw]
     cases = tuple(unit_solutions.cases)
     mz = float(unit_solutions.cases["torque"].applied[5]) if "torque" in unit_solutions.cases else -1.0
-    at = slice(index, index + 1)
-    alpha = (  # the throw's vibratory inertia torque, as the assessment carries it
-        inertia_acceleration(
-            tl.torque_front[at],
-            tl.torque_rear[at],
-            tl.torque[at],
-            unit_solutions.cases["angular_acceleration"].applied[5],
-        )
-        if "angular_acceleration" in unit_solutions.cases
-        else None
-    )
-    c = load_coefficients(
-        tl.pin_force[at],
-        tl.torque_front[at],
-        dyn.speed,
+    one = slice(index, index + 1)
+    alpha = tc.angular_acceleration
+    rods = tc.fe_rod_loads(places or {})
+    unit = UnitStresses(
+        np.zeros((len(cases), 6, 0)),
+        np.zeros((3, 0)),
         cases=cases,
-        sense=sense,
         torque_mz=mz,
-        angular_acceleration=alpha,
+        pin_patches=tuple(unit_solutions.options.pin_patches),
+    )
+    c = cycle_coefficients(
+        unit,
+        tc.fe_pin[one],
+        tc.torque_in[one],
+        state.speed,
+        sense=sense,
+        rod_loads=None if rods is None else tuple((np.asarray(f)[one], e) for f, e in rods),
+        angular_acceleration=None if alpha is None else alpha[one],
+        vibration=tc.fe_pin_force is not None and not tc.fe_rods,
     )[0]
-    return unit_solutions.combine(dict(zip(cases, c)))
+    return field_in_support_frame(unit_solutions, unit_solutions.combine(dict(zip(cases, c))))
 
 
 def _finite_key(v: float) -> float:
@@ -202,11 +217,13 @@ def overspeed_state(
     unit_solutions: UnitSolutions,
     throws: tuple[ThrowAssessment, ...],
     names: list[str],
-    cycles: tuple[OverspeedCycle, ...],
+    cycles: tuple[LoadState, ...],
     senses: dict[str, int],
+    places: dict[str, dict[str, float]] | None = None,
 ) -> OverspeedState | None:
     """The governing overspeed state of one FE model (module docstring); None without an
-    overspeed cycle or an overspeed result.  ``senses``: each throw's shaft sense."""
+    overspeed cycle or an overspeed result.  ``senses``: each throw's shaft sense;
+    ``places``: throw -> its rods' places on the pin (``field_at_angle``)."""
     if not cycles:
         return None
     found = governing(throws, names)
@@ -219,15 +236,15 @@ def overspeed_state(
     # take the cycle whose state at theta* reaches the table's value at its node.
     best = None
     for c in cycles:
-        theta = np.asarray(c.dynamics.theta)
+        theta = np.asarray(c.theta)
         index = int(np.argmin(np.abs(theta - ext.angle))) if ext.angle is not None else 0
-        u = field_at_angle(unit_solutions, c.dynamics, t.name, index, senses[t.name])
+        u = field_at_angle(unit_solutions, c, t.name, index, senses[t.name], (places or {}).get(t.name))
         at_node = von_mises_at(unit_solutions, u, int(ext.node)) if len(cycles) > 1 else 0.0
         if best is None or at_node > best[0]:
             best = (at_node, c, index, u)
     assert best is not None
     _, cycle, index, u = best
-    theta = np.asarray(cycle.dynamics.theta)
+    theta = np.asarray(cycle.theta)
     return OverspeedState(
         t.name,
         g.group,
@@ -237,8 +254,8 @@ def overspeed_state(
         tuple(float(c) for c in ext.point),
         index,
         float(np.degrees(theta[index])),
-        float(cycle.dynamics.speed),
-        cycle.gas,
+        float(cycle.speed),
+        cycle.case,
         np.asarray(u),
         tuple(gr for gr in t.groups if gr.group in COUNTERWEIGHTS),
     )
@@ -248,26 +265,29 @@ def model_states(
     keys: tuple[str, ...],
     unit_solutions: UnitSolutions,
     throws: tuple[ThrowAssessment, ...],
-    dyn: DynamicsResult,
-    overspeed: tuple[OverspeedCycle, ...],
+    dyn: LoadState,
+    overspeed: tuple[LoadState, ...],
     senses: dict[str, int],
     *,
     fields: bool,
+    places: dict[str, dict[str, float]] | None = None,
 ) -> ModelStates | None:
     """The states of the FE model ``unit_solutions`` standing for the throws of ``keys``
-    (module docstring); None when the assessment has no hot spot for it.  ``fields``:
-    also recover the averaged nodal stress of both states on the whole mesh (for the
-    report's ``.vtu`` fields and pictures)."""
+    (module docstring) in the load state ``dyn`` (the operating speed, all cylinders
+    firing) and the overspeed cycles; None when the assessment has no hot spot for it.
+    ``fields``: also recover the averaged nodal stress of both states on the whole mesh
+    (for the report's ``.vtu`` fields and pictures).  ``places``: throw -> its rods' places
+    on the pin (``fe.pin_patches.rod_positions``), for a model loaded per rod place."""
     names = throw_names(keys, dyn.throws)
     crit = critical(throws, names)
     if crit is None:
         return None
     index = angle_index(dyn, crit.angle)
-    u = field_at_angle(unit_solutions, dyn, crit.throw, index, senses[crit.throw])
+    u = field_at_angle(unit_solutions, dyn, crit.throw, index, senses[crit.throw], (places or {}).get(crit.throw))
     boundaries = unit_solutions.mesh.boundaries or {}
     fillets = [g for g in FILLETS if g in boundaries]
     averaging = {g: float(v) for g, v in unit_solutions.averaging_indicator(u, fillets).items()} if fillets else {}
-    os_state = overspeed_state(unit_solutions, throws, names, overspeed, senses)
+    os_state = overspeed_state(unit_solutions, throws, names, overspeed, senses, places)
     stress = None
     if fields:
         stress = unit_solutions.stress_at_nodes(u)

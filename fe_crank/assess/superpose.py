@@ -47,7 +47,6 @@ class UnitStresses:
     node_ids: np.ndarray | None = None
     cases: tuple[str, ...] = UNIT_CASES
     torque_mz: float = -1.0  # M_z of the unit torque case (FE stage: 1 N m in the sense of rotation)
-    inertia_mz: float = 0.0  # M_z of the ``angular_acceleration`` case (its J_z, kg m^2); 0: no such case
     pin_patches: tuple[tuple[float, float], ...] = ()  # the FE stage's rod-place bands (patch cases)
 
     @property
@@ -142,34 +141,30 @@ def load_coefficients(
     return np.column_stack(cols)
 
 
-def inertia_acceleration(torque_front, torque_rear, own, inertia_mz: float) -> np.ndarray:
-    """The angular acceleration (n,) rad/s^2 in the sense of rotation whose body force (the
-    ``angular_acceleration`` case, moment -J_FE alpha in the sense of rotation, J_FE =
-    ``inertia_mz``) carries the part of the rear journal's torque that the front journal's
-    torque and the pin's own torque do not: T_rear - T_front - T_own = -J_FE alpha.
-
-    Then each journal of the throw carries its own torque, T_front at the front face and
-    T_rear reacted at the rear one.  Quasi-statically the part is zero (T_rear = T_front +
-    T_own); with torsional vibration it is the throw's inertia and damping torque
-    (J theta'' + c theta', ``fe_crank.torsion.flow``), which the torsional stage's journal
-    torques (the same histories UR M53 takes) contain."""
-    if not inertia_mz > 0:
-        raise ValueError("the angular_acceleration unit case has no moment about the axis")
-    rest = np.asarray(torque_rear, float) - np.asarray(torque_front, float) - np.asarray(own, float)
-    return -rest / inertia_mz
-
-
 def cycle_coefficients(
-    unit: UnitStresses, pin_force, torque, omega: float, *, sense: int = 1, rod_loads=None, angular_acceleration=None
+    unit: UnitStresses,
+    pin_force,
+    torque,
+    omega: float,
+    *,
+    sense: int = 1,
+    rod_loads=None,
+    angular_acceleration=None,
+    vibration: bool = False,
 ):
     """``load_coefficients`` of ``unit``'s cases; with patch cases, the rods' forces go to the
-    bands of their places (``rod_loads``: (force (n, 2), place m) per rod, ``fe.pin_patches``);
-    ``angular_acceleration`` (n,) rad/s^2 on the ``angular_acceleration`` case
-    (``inertia_acceleration``), zero when not given."""
+    bands of their places (``rod_loads``: (force (n, 2), place m) per rod, ``fe.pin_patches``).
+    ``angular_acceleration`` and ``vibration`` (``pin_force`` then carries the cylinders'
+    vibratory inertia torque as a tangential force, ``torsion.flow.fe_loads``): the throw's
+    torsional vibration; the rods' own forces do not carry that torque, so a model loaded per
+    rod place is refused with it unless ``rod_loads`` are the rods' forces with their shares
+    of it (then ``vibration`` False: ``assess.loads.ThrowCycle.fe_rods``)."""
     patches = None
     if any(patch_case(c) is not None for c in unit.cases):
         if rod_loads is None:
             raise ValueError("the FE model loads the pin per rod place: the rods' forces and places are needed")
+        if vibration:
+            raise ValueError("the FE model loads the pin per rod place, which the vibratory pin force cannot load")
         patches = patch_forces(rod_loads, unit.pin_patches)
     return load_coefficients(
         pin_force,

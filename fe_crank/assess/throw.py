@@ -9,6 +9,8 @@ import numpy as np
 
 from fe_crank.assess import m53, m53_oil_bore, m53_rods
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
+from fe_crank.assess.cw_joint import JointCheck, check_joints
+from fe_crank.assess.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.group import SIGMA_ADD_GROUPS, GroupResult, assess_group, section_diameter
 from fe_crank.assess.m53 import M53Fillet, NominalStresses
 from fe_crank.assess.scf import ScfResult
@@ -25,6 +27,7 @@ class ThrowAssessment:
     m53_nominal: NominalStresses | None = None
     counterweights: tuple[CounterweightCheck, ...] = ()
     n_angles: int = 0
+    joints: tuple[JointCheck, ...] = ()  # VDI 2230 of the bolted counterweights (when checked)
 
 
 def fe_scfs(scf: ScfResult) -> dict[str, dict[str, float]]:
@@ -57,9 +60,16 @@ def assess_throw(
     scf: ScfResult | None = None,
     counterweights: tuple[CounterweightData, ...] = (),
     torque_rear: np.ndarray | None = None,
-    overspeed_loads: tuple | list | None = None,
-    rod_loads: tuple | None = None,
+    overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None,
     angular_acceleration: np.ndarray | None = None,
+    fe_pin_force: np.ndarray | None = None,
+    m53_torques: tuple[np.ndarray, ...] = (),
+    extremes: Wanted | None = None,
+    running: Running | None = None,
+    rod_loads: tuple | None = None,
+    fe_rod_loads: tuple | None = None,
+    joint_speed: tuple[float, float] | None = None,
+    geometry_file: str = "",
 ) -> ThrowAssessment:
     """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
     throw frame and the torque through the front journal (n,) over the cycle angles
@@ -79,16 +89,41 @@ def assess_throw(
     part (which does not grow with speed), so on the safe side.  A list of such pairs
     (several gas states of the overspeed condition, ``mechanism.cycles.overspeed_cycles``)
     is checked as one longer history: the overspeed result is the worst over all of them.
+
+    With torsional vibration (``fe_crank.torsion.flow``): ``angular_acceleration`` (n,)
+    of the throw (the ``angular_acceleration`` unit case's coefficient) and
+    ``fe_pin_force``, the pin force the FE pin cases carry (the rods' ``pin_force`` with
+    the cylinders' vibratory inertia torque as a tangential force); ``m53_torques``: more
+    journal torque histories for UR M53 (the torsional hand-over's, the largest over the
+    speed range), of which, with ``torque`` and ``torque_rear``, it takes the one with the
+    largest alternating part.  ``extremes``: only each group's extremes
+    (``extremes.group_extremes``: no overspeed, no per-node fields), for the speeds of a
+    sweep other than the operating one; ``running``: the least fatigue values of the
+    throws of the same load state assessed before (``extremes.Running``).
     ``rod_loads``: (force (n, 2), place on the pin m) per rod (``fe.pin_patches``): UR M53's
     moments rod by rod and, where the FE model has patch cases, each rod on its band; an
-    overspeed cycle is then (pin force, torque, rod loads).  ``angular_acceleration`` (n,)
-    rad/s^2 on the ``angular_acceleration`` unit case (``superpose.inertia_acceleration``:
-    the throw's vibratory inertia torque, so that its rear journal carries its own torque)."""
+    overspeed cycle is then (pin force, torque, rod loads).  ``fe_rod_loads``: the rods'
+    loads the FE patch cases take with torsional vibration (each rod's force with its share
+    of the vibratory tangential force, ``assess.loads.ThrowCycle.fe_rods``); without them a
+    model loaded per rod place is refused with a vibratory pin force
+    (``superpose.cycle_coefficients``).
+    ``joint_speed``: (delta, max |alpha|) of the cycle (``cw_joint.cycle_speed_data``):
+    the bolted counterweights' joints are checked by VDI 2230 at ``omega`` (and the
+    overspeed) (``cw_joint.check_joints``, an ``InputError`` naming the keys a joint lacks,
+    in ``geometry_file``); None: not checked."""
+    fe_pin = pin_force if fe_pin_force is None else fe_pin_force
     coeffs = cycle_coefficients(
-        unit, pin_force, torque, omega, sense=sense, rod_loads=rod_loads, angular_acceleration=angular_acceleration
+        unit,
+        fe_pin,
+        torque,
+        omega,
+        sense=sense,
+        rod_loads=rod_loads if fe_rod_loads is None else fe_rod_loads,
+        angular_acceleration=angular_acceleration,
+        vibration=fe_pin_force is not None and fe_rod_loads is None,
     )
     coeffs_os = None
-    if overspeed is not None:
+    if overspeed is not None and extremes is None:
         if overspeed_loads is None:
             scale = (overspeed / omega) ** 2 if omega > 0 else 1.0
             rods_os = None if rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in rod_loads)
@@ -100,10 +135,64 @@ def assess_throw(
                 for c in cycles
             ]
         )
-        theta_os = np.tile(np.asarray(theta), len(cycles))  # the angle of the worst row, whichever cycle
     dp = m53_geometry.pin_diameter if m53_geometry is not None else None
     dj = m53_geometry.journal_diameter if m53_geometry is not None else None
-    groups = tuple(
+    if extremes is not None:
+        groups = tuple(
+            group_extremes(
+                unit,
+                g,
+                coeffs,
+                np.asarray(theta),
+                material,
+                crank_radius=crank_radius,
+                diameter=section_diameter(g, dp, dj),
+                wanted=extremes,
+                running=running,
+                additional_bending=m53_additional if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+            )
+            for g in sorted(unit.groups)
+            if len(unit.groups[g])
+        )
+    else:
+        groups = _full_groups(unit, coeffs, coeffs_os, theta, material, crank_radius, overspeed, dp, dj, m53_additional)
+    fillets, nominal = _m53(
+        name,
+        m53_geometry,
+        material,
+        pin_force,
+        (torque, *(() if torque_rear is None else (torque_rear,)), *m53_torques),
+        fe_scf=fe_scf,
+        scf=scf,
+        additional=m53_additional,
+        ke=m53_ke,
+        rod_loads=rod_loads,
+    )
+    cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
+    joints: tuple[JointCheck, ...] = ()
+    if joint_speed is not None:
+        delta, alpha = joint_speed
+        joints = tuple(
+            j
+            for c in counterweights
+            for j in check_joints(
+                c,
+                omega=omega,
+                overspeed=overspeed,
+                e_clamped=material.youngs_modulus,
+                speed_fluctuation=delta,
+                angular_acceleration=alpha,
+                file=geometry_file,
+            )
+        )
+    return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)), joints)
+
+
+def _full_groups(unit, coeffs, coeffs_os, theta, material, crank_radius, overspeed, dp, dj, additional):
+    if coeffs_os is not None:
+        n_os = coeffs_os.shape[0] // max(1, len(theta))
+        theta_os = np.tile(np.asarray(theta), n_os)  # the angle of the worst row, whichever cycle
+    return tuple(
         assess_group(
             unit,
             g,
@@ -114,24 +203,44 @@ def assess_throw(
             overspeed=overspeed,
             overspeed_coefficients=coeffs_os,
             diameter=section_diameter(g, dp, dj),
-            additional_bending=m53_additional if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+            additional_bending=additional if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
         )
         for g in sorted(unit.groups)
         if len(unit.groups[g])
     )
+
+
+def _m53(
+    name: str,
+    m53_geometry: m53.M53Geometry | None,
+    material: Material,
+    pin_force: np.ndarray,
+    torques: tuple[np.ndarray, ...],
+    *,
+    fe_scf,
+    scf: ScfResult | None,
+    additional: float,
+    ke: float,
+    rod_loads: tuple | None = None,
+) -> tuple[tuple[M53Fillet, ...], NominalStresses | None]:
+    """UR M53 of one throw: the radial pin force's bending and, of the journal torque
+    histories ``torques``, the one with the largest alternating part (the first of
+    equals)."""
     fillets: tuple[M53Fillet, ...] = ()
     nominal: NominalStresses | None = None
+    m53_additional, m53_ke = additional, ke
     if m53_geometry is not None and material.tensile_strength is not None and material.m53_k is not None:
-        scf_note = None
+        scf_note, accepted = None, True
         if (
             fe_scf is None
             and scf is not None
             and any(m53.out_of_range(m53_geometry.related(f)) for f in ("pin", "journal"))
         ):
-            fe_scf, scf_note = fe_scfs(scf), scf.summary()
-        m53_torque = torque
-        if torque_rear is not None and m53.half_range(torque_rear) > m53.half_range(torque):
-            m53_torque = torque_rear
+            fe_scf, scf_note, accepted = fe_scfs(scf), scf.summary(), scf.mesh_ok
+        m53_torque = torques[0]
+        for t in torques[1:]:
+            if m53.half_range(t) > m53.half_range(m53_torque):
+                m53_torque = t
         if rod_loads is None:
             nominal = m53.nominal_stresses(m53_geometry, np.asarray(pin_force)[:, 1], m53_torque, ke=m53_ke)
         else:  # each rod's bending-moment triangle at its own place (UR M53 2.1, m53_rods)
@@ -154,7 +263,9 @@ def assess_throw(
         if scf_note:  # say which FE SCFs: the appendix's SCF mode and its mesh verdict
             fillets = tuple(
                 dataclasses.replace(
-                    f, scf_source=f"{scf_note}; outside the UR M53 validity range: " + "; ".join(f.out_of_range)
+                    f,
+                    scf_source=f"{scf_note}; outside the UR M53 validity range: " + "; ".join(f.out_of_range),
+                    scf_accepted=accepted,
                 )
                 if f.out_of_range
                 else f
@@ -164,5 +275,4 @@ def assess_throw(
             m53_geometry, nominal, pin_force, tensile=material.tensile_strength, k=material.m53_k, rod_loads=rod_loads
         )
         fillets += (outlet,) if outlet is not None else ()
-    cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
-    return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)))
+    return fillets, nominal

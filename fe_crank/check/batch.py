@@ -21,6 +21,7 @@ from fe_crank.check.discovery import unique_slugs
 from fe_crank.check.options import CheckOptions, assess_threads
 from fe_crank.check.publish import clean_stale_partials
 from fe_crank.errors import InputError
+from fe_crank.notes import verdict_remarks
 from fe_crank.records import CaseResult
 from fe_crank.results import STATUS_ERROR
 
@@ -54,19 +55,20 @@ def run_cases(
     # one mesh cache for every worker: a relative folder is resolved here, not in each
     # worker's own working directory (docs/usage.md)
     options = CheckOptions(**{**asdict(options), "cache_dir": str(Path(options.cache_dir).resolve())})
-    paths = [Path(p) for p in paths]
+    files = [Path(p) for p in paths]
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     clean_stale_partials(out_dir)
-    slugs = unique_slugs(paths)
-    results: list[CaseResult | None] = [None] * len(paths)
+    slugs = unique_slugs(files)
+    results: list[CaseResult | None] = [None] * len(files)
 
     def done(i: int, r: CaseResult) -> None:
         results[i] = r
         w = r.worst
+        remarks = verdict_remarks(r.warnings)
         log.log(
             logging.WARNING if r.status == STATUS_ERROR else logging.INFO,
-            "%s: %s%s in %.1f s",
+            "%s: %s%s in %.1f s%s",
             slugs[i],
             r.status.upper(),
             f" (worst {w.name}, margin {100 * w.margin:+.1f} %)"
@@ -75,6 +77,7 @@ def run_cases(
             if r.message
             else "",
             r.seconds,
+            f" [{remarks}]" if remarks and r.status != STATUS_ERROR else "",
         )
         if on_result is not None:
             on_result(r)
@@ -84,25 +87,25 @@ def run_cases(
         # one assess thread per case unless the options say otherwise
         if options.assess_threads is None:
             options = CheckOptions(**{**asdict(options), "assess_threads": 1})
-        _run_dask(paths, slugs, out_dir, options, scheduler, done)
-    elif jobs > 1 and len(paths) > 1:
+        _run_dask(files, slugs, out_dir, options, scheduler, done)
+    elif jobs > 1 and len(files) > 1:
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor, as_completed
 
         # the cases' processes share the cores: each case's assess stage takes its share
-        options = CheckOptions(**{**asdict(options), "assess_threads": assess_threads(options, min(jobs, len(paths)))})
+        options = CheckOptions(**{**asdict(options), "assess_threads": assess_threads(options, min(jobs, len(files)))})
 
         ctx = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(max_workers=min(jobs, len(paths)), mp_context=ctx) as pool:
+        with ProcessPoolExecutor(max_workers=min(jobs, len(files)), mp_context=ctx) as pool:
             futs = {
                 pool.submit(_run_case_job, str(p), str(out_dir.resolve()), options, s): i
-                for i, (p, s) in enumerate(zip(paths, slugs))
+                for i, (p, s) in enumerate(zip(files, slugs))
             }
             for fut in as_completed(futs):
                 i = futs[fut]
-                done(i, _result_or_crash(fut, paths[i]))
+                done(i, _result_or_crash(fut, files[i]))
     else:
-        for i, (p, s) in enumerate(zip(paths, slugs)):
+        for i, (p, s) in enumerate(zip(files, slugs)):
             done(i, run_case(p, out_dir, options, slug=s, on_stage=on_stage))
     return [r for r in results if r is not None]
 
@@ -121,7 +124,7 @@ def _result_or_crash(fut, path: Path) -> CaseResult:
         )
 
 
-def _run_dask(paths, slugs, out_dir: Path, options, scheduler, done) -> None:
+def _run_dask(files, slugs, out_dir: Path, options, scheduler, done) -> None:
     try:
         from distributed import Client, as_completed
     except ModuleNotFoundError:  # pragma: no cover - distributed is a dependency
@@ -133,7 +136,7 @@ def _run_dask(paths, slugs, out_dir: Path, options, scheduler, done) -> None:
         raise InputError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") from None
     try:
         futs = {}
-        for i, (p, s) in enumerate(zip(paths, slugs)):
+        for i, (p, s) in enumerate(zip(files, slugs)):
             f = client.submit(
                 _run_case_job,
                 os.path.abspath(p),
@@ -146,7 +149,7 @@ def _run_dask(paths, slugs, out_dir: Path, options, scheduler, done) -> None:
             futs[f] = i
         for fut in as_completed(list(futs)):
             i = futs[fut]
-            done(i, _result_or_crash(fut, paths[i]))
+            done(i, _result_or_crash(fut, files[i]))
     finally:
         if own:
             client.close()

@@ -10,6 +10,9 @@
   per meshed model the mesh statistics.
 * ``solver``: the linear solver used and whether the fast direct solver (MKL PARDISO
   through pypardiso) was available; ``support``: each FE model's support model.
+* ``cad``: for a CAD geometry, the file (name, SHA-256, format, unit) and every feature
+  recognised in it (``fe_crank.cad.record.cad_record``); the file itself is among the
+  ``input`` files.
 """
 
 from __future__ import annotations
@@ -104,6 +107,7 @@ def collect(
         ),
         solver=solver,
         support=support,
+        cad=out.geometry.cad if out.geometry is not None else None,
     )
 
 

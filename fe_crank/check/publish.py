@@ -30,7 +30,7 @@ def clean_stale_partials(out_dir: str | Path) -> list[Path]:
     """Remove temporary case folders left by runs that were killed (their process is
     gone).  Returns what was removed."""
     out = Path(out_dir)
-    removed = []
+    removed: list[Path] = []
     if not out.is_dir():
         return removed
     for p in out.iterdir():

@@ -20,28 +20,33 @@ from pathlib import Path
 from typing import TypeVar
 
 from fe_crank.assess import m53
-from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.assess.case import AssessInputs, Assessment, assess_case
-from fe_crank.assess.scf import ScfResult, compute_scf, scf_mesh, web_centres_of
+from fe_crank.assess.scf import ScfResult
+from fe_crank.assess.scf_refine import accepted_scf
+from fe_crank.assess.throw_geometry import parametric_throws
 from fe_crank.assess.workers import threads
-from fe_crank.balance.analysis import analyse_balance
+from fe_crank.balance.analysis import BalanceResult, analyse_balance
+from fe_crank.cad.config import CadInput
+from fe_crank.cad.source import GeometrySource, mesh_source_throw
 from fe_crank.check import shaft_stage
+from fe_crank.check.cad_geometry import cad_geometry_stage
 from fe_crank.check.options import CheckOptions
+from fe_crank.check.torsion_stage import torsion_stage
 from fe_crank.errors import InputError
 from fe_crank.fe import convergence, solve_unit_cases
+from fe_crank.fe.fe_options import FeOptions
+from fe_crank.fe.pin_patches import pin_patch_options
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.geometry.mass import throw_solids
 from fe_crank.io.base import InputFile
 from fe_crank.io.loadcase import LoadCase, load_loadcase
-from fe_crank.mechanism.cycles import EngineCycles, engine_cycles
-from fe_crank.mesh import mesh_throw
+from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.mesh.plan import plan_meshes
 from fe_crank.mesh.types import ThrowMesh
-from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel, TorsionOutput
+from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel
 from fe_crank.results import StageTime
-from fe_crank.torsion.analysis import analyse_torsion, with_vibratory_torque
-from fe_crank.torsion.build import throw_inertias
-from fe_crank.torsion.stiffness import fe_throw_stiffness
+from fe_crank.throw_scope import throws_of
+from fe_crank.torsion.loads import assessed_loads
 
 log = logging.getLogger(__name__)
 
@@ -90,11 +95,11 @@ def run_stages(run: Run) -> None:
     run.keep(loadcase=lc)
     run.keep(cycles=run.timed("dynamics", engine_cycles, lc.engine, lc.operating, file=lc.source_file))
     run.keep(balance=run.timed("balance", analyse_balance, lc.engine, lc.operating.speed, lc.balance))
-    geo = run.timed("geometry", geometry_stage, lc, opts)
+    geo = run.timed("geometry", geometry_stage, lc, opts, run.out.balance)
     run.keep(geometry=geo)
     meshes = run.timed("mesh", mesh_stage, lc, geo)
     run.keep(meshes=meshes)
-    unit_solutions = run.timed("fe", fe_stage, lc, meshes)
+    unit_solutions = run.timed("fe", fe_stage, lc, geo, meshes)
     run.keep(fe=FeModels(unit_solutions))
     if needs_scf(lc, geo):
         run.keep(fe=FeModels(unit_solutions, run.timed("scf", scf_stage, lc, geo, meshes)))
@@ -134,7 +139,7 @@ def assess_threads_of(options: CheckOptions) -> int:
     return assess_threads(options)
 
 
-def _require_geometry(lc: LoadCase):
+def _require_geometry(lc: LoadCase) -> GeometrySource:
     if lc.geometry is None:
         raise InputError(
             'the stress check needs a crank geometry: add geometry = "../geometry/<file>.toml"',
@@ -144,11 +149,15 @@ def _require_geometry(lc: LoadCase):
     return lc.geometry
 
 
-def geometry_stage(lc: LoadCase, options: CheckOptions) -> GeometryModel:
+def geometry_stage(lc: LoadCase, options: CheckOptions, balance: BalanceResult | None = None) -> GeometryModel:
     """The mesh plan (resolved once: preset, sizes, symmetry, which throw model for which
-    engine throw), the UR M53 dimensions, and the CAD mass properties of the throws
-    whose counterweights (assessment) or inertias (torsion) are needed."""
+    engine throw) and each engine throw's geometry for the assessment (UR M53 dimensions,
+    counterweights' built m r from the B-rep mass properties against ``balance``'s
+    required m r); the mass properties of the throws whose inertias the torsional stage
+    needs.  A CAD geometry: ``check.cad_geometry`` (recognised here, once)."""
     g = _require_geometry(lc)
+    if isinstance(g, CadInput):
+        return cad_geometry_stage(lc, g, options, balance)
     plan = plan_meshes(
         g,
         tuple(t.name for t in lc.engine.throws),
@@ -164,33 +173,49 @@ def geometry_stage(lc: LoadCase, options: CheckOptions) -> GeometryModel:
     if lc.torsion is not None:
         wanted = tuple(t.name for t in g.throws)
     solids = throw_solids(g, wanted) if wanted else None
-    return GeometryModel(plan, m53_geometry_of(g), solids)
+    design = balance.design if balance is not None else None
+    return GeometryModel(plan, parametric_throws(g, plan.throws, lc.engine, solids, design), solids)
 
 
 def mesh_stage(lc: LoadCase, geo: GeometryModel) -> dict[str, ThrowMesh]:
-    """Quadratic tetrahedral mesh of each throw model of the plan (``mesh_throw``, cached
-    by the hash of its inputs: equal throws are meshed once)."""
+    """Quadratic tetrahedral mesh of each throw model of the plan (``mesh_throw``, or
+    ``mesh_cad_throw`` for a CAD file; cached by the hash of its inputs: equal throws are
+    meshed once)."""
     g = _require_geometry(lc)
     p = geo.plan
     return {
-        key: mesh_throw(g, throw=name, size=p.options, cache_dir=p.cache_dir, max_elements=p.max_elements)
+        key: mesh_source_throw(g, name, size=p.options, cache_dir=p.cache_dir, max_elements=p.max_elements)
         for key, name in p.throws.items()
     }
 
 
-def fe_stage(lc: LoadCase, meshes: dict[str, ThrowMesh]) -> dict[str, UnitSolutions]:
+def fe_options(lc: LoadCase) -> FeOptions:
+    """The FE stage's options: the load case's, with the ``angular_acceleration`` unit case
+    when the torsional stage runs (the throw's vibratory inertia torque as a body force,
+    ``fe_crank.torsion.flow``)."""
+    if lc.torsion is None or "angular_acceleration" in lc.fe.cases:
+        return lc.fe
+    return dataclasses.replace(lc.fe, cases=(*lc.fe.cases, "angular_acceleration"))
+
+
+def fe_stage(lc: LoadCase, geo: GeometryModel, meshes: dict[str, ThrowMesh]) -> dict[str, UnitSolutions]:
     """Unit load cases on one assembled stiffness per distinct throw mesh (throws with the
-    same mesh key share one solution)."""
+    same mesh key share one solution); ``fe_options`` says which; with rods at more than
+    one place on the pin of a throw the mesh stands for, one pressure patch per place
+    (``fe.pin_patches.pin_patch_options``, the pin length of the geometry stage)."""
     if lc.material is None:
         raise InputError("the stress check needs a [material] section", file=lc.source_file, key="material")
+    options = fe_options(lc)
     solved: dict[str, UnitSolutions] = {}
     out = {}
-    fe = lc.fe
-    if lc.torsion is not None and "angular_acceleration" not in fe.cases:  # the throws' vibratory inertia torque
-        fe = dataclasses.replace(fe, cases=(*fe.cases, "angular_acceleration"))
     for key, m in meshes.items():
         if m.key not in solved:
-            solved[m.key] = solve_unit_cases(m, lc.material, fe)
+            # each rod on its own band of the pin where rods bear at more than one place
+            names = [t.name for t in lc.engine.throws]
+            throws = [t for k, other in meshes.items() if other.key == m.key for t in throws_of(k, names)]
+            tg = geo.of_model(key)
+            opts = pin_patch_options(options, lc.engine, tg.crankpin_length if tg is not None else None, throws)
+            solved[m.key] = solve_unit_cases(m, lc.material, opts)
             # every unit case is solved: later stages combine displacements and never solve
             # again, so the factor (the largest allocation of the run) goes now
             solved[m.key].system.factorisation.free()
@@ -201,45 +226,34 @@ def fe_stage(lc: LoadCase, meshes: dict[str, ThrowMesh]) -> dict[str, UnitSoluti
 def needs_scf(lc: LoadCase, geo: GeometryModel) -> bool:
     """UR M53 route outside its empirical SCFs' validity range: the SCF mode of the FE
     appendix (App. III) gives the factors (``assess.scf``)."""
-    mat, g = lc.material, geo.m53
-    if g is None or mat is None or mat.tensile_strength is None or mat.m53_k is None:
+    mat = lc.material
+    if mat is None or mat.tensile_strength is None or mat.m53_k is None:
         return False
-    return any(m53.out_of_range(g.related(f)) for f in ("pin", "journal"))
+    return any(
+        m53.out_of_range(g.related(f))
+        for g in (geo.m53_of(key) for key in geo.plan.throws)
+        if g is not None
+        for f in ("pin", "journal")
+    )
 
 
 def scf_stage(lc: LoadCase, geo: GeometryModel, meshes: dict[str, ThrowMesh]) -> dict[str, ScfResult]:
     """The SCF mode's three FE load cases on each distinct throw mesh (re-meshed at r/4 in
-    the fillets when the check's mesh is coarser, ``assess.scf.scf_mesh``)."""
+    the fillets when the check's mesh is coarser, then refined until UR M53 App. III accepts
+    the mesh, bounded: ``assess.scf_refine.accepted_scf``), the nominal stresses at the
+    webs' mid-planes of the geometry stage."""
     g = _require_geometry(lc)
-    assert lc.material is not None and geo.m53 is not None
+    assert lc.material is not None
     done: dict[str, ScfResult] = {}
     out = {}
     for key, m in meshes.items():
+        tg = geo.of_model(key)
+        if tg is None or tg.m53 is None:
+            continue
         if m.key not in done:
-            done[m.key] = compute_scf(
-                scf_mesh(m, g), lc.material, geo.m53, web_centres=web_centres_of(g), solver=lc.fe.solver
-            )
+            done[m.key] = accepted_scf(m, g, lc.material, tg.m53, web_centres=tg.web_centres, solver=lc.fe.solver)
         out[key] = done[m.key]
     return out
-
-
-def torsion_stage(
-    lc: LoadCase, geo: GeometryModel, unit_solutions: dict[str, UnitSolutions], cycles: EngineCycles
-) -> TorsionOutput:
-    """The torsional forced response (``torsion.analysis``) with the throws' inertias from
-    the geometry stage's CAD mass properties; the FE throw stiffness is measured from the
-    torque unit case when it is there (the report shows it beside Carter's; it is used
-    when ``throw_stiffness = "fe"``)."""
-    settings = lc.torsion
-    assert settings is not None
-    first = next(iter(unit_solutions.values()), None)
-    k_fe = fe_throw_stiffness(first) if first is not None and "torque" in first.cases else None
-    if settings.throw_stiffness == "fe" and k_fe is None:
-        raise InputError(
-            "throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file, key="torsion.throw_stiffness"
-        )
-    result = analyse_torsion(lc, inertias=throw_inertias(lc, geo.solids), fe_stiffness=k_fe)
-    return TorsionOutput(result, with_vibratory_torque(cycles.operating, result))
 
 
 def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
@@ -252,8 +266,9 @@ def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
             "the assessment needs a [criteria] section with at least one limit", file=lc.source_file, key="criteria"
         )
     assert out.cycles is not None and out.geometry is not None and out.fe is not None
-    dyn = out.assessed_dynamics
-    assert dyn is not None
+    loads = out.torsion.loads if out.torsion is not None else None
+    if loads is None:  # rigid shaft: the torque flow of each speed and state for the power take-off end
+        loads = assessed_loads(lc.engine, out.cycles, reaction=lc.fe.torque_reaction)
     inputs = AssessInputs(
         case=lc.name,
         source_file=lc.source_file,
@@ -261,16 +276,15 @@ def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
         operating=lc.operating,
         material=lc.material,
         criteria=lc.criteria,
-        geometry=_require_geometry(lc),
         cycles=out.cycles,
-        dynamics=dyn,
+        dynamics=out.cycles.operating,
+        loads=loads,
         balance=out.balance,
         models=out.geometry.plan.throws,
         unit_solutions=out.fe.unit_solutions,
-        solids=out.geometry.solids,
-        m53_geometry=out.geometry.m53,
+        throw_geometry=out.geometry.throws,
         scf=out.fe.scf,
-        torsion=out.torsion is not None,
+        geometry_file=str(lc.geometry.file) if lc.geometry is not None else "",
         shaft=out.whole_shaft.assessment if out.whole_shaft is not None else None,
     )
     return assess_case(inputs, fields=fields)

@@ -1,7 +1,9 @@
 """The verdict of one load case, built in one place (``decide``) from every criterion.
 
 The criteria are the assessment's (``fe_crank.assess.criteria``) and, when the hot-spot
-convergence study ran, its ``mesh_convergence`` criterion (``fe_crank.fe.convergence``).
+convergence study ran, its ``mesh_convergence`` criterion; the study then also sets the
+values of the FE stress criteria at the hot spots it follows: the finest level's (or their
+Richardson extrapolation), never below the assessed mesh's (``fe_crank.check.converged``).
 A case passes when every criterion passes, fails when one does not, and is an error
 when a stage stopped, when a criterion came out NaN, or when nothing was checked.
 """
@@ -10,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from fe_crank.fe import convergence
+from fe_crank.check import converged
 from fe_crank.outputs import CaseOutputs
 from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CriterionResult
 
@@ -43,7 +45,9 @@ def decide(out: CaseOutputs, error: str = "") -> Verdict:
     a = out.assessment
     criteria = a.criteria if a is not None else ()
     if out.convergence:
-        criteria += (convergence.criterion(out.convergence),)
+        if a is not None:
+            criteria = converged.refined(criteria, a.throws, out.convergence, **converged.of_assessment(a))
+        criteria += (converged.criterion(out.convergence),)
     nan = _nan_criterion(criteria)
     if nan:
         return Verdict(STATUS_ERROR, (), nan)

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from fe_crank.errors import InputError
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, PRESETS
+from fe_crank.notes import verdict_remarks
 
 
 def add_arguments(p) -> None:
@@ -107,7 +108,7 @@ def _row(r) -> list[str]:
         f"{100 * w.margin:+.1f} %" if w else "-",
         r.status.upper(),
         f"{r.seconds:.1f} s",
-        "",
+        verdict_remarks(r.warnings),
     ]
 
 
@@ -137,6 +138,10 @@ def _print_rich(results, console) -> None:
         row[3] = f"[{style[r.status]}]{row[3]}[/]"
         t.add_row(*row)
     console.print(t)
+    for r in results:  # the verdict lines' remarks (not a sign-off, which criteria a warning concerns)
+        row = _row(r)
+        if r.status != "error" and row[-1]:
+            console.print(f"{row[0]}: {row[-1]}", markup=False, highlight=False)
 
 
 def run(args) -> int:

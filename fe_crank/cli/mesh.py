@@ -1,8 +1,10 @@
 """``fe-crank mesh GEOMETRY.toml [-o DIR]``: build, mesh (cached) and picture crank throws.
 
-Prints the mass properties of each throw (from the OCC solid) and the mesh statistics,
-the cached ``.msh``/``.vtu`` paths, copies them into ``DIR`` and writes an offscreen
-pyvista picture ``DIR/<geometry>_throw<name>.png``.
+``GEOMETRY.toml``: a parametric geometry file, a TOML holding a ``[cad]`` section (a CAD
+file, ``fe_crank.io.cad``), or a load case (its geometry, either kind).  Prints the mass
+properties of each throw (from the OCC solid; for a CAD file every recognised feature
+first) and the mesh statistics, the cached ``.msh``/``.vtu`` paths, copies them into
+``DIR`` and writes an offscreen pyvista picture ``DIR/<geometry>_throw<name>.png``.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from fe_crank.mesh import DEFAULT_CACHE_DIR, PRESETS
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("geometry", help="geometry file (geometry/*.toml)")
+    p.add_argument("geometry", help="geometry file (geometry/*.toml), a TOML file with a [cad] section, or a load case")
     p.add_argument(
         "-o",
         "--output",
@@ -71,14 +73,83 @@ def render_png(vtu_path: Path, png_path: Path, title: str = "") -> None:
     tmp.replace(png_path)
 
 
-def run(args: argparse.Namespace) -> int:
-    from fe_crank.geometry.mass import mass_properties
+def _source(path: str):
+    """The geometry a file gives: parametric, a CAD file's ``CadInput``, or a load case's."""
+    from fe_crank.errors import InputError
+    from fe_crank.io.base import read_toml
+    from fe_crank.io.cad import load_cad
     from fe_crank.io.geometry import load_geometry
+    from fe_crank.io.loadcase import load_loadcase
+
+    data = read_toml(path, record=False)
+    if "operating" in data:
+        lc = load_loadcase(path)
+        if lc.geometry is None:
+            raise InputError("the load case gives no geometry", file=path, key="geometry")
+        return lc.geometry
+    if "cad" in data:
+        return load_cad(path)
+    return load_geometry(path)
+
+
+def _keep(tm, out: Path, stem: str, name: str, title: str, no_render: bool) -> None:
+    """Copy the cached mesh into ``out`` and picture it."""
+    print(f"  cached: {tm.msh_path}")
+    base = out / f"{stem}_throw{name}"
+    shutil.copyfile(tm.msh_path, base.with_suffix(".msh"))
+    shutil.copyfile(tm.vtu_path, base.with_suffix(".vtu"))
+    if not no_render:
+        png = base.with_suffix(".png")
+        render_png(tm.vtu_path, png, title)
+        print(f"  picture: {png}")
+
+
+def _stats(tm, size: str) -> None:
+    s = tm.stats
+    print(
+        f"  mesh ({size}{', cached' if s.from_cache else ''}): {s.nodes} nodes, {s.elements} quadratic tets, "
+        f"{s.p2_dofs} P2 DOFs, min quality {s.min_quality:.3g}, {s.straightened} elements straightened, "
+        f"built in {s.build_seconds:.1f} s"
+    )
+    if s.symmetry:  # exact mirror image across these planes (docs/geometry.md)
+        print("  mirrored across " + ", ".join({0: "x = 0", 2: "z = 0"}[a] for a in s.symmetry))
+    for name, h in s.fillet_max_edge.items():
+        r = s.fillet_radii[name]
+        print(f"  {name}: r {r * 1e3:g} mm, largest edge {h * 1e3:.3g} mm (r/{r / h:.2f})")
+
+
+def _cad(cad, args: argparse.Namespace, out: Path) -> int:
+    """A CAD file: its recognised features, then the throws asked for meshed."""
+    from fe_crank.cad import feature_lines, mesh_cad_throw, recognise
+    from fe_crank.errors import InputError
+
+    features = recognise(cad)
+    print("\n".join(feature_lines(features)))
+    names = [t.name for t in features.throws]
+    if args.throw in (None, ""):
+        names = names[:1]
+    elif args.throw != "all":
+        if args.throw not in names:
+            raise InputError(f"no throw named {args.throw!r}; throws are {names}", file=args.geometry, key="--throw")
+        names = [args.throw]
+    for name in names:
+        tm = mesh_cad_throw(cad, name, size=args.mesh_size, cache_dir=args.cache_dir, max_elements=args.max_elements)
+        print(f"throw {name} (CAD):")
+        _stats(tm, args.mesh_size)
+        _keep(tm, out, cad.file.stem, name, f"{cad.file.name}, throw {name}", args.no_render)
+    return 0
+
+
+def run(args: argparse.Namespace) -> int:
+    from fe_crank.cad.config import CadInput
+    from fe_crank.geometry.mass import mass_properties
     from fe_crank.mesh import mesh_throw
 
-    g = load_geometry(args.geometry)
+    g = _source(args.geometry)
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
+    if isinstance(g, CadInput):
+        return _cad(g, args, out)
     if args.throw in (None, ""):
         throws = [g.throws[0]]
     elif args.throw == "all":
@@ -109,23 +180,6 @@ def run(args: argparse.Namespace) -> int:
                     f"  counterweight_{web}: mass {part.mass:.4g} kg at r_c {abs(part.centroid[1]) * 1e3:.4g} mm, m r {part.unbalance * 1e3:.4g} kg mm"
                 )
         tm = mesh_throw(g, spec, size=args.mesh_size, cache_dir=args.cache_dir, max_elements=args.max_elements)
-        s = tm.stats
-        print(
-            f"  mesh ({args.mesh_size}{', cached' if s.from_cache else ''}): {s.nodes} nodes, {s.elements} quadratic tets, "
-            f"{s.p2_dofs} P2 DOFs, min quality {s.min_quality:.3g}, {s.straightened} elements straightened, "
-            f"built in {s.build_seconds:.1f} s"
-        )
-        if s.symmetry:  # exact mirror image across these planes (docs/geometry.md)
-            print("  mirrored across " + ", ".join({0: "x = 0", 2: "z = 0"}[a] for a in s.symmetry))
-        for name, h in s.fillet_max_edge.items():
-            r = s.fillet_radii[name]
-            print(f"  {name}: r {r * 1e3:g} mm, largest edge {h * 1e3:.3g} mm (r/{r / h:.2f})")
-        print(f"  cached: {tm.msh_path}")
-        base = out / f"{stem}_throw{spec.name}"
-        shutil.copyfile(tm.msh_path, base.with_suffix(".msh"))
-        shutil.copyfile(tm.vtu_path, base.with_suffix(".vtu"))
-        if not args.no_render:
-            png = base.with_suffix(".png")
-            render_png(tm.vtu_path, png, f"{g.name}, throw {spec.name}")
-            print(f"  picture: {png}")
+        _stats(tm, args.mesh_size)
+        _keep(tm, out, stem, spec.name, f"{g.name}, throw {spec.name}", args.no_render)
     return 0

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from fe_crank.errors import InputError
 from fe_crank.files import write_atomic
@@ -52,12 +52,15 @@ def fe_stiffness_of(lc: LoadCase, size: str | None, cache_dir) -> float:
     import dataclasses
 
     from fe_crank.fe import solve_unit_cases
+    from fe_crank.geometry.spec import CrankGeometry
     from fe_crank.mesh import mesh_throw
     from fe_crank.mesh.plan import preset_of
     from fe_crank.torsion.stiffness import fe_throw_stiffness
 
-    if lc.geometry is None or lc.material is None:
-        raise InputError("the FE throw stiffness needs the geometry and the [material] section", file=lc.source_file)
+    if not isinstance(lc.geometry, CrankGeometry) or lc.material is None:
+        raise InputError(
+            "the FE throw stiffness needs a parametric geometry and the [material] section", file=lc.source_file
+        )
     throw = lc.geometry.throws[0].name
     tm = mesh_throw(lc.geometry, throw=throw, size=preset_of(lc.mesh, size), cache_dir=cache_dir)
     opts = dataclasses.replace(lc.fe, cases=("centrifugal", "torque"))
@@ -67,6 +70,7 @@ def fe_stiffness_of(lc: LoadCase, size: str | None, cache_dir) -> float:
 def run(args) -> int:
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.torsion import analyse_torsion
+    from fe_crank.torsion.model import TorsionCase
     from fe_crank.torsion.report import RPM, governing_table, result_to_dict, stiffness_text, write_plots
 
     lc = load_loadcase(args.file)
@@ -76,7 +80,8 @@ def run(args) -> int:
     k_fe = None
     if args.fe_stiffness or settings.throw_stiffness == "fe":
         k_fe = fe_stiffness_of(lc, args.mesh_size, args.cache_dir)
-    res = analyse_torsion(lc, fe_stiffness=k_fe)
+    # a [torsion] section beside a CAD geometry is refused when the load case is read
+    res = analyse_torsion(cast(TorsionCase, lc), fe_stiffness=k_fe)
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
     data = {"load_case": lc.name, "source_file": lc.source_file, **result_to_dict(res)}

@@ -10,7 +10,9 @@ from fe_crank.io.base import read_toml
 
 
 def add_arguments(p) -> None:
-    p.add_argument("files", nargs="+", type=Path, help="load-case, engine or geometry .toml files")
+    p.add_argument(
+        "files", nargs="+", type=Path, help="load-case, engine, geometry or CAD geometry ([cad]) .toml files"
+    )
     p.add_argument(
         "--allow-outside-paths",
         action="store_true",
@@ -21,6 +23,8 @@ def add_arguments(p) -> None:
 def _kind(data: dict) -> str:
     if "operating" in data:
         return "loadcase"
+    if "cad" in data:
+        return "cad"
     if "cylinders" in data:
         return "engine"
     if "throws" in data or "journal" in data or "crankpin" in data:
@@ -28,8 +32,18 @@ def _kind(data: dict) -> str:
     return "loadcase"
 
 
+def _recognised(features) -> str:
+    t = features.throws
+    return (
+        f"{features.source.format} file {features.source.file}: {len(t)} throw(s) recognised, crank radius "
+        + ", ".join(f"{x.crank_radius * 1e3:.6g} mm" for x in t)
+    )
+
+
 def validate_file(path: Path, allow_outside_paths: bool = False) -> str:
-    """Validate one file of any kind; return a one-line summary.  Raises InputError."""
+    """Validate one file of any kind; return a one-line summary.  Raises InputError.
+    A CAD geometry (a ``[cad]`` file, or a load case's) is read and recognised, and a
+    load case's checked against its engine, as the check's geometry stage does."""
     data = read_toml(path)
     kind = _kind(data)
     if kind == "engine":
@@ -42,10 +56,24 @@ def validate_file(path: Path, allow_outside_paths: bool = False) -> str:
 
         g = geo.load_geometry(path)
         return f"geometry '{getattr(g, 'name', path.stem)}'"
+    if kind == "cad":
+        from fe_crank.cad import recognise
+        from fe_crank.io.cad import load_cad
+        from fe_crank.io.includes import input_root
+
+        with input_root(path, allow_outside_paths or None):
+            cad = load_cad(path)
+        return "CAD geometry: " + _recognised(recognise(cad))
+    from fe_crank.cad.config import CadInput
     from fe_crank.io.loadcase import load_loadcase
 
     lc = load_loadcase(path, allow_outside_paths=allow_outside_paths or None)
-    return f"load case '{lc.name}': engine '{lc.engine.name}', {lc.operating.speed * 30 / 3.141592653589793:.0f} rpm"
+    text = f"load case '{lc.name}': engine '{lc.engine.name}', {lc.operating.speed * 30 / 3.141592653589793:.0f} rpm"
+    if isinstance(lc.geometry, CadInput):
+        from fe_crank.check.cad_geometry import recognise_case
+
+        text += "; " + _recognised(recognise_case(lc, lc.geometry)[0])
+    return text
 
 
 def run(args) -> int:

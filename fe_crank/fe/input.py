@@ -88,22 +88,24 @@ def parse_fe(value: object, file: str | Path, key: str = "fe") -> FeOptions:
     )
 
 
-def check_torque_reaction(options: FeOptions, engine, file: str | Path, key: str = "fe.torque_reaction") -> None:
-    """A front power take-off (``torque_reaction = "end_1"``) on an engine with more than
-    one throw on a shaft is refused: the check's journal torques are summed from the
-    front end (the free end of a rear take-off), so the throw next to a front take-off
-    would get none of the engine's torque.  (``fe_crank.torsion.flow.torque_flow``
-    computes the flow for either end.)"""
-    if options.torque_reaction != "end_1":
+def check_torque_reaction(
+    options: FeOptions, engine, file: str | Path, key: str = "fe.torque_reaction", *, torsion: bool = False
+) -> None:
+    """A front power take-off (``torque_reaction = "end_1"``) with the torsional stage on
+    an engine with more than one throw on a shaft is refused: the torsional chain takes
+    the power off behind the last throw.  Without the torsional stage either end is
+    checked: the assessment takes each throw's entering torque from the torque flow for
+    that end (``fe_crank.torsion.flow.torque_flow``)."""
+    if options.torque_reaction != "end_1" or not torsion:
         return
     per_shaft: dict[str, int] = {}
     for t in engine.throws:
         per_shaft[t.shaft] = per_shaft.get(t.shaft, 0) + 1
     if max(per_shaft.values()) > 1:
         raise InputError(
-            f"a front power take-off on a shaft with {max(per_shaft.values())} throws is not supported: the "
-            "assessment sums the journal torques from the front end; take the power off at the rear (end_2) "
-            "or check one throw",
+            f"a front power take-off on a shaft with {max(per_shaft.values())} throws contradicts the torsional "
+            "chain, which takes the power off behind the last throw (flywheel, driven machines); take the power "
+            "off at the rear (end_2) or check without [torsion]",
             file=str(file),
             key=key,
         )

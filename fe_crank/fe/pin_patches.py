@@ -95,15 +95,16 @@ def engine_positions(engine, pin_length: float, throws=None) -> dict[str, dict[s
     return {t: rod_positions(engine, t, pin_length) for t in names}
 
 
-def pin_patch_options(options, engine, geometry, throws=None):
+def pin_patch_options(options, engine, pin_length: float | None, throws=None):
     """``options`` (``FeOptions``) with one patch per rod place when some throw of ``throws``
-    carries rods at more than one place: the bands and the patch cases (``pin_<deg>@<k>``)
-    in place of the whole-pin ones.  Otherwise ``options`` unchanged."""
+    (None: every throw of ``engine``) carries rods at more than one place of the
+    ``pin_length`` crankpin (m, between the webs): the bands and the patch cases
+    (``pin_<deg>@<k>``) in place of the whole-pin ones.  Otherwise (or without a pin
+    length) ``options`` unchanged."""
     from fe_crank.fe.fe_options import FeOptions
     from fe_crank.fe.pin_directions import patch_cases, pin_direction
 
     options = options or FeOptions()
-    pin_length = getattr(geometry, "crankpin_length", None)
     if pin_length is None:
         return options
     places = [e for pos in engine_positions(engine, pin_length, throws).values() for e in pos.values()]

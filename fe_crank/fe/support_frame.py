@@ -49,15 +49,26 @@ def in_support_frame(u: np.ndarray, G, A: np.ndarray, points: np.ndarray) -> np.
     return u - rigid_body_modes(np.asarray(points)) @ a
 
 
-def unit_case_in_support_frame(unit_solutions, name: str) -> np.ndarray:
-    """The displacement of the unit case ``name`` of the FE stage's ``UnitSolutions`` in
-    the frame of its determinate supports (the foundation model has no rigid motion of its
-    own to remove: its displacement is returned as solved)."""
-    u = unit_solutions.displacement(name)
+def field_in_support_frame(unit_solutions, u: np.ndarray) -> np.ndarray:
+    """A displacement ``u`` of the FE stage's ``UnitSolutions`` (a unit case or a superposed
+    state) in the frame of its determinate supports; the foundation model has no rigid
+    motion of its own to remove: ``u`` is returned as solved."""
     sup = unit_solutions.system.determinate
     if sup is None:
         return u
     return in_support_frame(u, sup.G, sup.A, sup.points)
 
 
-__all__ = ["support_displacements", "rigid_motion_at_supports", "in_support_frame", "unit_case_in_support_frame"]
+def unit_case_in_support_frame(unit_solutions, name: str) -> np.ndarray:
+    """The displacement of the unit case ``name`` in the frame of its supports
+    (``field_in_support_frame``)."""
+    return field_in_support_frame(unit_solutions, unit_solutions.displacement(name))
+
+
+__all__ = [
+    "support_displacements",
+    "rigid_motion_at_supports",
+    "in_support_frame",
+    "field_in_support_frame",
+    "unit_case_in_support_frame",
+]

@@ -140,7 +140,7 @@ def torque_flow_loads(cases: ShaftCases, layout: ShaftLayout, dynamics) -> tuple
     """Weights of the ``torque_flow_cases`` over the cycle of ``dynamics``: per throw
     (``spin_up@<throw>``) the body force carrying the rest of its rear journal's torque,
     T_rear - T_front - T_own = (the throw's inertia and damping torque with torsional
-    vibration, zero quasi-statically; ``assess.superpose.inertia_acceleration``), and the
+    vibration, zero quasi-statically; ``torsion.flow``), and the
     first throw's front journal torque on the shaft's front face (``torque_front``); the
     power take-off's face reacts the last throw's rear journal torque, so every journal
     carries its own torque.  Signs: a torque T in the sense of rotation is M_z = -sense T;
@@ -184,6 +184,15 @@ def shaft_cycle_of(
         laws=laws,
         front_torque=front,
     )
+
+
+def bearings_of(
+    cases: ShaftCases, layout: ShaftLayout, mass: dict, dynamics, *, laws=None
+) -> tuple[BearingResult, ...]:
+    """The main bearings' loads over the cycle of ``dynamics`` (another speed or load state
+    on the same condensed shaft), with and without counterweights."""
+    on, off = (shaft_cycle_of(cases, layout, mass, dynamics, counterweights=cw, laws=laws) for cw in (True, False))
+    return tuple(BearingResult(a, b) for a, b in zip(on.bearings, off.bearings))
 
 
 def analyse_whole_shaft(

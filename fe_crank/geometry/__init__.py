@@ -2,7 +2,8 @@
 
 * :mod:`fe_crank.geometry.spec` -- ``CrankGeometry`` and its parts (SI);
 * :mod:`fe_crank.geometry.checks` -- ``check_geometry``: impossible inputs refused;
-* :mod:`fe_crank.geometry.throw` -- ``add_throw``: the OpenCASCADE solid of one throw;
+* :mod:`fe_crank.geometry.solid` -- ``throw_solid``: the one OpenCASCADE solid of a throw;
+* :mod:`fe_crank.geometry.throw` -- ``add_throw``: that solid split into named parts;
 * :mod:`fe_crank.geometry.mass` -- ``mass_properties``: volume, mass, centroid, m r, inertia.
 """
 

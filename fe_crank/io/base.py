@@ -137,6 +137,12 @@ def _record(p: Path) -> None:
     read.append(InputFile(path, digest.hexdigest()))
 
 
+def record_file(path: str | Path) -> None:
+    """Record an input file that is not read as text (a CAD file, read by OpenCASCADE)
+    for the provenance, as ``read_text`` records the files it reads (``recording_inputs``)."""
+    _record(Path(path))
+
+
 def read_text(path: str | Path, what: str = "file", *, record: bool = True) -> str:
     """Read a UTF-8 text input file (a leading byte-order mark is dropped).
 

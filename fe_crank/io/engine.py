@@ -75,7 +75,10 @@ class ThrowInput(Strict):
 
     @property
     def radius(self) -> float:
-        return self.crank_radius if self.crank_radius is not None else self.stroke / 2.0
+        if self.crank_radius is not None:
+            return self.crank_radius
+        assert self.stroke is not None  # the validator asks for one of the two
+        return self.stroke / 2.0
 
 
 class ArticulationInput(Strict):
@@ -157,10 +160,10 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
     pre = f"{prefix}." if prefix else ""
     raw = validate(EngineInput, data, file, prefix)
     cylinders: list[CylinderInput] = []
-    for i, c in enumerate(raw.cylinders):
-        if not isinstance(c, dict):
+    for i, entry in enumerate(raw.cylinders):
+        if not isinstance(entry, dict):
             raise InputError("each [[cylinders]] entry must be a table", file=str(file), key=f"{pre}cylinders[{i}]")
-        merged = {**raw.cylinder_defaults, **c}
+        merged = {**raw.cylinder_defaults, **entry}
         cylinders.append(validate(CylinderInput, merged, file, f"{pre}cylinders[{i}]"))
     _check_names(f"{pre}shafts", [s.name for s in raw.shafts], file)
     _check_names(f"{pre}throws", [t.name for t in raw.throws], file)

@@ -23,6 +23,7 @@ from pathlib import Path
 from pydantic import Field
 
 from fe_crank import model
+from fe_crank.cad.config import CadInput
 from fe_crank.errors import InputError
 from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
@@ -46,18 +47,22 @@ class LoadCase:
     """A whole load case as the stages see it (SI floats, frozen): the engine, the
     operating point and the sections of the file, each parsed by the stage that owns it;
     ``None`` where the file does not give an optional section (``fe`` and ``mesh`` take
-    their defaults).  ``inputs``: every file the load case was read from (itself, the
-    engine, geometry and pressure-table files it names), resolved, with the SHA-256 of
-    its bytes, in the order read."""
+    their defaults).  ``geometry``: a parametric geometry, or a CAD file with what its
+    ``[cad]`` section states (``fe_crank.io.cad``; recognised by the check's geometry
+    stage).  ``inputs``: every file the load case was read from (itself, the engine,
+    geometry, CAD and pressure-table files it names), resolved, with the SHA-256 of its
+    bytes, in the order read; ``engine_file``: the file the engine was read from (the
+    load case itself for an inline ``[engine]``)."""
 
     name: str
     source_file: str
     engine: model.Engine
     operating: model.OperatingPoint
     description: str = ""
-    #: the throw as the checks take it: the geometry file's, its journal stubs reaching the
-    #: engine's main-bearing centres (``geometry.shaft.throw_at_bearings``)
-    geometry: CrankGeometry | None = None
+    #: the throw as the checks take it: a parametric geometry's journal stubs reach the
+    #: engine's main-bearing centres (``geometry.shaft.throw_at_bearings``); a CAD geometry's
+    #: bearing centres are the journals' middles recognised in the file (``cad.shaft``)
+    geometry: CrankGeometry | CadInput | None = None
     material: Material | None = None
     criteria: Criteria | None = None
     fe: FeOptions = field(default_factory=FeOptions)
@@ -112,17 +117,24 @@ def _load(path: Path) -> LoadCase:
     sections = parse_sections(data, path)
     criteria, geometry = sections.criteria, sections.geometry
     engine_file = _engine_file(data["engine"], path)
-    if geometry is not None:  # one shaft in both files; bearing centres from the engine
+    if isinstance(geometry, CrankGeometry):  # one shaft in both files; bearing centres from the engine
         gfile = geometry.file or str(path)
         geometry = throw_at_bearings(geometry, engine, geometry_file=gfile, engine_file=engine_file)
         if whole_shaft_wanted(geometry, engine):  # the whole shaft's refusals at input too
             engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
-    if criteria is not None:
+    if criteria is not None and isinstance(geometry, CrankGeometry):
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
+    if sections.torsion is not None and isinstance(geometry, CadInput):
+        raise InputError(
+            "the torsional model takes its throws' inertias and stiffness from a parametric geometry; with a CAD "
+            "geometry it is not available: check the torsional vibration with a parametric geometry of the shaft",
+            file=str(path),
+            key="torsion",
+        )
     if sections.torsion is not None:
         check_torsion_engine(sections.torsion, engine, path, full_load=operating.full_load)
     if sections.fe is not None:
-        check_torque_reaction(sections.fe, engine, path)
+        check_torque_reaction(sections.fe, engine, path, torsion=sections.torsion is not None)
     if criteria is not None:
         check_m53_torque(criteria, engine, sections.torsion is not None, path)
     return LoadCase(

@@ -94,7 +94,21 @@ def _sweep(raw: OperatingInput, file: str, key: str) -> tuple[float, ...] | None
         w = np.append(w, hi) if hi - w[-1] > 1e-9 * hi else w
     else:
         return None
-    return tuple(float(x) for x in np.unique(np.append(w, raw.speed)))
+    return _merged([float(x) for x in w], raw.speed)
+
+
+def _merged(speeds: list[float], operating: float) -> tuple[float, ...]:
+    """``speeds`` and the operating speed in increasing order, speeds within a relative
+    1e-9 of each other (the same speed written twice, or reached by the step to within
+    rounding) taken once, as the operating speed where it is one of them."""
+    out: list[float] = []
+    for x in sorted([*speeds, operating]):
+        if out and x - out[-1] <= 1e-9 * x:
+            if x == operating:
+                out[-1] = x
+            continue
+        out.append(x)
+    return tuple(out)
 
 
 def _diagrams(raw: OperatingInput, engine: model.Engine, file: str, key: str):

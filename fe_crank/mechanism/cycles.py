@@ -25,6 +25,11 @@ the gas load the load case states for the overspeed condition:
   failure at full load).
 
 The assessment then takes the worst angle of those cycles.
+
+The full-load curve (``[operating] speeds`` or ``speed_range``, ``fe_crank.mechanism.full_load``):
+the cycle at every speed of the sweep with that speed's diagram (``SpeedCycles``), and at
+each the misfire cases the load case names (``fe_crank.mechanism.misfire``); the operating
+speed is one of them.  All on one cycle-angle grid, so that one FE solve serves them all.
 """
 
 from __future__ import annotations
@@ -36,6 +41,8 @@ import numpy as np
 from fe_crank import model
 from fe_crank.errors import FeCrankError
 from fe_crank.mechanism.dynamics import DynamicsResult, analyse
+from fe_crank.mechanism.full_load import dynamics_at, sweep_speeds
+from fe_crank.mechanism.misfire import MisfireCycle, misfire_cycles
 
 GAS_MODES = ("motored", "as_operating")
 
@@ -49,14 +56,37 @@ class OverspeedCycle:
 
 
 @dataclass(frozen=True)
+class SpeedCycles:
+    """The engine's cycles at one speed of the sweep (rad/s): every cylinder firing with
+    that speed's full-load diagram, and each misfire case of the load case (() without)."""
+
+    speed: float
+    firing: DynamicsResult
+    misfire: tuple[MisfireCycle, ...] = ()
+
+
+@dataclass(frozen=True)
 class EngineCycles:
     """The operating cycle and the overspeed cycles (() without an overspeed), all on one
     cycle-angle grid; ``overspeed_note``: which gas the overspeed cycles used, in words
-    ("" without an overspeed)."""
+    ("" without an overspeed); ``sweep``: the cycles at every speed of the full-load curve,
+    in speed order (the operating speed alone without one; its firing cycle is
+    ``operating``)."""
 
     operating: DynamicsResult
     overspeed: tuple[OverspeedCycle, ...] = ()
     overspeed_note: str = ""
+    sweep: tuple[SpeedCycles, ...] = ()
+
+    @property
+    def speeds(self) -> tuple[float, ...]:
+        """The speeds of the sweep, rad/s, increasing."""
+        return tuple(s.speed for s in self.sweep)
+
+    @property
+    def operating_index(self) -> int:
+        """The index of the operating speed in ``sweep``."""
+        return next(i for i, s in enumerate(self.sweep) if s.firing is self.operating)
 
 
 def _mode(operating: model.OperatingPoint) -> str:
@@ -119,9 +149,33 @@ def refuse_non_finite(res: DynamicsResult, file: str) -> None:
             raise FeCrankError(f"{file}: the dynamics gave a non-finite {what} (NaN or inf); check the engine data")
 
 
+def speed_cycles(
+    engine: model.Engine, operating: model.OperatingPoint, res: DynamicsResult, *, file: str = ""
+) -> tuple[SpeedCycles, ...]:
+    """The cycles at every speed of the sweep (``full_load.sweep_speeds``): at the
+    operating speed its cycle ``res`` (the same diagram), at the others ``dynamics_at``
+    with that speed's diagram; each with the load case's misfire cases
+    (``misfire.misfire_cycles``).  A non-finite force is an error naming ``file``."""
+    step = res.cycle / res.theta.size
+    out = []
+    for w in sweep_speeds(operating):
+        firing = res if np.isclose(w, operating.speed, rtol=1e-12) else dynamics_at(engine, operating, w, step=step)
+        misfire = misfire_cycles(engine, operating, w, step=step)
+        for d in (firing, *(m.dynamics for m in misfire)):
+            refuse_non_finite(d, file)
+        out.append(SpeedCycles(w, firing, misfire))
+    return tuple(out)
+
+
 def engine_cycles(engine: model.Engine, operating: model.OperatingPoint, *, file: str = "") -> EngineCycles:
-    """The operating cycle (``analyse``) and the overspeed cycles of one operating point;
-    a non-finite force or torque is an error of the case naming ``file``."""
+    """The operating cycle (``analyse``), the overspeed cycles and the cycles at every
+    speed of the sweep of one operating point; a non-finite force or torque is an error
+    of the case naming ``file``."""
     res = analyse(engine, operating)
     refuse_non_finite(res, file)
-    return EngineCycles(res, overspeed_cycles(engine, operating, res), describe(engine, operating))
+    return EngineCycles(
+        res,
+        overspeed_cycles(engine, operating, res),
+        describe(engine, operating),
+        speed_cycles(engine, operating, res, file=file),
+    )

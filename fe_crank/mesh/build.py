@@ -2,35 +2,19 @@
 
 from __future__ import annotations
 
-import atexit
-import json
-import os
-import shutil
-import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
-
-from fe_crank.errors import MeshError
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
-from fe_crank.mesh.cache import (
-    TMP_MARK,
-    _save_npz,
-    _stats_to_json,
-    cache_key,
-    clean_stale_cache_temps,
-    load_cache_entry,
-)
-from fe_crank.mesh.export import write_vtu
+from fe_crank.mesh.cache import cache_key
+from fe_crank.mesh.generate import finish, generate, through_cache
 from fe_crank.mesh.interface import imprint_sectors
 from fe_crank.mesh.mirror import mirror_all, swap_side
 from fe_crank.mesh.msh import write_msh
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
 from fe_crank.mesh.planes import mesh_planes
-from fe_crank.mesh.quality import _fillet_max_edge, _jacobian_ratio, _straighten_poor, _tet_tags
 from fe_crank.mesh.sizing import _set_size_fields
-from fe_crank.mesh.types import MeshStats, ThrowMesh
+from fe_crank.mesh.types import ThrowMesh
 
 
 def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: Path, planes: tuple[int, ...] = ()):
@@ -43,33 +27,8 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
     with gmsh_session() as gmsh:
         model = add_throw(geometry, spec, cut=planes)
         model = imprint_sectors(gmsh, model, opt.interface_sectors)
-        _set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt)
-        gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
-        gmsh.option.setNumber("Mesh.Optimize", 1)
-        gmsh.option.setNumber(
-            "Mesh.OptimizeNetgen", 1
-        )  # removes most boundary slivers (single-cylinder throw, coarse: 3866 -> 98 elements with Jacobian ratio < 0.1)
-        gmsh.option.setNumber("Mesh.ElementOrder", 1)
-        try:
-            gmsh.model.mesh.generate(3)
-            tags = _tet_tags(gmsh)
-            if tags.size == 0:
-                raise MeshError(f"gmsh produced no tetrahedra for throw {spec.name!r}")
-            q = np.asarray(gmsh.model.mesh.getElementQualities(tags, "minSICN"))
-            min_quality = float(q.min())
-            if min_quality <= 0.0:
-                raise MeshError(
-                    f"{int(np.sum(q <= 0))} inverted linear tetrahedra (gmsh minSICN <= 0) in throw {spec.name!r}"
-                )
-            gmsh.model.mesh.setOrder(2)
-            if opt.optimize_high_order:
-                gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
-                gmsh.model.mesh.optimize("HighOrder")
-        except MeshError:
-            raise
-        except Exception as exc:  # gmsh raises bare Exception
-            raise MeshError(f"gmsh could not mesh throw {spec.name!r} of {geometry.name!r}: {exc}") from None
-        straightened = _straighten_poor(gmsh, spec.name)
+        _set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt, model.volumes)
+        min_quality, straightened = generate(gmsh, spec.name, geometry.name, opt)
         mesh = model_to_skfem()
         if not planes:
             gmsh.write(str(folder / "throw.msh"))
@@ -80,30 +39,16 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
         if 2 in planes:
             expected = tuple(s | {swap_side(n) for n in s} for s in expected)
         write_msh(folder / "throw.msh", mesh)
-    missing = [n for n in sorted(expected[0]) if n not in mesh.boundaries or mesh.boundaries[n].size == 0]
-    missing += [n for n in sorted(expected[1]) if n not in mesh.subdomains or mesh.subdomains[n].size == 0]
-    if missing:
-        raise MeshError(f"named groups missing or empty after meshing: {missing}")
-    ratio = _jacobian_ratio(mesh)
-    stats = MeshStats(
-        nodes=int(mesh.doflocs.shape[1]),
-        elements=int(mesh.nelements),
-        p2_dofs=int(3 * mesh.doflocs.shape[1]),
+    stats = finish(
+        mesh,
+        expected,
+        model.fillet_radii,
+        opt,
         min_quality=min_quality,
         straightened=straightened,
-        min_jacobian_ratio=ratio,
-        fillet_max_edge=_fillet_max_edge(mesh, model.fillet_radii),
-        fillet_radii=dict(model.fillet_radii),
-        build_seconds=time.perf_counter() - t0,
-        symmetry=tuple(planes),
+        t0=t0,
+        planes=planes,
     )
-    if opt.fillet_divisions >= 4.0:
-        for name, h in stats.fillet_max_edge.items():
-            r = model.fillet_radii[name]
-            if h > r / opt.fillet_divisions * (1 + 1e-9):
-                raise MeshError(
-                    f"fillet {name!r}: largest element edge {h * 1e3:.3g} mm exceeds r/{opt.fillet_divisions:g} = {r / opt.fillet_divisions * 1e3:.3g} mm"
-                )
     return mesh, stats
 
 
@@ -156,62 +101,4 @@ def mesh_throw(
     check_element_budget(geometry, spec, opt, max_elements)
     key = cache_key(geometry, spec, opt)
     planes = mesh_planes(geometry, spec) if opt.symmetric else ()
-    if cache_dir is None:
-        folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
-        atexit.register(shutil.rmtree, folder, True)  # no cache: the files live as long as the process
-        mesh, stats = _build(geometry, spec, opt, folder, planes)
-        write_vtu(folder / "throw.vtu", mesh)
-        return ThrowMesh(
-            mesh,
-            stats,
-            dict(stats.fillet_radii),
-            folder / "throw.msh",
-            folder / "throw.vtu",
-            spec.name,
-            key,
-            opt,
-            stats.symmetry,
-        )
-    root = Path(cache_dir)
-    final = root / key
-    hit = load_cache_entry(final)
-    if hit is not None:
-        mesh, stats = hit
-        return ThrowMesh(
-            mesh,
-            stats,
-            dict(stats.fillet_radii),
-            final / "throw.msh",
-            final / "throw.vtu",
-            spec.name,
-            key,
-            opt,
-            stats.symmetry,
-        )
-    root.mkdir(parents=True, exist_ok=True)
-    clean_stale_cache_temps(root)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{key}{TMP_MARK}{os.getpid()}-", dir=root))
-    try:
-        mesh, stats = _build(geometry, spec, opt, tmp, planes)
-        _save_npz(tmp / "mesh.npz", mesh)
-        write_vtu(tmp / "throw.vtu", mesh)
-        (tmp / "stats.json").write_text(json.dumps(_stats_to_json(stats), indent=1))
-        (tmp / "complete").write_text(key)
-        try:
-            os.rename(tmp, final)
-        except OSError:  # another process finished the same entry first: use theirs
-            shutil.rmtree(tmp, ignore_errors=True)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    return ThrowMesh(
-        mesh,
-        stats,
-        dict(stats.fillet_radii),
-        final / "throw.msh",
-        final / "throw.vtu",
-        spec.name,
-        key,
-        opt,
-        stats.symmetry,
-    )
+    return through_cache(key, cache_dir, lambda folder: _build(geometry, spec, opt, folder, planes), spec.name, opt)

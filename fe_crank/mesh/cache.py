@@ -38,6 +38,8 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     for cw in th["counterweights"]:
         cw.pop("bolted", None)  # bolt data do not change the solid
     opts = dataclasses.asdict(options)
+    if opts["web_divisions"] is None:  # the meshes made before the web control keep their keys
+        del opts["web_divisions"]
     if opts["interface_sectors"] == 1:
         del opts["interface_sectors"]  # the key of every mesh without sectors stays as it was
     payload = {

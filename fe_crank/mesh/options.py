@@ -37,12 +37,17 @@ class MeshOptions:
         1  # end faces split into this many rotated-copy sectors (fe_crank.mesh.interface; whole shaft)
     )
     symmetric: bool = True  # mesh the fundamental part of a mirror-symmetric throw and mirror it (fe_crank.mesh.planes; docs/geometry.md)
+    #: elements across the web thickness W: edge <= W / web_divisions in the webs (UR M53 App.
+    #: III 2.2 asks for at least 6 in its SCF models, ``fe.web_mesh``); None: no web control
+    web_divisions: float | None = None
 
     def __post_init__(self):
         for name in ("coarse_divisions", "fillet_divisions", "grading", "bore_divisions"):
             v = getattr(self, name)
             if not (np.isfinite(v) and v > 0):
                 raise MeshError(f"mesh option {name} must be positive (got {v})")
+        if self.web_divisions is not None and not (np.isfinite(self.web_divisions) and self.web_divisions > 0):
+            raise MeshError(f"mesh option web_divisions must be positive (got {self.web_divisions})")
         if not 1 <= self.interface_sectors <= 24:
             raise MeshError(f"mesh option interface_sectors must be 1 ... 24 (got {self.interface_sectors})")
         if self.size_max is not None and not self.size_max > 0:

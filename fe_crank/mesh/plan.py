@@ -59,6 +59,21 @@ def plan_meshes(
 ) -> MeshPlan:
     """The plan of one load case (module docstring); ``size``/``max_elements`` override the
     section's.  An engine whose throws the geometry does not cover is an InputError."""
+    keys = throw_keys(geometry, engine_throws, file=file)
+    return mesh_plan(keys, section, size=size, max_elements=max_elements, cache_dir=cache_dir)
+
+
+def mesh_plan(
+    throws: dict[str, str],
+    section: MeshSection,
+    *,
+    size: str | None = None,
+    max_elements: int | None = None,
+    cache_dir: str | None = None,
+) -> MeshPlan:
+    """The plan for the keys ``throws`` (key -> the throw model's name; a CAD geometry's
+    come from ``fe_crank.cad.engine.engine_keys``) with the section's and the command
+    line's sizes."""
     preset = preset_of(section, size)
     options = PRESETS[preset]
     if not section.symmetric:  # [mesh] symmetric = false: mesh a symmetric throw whole (docs/geometry.md)
@@ -68,7 +83,7 @@ def plan_meshes(
         options=options,
         max_elements=max_elements or section.max_elements,
         cache_dir=cache_dir,
-        throws=throw_keys(geometry, engine_throws, file=file),
+        throws=throws,
     )
 
 

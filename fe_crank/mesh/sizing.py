@@ -1,13 +1,17 @@
-"""gmsh size fields: fillet elements of ``r / fillet_divisions`` (IACS UR M53 appendix,
-FE guidance: at most ``r/4``), growing with the distance from the fillets.  The
-counterweight-to-web transition fillets (``counterweight_fillet_<web>`` surfaces,
-``fe_crank.geometry.cw_fillet``) get the same ``r / fillet_divisions`` rule."""
+"""gmsh size fields of the parametric throw: fillet elements of ``r / fillet_divisions``
+(IACS UR M53 appendix, FE guidance: at most ``r/4``), growing with the distance from
+the fillets.  The counterweight-to-web transition fillets (``counterweight_fillet_<web>``
+surfaces, ``fe_crank.geometry.cw_fillet``) get the same ``r / fillet_divisions`` rule.
+With ``web_divisions`` the web volumes get edges of at most ``W / web_divisions`` (UR M53
+App. III 2.2's elements across the web thickness W, ``fe_crank.fe.web_mesh``).
+The fields themselves: ``fe_crank.mesh.fields`` (shared with the CAD route)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.mesh.fields import apply_fields, bore_field, surface_field, torus_distance, torus_field, web_field
 from fe_crank.mesh.options import _SAFETY, MeshOptions
 
 
@@ -16,8 +20,8 @@ def _fillet_distance(g: CrankGeometry, name: str) -> str:
 
     The rolling-ball fillet of radius ``r_f`` between a cylinder of radius ``r`` and a
     web face is part of the torus whose spine circle (radius ``r + r_f``, about the
-    cylinder's axis) lies ``r_f - u`` off the web face (``u`` the undercut); distance to the torus =
-    ``| dist(x, spine) - r_f |`` (exact, unlike sampled ``Distance`` fields).
+    cylinder's axis) lies ``r_f - u`` off the web face (``u`` the undercut)
+    (``fe_crank.mesh.fields.torus_distance``).
     """
     zp = g.crankpin_length / 2
     zw = zp + g.web_thickness
@@ -29,9 +33,7 @@ def _fillet_distance(g: CrankGeometry, name: str) -> str:
         rf, a, cy = g.journal_fillet, g.journal_diameter / 2 + g.journal_fillet, 0.0
         off = rf - g.journal_undercut
         zc = -zw - off if name.endswith("1") else zw + off
-    rho = f"Sqrt(x*x + (y - ({cy!r}))*(y - ({cy!r})))"
-    spine = f"Sqrt(({rho} - {a!r})*({rho} - {a!r}) + (z - ({zc!r}))*(z - ({zc!r})))"
-    return f"Fabs({spine} - {rf!r})"
+    return torus_distance(cy, zc, a, rf)
 
 
 #: target edge on the counterweight fillets = _CW_SAFETY r / fillet_divisions (the largest
@@ -46,59 +48,29 @@ def counterweight_fillet_radius(g: CrankGeometry, web: int) -> float:
     return min(radii)
 
 
-def _surface_field(gmsh, tags: list[int], h: float, size_max: float, grading: float) -> int:
-    """Threshold field: ``h`` within ``h`` of the surfaces (sampled 100 x 100 per face,
-    so that the sampling gap stays below ``h``), growing by ``grading`` beyond."""
-    d = gmsh.model.mesh.field.add("Distance")
-    gmsh.model.mesh.field.setNumbers(d, "SurfacesList", tags)
-    gmsh.model.mesh.field.setNumber(d, "Sampling", 100)
-    th = gmsh.model.mesh.field.add("Threshold")
-    gmsh.model.mesh.field.setNumber(th, "InField", d)
-    gmsh.model.mesh.field.setNumber(th, "SizeMin", min(h, size_max))
-    gmsh.model.mesh.field.setNumber(th, "SizeMax", size_max)
-    gmsh.model.mesh.field.setNumber(th, "DistMin", h)
-    gmsh.model.mesh.field.setNumber(th, "DistMax", h + max(size_max - h, 0.0) / grading)
-    return th
-
-
 def _set_size_fields(
-    gmsh, geometry: CrankGeometry, surfaces: dict[str, list[int]], fillet_radii: dict[str, float], opt: MeshOptions
+    gmsh,
+    geometry: CrankGeometry,
+    surfaces: dict[str, list[int]],
+    fillet_radii: dict[str, float],
+    opt: MeshOptions,
+    volumes: dict[str, list[int]] | None = None,
 ) -> float:
     size_max = opt.size_max if opt.size_max is not None else geometry.crankpin_diameter / opt.coarse_divisions
     fields = []
+    webs = [t for name in ("web_1", "web_2") for t in (volumes or {}).get(name, ())]
+    if opt.web_divisions is not None and webs:  # UR M53 App. III 2.2: elements across the web
+        fields.append(web_field(gmsh, webs, geometry.web_thickness, opt.web_divisions, size_max))
     for name, r in fillet_radii.items():
         h = _SAFETY * r / opt.fillet_divisions
-        d = gmsh.model.mesh.field.add("MathEval")
-        gmsh.model.mesh.field.setString(d, "F", _fillet_distance(geometry, name))
-        th = gmsh.model.mesh.field.add("Threshold")
-        gmsh.model.mesh.field.setNumber(th, "InField", d)
-        gmsh.model.mesh.field.setNumber(th, "SizeMin", h)
-        gmsh.model.mesh.field.setNumber(th, "SizeMax", size_max)
-        gmsh.model.mesh.field.setNumber(th, "DistMin", 0.0)
-        gmsh.model.mesh.field.setNumber(th, "DistMax", max(size_max - h, 0.0) / opt.grading)
-        fields.append(th)
+        fields.append(torus_field(gmsh, _fillet_distance(geometry, name), h, size_max, opt.grading))
     if "oil_bore" in surfaces and geometry.oil_bore is not None:
         h = np.pi * geometry.oil_bore.diameter / (2 * opt.bore_divisions)
-        d = gmsh.model.mesh.field.add("Distance")
-        gmsh.model.mesh.field.setNumbers(d, "SurfacesList", surfaces["oil_bore"])
-        th = gmsh.model.mesh.field.add("Threshold")
-        gmsh.model.mesh.field.setNumber(th, "InField", d)
-        gmsh.model.mesh.field.setNumber(th, "SizeMin", min(h, size_max))
-        gmsh.model.mesh.field.setNumber(th, "SizeMax", size_max)
-        gmsh.model.mesh.field.setNumber(th, "DistMin", 0.0)
-        gmsh.model.mesh.field.setNumber(th, "DistMax", max(size_max - h, 0.0) / opt.grading)
-        fields.append(th)
+        fields.append(bore_field(gmsh, surfaces["oil_bore"], h, size_max, opt.grading))
     for name, tags in surfaces.items():
         if name.startswith("counterweight_fillet_"):
             r = counterweight_fillet_radius(geometry, int(name.rsplit("_", 1)[1]))
             h = _CW_SAFETY * r / opt.fillet_divisions
-            fields.append(_surface_field(gmsh, tags, h, size_max, opt.grading))
-    if fields:
-        mn = gmsh.model.mesh.field.add("Min")
-        gmsh.model.mesh.field.setNumbers(mn, "FieldsList", fields)
-        gmsh.model.mesh.field.setAsBackgroundMesh(mn)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", size_max)
-    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)  # 12 elements per 2 pi on curved faces
+            fields.append(surface_field(gmsh, tags, h, size_max, opt.grading))
+    apply_fields(gmsh, fields, size_max)
     return size_max

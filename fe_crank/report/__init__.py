@@ -19,7 +19,7 @@ from fe_crank.notes import Note
 from fe_crank.outputs import CaseOutputs
 from fe_crank.records import CaseResult
 from fe_crank.report.html import Page, criteria_table, esc, header_html, table, timings_table
-from fe_crank.report.inputs import criteria_rows, engine_rows, section_rows
+from fe_crank.report.inputs import cad_features_html, criteria_rows, engine_rows, section_rows
 from fe_crank.results import CriterionResult
 
 
@@ -51,6 +51,8 @@ def write_case_report(
         if lc.criteria is not None:
             inputs.append("<h3>acceptance criteria</h3>" + table(["key", "value"], criteria_rows(lc.criteria)))
         inputs.append("<h3>FE model and bearings</h3>" + table(["key", "value"], section_rows(lc.fe)))
+        if out.geometry is not None and out.geometry.cad is not None:
+            inputs.append(cad_features_html(out.geometry.cad))
     from fe_crank.report import sections  # the stage sections import every stage: loaded when a report is written
 
     for heading, builder in sections.BUILDERS:

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from fe_crank.files import write_atomic
+from fe_crank.notes import blocks_sign_off, verdict_remarks
 from fe_crank.records import CaseResult, Provenance
 from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS
 
@@ -122,8 +123,10 @@ def embed_images(text: str, folder: str | Path) -> str:
 
 
 def header_html(result: CaseResult, notes=()) -> str:
-    """Verdict badge, the "not a sign-off" banner when the mesh is below the sign-off
-    rule, the warnings that concern the whole case, and where the result came from."""
+    """Verdict badge with the verdict-line remarks (``notes.verdict_remarks``: not a
+    sign-off, which criteria a quality warning concerns), the "not a sign-off" banner when
+    the mesh is below the sign-off rule or the support is a foundation, the warnings that
+    concern the whole case, and where the result came from."""
     w = result.worst
     worst = f"worst criterion <b>{esc(w.name)}</b>, margin {100 * w.margin:+.1f} %" if w else ""
     msg = f"<pre>{esc(result.message)}</pre>" if result.message else ""
@@ -135,9 +138,14 @@ def header_html(result: CaseResult, notes=()) -> str:
             f"the sign-off rule ({esc(prov.mesh.sign_off_rule)}). Run with "
             "--mesh-size coarse or finer before trusting this verdict.</div>"
         )
+    for n in notes:  # the other models that are not a sign-off (a foundation support)
+        if blocks_sign_off(n) and n.source != "mesh":
+            banner += f'<div class="banner">{esc(n.text)}</div>'
     case_wide = [n for n in notes if not n.criteria]
+    remarks = verdict_remarks(notes)
+    line = f"{worst}" + (f" &nbsp; <b>{esc(remarks)}</b>" if remarks else "")
     return (
-        f"{banner}<p>{badge(result.status)} &nbsp; {worst}</p>{notes_list(case_wide)}"
+        f"{banner}<p>{badge(result.status)} &nbsp; {line}</p>{notes_list(case_wide)}"
         f'<p class="note">load case file <code>{esc(result.source)}</code></p>{msg}' + provenance_table(prov)
     )
 

@@ -1,5 +1,6 @@
 """The "Inputs and assumptions" tables of a case report: the engine, the material, the
-criteria and the FE model, each value in the unit a designer reads (no Python reprs)."""
+criteria and the FE model, each value in the unit a designer reads (no Python reprs);
+for a CAD geometry, the features recognised in the file (``cad_features_html``)."""
 
 from __future__ import annotations
 
@@ -8,8 +9,11 @@ from dataclasses import fields, is_dataclass
 
 import numpy as np
 
+from fe_crank.cad.features import CadFeatures
+from fe_crank.cad.record import feature_lines
 from fe_crank.io.criteria import QUANTITIES, Criteria
 from fe_crank.io.loadcase import LoadCase
+from fe_crank.report.html import esc
 
 _MPA = ("yield_strength", "tensile_strength", "fatigue_limit_bending", "fatigue_limit_torsion")
 
@@ -95,3 +99,10 @@ def plain(name: str, v: object) -> str:
             return f"{math.degrees(v):.4g} deg"
         return f"{v:.4g}"
     return str(v)
+
+
+def cad_features_html(features: CadFeatures) -> str:
+    """The CAD file and every feature recognised in it, one line each with the file's face
+    numbers and dimensions (``fe_crank.cad.record.feature_lines``)."""
+    lines = "\n".join(feature_lines(features))
+    return f"<h3>geometry from CAD: recognised features</h3><pre>{esc(lines)}</pre>"

@@ -58,3 +58,22 @@ def plot_bars(path, labels: Sequence[str], series: Mapping[str, Sequence[float]]
         ax.set_ylim(0.0, 1.25 * top)  # room for the legend above the bars
     ax.legend(fontsize=8, ncol=len(series), loc="upper center")
     return _save(fig, path)
+
+
+def plot_against_speed(
+    path, speeds_rpm: Sequence[float], panels: Sequence[tuple[str, Sequence[float], float, int]]
+) -> Path:
+    """Criteria over the full-load curve, one panel each: (label, value at every speed,
+    limit, index of the worst speed); the limit as a dashed line, the worst speed marked."""
+    fig = figure((6.0, 1.2 + 2.0 * len(panels)))
+    axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, (label, values, limit, worst) in zip(axes, panels, strict=True):
+        ax.plot(speeds_rpm, values, "o-", ms=3, label="value")
+        ax.axhline(limit, color="tab:red", ls="--", label=f"limit {limit:.4g}")
+        ax.plot([speeds_rpm[worst]], [values[worst]], "s", color="tab:red", label=f"worst, {speeds_rpm[worst]:.0f} rpm")
+        ax.set_ylabel(label, fontsize=8)
+        ax.grid(True, alpha=0.35)
+        ax.legend(fontsize=7)
+    axes[-1].set_xlabel("crank speed [rpm]")
+    axes[0].set_title("Criteria over the full-load curve")
+    return _save(fig, path)

@@ -33,6 +33,24 @@ def shaft_results(ws: WholeShaftOutput) -> dict:
         {"name": t.name, "n_angles": t.n_angles, "groups": [group_json(g) for g in t.groups]}
         for t in ws.assessment.throws
     ]
+    if ws.assessment.sweep:  # the main-bearing criteria's speeds and load states
+        doc["main_bearings_per_speed"] = [
+            {
+                "speed_rpm": st.speed * 30.0 / math.pi,
+                "case": st.case,
+                "bearings": [
+                    {
+                        "name": b.name,
+                        "peak_n": b.with_counterweights.peak_n,
+                        "peak_angle_deg": b.with_counterweights.peak_angle_deg,
+                        "specific_load_pa": b.with_counterweights.specific_load_pa,
+                        "peak_without_counterweights_n": b.without_counterweights.peak_n,
+                    }
+                    for b in st.bearings
+                ],
+            }
+            for st in ws.assessment.sweep
+        ]
     h = ws.governing
     doc["governing"] = None if h is None else {"throw": h.throw, "group": h.group, "crank_angle_deg": h.angle_deg}
     doc["timings_s"] = {k: float(v) for k, v in ws.result.timings.items()}

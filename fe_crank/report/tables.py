@@ -12,6 +12,7 @@ from fe_crank.assess.case import shared_models
 from fe_crank.mesh.types import MeshStats
 from fe_crank.outputs import CaseOutputs
 from fe_crank.report.html import Page, esc, table
+from fe_crank.report.joints import joint_table
 from fe_crank.report.plots import plot_bars
 
 #: mesh statistics shown, with how each is written
@@ -90,7 +91,7 @@ def counterweight_section(folder: Path, so: CaseOutputs, options) -> list[str]:
             num_cols={1, 2, 3, 4, 5},
         ),
         Page.figure("counterweight_mr.png", "Counterweight m*r: required by the balance strategy vs built geometry"),
-    ]
+    ] + ([joint_table(a.throws)] if a is not None and any(t.joints for t in a.throws) else [])
 
 
 def assessment_section(folder: Path, so: CaseOutputs, options) -> list[str]:
@@ -113,6 +114,7 @@ def assessment_section(folder: Path, so: CaseOutputs, options) -> list[str]:
                     _num(g.fatigue_safety.value) if g.fatigue_safety else "-",
                     _num(g.gough_pollard_safety.value) if g.gough_pollard_safety else "-",
                     _mpa(g.amplitude_at_critical),
+                    _mpa(g.additional_bending) if g.additional_bending else "-",
                     _mpa(g.mean_at_critical),
                 ]
             )
@@ -129,10 +131,11 @@ def assessment_section(folder: Path, so: CaseOutputs, options) -> list[str]:
                     "fatigue S (Goodman)",
                     "Gough-Pollard S",
                     "amplitude [MPa]",
+                    "+ UR M53 sigma_add [MPa]",
                     "mean [MPa]",
                 ],
                 rows,
-                num_cols=set(range(1, 10)),
+                num_cols=set(range(1, 11)),
             )
         )
         m53 = t.m53

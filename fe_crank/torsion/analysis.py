@@ -175,18 +175,21 @@ def analyse_torsion(
     return result
 
 
-def with_vibratory_torque(dynamics, result: TorsionResult):
+def with_vibratory_torque(dynamics, result: TorsionResult, *, handed: dict | None = None):
     """A copy of the dynamics stage's result whose journal torques (``torque_front``,
     ``torque_rear`` of every throw) are the torsional stage's histories of those journals
     (``fe_crank.torsion.handover.journal_torques``: one synthesis, quasi-static and
     vibratory at one speed, the largest of the range), over the same cycle grid: what the
     FE torque unit case and the UR M53 nominal torsional stress take.  A journal at the
-    free end (no segment in front of or behind the throw) keeps the dynamics stage's torque."""
+    free end (no segment in front of or behind the throw) keeps the dynamics stage's torque.
+    ``handed``: segment name -> the histories to take instead (e.g. the worst of the
+    misfire cases, ``misfire.MisfireTorsion.journal_torques``)."""
     from fe_crank.torsion.handover import journal_torques
 
     if not np.allclose(dynamics.theta, result.theta):
         raise ValueError("the torsional synthesis and the dynamics stage use different angle grids")
-    handed = journal_torques(result)
+    if handed is None:
+        handed = journal_torques(result)
     names = result.model.segment_names
     throws = {}
     for name, tl in dynamics.throws.items():

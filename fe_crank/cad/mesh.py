@@ -1,0 +1,201 @@
+"""Quadratic tetrahedral mesh of one throw of a CAD file: the parametric route's rules.
+
+:func:`mesh_cad_throw` recognises the file (``fe_crank.cad.recognise``), builds the
+throw's named parts between its bearing centres (``fe_crank.cad.model``) and meshes
+them with the steps and checks of ``fe_crank.mesh.generate`` into a ``ThrowMesh`` with
+the parametric route's named groups (boundaries ``journal_1/2``, ``end_1/2``,
+``crankpin``, ``crankpin_fillet_1/2``, ``journal_fillet_1/2``, ``oil_bore``,
+``counterweight_fillet_1/2``; subdomains ``journal_1/2``, ``web_1/2``, ``crankpin``,
+``counterweight_1/2``), as far as the throw has them.
+
+Sizes (``fe_crank.mesh.fields``): every recognised fillet ``r / fillet_divisions``
+(times the presets' safety factor), exact on its tori, sampled on other blends; the
+largest fillet edge checked against ``r / fillet_divisions`` for presets with at least
+4 (IACS UR M53 App. III: at most r/4); oil bores ``pi d / (2 bore_divisions)``;
+counterweight fillets like the parametric ones; with ``web_divisions`` each web's
+elements at most its thickness W / ``web_divisions`` (UR M53 App. III 2.2).  The mesh is of the whole throw (no
+mirror planes: a drawn solid is not symmetric by construction), in the throw's THROW
+frame (``ThrowFeatures.rotation``/``origin``: the parts are moved there before meshing),
+as the FE stage and the assessment expect.  Cached like the
+parametric meshes, keyed by the file's SHA-256 and everything of ``[cad]`` that changes
+the solid.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from fe_crank.cad.config import CadInput
+from fe_crank.cad.features import ThrowFeatures
+from fe_crank.errors import GeometryError
+from fe_crank.mesh.fields import apply_fields, bore_field, surface_field, torus_distance, torus_field, web_field
+from fe_crank.mesh.generate import finish, generate, through_cache
+from fe_crank.mesh.options import _SAFETY, CACHE_FORMAT, DEFAULT_CACHE_DIR, MeshOptions, resolve_options
+from fe_crank.mesh.types import ThrowMesh
+
+
+def cad_cache_key(cad: CadInput, sha256: str, throw: str, opt: MeshOptions) -> str:
+    """SHA-256 (hex, 20 chars) of the file's bytes, the ``[cad]`` entries that change
+    the solid, the throw, the mesh options and the versions."""
+    import gmsh
+
+    from fe_crank.version import __version__
+
+    opts = dataclasses.asdict(opt)
+    if opts["web_divisions"] is None:  # the meshes made before the web control keep their keys
+        del opts["web_divisions"]
+    payload = {
+        "route": "cad",
+        "frame": "throw",
+        "file": sha256,
+        "cad": {
+            "length_unit": cad.length_unit,
+            "axis": cad.axis,
+            "throws": cad.throws,
+            "bodies": cad.bodies,
+            "counterweight_radius": cad.counterweight_radius,
+            "faces": [dataclasses.asdict(f) for f in cad.faces],
+        },
+        "throw": throw,
+        "options": opts,
+        "fe_crank": __version__,
+        "gmsh": gmsh.__version__,
+        "format": CACHE_FORMAT,
+    }
+    return hashlib.sha256(json.dumps(payload, sort_keys=True, default=repr).encode()).hexdigest()[:20]
+
+
+def _size_fields(
+    gmsh, t: ThrowFeatures, surfaces: dict[str, list[int]], volumes: dict[str, list[int]], opt: MeshOptions
+) -> dict[str, float]:
+    size_max = opt.size_max if opt.size_max is not None else t.crankpin.diameter / opt.coarse_divisions
+    fields, radii = [], {}
+    if opt.web_divisions is not None:  # UR M53 App. III 2.2: elements across each web's thickness
+        for web in t.webs:
+            if volumes.get(f"web_{web.side}"):
+                fields.append(web_field(gmsh, volumes[f"web_{web.side}"], web.thickness, opt.web_divisions, size_max))
+    for f in t.fillets:
+        if f.radius <= 0:
+            continue
+        radii[f.name] = f.radius
+        h = _SAFETY * f.radius / opt.fillet_divisions
+        cy = t.crank_radius if f.name.startswith("crankpin") else 0.0
+        for arc in f.arcs:
+            expr = torus_distance(cy, arc.spine_z, arc.spine_radius, arc.radius)
+            fields.append(torus_field(gmsh, expr, h, size_max, opt.grading))
+        if len(f.arcs) < len(f.faces):  # blends that are no torus: the sampled distance
+            fields.append(surface_field(gmsh, surfaces[f.name], h, size_max, opt.grading))
+    if t.oil_bores and "oil_bore" in surfaces:
+        d = min(b.diameter for b in t.oil_bores)
+        fields.append(
+            bore_field(gmsh, surfaces["oil_bore"], np.pi * d / (2 * opt.bore_divisions), size_max, opt.grading)
+        )
+    for cw in t.counterweights:
+        name = f"counterweight_fillet_{cw.web}"
+        if cw.fillet_radius and name in surfaces:
+            h = _SAFETY * cw.fillet_radius / opt.fillet_divisions
+            fields.append(surface_field(gmsh, surfaces[name], h, size_max, opt.grading))
+    apply_fields(gmsh, fields, size_max)
+    return radii
+
+
+def estimate_cad_elements(t: ThrowFeatures, opt: MeshOptions) -> int:
+    """Tetrahedra the mesh of ``t`` will have, estimated as ``fe_crank.geometry.estimate``
+    does for a parametric throw: ``rho V / size_max^3`` in the bulk plus the layers graded
+    from each refined face (the recognised fillets' own areas, the journals', the pin's
+    and the bores' surfaces)."""
+    from fe_crank.geometry.estimate import _RHO, _layers
+
+    size_max = opt.size_max if opt.size_max is not None else t.crankpin.diameter / opt.coarse_divisions
+    n = _RHO * t.mass.total.volume / size_max**3
+    for f in t.fillets:
+        if f.radius > 0:
+            n += _layers(f.area, _SAFETY * f.radius / opt.fillet_divisions, size_max, opt.grading)
+    for cw in t.counterweights:
+        if cw.fillet_radius:
+            n += _layers(cw.fillet_area, _SAFETY * cw.fillet_radius / opt.fillet_divisions, size_max, opt.grading)
+    for c in (t.crankpin, *t.journals):
+        r = c.diameter / 2
+        n += _layers(2 * np.pi * r * (c.z_max - c.z_min), 2 * np.pi * r / 12, size_max, opt.grading)
+    for b in t.oil_bores:
+        n += _layers(
+            np.pi * b.diameter * t.crankpin.diameter,
+            np.pi * b.diameter / (2 * opt.bore_divisions),
+            size_max,
+            opt.grading,
+        )
+    return int(np.ceil(n))
+
+
+def _build(cad: CadInput, throw: str | int | None, opt: MeshOptions, folder: Path, max_elements: int | None = None):
+    from fe_crank.cad.recognise import prepare
+    from fe_crank.cad.throw import throw_features
+    from fe_crank.gmsh_io import gmsh_session, model_to_skfem
+
+    t0 = time.perf_counter()
+    with gmsh_session() as gmsh:
+        prep = prepare(gmsh, cad)
+        index = prep.index(throw)
+        feats, built, _, frame = throw_features(
+            gmsh, prep.read.shaft, prep.faces, prep.nbrs, prep.axis, prep.raw, index, cad, prep.tol
+        )
+        from fe_crank.geometry.estimate import MAX_ELEMENTS
+
+        limit = MAX_ELEMENTS if max_elements is None else int(max_elements)
+        n = estimate_cad_elements(feats, opt)
+        if n > limit:
+            raise GeometryError(
+                f"the mesh of throw {feats.name} would have about {n:.3g} elements, more than the limit {limit:.3g} "
+                f"(its smallest fillet radius is {min((f.radius for f in feats.fillets), default=0) * 1e3:.3g} mm); "
+                "raise it with --max-elements or [mesh] max_elements (docs/limits.md)",
+                file=str(cad.file),
+            )
+        occ = gmsh.model.occ
+        keep = {v for tags in built.volumes.values() for v in tags}
+        occ.remove([(3, v) for _, v in gmsh.model.getEntities(3) if v not in keep], recursive=True)
+        occ.synchronize()
+        # the FE model and the size fields are in the throw frame (docs/contracts.md)
+        moved = frame.move_into(gmsh, sorted(keep))
+        surfaces = {name: [moved[s] for s in tags] for name, tags in built.surfaces.items()}
+        for name, tags in built.volumes.items():
+            gmsh.model.addPhysicalGroup(3, tags, name=name)
+        for name, tags in surfaces.items():
+            gmsh.model.addPhysicalGroup(2, tags, name=name)
+        radii = _size_fields(gmsh, feats, surfaces, built.volumes, opt)
+        min_quality, straightened = generate(gmsh, feats.name, cad.file.name, opt)
+        mesh = model_to_skfem()
+        gmsh.write(str(folder / "throw.msh"))
+    expected = (set(built.surfaces), set(built.volumes))
+    stats = finish(mesh, expected, radii, opt, min_quality=min_quality, straightened=straightened, t0=t0)
+    return mesh, stats
+
+
+def mesh_cad_throw(
+    cad: CadInput,
+    throw: str | int | None = None,
+    *,
+    size: str | MeshOptions = "coarse",
+    cache_dir: str | Path | None = DEFAULT_CACHE_DIR,
+    max_elements: int | None = None,
+) -> ThrowMesh:
+    """Mesh one throw (name, 0-based index or None for the first) of the CAD file
+    ``cad`` with quadratic tetrahedra (cached); see the module docstring.
+
+    ``max_elements``: limit on the element count estimated before meshing
+    (``estimate_cad_elements``; default ``fe_crank.geometry.estimate.MAX_ELEMENTS``).
+    Raises ``InputError`` when the file cannot be read or recognised (``GeometryError``
+    when the mesh would be too large), ``MeshError`` when gmsh fails or a mesh check does."""
+    from fe_crank.cad.read import file_digest
+
+    opt = resolve_options(size)
+    sha = file_digest(cad)
+    name = throw if isinstance(throw, str) else ("" if throw is None else f"#{throw}")
+    key = cad_cache_key(cad, sha, name, opt)
+    label = throw if isinstance(throw, str) else (cad.throws[throw or 0] if cad.throws else str((throw or 0) + 1))
+    return through_cache(key, cache_dir, lambda folder: _build(cad, throw, opt, folder, max_elements), label, opt)

@@ -1,0 +1,259 @@
+"""One recognised throw in its THROW frame: features, named parts and mass properties.
+
+* webs: inner and outer faces from the pin's and journals' ends; the width B measured
+  across the web's mid-plane at the middle of the pin/journal overlap (UR M53 3.1:
+  ``y = ((R - D/2) + D_G/2) / 2``), from the outermost points of the solid on each side;
+  the side radius at ``y = 0+``, where a counterweight (the material beyond it on the
+  far side of the axis) begins (``[cad] counterweight_radius`` overrides it);
+* counterweight fillets: the concave curved faces (centre of curvature outside the
+  material) wholly in a counterweight's region, other than bores, holes and surfaces
+  about the crank or pin axis;
+* the named parts (``fe_crank.cad.model``) and their mass properties
+  (``fe_crank.geometry.mass``: exact B-rep integrals).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from fe_crank.cad.axis import Line, line_of
+from fe_crank.cad.chains import End, extent
+from fe_crank.cad.config import CadInput
+from fe_crank.cad.features import Arc, Bearing, Counterweight, Cylinder, Fillet, OilBore, ThrowFeatures, Web
+from fe_crank.cad.frame import Frame, chord
+from fe_crank.cad.model import Built, Plan, build_throw, throw_mass
+from fe_crank.cad.shaft import RawThrow
+from fe_crank.cad.survey import Face, coverage
+from fe_crank.errors import InputError
+
+
+def _t(v) -> tuple[float, float, float]:
+    x, y, z = (float(c) for c in np.ravel(v))
+    return (x, y, z)
+
+
+def _fillet(name: str, end: End, frame: Frame, mid: float, axis: Line, sign: float, tol: float) -> Fillet | None:
+    if not end.fillet:
+        return None
+    arcs = tuple(
+        Arc(f.tag, float(f.minor), float(f.radius), float(frame.to_throw(f.origin)[0][2]))
+        for f in end.fillet
+        if f.kind == "torus"
+    )
+    return Fillet(
+        name,
+        tuple(sorted(f.tag for f in end.fillet)),
+        float(end.radius()),
+        arcs,
+        float(end.s_plane - mid),
+        end.undercut(axis, sign, tol),
+        float(sum(f.area for f in end.fillet)),
+    )
+
+
+def _side_radius(gmsh, shaft, frame, faces, axis, z_mid, s_web, reach, R, r_journal, tol) -> float:
+    """The radius of the web's rounded journal end: the smallest arc about the crank axis
+    among the web's faces (beyond the journal), else the web's half width at y = 0+."""
+    lo, hi = s_web
+    arcs = [
+        f.radius
+        for f in faces.values()
+        if f.kind == "cylinder"
+        and f.convex
+        and f.radius > r_journal + tol
+        and line_of(f).same(axis, tol)
+        and lo - tol <= extent([f], axis)[0]
+        and extent([f], axis)[1] <= hi + tol
+        and coverage(f.edge_runs, f.origin, f.direction) < 0.99
+    ]
+    if arcs:
+        return float(min(arcs))
+    d = 1e-3 * R
+    lo_x, hi_x, _ = chord(gmsh, shaft, frame, d, z_mid, reach)
+    return float(math.hypot(min(-lo_x, hi_x), d))
+
+
+def _cw_fillets(faces, frame, web, radius, z_range, lines, used, tol) -> list[Face]:
+    out = []
+    for f in faces.values():
+        if f.tag in used or f.kind == "plane" or f.convex:
+            continue
+        if f.kind in ("cylinder", "torus") and any(line_of(f).same(ln, tol) for ln in lines):
+            continue
+        if f.kind == "cylinder" and coverage(f.edge_runs, f.origin, f.direction) >= 0.99:
+            continue  # a hole
+        q = frame.to_throw(np.vstack([f.points, f.edge_points]))
+        r = np.hypot(q[:, 0], q[:, 1])
+        if (
+            np.min(q[:, 1]) <= tol
+            and np.all(r >= radius - tol)
+            and np.all((q[:, 2] >= z_range[0] - tol) & (q[:, 2] <= z_range[1] + tol))
+        ):
+            out.append(f)
+    return out
+
+
+def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, ...], index: int, cad: CadInput, tol):
+    """``(ThrowFeatures, Built, Plan, Frame)`` of throw ``index``; builds its parts in the
+    current model (the caller removes the shaft before meshing them)."""
+    t = raws[index]
+    mid = t.mid
+    frame = Frame.of(axis.origin, axis.e, t.u, mid)
+    z = {
+        k: v - mid
+        for k, v in dict(
+            zo1=t.journal_ends[0].s_plane,
+            zi1=t.ends[0].s_plane,
+            zi2=t.ends[1].s_plane,
+            zo2=t.journal_ends[1].s_plane,
+            b1=t.journals[0].centre,
+            b2=t.journals[1].centre,
+        ).items()
+    }
+    x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(3, shaft)
+    reach = float(np.linalg.norm([x1 - x0, y1 - y0, z1 - z0]))
+    webs, side_r = [], []
+    for k, (zo, zi) in enumerate(((z["zo1"], z["zi1"]), (z["zo2"], z["zi2"])), start=1):
+        zm = 0.5 * (zo + zi)
+        rj = t.journals[k - 1].radius
+        y_mid = 0.5 * ((t.crank_radius - t.pin_radius) + rj)
+        lo_x, hi_x, solid_width = chord(gmsh, shaft, frame, y_mid, zm, reach)
+        width = hi_x - lo_x
+        s_web = sorted((zo + mid, zi + mid))
+        r_side = _side_radius(gmsh, shaft, frame, faces, axis, zm, s_web, reach, t.crank_radius, rj, tol)
+        side_r.append(r_side)
+        webs.append(
+            Web(
+                k,
+                tuple(sorted(f.tag for f in t.ends[k - 1].planes)),
+                tuple(sorted(f.tag for f in t.journal_ends[k - 1].planes)),
+                float(zi),
+                float(zo),
+                float(abs(zi - zo)),
+                float(width),
+                r_side,
+                float(solid_width),
+            )
+        )
+    cw_r = (cad.counterweight_radius,) * 2 if cad.counterweight_radius is not None else tuple(side_r)
+    groups: dict[int, str] = {}
+    for f in t.pin:
+        groups[f.tag] = "crankpin"
+    for k in (0, 1):
+        for f in t.journals[k].faces:
+            groups[f.tag] = f"journal_{k + 1}"
+        for f in t.ends[k].fillet:
+            groups[f.tag] = f"crankpin_fillet_{k + 1}"
+        for f in t.journal_ends[k].fillet:
+            groups[f.tag] = f"journal_fillet_{k + 1}"
+    for bore in t.bores:
+        for f in bore:
+            groups[f.tag] = "oil_bore"
+    lines = [axis, t.pin_line]
+    cw_faces, cw_top = {}, []
+    for k, zr in ((1, (z["b1"], 0.0)), (2, (0.0, z["b2"]))):
+        cw_faces[k] = _cw_fillets(faces, frame, k, cw_r[k - 1], zr, lines, set(groups), tol)
+        for f in cw_faces[k]:
+            groups[f.tag] = f"counterweight_fillet_{k}"
+        # the counterweight's region reaches over its fillets where they rise above y = 0
+        ys = [float(frame.to_throw(np.vstack([f.points, f.edge_points]))[:, 1].max()) for f in cw_faces[k]]
+        cw_top.append(max([0.0] + ys))
+    plan = Plan(
+        t.name,
+        mid,
+        (t.journals[0].centre, t.journals[1].centre),
+        (t.journals[0].free_end, t.journals[1].free_end),
+        (t.journal_ends[0].s_plane, t.ends[0].s_plane, t.ends[1].s_plane, t.journal_ends[1].s_plane),
+        (cw_r[0], cw_r[1]),
+        (cw_top[0], cw_top[1]),
+        groups,
+    )
+    built = build_throw(gmsh, shaft, frame, axis.origin, plan, tol, str(cad.file))
+    _check_groups(built, groups, cad, t.name)
+    mass = throw_mass(gmsh, built.volumes, cad.density, frame, t.name)
+    cws = tuple(
+        Counterweight(
+            k,
+            float(cw_r[k - 1]),
+            tuple(sorted(f.tag for f in cw_faces[k])),
+            float(min(f.min_radius for f in cw_faces[k])) if cw_faces[k] else None,
+            mass.parts[f"counterweight_{k}"],
+            float(sum(f.area for f in cw_faces[k])),
+        )
+        for k in (1, 2)
+        if f"counterweight_{k}" in built.volumes
+    )
+    fillets = tuple(
+        f
+        for f in (
+            _fillet("crankpin_fillet_1", t.ends[0], frame, mid, axis, -1.0, tol),
+            _fillet("crankpin_fillet_2", t.ends[1], frame, mid, axis, 1.0, tol),
+            _fillet("journal_fillet_1", t.journal_ends[0], frame, mid, axis, 1.0, tol),
+            _fillet("journal_fillet_2", t.journal_ends[1], frame, mid, axis, -1.0, tol),
+        )
+        if f is not None
+    )
+    first = Frame.of(axis.origin, axis.e, raws[0].u, mid)
+    angle = math.atan2(float(t.u @ first.rotation[0]), float(t.u @ first.rotation[1])) % (2 * math.pi)
+    feats = ThrowFeatures(
+        name=t.name,
+        index=index,
+        angle=float(angle),
+        crank_radius=float(t.crank_radius),
+        origin=_t(frame.origin),
+        rotation=(_t(frame.rotation[0]), _t(frame.rotation[1]), _t(frame.rotation[2])),
+        crankpin=_cylinder("crankpin", t.pin, t.pin_radius, axis, mid, t.axial_bores[1]),
+        journals=(
+            _cylinder("journal_1", t.journals[0].faces, t.journals[0].radius, axis, mid, t.axial_bores[0]),
+            _cylinder("journal_2", t.journals[1].faces, t.journals[1].radius, axis, mid, t.axial_bores[2]),
+        ),
+        fillets=fillets,
+        oil_bores=tuple(_bore(b, frame, t, nbrs) for b in t.bores),
+        webs=(webs[0], webs[1]),
+        bearings=(
+            Bearing(1, float(z["b1"]), t.journals[0].free_end),
+            Bearing(2, float(z["b2"]), t.journals[1].free_end),
+        ),
+        counterweights=cws,
+        mass=mass,
+    )
+    return feats, built, plan, frame
+
+
+def _cylinder(name, faces, radius, axis, mid, bore) -> Cylinder:
+    lo, hi = extent(faces, axis)
+    tags = tuple(sorted(f.tag for f in faces))
+    return Cylinder(name, tags, float(2 * radius), float(lo - mid), float(hi - mid), float(bore))
+
+
+def _bore(bore: tuple[Face, ...], frame: Frame, t: RawThrow, nbrs) -> OilBore:
+    d = frame.direction(bore[0].direction)
+    p = frame.to_throw(bore[0].origin)[0]
+    # the point of the bore's axis nearest the crankpin's axis (x = 0, y = R, along z)
+    a = np.array([0.0, t.crank_radius, 0.0])
+    ez = np.array([0.0, 0.0, 1.0])
+    n = np.cross(d, ez)
+    if np.linalg.norm(n) > 1e-9:
+        s = np.cross(a - p, ez) @ n / (n @ n)
+        p = p + s * d
+    near = {g for f in bore for g in nbrs[f.tag]}
+    on = []
+    for name, hosts in (("crankpin", t.pin), ("journal_1", t.journals[0].faces), ("journal_2", t.journals[1].faces)):
+        if near & {f.tag for f in hosts}:
+            on.append(name)
+    angle = math.atan2(float(d[0]), float(d[1])) % math.pi
+    return OilBore(tuple(f.tag for f in bore), float(2 * bore[0].radius), tuple(on), _t(p), _t(d), float(angle))
+
+
+def _check_groups(built: Built, groups: dict[int, str], cad: CadInput, name: str) -> None:
+    for group in sorted(set(groups.values())):
+        if not built.surfaces.get(group):
+            faces = sorted(t for t, g in groups.items() if g == group)
+            raise InputError(
+                f"throw {name}: the faces {faces} recognised as {group} were not found again in the throw model "
+                "between its bearing centres",
+                file=str(cad.file),
+                key=f"cad.faces.{group}",
+            )

@@ -1,0 +1,61 @@
+"""The bolted counterweights' VDI 2230 results in the case report (formatting only: the
+joint checks are the assessment's, ``ThrowAssessment.joints``, ``fe_crank.assess.cw_joint``)."""
+
+from __future__ import annotations
+
+import math
+
+from fe_crank.report.html import table
+
+#: (header, JointCheck field, format, scale)
+_COLUMNS = (
+    ("preload F_M,max / F_M,min [kN]", None, "", 1.0),
+    ("load factor Phi_K", "load_factor", "{:.3f}", 1.0),
+    ("embedding loss F_Z [kN]", "embedding_loss", "{:.2f}", 1e-3),
+    ("tightening torque M_A [N m]", "tightening_torque", "{:.1f}", 1.0),
+    ("axial load F_A max / overspeed [kN]", None, "", 1.0),
+    ("transverse load F_Q [kN]", None, "", 1.0),
+    ("R7 assembly utilisation nu", "assembly_utilisation", "{:.3f}", 1.0),
+    ("R8 working safety S_F (overspeed)", "working_safety", "{:.3f}", 1.0),
+    ("R9 fatigue: sigma_a / sigma_AS [MPa]", None, "", 1.0),
+    ("R9 fatigue safety S_D", "fatigue_safety", "{:.3f}", 1.0),
+    ("residual clamp load F_KR,min [kN]", "residual_clamp", "{:.2f}", 1e-3),
+    ("separation safety S_sep", "separation_safety", "{:.3f}", 1.0),
+    ("R12 slip safety S_G", "slip_safety", "{:.3f}", 1.0),
+)
+
+
+def _fmt(x: float, fmt: str, scale: float = 1.0) -> str:
+    return "unbounded (no load)" if not math.isfinite(x) else fmt.format(x * scale)
+
+
+def _cell(j, header: str, attr: str | None, fmt: str, scale: float) -> str:
+    if attr is not None:
+        return _fmt(float(getattr(j, attr)), fmt, scale)
+    ld = j.loads
+    if header.startswith("preload"):
+        return f"{j.preload_max / 1e3:.2f} / {j.preload_min / 1e3:.2f}"
+    if header.startswith("axial"):
+        return f"{ld.axial_max / 1e3:.3f} / {ld.axial_overspeed / 1e3:.3f}"
+    if header.startswith("transverse"):
+        return f"{ld.transverse_max / 1e3:.3f}"
+    return f"{j.fatigue_amplitude / 1e6:.2f} / {j.endurance_limit / 1e6:.2f}"
+
+
+def joint_table(throws) -> str:
+    """One column per bolted counterweight (per bolt, VDI 2230 Part 1); "" without any."""
+    joints = [(t.name, j) for t in throws for j in t.joints]
+    if not joints:
+        return ""
+    header = ["VDI 2230, per bolt"] + [f"throw {t}: {j.name}" for t, j in joints]
+    rows = [[h] + [_cell(j, h, attr, fmt, scale) for _, j in joints] for h, attr, fmt, scale in _COLUMNS]
+    return (
+        "<h3>bolted joints (VDI 2230 Part 1)</h3>"
+        + table(header, rows, num_cols=set(range(1, len(header))))
+        + '<p class="note">Loads per bolt, shared equally: centrifugal m r_c omega^2 over the working '
+        "cycle's speed band and at the overspeed, tangential m r_c alpha; without a stated load "
+        "introduction factor n the bounds n = 1 (bolt) and n = 0 (clamp). docs/assessment.md.</p>"
+    )
+
+
+__all__ = ["joint_table"]
