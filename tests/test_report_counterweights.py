@@ -4,13 +4,13 @@ counterweight checks (an assessment holding only them)."""
 from __future__ import annotations
 
 import numpy as np
+from images import image_statistics
 
 from fe_crank.assess.case import Assessment
 from fe_crank.assess.counterweight import CounterweightData, check_counterweight
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.io.material import load_material
 from fe_crank.outputs import CaseOutputs
-from fe_crank.report.render import image_statistics
 from fe_crank.report.tables import counterweight_section
 
 

@@ -18,13 +18,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from images import image_statistics
 from pipeline import stage_outputs, write_report
 
 import fe_crank.assess as assess
 from fe_crank.assess.superpose import combine, load_coefficients
 from fe_crank.fe.stress import von_mises
 from fe_crank.mechanism.cycles import overspeed_cycles
-from fe_crank.report.render import image_statistics
 
 pytestmark = pytest.mark.heavy  # one test-preset mesh and solve, three renders: about 30 s
 

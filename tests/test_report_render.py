@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from images import image_statistics
 from skfem import Basis, ElementTetP2, MeshTet, MeshTet2
 
 from fe_crank.fe.result_fields import quadratic_tet_mesh, write_vtu
 from fe_crank.report.render import (
     exaggeration_factor,
     grid_of,
-    image_statistics,
     iso_direction,
     nice_length,
     nice_range,

@@ -9,6 +9,7 @@ import re
 
 import numpy as np
 import pytest
+from images import image_statistics
 from pipeline import assess_inputs, write_report
 from skfem import MeshTet, MeshTet2
 
@@ -17,7 +18,6 @@ import fe_crank.fe as fe
 import fe_crank.mechanism.dynamics as dynamics
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.outputs import CaseOutputs, FeModels
-from fe_crank.report.render import image_statistics
 
 pytestmark = pytest.mark.heavy  # one small FE solve and six renders: about 9 s
 

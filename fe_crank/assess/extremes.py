@@ -226,6 +226,7 @@ def group_extremes(
             amp, mean = float(sa[j]), float(sm[j])
             running.fatigue = min(start, least)
     if do_gp:
+        assert axis is not None and material.fatigue_limit_torsion is not None  # do_gp says so
         eb, et, rm = k * material.fatigue_limit_bending, k * material.fatigue_limit_torsion, material.tensile_strength
         gp = np.full(nodes.size, np.inf)
         gp_done = np.zeros(nodes.size, bool)

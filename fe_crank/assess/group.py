@@ -106,7 +106,8 @@ def _extreme(
         else int(np.argmax(values) if worst == "max" else np.argmin(values))
     )
     node = int(unit.node_ids[idx[k]]) if unit.node_ids is not None else int(idx[k])
-    pt = tuple(float(c) for c in unit.points[:, idx[k]])
+    x, y, z = (float(c) for c in unit.points[:, idx[k]])
+    pt = (x, y, z)
     ang = float(angles[k]) if angles is not None else None
     return Extreme(float(values[k]), group, node, pt, ang)
 
@@ -172,7 +173,7 @@ def assess_group(
             good[sl] = fatigue.goodman_safety(
                 a + additional_bending, m, k * material.fatigue_limit_bending, material.tensile_strength
             )
-        if do_gp:
+        if do_gp and axis is not None:
             sig, tau = fatigue.bending_torsion(hist, unit.points[:, idx], axis)
             s_a, s_m = fatigue.half_range(sig)
             t_a, t_m = fatigue.half_range(tau)

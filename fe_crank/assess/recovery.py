@@ -43,10 +43,9 @@ def recovery_ratios(
     mesh = unit_solutions.mesh
     basis = unit_solutions.system.basis
     mat = unit_solutions.material
+    bounds = mesh.boundaries or {}
     present = {
-        name: (np.asarray(nodes), mesh.boundaries[name])
-        for name, nodes in groups.items()
-        if len((mesh.boundaries or {}).get(name, ())) > 0
+        name: (np.asarray(nodes), bounds[name]) for name, nodes in groups.items() if len(bounds.get(name, ())) > 0
     }
     out: dict[str, float] = {}
     if not present:
@@ -59,6 +58,7 @@ def recovery_ratios(
         return out
     if (
         unit is not None
+        and unit.node_ids is not None
         and all(c in unit.cases for c in cases)
         and all(
             name in unit.groups and np.array_equal(unit.node_ids[unit.groups[name]], nodes)

@@ -179,7 +179,8 @@ def critical(throws: tuple[ThrowAssessment, ...], names: list[str]) -> HotSpot |
         return None
     _, _, _, throw, g, ext, what = min(cands, key=lambda c: c[:3])
     angle = g.max_von_mises.angle if g.max_von_mises is not None else ext.angle
-    return HotSpot(throw, g.group, int(ext.node), tuple(float(c) for c in ext.point), angle, what)
+    x, y, z = (float(c) for c in ext.point)
+    return HotSpot(throw, g.group, int(ext.node), (x, y, z), angle, what)
 
 
 def governing(throws: tuple[ThrowAssessment, ...], names: list[str]) -> tuple[ThrowAssessment, GroupResult] | None:
@@ -251,7 +252,7 @@ def overspeed_state(
         float(ext.value),
         g.overspeed_safety,
         int(ext.node),
-        tuple(float(c) for c in ext.point),
+        (float(ext.point[0]), float(ext.point[1]), float(ext.point[2])),
         index,
         float(np.degrees(theta[index])),
         float(cycle.speed),

@@ -111,13 +111,15 @@ def load_coefficients(
     patch: dict[str, np.ndarray] = {}
     by_patch: dict[int, list[str]] = {}
     for c in cases:
-        if patch_case(c) is not None:
-            by_patch.setdefault(patch_case(c)[0], []).append(c)
+        pc = patch_case(c)
+        if pc is not None:
+            by_patch.setdefault(pc[0], []).append(c)
     # the pin's force goes to the whole-pin cases, or rod by rod to the patch cases
     wp = pin_case_weights(pin_force, pins) if pins or not by_patch else np.zeros((n, 0))
     if by_patch and patch_forces is None:
         raise ValueError("patch unit cases (one band per rod place) need each patch's force")
     for k, names in by_patch.items():
+        assert patch_forces is not None
         f = np.asarray(patch_forces.get(k, np.zeros((n, 2))), float)
         w = pin_case_weights(f, [c.partition("@")[0] for c in names])
         patch.update({c: w[:, i] for i, c in enumerate(names)})

@@ -60,7 +60,7 @@ def assess_throw(
     scf: ScfResult | None = None,
     counterweights: tuple[CounterweightData, ...] = (),
     torque_rear: np.ndarray | None = None,
-    overspeed_loads: tuple[np.ndarray, np.ndarray] | list | None = None,
+    overspeed_loads: tuple | list | None = None,
     angular_acceleration: np.ndarray | None = None,
     fe_pin_force: np.ndarray | None = None,
     m53_torques: tuple[np.ndarray, ...] = (),

@@ -30,22 +30,8 @@ from __future__ import annotations
 
 import math
 
-#: ISO 261 coarse pitches (mm) by nominal diameter (mm)
-COARSE_PITCH_MM = {
-    8: 1.25,
-    10: 1.5,
-    12: 1.75,
-    14: 2.0,
-    16: 2.0,
-    18: 2.5,
-    20: 2.5,
-    22: 2.5,
-    24: 3.0,
-    27: 3.0,
-    30: 3.5,
-    33: 3.5,
-    36: 4.0,
-}
+from fe_crank.geometry.spec import COARSE_PITCH_MM
+
 #: ISO 898-1 lower yield strength R_p0.2 (Pa) of the property classes (8.8: d <= 16 / > 16 mm)
 PROPERTY_CLASS_RP02 = {"8.8": (640e6, 660e6), "10.9": (940e6, 940e6), "12.9": (1100e6, 1100e6)}
 #: VDI 2230 table 5.4/1: amounts of embedding (um) per thread, per head or nut bearing, per

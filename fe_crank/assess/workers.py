@@ -21,6 +21,9 @@ import threading
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
+from typing import TypeVar
+
+T = TypeVar("T")
 
 #: threads of the assessment's blocks in the current context (``threads``)
 _THREADS: ContextVar[int] = ContextVar("fe_crank_assess_threads", default=1)
@@ -43,7 +46,7 @@ def thread_count() -> int:
     return _THREADS.get()
 
 
-def run_blocks(fn: Callable[[object, dict], None], items: Iterable, threads: int | None = None) -> None:
+def run_blocks(fn: Callable[[T, dict], None], items: Iterable[T], threads: int | None = None) -> None:
     """Call ``fn(item, scratch)`` for every item, on ``threads`` threads (default: the
     context's, ``thread_count``; 1: in this thread, in order).  ``scratch`` is a dict
     private to the calling thread, kept from one item to the next (reusable buffers).  An

@@ -4,6 +4,8 @@ case, and the loads it hands over to the assessment (docs/torsion.md)."""
 
 from __future__ import annotations
 
+from typing import cast
+
 from fe_crank.errors import InputError
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.io.loadcase import LoadCase
@@ -13,6 +15,7 @@ from fe_crank.torsion.analysis import with_vibratory_torque
 from fe_crank.torsion.build import throw_inertias
 from fe_crank.torsion.loads import assessed_loads, fe_inertias
 from fe_crank.torsion.misfire import analyse_misfire
+from fe_crank.torsion.model import TorsionCase
 from fe_crank.torsion.stiffness import fe_throw_stiffness
 
 
@@ -35,7 +38,8 @@ def torsion_stage(
         raise InputError(
             "throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file, key="torsion.throw_stiffness"
         )
-    mis = analyse_misfire(lc, inertias=throw_inertias(lc, geo.solids), fe_stiffness=k_fe)
+    # a CAD geometry with [torsion] is refused at input (io.loadcase): the case is a TorsionCase
+    mis = analyse_misfire(lc, inertias=throw_inertias(cast(TorsionCase, lc), geo.solids), fe_stiffness=k_fe)
     handed = mis.journal_torques()
     loads = assessed_loads(
         lc.engine,

@@ -71,10 +71,13 @@ def _shape(sys_: BearingSystem):
 def _law(law: BearingLaw, d: np.ndarray):
     """Force on the shaft (n, 2) and its derivative (n, 2, 2) at displacements d (n, 2)."""
     n = d.shape[0]
+    if law.stiffness is None:
+        raise ValueError(f"a {law.model} bearing law needs its stiffness")
+    k = law.stiffness
     if law.model == "spring":
-        return -law.stiffness * d, np.broadcast_to(-law.stiffness * np.eye(2), (n, 2, 2))
+        return -k * d, np.broadcast_to(-k * np.eye(2), (n, 2, 2))
     r = np.hypot(d[:, 0], d[:, 1])
-    c, k = law.clearance, law.stiffness
+    c = law.clearance
     on = r > c
     e = np.where(on[:, None], d / np.where(r > 0, r, 1.0)[:, None], 0.0)
     F = -k * np.where(on, r - c, 0.0)[:, None] * e

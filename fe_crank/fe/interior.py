@@ -121,10 +121,9 @@ class MirroredInterior:
             sym = chars[2] == 1
             held[on, 2] |= sym  # symmetric: u_z = 0 on the plane; antisymmetric: u_x = u_y = 0
             held[on, :2] |= not sym
-            held = held.ravel()
             A = K if i == len(mirror.characters) - 1 else K.copy()
-            mats.append(_held_pattern(A, held))
-            self.comps.append([chars, held, None])
+            mats.append(_held_pattern(A, held.ravel()))
+            self.comps.append([chars, held.ravel(), None])
         if method == "pardiso":
             for comp, fac in zip(self.comps, factorise_shared(mats)):
                 comp[2] = fac
@@ -150,6 +149,7 @@ class MirroredInterior:
                 if part is None:
                     part = (scale / len(self.mirror.group))[:, None] * np.asarray(F)[dofs]
                 b = part if b is None else b + part
+            assert b is not None  # the group holds the identity at least
             b = b.toarray() if sp.issparse(b) else b
             b[held] = 0.0
             q = solve_checked(fac, b).reshape(self.nodes.size, 3, k)
@@ -161,7 +161,8 @@ class MirroredInterior:
                 w = character_of(chars, planes) * self.weights[src[ok]]
                 U[ok] += w[:, None, None] * s[None, :, None] * q[src[ok]]
             out.append((-chars[2], U.reshape(3 * rows.size, k)))
-        return tuple(u for _, u in sorted(out, key=lambda t: t[0]))
+        u_sym, u_anti = (u for _, u in sorted(out, key=lambda t: t[0]))
+        return u_sym, u_anti
 
     def solve(self, F: np.ndarray) -> np.ndarray:
         a, b = self.solve_split(np.asarray(F, float).reshape(F.shape[0], -1))

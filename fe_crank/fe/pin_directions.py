@@ -69,8 +69,9 @@ def patch_cases(n_patches: int, step: int = STEP_DEG) -> tuple[str, ...]:
 def unit_force(name: str) -> tuple[float, float]:
     """The unit force (Fx, Fy) of a pin case (exact on the axes)."""
     d = pin_direction(name)
-    if d is None and patch_case(name) is not None:
-        d = patch_case(name)[1]
+    patch = patch_case(name) if d is None else None
+    if patch is not None:
+        d = patch[1]
     if d is None:
         raise ValueError(f"{name!r} is not a pin unit case")
     exact = {0: (1.0, 0.0), 90: (0.0, 1.0), 180: (-1.0, 0.0), 270: (0.0, -1.0)}

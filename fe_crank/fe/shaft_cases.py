@@ -73,7 +73,7 @@ def _terms(model: ShaftModel, loads: list[dict[tuple[int, str], float]]) -> list
 
 
 def _resultants(model: ShaftModel, coef: list[np.ndarray]) -> np.ndarray:
-    return sum(pp.placed_resultant(pp.cond.resultant @ a) for pp, a in zip(model.pieces, coef))
+    return np.sum([pp.placed_resultant(pp.cond.resultant @ a) for pp, a in zip(model.pieces, coef)], axis=0)
 
 
 def applied_loads(model: ShaftModel) -> tuple[list[str], list[dict]]:

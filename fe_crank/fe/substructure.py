@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
+from skfem import Basis, Mesh
 
 from fe_crank.errors import MeshError
 from fe_crank.fe.assembly import assemble_stiffness
@@ -42,8 +43,8 @@ BLOCK = 128
 class Condensed:
     """One piece condensed onto its end faces (module doc); local frame of the piece."""
 
-    mesh: object
-    basis: object
+    mesh: Mesh
+    basis: Basis
     faces: dict[str, np.ndarray]  # "end_1"/"end_2" -> P2 node numbers (ascending)
     b: np.ndarray  # interface vector dofs: end_1 nodes x (x, y, z), then end_2's
     S: np.ndarray  # (nb, nb)
@@ -123,7 +124,7 @@ def condense(
         K_b = stiffness_rows(basis, E, nu, b)
         t["assembly"] = time.perf_counter() - t0
         t0 = time.perf_counter()
-        interior = MirroredInterior(basis, mirror, E, nu, b, solver)
+        interior: MirroredInterior | Interior = MirroredInterior(basis, mirror, E, nu, b, solver)
     else:
         K = assemble_stiffness(basis, E, nu)
         K_b = K[b].tocsr()
@@ -175,7 +176,7 @@ def condense(
     for start in range(0, todo.size, block):
         cols = todo[start : start + block]
         R = -KbT[:, cols]
-        if mirror is not None:
+        if isinstance(interior, MirroredInterior):
             us, ua = interior.solve_split(R, need)
             X = us + ua
             store(cols, X)

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis
+from skfem import Basis, Mesh
 
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_stiffness
@@ -43,7 +43,7 @@ EQUILIBRIUM_TOL = 1e-6
 class System(EquilibriumChecks):
     """Assembled and factorised system; see module docstring.  Build with :func:`build_system`."""
 
-    mesh: object
+    mesh: Mesh
     basis: Basis
     K_rows: sp.csr_matrix  # rows of the elastic stiffness at constrained dofs
     rows: np.ndarray  # those dofs (coupling slaves and held dofs)

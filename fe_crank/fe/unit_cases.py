@@ -187,6 +187,8 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     E, nu = material.youngs_modulus, material.poisson_ratio
     axes = tuple(getattr(throw_mesh, "symmetry", None) or ()) if options.symmetry else ()
     if options.support == "foundation":
+        k_bearing = options.bearing_stiffness
+        assert k_bearing is not None  # check_support_options refuses a foundation without it
         if axes:
             log.info(
                 "fe-crank: the foundation support is solved on the full model (symmetry components: "
@@ -196,14 +198,16 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
             mesh,
             E,
             nu,
-            foundations=[Foundation(j, options.bearing_stiffness) for j in options.journals],
+            foundations=[Foundation(j, k_bearing) for j in options.journals],
             couplings=[Coupling(options.reaction_face, fixed=("uz", "rz"))],
             solver=options.solver,
             intorder=options.intorder,
         )
     else:
         layout = DeterminateLayout(
-            journals=tuple(options.journals), torque_face=options.reaction_face, axial=axial_journal(options)
+            journals=(options.journals[0], options.journals[1]),
+            torque_face=options.reaction_face,
+            axial=axial_journal(options),
         )
         system = determinate_system(mesh, E, nu, layout, axes, solver=options.solver, intorder=options.intorder)
     basis = system.basis

@@ -23,9 +23,7 @@ def check_case_names(options) -> None:
     unknown = [
         c
         for c in options.cases
-        if c not in (*BODY_CASES, "torque")
-        and pin_direction(c) is None
-        and (patch_case(c) is None or patch_case(c)[0] > n)
+        if c not in (*BODY_CASES, "torque") and pin_direction(c) is None and (patch_case(c) or (n + 1, 0))[0] > n
     ]
     if unknown:
         raise InputError(

@@ -31,7 +31,7 @@ import math
 from dataclasses import dataclass
 
 from fe_crank.errors import InputError
-from fe_crank.geometry.spec import BearingLaw, CrankGeometry, PlainCylinder, ShaftSpec, ThrowSpec
+from fe_crank.geometry.spec import BearingInput, BearingLaw, CrankGeometry, PlainCylinder, ShaftSpec, ThrowSpec
 
 #: relative tolerance of the comparisons between geometry and engine (lengths, angles)
 TOL = 1e-9
@@ -269,15 +269,14 @@ def for_engine_throws(g: CrankGeometry, engine, shaft: str | None = None) -> Cra
 def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str, ef: str) -> tuple[MainBearing, ...]:
     n = len(journals) - 1
     rf = g.journal_fillet
-    entries = spec.bearings
+    entries: tuple[BearingInput | None, ...] = spec.bearings if spec.bearings is not None else (None,) * len(journals)
     out = []
-    if entries is None:
-        entries = [None] * len(journals)
     for k, b in enumerate(entries):
         j = k if b is None else b.journal
         if j > n:
+            label = b.name if b is not None else str(k)
             raise InputError(
-                f"bearing {b.name!r} sits on journal {j}, but with the {n} throw(s) of the engine {ef} the "
+                f"bearing {label!r} sits on journal {j}, but with the {n} throw(s) of the engine {ef} the "
                 f"shaft has journals 0 (front) to {n} (rear)",
                 file=gf,
                 key=f"shaft.bearings[{k}].journal",

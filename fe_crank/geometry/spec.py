@@ -45,8 +45,8 @@ class WebOutline:
     pin_end_radius: float
 
 
-#: ISO 261 coarse pitch (m) of the metric threads M8-M36 by nominal diameter (mm)
-_COARSE = {
+#: ISO 261 coarse pitch (mm) of the metric threads M8-M36 by nominal diameter (mm)
+COARSE_PITCH_MM = {
     8: 1.25,
     10: 1.5,
     12: 1.75,
@@ -99,7 +99,7 @@ class BoltedJoint:
         """P: given, else the ISO coarse pitch of the diameter."""
         if self.pitch is not None:
             return self.pitch
-        p = _COARSE.get(round(self.diameter * 1e3))
+        p = COARSE_PITCH_MM.get(round(self.diameter * 1e3))
         if p is None or abs(self.diameter * 1e3 - round(self.diameter * 1e3)) > 1e-6:
             raise ValueError(f"no coarse pitch for d = {self.diameter * 1e3:g} mm: state the pitch")
         return p * 1e-3

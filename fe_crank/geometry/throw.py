@@ -74,7 +74,7 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
     volumes: dict[str, list[int]] = {k: [] for k in ("journal_1", "web_1", "crankpin", "web_2", "journal_2")}
     for cwweb in sorted(cws):
         volumes[f"counterweight_{cwweb}"] = []
-    cw_pieces = {web: set() for web in cws}
+    cw_pieces: dict[int, set[int]] = {web: set() for web in cws}
     sector_pieces = set()
     for i, (web, _, sector) in enumerate(cw_tools):
         got = {tag for dim, tag in out_map[1 + len(tools) + i] if dim == 3} & keep
@@ -116,7 +116,7 @@ def add_throw(g: CrankGeometry, throw: ThrowSpec | str | int | None = None, *, c
         gmsh.model.addPhysicalGroup(3, tags, name=name)
     for name, tags in surfaces.items():
         gmsh.model.addPhysicalGroup(2, tags, name=name)
-    fillet_radii = {}
+    fillet_radii: dict[str, float] = {}
     if g.crankpin_fillet > 0:
         fillet_radii.update(crankpin_fillet_1=g.crankpin_fillet, crankpin_fillet_2=g.crankpin_fillet)
     if g.journal_fillet > 0:

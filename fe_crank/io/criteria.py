@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from fe_crank.errors import InputError
 from fe_crank.io.base import read_toml
@@ -151,7 +152,7 @@ def build_criteria(value: object, file: str | Path, key: str = "criteria") -> Cr
     if not isinstance(value, dict):
         raise InputError("must be a table of min_<quantity>/max_<quantity> keys", file=str(file), key=key)
     limits = []
-    options = {}
+    options: dict[str, Any] = {}
     for k, v in value.items():
         full = f"{key}.{k}"
         if OPTIONS.get(k) == "bool":

@@ -53,7 +53,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Literal
 
-from pydantic import Field, StrictBool, model_validator
+from pydantic import Field, model_validator
 
 from fe_crank.errors import InputError
 from fe_crank.geometry.checks import check_geometry
@@ -66,9 +66,10 @@ from fe_crank.geometry.spec import (
     WebOutline,
 )
 from fe_crank.io.base import Strict, read_toml, validate
+from fe_crank.io.bolted import BoltedInput
 from fe_crank.io.includes import read_included, with_include_context
 from fe_crank.io.shaft import ShaftInput, shaft_spec
-from fe_crank.io.units import Angle, Density, Force, Length, Pressure
+from fe_crank.io.units import Angle, Density, Length
 
 
 class OilBoreInput(Strict):
@@ -108,51 +109,12 @@ class WebInput(Strict):
                 raise ValueError('outline "pear" takes journal_end_radius and pin_end_radius, not width')
         return self
 
-
-class BoltedInput(Strict):
-    """A bolted counterweight's joint (docs/assessment.md, "The bolted counterweight")."""
-
-    count: int = Field(gt=0, le=64)
-    diameter: Length = Field(gt=0.0)
-    pitch_radius: Length = Field(gt=0.0)
-    preload: Force | None = Field(default=None, gt=0.0)
-    yield_strength: Pressure | None = Field(default=None, gt=0.0)
-    pitch: Length | None = Field(default=None, gt=0.0)
-    property_class: Literal["8.8", "10.9", "12.9"] | None = None
-    clamp_length: Length | None = Field(default=None, gt=0.0)
-    bearing_diameter: Length | None = Field(default=None, gt=0.0)
-    hole_diameter: Length | None = Field(default=None, gt=0.0)
-    clamped_diameter: Length | None = Field(default=None, gt=0.0)
-    tightening_factor: float | None = Field(default=None, ge=1.0, le=4.0)
-    direction: Literal["radial", "axial"] = "radial"
-    tapped: StrictBool = True
-    thread_friction: float = Field(default=0.10, ge=0.04, le=0.5)
-    head_friction: float = Field(default=0.10, ge=0.04, le=0.5)
-    interface_friction: float = Field(default=0.10, ge=0.04, le=0.8)
-    roughness: Literal["below_10", "10_to_40", "40_to_160"] = "10_to_40"
-    rolled_after_heat_treatment: StrictBool = False
-    load_introduction: float | None = Field(default=None, gt=0.0, le=1.0)
-    shank_length: Length = Field(default=0.0, ge=0.0)
-    shank_diameter: Length | None = Field(default=None, gt=0.0)
-
-    @model_validator(mode="after")
-    def _joint(self):
-        d = self.diameter
-        if self.yield_strength is not None and self.property_class is not None:
-            raise ValueError("give yield_strength or property_class, not both")
-        if self.pitch is not None and not self.pitch < 0.25 * d:
-            raise ValueError(f"pitch {self.pitch * 1e3:g} mm is not a thread pitch of d = {d * 1e3:g} mm")
-        if self.hole_diameter is not None and not self.hole_diameter > d:
-            raise ValueError("hole_diameter must exceed the bolt diameter")
-        if self.bearing_diameter is not None and not self.bearing_diameter > max(d, self.hole_diameter or 0.0):
-            raise ValueError("bearing_diameter must exceed the bolt and hole diameters")
-        if self.clamped_diameter is not None and not self.clamped_diameter > (self.hole_diameter or d):
-            raise ValueError("clamped_diameter must exceed the hole diameter")
-        if self.clamp_length is not None and not self.shank_length < self.clamp_length:
-            raise ValueError("shank_length must be shorter than clamp_length")
-        if self.shank_diameter is not None and not self.shank_diameter <= d:
-            raise ValueError("shank_diameter cannot exceed the thread diameter")
-        return self
+    def end_radii(self) -> tuple[float, float]:
+        """(journal end, pin end) radius of the outline (the validator gave one form)."""
+        if self.width is not None:
+            return self.width / 2, self.width / 2
+        assert self.journal_end_radius is not None and self.pin_end_radius is not None
+        return self.journal_end_radius, self.pin_end_radius
 
 
 class CounterweightInput(Strict):
@@ -218,10 +180,7 @@ def _counterweights(cw: CounterweightInput | None, web_thickness: float) -> tupl
 def geometry_from_dict(data: dict, file: str | Path = "<geometry>", prefix: str = "") -> CrankGeometry:
     """Validate a geometry table (already read from TOML) and check it."""
     raw = validate(GeometryInput, data, file, prefix)
-    if raw.web.outline == "stadium":
-        web = WebOutline("stadium", raw.web.width / 2, raw.web.width / 2)
-    else:
-        web = WebOutline("pear", raw.web.journal_end_radius, raw.web.pin_end_radius)
+    web = WebOutline(raw.web.outline, *raw.web.end_radii())
     default_cw = _counterweights(raw.counterweight, raw.web.thickness)
     throws_in = raw.throws if raw.throws else [ThrowInput()]
     throws = []
@@ -239,7 +198,7 @@ def geometry_from_dict(data: dict, file: str | Path = "<geometry>", prefix: str 
         description=raw.description,
         source=raw.source,
         density=raw.density,
-        crank_radius=raw.crank_radius if raw.crank_radius is not None else raw.stroke / 2,
+        crank_radius=raw.crank_radius if raw.crank_radius is not None else (raw.stroke or 0.0) / 2,
         journal_diameter=raw.journal.diameter,
         journal_length=raw.journal.length,
         crankpin_diameter=raw.crankpin.diameter,

@@ -38,7 +38,8 @@ from fe_crank.io.includes import input_root, resolve_reference
 from fe_crank.io.material import Material
 from fe_crank.io.operating import parse_operating
 from fe_crank.io.sections import SECTION_KEYS, parse_sections
-from fe_crank.io.torsion import TorsionSettings, check_torsion_engine
+from fe_crank.io.torsion import TorsionSettings
+from fe_crank.io.torsion_engine import check_torsion_engine
 from fe_crank.mesh.options import MeshSection
 
 

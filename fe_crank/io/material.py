@@ -25,7 +25,7 @@ import importlib.resources
 from dataclasses import dataclass, fields
 from functools import lru_cache
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal, get_args
 
 from pydantic import Field
 
@@ -37,7 +37,8 @@ LIBRARY_NAME = "materials.toml"
 
 
 #: the assessed locations that may state their own surface ([material.surface])
-SURFACE_LOCATIONS = ("crankpin_fillet", "journal_fillet", "oil_bore", "counterweight_fillet")
+SurfaceLocation = Literal["crankpin_fillet", "journal_fillet", "oil_bore", "counterweight_fillet"]
+SURFACE_LOCATIONS: tuple[str, ...] = get_args(SurfaceLocation)
 #: a location's finish when the load case states none for it: the oil bore is drilled (not
 #: ground with the fillets); an integral counterweight's transition fillet is left as forged
 #: unless stated otherwise (the lowest factor of Shigley's table: on the safe side)
@@ -141,7 +142,7 @@ class MaterialInput(Strict):
     treatment_factor: float | None = Field(default=None, gt=0.0, le=3.0)
     notch_support_factor: float | None = Field(default=None, ge=1.0, le=2.0)
     m53_k: float | None = Field(default=None, gt=0.0, le=2.0)
-    surface: dict[Literal[SURFACE_LOCATIONS], FINISHES | GivenSurfaceInput] | None = None
+    surface: dict[SurfaceLocation, FINISHES | GivenSurfaceInput] | None = None
     kind: Literal["steel", "cast_iron"] | None = None
     forging: Literal["drop_forged", "continuous_grain_flow", "free_form"] | None = None
     source: str | None = None
@@ -233,12 +234,13 @@ def parse_material(value: object, file: str | Path, key: str = "material") -> Ma
             )
     _check_positive(props, file, key)
     _forging_factor(props, raw, file, key)
+    given: dict[str, Any] = {k: props.get(k) for k in PROPERTY_NAMES if props.get(k) is not None}
     return Material(
         name=raw.name or "custom",
         surfaces=raw.surfaces(),
         description=props.pop("description", ""),
         source="; ".join(p for p in source_parts if p),
-        **{k: props.get(k) for k in PROPERTY_NAMES if props.get(k) is not None},
+        **given,
     )
 
 

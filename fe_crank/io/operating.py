@@ -30,7 +30,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from pydantic import Field, model_validator
@@ -85,12 +85,13 @@ def _sweep(raw: OperatingInput, file: str, key: str) -> tuple[float, ...] | None
         lo, hi = raw.speed_range
         if not 0 < lo < hi:
             raise InputError("speed_range must be two increasing positive speeds", file=file, key=f"{key}.speed_range")
-        if not raw.speed_step > 0:
+        step = raw.speed_step
+        if step is None or not step > 0:
             raise InputError("speed_step must be positive", file=file, key=f"{key}.speed_step")
-        count = int(np.floor((hi - lo) / raw.speed_step * (1 + 1e-12))) + 1
+        count = int(np.floor((hi - lo) / step * (1 + 1e-12))) + 1
         if count > MAX_SPEEDS:
             raise InputError(f"gives {count} speeds, more than {MAX_SPEEDS}", file=file, key=f"{key}.speed_step")
-        w = lo + raw.speed_step * np.arange(count)
+        w = lo + step * np.arange(count)
         w = np.append(w, hi) if hi - w[-1] > 1e-9 * hi else w
     else:
         return None
@@ -112,9 +113,10 @@ def _merged(speeds: list[float], operating: float) -> tuple[float, ...]:
 
 
 def _diagrams(raw: OperatingInput, engine: model.Engine, file: str, key: str):
-    speeds, tables = [], []
+    speeds: list[float] = []
+    tables = []
     c0 = engine.cylinders[0]
-    geom = {
+    geom: dict[str, Any] = {
         "strokes": engine.strokes,
         "bore": c0.bore,
         "crank_radius": engine.throw(c0.throw).crank_radius,
@@ -184,7 +186,7 @@ def parse_operating(
                     )
         full = model.FullLoadCurve(speeds, gas_speeds, diagrams, engine.gas, engine.cycle_angle)
     misfire = _misfire(raw, engine, file, f"{key}.misfire")
-    if diagrams:
+    if full is not None and diagrams:
         engine = replace(engine, gas=full.gas_at(raw.speed))
     return engine, model.OperatingPoint(raw.speed, raw.overspeed, raw.overspeed_gas, full_load=full, misfire=misfire)
 

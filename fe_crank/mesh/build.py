@@ -32,16 +32,17 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
         mesh = model_to_skfem()
         if not planes:
             gmsh.write(str(folder / "throw.msh"))
-    expected = (set(model.surfaces), set(model.volumes))
+    surfaces, volumes = set(model.surfaces), set(model.volumes)
     if planes:
         mesh = mirror_all(mesh, planes)
         straightened *= 2 ** len(planes)  # each straightened element and its images
         if 2 in planes:
-            expected = tuple(s | {swap_side(n) for n in s} for s in expected)
+            surfaces |= {swap_side(n) for n in surfaces}
+            volumes |= {swap_side(n) for n in volumes}
         write_msh(folder / "throw.msh", mesh)
     stats = finish(
         mesh,
-        expected,
+        (surfaces, volumes),
         model.fillet_radii,
         opt,
         min_quality=min_quality,

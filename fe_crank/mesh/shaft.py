@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial import cKDTree
+from skfem import Mesh
 
 from fe_crank.errors import InputError, MeshError
 from fe_crank.geometry.shaft import ShaftLayout
@@ -56,7 +57,7 @@ class Piece:
 @dataclass(frozen=True)
 class ShaftMesh:
     layout: ShaftLayout
-    meshes: dict[str, object]  # key -> skfem MeshTet2 (local frame)
+    meshes: dict[str, Mesh]  # key -> skfem MeshTet2 (local frame)
     throw_meshes: dict[str, ThrowMesh]  # key -> the cached throw mesh
     pieces: tuple[Piece, ...]
     sectors: int

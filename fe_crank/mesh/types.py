@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from skfem import Mesh
+
 from fe_crank.mesh.options import MeshOptions
 
 
@@ -27,7 +29,7 @@ class MeshStats:
 class ThrowMesh:
     """A meshed throw: scikit-fem ``MeshTet2`` with named boundaries/subdomains (throw frame)."""
 
-    mesh: object
+    mesh: Mesh
     stats: MeshStats
     fillet_radii: dict[str, float]
     msh_path: Path

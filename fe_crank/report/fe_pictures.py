@@ -150,7 +150,8 @@ def _overspeed_figure(folder: Path, tag: str, tf, grid, size: float) -> list[str
     scale = rd.exaggeration_factor(umax, size)
     vm_hot = float(vm[os_.node]) / 1e6
     safety = "" if os_.safety is None else f", overspeed safety {os_.safety:.3g}"
-    marks, cw_txt, key_txt = (), "", ""
+    marks: tuple[tuple[np.ndarray, str], ...] = ()
+    cw_txt, key_txt = "", ""
     peaks = [(*field_peak(vm, g), g) for g in os_.counterweights]
     if peaks:
         value, node, cw = max(peaks, key=lambda p: p[0])

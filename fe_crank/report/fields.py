@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import meshio
 import numpy as np
 
 from fe_crank.assess.group import GroupResult
@@ -66,7 +67,7 @@ def assessed_fields(throw_assessment: ThrowAssessment | None, n_points: int) -> 
 class ThrowFields:
     """The fields of one FE model and the facts its pictures state."""
 
-    mesh: object  # meshio.Mesh
+    mesh: meshio.Mesh
     hotspot: HotSpot
     angle_deg: float | None
     overspeed: OverspeedState | None = None  # the state of the ``_overspeed`` fields

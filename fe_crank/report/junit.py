@@ -94,6 +94,8 @@ def junit_xml(results: Sequence[CaseResult], *, hostname: str | None = None) -> 
                 e += 1
                 err = ET.SubElement(tc, "error", message=f"not evaluated: {first}", type=f"error{stage}")
                 err.text = r.message
+            elif c is None:
+                raise ValueError(f"criterion {name!r} is missing from the case's results")
             elif not c.passed:
                 f += 1
                 fail = ET.SubElement(tc, "failure", message=_criterion_text(c), type="criterion")

@@ -69,7 +69,7 @@ def nice_range(lo: float, hi: float) -> tuple[float, float, int, str]:
     round steps giving 4 to 8 intervals, the one whose top lies closest above ``hi``
     (least colour range wasted) is taken."""
     lo = 0.0 if lo >= 0 else lo
-    best = None
+    best: tuple[float, float, float] | None = None
     for intervals in (5, 4, 6, 7, 8):
         step = nice_step(hi - lo, intervals)
         a, b = math.floor(lo / step) * step, math.ceil(hi / step) * step
@@ -77,6 +77,7 @@ def nice_range(lo: float, hi: float) -> tuple[float, float, int, str]:
             b = a + step
         if best is None or b - hi < best[1] - hi - 1e-12 * abs(hi):
             best = (a, b, step)
+    assert best is not None  # the loop ran
     a, b, step = best
     frac = f"{step:.9f}".rstrip("0").split(".")[1]  # decimals the step needs (2.5 -> 1, 0.05 -> 2)
     return a, b, int(round((b - a) / step)) + 1, f"%.{len(frac)}f"
@@ -287,19 +288,3 @@ def _scale_bar(p, bounds: np.ndarray) -> None:
         label_color="black",
         tick_color="black",
     )
-
-
-def image_statistics(path: str | Path) -> dict[str, float]:
-    """Pixel statistics of a PNG: share of pixels that differ from the corner
-    (background) colour and the standard deviation of the grey level.  A blank
-    render has ``coverage`` near 0 and ``std`` near 0."""
-    import matplotlib.image as mpimg
-
-    img = np.asarray(mpimg.imread(str(path)))[..., :3].astype(float)
-    bg = img[0, 0]
-    differs = np.any(np.abs(img - bg) > 0.02, axis=-1)
-    return {
-        "coverage": float(differs.mean()),
-        "std": float(img.mean(axis=-1).std()),
-        "colours": float(len(np.unique((img * 255).astype(np.uint8).reshape(-1, 3), axis=0))),
-    }

@@ -131,7 +131,7 @@ def analyse_torsion(
     theta = harmonics.cycle * np.arange(n_theta) / n_theta  # the grid of fe_crank.mechanism.dynamics
     half = np.zeros((speeds.size, model.size - 1))
     vib_half = np.zeros_like(half)
-    stiff = {"used": settings.throw_stiffness}
+    stiff: dict[str, str | float] = {"used": settings.throw_stiffness}
     if settings.model == "cad":
         stiff["carter"] = carter_throw_stiffness(loadcase.geometry, shear_modulus(loadcase.material))
     if fe_stiffness is not None:

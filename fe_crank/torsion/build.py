@@ -154,8 +154,11 @@ def build_model(
                 pitch_stiffness(g, G, pitch, method=settings.throw_stiffness, fe_stiffness=fe_stiffness),
                 eta,
             )
-    join(f"{throws[-1].name}-flywheel", settings.flywheel.stiffness, eta)
-    add("flywheel", settings.flywheel.inertia)
+    flywheel = settings.flywheel
+    if flywheel is None:
+        raise ValueError("the torsional model needs its flywheel")
+    join(f"{throws[-1].name}-flywheel", flywheel.stiffness, eta)
+    add("flywheel", flywheel.inertia)
     prev = "flywheel"
     for m in settings.driven:
         join(f"{prev}-{m.name}", m.stiffness, m.loss_factor if m.loss_factor is not None else eta, m.damping)

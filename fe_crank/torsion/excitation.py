@@ -105,9 +105,11 @@ def cylinder_harmonics(
     function of the diagram giving its gas, ``fe_crank.mechanism.misfire.motored_gas``)."""
     op = model.OperatingPoint(speed)
     no_gas = dyn.analyse(dataclasses.replace(engine, gas=None), op, step=step)
-    inertia, orders = {}, None
+    inertia = {}
     for name, cf in no_gas.cylinders.items():
         orders, inertia[name] = fourier(cf.torque, no_gas.cycle)
+    if not inertia:
+        raise ValueError("the engine has no cylinder")
 
     def gas_of(diagram):
         own = {c: f(diagram) for c, f in (cylinder_gas or {}).items()}

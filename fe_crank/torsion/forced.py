@@ -46,14 +46,6 @@ def receptance(model: TorsionModel, frequency: float) -> np.ndarray:
     )
 
 
-def excitation_vector(model: TorsionModel, harmonics: CylinderHarmonics, speed: float, index: int) -> np.ndarray:
-    """Complex torque on each mass for harmonic ``index`` at ``speed``."""
-    t = np.zeros(model.size, complex)
-    for cyl, throw in harmonics.throw_of.items():
-        t[model.throw_mass[throw]] += harmonics.at_speed(cyl, speed)[index]
-    return t
-
-
 @dataclass(frozen=True)
 class ForcedResponse:
     """Response over ``speeds`` (rad/s) for ``orders``.
@@ -119,8 +111,8 @@ def forced_response(model: TorsionModel, harmonics: CylinderHarmonics, speeds, o
     gas_parts = np.zeros((len(parts), model.size, harmonics.orders.size), complex)
     inertia = np.zeros(gas_parts.shape[1:], complex)
     for cyl, throw in harmonics.throw_of.items():
-        for k, part in enumerate(parts):
-            gas_parts[k, model.throw_mass[throw]] += part[cyl]
+        for j, part in enumerate(parts):
+            gas_parts[j, model.throw_mass[throw]] += part[cyl]
         inertia[model.throw_mass[throw]] += harmonics.inertia[cyl]
     kh, jm, cm = model.stiffness_matrix(hysteretic=True), model.mass_matrix(), model.damping_matrix()
     k = np.asarray(model.stiffness, float)

@@ -81,6 +81,7 @@ class MisfireTorsion:
             m = float(res.half_range[s, i])
             if best is None or m > best.m_tn:
                 best = Governing(segment, m, float(res.response.speeds[s]), label)
+        assert best is not None  # the firing case is always there
         return best
 
     def journal_torques(self) -> dict[str, JournalTorque]:
