@@ -69,3 +69,55 @@ def test_main_bearing_criteria_need_the_whole_shaft():
     with pytest.raises(InputError, match="whole-shaft model") as err:
         evaluate_criteria(crit, _throws(), file="case.toml")
     assert err.value.key == "criteria.max_main_bearing_load" and err.value.file == "case.toml"
+
+
+def _state(speed_rpm, case, peaks):
+    from fe_crank.assess.shaft import BearingState
+
+    return BearingState(speed_rpm * math.pi / 30, case, tuple(_bearing(str(k + 1), p) for k, p in enumerate(peaks)))
+
+
+def test_main_bearing_criteria_at_every_speed_and_load_state():
+    """The main-bearing load at every speed of the sweep: 2000 rpm firing (peaks 20 and 30
+    kN), 3000 rpm firing (25, 28 kN) and with cylinder 1 misfiring (bearing 2 at 40 kN): the
+    speed's value is the worst of its states (30 kN; 40 kN naming the misfire), the
+    criterion the worst speed (40 kN at 3000 rpm)."""
+    from fe_crank.assess.loads import FIRING
+
+    sweep = (
+        _state(2000, FIRING, (20e3, 30e3)),
+        _state(3000, FIRING, (25e3, 28e3)),
+        _state(3000, "cylinder 1 misfiring", (22e3, 40e3)),
+    )
+    shaft = ShaftAssessment((), sweep[1].bearings, 3000 * math.pi / 30, sweep)
+    crit = build_criteria({"max_main_bearing_load": "45 kN"}, "t.toml")
+    (c,) = evaluate_criteria(crit, _throws(), shaft=shaft)
+    assert c.value == pytest.approx(40e3) and c.speed_rpm == pytest.approx(3000)
+    assert [(p.speed_rpm, p.value) for p in c.per_speed] == [(pytest.approx(2000), 30e3), (pytest.approx(3000), 40e3)]
+    assert c.per_speed[0].location.startswith(f"{WHOLE_SHAFT}: main bearing 2")
+    assert "cylinder 1 misfiring" in c.per_speed[1].location and c.location.endswith("; 3000 rpm")
+
+
+def test_the_whole_shaft_enters_at_the_operating_speed():
+    """Per-throw model at 2000 and 3000 rpm (the same results at both: static 5.0, fatigue
+    1.6); the whole shaft at the operating 3000 rpm (static 650/150, fatigue 1.8): at 3000
+    rpm the static safety is the whole shaft's, at 2000 the per-throw model's; the fatigue
+    safety stays the per-throw model's at the lowest speed of equals."""
+    from fe_crank.assess.loads import FIRING
+    from fe_crank.assess.speeds import StateResults
+
+    w2, w3 = 2000 * math.pi / 30, 3000 * math.pi / 30
+    sweep = (StateResults(w2, FIRING, _throws()), StateResults(w3, FIRING, _throws()))
+    shaft = ShaftAssessment(_shaft().throws, _shaft().bearings, w3)
+    crit = build_criteria({"min_static_safety": 1.5, "min_fatigue_safety": 1.5}, "t.toml")
+    by = {c.quantity: c for c in evaluate_criteria(crit, _throws(), sweep=sweep, shaft=shaft)}
+    st, fat = by["static_safety"], by["fatigue_safety"]
+    assert st.value == pytest.approx(650 / 150) and st.speed_rpm == pytest.approx(3000)
+    assert [p.value for p in st.per_speed] == [pytest.approx(5.0), pytest.approx(650 / 150)]
+    assert st.per_speed[0].location.startswith(PER_THROW) and st.per_speed[1].location.startswith(WHOLE_SHAFT)
+    assert st.location.startswith(f"{WHOLE_SHAFT}: throw 1") and st.location.endswith("; 3000 rpm")
+    assert fat.value == pytest.approx(1.6) and fat.speed_rpm == pytest.approx(2000)
+    assert [p.value for p in fat.per_speed] == [pytest.approx(1.6), pytest.approx(1.6)]
+    values = {(v.criterion, v.model): v for v in model_values(crit, _throws(), shaft, sweep=sweep)}
+    assert values["criteria.min_static_safety", WHOLE_SHAFT].governs
+    assert values["criteria.min_fatigue_safety", PER_THROW].governs

@@ -103,3 +103,25 @@ def test_check_exits_2_on_a_mismatch(tmp_path, capsys):
     assert main(["check", str(p), "-o", str(tmp_path / "out"), "--no-render", "--no-vtu"]) == 2
     out = capsys.readouterr()
     assert "4 throw(s) here, 6 in the engine" in out.out + out.err
+
+
+def test_a_cad_shaft_keeps_its_recognised_journals(tmp_path):
+    """A CAD file of the whole inline-4 shaft on its engine: the load case reads (the
+    bearing centres stay the journals' middles the CAD route recognises, no parametric
+    stubs to move) and the whole-shaft stage, which builds its shaft from a parametric
+    geometry, does not run: the per-throw model alone, without a crash."""
+    from cad_files import shaft_step
+
+    from fe_crank.cad.config import CadInput
+    from fe_crank.check.shaft_stage import wanted
+    from fe_crank.io.geometry import load_geometry
+    from fe_crank.io.loadcase import load_loadcase
+
+    p, _ = _tree(tmp_path, "inline4_rated.toml")
+    g = load_geometry(ROOT / "geometry" / "inline4.toml")
+    shaft_step(g, tmp_path / "geometry" / "shaft.step")
+    text = p.read_text().replace('geometry = "../geometry/inline4.toml"', 'geometry = "../geometry/shaft.step"')
+    p.write_text(text + '\n[cad]\ndensity = "7850 kg/m^3"\n')
+    lc = load_loadcase(p)
+    assert isinstance(lc.geometry, CadInput) and len(lc.engine.throws) == 4
+    assert not wanted(lc)

@@ -195,8 +195,8 @@ def evaluate_criteria(
             raise InputError(f"cannot be evaluated: {exc}", file=file, key=lim.key) from None
         if found is None:
             missing = (
-                "the whole-shaft model, which runs for an engine of several throws on one shaft or a geometry "
-                "with a [shaft] section"
+                "the whole-shaft model, which runs for a parametric geometry of an engine with several throws on one "
+                "shaft or with a [shaft] section"
                 if ev.find is no_throw_value
                 else "missing geometry, mesh group, balance requirement or bolt data"
             )
