@@ -81,6 +81,7 @@ def governing(throws: tuple[ThrowAssessment, ...], layout: ShaftLayout) -> Shaft
     if best is None:
         return None
     name, e = best
+    assert e.angle is not None
     th = next(t for t in layout.throws if t.name == name)
     p = place(np.asarray(e.point, float)[:, None], layout.sense * th.angle, th.z)[:, 0]
     return ShaftHotSpot(
@@ -154,11 +155,11 @@ def _assessed(
 ) -> WholeShaftOutput:
     """The whole shaft's throws assessed and its governing state (``whole_shaft_stage``)."""
     mat, g = lc.material, lc.geometry
-    assert mat is not None and g is not None
+    assert mat is not None and isinstance(g, CrankGeometry)
     t0 = time.perf_counter()
     stated = lc.criteria.m53_additional_bending if lc.criteria is not None else None
     basis = m53_basis(lc.engine, mat, stated, file=lc.source_file)
-    diameters = {
+    diameters: dict[str, tuple[float | None, float | None]] = {
         name: (tg.m53.pin_diameter, tg.m53.journal_diameter) if tg.m53 is not None else (None, None)
         for name, tg in geo.throws.items()
     }

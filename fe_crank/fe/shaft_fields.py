@@ -17,6 +17,7 @@ whole mesh (``mesh.shaft.join``; a node on a joint plane takes the mean of its t
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -32,7 +33,7 @@ from fe_crank.mesh.shaft import node_maps
 class ShaftFields:
     """One state of the whole shaft on its joined mesh (shaft frame)."""
 
-    mesh: object  # skfem MeshTet2 of the whole shaft (``ShaftMesh.whole``)
+    mesh: Any  # skfem MeshTet2 of the whole shaft (``ShaftMesh.whole``)
     displacement: np.ndarray  # (3, N) m
     von_mises: np.ndarray  # (N,) Pa, nodal averages
     hotspot_node: int = 0  # the node nearest the point asked for (``shaft_fields``'s ``mark``)

@@ -125,11 +125,11 @@ def _recovery_nodes(basis, mesh, names) -> np.ndarray:
     from fe_crank.fe.stress import elements_of_nodes
 
     on = [np.asarray(mesh.boundaries[n]) for n in names if n in (mesh.boundaries or {})]
-    nodes = [basis.get_dofs(np.concatenate(on)).all()] if on else []
-    nodes += list(node_groups(mesh, basis, bodies=False).values())
-    if not nodes:
+    parts = [basis.get_dofs(np.concatenate(on)).all()] if on else []
+    parts += list(node_groups(mesh, basis, bodies=False).values())
+    if not parts:
         return np.zeros(0, int)
-    nodes = np.unique(np.concatenate(nodes))
+    nodes = np.unique(np.concatenate(parts))
     el = elements_of_nodes(basis.element_dofs, nodes, basis.N)
     return np.unique(basis.element_dofs[:, el])
 

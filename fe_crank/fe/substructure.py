@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -61,8 +62,8 @@ class Condensed:
     timings: dict[str, float] = field(default_factory=dict)
     #: with ``condense(..., keep=True)``: the interior's factorisation and the rows K_b of the
     #: stiffness, for whole fields later (``fe.shaft_fields``); ``free`` releases them
-    interior: object | None = None
-    K_b: object | None = None
+    interior: Any = None  # a factorisation handle (``fe.symsolve``), or None
+    K_b: Any = None  # a sparse matrix, or None
 
     def free(self) -> None:
         if self.interior is not None:

@@ -150,6 +150,7 @@ def torque_flow_loads(cases: ShaftCases, layout: ShaftLayout, dynamics) -> tuple
     for pp in cases.model.pieces:
         if pp.kind != "throw":
             continue
+        assert pp.throw is not None
         tl = dynamics.throws[pp.throw]
         jz = float(pp.cond.resultant[5, pp.cond.column("spin_up")])
         rest = np.asarray(tl.torque_rear) - np.asarray(tl.torque_front) - np.asarray(tl.torque)

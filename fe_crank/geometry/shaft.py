@@ -226,11 +226,13 @@ def _one_for_all_stub(g: CrankGeometry, engine, gf: str, ef: str) -> float:
                 file=gf,
                 key="stroke",
             )
-    pitches = {}
+    pitches: dict[str, float] = {}
     for s in engine.shafts:
         et = sorted((t for t in engine.throws if t.shaft == s.name), key=lambda t: t.axial_position)
         if len(et) > 1 and et[-1].axial_position - et[0].axial_position > TOL * g.crank_radius:
-            pitches[s.name] = _pitch(dataclasses.replace(g, shaft=None), et, gf, ef)
+            p = _pitch(dataclasses.replace(g, shaft=None), et, gf, ef)
+            if p is not None:  # two throws or more apart: always
+                pitches[s.name] = p
     if not pitches:
         return g.journal_length
     values = sorted(pitches.values())
