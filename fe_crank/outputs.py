@@ -13,12 +13,16 @@ from fe_crank.assess.case import Assessment
 from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.m53 import M53Geometry
 from fe_crank.assess.scf import ScfResult
+from fe_crank.assess.shaft import ShaftAssessment
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad.features import CadFeatures
 from fe_crank.fe.convergence import ConvergenceStudy
+from fe_crank.fe.shaft_fields import ShaftFields
 from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.whole_shaft import WholeShaftResult
 from fe_crank.geometry.mass import ThrowSolids
+from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
@@ -79,6 +83,32 @@ class TorsionOutput:
 
 
 @dataclass(frozen=True)
+class ShaftHotSpot:
+    """Where and when the whole shaft's von Mises stress is largest over the cycle."""
+
+    throw: str
+    group: str
+    angle_deg: float  # cycle angle
+    von_mises: float  # Pa
+    point: tuple[float, float, float]  # m, shaft frame (the engine frame at crank angle zero)
+
+
+@dataclass(frozen=True)
+class WholeShaftOutput:
+    """The whole-shaft stage (``check.shaft_stage``): the shaft placed by the engine, its
+    bearing loads and web moments over the cycle with and without counterweights, its
+    throws' stresses assessed as the per-throw model's (``assessment``, what the criteria
+    read beside the per-throw model), and the whole mesh's state at the governing angle
+    (``fields``, for the report's picture and ``.vtu``; None when neither is wanted)."""
+
+    layout: ShaftLayout
+    result: WholeShaftResult
+    assessment: ShaftAssessment
+    governing: ShaftHotSpot | None  # the largest von Mises over the cycle (None: no assessed group)
+    fields: ShaftFields | None = None
+
+
+@dataclass(frozen=True)
 class CaseOutputs:
     """The outputs of one load case's stages (None: the stage did not run)."""
 
@@ -89,6 +119,7 @@ class CaseOutputs:
     meshes: dict[str, ThrowMesh] | None = None
     fe: FeModels | None = None
     torsion: TorsionOutput | None = None
+    whole_shaft: WholeShaftOutput | None = None
     assessment: Assessment | None = None
     convergence: dict[str, ConvergenceStudy] | None = None
 

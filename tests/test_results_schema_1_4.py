@@ -25,7 +25,7 @@ def test_joints_sigma_add_and_the_oil_bore_outlet_validate():
     t = ThrowAssessment("1", (g,), m53=(bore,), joints=(joint,))
     doc = to_json(Assessment("c", "c.toml", 300.0, None, load_material("C45"), (t,), ()))
     jsonschema.validate(doc, load_schema())
-    assert doc["schema_version"] == "1.4"
+    assert tuple(int(x) for x in doc["schema_version"].split(".")) >= (1, 4)  # the 1.4 fields in every later minor
     (j,) = doc["throws"][0]["joints"]
     assert (
         j["separation_safety"] == joint.separation_safety and j["axial_load_overspeed"] == joint.loads.axial_overspeed

@@ -26,29 +26,33 @@ def case():
 
 
 def test_carter_by_hand_for_the_inline4_throw(case):
-    """geometry/inline4.toml: D_j 56, journal 2 x 11 = 22, web h 17, pin D_p 48 x 24 mm,
-    R 43 mm; web width at mid-overlap (UR M53 3.1): y = ((43 - 24) + 28)/2 = 23.5 mm,
-    b = 2 (42 + (33 - 42) 23.5/43) = 74.163 mm.
-    L_e = (22 + 0.8*17) + 0.75*24*(56/48)^4 + 1.5*43*56^4/(17*74.163^3)
-        = 35.6 + 33.346 + 91.475 = 160.42 mm;
+    """geometry/inline4.toml on engines/inline4.toml: D_j 56, web h 17, pin D_p 48 x 24 mm,
+    R 43 mm; the journal stubs reach the bearing centres the 92 mm pitch puts at mid-gap,
+    2 x (92 - 24 - 2 x 17)/2 = 34 mm of journal in the throw; web width at mid-overlap
+    (UR M53 3.1): y = ((43 - 24) + 28)/2 = 23.5 mm, b = 2 (42 + (33 - 42) 23.5/43) = 74.163 mm.
+    L_e = (34 + 0.8*17) + 0.75*24*(56/48)^4 + 1.5*43*56^4/(17*74.163^3)
+        = 47.6 + 33.346 + 91.475 = 172.42 mm;
     G = 210e9 / 2.6 = 80.769 GPa, I_p = pi 0.056^4 / 32 = 9.6550e-7 m^4,
-    k = G I_p / L_e = 4.861e5 N m/rad."""
+    k = G I_p / L_e = 4.523e5 N m/rad."""
     G = shear_modulus(case.material)
     assert G == pytest.approx(80.769e9, rel=1e-4)
+    assert case.geometry.journal_length == pytest.approx(0.017)
     b = 2 * (42 + (33 - 42) * 23.5 / 43)
-    le = (22 + 0.8 * 17) + 0.75 * 24 * (56 / 48) ** 4 + 1.5 * 43 * 56**4 / (17 * b**3)
-    assert le == pytest.approx(160.42, abs=0.01)
+    le = (34 + 0.8 * 17) + 0.75 * 24 * (56 / 48) ** 4 + 1.5 * 43 * 56**4 / (17 * b**3)
+    assert le == pytest.approx(172.42, abs=0.01)
     k = carter_throw_stiffness(case.geometry, G)
     assert k == pytest.approx(G * np.pi * 0.056**4 / 32 / (le * 1e-3), rel=1e-9)
-    assert k == pytest.approx(4.861e5, rel=1e-3)
+    assert k == pytest.approx(4.523e5, rel=1e-3)
 
 
 def test_pitch_adds_the_missing_journal_in_series(case):
-    """FE route: 1/k = 1/k_FE + (pitch - span)/(G I_p); pitch 92 mm, span 80 mm."""
+    """FE route: 1/k = 1/k_FE + (pitch - span)/(G I_p); the throw model of the check spans
+    the pitch (its journal stubs reach the bearing centres), a longer pitch adds journal."""
     G = shear_modulus(case.material)
     k_fe = 5.0e5
-    k = pitch_stiffness(case.geometry, G, 0.092, method="fe", fe_stiffness=k_fe)
     ip = np.pi * 0.056**4 / 32
+    assert pitch_stiffness(case.geometry, G, 0.092, method="fe", fe_stiffness=k_fe) == pytest.approx(k_fe, rel=1e-12)
+    k = pitch_stiffness(case.geometry, G, 0.104, method="fe", fe_stiffness=k_fe)
     assert 1 / k == pytest.approx(1 / k_fe + 0.012 / (G * ip), rel=1e-12)
 
 

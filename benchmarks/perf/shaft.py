@@ -1,4 +1,5 @@
-"""Benchmark: the whole-shaft model (mesh, condensation, unit cases, cycle) and its cost growth.
+"""Benchmark: the whole-shaft model (mesh, condensation, unit cases, cycle, the stress
+assessment of every assessed group of every throw) and its cost growth.
 
 One run per process (its own peak memory): the shaft of a geometry and an engine at a mesh
 preset, the engine's own operating speed from a load case, or the inertia loads of a
@@ -38,6 +39,8 @@ def run(args) -> dict:
     import numpy as np
 
     from fe_crank import model
+    from fe_crank.assess.shaft import assess_shaft_throws
+    from fe_crank.assess.workers import threads
     from fe_crank.fe.whole_shaft import analyse_whole_shaft
     from fe_crank.geometry.shaft import shaft_layout
     from fe_crank.mechanism.dynamics import analyse
@@ -58,15 +61,22 @@ def run(args) -> dict:
             e = load_engine(args.engine)
     else:
         sys.path.insert(0, str(ROOT / "tests"))
-        from shaft_helpers import Steel, small_engine, small_geometry
+        from shaft_helpers import small_engine, small_geometry
+
+        from fe_crank.io.material import load_material
 
         angles = [0.0 if i % 2 == 0 else np.pi for i in range(args.throws)]
-        g, e, material = small_geometry(angles), small_engine(angles), Steel()
+        g, e, material = small_geometry(angles), small_engine(angles), load_material("42CrMo4")
         op = model.OperatingPoint(speed=4000 * 2 * np.pi / 60)
     layout = shaft_layout(g, e, geometry_file=str(g.file), engine_file=str(args.engine or "engine"))
     dyn = analyse(e, op)
     result, cases = analyse_whole_shaft(layout, material, dyn, size=args.preset, cache_dir=args.cache)
+    t1 = time.perf_counter()
+    with threads(2):
+        throws = assess_shaft_throws(cases, result, dyn.theta, material, crank_radius=g.crank_radius, overspeed=None)
+    result.timings["assessment"] = time.perf_counter() - t1
     out = {
+        "groups": sum(len(t.groups) for t in throws),
         "throws": len(layout.throws),
         "preset": args.preset,
         "n_dof": result.n_dof,

@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass, field
 
 from fe_crank.assess import m53_oil_bore
-from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, evaluate_criteria
+from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, evaluate_criteria, model_values
 from fe_crank.assess.cw_joint import JOINT_QUANTITIES
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
 from fe_crank.assess.inputs import AssessInputs
@@ -22,6 +22,8 @@ from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.m53_basis import M53Basis, m53_basis
 from fe_crank.assess.qualifiers import criterion_qualifiers
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
+from fe_crank.assess.shaft import ShaftAssessment
+from fe_crank.assess.shaft_criteria import ModelValue
 from fe_crank.assess.speeds import StateResults, wanted_extremes
 from fe_crank.assess.state_throws import assess_state, places_of, state_dynamics
 from fe_crank.assess.states import ModelStates, model_states
@@ -35,7 +37,11 @@ from fe_crank.notes import ASSUMPTION, WARNING, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
 
-SCHEMA_VERSION = "1.4"  # 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws; 1.3: provenance.cad, criteria per speed; 1.4: bolted joints (VDI 2230), sigma_add per group
+#: 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws;
+#: 1.3: provenance.cad, criteria per speed; 1.4: bolted joints (VDI 2230), sigma_add per group;
+#: 1.5: the whole-shaft model (``whole_shaft``: main-bearing loads at every speed, web moments) and
+#: each criterion's value in each model (``criteria_by_model``)
+SCHEMA_VERSION = "1.5"
 
 
 @dataclass(frozen=True)
@@ -53,6 +59,8 @@ class Assessment:
     states: tuple[ModelStates, ...] = ()  # per FE model: the hot spot, overspeed state, averaging check
     sweep: tuple[StateResults, ...] = ()  # every speed and load state of the full-load curve (the verdict's)
     qualifiers: dict[str, str] = field(default_factory=dict)  # quantity -> its verdict line's words
+    by_model: tuple[ModelValue, ...] = ()  # with the whole shaft: each criterion's value in each model
+    shaft: ShaftAssessment | None = None  # the whole-shaft model's results the criteria read
 
     @property
     def passed(self) -> bool:
@@ -152,7 +160,16 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         notes.append(_assumption(_sweep_note(a.loads)))
     qualifiers = criterion_qualifiers(basis, a.criteria, torsion=a.loads.torsion)
     verdicts = evaluate_criteria(
-        a.criteria, done, file=a.source_file, overspeed=overspeed, sweep=tuple(sweep), qualifiers=qualifiers
+        a.criteria,
+        done,
+        file=a.source_file,
+        overspeed=overspeed,
+        sweep=tuple(sweep),
+        qualifiers=qualifiers,
+        shaft=a.shaft,
+    )
+    by_model = (
+        model_values(a.criteria, done, a.shaft, sweep=tuple(sweep), overspeed=overspeed) if a.shaft is not None else ()
     )
     # each rod at its place on the pin in the drawn states too (the assessment's coefficients)
     places = {t: places_of(a, t) for t in a.loads.operating_state.throws}
@@ -175,6 +192,8 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         tuple(states),
         tuple(sweep),
         qualifiers,
+        by_model,
+        a.shaft,
     )
 
 

@@ -16,20 +16,31 @@ lists them all, ``speeds.over_sweep``).  The overspeed criteria are evaluated at
 overspeed (one speed); the unbalance error does not depend on speed.  ``locate`` is that
 search for one quantity; the convergence study's factor on the groups' stresses
 (``check.converged``) goes through it too.  The verdict line's qualifiers
-(``assess.qualifiers``) follow the location of the worst speed.
+(``assess.qualifiers``) follow the location of the worst speed.  With the whole-shaft
+model a criterion takes the worse of the two models at each speed and the main-bearing
+quantities are the whole shaft's (``assess.shaft_criteria``).
 """
 
 from __future__ import annotations
 
 import dataclasses
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.cw_joint import JOINT_QUANTITIES
-from fe_crank.assess.group import STATIC_ONLY_PREFIXES, Extreme, GroupResult
+from fe_crank.assess.finders import (
+    GROUP_QUANTITIES,
+    Refused,
+    bolts,
+    group_finder,
+    joint_finder,
+    m53_acceptability,
+    over_groups,
+    unbalance,
+)
 from fe_crank.assess.qualifiers import qualified
+from fe_crank.assess.shaft import ShaftAssessment
+from fe_crank.assess.shaft_criteria import Located, ModelValue, combined, model_pair, no_throw_value, whole_shaft
 from fe_crank.assess.speeds import RPM, Found, StateResults, over_sweep
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.verdict import judge
@@ -42,145 +53,6 @@ QUASI_STATIC_M53 = (
     "the quasi-static journal torque accepted by m53_quasi_static_torque = true: UR M53 2.2.2 asks for "
     "the torsional vibration over the speed range, which was not computed"
 )
-
-
-def _where(throw: str, ext: Extreme | None) -> str:
-    if ext is None:
-        return ""
-    p = ", ".join(f"{c * 1e3:.1f}" for c in ext.point)
-    s = f"throw {throw}, {ext.group}, node {ext.node} at ({p}) mm"
-    if ext.angle is not None:
-        s += f", {math.degrees(ext.angle):.0f} deg"
-    return s
-
-
-def _over_groups(
-    throws: tuple[ThrowAssessment, ...],
-    getter: Callable[[GroupResult], tuple[float, Extreme] | None],
-    worst: str,
-    factor: Callable[[str, str], float] | None = None,
-) -> Found:
-    """(value, location) of the worst non-None value of getter(group) over all groups
-    (the first of equals, in the throws' and groups' order).  ``factor(throw, group)``: a
-    factor k >= 1 on the group's stresses (``over_groups``), a safety ("min") divided by it,
-    a stress ("max") multiplied."""
-    best: Found = None
-    for t in throws:
-        for g in t.groups:
-            got = getter(g)
-            if got is None:
-                continue
-            value, ext = got
-            if factor is not None:
-                k = factor(t.name, g.group)
-                value = value / k if worst == "min" else value * k
-            if best is None or (value < best[0] if worst == "min" else value > best[0]):
-                best = (value, _where(t.name, ext))
-    return best
-
-
-def _cw_stress(g: GroupResult) -> tuple[float, Extreme] | None:
-    ext = g.max_von_mises
-    return (ext.value, ext) if g.group.startswith(STATIC_ONLY_PREFIXES) else None
-
-
-def _cw_overspeed_stress(g: GroupResult) -> tuple[float, Extreme] | None:
-    ext = g.max_von_mises_overspeed
-    return (ext.value, ext) if ext is not None and g.group.startswith(STATIC_ONLY_PREFIXES) else None
-
-
-#: the quantities read from the FE groups' results: quantity -> (getter, worst)
-GROUP_QUANTITIES: dict[str, tuple[Callable[[GroupResult], tuple[float, Extreme] | None], str]] = {
-    "static_safety": (lambda g: (g.static_safety, g.max_von_mises), "min"),
-    "overspeed_safety": (
-        lambda g: (
-            None
-            if g.overspeed_safety is None or g.max_von_mises_overspeed is None
-            else (g.overspeed_safety, g.max_von_mises_overspeed)
-        ),
-        "min",
-    ),
-    "fatigue_safety": (
-        lambda g: None if g.fatigue_safety is None else (g.fatigue_safety.value, g.fatigue_safety),
-        "min",
-    ),
-    "gough_pollard_safety": (
-        lambda g: None if g.gough_pollard_safety is None else (g.gough_pollard_safety.value, g.gough_pollard_safety),
-        "min",
-    ),
-    "counterweight_stress": (_cw_stress, "max"),
-    "counterweight_overspeed_stress": (_cw_overspeed_stress, "max"),
-}
-
-
-def over_groups(
-    quantity: str, throws: tuple[ThrowAssessment, ...], factor: Callable[[str, str], float] | None = None
-) -> Found:
-    """The worst value of a group quantity (``GROUP_QUANTITIES``) over every throw's groups
-    and where it occurs; ``factor(throw, group)``: k on each group's stresses (the
-    convergence study's, ``fe_crank.check.converged``; None: the assessed values)."""
-    getter, worst = GROUP_QUANTITIES[quantity]
-    return _over_groups(throws, getter, worst, factor)
-
-
-def _group_evaluator(quantity: str) -> Callable[[tuple[ThrowAssessment, ...]], Found]:
-    return lambda throws: over_groups(quantity, throws)
-
-
-class Refused(Exception):
-    """A criterion the model's results must not judge (the reason is the message)."""
-
-
-def _m53(throws: tuple[ThrowAssessment, ...]) -> Found:
-    for t in throws:
-        for f in t.m53:
-            if not f.scf_accepted:  # UR M53 App. III rejected the SCF mode's mesh: no verdict on it
-                raise Refused(
-                    f"throw {t.name}, {m53_oil_bore.where(f.fillet)}: the FE SCFs come from a mesh UR M53 "
-                    f"App. III does not accept ({f.scf_source}); no UR M53 verdict is given on them "
-                    "(refine the mesh or bring the throw into the empirical range)"
-                )
-    vals = [
-        (f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
-        for t in throws
-        for f in t.m53
-    ]
-    return min(vals) if vals else None
-
-
-def _unbalance(throws: tuple[ThrowAssessment, ...]) -> Found:
-    vals = [
-        (c.unbalance_error, f"throw {t.name}, {c.name}")
-        for t in throws
-        for c in t.counterweights
-        if c.unbalance_error is not None
-    ]
-    return max(vals) if vals else None
-
-
-def _bolts(throws: tuple[ThrowAssessment, ...]) -> Found:
-    vals = [
-        (c.bolt_utilisation, f"throw {t.name}, {c.name}")
-        for t in throws
-        for c in t.counterweights
-        if c.bolt_utilisation is not None
-    ]
-    return max(vals) if vals else None
-
-
-def _joint(quantity: str) -> Callable[[tuple[ThrowAssessment, ...]], Found]:
-    """The evaluator of a VDI 2230 quantity (``cw_joint.JOINT_QUANTITIES``: the
-    ``JointCheck`` field and its sense): the worst bolted joint over the throws, from the
-    joint checks the assessment made once (``ThrowAssessment.joints``)."""
-    attr, sense = JOINT_QUANTITIES[quantity]
-
-    def find(throws: tuple[ThrowAssessment, ...]) -> Found:
-        vals = [(float(getattr(j, attr)), f"throw {t.name}, {j.name} (per bolt)") for t in throws for j in t.joints]
-        if not vals:
-            return None
-        return min(vals, key=lambda v: v[0]) if sense == "min" else max(vals, key=lambda v: v[0])
-
-    return find
 
 
 #: where a quantity is evaluated: at every speed of the sweep, at the overspeed, at none
@@ -201,19 +73,57 @@ class Evaluator:
 
 
 EVALUATORS: dict[str, Evaluator] = {
-    "static_safety": Evaluator(_group_evaluator("static_safety")),
-    "overspeed_safety": Evaluator(_group_evaluator("overspeed_safety"), needs_overspeed=True, speed=OVERSPEED),
-    "fatigue_safety": Evaluator(_group_evaluator("fatigue_safety")),
-    "gough_pollard_safety": Evaluator(_group_evaluator("gough_pollard_safety")),
-    "counterweight_stress": Evaluator(_group_evaluator("counterweight_stress"), unit="Pa"),
+    "static_safety": Evaluator(group_finder("static_safety")),
+    "overspeed_safety": Evaluator(group_finder("overspeed_safety"), needs_overspeed=True, speed=OVERSPEED),
+    "fatigue_safety": Evaluator(group_finder("fatigue_safety")),
+    "gough_pollard_safety": Evaluator(group_finder("gough_pollard_safety")),
+    "counterweight_stress": Evaluator(group_finder("counterweight_stress"), unit="Pa"),
     "counterweight_overspeed_stress": Evaluator(
-        _group_evaluator("counterweight_overspeed_stress"), unit="Pa", needs_overspeed=True, speed=OVERSPEED
+        group_finder("counterweight_overspeed_stress"), unit="Pa", needs_overspeed=True, speed=OVERSPEED
     ),
-    "m53_acceptability": Evaluator(_m53),
-    "unbalance_error": Evaluator(_unbalance, speed=NO_SPEED),
-    "bolt_utilisation": Evaluator(_bolts),
-    **{q: Evaluator(_joint(q)) for q in JOINT_QUANTITIES},
+    "m53_acceptability": Evaluator(m53_acceptability),
+    "unbalance_error": Evaluator(unbalance, speed=NO_SPEED),
+    "bolt_utilisation": Evaluator(bolts),
+    **{q: Evaluator(joint_finder(q)) for q in JOINT_QUANTITIES},
+    "main_bearing_load": Evaluator(no_throw_value, unit="N"),  # the whole shaft's (shaft_criteria)
+    "main_bearing_specific_load": Evaluator(no_throw_value, unit="Pa"),
 }
+
+
+def _parts(
+    quantity: str,
+    sense: str,
+    throws: tuple[ThrowAssessment, ...],
+    sweep: tuple[StateResults, ...],
+    overspeed: float | None,
+    factor: Callable[[str, str], float] | None,
+    shaft: ShaftAssessment | None,
+) -> tuple[Located | None, Located | None]:
+    """``locate`` in the per-throw model and in the whole shaft (None without it)."""
+    ev = EVALUATORS[quantity]
+    find = ev.find
+    if factor is not None and quantity in GROUP_QUANTITIES:
+
+        def find(th: tuple[ThrowAssessment, ...]) -> Found:
+            return over_groups(quantity, th, factor)
+
+    per: Located | None
+    if ev.speed == SWEEP and sweep:
+        per = over_sweep(find, sense, sweep)
+    else:
+        got = find(throws)
+        if got is None:
+            per = None
+        elif ev.speed == OVERSPEED and overspeed is not None:
+            per = got[0], got[1], overspeed * RPM, (SpeedValue(overspeed * RPM, got[0], got[1]),)
+        else:
+            per = got[0], got[1], None, ()
+    if shaft is None:
+        return per, None
+    at = shaft.speed * RPM if ev.speed == SWEEP and shaft.speed is not None and sweep else None
+    if ev.speed == OVERSPEED and overspeed is not None:
+        at = overspeed * RPM
+    return per, whole_shaft(quantity, sense, find, shaft, speed_rpm=at)
 
 
 def locate(
@@ -224,27 +134,37 @@ def locate(
     sweep: tuple[StateResults, ...] = (),
     overspeed: float | None = None,
     factor: Callable[[str, str], float] | None = None,
-) -> tuple[float, str, float | None, tuple[SpeedValue, ...]] | None:
+    shaft: ShaftAssessment | None = None,
+) -> Located | None:
     """(worst value, where, its speed in rpm or None, per-speed values) of ``quantity``:
     over the sweep for a speed-dependent quantity (``throws`` then unused), on ``throws``
     (the operating speed's, with the overspeed) otherwise; None when the model gives none.
-    ``factor(throw, group)``: k on the groups' stresses of a group quantity (``over_groups``).
-    A criterion the results must not judge raises ``Refused``."""
-    ev = EVALUATORS[quantity]
-    find = ev.find
-    if factor is not None and quantity in GROUP_QUANTITIES:
+    ``factor(throw, group)``: k on the groups' stresses of a group quantity (``over_groups``;
+    the whole shaft's throws are meshed as the per-throw model's, the same k).  ``shaft``:
+    the worse of both models, located by model (``shaft_criteria.combined``).  A criterion
+    the results must not judge raises ``Refused``."""
+    per, whole = _parts(quantity, sense, throws, sweep, overspeed, factor, shaft)
+    return per if shaft is None else combined(per, whole, sense)
 
-        def find(th: tuple[ThrowAssessment, ...]) -> Found:
-            return over_groups(quantity, th, factor)
 
-    if ev.speed == SWEEP and sweep:
-        return over_sweep(find, sense, sweep)
-    got = find(throws)
-    if got is None:
-        return None
-    if ev.speed == OVERSPEED and overspeed is not None:
-        return got[0], got[1], overspeed * RPM, (SpeedValue(overspeed * RPM, got[0], got[1]),)
-    return got[0], got[1], None, ()
+def model_values(
+    criteria: Criteria,
+    throws: tuple[ThrowAssessment, ...],
+    shaft: ShaftAssessment,
+    *,
+    sweep: tuple[StateResults, ...] = (),
+    overspeed: float | None = None,
+) -> tuple[ModelValue, ...]:
+    """Each criterion's worst value in each model that gives it, and which one governs
+    (the report's table of the two models)."""
+    out: list[ModelValue] = []
+    for lim in criteria.limits:
+        try:
+            per, whole = _parts(lim.quantity, lim.sense, throws, sweep, overspeed, None, shaft)
+        except Refused:
+            continue
+        out.extend(model_pair(lim.key, per, whole, lim.sense))
+    return tuple(out)
 
 
 def evaluate_criteria(
@@ -255,8 +175,10 @@ def evaluate_criteria(
     overspeed: float | None = None,
     sweep: tuple[StateResults, ...] = (),
     qualifiers: dict[str, str] | None = None,
+    shaft: ShaftAssessment | None = None,
 ) -> tuple[CriterionResult, ...]:
-    """Each limit of ``criteria`` -> a verdict (module docstring).  ``throws``: the
+    """Each limit of ``criteria`` -> a verdict (module docstring); ``shaft``: the whole-shaft
+    model's results, when it ran (each criterion the worse of the two models).  ``throws``: the
     operating speed's results (with the overspeed); ``sweep``: every speed and state of
     the full-load curve (the operating speed's firing state among them), () for the
     operating speed alone.  ``qualifiers``: quantity -> words its verdict line carries
@@ -268,13 +190,18 @@ def evaluate_criteria(
         if ev.needs_overspeed and overspeed is None:
             raise InputError("needs operating.overspeed", file=file, key=lim.key)
         try:
-            found = locate(lim.quantity, lim.sense, throws, sweep=sweep, overspeed=overspeed)
+            found = locate(lim.quantity, lim.sense, throws, sweep=sweep, overspeed=overspeed, shaft=shaft)
         except Refused as exc:
             raise InputError(f"cannot be evaluated: {exc}", file=file, key=lim.key) from None
         if found is None:
+            missing = (
+                "the whole-shaft model, which runs for a parametric geometry of an engine with several throws on one "
+                "shaft or with a [shaft] section"
+                if ev.find is no_throw_value
+                else "missing geometry, mesh group, balance requirement or bolt data"
+            )
             raise InputError(
-                f"cannot be evaluated: the model gives no {lim.quantity.replace('_', ' ')} "
-                "(missing geometry, mesh group, balance requirement or bolt data)",
+                f"cannot be evaluated: the model gives no {lim.quantity.replace('_', ' ')} ({missing})",
                 file=file,
                 key=lim.key,
             )

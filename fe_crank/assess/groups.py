@@ -1,5 +1,5 @@
 """The node groups the assessment evaluates (fillets, oil bore, counterweights and their
-junctions with the webs) and the unit-case stresses at their nodes."""
+junctions with the webs, ``fe.node_groups``) and the unit-case stresses at their nodes."""
 
 from __future__ import annotations
 
@@ -8,49 +8,21 @@ import numpy as np
 from fe_crank.assess.superpose import UnitStresses, unit_nodal_stress
 from fe_crank.assess.workers import run_blocks, thread_count
 from fe_crank.errors import InputError
+from fe_crank.fe.node_groups import ASSESSED_BOUNDARIES, COUNTERWEIGHTS, node_groups
 from fe_crank.fe.pin_directions import patch_case, pin_direction
 from fe_crank.fe.unit_cases import UnitSolutions
 
-#: boundary groups assessed at their nodes; subdomains assessed with all their nodes
-ASSESSED_BOUNDARIES = (
-    "crankpin_fillet_1",
-    "crankpin_fillet_2",
-    "journal_fillet_1",
-    "journal_fillet_2",
-    "oil_bore",
-    "counterweight_fillet_1",  # the counterweight-to-web transition fillets (geometry/cw_fillet.py)
-    "counterweight_fillet_2",
-)
-COUNTERWEIGHTS = ("counterweight_1", "counterweight_2")
 #: the unit cases besides the pin cases that the superposition takes (``superpose.load_coefficients``)
 SUPERPOSED = ("centrifugal", "torque", "angular_acceleration")
 
-
-def _element_nodes(unit_solutions: UnitSolutions, elements) -> np.ndarray:
-    return np.unique(np.asarray(unit_solutions.system.basis.element_dofs)[:, elements])
+__all__ = ["ASSESSED_BOUNDARIES", "COUNTERWEIGHTS", "SUPERPOSED", "assessed_groups", "unit_stresses"]
 
 
 def assessed_groups(unit_solutions: UnitSolutions) -> dict[str, np.ndarray]:
-    """Mesh node numbers of every assessed group present in the mesh: the fillet and
-    oil-bore boundaries (all P2 nodes of their facets), each counterweight subdomain and
-    its junction with the web (nodes shared by the counterweight's and the web's
-    elements)."""
-    mesh, basis = unit_solutions.mesh, unit_solutions.system.basis
-    groups = {}
-    for name in ASSESSED_BOUNDARIES:
-        if name in (mesh.boundaries or {}):
-            groups[name] = np.unique(basis.get_dofs(facets=mesh.boundaries[name]).all())
-    subs = mesh.subdomains or {}
-    for i, cw in enumerate(COUNTERWEIGHTS, start=1):
-        if cw in subs:
-            cw_nodes = _element_nodes(unit_solutions, subs[cw])
-            groups[cw] = cw_nodes
-            web = f"web_{i}"
-            if web in subs:
-                junction = np.intersect1d(cw_nodes, _element_nodes(unit_solutions, subs[web]))
-                if junction.size:
-                    groups[f"junction_{i}"] = junction
-    return groups
+    """Mesh node numbers of every assessed group present in the mesh
+    (``fe.node_groups.node_groups``): the fillet and oil-bore boundaries, each
+    counterweight subdomain and its junction with the web."""
+    return node_groups(unit_solutions.mesh, unit_solutions.system.basis)
 
 
 def _recover(unit_solutions: UnitSolutions, cases: tuple[str, ...], ids: np.ndarray) -> np.ndarray:

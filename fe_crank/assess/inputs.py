@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from fe_crank import model
 from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.scf import ScfResult
+from fe_crank.assess.shaft import ShaftAssessment
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.fe.unit_cases import UnitSolutions
@@ -30,7 +31,8 @@ class AssessInputs:
     geometry stage's; a throw without one, a model that is no throw of a crank geometry,
     has its rods at mid-pin, no UR M53 route and no counterweights); ``scf``: key -> the
     SCF mode's result, for the models whose UR M53 dimensions are outside the empirical range;
-    ``geometry_file``: the file of the geometry ("" for none)."""
+    ``geometry_file``: the file of the geometry ("" for none); ``shaft``: the whole-shaft
+    model's results (``check.shaft_stage``), whose criteria take the worse of both models."""
 
     case: str
     source_file: str
@@ -47,3 +49,4 @@ class AssessInputs:
     throw_geometry: dict[str, ThrowGeometry] = field(default_factory=dict)
     scf: dict[str, ScfResult] = field(default_factory=dict)
     geometry_file: str = ""  # the geometry's file (named in the bolted joints' input errors)
+    shaft: ShaftAssessment | None = None  # the whole-shaft model's results (its stage), when it ran

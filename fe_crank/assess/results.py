@@ -37,6 +37,21 @@ def _extreme(e):
     }
 
 
+def group_json(g) -> dict:
+    """One ``GroupResult`` as results.json writes it (``$defs/group`` of the schema)."""
+    return _group(g)
+
+
+def _by_model(v) -> dict:
+    return {
+        "criterion": v.criterion,
+        "model": v.model,
+        "value": _num(v.value),
+        "location": v.location,
+        "governs": v.governs,
+    }
+
+
 def _group(g):
     return {
         "group": g.group,
@@ -196,6 +211,7 @@ def to_json(assessment: Assessment) -> dict:
             for t in a.throws
         ],
         "notes": [n.display for n in a.notes],
+        **({"criteria_by_model": [_by_model(v) for v in a.by_model]} if a.by_model else {}),
     }
 
 

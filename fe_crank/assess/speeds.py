@@ -13,8 +13,9 @@ first: the first state at a speed, the lowest speed.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import TypeVar
 
 from fe_crank.assess.extremes import Wanted
 from fe_crank.assess.loads import FIRING
@@ -23,6 +24,8 @@ from fe_crank.io.criteria import Criteria
 from fe_crank.results import SpeedValue
 
 RPM = 30.0 / math.pi
+
+T = TypeVar("T")
 
 #: (value, where) of a criterion's worst case, or None when the model gives none
 Found = tuple[float, str] | None
@@ -53,16 +56,24 @@ def over_sweep(
 ) -> tuple[float, str, float, tuple[SpeedValue, ...]] | None:
     """(worst value, its location with its speed and case, its speed in rpm, per-speed
     values) over the sweep, or None when no state gives a value."""
+    return over_states(find, sense, [(st.speed, st.case, st.throws) for st in sweep])
+
+
+def over_states(
+    find: Callable[[T], Found], sense: str, states: Sequence[tuple[float, str, T]]
+) -> tuple[float, str, float, tuple[SpeedValue, ...]] | None:
+    """``over_sweep`` of any results per load state: (speed rad/s, case, results) each,
+    ``find`` on the results (the whole shaft's main bearings, ``assess.shaft_criteria``)."""
     per: dict[float, tuple[float, str]] = {}
-    for st in sweep:
-        got = find(st.throws)
+    for speed, case, results in states:
+        got = find(results)
         if got is None:
             continue
         value, where = got
-        if st.case != FIRING:
-            where = f"{where}; {st.case}" if where else st.case
-        if _worse((value, where), per.get(st.speed), sense):
-            per[st.speed] = (value, where)
+        if case != FIRING:
+            where = f"{where}; {case}" if where else case
+        if _worse((value, where), per.get(speed), sense):
+            per[speed] = (value, where)
     if not per:
         return None
     speeds = sorted(per)
@@ -77,4 +88,4 @@ def over_sweep(
     return value, loc, w * RPM, tuple(SpeedValue(x * RPM, per[x][0], per[x][1]) for x in speeds)
 
 
-__all__ = ["RPM", "Found", "StateResults", "wanted_extremes", "over_sweep"]
+__all__ = ["RPM", "Found", "StateResults", "wanted_extremes", "over_sweep", "over_states"]

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 
 from fe_crank.assess.criteria import locate
 from fe_crank.assess.qualifiers import qualified
+from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, ShaftAssessment
 from fe_crank.assess.verdict import judge
 from fe_crank.fe.convergence import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceStudy
 from fe_crank.results import CriterionResult
@@ -152,12 +153,14 @@ def refine(
     sweep: tuple = (),
     overspeed: float | None = None,
     qualifiers: dict[str, str] | None = None,
+    shaft: ShaftAssessment | None = None,
 ) -> tuple[tuple[CriterionResult, ...], tuple[Refinement, ...]]:
     """``criteria`` with the FE stress criteria re-evaluated at the study's estimates
     (module docstring), and the factor each of them ends up at (its governing group's).
     ``throws``, ``sweep``, ``overspeed``, ``qualifiers``: the assessment's (``Assessment``:
     the operating speed's throws, every speed and load state, the overspeed, the verdict
-    line's words)."""
+    line's words, the whole-shaft model's results: its throws are meshed as the per-throw
+    model's, so a group's k applies to them alike)."""
     cache: dict[tuple[str, str], tuple[float, str, str, float] | None] = {}
 
     def got(throw: str, group: str):
@@ -172,7 +175,7 @@ def refine(
     out, made = [], []
     for c in criteria:
         found = (
-            locate(c.quantity, c.sense, throws, sweep=sweep, overspeed=overspeed, factor=factor)
+            locate(c.quantity, c.sense, throws, sweep=sweep, overspeed=overspeed, factor=factor, shaft=shaft)
             if c.quantity in SCALED
             else None
         )
@@ -180,7 +183,10 @@ def refine(
             out.append(c)
             continue
         value, where, speed_rpm, per_speed = found
-        parts = where.split(", ")
+        bare = next(
+            (where.removeprefix(f"{m}: ") for m in (PER_THROW, WHOLE_SHAFT) if where.startswith(f"{m}: ")), where
+        )
+        parts = bare.split(", ")  # the throw and the group, without the model's name (with the whole shaft)
         f = got(parts[0].removeprefix("throw "), parts[1]) if len(parts) > 1 else None
         if f is not None:
             r = Refinement(c.name, f[0], SURFACES[_surface(parts[1]) or ""], f[1], f[2], f[3])
@@ -206,7 +212,7 @@ def refinements(criteria: tuple[CriterionResult, ...], throws, studies: dict, **
 
 def of_assessment(a) -> dict:
     """``refine``'s keywords from an ``assess.case.Assessment``."""
-    return {"sweep": a.sweep, "overspeed": a.overspeed, "qualifiers": a.qualifiers}
+    return {"sweep": a.sweep, "overspeed": a.overspeed, "qualifiers": a.qualifiers, "shaft": a.shaft}
 
 
 def criterion(studies: dict[str, ConvergenceStudy]) -> CriterionResult:

@@ -29,6 +29,7 @@ Notes that differ only in the throws they concern are shown once, naming the thr
 from __future__ import annotations
 
 from fe_crank.assess.case import Assessment
+from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT
 from fe_crank.check import converged
 from fe_crank.notes import ASSUMPTION, NOT_A_SIGN_OFF, WARNING, Note, from_strings, grouped
 from fe_crank.outputs import CaseOutputs
@@ -52,8 +53,9 @@ def _names(assessment: Assessment | None, quantities) -> tuple[str, ...]:
 
 def fillet_criteria(assessment: Assessment, fillet: str, throws) -> tuple[str, ...]:
     """The FE stress criteria whose governing location is ``fillet`` of one of ``throws``
-    (the location reads "throw <name>, <group>, node ...", ``assess.criteria``)."""
-    heads = tuple(f"throw {t}, {fillet}," for t in throws)
+    (the location reads "throw <name>, <group>, node ...", ``assess.criteria``; with the
+    whole shaft after the model's name, "per-throw model: throw ...")."""
+    heads = tuple(f"{m}throw {t}, {fillet}," for t in throws for m in ("", f"{PER_THROW}: ", f"{WHOLE_SHAFT}: "))
     return tuple(
         c.name for c in assessment.criteria if c.quantity in FE_STRESS_QUANTITIES and c.location.startswith(heads)
     )

@@ -3,7 +3,8 @@
 load -> dynamics (operating and overspeed cycles) -> balance -> geometry (mesh plan, UR
 M53 dimensions, CAD mass properties) -> mesh (cached) -> FE unit cases -> SCF mode (only
 where UR M53's empirical SCFs are out of range) -> torsion (with a ``[torsion]``
-section) -> assessment -> hot-spot convergence study (sign-off meshes).  Each stage is a
+section) -> whole shaft (several throws on one shaft, or a ``[shaft]`` section:
+``check.shaft_stage``) -> assessment -> hot-spot convergence study (sign-off meshes).  Each stage is a
 plain typed call into its package, timed on its own; no stage computes what another
 owns, and each reads only the outputs of the stages before it (``CaseOutputs``).
 """
@@ -16,7 +17,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TypeVar, cast
+from typing import TypeVar
 
 from fe_crank.assess import m53
 from fe_crank.assess.case import AssessInputs, Assessment, assess_case
@@ -27,8 +28,10 @@ from fe_crank.assess.workers import threads
 from fe_crank.balance.analysis import BalanceResult, analyse_balance
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.source import GeometrySource, mesh_source_throw
+from fe_crank.check import shaft_stage
 from fe_crank.check.cad_geometry import cad_geometry_stage
 from fe_crank.check.options import CheckOptions
+from fe_crank.check.torsion_stage import torsion_stage
 from fe_crank.errors import InputError
 from fe_crank.fe import convergence, solve_unit_cases
 from fe_crank.fe.fe_options import FeOptions
@@ -37,18 +40,13 @@ from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.geometry.mass import throw_solids
 from fe_crank.io.base import InputFile
 from fe_crank.io.loadcase import LoadCase, load_loadcase
-from fe_crank.mechanism.cycles import EngineCycles, engine_cycles
+from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.mesh.plan import plan_meshes
 from fe_crank.mesh.types import ThrowMesh
-from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel, TorsionOutput
+from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel
 from fe_crank.results import StageTime
 from fe_crank.throw_scope import throws_of
-from fe_crank.torsion.analysis import with_vibratory_torque
-from fe_crank.torsion.build import throw_inertias
-from fe_crank.torsion.loads import assessed_loads, fe_inertias
-from fe_crank.torsion.misfire import analyse_misfire
-from fe_crank.torsion.model import TorsionCase
-from fe_crank.torsion.stiffness import fe_throw_stiffness
+from fe_crank.torsion.loads import assessed_loads
 
 log = logging.getLogger(__name__)
 
@@ -109,6 +107,12 @@ def run_stages(run: Run) -> None:
     assert cycles is not None
     if lc.torsion is not None:  # torsional vibration (docs/torsion.md): only with a [torsion] section
         run.keep(torsion=run.timed("torsion", torsion_stage, lc, geo, unit_solutions, cycles))
+    if shaft_stage.wanted(lc):  # the whole shaft on its bearings (docs/shaft.md)
+        with threads(assess_threads_of(opts)):
+            shaft = run.timed(
+                "whole_shaft", shaft_stage.whole_shaft_stage, lc, geo, run.out, opts.render or opts.write_vtu
+            )
+        run.keep(whole_shaft=shaft)
     with threads(assess_threads_of(opts)):
         assessment = run.timed("assess", assess_stage, lc, run.out, opts.render or opts.write_vtu)
     run.keep(assessment=assessment)
@@ -163,6 +167,8 @@ def geometry_stage(lc: LoadCase, options: CheckOptions, balance: BalanceResult |
         cache_dir=options.cache_dir,
         file=lc.source_file,
     )
+    if shaft_stage.wanted(lc):  # the per-throw model meshes the whole shaft's throws (one cached mesh each)
+        plan = dataclasses.replace(plan, options=shaft_stage.throw_mesh_options(lc, plan.options))
     wanted = tuple(sorted({t.name for t in g.throws if t.counterweights}))
     if lc.torsion is not None:
         wanted = tuple(t.name for t in g.throws)
@@ -250,45 +256,6 @@ def scf_stage(lc: LoadCase, geo: GeometryModel, meshes: dict[str, ThrowMesh]) ->
     return out
 
 
-def torsion_stage(
-    lc: LoadCase, geo: GeometryModel, unit_solutions: dict[str, UnitSolutions], cycles: EngineCycles
-) -> TorsionOutput:
-    """The torsional forced response (``torsion.analysis``) with the throws' inertias from
-    the geometry stage's CAD mass properties, with every cylinder firing and with each
-    misfire case of ``[operating] misfire`` (``torsion.misfire.analyse_misfire``); the FE
-    throw stiffness is measured from the torque unit case when it is there (the report
-    shows it beside Carter's; it is used when ``throw_stiffness = "fe"``).  Hands over the
-    loads of every speed of the sweep and state with their vibration
-    (``torsion.loads.assessed_loads``) and UR M53's journal torques (the largest half
-    range over the speed range and every case, ``torsion.handover``)."""
-    settings = lc.torsion
-    assert settings is not None
-    first = next(iter(unit_solutions.values()), None)
-    k_fe = fe_throw_stiffness(first) if first is not None and "torque" in first.cases else None
-    if settings.throw_stiffness == "fe" and k_fe is None:
-        raise InputError(
-            "throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file, key="torsion.throw_stiffness"
-        )
-    # a CAD geometry with [torsion] is refused at input (io.loadcase): the case is a TorsionCase
-    mis = analyse_misfire(lc, inertias=throw_inertias(cast(TorsionCase, lc), geo.solids), fe_stiffness=k_fe)
-    handed = mis.journal_torques()
-    loads = assessed_loads(
-        lc.engine,
-        cycles,
-        reaction=lc.fe.torque_reaction,
-        torsion=mis.firing,
-        misfire_torsion={c.cylinder: c.result for c in mis.cases},
-        fe_inertia=fe_inertias(unit_solutions, cycles.operating.throws),
-        handed=handed,
-    )
-    return TorsionOutput(
-        mis.firing,
-        with_vibratory_torque(cycles.operating, mis.firing, handed=handed),
-        misfire=mis if mis.cases else None,
-        loads=loads,
-    )
-
-
 def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
     """Stresses, safety factors and the load case's criteria; ``fields``: also the
     whole-mesh stress of the states the report draws."""
@@ -318,5 +285,6 @@ def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
         throw_geometry=out.geometry.throws,
         scf=out.fe.scf,
         geometry_file=str(lc.geometry.file) if lc.geometry is not None else "",
+        shaft=out.whole_shaft.assessment if out.whole_shaft is not None else None,
     )
     return assess_case(inputs, fields=fields)

@@ -36,6 +36,9 @@ from fe_crank.mesh.shaft import rotation
 class ThrowCycleLoad:
     throw: str
     pin_force: np.ndarray  # (n, 2) N, force of the rod(s) on the crankpin, throw frame
+    #: (n,) the weight of the throw's ``spin_up@<throw>`` case (its body force of a unit
+    #: angular acceleration about z; ``whole_shaft.torque_flow_loads``), None: no such case
+    spin_up: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -76,10 +79,19 @@ def _to_engine(v: np.ndarray, psi: np.ndarray) -> np.ndarray:
     return np.stack([c * v[..., 0] + s * v[..., 1], -s * v[..., 0] + c * v[..., 1]], axis=-1)
 
 
-def case_weights(cases: ShaftCases, loads: dict[str, np.ndarray], speed: float, counterweights: bool) -> np.ndarray:
-    """(n, n_cases) weights of the applied cases (pins, centrifugal); bearing cases zero."""
+def case_weights(
+    cases: ShaftCases,
+    loads: dict[str, np.ndarray],
+    speed: float,
+    counterweights: bool,
+    extra: dict[str, np.ndarray] | None = None,
+) -> np.ndarray:
+    """(n, n_cases) weights of the applied cases (pins, centrifugal, ``extra``: further
+    cases by name, (n,) each); bearing cases zero."""
     n = next(iter(loads.values())).shape[0]
     W = np.zeros((n, len(cases.names)))
+    for name, w in (extra or {}).items():
+        W[:, cases.index(name)] = w
     for pp in cases.model.pieces:
         if pp.kind != "throw":
             continue
@@ -125,14 +137,19 @@ def shaft_cycle(
     *,
     counterweights: bool = True,
     laws=None,
+    front_torque: np.ndarray | None = None,
 ) -> ShaftCycle:
     """The cycle (module doc).  ``cycle_angle`` (n,) rad; ``shaft_angle`` psi (n,) rad;
     ``speed`` rad/s; ``mass``: throw name -> ``geometry.mass.MassProperties`` of its solid;
-    ``laws``: per bearing (default the layout's)."""
+    ``laws``: per bearing (default the layout's); ``front_torque`` (n,): the weight of the
+    ``torque_front`` case (M_z on the shaft's front face), with the throws' ``spin_up``."""
     layout = cases.model.mesh.layout
     laws = laws or [b.law for b in layout.bearings]
     by = {t.throw: np.asarray(t.pin_force, float) for t in loads}
-    W = case_weights(cases, by, speed, counterweights)
+    extra = {f"spin_up@{t.throw}": np.asarray(t.spin_up, float) for t in loads if t.spin_up is not None}
+    if front_torque is not None:
+        extra["torque_front"] = np.asarray(front_torque, float)
+    W = case_weights(cases, by, speed, counterweights, extra)
     f, d, W = solve_cycle(cases, W, laws)
     deg = np.rad2deg(cycle_angle)
     bearings = []
@@ -155,14 +172,16 @@ def shaft_cycle(
                 float(mag.mean() / (dj * b.width)),
             )
         )
-    webs = _web_moments(cases, by, f, speed, shaft_angle, mass, counterweights)
+    spin = {t.throw: np.asarray(t.spin_up, float) for t in loads if t.spin_up is not None}
+    webs = _web_moments(cases, by, f, speed, shaft_angle, mass, counterweights, spin)
     return ShaftCycle(deg, speed, tuple(bearings), webs, W, d, counterweights)
 
 
-def _web_moments(cases, by, f, speed, psi, mass, counterweights) -> tuple[WebMoment, ...]:
+def _web_moments(cases, by, f, speed, psi, mass, counterweights, spin=None) -> tuple[WebMoment, ...]:
     layout = cases.model.mesh.layout
     g = layout.geometry
     zp, t = g.crankpin_length / 2, g.web_thickness
+    spin = spin or {}
     # loads on the shaft as (z, force (n, 2) shaft frame)
     items = []
     for th in layout.throws:
@@ -171,6 +190,10 @@ def _web_moments(cases, by, f, speed, psi, mass, counterweights) -> tuple[WebMom
         for z0, z1, u in _mass_pieces(mass[th.name], g, th.spec, counterweights):
             F = np.broadcast_to(speed**2 * (R @ u), f[:, 0].shape)
             items.append(((th.z + z0, th.z + z1), F) if z1 > z0 else (th.z + z0, F))
+        if th.name in spin:  # the body force of the spin-up case, rho (e_z x x): resultant e_z x (m c) per part
+            for z0, z1, u in _mass_pieces(mass[th.name], g, th.spec, True):
+                F = spin[th.name][:, None] * (R @ np.array([-u[1], u[0]]))[None, :]
+                items.append(((th.z + z0, th.z + z1), F) if z1 > z0 else (th.z + z0, F))
     for j, b in enumerate(layout.bearings):
         items.append((b.z, f[:, j]))
     out = []

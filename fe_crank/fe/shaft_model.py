@@ -28,21 +28,24 @@ import numpy as np
 
 from fe_crank.errors import MeshError
 from fe_crank.fe.bases import cell_basis
+from fe_crank.fe.node_groups import node_groups
 from fe_crank.fe.shaft_patterns import end_patterns, surface_patterns, throw_patterns
 from fe_crank.fe.substructure import Condensed, condense
 from fe_crank.mesh.shaft import ShaftMesh, joints, rotation
-
-RECOVER = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journal_fillet_2", "oil_bore")
 
 
 @dataclass(frozen=True)
 class ShaftFeOptions:
     solver: str = "auto"
     pin_half_angle: float = np.deg2rad(60.0)
-    #: throw boundaries whose nodes (and their elements' nodes) keep the condensed fields;
-    #: None: the fillets, the oil bore and the counterweight fillets
+    #: further throw boundaries whose nodes (and their elements' nodes) keep the condensed
+    #: fields, beside the assessed groups (``fe.node_groups``: fillets, oil bore,
+    #: counterweight fillets and junctions)
     recover: tuple[str, ...] | None = None
     symmetry: bool = True  # mirrored throws condensed on their two symmetry components
+    #: keep each distinct piece's factorisation after its condensation, for whole fields
+    #: (``fe.shaft_fields``; ``ShaftModel.free_factors`` releases them)
+    keep_factors: bool = False
 
 
 @dataclass
@@ -102,15 +105,31 @@ class ShaftModel:
     def n_dof(self) -> int:
         return self.mesh.n_dof
 
+    def free_factors(self) -> None:
+        """Release the factorisations kept for whole fields (``ShaftFeOptions.keep_factors``)."""
+        for pp in self.pieces:
+            pp.cond.free()
+
+    def release_recovery(self) -> None:
+        """Drop the condensed fields at the recovery nodes (``Condensed.X_rec``, the model's
+        largest arrays) once the stresses there are taken; ``ShaftCases.recover`` then no
+        longer works."""
+        for pp in self.pieces:
+            pp.cond.X_rec = np.zeros((0, pp.cond.X_rec.shape[1]))
+
 
 def _recovery_nodes(basis, mesh, names) -> np.ndarray:
-    """The nodes of every element touching the named boundaries' nodes."""
+    """The nodes of every element touching an assessed group's nodes (``fe.node_groups``,
+    the counterweight bodies left out: their stress is their own centrifugal load, the
+    per-throw model's) or the named boundaries' nodes."""
     from fe_crank.fe.stress import elements_of_nodes
 
     on = [np.asarray(mesh.boundaries[n]) for n in names if n in (mesh.boundaries or {})]
-    if not on:
+    parts = [basis.get_dofs(np.concatenate(on)).all()] if on else []
+    parts += list(node_groups(mesh, basis, bodies=False).values())
+    if not parts:
         return np.zeros(0, int)
-    nodes = np.unique(basis.get_dofs(np.concatenate(on)).all())
+    nodes = np.unique(np.concatenate(parts))
     el = elements_of_nodes(basis.element_dofs, nodes, basis.N)
     return np.unique(basis.element_dofs[:, el])
 
@@ -120,8 +139,7 @@ def _condense_piece(mesh, kind: str, stubs, torque_faces, material, opt: ShaftFe
     rho = material.density
     if kind == "throw":
         pats = throw_patterns(basis, rho, opt.pin_half_angle, torque_faces)
-        names = opt.recover or RECOVER + tuple(n for n in mesh.boundaries if n.startswith("counterweight_fillet"))
-        rec = _recovery_nodes(basis, mesh, names)
+        rec = _recovery_nodes(basis, mesh, opt.recover or ())
     else:
         pats = end_patterns(basis, rho, torque_faces)
         rec = np.zeros(0, int)
@@ -140,6 +158,7 @@ def _condense_piece(mesh, kind: str, stubs, torque_faces, material, opt: ShaftFe
         basis=basis,
         mirrored=mirrored,
         solver=opt.solver,
+        keep=opt.keep_factors,
     )
     return cond, moments
 
@@ -186,7 +205,7 @@ def build_shaft_model(
     layout = sm.layout
     last = len(sm.pieces) - 1
     pto = 0 if layout.power_takeoff == "front" else last
-    pto_face = "end_1" if pto == 0 else "end_2"
+    pto_face = "end_1" if layout.power_takeoff == "front" else "end_2"  # a single piece has both
     faces = ("end_1", "end_2")  # torque patterns on both end faces of every piece: one condensation per mesh
     done: dict[tuple, tuple] = {}
     pieces, moments = [], {}

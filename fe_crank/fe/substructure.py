@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -59,6 +60,15 @@ class Condensed:
     phi_X: np.ndarray  # (n_phi, nb)
     mirrored: bool
     timings: dict[str, float] = field(default_factory=dict)
+    #: with ``condense(..., keep=True)``: the interior's factorisation and the rows K_b of the
+    #: stiffness, for whole fields later (``fe.shaft_fields``); ``free`` releases them
+    interior: Any = None  # a factorisation handle (``fe.symsolve``), or None
+    K_b: Any = None  # a sparse matrix, or None
+
+    def free(self) -> None:
+        if self.interior is not None:
+            self.interior.free()
+        self.interior = self.K_b = None
 
     def column(self, name: str) -> int:
         return self.names.index(name)
@@ -92,11 +102,13 @@ def condense(
     mirrored: bool = False,
     solver: str = "auto",
     block: int = BLOCK,
+    keep: bool = False,
 ) -> Condensed:
     """Condense ``mesh`` onto ``end_1`` and ``end_2`` (module doc).  ``patterns``: local
     loads (3 N,) by name; ``functionals``: rows (3 N,) whose products with the piece's
     field are wanted; ``rec_nodes``: where X is kept; ``mirrored``: the mesh is its own
-    image across z = 0 with ``end_1`` <-> ``end_2`` (verified, else the whole piece)."""
+    image across z = 0 with ``end_1`` <-> ``end_2`` (verified, else the whole piece);
+    ``keep``: the factorisation stays (``Condensed.interior``, released by ``free``)."""
     t = {}
     t0 = time.perf_counter()
     E, nu = youngs_modulus, poisson_ratio
@@ -177,7 +189,8 @@ def condense(
             del us
         else:
             store(cols, interior.solve(R.toarray())[nd])
-    interior.free()
+    if not keep:
+        interior.free()
     t["interface_columns"] = time.perf_counter() - t0
     return Condensed(
         mesh=mesh,
@@ -196,4 +209,6 @@ def condense(
         phi_X=phi_X,
         mirrored=mirror is not None,
         timings=t,
+        interior=interior if keep else None,
+        K_b=K_b if keep else None,
     )

@@ -82,6 +82,7 @@ class WholeShaftResult:
     webs: tuple[WebResult, ...]
     support_model: str
     cycles: tuple[ShaftCycle, ShaftCycle]  # with, without counterweights (weights for stresses)
+    overspeed: tuple[ShaftCycle, ...] = ()  # the overspeed cycles, with counterweights
     timings: dict[str, float] = field(default_factory=dict)
 
     def to_dict(self) -> dict:
@@ -114,6 +115,87 @@ def support_text(layout: ShaftLayout) -> str:
     )
 
 
+def throw_masses(layout: ShaftLayout) -> dict:
+    """Throw name -> the exact mass properties of its solid (``geometry.mass``; one solid per
+    set of counterweights: the name and angle do not change it)."""
+    by_shape: dict = {}
+    for th in layout.throws:
+        if th.spec.counterweights not in by_shape:
+            by_shape[th.spec.counterweights] = mass_properties(layout.geometry, th.spec)
+    return {th.name: by_shape[th.spec.counterweights] for th in layout.throws}
+
+
+def torque_flow_cases(model) -> dict[str, dict[tuple[int, str], float]]:
+    """The cases that let every journal carry its own torque (``torque_flow_loads``): the
+    body force of a unit angular acceleration of each throw (``spin_up@<throw>``) and M_z
+    = 1 N m on the shaft's front face (``torque_front``)."""
+    out: dict[str, dict[tuple[int, str], float]] = {
+        f"spin_up@{pp.throw}": {(pp.index, "spin_up"): 1.0} for pp in model.pieces if pp.kind == "throw"
+    }
+    out["torque_front"] = {(0, "torque_end_1"): 1.0}
+    return out
+
+
+def torque_flow_loads(cases: ShaftCases, layout: ShaftLayout, dynamics) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """Weights of the ``torque_flow_cases`` over the cycle of ``dynamics``: per throw
+    (``spin_up@<throw>``) the body force carrying the rest of its rear journal's torque,
+    T_rear - T_front - T_own = (the throw's inertia and damping torque with torsional
+    vibration, zero quasi-statically; ``torsion.flow``), and the
+    first throw's front journal torque on the shaft's front face (``torque_front``); the
+    power take-off's face reacts the last throw's rear journal torque, so every journal
+    carries its own torque.  Signs: a torque T in the sense of rotation is M_z = -sense T;
+    the spin-up case's moment about z is J_z = its resultant's M_z."""
+    sense = layout.sense
+    spin = {}
+    for pp in cases.model.pieces:
+        if pp.kind != "throw":
+            continue
+        assert pp.throw is not None
+        tl = dynamics.throws[pp.throw]
+        jz = float(pp.cond.resultant[5, pp.cond.column("spin_up")])
+        rest = np.asarray(tl.torque_rear) - np.asarray(tl.torque_front) - np.asarray(tl.torque)
+        spin[pp.throw] = -sense * rest / jz
+    first = layout.throws[0].name
+    return spin, -sense * np.asarray(dynamics.throws[first].torque_front, float)
+
+
+def shaft_cycle_of(
+    cases: ShaftCases, layout: ShaftLayout, mass: dict, dynamics, *, counterweights: bool = True, laws=None
+) -> ShaftCycle:
+    """The whole shaft over the cycle of ``dynamics`` (the dynamics stage's result: ``theta``,
+    ``speed``, per throw ``pin_force`` (n, 2) in the throw frame, ``angle_global`` and the
+    journal torques); with the torque-flow cases when the model has them."""
+    first = layout.throws[0]
+    psi = np.asarray(dynamics.throws[first.name].angle_global) - layout.sense * first.angle
+    spin, front = (None, None)
+    if "torque_front" in cases.names:
+        spin, front = torque_flow_loads(cases, layout, dynamics)
+    loads = tuple(
+        ThrowCycleLoad(th.name, dynamics.throws[th.name].pin_force, None if spin is None else spin[th.name])
+        for th in layout.throws
+    )
+    return shaft_cycle(
+        cases,
+        loads,
+        dynamics.theta,
+        psi,
+        dynamics.speed,
+        mass,
+        counterweights=counterweights,
+        laws=laws,
+        front_torque=front,
+    )
+
+
+def bearings_of(
+    cases: ShaftCases, layout: ShaftLayout, mass: dict, dynamics, *, laws=None
+) -> tuple[BearingResult, ...]:
+    """The main bearings' loads over the cycle of ``dynamics`` (another speed or load state
+    on the same condensed shaft), with and without counterweights."""
+    on, off = (shaft_cycle_of(cases, layout, mass, dynamics, counterweights=cw, laws=laws) for cw in (True, False))
+    return tuple(BearingResult(a, b) for a, b in zip(on.bearings, off.bearings))
+
+
 def analyse_whole_shaft(
     layout: ShaftLayout,
     material,
@@ -123,32 +205,29 @@ def analyse_whole_shaft(
     cache_dir=DEFAULT_CACHE_DIR,
     options: ShaftFeOptions | None = None,
     laws=None,
+    torque_flow: bool = False,
+    overspeed=(),
+    max_elements: int | None = None,
 ) -> tuple[WholeShaftResult, ShaftCases]:
     """The whole shaft over the cycle (module doc); also returns the unit cases (stresses
-    by superposition: ``ShaftCases.recover`` with ``WholeShaftResult.cycles[i].weights``)."""
+    by superposition: ``ShaftCases.recover`` with ``WholeShaftResult.cycles[i].weights``).
+    ``torque_flow``: every journal carries its own torque (``torque_flow_loads``: the
+    dynamics' journal torques, e.g. with the torsional stage's vibratory torque);
+    ``overspeed``: dynamics results of the overspeed cycles (with counterweights)."""
     t = {}
     t0 = time.perf_counter()
-    sm = mesh_shaft(layout, size=size, cache_dir=cache_dir)
+    sm = mesh_shaft(layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
     t["mesh"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     model = build_shaft_model(sm, material, options)
     t["condensation"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    cases = solve_cases(model)
+    cases = solve_cases(model, torque_flow_cases(model) if torque_flow else None)
     t["cases"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    by_shape: dict = {}  # the solid depends on the counterweights only (not on the name or angle)
-    for th in layout.throws:
-        if th.spec.counterweights not in by_shape:
-            by_shape[th.spec.counterweights] = mass_properties(layout.geometry, th.spec)
-    mass = {th.name: by_shape[th.spec.counterweights] for th in layout.throws}
-    first = layout.throws[0]
-    psi = np.asarray(dynamics.throws[first.name].angle_global) - layout.sense * first.angle
-    loads = tuple(ThrowCycleLoad(th.name, dynamics.throws[th.name].pin_force) for th in layout.throws)
-    on, off = (
-        shaft_cycle(cases, loads, dynamics.theta, psi, dynamics.speed, mass, counterweights=cw, laws=laws)
-        for cw in (True, False)
-    )
+    mass = throw_masses(layout)
+    on, off = (shaft_cycle_of(cases, layout, mass, dynamics, counterweights=cw, laws=laws) for cw in (True, False))
+    os_cycles = tuple(shaft_cycle_of(cases, layout, mass, d, laws=laws) for d in overspeed)
     t["cycle"] = time.perf_counter() - t0
     result = WholeShaftResult(
         crank_angle_deg=on.crank_angle_deg,
@@ -158,6 +237,7 @@ def analyse_whole_shaft(
         webs=tuple(WebResult(a, b) for a, b in zip(on.webs, off.webs)),
         support_model=support_text(layout),
         cycles=(on, off),
+        overspeed=os_cycles,
         timings={**t, **{f"condensation.{k}": v for k, v in model.timings.items()}},
     )
     return result, cases

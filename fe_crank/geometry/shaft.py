@@ -200,9 +200,72 @@ def bearing_stub(g: CrankGeometry, engine, *, geometry_file: str, engine_file: s
 def throw_at_bearings(
     g: CrankGeometry, engine, *, geometry_file: str, engine_file: str, shaft: str | None = None
 ) -> CrankGeometry:
-    """The geometry whose journal stubs end at the engine's bearing centres (module doc)."""
-    stub = bearing_stub(g, engine, geometry_file=geometry_file, engine_file=engine_file, shaft=shaft)
+    """The geometry whose journal stubs end at the engine's bearing centres (module doc).
+
+    A geometry of several throws must describe the engine's shaft (``check_against_engine``).
+    A geometry of one throw may stand for every throw of the engine (the per-throw model's
+    shortcut, ``mesh.plan``): its crank radius is checked against every throw's stroke and
+    the stub follows from the pitch of the shafts whose throws the engine spreads along the
+    axis (one pitch for all of them); on an engine that places none apart (one throw per
+    shaft, or throws at one axial position) the geometry's ``journal.length`` stays."""
+    if len(g.throws) == 1:
+        stub = _one_for_all_stub(g, engine, geometry_file, engine_file)
+    else:
+        stub = bearing_stub(g, engine, geometry_file=geometry_file, engine_file=engine_file, shaft=shaft)
     return g if stub == g.journal_length else dataclasses.replace(g, journal_length=stub)
+
+
+def _one_for_all_stub(g: CrankGeometry, engine, gf: str, ef: str) -> float:
+    for i, t in enumerate(engine.throws):
+        if abs(t.crank_radius - g.crank_radius) > TOL * g.crank_radius:
+            raise InputError(
+                f"crank radius {g.crank_radius * 1e3:.6g} mm (stroke {2e3 * g.crank_radius:.6g} mm) here, "
+                f"stroke {2e3 * t.crank_radius:.6g} mm (crank radius {t.crank_radius * 1e3:.6g} mm) for throw "
+                f"{t.name!r} in the engine {ef} (throws[{i}].stroke): the geometry's one throw stands for "
+                "every throw of the engine",
+                file=gf,
+                key="stroke",
+            )
+    pitches: dict[str, float] = {}
+    for s in engine.shafts:
+        et = sorted((t for t in engine.throws if t.shaft == s.name), key=lambda t: t.axial_position)
+        if len(et) > 1 and et[-1].axial_position - et[0].axial_position > TOL * g.crank_radius:
+            p = _pitch(dataclasses.replace(g, shaft=None), et, gf, ef)
+            if p is not None:  # two throws or more apart: always
+                pitches[s.name] = p
+    if not pitches:
+        return g.journal_length
+    values = sorted(pitches.values())
+    if values[-1] - values[0] > TOL * values[-1]:
+        raise InputError(
+            f"the engine {ef} spaces the throws of its shafts differently "
+            f"({', '.join(f'{k}: {v * 1e3:.6g} mm' for k, v in pitches.items())}); the geometry's one throw "
+            "cannot stand for all of them: give a geometry per shaft",
+            file=gf,
+            key="throws",
+        )
+    stated = g.shaft.pitch if g.shaft is not None else None
+    if stated is not None and abs(stated - values[0]) > TOL * values[0]:
+        raise InputError(
+            f"pitch {stated * 1e3:.6g} mm here, {values[0] * 1e3:.6g} mm between the throws' axial_position "
+            f"in the engine {ef}",
+            file=gf,
+            key="shaft.pitch",
+        )
+    return 0.5 * (values[0] - g.crankpin_length - 2 * g.web_thickness)
+
+
+def for_engine_throws(g: CrankGeometry, engine, shaft: str | None = None) -> CrankGeometry:
+    """The geometry with one throw per throw of the engine's shaft: ``g`` itself, or, when
+    ``g`` gives one throw standing for all (``throw_at_bearings``), that throw under each
+    engine throw's name and angle (axial order), so that the whole shaft can be built."""
+    names = [s.name for s in engine.shafts]
+    shaft = shaft if shaft is not None else (names[0] if len(names) == 1 else None)
+    et = sorted((t for t in engine.throws if t.shaft == shaft), key=lambda t: t.axial_position)
+    if len(g.throws) != 1 or not et:
+        return g
+    one = g.throws[0]
+    return dataclasses.replace(g, throws=tuple(dataclasses.replace(one, name=t.name, angle=t.angle) for t in et))
 
 
 def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str, ef: str) -> tuple[MainBearing, ...]:
@@ -283,3 +346,18 @@ def shaft_layout(
         geometry_file=gf,
         engine_file=ef,
     )
+
+
+def whole_shaft_wanted(g: CrankGeometry | None, engine) -> bool:
+    """Whether a check builds the whole shaft: an engine of one shaft whose throws the
+    engine spreads along the axis (two or more), or a geometry with a ``[shaft]`` section."""
+    if g is None or len(engine.shafts) != 1:
+        return False
+    z = [t.axial_position for t in engine.throws]
+    return g.shaft is not None or (len(z) > 1 and max(z) - min(z) > 0)
+
+
+def engine_shaft_layout(g: CrankGeometry, engine, *, geometry_file: str, engine_file: str) -> ShaftLayout:
+    """The whole shaft of a load case: ``shaft_layout`` of the geometry with one throw per
+    engine throw (``for_engine_throws``)."""
+    return shaft_layout(for_engine_throws(g, engine), engine, geometry_file=geometry_file, engine_file=engine_file)

@@ -78,6 +78,15 @@ QUANTITIES: dict[str, Quantity] = {
     "unbalance_error": Quantity("max", None, (), "|built m r - required m r| / required m r per counterweight plane"),
     "bolt_utilisation": Quantity("max", None, (), "counterweight bolt load m r omega^2 at overspeed / bolt capacity"),
     # VDI 2230 Part 1 (2015) of the bolted counterweight (fe_crank/assess/cw_joint.py)
+    "main_bearing_load": Quantity(
+        "max", "force", (), "peak main-bearing load over the cycle, whole-shaft model, counterweights as built"
+    ),
+    "main_bearing_specific_load": Quantity(
+        "max",
+        "pressure",
+        (),
+        "peak main-bearing load / (journal diameter x bearing width), whole-shaft model, counterweights as built",
+    ),
     "bolt_assembly_utilisation": Quantity(
         "max", None, (), "VDI 2230 R7: equivalent assembly stress / R_p0.2 at the largest preload (<= 0.9)"
     ),

@@ -27,6 +27,7 @@ from fe_crank.cad.config import CadInput
 from fe_crank.errors import InputError
 from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
+from fe_crank.geometry.shaft import engine_shaft_layout, throw_at_bearings, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
 from fe_crank.io.base import InputFile, Strict, read_toml, recording_inputs, validate
@@ -59,6 +60,9 @@ class LoadCase:
     engine: model.Engine
     operating: model.OperatingPoint
     description: str = ""
+    #: the throw as the checks take it: a parametric geometry's journal stubs reach the
+    #: engine's main-bearing centres (``geometry.shaft.throw_at_bearings``); a CAD geometry's
+    #: bearing centres are the journals' middles recognised in the file (``cad.shaft``)
     geometry: CrankGeometry | CadInput | None = None
     material: Material | None = None
     criteria: Criteria | None = None
@@ -67,7 +71,7 @@ class LoadCase:
     mesh: MeshSection = field(default_factory=MeshSection)
     torsion: TorsionSettings | None = None
     inputs: tuple[InputFile, ...] = ()
-    engine_file: str = ""
+    engine_file: str = ""  # the file the engine was read from (the load case itself when inline)
 
 
 class LoadCaseHead(Strict):
@@ -113,6 +117,12 @@ def _load(path: Path) -> LoadCase:
     engine, operating = parse_operating(data["operating"], engine, path)
     sections = parse_sections(data, path)
     criteria, geometry = sections.criteria, sections.geometry
+    engine_file = _engine_file(data["engine"], path)
+    if isinstance(geometry, CrankGeometry):  # one shaft in both files; bearing centres from the engine
+        gfile = geometry.file or str(path)
+        geometry = throw_at_bearings(geometry, engine, geometry_file=gfile, engine_file=engine_file)
+        if whole_shaft_wanted(geometry, engine):  # the whole shaft's refusals at input too
+            engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
     if criteria is not None and isinstance(geometry, CrankGeometry):
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
     if sections.torsion is not None and isinstance(geometry, CadInput):
@@ -141,10 +151,13 @@ def _load(path: Path) -> LoadCase:
         balance=sections.balance,
         mesh=sections.mesh or MeshSection(),
         torsion=sections.torsion,
-        engine_file=str(resolve_reference(data["engine"], path, key="engine"))
-        if isinstance(data["engine"], str)
-        else str(path),
+        engine_file=engine_file,
     )
+
+
+def _engine_file(value: object, path: Path) -> str:
+    """The engine file a load case names (the load case itself for an inline table)."""
+    return str(resolve_reference(value, path, key="engine")) if isinstance(value, str) else str(path)
 
 
 def _short(key: object) -> str:

@@ -104,14 +104,10 @@ def throw_angles(layout: ShaftLayout) -> list[float]:
     return [layout.sense * t.angle for t in layout.throws]
 
 
-def mesh_shaft(
-    layout: ShaftLayout,
-    *,
-    size: str | MeshOptions = "coarse",
-    cache_dir=DEFAULT_CACHE_DIR,
-    max_elements: int | None = None,
-) -> ShaftMesh:
-    """Mesh the whole shaft as joined pieces (module doc)."""
+def shaft_options(layout: ShaftLayout, size: str | MeshOptions = "coarse") -> MeshOptions:
+    """The throws' mesh options on the shaft: ``size``'s with the end faces split into the
+    sectors that let the turned throws meet node to node (module doc); the per-throw
+    model meshed with these shares the whole shaft's throw meshes (cache)."""
     angles = throw_angles(layout)
     steps = [b - a for a, b in zip(angles, angles[1:])]
     n = sectors_for(steps)
@@ -122,7 +118,20 @@ def mesh_shaft(
             file=layout.geometry_file,
             key="throws",
         )
-    opt = dataclasses.replace(resolve_options(size), interface_sectors=n)
+    return dataclasses.replace(resolve_options(size), interface_sectors=n)
+
+
+def mesh_shaft(
+    layout: ShaftLayout,
+    *,
+    size: str | MeshOptions = "coarse",
+    cache_dir=DEFAULT_CACHE_DIR,
+    max_elements: int | None = None,
+) -> ShaftMesh:
+    """Mesh the whole shaft as joined pieces (module doc)."""
+    angles = throw_angles(layout)
+    opt = shaft_options(layout, size)
+    n = opt.interface_sectors
     g = layout.geometry
     meshes, throw_meshes, pieces = {}, {}, []
     keys = []
@@ -217,7 +226,7 @@ def join(sm: ShaftMesh):
     new[keep] = np.arange(keep.size)
     final = new[target]
     for k, p in enumerate(sm.pieces):
-        t_parts.append(final[glob[k][_tet10(sm.meshes[p.mesh])]])
+        t_parts.append(final[glob[k][tet10(sm.meshes[p.mesh])]])
         offsets.append(sum(t.shape[1] for t in t_parts[:-1]))
     T = np.hstack(t_parts)
     whole = MeshTet2(X[:, keep].copy(), T.astype(np.int32))
@@ -237,7 +246,7 @@ def node_maps(sm: ShaftMesh, whole) -> list[np.ndarray]:
     return out
 
 
-def _tet10(mesh) -> np.ndarray:
+def tet10(mesh) -> np.ndarray:
     """(10, ne) P2 node numbers of the elements, scikit-fem order (corners, then edges)."""
     return np.vstack([mesh.t, mesh.nvertices + mesh.t2e])
 

@@ -104,4 +104,8 @@ def fe_results(out: CaseOutputs) -> dict:
         res["support_model"] = next(iter(units.values())).support_model
     if out.convergence:
         res["mesh_convergence"] = {str(k): v.to_dict() for k, v in out.convergence.items()}
+    if out.whole_shaft is not None:
+        from fe_crank.report.shaft import shaft_results
+
+        res["whole_shaft"] = shaft_results(out.whole_shaft)
     return res

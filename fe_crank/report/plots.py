@@ -25,6 +25,11 @@ def figure(figsize: tuple[float, float]):
     return fig
 
 
+def save(fig, path: str | Path) -> Path:
+    """Print ``fig`` (``figure``) to the PNG ``path`` (written atomically)."""
+    return _save(fig, path)
+
+
 def _save(fig, path: str | Path) -> Path:
     import io
 

@@ -21,6 +21,7 @@ from fe_crank.files import write_atomic
 from fe_crank.outputs import CaseOutputs
 from fe_crank.report.fe_pictures import fe_section
 from fe_crank.report.html import Page, esc, table
+from fe_crank.report.shaft import shaft_section
 from fe_crank.report.stage_plots import dynamics_plots, plot_hodographs
 from fe_crank.report.sweep import sweep_section
 from fe_crank.report.tables import assessment_section, counterweight_section, mesh_quality_section
@@ -175,6 +176,7 @@ BUILDERS = [
     ("Counterweights: required vs built m*r", counterweight_section),
     ("The full-load curve: criteria against speed", sweep_section),
     ("Stresses and safety factors by location", assessment_section),
+    ("The whole shaft on its main bearings", shaft_section),
     ("Stress field renders", fe_section),
     ("Mesh statistics and FE quality", mesh_quality_section),
 ]

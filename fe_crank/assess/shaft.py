@@ -1,0 +1,149 @@
+"""The whole shaft's stresses, assessed as the per-throw model's are.
+
+Every throw of the whole-shaft model (``fe.whole_shaft``) is assessed at the nodes of the
+per-throw model's groups (``fe.node_groups``: fillets, oil bore, counterweight fillets and
+junctions; the counterweight bodies, loaded by their own centrifugal force alike in both
+models, stay with the per-throw model) by the same code (``assess.group.assess_group``:
+static, overspeed, Goodman and Gough-Pollard fatigue, UR M53's sigma_add on the shaft
+fillets, the size and surface factors), from the whole shaft's unit cases:
+
+    sigma(theta) = sum_c W_c(theta) S_c,
+
+``S_c`` the nodal stress of shaft case c (``ShaftCases.names``: each throw's pin cases,
+the centrifugal cases, the torque-flow cases, the redundant bearings' unit forces) at
+the throw's assessed nodes, recovered exactly from the condensed fields
+(``ShaftCases.recover``: sum a_p L_p + X v in the throw's own frame), and ``W_c`` the
+cycle's weights with the bearings' forces found per angle (``ShaftCycle.weights``; the
+overspeed cycles likewise).  The throw frame is the per-throw model's, so the axes of
+the Gough-Pollard split and the groups' names are the same.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fe_crank.assess.group import SIGMA_ADD_GROUPS, assess_group, section_diameter
+from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.assess.workers import run_blocks, thread_count
+from fe_crank.fe.node_groups import node_groups
+from fe_crank.fe.shaft_cases import ShaftCases
+from fe_crank.fe.stress import stress_at_selected_nodes
+from fe_crank.fe.whole_shaft import BearingResult, WholeShaftResult
+
+#: the label of each model in the criteria's locations and the report
+PER_THROW = "per-throw model"
+WHOLE_SHAFT = "whole-shaft model"
+
+
+@dataclass(frozen=True)
+class BearingState:
+    """The main bearings' loads (with and without counterweights) in one load state at one
+    speed of the full-load sweep (rad/s; ``case``: ``assess.loads.FIRING`` or a misfire)."""
+
+    speed: float
+    case: str
+    bearings: tuple[BearingResult, ...]
+
+
+@dataclass(frozen=True)
+class ShaftAssessment:
+    """What the criteria read from the whole-shaft model: its throws' group results at the
+    operating speed ``speed`` (rad/s; None: not stated) and its overspeed cycles (the
+    per-throw model's groups, ``ThrowAssessment.groups``; no UR M53, no counterweight
+    checks), its main bearings' loads with and without counterweights at the operating
+    speed, and at every speed and load state of the sweep (``sweep``; () : the operating
+    speed alone)."""
+
+    throws: tuple[ThrowAssessment, ...]
+    bearings: tuple[BearingResult, ...]
+    speed: float | None = None
+    sweep: tuple[BearingState, ...] = ()
+
+
+def piece_unit_stresses(cases: ShaftCases, piece: int, material) -> UnitStresses:
+    """Nodal stresses of every shaft case at the assessed nodes of throw piece ``piece``
+    (its own frame; module doc)."""
+    pp = cases.model.pieces[piece]
+    c = pp.cond
+    groups = node_groups(c.mesh, c.basis, bodies=False)
+    ids = np.unique(np.concatenate(list(groups.values())))
+    rec = np.asarray(c.rec_nodes)
+    if np.setdiff1d(ids, rec).size:
+        raise ValueError("the condensed throw keeps no field at some of its assessed nodes")
+    n = len(cases.names)
+    rows = (3 * rec[:, None] + np.arange(3)).ravel()
+    stress = np.empty((n, 6, ids.size))
+    sets = [x for x in np.array_split(np.arange(n), max(1, min(thread_count(), n))) if x.size]
+
+    def block(sel: np.ndarray, _scratch: dict) -> None:  # each case's stress alone: any thread count, same bits
+        w = np.zeros((n, sel.size))
+        w[sel, np.arange(sel.size)] = 1.0
+        u = np.zeros((sel.size, 3 * c.basis.N))  # full-length fields, zero away from the recovery nodes
+        u[:, rows] = cases.recover(piece, w).T
+        stress[sel] = stress_at_selected_nodes(
+            c.mesh, u, material.youngs_modulus, material.poisson_ratio, ids, dofs=c.basis.dofs
+        )
+
+    run_blocks(block, sets, len(sets))
+    return UnitStresses(
+        stress=stress,
+        points=np.asarray(c.basis.doflocs)[:, ids],
+        groups={k: np.searchsorted(ids, v) for k, v in groups.items()},
+        node_ids=ids,
+        cases=tuple(cases.names),
+    )
+
+
+def assess_shaft_throws(
+    cases: ShaftCases,
+    result: WholeShaftResult,
+    theta: np.ndarray,
+    material,
+    *,
+    crank_radius: float,
+    overspeed: float | None,
+    diameters: dict[str, tuple[float | None, float | None]] | None = None,
+    additional_bending: float = 0.0,
+) -> tuple[ThrowAssessment, ...]:
+    """Every throw of the whole shaft assessed with the per-throw model's group code
+    (module doc), with the counterweights as built; ``theta`` the cycle's angles (rad);
+    ``overspeed`` (rad/s) with ``result.overspeed``'s cycles; ``diameters``: throw name ->
+    (pin, journal) diameter for the size factor (UR M53's dimensions; None: the factor's
+    fallback); ``additional_bending``: UR M53 4's sigma_add on the shaft fillets (as the
+    per-throw model)."""
+    coeffs = result.cycles[0].weights
+    theta = np.asarray(theta, float)
+    coeffs_os, theta_os = None, theta
+    if overspeed is not None and result.overspeed:
+        coeffs_os = np.vstack([c.weights for c in result.overspeed])
+        theta_os = np.tile(theta, len(result.overspeed))
+    elif overspeed is not None:
+        overspeed = None  # no overspeed cycle of the whole shaft: the per-throw model's alone
+    out = []
+    for k, pp in enumerate(cases.model.pieces):
+        if pp.kind != "throw":
+            continue
+        unit = piece_unit_stresses(cases, k, material)
+        pin_diameter, journal_diameter = (diameters or {}).get(str(pp.throw), (None, None))
+        groups = tuple(
+            assess_group(
+                unit,
+                g,
+                coeffs,
+                theta if coeffs_os is None else theta_os,
+                material,
+                crank_radius=crank_radius,
+                overspeed=overspeed,
+                overspeed_coefficients=coeffs_os,
+                diameter=section_diameter(g, pin_diameter, journal_diameter),
+                additional_bending=additional_bending if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+            )
+            for g in sorted(unit.groups)
+            if len(unit.groups[g])
+        )
+        out.append(ThrowAssessment(str(pp.throw), groups, n_angles=int(theta.size)))
+        del unit
+    return tuple(out)
