@@ -251,7 +251,7 @@ def test_seed003_counterweight_matches_sector_closed_form_and_seed():
     from fe_crank.balance.sector import annular_sector
 
     g = load_geometry(SEED003)
-    mp = mass_properties(g, "1")
+    mp = mass_properties(g, "A")
     sector = annular_sector(0.071, 0.032, 0.019, math.pi, 7400.0)
     for web in (1, 2):
         cw = mp.parts[f"counterweight_{web}"]

@@ -104,7 +104,7 @@ def test_oblique_bore_and_one_sided_counterweight_leave_no_plane():
         # bore at 90 deg (along x), equal counterweights on both webs of every throw
         ("single_cylinder.toml", {"1": (0, 2)}),
         # no bore, four equal 180-deg counterweights
-        ("v4_90_pneumatic.toml", {"1": (0, 2), "2": (0, 2)}),
+        ("v4_90_pneumatic.toml", {"A": (0, 2), "B": (0, 2)}),
         # bore at 90 deg; bolted counterweights on both webs of throws 1 and 4, the shaft-wide ones on 2 and 3
         ("inline4.toml", {"1": (0, 2), "2": (0, 2), "3": (0, 2), "4": (0, 2)}),
     ],
