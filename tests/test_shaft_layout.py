@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from fe_crank.errors import InputError
-from fe_crank.geometry.shaft import bearing_stub, shaft_layout, throw_at_bearings
+from fe_crank.geometry.engine_fit import bearing_stub, throw_at_bearings
+from fe_crank.geometry.shaft import shaft_layout
 from fe_crank.io.base import read_toml
 from fe_crank.io.engine import load_engine
 from fe_crank.io.geometry import geometry_from_dict, load_geometry

@@ -27,7 +27,8 @@ from fe_crank.cad.config import CadInput
 from fe_crank.errors import InputError
 from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
-from fe_crank.geometry.shaft import engine_shaft_layout, throw_at_bearings, whole_shaft_wanted
+from fe_crank.geometry.engine_fit import throw_at_bearings
+from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
 from fe_crank.io.base import InputFile, Strict, read_toml, recording_inputs, validate
@@ -61,7 +62,7 @@ class LoadCase:
     operating: model.OperatingPoint
     description: str = ""
     #: the throw as the checks take it: a parametric geometry's journal stubs reach the
-    #: engine's main-bearing centres (``geometry.shaft.throw_at_bearings``); a CAD geometry's
+    #: engine's main-bearing centres (``geometry.engine_fit.throw_at_bearings``); a CAD geometry's
     #: bearing centres are the journals' middles recognised in the file (``cad.shaft``)
     geometry: CrankGeometry | CadInput | None = None
     material: Material | None = None

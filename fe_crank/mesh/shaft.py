@@ -1,7 +1,7 @@
 """The whole crankshaft's mesh as pieces joined node to node at the main-bearing centres.
 
 ``mesh_shaft(layout, size=...)`` meshes each distinct throw once (``mesh_throw``, cached;
-the journal stubs reach the bearing centres, ``geometry.shaft.throw_at_bearings``, and the
+the journal stubs reach the bearing centres, ``geometry.engine_fit.throw_at_bearings``, and the
 end faces are split into rotated-copy sectors, ``mesh.interface``, so that throws turned
 by the engine's angles meet with the same nodes) and builds the outer halves of the end
 journals by extruding the end throws' faces (``mesh.extrude``).  Pieces front to rear:
