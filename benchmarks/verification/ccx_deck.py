@@ -149,22 +149,23 @@ def write_deck(path: Path, units, loads: dict[str, np.ndarray], output_nodes: np
         out += ["*BOUNDARY", _lines([(n, d, d) for n, d in sorted(set(bcs))], "%d, %d, %d")]
     out += ["*NSET, NSET=NOUT", _chunks(np.asarray(output_nodes) + 1)]
     for _name, f in loads.items():
-        fn = f.reshape(-1, 3)
-        nz = np.flatnonzero(np.any(fn != 0.0, axis=1))
-        rows = [(n + 1, j + 1, fn[n, j]) for n in nz for j in range(3) if fn[n, j] != 0.0]
-        out += [
-            "*STEP",
-            "*STATIC",
-            "*CLOAD, OP=NEW",
-            _lines(rows, "%d, %d, %.13e"),
-            "*NODE PRINT, NSET=NOUT",
-            "U",
-            "*NODE FILE, NSET=NOUT",
-            "S",
-            "*END STEP",
-        ]
+        out += static_step(f.reshape(-1, 3), op_new=True)
     path.write_text("\n".join(out) + "\n")
     return path
+
+
+def static_step(nodal_forces: np.ndarray, *, op_new: bool = False) -> list[str]:
+    """A linear static step: the nodal forces (n, 3) as *CLOAD (non-zero entries, 1-based
+    node ids), displacements printed and stresses written at the node set NOUT."""
+    fn = nodal_forces
+    nz = np.flatnonzero(np.any(fn != 0.0, axis=1))
+    rows = [(n + 1, j + 1, fn[n, j]) for n in nz for j in range(3) if fn[n, j] != 0.0]
+    cload = "*CLOAD, OP=NEW" if op_new else "*CLOAD"
+    return ["*STEP", "*STATIC", cload, _lines(rows, "%d, %d, %.13e"), "*NODE PRINT, NSET=NOUT", "U"] + [
+        "*NODE FILE, NSET=NOUT",
+        "S",
+        "*END STEP",
+    ]
 
 
 def plane_nodes(element_dofs: np.ndarray, points: np.ndarray, axes) -> dict[str, int]:

@@ -158,12 +158,8 @@ def _edge_nodes(mesh, vertices: np.ndarray) -> np.ndarray:
     return mesh.nvertices + e
 
 
-def _lines(rows, fmt: str) -> str:
-    return "\n".join(fmt % tuple(r) for r in rows)
-
-
 def write_deck(work: Path, stiffness: float) -> Path:
-    from ccx_deck import _chunks
+    from ccx_deck import _chunks, _lines, static_step
 
     z = np.load(work / "fe.npz")
     x, conn, load, weights = z["points"], z["conn"], z["load"], z["weights"]
@@ -211,20 +207,7 @@ def write_deck(work: Path, stiffness: float) -> Path:
     bcs.append((far + 1, 2))
     out += ["*BOUNDARY", _lines([(nd, d, d) for nd, d in bcs], "%d, %d, %d")]
     out += ["*NSET, NSET=NOUT", _chunks(np.concatenate([z["fillet_nodes"] + 1, refs]))]
-    fn = load.T
-    nzn = np.flatnonzero(np.any(fn != 0.0, axis=1))
-    rows = [(nd + 1, j + 1, fn[nd, j]) for nd in nzn for j in range(3) if fn[nd, j] != 0.0]
-    out += [
-        "*STEP",
-        "*STATIC",
-        "*CLOAD",
-        _lines(rows, "%d, %d, %.13e"),
-        "*NODE PRINT, NSET=NOUT",
-        "U",
-        "*NODE FILE, NSET=NOUT",
-        "S",
-        "*END STEP",
-    ]
+    out += static_step(load.T)
     path = work / "shaft.inp"
     path.write_text("\n".join(out) + "\n")
     return path
