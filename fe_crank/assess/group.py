@@ -231,3 +231,41 @@ def assess_group(
         fields=fields,
         additional_bending=additional_bending if do_fatigue else 0.0,
     )
+
+
+def assess_groups(
+    unit: UnitStresses,
+    coefficients: np.ndarray,
+    theta,
+    material,
+    *,
+    crank_radius: float,
+    overspeed: float | None,
+    overspeed_coefficients: np.ndarray | None,
+    pin_diameter: float | None,
+    journal_diameter: float | None,
+    additional_bending: float,
+) -> tuple[GroupResult, ...]:
+    """``assess_group`` of every non-empty assessed group of ``unit``, each with its section
+    diameter and, on the shaft fillets, UR M53's additional bending stress; the overspeed
+    rows (one or more cycles of ``len(theta)`` angles) keep the angle of their row."""
+    theta = np.asarray(theta)
+    theta_os = theta
+    if overspeed_coefficients is not None:
+        theta_os = np.tile(theta, overspeed_coefficients.shape[0] // max(1, theta.size))
+    return tuple(
+        assess_group(
+            unit,
+            g,
+            coefficients,
+            theta_os,
+            material,
+            crank_radius=crank_radius,
+            overspeed=overspeed,
+            overspeed_coefficients=overspeed_coefficients,
+            diameter=section_diameter(g, pin_diameter, journal_diameter),
+            additional_bending=additional_bending if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+        )
+        for g in sorted(unit.groups)
+        if len(unit.groups[g])
+    )

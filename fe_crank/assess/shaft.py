@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess.group import SIGMA_ADD_GROUPS, assess_group, section_diameter
+from fe_crank.assess.group import assess_groups
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import run_blocks, thread_count
@@ -116,10 +116,9 @@ def assess_shaft_throws(
     per-throw model)."""
     coeffs = result.cycles[0].weights
     theta = np.asarray(theta, float)
-    coeffs_os, theta_os = None, theta
+    coeffs_os = None
     if overspeed is not None and result.overspeed:
         coeffs_os = np.vstack([c.weights for c in result.overspeed])
-        theta_os = np.tile(theta, len(result.overspeed))
     elif overspeed is not None:
         overspeed = None  # no overspeed cycle of the whole shaft: the per-throw model's alone
     out = []
@@ -128,21 +127,17 @@ def assess_shaft_throws(
             continue
         unit = piece_unit_stresses(cases, k, material)
         pin_diameter, journal_diameter = (diameters or {}).get(str(pp.throw), (None, None))
-        groups = tuple(
-            assess_group(
-                unit,
-                g,
-                coeffs,
-                theta if coeffs_os is None else theta_os,
-                material,
-                crank_radius=crank_radius,
-                overspeed=overspeed,
-                overspeed_coefficients=coeffs_os,
-                diameter=section_diameter(g, pin_diameter, journal_diameter),
-                additional_bending=additional_bending if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
-            )
-            for g in sorted(unit.groups)
-            if len(unit.groups[g])
+        groups = assess_groups(
+            unit,
+            coeffs,
+            theta,
+            material,
+            crank_radius=crank_radius,
+            overspeed=overspeed,
+            overspeed_coefficients=coeffs_os,
+            pin_diameter=pin_diameter,
+            journal_diameter=journal_diameter,
+            additional_bending=additional_bending,
         )
         out.append(ThrowAssessment(str(pp.throw), groups, n_angles=int(theta.size)))
         del unit

@@ -11,7 +11,7 @@ from fe_crank.assess import m53, m53_oil_bore, m53_rods
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
 from fe_crank.assess.cw_joint import JointCheck, check_joints
 from fe_crank.assess.extremes import Running, Wanted, group_extremes
-from fe_crank.assess.group import SIGMA_ADD_GROUPS, GroupResult, assess_group, section_diameter
+from fe_crank.assess.group import SIGMA_ADD_GROUPS, GroupResult, assess_groups, section_diameter
 from fe_crank.assess.m53 import M53Fillet, NominalStresses
 from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
@@ -155,7 +155,18 @@ def assess_throw(
             if len(unit.groups[g])
         )
     else:
-        groups = _full_groups(unit, coeffs, coeffs_os, theta, material, crank_radius, overspeed, dp, dj, m53_additional)
+        groups = assess_groups(
+            unit,
+            coeffs,
+            theta,
+            material,
+            crank_radius=crank_radius,
+            overspeed=overspeed,
+            overspeed_coefficients=coeffs_os,
+            pin_diameter=dp,
+            journal_diameter=dj,
+            additional_bending=m53_additional,
+        )
     fillets, nominal = _m53(
         name,
         m53_geometry,
@@ -186,28 +197,6 @@ def assess_throw(
             )
         )
     return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)), joints)
-
-
-def _full_groups(unit, coeffs, coeffs_os, theta, material, crank_radius, overspeed, dp, dj, additional):
-    if coeffs_os is not None:
-        n_os = coeffs_os.shape[0] // max(1, len(theta))
-        theta_os = np.tile(np.asarray(theta), n_os)  # the angle of the worst row, whichever cycle
-    return tuple(
-        assess_group(
-            unit,
-            g,
-            coeffs,
-            np.asarray(theta) if coeffs_os is None else theta_os,
-            material,
-            crank_radius=crank_radius,
-            overspeed=overspeed,
-            overspeed_coefficients=coeffs_os,
-            diameter=section_diameter(g, dp, dj),
-            additional_bending=additional if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
-        )
-        for g in sorted(unit.groups)
-        if len(unit.groups[g])
-    )
 
 
 def _m53(
