@@ -55,10 +55,12 @@ def assess_inputs(
     assert lc.material is not None and lc.criteria is not None
     cycles = engine_cycles(lc.engine, lc.operating)
     g = lc.geometry
-    names = tuple(t.name for t in g.throws if t.counterweights) if g is not None else ()
     models = models or dict.fromkeys(unit_solutions, g.throws[0].name if g is not None else "")
-    solids = throw_solids(g, names) if g is not None and names else None
-    design = balance.design if balance is not None else None
+    if "throw_geometry" not in kw:  # else the geometry stage's, as given
+        names = tuple(t.name for t in g.throws if t.counterweights) if g is not None else ()
+        solids = throw_solids(g, names) if g is not None and names else None
+        design = balance.design if balance is not None else None
+        kw["throw_geometry"] = parametric_throws(g, models, lc.engine, solids, design) if g is not None else {}
     args = dict(
         case=lc.name,
         source_file=lc.source_file,
@@ -72,7 +74,6 @@ def assess_inputs(
         balance=balance,
         models=models,
         unit_solutions=unit_solutions,
-        throw_geometry=parametric_throws(g, models, lc.engine, solids, design) if g is not None else {},
     )
     args.update(kw)
     return AssessInputs(**args)

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cad_files import SMALL_ENGINE
+from pipeline import assess_inputs
 
 from fe_crank.assess.case import AssessInputs, assess_case
 from fe_crank.assess.criteria import NOT_CONFORM, evaluate_criteria
@@ -63,7 +65,8 @@ def test_pin_force_at_both_tdcs_by_hand_at_two_speeds():
     assert 0 < pins[(1000, 360)] < pins[(2800, 360)]
 
 
-SWEPT = """\
+SWEPT = (
+    """\
 name = "small single over its full-load curve"
 geometry = "geometry_small.toml"
 
@@ -72,24 +75,9 @@ speed = "3000 rpm"
 overspeed = "3600 rpm"
 {sweep}
 misfire = "each"
-
-[engine]
-name = "small single"
-strokes = 4
-
-[[engine.throws]]
-name = "1"
-crank_radius = "20 mm"
-
-[[engine.cylinders]]
-name = "1"
-throw = "1"
-bore = "50 mm"
-rod_length = "80 mm"
-rod_mass = "0.20 kg"
-rod_cg_from_big_end = "22 mm"
-piston_mass = "0.15 kg"
-
+"""
+    + SMALL_ENGINE.format(radius="20 mm")
+    + """
 [engine.gas]
 model = "wiebe"
 compression_ratio = 9.0
@@ -108,6 +96,7 @@ min_fatigue_safety = 1.3
 min_gough_pollard_safety = 1.3
 min_overspeed_safety = 1.5
 """
+)
 SPEEDS = (1200, 1900, 2500, 3000)
 
 
@@ -121,20 +110,11 @@ def _case(folder: Path, name: str, sweep: str) -> Path:
 def _inputs(lc, out) -> AssessInputs:
     """The assessment's inputs of ``lc`` on the FE solution of the stage outputs ``out``
     (the same mesh and unit solutions: they do not depend on speed)."""
-    cycles = engine_cycles(lc.engine, lc.operating)
-    return AssessInputs(
-        case=lc.name,
-        source_file=lc.source_file,
-        engine=lc.engine,
-        operating=lc.operating,
-        material=lc.material,
-        criteria=lc.criteria,
-        cycles=cycles,
-        dynamics=cycles.operating,
-        loads=assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction),
-        balance=out.balance,
+    return assess_inputs(
+        lc,
+        out.fe.unit_solutions,
         models=out.geometry.plan.throws,
-        unit_solutions=out.fe.unit_solutions,
+        balance=out.balance,
         throw_geometry=out.geometry.throws,
     )
 
