@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 
-from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData
+from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry
 from fe_crank.assess.cw_joint import yield_point
 from fe_crank.assess.m53 import M53Geometry
 from fe_crank.balance.counterweights import CounterweightDesign
@@ -78,8 +78,30 @@ def stress_area(diameter: float) -> float:
     return math.pi / 4.0 * (0.88 * diameter) ** 2
 
 
+def joint_geometry(g: CrankGeometry, cw) -> JointGeometry:
+    """Where the bolted counterweight ``cw`` (``CounterweightSpec``) of ``g`` bears on its web
+    (``assess.cw_joint``: the joint's eccentric model)."""
+    t = g.web_thickness
+    return JointGeometry(
+        seat_radius=g.web.journal_end_radius,
+        web_thickness=t,
+        thickness=cw.thickness,
+        inner_radius=cw.inner_radius,
+        outer_radius=cw.outer_radius,
+        angle=cw.angle,
+        bearing_lever=g.journal_length + 0.5 * t,
+        bearing_span=g.crankpin_length + 2.0 * (t + g.journal_length),
+        web=cw.web,
+    )
+
+
 def counterweights_of(
-    spec: ThrowSpec, props: MassProperties, axial_position: float, shaft: str, design: CounterweightDesign | None
+    spec: ThrowSpec,
+    props: MassProperties,
+    axial_position: float,
+    shaft: str,
+    design: CounterweightDesign | None,
+    geometry: CrankGeometry | None = None,
 ) -> tuple[CounterweightData, ...]:
     """Counterweight data of one throw (its geometry ``spec`` and its CAD mass properties
     ``props``, from the geometry stage), grouped by the balance plane they serve.
@@ -111,7 +133,11 @@ def counterweights_of(
             capacity = sum(b.count * stress_area(b.diameter) * yield_point(b) for b in bolted)
         joints = tuple(
             BoltedCounterweight(
-                f"counterweight_{cw.web}", cw.bolted, p.mass, math.hypot(*p.unbalance_vector[:2]) / p.mass
+                f"counterweight_{cw.web}",
+                cw.bolted,
+                p.mass,
+                math.hypot(*p.unbalance_vector[:2]) / p.mass,
+                None if geometry is None else joint_geometry(geometry, cw),
             )
             for cw, p, _ in items
             if cw.bolted is not None and p.mass > 0

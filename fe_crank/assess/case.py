@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, evaluate_criteria, model_values
-from fe_crank.assess.cw_joint import JOINT_QUANTITIES
+from fe_crank.assess.cw_joint import JOINT_QUANTITIES, has_joints, joint_qualifiers, with_default_limits
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
 from fe_crank.assess.inputs import AssessInputs
 from fe_crank.assess.loads import AssessedLoads
@@ -134,8 +134,19 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                         (tname,),
                     )
                 )
-    # the bolted joints by VDI 2230 when a criterion asks (their data then required), at every speed
-    joints = any(q.quantity in JOINT_QUANTITIES for q in a.criteria.limits)
+    # the bolted joints by VDI 2230 when a criterion asks or the geometry has any (their data then
+    # required; without a joint criterion VDI 2230's usual limits, said on each verdict line), at every speed
+    defaulted: tuple[str, ...] = ()
+    if has_joints(a.throw_geometry):
+        lim, defaulted = with_default_limits(lim, a.source_file)
+        if defaulted:
+            notes.append(
+                _assumption(
+                    "bolted counterweights: the load case names no VDI 2230 joint criterion; checked with the "
+                    "default limits " + ", ".join(f"{x.key} = {x.value:g}" for x in lim.limits[-len(defaulted) :])
+                )
+            )
+    joints = any(q.quantity in JOINT_QUANTITIES for q in lim.limits)
     cycles = state_dynamics(a) if joints else None
     done = assess_state(a, units, a.loads.operating_state, senses, basis, None, cycles)
     others = [
@@ -159,8 +170,9 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     if len(a.loads.speeds) > 1 or len(sweep) > 1:
         notes.append(_assumption(_sweep_note(a.loads)))
     qualifiers = criterion_qualifiers(basis, a.criteria, torsion=a.loads.torsion)
+    qualifiers.update(joint_qualifiers(a.throw_geometry, defaulted) if joints else {})
     verdicts = evaluate_criteria(
-        a.criteria,
+        lim,
         done,
         file=a.source_file,
         overspeed=overspeed,
@@ -168,9 +180,7 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         qualifiers=qualifiers,
         shaft=a.shaft,
     )
-    by_model = (
-        model_values(a.criteria, done, a.shaft, sweep=tuple(sweep), overspeed=overspeed) if a.shaft is not None else ()
-    )
+    by_model = model_values(lim, done, a.shaft, sweep=tuple(sweep), overspeed=overspeed) if a.shaft is not None else ()
     # each rod at its place on the pin in the drawn states too (the assessment's coefficients)
     places = {t: places_of(a, t) for t in a.loads.operating_state.throws}
     states = []

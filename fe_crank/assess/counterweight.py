@@ -12,14 +12,32 @@ from dataclasses import dataclass
 
 
 @dataclass(frozen=True)
+class JointGeometry:
+    """Where a bolted counterweight bears on its web, for VDI 2230's eccentric model
+    (``assess.cw_joint``; throw frame, SI)."""
+
+    seat_radius: float  # r_J: the web's end radius opposite the pin (joint plane of radial bolts)
+    web_thickness: float  # t
+    thickness: float  # b, the counterweight's axial thickness (flush with the web's outer face)
+    inner_radius: float  # r_2
+    outer_radius: float  # r_1
+    angle: float  # rad, the counterweight's included angle
+    bearing_lever: float  # L_j + t/2: main-bearing centre to the web's mid-plane
+    bearing_span: float  # between the throw's two main-bearing centres
+    web: int  # 1 front, 2 rear
+
+
+@dataclass(frozen=True)
 class BoltedCounterweight:
     """One bolted counterweight for the VDI 2230 check (``assess.cw_joint``): its joint
-    (``geometry.spec.BoltedJoint``), its own mass and centre-of-mass radius (SI)."""
+    (``geometry.spec.BoltedJoint``), its own mass and centre-of-mass radius (SI) and where it
+    bears on the web (None: checked as a centric joint without moment)."""
 
     name: str
     joint: object
     mass: float
     radius: float
+    geometry: JointGeometry | None = None
 
 
 @dataclass(frozen=True)

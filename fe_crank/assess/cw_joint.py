@@ -1,53 +1,106 @@
-"""The bolted counterweight checked as VDI 2230 Part 1 (2015) checks a bolted joint.
+"""The bolted counterweight checked as VDI 2230 Part 1 (2015) checks a bolted joint, with its
+eccentric clamping and loading.
 
-Loads (per bolt, ``counterweight_loads``).  A counterweight of mass m with its centre of
-mass at r_c turns with the shaft: the centrifugal force m r_c omega^2 pulls it off the web,
-the tangential inertia m r_c alpha (alpha the shaft's angular acceleration) shears it.  With
-``direction = "radial"`` bolts (their axis through the crank axis) the centrifugal force is
-the axial load F_A and the tangential one the transverse load F_Q; with ``"axial"`` bolts
-(parallel to the crank axis, the counterweight against the web's face) both are transverse,
-F_A = 0 from the counterweight.  Over the working cycle the speed varies by the coefficient
-delta (omega (1 -+ delta/2)) and alpha = (T - T_mean)/J with the dynamics stage's torque and
-flywheel inertia; each start and stop cycles F_A between 0 and its working value.  At the
-overspeed omega_os the centrifugal force alone (an event, not a cycle).  The joint is
-assumed to share the loads equally among its bolts; the web's own deformation under the
-pin force (the joint's interface opening and closing) is not computed: the FE model fuses
-the counterweight to the web (``docs/assessment.md``).
+Loads (per bolt, ``joint_loads``).  By the counterweight's equilibrium as a free body, the
+force and moment its joint carries are those of its own inertia: the centrifugal force
+F_c = m r_c omega^2 and the tangential inertia F_t = m r_c alpha at its centre of mass (m its
+mass, r_c the radius of its centre of mass, alpha the shaft's angular acceleration), with
+their levers to the joint plane.  Over the working cycle the speed varies by the
+coefficient delta (omega (1 -+ delta/2)) and alpha = (T - T_mean)/J with the dynamics stage's
+torque and flywheel inertia; each start and stop cycles the loads between 0 and their
+working values; at the overspeed omega_os the centrifugal force (an event, not a cycle).
 
-Check (``check_joint``), VDI 2230's rules with n the load introduction factor:
-* R7 assembly: nu = sigma_red,M(F_M,max) / R_p0.2 <= 0.9; F_M,max the stated preload or
-  F_M,zul, F_M,min = F_M,max / alpha_A (tightening factor);
-* R8 working stress at the overspeed: S_F = R_p0.2 / sigma_red,B, F_S,max = F_M,max + Phi F_A,os;
-* R9 fatigue: S_D = sigma_AS / sigma_a, sigma_a = Phi dF_A / (2 A_s), dF_A the larger of the
-  working cycle's range and the start-stop range (0 to the working F_A,max: any number of
+The web's bending under the pin force (the joint face opening and closing each cycle):
+the web's bending moment at its mid-plane over the cycle, M_w = R (L_j + t/2), R the main
+bearing's reaction to the pin force on the web's side (the statically determinate throw on
+its two main bearings, the journal's end face the bearing centre as in the FE supports and
+UR M53; each rod at its place on the pin), L_j + t/2 the lever from the bearing centre to
+the web's mid-plane.  It is taken whole onto the joint, shared equally by its bolts, as
+the working moment M_B = M_w / n in the plane of the web's thickness: as if the joint lay in
+the web's load path.  A counterweight beyond the journal lies outside the path pin - web -
+journal - bearing and carries the web's deformation only by compatibility (its resultant
+is its own inertia, above), so this is an upper bound of the web's share.
+
+The joint's geometry (``JointGeometry``, from the geometry file) and its eccentricity
+(VDI 2230 5.1.2, ``vdi2230.Eccentric``, one plane per bolt):
+* ``direction = "radial"``: the bolts parallel to the counterweight's symmetry line, screwed
+  through it into the web's end face opposite the pin; the joint plane at the web's end
+  radius r_J (``seat_radius``).  The bolts lie on the pitch circle r_b at angles spread
+  evenly over the counterweight's angle, x_i = r_b sin(phi_i) across the joint.  F_A = F_c/n
+  axial; the tangential inertia pries with the lever r_c - r_J (the prying lever), carried
+  by the bolt row as axial forces +-F_t (r_c - r_J) x_i / sum x_j^2 (one bolt: as a moment);
+  F_Q = F_t/n.  The eccentricity plane is the web's thickness (the plane of M_w): interface
+  c_T = min(t, b) (web and counterweight thickness, flush on the web's outer face), b_T =
+  D_A, the bolt at its middle (s_sym = 0), the centrifugal force at the counterweight's
+  mid-thickness, a = (b - c_T)/2.
+* ``direction = "axial"``: the bolts parallel to the crank axis on the pitch circle r_b, the
+  counterweight against the web's face.  F_A = 0, F_Q = sqrt(F_c^2 + F_t^2)/n, and the
+  centrifugal force at the counterweight's mid-thickness b/2 above the face pries the joint
+  open at its inner edge: M_B = F_c b/(2 n) + |M_w|/n in the radial plane through the bolt,
+  interface c_T = r_1 - r_2 (the counterweight's radial extent), b_T = D_A, s_sym = r_T - r_b
+  (r_T = (r_1 + r_2)/2, xi positive towards the axis).
+Without a ``JointGeometry`` (a joint built by hand) the joint is centric and carries no
+moment: VDI 2230's centric case.
+
+Check (``check_joint``), VDI 2230's steps with n the load introduction factor, over the
+corners of the working cycle's box of (F_A, M_B) and at the overspeed (the bolt stress is
+linear in both, so its extremes lie on the corners of any box that holds the cycle's path):
+* R3 load factors Phi_en*, Phi_m* (eccentric; Phi_K = delta_P/(delta_S + delta_P) centric);
+* R7 assembly: nu = sigma_red,M(F_M,max) / R_p0.2 <= 0.9 at the thread friction mu_G; F_M,max
+  the stated preload or F_M,zul, F_M,min = F_M,max / alpha_A (R1, tightening factor);
+* R8 working stress at the overspeed: S_F = R_p0.2 / sigma_red,B, sigma_z = F_M,max/A_s plus the
+  additional bolt load's stress Phi_en* F_A/A_s + Phi_m* M_B/A_s and, on the safe side, the
+  bolt's bending stress;
+* R9 fatigue: S_D = sigma_AS / sigma_a, sigma_a = (sigma_SAb,o - sigma_SAb,u)/2 at the bolt's
+  more loaded fibre with sigma_SAb of the eccentric loading (axial and bending), over the
+  cycle's range of F_A and M_B or a start and stop (0 to the working values: any number of
   starts taken as endurance cycles);
-* residual clamp load F_KR,min = F_M,min - F_Z - (1 - Phi') F_A,max at the overspeed against
-  opening (S_sep = (F_M,min - F_Z) / ((1 - Phi') F_A,max) >= 1) and against slip
-  (R12: S_G = F_KR,min mu_T q_F / F_Q,max, q_F = 1 interface).
+* R2/R5 opening: the residual clamp load F_KR = F_M,min - F_Z - (1 - Phi_en*') F_A against the
+  opening limit F_Kab of either edge: S_sep = (F_M,min - F_Z) / ((1 - Phi_en*') F_A + F_Kab)
+  (>= 1: the joint does not open; centric F_Kab = 0);
+* R12 slip: S_G = F_KR,min mu_T q_F / F_Q,max, q_F = 1 interface, mu_T the interface's friction
+  (the thread's mu_G enters R7/R8 and the head's mu_K the tightening torque, R13).
 Phi = n Phi_K for the bolt's loads and Phi' = n Phi_K for the clamp's, where n is stated
 (VDI 2230 5.2.2); without it the bounds: n = 1 for the bolt (the largest additional bolt
 load) and n = 0 for the clamp (the whole F_A relieves the interface).
+
+Default limits (``DEFAULT_LIMITS``, ``with_default_limits``): a load case whose geometry has
+bolted counterweights and whose criteria name none of the VDI 2230 quantities is checked
+with VDI 2230's usual limits, each verdict line saying the limit is a default.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from fe_crank.assess import vdi2230 as v
+from fe_crank.assess.counterweight import JointGeometry
 
 E_BOLT = 205e9  # Pa, steel bolts (VDI 2230)
 
 
 @dataclass(frozen=True)
 class JointLoads:
-    """Per bolt, N: the axial load's range over the working cycle, its overspeed value, the
-    largest transverse load (working cycle and overspeed)."""
+    """Per bolt, N and N m: the axial load's range over the working cycle, its overspeed
+    value, the largest transverse load (working cycle and overspeed); the working moment
+    M_B's range over the cycle and its largest magnitude at the overspeed (positive opening
+    the interface's edge at +c_T/2); the joint's eccentricity (None: centric); the web's
+    largest bending moment over the cycle (the whole joint's, for the report)."""
 
     axial_max: float
     axial_min: float
     axial_overspeed: float
     transverse_max: float
+    moment_max: float = 0.0
+    moment_min: float = 0.0
+    moment_overspeed: float = 0.0
+    eccentric: v.Eccentric | None = None
+    web_moment: float = 0.0
+    web_model: str = ""  # how the web's deformation was taken onto the joint ("" none)
 
 
 @dataclass(frozen=True)
@@ -58,7 +111,7 @@ class JointCheck:
     preload_max: float  # F_M,max
     preload_min: float  # F_M,min
     embedding_loss: float  # F_Z
-    load_factor: float  # Phi_K
+    load_factor: float  # Phi_K (centric)
     tightening_torque: float  # M_A at F_M,max and the stated friction, N m
     assembly_utilisation: float  # R7, nu
     working_safety: float  # R8, S_F at the overspeed
@@ -66,9 +119,14 @@ class JointCheck:
     endurance_limit: float  # sigma_AS, Pa
     fatigue_safety: float  # R9, S_D
     residual_clamp: float  # F_KR,min at the overspeed, N
-    separation_safety: float  # S_sep
+    separation_safety: float  # S_sep (R2/R5: against opening)
     slip_safety: float  # R12, S_G
     loads: JointLoads
+    eccentric_load_factor: float = math.nan  # Phi_en* (bolt side; = n Phi_K centric)
+    moment_load_factor: float = 0.0  # Phi_m*, 1/m
+    opening_limit: float = 0.0  # F_Kab, N (the largest over the cycle and the overspeed)
+    bending_amplitude: float = 0.0  # the bending part of sigma_a, Pa
+    friction: tuple[float, float, float] = (math.nan, math.nan, math.nan)  # mu_G, mu_K, mu_T
 
 
 def counterweight_loads(
@@ -82,8 +140,9 @@ def counterweight_loads(
     speed_fluctuation: float = 0.0,
     angular_acceleration: float = 0.0,
 ) -> JointLoads:
-    """Per-bolt loads of a counterweight (module doc).  ``angular_acceleration``: the largest
-    |alpha| over the working cycle, rad/s^2; ``speed_fluctuation``: delta."""
+    """Per-bolt loads of a counterweight as a centric joint (no joint geometry: no prying,
+    no web moment).  ``angular_acceleration``: the largest |alpha| over the working cycle,
+    rad/s^2; ``speed_fluctuation``: delta."""
     mr = mass * radius
     f_hi = mr * (omega * (1.0 + 0.5 * speed_fluctuation)) ** 2
     f_lo = mr * (omega * (1.0 - 0.5 * speed_fluctuation)) ** 2
@@ -96,6 +155,218 @@ def counterweight_loads(
     raise ValueError(f"bolt direction must be 'radial' or 'axial', not {direction!r}")
 
 
+@dataclass(frozen=True)
+class WebMoments:
+    """The web's bending moment at its mid-plane from the pin force (``web_moments``), N m:
+    about x (the radial pin force's, bending the web through its thickness) over the working
+    cycle, and the largest |M| (both components) over the cycle and at the overspeed."""
+
+    about_x: np.ndarray
+    largest: float
+    overspeed: float
+
+
+@dataclass(frozen=True)
+class SectionLoads:
+    """Per bolt, from the FE unit solutions (``fe_section_loads``): the joint plane's share of
+    the web's deformation under the pin force and the journal torque over the working cycle
+    (the moment M_B (n,), N m, positive opening the interface's edge towards the crank
+    throw's middle; the normal force (n,), N, positive pulling the joint apart, the worst
+    bolt's), their largest magnitudes at the overspeed, and the nodes the section was fitted on."""
+
+    moment: np.ndarray
+    force: np.ndarray  # (n, bolts)
+    moment_overspeed: float
+    force_overspeed: float
+    nodes: int
+
+
+#: the unit cases whose stresses are the web's deformation under the pin force and torque
+#: (not the throw's own inertia: the counterweight's is the joint's resultant, ``joint_loads``)
+def _pin_cases(cases: tuple[str, ...]) -> np.ndarray:
+    return np.array([c not in ("centrifugal", "angular_acceleration") for c in cases])
+
+
+def fe_section_loads(unit, group: str, geo: JointGeometry, joint, coeffs, coeffs_os=None) -> SectionLoads | None:
+    """The normal stress sigma_yy across the radial joint's plane y = -r_J in the FE model
+    (the counterweight fused to the web: the joint bonded, as stiff as the solid), from the
+    pin and torque unit cases over the cycle: fitted over the counterweight's nodes in a thin
+    slab about the plane, sigma = c_0 + c_1 zeta + c_2 x + c_3 (y + r_J) (least squares; zeta
+    across the interface from its middle, positive towards the throw's middle), each bolt's
+    prism (D_A across, c_T through the thickness) carrying M_B = c_1 D_A c_T^3/12 and
+    F = (c_0 + c_2 x_i) D_A c_T.  None where the slab holds too few nodes to fit (the lever
+    model then, ``web_moments``).  ``unit``: ``superpose.UnitStresses``; ``coeffs`` (n,
+    n_cases) of the working cycle, ``coeffs_os`` of the overspeed cycles."""
+    idx = unit.groups.get(group)
+    if idx is None or not len(idx):
+        return None
+    pts = np.asarray(unit.points)[:, idx]
+    c_t = min(geo.web_thickness, geo.thickness)
+    lever_j = geo.bearing_lever - 0.5 * geo.web_thickness  # L_j
+    z_out = 0.5 * geo.bearing_span - lever_j  # the web's outer face, |z|
+    side = -1.0 if geo.web == 1 else 1.0
+    z_t = side * (z_out - 0.5 * c_t)
+    zeta = -side * (pts[2] - z_t)  # positive towards the throw's middle
+    eta = pts[1] + geo.seat_radius
+    for half in (1.0e-3, 2.0e-3, 3.0e-3, 4.0e-3, 6.0e-3):
+        sel = (np.abs(eta) <= half) & (np.abs(zeta) <= 0.5 * c_t + 1e-9)
+        zs = zeta[sel]
+        if sel.sum() >= 12 and zs.size and zs.max() - zs.min() >= 0.6 * c_t:
+            break
+    else:
+        return None
+    a = np.column_stack([np.ones(int(sel.sum())), zeta[sel], pts[0][sel], eta[sel]])
+    fit = np.linalg.pinv(a)  # (4, m)
+    mask = _pin_cases(tuple(unit.cases))
+    syy = np.asarray(unit.stress)[:, 1, :][:, idx][:, sel]  # (n_cases, m)
+    per_case = syy @ fit.T  # (n_cases, 4)
+    per_case[~mask] = 0.0
+    d_a = joint.clamped_diameter
+    area, inertia = d_a * c_t, d_a * c_t**3 / 12.0
+    x = bolt_offsets(joint, geo)
+
+    def loads(c):
+        cyc = np.asarray(c, float) @ per_case  # (n, 4)
+        force = (cyc[:, :1] + cyc[:, 2:3] * x[None, :]) * area
+        return cyc[:, 1] * inertia, force
+
+    m, f = loads(coeffs)
+    m_os = f_os = 0.0
+    if coeffs_os is not None and len(coeffs_os):
+        mo, fo = loads(coeffs_os)
+        m_os, f_os = float(np.max(np.abs(mo))), float(np.max(fo))
+    return SectionLoads(m, f, m_os, f_os, int(sel.sum()))
+
+
+def bearing_reaction(pin_force, rod_loads, geo: JointGeometry) -> np.ndarray:
+    """(n, 2) reaction of the main bearing on the side of the web ``geo.web`` to the pin
+    force (statically determinate throw, bearings at the journals' end faces): each rod's
+    force at its place e on the pin (``rod_loads``: (force (n, 2), e)), else the summed
+    ``pin_force`` at mid-pin: R_1 = F (L/2 - e)/L, R_2 = F (L/2 + e)/L."""
+    span = geo.bearing_span
+    loads = rod_loads if rod_loads else ((pin_force, 0.0),)
+    sign = -1.0 if geo.web == 1 else 1.0
+    return sum(np.asarray(f, float) * (0.5 * span + sign * e) / span for f, e in loads)
+
+
+def web_moments(geo: JointGeometry, pin_force, rod_loads=None, overspeed_loads=()) -> WebMoments:
+    """The web's bending moment at its mid-plane, M_w = R (L_j + t/2) (module docstring), over
+    the working cycle and the overspeed cycles (``overspeed_loads``: (pin force, torque[,
+    rod loads]) each)."""
+    m = bearing_reaction(pin_force, rod_loads, geo) * geo.bearing_lever
+    largest_os = 0.0
+    for c in overspeed_loads or ():
+        rods = c[2] if len(c) > 2 else None
+        m_os = bearing_reaction(c[0], rods, geo) * geo.bearing_lever
+        largest_os = max(largest_os, float(np.max(np.hypot(m_os[:, 0], m_os[:, 1]))))
+    # the radial force (y) bends the web about x; the tangential one (x) about y
+    return WebMoments(m[:, 1].copy(), float(np.max(np.hypot(m[:, 0], m[:, 1]))), largest_os)
+
+
+def bolt_offsets(joint, geo: JointGeometry) -> np.ndarray:
+    """x_i (m) of the bolts across the joint: on the pitch circle at angles spread evenly
+    over the counterweight's angle, phi_i = -A/2 + (i + 1/2) A/n."""
+    n = joint.count
+    phi = -0.5 * geo.angle + (np.arange(n) + 0.5) * geo.angle / n
+    return joint.pitch_radius * np.sin(phi)
+
+
+LEVER_MODEL = "lever: the web's moment R (L_j + t/2) whole onto the joint (upper bound)"
+
+
+def joint_loads(
+    b,
+    *,
+    omega: float,
+    overspeed: float | None,
+    speed_fluctuation: float = 0.0,
+    angular_acceleration: float = 0.0,
+    web: WebMoments | None = None,
+    section: SectionLoads | None = None,
+) -> JointLoads:
+    """Per-bolt loads of the bolted counterweight ``b`` (``BoltedCounterweight``) with its
+    eccentricity (module docstring); without a joint geometry the centric
+    ``counterweight_loads``.  The web's deformation: ``section`` (the FE model's, radial
+    joints, ``fe_section_loads``), else ``web`` (the lever model, ``web_moments``), else none."""
+    joint, geo = b.joint, b.geometry
+    base = counterweight_loads(
+        b.mass,
+        b.radius,
+        joint.count,
+        joint.direction,
+        omega=omega,
+        overspeed=overspeed,
+        speed_fluctuation=speed_fluctuation,
+        angular_acceleration=angular_acceleration,
+    )
+    if geo is None:
+        return base
+    n = joint.count
+    mr = b.mass * b.radius
+    f_t = mr * abs(angular_acceleration)  # the tangential inertia, whole counterweight
+    if joint.direction == "radial":
+        c_t = min(geo.web_thickness, geo.thickness)
+        ecc = v.Eccentric(width=c_t, length=joint.clamped_diameter, s_sym=0.0, a=0.5 * (geo.thickness - c_t))
+        x = bolt_offsets(joint, geo)
+        lever = max(b.radius - geo.seat_radius, 0.0)  # prying lever of the tangential inertia
+        pry_force = pry_moment = 0.0
+        if n > 1 and float(np.sum(x**2)) > 0:
+            pry_force = f_t * lever * float(np.max(np.abs(x))) / float(np.sum(x**2))
+        else:
+            pry_moment = f_t * lever  # one bolt: the prying as a moment (its plane taken as the joint's)
+        f_hi = f_lo = f_os = 0.0
+        model = ""
+        if section is not None:
+            m_hi, m_lo, m_os = float(np.max(section.moment)), float(np.min(section.moment)), section.moment_overspeed
+            f_hi, f_lo, f_os = float(np.max(section.force)), float(np.min(section.force)), section.force_overspeed
+            model = f"FE: sigma_yy across the joint plane, the pin and torque cases ({section.nodes} nodes)"
+        elif web is not None:
+            m_hi, m_lo, m_os = float(np.max(web.about_x)) / n, float(np.min(web.about_x)) / n, web.overspeed / n
+            model = LEVER_MODEL
+        else:
+            m_hi = m_lo = m_os = 0.0
+        web_moment = max(abs(m_hi), abs(m_lo))
+        m_hi, m_lo = m_hi + pry_moment, m_lo - pry_moment
+        return JointLoads(
+            axial_max=base.axial_max + pry_force + max(f_hi, 0.0),
+            axial_min=base.axial_min - pry_force + min(f_lo, 0.0),
+            axial_overspeed=base.axial_overspeed + max(f_os, 0.0),
+            transverse_max=base.transverse_max,
+            moment_max=m_hi,
+            moment_min=m_lo,
+            moment_overspeed=max(m_os, abs(m_hi), abs(m_lo)) if overspeed is None else m_os,
+            eccentric=ecc,
+            web_moment=web_moment,
+            web_model=model,
+        )
+    # axial bolts: xi positive towards the crank axis, the centrifugal force prying the inner edge open
+    r_t = 0.5 * (geo.outer_radius + geo.inner_radius)
+    ecc = v.Eccentric(
+        width=geo.outer_radius - geo.inner_radius,
+        length=joint.clamped_diameter,
+        s_sym=r_t - joint.pitch_radius,
+        a=0.0,
+    )
+    h = 0.5 * geo.thickness
+    w_all = web.largest / n if web is not None else 0.0
+    w_os = web.overspeed / n if web is not None else 0.0
+    f_c_hi = mr * (omega * (1.0 + 0.5 * speed_fluctuation)) ** 2
+    f_c_lo = mr * (omega * (1.0 - 0.5 * speed_fluctuation)) ** 2
+    f_c_os = mr * (overspeed if overspeed is not None else omega) ** 2
+    return JointLoads(
+        axial_max=0.0,
+        axial_min=0.0,
+        axial_overspeed=0.0,
+        transverse_max=base.transverse_max,
+        moment_max=f_c_hi * h / n + w_all,
+        moment_min=f_c_lo * h / n - w_all,
+        moment_overspeed=max(f_c_os, f_c_hi) * h / n + max(w_os, w_all),
+        eccentric=ecc,
+        web_moment=w_all,
+        web_model=LEVER_MODEL if web is not None else "",
+    )
+
+
 def yield_point(joint) -> float:
     """R_p0.2 of the bolt: given, or by its ISO 898-1 property class."""
     if joint.yield_strength is not None:
@@ -104,9 +375,18 @@ def yield_point(joint) -> float:
     return lo if joint.diameter <= 0.016 + 1e-12 else hi
 
 
+def _corners(loads: JointLoads) -> tuple[list[tuple[float, float]], list[tuple[float, float]]]:
+    """(F_A, M_B) corners of the working cycle's box and of the overspeed (both signs of M_B)."""
+    work = [(f, m) for f in (loads.axial_min, loads.axial_max) for m in (loads.moment_min, loads.moment_max)]
+    over = [(loads.axial_overspeed, m) for m in (-loads.moment_overspeed, loads.moment_overspeed)]
+    return work, over
+
+
 def check_joint(name: str, joint, loads: JointLoads, e_clamped: float) -> JointCheck:
     """VDI 2230 checks of one bolt of ``joint`` (``geometry.spec.BoltedJoint``) under ``loads``;
-    ``e_clamped``: Young's modulus of the counterweight and web (and of the tapped thread)."""
+    ``e_clamped``: Young's modulus of the counterweight and web (and of the tapped thread).
+    With ``loads.eccentric`` VDI 2230's eccentric clamping and loading (R2, R3, R5, R9),
+    without it the centric joint (module docstring)."""
     d, p, lk = joint.diameter, joint.thread_pitch, joint.clamp_length
     tapped = joint.tapped
     rp = yield_point(joint)
@@ -119,42 +399,75 @@ def check_joint(name: str, joint, loads: JointLoads, e_clamped: float) -> JointC
     )
     phi_k = dp / (ds + dp)
     n = joint.load_introduction
-    phi_bolt = phi_k * (1.0 if n is None else n)
-    phi_clamp = phi_k * (0.0 if n is None else n)
+    n_bolt, n_clamp = (1.0, 0.0) if n is None else (n, n)
+    ecc = loads.eccentric
+    if ecc is None:  # centric (R3): Phi = n Phi_K, no moment, no bending, F_Kab = 0
+        phi_en, phi_m = n_bolt * phi_k, 0.0
+        phi_en_c, phi_m_c = n_clamp * phi_k, 0.0
+        k_f, k_m, b_f, b_m = phi_en / t["As"], 0.0, 0.0, 0.0
+        i_bt = a_d = math.nan
+    else:
+        i_bt, a_d = v.interface_section(ecc, joint.hole_diameter)
+        if not (i_bt > 0 and a_d > 0):
+            raise ValueError(f"{name}: the joint's interface is smaller than its bolt hole")
+        phi_en, phi_m = v.eccentric_load_factors(ds, dp, ecc, lk, e_clamped, i_bt, n_bolt)
+        phi_en_c, phi_m_c = v.eccentric_load_factors(ds, dp, ecc, lk, e_clamped, i_bt, n_clamp)
+        l_ers = v.bending_length(d, p, lk, joint.shank_length, joint.shank_diameter)
+        k_f, k_m, b_f, b_m = v.bending_stress_coefficients(ecc, phi_en, phi_m, d, p, lk, l_ers, E_BOLT, e_clamped, i_bt)
+    work, over = _corners(loads)
     loading = "shear" if loads.transverse_max > 0 else "tension"
     f_z = v.embedding(joint.roughness, loading, tapped=tapped) / (ds + dp)
-    f_m_max = joint.preload if joint.preload is not None else v.permissible_preload(d, p, rp, joint.thread_friction)
+    mu_g = joint.thread_friction
+    f_m_max = joint.preload if joint.preload is not None else v.permissible_preload(d, p, rp, mu_g)
     f_m_min = f_m_max / joint.tightening_factor
-    red_m = v.assembly_stress(d, p, f_m_max, joint.thread_friction)[2]
-    sigma_b = (f_m_max + phi_bolt * loads.axial_overspeed) / t["As"]
-    red_b = math.hypot(sigma_b, math.sqrt(3.0) * v.K_TAU * v.working_torsion(d, p, f_m_max, joint.thread_friction))
-    d_fa = max(loads.axial_max - loads.axial_min, loads.axial_max)  # working cycle or start-stop
-    sigma_a = phi_bolt * d_fa / (2.0 * t["As"])
-    f_mean = f_m_max + phi_bolt * 0.5 * loads.axial_max
+    red_m = v.assembly_stress(d, p, f_m_max, mu_g)[2]
+    # R8 at the overspeed: the largest bolt stress, axial + bending on the safe side
+    fibres = ((k_f + b_f, k_m + b_m), (k_f - b_f, k_m - b_m))
+    sigma_b = max(f_m_max / t["As"] + cf * f + cm * m for cf, cm in fibres for f, m in over + work)
+    red_b = math.hypot(sigma_b, math.sqrt(3.0) * v.K_TAU * v.working_torsion(d, p, f_m_max, mu_g))
+    # R9: the range of each load over the cycle or a start and stop (0 to the working values)
+    d_fa = max(loads.axial_max, 0.0) - min(loads.axial_min, 0.0)
+    d_mb = max(loads.moment_max, 0.0) - min(loads.moment_min, 0.0)
+    sigma_a = max(abs(cf) * d_fa + abs(cm) * d_mb for cf, cm in fibres) / 2.0
+    bending_a = (abs(b_f) * d_fa + abs(b_m) * d_mb) / 2.0
+    f_mean = f_m_max + phi_en * 0.5 * loads.axial_max
     limit = v.endurance_limit(
         d, rolled_after_heat_treatment=joint.rolled_after_heat_treatment, mean_over_yield_load=f_mean / (t["As"] * rp)
     )
-    relief = (1.0 - phi_clamp) * loads.axial_overspeed
-    f_kr = f_m_min - f_z - relief
+    # R2/R5: the clamp load the working loads take off and the opening limit, at each corner
+    avail = f_m_min - f_z
+    worst_sep, worst_relief, f_kab_max = math.inf, 0.0, 0.0
+    for f, m in over + work:
+        relief = (1.0 - phi_en_c) * f + abs(phi_m_c * m)
+        f_kab = 0.0 if ecc is None else v.opening_limit_both_edges(f, m, ecc, i_bt, a_d)
+        f_kab_max = max(f_kab_max, f_kab)
+        worst_relief = max(worst_relief, relief)
+        need = relief + f_kab
+        worst_sep = min(worst_sep, avail / need if need > 0 else math.inf)
+    f_kr = avail - worst_relief
     d_km = 0.5 * (joint.bearing_diameter + joint.hole_diameter)
+    mu_t = joint.interface_friction
     return JointCheck(
         name=name,
         preload_max=f_m_max,
         preload_min=f_m_min,
         embedding_loss=f_z,
         load_factor=phi_k,
-        tightening_torque=v.tightening_torque(d, p, f_m_max, joint.thread_friction, joint.head_friction, d_km),
+        tightening_torque=v.tightening_torque(d, p, f_m_max, mu_g, joint.head_friction, d_km),
         assembly_utilisation=red_m / rp,
         working_safety=rp / red_b,
         fatigue_amplitude=sigma_a,
         endurance_limit=limit,
         fatigue_safety=limit / sigma_a if sigma_a > 0 else math.inf,
         residual_clamp=f_kr,
-        separation_safety=(f_m_min - f_z) / relief if relief > 0 else math.inf,
-        slip_safety=max(f_kr, 0.0) * joint.interface_friction / loads.transverse_max
-        if loads.transverse_max > 0
-        else math.inf,
+        separation_safety=worst_sep,
+        slip_safety=max(f_kr, 0.0) * mu_t / loads.transverse_max if loads.transverse_max > 0 else math.inf,
         loads=loads,
+        eccentric_load_factor=phi_en,
+        moment_load_factor=phi_m,
+        opening_limit=f_kab_max,
+        bending_amplitude=bending_a,
+        friction=(mu_g, joint.head_friction, mu_t),
     )
 
 
@@ -186,9 +499,18 @@ def check_joints(
     speed_fluctuation: float = 0.0,
     angular_acceleration: float = 0.0,
     file: str = "",
+    pin_force=None,
+    rod_loads=None,
+    overspeed_loads=(),
+    fe=None,
 ) -> tuple[JointCheck, ...]:
     """VDI 2230 checks of every bolted counterweight of ``cw`` (``CounterweightData``); a
-    joint without the data the check needs is an InputError naming the missing keys."""
+    joint without the data the check needs is an InputError naming the missing keys.
+    ``pin_force`` (n, 2) of the working cycle in the throw frame (``rod_loads``: each rod's
+    force at its place) and the ``overspeed_loads``: the web's bending moment at the joints
+    (``web_moments``); None: no web moment.  ``fe``: (unit stresses, working cycle's
+    coefficients, overspeed cycles' coefficients or None): a radial joint takes the web's
+    deformation from the FE model's section (``fe_section_loads``) where it can be fitted."""
     from fe_crank.errors import InputError
 
     out = []
@@ -200,17 +522,24 @@ def check_joints(
                 file=file,
                 key="counterweight.bolted",
             )
-        loads = counterweight_loads(
-            b.mass,
-            b.radius,
-            b.joint.count,
-            b.joint.direction,
+        web = section = None
+        if b.geometry is not None and pin_force is not None:
+            web = web_moments(b.geometry, pin_force, rod_loads, overspeed_loads)
+        if b.geometry is not None and fe is not None and b.joint.direction == "radial":
+            section = fe_section_loads(fe[0], b.name, b.geometry, b.joint, fe[1], fe[2])
+        loads = joint_loads(
+            b,
             omega=omega,
             overspeed=overspeed,
             speed_fluctuation=speed_fluctuation,
             angular_acceleration=angular_acceleration,
+            web=web,
+            section=section,
         )
-        out.append(check_joint(b.name, b.joint, loads, e_clamped))
+        try:
+            out.append(check_joint(b.name, b.joint, loads, e_clamped))
+        except ValueError as exc:
+            raise InputError(str(exc), file=file, key="counterweight.bolted") from None
     return tuple(out)
 
 
@@ -224,7 +553,75 @@ JOINT_QUANTITIES = {
 }
 
 
+#: VDI 2230's usual limits, taken when a load case with bolted counterweights names none of
+#: the joint quantities: R7 nu <= 0.9 (the utilisation F_M,zul is defined by), R8 S_F >= 1.0,
+#: R9 S_D >= 1.2, opening S_sep >= 1.0 (no opening), R12 S_G >= 1.8 (VDI 2230's value for an
+#: alternating transverse load, which the counterweight's tangential inertia is; 1.2 static)
+DEFAULT_LIMITS = {
+    "bolt_assembly_utilisation": 0.9,
+    "bolt_working_safety": 1.0,
+    "bolt_fatigue_safety": 1.2,
+    "bolt_separation_safety": 1.0,
+    "bolt_slip_safety": 1.8,
+}
+DEFAULT_WORDS = "default limit (VDI 2230's usual value; the load case names no bolted-joint criterion)"
+
+
+def has_joints(throw_geometry) -> bool:
+    """Whether any throw's geometry (``ThrowGeometry`` by name) has a bolted counterweight."""
+    return any(c.joints for tg in throw_geometry.values() if tg is not None for c in tg.counterweights)
+
+
+def with_default_limits(criteria, file: str = ""):
+    """``criteria`` (``io.criteria.Criteria``) with ``DEFAULT_LIMITS`` added when it names none of
+    the joint quantities; (criteria, the quantities added)."""
+    from fe_crank.io.criteria import Limit
+
+    if any(lim.quantity in JOINT_QUANTITIES for lim in criteria.limits):
+        return criteria, ()
+    added = tuple(
+        Limit(q, JOINT_QUANTITIES[q][1], value, f"criteria.{JOINT_QUANTITIES[q][1]}_{q}")
+        for q, value in DEFAULT_LIMITS.items()
+    )
+    return dataclasses.replace(criteria, limits=criteria.limits + added), tuple(q for q in DEFAULT_LIMITS)
+
+
+def joint_qualifiers(throw_geometry, defaulted: tuple[str, ...] = ()) -> dict[str, str]:
+    """quantity -> the words each joint criterion's verdict line carries: the friction
+    coefficients the joints were checked with (thread mu_G, head mu_K, interface mu_T) and,
+    where the limit is a default, that it is one."""
+    sets = sorted(
+        {
+            (j.joint.thread_friction, j.joint.head_friction, j.joint.interface_friction)
+            for tg in throw_geometry.values()
+            if tg is not None
+            for c in tg.counterweights
+            for j in c.joints
+        }
+    )
+    if not sets:
+        return {}
+    words = "; ".join(f"mu_G {g:.2f}, mu_K {k:.2f}, mu_T {t:.2f}" for g, k, t in sets)
+    return {
+        q: "; ".join(w for w in (f"friction {words}", DEFAULT_WORDS if q in defaulted else "") if w)
+        for q in JOINT_QUANTITIES
+    }
+
+
 __all__ = [
+    "DEFAULT_LIMITS",
+    "DEFAULT_WORDS",
+    "has_joints",
+    "with_default_limits",
+    "joint_qualifiers",
+    "WebMoments",
+    "SectionLoads",
+    "fe_section_loads",
+    "LEVER_MODEL",
+    "bearing_reaction",
+    "web_moments",
+    "bolt_offsets",
+    "joint_loads",
     "E_BOLT",
     "JOINT_QUANTITIES",
     "JointLoads",

@@ -155,6 +155,21 @@ def _joint(j):
         "residual_clamp": j.residual_clamp,
         "separation_safety": _num(j.separation_safety),
         "slip_safety": _num(j.slip_safety),
+        "moment_max": ld.moment_max,
+        "moment_min": ld.moment_min,
+        "moment_overspeed": ld.moment_overspeed,
+        "web_moment": ld.web_moment,
+        "eccentric_load_factor": _num(j.eccentric_load_factor),
+        "moment_load_factor": j.moment_load_factor,
+        "opening_limit": j.opening_limit,
+        "bending_amplitude": j.bending_amplitude,
+        "s_sym": None if ld.eccentric is None else ld.eccentric.s_sym,
+        "a": None if ld.eccentric is None else ld.eccentric.a,
+        "interface_width": None if ld.eccentric is None else ld.eccentric.width,
+        "interface_length": None if ld.eccentric is None else ld.eccentric.length,
+        "thread_friction": j.friction[0],
+        "head_friction": j.friction[1],
+        "interface_friction": j.friction[2],
     }
 
 

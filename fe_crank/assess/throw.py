@@ -110,7 +110,8 @@ def assess_throw(
     ``joint_speed``: (delta, max |alpha|) of the cycle (``cw_joint.cycle_speed_data``):
     the bolted counterweights' joints are checked by VDI 2230 at ``omega`` (and the
     overspeed) (``cw_joint.check_joints``, an ``InputError`` naming the keys a joint lacks,
-    in ``geometry_file``); None: not checked."""
+    in ``geometry_file``), with the web's bending moment from ``pin_force`` (or ``rod_loads``)
+    and the overspeed cycles' pin force; None: not checked."""
     fe_pin = pin_force if fe_pin_force is None else fe_pin_force
     coeffs = cycle_coefficients(
         unit,
@@ -183,6 +184,19 @@ def assess_throw(
     joints: tuple[JointCheck, ...] = ()
     if joint_speed is not None:
         delta, alpha = joint_speed
+        if overspeed_loads is None:  # the web's moment at the overspeed: the operating loads scaled as above
+            scale = (overspeed / omega) ** 2 if overspeed is not None and omega > 0 else 1.0
+            rods_os = None if rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in rod_loads)
+            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float), rods_os)
+        web_cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
+        joint_os = coeffs_os
+        if joint_os is None and overspeed is not None:
+            joint_os = np.vstack(
+                [
+                    cycle_coefficients(unit, c[0], c[1], overspeed, sense=sense, rod_loads=c[2] if len(c) > 2 else None)
+                    for c in web_cycles
+                ]
+            )
         joints = tuple(
             j
             for c in counterweights
@@ -194,6 +208,10 @@ def assess_throw(
                 speed_fluctuation=delta,
                 angular_acceleration=alpha,
                 file=geometry_file,
+                pin_force=pin_force,
+                rod_loads=rod_loads,
+                overspeed_loads=web_cycles,
+                fe=(unit, coeffs, joint_os),
             )
         )
     return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)), joints)

@@ -61,7 +61,7 @@ def parametric_throws(
         for tname in throws_of(key, [t.name for t in engine.throws]):
             throw = engine.throw(tname)
             cws = (
-                counterweights_of(spec, solids.of(spec.name), throw.axial_position, throw.shaft, design)
+                counterweights_of(spec, solids.of(spec.name), throw.axial_position, throw.shaft, design, g)
                 if spec.counterweights and solids is not None
                 else ()
             )

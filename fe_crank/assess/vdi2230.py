@@ -1,5 +1,5 @@
 """VDI 2230 Part 1 (2015), "Systematic calculation of highly stressed bolted joints", for one
-concentrically clamped and concentrically loaded bolt: the formulas, SI in and out.
+bolt, concentrically or eccentrically clamped and loaded: the formulas, SI in and out.
 
 * Thread (ISO 68-1, ISO 724): d_2 = d - 0.64952 P, d_3 = d - 1.22687 P, stress area
   A_s = pi/4 ((d_2 + d_3)/2)^2, A_d3 = pi/4 d_3^2, A_N = pi/4 d^2 (VDI 2230 5.1.1, 5.5.1).
@@ -24,11 +24,35 @@ concentrically clamped and concentrically loaded bolt: the formulas, SI in and o
   tau = M_G/W_p with the elastic W_p = pi d_0^3/16.
 * Fatigue (R9, 5.5.3): sigma_ASV = 0.85 (150/d + 45) N/mm^2 (d in mm, d <= 40 mm; rolled
   before heat treatment), rolled after: sigma_ASG = (2 - F_Sm/F_0.2min) sigma_ASV.
+
+Eccentric clamping and loading (5.1.2 and 5.3: R2, R3, R5, R9; ``Eccentric``).  In the plane of
+the eccentricity a coordinate xi runs across the interface from the axis O-O of the
+substitutional deformation body (the interface's centroid axis); the bolt axis lies at
+xi = s_sym, the working load F_A acts at xi = a, a working moment M_B counts positive when it
+opens the edge at xi = +u (the same sense as F_A a).  Then (VDI 2230's own signs: s_sym, a, u
+positive on the side of the edge U that opens first):
+* delta_P* = delta_P + s_sym^2 l_K / (E_P I_Bers), delta_P** = delta_P + a s_sym l_K / (E_P I_Bers)
+  (R3: the clamped parts' resilience under the bolt's eccentric clamp load and under the
+  eccentric working load);
+* Phi_en* = n delta_P** / (delta_S + delta_P*) (R3), Phi_m* = n s_sym l_K /
+  (E_P I_Bers (delta_S + delta_P*)) for the moment (R3); the additional bolt load
+  F_SA = Phi_en* F_A + Phi_m* M_B;
+* opening limit (R2, F_KA = F_Kab): F_Kab = (F_A (a u - s_sym u) + M_B u) / (I_BT/A_D + s_sym u);
+  the joint does not open while the residual clamp load exceeds it (R5: F_M,min >= F_Kerf +
+  (1 - Phi_en*) F_A + F_Z);
+* bolt bending (R9, eccentric loading): sigma_SAb = F_SA/A_S + (l_K/l_ers) (E_S/E_P) (d_S/(2 I_Bers))
+  (F_A a + M_B - F_SA s_sym), which for M_B = 0 is VDI 2230's
+  [1 + (1/Phi_en* - s_sym/a) (l_K/l_ers) (E_S/E_P) pi a d_S^3/(8 I_Bers)] Phi_en* F_A/A_S
+  (with A_S = pi d_S^2/4): the clamped parts turn by (F_A a + M_B - F_SA s_sym) l_K/(E_P I_Bers)
+  and the bolt, of bending length l_ers, turns with them;
+* the substitutional moment of inertia of a prismatic deformation body as wide as the
+  interface (R3): I_Bers = I_BT = b_T c_T^3/12 - pi d_h^4/64, A_D = b_T c_T - pi d_h^2/4.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from fe_crank.geometry.spec import COARSE_PITCH_MM
 
@@ -171,7 +195,101 @@ def endurance_limit(d: float, *, rolled_after_heat_treatment: bool, mean_over_yi
     return (2.0 - mean_over_yield_load) * sv if rolled_after_heat_treatment else sv
 
 
+@dataclass(frozen=True)
+class Eccentric:
+    """One bolt's joint in the plane of its eccentricity (module docstring; SI, m):
+    the interface's width c_T (in the plane) and length b_T, the bolt's offset s_sym and the
+    working load's a from the interface's centroid axis, positive towards the edge at +c_T/2."""
+
+    width: float  # c_T
+    length: float  # b_T
+    s_sym: float = 0.0
+    a: float = 0.0
+
+    @property
+    def centric(self) -> bool:
+        return self.s_sym == 0.0 and self.a == 0.0
+
+
+def interface_section(ecc: Eccentric, hole_diameter: float) -> tuple[float, float]:
+    """(I_BT = I_Bers, A_D) of the interface less the bolt hole (m^4, m^2), VDI 2230 5.1.2.3."""
+    c, b, dh = ecc.width, ecc.length, hole_diameter
+    return b * c**3 / 12.0 - math.pi * dh**4 / 64.0, b * c - math.pi * dh**2 / 4.0
+
+
+def eccentric_resiliences(delta_p: float, ecc: Eccentric, clamp_length: float, e_plate: float, i_bers: float):
+    """(delta_P*, delta_P**) (m/N), VDI 2230 R3 (eccentric clamping and loading)."""
+    k = clamp_length / (e_plate * i_bers)
+    return delta_p + ecc.s_sym**2 * k, delta_p + ecc.a * ecc.s_sym * k
+
+
+def eccentric_load_factors(
+    delta_s: float, delta_p: float, ecc: Eccentric, clamp_length: float, e_plate: float, i_bers: float, n: float
+) -> tuple[float, float]:
+    """(Phi_en*, Phi_m* in 1/m) of VDI 2230 R3: the share of F_A and the
+    force per unit moment M_B that the bolt takes."""
+    dps, dpss = eccentric_resiliences(delta_p, ecc, clamp_length, e_plate, i_bers)
+    phi_en = n * dpss / (delta_s + dps)
+    phi_m = n * ecc.s_sym * clamp_length / (e_plate * i_bers * (delta_s + dps))
+    return phi_en, phi_m
+
+
+def opening_limit(f_a: float, m_b: float, ecc: Eccentric, u: float, i_bt: float, a_d: float) -> float:
+    """F_Kab (N), VDI 2230 R2 (opening limit): the clamp load below which the edge at xi = +u
+    opens under F_A at a and M_B (inf: the bolt's own eccentric clamp load lifts that edge)."""
+    den = i_bt / a_d + ecc.s_sym * u
+    if not den > 0:
+        return math.inf
+    return (f_a * (ecc.a - ecc.s_sym) * u + m_b * u) / den
+
+
+def opening_limit_both_edges(f_a: float, m_b: float, ecc: Eccentric, i_bt: float, a_d: float) -> float:
+    """The larger F_Kab of the interface's two edges (+c_T/2 and, mirrored, -c_T/2), >= 0."""
+    u = 0.5 * ecc.width
+    mirrored = Eccentric(ecc.width, ecc.length, -ecc.s_sym, -ecc.a)
+    return max(0.0, opening_limit(f_a, m_b, ecc, u, i_bt, a_d), opening_limit(f_a, -m_b, mirrored, u, i_bt, a_d))
+
+
+def bending_length(d: float, pitch: float, clamp_length: float, shank_length: float = 0.0, shank_diameter=None):
+    """l_ers (m): the bolt's substitutional bending length within the clamp length, referred
+    to the stress diameter d_S (VDI 2230 5.5.3: sum of l_i (d_S/d_i)^4; the free thread at d_3,
+    the shank at its diameter; the head and the engaged thread left out, which shortens l_ers
+    and so raises the bending stress)."""
+    t = thread(d, pitch)
+    ds = t["ds"]
+    return (clamp_length - shank_length) * (ds / t["d3"]) ** 4 + shank_length * (ds / (shank_diameter or d)) ** 4
+
+
+def bending_stress_coefficients(
+    ecc: Eccentric,
+    phi_en: float,
+    phi_m: float,
+    d: float,
+    pitch: float,
+    clamp_length: float,
+    l_ers: float,
+    e_bolt: float,
+    e_plate: float,
+    i_bers: float,
+) -> tuple[float, float, float, float]:
+    """(k_F, k_M) of the bolt's axial stress F_SA/A_S and (b_F, b_M) of its bending stress at
+    the fibre towards +xi, both linear in (F_A, M_B), VDI 2230 R9 for eccentric loading (module
+    docstring): sigma_SAb = (k_F + b_F) F_A + (k_M + b_M) M_B."""
+    t = thread(d, pitch)
+    c = clamp_length / l_ers * e_bolt / e_plate * t["ds"] / (2.0 * i_bers)
+    k_f, k_m = phi_en / t["As"], phi_m / t["As"]
+    return k_f, k_m, c * (ecc.a - phi_en * ecc.s_sym), c * (1.0 - phi_m * ecc.s_sym)
+
+
 __all__ = [
+    "Eccentric",
+    "interface_section",
+    "eccentric_resiliences",
+    "eccentric_load_factors",
+    "opening_limit",
+    "opening_limit_both_edges",
+    "bending_length",
+    "bending_stress_coefficients",
     "COARSE_PITCH_MM",
     "PROPERTY_CLASS_RP02",
     "EMBEDDING_UM",

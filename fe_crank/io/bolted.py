@@ -56,3 +56,26 @@ class BoltedInput(Strict):
         if self.shank_diameter is not None and not self.shank_diameter <= d:
             raise ValueError("shank_diameter cannot exceed the thread diameter")
         return self
+
+
+def require_joint_data(geometry, file) -> None:
+    """Refuse, before any meshing, a bolted counterweight without the data its VDI 2230 check
+    needs: every bolted joint of a geometry (``geometry.spec.CrankGeometry``) is checked
+    (with VDI 2230's usual limits where the load case names none, ``assess.cw_joint``), so
+    its clamp length, bearing, hole and clamped diameters, tightening factor and yield data
+    are required.  ``file``: the load case (the geometry's own file is named when known)."""
+    from fe_crank.errors import InputError
+
+    for i, t in enumerate(geometry.throws):
+        for cw in t.counterweights:
+            if cw.bolted is None:
+                continue
+            missing = cw.bolted.vdi_missing()
+            if missing:
+                key = f"throws[{i}].counterweight.bolted" if len(geometry.throws) > 1 else "counterweight.bolted"
+                raise InputError(
+                    f"a bolted counterweight is checked by VDI 2230 (docs/assessment.md, with default limits where "
+                    f"the load case names none): give {', '.join(missing)}",
+                    file=str(geometry.file or file),
+                    key=key,
+                )

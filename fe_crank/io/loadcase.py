@@ -32,6 +32,7 @@ from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
 from fe_crank.io.base import InputFile, Strict, read_toml, recording_inputs, validate
+from fe_crank.io.bolted import require_joint_data
 from fe_crank.io.criteria import Criteria, check_m53_torque
 from fe_crank.io.engine import engine_from_reference
 from fe_crank.io.geometry import require_counterweight_fillets
@@ -126,6 +127,7 @@ def _load(path: Path) -> LoadCase:
             engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
     if criteria is not None and isinstance(geometry, CrankGeometry):
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
+        require_joint_data(geometry, path)
     if sections.torsion is not None and isinstance(geometry, CadInput):
         raise InputError(
             "the torsional model takes its throws' inertias and stiffness from a parametric geometry; with a CAD "

@@ -10,17 +10,22 @@ from fe_crank.report.html import table
 #: (header, JointCheck field, format, scale)
 _COLUMNS = (
     ("preload F_M,max / F_M,min [kN]", None, "", 1.0),
-    ("load factor Phi_K", "load_factor", "{:.3f}", 1.0),
+    ("load factor Phi_K / Phi_en* (R3)", None, "", 1.0),
+    ("eccentricity s_sym / a, interface c_T x b_T [mm]", None, "", 1.0),
+    ("friction mu_G / mu_K / mu_T", None, "", 1.0),
     ("embedding loss F_Z [kN]", "embedding_loss", "{:.2f}", 1e-3),
     ("tightening torque M_A [N m]", "tightening_torque", "{:.1f}", 1.0),
     ("axial load F_A max / overspeed [kN]", None, "", 1.0),
     ("transverse load F_Q [kN]", None, "", 1.0),
+    ("web moment at the joint, whole joint [N m]", None, "", 1.0),
+    ("moment M_B min / max / overspeed [N m]", None, "", 1.0),
+    ("opening limit F_Kab [kN] (R2)", "opening_limit", "{:.2f}", 1e-3),
     ("R7 assembly utilisation nu", "assembly_utilisation", "{:.3f}", 1.0),
     ("R8 working safety S_F (overspeed)", "working_safety", "{:.3f}", 1.0),
-    ("R9 fatigue: sigma_a / sigma_AS [MPa]", None, "", 1.0),
+    ("R9 fatigue: sigma_a (bending part) / sigma_AS [MPa]", None, "", 1.0),
     ("R9 fatigue safety S_D", "fatigue_safety", "{:.3f}", 1.0),
     ("residual clamp load F_KR,min [kN]", "residual_clamp", "{:.2f}", 1e-3),
-    ("separation safety S_sep", "separation_safety", "{:.3f}", 1.0),
+    ("opening safety S_sep (R2/R5)", "separation_safety", "{:.3f}", 1.0),
     ("R12 slip safety S_G", "slip_safety", "{:.3f}", 1.0),
 )
 
@@ -39,7 +44,20 @@ def _cell(j, header: str, attr: str | None, fmt: str, scale: float) -> str:
         return f"{ld.axial_max / 1e3:.3f} / {ld.axial_overspeed / 1e3:.3f}"
     if header.startswith("transverse"):
         return f"{ld.transverse_max / 1e3:.3f}"
-    return f"{j.fatigue_amplitude / 1e6:.2f} / {j.endurance_limit / 1e6:.2f}"
+    if header.startswith("load factor"):
+        return f"{j.load_factor:.3f} / {j.eccentric_load_factor:.3f}"
+    if header.startswith("eccentricity"):
+        e = ld.eccentric
+        if e is None:
+            return "centric"
+        return f"{e.s_sym * 1e3:.1f} / {e.a * 1e3:.1f}, {e.width * 1e3:.1f} x {e.length * 1e3:.1f}"
+    if header.startswith("friction"):
+        return " / ".join(f"{mu:.2f}" for mu in j.friction)
+    if header.startswith("web moment"):
+        return f"{ld.web_moment:.1f}"
+    if header.startswith("moment"):
+        return f"{ld.moment_min:.1f} / {ld.moment_max:.1f} / {ld.moment_overspeed:.1f}"
+    return f"{j.fatigue_amplitude / 1e6:.2f} ({j.bending_amplitude / 1e6:.2f}) / {j.endurance_limit / 1e6:.2f}"
 
 
 def joint_table(throws) -> str:
@@ -53,8 +71,11 @@ def joint_table(throws) -> str:
         "<h3>bolted joints (VDI 2230 Part 1)</h3>"
         + table(header, rows, num_cols=set(range(1, len(header))))
         + '<p class="note">Loads per bolt, shared equally: centrifugal m r_c omega^2 over the working '
-        "cycle's speed band and at the overspeed, tangential m r_c alpha; without a stated load "
-        "introduction factor n the bounds n = 1 (bolt) and n = 0 (clamp). docs/assessment.md.</p>"
+        "cycle's speed band and at the overspeed, tangential m r_c alpha with its prying lever to the joint "
+        "plane; the web's bending moment from the pin force, R (L_j + t/2), taken whole onto the joint as "
+        "the working moment M_B (an upper bound); VDI 2230's eccentric clamping and loading (Phi_en*, F_Kab, "
+        "the bolt's bending in sigma_a); without a stated load introduction factor n the bounds n = 1 "
+        "(bolt) and n = 0 (clamp). docs/assessment.md.</p>"
     )
 
 
