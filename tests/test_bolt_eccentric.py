@@ -228,3 +228,40 @@ def test_default_limits_and_the_verdict_lines_words():
     words = joint_qualifiers(tg, added)
     assert words["bolt_slip_safety"] == f"friction mu_G 0.10, mu_K 0.10, mu_T 0.10; {DEFAULT_WORDS}"
     assert joint_qualifiers(tg)["bolt_fatigue_safety"] == "friction mu_G 0.10, mu_K 0.10, mu_T 0.10"
+
+
+def test_the_fe_section_fit_recovers_a_linear_stress_field():
+    """sigma_yy = 5 MPa + 2 MPa/mm zeta + 0.1 MPa/mm x on a grid of counterweight nodes about
+    the joint plane y = -42 mm (the front web's interface z from -29 to -12 mm, zeta positive
+    towards the throw's middle, +z): each bolt's prism (22 x 17 mm) carries M_B = 2e9 Pa/m x
+    22 x 17^3/12 mm^4 = 18.0143 N m and F = (5 MPa + 0.1 MPa/mm x_i) 22 x 17 mm^2, x_i =
+    +-58 sin 35 deg; the unit case coefficient scales both, the centrifugal case is left out."""
+    from fe_crank.assess.cw_joint import fe_section_loads
+    from fe_crank.assess.superpose import UnitStresses
+
+    joint = dataclasses.replace(JOINT, count=2, diameter=0.010, pitch_radius=0.058, clamped_diameter=0.022)
+    zz, xx, yy = np.meshgrid(np.linspace(-0.029, -0.012, 7), np.linspace(-0.05, 0.05, 9), [-0.043, -0.042, -0.041])
+    pts = np.vstack([xx.ravel(), yy.ravel(), zz.ravel()])
+    zeta = pts[2] - (-0.029 + 0.0085)
+    syy = 5e6 + 2e9 * zeta + 1e8 * pts[0]
+    stress = np.zeros((2, 6, pts.shape[1]))
+    stress[0, 1] = syy  # pin case
+    stress[1, 1] = 7e7  # centrifugal: the counterweight's own inertia, not the web's deformation
+    unit = UnitStresses(stress, pts, {"counterweight_1": np.arange(pts.shape[1])}, cases=("pin_0", "centrifugal"))
+    coeffs = np.array([[1.0, 1.0], [-0.5, 1.0]])
+    got = fe_section_loads(unit, "counterweight_1", GEO, joint, coeffs, np.array([[2.0, 1.0]]))
+    m = 2e9 * 0.022 * 0.017**3 / 12
+    assert m == pytest.approx(18.0143, rel=1e-5)
+    assert got.moment == pytest.approx([m, -0.5 * m], rel=1e-9)
+    x = 0.058 * math.sin(math.radians(35.0))
+    f = np.array([5e6 - 1e8 * x, 5e6 + 1e8 * x]) * 0.022 * 0.017
+    assert got.force == pytest.approx(np.array([f, -0.5 * f]), rel=1e-9)
+    assert got.moment_overspeed == pytest.approx(2 * m, rel=1e-9) and got.force_overspeed == pytest.approx(2 * f.max())
+    rear = fe_section_loads(
+        dataclasses.replace(unit, points=pts * np.array([[1.0], [1.0], [-1.0]])),
+        "counterweight_1",
+        dataclasses.replace(GEO, web=2),
+        joint,
+        coeffs,
+    )
+    assert rear.moment == pytest.approx(got.moment, rel=1e-9)  # the mirror image: zeta towards the middle

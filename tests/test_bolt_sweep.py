@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fe_crank.assess.cw_joint import JOINT_QUANTITIES, check_joints
+from fe_crank.assess.cw_joint import JOINT_QUANTITIES, check_joint, check_joints
 
 ROOT = Path(__file__).resolve().parents[1]
 SPEEDS = (3000, 4500, 6000)
@@ -69,9 +69,16 @@ def test_bolt_criteria_at_every_speed(swept_inline4):
                 )
             ]
             assert [j.name for j in t.joints] == [j.name for j in want]
+            joints = {b.name: b.joint for c in cws for b in c.joints}
             for got, exp in zip(t.joints, want):
-                assert got.fatigue_safety == pytest.approx(exp.fatigue_safety, rel=1e-12)
-                assert got.slip_safety == pytest.approx(exp.slip_safety, rel=1e-12)
+                # the speed's delta and alpha: the transverse load (the web's deformation adds none)
+                assert got.loads.transverse_max == pytest.approx(exp.loads.transverse_max, rel=1e-12)
+                # the web's deformation (the FE section) adds to the centrifugal axial load and brings a moment
+                assert got.loads.web_model.startswith("FE") and got.loads.moment_max > 0 > got.loads.moment_min
+                assert got.loads.axial_max >= exp.loads.axial_max
+                again = check_joint(got.name, joints[got.name], got.loads, material.youngs_modulus)
+                assert got.fatigue_safety == pytest.approx(again.fatigue_safety, rel=1e-12)
+                assert got.slip_safety == pytest.approx(again.slip_safety, rel=1e-12)
     # each bolt's loads against the operating speed's, by omega^2
     op_joints = {(t.name, j.name): j for t in by_speed[6000] for j in t.joints}
     assert op_joints
@@ -82,6 +89,7 @@ def test_bolt_criteria_at_every_speed(swept_inline4):
                 ref = op_joints[(t.name, j.name)]
                 assert j.loads.axial_max == pytest.approx(ratio * ref.loads.axial_max, rel=1e-9)
                 assert j.loads.transverse_max == pytest.approx(ratio * ref.loads.transverse_max, rel=1e-9)
+                assert j.loads.moment_max == pytest.approx(ratio * ref.loads.moment_max, rel=1e-9)
     # each criterion per speed, the worst speed reported: the highest for fatigue and slip
     for q, (attr, sense) in JOINT_QUANTITIES.items():
         c = crit[q]

@@ -159,6 +159,7 @@ def _joint(j):
         "moment_min": ld.moment_min,
         "moment_overspeed": ld.moment_overspeed,
         "web_moment": ld.web_moment,
+        "web_model": ld.web_model,
         "eccentric_load_factor": _num(j.eccentric_load_factor),
         "moment_load_factor": j.moment_load_factor,
         "opening_limit": j.opening_limit,
