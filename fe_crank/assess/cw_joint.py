@@ -246,7 +246,7 @@ def bearing_reaction(pin_force, rod_loads, geo: JointGeometry) -> np.ndarray:
     span = geo.bearing_span
     loads = rod_loads if rod_loads else ((pin_force, 0.0),)
     sign = -1.0 if geo.web == 1 else 1.0
-    return sum(np.asarray(f, float) * (0.5 * span + sign * e) / span for f, e in loads)
+    return np.sum([np.asarray(f, float) * (0.5 * span + sign * e) / span for f, e in loads], axis=0)
 
 
 def web_moments(geo: JointGeometry, pin_force, rod_loads=None, overspeed_loads=()) -> WebMoments:

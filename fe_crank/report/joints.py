@@ -17,7 +17,8 @@ _COLUMNS = (
     ("tightening torque M_A [N m]", "tightening_torque", "{:.1f}", 1.0),
     ("axial load F_A max / overspeed [kN]", None, "", 1.0),
     ("transverse load F_Q [kN]", None, "", 1.0),
-    ("web moment at the joint, whole joint [N m]", None, "", 1.0),
+    ("web's deformation onto the joint: model", None, "", 1.0),
+    ("web's moment per bolt, largest [N m]", None, "", 1.0),
     ("moment M_B min / max / overspeed [N m]", None, "", 1.0),
     ("opening limit F_Kab [kN] (R2)", "opening_limit", "{:.2f}", 1e-3),
     ("R7 assembly utilisation nu", "assembly_utilisation", "{:.3f}", 1.0),
@@ -53,10 +54,12 @@ def _cell(j, header: str, attr: str | None, fmt: str, scale: float) -> str:
         return f"{e.s_sym * 1e3:.1f} / {e.a * 1e3:.1f}, {e.width * 1e3:.1f} x {e.length * 1e3:.1f}"
     if header.startswith("friction"):
         return " / ".join(f"{mu:.2f}" for mu in j.friction)
-    if header.startswith("web moment"):
-        return f"{ld.web_moment:.1f}"
+    if header.endswith("model"):
+        return ld.web_model or "none"
+    if header.startswith("web's moment"):
+        return f"{ld.web_moment:.3g}"
     if header.startswith("moment"):
-        return f"{ld.moment_min:.1f} / {ld.moment_max:.1f} / {ld.moment_overspeed:.1f}"
+        return f"{ld.moment_min:.3g} / {ld.moment_max:.3g} / {ld.moment_overspeed:.3g}"
     return f"{j.fatigue_amplitude / 1e6:.2f} ({j.bending_amplitude / 1e6:.2f}) / {j.endurance_limit / 1e6:.2f}"
 
 
@@ -72,8 +75,9 @@ def joint_table(throws) -> str:
         + table(header, rows, num_cols=set(range(1, len(header))))
         + '<p class="note">Loads per bolt, shared equally: centrifugal m r_c omega^2 over the working '
         "cycle's speed band and at the overspeed, tangential m r_c alpha with its prying lever to the joint "
-        "plane; the web's bending moment from the pin force, R (L_j + t/2), taken whole onto the joint as "
-        "the working moment M_B (an upper bound); VDI 2230's eccentric clamping and loading (Phi_en*, F_Kab, "
+        "plane; the web's deformation under the pin force and torque from the FE model's stress across the "
+        "joint plane (or, where it cannot be fitted, the web's moment R (L_j + t/2) whole: an upper bound); "
+        "VDI 2230's eccentric clamping and loading (Phi_en*, F_Kab, "
         "the bolt's bending in sigma_a); without a stated load introduction factor n the bounds n = 1 "
         "(bolt) and n = 0 (clamp). docs/assessment.md.</p>"
     )
