@@ -265,3 +265,12 @@ def test_the_fe_section_fit_recovers_a_linear_stress_field():
         coeffs,
     )
     assert rear.moment == pytest.approx(got.moment, rel=1e-9)  # the mirror image: zeta towards the middle
+
+
+def test_bolted_bodies_without_joint_data_are_named():
+    """A CAD geometry's bolted bodies carry no joint data: named for the case's warning."""
+    from fe_crank.assess.cw_joint import has_joints, unchecked_joints
+
+    cad = (CounterweightData("counterweight_1", 0.5, 0.055, bolted=True),)
+    tg = {"1": ThrowGeometry(0.024, (-0.0205, 0.0205), None, None, cad)}
+    assert unchecked_joints(tg) == ["throw 1: counterweight_1"] and not has_joints(tg)

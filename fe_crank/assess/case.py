@@ -15,7 +15,13 @@ from dataclasses import dataclass, field
 
 from fe_crank.assess import m53_oil_bore
 from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, evaluate_criteria, model_values
-from fe_crank.assess.cw_joint import JOINT_QUANTITIES, has_joints, joint_qualifiers, with_default_limits
+from fe_crank.assess.cw_joint import (
+    JOINT_QUANTITIES,
+    has_joints,
+    joint_qualifiers,
+    unchecked_joints,
+    with_default_limits,
+)
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
 from fe_crank.assess.inputs import AssessInputs
 from fe_crank.assess.loads import AssessedLoads
@@ -147,6 +153,18 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
                 )
             )
     joints = any(q.quantity in JOINT_QUANTITIES for q in lim.limits)
+    unchecked = unchecked_joints(a.throw_geometry)
+    if unchecked:
+        notes.append(
+            Note(
+                "bolted counterweights without joint data (a CAD geometry's bolted bodies carry none): their bolted "
+                f"joints are not checked by VDI 2230 ({', '.join(unchecked)}); check them by hand or with a "
+                "parametric geometry's bolted table",
+                WARNING,
+                (),
+                "assessment",
+            )
+        )
     cycles = state_dynamics(a) if joints else None
     done = assess_state(a, units, a.loads.operating_state, senses, basis, None, cycles)
     others = [

@@ -572,6 +572,18 @@ def has_joints(throw_geometry) -> bool:
     return any(c.joints for tg in throw_geometry.values() if tg is not None for c in tg.counterweights)
 
 
+def unchecked_joints(throw_geometry) -> list[str]:
+    """ "throw <name>: <counterweight>" of every bolted counterweight that carries no joint data
+    (a CAD geometry's bolted bodies): VDI 2230 cannot check them, which the case must say."""
+    return [
+        f"throw {name}: {c.name}"
+        for name, tg in throw_geometry.items()
+        if tg is not None
+        for c in tg.counterweights
+        if c.bolted and not c.joints
+    ]
+
+
 def with_default_limits(criteria, file: str = ""):
     """``criteria`` (``io.criteria.Criteria``) with ``DEFAULT_LIMITS`` added when it names none of
     the joint quantities; (criteria, the quantities added)."""
@@ -612,6 +624,7 @@ __all__ = [
     "DEFAULT_LIMITS",
     "DEFAULT_WORDS",
     "has_joints",
+    "unchecked_joints",
     "with_default_limits",
     "joint_qualifiers",
     "WebMoments",
