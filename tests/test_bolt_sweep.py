@@ -98,5 +98,7 @@ def test_bolt_criteria_at_every_speed(swept_inline4):
             vals = [getattr(j, attr) for t in by_speed[round(p.speed_rpm)] for j in t.joints]
             assert p.value == pytest.approx(min(vals) if sense == "min" else max(vals), rel=1e-12)
     for q in ("bolt_fatigue_safety", "bolt_slip_safety"):
-        assert crit[q].speed_rpm == pytest.approx(6000) and crit[q].location.endswith("(per bolt); 6000 rpm")
+        assert crit[q].speed_rpm == pytest.approx(6000) and crit[q].location.endswith(
+            "(per bolt); 6000 rpm; friction mu_G 0.10, mu_K 0.10, mu_T 0.10"
+        )
         assert crit[q].per_speed[0].value > crit[q].per_speed[-1].value
