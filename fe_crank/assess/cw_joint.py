@@ -10,16 +10,20 @@ coefficient delta (omega (1 -+ delta/2)) and alpha = (T - T_mean)/J with the dyn
 torque and flywheel inertia; each start and stop cycles the loads between 0 and their
 working values; at the overspeed omega_os the centrifugal force (an event, not a cycle).
 
-The web's bending under the pin force (the joint face opening and closing each cycle):
-the web's bending moment at its mid-plane over the cycle, M_w = R (L_j + t/2), R the main
-bearing's reaction to the pin force on the web's side (the statically determinate throw on
-its two main bearings, the journal's end face the bearing centre as in the FE supports and
-UR M53; each rod at its place on the pin), L_j + t/2 the lever from the bearing centre to
-the web's mid-plane.  It is taken whole onto the joint, shared equally by its bolts, as
-the working moment M_B = M_w / n in the plane of the web's thickness: as if the joint lay in
-the web's load path.  A counterweight beyond the journal lies outside the path pin - web -
-journal - bearing and carries the web's deformation only by compatibility (its resultant
-is its own inertia, above), so this is an upper bound of the web's share.
+The web's deformation under the pin force (the joint face opening and closing each cycle).
+The joint lies beyond the journal, outside the load path pin - web - journal - bearing: the
+pin force reaches it only through the web's deformation, which adds no resultant (above) but
+strains the interface.  A radial joint takes it from the FE unit solutions
+(``fe_section_loads``): the normal stress across the joint plane in the fused model (as stiff
+as the solid, so stiffer than the bolted joint: it gives the joint more of the web's
+deformation than the joint takes) from the pin and journal-torque unit cases over the
+cycle, each bolt's prism taking its moment and normal force.  Where that section cannot be
+fitted, and for axial joints, the lever model (``web_moments``): the web's bending moment at
+its mid-plane M_w = R (L_j + t/2), R the main bearing's reaction to the pin force on the web's
+side (the statically determinate throw on its two main bearings, the journal's end face the
+bearing centre as in the FE supports and UR M53; each rod at its place on the pin), taken
+whole onto the joint as M_B = M_w / n: as if the joint lay in the web's load path, an upper
+bound.
 
 The joint's geometry (``JointGeometry``, from the geometry file) and its eccentricity
 (VDI 2230 5.1.2, ``vdi2230.Eccentric``, one plane per bolt):
@@ -29,10 +33,10 @@ The joint's geometry (``JointGeometry``, from the geometry file) and its eccentr
   evenly over the counterweight's angle, x_i = r_b sin(phi_i) across the joint.  F_A = F_c/n
   axial; the tangential inertia pries with the lever r_c - r_J (the prying lever), carried
   by the bolt row as axial forces +-F_t (r_c - r_J) x_i / sum x_j^2 (one bolt: as a moment);
-  F_Q = F_t/n.  The eccentricity plane is the web's thickness (the plane of M_w): interface
-  c_T = min(t, b) (web and counterweight thickness, flush on the web's outer face), b_T =
-  D_A, the bolt at its middle (s_sym = 0), the centrifugal force at the counterweight's
-  mid-thickness, a = (b - c_T)/2.
+  F_Q = F_t/n.  The eccentricity plane is the web's thickness (the plane the radial pin
+  force bends the web in): interface c_T = min(t, b) (web and counterweight thickness, flush
+  on the web's outer face), b_T = D_A, the bolt at its middle (s_sym = 0), the centrifugal
+  force at the counterweight's mid-thickness, a = (b - c_T)/2.
 * ``direction = "axial"``: the bolts parallel to the crank axis on the pitch circle r_b, the
   counterweight against the web's face.  F_A = 0, F_Q = sqrt(F_c^2 + F_t^2)/n, and the
   centrifugal force at the counterweight's mid-thickness b/2 above the face pries the joint
