@@ -97,10 +97,15 @@ QUANTITIES: dict[str, Quantity] = {
         "min",
         None,
         (),
-        "VDI 2230 R9: thread endurance limit / bolt stress amplitude, starts and stops included (>= 1.2)",
+        "VDI 2230 R9: thread endurance limit / bolt stress amplitude with the eccentric loading's bending, starts "
+        "and stops included (>= 1.2)",
     ),
     "bolt_separation_safety": Quantity(
-        "min", None, (), "smallest clamp load after embedding / clamp load the overspeed takes off (>= 1: no opening)"
+        "min",
+        None,
+        (),
+        "VDI 2230 R2/R5: smallest clamp load after embedding / (clamp load the loads take off + opening limit "
+        "F_Kab), over the cycle and at the overspeed (>= 1: no opening)",
     ),
     "bolt_slip_safety": Quantity(
         "min",
