@@ -71,6 +71,25 @@ def test_not_a_step_file_an_empty_one_and_a_missing_one(tmp_path, capsys):
     refused(capsys, lc, p, "geometry", "not found")
 
 
+def test_a_triangulated_surface_as_the_geometry(tmp_path, capsys):
+    p = tmp_path / "crank.stl"
+    p.write_text("solid crank\nendsolid crank\n")
+    lc = cad_loadcase(tmp_path, "crank.stl")  # with its [cad] section
+    refused(capsys, lc, lc, "geometry", "STL is not supported (a CAD solid is needed: STEP, BREP or IGES)")
+    lc.write_text(lc.read_text().replace('[cad]\ndensity = "7850 kg/m^3"\n', ""))
+    refused(capsys, lc, lc, "geometry", "STL is not supported (a CAD solid is needed: STEP, BREP or IGES)")
+    (tmp_path / "crank_cad.toml").write_text('[cad]\nfile = "crank.stl"\ndensity = "7850 kg/m^3"\n')
+    lc.write_text(lc.read_text().replace('geometry = "crank.stl"', 'geometry = "crank_cad.toml"'))
+    refused(capsys, lc, p, "cad.file", "STL is not supported")
+
+
+def test_an_empty_data_section_holds_no_solid(tmp_path, capsys):
+    p = tmp_path / "empty.step"
+    p.write_text("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n")
+    err = refused(capsys, cad_loadcase(tmp_path, "empty.step"), p, "geometry", "holds no solid")
+    assert "length" not in err
+
+
 def test_no_solid_and_two_disjoint_solids(tmp_path, capsys):
     with gmsh_session() as gmsh:
         gmsh.model.occ.addRectangle(0, 0, 0, 0.05, 0.02)

@@ -26,6 +26,7 @@ import math
 from fe_crank import model
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import CadFeatures, ThrowFeatures
+from fe_crank.cad.frame import turn_angle
 from fe_crank.errors import InputError
 from fe_crank.throw_scope import ALL_THROWS
 
@@ -84,7 +85,7 @@ def _check_angles(f: CadFeatures, cad: CadInput, engine: model.Engine, engine_fi
     sense = engine.shaft(e0.shaft).sense
     for t in f.throws[1:]:
         e = engine.throw(t.name)
-        want = (sense * (e.angle - e0.angle)) % (2 * math.pi)
+        want = turn_angle(sense * (e.angle - e0.angle))
         off = abs((t.angle - want + math.pi) % (2 * math.pi) - math.pi)
         if off > ANGLE_TOL:
             raise InputError(

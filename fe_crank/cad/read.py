@@ -35,6 +35,8 @@ MAX_CAD_BYTES = 200_000_000
 MAX_FACES = 20_000
 _KINDS = {".step": "step", ".stp": "step", ".brep": "brep", ".brp": "brep", ".iges": "iges", ".igs": "iges"}
 _NAMES = {"step": "STEP", "brep": "BREP", "iges": "IGES"}
+#: triangulated-surface formats: no exact faces to recognise features on
+_MESH_FORMATS = {".stl": "STL", ".obj": "OBJ", ".ply": "PLY", ".off": "OFF", ".3mf": "3MF", ".vtk": "VTK"}
 _OCC_DEFAULT_UNIT = 1e-3  # m: OpenCASCADE's unit of imported STEP and IGES without a target unit
 
 
@@ -64,10 +66,26 @@ def _fail(cad: CadInput, reason: str, key: str | None = None) -> InputError:
     return InputError(reason, file=str(cad.file), key=key or cad.file_key)
 
 
+def unsupported_format(path: str | Path) -> str | None:
+    """Why a geometry file of a triangulated-surface format (STL, OBJ, ...) cannot be
+    read; None for any other file."""
+    name = _MESH_FORMATS.get(Path(path).suffix.lower())
+    if name is None:
+        return None
+    return (
+        f"{name} is not supported (a CAD solid is needed: STEP, BREP or IGES): a triangulated surface has no exact "
+        "cylinders, fillets and planes to recognise the crankshaft's features on; export the solid from the CAD "
+        "system as STEP"
+    )
+
+
 def file_kind(cad: CadInput) -> str:
     kind = _KINDS.get(cad.file.suffix.lower())
     if kind is None:
-        raise _fail(cad, "not a CAD file fe-crank reads: give a STEP (.step, .stp), BREP (.brep) or IGES (.iges) file")
+        why = unsupported_format(cad.file)
+        raise _fail(
+            cad, why or "not a CAD file fe-crank reads: give a STEP (.step, .stp), BREP (.brep) or IGES (.iges) file"
+        )
     return kind
 
 

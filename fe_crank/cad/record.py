@@ -19,6 +19,13 @@ def _mm(v: float) -> str:
     return f"{v * 1e3:.4g} mm"
 
 
+def _deg(a: float, period: float = 360.0) -> str:
+    """An angle (rad) in degrees as printed, in [0, period): one that prints as the
+    period is printed as 0."""
+    text = f"{math.degrees(a) % period:.6g}"
+    return "0" if float(text) >= period else text
+
+
 def _faces(tags) -> str:
     return "faces " + ", ".join(str(t) for t in tags) if tags else "no face"
 
@@ -40,7 +47,7 @@ def feature_lines(features: CadFeatures) -> list[str]:
     ]
     for t in features.throws:
         out.append(
-            f"throw {t.name}: angle {math.degrees(t.angle):.6g} deg, crank radius {_mm(t.crank_radius)} "
+            f"throw {t.name}: angle {_deg(t.angle)} deg, crank radius {_mm(t.crank_radius)} "
             f"(stroke {_mm(2 * t.crank_radius)}), mass {t.mass.total.mass:.5g} kg, m r "
             f"{t.mass.total.unbalance * 1e3:.5g} kg mm"
         )
@@ -62,7 +69,7 @@ def feature_lines(features: CadFeatures) -> list[str]:
             )
         for b in t.oil_bores:
             out.append(
-                f"  oil_bore: {_faces(b.faces)}, diameter {_mm(b.diameter)}, angle {math.degrees(b.angle):.6g} deg, "
+                f"  oil_bore: {_faces(b.faces)}, diameter {_mm(b.diameter)}, angle {_deg(b.angle, 180.0)} deg, "
                 f"opens on {', '.join(b.ends_on) or 'nothing recognised'}"
             )
         for bearing in t.bearings:

@@ -22,7 +22,7 @@ from fe_crank.cad.axis import Line, line_of
 from fe_crank.cad.chains import End, extent
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import Arc, Bearing, Counterweight, Cylinder, Fillet, OilBore, ThrowFeatures, Web
-from fe_crank.cad.frame import Frame, chord
+from fe_crank.cad.frame import Frame, chord, turn_angle
 from fe_crank.cad.model import Built, Plan, build_throw, throw_mass
 from fe_crank.cad.shaft import RawThrow
 from fe_crank.cad.survey import Face, coverage
@@ -196,7 +196,7 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
         if f is not None
     )
     first = Frame.of(axis.origin, axis.e, raws[0].u, mid)
-    angle = math.atan2(float(t.u @ first.rotation[0]), float(t.u @ first.rotation[1])) % (2 * math.pi)
+    angle = turn_angle(math.atan2(float(t.u @ first.rotation[0]), float(t.u @ first.rotation[1])))
     feats = ThrowFeatures(
         name=t.name,
         index=index,
@@ -243,7 +243,7 @@ def _bore(bore: tuple[Face, ...], frame: Frame, t: RawThrow, nbrs) -> OilBore:
     for name, hosts in (("crankpin", t.pin), ("journal_1", t.journals[0].faces), ("journal_2", t.journals[1].faces)):
         if near & {f.tag for f in hosts}:
             on.append(name)
-    angle = math.atan2(float(d[0]), float(d[1])) % math.pi
+    angle = turn_angle(math.atan2(float(d[0]), float(d[1])), math.pi)
     return OilBore(tuple(f.tag for f in bore), float(2 * bore[0].radius), tuple(on), _t(p), _t(d), float(angle))
 
 
