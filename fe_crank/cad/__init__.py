@@ -28,6 +28,7 @@ from fe_crank.cad.features import (
     Cylinder,
     Fillet,
     OilBore,
+    ShaftEnd,
     ThrowFeatures,
     Web,
 )
@@ -49,6 +50,7 @@ __all__ = [
     "FaceOverride",
     "Fillet",
     "OilBore",
+    "ShaftEnd",
     "ThrowFeatures",
     "Web",
     "cad_record",

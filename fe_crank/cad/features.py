@@ -155,6 +155,22 @@ class BoltedBody:
 
 
 @dataclass(frozen=True)
+class ShaftEnd:
+    """The nose (front) or flange (rear) of a drawn shaft, beyond its end journal
+    (``fe_crank.cad.ends``): extent along z and mass properties in the frame of the
+    throw it adjoins."""
+
+    name: str  # "nose" or "flange"
+    throw: str  # the throw it adjoins
+    faces: tuple[int, ...]
+    diameter: float  # largest whole-round cylinder about the crank axis (0: none)
+    z_min: float
+    z_max: float
+    length: float
+    mass: PartProperties
+
+
+@dataclass(frozen=True)
 class CadFeatures:
     """Everything recognised in one CAD file: the record the provenance carries."""
 
@@ -162,6 +178,7 @@ class CadFeatures:
     axis: CrankAxis
     throws: tuple[ThrowFeatures, ...]
     bolted: tuple[BoltedBody, ...] = ()  # bodies kept out of the FE model (bodies = "bolted")
+    ends: tuple[ShaftEnd, ...] = ()  # the nose and flange beyond the end journals, where drawn
 
     def throw(self, which: str | int | None = None) -> ThrowFeatures:
         """A throw by name, by 0-based index, or the first one for ``None``."""

@@ -22,6 +22,7 @@ import numpy as np
 
 from fe_crank.cad.axis import Line, find_axis
 from fe_crank.cad.config import CadInput
+from fe_crank.cad.ends import shaft_ends
 from fe_crank.cad.features import BoltedBody, CadFeatures, CadSource, CrankAxis
 from fe_crank.cad.frame import Frame
 from fe_crank.cad.model import throw_mass
@@ -126,6 +127,7 @@ def recognise(cad: CadInput) -> CadFeatures:
     with gmsh_session() as gmsh:
         p = prepare(gmsh, cad)
         bolted = tuple(_bolted(gmsh, b, p, cad.density) for b in p.read.bolted)  # before the throws drop them
+        ends = shaft_ends(gmsh, p, cad.density)
         throws = tuple(
             throw_features(gmsh, p.read.shaft, p.faces, p.nbrs, p.axis, p.raw, i, cad, p.tol)[0]
             for i in range(len(p.raw))
@@ -143,4 +145,4 @@ def recognise(cad: CadInput) -> CadFeatures:
     ox, oy, oz = (float(v) for v in p.axis.origin)
     ex, ey, ez = (float(v) for v in p.axis.e)
     crank_axis = CrankAxis((ox, oy, oz), (ex, ey, ez), tuple(int(t) for t in p.axis_faces))
-    return CadFeatures(source, crank_axis, throws, bolted)
+    return CadFeatures(source, crank_axis, throws, bolted, ends)

@@ -75,12 +75,28 @@ def feature_lines(features: CadFeatures) -> list[str]:
         for bearing in t.bearings:
             how = "free end face of the shaft" if bearing.free_end else "middle of the journal"
             out.append(f"  bearing centre {bearing.side}: z {_mm(bearing.z)} ({how})")
-        for cw in t.counterweights:
+        found = {cw.web: cw for cw in t.counterweights}
+        for web in (1, 2):
+            cw = found.get(web)
+            if cw is None:
+                out.append(
+                    f"  counterweight_{web}: none recognised (no material on the far side of the axis beyond r = "
+                    f"{_mm(t.webs[web - 1].side_radius)}; counterweight_radius in [cad] says where one begins)"
+                )
+                continue
+            m = cw.mass
             fr = f", fillets {_faces(cw.fillet_faces)} radius {_mm(cw.fillet_radius)}" if cw.fillet_radius else ""
             out.append(
-                f"  counterweight_{cw.web}: beyond r = {_mm(cw.radius)}, mass {cw.mass.mass:.5g} kg, m r "
-                f"{cw.mass.unbalance * 1e3:.5g} kg mm{fr}"
+                f"  counterweight_{cw.web}: beyond r = {_mm(cw.radius)}, mass {m.mass:.5g} kg at r "
+                f"{_mm(math.hypot(*m.centroid[:2]))}, m r {m.unbalance * 1e3:.5g} kg mm, J about the axis "
+                f"{m.inertia_axis * 1e6:.5g} kg mm^2{fr}"
             )
+    for end in features.ends:
+        m = end.mass
+        out.append(
+            f"{end.name}: {_faces(end.faces)}, beyond throw {end.throw}'s end journal, z {_mm(end.z_min)} to "
+            f"{_mm(end.z_max)} (length {_mm(end.length)}), largest diameter {_mm(end.diameter)}, mass {m.mass:.5g} kg"
+        )
     for i, body in enumerate(features.bolted, start=1):
         m = body.mass
         out.append(
