@@ -86,3 +86,36 @@ def test_a_counterweight_criterion_needs_a_recognised_counterweight(tmp_path, ca
         assert words in err, err
     assert "counterweight_radius" in err and str(lc) in err
     assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+def test_bolted_counterweights_with_their_bolt_holes(tmp_path):
+    """Annular sectors (30..60 mm, 160 deg, 14 mm) drawn as separate solids beside each web
+    with two 8 mm axial bolt holes each at (+-25, -40) mm: per web, the body's mass and
+    m r (the sector's less the holes') and its holes."""
+    from cad_files import _sector
+
+    a, r1, r2, rh, hx, hy = math.radians(160), 0.03, 0.06, 0.004, 0.025, 0.04
+    with gmsh_session() as gmsh:
+        occ = gmsh.model.occ
+        shaft = plain_throw(gmsh)
+        cws = [(3, _sector(occ, r1, r2, a, z0, T)) for z0 in (-0.041, 0.027)]
+        holes = [(3, occ.addCylinder(x, -hy, -0.05, 0, 0, 0.1, rh)) for x in (-hx, hx)]
+        out, _ = occ.cut([(3, shaft), *cws], holes)
+        assert len(out) == 3
+        step = _write(gmsh, tmp_path / "bolted.step")
+    f = recognise(CadInput(step, density=RHO, bodies="bolted"))
+    hole = RHO * math.pi * rh**2 * T
+    mass = RHO * a / 2 * (r2**2 - r1**2) * T - 2 * hole
+    mr = RHO * T * 2 / 3 * (r2**3 - r1**3) * math.sin(a / 2) - 2 * hole * hy
+    assert sorted(b.web for b in f.bolted) == [1, 2]
+    for b in f.bolted:
+        assert b.throw == "1"
+        assert b.mass.mass == pytest.approx(mass, rel=1e-6)
+        assert b.mass.unbalance == pytest.approx(mr, rel=1e-6)
+        assert len(b.holes) == 2
+        for h, x in zip(b.holes, (-hx, hx), strict=True):
+            assert h.diameter == pytest.approx(2 * rh, abs=1e-9)
+            assert h.point[:2] == pytest.approx((x, -hy), abs=1e-9)
+            assert h.pitch_radius == pytest.approx(math.hypot(hx, hy), abs=1e-9)
+            assert abs(h.direction[2]) == pytest.approx(1.0, abs=1e-12)
+    assert any("bolt hole faces" in s and "diameter 8 mm" in s for s in feature_lines(f))

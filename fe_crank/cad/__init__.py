@@ -21,6 +21,7 @@ from fe_crank.cad.config import CadInput, FaceOverride
 from fe_crank.cad.features import (
     Arc,
     Bearing,
+    BoltHole,
     CadFeatures,
     CadSource,
     Counterweight,
@@ -40,6 +41,7 @@ from fe_crank.cad.record import cad_record, feature_lines
 __all__ = [
     "Arc",
     "Bearing",
+    "BoltHole",
     "CadFeatures",
     "CadInput",
     "CadSource",

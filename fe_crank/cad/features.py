@@ -144,6 +144,18 @@ class ThrowFeatures:
 
 
 @dataclass(frozen=True)
+class BoltHole:
+    """A whole-round hole through a bolted body (a bolt's clearance hole), in the frame of
+    the throw the body sits on."""
+
+    faces: tuple[int, ...]
+    diameter: float
+    point: Vec3  # the point of its axis nearest the crank axis
+    direction: Vec3  # unit vector of its axis
+    pitch_radius: float  # distance of ``point`` from the crank axis
+
+
+@dataclass(frozen=True)
 class BoltedBody:
     """A separate solid kept out of the FE model (``[cad] bodies = "bolted"``): the throw
     whose bearing centres enclose its centroid (or the nearest), the web on whose side it
@@ -152,6 +164,7 @@ class BoltedBody:
     throw: str
     web: int
     mass: PartProperties
+    holes: tuple[BoltHole, ...] = ()  # its bolt holes
 
 
 @dataclass(frozen=True)

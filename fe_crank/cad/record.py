@@ -102,5 +102,10 @@ def feature_lines(features: CadFeatures) -> list[str]:
         out.append(
             f"bolted body {i} (not in the FE model): throw {body.throw}, web {body.web}, mass {m.mass:.5g} kg at "
             f"r {_mm(math.hypot(*m.centroid[:2]))}, m r {m.unbalance * 1e3:.5g} kg mm"
+            + "".join(
+                f"; bolt hole {_faces(h.faces)}, diameter {_mm(h.diameter)} at r {_mm(h.pitch_radius)}, axis "
+                f"({', '.join(f'{c:.3g}' for c in h.direction)})"
+                for h in body.holes
+            )
         )
     return out
