@@ -272,3 +272,64 @@ def cad_loadcase(
     path = folder / name
     path.write_text(text)
     return path
+
+
+def half_disc_throw_step(path: Path, *, rc=0.06, fillet: float | None = None, rw=0.03) -> Path:
+    """``plain_throw`` (webs: stadiums of half width ``rw`` from the axis to the pin) with
+    a half-disc counterweight of radius ``rc`` about the crank axis on the far side of
+    each web, as thick as the web, fused: the forged shape whose counterweight outline is
+    the web's outer radius (``rc = R + rw``, the default).  The web's rounded journal end
+    lies inside the half disc, so the only arc about the axis the web shows is the
+    counterweight's.  ``fillet``: a transition radius on the four re-entrant edges where
+    the half disc's flat leaves the web's sides (None: sharp)."""
+    t, zp, zw = 0.014, 0.013, 0.027
+    with gmsh_session() as gmsh:
+        occ = gmsh.model.occ
+        solid = plain_throw(gmsh, rw=rw)
+        discs = []
+        for z0 in (-zw, zp):
+            disc = occ.addCylinder(0, 0, z0, 0, 0, t, rc)
+            below = occ.addBox(-2 * rc, -2 * rc, z0, 4 * rc, 2 * rc, t)  # y < 0
+            out, _ = occ.intersect([(3, disc)], [(3, below)])
+            discs.append(out[0])
+        out, _ = occ.fuse([(3, solid)], discs)
+        assert len(out) == 1
+        occ.synchronize()
+        solid = out[0][1]
+        if fillet is not None:
+            edges = _lines_along_z(gmsh, [(-rw, 0.0), (rw, 0.0)])
+            assert len(edges) == 4, edges
+            out = occ.fillet([solid], edges, [fillet], removeVolume=True)
+            occ.synchronize()
+            assert len(out) == 1
+        return _write(gmsh, path)
+
+
+def layout_step(layout, path: Path, *, nose: tuple[float, float] | None = None, flange=None) -> Path:
+    """The whole shaft as ``fe_crank.geometry.shaft`` places it (``ShaftLayout``): each
+    throw's solid (journal stubs to the bearing centres) turned to its angle on the shaft
+    and put at its ``axial_position``, the end journals to their length, fused into one
+    solid; ``nose``/``flange``: (diameter, length) of a plain cylinder beyond the front /
+    rear end journal (so that the end journals end in a shoulder, not a free face)."""
+    from fe_crank.mesh.shaft import throw_angles
+
+    g = layout.geometry
+    with gmsh_session() as gmsh:
+        occ = gmsh.model.occ
+        vols = []
+        for t, a in zip(layout.throws, throw_angles(layout), strict=True):
+            solid, _ = throw_solid(g, t.spec)
+            occ.rotate([(3, solid)], 0, 0, 0, 0, 0, 1, -a)
+            occ.translate([(3, solid)], 0, 0, t.z)
+            vols.append((3, solid))
+        rj = g.journal_diameter / 2
+        first, last = layout.journals[0], layout.journals[-1]
+        vols.append((3, occ.addCylinder(0, 0, first.z0, 0, 0, first.centre - first.z0, rj)))
+        vols.append((3, occ.addCylinder(0, 0, last.centre, 0, 0, last.z1 - last.centre, rj)))
+        if nose is not None:
+            vols.append((3, occ.addCylinder(0, 0, first.z0 - nose[1], 0, 0, nose[1], nose[0] / 2)))
+        if flange is not None:
+            vols.append((3, occ.addCylinder(0, 0, last.z1, 0, 0, flange[1], flange[0] / 2)))
+        out, _ = occ.fuse(vols[:1], vols[1:])
+        assert len(out) == 1
+        return _write(gmsh, path)

@@ -43,8 +43,8 @@ def test_not_a_step_file_an_empty_file_a_missing_file_and_an_unknown_format(tmp_
     p.write_bytes(b"")
     refused(cad(p), "cad.file", "empty", tmp_path=tmp_path)
     refused(cad(tmp_path / "none.step"), "cad.file", "not found")
-    q = tmp_path / "crank.stl"
-    q.write_text("solid crank\n")
+    q = tmp_path / "crank.x_t"
+    q.write_text("**PART1;\n")
     refused(cad(q), "cad.file", "STEP (.step, .stp), BREP (.brep) or IGES (.iges)")
 
 
@@ -170,3 +170,20 @@ def test_an_oblique_axis_is_refused_with_what_to_do(tmp_path, root):
     refused(cad(p), "cad.axis", "along none of the file's coordinate axes", tmp_path=tmp_path)
     # its web faces are off the planes normal to the axis by round-off: no exact split
     refused(cad(p, axis=axis), "cad.file", "along a coordinate axis of the file", tmp_path=tmp_path)
+
+
+def test_a_step_file_with_an_empty_data_section_holds_no_solid(tmp_path):
+    p = tmp_path / "empty.step"
+    p.write_text(
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('empty','',(''),(''),'','','');\n"
+        "FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n"
+    )
+    err = refused(cad(p), "cad.file", "holds no solid", "no geometry at all", tmp_path=tmp_path)
+    assert "length" not in str(err)
+
+
+def test_a_triangulated_surface_is_not_a_cad_solid(tmp_path):
+    for suffix, name in ((".stl", "STL"), (".obj", "OBJ")):
+        q = tmp_path / f"crank{suffix}"
+        q.write_text("solid crank\nendsolid crank\n")
+        refused(cad(q), "cad.file", f"{name} is not supported (a CAD solid is needed: STEP, BREP or IGES)")

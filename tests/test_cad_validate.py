@@ -11,12 +11,13 @@ import re
 from pathlib import Path
 
 import pytest
-from cad_files import _write, cad_loadcase, parametric_step, sector_throw_step, shaft_step
+from cad_files import _write, cad_loadcase, layout_step, parametric_step, sector_throw_step
 
 from fe_crank.cad import CadInput, recognise
 from fe_crank.cad.engine import engine_keys
 from fe_crank.cli import main
 from fe_crank.errors import InputError
+from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.gmsh_io import gmsh_session
 from fe_crank.io.engine import load_engine
 from fe_crank.io.geometry import load_geometry
@@ -69,6 +70,25 @@ def test_not_a_step_file_an_empty_one_and_a_missing_one(tmp_path, capsys):
     refused(capsys, lc, p, "geometry", "the CAD file is empty")
     p.unlink()
     refused(capsys, lc, p, "geometry", "not found")
+
+
+def test_a_triangulated_surface_as_the_geometry(tmp_path, capsys):
+    p = tmp_path / "crank.stl"
+    p.write_text("solid crank\nendsolid crank\n")
+    lc = cad_loadcase(tmp_path, "crank.stl")  # with its [cad] section
+    refused(capsys, lc, lc, "geometry", "STL is not supported (a CAD solid is needed: STEP, BREP or IGES)")
+    lc.write_text(lc.read_text().replace('[cad]\ndensity = "7850 kg/m^3"\n', ""))
+    refused(capsys, lc, lc, "geometry", "STL is not supported (a CAD solid is needed: STEP, BREP or IGES)")
+    (tmp_path / "crank_cad.toml").write_text('[cad]\nfile = "crank.stl"\ndensity = "7850 kg/m^3"\n')
+    lc.write_text(lc.read_text().replace('geometry = "crank.stl"', 'geometry = "crank_cad.toml"'))
+    refused(capsys, lc, p, "cad.file", "STL is not supported")
+
+
+def test_an_empty_data_section_holds_no_solid(tmp_path, capsys):
+    p = tmp_path / "empty.step"
+    p.write_text("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n")
+    err = refused(capsys, cad_loadcase(tmp_path, "empty.step"), p, "geometry", "holds no solid")
+    assert "length" not in err
 
 
 def test_no_solid_and_two_disjoint_solids(tmp_path, capsys):
@@ -161,8 +181,9 @@ def test_a_counterweight_stress_criterion_on_a_sharp_counterweight(tmp_path, cap
 @pytest.mark.heavy
 def test_a_whole_shaft_against_the_engines_throws(tmp_path):
     g = load_geometry(ROOT / "geometry" / "inline4.toml")
-    step = shaft_step(g, tmp_path / "shaft.step")
     engine = load_engine(ROOT / "engines" / "inline4.toml")
+    layout = engine_shaft_layout(g, engine, geometry_file="g", engine_file="e")
+    step = layout_step(layout, tmp_path / "shaft.step")  # the throws 92 mm apart, as the engine puts them
     cad = CadInput(step, density=g.density)
     f = recognise(cad)
     kw = dict(engine_file="engines/inline4.toml", loadcase="loadcases/x.toml")
@@ -209,3 +230,14 @@ def test_a_refused_cad_case_in_the_check_writes_its_error_and_nothing_else(tmp_p
         }
     assert sorted(p.name for p in out.iterdir()) == ["bar", "empty"]  # no partial folders
     assert not (tmp_path / "cache").exists() or not any((tmp_path / "cache").iterdir())
+
+
+def test_a_main_bearing_criterion_is_refused_before_meshing(tmp_path, small_step, capsys):
+    from fe_crank.assess.criteria import EVALUATORS
+    from fe_crank.assess.shaft_criteria import no_throw_value
+    from fe_crank.check.cad_geometry import WHOLE_SHAFT_QUANTITIES
+
+    assert sorted(WHOLE_SHAFT_QUANTITIES) == sorted(q for q, ev in EVALUATORS.items() if ev.find is no_throw_value)
+    (tmp_path / "throw.step").write_bytes(small_step.read_bytes())
+    lc = cad_loadcase(tmp_path, "throw.step", criteria='max_main_bearing_load = "20 kN"')
+    refused(capsys, lc, lc, "criteria.max_main_bearing_load", "whole-shaft model", "throw.step")

@@ -21,6 +21,7 @@ from fe_crank.cad.config import CadInput, FaceOverride
 from fe_crank.cad.features import (
     Arc,
     Bearing,
+    BoltHole,
     CadFeatures,
     CadSource,
     Counterweight,
@@ -28,6 +29,7 @@ from fe_crank.cad.features import (
     Cylinder,
     Fillet,
     OilBore,
+    ShaftEnd,
     ThrowFeatures,
     Web,
 )
@@ -39,6 +41,7 @@ from fe_crank.cad.record import cad_record, feature_lines
 __all__ = [
     "Arc",
     "Bearing",
+    "BoltHole",
     "CadFeatures",
     "CadInput",
     "CadSource",
@@ -49,6 +52,7 @@ __all__ = [
     "FaceOverride",
     "Fillet",
     "OilBore",
+    "ShaftEnd",
     "ThrowFeatures",
     "Web",
     "cad_record",

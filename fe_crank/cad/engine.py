@@ -15,6 +15,14 @@ that the file's shaft is the engine's:
   ``fe_crank.model`` (``+y`` towards ``+x``), within ``ANGLE_TOL`` of the engine's,
   ``sense (angle_k - angle_front)`` of its shaft (a whole shaft is one shaft).
 
+* spacing (a file of several throws): the pins' mid-planes along the crank axis as far
+  apart as the engine's ``axial_position``s, within ``CRANK_RADIUS_RTOL`` of the engine's
+  spacing; adjacent throws share one main journal (the drawing has one journal more than
+  throws, as the engine has main bearings); the main-bearing plane between two throws,
+  midway between their ``axial_position``s (``fe_crank.geometry.shaft``), at the drawn
+  journal's middle, where the throw model ends (``CadFeatures`` bearing centres), within
+  the same tolerance.
+
 Each mismatch is one ``InputError`` naming the CAD file, the ``[cad]`` key that
 settles it, both values and the engine file's key.
 """
@@ -26,6 +34,7 @@ import math
 from fe_crank import model
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import CadFeatures, ThrowFeatures
+from fe_crank.cad.frame import turn_angle
 from fe_crank.errors import InputError
 from fe_crank.throw_scope import ALL_THROWS
 
@@ -84,7 +93,7 @@ def _check_angles(f: CadFeatures, cad: CadInput, engine: model.Engine, engine_fi
     sense = engine.shaft(e0.shaft).sense
     for t in f.throws[1:]:
         e = engine.throw(t.name)
-        want = (sense * (e.angle - e0.angle)) % (2 * math.pi)
+        want = turn_angle(sense * (e.angle - e0.angle))
         off = abs((t.angle - want + math.pi) % (2 * math.pi) - math.pi)
         if off > ANGLE_TOL:
             raise InputError(
@@ -97,6 +106,66 @@ def _check_angles(f: CadFeatures, cad: CadInput, engine: model.Engine, engine_fi
                 file=str(cad.file),
                 key="cad.throws",
             )
+
+
+def _shaft_position(f: CadFeatures, t: ThrowFeatures) -> float:
+    """The throw's crankpin mid-plane along the crank axis (file frame, from the axis point)."""
+    return sum((o - p) * e for o, p, e in zip(t.origin, f.axis.point, f.axis.direction, strict=True))
+
+
+def _check_spacing(f: CadFeatures, cad: CadInput, engine: model.Engine, engine_file: str, loadcase: str) -> None:
+    throws = f.throws
+    s = [_shaft_position(f, t) for t in throws]
+    e = [engine.throw(t.name) for t in throws]
+    pitch = [abs(b.axial_position - a.axial_position) for a, b in zip(e, e[1:])]
+    scale = max(pitch + [e[0].crank_radius])
+    tol = CRANK_RADIUS_RTOL * scale
+
+    def key(name: str) -> str:
+        return _engine_key(engine, name, "axial_position", engine_file, loadcase)
+
+    for k in range(len(throws) - 1):
+        a, b = throws[k], throws[k + 1]
+        drawn, want = s[k + 1] - s[k], e[k + 1].axial_position - e[k].axial_position
+        if abs(drawn - want) > tol:
+            raise InputError(
+                f"throws {a.name} and {b.name} of the CAD file are {_mm(drawn)} apart along the crank axis (front to "
+                f"rear), the engine's {_mm(want)} ({engine_file}: {key(b.name)} less {key(a.name)}); the CAD file is "
+                "not the shaft of this engine: correct the drawing or the engine",
+                file=str(cad.file),
+                key=cad.file_key,
+            )
+        rear, front = a.journals[1], b.journals[0]
+        if set(rear.faces) != set(front.faces):
+            raise InputError(
+                f"the CAD file's throws {a.name} and {b.name} have no main journal between them (throw {a.name}'s "
+                f"rear journal is faces {list(rear.faces)}, throw {b.name}'s front journal faces "
+                f"{list(front.faces)}): {len(_journals(f))} main journals drawn for {len(throws)} throws, the "
+                f"engine's shaft has a main bearing between adjacent throws ({len(throws) + 1} journals)",
+                file=str(cad.file),
+                key=cad.file_key,
+            )
+        centre = s[k] + a.bearings[1].z
+        plane = s[k] + 0.5 * want
+        if abs(centre - plane) > tol:
+            raise InputError(
+                f"the main bearing between throws {a.name} and {b.name} sits {_mm(0.5 * want)} behind throw "
+                f"{a.name}'s crankpin in the engine ({engine_file}: midway between {key(a.name)} and "
+                f"{key(b.name)}), the drawn journal's middle {_mm(centre - s[k])}: the CAD file is not the shaft of "
+                "this engine",
+                file=str(cad.file),
+                key=cad.file_key,
+            )
+
+
+def _journals(f: CadFeatures) -> list[tuple[int, ...]]:
+    """The distinct main journals of the drawing, front to rear (by their faces)."""
+    out: list[tuple[int, ...]] = []
+    for t in f.throws:
+        for j in t.journals:
+            if j.faces not in out:
+                out.append(j.faces)
+    return out
 
 
 def engine_keys(
@@ -122,4 +191,5 @@ def engine_keys(
     for t in features.throws:
         _check_radius(t, engine.throw(t.name), cad, engine, engine_file, loadcase)
     _check_angles(features, cad, engine, engine_file, loadcase)
+    _check_spacing(features, cad, engine, engine_file, loadcase)
     return {n: n for n in eng}

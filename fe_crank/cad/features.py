@@ -144,6 +144,18 @@ class ThrowFeatures:
 
 
 @dataclass(frozen=True)
+class BoltHole:
+    """A whole-round hole through a bolted body (a bolt's clearance hole), in the frame of
+    the throw the body sits on."""
+
+    faces: tuple[int, ...]
+    diameter: float
+    point: Vec3  # the point of its axis nearest the crank axis
+    direction: Vec3  # unit vector of its axis
+    pitch_radius: float  # distance of ``point`` from the crank axis
+
+
+@dataclass(frozen=True)
 class BoltedBody:
     """A separate solid kept out of the FE model (``[cad] bodies = "bolted"``): the throw
     whose bearing centres enclose its centroid (or the nearest), the web on whose side it
@@ -151,6 +163,23 @@ class BoltedBody:
 
     throw: str
     web: int
+    mass: PartProperties
+    holes: tuple[BoltHole, ...] = ()  # its bolt holes
+
+
+@dataclass(frozen=True)
+class ShaftEnd:
+    """The nose (front) or flange (rear) of a drawn shaft, beyond its end journal
+    (``fe_crank.cad.ends``): extent along z and mass properties in the frame of the
+    throw it adjoins."""
+
+    name: str  # "nose" or "flange"
+    throw: str  # the throw it adjoins
+    faces: tuple[int, ...]
+    diameter: float  # largest whole-round cylinder about the crank axis (0: none)
+    z_min: float
+    z_max: float
+    length: float
     mass: PartProperties
 
 
@@ -162,6 +191,7 @@ class CadFeatures:
     axis: CrankAxis
     throws: tuple[ThrowFeatures, ...]
     bolted: tuple[BoltedBody, ...] = ()  # bodies kept out of the FE model (bodies = "bolted")
+    ends: tuple[ShaftEnd, ...] = ()  # the nose and flange beyond the end journals, where drawn
 
     def throw(self, which: str | int | None = None) -> ThrowFeatures:
         """A throw by name, by 0-based index, or the first one for ``None``."""

@@ -8,9 +8,20 @@ sense of rotation), origin on the axis midway between the webs' inner faces;
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
+
+#: an angle within this of 0 or of a full period is 0 (round-off of atan2 on fitted
+#: directions: a pin at -1e-17 rad is at 0, not at 360 deg)
+ANGLE_SNAP = 1e-9  # rad
+
+
+def turn_angle(a: float, period: float = 2 * math.pi) -> float:
+    """``a`` in ``[0, period)``; a value within ``ANGLE_SNAP`` of 0 or of ``period`` is 0."""
+    a = float(a) % period
+    return 0.0 if a <= ANGLE_SNAP or period - a <= ANGLE_SNAP else a
 
 
 @dataclass(frozen=True, eq=False)

@@ -20,14 +20,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.cad.axis import Line, find_axis
+from fe_crank.cad.axis import Line, find_axis, line_of
 from fe_crank.cad.config import CadInput
-from fe_crank.cad.features import BoltedBody, CadFeatures, CadSource, CrankAxis
+from fe_crank.cad.ends import shaft_ends
+from fe_crank.cad.features import BoltedBody, BoltHole, CadFeatures, CadSource, CrankAxis
 from fe_crank.cad.frame import Frame
 from fe_crank.cad.model import throw_mass
 from fe_crank.cad.read import ReadResult, read_cad
 from fe_crank.cad.shaft import RawThrow, find_throws
-from fe_crank.cad.survey import Face, neighbours, survey
+from fe_crank.cad.survey import Face, coverage, neighbours, survey
 from fe_crank.cad.throw import throw_features
 from fe_crank.errors import InputError
 
@@ -113,7 +114,42 @@ def _bolted(gmsh, body: int, p: Prepared, density: float) -> BoltedBody:
     t = min(p.raw, key=distance)
     frame = Frame.of(p.axis.origin, p.axis.e, t.u, t.mid)
     props = throw_mass(gmsh, {"body": [body]}, density, frame, t.name).total
-    return BoltedBody(t.name, 1 if props.centroid[2] < 0 else 2, props)
+    return BoltedBody(t.name, 1 if props.centroid[2] < 0 else 2, props, _bolt_holes(gmsh, body, frame, p.tol))
+
+
+def _bolt_holes(gmsh, body: int, frame: Frame, tol: float) -> tuple[BoltHole, ...]:
+    """The whole-round holes through a bolted body (coaxial faces of one radius: one hole)."""
+    tags = sorted({abs(t) for _, t in gmsh.model.getBoundary([(3, body)], combined=False, oriented=False)})
+    faces = survey(gmsh, tags, tol)
+    bores = [
+        f
+        for f in faces.values()
+        if f.kind == "cylinder" and not f.convex and coverage(f.edge_runs, f.origin, f.direction) >= 0.99
+    ]
+    groups: list[list[Face]] = []
+    for f in bores:
+        for g in groups:
+            if line_of(g[0]).same(line_of(f), tol) and abs(g[0].radius - f.radius) <= tol:
+                g.append(f)
+                break
+        else:
+            groups.append([f])
+    out = []
+    for g in groups:
+        d = frame.direction(g[0].direction)
+        d = d if d @ np.array([1.0, 1.0, 1.0]) >= 0 else -d
+        q = frame.to_throw(g[0].origin)[0]
+        ez = np.array([0.0, 0.0, 1.0])
+        n = np.cross(d, ez)
+        if np.linalg.norm(n) > 1e-9:  # the point of the hole's axis nearest the crank axis
+            q = q + (np.cross(-q, ez) @ n / (n @ n)) * d
+        else:  # parallel to the crank axis: its point in the web's plane
+            q = q - q[2] * d
+        point = (float(q[0]), float(q[1]), float(q[2]))
+        direction = (float(d[0]), float(d[1]), float(d[2]))
+        tags_g = tuple(sorted(f.tag for f in g))
+        out.append(BoltHole(tags_g, float(2 * g[0].radius), point, direction, float(np.hypot(q[0], q[1]))))
+    return tuple(sorted(out, key=lambda h: (h.point[0], h.point[1])))
 
 
 def recognise(cad: CadInput) -> CadFeatures:
@@ -126,6 +162,7 @@ def recognise(cad: CadInput) -> CadFeatures:
     with gmsh_session() as gmsh:
         p = prepare(gmsh, cad)
         bolted = tuple(_bolted(gmsh, b, p, cad.density) for b in p.read.bolted)  # before the throws drop them
+        ends = shaft_ends(gmsh, p, cad.density)
         throws = tuple(
             throw_features(gmsh, p.read.shaft, p.faces, p.nbrs, p.axis, p.raw, i, cad, p.tol)[0]
             for i in range(len(p.raw))
@@ -143,4 +180,4 @@ def recognise(cad: CadInput) -> CadFeatures:
     ox, oy, oz = (float(v) for v in p.axis.origin)
     ex, ey, ez = (float(v) for v in p.axis.e)
     crank_axis = CrankAxis((ox, oy, oz), (ex, ey, ez), tuple(int(t) for t in p.axis_faces))
-    return CadFeatures(source, crank_axis, throws, bolted)
+    return CadFeatures(source, crank_axis, throws, bolted, ends)

@@ -19,6 +19,13 @@ def _mm(v: float) -> str:
     return f"{v * 1e3:.4g} mm"
 
 
+def _deg(a: float, period: float = 360.0) -> str:
+    """An angle (rad) in degrees as printed, in [0, period): one that prints as the
+    period is printed as 0."""
+    text = f"{math.degrees(a) % period:.6g}"
+    return "0" if float(text) >= period else text
+
+
 def _faces(tags) -> str:
     return "faces " + ", ".join(str(t) for t in tags) if tags else "no face"
 
@@ -40,7 +47,7 @@ def feature_lines(features: CadFeatures) -> list[str]:
     ]
     for t in features.throws:
         out.append(
-            f"throw {t.name}: angle {math.degrees(t.angle):.6g} deg, crank radius {_mm(t.crank_radius)} "
+            f"throw {t.name}: angle {_deg(t.angle)} deg, crank radius {_mm(t.crank_radius)} "
             f"(stroke {_mm(2 * t.crank_radius)}), mass {t.mass.total.mass:.5g} kg, m r "
             f"{t.mass.total.unbalance * 1e3:.5g} kg mm"
         )
@@ -62,22 +69,43 @@ def feature_lines(features: CadFeatures) -> list[str]:
             )
         for b in t.oil_bores:
             out.append(
-                f"  oil_bore: {_faces(b.faces)}, diameter {_mm(b.diameter)}, angle {math.degrees(b.angle):.6g} deg, "
+                f"  oil_bore: {_faces(b.faces)}, diameter {_mm(b.diameter)}, angle {_deg(b.angle, 180.0)} deg, "
                 f"opens on {', '.join(b.ends_on) or 'nothing recognised'}"
             )
         for bearing in t.bearings:
             how = "free end face of the shaft" if bearing.free_end else "middle of the journal"
             out.append(f"  bearing centre {bearing.side}: z {_mm(bearing.z)} ({how})")
-        for cw in t.counterweights:
+        found = {cw.web: cw for cw in t.counterweights}
+        for web in (1, 2):
+            cw = found.get(web)
+            if cw is None:
+                out.append(
+                    f"  counterweight_{web}: none recognised (no material on the far side of the axis beyond r = "
+                    f"{_mm(t.webs[web - 1].side_radius)}; counterweight_radius in [cad] says where one begins)"
+                )
+                continue
+            m = cw.mass
             fr = f", fillets {_faces(cw.fillet_faces)} radius {_mm(cw.fillet_radius)}" if cw.fillet_radius else ""
             out.append(
-                f"  counterweight_{cw.web}: beyond r = {_mm(cw.radius)}, mass {cw.mass.mass:.5g} kg, m r "
-                f"{cw.mass.unbalance * 1e3:.5g} kg mm{fr}"
+                f"  counterweight_{cw.web}: beyond r = {_mm(cw.radius)}, mass {m.mass:.5g} kg at r "
+                f"{_mm(math.hypot(*m.centroid[:2]))}, m r {m.unbalance * 1e3:.5g} kg mm, J about the axis "
+                f"{m.inertia_axis * 1e6:.5g} kg mm^2{fr}"
             )
+    for end in features.ends:
+        m = end.mass
+        out.append(
+            f"{end.name}: {_faces(end.faces)}, beyond throw {end.throw}'s end journal, z {_mm(end.z_min)} to "
+            f"{_mm(end.z_max)} (length {_mm(end.length)}), largest diameter {_mm(end.diameter)}, mass {m.mass:.5g} kg"
+        )
     for i, body in enumerate(features.bolted, start=1):
         m = body.mass
         out.append(
             f"bolted body {i} (not in the FE model): throw {body.throw}, web {body.web}, mass {m.mass:.5g} kg at "
             f"r {_mm(math.hypot(*m.centroid[:2]))}, m r {m.unbalance * 1e3:.5g} kg mm"
+            + "".join(
+                f"; bolt hole {_faces(h.faces)}, diameter {_mm(h.diameter)} at r {_mm(h.pitch_radius)}, axis "
+                f"({', '.join(f'{c:.3g}' for c in h.direction)})"
+                for h in body.holes
+            )
         )
     return out

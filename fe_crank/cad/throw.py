@@ -22,7 +22,7 @@ from fe_crank.cad.axis import Line, line_of
 from fe_crank.cad.chains import End, extent
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import Arc, Bearing, Counterweight, Cylinder, Fillet, OilBore, ThrowFeatures, Web
-from fe_crank.cad.frame import Frame, chord
+from fe_crank.cad.frame import Frame, chord, turn_angle
 from fe_crank.cad.model import Built, Plan, build_throw, throw_mass
 from fe_crank.cad.shaft import RawThrow
 from fe_crank.cad.survey import Face, coverage
@@ -53,9 +53,20 @@ def _fillet(name: str, end: End, frame: Frame, mid: float, axis: Line, sign: flo
     )
 
 
-def _side_radius(gmsh, shaft, frame, faces, axis, z_mid, s_web, reach, R, r_journal, tol) -> float:
-    """The radius of the web's rounded journal end: the smallest arc about the crank axis
-    among the web's faces (beyond the journal), else the web's half width at y = 0+."""
+def _side_radius(
+    gmsh, shaft, frame, faces, axis, z_mid, s_web, reach, R, r_journal, z_range, lines, used, tol
+) -> tuple[float, bool]:
+    """Where a counterweight begins on a web, and whether its region reaches over its
+    transition fillets above ``y = 0``.
+
+    The radius of the web's rounded journal end: the smallest arc about the crank axis
+    among the web's faces (beyond the journal) within the web's half width at ``y = 0+``.
+    An arc wider than that bounds a counterweight (a half disc about the axis, whatever
+    its radius against the web's), not the web; when the web shows no other, its own
+    sides run down to the counterweight, which begins at the web's half width just
+    above its transition fillets (the concave faces of the far side rising above
+    ``y = 0``) and is bounded by ``y = 0`` (its fillets stay with the web: a region
+    reaching over them would cut a sliver off the web's straight sides)."""
     lo, hi = s_web
     arcs = [
         f.radius
@@ -68,14 +79,24 @@ def _side_radius(gmsh, shaft, frame, faces, axis, z_mid, s_web, reach, R, r_jour
         and extent([f], axis)[1] <= hi + tol
         and coverage(f.edge_runs, f.origin, f.direction) < 0.99
     ]
-    if arcs:
-        return float(min(arcs))
     d = 1e-3 * R
     lo_x, hi_x, _ = chord(gmsh, shaft, frame, d, z_mid, reach)
-    return float(math.hypot(min(-lo_x, hi_x), d))
+    half = min(-lo_x, hi_x)
+    within = [a for a in arcs if a <= half + tol]
+    if within:
+        return float(min(within)), True
+    if not arcs:
+        return float(math.hypot(half, d)), True
+    # only counterweight outlines: the web's half width above the transition fillets
+    rising = _cw_fillets(faces, frame, r_journal + tol, z_range, lines, used, tol)
+    top = max([0.0] + [float(frame.to_throw(np.vstack([f.points, f.edge_points]))[:, 1].max()) for f in rising])
+    if top > 0.0:
+        lo_x, hi_x, _ = chord(gmsh, shaft, frame, top + d, z_mid, reach)
+        half = min(-lo_x, hi_x)
+    return float(half), False
 
 
-def _cw_fillets(faces, frame, web, radius, z_range, lines, used, tol) -> list[Face]:
+def _cw_fillets(faces, frame, radius, z_range, lines, used, tol) -> list[Face]:
     out = []
     for f in faces.values():
         if f.tag in used or f.kind == "plane" or f.convex:
@@ -114,30 +135,6 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
     }
     x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(3, shaft)
     reach = float(np.linalg.norm([x1 - x0, y1 - y0, z1 - z0]))
-    webs, side_r = [], []
-    for k, (zo, zi) in enumerate(((z["zo1"], z["zi1"]), (z["zo2"], z["zi2"])), start=1):
-        zm = 0.5 * (zo + zi)
-        rj = t.journals[k - 1].radius
-        y_mid = 0.5 * ((t.crank_radius - t.pin_radius) + rj)
-        lo_x, hi_x, solid_width = chord(gmsh, shaft, frame, y_mid, zm, reach)
-        width = hi_x - lo_x
-        s_web = sorted((zo + mid, zi + mid))
-        r_side = _side_radius(gmsh, shaft, frame, faces, axis, zm, s_web, reach, t.crank_radius, rj, tol)
-        side_r.append(r_side)
-        webs.append(
-            Web(
-                k,
-                tuple(sorted(f.tag for f in t.ends[k - 1].planes)),
-                tuple(sorted(f.tag for f in t.journal_ends[k - 1].planes)),
-                float(zi),
-                float(zo),
-                float(abs(zi - zo)),
-                float(width),
-                r_side,
-                float(solid_width),
-            )
-        )
-    cw_r = (cad.counterweight_radius,) * 2 if cad.counterweight_radius is not None else tuple(side_r)
     groups: dict[int, str] = {}
     for f in t.pin:
         groups[f.tag] = "crankpin"
@@ -152,14 +149,55 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
         for f in bore:
             groups[f.tag] = "oil_bore"
     lines = [axis, t.pin_line]
+    zranges = ((z["b1"], 0.0), (0.0, z["b2"]))
+    webs, side_r, reach_over = [], [], []
+    for k, (zo, zi) in enumerate(((z["zo1"], z["zi1"]), (z["zo2"], z["zi2"])), start=1):
+        zm = 0.5 * (zo + zi)
+        rj = t.journals[k - 1].radius
+        y_mid = 0.5 * ((t.crank_radius - t.pin_radius) + rj)
+        lo_x, hi_x, solid_width = chord(gmsh, shaft, frame, y_mid, zm, reach)
+        width = hi_x - lo_x
+        s_web = sorted((zo + mid, zi + mid))
+        r_side, over = _side_radius(
+            gmsh,
+            shaft,
+            frame,
+            faces,
+            axis,
+            zm,
+            s_web,
+            reach,
+            t.crank_radius,
+            rj,
+            zranges[k - 1],
+            lines,
+            set(groups),
+            tol,
+        )
+        side_r.append(r_side)
+        reach_over.append(over or cad.counterweight_radius is not None)
+        webs.append(
+            Web(
+                k,
+                tuple(sorted(f.tag for f in t.ends[k - 1].planes)),
+                tuple(sorted(f.tag for f in t.journal_ends[k - 1].planes)),
+                float(zi),
+                float(zo),
+                float(abs(zi - zo)),
+                float(width),
+                r_side,
+                float(solid_width),
+            )
+        )
+    cw_r = (cad.counterweight_radius,) * 2 if cad.counterweight_radius is not None else tuple(side_r)
     cw_faces, cw_top = {}, []
-    for k, zr in ((1, (z["b1"], 0.0)), (2, (0.0, z["b2"]))):
-        cw_faces[k] = _cw_fillets(faces, frame, k, cw_r[k - 1], zr, lines, set(groups), tol)
+    for k, zr in ((1, zranges[0]), (2, zranges[1])):
+        cw_faces[k] = _cw_fillets(faces, frame, cw_r[k - 1], zr, lines, set(groups), tol)
         for f in cw_faces[k]:
             groups[f.tag] = f"counterweight_fillet_{k}"
         # the counterweight's region reaches over its fillets where they rise above y = 0
         ys = [float(frame.to_throw(np.vstack([f.points, f.edge_points]))[:, 1].max()) for f in cw_faces[k]]
-        cw_top.append(max([0.0] + ys))
+        cw_top.append(max([0.0] + ys) if reach_over[k - 1] else 0.0)
     plan = Plan(
         t.name,
         mid,
@@ -196,7 +234,7 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
         if f is not None
     )
     first = Frame.of(axis.origin, axis.e, raws[0].u, mid)
-    angle = math.atan2(float(t.u @ first.rotation[0]), float(t.u @ first.rotation[1])) % (2 * math.pi)
+    angle = turn_angle(math.atan2(float(t.u @ first.rotation[0]), float(t.u @ first.rotation[1])))
     feats = ThrowFeatures(
         name=t.name,
         index=index,
@@ -243,7 +281,7 @@ def _bore(bore: tuple[Face, ...], frame: Frame, t: RawThrow, nbrs) -> OilBore:
     for name, hosts in (("crankpin", t.pin), ("journal_1", t.journals[0].faces), ("journal_2", t.journals[1].faces)):
         if near & {f.tag for f in hosts}:
             on.append(name)
-    angle = math.atan2(float(d[0]), float(d[1])) % math.pi
+    angle = turn_angle(math.atan2(float(d[0]), float(d[1])), math.pi)
     return OilBore(tuple(f.tag for f in bore), float(2 * bore[0].radius), tuple(on), _t(p), _t(d), float(angle))
 
 

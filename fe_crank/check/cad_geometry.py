@@ -4,7 +4,8 @@ The file is recognised once (``fe_crank.cad.recognise``); its throws are checked
 against the engine's (count, names, crank radius, angles: ``fe_crank.cad.engine``),
 which gives the mesh plan's keys; a counterweight stress criterion needs every
 counterweight to leave its web in a rounded face (as ``io.geometry.
-require_counterweight_fillets`` for a parametric geometry); the UR M53 dimensions and
+require_counterweight_fillets`` for a parametric geometry) and at least one recognised
+counterweight (else the criterion has nothing to evaluate); the UR M53 dimensions and
 the counterweights' built m r per engine throw are measured on the recognised throws
 (``assess.throw_geometry.cad_throws``).
 """
@@ -32,6 +33,21 @@ def require_cad_counterweight_fillets(features: CadFeatures, cad: CadInput, lc: 
     ]
     if not limits:
         return
+    if not any(t.counterweights for t in features.throws):
+        looked = "; ".join(
+            f"throw {t.name} beyond r = " + " and ".join(f"{w.side_radius * 1e3:.4g} mm (web_{w.side})" for w in t.webs)
+            for t in features.throws
+        )
+        raise InputError(
+            f"required by the criterion {limits[0].key}: a counterweight in the FE model; none is recognised in the "
+            f"CAD file {cad.file.name}: looked for material on the far side of the crank axis from each crankpin, "
+            f"beyond the web's rounded journal end ({looked}), between a bearing centre and the throw's middle, and "
+            "found none there; if the counterweights begin nearer the axis, state where in counterweight_radius "
+            f'(e.g. "40 mm") in {cad.where}; counterweights drawn as separate bolted solids (bodies = "bolted") are '
+            "not in the FE model and give no stress: drop the criterion",
+            file=lc.source_file,
+            key=limits[0].key,
+        )
     for t in features.throws:
         for cw in t.counterweights:
             if cw.fillet_radius is None:
@@ -45,9 +61,29 @@ def require_cad_counterweight_fillets(features: CadFeatures, cad: CadInput, lc: 
                 )
 
 
+#: the criteria only the whole-shaft model gives (``assess.criteria.EVALUATORS`` whose
+#: finder is ``no_throw_value``): the main bearings' loads
+WHOLE_SHAFT_QUANTITIES = ("main_bearing_load", "main_bearing_specific_load")
+
+
+def refuse_whole_shaft_criteria(cad: CadInput, lc: LoadCase) -> None:
+    """Refuse, before any meshing, a criterion the whole-shaft model gives: with a CAD
+    geometry the check runs the per-throw model alone (docs/geometry.md)."""
+    for lim in lc.criteria.limits if lc.criteria else ():
+        if lim.quantity in WHOLE_SHAFT_QUANTITIES:
+            raise InputError(
+                f"cannot be evaluated with the CAD geometry {cad.file.name}: the main bearings' loads come from the "
+                "whole-shaft model, which runs on a parametric geometry only (the CAD file's throws are checked one "
+                "by one); give the shaft as a geometry TOML file for this criterion, or drop it",
+                file=lc.source_file,
+                key=lim.key,
+            )
+
+
 def recognise_case(lc: LoadCase, cad: CadInput) -> tuple[CadFeatures, dict[str, str]]:
     """Recognise the load case's CAD file and check it against the engine and the
     criteria: the features and the mesh plan's keys (key -> recognised throw name)."""
+    refuse_whole_shaft_criteria(cad, lc)
     features = recognise(cad)
     keys = engine_keys(features, cad, lc.engine, engine_file=lc.engine_file, loadcase=lc.source_file)
     require_cad_counterweight_fillets(features, cad, lc)

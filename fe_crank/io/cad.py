@@ -202,6 +202,12 @@ def parse_geometry_source(data: dict, file: str | Path) -> CrankGeometry | CadIn
                 key="geometry",
             )
         return None
+    if isinstance(value, str):
+        from fe_crank.cad.read import unsupported_format
+
+        why = unsupported_format(value)
+        if why is not None:
+            raise InputError(why, file=str(file), key="geometry")
     if isinstance(value, str) and Path(value).suffix.lower() in CAD_SUFFIXES:
         if not isinstance(section, dict):
             raise InputError(
