@@ -130,6 +130,17 @@ def film_fits(law: BearingLaw, width: float, g: CrankGeometry, gf: str, key: str
         )
 
 
+def require_film(layout: ShaftLayout, keys: list[str], path) -> None:
+    """An oil-film criterion (``keys``) needs a hydrodynamic main bearing."""
+    if keys and not any(b.law.film is not None for b in layout.bearings):
+        raise InputError(
+            'cannot be evaluated: no main bearing has an oil film (a [shaft] bearing with model = "hydrodynamic" '
+            f"in the geometry file {layout.geometry_file})",
+            file=str(path),
+            key=f"criteria.{keys[0]}",
+        )
+
+
 def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str, ef: str) -> tuple[MainBearing, ...]:
     n = len(journals) - 1
     rf = g.journal_fillet

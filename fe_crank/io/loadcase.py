@@ -28,7 +28,7 @@ from fe_crank.errors import InputError
 from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
 from fe_crank.geometry.engine_fit import throw_at_bearings
-from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
+from fe_crank.geometry.shaft import engine_shaft_layout, require_film, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
 from fe_crank.io.base import InputFile, Strict, read_toml, recording_inputs, validate
@@ -123,7 +123,9 @@ def _load(path: Path) -> LoadCase:
         gfile = geometry.file or str(path)
         geometry = throw_at_bearings(geometry, engine, geometry_file=gfile, engine_file=engine_file)
         if whole_shaft_wanted(geometry, engine):  # the whole shaft's refusals at input too
-            engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
+            layout = engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
+            if criteria is not None:
+                require_film(layout, [lim.key for lim in criteria.limits if "oil_film" in lim.key], path)
     if criteria is not None and isinstance(geometry, CrankGeometry):
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
     if sections.torsion is not None and isinstance(geometry, CadInput):
