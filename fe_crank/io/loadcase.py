@@ -126,6 +126,14 @@ def _load(path: Path) -> LoadCase:
             layout = engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
             if criteria is not None:
                 require_film(layout, [lim.key for lim in criteria.limits if "oil_film" in lim.key], path)
+    film_keys = [lim.key for lim in criteria.limits if "oil_film" in lim.key] if criteria is not None else []
+    if film_keys and not (isinstance(geometry, CrankGeometry) and whole_shaft_wanted(geometry, engine)):
+        raise InputError(
+            "cannot be evaluated: the oil film is the whole-shaft model's, which runs for a parametric geometry of an "
+            'engine with several throws on one shaft or with a [shaft] section, with a model = "hydrodynamic" bearing',
+            file=str(path),
+            key=f"criteria.{film_keys[0]}",
+        )
     if criteria is not None and isinstance(geometry, CrankGeometry):
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
     if sections.torsion is not None and isinstance(geometry, CadInput):
