@@ -231,3 +231,49 @@ def test_walther_through_its_points_and_between():
     w80 = w40 + (w100 - w40) * (x80 - x40) / (x100 - x40)
     nu80 = 10 ** (10**w80) - 0.7
     assert walther_viscosity(68e-6, 8.7e-6, rho, 353.15) == pytest.approx(rho * nu80 * 1e-6, rel=1e-12)
+
+
+def reynolds_fd_load(eps, l_over_d, nt=240, nz=40):
+    """The steady load of a finite bearing by finite differences of Reynolds' equation,
+    independent of the short-bearing closed form: h = 1 + eps cos(theta),
+    d/dth (h^3 dp/dth) + d/dzeta (h^3 dp/dzeta) = 6 dh/dth on zeta = z/R in (-L/D, L/D),
+    p = 0 at the edges, periodic in theta, the half-Sommerfeld condition by dropping the
+    negative pressures; the load over mu omega R^4 / c^2."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.linalg import spsolve
+
+    th = np.arange(nt) * 2 * np.pi / nt
+    dth = th[1]
+    z = np.linspace(-l_over_d, l_over_d, nz + 2)[1:-1]
+    dz = z[1] - z[0]
+    i, j = np.meshgrid(np.arange(nt), np.arange(nz), indexing="ij")
+    k = (i * nz + j).ravel()
+    hp = ((1 + eps * np.cos(th + dth / 2)) ** 3)[i].ravel()
+    hm = ((1 + eps * np.cos(th - dth / 2)) ** 3)[i].ravel()
+    hc = ((1 + eps * np.cos(th)) ** 3)[i].ravel()
+    ii, jj = i.ravel(), j.ravel()
+    rows = [k, k, k]
+    cols = [((ii + 1) % nt) * nz + jj, ((ii - 1) % nt) * nz + jj, k]
+    vals = [hp / dth**2, hm / dth**2, -(hp + hm) / dth**2 - 2 * hc / dz**2]
+    for dj in (1, -1):
+        ok = (jj + dj >= 0) & (jj + dj < nz)
+        rows.append(k[ok])
+        cols.append((ii * nz + jj + dj)[ok])
+        vals.append((hc / dz**2)[ok])
+    A = coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(nt * nz,) * 2)
+    p = np.maximum(spsolve(A.tocsc(), (-6 * eps * np.sin(th))[i].ravel()), 0.0).reshape(nt, nz)
+    return math.hypot((p * np.cos(th)[:, None]).sum(), (p * np.sin(th)[:, None]).sum()) * dth * dz
+
+
+@pytest.mark.parametrize("eps", [0.3, 0.6])
+def test_short_bearing_is_the_limit_of_the_finite_bearing(eps):
+    """The finite bearing's load (finite differences of Reynolds' equation) tends to
+    Ocvirk's as the bearing narrows; at land width / diameter 1/4, the largest the check
+    accepts, the short bearing carries more (docs/shaft.md gives by how much)."""
+
+    def short(ld):  # Ocvirk's load over mu omega R^4 / c^2, L = 2 (L/D) R
+        return ocvirk_load(eps) * (2 * ld) ** 3
+
+    assert short(0.1) / reynolds_fd_load(eps, 0.1) == pytest.approx(1.0, abs=0.025)
+    at_limit = short(0.25) / reynolds_fd_load(eps, 0.25)
+    assert 1.0 < at_limit < 1.15

@@ -95,7 +95,7 @@ class ShaftLayout:
 
 
 #: the largest land width / diameter the short-bearing film (``fe.oil_film``) is offered for
-MAX_FILM_ASPECT = 0.5
+MAX_FILM_ASPECT = 0.25
 
 
 def film_fits(law: BearingLaw, width: float, g: CrankGeometry, gf: str, key: str) -> None:
