@@ -50,7 +50,7 @@ def ocvirk_load(eps):
     return eps / (1 - eps**2) ** 2 * math.sqrt(16 * eps**2 + math.pi**2 * (1 - eps**2)) / 4
 
 
-@pytest.mark.parametrize("eps", [0.2, 0.5, 0.8, 0.95])
+@pytest.mark.parametrize("eps", [0.2, 0.5, 0.8, 0.95, 0.995])  # 0.995: from the centre under W / (k0 omega) = 1e4
 def test_steady_load_eccentricity_and_attitude_angle(eps):
     """A constant load: the orbit settles at Ocvirk's eccentricity, at the attitude angle
     tan(phi) = pi sqrt(1 - eps^2) / (4 eps) from the load line, in the direction of rotation."""
@@ -277,3 +277,69 @@ def test_short_bearing_is_the_limit_of_the_finite_bearing(eps):
     assert short(0.1) / reynolds_fd_load(eps, 0.1) == pytest.approx(1.0, abs=0.025)
     at_limit = short(0.25) / reynolds_fd_load(eps, 0.25)
     assert 1.0 < at_limit < 1.15
+
+
+def _film_layout(sense: int, spec):
+    from fe_crank.geometry.shaft import MainBearing, ShaftLayout
+    from fe_crank.geometry.spec import BearingLaw
+
+    law = BearingLaw(film=spec)
+    return ShaftLayout(
+        geometry=None,
+        throws=(),
+        journals=(),
+        bearings=(MainBearing("1", 0, 0.0, 0.02, law), MainBearing("2", 1, 0.1, 0.02, law, thrust=True)),
+        stub=0.01,
+        pitch=0.1,
+        sense=sense,
+        nose=None,
+        flange=None,
+        power_takeoff="rear",
+        geometry_file="<test>",
+        engine_file="<test>",
+    )
+
+
+@pytest.mark.parametrize("sense", [1, -1])
+def test_film_sweep_in_si_units_and_the_shafts_sense(sense):
+    """``assess.oil_film.film_sweep`` on two bearings under constant loads, in SI: h_min is
+    c (1 - eps) with eps from Ocvirk's relation for W = (mu omega R B^3 / c^2) f(eps), the
+    journal sits off the load line in the shaft's sense of rotation (sense +1 turns from +y
+    towards +x), the peak pressure is Ocvirk's, and a stated slope gives its misalignment
+    slope B / 2 and the edge film c - |c eps| - slope B/2 when the slope lies along eps."""
+    from fe_crank.assess.loads import FIRING
+    from fe_crank.assess.oil_film import film_sweep
+    from fe_crank.assess.shaft import BearingState
+    from fe_crank.fe.shaft_cycle import BearingLoads
+    from fe_crank.fe.whole_shaft import BearingResult
+    from fe_crank.geometry.oil import FilmSpec
+
+    mu, c, d, B, omega, eps = 0.007, 25e-6, 0.056, 0.02, 3000 * math.pi / 30, 0.7
+    spec = FilmSpec(clearance=c, viscosity=mu, diameter=d)
+    W = mu * (d / 2) * B**3 / c**2 * omega * ocvirk_load(eps)
+    n = 180
+    deg = np.arange(n) * 720.0 / n
+    load = np.tile([0.0, -W], (n, 1))
+    slope = np.tile([0.0, -2e-4], (n, 1))  # along the load
+
+    def loads(name, f):
+        return BearingLoads(name, 0.0, B, d, f, W, W, 0.0, W / (d * B), W / (d * B), slope)
+
+    st = BearingState(omega, FIRING, tuple(BearingResult(loads(k, load), loads(k, 0.5 * load)) for k in "12"))
+    (out,) = film_sweep(_film_layout(sense, spec), (st,), deg)
+    f = out.bearings[0].with_counterweights
+    assert f.converged
+    assert f.max_eccentricity == pytest.approx(eps, abs=1e-6)
+    assert f.min_film_m == pytest.approx(c * (1 - eps), rel=1e-5)
+    e = f.eps[-1]
+    assert np.sign(e[0]) == -sense  # off the load line (-y) in the sense of rotation
+    t = np.linspace(0, np.pi, 200001)
+    p_ref = np.max(3 * mu * omega * B**2 / 4 * eps * np.sin(t) / (c**2 * (1 + eps * np.cos(t)) ** 3))
+    assert f.peak_pressure_pa == pytest.approx(p_ref, rel=1e-6)
+    assert f.max_slope == pytest.approx(2e-4)
+    assert f.edge_misalignment_m == pytest.approx(2e-4 * B / 2)
+    # the slope along -y, eps at the attitude angle: the edge reaches |c eps + s B/2| by hand
+    reach = np.hypot(c * e[0], c * e[1] - 2e-4 * B / 2)
+    assert f.min_edge_film_m == pytest.approx(c - reach, rel=1e-6)
+    # half the load: a thicker film
+    assert out.bearings[0].without_counterweights.min_film_m > f.min_film_m

@@ -93,10 +93,13 @@ class FilmState:
     bearings: tuple[BearingFilm, ...]
 
 
-def journal_bearing(spec, width: float, journal_diameter: float) -> JournalBearing:
-    """The film model of a main bearing of ``width`` with film ``spec`` (``FilmSpec``)."""
+def journal_bearing(spec, width: float, journal_diameter: float | None) -> JournalBearing:
+    """The film model of a main bearing of ``width`` with film ``spec`` (``FilmSpec``; its
+    diameter, else ``journal_diameter``)."""
+    diameter = spec.diameter or journal_diameter
+    assert diameter is not None
     return JournalBearing(
-        diameter=spec.diameter or journal_diameter,
+        diameter=diameter,
         width=width,
         clearance=spec.clearance,
         viscosity=spec.viscosity,
@@ -145,7 +148,7 @@ def film_sweep(layout, states: tuple[BearingState, ...], crank_angle_deg) -> tup
     deg = np.asarray(crank_angle_deg, float)
     n = deg.size
     turns = (deg[1] - deg[0]) * n / 360.0  # journal revolutions per cycle
-    d_j = layout.geometry.journal_diameter
+    d_j = layout.geometry.journal_diameter if layout.geometry is not None else None
     jb = {j: journal_bearing(b.law.film, b.width, d_j) for j, b in films}
     rows, loads = [], []
     for si, st in enumerate(states):

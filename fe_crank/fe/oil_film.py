@@ -74,7 +74,7 @@ MAIN_BEARING_MEAN_SPEED = 0.5
 ORBIT_TOL = 1e-4
 MAX_CYCLES = 40
 NEWTON_TOL = 1e-7  # the last Newton step's size in eps (the error after it is its square)
-MAX_NEWTON = 40
+MAX_NEWTON = 60
 
 
 @dataclass(frozen=True)
@@ -228,15 +228,47 @@ class Orbits:
     tol: float
 
 
+def _squeeze(x, e1, e2, a, wb):
+    a0, a1, a2 = a
+    return a0 * x[0] + a1 * e1[0] + a2 * e2[0] + wb * x[1], a0 * x[1] + a1 * e1[1] + a2 * e2[1] - wb * x[0]
+
+
+def _inside(x, dx, dy, t):
+    """x + t (dx, dy), pulled back radially to close at most 80 % of the gap to the
+    clearance circle; and whether it was pulled back."""
+    r_old = np.hypot(x[0], x[1])
+    nx, ny = x[0] + t * dx, x[1] + t * dy
+    r_new = np.hypot(nx, ny)
+    cap = 1.0 - 0.2 * (1.0 - r_old)
+    k = np.where(r_new > cap, cap / np.maximum(r_new, 1e-300), 1.0)
+    return np.stack([nx * k, ny * k]), k < 1.0
+
+
 def _newton_step(x, e1, e2, w, a, wb):
     """eps at the end of one BDF step (vectorised over orbits): k0 K u = W with
-    u = a0 x + a1 e1 + a2 e2 - wb e_z x x (module doc)."""
-    a0, a1, a2 = a
+    u = a0 x + a1 e1 + a2 e2 - wb e_z x x (module doc).  Newton's method kept inside the
+    clearance circle and safeguarded: a step that does not lower the residual is halved
+    (near the clearance circle the film's force grows as (1 - eps)^-5/2, and a full
+    Newton step from too far inside can land where it is orders of magnitude too large)."""
+    a0 = a[0]
+    scale = 1.0 + np.hypot(w[0], w[1])
+    base = x.copy()  # the last accepted iterate
+    step = np.zeros_like(x)  # its Newton step
+    t = np.ones(x.shape[1])
+    r_base = np.full(x.shape[1], np.inf)
     for _ in range(MAX_NEWTON):
-        ux = a0 * x[0] + a1 * e1[0] + a2 * e2[0] + wb * x[1]
-        uy = a0 * x[1] + a1 * e1[1] + a2 * e2[1] - wb * x[0]
+        ux, uy = _squeeze(x, e1, e2, a, wb)
         fx, fy, kxx, kxy, kyy, txx, txy, tyy = film_terms(x[0], x[1], ux, uy)
         rx, ry = fx - w[0], fy - w[1]
+        r = np.hypot(rx, ry) / scale
+        worse = r > (1 - 1e-4 * t) * r_base + 1e-13
+        if worse.any():  # back along the last step, for those orbits only
+            t = np.where(worse, 0.5 * t, t)
+            back, _ = _inside(base, step[0], step[1], t)
+            x = np.where(worse, back, x)
+            if (t[worse] > 1e-12).all():
+                continue
+            break  # no descent left for some orbit
         j11 = txx + a0 * kxx - wb * kxy
         j12 = txy + a0 * kxy + wb * kxx
         j21 = txy + a0 * kxy - wb * kyy
@@ -244,19 +276,42 @@ def _newton_step(x, e1, e2, w, a, wb):
         det = j11 * j22 - j12 * j21
         dx = -(j22 * rx - j12 * ry) / det
         dy = -(j11 * ry - j21 * rx) / det
-        r_old = np.hypot(x[0], x[1])
-        nx, ny = x[0] + dx, x[1] + dy
-        r_new = np.hypot(nx, ny)
-        cap = 1.0 - 0.2 * (1.0 - r_old)  # inside the clearance circle: close at most 80 % of the gap
-        k = np.where(r_new > cap, cap / np.maximum(r_new, 1e-300), 1.0)
-        x = np.stack([nx * k, ny * k])
-        if np.max(np.hypot(dx, dy)) < NEWTON_TOL and np.all(k == 1.0):
-            # Newton's convergence is quadratic: the step just taken leaves an error of
-            # order |dx|^2 (below 1e-14 in eps)
-            ux = a0 * x[0] + a1 * e1[0] + a2 * e2[0] + wb * x[1]
-            uy = a0 * x[1] + a1 * e1[1] + a2 * e2[1] - wb * x[0]
-            return x, np.stack([ux, uy])
-    raise SolverError(f"the oil film's time step did not converge (largest step {np.max(np.hypot(dx, dy)):.2e} in eps)")
+        t = np.ones_like(dx)
+        new, pulled = _inside(x, dx, dy, t)
+        done = (np.hypot(dx, dy) < NEWTON_TOL) & ~pulled
+        if done.all():
+            # Newton's convergence is quadratic: after this step the error is of order
+            # |dx|^2 (below 1e-14 in eps)
+            return new, np.stack(_squeeze(new, e1, e2, a, wb)), np.zeros(x.shape[1], bool)
+        base, step, r_base = x, np.stack([dx, dy]), r
+        x = new
+    # the orbits whose last Newton step was not small: their step is redone (``_step``)
+    ux, uy = _squeeze(x, e1, e2, a, wb)
+    fx, fy = film_terms(x[0], x[1], ux, uy, derivatives=False)[:2]
+    bad = np.hypot(fx - w[0], fy - w[1]) / scale > 1e-9
+    return x, np.stack([ux, uy]), bad
+
+
+def _step(guess, e1, e2, w, a, wb, h):
+    """One BDF2 step (``_newton_step``).  Where it has no solution inside the clearance
+    circle (BDF2 carries the last steps' velocity: after a violent approach, e.g. from the
+    centre under a large load, it can overshoot the circle), that orbit's step is redone
+    as 1, 2, 4, ... 64 backward-Euler sub-steps under the step's end load."""
+    x, u, bad = _newton_step(guess, e1, e2, w, a, wb)
+    if not bad.any():
+        return x, u
+    idx = np.flatnonzero(bad)
+    for parts in (1, 2, 4, 8, 16, 32, 64):
+        hh = h / parts
+        y = e1[:, idx].copy()
+        for _ in range(parts):
+            y, uu, again = _newton_step(y.copy(), y, y, w[:, idx], (1.0 / hh, -1.0 / hh, 0.0), wb)
+            if again.any():
+                break
+        else:
+            x[:, idx], u[:, idx] = y, uu
+            return x, u
+    raise SolverError("the oil film's time step did not converge, even in backward-Euler sub-steps")
 
 
 def periodic_orbits(
@@ -301,7 +356,7 @@ def periodic_orbits(
                 guess = 2 * e1 - e2 if e3 is None else 3 * e1 - 3 * e2 + e3
                 r = np.hypot(guess[0], guess[1])
                 guess = guess * np.where(r > 0.999, 0.999 / np.maximum(r, 1e-300), 1.0)
-                x, u = _newton_step(guess, e1, e2, w, bdf1 if first else bdf2, mean_speed)
+                x, u = _step(guess, e1, e2, w, bdf1 if first else bdf2, mean_speed, h)
                 first = False
                 e3, e2, e1 = e2, e1, x
             eps[(i + 1) % n], squeeze[(i + 1) % n] = e1, u
