@@ -39,7 +39,8 @@ orbit repeats (max |delta eps| at the cycle's angles below ``tol``, default 1e-4
 eps approaches 1 (the film's stiffness rises as (1 - eps^2)^-5/2), so they are integrated
 implicitly: BDF2 at constant step in the journal's angle, each step's eps solved by
 Newton's method on the impedance form k0 K(eps, u) u = W (the analytic Jacobian above),
-kept inside the clearance circle; the mobility form and the impedance form are the same
+kept inside the clearance circle and safeguarded (``_newton_step``, ``_step``: a BDF2 step
+with no solution inside the circle is redone as backward-Euler sub-steps); the mobility form and the impedance form are the same
 equations.
 
 **Full circumferential groove**: two lands of width (B - b_g)/2, each a short bearing with
