@@ -343,3 +343,15 @@ def test_film_sweep_in_si_units_and_the_shafts_sense(sense):
     assert f.min_edge_film_m == pytest.approx(c - reach, rel=1e-6)
     # half the load: a thicker film
     assert out.bearings[0].without_counterweights.min_film_m > f.min_film_m
+
+
+def test_mobility_inverts_the_film_force():
+    """Booker's mobility: the squeeze velocity per unit load gives back that load through
+    the half-Sommerfeld force by quadrature (``quad_force``), anywhere in the clearance."""
+    rng = np.random.default_rng(7)
+    e = rng.uniform(-1, 1, (6, 2))
+    e *= (rng.uniform(0, 0.97, 6) / np.hypot(*e.T))[:, None]
+    d = rng.normal(size=(6, 2))
+    m = mobility(e, d)
+    for ek, mk, dk in zip(e, m, d):
+        assert np.allclose(quad_force(ek, mk), dk / np.linalg.norm(dk), atol=1e-8)

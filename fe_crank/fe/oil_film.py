@@ -189,27 +189,32 @@ def film_force(eps: np.ndarray, u: np.ndarray) -> np.ndarray:
     return np.stack([f[0], f[1]], axis=-1)
 
 
-def mobility(eps: np.ndarray, direction: np.ndarray, *, tol: float = 1e-13, max_iter: int = 200) -> np.ndarray:
+def mobility(eps: np.ndarray, direction: np.ndarray) -> np.ndarray:
     """Booker's mobility vector M (..., 2): the squeeze velocity per unit load,
     u = (|W| / k0) M, at eccentricity ratios ``eps`` (..., 2) under loads of unit
-    ``direction`` (..., 2).  u solves K(eps, u) u = W: K depends on u's direction only, so
-    u = K(u)^-1 W is iterated from u = W (Newton's method on a function homogeneous of
-    degree one)."""
+    ``direction`` (..., 2).  u solves K(eps, u) u = W; K depends on u's direction only and
+    is positive definite, so F . u > 0: u's direction lies within 90 deg of W's, where the
+    angle between F(u) and W changes sign from one end to the other; found by bisection
+    (60 halvings), then |u| = |W| / |K e_u|."""
     eps = np.asarray(eps, float)
     w = np.asarray(direction, float)
     w = w / np.linalg.norm(w, axis=-1, keepdims=True)
-    ex, ey = eps[..., 0], eps[..., 1]
-    ux, uy = w[..., 0].copy(), w[..., 1].copy()
-    for _ in range(max_iter):
-        _, _, kxx, kxy, kyy = film_terms(ex, ey, ux, uy, derivatives=False)
-        det = kxx * kyy - kxy * kxy
-        nx = (kyy * w[..., 0] - kxy * w[..., 1]) / det
-        ny = (kxx * w[..., 1] - kxy * w[..., 0]) / det
-        done = np.max(np.hypot(nx - ux, ny - uy) / np.maximum(np.hypot(nx, ny), 1e-300)) < tol
-        ux, uy = nx, ny
-        if done:
-            return np.stack([ux, uy], axis=-1)
-    raise SolverError("the short bearing's mobility did not converge")
+    ex, ey = np.broadcast_arrays(eps[..., 0], eps[..., 1])
+    beta = np.arctan2(w[..., 1], w[..., 0])
+    lo, hi = beta - np.pi / 2, beta + np.pi / 2
+
+    def off(psi):  # the angle from W to F(u of direction psi), in (-pi, pi]
+        fx, fy = film_terms(ex, ey, np.cos(psi), np.sin(psi), derivatives=False)[:2]
+        return np.angle(np.exp(1j * (np.arctan2(fy, fx) - beta)))
+
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        neg = off(mid) < 0
+        lo, hi = np.where(neg, mid, lo), np.where(neg, hi, mid)
+    psi = 0.5 * (lo + hi)
+    fx, fy = film_terms(ex, ey, np.cos(psi), np.sin(psi), derivatives=False)[:2]
+    size = 1.0 / np.hypot(fx, fy)
+    return np.stack([size * np.cos(psi), size * np.sin(psi)], axis=-1)
 
 
 @dataclass(frozen=True)
