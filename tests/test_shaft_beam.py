@@ -84,3 +84,21 @@ def test_a_load_below_gap_closure_is_carried_by_the_other_bearings(three):
     assert f[1, 1] > 0.05 * P
     assert np.hypot(*d[1]) == pytest.approx(0.5 * abs(free) + np.hypot(*f[1]) / k, rel=1e-6)
     assert f[:, 1].sum() == pytest.approx(P, rel=1e-9)
+
+
+def test_journal_slopes_at_the_bearings(three):
+    """Two equal spans L, P at the middle of the first: M_B = -3 P L / 32 (three-moment
+    equation), so the slopes at the bearings are 3 P L^2 / (64 EI) (A), P L^2 / (32 EI) (B)
+    and P L^2 / (64 EI) (C), A and C turning the same way, B the other (beam theory; the
+    coupling's mean over its layer of journal, shear deformation neglected)."""
+    from fe_crank.fe.shaft_cycle import journal_slopes, solve_cycle
+
+    cases = point_loads(three, {0: 1000.0})
+    W = np.zeros((1, len(cases.names)))
+    W[0, cases.index("P0")] = 1.0
+    _, d, W = solve_cycle(cases, W, [b.law for b in cases.model.mesh.layout.bearings])
+    s = journal_slopes(cases, W, d)[0]
+    EI = 210e9 * np.pi * RADIUS**4 / 4
+    unit = 1000.0 * SPAN**2 / EI
+    assert np.allclose(s[:, 1], [-3 / 64 * unit, 1 / 32 * unit, -1 / 64 * unit], rtol=0.03)
+    assert np.abs(s[:, 0]).max() < 1e-3 * unit

@@ -125,3 +125,78 @@ def test_a_cad_shaft_keeps_its_recognised_journals(tmp_path):
     lc = load_loadcase(p)
     assert isinstance(lc.geometry, CadInput) and len(lc.engine.throws) == 4
     assert not wanted(lc)
+
+
+_FILM = 'clearance = "25 um", groove = "full", groove_width = "3 mm"'
+
+
+@pytest.mark.parametrize(
+    "bearing, words",
+    [
+        ('{ model = "hydrodynamic", clearance = "0 um", viscosity = "8 mPa*s" }', ("shaft.bearing", "clearance")),
+        ('{ model = "hydrodynamic", clearance = "-5 um", viscosity = "8 mPa*s" }', ("shaft.bearing", "clearance")),
+        ('{ model = "hydrodynamic", clearance = "25 um" }', ("shaft.bearing", "needs its oil")),
+        (
+            f'{{ model = "hydrodynamic", {_FILM}, viscosity = "0 mPa*s" }}',
+            ("shaft.bearing.viscosity", "greater than 0"),
+        ),
+        (
+            f'{{ model = "hydrodynamic", {_FILM}, viscosity = "-8 mPa*s" }}',
+            ("shaft.bearing.viscosity", "greater than 0"),
+        ),
+        (
+            '{ model = "hydrodynamic", clearance = "30 mm", viscosity = "8 mPa*s", groove = "full", groove_width = "3 mm" }',
+            ("shaft.bearing.clearance", "not smaller than the journal's radius 28 mm"),
+        ),
+        (
+            '{ model = "hydrodynamic", clearance = "25 um", viscosity = "8 mPa*s", groove = "half" }',
+            ("shaft.bearing.groove", "'none' or 'full'"),
+        ),
+        (f'{{ model = "hydrodynamic", {_FILM}, viscosity = "8 mPa" }}', ("shaft.bearing.viscosity", "not a viscosity")),
+        ('{ model = "hydrodynamic", clearance = "25 um", viscosity = "8 mPa*s" }', ("shaft.bearing", "short-bearing")),
+        (
+            f'{{ model = "hydrodynamic", {_FILM}, viscosity = "8 mPa*s", '
+            'oil = { nu40 = "65 mm^2/s", nu100 = "11 mm^2/s", density = "850 kg/m^3", temperature = "120 degC" } }',
+            ("shaft.bearing", "not both"),
+        ),
+        ('{ model = "rigid", viscosity = "8 mPa*s" }', ("shaft.bearing", 'only a "hydrodynamic" bearing')),
+    ],
+)
+def test_a_hydrodynamic_bearing_that_cannot_be_built(tmp_path, capsys, bearing, words):
+    p, _ = _tree(tmp_path, "inline4_rated.toml", geometry_edit=lambda t: t + f"\n[shaft]\nbearing = {bearing}\n")
+    _refused(capsys, p, "inline4.toml", *words)
+
+
+def test_an_oil_film_criterion_without_a_film_is_refused(tmp_path, capsys):
+    p, _ = _tree(tmp_path, "inline4_rated.toml")
+    p.write_text(p.read_text().replace("[criteria]\n", '[criteria]\nmin_oil_film_thickness = "1 um"\n'))
+    _refused(capsys, p, "inline4_rated.toml", "criteria.min_oil_film_thickness", "no main bearing has an oil film")
+
+
+def test_a_hydrodynamic_bearing_reads(tmp_path):
+    """A valid film: the oil by Walther's equation, the structural law rigid."""
+    from fe_crank.geometry.oil import walther_viscosity
+    from fe_crank.io.geometry import load_geometry
+
+    oil = 'oil = { nu40 = "65 mm^2/s", nu100 = "11 mm^2/s", density = "850 kg/m^3", temperature = "120 degC" }'
+    _, g = _tree(
+        tmp_path,
+        "inline4_rated.toml",
+        geometry_edit=lambda t: t + f'\n[shaft]\nbearing = {{ model = "hydrodynamic", {_FILM}, {oil} }}\n',
+    )
+    law = load_geometry(g).shaft.bearing_law
+    assert law.model == "rigid" and law.film is not None
+    assert law.film.viscosity == pytest.approx(walther_viscosity(65e-6, 11e-6, 850.0, 393.15))
+    assert law.film.groove == "full" and law.film.groove_width == pytest.approx(3e-3)
+
+
+def test_an_oil_film_criterion_without_the_whole_shaft_is_refused(tmp_path, capsys):
+    p, _ = _tree(tmp_path, "single_cylinder.toml")
+    text = p.read_text()
+    text = (
+        text.replace("[criteria]\n", '[criteria]\nmax_oil_film_pressure = "150 MPa"\n')
+        if "[criteria]" in text
+        else (text + '\n[criteria]\nmax_oil_film_pressure = "150 MPa"\n')
+    )
+    p.write_text(text)
+    _refused(capsys, p, "single_cylinder.toml", "criteria.max_oil_film_pressure", "whole-shaft model")

@@ -87,6 +87,8 @@ EVALUATORS: dict[str, Evaluator] = {
     **{q: Evaluator(joint_finder(q)) for q in JOINT_QUANTITIES},
     "main_bearing_load": Evaluator(no_throw_value, unit="N"),  # the whole shaft's (shaft_criteria)
     "main_bearing_specific_load": Evaluator(no_throw_value, unit="Pa"),
+    "oil_film_thickness": Evaluator(no_throw_value, unit="m"),  # the whole shaft's film (assess.oil_film)
+    "oil_film_pressure": Evaluator(no_throw_value, unit="Pa"),
 }
 
 

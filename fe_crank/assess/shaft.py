@@ -61,6 +61,9 @@ class ShaftAssessment:
     bearings: tuple[BearingResult, ...]
     speed: float | None = None
     sweep: tuple[BearingState, ...] = ()
+    #: the hydrodynamic bearings' oil film in every state of ``sweep``
+    #: (``assess.oil_film.FilmState``; () : no hydrodynamic bearing)
+    film: tuple = ()
 
 
 def piece_unit_stresses(cases: ShaftCases, piece: int, material) -> UnitStresses:

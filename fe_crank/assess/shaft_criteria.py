@@ -17,6 +17,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from fe_crank.assess.oil_film import FILM_FINDERS, film_criterion
 from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, ShaftAssessment
 from fe_crank.assess.speeds import Found, over_states
 from fe_crank.assess.throw import ThrowAssessment
@@ -82,6 +83,8 @@ def whole_shaft(
     """The whole shaft's worst value of ``quantity``: a main-bearing quantity over the sweep
     of the bearings' states (the operating speed's when no sweep), else ``find`` on its
     throws at the one speed ``speed_rpm`` (None: a quantity of no speed)."""
+    if quantity in FILM_FINDERS:  # the hydrodynamic bearings' oil film (assess.oil_film)
+        return film_criterion(quantity, sense, shaft.film) if shaft.film else None
     if quantity in BEARING_FINDERS:
         f = BEARING_FINDERS[quantity]
         if shaft.sweep:

@@ -12,6 +12,9 @@ before the assessment (docs/shaft.md):
   stage's vibratory torque when it ran);
 * its main bearings' loads at every speed and load state of the full-load sweep
   (``bearing_sweep``, the main-bearing criteria's worst speed);
+* the hydrodynamic main bearings' oil film in each of those states, with and without
+  counterweights (``assess.oil_film.film_sweep``: the journals' periodic orbits under
+  those loads; the film does not change the shaft's solution);
 * its throws' fillets, oil bores and counterweight junctions assessed by the per-throw
   model's code (``assess.shaft``) at the operating speed and the overspeed, for the
   criteria beside the per-throw model;
@@ -28,6 +31,7 @@ import numpy as np
 
 from fe_crank.assess.loads import FIRING, misfire_label
 from fe_crank.assess.m53_basis import m53_basis
+from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState, ShaftAssessment, assess_shaft_throws
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.fe.shaft_cases import ShaftCases
@@ -115,8 +119,12 @@ def whole_shaft_stage(lc: LoadCase, geo: GeometryModel, out: CaseOutputs, fields
     try:
         t0 = time.perf_counter()
         sweep = bearing_sweep(out.cycles, cases, layout, result)
-        result = dataclasses.replace(result, timings={**result.timings, "sweep": time.perf_counter() - t0})
-        return _assessed(lc, geo, layout, dyn, result, cases, fields, sweep)
+        t1 = time.perf_counter()
+        own = (BearingState(float(dyn.speed), FIRING, result.bearings),)
+        film = film_sweep(layout, sweep or own, result.crank_angle_deg)
+        t = {"sweep": t1 - t0, **({"oil_film": time.perf_counter() - t1} if film else {})}
+        result = dataclasses.replace(result, timings={**result.timings, **t})
+        return _assessed(lc, geo, layout, dyn, result, cases, fields, sweep, film)
     finally:
         cases.model.free_factors()
 
@@ -152,6 +160,7 @@ def _assessed(
     cases: ShaftCases,
     fields: bool,
     sweep: tuple[BearingState, ...],
+    film: tuple = (),
 ) -> WholeShaftOutput:
     """The whole shaft's throws assessed and its governing state (``whole_shaft_stage``)."""
     mat, g = lc.material, lc.geometry
@@ -183,5 +192,5 @@ def _assessed(
         state = shaft_fields(cases, result.cycles[0].weights[k], mat, lc.fe.solver, mark=np.asarray(worst.point))
         t["fields"] = time.perf_counter() - t0
     result = dataclasses.replace(result, timings={**result.timings, **t})
-    assessed = ShaftAssessment(throws, result.bearings, float(dyn.speed), sweep)
+    assessed = ShaftAssessment(throws, result.bearings, float(dyn.speed), sweep, film)
     return WholeShaftOutput(layout, result, assessed, worst, state)

@@ -47,6 +47,10 @@ class ShaftCases:
     d_rel: np.ndarray  # (n_bearings, 2, n_cases) radial, relative to the base line
     redundant: tuple[int, ...]  # bearing indices that are not base bearings
     held: np.ndarray  # the six interface dofs held against the rigid-body modes
+    #: (n_bearings, 2, n_cases) the journal's mean slope (dx/dz, dy/dz) at each bearing,
+    #: shaft frame, relative to the line through the two base bearings (the rotation of the
+    #: distributing coupling's reference point, ``BearingCoupling.rotations``)
+    slope: np.ndarray | None = None
 
     def index(self, name: str) -> int:
         return self.names.index(name)
@@ -153,4 +157,13 @@ def solve_cases(model: ShaftModel, extra: dict[str, dict[tuple[int, str], float]
     za, zb = z[A], z[B]
     s = (z - za) / (zb - za)
     d_rel = d[:, :2] - (1 - s)[:, None, None] * d[A, :2][None] - s[:, None, None] * d[B, :2][None]
-    return ShaftCases(model, tuple(names), coef, V, R, (A, B), d, d_rel, redundant, held)
+    slope = None
+    if all(b.rotations for b in model.bearings):
+        rot = np.zeros((nb, 2, len(names)))
+        for j, b in enumerate(model.bearings):
+            for k in range(2):
+                for (p, pat), w in b.rotations[k].items():
+                    rot[j, k] += w * phi[p][model.pieces[p].cond.phi_names.index(pat)]
+        line = (d[B, :2] - d[A, :2]) / (zb - za)  # the base line's slope (the held dofs' rigid motion)
+        slope = np.stack([rot[:, 1] - line[0], -rot[:, 0] - line[1]], axis=1)  # u = theta x r: du/dz
+    return ShaftCases(model, tuple(names), coef, V, R, (A, B), d, d_rel, redundant, held, slope)

@@ -53,6 +53,9 @@ class BearingLoads:
     peak_angle_deg: float  # cycle angle of the peak
     specific_load_pa: float  # peak / (d w)
     mean_specific_load_pa: float
+    #: (n, 2) the journal's mean slope (dx/dz, dy/dz) in the bearing, engine frame, relative
+    #: to the bearings' line (None: not computed)
+    slope: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -127,6 +130,20 @@ def solve_cycle(cases: ShaftCases, W: np.ndarray, laws) -> tuple[np.ndarray, np.
     return f, d, W
 
 
+def journal_slopes(cases: ShaftCases, W: np.ndarray, d: np.ndarray) -> np.ndarray | None:
+    """(n, n_bearings, 2) the journals' mean slopes (dx/dz, dy/dz, shaft frame) in their
+    bearings at every angle: the unit cases' (``ShaftCases.slope``, relative to the base
+    line) weighted by ``W`` (bearing forces filled in), plus the base line's own slope
+    from the base bearings' displacements ``d`` (n, n_bearings, 2) under their laws."""
+    if cases.slope is None:
+        return None
+    nb = cases.slope.shape[0]
+    A, B = cases.base_bearings
+    z = np.array([b.z for b in cases.model.bearings])
+    out = (W @ cases.slope.reshape(2 * nb, -1).T).reshape(W.shape[0], nb, 2)
+    return out + ((d[:, B] - d[:, A]) / (z[B] - z[A]))[:, None, :]
+
+
 def shaft_cycle(
     cases: ShaftCases,
     loads: tuple[ThrowCycleLoad, ...],
@@ -152,6 +169,7 @@ def shaft_cycle(
     W = case_weights(cases, by, speed, counterweights, extra)
     f, d, W = solve_cycle(cases, W, laws)
     deg = np.rad2deg(cycle_angle)
+    slopes = journal_slopes(cases, W, d)
     bearings = []
     dj = layout.geometry.journal_diameter
     for j, b in enumerate(layout.bearings):
@@ -170,6 +188,7 @@ def shaft_cycle(
                 float(deg[k]),
                 float(mag[k] / (dj * b.width)),
                 float(mag.mean() / (dj * b.width)),
+                None if slopes is None else _to_engine(slopes[:, j], shaft_angle),
             )
         )
     spin = {t.throw: np.asarray(t.spin_up, float) for t in loads if t.spin_up is not None}

@@ -82,6 +82,10 @@ class BearingCoupling:
     #: per unit force direction (x, y, z in the shaft frame): {(piece, pattern): coefficient}
     terms: tuple[dict[tuple[int, str], float], ...]
     area: float  # m^2, the coupled journal surface
+    #: per unit moment about x and y (shaft frame), the same coupling's nodal forces: their
+    #: work on the surface's displacements is the reference point's rotation (the journal's
+    #: mean tilt, ``ShaftCases.slope``)
+    rotations: tuple[dict[tuple[int, str], float], ...] = ()
 
 
 @dataclass
@@ -177,11 +181,8 @@ def _coupling(name, z, members, moments) -> BearingCoupling:
     M2c = m2 - A * np.outer(c, c)
     inertia = (np.trace(M2c) * np.eye(3) - M2c) / A
     ref = np.array([0.0, 0.0, z])
-    terms = []
-    for k in range(3):
-        e = np.zeros(3)
-        e[k] = 1.0
-        theta = np.linalg.solve(inertia, np.cross(ref - c, e))
+
+    def distributed(e: np.ndarray, theta: np.ndarray) -> dict[tuple[int, str], float]:
         t: dict[tuple[int, str], float] = {}
         for pp, s in members:
             w = np.cross(theta, np.array([0.0, 0.0, pp.z]) - c)
@@ -189,8 +190,16 @@ def _coupling(name, z, members, moments) -> BearingCoupling:
             for m in range(3):
                 t[(pp.index, f"{s}.P{m}")] = t.get((pp.index, f"{s}.P{m}"), 0.0) + p_coef[m]
                 t[(pp.index, f"{s}.Q{m}")] = t.get((pp.index, f"{s}.Q{m}"), 0.0) + q_coef[m]
-        terms.append(t)
-    return BearingCoupling(name, z, tuple(terms), A)
+        return t
+
+    terms = []
+    for k in range(3):
+        e = np.zeros(3)
+        e[k] = 1.0
+        terms.append(distributed(e, np.linalg.solve(inertia, np.cross(ref - c, e))))
+    # a unit moment M about x or y: f_i = (a_i / A) theta x (x_i - c), I theta = M
+    rotations = tuple(distributed(np.zeros(3), np.linalg.solve(inertia, np.eye(3)[k])) for k in range(2))
+    return BearingCoupling(name, z, tuple(terms), A, rotations)
 
 
 def build_shaft_model(

@@ -94,6 +94,53 @@ class ShaftLayout:
         return self.geometry.crankpin_length / 2 + self.geometry.web_thickness
 
 
+#: the largest land width / diameter the short-bearing film (``fe.oil_film``) is offered for
+MAX_FILM_ASPECT = 0.25
+
+
+def film_fits(law: BearingLaw, width: float, g: CrankGeometry, gf: str, key: str) -> None:
+    """A hydrodynamic bearing's film against its journal and width: the clearance below the
+    journal's radius, the groove narrower than the bearing, each land's width / diameter at
+    most ``MAX_FILM_ASPECT`` (the short-bearing film's range, docs/shaft.md)."""
+    f = law.film
+    assert f is not None
+    d = f.diameter or g.journal_diameter
+    if f.clearance >= d / 2:
+        raise InputError(
+            f"the radial clearance {f.clearance * 1e6:.4g} um is not smaller than the journal's radius {d * 500:.4g} mm",
+            file=gf,
+            key=f"{key}.clearance",
+        )
+    land = width
+    if f.groove == "full":
+        if f.groove_width >= width:
+            raise InputError(
+                f"the groove ({f.groove_width * 1e3:.4g} mm) is not narrower than the bearing ({width * 1e3:.4g} mm)",
+                file=gf,
+                key=f"{key}.groove_width",
+            )
+        land = (width - f.groove_width) / 2
+    if land / d > MAX_FILM_ASPECT:
+        raise InputError(
+            f"a land {land * 1e3:.4g} mm wide on a {d * 1e3:.4g} mm journal (width / diameter {land / d:.3g}) is beyond "
+            f"the short-bearing oil film's range (at most {MAX_FILM_ASPECT}; no finite-bearing film model is "
+            "offered): state a narrower bearing_width or a full groove",
+            file=gf,
+            key=key,
+        )
+
+
+def require_film(layout: ShaftLayout, keys: list[str], path) -> None:
+    """An oil-film criterion (``keys``) needs a hydrodynamic main bearing."""
+    if keys and not any(b.law.film is not None for b in layout.bearings):
+        raise InputError(
+            'cannot be evaluated: no main bearing has an oil film (a [shaft] bearing with model = "hydrodynamic" '
+            f"in the geometry file {layout.geometry_file})",
+            file=str(path),
+            key=f"criteria.{keys[0]}",
+        )
+
+
 def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str, ef: str) -> tuple[MainBearing, ...]:
     n = len(journals) - 1
     rf = g.journal_fillet
@@ -115,6 +162,9 @@ def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str, ef: str) -> 
             flat = min(js.z1 - js.z0 - rf, 2 * (js.centre - js.z0 if j == n else js.z1 - js.centre) - 2 * rf)
         width = (b.width if b is not None else None) or spec.bearing_width or flat
         law = (b.law if b is not None else None) or spec.bearing_law
+        if law.film is not None:
+            own = b is not None and b.law is not None
+            film_fits(law, width, g, gf, f"shaft.bearings[{k}].bearing" if own else "shaft.bearing")
         out.append(MainBearing(str(j + 1) if b is None else b.name, j, js.centre, width, law))
     if len(out) < 2:
         raise InputError("a shaft needs at least two main bearings", file=gf, key="shaft.bearings")

@@ -28,6 +28,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from fe_crank.geometry.oil import FilmSpec
+
 WEB_OUTLINES = ("stadium", "pear")
 
 
@@ -160,6 +162,9 @@ class BearingLaw:
     model: str = "rigid"
     stiffness: float | None = None
     clearance: float = 0.0
+    #: the oil film of a hydrodynamic bearing (``fe.oil_film``), judged over the cycle from
+    #: the loads this law (``rigid`` or ``spring``) gives; None: no film model
+    film: FilmSpec | None = None
 
 
 @dataclass(frozen=True)

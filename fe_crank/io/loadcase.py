@@ -28,7 +28,7 @@ from fe_crank.errors import InputError
 from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
 from fe_crank.geometry.engine_fit import throw_at_bearings
-from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
+from fe_crank.geometry.shaft import engine_shaft_layout, require_film, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings
 from fe_crank.io.base import InputFile, Strict, read_toml, recording_inputs, validate
@@ -124,7 +124,17 @@ def _load(path: Path) -> LoadCase:
         gfile = geometry.file or str(path)
         geometry = throw_at_bearings(geometry, engine, geometry_file=gfile, engine_file=engine_file)
         if whole_shaft_wanted(geometry, engine):  # the whole shaft's refusals at input too
-            engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
+            layout = engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
+            if criteria is not None:
+                require_film(layout, [lim.key for lim in criteria.limits if "oil_film" in lim.key], path)
+    film_keys = [lim.key for lim in criteria.limits if "oil_film" in lim.key] if criteria is not None else []
+    if film_keys and not (isinstance(geometry, CrankGeometry) and whole_shaft_wanted(geometry, engine)):
+        raise InputError(
+            "cannot be evaluated: the oil film is the whole-shaft model's, which runs for a parametric geometry of an "
+            'engine with several throws on one shaft or with a [shaft] section, with a model = "hydrodynamic" bearing',
+            file=str(path),
+            key=f"criteria.{film_keys[0]}",
+        )
     if criteria is not None and isinstance(geometry, CrankGeometry):
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
         require_joint_data(geometry, path)

@@ -11,6 +11,8 @@
     bearing_width = "26 mm"          # optional: default width of every main bearing
     bearing = { model = "rigid" }    # default law; or { model = "spring", stiffness = "1e9 N/m" }
                                      # or { model = "clearance", clearance = "40 um", stiffness = "2e9 N/m" }
+                                     # or { model = "hydrodynamic", clearance = "30 um", viscosity = "8 mPa*s" }
+                                     #   (the oil film, fe_crank.fe.oil_film; ``HydrodynamicInput`` below)
     thrust_bearing = "3"             # optional: default the bearing nearest the power take-off
     power_takeoff = "rear"           # "rear" (flywheel end, default) or "front"
 
@@ -32,9 +34,10 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
+from fe_crank.geometry.oil import FilmSpec, walther_viscosity
 from fe_crank.geometry.spec import BearingInput, BearingLaw, PlainCylinder, ShaftSpec
 from fe_crank.io.base import Strict
-from fe_crank.io.units import Length, Stiffness
+from fe_crank.io.units import Density, KinematicViscosity, Length, Stiffness, Temperature, Viscosity
 
 
 class CylinderInput(Strict):
@@ -42,13 +45,46 @@ class CylinderInput(Strict):
     length: Length = Field(gt=0)
 
 
+class OilInput(Strict):
+    """An oil by its data sheet: kinematic viscosity at 40 and 100 degC, density, and the
+    film's temperature (Walther's equation, ``geometry.oil.walther_viscosity``)."""
+
+    nu40: KinematicViscosity = Field(gt=0)
+    nu100: KinematicViscosity = Field(gt=0)
+    density: Density = Field(gt=0)
+    temperature: Temperature = Field(gt=0)
+
+    @model_validator(mode="after")
+    def _order(self):
+        if self.nu100 >= self.nu40:
+            raise ValueError("an oil's viscosity at 100 degC (nu100) must be below its viscosity at 40 degC (nu40)")
+        return self
+
+
+#: the keys of a hydrodynamic bearing's film (``BearingLawInput``)
+FILM_KEYS = ("viscosity", "oil", "groove", "groove_width", "diameter")
+
+
 class BearingLawInput(Strict):
-    model: Literal["rigid", "spring", "clearance"] = "rigid"
+    model: Literal["rigid", "spring", "clearance", "hydrodynamic"] = "rigid"
     stiffness: Stiffness | None = Field(default=None, gt=0)
     clearance: Length | None = Field(default=None, ge=0)
+    # model = "hydrodynamic": the oil film (fe_crank.fe.oil_film); the shaft's static
+    # solution takes the bearing as rigid (or as a spring of ``stiffness``)
+    viscosity: Viscosity | None = Field(default=None, gt=0)
+    oil: OilInput | None = None
+    groove: Literal["none", "full"] | None = None
+    groove_width: Length | None = Field(default=None, gt=0)
+    diameter: Length | None = Field(default=None, gt=0)
 
     @model_validator(mode="after")
     def _keys(self):
+        if self.model != "hydrodynamic":
+            given = [k for k in FILM_KEYS if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f'{", ".join(given)}: only a "hydrodynamic" bearing takes an oil film\'s keys')
+        else:
+            return self._film_keys()
         if self.model == "rigid" and (self.stiffness is not None or self.clearance is not None):
             raise ValueError('a "rigid" bearing takes no stiffness or clearance')
         if self.model in ("spring", "clearance") and self.stiffness is None:
@@ -59,7 +95,54 @@ class BearingLawInput(Strict):
             raise ValueError('a "clearance" bearing needs its radial clearance, e.g. clearance = "40 um"')
         return self
 
+    def _film_keys(self):
+        if self.clearance is None or self.clearance <= 0:
+            raise ValueError('a "hydrodynamic" bearing needs its radial clearance above zero, e.g. clearance = "30 um"')
+        if self.viscosity is None and self.oil is None:
+            raise ValueError(
+                'a "hydrodynamic" bearing needs its oil: viscosity = "8 mPa*s" (at the film temperature) or '
+                'oil = { nu40 = "68 mm^2/s", nu100 = "8.7 mm^2/s", density = "860 kg/m^3", temperature = "110 degC" }'
+            )
+        if self.viscosity is not None and self.oil is not None:
+            raise ValueError('a "hydrodynamic" bearing takes its viscosity or its oil, not both')
+        if self.groove == "full" and self.groove_width is None:
+            raise ValueError('a full circumferential groove needs its width, e.g. groove_width = "4 mm"')
+        if self.groove != "full" and self.groove_width is not None:
+            raise ValueError('groove_width: only a bearing with groove = "full" has a groove')
+        if self.diameter is not None and self.clearance >= self.diameter / 2:
+            raise ValueError(
+                f"the radial clearance {self.clearance * 1e6:.4g} um is not smaller than the journal's radius "
+                f"{self.diameter * 500:.4g} mm"
+            )
+        return self
+
+    def film(self) -> FilmSpec | None:
+        if self.model != "hydrodynamic":
+            return None
+        assert self.clearance is not None
+        if self.oil is not None:
+            o = self.oil
+            eta = walther_viscosity(o.nu40, o.nu100, o.density, o.temperature)
+            how = (
+                f"nu40 {o.nu40 * 1e6:.4g} mm^2/s, nu100 {o.nu100 * 1e6:.4g} mm^2/s, density {o.density:.4g} kg/m^3 "
+                f"at {o.temperature - 273.15:.4g} degC (Walther, ASTM D341): {eta * 1e3:.4g} mPa s"
+            )
+        else:
+            assert self.viscosity is not None
+            eta, how = self.viscosity, f"{self.viscosity * 1e3:.4g} mPa s (stated)"
+        return FilmSpec(
+            clearance=self.clearance,
+            viscosity=eta,
+            groove=self.groove or "none",
+            groove_width=self.groove_width or 0.0,
+            diameter=self.diameter,
+            oil=how,
+        )
+
     def law(self) -> BearingLaw:
+        if self.model == "hydrodynamic":  # the static solution: rigid, or a spring of the stated stiffness
+            structural = "rigid" if self.stiffness is None else "spring"
+            return BearingLaw(structural, self.stiffness, 0.0, self.film())
         return BearingLaw(self.model, self.stiffness, self.clearance or 0.0)
 
 

@@ -54,6 +54,9 @@ KINDS: dict[str, tuple[str, str, str]] = {
     "time": ("[time]", "s", "0.1 s"),
     "area": ("[length]**2", "m**2", "12 mm^2"),
     "stiffness": ("[mass]/[time]**2", "N/m", "5e8 N/m"),
+    "viscosity": ("[mass]/[length]/[time]", "Pa*s", "8 mPa*s"),
+    "kinematic_viscosity": ("[length]**2/[time]", "m**2/s", "68 mm^2/s"),
+    "temperature": ("[temperature]", "K", "110 degC"),
 }
 
 #: kind -> largest accepted absolute SI value.  Far beyond any crankshaft (a 1 km
@@ -75,6 +78,9 @@ MAX_ABS: dict[str, float] = {
     "time": 1e7,
     "area": 1e6,
     "stiffness": 1e16,
+    "viscosity": 1e6,
+    "kinematic_viscosity": 1e3,
+    "temperature": 1e4,
 }
 
 _TAU = 2.0 * math.pi
@@ -257,3 +263,6 @@ Energy = Annotated[float, _validator("energy")]
 Unbalance = Annotated[float, _validator("unbalance")]
 Area = Annotated[float, _validator("area")]
 Stiffness = Annotated[float, _validator("stiffness")]
+Viscosity = Annotated[float, _validator("viscosity")]
+KinematicViscosity = Annotated[float, _validator("kinematic_viscosity")]
+Temperature = Annotated[float, _validator("temperature")]

@@ -207,6 +207,8 @@ def display(value: float, unit: str) -> tuple[str, str]:
     """A criterion's value in the unit a designer reads (stresses in MPa)."""
     if unit == "Pa":
         return f"{value / 1e6:.4g}", "MPa"
+    if unit == "m":  # an oil film's thickness
+        return f"{value * 1e6:.4g}", "um"
     return f"{value:.4g}", unit
 
 

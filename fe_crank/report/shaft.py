@@ -18,8 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
+from fe_crank.assess.oil_film import film_json
 from fe_crank.assess.results import group_json
 from fe_crank.outputs import CaseOutputs, WholeShaftOutput
+from fe_crank.report.film import film_section
 from fe_crank.report.html import Page, esc, table
 from fe_crank.report.plots import figure, plot_bars, save
 
@@ -51,6 +53,8 @@ def shaft_results(ws: WholeShaftOutput) -> dict:
             }
             for st in ws.assessment.sweep
         ]
+    if ws.assessment.film:  # the hydrodynamic bearings' oil film (assess.oil_film)
+        doc["oil_film"] = film_json(ws.assessment.film)
     h = ws.governing
     doc["governing"] = None if h is None else {"throw": h.throw, "group": h.group, "crank_angle_deg": h.angle_deg}
     doc["timings_s"] = {k: float(v) for k, v in ws.result.timings.items()}
@@ -259,4 +263,4 @@ def shaft_section(folder: Path, so: CaseOutputs, options) -> list[str]:
             ),
             Page.figure("shaft_web_moments.png", "The shaft's bending moment at every web centre over the cycle"),
         ]
-    return parts + _picture(folder, ws, render, vtu)
+    return parts + film_section(folder, ws, render) + _picture(folder, ws, render, vtu)

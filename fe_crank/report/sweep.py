@@ -15,6 +15,8 @@ RPM = 30.0 / math.pi
 
 
 def _scale(unit: str) -> tuple[float, str]:
+    if unit == "m":  # an oil film's thickness
+        return 1e6, "um"
     return (1e-6, "MPa") if unit == "Pa" else (1.0, unit)
 
 
