@@ -12,7 +12,7 @@ from skfem import ElementTetP2
 from verification_meshes import Steel, simple_throw
 
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.supports import _robust_mapping
+from fe_crank.fe.bases import robust_mapping
 
 # simple_throw defaults (m): journals d 50 x 30, webs 80 wide x 20 thick (box), pin d 45 x 30
 # at R = 45; axial layout: journal_1 [-65, -35] mm, web_1 [-35, -15], pin [-15, 15], ...
@@ -66,7 +66,7 @@ def section_resultants(unit, u, z):
                 tri_el.append(e)
     x = np.array(tri_pts).T  # (3, nq)
     w, el = np.array(tri_w), np.array(tri_el)
-    mp = _robust_mapping(mesh)
+    mp = robust_mapping(mesh)
     X = mp.invF(x[:, :, None], tind=el)  # (3, nq, 1)
     J = mp.invDF(X, tind=el)[:, :, :, 0]  # (3, 3, nq): d(ref)/d(x)
     elem, dofs = ElementTetP2(), unit.system.basis.element_dofs

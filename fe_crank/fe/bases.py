@@ -131,7 +131,7 @@ class RobustIsoparametric(MappingIsoparametric):
         return out
 
 
-def _robust_mapping(mesh):
+def robust_mapping(mesh):
     """The mesh's isoparametric mapping with a robust inverse (cached on the mesh), or None if affine."""
     if getattr(mesh, "affine", True):
         return None
@@ -204,7 +204,7 @@ def cell_basis(mesh, intorder: int = 2, elem=None) -> CellBasis:
     numbering of :func:`mesh_dofs`.
     """
     elem = ElementTetP2() if elem is None else elem
-    mapping = _robust_mapping(mesh)
+    mapping = robust_mapping(mesh)
     basis = CellBasis(mesh, elem, mapping=mapping, intorder=intorder, dofs=mesh_dofs(mesh, elem))
     if mapping is not None:
         mapping.clear_memo()
@@ -215,12 +215,12 @@ def facet_basis(mesh, elem, facets, intorder: int, what: str) -> FacetBasis:
     """``FacetBasis`` on ``facets`` of a (possibly curved) mesh; a failed inverse map is a MeshError.
 
     On a curved (isoparametric) mesh the reference coordinates of the facet quadrature
-    points come from a Newton iteration (see ``_robust_mapping``), which can only fail on
+    points come from a Newton iteration (see ``robust_mapping``), which can only fail on
     folded or nearly degenerate elements: a property of the mesh, reported as such.
     The dof numbering is the mesh's shared one (:func:`mesh_dofs`) and the global dof
     locations are not computed (the cell basis has them): the cost is that of the facets.
     """
-    mapping = _robust_mapping(mesh)
+    mapping = robust_mapping(mesh)
     try:
         return FacetBasis(
             mesh,

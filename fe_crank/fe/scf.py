@@ -44,7 +44,7 @@ from skfem import Basis, ElementTetP2
 
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_surface_load
-from fe_crank.fe.stress import _average, element_nodal_stress, principal, von_mises
+from fe_crank.fe.stress import element_nodal_stress, nodal_average, principal, von_mises
 from fe_crank.fe.supports import Coupling, boundary_facets, facet_basis
 from fe_crank.fe.system import EQUILIBRIUM_TOL, build_system
 
@@ -120,7 +120,7 @@ def _peaks(mesh, u, E, nu, groups, measure: str, basis) -> dict[str, Peak]:
     dofs = basis.dofs
     s_el, nodes = element_nodal_stress(mesh, u, E, nu, dofs=dofs)
     n = u.size // 3
-    s_avg = _average(s_el, nodes, n)
+    s_avg = nodal_average(s_el, nodes, n)
     f = MEASURES[measure]
     m_avg = f(s_avg)
     m_el = f(s_el)  # (10, ne)
