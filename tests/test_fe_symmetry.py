@@ -14,8 +14,8 @@ import logging
 
 import numpy as np
 import pytest
-from symmetric_meshes import MirroredThrow, mirrored_throw
-from verification_meshes import Steel, simple_throw
+from symmetric_meshes import mirrored_throw
+from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.errors import InputError, SolverError
 from fe_crank.fe import FeOptions, solve_unit_cases
@@ -122,9 +122,7 @@ def test_rigid_mode_characters_match_the_reflections(pair):
 def test_non_symmetric_mesh_falls_back_and_says_why(caplog):
     throw = simple_throw(size=0.014)  # meshed whole: not an exact mirror image
     with caplog.at_level(logging.WARNING, logger="fe_crank.fe.symmetry"):
-        sol = solve_unit_cases(
-            MirroredThrow(mesh=throw, symmetry=(0, 2)), Steel(), FeOptions(cases=("pin_y", "torque"))
-        )
+        sol = solve_unit_cases(as_throw_mesh(throw, symmetry=(0, 2)), Steel(), FeOptions(cases=("pin_y", "torque")))
     assert "symmetry" not in sol.solver_description
     assert "not" in caplog.text and "solving the full model" in caplog.text
     assert sol.cases["pin_y"].equilibrium_error < 1e-8

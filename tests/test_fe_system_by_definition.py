@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from verification_meshes import Steel, simple_throw
+from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.fe import solve_unit_cases, symsolve
 from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
@@ -72,7 +72,7 @@ def _assert_same(a: dict, b: dict):
 
 
 def test_determinate_reactions_and_applied_equal_the_whole_vector_formulas(throw):
-    unit = solve_unit_cases(throw, Steel())
+    unit = solve_unit_cases(as_throw_mesh(throw), Steel())
     system = unit.system
     basis = system.basis
     for f in (centrifugal_load(basis, 7850.0, 1.0), pin_pressure_load(basis, (3.0e4, -5.0e4))[0]):

@@ -233,9 +233,8 @@ def free_forces(engine: Engine, speed: float, *, reference_z: float = 0.0, kmax:
         raise InputError(f"speed must be positive (got {speed} rad/s)", key="operating.speed")
     _check_engine(engine)
     terms = rotating_terms(engine, speed, reference_z) + reciprocating_terms(engine, speed, reference_z, kmax)
-    yoke = getattr(engine, "yoke", None)
-    if yoke is not None:
-        terms += yoke_terms(engine, yoke, speed, reference_z)
+    if engine.yoke is not None:
+        terms += yoke_terms(engine, engine.yoke, speed, reference_z)
     fscale, lscale = _scales(engine, speed)
     lscale = max(lscale, abs(reference_z))
     return FreeForces(engine.name, float(speed), float(reference_z), _merge(terms, fscale, lscale), fscale, lscale)

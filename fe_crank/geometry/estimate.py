@@ -29,6 +29,8 @@ import math
 
 import numpy as np
 
+from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
+
 #: default limit on the estimated element count of one throw mesh.  The ``fine``
 #: preset of the shipped throws is estimated at 1.2-1.7 M (the V4 throw: 1.34 M
 #: estimated, 0.58 M real, docs/performance.md) and must pass; a mesh of 3 M
@@ -61,7 +63,7 @@ def graded_layer_elements(area: float, h0: float, size_max: float, grading: floa
     return TETS_PER_H3 * area / (2.0 * grading) * (h0**-2 - size_max**-2)
 
 
-def estimate_elements(g, spec, opt) -> int:
+def estimate_elements(g: CrankGeometry, spec: ThrowSpec, opt) -> int:
     """Estimated tetrahedra of ``fe_crank.mesh.mesh_throw(g, spec, size=opt)``.
 
     ``g`` a ``CrankGeometry``, ``spec`` its ``ThrowSpec``, ``opt`` a ``MeshOptions``.
@@ -79,7 +81,7 @@ def estimate_elements(g, spec, opt) -> int:
             n += 2 * graded_layer_elements(area, _SAFETY * rf / opt.fillet_divisions, size_max, opt.grading)
     for r0, length in ((rp, g.crankpin_length), (rj, 2 * g.journal_length)):
         n += graded_layer_elements(2 * math.pi * r0 * length, 2 * math.pi * r0 / 12, size_max, opt.grading)
-    if getattr(g, "oil_bore", None) is not None:
+    if g.oil_bore is not None:
         db = g.oil_bore.diameter
         n += graded_layer_elements(
             math.pi * db * 2 * rp, math.pi * db / (2 * opt.bore_divisions), size_max, opt.grading
@@ -87,7 +89,7 @@ def estimate_elements(g, spec, opt) -> int:
     return int(math.ceil(n))
 
 
-def check_element_budget(g, spec, opt, max_elements: int | None = None) -> int:
+def check_element_budget(g: CrankGeometry, spec: ThrowSpec, opt, max_elements: int | None = None) -> int:
     """Refuse (``GeometryError`` naming the geometry file) a throw whose estimated
     element count exceeds ``max_elements`` (default ``MAX_ELEMENTS``); return the
     estimate.  The message names the smallest fillet, the usual cause."""
@@ -106,7 +108,7 @@ def check_element_budget(g, spec, opt, max_elements: int | None = None) -> int:
             f"the mesh would have about {n:.3g} elements, more than the limit {limit:.3g} "
             "(a fillet radius or mesh size far too small?); raise it with --max-elements or "
             "[mesh] max_elements in the load case (docs/limits.md)",
-            file=getattr(g, "file", None) or None,
+            file=g.file or None,
             key=key,
         )
     return n
