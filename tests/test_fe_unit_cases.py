@@ -10,8 +10,8 @@ from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import FeOptions, solve_unit_cases
+from fe_crank.fe.linalg import factorise
 from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
-from fe_crank.fe.solvers import factorise
 
 
 @pytest.fixture(scope="module")

@@ -53,7 +53,7 @@ class FeOptions:
     ("pin_x", "pin_y", "pin_-x", "pin_-y", "pin_<deg>"; see ``pin_directions``).
     pin_half_angle: rad, half width of the cosine pressure arc.
     symmetry: solve on the symmetry components where the mesh states mirror planes
-    (``ThrowMesh.symmetry``) and the supports are the determinate ones (``fe.symsolve``);
+    (``ThrowMesh.symmetry``) and the supports are the determinate ones (``fe.symmetric``);
     False: the full model (for comparison; same answer to round-off).
     """
 

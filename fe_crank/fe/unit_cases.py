@@ -42,8 +42,7 @@ from fe_crank.fe.fe_options import (  # noqa: F401
 from fe_crank.fe.loads import PinPressure
 from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets, facet_basis
-from fe_crank.fe.symsystem import determinate_system
-from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
+from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system, determinate_system
 from fe_crank.fe.unit_loads import check_case_names, unit_loads
 from fe_crank.mesh.types import ThrowMesh
 
