@@ -19,6 +19,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from skfem import Mesh
 
 
 def quadratic_tet_mesh(
@@ -99,10 +100,10 @@ def write_vtu(path: str | Path, mesh) -> Path:
     return path
 
 
-def region_ids(skmesh) -> tuple[dict, dict]:
+def region_ids(skmesh: Mesh) -> tuple[dict, dict]:
     """Cell data ``subdomain`` of a scikit-fem mesh with named ``subdomains`` (the index
     of the sorted name, -1 where none) and the matching field data."""
-    subs = sorted(getattr(skmesh, "subdomains", None) or {})
+    subs = sorted(skmesh.subdomains or {})
     sub = np.full(skmesh.t.shape[1], -1, np.int32)
     for i, name in enumerate(subs):
         sub[skmesh.subdomains[name]] = i

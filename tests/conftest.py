@@ -22,13 +22,13 @@ def root() -> Path:
 def filleted_throw():
     """The FE stage's unit solutions of ``simple_throw`` with 4 mm fillets (real gmsh mesh,
     12 mm elements, 4 mm at the fillets; SuperLU): centrifugal, four pin directions, torque."""
-    from verification_meshes import Steel, simple_throw
+    from verification_meshes import Steel, as_throw_mesh, simple_throw
 
     from fe_crank.fe import FeOptions, solve_unit_cases
 
     mesh = simple_throw(size=0.012, fillet=0.004, fillet_size=0.004)
     cases = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y", "torque")
-    return solve_unit_cases(mesh, Steel(), FeOptions(solver="superlu", cases=cases))
+    return solve_unit_cases(as_throw_mesh(mesh), Steel(), FeOptions(solver="superlu", cases=cases))
 
 
 @pytest.fixture(scope="session")

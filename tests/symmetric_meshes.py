@@ -11,19 +11,11 @@ end_2, other; a z = 0 reflection swaps the _1/_2 names.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+from verification_meshes import as_throw_mesh
 
 from fe_crank.gmsh_io import gmsh_session
-
-
-@dataclass(frozen=True)
-class MirroredThrow:
-    """What ``solve_unit_cases`` reads of a meshed throw: the mesh and its mirror planes."""
-
-    mesh: object
-    symmetry: tuple[int, ...]
+from fe_crank.mesh.types import ThrowMesh
 
 
 def _swap(name: str) -> str:
@@ -128,7 +120,7 @@ def mirrored_throw(
     web_t=0.02,
     pin_len=0.03,
     web_w=0.08,
-) -> MirroredThrow:
+) -> ThrowMesh:
     """The body meshed on its part behind ``planes`` (0: x = 0, 2: z = 0) and mirrored (module doc)."""
     from skfem import MeshTet1, MeshTet2
 
@@ -141,4 +133,4 @@ def mirrored_throw(
     named = {k: np.array([fkey[tuple(f)] for f in np.sort(v, axis=0).T.tolist()]) for k, v in bnd.items()}
     assert all(np.isin(f, m1.boundary_facets()).all() for f in named.values()) and n == m1.p.shape[1]
     m2 = MeshTet2.from_mesh(m1).with_boundaries(named)
-    return MirroredThrow(mesh=m2, symmetry=tuple(sorted(planes)))
+    return as_throw_mesh(m2, symmetry=tuple(sorted(planes)), throw="mirrored")

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from pipeline import assess_inputs
 from skfem import MeshTet, MeshTet2
+from verification_meshes import as_throw_mesh
 
 import fe_crank.fe.unit_cases as fe
 from fe_crank.assess import assess_case, assessed_groups, to_json
@@ -78,7 +79,7 @@ def solved():
     mesh = _bar()
     from fe_crank.io.material import load_material
 
-    return mesh, fe.solve_unit_cases(mesh, load_material("42CrMo4"), fe.FeOptions(solver="superlu"))
+    return mesh, fe.solve_unit_cases(as_throw_mesh(mesh), load_material("42CrMo4"), fe.FeOptions(solver="superlu"))
 
 
 def _run(tmp_path, solved, criteria):
@@ -241,7 +242,7 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
     from fe_crank.errors import MeshError
 
     with pytest.raises(MeshError, match="no boundary 'journal_fillet_1', needed by the SCF mode"):
-        compute_scf(mesh, lc.material, thin, solver="superlu")
+        compute_scf(as_throw_mesh(mesh), lc.material, thin, solver="superlu")
     # and without the SCF mode's factors the M53 route outside its range is refused
     with pytest.raises(InputError, match="throw 1: "):
         assess_throw(

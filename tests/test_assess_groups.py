@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from test_assess_case import L, _bar
+from verification_meshes import as_throw_mesh
 
 import fe_crank.fe.unit_cases as fe
 from fe_crank.assess.groups import assessed_groups, unit_stresses
@@ -22,7 +23,7 @@ from fe_crank.io.material import load_material
 
 @pytest.fixture(scope="module")
 def units():
-    return fe.solve_unit_cases(_bar(), load_material("42CrMo4"), fe.FeOptions(solver="superlu"))
+    return fe.solve_unit_cases(as_throw_mesh(_bar()), load_material("42CrMo4"), fe.FeOptions(solver="superlu"))
 
 
 def test_groups_of_the_bar_and_their_nodes(units):
@@ -78,7 +79,9 @@ def test_without_a_torque_case_the_fe_stages_convention_is_taken():
     """A solve of the centrifugal and four pin cases only: those cases, in the solve's
     order, and M_z = -1 N m for the (absent) torque case."""
     cases = ("centrifugal", "pin_x", "pin_y", "pin_-x", "pin_-y")
-    units = fe.solve_unit_cases(_bar(), load_material("42CrMo4"), fe.FeOptions(solver="superlu", cases=cases))
+    units = fe.solve_unit_cases(
+        as_throw_mesh(_bar()), load_material("42CrMo4"), fe.FeOptions(solver="superlu", cases=cases)
+    )
     unit = unit_stresses(units, {"crankpin_fillet_1": np.array([2, 0])})
     assert unit.cases == cases and unit.torque_mz == -1.0
 

@@ -20,6 +20,7 @@ import math
 import numpy as np
 import pytest
 from skfem import MeshTet, MeshTet2
+from verification_meshes import as_throw_mesh
 
 import fe_crank.fe.unit_cases as fe
 from fe_crank.assess import unit_stresses
@@ -62,7 +63,7 @@ def _bar_throw():
 def solved():
     mesh = _bar_throw()
     mat = load_material("42CrMo4")
-    units = fe.solve_unit_cases(mesh, mat, fe.FeOptions(solver="superlu"))
+    units = fe.solve_unit_cases(as_throw_mesh(mesh), mat, fe.FeOptions(solver="superlu"))
     return mesh, mat, units
 
 

@@ -9,10 +9,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from skfem import ElementTetP2
-from verification_meshes import Steel, simple_throw
+from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.supports import _robust_mapping
+from fe_crank.fe.bases import robust_mapping
 
 # simple_throw defaults (m): journals d 50 x 30, webs 80 wide x 20 thick (box), pin d 45 x 30
 # at R = 45; axial layout: journal_1 [-65, -35] mm, web_1 [-35, -15], pin [-15, 15], ...
@@ -30,7 +30,7 @@ def throw():
 
 @pytest.fixture(scope="module")
 def unit(throw):
-    return solve_unit_cases(throw, Steel())
+    return solve_unit_cases(as_throw_mesh(throw), Steel())
 
 
 def section_resultants(unit, u, z):
@@ -66,7 +66,7 @@ def section_resultants(unit, u, z):
                 tri_el.append(e)
     x = np.array(tri_pts).T  # (3, nq)
     w, el = np.array(tri_w), np.array(tri_el)
-    mp = _robust_mapping(mesh)
+    mp = robust_mapping(mesh)
     X = mp.invF(x[:, :, None], tind=el)  # (3, nq, 1)
     J = mp.invDF(X, tind=el)[:, :, :, 0]  # (3, 3, nq): d(ref)/d(x)
     elem, dofs = ElementTetP2(), unit.system.basis.element_dofs
@@ -141,13 +141,15 @@ def test_point_constraints_carry_no_reaction_and_every_case_balances(unit):
 def test_no_stiffness_parameter_enters(throw, unit):
     """Stress does not depend on E (a determinate model has no stiffness ratio in it),
     nor on which nodes take the six point constraints."""
-    soft = solve_unit_cases(throw, Steel(youngs_modulus=21e9), FeOptions(cases=("pin_-y", "torque")))
+    soft = solve_unit_cases(as_throw_mesh(throw), Steel(youngs_modulus=21e9), FeOptions(cases=("pin_-y", "torque")))
     for name in ("pin_-y", "torque"):
         s0 = unit.stress_at_nodes(unit.displacement(name))
         s1 = soft.stress_at_nodes(soft.displacement(name))
         assert np.abs(s1 - s0).max() < 1e-7 * np.abs(s0).max()
     # torque taken off at end_1 instead: the pin cases' bending is unchanged, only the torque path moves
-    front = solve_unit_cases(throw, Steel(), FeOptions(cases=("pin_-y", "torque"), torque_reaction="end_1"))
+    front = solve_unit_cases(
+        as_throw_mesh(throw), Steel(), FeOptions(cases=("pin_-y", "torque"), torque_reaction="end_1")
+    )
     assert front.cases["torque"].applied[5] == pytest.approx(-1.0, rel=1e-12)  # enters at end_2 now
     assert front.cases["torque"].reactions["end_1"][5] == pytest.approx(1.0, rel=1e-9)
     s0 = unit.stress_at_nodes(unit.displacement("pin_-y"))
@@ -159,12 +161,16 @@ def test_foundation_needs_a_stated_stiffness_and_is_stiffness_dependent(throw):
     from fe_crank.errors import InputError
 
     with pytest.raises(InputError, match="bearing_stiffness"):
-        solve_unit_cases(throw, Steel(), FeOptions(support="foundation", cases=("pin_-y",)))
+        solve_unit_cases(as_throw_mesh(throw), Steel(), FeOptions(support="foundation", cases=("pin_-y",)))
     with pytest.raises(InputError, match="unknown support"):
-        solve_unit_cases(throw, Steel(), FeOptions(support="rigid", cases=("pin_-y",)))
+        solve_unit_cases(as_throw_mesh(throw), Steel(), FeOptions(support="rigid", cases=("pin_-y",)))
     k = 210e9 / 0.05
-    a = solve_unit_cases(throw, Steel(), FeOptions(support="foundation", bearing_stiffness=k, cases=("pin_-y",)))
-    b = solve_unit_cases(throw, Steel(), FeOptions(support="foundation", bearing_stiffness=k / 10, cases=("pin_-y",)))
+    a = solve_unit_cases(
+        as_throw_mesh(throw), Steel(), FeOptions(support="foundation", bearing_stiffness=k, cases=("pin_-y",))
+    )
+    b = solve_unit_cases(
+        as_throw_mesh(throw), Steel(), FeOptions(support="foundation", bearing_stiffness=k / 10, cases=("pin_-y",))
+    )
     assert "foundation" in a.support_model and a.bearing_stiffness == k
     ca = a.cases["pin_-y"]
     assert ca.equilibrium_error < 1e-6

@@ -92,3 +92,25 @@ def test_edge_tables_are_scikit_fem_s():
         a, b = getattr(ours, name), getattr(ref, name)
         assert a.dtype == b.dtype and a.flags.c_contiguous == b.flags.c_contiguous
         assert np.array_equal(a, b), name
+
+
+def test_a_mesh_s_mapping_and_numbering_are_shared_while_held_and_freed_with_it():
+    """One mapping and one dof numbering per mesh while a basis holds them; nothing is stored
+    on the mesh, and once the mesh and its bases are dropped they are collected."""
+    import gc
+    import weakref
+
+    from fe_crank.fe.bases import cell_basis, mesh_dofs, robust_mapping
+
+    m = curved_cube()
+    cb = cell_basis(m, 2)
+    fb = facet_basis(m, ElementTetP2(), m.boundary_facets(), 2, "test")
+    assert fb.dofs is cb.dofs is mesh_dofs(m, ElementTetP2())
+    assert fb.mapping is cb.mapping is robust_mapping(m)
+    assert not {k for k in vars(m) if k.startswith("_fe_crank")}
+    other = curved_cube()  # equal as a dataclass, another mesh: its own numbering
+    assert mesh_dofs(other, ElementTetP2()) is not cb.dofs
+    dead = weakref.ref(m)
+    del m, cb, fb, other
+    gc.collect()
+    assert dead() is None

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from verification_meshes import Steel, simple_throw
+from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.assess import unit_stresses
 from fe_crank.assess.superpose import combine, cycle_coefficients, stress_history
@@ -23,7 +23,7 @@ Z1, Z2 = -0.065, 0.065  # the bearing centres (end faces)
 def solved():
     mesh = simple_throw(size=0.006)
     cases = ("centrifugal",) + patch_cases(2) + ("torque",)
-    units = solve_unit_cases(mesh, Steel(), FeOptions(cases=cases, pin_patches=BANDS, symmetry=False))
+    units = solve_unit_cases(as_throw_mesh(mesh), Steel(), FeOptions(cases=cases, pin_patches=BANDS, symmetry=False))
     return mesh, units
 
 

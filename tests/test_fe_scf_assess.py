@@ -242,7 +242,6 @@ def test_scf_mode_asks_for_r_over_4_fillet_elements(big_fillet):
     g, tm = big_fillet
     fine_enough = dataclasses.replace(tm, options=PRESETS["medium"])
     assert scf_mesh(fine_enough, g) is fine_enough
-    assert scf_mesh(tm.mesh, g) is tm.mesh  # a bare mesh: used as it is
 
 
 @pytest.mark.heavy

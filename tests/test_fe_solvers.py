@@ -1,4 +1,4 @@
-"""The FE stage's linear solvers (``fe.solvers``): which solver runs, and the memory of
+"""The FE stage's linear solvers (``fe.linalg``): which solver runs, and the memory of
 its factor.
 
 Solver choice: without pypardiso the run says so and falls back to CHOLMOD (cholespy).
@@ -32,7 +32,7 @@ import pytest
 from skfem import Basis, ElementTetP2, MeshTet2
 
 from fe_crank.errors import SolverError
-from fe_crank.fe import solver_choice, solvers
+from fe_crank.fe import linalg, solver_choice
 from fe_crank.fe.assembly import assemble_stiffness
 
 needs_cholmod = pytest.mark.skipif(importlib.util.find_spec("cholespy") is None, reason="cholespy not installed")
@@ -58,10 +58,10 @@ def system():
 def test_without_pardiso_auto_falls_back_to_cholmod_and_says_so(system, monkeypatch, caplog):
     K, f = system
     monkeypatch.setitem(sys.modules, "pypardiso", None)
-    monkeypatch.setattr(solvers, "_warned", set())
+    monkeypatch.setattr(linalg, "_warned", set())
     assert not solver_choice.pardiso_available()
-    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.solvers"):
-        fac = solvers.factorise(K, "auto")
+    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.linalg"):
+        fac = linalg.factorise(K, "auto")
     assert fac.method == "cholmod"
     assert "pypardiso (MKL PARDISO) is not installed" in fac.note
     assert "CHOLMOD" in fac.description and fac.note in fac.description
@@ -71,14 +71,14 @@ def test_without_pardiso_auto_falls_back_to_cholmod_and_says_so(system, monkeypa
     assert np.abs(x - x_ref).max() < 1e-10 * np.abs(x_ref).max()
     # the warning is given once per process, the note every time
     caplog.clear()
-    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.solvers"):
-        again = solvers.factorise(K, "auto")
+    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.linalg"):
+        again = linalg.factorise(K, "auto")
     assert again.note == fac.note and not caplog.records
 
 
 def test_pardiso_present_means_no_note(system):
     pytest.importorskip("pypardiso")
-    fac = solvers.factorise(system[0], "auto")
+    fac = linalg.factorise(system[0], "auto")
     assert fac.method == "pardiso" and fac.note is None
     assert fac.description.startswith("MKL PARDISO")
 
@@ -86,7 +86,7 @@ def test_pardiso_present_means_no_note(system):
 def test_neither_direct_solver_falls_back_to_iterative_with_a_note(system, monkeypatch):
     monkeypatch.setitem(sys.modules, "pypardiso", None)
     monkeypatch.setitem(sys.modules, "cholespy", None)
-    monkeypatch.setattr(solvers, "_warned", set())
+    monkeypatch.setattr(linalg, "_warned", set())
     assert solver_choice.choose_method("auto", 10) == "superlu"
     assert solver_choice.choose_method("auto", 10**6) == "amg"
     assert "much slower" in solver_choice.fallback_note("auto", 10**6)
@@ -99,14 +99,14 @@ def test_cholmod_refuses_an_indefinite_matrix():
 
     K = sp.csr_matrix(np.array([[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]]))
     with pytest.raises(SolverError, match="not positive definite"):
-        solvers.factorise(K, "cholmod")
+        linalg.factorise(K, "cholmod")
 
 
 @needs_cholmod
 def test_free_releases_the_factor_and_refuses_a_later_solve(system):
     """The check frees the factor after the unit solves; what the report reads stays."""
     K, f = system
-    fac = solvers.factorise(K, "auto")
+    fac = linalg.factorise(K, "auto")
     x = fac.solve(f)
     nnz, desc = fac.nnz, fac.description
     assert nnz == K.nnz
@@ -128,7 +128,7 @@ def test_pardiso_out_of_core_writes_its_factor_to_disk_and_solves_as_in_core(sys
     monkeypatch.setenv("FE_CRANK_OOC_DIR", str(tmp_path))
     monkeypatch.setenv("MKL_PARDISO_OOC_MAX_CORE_SIZE", "1")
     monkeypatch.delenv("MKL_PARDISO_OOC_PATH", raising=False)
-    fac = solvers.factorise(sp_triu(K), "pardiso_ooc", upper=True)
+    fac = linalg.factorise(sp_triu(K), "pardiso_ooc", upper=True)
     folder = fac._ooc_dir
     assert folder.startswith(str(tmp_path)) and any(p.name.endswith(".bin") for p in tmp_path.rglob("*"))
     x = fac.solve(f)
@@ -155,8 +155,7 @@ _SCRIPT = r"""
 import gc, json, sys
 import numpy as np
 import scipy.sparse as sp
-from fe_crank.fe.solvers import factorise
-from fe_crank.fe.pardiso_shared import factorise_shared
+from fe_crank.fe.linalg import factorise, factorise_shared
 
 def rss():
     with open("/proc/self/statm") as fh:
@@ -223,7 +222,7 @@ def test_free_then_drop_releases_once():
     import numpy as np
     import scipy.sparse as sp
 
-    from fe_crank.fe.solvers import factorise
+    from fe_crank.fe.linalg import factorise
 
     K = (sp.diags([-np.ones(99), 2.5 * np.ones(100), -np.ones(99)], [-1, 0, 1])).tocsr()
     fac = factorise(K, "pardiso")

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from verification_meshes import Steel, simple_throw
+from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.support_frame import (
@@ -22,7 +22,9 @@ from fe_crank.fe.supports import rigid_body_modes
 @pytest.fixture(scope="module")
 def units():
     return solve_unit_cases(
-        simple_throw(size=0.012), Steel(), FeOptions(cases=("centrifugal", "pin_y", "pin_x", "torque"), symmetry=False)
+        as_throw_mesh(simple_throw(size=0.012)),
+        Steel(),
+        FeOptions(cases=("centrifugal", "pin_y", "pin_x", "torque"), symmetry=False),
     )
 
 
@@ -62,7 +64,7 @@ def test_supports_at_rest_and_a_known_rigid_part_removed_exactly(units, case):
 
 def test_bearing_centre_of_a_symmetric_solve_too():
     """The symmetry-component solve returns the full model's field: the same removal applies."""
-    units = solve_unit_cases(simple_throw(size=0.012), Steel(), FeOptions(cases=("pin_y", "torque")))
+    units = solve_unit_cases(as_throw_mesh(simple_throw(size=0.012)), Steel(), FeOptions(cases=("pin_y", "torque")))
     sup = units.system.determinate
     u1 = unit_case_in_support_frame(units, "pin_y")
     assert np.abs(support_displacements(u1, sup.G)[:-1]).max() < 1e-10 * np.abs(u1).max()

@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from verification_meshes import Steel, simple_throw
+from verification_meshes import Steel, as_throw_mesh, simple_throw
 
-from fe_crank.fe import solve_unit_cases, symsolve
+from fe_crank.fe import solve_unit_cases, symmetric
 from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
 from fe_crank.fe.supports import Coupling, Foundation
 from fe_crank.fe.system import build_system
@@ -72,7 +72,7 @@ def _assert_same(a: dict, b: dict):
 
 
 def test_determinate_reactions_and_applied_equal_the_whole_vector_formulas(throw):
-    unit = solve_unit_cases(throw, Steel())
+    unit = solve_unit_cases(as_throw_mesh(throw), Steel())
     system = unit.system
     basis = system.basis
     for f in (centrifugal_load(basis, 7850.0, 1.0), pin_pressure_load(basis, (3.0e4, -5.0e4))[0]):
@@ -158,7 +158,7 @@ def test_part_stiffness_equals_the_part_basis_route(shipped):
 def test_selection_equals_the_coo_route():
     import scipy.sparse as sp
 
-    from fe_crank.fe.symsystem import selection
+    from fe_crank.fe.system import selection
 
     n, held = 3000, np.array([5, 6, 17, 1200, 2999, 0])
     rows = np.unique(held)
@@ -171,17 +171,17 @@ def test_selection_equals_the_coo_route():
 
 
 def test_rigid_motion_removed_in_place_equals_the_whole_array_route():
-    """``symsolve._remove_rigid_fit`` (blocks of nodes, in place) against U - B a with the
+    """``symmetric._remove_rigid_fit`` (blocks of nodes, in place) against U - B a with the
     whole rigid motion built, then subtracted: the same bits, on a node count that is not
     a multiple of the block, and the held dofs end at zero to round-off."""
     rng = np.random.default_rng(7)
-    N, k = 3 * symsolve.RIGID_BLOCK + 17, 5
+    N, k = 3 * symmetric.RIGID_BLOCK + 17, 5
     x = rng.uniform(-0.1, 0.1, (3, N))
     U = rng.normal(size=(3 * N, k))
     held = np.array([0, 1, 2, 3 * 40 + 1, 3 * 40 + 2, 3 * 977])
     defined = U - _rigid_fit_whole(x, held, U)
     got = U.copy()
-    symsolve._remove_rigid_fit(x, held, got)
+    symmetric._remove_rigid_fit(x, held, got)
     assert np.array_equal(defined, got)
     assert np.abs(got[held]).max() < 1e-12 * np.abs(U).max()
 
@@ -195,8 +195,7 @@ def test_component_matrices_equal_the_masked_half_triangle():
 
     from fe_crank.fe.assembly import part_stiffness
     from fe_crank.fe.bases import cell_basis
-    from fe_crank.fe.symmetry import mesh_mirror
-    from fe_crank.fe.symsolve import build_symmetric_solver
+    from fe_crank.fe.symmetric import build_symmetric_solver, mesh_mirror
 
     throw = mirrored_throw((0, 2), size=0.016)
     basis = cell_basis(throw.mesh, 2)
@@ -246,7 +245,7 @@ def test_upper_triangle_equals_scipy_triu(shipped):
 
 def _rigid_fit_whole(x, held, U):
     """The rigid motion B a with (B a)[held] = U[held], built whole."""
-    a = symsolve._rigid_coefficients(x, held, U)
+    a = symmetric._rigid_coefficients(x, held, U)
     Un = np.zeros((x.shape[1], 3, U.shape[1]))
     Un += a[None, :3, :]
     Un += np.cross(a[3:].T[:, None, :], x.T[None, :, :]).transpose(1, 2, 0)  # theta x x

@@ -6,12 +6,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
-from verification_meshes import Steel, simple_throw
+from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import FeOptions, solve_unit_cases
+from fe_crank.fe.linalg import factorise
 from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
-from fe_crank.fe.solvers import factorise
 
 
 @pytest.fixture(scope="module")
@@ -21,7 +21,7 @@ def throw():
 
 @pytest.fixture(scope="module")
 def unit(throw):
-    return solve_unit_cases(throw, Steel())
+    return solve_unit_cases(as_throw_mesh(throw), Steel())
 
 
 def test_every_unit_case_balances_its_reactions(unit):
@@ -88,7 +88,7 @@ def test_torque_reaction_and_pin_torque(unit):
 
 
 def test_solvers_agree(throw, unit):
-    other = solve_unit_cases(throw, Steel(), FeOptions(solver="superlu", cases=("pin_y", "torque")))
+    other = solve_unit_cases(as_throw_mesh(throw), Steel(), FeOptions(solver="superlu", cases=("pin_y", "torque")))
     for name in other.cases:
         u0, u1 = unit.displacement(name), other.displacement(name)
         assert np.abs(u0 - u1).max() < 1e-8 * np.abs(u0).max()
@@ -114,7 +114,7 @@ def test_superposition_of_pin_cases(unit):
 def test_missing_boundary_is_a_clear_error(throw):
     mesh = type(throw)(throw.doflocs, throw.t)  # no named groups
     with pytest.raises(MeshError, match="no boundary 'journal_1'"):
-        solve_unit_cases(mesh, Steel())
+        solve_unit_cases(as_throw_mesh(mesh), Steel())
 
 
 def test_zero_speed_centrifugal_is_an_input_error(unit):
@@ -135,16 +135,16 @@ def test_unsupported_rigid_mode_is_a_solver_error(unit):
 
 def test_bad_options_are_input_errors(throw):
     with pytest.raises(InputError, match="unknown solver"):
-        solve_unit_cases(throw, Steel(), FeOptions(solver="mumps"))
+        solve_unit_cases(as_throw_mesh(throw), Steel(), FeOptions(solver="mumps"))
     with pytest.raises(InputError, match="unknown unit cases"):
-        solve_unit_cases(throw, Steel(), FeOptions(cases=("gravity",)))
+        solve_unit_cases(as_throw_mesh(throw), Steel(), FeOptions(cases=("gravity",)))
 
 
 def test_unsupported_body_is_a_mesh_error():
     from skfem import MeshTri
 
     with pytest.raises(MeshError, match="unsupported body"):
-        solve_unit_cases(MeshTri(), Steel())
+        solve_unit_cases(as_throw_mesh(MeshTri()), Steel())
 
 
 def test_material_without_density_is_an_input_error(throw):
@@ -154,13 +154,13 @@ def test_material_without_density_is_an_input_error(throw):
         poisson_ratio: float = 0.3
 
     with pytest.raises(InputError, match="density"):
-        solve_unit_cases(throw, NoDensity())
+        solve_unit_cases(as_throw_mesh(throw), NoDensity())
 
 
 def test_foundation_support_carries_the_same_resultants(throw, unit):
     """The explicit foundation option: loads still balance exactly, each journal about half."""
     found = solve_unit_cases(
-        throw, Steel(), FeOptions(support="foundation", bearing_stiffness=4.2e12, cases=("pin_-y",))
+        as_throw_mesh(throw), Steel(), FeOptions(support="foundation", bearing_stiffness=4.2e12, cases=("pin_-y",))
     )
     assert found.bearing_stiffness == 4.2e12 and unit.bearing_stiffness is None
     c = found.cases["pin_-y"]
@@ -199,6 +199,6 @@ def test_foundation_on_the_loaded_arc_only(throw):
 
 def test_explicit_pin_centre_gives_the_same_load(throw, unit):
     """The pin axis given as (0, R) reproduces the centroid-based pressure of this full pin."""
-    other = solve_unit_cases(throw, Steel(), FeOptions(cases=("pin_y",), pin_centre=(0.0, 0.045)))
+    other = solve_unit_cases(as_throw_mesh(throw), Steel(), FeOptions(cases=("pin_y",), pin_centre=(0.0, 0.045)))
     assert other.pin["pin_y"].peak_pressure == pytest.approx(unit.pin["pin_y"].peak_pressure, rel=1e-4)
     np.testing.assert_allclose(other.pin["pin_y"].resultant[:2], (0.0, 1.0), atol=1e-12)

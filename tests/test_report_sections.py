@@ -12,6 +12,7 @@ import pytest
 from images import image_statistics
 from pipeline import assess_inputs, write_report
 from skfem import MeshTet, MeshTet2
+from verification_meshes import as_throw_mesh
 
 import fe_crank.assess as assess
 import fe_crank.fe as fe
@@ -82,7 +83,7 @@ def report(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("rep")
     (tmp / "c.toml").write_text(CASE)
     lc = load_loadcase(tmp / "c.toml")
-    units = fe.solve_unit_cases(_bar(), lc.material, fe.FeOptions(solver="superlu"))
+    units = fe.solve_unit_cases(as_throw_mesh(_bar()), lc.material, fe.FeOptions(solver="superlu"))
     inputs = assess_inputs(lc, {"1": units})
     a = assess.assess_case(inputs, fields=True)
     so = CaseOutputs(loadcase=lc, cycles=inputs.cycles, fe=FeModels({"1": units}), assessment=a)

@@ -136,8 +136,8 @@ def test_condensed_fields_equal_a_direct_solve_of_the_joined_mesh(twin):
 
     from fe_crank.fe.assembly import assemble_stiffness
     from fe_crank.fe.bases import cell_basis
+    from fe_crank.fe.linalg import factorise
     from fe_crank.fe.shaft_patterns import end_patterns, surface_patterns, throw_patterns
-    from fe_crank.fe.solvers import factorise
     from fe_crank.mesh.shaft import node_maps
 
     layout, cases, dyn, mass, loads, psi = twin

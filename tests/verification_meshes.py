@@ -7,10 +7,12 @@ curved surfaces are quadratic (isoparametric).  Dimensions in metres.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from fe_crank.gmsh_io import gmsh_session, model_to_skfem
+from fe_crank.mesh.types import MeshStats, ThrowMesh
 
 
 @dataclass(frozen=True)
@@ -20,6 +22,27 @@ class Steel:
     youngs_modulus: float = 210e9
     poisson_ratio: float = 0.3
     density: float = 7850.0
+
+
+def as_throw_mesh(mesh, *, symmetry: tuple[int, ...] = (), throw: str = "verification") -> ThrowMesh:
+    """A ``ThrowMesh`` of a mesh built here (no files, no fillet sizes), as the FE stage takes it.
+
+    ``symmetry``: the axes across which ``mesh`` is an exact mirror image (``ThrowMesh.symmetry``).
+    """
+    n, ne = mesh.p.shape[1], mesh.t.shape[1]
+    stats = MeshStats(
+        nodes=n,
+        elements=ne,
+        p2_dofs=3 * n,
+        min_quality=float("nan"),
+        straightened=0,
+        min_jacobian_ratio=float("nan"),
+        fillet_max_edge={},
+        fillet_radii={},
+        build_seconds=0.0,
+        symmetry=tuple(symmetry),
+    )
+    return ThrowMesh(mesh, stats, {}, Path(), Path(), throw, key="", symmetry=tuple(symmetry))
 
 
 def _mesh(gmsh, size_min: float, size_max: float, refine: dict | None = None):

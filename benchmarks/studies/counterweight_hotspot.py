@@ -46,9 +46,9 @@ def main(argv=None):
     from fe_crank.io.material import load_material
     from fe_crank.io.units import to_si
     from fe_crank.mesh.fields import surface_field
-    from fe_crank.mesh.options import _SAFETY, resolve_options
-    from fe_crank.mesh.quality import _straighten_poor
-    from fe_crank.mesh.sizing import _set_size_fields, counterweight_fillet_radius
+    from fe_crank.mesh.options import FILLET_SAFETY, resolve_options
+    from fe_crank.mesh.quality import straighten_poor
+    from fe_crank.mesh.sizing import counterweight_fillet_radius, set_size_fields
     from fe_crank.mesh.types import MeshStats, ThrowMesh
 
     ap = argparse.ArgumentParser()
@@ -78,7 +78,7 @@ def main(argv=None):
     t0 = time.process_time()
     with gmsh_session() as gmsh:
         model = add_throw(g, spec)
-        size_max = _set_size_fields(gmsh, g, model.surfaces, model.fillet_radii, opt)
+        size_max = set_size_fields(gmsh, g, model.surfaces, model.fillet_radii, opt)
         fld = gmsh.model.mesh.field
         if a.cw_divisions:
             bg = max(fld.list())
@@ -86,7 +86,7 @@ def main(argv=None):
             for name, tags in model.surfaces.items():
                 if name.startswith("counterweight_fillet_"):
                     r = counterweight_fillet_radius(g, int(name[-1]))
-                    extra.append(surface_field(gmsh, tags, _SAFETY * r / a.cw_divisions, size_max, opt.grading))
+                    extra.append(surface_field(gmsh, tags, FILLET_SAFETY * r / a.cw_divisions, size_max, opt.grading))
             mn = fld.add("Min")
             fld.setNumbers(mn, "FieldsList", extra)
             fld.setAsBackgroundMesh(mn)
@@ -112,7 +112,7 @@ def main(argv=None):
         gmsh.option.setNumber("Mesh.OptimizeNetgen", 1)
         gmsh.model.mesh.generate(3)
         gmsh.model.mesh.setOrder(2)
-        _straighten_poor(gmsh, spec.name)
+        straighten_poor(gmsh, spec.name)
         mesh = model_to_skfem()
     t_mesh = time.process_time() - t0
     stats = MeshStats(mesh.doflocs.shape[1], mesh.nelements, 3 * mesh.doflocs.shape[1], 1.0, 0, 1.0, {}, {}, 0.0)

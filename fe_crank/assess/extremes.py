@@ -62,8 +62,8 @@ from fe_crank.assess.group import (
     CW_FILLET_PREFIX,
     STATIC_ONLY_PREFIXES,
     GroupResult,
-    _axis_for,
-    _extreme,
+    axis_for,
+    node_extreme,
 )
 from fe_crank.assess.peak import BOUND_RTOL, TIE_RTOL, group_peak, max_over_cycle
 from fe_crank.assess.stress import von_mises_planes
@@ -130,7 +130,7 @@ def _static_peak(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray
 def _least(values: np.ndarray, done: np.ndarray, nodes: np.ndarray, unit: UnitStresses, group: str):
     """The group's least value and its node among the evaluated positions ``done``: every
     node of the tie band is among them, so it is the one of an evaluation of all."""
-    return _extreme(values[done], nodes[done], unit, group, worst="min")
+    return node_extreme(values[done], nodes[done], unit, group, worst="min")
 
 
 def group_extremes(
@@ -166,7 +166,7 @@ def group_extremes(
         and material.fatigue_limit_bending is not None
         and material.tensile_strength is not None
     )
-    axis = _axis_for(group, crank_radius)
+    axis = axis_for(group, crank_radius)
     do_gp = (
         wanted.gough_pollard
         and fatigue_group
@@ -179,7 +179,7 @@ def group_extremes(
     # groups' one box of the whole cycle (only the peak's prefilter)
     rho, big, fro_h, fro_c = coefficient_box(unit, coefficients, nodes, runs=do_fatigue or do_gp, directional=do_gp)
     pos, vm, arg = _static_peak(unit, coefficients, nodes, box_von_mises(big), block)
-    worst = _extreme(vm, nodes[pos], unit, group, worst="max", angles=np.asarray(theta)[arg])
+    worst = node_extreme(vm, nodes[pos], unit, group, worst="max", angles=np.asarray(theta)[arg])
     ys = material.yield_strength
     static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf
     ff = factors(material, diameter, location_of(group)) if (do_fatigue or do_gp) else None

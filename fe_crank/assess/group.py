@@ -70,7 +70,9 @@ class GroupResult:
     fields: dict = field(default_factory=dict, repr=False, compare=False)
 
 
-def _axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
+def axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
+    """Axis (x, y) of the cylinder a group lies on (the crankpin's or the journal's); None
+    for the groups not on a cylinder."""
     if group.startswith(PIN_AXIS_GROUPS):
         return (0.0, crank_radius)
     if group.startswith(JOURNAL_AXIS_GROUPS):
@@ -97,9 +99,11 @@ def section_diameter(group: str, pin_diameter: float | None, journal_diameter: f
     return None
 
 
-def _extreme(
+def node_extreme(
     values: np.ndarray, idx: np.ndarray, unit: UnitStresses, group: str, *, worst: str, angles: np.ndarray | None = None
 ) -> Extreme:
+    """The group's worst node of ``values`` (its first within ``TIE_RTOL`` when all are finite) as
+    an ``Extreme`` with node id, point and, given ``angles``, crank angle."""
     k = (
         int(first_extreme(values, worst))
         if np.isfinite(values).all()
@@ -146,7 +150,7 @@ def assess_group(
         and material.fatigue_limit_bending is not None
         and material.tensile_strength is not None
     )
-    axis = _axis_for(group, crank_radius)
+    axis = axis_for(group, crank_radius)
     do_gp = do_fatigue and axis is not None and material.fatigue_limit_torsion is not None
     ff = factors(material, diameter, location_of(group)) if do_fatigue else None
     k = ff.product if ff is not None else 1.0
@@ -188,7 +192,7 @@ def assess_group(
             )
 
     run_blocks(block, range(0, nodes.size, chunk))
-    worst = _extreme(vm_max, nodes, unit, group, worst="max", angles=theta[vm_arg])
+    worst = node_extreme(vm_max, nodes, unit, group, worst="max", angles=theta[vm_arg])
     ys = material.yield_strength
     static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf
     os_ext, os_safety = None, None
@@ -197,16 +201,16 @@ def assess_group(
             raise ValueError("overspeed given without the overspeed cycle's coefficients")
         # only the group's largest peak is reported: evaluated where it can occur (peak.py)
         pos, vm_os, os_arg = group_peak(unit, overspeed_coefficients, nodes, chunk)
-        os_ext = _extreme(vm_os, nodes[pos], unit, group, worst="max", angles=theta[os_arg])
+        os_ext = node_extreme(vm_os, nodes[pos], unit, group, worst="max", angles=theta[os_arg])
         os_safety = ys / os_ext.value if (ys is not None and os_ext.value > 0) else np.inf
     fat = gpe = None
     amp = mean = None
     if do_fatigue:
-        fat = _extreme(good, nodes, unit, group, worst="min")
+        fat = node_extreme(good, nodes, unit, group, worst="min")
         j = int(np.argmin(good))
         amp, mean = float(sa_eq[j]), float(sm_eq[j])
     if do_gp:
-        gpe = _extreme(gp, nodes, unit, group, worst="min")
+        gpe = node_extreme(gp, nodes, unit, group, worst="min")
     ids = unit.node_ids[nodes] if unit.node_ids is not None else nodes
     fields = {
         "node_ids": ids,

@@ -13,7 +13,7 @@ inequality and homogeneity give
 The nodes are evaluated exactly (the same history planes and von Mises as every other
 criterion) in decreasing order of B, ``block`` at a time, until the bound of every node
 left, widened by 1e-12 for the rounding of both sides, lies below the tie band of the
-largest peak found (peak - ``TIE_RTOL`` x peak, ``throw.first_extreme``): such a node
+largest peak found (peak - ``TIE_RTOL`` x peak, ``group.first_extreme``): such a node
 can neither be the maximum nor tie with it, so the group's extreme -- value, first node
 of the tie band, first angle -- is the one an evaluation of every node gives.
 """

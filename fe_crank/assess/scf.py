@@ -36,6 +36,7 @@ from fe_crank.cad.source import mesh_source_throw
 from fe_crank.fe.scf import JOURNAL_FILLETS, PIN_FILLETS, ScfStresses, scf_stresses, web_centres_from_mesh
 from fe_crank.fe.web_mesh import MIN_ELEMENTS_ACROSS, WebElements, web_elements_across, web_groups
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.mesh.types import ThrowMesh
 
 ELEMENT_SIZE_LIMIT = 0.25  # fillet element edge / r, UR M53 App. III 2.1
 
@@ -50,7 +51,7 @@ class ScfResult:
     empirical: dict[str, float | None]
     out_of_range: dict[str, tuple[str, ...]]
     quality: dict[str, dict]
-    element_size: dict[str, float]  # fillet group -> longest element edge / r (ThrowMesh only)
+    element_size: dict[str, float]  # fillet group -> longest element edge / r
     stresses: ScfStresses
     details: dict = field(default_factory=dict)
     web_elements: tuple[WebElements, ...] = ()  # App. III 2.2, per web (meshes with web subdomains)
@@ -184,10 +185,8 @@ def web_centres_of(geometry: CrankGeometry) -> tuple[float, float]:
     return (-z, z)
 
 
-def _element_size(throw_mesh) -> dict[str, float]:
-    stats = getattr(throw_mesh, "stats", None)
-    if stats is None:
-        return {}
+def _element_size(throw_mesh: ThrowMesh) -> dict[str, float]:
+    stats = throw_mesh.stats
     return {
         g: h / stats.fillet_radii[g]
         for g, h in stats.fillet_max_edge.items()
@@ -196,12 +195,17 @@ def _element_size(throw_mesh) -> dict[str, float]:
 
 
 def compute_scf(
-    throw_mesh, material, geo: m53.M53Geometry, *, web_centres: tuple[float, float] | None = None, solver: str = "auto"
+    throw_mesh: ThrowMesh,
+    material,
+    geo: m53.M53Geometry,
+    *,
+    web_centres: tuple[float, float] | None = None,
+    solver: str = "auto",
 ) -> ScfResult:
     """SCF mode on one throw mesh (UR M53 App. III), SCFs beside the empirical ones.
 
     ``throw_mesh``: a ``fe_crank.mesh.ThrowMesh`` (from ``mesh_throw``: its fillet element
-    size is checked too) or a ``MeshTet2``; its end faces must be the main-bearing centre
+    size is checked too); its end faces must be the main-bearing centre
     planes.  ``web_centres``: axial positions of the two web centre planes (default: from
     the journal fillets' web-side edges and W, ``fe.scf.web_centres_from_mesh``).
     """
@@ -210,7 +214,7 @@ def compute_scf(
     st = scf_stresses(throw_mesh, material, web_centres=web_centres, solver=solver)
     fe, quality, details = factors(st, geo)
     emp, bad = empirical(geo)
-    mesh = getattr(throw_mesh, "mesh", throw_mesh)
+    mesh = throw_mesh.mesh
     webs = web_groups(mesh)
     return ScfResult(
         fe=fe,
@@ -232,15 +236,15 @@ def scf_mesh_options(options):
     return dataclasses.replace(options, fillet_divisions=4.0)
 
 
-def scf_mesh(throw_mesh, geometry):
+def scf_mesh(throw_mesh: ThrowMesh, geometry) -> ThrowMesh:
     """The throw mesh the SCF mode runs on: the load case's mesh, or, when that mesh is
     coarser than r/4 in the fillets (e.g. the ``test`` preset), the same throw of
     ``geometry`` (a ``CrankGeometry`` or a CAD file's ``CadInput``) meshed again with
-    ``scf_mesh_options`` (same cache).  A mesh without options or a geometry that cannot
-    be meshed here is used as it is (its ``mesh_ok`` says whether the appendix accepts it)."""
-    opt = getattr(throw_mesh, "options", None)
+    ``scf_mesh_options`` (same cache).  A geometry that cannot be meshed here leaves the
+    mesh as it is (its ``mesh_ok`` says whether the appendix accepts it)."""
+    opt = throw_mesh.options
     want = scf_mesh_options(opt)
-    if want is opt or not isinstance(geometry, CrankGeometry | CadInput) or getattr(throw_mesh, "throw", None) is None:
+    if want is opt or not isinstance(geometry, CrankGeometry | CadInput):
         return throw_mesh
     folder = Path(throw_mesh.msh_path).parent
     cache = folder.parent if folder.name == throw_mesh.key else None

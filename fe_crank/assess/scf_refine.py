@@ -28,6 +28,7 @@ from fe_crank.cad.config import CadInput
 from fe_crank.cad.source import mesh_source_throw
 from fe_crank.fe.web_mesh import MIN_ELEMENTS_ACROSS
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.mesh.types import ThrowMesh
 
 MAX_REFINEMENTS = 3
 FILLET_STEP = 1.5
@@ -63,7 +64,7 @@ def _words(options) -> str:
 
 
 def accepted_scf(
-    throw_mesh,
+    throw_mesh: ThrowMesh,
     geometry,
     material,
     geo: m53.M53Geometry,
@@ -79,13 +80,8 @@ def accepted_scf(
     tried: list[str] = []
     while True:
         result = compute_scf(mesh, material, geo, web_centres=web_centres, solver=solver)
-        opts = getattr(mesh, "options", None)
-        if (
-            result.mesh_ok
-            or len(tried) >= max_refinements
-            or opts is None
-            or not isinstance(geometry, CrankGeometry | CadInput)
-        ):
+        opts = mesh.options
+        if result.mesh_ok or len(tried) >= max_refinements or not isinstance(geometry, CrankGeometry | CadInput):
             return dataclasses.replace(result, refinement=tuple(tried))
         new, why = refined_options(opts, result)
         tried.append(f"{_words(opts)}: {why}")

@@ -70,7 +70,7 @@ def analyse_balance(engine: Engine, speed: float, settings=None) -> BalanceResul
                 reference_sense=ref_sense,
                 offset=req.offset,
                 span=req.span,
-                positions=getattr(req, "positions", None),
+                positions=req.positions,
             )
         except InputError as exc:
             if exc.key != "balance.shafts.positions":

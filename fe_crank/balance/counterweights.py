@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 
@@ -34,6 +35,9 @@ from fe_crank.balance.forces import FreeForces, free_forces, point_term, rotatin
 from fe_crank.balance.mechanism import reciprocating_mass, rotating_mass
 from fe_crank.errors import InputError
 from fe_crank.model import Engine
+
+#: where the counterweights balance the couples: within each throw, or over the whole shaft's planes
+CoupleBalance = Literal["per_throw", "whole_shaft"]
 
 COUPLE_MODES = ("per_throw", "whole_shaft")
 
@@ -44,7 +48,7 @@ class BalanceStrategy:
 
     rotating_fraction: float = 1.0
     reciprocating_fraction: float = 0.0
-    couple: str = "per_throw"
+    couple: CoupleBalance = "per_throw"
     planes: tuple[float, ...] = ()  # m, axial positions for ``whole_shaft``
     web_offset: float = 0.0  # m, per_throw: webs at z_t +- web_offset
 

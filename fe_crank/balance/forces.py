@@ -32,7 +32,7 @@ import numpy as np
 from fe_crank.balance import harmonics
 from fe_crank.balance.mechanism import direction, piston_positions, reciprocating_mass, rotating_mass
 from fe_crank.balance.nordberg import yoke_terms
-from fe_crank.balance.terms import OrderTerm, _key, point_term, rotating_force, zero_term
+from fe_crank.balance.terms import OrderTerm, order_key, point_term, rotating_force, zero_term
 from fe_crank.errors import InputError
 from fe_crank.model import Engine
 
@@ -81,12 +81,12 @@ class FreeForces:
 
     @property
     def orders(self) -> tuple[float, ...]:
-        return tuple(sorted({_key(t.order) for t in self.terms}))
+        return tuple(sorted({order_key(t.order) for t in self.terms}))
 
     def term(self, source: str, order: float) -> OrderTerm:
         out = zero_term(source, order)
         for t in self.terms:
-            if t.source == source and _key(t.order) == _key(order):
+            if t.source == source and order_key(t.order) == order_key(order):
                 out = out + t
         return self._clean(out)
 
@@ -94,7 +94,7 @@ class FreeForces:
         """Sum over ``sources`` (default all) at one order."""
         out = zero_term("total", order)
         for t in self.terms:
-            if _key(t.order) == _key(order) and (sources is None or t.source in sources):
+            if order_key(t.order) == order_key(order) and (sources is None or t.source in sources):
                 out = out + replace(t, source="total")
         return self._clean(out)
 
@@ -103,9 +103,9 @@ class FreeForces:
         th = np.atleast_1d(np.asarray(theta, dtype=float))
         f = np.zeros((th.size, 2))
         m = np.zeros((th.size, 3))
-        keys = None if orders is None else {_key(o) for o in orders}
+        keys = None if orders is None else {order_key(o) for o in orders}
         for t in self.terms:
-            if (sources is None or t.source in sources) and (keys is None or _key(t.order) in keys):
+            if (sources is None or t.source in sources) and (keys is None or order_key(t.order) in keys):
                 ft, mt = t.evaluate(th)
                 f += ft
                 m += mt
@@ -179,7 +179,7 @@ def _merge(terms: list[OrderTerm], force_scale: float, length_scale: float) -> t
     exactly zero (and their hodographs ``zero``, not a noise ellipse)."""
     merged: dict[tuple[str, float], OrderTerm] = {}
     for t in terms:
-        key = (t.source, _key(t.order))
+        key = (t.source, order_key(t.order))
         merged[key] = merged[key] + t if key in merged else t
     ftol = ROUNDOFF * force_scale
     mtol = ftol * max(length_scale, 1e-3)
@@ -233,9 +233,8 @@ def free_forces(engine: Engine, speed: float, *, reference_z: float = 0.0, kmax:
         raise InputError(f"speed must be positive (got {speed} rad/s)", key="operating.speed")
     _check_engine(engine)
     terms = rotating_terms(engine, speed, reference_z) + reciprocating_terms(engine, speed, reference_z, kmax)
-    yoke = getattr(engine, "yoke", None)
-    if yoke is not None:
-        terms += yoke_terms(engine, yoke, speed, reference_z)
+    if engine.yoke is not None:
+        terms += yoke_terms(engine, engine.yoke, speed, reference_z)
     fscale, lscale = _scales(engine, speed)
     lscale = max(lscale, abs(reference_z))
     return FreeForces(engine.name, float(speed), float(reference_z), _merge(terms, fscale, lscale), fscale, lscale)

@@ -18,6 +18,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Literal
+
+#: the shape of a hodograph: a point at the origin, a line through it, a circle, an ellipse
+HodographKind = Literal["zero", "line", "circle", "ellipse"]
 
 #: relative size below which an axis is taken as zero (degenerate ellipse)
 DEGENERATE_RTOL = 1e-9
@@ -47,7 +51,7 @@ class Hodograph:
     co_angle: float
     counter_magnitude: float
     counter_angle: float
-    kind: str
+    kind: HodographKind
 
     def as_dict(self) -> dict:
         return {
@@ -83,6 +87,7 @@ def hodograph(a: float, b: float, c: float, d: float) -> Hodograph:
     scale = max(major, 1e-300)
     # |a|, |b|, |c|, |d| <= p + q = major, so only an exactly zero resultant is "zero"
     # (fe_crank.balance.forces clears round-off to exact zeros before this)
+    kind: HodographKind
     if major <= 1e-300:
         kind = "zero"
     elif minor <= DEGENERATE_RTOL * scale:

@@ -14,7 +14,8 @@ import numpy as np
 from fe_crank.balance.hodograph import Hodograph, hodograph
 
 
-def _key(order: float) -> float:
+def order_key(order: float) -> float:
+    """An order rounded to 9 digits, to compare and group orders computed differently."""
     return round(float(order), 9)
 
 

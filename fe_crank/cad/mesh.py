@@ -36,7 +36,7 @@ from fe_crank.cad.features import ThrowFeatures
 from fe_crank.errors import GeometryError
 from fe_crank.mesh.fields import apply_fields, bore_field, surface_field, torus_distance, torus_field, web_field
 from fe_crank.mesh.generate import finish, generate, through_cache
-from fe_crank.mesh.options import _SAFETY, CACHE_FORMAT, DEFAULT_CACHE_DIR, MeshOptions, resolve_options
+from fe_crank.mesh.options import CACHE_FORMAT, DEFAULT_CACHE_DIR, FILLET_SAFETY, MeshOptions, resolve_options
 from fe_crank.mesh.types import ThrowMesh
 
 
@@ -84,7 +84,7 @@ def _size_fields(
         if f.radius <= 0:
             continue
         radii[f.name] = f.radius
-        h = _SAFETY * f.radius / opt.fillet_divisions
+        h = FILLET_SAFETY * f.radius / opt.fillet_divisions
         cy = t.crank_radius if f.name.startswith("crankpin") else 0.0
         for arc in f.arcs:
             expr = torus_distance(cy, arc.spine_z, arc.spine_radius, arc.radius)
@@ -99,7 +99,7 @@ def _size_fields(
     for cw in t.counterweights:
         name = f"counterweight_fillet_{cw.web}"
         if cw.fillet_radius and name in surfaces:
-            h = _SAFETY * cw.fillet_radius / opt.fillet_divisions
+            h = FILLET_SAFETY * cw.fillet_radius / opt.fillet_divisions
             fields.append(surface_field(gmsh, surfaces[name], h, size_max, opt.grading))
     apply_fields(gmsh, fields, size_max)
     return radii
@@ -110,21 +110,23 @@ def estimate_cad_elements(t: ThrowFeatures, opt: MeshOptions) -> int:
     does for a parametric throw: ``rho V / size_max^3`` in the bulk plus the layers graded
     from each refined face (the recognised fillets' own areas, the journals', the pin's
     and the bores' surfaces)."""
-    from fe_crank.geometry.estimate import _RHO, _layers
+    from fe_crank.geometry.estimate import TETS_PER_H3, graded_layer_elements
 
     size_max = opt.size_max if opt.size_max is not None else t.crankpin.diameter / opt.coarse_divisions
-    n = _RHO * t.mass.total.volume / size_max**3
+    n = TETS_PER_H3 * t.mass.total.volume / size_max**3
     for f in t.fillets:
         if f.radius > 0:
-            n += _layers(f.area, _SAFETY * f.radius / opt.fillet_divisions, size_max, opt.grading)
+            n += graded_layer_elements(f.area, FILLET_SAFETY * f.radius / opt.fillet_divisions, size_max, opt.grading)
     for cw in t.counterweights:
         if cw.fillet_radius:
-            n += _layers(cw.fillet_area, _SAFETY * cw.fillet_radius / opt.fillet_divisions, size_max, opt.grading)
+            n += graded_layer_elements(
+                cw.fillet_area, FILLET_SAFETY * cw.fillet_radius / opt.fillet_divisions, size_max, opt.grading
+            )
     for c in (t.crankpin, *t.journals):
         r = c.diameter / 2
-        n += _layers(2 * np.pi * r * (c.z_max - c.z_min), 2 * np.pi * r / 12, size_max, opt.grading)
+        n += graded_layer_elements(2 * np.pi * r * (c.z_max - c.z_min), 2 * np.pi * r / 12, size_max, opt.grading)
     for b in t.oil_bores:
-        n += _layers(
+        n += graded_layer_elements(
             np.pi * b.diameter * t.crankpin.diameter,
             np.pi * b.diameter / (2 * opt.bore_divisions),
             size_max,

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank.cad.frame import Frame
-from fe_crank.cad.survey import _samples
+from fe_crank.cad.survey import face_samples
 from fe_crank.errors import InputError
 
 BIG = 10.0  # m: tools larger than any crank
@@ -144,7 +144,7 @@ def build_throw(gmsh, shaft: int, frame: Frame, origin: np.ndarray, plan: Plan, 
 def _name_faces(gmsh, keep: set[int], frame: Frame, origin, plan: Plan, tol: float) -> dict[str, list[int]]:
     out: dict[str, list[int]] = {}
     for s in _outer_faces(gmsh, keep):
-        _, pts = _samples(gmsh, s)
+        _, pts = face_samples(gmsh, s)
         if len(pts) == 0:
             continue
         if gmsh.model.getType(2, s) == "Plane":
@@ -163,7 +163,7 @@ def _name_faces(gmsh, keep: set[int], frame: Frame, origin, plan: Plan, tol: flo
 def throw_mass(gmsh, volumes: dict[str, list[int]], density: float, frame: Frame, name: str):
     """``MassProperties`` of the named volumes in the throw frame (``fe_crank.geometry.mass``:
     exact B-rep integrals; centroid ``R (c - o)``, inertia ``R J R^T``)."""
-    from fe_crank.geometry.mass import MassProperties, _combine
+    from fe_crank.geometry.mass import MassProperties, combine_volumes
 
     occ = gmsh.model.occ
     R = frame.rotation
@@ -173,5 +173,5 @@ def throw_mass(gmsh, volumes: dict[str, list[int]], density: float, frame: Frame
             c = R @ (np.asarray(occ.getCenterOfMass(3, v)) - frame.origin)
             J = np.asarray(occ.getMatrixOfInertia(3, v)).reshape(3, 3)
             per[v] = (occ.getMass(3, v), c, R @ J @ R.T)
-    parts = {k: _combine([per[v] for v in tags], density) for k, tags in volumes.items()}
-    return MassProperties(throw=name, density=density, total=_combine(list(per.values()), density), parts=parts)
+    parts = {k: combine_volumes([per[v] for v in tags], density) for k, tags in volumes.items()}
+    return MassProperties(throw=name, density=density, total=combine_volumes(list(per.values()), density), parts=parts)

@@ -58,7 +58,7 @@ class Face:
         return ((self.edge_points if edges else self.points) - origin) @ e
 
 
-def _samples(gmsh, tag: int) -> tuple[np.ndarray, np.ndarray]:
+def face_samples(gmsh, tag: int) -> tuple[np.ndarray, np.ndarray]:
     """Parameter pairs on the trimmed face and their points."""
     lo, hi = gmsh.model.getParametrizationBounds(2, tag)
     uv: list[float] = []
@@ -149,7 +149,7 @@ def survey(gmsh, tags: list[int], tol: float) -> dict[int, Face]:
     cache: dict[int, np.ndarray] = {}
     occ = gmsh.model.occ
     for tag in tags:
-        uv, p = _samples(gmsh, tag)
+        uv, p = face_samples(gmsh, tag)
         curves = tuple(abs(c) for _, c in gmsh.model.getBoundary([(2, tag)], combined=False, oriented=False))
         edge = [_curve_points(gmsh, c, cache) for c in curves]
         edge_points = np.vstack(edge) if edge else p

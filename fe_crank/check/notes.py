@@ -168,7 +168,7 @@ def case_notes(
     if solver is not None and not solver.fast_available:
         notes.append(
             Note(
-                f"the fast direct solver (MKL PARDISO, pip install 'fe-crank[fast]') is not available; "
+                f"the fast direct solver (MKL PARDISO: pypardiso, a dependency on x86-64 only) is not available; "
                 f"solved with {', '.join(solver.used or ('?',))} (same results, slower)",
                 WARNING,
                 (),

@@ -6,8 +6,8 @@ lower level: :func:`build_system`, :func:`factorise`, loads and supports.
 """
 
 from fe_crank.fe.forms import bearing_support, centrifugal, elasticity, lame_parameters
+from fe_crank.fe.linalg import factorise
 from fe_crank.fe.result_fields import write_fields
-from fe_crank.fe.solvers import factorise
 from fe_crank.fe.stress import max_shear, principal, stress_at_nodes, von_mises
 from fe_crank.fe.supports import Coupling, Dirichlet, Foundation
 from fe_crank.fe.system import System, build_system

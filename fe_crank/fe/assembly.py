@@ -23,7 +23,7 @@ from fe_crank.fe.forms import lame_parameters
 CHUNK = 20000  # elements per einsum chunk: ~60 MB of element matrices
 
 
-def _gradients(basis) -> np.ndarray:
+def shape_gradients(basis) -> np.ndarray:
     """Scalar basis gradients, shape (n_local, 3, n_elements, n_qp)."""
     return np.stack([b[0].grad for b in basis.basis])
 
@@ -106,7 +106,7 @@ def assemble_stiffness(
     block-sparse (BSR) matrix over the scalar connectivity, then converted to CSR.
     """
     return stiffness_from_gradients(
-        _gradients(basis), basis.dx, basis.element_dofs, basis.N, youngs_modulus, poisson_ratio, chunk=chunk
+        shape_gradients(basis), basis.dx, basis.element_dofs, basis.N, youngs_modulus, poisson_ratio, chunk=chunk
     )
 
 

@@ -8,14 +8,25 @@
 * :func:`cell_basis`, :func:`facet_basis` -- the scalar P2 basis of the whole mesh and a
   basis on a set of facets, both on that mapping and numbering.
 
+A mesh's mapping and dof numberings are kept in :class:`MeshCache` tables beside the mesh,
+not on it.  The tables hold their entries weakly: an entry lives as long as a basis (or
+anyone else) holds it.  Each entry holds its mesh (scikit-fem's mappings and ``Dofs`` keep
+the mesh they were built on), so a table keyed weakly by the mesh would keep every mesh
+alive; and scikit-fem's meshes, dataclasses compared by value, cannot be dictionary keys.
+The tables are therefore keyed by the mesh's identity, which cannot be reused while an
+entry (holding the mesh) is alive.
+
 Every number is bit for bit that of the basis scikit-fem builds from scratch on the same
 mapping (tests/test_fe_mapping.py).
 """
 
 from __future__ import annotations
 
+import weakref
+from typing import Generic, TypeVar
+
 import numpy as np
-from skfem import CellBasis, ElementTetP2, FacetBasis
+from skfem import CellBasis, ElementTetP2, FacetBasis, Mesh
 from skfem.assembly import Dofs
 from skfem.mapping import MappingIsoparametric
 
@@ -46,6 +57,11 @@ class RobustIsoparametric(MappingIsoparametric):
     drops them, and the Jacobian cache of the parent class, once a basis is built.
     """
 
+    def __init__(self, mesh, elem, bndelem=None) -> None:
+        super().__init__(mesh, elem, bndelem)
+        self._facet_nodes_cache: np.ndarray | None = None
+        self.clear_memo()
+
     def clear_memo(self) -> None:
         # (argument, element list, result) of the last call; None: nothing kept
         self._invdf_memo: tuple[np.ndarray, np.ndarray | None, np.ndarray] | None = None
@@ -59,7 +75,7 @@ class RobustIsoparametric(MappingIsoparametric):
         return a is b or (a.shape == b.shape and np.array_equal(a, b))
 
     def invDF(self, X, tind=None):
-        memo = getattr(self, "_invdf_memo", None)
+        memo = self._invdf_memo
         if memo is not None and memo[0] is X and self._same(memo[1], tind):
             return memo[2]
         out = super().invDF(X, tind)
@@ -67,7 +83,7 @@ class RobustIsoparametric(MappingIsoparametric):
         return out
 
     def invF(self, x, tind=None, newton_max_iters=50, newton_tol=1e-12):
-        memo = getattr(self, "_invf_memo", None)
+        memo = self._invf_memo
         if memo is not None and memo[0] is x and self._same(memo[1], tind):
             return memo[2]
         X = self._newton_inverse(x, tind, newton_max_iters, newton_tol)
@@ -100,7 +116,7 @@ class RobustIsoparametric(MappingIsoparametric):
     def _facet_nodes(self):
         """Global nodes of every facet (6, n_facets), vertices then edge nodes: what the
         parent's ``bndmap``/``bndJ`` stack on every call, stacked once here."""
-        fn = getattr(self, "_facet_nodes_cache", None)
+        fn = self._facet_nodes_cache
         if fn is None:
             m = self.mesh
             prime_edge_tables(m)
@@ -131,15 +147,36 @@ class RobustIsoparametric(MappingIsoparametric):
         return out
 
 
-def _robust_mapping(mesh):
-    """The mesh's isoparametric mapping with a robust inverse (cached on the mesh), or None if affine."""
-    if getattr(mesh, "affine", True):
+_V = TypeVar("_V")
+
+
+class MeshCache(Generic[_V]):
+    """Values computed from a mesh, by the mesh's identity and a key, held weakly (module
+    docstring): ``get`` returns the value while someone holds it, else builds it again."""
+
+    def __init__(self) -> None:
+        self._values: weakref.WeakValueDictionary[tuple[int, object], _V] = weakref.WeakValueDictionary()
+
+    def get(self, mesh: Mesh, key: object, build) -> _V:
+        """The value of ``(mesh, key)``; ``build()`` makes it when none is held."""
+        value = self._values.get((id(mesh), key))
+        if value is None:
+            value = build()
+            self._values[(id(mesh), key)] = value
+        return value
+
+
+#: the robust mapping of each curved mesh, and each mesh's dof numbering by element type
+_MAPPINGS: MeshCache[RobustIsoparametric] = MeshCache()
+_DOFS: MeshCache[Dofs] = MeshCache()
+
+
+def robust_mapping(mesh: Mesh) -> RobustIsoparametric | None:
+    """The mesh's isoparametric mapping with a robust inverse (one per mesh while it is
+    held, :class:`MeshCache`), or None if affine."""
+    if mesh.affine:
         return None
-    m = getattr(mesh, "_fe_crank_mapping", None)
-    if m is None:
-        m = RobustIsoparametric(mesh, mesh.elem(), mesh.bndelem)
-        mesh._fe_crank_mapping = m
-    return m
+    return _MAPPINGS.get(mesh, None, lambda: RobustIsoparametric(mesh, mesh.elem(), mesh.bndelem))
 
 
 def _entity_table(rows: np.ndarray, tuples) -> tuple[np.ndarray, np.ndarray]:
@@ -177,22 +214,20 @@ def prime_edge_tables(mesh) -> None:
         mesh._f2e = _entity_table(mesh.facets, mesh.bndelem.refdom.facets)[1]
 
 
-def mesh_dofs(mesh, elem) -> Dofs:
-    """The global numbering of ``elem`` on ``mesh``, built once per mesh and element type.
+def mesh_dofs(mesh: Mesh, elem) -> Dofs:
+    """The global numbering of ``elem`` on ``mesh``, one per mesh and element type while it
+    is held (:class:`MeshCache`).
 
     ``Dofs(mesh, elem)`` is deterministic; every basis of the mesh built through
     :func:`cell_basis` and :func:`facet_basis` shares this one (scikit-fem would rebuild
     it, and the whole mesh's dof locations, for each facet basis).
     """
-    cache = getattr(mesh, "_fe_crank_dofs", None)
-    if cache is None:
-        cache = {}
-        mesh._fe_crank_dofs = cache
-    key = (type(elem), type(getattr(elem, "elem", None)))
-    if key not in cache:
+
+    def build() -> Dofs:
         prime_edge_tables(mesh)
-        cache[key] = Dofs(mesh, elem)
-    return cache[key]
+        return Dofs(mesh, elem)
+
+    return _DOFS.get(mesh, (type(elem), type(getattr(elem, "elem", None))), build)
 
 
 def cell_basis(mesh, intorder: int = 2, elem=None) -> CellBasis:
@@ -204,7 +239,7 @@ def cell_basis(mesh, intorder: int = 2, elem=None) -> CellBasis:
     numbering of :func:`mesh_dofs`.
     """
     elem = ElementTetP2() if elem is None else elem
-    mapping = _robust_mapping(mesh)
+    mapping = robust_mapping(mesh)
     basis = CellBasis(mesh, elem, mapping=mapping, intorder=intorder, dofs=mesh_dofs(mesh, elem))
     if mapping is not None:
         mapping.clear_memo()
@@ -215,12 +250,12 @@ def facet_basis(mesh, elem, facets, intorder: int, what: str) -> FacetBasis:
     """``FacetBasis`` on ``facets`` of a (possibly curved) mesh; a failed inverse map is a MeshError.
 
     On a curved (isoparametric) mesh the reference coordinates of the facet quadrature
-    points come from a Newton iteration (see ``_robust_mapping``), which can only fail on
+    points come from a Newton iteration (see ``robust_mapping``), which can only fail on
     folded or nearly degenerate elements: a property of the mesh, reported as such.
     The dof numbering is the mesh's shared one (:func:`mesh_dofs`) and the global dof
     locations are not computed (the cell basis has them): the cost is that of the facets.
     """
-    mapping = _robust_mapping(mesh)
+    mapping = robust_mapping(mesh)
     try:
         return FacetBasis(
             mesh,

@@ -216,7 +216,7 @@ def _reusable(first, mesh_options, fe_options: FeOptions) -> bool:
     if first is None:
         return False
     tm, unit_solutions = first
-    if getattr(tm, "options", None) != mesh_options:
+    if tm.options != mesh_options:
         return False
     done = unit_solutions.options
     same = all(

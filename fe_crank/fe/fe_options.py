@@ -8,7 +8,7 @@ the report (``UnitSolutions.support_model``).  The models themselves: ``unit_cas
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Literal, Protocol, get_args
 
 import numpy as np
 
@@ -19,6 +19,14 @@ from fe_crank.fe.pin_directions import pin_cases, unit_force
 #: apart (``pin_directions``: pin_x, pin_030, ..., pin_y = radial outward, ...), the torque
 CASES = ("centrifugal",) + pin_cases() + ("torque",)
 PIN_FORCES = {name: unit_force(name) for name in pin_cases()}
+
+#: the support models (``unit_cases``), the end faces that can react the torque, the solvers
+#: (``solver_choice``)
+Support = Literal["determinate", "foundation"]
+TorqueEnd = Literal["end_2", "end_1"]
+SolverMethod = Literal["auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu"]
+SUPPORTS: tuple[Support, ...] = get_args(Support)
+TORQUE_ENDS: tuple[TorqueEnd, ...] = get_args(TorqueEnd)
 
 
 class Material(Protocol):
@@ -45,17 +53,17 @@ class FeOptions:
     ("pin_x", "pin_y", "pin_-x", "pin_-y", "pin_<deg>"; see ``pin_directions``).
     pin_half_angle: rad, half width of the cosine pressure arc.
     symmetry: solve on the symmetry components where the mesh states mirror planes
-    (``ThrowMesh.symmetry``) and the supports are the determinate ones (``fe.symsolve``);
+    (``ThrowMesh.symmetry``) and the supports are the determinate ones (``fe.symmetric``);
     False: the full model (for comparison; same answer to round-off).
     """
 
-    support: str = "determinate"
+    support: Support = "determinate"
     bearing_stiffness: float | None = None
-    solver: str = "auto"
+    solver: SolverMethod = "auto"
     cases: tuple[str, ...] = CASES
     pin_half_angle: float = float(np.deg2rad(60.0))
     journals: tuple[str, str] = ("journal_1", "journal_2")
-    torque_reaction: str = "end_2"
+    torque_reaction: TorqueEnd = "end_2"
     pin_boundary: str = "crankpin"
     pin_centre: tuple[float, float] | None = None  # (x, y) of the pin axis; None: centroid of the pin surface
     intorder: int = 2
@@ -65,18 +73,14 @@ class FeOptions:
     pin_patches: tuple[tuple[float, float], ...] = ()
 
     @property
-    def reaction_face(self) -> str:
+    def reaction_face(self) -> TorqueEnd:
         """End face reacting the torque."""
         return self.torque_reaction
 
     @property
-    def torque_face(self) -> str:
+    def torque_face(self) -> TorqueEnd:
         """End face where the ``torque`` unit case enters (the other one)."""
         return "end_1" if self.torque_reaction == "end_2" else "end_2"
-
-
-SUPPORTS = ("determinate", "foundation")
-TORQUE_ENDS = ("end_2", "end_1")
 
 
 def check_support_options(options: FeOptions) -> None:

@@ -14,12 +14,12 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Literal
 
 import numpy as np
 from pydantic import Field, StrictBool, model_validator
 
 from fe_crank.errors import InputError
+from fe_crank.fe.fe_options import SolverMethod, Support, TorqueEnd
 from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
 from fe_crank.fe.unit_cases import CASES, FeOptions
 from fe_crank.io.base import Strict, validate
@@ -34,10 +34,10 @@ RENAMED = {
 
 
 class FeInput(Strict):
-    support: Literal["determinate", "foundation"] = "determinate"
+    support: Support = "determinate"
     bearing_stiffness: StiffnessPerArea | None = Field(default=None, gt=0)
-    torque_reaction: Literal["end_2", "end_1"] = "end_2"
-    solver: Literal["auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu"] = "auto"
+    torque_reaction: TorqueEnd = "end_2"
+    solver: SolverMethod = "auto"
     pin_half_angle: Angle = Field(default=FeOptions.pin_half_angle, gt=0, le=1.5707963267948966)
     cases: tuple[str, ...] = CASES
     symmetry: StrictBool = True  # true or false only: a string such as "no" is refused, not read

@@ -8,8 +8,8 @@ explicit-zero couplings (so the right-hand side's interface rows are set to zero
 back zero).
 
 ``MirroredInterior`` solves a piece whose mesh is its own mirror image across ``z = 0``
-(``ThrowMesh.symmetry``, verified on the P2 nodes by ``fe.symmetry.mesh_mirror``) on the
-two symmetry components of its half, as ``fe.symsolve`` does for the determinate throw
+(``ThrowMesh.symmetry``, verified on the P2 nodes by ``fe.symmetric.mesh_mirror``) on the
+two symmetry components of its half, as ``fe.symmetric`` does for the determinate throw
 (the same projection, plane conditions and weights; here the held dofs are the end face
 ``end_1`` of the half instead of point constraints, so no rigid motion is left);
 ``solve_split`` returns the symmetric and antisymmetric parts of the solution separately,
@@ -24,9 +24,9 @@ import scipy.sparse as sp
 
 from fe_crank.errors import SolverError
 from fe_crank.fe.assembly import part_stiffness, upper_triangle
-from fe_crank.fe.pardiso_shared import factorise_shared
-from fe_crank.fe.solvers import choose_method, factorise
-from fe_crank.fe.symmetry import character_of
+from fe_crank.fe.linalg import factorise, factorise_shared
+from fe_crank.fe.solver_choice import choose_method
+from fe_crank.fe.symmetric import character_of
 
 #: relative residual a block of solutions must meet (as ``Factorisation.residual_tol``)
 RESIDUAL_TOL = 1e-8

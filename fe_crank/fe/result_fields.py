@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from skfem import Mesh
 
 from fe_crank.fe.stress import VOIGT, max_shear, principal, von_mises
 from fe_crank.vtu_writer import positively_oriented, quadratic_tet_mesh, region_ids, write_vtu
@@ -21,10 +22,10 @@ __all__ = [
 ]
 
 
-def boundary_point_ids(skmesh, basis) -> tuple[np.ndarray, dict]:
+def boundary_point_ids(skmesh: Mesh, basis) -> tuple[np.ndarray, dict]:
     """Point data ``boundary``: for every P2 node, the id of the first (sorted) named
     boundary it lies on, -1 for none; and the matching field data."""
-    names = sorted(getattr(skmesh, "boundaries", None) or {})
+    names = sorted(skmesh.boundaries or {})
     ids = np.full(basis.doflocs.shape[1], -1, np.int32)
     for i, name in reversed(list(enumerate(names))):  # the first name wins
         nodes = np.unique(basis.get_dofs(facets=skmesh.boundaries[name]).all())
@@ -66,7 +67,7 @@ def write_fields(
     for name, arr in (extra or {}).items():
         data[name] = np.asarray(arr)
     cdata, fdata = region_ids(basis.mesh)
-    if getattr(basis.mesh, "boundaries", None):
+    if basis.mesh.boundaries:
         data["boundary"], bf = boundary_point_ids(basis.mesh, basis)
         fdata.update(bf)
     mesh = quadratic_tet_mesh(basis.doflocs, basis.element_dofs, point_data=data, cell_data=cdata, field_data=fdata)

@@ -44,9 +44,10 @@ from skfem import Basis, ElementTetP2
 
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_surface_load
-from fe_crank.fe.stress import _average, element_nodal_stress, principal, von_mises
+from fe_crank.fe.stress import element_nodal_stress, nodal_average, principal, von_mises
 from fe_crank.fe.supports import Coupling, boundary_facets, facet_basis
 from fe_crank.fe.system import EQUILIBRIUM_TOL, build_system
+from fe_crank.mesh.types import ThrowMesh
 
 ALL6 = ("ux", "uy", "uz", "rx", "ry", "rz")
 PIN_FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2")
@@ -120,7 +121,7 @@ def _peaks(mesh, u, E, nu, groups, measure: str, basis) -> dict[str, Peak]:
     dofs = basis.dofs
     s_el, nodes = element_nodal_stress(mesh, u, E, nu, dofs=dofs)
     n = u.size // 3
-    s_avg = _average(s_el, nodes, n)
+    s_avg = nodal_average(s_el, nodes, n)
     f = MEASURES[measure]
     m_avg = f(s_avg)
     m_el = f(s_el)  # (10, ne)
@@ -189,7 +190,7 @@ def solve_three_point(mesh, E: float, nu: float, *, solver: str = "auto"):
 
 
 def scf_stresses(
-    throw_mesh,
+    throw_mesh: ThrowMesh,
     material,
     *,
     web_centres: tuple[float, float],
@@ -199,12 +200,12 @@ def scf_stresses(
 ) -> ScfStresses:
     """Solve the three UR M53 App. III cases for unit loads (see module docstring).
 
-    ``throw_mesh``: a ``ThrowMesh`` or ``MeshTet2`` with boundaries ``end_1``, ``end_2``
+    ``throw_mesh``: a ``ThrowMesh`` with boundaries ``end_1``, ``end_2``
     (the main-bearing centre planes), ``crankpin`` and the fillet groups;
     ``material``: ``youngs_modulus``, ``poisson_ratio``; ``web_centres``: axial (z)
     positions of the centre planes of web 1 (``end_1`` side) and web 2, m.
     """
-    mesh = getattr(throw_mesh, "mesh", throw_mesh)
+    mesh = throw_mesh.mesh
     E, nu = material.youngs_modulus, material.poisson_ratio
     for g in (*pin_fillets, *journal_fillets, "end_1", "end_2", "crankpin"):
         boundary_facets(mesh, g, "the SCF mode")
@@ -240,13 +241,15 @@ def scf_stresses(
     )
 
 
-def web_centres_from_mesh(throw_mesh, web_thickness: float, journal_fillets=JOURNAL_FILLETS) -> tuple[float, float]:
+def web_centres_from_mesh(
+    throw_mesh: ThrowMesh, web_thickness: float, journal_fillets=JOURNAL_FILLETS
+) -> tuple[float, float]:
     """Web centre planes estimated from the mesh: each journal fillet's web-side edge -/+ W/2.
 
     Exact for fillets without an undercut (the fillet ends on the web face); prefer the
     geometry's own positions (+-(L_pin/2 + W/2)) when they are known.
     """
-    mesh = getattr(throw_mesh, "mesh", throw_mesh)
+    mesh = throw_mesh.mesh
     basis = Basis(mesh, ElementTetP2(), intorder=1)
     out = []
     for k, g in enumerate(journal_fillets):

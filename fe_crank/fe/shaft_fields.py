@@ -24,8 +24,8 @@ import numpy as np
 from fe_crank.fe.interior import Interior, MirroredInterior
 from fe_crank.fe.shaft_cases import ShaftCases
 from fe_crank.fe.stress import stress_at_nodes, von_mises
-from fe_crank.fe.symmetry import mesh_mirror
-from fe_crank.fe.symsystem import stiffness_rows
+from fe_crank.fe.symmetric import mesh_mirror
+from fe_crank.fe.system import stiffness_rows
 from fe_crank.mesh.shaft import node_maps
 
 

@@ -31,7 +31,7 @@ from fe_crank.fe.bases import cell_basis
 from fe_crank.fe.node_groups import node_groups
 from fe_crank.fe.shaft_patterns import end_patterns, surface_patterns, throw_patterns
 from fe_crank.fe.substructure import Condensed, condense
-from fe_crank.mesh.shaft import ShaftMesh, joints, rotation
+from fe_crank.mesh.shaft import PieceKind, ShaftMesh, joints, rotation
 
 
 @dataclass(frozen=True)
@@ -52,7 +52,7 @@ class ShaftFeOptions:
 class PlacedPiece:
     index: int
     name: str
-    kind: str
+    kind: PieceKind
     throw: str | None
     cond: Condensed
     R: np.ndarray  # (3, 3) local -> shaft frame
@@ -138,7 +138,7 @@ def _recovery_nodes(basis, mesh, names) -> np.ndarray:
     return np.unique(basis.element_dofs[:, el])
 
 
-def _condense_piece(mesh, kind: str, stubs, torque_faces, material, opt: ShaftFeOptions, mirrored: bool):
+def _condense_piece(mesh, kind: PieceKind, stubs, torque_faces, material, opt: ShaftFeOptions, mirrored: bool):
     basis = cell_basis(mesh, 2)
     rho = material.density
     if kind == "throw":

@@ -24,9 +24,12 @@ a fallback is logged as a warning and recorded in ``Factorisation.note``.
 
 from __future__ import annotations
 
-from fe_crank.errors import InputError
+from typing import get_args
 
-METHODS = ("auto", "pardiso", "pardiso_ooc", "cholmod", "amg", "superlu")
+from fe_crank.errors import InputError
+from fe_crank.fe.fe_options import SolverMethod
+
+METHODS: tuple[SolverMethod, ...] = get_args(SolverMethod)
 #: above this many unknowns ``auto`` lets PARDISO go out of core when its factor does not fit
 #: (the ``fine`` preset, 2.9M DOF, needs ~27 GB in core; ``medium``, 1.0-1.15M DOF, 8 GB)
 OOC_MIN_DOF = 1_500_000

@@ -12,7 +12,7 @@ import numpy as np
 from skfem import Basis, ElementTetP2
 
 from fe_crank.errors import MeshError
-from fe_crank.fe.assembly import _gradients
+from fe_crank.fe.assembly import shape_gradients
 from fe_crank.fe.forms import lame_parameters
 
 VOIGT = ("xx", "yy", "zz", "xy", "yz", "zx")
@@ -130,7 +130,8 @@ def element_nodal_stress(
     return out, nodes
 
 
-def _average(s_el: np.ndarray, nodes: np.ndarray, n: int) -> np.ndarray:
+def nodal_average(s_el: np.ndarray, nodes: np.ndarray, n: int) -> np.ndarray:
+    """Element-nodal stresses (6, m, ne) at their node numbers (m, ne) averaged at the ``n`` nodes: (6, n)."""
     count = np.bincount(nodes.ravel(), minlength=n)
     out = np.stack([np.bincount(nodes.ravel(), s_el[k].ravel(), minlength=n) for k in range(6)])
     return out / np.maximum(count, 1)
@@ -139,7 +140,7 @@ def _average(s_el: np.ndarray, nodes: np.ndarray, n: int) -> np.ndarray:
 def stress_at_nodes(mesh, u: np.ndarray, youngs_modulus: float, poisson_ratio: float, *, dofs=None) -> np.ndarray:
     """Nodal stress (6, n_nodes) averaged over the elements sharing each P2 node."""
     s, nodes = element_nodal_stress(mesh, u, youngs_modulus, poisson_ratio, dofs=dofs)
-    return _average(s, nodes, u.size // 3)
+    return nodal_average(s, nodes, u.size // 3)
 
 
 def stress_at_selected_nodes(
@@ -193,7 +194,7 @@ def stress_at_quadrature(
     only these elements of the basis (in that order)."""
     lam, mu = lame_parameters(youngs_modulus, poisson_ratio)
     if elements is None:
-        return _stress_from_gradients(_gradients(basis), basis.element_dofs, u, lam, mu)
+        return _stress_from_gradients(shape_gradients(basis), basis.element_dofs, u, lam, mu)
     G = np.stack([b[0].grad[:, elements] for b in basis.basis])  # slice first: no whole-mesh copy
     return _stress_from_gradients(G, basis.element_dofs[:, elements], u, lam, mu)
 
@@ -244,7 +245,7 @@ def averaging_indicator(
         return {}
     elements = elements_of_nodes(dofs.element_dofs, np.concatenate(list(fnodes.values())), n)
     s_el, nodes = element_nodal_stress(mesh, u, youngs_modulus, poisson_ratio, dofs=dofs, elements=elements)
-    vm_avg = von_mises(_average(s_el, nodes, n))
+    vm_avg = von_mises(nodal_average(s_el, nodes, n))
     vm_el = von_mises(s_el).ravel()
     vm_max = np.zeros(n)
     np.maximum.at(vm_max, nodes.ravel(), vm_el)

@@ -33,8 +33,8 @@ from fe_crank.errors import MeshError
 from fe_crank.fe.assembly import assemble_stiffness
 from fe_crank.fe.bases import cell_basis
 from fe_crank.fe.interior import Interior, MirroredInterior
-from fe_crank.fe.symmetry import mesh_mirror
-from fe_crank.fe.symsystem import stiffness_rows
+from fe_crank.fe.symmetric import mesh_mirror
+from fe_crank.fe.system import stiffness_rows
 
 #: interface columns solved at once (PARDISO's time per right-hand side falls up to about 128)
 BLOCK = 128
@@ -62,7 +62,7 @@ class Condensed:
     timings: dict[str, float] = field(default_factory=dict)
     #: with ``condense(..., keep=True)``: the interior's factorisation and the rows K_b of the
     #: stiffness, for whole fields later (``fe.shaft_fields``); ``free`` releases them
-    interior: Any = None  # a factorisation handle (``fe.symsolve``), or None
+    interior: Any = None  # a factorisation handle (``fe.symmetric``), or None
     K_b: Any = None  # a sparse matrix, or None
 
     def free(self) -> None:

@@ -24,11 +24,11 @@ from fe_crank.fe.assembly import assemble_foundation
 from fe_crank.fe.bases import (  # noqa: F401
     InverseMapError,
     RobustIsoparametric,
-    _robust_mapping,
     cell_basis,
     facet_basis,
     mesh_dofs,
     prime_edge_tables,
+    robust_mapping,
 )
 
 REF_DOFS = ("ux", "uy", "uz", "rx", "ry", "rz")

@@ -5,10 +5,21 @@ u = P q, where q holds the free nodal dofs and the free dofs of each coupling's 
 point; held dofs are simply absent from q.  The reduced stiffness is K_r = P^T (K + K_s) P
 (K elastic, K_s foundations), symmetric positive definite when the supports remove every
 rigid-body mode.  Loads: f_r = P^T f + (generalised loads at reference dofs).
+
+The determinate throw on symmetry components (:func:`determinate_system`,
+:func:`symmetric_system`): when the mesh states mirror planes, the symmetry is verified on
+the P2 nodes and elements and the components are factorised on the fundamental part
+(``fe.symmetric``); the System has the same face as the full model's: ``solve``,
+``reactions``, ``equilibrium_error`` (the point dofs' reactions from the full stiffness's
+rows at the six point dofs, assembled on the elements around them: a row of K at node i
+has terms of the elements of i only), ``n_dof`` (the full model's unknowns),
+``factorisation.free()``, ``timings``.  Whenever the symmetric path does not apply it says
+why in the log and the full model is solved instead, never a wrong answer.
 """
 
 from __future__ import annotations
 
+import logging
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -21,8 +32,9 @@ from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.assembly import assemble_stiffness
 from fe_crank.fe.determinate import DeterminateSupport, determinate_support
 from fe_crank.fe.equilibrium import EquilibriumChecks, RefLoads
+from fe_crank.fe.linalg import Factorisation, factorise
 from fe_crank.fe.solver_choice import choose_method
-from fe_crank.fe.solvers import Factorisation, factorise
+from fe_crank.fe.stress import elements_of_nodes
 from fe_crank.fe.supports import (
     REF_DOFS,
     Coupling,
@@ -34,7 +46,9 @@ from fe_crank.fe.supports import (
     face_centroid,
     rigid_body_modes,
 )
-from fe_crank.fe.symsolve import SymmetricSolver
+from fe_crank.fe.symmetric import SymmetricSolver, build_symmetric_solver, mesh_mirror
+
+log = logging.getLogger(__name__)
 
 EQUILIBRIUM_TOL = 1e-6
 
@@ -60,7 +74,7 @@ class System(EquilibriumChecks):
     point_dofs: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # single vector dofs held
     determinate: DeterminateSupport | None = None  # reactions applied as loads (fe.determinate)
     timings: dict[str, float] = field(default_factory=dict)
-    symmetric: SymmetricSolver | None = None  # solved on symmetry components (fe.symsystem)
+    symmetric: SymmetricSolver | None = None  # solved on symmetry components (symmetric_system)
 
     @property
     def n_dof(self) -> int:
@@ -262,3 +276,94 @@ def _reduce_modes(B, free, refcols, refp) -> np.ndarray:
             else:
                 Br[col, k] = 1.0
     return Br
+
+
+# -- the determinate throw on symmetry components (module docstring) --
+
+
+def stiffness_rows(basis, youngs_modulus: float, poisson_ratio: float, rows: np.ndarray) -> sp.csr_matrix:
+    """Rows ``rows`` (vector dofs) of the full stiffness K, (len(rows), 3 N), assembled on the
+    elements that contain their nodes only."""
+    elements = elements_of_nodes(basis.element_dofs, np.unique(rows // 3), basis.N)
+    sub = Basis(
+        basis.mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs, elements=elements
+    )
+    return assemble_stiffness(sub, youngs_modulus, poisson_ratio)[rows].tocsr()
+
+
+def selection(n: int, held: np.ndarray) -> sp.csr_matrix:
+    """P (n, n - len(held)): the full vector <- the dofs not in ``held`` (unique, sorted), in
+    ascending order; built as CSR directly (row i holds one 1 in column
+    (number of kept dofs before i)), the matrix the COO route with ``setdiff1d`` gives."""
+    keep = np.ones(n, bool)
+    keep[held] = False
+    indptr = np.zeros(n + 1, np.int64)
+    np.cumsum(keep, out=indptr[1:])
+    m = int(indptr[-1])
+    return sp.csr_matrix((np.ones(m), np.arange(m), indptr), shape=(n, m))
+
+
+def determinate_system(
+    mesh, youngs_modulus: float, poisson_ratio: float, layout, axes=(), *, solver: str = "auto", intorder: int = 2
+) -> System:
+    """The System of the determinate supports ``layout``: on the symmetry components across
+    ``axes`` (the mesh's stated mirror planes) where they verify, else the full model."""
+    t0 = time.perf_counter()
+    basis = cell_basis(mesh, intorder)  # the whole mesh's P2 basis, built once (fe.bases)
+    sup = determinate_support(basis, layout)
+    if axes:
+        system = symmetric_system(basis, sup, youngs_modulus, poisson_ratio, axes, solver, t0)
+        if system is not None:
+            return system
+    t_pre = time.perf_counter() - t0
+    system = build_system(
+        mesh, youngs_modulus, poisson_ratio, determinate=sup, solver=solver, intorder=intorder, basis=basis
+    )
+    system.timings["assembly"] += t_pre
+    return system
+
+
+def symmetric_system(
+    basis, sup, youngs_modulus: float, poisson_ratio: float, axes, solver: str, t_start: float
+) -> System | None:
+    """The determinate ``System`` solved on the symmetry components across ``axes``, or None
+    (logged why)."""
+    mirror = mesh_mirror(basis.mesh, basis, axes)
+    if mirror is None:
+        return None
+    t_pre = time.perf_counter() - t_start  # basis and determinate supports
+    solver_ = build_symmetric_solver(basis, mirror, youngs_modulus, poisson_ratio, sup.held, solver)
+    if solver_ is None:
+        return None
+    t0 = time.perf_counter()
+    rows = np.unique(sup.held)
+    K_rows = stiffness_rows(basis, youngs_modulus, poisson_ratio, rows)
+    n = 3 * basis.N
+    P = selection(n, rows)
+    t = solver_.timings
+    timings = {
+        "assembly": t_pre + t["assembly"],
+        "constraints": t["constraints"] + time.perf_counter() - t0,
+        "factorisation": t["factorisation"],
+    }
+    log.info("fe-crank: %s", solver_.description)
+    return System(
+        mesh=basis.mesh,
+        basis=basis,
+        K_rows=K_rows,
+        rows=rows,
+        Ks=sp.csr_matrix((n, n)),
+        P=P,
+        foundations=(),
+        couplings=(),
+        ref_points={},
+        ref_columns={},
+        slave_dofs={},
+        dirichlet_dofs=np.zeros(0, int),
+        foundation_dofs={},
+        factorisation=solver_,
+        point_dofs=rows,
+        determinate=sup,
+        timings=timings,
+        symmetric=solver_,
+    )

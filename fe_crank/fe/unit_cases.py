@@ -23,7 +23,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from skfem import ElementTetP2
+from skfem import ElementTetP2, Mesh
 
 from fe_crank.errors import InputError, MeshError, SolverError
 from fe_crank.fe import stress as _stress
@@ -42,9 +42,9 @@ from fe_crank.fe.fe_options import (  # noqa: F401
 from fe_crank.fe.loads import PinPressure
 from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
 from fe_crank.fe.supports import Coupling, Foundation, boundary_facets, facet_basis
-from fe_crank.fe.symsystem import determinate_system
-from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system
+from fe_crank.fe.system import EQUILIBRIUM_TOL, System, build_system, determinate_system
 from fe_crank.fe.unit_loads import check_case_names, unit_loads
+from fe_crank.mesh.types import ThrowMesh
 
 log = logging.getLogger(__name__)
 
@@ -148,14 +148,14 @@ def journal_diameter(mesh, boundary: str) -> float:
     return float(2.0 * np.sum(np.hypot(x[0], x[1]) * fb.dx) / fb.dx.sum())
 
 
-def _throw_mesh(throw_mesh):
-    mesh = getattr(throw_mesh, "mesh", throw_mesh)
+def _tet_mesh(throw_mesh: ThrowMesh) -> Mesh:
+    mesh = throw_mesh.mesh
     if mesh.t.shape[0] != 4 or mesh.p.shape[0] != 3:
         raise MeshError(f"unsupported body: FE needs a 3D tetrahedral mesh, got {type(mesh).__name__}")
     return mesh
 
 
-def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None = None) -> UnitSolutions:
+def solve_unit_cases(throw_mesh: ThrowMesh, material: Material, options: FeOptions | None = None) -> UnitSolutions:
     """Assemble once, factorise once, solve the unit cases of ``options.cases``.
 
     Cases: ``centrifugal`` (omega = 1 rad/s about z; scale by omega^2), on request
@@ -171,7 +171,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
     """
     options = options or FeOptions()
     check_case_names(options)
-    mesh = _throw_mesh(throw_mesh)
+    mesh = _tet_mesh(throw_mesh)
     for attr in ("youngs_modulus", "poisson_ratio", "density"):
         if not hasattr(material, attr):
             raise InputError(f"material has no {attr!r}", key=f"material.{attr}")
@@ -185,7 +185,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         boundary_facets(mesh, name, "the unit load cases")
     check_support_options(options)
     E, nu = material.youngs_modulus, material.poisson_ratio
-    axes = tuple(getattr(throw_mesh, "symmetry", None) or ()) if options.symmetry else ()
+    axes = tuple(throw_mesh.symmetry) if options.symmetry else ()
     if options.support == "foundation":
         k_bearing = options.bearing_stiffness
         assert k_bearing is not None  # check_support_options refuses a foundation without it
@@ -239,7 +239,7 @@ def solve_unit_cases(throw_mesh, material: Material, options: FeOptions | None =
         )
     timings = dict(system.timings)
     timings.update(
-        analysis=getattr(system.factorisation, "analysis_time", 0.0),
+        analysis=system.factorisation.analysis_time,
         loads=t_loads,
         solve=t_solve,
         solve_per_case=t_solve / max(len(names), 1),

@@ -29,6 +29,8 @@ import math
 
 import numpy as np
 
+from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
+
 #: default limit on the estimated element count of one throw mesh.  The ``fine``
 #: preset of the shipped throws is estimated at 1.2-1.7 M (the V4 throw: 1.34 M
 #: estimated, 0.58 M real, docs/performance.md) and must pass; a mesh of 3 M
@@ -37,7 +39,7 @@ MAX_ELEMENTS = 3_000_000
 #: tetrahedra per h^3: 4 x the regular packing 6 sqrt(2).  gmsh's Delaunay meshes of
 #: this project's throws hold 3-8 x the regular-packing count (measured, tests and
 #: docs/limits.md), the factor 4 keeps the estimate within a factor 3 of them
-_RHO = 4 * 6.0 * math.sqrt(2.0)
+TETS_PER_H3 = 4 * 6.0 * math.sqrt(2.0)
 _SAFETY = 0.65  # fe_crank.mesh: fillet target edge = SAFETY * r / fillet_divisions
 
 
@@ -54,13 +56,14 @@ def hull_area(a: float, b: float, d: float, n: int = 720) -> float:
     return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
 
 
-def _layers(area: float, h0: float, size_max: float, grading: float) -> float:
+def graded_layer_elements(area: float, h0: float, size_max: float, grading: float) -> float:
+    """Extra tetrahedra of a size field graded from ``h0`` on a surface of ``area`` to ``size_max``."""
     if h0 >= size_max:
         return 0.0
-    return _RHO * area / (2.0 * grading) * (h0**-2 - size_max**-2)
+    return TETS_PER_H3 * area / (2.0 * grading) * (h0**-2 - size_max**-2)
 
 
-def estimate_elements(g, spec, opt) -> int:
+def estimate_elements(g: CrankGeometry, spec: ThrowSpec, opt) -> int:
     """Estimated tetrahedra of ``fe_crank.mesh.mesh_throw(g, spec, size=opt)``.
 
     ``g`` a ``CrankGeometry``, ``spec`` its ``ThrowSpec``, ``opt`` a ``MeshOptions``.
@@ -71,20 +74,22 @@ def estimate_elements(g, spec, opt) -> int:
     vol += 2 * g.web_thickness * hull_area(g.web.journal_end_radius, g.web.pin_end_radius, g.crank_radius)
     for cw in spec.counterweights:
         vol += 0.5 * cw.angle * (cw.outer_radius**2 - cw.inner_radius**2) * cw.thickness
-    n = _RHO * vol / size_max**3
+    n = TETS_PER_H3 * vol / size_max**3
     for r0, rf in ((rp, g.crankpin_fillet), (rj, g.journal_fillet)):
         if rf > 0:
             area = 0.5 * math.pi * rf * 2 * math.pi * (r0 + rf)
-            n += 2 * _layers(area, _SAFETY * rf / opt.fillet_divisions, size_max, opt.grading)
+            n += 2 * graded_layer_elements(area, _SAFETY * rf / opt.fillet_divisions, size_max, opt.grading)
     for r0, length in ((rp, g.crankpin_length), (rj, 2 * g.journal_length)):
-        n += _layers(2 * math.pi * r0 * length, 2 * math.pi * r0 / 12, size_max, opt.grading)
-    if getattr(g, "oil_bore", None) is not None:
+        n += graded_layer_elements(2 * math.pi * r0 * length, 2 * math.pi * r0 / 12, size_max, opt.grading)
+    if g.oil_bore is not None:
         db = g.oil_bore.diameter
-        n += _layers(math.pi * db * 2 * rp, math.pi * db / (2 * opt.bore_divisions), size_max, opt.grading)
+        n += graded_layer_elements(
+            math.pi * db * 2 * rp, math.pi * db / (2 * opt.bore_divisions), size_max, opt.grading
+        )
     return int(math.ceil(n))
 
 
-def check_element_budget(g, spec, opt, max_elements: int | None = None) -> int:
+def check_element_budget(g: CrankGeometry, spec: ThrowSpec, opt, max_elements: int | None = None) -> int:
     """Refuse (``GeometryError`` naming the geometry file) a throw whose estimated
     element count exceeds ``max_elements`` (default ``MAX_ELEMENTS``); return the
     estimate.  The message names the smallest fillet, the usual cause."""
@@ -103,7 +108,7 @@ def check_element_budget(g, spec, opt, max_elements: int | None = None) -> int:
             f"the mesh would have about {n:.3g} elements, more than the limit {limit:.3g} "
             "(a fillet radius or mesh size far too small?); raise it with --max-elements or "
             "[mesh] max_elements in the load case (docs/limits.md)",
-            file=getattr(g, "file", None) or None,
+            file=g.file or None,
             key=key,
         )
     return n

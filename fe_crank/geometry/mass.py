@@ -42,7 +42,7 @@ class MassProperties:
         return 0.0 if p is None else p.unbalance
 
 
-def _combine(items: list[tuple[float, np.ndarray, np.ndarray]], rho: float) -> PartProperties:
+def combine_volumes(items: list[tuple[float, np.ndarray, np.ndarray]], rho: float) -> PartProperties:
     """Sum volumes (V, centroid, inertia about own centroid per unit density)."""
     V = sum(v for v, _, _ in items)
     c: np.ndarray = sum((v * cc for v, cc, _ in items), np.zeros(3)) / V
@@ -77,8 +77,8 @@ def model_mass_properties(volumes: dict[str, list[int]], density: float, throw: 
                 np.array(occ.getCenterOfMass(3, v)),
                 np.array(occ.getMatrixOfInertia(3, v)).reshape(3, 3),
             )
-    parts = {name: _combine([per_volume[v] for v in tags], density) for name, tags in volumes.items()}
-    total = _combine(list(per_volume.values()), density)
+    parts = {name: combine_volumes([per_volume[v] for v in tags], density) for name, tags in volumes.items()}
+    total = combine_volumes(list(per_volume.values()), density)
     return MassProperties(throw=throw, density=density, total=total, parts=parts)
 
 

@@ -36,7 +36,15 @@ from fe_crank.geometry.engine_fit import (
     for_engine_throws,
     pitch_of,
 )
-from fe_crank.geometry.spec import BearingInput, BearingLaw, CrankGeometry, PlainCylinder, ShaftSpec, ThrowSpec
+from fe_crank.geometry.spec import (
+    BearingInput,
+    BearingLaw,
+    CrankGeometry,
+    PlainCylinder,
+    PowerTakeoff,
+    ShaftSpec,
+    ThrowSpec,
+)
 
 
 @dataclass(frozen=True)
@@ -80,7 +88,7 @@ class ShaftLayout:
     sense: int  # +1 / -1, the shaft's direction of rotation (engine)
     nose: PlainCylinder | None
     flange: PlainCylinder | None
-    power_takeoff: str  # "rear" | "front"
+    power_takeoff: PowerTakeoff
     geometry_file: str
     engine_file: str
 

@@ -27,6 +27,10 @@ a stress singularity: the elastic stress grows without bound as the mesh is refi
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Literal
+
+#: the end of the shaft where the power is taken off
+PowerTakeoff = Literal["rear", "front"]
 
 from fe_crank.geometry.oil import FilmSpec
 
@@ -191,7 +195,7 @@ class ShaftSpec:
     bearing_law: BearingLaw = BearingLaw()
     bearings: tuple[BearingInput, ...] | None = None  # None: one at every journal
     thrust_bearing: str | None = None  # None: the bearing nearest the power take-off
-    power_takeoff: str = "rear"  # "rear" (flywheel end) or "front"
+    power_takeoff: PowerTakeoff = "rear"  # "rear" (flywheel end) or "front"
 
 
 @dataclass(frozen=True)

@@ -66,7 +66,7 @@ class ThrowInput(Strict):
     def _radius(self):
         if (self.crank_radius is None) == (self.stroke is None):
             raise ValueError("give exactly one of crank_radius and stroke")
-        r = self.crank_radius if self.crank_radius is not None else self.stroke / 2.0
+        r = self.radius
         if not r > 0:
             raise ValueError(f"crank radius must be positive (got {r} m)")
         if self.rotating_mass < 0:

@@ -13,7 +13,7 @@ from fe_crank.mesh.mirror import mirror_all, swap_side
 from fe_crank.mesh.msh import write_msh
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
 from fe_crank.mesh.planes import mesh_planes
-from fe_crank.mesh.sizing import _set_size_fields
+from fe_crank.mesh.sizing import set_size_fields
 from fe_crank.mesh.types import ThrowMesh
 
 
@@ -27,7 +27,7 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
     with gmsh_session() as gmsh:
         model = add_throw(geometry, spec, cut=planes)
         model = imprint_sectors(gmsh, model, opt.interface_sectors)
-        _set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt, model.volumes)
+        set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt, model.volumes)
         min_quality, straightened = generate(gmsh, spec.name, geometry.name, opt)
         mesh = model_to_skfem()
         if not planes:

@@ -55,7 +55,8 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     return hashlib.sha256(text.encode()).hexdigest()[:20]
 
 
-def _save_npz(path: Path, mesh) -> None:
+def save_npz(path: Path, mesh) -> None:
+    """Write a mesh (nodes, elements, boundaries, subdomains) as the cache's npz file."""
     arrays = {"doflocs": mesh.doflocs, "t": mesh.t}
     for k, v in (mesh.boundaries or {}).items():
         arrays[f"b::{k}"] = v
@@ -75,7 +76,8 @@ def _load_npz(path: Path):
     return mesh.with_boundaries(b).with_subdomains(s)
 
 
-def _stats_to_json(s: MeshStats) -> dict:
+def stats_to_json(s: MeshStats) -> dict:
+    """The mesh statistics as the cache's JSON dictionary."""
     return dataclasses.asdict(s)
 
 

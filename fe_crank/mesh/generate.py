@@ -26,10 +26,10 @@ from pathlib import Path
 import numpy as np
 
 from fe_crank.errors import MeshError
-from fe_crank.mesh.cache import TMP_MARK, _save_npz, _stats_to_json, clean_stale_cache_temps, load_cache_entry
+from fe_crank.mesh.cache import TMP_MARK, clean_stale_cache_temps, load_cache_entry, save_npz, stats_to_json
 from fe_crank.mesh.export import write_vtu
 from fe_crank.mesh.options import MeshOptions
-from fe_crank.mesh.quality import _fillet_max_edge, _jacobian_ratio, _straighten_poor, _tet_tags
+from fe_crank.mesh.quality import fillet_max_edge, jacobian_ratio, straighten_poor, tet_tags
 from fe_crank.mesh.types import MeshStats, ThrowMesh
 
 
@@ -46,7 +46,7 @@ def generate(gmsh, throw_name: str, label: str, opt: MeshOptions) -> tuple[float
     gmsh.option.setNumber("Mesh.ElementOrder", 1)
     try:
         gmsh.model.mesh.generate(3)
-        tags = _tet_tags(gmsh)
+        tags = tet_tags(gmsh)
         if tags.size == 0:
             raise MeshError(f"gmsh produced no tetrahedra for throw {throw_name!r}")
         q = np.asarray(gmsh.model.mesh.getElementQualities(tags, "minSICN"))
@@ -63,7 +63,7 @@ def generate(gmsh, throw_name: str, label: str, opt: MeshOptions) -> tuple[float
         raise
     except Exception as exc:  # gmsh raises bare Exception
         raise MeshError(f"gmsh could not mesh throw {throw_name!r} of {label!r}: {exc}") from None
-    straightened = _straighten_poor(gmsh, throw_name)
+    straightened = straighten_poor(gmsh, throw_name)
     return min_quality, straightened
 
 
@@ -84,7 +84,7 @@ def finish(
     missing += [n for n in sorted(expected[1]) if n not in mesh.subdomains or mesh.subdomains[n].size == 0]
     if missing:
         raise MeshError(f"named groups missing or empty after meshing: {missing}")
-    ratio = _jacobian_ratio(mesh)
+    ratio = jacobian_ratio(mesh)
     stats = MeshStats(
         nodes=int(mesh.doflocs.shape[1]),
         elements=int(mesh.nelements),
@@ -92,7 +92,7 @@ def finish(
         min_quality=min_quality,
         straightened=straightened,
         min_jacobian_ratio=ratio,
-        fillet_max_edge=_fillet_max_edge(mesh, fillet_radii),
+        fillet_max_edge=fillet_max_edge(mesh, fillet_radii),
         fillet_radii=dict(fillet_radii),
         build_seconds=time.perf_counter() - t0,
         symmetry=tuple(planes),
@@ -149,9 +149,9 @@ def through_cache(
     tmp = Path(tempfile.mkdtemp(prefix=f".{key}{TMP_MARK}{os.getpid()}-", dir=root))
     try:
         mesh, stats = build(tmp)
-        _save_npz(tmp / "mesh.npz", mesh)
+        save_npz(tmp / "mesh.npz", mesh)
         write_vtu(tmp / "throw.vtu", mesh)
-        (tmp / "stats.json").write_text(json.dumps(_stats_to_json(stats), indent=1))
+        (tmp / "stats.json").write_text(json.dumps(stats_to_json(stats), indent=1))
         (tmp / "complete").write_text(key)
         try:
             os.rename(tmp, final)

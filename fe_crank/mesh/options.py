@@ -13,7 +13,9 @@ from fe_crank.errors import MeshError
 
 CACHE_FORMAT = 3  # 2: Netgen optimisation and straightening of poorly curved elements (minSJ <= 0.1); 3: mirrored meshes of symmetric throws, `symmetry` in stats
 DEFAULT_CACHE_DIR = Path(".cache") / "meshes"
-_SAFETY = 0.65  # target edge = SAFETY * r / fillet_divisions: gmsh's surface edges exceed the target by up to ~40 %
+FILLET_SAFETY = (
+    0.65  # target edge = SAFETY * r / fillet_divisions: gmsh's surface edges exceed the target by up to ~40 %
+)
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,8 @@ import numpy as np
 from fe_crank.errors import MeshError
 
 
-def _fillet_max_edge(mesh, names) -> dict[str, float]:
+def fillet_max_edge(mesh, names) -> dict[str, float]:
+    """Longest element edge on each named fillet boundary, m."""
     out = {}
     p = mesh.p
     for name in names:
@@ -18,7 +19,8 @@ def _fillet_max_edge(mesh, names) -> dict[str, float]:
     return out
 
 
-def _jacobian_ratio(mesh) -> float:
+def jacobian_ratio(mesh) -> float:
+    """Smallest corner-Jacobian ratio of the mesh's elements (1 for straight-sided)."""
     from fe_crank.gmsh_io import corner_jacobians
 
     J = corner_jacobians(mesh)
@@ -28,7 +30,8 @@ def _jacobian_ratio(mesh) -> float:
     return float(np.min(J.min(axis=1) / J.max(axis=1)))
 
 
-def _tet_tags(gmsh) -> np.ndarray:
+def tet_tags(gmsh) -> np.ndarray:
+    """gmsh tags of the current model's tetrahedra."""
     _, etags, _ = gmsh.model.mesh.getElements(3)
     return np.concatenate([np.asarray(t, dtype=np.int64) for t in etags]) if etags else np.zeros(0, dtype=np.int64)
 
@@ -38,7 +41,7 @@ def _tet_tags(gmsh) -> np.ndarray:
 STRAIGHTEN_BELOW = 0.1
 
 
-def _straighten_poor(gmsh, throw_name: str, threshold: float = STRAIGHTEN_BELOW, passes: int = 4) -> int:
+def straighten_poor(gmsh, throw_name: str, threshold: float = STRAIGHTEN_BELOW, passes: int = 4) -> int:
     """Move the mid-edge nodes of poorly curved quadratic tetrahedra to their edge midpoints.
 
     Placing the mid-edge nodes of a curved element on the geometry can fold a flat
@@ -55,7 +58,7 @@ def _straighten_poor(gmsh, throw_name: str, threshold: float = STRAIGHTEN_BELOW,
     """
     changed: set[int] = set()
     for _ in range(passes):
-        tags = _tet_tags(gmsh)
+        tags = tet_tags(gmsh)
         q = np.asarray(gmsh.model.mesh.getElementQualities(tags, "minSJ"))
         bad = {int(b) for b in tags[q <= threshold]} - changed  # straight slivers stay as they are
         if not bad:
@@ -69,7 +72,7 @@ def _straighten_poor(gmsh, throw_name: str, threshold: float = STRAIGHTEN_BELOW,
             for m, (a, b) in zip(nodes[4:], ((0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1))):
                 mid = 0.5 * (xyz[nodes[a]] + xyz[nodes[b]])
                 gmsh.model.mesh.setNode(m, mid.tolist(), [])
-    tags = _tet_tags(gmsh)
+    tags = tet_tags(gmsh)
     q = np.asarray(gmsh.model.mesh.getElementQualities(tags, "minSICN"))
     if np.any(q <= 0.0):
         raise MeshError(

@@ -24,6 +24,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -38,6 +39,9 @@ from fe_crank.mesh.interface import MAX_SECTORS, sectors_for
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
 from fe_crank.mesh.types import ThrowMesh
 
+#: a piece of the shaft: a throw, or an end (nose, flange and the end journals)
+PieceKind = Literal["throw", "end"]
+
 #: nodes closer than this fraction of the journal radius are the same node of two pieces
 JOIN_TOL = 1e-9
 
@@ -45,7 +49,7 @@ JOIN_TOL = 1e-9
 @dataclass(frozen=True)
 class Piece:
     name: str  # "throw 1", "front end", "rear end"
-    kind: str  # "throw" | "end"
+    kind: PieceKind
     mesh: str  # key into ShaftMesh.meshes
     angle: float  # rad, local frame -> shaft frame, from +y towards +x
     z: float  # m, local origin on the axis

@@ -12,7 +12,7 @@ import numpy as np
 
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.mesh.fields import apply_fields, bore_field, surface_field, torus_distance, torus_field, web_field
-from fe_crank.mesh.options import _SAFETY, MeshOptions
+from fe_crank.mesh.options import FILLET_SAFETY, MeshOptions
 
 
 def _fillet_distance(g: CrankGeometry, name: str) -> str:
@@ -38,7 +38,7 @@ def _fillet_distance(g: CrankGeometry, name: str) -> str:
 
 #: target edge on the counterweight fillets = _CW_SAFETY r / fillet_divisions (the largest
 #: edge on them is not enforced: about 1 mm on a 3 mm fillet at targets r/2 ... r/6)
-_CW_SAFETY = _SAFETY
+_CW_SAFETY = FILLET_SAFETY
 
 
 def counterweight_fillet_radius(g: CrankGeometry, web: int) -> float:
@@ -48,7 +48,7 @@ def counterweight_fillet_radius(g: CrankGeometry, web: int) -> float:
     return min(radii)
 
 
-def _set_size_fields(
+def set_size_fields(
     gmsh,
     geometry: CrankGeometry,
     surfaces: dict[str, list[int]],
@@ -62,7 +62,7 @@ def _set_size_fields(
     if opt.web_divisions is not None and webs:  # UR M53 App. III 2.2: elements across the web
         fields.append(web_field(gmsh, webs, geometry.web_thickness, opt.web_divisions, size_max))
     for name, r in fillet_radii.items():
-        h = _SAFETY * r / opt.fillet_divisions
+        h = FILLET_SAFETY * r / opt.fillet_divisions
         fields.append(torus_field(gmsh, _fillet_distance(geometry, name), h, size_max, opt.grading))
     if "oil_bore" in surfaces and geometry.oil_bore is not None:
         h = np.pi * geometry.oil_bore.diameter / (2 * opt.bore_divisions)

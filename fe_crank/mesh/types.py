@@ -16,7 +16,7 @@ class MeshStats:
     elements: int
     p2_dofs: int  # 3 displacement components per node of the quadratic mesh
     min_quality: float  # gmsh minSICN of the linear tetrahedra (1 ideal, <= 0 inverted)
-    straightened: int  # quadratic elements whose mid-edge nodes were moved to the midpoints (see _straighten_poor)
+    straightened: int  # quadratic elements whose mid-edge nodes were moved to the midpoints (see straighten_poor)
     min_jacobian_ratio: float  # min/max of the quadratic map's Jacobian over each element, worst element
     fillet_max_edge: dict[str, float]  # m, longest triangle edge on each fillet surface
     fillet_radii: dict[str, float]

@@ -26,6 +26,7 @@ import numpy as np
 
 from fe_crank.errors import InputError
 from fe_crank.geometry.mass import ThrowSolids, throw_solids
+from fe_crank.io.material import Material
 from fe_crank.io.torsion import TorsionSettings
 from fe_crank.mechanism.kinematics import piston_motion
 from fe_crank.torsion.lumped import lumped_model
@@ -55,8 +56,8 @@ def reciprocating_inertia(cylinder, crank_radius: float, samples: int = 3600) ->
     return float(m_rot * crank_radius**2 + m_j * np.mean(v**2))
 
 
-def shear_modulus(material) -> float:
-    if material is None or getattr(material, "youngs_modulus", None) is None:
+def shear_modulus(material: Material | None) -> float:
+    if material is None:
         raise InputError("torsional analysis needs the material's Young's modulus and Poisson ratio", key="material")
     return material.youngs_modulus / (2.0 * (1.0 + material.poisson_ratio))
 

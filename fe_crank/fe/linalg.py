@@ -1,4 +1,5 @@
-"""Factorise (or precondition) a stiffness matrix once; solve many load cases against it.
+"""The linear algebra of the FE stage: factorise (or precondition) a stiffness matrix once,
+solve many load cases against it.
 
 The method (``fe.solver_choice``: MKL PARDISO in or out of core, CHOLMOD, AMG-CG, SuperLU)
 is resolved by :func:`~fe_crank.fe.solver_choice.choose_method`; a fallback of ``auto`` is
@@ -6,12 +7,34 @@ logged as a warning (once per process) and recorded in ``Factorisation.note``.
 
 Every solution is checked: finite, and relative residual ||K x - b|| / ||b|| below
 ``residual_tol``; otherwise :class:`~fe_crank.errors.SolverError`.
+
+**MKL PARDISO's phases.**  Its factorisation runs as its two phases, so that each is timed
+(and the ordering reused): phase 11 is the analysis (fill-reducing reordering, METIS
+nested dissection by default, and the symbolic factorisation), phase 22 the numerical
+factorisation; together they are phase 12, what ``PyPardisoSolver.factorize`` runs (Intel
+oneMKL reference, ``pardiso`` phase).
+
+**Out of core** (``[fe] solver = "pardiso_ooc"``, and ``auto`` above
+``solver_choice.OOC_MIN_DOF`` unknowns): the factor is kept in files when it does not fit the
+in-core budget.  MKL takes its out-of-core settings from environment variables only
+(``MKL_PARDISO_OOC_PATH``, ``MKL_PARDISO_OOC_MAX_CORE_SIZE``, ``MKL_PARDISO_OOC_KEEP_FILE``;
+Intel oneMKL reference, "PARDISO OOC"), so :func:`out_of_core` is the one place where the
+package sets process environment, and only when the out-of-core solver is chosen.
+
+**One handle for the components of a symmetric throw** (``fe.symmetric``): every component
+matrix has the pattern of the part's stiffness, so one handle holds all their factors
+(``maxfct`` = 2^k): the analysis (phase 11) runs once and each component only needs its
+numerical factorisation (phase 22) (:class:`SharedAnalysis`, :func:`factorise_shared`; Intel
+oneMKL reference, ``pardiso`` parameters ``maxfct``/``mnum``).
 """
 
 from __future__ import annotations
 
+import copy
 import logging
+import os
 import shutil
+import tempfile
 import time
 import warnings
 import weakref
@@ -23,8 +46,6 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from fe_crank.errors import SolverError
-from fe_crank.fe.pardiso_ooc import out_of_core
-from fe_crank.fe.pardiso_phases import pardiso_factorize
 from fe_crank.fe.solver_choice import DESCRIPTIONS, choose_method, fallback_note
 
 log = logging.getLogger(__name__)
@@ -268,3 +289,192 @@ def factorise(
         fac._near_null = B
     fac.setup_time = time.perf_counter() - t0
     return fac
+
+
+# -- MKL PARDISO's phases (module docstring) --
+
+
+def pardiso_factorize(solver, A: sp.csr_matrix) -> float:
+    """``PyPardisoSolver.factorize`` as its two phases, 11 (analysis: fill-reducing ordering
+    and symbolic factorisation) then 22 (numerical factorisation), the same work as its
+    phase 12; returns the seconds of the analysis."""
+    solver._check_A(A)
+    solver.factorized_A = solver._hash_csr_matrix(A)  # ``solve`` then reuses the factor (phase 33)
+    b = np.zeros((A.shape[0], 1))
+    t0 = time.perf_counter()
+    solver.set_phase(11)
+    solver._call_pardiso(A, b)
+    t_analysis = time.perf_counter() - t0
+    solver.set_phase(22)
+    solver._call_pardiso(A, b)
+    return t_analysis
+
+
+class SharedAnalysis:
+    """One MKL PARDISO handle for up to ``maxfct`` matrices of one sparsity pattern: the
+    analysis (phase 11) runs once, each matrix is factorised by phase 22 under its own
+    number ``mnum`` and solved by phase 33 with it (PARDISO's ``maxfct``/``mnum``: "maximum
+    number of factors with identical sparsity structure that must be kept in memory at
+    the same time"; Intel oneMKL reference, ``pardiso`` parameters).
+
+    ``solver``: a ``pypardiso.PyPardisoSolver`` whose handle ``pt`` is unused, with its
+    ``iparm`` set; ``A``: the common pattern (CSR upper triangle, sorted).
+    """
+
+    def __init__(self, solver, A: sp.csr_matrix, maxfct: int):
+        self.solver = solver
+        self.maxfct = int(maxfct)
+        self.n = A.shape[0]
+        self.ia = A.indptr.astype(np.int32) + 1  # 1-based (iparm(35) = 0)
+        self.ja = A.indices.astype(np.int32) + 1
+        self.live: set[int] = set()
+        t0 = time.perf_counter()
+        self.call(1, 11, A.data, np.zeros((self.n, 1)))
+        self.analysis_time = time.perf_counter() - t0
+
+    def call(self, mnum: int, phase: int, data: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """One call of ``pardiso`` on matrix ``mnum`` (1..maxfct) with values ``data``."""
+        import ctypes
+
+        from pypardiso.pardiso_wrapper import PyPardisoError
+
+        s = self.solver
+        b = np.asfortranarray(b, dtype=float)
+        x = np.zeros_like(b)
+        err = ctypes.c_int32(0)
+        i32, f64 = ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_double)
+        data = np.ascontiguousarray(data, dtype=float)
+        s._mkl_pardiso(
+            s.pt.ctypes.data_as(ctypes.POINTER(s._pt_type[0])),
+            ctypes.byref(ctypes.c_int32(self.maxfct)),
+            ctypes.byref(ctypes.c_int32(mnum)),
+            ctypes.byref(ctypes.c_int32(s.mtype)),
+            ctypes.byref(ctypes.c_int32(phase)),
+            ctypes.byref(ctypes.c_int32(self.n)),
+            data.ctypes.data_as(f64),
+            self.ia.ctypes.data_as(i32),
+            self.ja.ctypes.data_as(i32),
+            s.perm.ctypes.data_as(i32),
+            ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
+            s.iparm.ctypes.data_as(i32),
+            ctypes.byref(ctypes.c_int32(0)),
+            b.ctypes.data_as(f64),
+            x.ctypes.data_as(f64),
+            ctypes.byref(err),
+        )
+        if err.value != 0:
+            raise PyPardisoError(err.value)
+        return np.ascontiguousarray(x)
+
+    def factor(self, mnum: int, A: sp.csr_matrix) -> SharedMember:
+        """Phase 22 of matrix ``mnum`` (values of ``A``, the common pattern)."""
+        if not (np.array_equal(A.indptr + 1, self.ia) and np.array_equal(A.indices + 1, self.ja)):
+            raise ValueError("a matrix of another sparsity pattern cannot share the analysis")
+        self.call(mnum, 22, A.data, np.zeros((self.n, 1)))
+        self.live.add(mnum)
+        return SharedMember(self, mnum)
+
+    def release(self, mnum: int) -> None:
+        """Phase 0 (this factor's memory); phase -1 (everything) with the last one."""
+        if mnum not in self.live:
+            return
+        self.live.discard(mnum)
+        empty = np.zeros(0)
+        self.call(mnum, 0 if self.live else -1, empty, np.zeros((0, 1)))
+
+
+class SharedMember:
+    """What ``Factorisation`` calls on a PARDISO factor (``solve(A, B)``, ``free_memory``)."""
+
+    def __init__(self, shared: SharedAnalysis, mnum: int):
+        self.shared, self.mnum = shared, mnum
+
+    def solve(self, A: sp.csr_matrix, B: np.ndarray) -> np.ndarray:
+        return self.shared.call(self.mnum, 33, A.data, B)
+
+    def free_memory(self, everything: bool = False) -> None:
+        self.shared.release(self.mnum)
+
+
+# -- PARDISO out of core --
+
+#: in-core budget of an out-of-core factorisation, share of the machine's memory
+OOC_CORE_SHARE = 0.6
+
+
+def out_of_core(solver) -> str:
+    """Switch a PyPardisoSolver to MKL PARDISO's out-of-core mode; returns the folder of its
+    factor files.
+
+    MKL reads user iparm values only when iparm(1) = 1 (otherwise it fills in its
+    defaults and ignores the rest), so the defaults of a real SPD matrix are stated
+    (Intel oneMKL reference, ``pardiso`` iparm): iparm(2) = 2 nested dissection (METIS),
+    iparm(10) = 8 pivot perturbation 1e-8 (unused without pivoting), iparm(18) = -1 report
+    the factor's non-zeros, and iparm(60) = 1: in core when the factor fits
+    ``MKL_PARDISO_OOC_MAX_CORE_SIZE`` MB, else out of core.  ``MKL_PARDISO_OOC_PATH`` is a
+    prefix: it must end with a separator to put the files into the folder.
+    """
+    folder = tempfile.mkdtemp(prefix="fe-crank-pardiso-", dir=os.environ.get("FE_CRANK_OOC_DIR") or None)
+    os.environ["MKL_PARDISO_OOC_PATH"] = os.path.join(folder, "")
+    if "MKL_PARDISO_OOC_MAX_CORE_SIZE" not in os.environ:
+        os.environ["MKL_PARDISO_OOC_MAX_CORE_SIZE"] = str(int(OOC_CORE_SHARE * _memory_bytes() / 2**20))
+    os.environ.setdefault("MKL_PARDISO_OOC_KEEP_FILE", "0")  # files deleted when the factor is released
+    solver.iparm[0] = 1
+    solver.iparm[1] = 2
+    solver.iparm[9] = 8
+    solver.iparm[17] = -1
+    solver.iparm[59] = 1
+    return folder
+
+
+def _memory_bytes() -> int:
+    """Physical memory of the machine (bytes)."""
+    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+
+
+# -- the components of a symmetric throw on one PARDISO handle --
+
+#: a loaded PyPardisoSolver to copy (``Any``: pypardiso has no type information)
+_TEMPLATE: dict[str, Any] = {}
+
+
+def pardiso_solver() -> Any:
+    """A fresh PyPardisoSolver (SPD) with MKL's defaults for a real SPD matrix stated (MKL reads
+    user iparm values only with iparm(1) = 1; as :func:`out_of_core`).  Typed ``Any``:
+    pypardiso has no type information."""
+    import pypardiso
+
+    if "solver" not in _TEMPLATE:  # finding and loading mkl_rt takes ~0.6 s: once per process
+        _TEMPLATE["solver"] = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
+    solver = copy.copy(_TEMPLATE["solver"])
+    solver.pt = np.zeros_like(solver.pt)  # a handle of its own
+    solver.iparm = np.zeros_like(solver.iparm)
+    solver.iparm[0] = 1
+    solver.iparm[1] = 2  # METIS nested dissection
+    solver.iparm[9] = 8
+    solver.iparm[17] = -1
+    return solver
+
+
+def factorise_shared(matrices: list[sp.csr_matrix]) -> list[Factorisation]:
+    """The component matrices (one pattern) factorised on one PARDISO handle: one analysis."""
+    from pypardiso.pardiso_wrapper import PyPardisoError
+
+    out = []
+    try:
+        shared = SharedAnalysis(pardiso_solver(), matrices[0], len(matrices))
+        for k, A in enumerate(matrices):
+            t0 = time.perf_counter()
+            member = shared.factor(k + 1, A)
+            fac = Factorisation(
+                matrix=None,
+                method="pardiso",
+                setup_time=time.perf_counter() - t0,
+                analysis_time=shared.analysis_time if k == 0 else 0.0,
+            )
+            fac._impl, fac._upper, fac._diag = member, A, A.diagonal()
+            fac.own_external()
+            out.append(fac)
+    except PyPardisoError as exc:
+        raise SolverError(f"PARDISO factorisation of a symmetry component failed: {exc}") from exc
+    return out
