@@ -29,10 +29,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
+from fe_crank.geometry.oil import FilmSpec
+
 #: the end of the shaft where the power is taken off
 PowerTakeoff = Literal["rear", "front"]
-
-from fe_crank.geometry.oil import FilmSpec
 
 WEB_OUTLINES = ("stadium", "pear")
 
