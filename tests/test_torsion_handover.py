@@ -12,6 +12,7 @@ import pytest
 from fe_crank.io.engine import load_engine
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
+from fe_crank.mechanism.torques import cylinder_torques
 from fe_crank.torsion import analyse_torsion, with_vibratory_torque
 from fe_crank.torsion.handover import ALL_ORDERS, journal_torques, segment_histories
 
@@ -30,7 +31,9 @@ def inline6_genset():
 @pytest.fixture(scope="module", params=["inline-4 genset", "inline-6 genset"])
 def handed(request):
     lc = load_loadcase(GENSET) if request.param == "inline-4 genset" else inline6_genset()
-    res = analyse_torsion(lc, inertias={t.name: 0.012 for t in lc.engine.throws})
+    res = analyse_torsion(
+        lc, cylinder_torques(lc.engine, lc.operating), inertias={t.name: 0.012 for t in lc.engine.throws}
+    )
     dyn = dynamics.analyse(lc.engine, lc.operating)
     return lc, res, dyn, with_vibratory_torque(dyn, res)
 
@@ -77,7 +80,9 @@ def test_mixing_speeds_was_below_m_tn_on_the_inline_6():
     governing speed, falls below the largest M_TN on some journal of the inline-6 set;
     the consistent synthesis does not (the test above)."""
     lc = inline6_genset()
-    res = analyse_torsion(lc, inertias={t.name: 0.012 for t in lc.engine.throws})
+    res = analyse_torsion(
+        lc, cylinder_torques(lc.engine, lc.operating), inertias={t.name: 0.012 for t in lc.engine.throws}
+    )
     dyn = dynamics.analyse(lc.engine, lc.operating)
     worst = 1.0
     for throw, tl in dyn.throws.items():
