@@ -1,5 +1,6 @@
-"""The torsional forced response with a misfiring cylinder (IACS UR M53 2.2.2: the
-vibratory torque is to be considered with misfiring).
+"""The torsional forced response with a misfiring cylinder: each cylinder motored in
+turn, judged against the continuous-operation limits (``fe_crank.mechanism.misfire.READING``,
+the tool's reading, docs/mechanism.md).
 
 The misfiring cylinder's gas torque is that of its motored pressure (or zero gauge
 pressure where the gas data give no motored curve, ``fe_crank.mechanism.misfire.motored_gas``);
