@@ -214,9 +214,12 @@ def _variant(tmp_path: Path, case: str, old: str, new: str) -> Path:
 
 def test_a_sweep_speed_outside_the_torsional_range_is_refused(tmp_path):
     p = _variant(
-        tmp_path, "inline4_genset_torsion.toml", "[operating]\n", '[operating]\nspeeds = ["600 rpm", "3000 rpm"]\n'
+        tmp_path,
+        "inline4_genset_torsion.toml",
+        'speed_range = ["800 rpm", "3600 rpm"]',
+        'speed_range = ["1000 rpm", "3600 rpm"]',
     )
-    with pytest.raises(InputError, match="600 rpm lies outside the speed range") as err:
+    with pytest.raises(InputError, match="800 rpm lies outside the speed range") as err:
         load_loadcase(p)
     assert err.value.file == str(p) and err.value.key == "torsion.speed_range"
 

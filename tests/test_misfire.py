@@ -67,8 +67,11 @@ def test_bad_misfire_is_refused_with_file_and_key(tmp_path, capsys, value, key, 
 
 
 def test_misfire_without_gas_pressure_is_refused(tmp_path):
-    """engines/inline4.toml has no gas pressure: nothing fires, so nothing can misfire."""
-    p = variant(tmp_path, "inline4_rated.toml", "[operating]\n", '[operating]\nmisfire = "each"\n')
+    """engines/inline4.toml has no gas pressure: without the load case's full-load curve
+    nothing fires, so nothing can misfire."""
+    text = (ROOT / "loadcases" / "inline4_rated.toml").read_text()
+    curve = text[text.index("speed_range = ") : text.index("[material]")]
+    p = variant(tmp_path, "inline4_rated.toml", curve, 'misfire = "each"\n\n')
     with pytest.raises(InputError, match="needs the engine's gas pressure") as err:
         load_loadcase(p)
     assert err.value.key == "operating.misfire"

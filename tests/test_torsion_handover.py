@@ -12,6 +12,7 @@ import pytest
 from fe_crank.io.engine import load_engine
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
+from fe_crank.mechanism.full_load import dynamics_at
 from fe_crank.mechanism.torques import cylinder_torques
 from fe_crank.torsion import analyse_torsion, with_vibratory_torque
 from fe_crank.torsion.handover import ALL_ORDERS, journal_torques, segment_histories
@@ -68,7 +69,7 @@ def test_each_history_is_one_synthesis_at_one_speed(handed):
     w = float(res.response.speeds[s])
     syn, full = segment_histories(res, s)
     quasi = full - (syn - res.quasi_static(s))
-    dyn = dynamics.analyse(lc.engine, dataclasses.replace(lc.operating, speed=w))
+    dyn = dynamics_at(lc.engine, lc.operating, w)  # that speed's full-load diagram
     for throw, tl in dyn.throws.items():
         rear = res.journal_segments(throw)[1]
         scale = np.abs(tl.torque_rear).max()

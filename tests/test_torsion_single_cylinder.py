@@ -49,7 +49,7 @@ def test_single_cylinder_vibratory_torque_is_the_two_mass_closed_form():
     w_star2 = K * (1 + 1j * ETA) * (J1 + J2) / (J1 * J2)
     # in range: omega* / n for n = 3.5, 4, 4.5 ... (162 Hz): resonances crossed
     assert any(r.in_range for r in res.resonances)
-    for rpm in (800.0, 1500.0, 2430.0, 2800.0, 3000.0):
+    for rpm in (800.0, 1500.0, 2430.0, 2600.0, 2800.0):
         s = res.index(rpm * np.pi / 30)
         w = float(res.response.speeds[s])
         torque = dynamics.analyse(lc.engine, model.OperatingPoint(w)).cylinders["1"].torque
