@@ -178,6 +178,9 @@ def test_misfire_is_part_of_each_speeds_worst_case(swept):
             )
         assert c.per_speed[i].value == pytest.approx(min(values), rel=1e-9)
         assert ("misfiring" in c.per_speed[i].location) == (values[1] < values[0])
+    # the notes say what the misfire states are: what the tool does, not a rule's clause
+    (sweep,) = [n.text for n in out.assessment.notes if n.text.startswith("full-load curve")]
+    assert "1 misfire case(s) (each cylinder motored in turn, judged against the continuous-operation limits)" in sweep
 
 
 def test_m53_with_the_quasi_static_torque_is_marked_not_conform(tmp_path):
