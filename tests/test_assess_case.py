@@ -174,7 +174,7 @@ def test_assess_case_verdicts_and_json(tmp_path, solved):
 
 def test_criterion_that_cannot_be_evaluated_is_an_error(tmp_path, solved):
     with pytest.raises(InputError) as e:
-        _run(tmp_path, solved, "min_m53_acceptability = 1.15")
+        _run(tmp_path, solved, "min_m53_acceptability = 1.15\nm53_quasi_static_torque = true")
     assert e.value.key == "criteria.min_m53_acceptability" and "cannot be evaluated" in str(e.value)
 
 
@@ -184,7 +184,10 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
 
     p = tmp_path / "c.toml"
     p.write_text(
-        CASE.format(criteria="min_m53_acceptability = 1.15\nmax_unbalance_error = 0.05\nmax_bolt_utilisation = 0.8")
+        CASE.format(
+            criteria="min_m53_acceptability = 1.15\nm53_quasi_static_torque = true\n"
+            "max_unbalance_error = 0.05\nmax_bolt_utilisation = 0.8"
+        )
     )
     lc = load_loadcase(p)
     mesh, units = solved

@@ -115,6 +115,7 @@ def test_loadcase_with_material_and_criteria(tmp_path):
         [criteria]
         min_static_safety = 1.5
         min_m53_acceptability = 1.15
+        m53_quasi_static_torque = true
         """,
     )
     lc = load_loadcase(p)

@@ -129,7 +129,7 @@ def drawn(tmp_path_factory):
             tmp,
             "recessed.step",
             cad='density = "7850 kg/m^3"\npin_recess = "0.8 mm"\njournal_recess = "0.3 mm"',
-            criteria="min_static_safety = 1.5\nmin_m53_acceptability = 1.15",
+            criteria="min_static_safety = 1.5\nmin_m53_acceptability = 1.15\nm53_quasi_static_torque = true",
             name="recessed.toml",
         ),
     )

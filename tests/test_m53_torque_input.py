@@ -1,12 +1,19 @@
-"""UR M53 needs its torque: the M53 criterion on a multi-cylinder engine needs the
-torsional stage, or an explicit acceptance of the quasi-static journal torque."""
+"""UR M53 needs its torque: the M53 criterion on every engine, one cylinder included,
+needs the torsional stage, or an explicit acceptance of the quasi-static journal torque
+(then said on the criterion's verdict line)."""
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import pytest
 
+from fe_crank.assess.criteria import evaluate_criteria
+from fe_crank.assess.m53 import M53Fillet
+from fe_crank.assess.m53_basis import m53_basis
+from fe_crank.assess.qualifiers import criterion_qualifiers
+from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.cli import main
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
@@ -44,9 +51,40 @@ def test_m53_on_a_multi_cylinder_engine_without_torsion_is_refused(tmp_path, cap
     assert "Traceback" not in capsys.readouterr().err
 
 
-def test_single_cylinder_needs_no_torsional_stage():
+def test_single_cylinder_without_its_train_is_refused(tmp_path, capsys):
+    """UR M53 on every engine, one cylinder included: without the [torsion] section the
+    single-cylinder case is refused before any work, naming the M53 criterion."""
+    text = (ROOT / "loadcases" / "single_cylinder.toml").read_text()
+    train = text[text.index("\n# The crank train: ASSUMED") :]
+    p = variant(tmp_path, "single_cylinder.toml", train, "\n")
+    with pytest.raises(InputError, match="torsional stress of every engine \\(this one has 1 cylinder\\)") as err:
+        load_loadcase(p)
+    assert err.value.file == str(p) and err.value.key == "criteria.min_m53_acceptability"
+    assert main(["validate", str(p)]) == 2
+    assert "Traceback" not in capsys.readouterr().err
+
+
+def test_single_cylinder_with_the_quasi_static_torque_accepted_says_so(tmp_path):
+    """The statement accepts the case; the M53 criterion's own verdict line (its location,
+    as results.json, the report and JUnit carry it) then says it is not UR M53-conform."""
+    text = (ROOT / "loadcases" / "single_cylinder.toml").read_text()
+    train = text[text.index("\n# The crank train: ASSUMED") :]
+    p = variant(tmp_path, "single_cylinder.toml", train, "\n")
+    p.write_text(p.read_text().replace("[criteria]\n", f"[criteria]\n{FLAG}\n", 1))
+    lc = load_loadcase(p)
+    assert lc.torsion is None and lc.criteria.m53_quasi_static_torque
+    words = criterion_qualifiers(m53_basis(lc.engine, lc.material, None), lc.criteria, torsion=False)
+    fillet = M53Fillet("pin", "empirical", 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.88)
+    m53_only = dataclasses.replace(lc.criteria, limits=(lc.criteria.limit("m53_acceptability"),))
+    (m,) = evaluate_criteria(m53_only, (ThrowAssessment("1", (), (fillet,)),), qualifiers=words)
+    assert m.location == "throw 1, pin fillet (empirical); not UR M53-conform (quasi-static torque)"
+    assert m.passed and "not UR M53-conform" in m.description
+
+
+def test_shipped_single_cylinder_case_has_its_train():
     lc = load_loadcase(ROOT / "loadcases" / "single_cylinder.toml")
-    assert lc.criteria.limit("m53_acceptability") is not None and not lc.criteria.m53_quasi_static_torque
+    assert lc.torsion is not None and not lc.criteria.m53_quasi_static_torque
+    assert [d.name for d in lc.torsion.driven] == ["reducer", "generator"]
 
 
 def test_the_flag_with_a_torsional_stage_is_refused(tmp_path):

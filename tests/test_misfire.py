@@ -15,6 +15,7 @@ from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
 from fe_crank.mechanism.misfire import ZERO_GAUGE, misfire_cycles
+from fe_crank.mechanism.torques import engine_torques
 from fe_crank.torsion.misfire import analyse_misfire
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -66,8 +67,11 @@ def test_bad_misfire_is_refused_with_file_and_key(tmp_path, capsys, value, key, 
 
 
 def test_misfire_without_gas_pressure_is_refused(tmp_path):
-    """engines/inline4.toml has no gas pressure: nothing fires, so nothing can misfire."""
-    p = variant(tmp_path, "inline4_rated.toml", "[operating]\n", '[operating]\nmisfire = "each"\n')
+    """engines/inline4.toml has no gas pressure: without the load case's full-load curve
+    nothing fires, so nothing can misfire."""
+    text = (ROOT / "loadcases" / "inline4_rated.toml").read_text()
+    curve = text[text.index("speed_range = ") : text.index("[material]")]
+    p = variant(tmp_path, "inline4_rated.toml", curve, 'misfire = "each"\n\n')
     with pytest.raises(InputError, match="needs the engine's gas pressure") as err:
         load_loadcase(p)
     assert err.value.key == "operating.misfire"
@@ -131,7 +135,13 @@ def test_rigid_limit_of_the_misfire_synthesis_is_the_misfire_dynamics(genset_mis
         assess_speed="operating",
         throw_stiffness="fe",
     )
-    mt = analyse_misfire(lc, settings=rigid, inertias=dict.fromkeys("1234", 1e-9), fe_stiffness=1e12)
+    mt = analyse_misfire(
+        lc,
+        engine_torques(lc.engine, lc.operating),
+        settings=rigid,
+        inertias=dict.fromkeys("1234", 1e-9),
+        fe_stiffness=1e12,
+    )
     (case,) = mt.cases
     res = case.result
     s = res.index(lc.operating.speed)
@@ -154,7 +164,7 @@ def test_misfire_can_govern_a_journal_and_says_which_cylinder_and_speed(tmp_path
     journal is the worst case's, never below the largest M_TN of all cases."""
     p = variant(tmp_path, "inline4_genset_torsion.toml", SPEED, f'{SPEED}misfire = "each"\n')
     lc = load_loadcase(p)
-    mt = analyse_misfire(lc, inertias=dict.fromkeys("1234", 0.012))
+    mt = analyse_misfire(lc, engine_torques(lc.engine, lc.operating), inertias=dict.fromkeys("1234", 0.012))
     assert [c.cylinder for c in mt.cases] == ["1", "2", "3", "4"]
     g = mt.governing("4-flywheel")
     i = mt.firing.model.segment_names.index("4-flywheel")

@@ -12,6 +12,7 @@ from fe_crank import model
 from fe_crank.io.engine import load_engine
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
+from fe_crank.mechanism.torques import cylinder_torques
 from fe_crank.torsion.excitation import cylinder_harmonics, order_phase_sum
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -27,7 +28,7 @@ def test_synthesis_reproduces_the_dynamics_torque(case):
     """All harmonics of the 720-point grid give back T(theta) of fe_crank.mechanism.dynamics to
     round-off (the discrete Fourier pair is exact), at the reference speed."""
     w = case.operating.speed
-    h = cylinder_harmonics(case.engine, w)
+    h = cylinder_harmonics(cylinder_torques(case.engine, model.OperatingPoint(w)))
     res = dynamics.analyse(case.engine, case.operating)
     for name, cf in res.cylinders.items():
         syn = h.synthesise(name, w, res.theta)
@@ -38,7 +39,7 @@ def test_speed_scaling_against_an_independent_dynamics_run(case):
     """T(omega) = T_gas + (omega/omega_0)^2 T_inertia: harmonics taken at 3000 rpm give
     the torque the dynamics stage computes directly at 1300 rpm (exact slider-crank at
     constant speed: inertia forces scale with omega^2)."""
-    h = cylinder_harmonics(case.engine, case.operating.speed)
+    h = cylinder_harmonics(cylinder_torques(case.engine, model.OperatingPoint(case.operating.speed)))
     w2 = 1300 * np.pi / 30
     res = dynamics.analyse(case.engine, model.OperatingPoint(w2))
     for name, cf in res.cylinders.items():
@@ -49,7 +50,7 @@ def test_truncated_synthesis_to_order_12_is_close(case):
     """The UR M53 orders (0.5 .. 12) keep the torque within 5 % of its peak for this
     Wiebe cycle (the steep pressure rise carries content above order 12)."""
     w = case.operating.speed
-    h = cylinder_harmonics(case.engine, w)
+    h = cylinder_harmonics(cylinder_torques(case.engine, model.OperatingPoint(w)))
     res = dynamics.analyse(case.engine, case.operating)
     keep = h.orders[h.orders <= 12]
     cf = res.cylinders["1"]

@@ -17,6 +17,7 @@ from fe_crank import model
 from fe_crank.io.engine import load_engine
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
+from fe_crank.mechanism.torques import cylinder_torques
 from fe_crank.torsion.excitation import cylinder_harmonics, order_phase_sum
 from fe_crank.torsion.forced import forced_response
 from fe_crank.torsion.model import TorsionModel
@@ -94,7 +95,7 @@ def responses():
     out = {}
     for order in ("1-5-3-6-2-4", "1-2-3-6-5-4"):
         e = inline6(order)
-        h = cylinder_harmonics(e, SPEEDS[-1])
+        h = cylinder_harmonics(cylinder_torques(e, model.OperatingPoint(SPEEDS[-1])))
         out[order] = (e, forced_response(chain(), h, SPEEDS, ORDERS))
     return out
 

@@ -14,6 +14,7 @@ from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
+from fe_crank.mechanism.torques import cylinder_torques
 from fe_crank.torsion import analyse_torsion
 from fe_crank.torsion.flow import fe_loads, torque_flow
 
@@ -49,7 +50,7 @@ def test_quasi_static_flow_for_either_end_by_hand(genset):
 
 def test_front_take_off_with_a_torsional_chain_is_refused(genset):
     lc, dyn = genset
-    res = analyse_torsion(lc, inertias=dict.fromkeys("1234", 0.012))
+    res = analyse_torsion(lc, cylinder_torques(lc.engine, lc.operating), inertias=dict.fromkeys("1234", 0.012))
     with pytest.raises(InputError, match="contradicts") as err:
         torque_flow(dyn, lc.engine, reaction="end_1", torsion=res)
     assert err.value.key == "fe.torque_reaction"
@@ -67,7 +68,7 @@ def test_vibration_adds_the_throws_inertia_and_damping_torque(genset):
     throw's synthesised vibration angle (spectral derivative, written here), and
     T_out - T_in = T_own - J alpha - c theta' (the throw mass's equation of motion)."""
     lc, _ = genset
-    res = analyse_torsion(lc, inertias=dict.fromkeys("1234", 0.012))
+    res = analyse_torsion(lc, cylinder_torques(lc.engine, lc.operating), inertias=dict.fromkeys("1234", 0.012))
     s = res.index(2600 * np.pi / 30)
     w = float(res.response.speeds[s])
     dyn = dynamics.analyse(lc.engine, model.OperatingPoint(w))
@@ -107,7 +108,7 @@ def test_fe_throw_carries_the_torsional_rear_journal_torque(tmp_path):
     j_fe = float(units.cases["angular_acceleration"].applied[5])
     j_cad = mass_properties(lc.geometry, lc.geometry.throws[0]).total.inertia_axis
     assert j_fe == pytest.approx(j_cad, rel=0.01)
-    res = analyse_torsion(lc, inertias={"1": 3 * j_fe, "2": 3 * j_fe})
+    res = analyse_torsion(lc, cylinder_torques(lc.engine, lc.operating), inertias={"1": 3 * j_fe, "2": 3 * j_fe})
     s = res.index(3300 * np.pi / 30)
     w = float(res.response.speeds[s])
     dyn = dynamics.analyse(lc.engine, model.OperatingPoint(w))

@@ -12,6 +12,8 @@ import pytest
 from fe_crank.io.engine import load_engine
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
+from fe_crank.mechanism.full_load import dynamics_at
+from fe_crank.mechanism.torques import cylinder_torques
 from fe_crank.torsion import analyse_torsion, with_vibratory_torque
 from fe_crank.torsion.handover import ALL_ORDERS, journal_torques, segment_histories
 
@@ -30,7 +32,9 @@ def inline6_genset():
 @pytest.fixture(scope="module", params=["inline-4 genset", "inline-6 genset"])
 def handed(request):
     lc = load_loadcase(GENSET) if request.param == "inline-4 genset" else inline6_genset()
-    res = analyse_torsion(lc, inertias={t.name: 0.012 for t in lc.engine.throws})
+    res = analyse_torsion(
+        lc, cylinder_torques(lc.engine, lc.operating), inertias={t.name: 0.012 for t in lc.engine.throws}
+    )
     dyn = dynamics.analyse(lc.engine, lc.operating)
     return lc, res, dyn, with_vibratory_torque(dyn, res)
 
@@ -65,7 +69,7 @@ def test_each_history_is_one_synthesis_at_one_speed(handed):
     w = float(res.response.speeds[s])
     syn, full = segment_histories(res, s)
     quasi = full - (syn - res.quasi_static(s))
-    dyn = dynamics.analyse(lc.engine, dataclasses.replace(lc.operating, speed=w))
+    dyn = dynamics_at(lc.engine, lc.operating, w)  # that speed's full-load diagram
     for throw, tl in dyn.throws.items():
         rear = res.journal_segments(throw)[1]
         scale = np.abs(tl.torque_rear).max()
@@ -77,7 +81,9 @@ def test_mixing_speeds_was_below_m_tn_on_the_inline_6():
     governing speed, falls below the largest M_TN on some journal of the inline-6 set;
     the consistent synthesis does not (the test above)."""
     lc = inline6_genset()
-    res = analyse_torsion(lc, inertias={t.name: 0.012 for t in lc.engine.throws})
+    res = analyse_torsion(
+        lc, cylinder_torques(lc.engine, lc.operating), inertias={t.name: 0.012 for t in lc.engine.throws}
+    )
     dyn = dynamics.analyse(lc.engine, lc.operating)
     worst = 1.0
     for throw, tl in dyn.throws.items():

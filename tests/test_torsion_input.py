@@ -101,6 +101,6 @@ def test_cli_exit_2_with_one_message_and_no_traceback(tmp_path, capsys):
 
 
 def test_cli_refuses_a_case_without_torsion_section(tmp_path, capsys):
-    case = ROOT / "loadcases" / "single_cylinder.toml"
+    case = ROOT / "loadcases" / "inline4_rated.toml"
     assert main(["torsion", str(case), "-o", str(tmp_path / "out")]) == 2
     assert "no [torsion] section" in capsys.readouterr().err

@@ -14,6 +14,7 @@ from fe_crank.cli import main
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
+from fe_crank.mechanism.torques import cylinder_torques
 from fe_crank.torsion import analyse_torsion
 from fe_crank.torsion.excitation import CylinderHarmonics
 from fe_crank.torsion.forced import forced_response
@@ -141,7 +142,7 @@ def test_two_station_chain_by_hand(tmp_path):
     (from the 2 x 2 dynamic stiffness); with the mean torque the synthesis over the
     cycle.  T_n from a dynamics run at each speed and an explicit Fourier sum."""
     lc = load_loadcase(write(tmp_path))
-    res = analyse_torsion(lc)
+    res = analyse_torsion(lc, cylinder_torques(lc.engine, lc.operating))
     assert res.model.names == ("crank", "flywheel") and res.model.throw_mass == {"1": 0}
     assert res.modes.elastic_omega[0] == pytest.approx(np.sqrt(K * (J1 + J2) / (J1 * J2)), rel=1e-12)
     assert res.stiffness["used"] == "lumped" and "carter" not in res.stiffness
@@ -204,7 +205,7 @@ def test_cad_model_takes_a_viscous_damper_without_stiffness(tmp_path):
     lc = load_loadcase(p)
     t = lc.torsion
     assert t.damper.stiffness == 0.0 and t.damper.damping == pytest.approx(30.0)
-    res = analyse_torsion(lc, inertias=dict.fromkeys("1234", 0.012))
+    res = analyse_torsion(lc, cylinder_torques(lc.engine, lc.operating), inertias=dict.fromkeys("1234", 0.012))
     assert res.modes.rigid == 2
     assert np.all(np.isfinite(res.half_range)) and res.half_range.max() < 1e4
     p.write_text(text.replace(old, 'damping = "0 N*m*s/rad"'))

@@ -100,9 +100,9 @@ def test_a_foundation_support_is_not_a_sign_off(tmp_path):
 
 
 def test_no_gas_pressure_warns_on_the_fatigue_and_m53_verdicts():
-    """inline4_rated has no pressure table: its dynamics warn case-wide, and the fatigue and
-    M53 criteria carry the warning themselves (and the verdict line names them)."""
-    path = ROOT / "loadcases" / "inline4_rated.toml"
+    """tests/data/small_pass.toml has no pressure table: its dynamics warn case-wide, and the
+    fatigue and M53 criteria carry the warning themselves (and the verdict line names them)."""
+    path = SMALL
     crit = CRITERIA + (_crit("min_m53_acceptability", "m53_acceptability", "throw 1, pin fillet (empirical)"),)
     out = _outputs(path, {}, crit)
     lc = out.loadcase

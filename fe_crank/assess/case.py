@@ -39,6 +39,7 @@ from fe_crank.assess.workers import run_blocks
 from fe_crank.errors import InputError
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.io.material import Material
+from fe_crank.mechanism.misfire import READING
 from fe_crank.notes import ASSUMPTION, WARNING, Note, grouped
 from fe_crank.results import CriterionResult
 from fe_crank.throw_scope import throws_of
@@ -47,7 +48,7 @@ from fe_crank.throw_scope import throws_of
 #: 1.3: provenance.cad, criteria per speed; 1.4: bolted joints (VDI 2230), sigma_add per group;
 #: 1.5: the whole-shaft model (``whole_shaft``: main-bearing loads at every speed, web moments) and
 #: each criterion's value in each model (``criteria_by_model``)
-SCHEMA_VERSION = "1.5"
+SCHEMA_VERSION = "1.6"
 
 
 @dataclass(frozen=True)
@@ -233,7 +234,9 @@ def _sweep_note(loads: AssessedLoads) -> str:
         f"{rpm[0]:.0f}-{rpm[-1]:.0f} rpm, on the same unit stresses; a criterion's value is its worst speed"
     )
     if states > 1:
-        text += f"; at each speed all cylinders firing and {states - 1} misfire case(s), the worst governing"
+        text += (
+            f"; at each speed all cylinders firing and {states - 1} misfire case(s) ({READING}), the worst governing"
+        )
     return text
 
 

@@ -67,6 +67,16 @@ class CounterweightCheck:
     bolt_utilisation: float | None
 
 
+def balance_rate(checks) -> float | None:
+    """The balance rate of ``checks`` (counterweight checks of one throw, or of every throw
+    for the shaft): the built m r over the required m r, each summed over the checks that
+    have a requirement (1.0: as required; None when none has one)."""
+    own = [c for c in checks if c.required_unbalance is not None and c.required_unbalance > 0]
+    if not own:
+        return None
+    return sum(c.built_unbalance for c in own) / sum(c.required_unbalance for c in own)
+
+
 def centrifugal_force(mass: float, radius: float, omega: float) -> float:
     """F = m r omega^2."""
     return mass * radius * omega**2

@@ -4,8 +4,9 @@ state: what the torque flow hands over (``fe_crank.torsion.loads.assessed_loads`
 At every speed of the sweep the engine runs with all cylinders firing and, when the
 load case names misfire cases, with each named cylinder misfiring (motored): each is a
 ``LoadState``, a steady cycle of its own (its stresses and its fatigue amplitude are
-those of that cycle; the worst state at a speed is the speed's value, as IACS UR M53
-2.2.2 reads the misfire: part of the worst case).  Each throw of a state carries
+those of that cycle; the worst state at a speed is the speed's value: each cylinder
+motored in turn, judged against the continuous-operation limits, the tool's reading of
+the misfire, ``fe_crank.mechanism.misfire.READING``).  Each throw of a state carries
 (``ThrowCycle``) the pin force the FE pin cases carry, the torque entering at the FE
 model's torque face and the one leaving at its reaction face (the torque flow through
 the throw for the load case's power take-off end), and with torsional vibration the

@@ -5,15 +5,15 @@ row, results.json, the JUnit case and case.json all carry them.
 * UR M53 on a machine that is not an internal-combustion engine (an air motor, a
   compressor: outside the rule's scope, "Calculation of crankshafts for I.C. engines"):
   "UR M53 by analogy: not an internal-combustion engine" (``M53Basis.analogy``);
-* UR M53 with the quasi-static journal torque of a multi-cylinder engine accepted in place of
-  the forced-vibration calculation of UR M53 2.2 (``[criteria] m53_quasi_static_torque``
-  without a ``[torsion]`` section): "quasi-static journal torque, not UR M53-conform".
+* UR M53 with the quasi-static journal torque accepted in place of the forced-vibration
+  calculation of UR M53 2.2 (``[criteria] m53_quasi_static_torque`` without a ``[torsion]``
+  section; any number of cylinders): "not UR M53-conform (quasi-static torque)".
 """
 
 from __future__ import annotations
 
 ANALOGY = "UR M53 by analogy: not an internal-combustion engine"
-QUASI_STATIC = "quasi-static journal torque (no torsional vibration), not UR M53-conform"
+QUASI_STATIC = "not UR M53-conform (quasi-static torque)"
 
 
 def criterion_qualifiers(basis, criteria, *, torsion: bool) -> dict[str, str]:

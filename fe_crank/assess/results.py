@@ -14,6 +14,7 @@ import math
 from pathlib import Path
 
 from fe_crank.assess.case import SCHEMA_VERSION, Assessment
+from fe_crank.assess.counterweight import balance_rate
 from fe_crank.assess.factors import factors
 from fe_crank.results import CriterionResult
 
@@ -222,10 +223,12 @@ def to_json(assessment: Assessment) -> dict:
                     "ke": t.m53_nominal.ke,
                 },
                 "counterweights": [_cw(c) for c in t.counterweights],
+                "balance_rate": _num(balance_rate(t.counterweights)),
                 **({"joints": [_joint(j) for j in t.joints]} if t.joints else {}),
             }
             for t in a.throws
         ],
+        "balance_rate": _num(balance_rate(c for t in a.throws for c in t.counterweights)),
         "notes": [n.display for n in a.notes],
         **({"criteria_by_model": [_by_model(v) for v in a.by_model]} if a.by_model else {}),
     }

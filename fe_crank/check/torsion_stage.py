@@ -22,7 +22,8 @@ from fe_crank.torsion.stiffness import fe_throw_stiffness
 def torsion_stage(
     lc: LoadCase, geo: GeometryModel, unit_solutions: dict[str, UnitSolutions], cycles: EngineCycles
 ) -> TorsionOutput:
-    """The torsional forced response (``torsion.analysis``) with the throws' inertias from
+    """The torsional forced response (``torsion.analysis``) excited by the dynamics stage's
+    cylinder torques (``cycles.torques``), with the throws' inertias from
     the geometry stage's CAD mass properties, with every cylinder firing and with each
     misfire case of ``[operating] misfire`` (``torsion.misfire.analyse_misfire``); the FE
     throw stiffness is measured from the torque unit case when it is there (the report
@@ -39,7 +40,9 @@ def torsion_stage(
             "throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file, key="torsion.throw_stiffness"
         )
     # a CAD geometry with [torsion] is refused at input (io.loadcase): the case is a TorsionCase
-    mis = analyse_misfire(lc, inertias=throw_inertias(cast(TorsionCase, lc), geo.solids), fe_stiffness=k_fe)
+    mis = analyse_misfire(
+        lc, cycles.torques, inertias=throw_inertias(cast(TorsionCase, lc), geo.solids), fe_stiffness=k_fe
+    )
     handed = mis.journal_torques()
     loads = assessed_loads(
         lc.engine,

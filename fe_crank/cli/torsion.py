@@ -69,9 +69,10 @@ def fe_stiffness_of(lc: LoadCase, size: str | None, cache_dir) -> float:
 
 def run(args) -> int:
     from fe_crank.io.loadcase import load_loadcase
+    from fe_crank.mechanism.cycles import engine_cycles
+    from fe_crank.report.torsion import RPM, governing_table, result_to_dict, stiffness_text, write_plots
     from fe_crank.torsion import analyse_torsion
     from fe_crank.torsion.model import TorsionCase
-    from fe_crank.torsion.report import RPM, governing_table, result_to_dict, stiffness_text, write_plots
 
     lc = load_loadcase(args.file)
     settings = lc.torsion
@@ -81,7 +82,8 @@ def run(args) -> int:
     if args.fe_stiffness or settings.throw_stiffness == "fe":
         k_fe = fe_stiffness_of(lc, args.mesh_size, args.cache_dir)
     # a [torsion] section beside a CAD geometry is refused when the load case is read
-    res = analyse_torsion(cast(TorsionCase, lc), fe_stiffness=k_fe)
+    cycles = engine_cycles(lc.engine, lc.operating, file=lc.source_file)  # the dynamics stage
+    res = analyse_torsion(cast(TorsionCase, lc), cycles.firing_torques, fe_stiffness=k_fe)
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
     data = {"load_case": lc.name, "source_file": lc.source_file, **result_to_dict(res)}

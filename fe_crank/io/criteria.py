@@ -19,10 +19,11 @@ A criterion that needs a material property the load case's material does not giv
 property.
 
 UR M53 2.2 takes the nominal torsional stress from a forced-vibration calculation of the
-shaft system.  ``min_m53_acceptability`` on an engine with more than one cylinder needs
-the load case's ``[torsion]`` section, unless ``m53_quasi_static_torque = true`` says
-that the quasi-static journal torque is accepted instead (the M53 verdict is then not
-UR M53-conform, and says so); ``check_m53_torque``.
+shaft system, of every engine (a single-cylinder engine's train, with its flywheel,
+gearing and driven machine, has torsional modes like any other).  ``min_m53_acceptability``
+needs the load case's ``[torsion]`` section, unless ``m53_quasi_static_torque = true``
+says that the quasi-static journal torque is accepted instead (the M53 verdict line then
+says "not UR M53-conform (quasi-static torque)"); ``check_m53_torque``.
 """
 
 from __future__ import annotations
@@ -242,13 +243,14 @@ def check_m53_torque(criteria: Criteria, engine, has_torsion: bool, file: str | 
             file=str(file),
             key=f"{key}.m53_quasi_static_torque",
         )
-    if m53 is None or has_torsion or criteria.m53_quasi_static_torque or len(engine.cylinders) < 2:
+    if m53 is None or has_torsion or criteria.m53_quasi_static_torque:
         return
+    n = len(engine.cylinders)
     raise InputError(
-        f"UR M53 2.2 takes the torsional stress of an engine with {len(engine.cylinders)} cylinders from a "
-        "forced-vibration calculation: give the [torsion] section (docs/torsion.md), or set "
+        f"UR M53 2.2 takes the torsional stress of every engine (this one has {n} cylinder{'' if n == 1 else 's'}) "
+        "from a forced-vibration calculation: give the [torsion] section (docs/torsion.md), or set "
         f"{key}.m53_quasi_static_torque = true to accept the quasi-static journal torque (the M53 verdict is "
-        "then not UR M53-conform)",
+        "then not UR M53-conform (quasi-static torque))",
         file=str(file),
         key=m53.key,
     )

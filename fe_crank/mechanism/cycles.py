@@ -30,6 +30,11 @@ The full-load curve (``[operating] speeds`` or ``speed_range``, ``fe_crank.mecha
 the cycle at every speed of the sweep with that speed's diagram (``SpeedCycles``), and at
 each the misfire cases the load case names (``fe_crank.mechanism.misfire``); the operating
 speed is one of them.  All on one cycle-angle grid, so that one FE solve serves them all.
+
+The torsional stage's excitation (``fe_crank.mechanism.torques``): every cylinder's torque
+at every speed of the torsional speed range, with every cylinder firing and with each
+misfire case, from the cycles without gas and with each diagram at the operating speed
+(``EngineCycles.torques``).
 """
 
 from __future__ import annotations
@@ -43,6 +48,7 @@ from fe_crank.errors import FeCrankError
 from fe_crank.mechanism.dynamics import DynamicsResult, analyse
 from fe_crank.mechanism.full_load import dynamics_at, sweep_speeds
 from fe_crank.mechanism.misfire import MisfireCycle, misfire_cycles
+from fe_crank.mechanism.torques import CylinderTorques, engine_torques
 
 GAS_MODES = ("motored", "as_operating")
 
@@ -71,12 +77,25 @@ class EngineCycles:
     cycle-angle grid; ``overspeed_note``: which gas the overspeed cycles used, in words
     ("" without an overspeed); ``sweep``: the cycles at every speed of the full-load curve,
     in speed order (the operating speed alone without one; its firing cycle is
-    ``operating``)."""
+    ``operating``); ``torques``: every cylinder's torque at any speed, for every cylinder
+    firing and then each misfire case (``fe_crank.mechanism.torques``), the torsional
+    stage's excitation."""
 
     operating: DynamicsResult
     overspeed: tuple[OverspeedCycle, ...] = ()
     overspeed_note: str = ""
     sweep: tuple[SpeedCycles, ...] = ()
+    torques: tuple[CylinderTorques, ...] = ()
+
+    @property
+    def firing_torques(self) -> CylinderTorques:
+        """The cylinders' torques with every cylinder firing."""
+        return next(t for t in self.torques if not t.misfire)
+
+    @property
+    def misfire_torques(self) -> tuple[CylinderTorques, ...]:
+        """The cylinders' torques of each misfire case, in the load case's order."""
+        return tuple(t for t in self.torques if t.misfire)
 
     @property
     def speeds(self) -> tuple[float, ...]:
@@ -168,8 +187,9 @@ def speed_cycles(
 
 
 def engine_cycles(engine: model.Engine, operating: model.OperatingPoint, *, file: str = "") -> EngineCycles:
-    """The operating cycle (``analyse``), the overspeed cycles and the cycles at every
-    speed of the sweep of one operating point; a non-finite force or torque is an error
+    """The operating cycle (``analyse``), the overspeed cycles, the cycles at every
+    speed of the sweep and the cylinders' torques of the torsional stage
+    (``torques.engine_torques``) of one operating point; a non-finite force or torque is an error
     of the case naming ``file``."""
     res = analyse(engine, operating)
     refuse_non_finite(res, file)
@@ -178,4 +198,5 @@ def engine_cycles(engine: model.Engine, operating: model.OperatingPoint, *, file
         overspeed_cycles(engine, operating, res),
         describe(engine, operating),
         speed_cycles(engine, operating, res, file=file),
+        engine_torques(engine, operating),
     )

@@ -1,6 +1,12 @@
 """A misfiring cylinder (cylinder cutout): one cylinder without combustion, the others
-firing.  IACS UR M53 2.2.2 has the vibratory torque considered with misfiring; the
-cutout also changes the crankpin and journal loads of the stress history.
+firing.  What the tool does (``READING``): each named cylinder motored in turn, every
+such state judged against the same continuous-operation limits as normal firing.  The
+reading is the tool's, the conservative one: UR M53 itself does not name misfire; class
+rules on torsional vibration ask that system designs take account of engine misfire
+conditions and restrict speed or power where the limits for continuous operation are
+exceeded (e.g. Lloyd's Register, Rules for Inland Waterways Ships, Pt 5 Ch 6 1.1.2-1.1.3),
+docs/mechanism.md.  The cutout changes the crankpin and journal loads of the stress
+history and the torsional excitation.
 
 The misfiring cylinder is motored: it still compresses and re-expands its charge.
 Where the gas data give the compression ratio and the intake/boost pressure, its
@@ -21,6 +27,9 @@ import numpy as np
 from fe_crank import model
 from fe_crank.mechanism import dynamics
 from fe_crank.mechanism.full_load import dynamics_at, gas_at
+
+#: what the misfire states are, in words (the report and the notes say it so)
+READING = "each cylinder motored in turn, judged against the continuous-operation limits"
 
 ZERO_GAUGE = "zero gauge pressure (the gas data give no compression ratio and intake pressure for a motored curve)"
 
@@ -61,4 +70,4 @@ def misfire_cycles(
     )
 
 
-__all__ = ["MisfireCycle", "misfire_cycles", "motored_gas", "ZERO_GAUGE"]
+__all__ = ["MisfireCycle", "misfire_cycles", "motored_gas", "ZERO_GAUGE", "READING"]

@@ -25,7 +25,7 @@ from fe_crank.report.shaft import shaft_section
 from fe_crank.report.stage_plots import dynamics_plots, plot_hodographs
 from fe_crank.report.sweep import sweep_section
 from fe_crank.report.tables import assessment_section, counterweight_section, mesh_quality_section
-from fe_crank.torsion.report import html_fragment, quasi_static_note, result_to_dict
+from fe_crank.report.torsion import html_fragment, quasi_static_note, result_to_dict
 
 
 def _num(x, fmt="{:.3g}") -> str:

@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from fe_crank.mechanism.misfire import READING
 from fe_crank.outputs import CaseOutputs
 from fe_crank.report.html import Page, esc, table
 from fe_crank.report.plots import plot_against_speed
@@ -62,8 +63,8 @@ def sweep_section(folder: Path, so: CaseOutputs, options) -> list[str]:
             g = mis.governing(seg)
             rows.append([seg, f"{g.m_tn:.4g}", f"{g.speed * RPM:.0f}", g.case])
         out.append(
-            "<h3>Torsional vibration with misfire (IACS UR M53 2.2.2)</h3>"
-            f"<p>Misfire cases: {esc(', '.join(c.cylinder for c in mis.cases))} (each cylinder cut out in turn, "
+            "<h3>Torsional vibration with misfire</h3>"
+            f"<p>Misfire cases: {esc(', '.join(c.cylinder for c in mis.cases))} ({esc(READING)}; "
             f"motored: {esc(mis.cases[0].gas)}).  Per shaft segment the largest M_TN of all cases over the speed "
             "range, with the case and the speed that give it:</p>"
             + table(["segment", "M_TN [N m]", "speed [rpm]", "case"], rows, num_cols={1, 2})

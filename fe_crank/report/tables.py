@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from fe_crank.assess.case import shared_models
+from fe_crank.assess.counterweight import balance_rate
 from fe_crank.mesh.types import MeshStats
 from fe_crank.outputs import CaseOutputs
 from fe_crank.report.html import Page, esc, table
@@ -84,11 +85,18 @@ def counterweight_section(folder: Path, so: CaseOutputs, options) -> list[str]:
         ]
         for lab, (_, c) in zip(labels, checks)
     ]
+    rates = [(f"throw {t.name}", balance_rate(t.counterweights)) for t in a.throws] if a is not None else []
+    rates.append(("shaft", balance_rate(c for _, c in checks)))
     return [
         table(
             ["counterweight", "required m r [kg m]", "built m r [kg m]", "error", "bolt load [N]", "bolt utilisation"],
             rows,
             num_cols={1, 2, 3, 4, 5},
+        ),
+        table(
+            ["balance rate (built m r / required m r)", "rate"],
+            [[name, _num(rate, "{:.3f}")] for name, rate in rates],
+            num_cols={1},
         ),
         Page.figure("counterweight_mr.png", "Counterweight m*r: required by the balance strategy vs built geometry"),
     ] + ([joint_table(a.throws)] if a is not None and any(t.joints for t in a.throws) else [])

@@ -1,6 +1,7 @@
 """Torsional vibration of the crank train (IACS UR M53 2.2.2): lumped-mass chain, free
-vibration (eigenproblem and Holzer), cylinder torque harmonics, forced damped response
-over the speed range, and the vibratory journal torques handed to the assessment.
+vibration (eigenproblem and Holzer), the harmonics of the dynamics stage's cylinder
+torques, forced damped response over the speed range, and the vibratory journal torques
+handed to the assessment.
 docs/torsion.md describes the model, its assumptions and sources."""
 
 from fe_crank.torsion.analysis import Resonance, TorsionResult, analyse_torsion, with_vibratory_torque

@@ -20,6 +20,7 @@ import numpy as np
 
 from fe_crank.errors import InputError
 from fe_crank.io.torsion import TorsionSettings
+from fe_crank.mechanism.torques import CylinderTorques
 from fe_crank.torsion.build import build_model, shear_modulus
 from fe_crank.torsion.excitation import CylinderHarmonics, cylinder_harmonics
 from fe_crank.torsion.forced import ForcedResponse, forced_response
@@ -94,18 +95,17 @@ def speed_grid(lo: float, hi: float, steps: int, operating: float, resonances: l
 
 def analyse_torsion(
     loadcase: TorsionCase,
+    torques: CylinderTorques,
     *,
     settings: TorsionSettings | None = None,
     inertias: dict[str, float] | None = None,
     fe_stiffness: float | None = None,
-    step: float = np.radians(1.0),
-    harmonics: CylinderHarmonics | None = None,
 ) -> TorsionResult:
-    """Run the torsional stage of ``loadcase`` (its ``[torsion]`` section, or ``settings``);
-    ``inertias``: the throws' inertias about the crank axis when the caller has them (the
-    check passes its geometry stage's CAD mass properties, ``build.throw_inertias``);
-    ``harmonics``: the cylinders' torque harmonics when not those of the engine (a misfire,
-    ``fe_crank.torsion.misfire``)."""
+    """Run the torsional stage of ``loadcase`` (its ``[torsion]`` section, or ``settings``)
+    on the dynamics stage's cylinder torques ``torques`` (``EngineCycles.torques``: every
+    cylinder firing, or a misfire case, ``fe_crank.torsion.misfire``); ``inertias``: the
+    throws' inertias about the crank axis when the caller has them (the check passes its
+    geometry stage's CAD mass properties, ``build.throw_inertias``)."""
     settings = settings or loadcase.torsion
     if settings is None:
         raise InputError("the load case has no [torsion] section", file=loadcase.source_file, key="torsion")
@@ -117,7 +117,9 @@ def analyse_torsion(
         )
     model = build_model(loadcase, settings, inertias=inertias, fe_stiffness=fe_stiffness)
     modes = natural_modes(model)
-    harmonics = harmonics or cylinder_harmonics(loadcase.engine, op, step=step, full_load=loadcase.operating.full_load)
+    if not np.isclose(torques.reference_speed, op, rtol=1e-12, atol=0.0):
+        raise ValueError("the cylinder torques are not those of the load case's operating speed")
+    harmonics = cylinder_harmonics(torques)
     top = 12.0 if loadcase.engine.strokes == 4 else 15.0
     orders = harmonics.orders[(harmonics.orders > 0) & (harmonics.orders <= top + 1e-9)]
     res_list = []
@@ -127,8 +129,7 @@ def analyse_torsion(
     sweep = loadcase.operating.full_load.speeds if loadcase.operating.full_load is not None else ()
     speeds = speed_grid(lo, hi, settings.speed_steps, op, [x.speed for x in res_list] + list(sweep))
     response = forced_response(model, harmonics, speeds, orders)
-    n_theta = int(round(harmonics.cycle / step))
-    theta = harmonics.cycle * np.arange(n_theta) / n_theta  # the grid of fe_crank.mechanism.dynamics
+    theta = torques.theta  # the grid of the dynamics stage
     half = np.zeros((speeds.size, model.size - 1))
     vib_half = np.zeros_like(half)
     stiff: dict[str, str | float] = {"used": settings.throw_stiffness}

@@ -1,9 +1,10 @@
 """Harmonic components of each cylinder's torque: gas part and inertia part.
 
 The dynamics stage gives a cylinder's torque ``T(theta)`` over one cycle at constant
-speed.  At constant speed the inertia forces of the exact slider-crank scale exactly
-with ``omega^2`` (``a, beta''`` and the rod's accelerations are ``omega^2`` times
-functions of the crank angle), the gas force does not depend on speed (the same
+speed, without gas and with each diagram at the reference speed
+(``EngineCycles.torques``, ``fe_crank.mechanism.torques``).  At constant speed the
+inertia forces of the exact slider-crank scale exactly with ``omega^2`` (``a, beta''``
+and the rod's accelerations are ``omega^2`` times functions of the crank angle), the gas force does not depend on speed (the same
 indicator diagram at every speed: the full-load diagram over the whole speed range,
 as IACS UR M53 2.2.2 asks for the synthesis), so::
 
@@ -29,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank import model
-from fe_crank.mechanism import dynamics as dyn
+from fe_crank.mechanism.torques import CylinderTorques, gas_weights
 
 
 @dataclass(frozen=True)
@@ -54,12 +55,7 @@ class CylinderHarmonics:
 
     def gas_weights(self, speed: float) -> np.ndarray:
         """Weights of ``gas_nodes`` at ``speed`` (``[1.0]`` for the one diagram ``gas``)."""
-        if not self.gas_speeds:
-            return np.ones(1)
-        w = np.asarray(self.gas_speeds)
-        if not w[0] * (1 - 1e-9) <= speed <= w[-1] * (1 + 1e-9):
-            raise ValueError(f"no gas pressure at {speed * 30 / np.pi:.6g} rpm (the diagrams are never extrapolated)")
-        return np.array([np.interp(speed, w, e) for e in np.eye(w.size)]) if w.size > 1 else np.ones(1)
+        return gas_weights(self.gas_speeds, speed)
 
     def gas_parts(self) -> tuple[dict, ...]:
         """The gas harmonics the weights of ``gas_weights`` apply to."""
@@ -91,36 +87,21 @@ def fourier(values: np.ndarray, cycle: float) -> tuple[np.ndarray, np.ndarray]:
     return orders, c
 
 
-def cylinder_harmonics(
-    engine: model.Engine,
-    speed: float,
-    *,
-    step: float = np.radians(1.0),
-    full_load: model.FullLoadCurve | None = None,
-    cylinder_gas: dict | None = None,
-) -> CylinderHarmonics:
-    """Gas and inertia harmonics of every cylinder's torque (module docstring); with the
-    per-speed diagrams of ``full_load`` the gas part of each (``CylinderHarmonics``);
-    ``cylinder_gas``: cylinders with a gas of their own (a misfire: cylinder -> a
-    function of the diagram giving its gas, ``fe_crank.mechanism.misfire.motored_gas``)."""
-    op = model.OperatingPoint(speed)
-    no_gas = dyn.analyse(dataclasses.replace(engine, gas=None), op, step=step)
+def cylinder_harmonics(torques: CylinderTorques) -> CylinderHarmonics:
+    """Gas and inertia harmonics of every cylinder's torque (module docstring) from the
+    dynamics stage's cycles (``fe_crank.mechanism.torques.CylinderTorques``: without gas and
+    with each diagram at the reference speed, every cylinder firing or one misfiring);
+    with the per-speed diagrams of a full-load curve the gas part of each."""
     inertia = {}
-    for name, cf in no_gas.cylinders.items():
-        orders, inertia[name] = fourier(cf.torque, no_gas.cycle)
+    for name, t in torques.inertia.items():
+        orders, inertia[name] = fourier(t, torques.cycle)
     if not inertia:
         raise ValueError("the engine has no cylinder")
-
-    def gas_of(diagram):
-        own = {c: f(diagram) for c, f in (cylinder_gas or {}).items()}
-        run = dyn.analyse(dataclasses.replace(engine, gas=diagram), op, step=step, cylinder_gas=own)
-        return {n: fourier(cf.torque, run.cycle)[1] - inertia[n] for n, cf in run.cylinders.items()}
-
-    throw_of = {c.name: c.throw for c in engine.cylinders}
-    if full_load is None or not full_load.gas_speeds:
-        return CylinderHarmonics(orders, gas_of(engine.gas), inertia, speed, no_gas.cycle, throw_of)
-    nodes = tuple(gas_of(d) for d in full_load.diagrams)
-    h = CylinderHarmonics(orders, {}, inertia, speed, no_gas.cycle, throw_of, full_load.gas_speeds, nodes)
+    nodes = tuple({n: fourier(t, torques.cycle)[1] - inertia[n] for n, t in part.items()} for part in torques.loaded)
+    speed = torques.reference_speed
+    if not torques.gas_speeds:
+        return CylinderHarmonics(orders, nodes[0], inertia, speed, torques.cycle, dict(torques.throw_of))
+    h = CylinderHarmonics(orders, {}, inertia, speed, torques.cycle, dict(torques.throw_of), torques.gas_speeds, nodes)
     return dataclasses.replace(h, gas={c: h.gas_at(c, speed) for c in inertia})
 
 

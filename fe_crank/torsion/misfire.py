@@ -1,11 +1,13 @@
-"""The torsional forced response with a misfiring cylinder (IACS UR M53 2.2.2: the
-vibratory torque is to be considered with misfiring).
+"""The torsional forced response with a misfiring cylinder: each cylinder motored in
+turn, judged against the continuous-operation limits (``fe_crank.mechanism.misfire.READING``,
+the tool's reading, docs/mechanism.md).
 
 The misfiring cylinder's gas torque is that of its motored pressure (or zero gauge
 pressure where the gas data give no motored curve, ``fe_crank.mechanism.misfire.motored_gas``);
-its inertia torque and every other cylinder's torque are unchanged.  The harmonics are
-computed with the misfiring cylinder motored (``misfire_harmonics``, with every diagram
-of a full-load curve) and the whole torsional stage is run again on them (``analyse_misfire``: each named cylinder in turn).  A
+its inertia torque and every other cylinder's torque are unchanged.  The dynamics stage
+gives the cylinders' torques with the misfiring cylinder motored in every diagram of a
+full-load curve (``EngineCycles.torques``, ``fe_crank.mechanism.torques``) and the whole
+torsional stage is run again on them (``analyse_misfire``: each misfire case in turn).  A
 misfire breaks the firing symmetry: orders that cancel with all cylinders firing (the
 minor orders of an in-line engine) are excited, so a resonance that is harmless in
 normal firing can govern.  ``MisfireTorsion.governing`` gives per segment the largest
@@ -18,33 +20,12 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-import numpy as np
-
-from fe_crank import model
-from fe_crank.mechanism.misfire import motored_gas
+from fe_crank.mechanism.torques import CylinderTorques
 from fe_crank.torsion.analysis import TorsionResult, analyse_torsion
-from fe_crank.torsion.excitation import CylinderHarmonics, cylinder_harmonics
 from fe_crank.torsion.handover import JournalTorque
 from fe_crank.torsion.handover import journal_torques as _journal_torques
 
 FIRING = "all cylinders firing"
-
-
-def misfire_harmonics(
-    engine: model.Engine,
-    speed: float,
-    cylinder: str,
-    *,
-    step: float = np.radians(1.0),
-    full_load: model.FullLoadCurve | None = None,
-) -> tuple[CylinderHarmonics, str]:
-    """The cylinders' harmonics at reference ``speed`` with ``cylinder`` motored (its
-    motored curve of each diagram, or zero gauge pressure; ``fe_crank.mechanism.misfire``), and
-    the misfiring cylinder's pressure in words."""
-    h = cylinder_harmonics(
-        engine, speed, step=step, full_load=full_load, cylinder_gas={cylinder: lambda d: motored_gas(d)[0]}
-    )
-    return h, motored_gas(engine.gas)[1]
 
 
 @dataclass(frozen=True)
@@ -97,18 +78,22 @@ class MisfireTorsion:
         }
 
 
-def analyse_misfire(loadcase, *, cylinders=None, step: float = np.radians(1.0), **kwargs) -> MisfireTorsion:
+def analyse_misfire(loadcase, torques: tuple[CylinderTorques, ...], *, cylinders=None, **kwargs) -> MisfireTorsion:
     """The torsional stage with all cylinders firing and with each of ``cylinders``
-    (default the load case's ``[operating] misfire``) misfiring in turn; ``kwargs`` as
-    ``analyse_torsion`` (``inertias``, ``fe_stiffness``, ``settings``)."""
-    cylinders = loadcase.operating.misfire if cylinders is None else tuple(cylinders)
-    firing = analyse_torsion(loadcase, step=step, **kwargs)
-    op = loadcase.operating
-    cases = []
-    for c in cylinders:
-        h, words = misfire_harmonics(loadcase.engine, op.speed, c, step=step, full_load=op.full_load)
-        cases.append(MisfireCase(c, words, analyse_torsion(loadcase, step=step, harmonics=h, **kwargs)))
-    return MisfireTorsion(firing, tuple(cases))
+    (default every misfire case of ``torques``) misfiring in turn, on the dynamics
+    stage's cylinder torques ``torques`` (``EngineCycles.torques``: every cylinder firing
+    and each misfire case); ``kwargs`` as ``analyse_torsion`` (``inertias``,
+    ``fe_stiffness``, ``settings``)."""
+    firing = next(t for t in torques if not t.misfire)
+    by_cylinder = {t.misfire: t for t in torques if t.misfire}
+    cylinders = tuple(by_cylinder) if cylinders is None else tuple(cylinders)
+    missing = [c for c in cylinders if c not in by_cylinder]
+    if missing:
+        raise ValueError(f"the dynamics stage has no cycle with cylinder(s) {', '.join(missing)} misfiring")
+    cases = tuple(
+        MisfireCase(c, by_cylinder[c].gas, analyse_torsion(loadcase, by_cylinder[c], **kwargs)) for c in cylinders
+    )
+    return MisfireTorsion(analyse_torsion(loadcase, firing, **kwargs), cases)
 
 
-__all__ = ["MisfireCase", "MisfireTorsion", "Governing", "analyse_misfire", "misfire_harmonics", "FIRING"]
+__all__ = ["MisfireCase", "MisfireTorsion", "Governing", "analyse_misfire", "FIRING"]
