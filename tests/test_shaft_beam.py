@@ -84,3 +84,53 @@ def test_a_load_below_gap_closure_is_carried_by_the_other_bearings(three):
     assert f[1, 1] > 0.05 * P
     assert np.hypot(*d[1]) == pytest.approx(0.5 * abs(free) + np.hypot(*f[1]) / k, rel=1e-6)
     assert f[:, 1].sum() == pytest.approx(P, rel=1e-9)
+
+
+def test_end_bearings_in_clearance_carry_the_statically_determinate_reactions(three):
+    """Every bearing in clearance, the middle one wider than the journal's free deflection
+    there: the shaft sinks until the end journals touch (the solution without clearance
+    leaves every journal inside its circle, where no bearing resists a rigid motion) and
+    the ends carry the simply supported beam's 3/4 and 1/4 of P; each end journal sits
+    at c + R/k."""
+    P, k, c = 1000.0, 2e9, 5e-6
+    cases = point_loads(three, {0: P})
+    free = cases.d_rel[1, 1, cases.index("P0")]
+    laws = [BearingLaw("clearance", k, c), BearingLaw("clearance", k, 2 * abs(free)), BearingLaw("clearance", k, c)]
+    f, d = reactions(cases, laws)
+    assert np.allclose(f[:, 1], [0.75 * P, 0.0, 0.25 * P], atol=1e-9 * P)
+    assert np.abs(f[:, 0]).max() < 1e-9 * P
+    for j, R in ((0, 0.75 * P), (2, 0.25 * P)):
+        assert d[j, 1] == pytest.approx(-(c + R / k), rel=1e-9)
+
+
+@pytest.mark.parametrize("c", [5e-6, 20e-6, 40e-6])
+def test_equal_clearances_closed_on_one_side_give_the_rigid_reactions(three, c):
+    """A load on both spans presses every journal down: with equal clearances the shaft
+    sinks by c as a rigid body, which changes no force, so the reactions are those of
+    rigid bearings (three-moment equation: 5/16, 22/16, 5/16 of P) and every journal
+    sits at c + R/k below its bearing's centre."""
+    P, k = 1000.0, 1e14
+    f, d = reactions(point_loads(three, {0: P, 1: P}), [BearingLaw("clearance", k, c)] * 3)
+    R = three_moment(2, SPAN, {0: P, 1: P})
+    assert np.allclose(R / P, [5 / 16, 22 / 16, 5 / 16])
+    assert np.allclose(f[:, 1], R, atol=0.01 * P)
+    assert np.allclose(d[:, 1], -(c + f[:, 1] / k), rtol=1e-6)
+
+
+@pytest.mark.parametrize("c", [5e-6, 40e-6])
+def test_a_journal_lifted_across_its_clearance_settles_the_beam(three, c):
+    """A load on the first span alone pulls the third journal up (rigid reaction -3/32 P):
+    with equal clearances it crosses its circle and touches at +c while the others touch
+    at -c, so the middle bearing sits c below the line through the ends.  A support
+    settlement delta of the middle of a two-span beam takes 6 EI delta / L^3 off it and
+    puts half of that on each end (beam theory), on top of the rigid bearings' reactions."""
+    P, k = 1000.0, 1e14
+    cases = point_loads(three, {0: P})
+    rigid, _ = reactions(cases)
+    f, d = reactions(cases, [BearingLaw("clearance", k, c)] * 3)
+    assert d[0, 1] < 0 and d[1, 1] < 0 and d[2, 1] > 0
+    assert np.allclose(np.abs(d[:, 1]), c + np.abs(f[:, 1]) / k, rtol=1e-6)
+    EI = 210e9 * np.pi * RADIUS**4 / 4
+    dR = 6 * EI * c / SPAN**3
+    assert np.allclose(f[:, 1] - rigid[:, 1], [dR / 2, -dR, dR / 2], rtol=0.02)
+    assert f[:, 1].sum() == pytest.approx(P, rel=1e-9)
