@@ -187,8 +187,10 @@ def test_web_moment_of_a_throw_on_two_bearings_is_the_beams(single):
     (a, b), t = layout.bearings, layout.throws[0]
     P = _engine(loads[0].pin_force, psi)  # throw "1" at 0 deg: its frame is the shaft's
     RA = P * (b.z - t.z) / (b.z - a.z)
+    g = layout.geometry  # the web mid-planes from the geometry, not from the result
+    mid = {1: t.z - g.crankpin_length / 2 - g.web_thickness / 2, 2: t.z + g.crankpin_length / 2 + g.web_thickness / 2}
     for w in res.webs:
-        lever = (w.z - a.z) if w.web == 1 else (b.z - w.z)
+        lever = (mid[1] - a.z) if w.web == 1 else (b.z - mid[2])
         R = RA if w.web == 1 else P - RA
         expect = lever * np.hypot(R[:, 0], R[:, 1])
         got = np.hypot(*w.bending_moment_nm.T)
