@@ -125,3 +125,28 @@ def test_a_cad_shaft_keeps_its_recognised_journals(tmp_path):
     lc = load_loadcase(p)
     assert isinstance(lc.geometry, CadInput) and len(lc.engine.throws) == 4
     assert not wanted(lc)
+
+
+def test_a_specific_load_criterion_without_a_bearing_width_is_refused(tmp_path, capsys):
+    """tests/data/small_shaft.toml limits the specific load: with the [shaft] section's
+    bearing width taken out of its geometry, `validate` refuses it (the journal's flat
+    is no bearing width), naming the geometry file and the key; a width stated per
+    bearing is enough, and without the criterion the same geometry is accepted."""
+    data = ROOT / "tests" / "data"
+    for f in ("small_shaft.toml", "geometry_small_shaft.toml"):
+        shutil.copy(data / f, tmp_path / f)
+    g = tmp_path / "geometry_small_shaft.toml"
+    text = g.read_text()
+    cut = text[: text.index("[shaft]")]
+    g.write_text(cut)
+    err = _refused(
+        capsys, tmp_path / "small_shaft.toml", "geometry_small_shaft.toml", "shaft.bearing_width", "19 mm", "1, 2"
+    )
+    assert "max_main_bearing_specific_load" in err
+    per_bearing = "".join(f'\n[[shaft.bearings]]\nname = "{j + 1}"\njournal = {j}\nwidth = "16 mm"\n' for j in range(5))
+    g.write_text(cut + per_bearing)
+    assert main(["validate", str(tmp_path / "small_shaft.toml")]) == 0
+    g.write_text(cut)
+    case = tmp_path / "small_shaft.toml"
+    case.write_text(case.read_text().replace('max_main_bearing_specific_load = "40 MPa"\n', ""))
+    assert main(["validate", str(case)]) == 0

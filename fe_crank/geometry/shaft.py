@@ -64,6 +64,9 @@ class MainBearing:
     width: float  # m, for the specific load
     law: BearingLaw
     thrust: bool = False
+    #: the width is the file's (``[shaft] bearing_width`` or the bearing's ``width``); False:
+    #: the journal's flat between its fillets, no bearing width (no specific-load criterion)
+    width_stated: bool = True
 
 
 @dataclass(frozen=True)
@@ -113,9 +116,10 @@ def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str, ef: str) -> 
         flat = (js.z1 - js.z0) - 2 * rf  # the cylinder between two fillets ...
         if n > 0 and j in (0, n):  # ... or, on an end journal, as wide as an inner bearing at most
             flat = min(js.z1 - js.z0 - rf, 2 * (js.centre - js.z0 if j == n else js.z1 - js.centre) - 2 * rf)
-        width = (b.width if b is not None else None) or spec.bearing_width or flat
+        stated = (b.width if b is not None else None) or spec.bearing_width
         law = (b.law if b is not None else None) or spec.bearing_law
-        out.append(MainBearing(str(j + 1) if b is None else b.name, j, js.centre, width, law))
+        name = str(j + 1) if b is None else b.name
+        out.append(MainBearing(name, j, js.centre, stated or flat, law, width_stated=stated is not None))
     if len(out) < 2:
         raise InputError("a shaft needs at least two main bearings", file=gf, key="shaft.bearings")
     if spec.thrust_bearing is None:

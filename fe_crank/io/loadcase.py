@@ -39,6 +39,7 @@ from fe_crank.io.includes import input_root, resolve_reference
 from fe_crank.io.material import Material
 from fe_crank.io.operating import parse_operating
 from fe_crank.io.sections import SECTION_KEYS, parse_sections
+from fe_crank.io.shaft import require_bearing_widths
 from fe_crank.io.torsion import TorsionSettings
 from fe_crank.io.torsion_engine import check_torsion_engine
 from fe_crank.mesh.options import MeshSection
@@ -123,7 +124,10 @@ def _load(path: Path) -> LoadCase:
         gfile = geometry.file or str(path)
         geometry = throw_at_bearings(geometry, engine, geometry_file=gfile, engine_file=engine_file)
         if whole_shaft_wanted(geometry, engine):  # the whole shaft's refusals at input too
-            engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
+            layout = engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
+            if criteria is not None:
+                quantities = [lim.quantity for lim in criteria.limits]
+                require_bearing_widths(layout.bearings, quantities, gfile, str(path))
     if criteria is not None and isinstance(geometry, CrankGeometry):
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
     if sections.torsion is not None and isinstance(geometry, CadInput):

@@ -21,7 +21,9 @@
     bearing = { model = "spring", stiffness = "8e8 N/m" }   # optional: this bearing's law
 
 A negative stiffness or clearance, a spring or clearance bearing without its
-stiffness, two bearings on one journal or with one name are refused here; a bearing on
+stiffness, two bearings on one journal or with one name are refused here, and a
+specific-load criterion without a stated bearing width (``require_bearing_widths``: the
+journal's flat between its fillets is wider than a bearing shell); a bearing on
 a journal the shaft does not have and a thrust bearing that names no bearing are refused
 where the engine gives the journals (``fe_crank.geometry.shaft``).
 """
@@ -32,6 +34,7 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
+from fe_crank.errors import InputError
 from fe_crank.geometry.spec import BearingInput, BearingLaw, PlainCylinder, ShaftSpec
 from fe_crank.io.base import Strict
 from fe_crank.io.units import Length, Stiffness
@@ -117,4 +120,28 @@ def shaft_spec(raw: ShaftInput | None) -> ShaftSpec | None:
         bearings=bearings,
         thrust_bearing=raw.thrust_bearing,
         power_takeoff=raw.power_takeoff,
+    )
+
+
+#: criteria that read a main bearing's width
+WIDTH_CRITERIA = ("main_bearing_specific_load",)
+
+
+def require_bearing_widths(bearings, quantities, geometry_file: str, criteria_file: str) -> None:
+    """Refuse a specific-load criterion (peak / (d w)) while a main bearing has no stated
+    width: the default, the journal's cylinder between its fillets, is wider than the
+    bearing shell on it and would under-state the specific load.  ``bearings``: the
+    layout's ``MainBearing``s; ``quantities``: the criteria's quantity names."""
+    asked = [q for q in quantities if q in WIDTH_CRITERIA]
+    missing = [b for b in bearings if not b.width_stated]
+    if not asked or not missing:
+        return
+    names = ", ".join(b.name for b in missing)
+    raise InputError(
+        f"the criterion max_{asked[0]} of {criteria_file} divides each main bearing's peak load by its "
+        f"projected area (journal diameter x bearing width), and main bearing(s) {names} have no stated "
+        f"width (the journal's flat between its fillets, {missing[0].width * 1e3:.3g} mm, is not a bearing "
+        'width): state it as [shaft] bearing_width = "24 mm" or per bearing ([[shaft.bearings]] width)',
+        file=geometry_file,
+        key="shaft.bearing_width",
     )
