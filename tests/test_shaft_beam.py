@@ -134,3 +134,23 @@ def test_a_journal_lifted_across_its_clearance_settles_the_beam(three, c):
     dR = 6 * EI * c / SPAN**3
     assert np.allclose(f[:, 1] - rigid[:, 1], [dR / 2, -dR, dR / 2], rtol=0.02)
     assert f[:, 1].sum() == pytest.approx(P, rel=1e-9)
+
+
+@pytest.mark.parametrize("k", [1e5, 3e5, 1e6])
+def test_soft_supports_move_load_to_the_end_bearings(three, k):
+    """Two spans on three equal springs k, P at the middle of the first: with the middle
+    reaction X as the redundant, compatibility at the middle bearing (its spring's
+    compression = the mean of the end springs' + the beam's deflection there relative to
+    the ends) gives X (3/(2k) + L^3/(6 EI)) = P/(2k) + 11 P L^3/(96 EI) (deflection of a
+    simply supported span 2L at its middle under P at L/2: P a (l - x)(2 l x - x^2 - a^2)
+    / (6 EI l), and X (2L)^3/(48 EI) under X), the ends 3/4 P - X/2 and P/4 - X/2.  The
+    softer the springs, the more the end bearings carry (rigid: X = 11/16 P): the reason
+    the main-bearing loads are enveloped over a stiffness range."""
+    P = 1000.0
+    EI = 210e9 * np.pi * RADIUS**4 / 4
+    L3 = SPAN**3
+    X = (P / (2 * k) + 11 * P * L3 / (96 * EI)) / (1.5 / k + L3 / (6 * EI))
+    f, _ = reactions(point_loads(three, {0: P}), [BearingLaw("spring", k)] * 3)
+    expect = [0.75 * P - X / 2, X, 0.25 * P - X / 2]
+    assert np.allclose(f[:, 1], expect, atol=0.01 * P)
+    assert f[0, 1] > 0.75 * P - 11 / 32 * P + 0.02 * P  # more than on rigid bearings (13/32 P)

@@ -137,3 +137,65 @@ def test_web_moments_under_centrifugal_loads_are_the_beams(one_throw, counterwei
         scale = sum(np.abs(x).max() for x in terms)  # the terms' size, the sum may nearly cancel
         assert scale > 1.0  # N m: loads that count
         assert np.abs(got - M).max() < 2e-3 * scale, (web, np.abs(got - M).max() / scale)
+
+
+@pytest.fixture(scope="module")
+def overhung(cache):
+    """One throw at 37 deg, turning the other way, with a pulley in front (unbalance and a
+    belt pull) and a flywheel behind (unbalance), both overhung beyond the end journals."""
+    from fe_crank.fe.whole_shaft import condensed_shaft
+    from fe_crank.geometry.spec import EndLoad
+
+    angle = np.deg2rad(37.0)
+    g = small_geometry([angle])
+    ends = (
+        EndLoad("pulley", "front", 1.5, 0.035, 2e-4, np.deg2rad(-60.0), 1200.0, np.deg2rad(100.0)),
+        EndLoad("flywheel", "rear", 12.0, 0.04, 1e-4, np.deg2rad(30.0)),
+    )
+    g = dataclasses.replace(g, shaft=dataclasses.replace(g.shaft, end_loads=ends))
+    e = small_engine([angle], sense=-1)
+    layout = shaft_layout(g, e, geometry_file="g.toml", engine_file="e.toml")
+    assert layout.end_loads == ends
+    _, cases, _ = condensed_shaft(mesh_shaft(layout, size="test", cache_dir=cache), Steel())
+    mass = {t.name: mass_properties(layout.geometry, t.spec) for t in layout.throws}
+    return layout, cases, mass, e
+
+
+def test_overhung_pulley_and_flywheel_load_the_bearings_by_the_lever_rule(overhung):
+    """What the pulley and the flywheel add at 3000 rpm: their centrifugal forces
+    omega^2 m e (turning with the crank: at gamma + sense x unbalance_angle in the engine
+    frame) and the belt pull (fixed, direction belt_angle), at their centre planes beyond
+    the end faces; one throw on two bearings takes them by the lever rule, an overhung
+    load pressing its near bearing by (z_B - z)/(z_B - z_A) > 1 and lifting the far one;
+    the web moments change by the moments of the pulley's load and of the front bearing's
+    change about the webs' mid-planes."""
+    layout, cases, mass, e = overhung
+    speed = 3000 * RPM
+    dyn = analyse(e, model.OperatingPoint(speed=speed))
+    on = shaft_cycle_of(cases, layout, mass, dyn)
+    off = shaft_cycle_of(cases, dataclasses.replace(layout, end_loads=()), mass, dyn)
+    gamma = np.asarray(dyn.throws["1"].angle_global)
+    sense = layout.sense
+    zf, zr = layout.journals[0].z0, layout.journals[-1].z1
+    forces = []
+    for ld, z in ((layout.end_loads[0], zf - 0.035), (layout.end_loads[1], zr + 0.04)):
+        u = gamma + sense * ld.unbalance_angle
+        F = speed**2 * ld.mass * ld.eccentricity * np.stack([np.sin(u), np.cos(u)], axis=-1)
+        F = F + ld.belt_pull * np.array([np.sin(ld.belt_angle), np.cos(ld.belt_angle)])
+        forces.append((z, F))
+    a, b = layout.bearings
+    dA = sum(F * (b.z - z) / (b.z - a.z) for z, F in forces)
+    dB = sum(F * (z - a.z) / (b.z - a.z) for z, F in forces)
+    scale = max(np.abs(F).max() for _, F in forces)
+    assert scale > 1000.0
+    assert np.abs(on.bearings[0].load_n - off.bearings[0].load_n - dA).max() < 1e-8 * scale
+    assert np.abs(on.bearings[1].load_n - off.bearings[1].load_n - dB).max() < 1e-8 * scale
+    g, th = layout.geometry, layout.throws[0]
+    zp, t = g.crankpin_length / 2, g.web_thickness
+    webs_on = {w.web: w.bending_moment_nm for w in on.webs}
+    webs_off = {w.web: w.bending_moment_nm for w in off.webs}
+    zP, FP = forces[0]
+    for web, zw in ((1, th.z - zp - t / 2), (2, th.z + zp + t / 2)):
+        expect = _cross_z(zP - zw, FP) + _cross_z(a.z - zw, -dA)
+        got = webs_on[web] - webs_off[web]
+        assert np.abs(got - expect).max() < 1e-8 * np.abs(expect).max()

@@ -221,3 +221,33 @@ def test_every_bearing_in_clearance_solves_at_every_angle(flat4, c):
     assert np.all(np.einsum("nbi,nbi->nb", F, d) >= -1e-8 * scale * r.max())
     if c > 10e-6:  # angles where one journal alone touches: the shaft free to tilt about it
         assert np.any((r > c).sum(axis=1) == 1)
+
+
+def test_main_bearing_loads_are_the_envelope_over_the_stiffness_range(twin):
+    """bearings_of: per bearing the largest peak of the stated law (rigid) and springs of
+    3e8, 9.5e8 and 3e9 N/m (the default range, its geometric mean between), each law
+    computed here on its own; the governing law is named with the loads, which are that
+    law's whole cycle (peak and specific load from them)."""
+    from fe_crank.fe.whole_shaft import bearings_of
+    from fe_crank.geometry.spec import BearingLaw
+
+    layout, cases, dyn, mass, loads, psi = twin
+    assert layout.stiffness_range == (3e8, 3e9)
+    res = bearings_of(cases, layout, mass, dyn)
+    laws = {"rigid": [BearingLaw()] * 3}
+    for k in (3e8, np.sqrt(3e8 * 3e9), 3e9):
+        laws[f"spring {k:.3g} N/m"] = [BearingLaw("spring", k)] * 3
+    for cw in (True, False):
+        runs = {
+            name: shaft_cycle(cases, loads, dyn.theta, psi, SPEED, mass, counterweights=cw, laws=w)
+            for name, w in laws.items()
+        }
+        for j, b in enumerate(res):
+            got = b.with_counterweights if cw else b.without_counterweights
+            peaks = {name: r.bearings[j].peak_n for name, r in runs.items()}
+            best = max(peaks, key=peaks.get)
+            assert got.law == best
+            assert got.peak_n == pytest.approx(peaks[best], rel=1e-12)
+            assert np.allclose(got.load_n, runs[best].bearings[j].load_n, rtol=0, atol=1e-9 * got.peak_n)
+            assert got.specific_load_pa == pytest.approx(got.peak_n / (got.diameter * got.width), rel=1e-12)
+    assert any(b.with_counterweights.law != "rigid" for b in res)  # the range governs somewhere

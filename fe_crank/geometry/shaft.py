@@ -36,7 +36,16 @@ from fe_crank.geometry.engine_fit import (
     for_engine_throws,
     pitch_of,
 )
-from fe_crank.geometry.spec import BearingInput, BearingLaw, CrankGeometry, PlainCylinder, ShaftSpec, ThrowSpec
+from fe_crank.geometry.spec import (
+    DEFAULT_STIFFNESS_RANGE,
+    BearingInput,
+    BearingLaw,
+    CrankGeometry,
+    EndLoad,
+    PlainCylinder,
+    ShaftSpec,
+    ThrowSpec,
+)
 
 
 @dataclass(frozen=True)
@@ -86,6 +95,9 @@ class ShaftLayout:
     power_takeoff: str  # "rear" | "front"
     geometry_file: str
     engine_file: str
+    #: N/m, the stiffness range the main-bearing loads are enveloped over (``fe.whole_shaft``)
+    stiffness_range: tuple[float, float] = DEFAULT_STIFFNESS_RANGE
+    end_loads: tuple[EndLoad, ...] = ()  # flywheel, pulley (``fe.whole_shaft.end_load_cases``)
 
     @property
     def thrust_bearing(self) -> MainBearing:
@@ -175,6 +187,8 @@ def shaft_layout(
         power_takeoff=spec.power_takeoff,
         geometry_file=gf,
         engine_file=ef,
+        stiffness_range=spec.stiffness_range or DEFAULT_STIFFNESS_RANGE,
+        end_loads=spec.end_loads,
     )
 
 

@@ -11,8 +11,17 @@
     bearing_width = "26 mm"          # optional: default width of every main bearing
     bearing = { model = "rigid" }    # default law; or { model = "spring", stiffness = "1e9 N/m" }
                                      # or { model = "clearance", clearance = "40 um", stiffness = "2e9 N/m" }
+    stiffness_range = ["3e8 N/m", "3e9 N/m"]   # optional: the bearings' realistic radial stiffness;
+                                     # the main-bearing loads are the envelope of the law above and
+                                     # springs across this range (default 3e8 to 3e9 N/m)
     thrust_bearing = "3"             # optional: default the bearing nearest the power take-off
     power_takeoff = "rear"           # "rear" (flywheel end, default) or "front"
+    flywheel = { mass = "12 kg", offset = "40 mm", eccentricity = "0.1 mm", unbalance_angle = "0 deg" }
+                                     # optional, at the power take-off's end: its centre plane offset
+                                     # beyond the end journal's face; unbalance m e from the eccentricity
+    pulley = { mass = "1.5 kg", offset = "35 mm", belt_pull = "1.2 kN", belt_angle = "90 deg" }
+                                     # optional, at the other end; a belt pull fixed in the engine frame
+                                     # (direction from +y towards +x); their weights are not modelled
 
     [[shaft.bearings]]               # optional: default one bearing at every journal, named 1, 2, ...
     name = "1"
@@ -35,9 +44,9 @@ from typing import Literal
 from pydantic import Field, model_validator
 
 from fe_crank.errors import InputError
-from fe_crank.geometry.spec import BearingInput, BearingLaw, PlainCylinder, ShaftSpec
+from fe_crank.geometry.spec import BearingInput, BearingLaw, EndLoad, PlainCylinder, ShaftSpec
 from fe_crank.io.base import Strict
-from fe_crank.io.units import Length, Stiffness
+from fe_crank.io.units import Angle, Force, Length, Mass, Stiffness
 
 
 class CylinderInput(Strict):
@@ -66,6 +75,27 @@ class BearingLawInput(Strict):
         return BearingLaw(self.model, self.stiffness, self.clearance or 0.0)
 
 
+class EndLoadInput(Strict):
+    mass: Mass = Field(gt=0)
+    offset: Length = Field(ge=0)
+    eccentricity: Length = Field(default=0.0, ge=0)
+    unbalance_angle: Angle = 0.0
+    belt_pull: Force = Field(default=0.0, ge=0)
+    belt_angle: Angle = 0.0
+
+    def load(self, name: str, end: str) -> EndLoad:
+        return EndLoad(
+            name,
+            end,
+            self.mass,
+            self.offset,
+            self.eccentricity,
+            self.unbalance_angle,
+            self.belt_pull,
+            self.belt_angle,
+        )
+
+
 class BearingEntry(Strict):
     name: str = Field(min_length=1, max_length=64)
     journal: int = Field(ge=0, le=1000)
@@ -83,6 +113,19 @@ class ShaftInput(Strict):
     bearings: list[BearingEntry] | None = Field(default=None, min_length=2, max_length=1000)
     thrust_bearing: str | None = Field(default=None, min_length=1, max_length=64)
     power_takeoff: Literal["rear", "front"] = "rear"
+    stiffness_range: list[Stiffness] | None = Field(default=None, min_length=2, max_length=2)
+    flywheel: EndLoadInput | None = None
+    pulley: EndLoadInput | None = None
+
+    @model_validator(mode="after")
+    def _range(self):
+        if self.stiffness_range is not None:
+            lo, hi = self.stiffness_range
+            if not 0 < lo < hi:
+                raise ValueError(
+                    'stiffness_range: two positive stiffnesses, the lower first, e.g. ["3e8 N/m", "3e9 N/m"]'
+                )
+        return self
 
     @model_validator(mode="after")
     def _unique(self):
@@ -120,7 +163,20 @@ def shaft_spec(raw: ShaftInput | None) -> ShaftSpec | None:
         bearings=bearings,
         thrust_bearing=raw.thrust_bearing,
         power_takeoff=raw.power_takeoff,
+        stiffness_range=None if raw.stiffness_range is None else (raw.stiffness_range[0], raw.stiffness_range[1]),
+        end_loads=_end_loads(raw),
     )
+
+
+def _end_loads(raw: ShaftInput) -> tuple[EndLoad, ...]:
+    """The flywheel at the power take-off's end, the pulley at the other."""
+    other = "front" if raw.power_takeoff == "rear" else "rear"
+    out = []
+    if raw.pulley is not None:
+        out.append(raw.pulley.load("pulley", other))
+    if raw.flywheel is not None:
+        out.append(raw.flywheel.load("flywheel", raw.power_takeoff))
+    return tuple(out)
 
 
 #: criteria that read a main bearing's width
