@@ -199,3 +199,39 @@ def test_overhung_pulley_and_flywheel_load_the_bearings_by_the_lever_rule(overhu
         expect = _cross_z(zP - zw, FP) + _cross_z(a.z - zw, -dA)
         got = webs_on[web] - webs_off[web]
         assert np.abs(got - expect).max() < 1e-8 * np.abs(expect).max()
+
+
+def test_every_journal_carries_its_own_torque_turning_the_other_way(overhung):
+    """The torque-flow cases on the shaft turning the other way: with a journal torque
+    entering at the front (T_f, as a driven pulley's) and the throw's own inertia torque
+    under vibration (T_r - T_f - T_own, any function of the angle), the moment about the
+    axis of the forces the neighbours exert on the throw is -sense T_f on its front face
+    and sense T_r on its rear face (a torque T acts about -sense z), at every angle."""
+    from fe_crank.fe.shaft_cases import solve_cases
+    from fe_crank.fe.whole_shaft import end_load_cases, torque_flow_cases
+
+    layout, cases0, mass, e = overhung
+    model = cases0.model
+    cases = solve_cases(model, {**torque_flow_cases(model), **end_load_cases(model)})
+    dyn = analyse(e, model_operating(1500 * RPM))
+    tl = dyn.throws["1"]
+    th = np.asarray(dyn.theta)
+    front = 40.0 + 25.0 * np.sin(2 * th)
+    rear = front + np.asarray(tl.torque) + 15.0 * np.cos(3 * th + 0.4)
+    dyn = dataclasses.replace(dyn, throws={"1": dataclasses.replace(tl, torque_front=front, torque_rear=rear)})
+    W = shaft_cycle_of(cases, layout, mass, dyn).weights
+    k = next(i for i, pp in enumerate(model.pieces) if pp.kind == "throw")
+    c = model.pieces[k].cond
+    f = c.S @ (cases.V[k] @ W.T) - c.g @ (cases.coef[k] @ W.T)  # forces of the neighbours on the throw
+    x = c.basis.doflocs
+    n1 = 3 * c.faces["end_1"].size
+    assert layout.sense == -1
+    for face, rows, torque, sign in (("end_1", slice(0, n1), front, -1.0), ("end_2", slice(n1, None), rear, 1.0)):
+        nodes = c.faces[face]
+        ff = f[rows].reshape(nodes.size, 3, -1)
+        mz = np.einsum("n,nk->k", x[0, nodes], ff[:, 1]) - np.einsum("n,nk->k", x[1, nodes], ff[:, 0])
+        np.testing.assert_allclose(mz, sign * layout.sense * torque, rtol=0, atol=2e-5 * np.abs(rear).max())
+
+
+def model_operating(speed):
+    return model.OperatingPoint(speed=speed)

@@ -31,8 +31,8 @@ y = (delta, u_A, u_B), delta the redundant bearings' displacements relative to t
 (stationarity in delta is r = C^-1 (delta - d0) = F_j, in u_A and u_B the base bearings'
 statics R_AB = R0 + Q r, Q the lever rule), a rigid bearing's d_j = 0 a linear constraint
 (y in its null space).  Newton's method on Pi with an exact line search along each
-step (the directional derivative of a convex function rises monotonically: bisection)
-converges from any start; the Hessian is regularised by a vanishing multiple of its own
+step (the directional derivative of a convex function rises monotonically: regula falsi)
+converges from any start (the line search: regula falsi on the directional derivative); the Hessian is regularised by a vanishing multiple of its own
 scale (1e-9) only to give a step in the directions no bearing yet resists, which the line
 search then cuts to where a journal meets its clearance circle: the solution is the
 exact one of the stated laws, no stiffness is added.  Start: the solution without
@@ -56,8 +56,8 @@ NEWTON_TOL = 1e-10
 MAX_NEWTON = 60
 #: the Hessian's regularisation, relative to its largest diagonal term (a step direction only)
 REGULARISATION = 1e-9
-#: bisection steps of the line search (the step length to 2^-60 of the Newton step)
-LINE_SEARCH_STEPS = 60
+#: most steps of the line search (regula falsi, every fourth a bisection)
+LINE_SEARCH_STEPS = 80
 
 
 @dataclass(frozen=True)
@@ -191,6 +191,8 @@ def _contact(sys_: BearingSystem, d_start: np.ndarray, d0: np.ndarray, R0: np.nd
     K = 0.5 * (K + K.T)
     lin = np.concatenate([R0[:, 2 * A : 2 * A + 2], R0[:, 2 * B : 2 * B + 2]], axis=1)  # (n, 4)
     soft = [j for j, law in enumerate(sys_.laws) if law.model != "rigid"]
+    GN = G @ N  # every bearing's displacement per z
+    cmax = max(law.clearance for law in sys_.laws)
     scale = np.abs(lin).sum(axis=1) + np.abs(delta0 @ K).sum(axis=1) + 1e-300
     # the force a stiff contact resolves at all: k (|d| - c) with |d| known to round-off
     kc = np.array([(law.stiffness or 0.0) * law.clearance for law in sys_.laws])
@@ -215,11 +217,11 @@ def _contact(sys_: BearingSystem, d_start: np.ndarray, d0: np.ndarray, R0: np.nd
             F, dF = _law(sys_.laws[j], d[:, sl])
             g -= F @ G[sl]
             if hessian:
-                H -= np.einsum("ai,nab,bj->nij", G[sl], dF, G[sl])
+                H -= G[sl].T @ dF @ G[sl]
         gz = g @ N
         if not hessian:
             return gz, None
-        return gz, np.einsum("ai,nab,bj->nij", N, H, N)
+        return gz, N.T @ H @ N
 
     y_start = np.zeros((n, G.shape[1]))
     y_start[:, : 2 * m] = d_start[:, red]
@@ -234,6 +236,13 @@ def _contact(sys_: BearingSystem, d_start: np.ndarray, d0: np.ndarray, R0: np.nd
         Ht = H[todo]
         mu = REGULARISATION * np.abs(np.diagonal(Ht, axis1=1, axis2=2)).max(axis=1) + 1e-300
         step = -np.linalg.solve(Ht + mu[:, None, None] * np.eye(Ht.shape[1]), g[todo][..., None])[..., 0]
+        # a step along a direction no bearing resists yet is as long as the load over the
+        # regularisation: cut it to 10 (largest clearance + the journals' displacement),
+        # so that the line search brackets the first contact within a few steps
+        move = np.abs(step @ GN.T).max(axis=1)
+        reach = 10.0 * (cmax + np.abs(z[todo] @ GN.T).max(axis=1))
+        reach = np.where(reach > 0, reach, np.inf)
+        step *= np.minimum(1.0, reach / np.maximum(move, 1e-300))[:, None]
         t = _line_search(lambda zz, k: grad(zz, k)[0], z[todo], step, todo)
         z[todo] = z[todo] + t[:, None] * step
     else:
@@ -258,17 +267,44 @@ def _contact(sys_: BearingSystem, d_start: np.ndarray, d0: np.ndarray, R0: np.nd
 def _line_search(grad, z: np.ndarray, step: np.ndarray, which: np.ndarray) -> np.ndarray:
     """Step lengths t in (0, 1] minimising the convex potential along ``step`` from ``z``
     (the angles ``which``; ``grad(z, angles)`` its gradient): the full step where the
-    directional derivative is still not positive at t = 1, else bisection on its sign
-    change (it rises monotonically along the step)."""
+    directional derivative h(t) is still not positive at t = 1, else its zero in (0, 1)
+    (h rises monotonically along the step) by regula falsi with the Illinois
+    modification, to |h| <= 1e-3 |h(0)| or a point short of the zero with h(0)/2 <= h <= 0
+    (a Wolfe point: the potential decreases), bisecting where it stalls; where neither
+    is reached, the last point with h < 0."""
+    h0 = np.einsum("ni,ni->n", grad(z, which), step)
     h1 = np.einsum("ni,ni->n", grad(z + step, which), step)
     t = np.ones(z.shape[0])
-    bis = np.flatnonzero(h1 > 0)
-    if bis.size:
-        lo, hi = np.zeros(bis.size), np.ones(bis.size)
-        zb, sb = z[bis], step[bis]
-        for _ in range(LINE_SEARCH_STEPS):
-            mid = 0.5 * (lo + hi)
-            h = np.einsum("ni,ni->n", grad(zb + mid[:, None] * sb, which[bis]), sb)
-            lo, hi = np.where(h < 0, mid, lo), np.where(h < 0, hi, mid)
-        t[bis] = 0.5 * (lo + hi)
+    todo = np.flatnonzero(h1 > 0)
+    if not todo.size:
+        return t
+    lo, hi = np.zeros(todo.size), np.ones(todo.size)
+    hlo, hhi = h0[todo].copy(), h1[todo].copy()
+    tol = 1e-3 * np.abs(h0[todo])
+    out = np.full(todo.size, np.nan)
+    side = np.zeros(todo.size, int)  # the end kept twice in a row: -1 lo, +1 hi
+    zt, st = z[todo], step[todo]
+    for it in range(LINE_SEARCH_STEPS):
+        open_ = np.isnan(out)
+        if not open_.any():
+            break
+        k = np.flatnonzero(open_)
+        secant = (lo[k] * hhi[k] - hi[k] * hlo[k]) / (hhi[k] - hlo[k])
+        mid = np.where(lo[k] > 0, 0.5 * (lo[k] + hi[k]), 1e-3 * hi[k])  # towards 0 by decades
+        tk = np.where(it % 4 == 3, mid, secant)  # every fourth step a bisection
+        tk = np.clip(tk, lo[k], hi[k])
+        h = np.einsum("ni,ni->n", grad(zt[k] + tk[:, None] * st[k], which[todo[k]]), st[k])
+        done = (np.abs(h) <= tol[k]) | ((h <= 0) & (-h <= 0.5 * np.abs(h0[todo[k]])))
+        out[k[done]] = tk[done]
+        neg = (h < 0) & ~done
+        pos = (h >= 0) & ~done
+        a, b = k[neg], k[pos]
+        lo[a], hlo[a] = tk[neg], h[neg]
+        hhi[a] = np.where(side[a] == -1, 0.5 * hhi[a], hhi[a])  # Illinois: halve the end kept
+        side[a] = -1
+        hi[b], hhi[b] = tk[pos], h[pos]
+        hlo[b] = np.where(side[b] == 1, 0.5 * hlo[b], hlo[b])
+        side[b] = 1
+    out = np.where(np.isnan(out), lo, out)
+    t[todo] = out
     return t
