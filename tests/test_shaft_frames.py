@@ -213,7 +213,7 @@ def test_every_journal_carries_its_own_torque_turning_the_other_way(overhung):
     layout, cases0, mass, e = overhung
     model = cases0.model
     cases = solve_cases(model, {**torque_flow_cases(model), **end_load_cases(model)})
-    dyn = analyse(e, model_operating(1500 * RPM))
+    dyn = analyse(e, model.OperatingPoint(speed=1500 * RPM))
     tl = dyn.throws["1"]
     th = np.asarray(dyn.theta)
     front = 40.0 + 25.0 * np.sin(2 * th)
@@ -231,7 +231,3 @@ def test_every_journal_carries_its_own_torque_turning_the_other_way(overhung):
         ff = f[rows].reshape(nodes.size, 3, -1)
         mz = np.einsum("n,nk->k", x[0, nodes], ff[:, 1]) - np.einsum("n,nk->k", x[1, nodes], ff[:, 0])
         np.testing.assert_allclose(mz, sign * layout.sense * torque, rtol=0, atol=2e-5 * np.abs(rear).max())
-
-
-def model_operating(speed):
-    return model.OperatingPoint(speed=speed)
