@@ -26,10 +26,10 @@ from shaft_helpers import Steel, small_engine, small_geometry
 
 from fe_crank import model
 from fe_crank.fe.shaft_cases import solve_cases
-from fe_crank.fe.shaft_model import build_shaft_model
-from fe_crank.fe.whole_shaft import shaft_cycle_of
+from fe_crank.fe.whole_shaft import condensed_shaft, shaft_cycle_of
 from fe_crank.geometry.mass import mass_properties
 from fe_crank.geometry.shaft import shaft_layout
+from fe_crank.geometry.spec import EndLoad
 from fe_crank.mechanism.dynamics import analyse
 from fe_crank.mesh.shaft import mesh_shaft
 
@@ -37,21 +37,42 @@ RPM = 2 * np.pi / 60
 CASES = [(90.0, 1), (37.0, -1)]
 
 
+#: a pulley in front (unbalance and a belt pull) and a flywheel behind (unbalance), both
+#: overhung beyond the end journals
+ENDS = (
+    EndLoad("pulley", "front", 1.5, 0.035, 2e-4, np.deg2rad(-60.0), 1200.0, np.deg2rad(100.0)),
+    EndLoad("flywheel", "rear", 12.0, 0.04, 1e-4, np.deg2rad(30.0)),
+)
+
+
 @pytest.fixture(scope="module")
-def cache(tmp_path_factory):
-    return tmp_path_factory.mktemp("cache")  # one mesh for every angle (the key ignores it)
+def shafts(tmp_path_factory):
+    """(angle in deg, sense) -> one throw at that angle with ``ENDS``, condensed once each
+    (one mesh for every angle: its cache key ignores the angle)."""
+    cache = tmp_path_factory.mktemp("cache")
+    built: dict = {}
+
+    def get(angle_deg: float, sense: int):
+        if (angle_deg, sense) not in built:
+            angle = np.deg2rad(angle_deg)
+            g = small_geometry([angle])
+            g = dataclasses.replace(g, shaft=dataclasses.replace(g.shaft, end_loads=ENDS))
+            e = small_engine([angle], sense=sense)
+            layout = shaft_layout(g, e, geometry_file="g.toml", engine_file="e.toml")
+            assert layout.sense == sense and layout.end_loads == ENDS
+            _, cases, _ = condensed_shaft(mesh_shaft(layout, size="test", cache_dir=cache), Steel())
+            mass = {t.name: mass_properties(layout.geometry, t.spec) for t in layout.throws}
+            built[angle_deg, sense] = (layout, cases, mass, e)
+        return built[angle_deg, sense]
+
+    return get
 
 
 @pytest.fixture(scope="module", params=CASES, ids=[f"{a:g}deg-sense{s:+d}" for a, s in CASES])
-def one_throw(request, cache):
-    angle, sense = np.deg2rad(request.param[0]), request.param[1]
-    g = small_geometry([angle])
-    e = small_engine([angle], sense=sense)
-    layout = shaft_layout(g, e, geometry_file="g.toml", engine_file="e.toml")
-    assert layout.sense == sense
-    cases = solve_cases(build_shaft_model(mesh_shaft(layout, size="test", cache_dir=cache), Steel()))
-    mass = {t.name: mass_properties(layout.geometry, t.spec) for t in layout.throws}
-    return layout, cases, mass, e
+def one_throw(request, shafts):
+    """The throw without its pulley and flywheel (their cases weighted zero)."""
+    layout, cases, mass, e = shafts(*request.param)
+    return dataclasses.replace(layout, end_loads=()), cases, mass, e
 
 
 def _engine_frame(v, gamma):
@@ -140,25 +161,9 @@ def test_web_moments_under_centrifugal_loads_are_the_beams(one_throw, counterwei
 
 
 @pytest.fixture(scope="module")
-def overhung(cache):
-    """One throw at 37 deg, turning the other way, with a pulley in front (unbalance and a
-    belt pull) and a flywheel behind (unbalance), both overhung beyond the end journals."""
-    from fe_crank.fe.whole_shaft import condensed_shaft
-    from fe_crank.geometry.spec import EndLoad
-
-    angle = np.deg2rad(37.0)
-    g = small_geometry([angle])
-    ends = (
-        EndLoad("pulley", "front", 1.5, 0.035, 2e-4, np.deg2rad(-60.0), 1200.0, np.deg2rad(100.0)),
-        EndLoad("flywheel", "rear", 12.0, 0.04, 1e-4, np.deg2rad(30.0)),
-    )
-    g = dataclasses.replace(g, shaft=dataclasses.replace(g.shaft, end_loads=ends))
-    e = small_engine([angle], sense=-1)
-    layout = shaft_layout(g, e, geometry_file="g.toml", engine_file="e.toml")
-    assert layout.end_loads == ends
-    _, cases, _ = condensed_shaft(mesh_shaft(layout, size="test", cache_dir=cache), Steel())
-    mass = {t.name: mass_properties(layout.geometry, t.spec) for t in layout.throws}
-    return layout, cases, mass, e
+def overhung(shafts):
+    """One throw at 37 deg, turning the other way, with ``ENDS``."""
+    return shafts(37.0, -1)
 
 
 def test_overhung_pulley_and_flywheel_load_the_bearings_by_the_lever_rule(overhung):
@@ -207,12 +212,11 @@ def test_every_journal_carries_its_own_torque_turning_the_other_way(overhung):
     under vibration (T_r - T_f - T_own, any function of the angle), the moment about the
     axis of the forces the neighbours exert on the throw is -sense T_f on its front face
     and sense T_r on its rear face (a torque T acts about -sense z), at every angle."""
-    from fe_crank.fe.shaft_cases import solve_cases
     from fe_crank.fe.whole_shaft import end_load_cases, torque_flow_cases
 
     layout, cases0, mass, e = overhung
-    model = cases0.model
-    cases = solve_cases(model, {**torque_flow_cases(model), **end_load_cases(model)})
+    shaft = cases0.model
+    cases = solve_cases(shaft, {**torque_flow_cases(shaft), **end_load_cases(shaft)})
     dyn = analyse(e, model.OperatingPoint(speed=1500 * RPM))
     tl = dyn.throws["1"]
     th = np.asarray(dyn.theta)
@@ -220,8 +224,8 @@ def test_every_journal_carries_its_own_torque_turning_the_other_way(overhung):
     rear = front + np.asarray(tl.torque) + 15.0 * np.cos(3 * th + 0.4)
     dyn = dataclasses.replace(dyn, throws={"1": dataclasses.replace(tl, torque_front=front, torque_rear=rear)})
     W = shaft_cycle_of(cases, layout, mass, dyn).weights
-    k = next(i for i, pp in enumerate(model.pieces) if pp.kind == "throw")
-    c = model.pieces[k].cond
+    k = next(i for i, pp in enumerate(shaft.pieces) if pp.kind == "throw")
+    c = shaft.pieces[k].cond
     f = c.S @ (cases.V[k] @ W.T) - c.g @ (cases.coef[k] @ W.T)  # forces of the neighbours on the throw
     x = c.basis.doflocs
     n1 = 3 * c.faces["end_1"].size
