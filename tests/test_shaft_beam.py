@@ -154,3 +154,11 @@ def test_soft_supports_move_load_to_the_end_bearings(three, k):
     expect = [0.75 * P - X / 2, X, 0.25 * P - X / 2]
     assert np.allclose(f[:, 1], expect, atol=0.01 * P)
     assert f[0, 1] > 0.75 * P - 11 / 32 * P + 0.02 * P  # more than on rigid bearings (13/32 P)
+
+
+def test_no_load_on_clearance_bearings_gives_no_force(three):
+    """Nothing to carry: every journal stays inside its circle, no bearing pushes (the
+    position inside the clearance is not determined; the forces are, zero)."""
+    f, d = reactions(point_loads(three, {0: 0.0}), [BearingLaw("clearance", 2e9, 20e-6)] * 3)
+    assert np.abs(f).max() == 0.0
+    assert np.hypot(d[:, 0], d[:, 1]).max() <= 20e-6
