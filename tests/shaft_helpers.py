@@ -103,9 +103,10 @@ def three_moment(spans: int, span: float, loads: dict[int, float]) -> np.ndarray
     return R
 
 
-def small_engine(angles, pitch: float = 0.06, crank_radius: float = 0.02, names=None):
+def small_engine(angles, pitch: float = 0.06, crank_radius: float = 0.02, names=None, sense: int = 1):
     """An inline engine with one cylinder per throw at ``angles`` (rad), ``pitch`` apart
-    and centred on z = 0, four-stroke, even firing: the throws' inertia loads only."""
+    and centred on z = 0, four-stroke, even firing: the throws' inertia loads only;
+    ``sense``: the shaft's direction of rotation."""
     from fe_crank import model
 
     n = len(angles)
@@ -116,7 +117,7 @@ def small_engine(angles, pitch: float = 0.06, crank_radius: float = 0.02, names=
     cylinders = tuple(
         model.Cylinder(names[i], names[i], 0.04, rod, 0.12, 0.0, 0.0, 4 * np.pi * i / n) for i in range(n)
     )
-    return model.Engine("small test engine", 4, (model.Shaft("main"),), throws, cylinders)
+    return model.Engine("small test engine", 4, (model.Shaft("main", sense=sense),), throws, cylinders)
 
 
 def small_geometry(angles, counterweights: bool = True):

@@ -19,10 +19,10 @@ from fe_crank.fe.whole_shaft import BearingResult
 from fe_crank.io.criteria import build_criteria
 
 
-def _bearing(name, peak, width=0.02, diameter=0.05):
+def _bearing(name, peak, width=0.02, diameter=0.05, law=""):
     def loads(p):
         f = np.array([[0.0, p], [0.5 * p, 0.0]])
-        return BearingLoads(name, 0.0, width, diameter, f, p, 0.75 * p, 30.0, p / (diameter * width), 0.0)
+        return BearingLoads(name, 0.0, width, diameter, f, p, 0.75 * p, 30.0, p / (diameter * width), 0.0, law)
 
     return BearingResult(loads(peak), loads(3 * peak))
 
@@ -31,7 +31,8 @@ def _shaft():
     # whole shaft: throw "1" fillet 150 MPa, static 650/150 = 4.33 (the per-throw model's worst
     # is 5.0, throw "2": the whole shaft governs), fatigue 1.8 (the per-throw 1.6 governs)
     t1 = ThrowAssessment("1", (_group("crankpin_fillet_1", 11, 150e6, 160e6, 1.8, 2.8),))
-    return ShaftAssessment((t1,), (_bearing("1", 20e3), _bearing("2", 35e3, width=0.025), _bearing("3", 30e3)))
+    bearings = (_bearing("1", 20e3, law="rigid"), _bearing("2", 35e3, width=0.025, law="spring 3e+08 N/m"))
+    return ShaftAssessment((t1,), bearings + (_bearing("3", 30e3),))
 
 
 def test_a_criterion_takes_the_worse_model_and_says_which():
@@ -61,6 +62,8 @@ def test_main_bearing_criteria_by_hand():
     assert load.margin == pytest.approx(1 - 35 / 40) and "main bearing 2, 30 deg" in load.location
     assert spec.value == pytest.approx(30e6) and not spec.passed and spec.unit == "Pa"
     assert "main bearing 3" in spec.location and spec.location.startswith(WHOLE_SHAFT)
+    assert "main bearing 2, 30 deg, bearing law spring 3e+08 N/m" in load.location  # the envelope's governing law
+    assert "bearing law" not in spec.location  # loads that name no law
     assert math.isclose(spec.margin, 1 - 30 / 25)
 
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from fe_crank.cli import main
@@ -200,3 +201,83 @@ def test_an_oil_film_criterion_without_the_whole_shaft_is_refused(tmp_path, caps
     )
     p.write_text(text)
     _refused(capsys, p, "single_cylinder.toml", "criteria.max_oil_film_pressure", "whole-shaft model")
+
+
+def test_a_specific_load_criterion_without_a_bearing_width_is_refused(tmp_path, capsys):
+    """tests/data/small_shaft.toml limits the specific load: with the [shaft] section's
+    bearing width taken out of its geometry, `validate` refuses it (the journal's flat
+    is no bearing width), naming the geometry file and the key; a width stated per
+    bearing is enough, and without the criterion the same geometry is accepted."""
+    data = ROOT / "tests" / "data"
+    for f in ("small_shaft.toml", "geometry_small_shaft.toml"):
+        shutil.copy(data / f, tmp_path / f)
+    g = tmp_path / "geometry_small_shaft.toml"
+    text = g.read_text()
+    cut = text[: text.index("[shaft]")]
+    g.write_text(cut)
+    err = _refused(
+        capsys, tmp_path / "small_shaft.toml", "geometry_small_shaft.toml", "shaft.bearing_width", "19 mm", "1, 2"
+    )
+    assert "max_main_bearing_specific_load" in err
+    per_bearing = "".join(f'\n[[shaft.bearings]]\nname = "{j + 1}"\njournal = {j}\nwidth = "16 mm"\n' for j in range(5))
+    g.write_text(cut + per_bearing)
+    assert main(["validate", str(tmp_path / "small_shaft.toml")]) == 0
+    g.write_text(cut)
+    case = tmp_path / "small_shaft.toml"
+    case.write_text(case.read_text().replace('max_main_bearing_specific_load = "40 MPa"\n', ""))
+    assert main(["validate", str(case)]) == 0
+
+
+@pytest.mark.parametrize(
+    "line, ok",
+    [
+        ('stiffness_range = ["5e8 N/m", "2e9 N/m"]', True),
+        ('stiffness_range = ["3e9 N/m", "3e8 N/m"]', False),
+        ('stiffness_range = ["3e8 N/m"]', False),
+        ('stiffness_range = ["3e8 N/m", "3e9 N/mm"]', True),
+    ],
+)
+def test_the_stiffness_range_is_read_or_refused(tmp_path, capsys, line, ok):
+    """[shaft] stiffness_range: two positive stiffnesses, the lower first, with units;
+    read into the layout, or refused with the file and the key."""
+    from fe_crank.io.loadcase import load_loadcase
+
+    data = ROOT / "tests" / "data"
+    for f in ("small_shaft.toml", "geometry_small_shaft.toml"):
+        shutil.copy(data / f, tmp_path / f)
+    g = tmp_path / "geometry_small_shaft.toml"
+    g.write_text(g.read_text().replace("[shaft]\n", f"[shaft]\n{line}\n"))
+    if not ok:
+        err = _refused(capsys, tmp_path / "small_shaft.toml", "geometry_small_shaft.toml", "stiffness_range")
+        assert "literal" not in err and "Input should" not in err
+        return
+    assert main(["validate", str(tmp_path / "small_shaft.toml")]) == 0
+    lc = load_loadcase(tmp_path / "small_shaft.toml")
+    lo, hi = (5e8, 2e9) if "2e9" in line else (3e8, 3e12)
+    assert lc.geometry.shaft.stiffness_range == pytest.approx((lo, hi))
+
+
+def test_flywheel_and_pulley_are_read_with_their_units_or_refused(tmp_path, capsys):
+    """[shaft] flywheel (at the power take-off's end, rear by default) and pulley (the other
+    end): SI values from their units; a flywheel without its mass is refused with the key."""
+    from fe_crank.io.loadcase import load_loadcase
+
+    data = ROOT / "tests" / "data"
+    for f in ("small_shaft.toml", "geometry_small_shaft.toml"):
+        shutil.copy(data / f, tmp_path / f)
+    g = tmp_path / "geometry_small_shaft.toml"
+    text = g.read_text()
+    lines = (
+        'flywheel = { mass = "12 kg", offset = "40 mm", eccentricity = "0.1 mm", unbalance_angle = "30 deg" }\n'
+        'pulley = { mass = "1500 g", offset = "3.5 cm", belt_pull = "1.2 kN", belt_angle = "90 deg" }\n'
+    )
+    g.write_text(text.replace("[shaft]\n", "[shaft]\n" + lines))
+    lc = load_loadcase(tmp_path / "small_shaft.toml")
+    pulley, flywheel = lc.geometry.shaft.end_loads
+    assert (pulley.name, pulley.end, flywheel.name, flywheel.end) == ("pulley", "front", "flywheel", "rear")
+    assert flywheel.unbalance == pytest.approx(12 * 1e-4)
+    assert flywheel.unbalance_angle == pytest.approx(np.pi / 6)
+    assert (pulley.mass, pulley.offset, pulley.belt_pull) == pytest.approx((1.5, 0.035, 1200.0))
+    assert pulley.belt_angle == pytest.approx(np.pi / 2) and pulley.eccentricity == 0.0
+    g.write_text(text.replace("[shaft]\n", '[shaft]\nflywheel = { offset = "40 mm" }\n'))
+    _refused(capsys, tmp_path / "small_shaft.toml", "geometry_small_shaft.toml", "shaft.flywheel.mass")

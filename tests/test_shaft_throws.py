@@ -187,9 +187,67 @@ def test_web_moment_of_a_throw_on_two_bearings_is_the_beams(single):
     (a, b), t = layout.bearings, layout.throws[0]
     P = _engine(loads[0].pin_force, psi)  # throw "1" at 0 deg: its frame is the shaft's
     RA = P * (b.z - t.z) / (b.z - a.z)
+    g = layout.geometry  # the web mid-planes from the geometry, not from the result
+    mid = {1: t.z - g.crankpin_length / 2 - g.web_thickness / 2, 2: t.z + g.crankpin_length / 2 + g.web_thickness / 2}
     for w in res.webs:
-        lever = (w.z - a.z) if w.web == 1 else (b.z - w.z)
+        lever = (mid[1] - a.z) if w.web == 1 else (b.z - mid[2])
         R = RA if w.web == 1 else P - RA
         expect = lever * np.hypot(R[:, 0], R[:, 1])
         got = np.hypot(*w.bending_moment_nm.T)
         assert np.allclose(got, expect, atol=1e-6 * expect.max())
+
+
+@pytest.mark.parametrize("c", [5e-6, 20e-6, 40e-6])
+def test_every_bearing_in_clearance_solves_at_every_angle(flat4, c):
+    """Five bearings, every one with a clearance (inertia loads of a four-throw engine at
+    4000 rpm, contact stiffness 2e9 N/m): at every angle the bearings carry the same total
+    as rigid ones (statics) and each journal's force is k (|d| - c)_+ along its displacement
+    (the law).  At 20 and 40 um there are angles where a single journal touches (the
+    shaft's loads balanced about it, the others free inside their circles)."""
+    from fe_crank.geometry.spec import BearingLaw
+
+    layout, cases, dyn, mass, loads, psi = flat4
+    k = 2e9
+    rigid = shaft_cycle(cases, loads, dyn.theta, psi, SPEED, mass)
+    res = shaft_cycle(cases, loads, dyn.theta, psi, SPEED, mass, laws=[BearingLaw("clearance", k, c)] * 5)
+    total = sum(b.load_n for b in rigid.bearings)
+    scale = np.abs(total).max()
+    assert np.abs(sum(b.load_n for b in res.bearings) - total).max() < 1e-9 * scale
+    d = _engine(res.displacement, psi[:, None])
+    F = np.stack([b.load_n for b in res.bearings], axis=1)
+    r = np.hypot(d[..., 0], d[..., 1])
+    assert np.allclose(np.hypot(F[..., 0], F[..., 1]), k * np.maximum(r - c, 0.0), atol=1e-8 * scale)
+    assert np.abs(F[..., 0] * d[..., 1] - F[..., 1] * d[..., 0]).max() < 1e-8 * scale * r.max()
+    assert np.all(np.einsum("nbi,nbi->nb", F, d) >= -1e-8 * scale * r.max())
+    if c > 10e-6:  # angles where one journal alone touches: the shaft free to tilt about it
+        assert np.any((r > c).sum(axis=1) == 1)
+
+
+def test_main_bearing_loads_are_the_envelope_over_the_stiffness_range(twin):
+    """bearings_of: per bearing the largest peak of the stated law (rigid) and springs of
+    3e8, 9.5e8 and 3e9 N/m (the default range, its geometric mean between), each law
+    computed here on its own; the governing law is named with the loads, which are that
+    law's whole cycle (peak and specific load from them)."""
+    from fe_crank.fe.whole_shaft import bearings_of
+    from fe_crank.geometry.spec import BearingLaw
+
+    layout, cases, dyn, mass, loads, psi = twin
+    assert layout.stiffness_range == (3e8, 3e9)
+    res = bearings_of(cases, layout, mass, dyn)
+    laws = {"rigid": [BearingLaw()] * 3}
+    for k in (3e8, np.sqrt(3e8 * 3e9), 3e9):
+        laws[f"spring {k:.3g} N/m"] = [BearingLaw("spring", k)] * 3
+    for cw in (True, False):
+        runs = {
+            name: shaft_cycle(cases, loads, dyn.theta, psi, SPEED, mass, counterweights=cw, laws=w)
+            for name, w in laws.items()
+        }
+        for j, b in enumerate(res):
+            got = b.with_counterweights if cw else b.without_counterweights
+            peaks = {name: r.bearings[j].peak_n for name, r in runs.items()}
+            best = max(peaks, key=peaks.get)
+            assert got.law == best
+            assert got.peak_n == pytest.approx(peaks[best], rel=1e-12)
+            assert np.allclose(got.load_n, runs[best].bearings[j].load_n, rtol=0, atol=1e-9 * got.peak_n)
+            assert got.specific_load_pa == pytest.approx(got.peak_n / (got.diameter * got.width), rel=1e-12)
+    assert any(b.with_counterweights.law != "rigid" for b in res)  # the range governs somewhere

@@ -32,9 +32,17 @@ def no_throw_value(throws: tuple[ThrowAssessment, ...]) -> Found:
     return None
 
 
+def _law(loads) -> str:
+    """ ", bearing law <law>" when the loads name theirs (the governing law of the envelope)."""
+    return f", bearing law {loads.law}" if loads.law else ""
+
+
 def _bearing_load(bearings) -> Found:
     vals = [
-        (b.with_counterweights.peak_n, f"main bearing {b.name}, {b.with_counterweights.peak_angle_deg:.0f} deg")
+        (
+            b.with_counterweights.peak_n,
+            f"main bearing {b.name}, {b.with_counterweights.peak_angle_deg:.0f} deg{_law(b.with_counterweights)}",
+        )
         for b in bearings
     ]
     return max(vals) if vals else None
@@ -45,7 +53,7 @@ def _bearing_specific_load(bearings) -> Found:
         (
             b.with_counterweights.specific_load_pa,
             f"main bearing {b.name} (peak / (d w), w = {b.with_counterweights.width * 1e3:.4g} mm), "
-            f"{b.with_counterweights.peak_angle_deg:.0f} deg",
+            f"{b.with_counterweights.peak_angle_deg:.0f} deg{_law(b.with_counterweights)}",
         )
         for b in bearings
     ]

@@ -13,7 +13,7 @@ the reference throw, from +y towards +x).
   peak / (d x w) (journal diameter d, bearing width w);
 * ``WebMoment``: the bending moment (M_x, M_y, N m, engine frame) at each web's mid-plane:
   the moment about the section's centre of every load in front of it (pin forces,
-  bearing forces and the centrifugal forces of the parts, from the exact mass properties of
+  bearing forces, a pulley's or flywheel's loads and the centrifugal forces of the parts, from the exact mass properties of
   the throw's solid, ``geometry.mass``; a web and a counterweight flush with its outer
   face are prisms along z, so the part of each in front of the mid-plane is its share of
   the thickness).
@@ -42,6 +42,15 @@ class ThrowCycleLoad:
 
 
 @dataclass(frozen=True)
+class EndCycleLoad:
+    """A load beyond an end of the shaft (flywheel, pulley: ``whole_shaft.end_load_cases``)."""
+
+    name: str  # its unit cases are ``<name>.x``, ``<name>.y`` (1 N at its reference point)
+    z: float  # m, its centre plane
+    force: np.ndarray  # (n, 2) N on the shaft, shaft frame
+
+
+@dataclass(frozen=True)
 class BearingLoads:
     name: str
     z: float  # m
@@ -53,6 +62,7 @@ class BearingLoads:
     peak_angle_deg: float  # cycle angle of the peak
     specific_load_pa: float  # peak / (d w)
     mean_specific_load_pa: float
+    law: str = ""  # the bearing law these loads are of (``law_text``)
     #: (n, 2) the journal's mean slope (dx/dz, dy/dz) in the bearing, engine frame, relative
     #: to the bearings' line (None: not computed)
     slope: np.ndarray | None = None
@@ -144,39 +154,29 @@ def journal_slopes(cases: ShaftCases, W: np.ndarray, d: np.ndarray) -> np.ndarra
     return out + ((d[:, B] - d[:, A]) / (z[B] - z[A]))[:, None, :]
 
 
-def shaft_cycle(
-    cases: ShaftCases,
-    loads: tuple[ThrowCycleLoad, ...],
-    cycle_angle: np.ndarray,
-    shaft_angle: np.ndarray,
-    speed: float,
-    mass,
-    *,
-    counterweights: bool = True,
-    laws=None,
-    front_torque: np.ndarray | None = None,
-) -> ShaftCycle:
-    """The cycle (module doc).  ``cycle_angle`` (n,) rad; ``shaft_angle`` psi (n,) rad;
-    ``speed`` rad/s; ``mass``: throw name -> ``geometry.mass.MassProperties`` of its solid;
-    ``laws``: per bearing (default the layout's); ``front_torque`` (n,): the weight of the
-    ``torque_front`` case (M_z on the shaft's front face), with the throws' ``spin_up``."""
-    layout = cases.model.mesh.layout
-    laws = laws or [b.law for b in layout.bearings]
-    by = {t.throw: np.asarray(t.pin_force, float) for t in loads}
-    extra = {f"spin_up@{t.throw}": np.asarray(t.spin_up, float) for t in loads if t.spin_up is not None}
-    if front_torque is not None:
-        extra["torque_front"] = np.asarray(front_torque, float)
-    W = case_weights(cases, by, speed, counterweights, extra)
-    f, d, W = solve_cycle(cases, W, laws)
+def law_text(law) -> str:
+    """A bearing law in words: "rigid", "spring 1e+09 N/m", "clearance 40 um, 2e+09 N/m"."""
+    if law.model == "rigid":
+        return "rigid"
+    if law.model == "spring":
+        return f"spring {law.stiffness:.3g} N/m"
+    return f"clearance {law.clearance * 1e6:.3g} um, {law.stiffness:.3g} N/m"
+
+
+def bearing_loads(
+    layout, f: np.ndarray, cycle_angle: np.ndarray, shaft_angle: np.ndarray, laws, slopes: np.ndarray | None = None
+) -> tuple:
+    """``BearingLoads`` of every bearing from the bearings' forces on the shaft ``f``
+    (n, nb, 2), shaft frame, under ``laws``; ``slopes`` (n, nb, 2), shaft frame: the
+    journals' slopes in their bearings (``journal_slopes``), None where not computed."""
     deg = np.rad2deg(cycle_angle)
-    slopes = journal_slopes(cases, W, d)
-    bearings = []
     dj = layout.geometry.journal_diameter
+    out = []
     for j, b in enumerate(layout.bearings):
         load = _to_engine(-f[:, j], shaft_angle)
         mag = np.hypot(load[:, 0], load[:, 1])
         k = int(np.argmax(mag))
-        bearings.append(
+        out.append(
             BearingLoads(
                 b.name,
                 b.z,
@@ -188,15 +188,73 @@ def shaft_cycle(
                 float(deg[k]),
                 float(mag[k] / (dj * b.width)),
                 float(mag.mean() / (dj * b.width)),
+                law_text(laws[j]),
                 None if slopes is None else _to_engine(slopes[:, j], shaft_angle),
             )
         )
+    return tuple(out)
+
+
+def _weights(cases, loads, speed, counterweights, front_torque, ends=()):
+    by = {t.throw: np.asarray(t.pin_force, float) for t in loads}
+    extra = {f"spin_up@{t.throw}": np.asarray(t.spin_up, float) for t in loads if t.spin_up is not None}
+    if front_torque is not None:
+        extra["torque_front"] = np.asarray(front_torque, float)
+    for e in ends:
+        extra[f"{e.name}.x"], extra[f"{e.name}.y"] = e.force[:, 0], e.force[:, 1]
+    return by, case_weights(cases, by, speed, counterweights, extra)
+
+
+def bearing_cycle(
+    cases: ShaftCases,
+    loads: tuple[ThrowCycleLoad, ...],
+    cycle_angle: np.ndarray,
+    shaft_angle: np.ndarray,
+    speed: float,
+    *,
+    counterweights: bool = True,
+    laws=None,
+    front_torque: np.ndarray | None = None,
+    ends: tuple[EndCycleLoad, ...] = (),
+) -> tuple[BearingLoads, ...]:
+    """The main bearings' loads alone (``shaft_cycle`` without its web moments and weights):
+    another bearing law on the same cycle costs one bearing solve."""
+    layout = cases.model.mesh.layout
+    laws = laws or [b.law for b in layout.bearings]
+    _, W = _weights(cases, loads, speed, counterweights, front_torque, ends)
+    f, d, W = solve_cycle(cases, W, laws)
+    return bearing_loads(layout, f, cycle_angle, shaft_angle, laws, journal_slopes(cases, W, d))
+
+
+def shaft_cycle(
+    cases: ShaftCases,
+    loads: tuple[ThrowCycleLoad, ...],
+    cycle_angle: np.ndarray,
+    shaft_angle: np.ndarray,
+    speed: float,
+    mass,
+    *,
+    counterweights: bool = True,
+    laws=None,
+    front_torque: np.ndarray | None = None,
+    ends: tuple[EndCycleLoad, ...] = (),
+) -> ShaftCycle:
+    """The cycle (module doc).  ``cycle_angle`` (n,) rad; ``shaft_angle`` psi (n,) rad;
+    ``speed`` rad/s; ``mass``: throw name -> ``geometry.mass.MassProperties`` of its solid;
+    ``laws``: per bearing (default the layout's); ``front_torque`` (n,): the weight of the
+    ``torque_front`` case (M_z on the shaft's front face), with the throws' ``spin_up``;
+    ``ends``: the loads beyond the shaft's ends (flywheel, pulley)."""
+    layout = cases.model.mesh.layout
+    laws = laws or [b.law for b in layout.bearings]
+    by, W = _weights(cases, loads, speed, counterweights, front_torque, ends)
+    f, d, W = solve_cycle(cases, W, laws)
+    bearings = bearing_loads(layout, f, cycle_angle, shaft_angle, laws, journal_slopes(cases, W, d))
     spin = {t.throw: np.asarray(t.spin_up, float) for t in loads if t.spin_up is not None}
-    webs = _web_moments(cases, by, f, speed, shaft_angle, mass, counterweights, spin)
-    return ShaftCycle(deg, speed, tuple(bearings), webs, W, d, counterweights)
+    webs = _web_moments(cases, by, f, speed, shaft_angle, mass, counterweights, spin, ends)
+    return ShaftCycle(np.rad2deg(cycle_angle), speed, bearings, webs, W, d, counterweights)
 
 
-def _web_moments(cases, by, f, speed, psi, mass, counterweights, spin=None) -> tuple[WebMoment, ...]:
+def _web_moments(cases, by, f, speed, psi, mass, counterweights, spin=None, ends=()) -> tuple[WebMoment, ...]:
     layout = cases.model.mesh.layout
     g = layout.geometry
     zp, t = g.crankpin_length / 2, g.web_thickness
@@ -215,6 +273,8 @@ def _web_moments(cases, by, f, speed, psi, mass, counterweights, spin=None) -> t
                 items.append(((th.z + z0, th.z + z1), F) if z1 > z0 else (th.z + z0, F))
     for j, b in enumerate(layout.bearings):
         items.append((b.z, f[:, j]))
+    for e in ends:
+        items.append((e.z, np.asarray(e.force, float)))
     out = []
     for th in layout.throws:
         for web, zc in ((1, th.z - zp - t / 2), (2, th.z + zp + t / 2)):

@@ -37,9 +37,11 @@ from fe_crank.geometry.engine_fit import (
     pitch_of,
 )
 from fe_crank.geometry.spec import (
+    DEFAULT_STIFFNESS_RANGE,
     BearingInput,
     BearingLaw,
     CrankGeometry,
+    EndLoad,
     PlainCylinder,
     PowerTakeoff,
     ShaftSpec,
@@ -72,6 +74,9 @@ class MainBearing:
     width: float  # m, for the specific load
     law: BearingLaw
     thrust: bool = False
+    #: the width is the file's (``[shaft] bearing_width`` or the bearing's ``width``); False:
+    #: the journal's flat between its fillets, no bearing width (no specific-load criterion)
+    width_stated: bool = True
 
 
 @dataclass(frozen=True)
@@ -91,6 +96,9 @@ class ShaftLayout:
     power_takeoff: PowerTakeoff
     geometry_file: str
     engine_file: str
+    #: N/m, the stiffness range the main-bearing loads are enveloped over (``fe.whole_shaft``)
+    stiffness_range: tuple[float, float] = DEFAULT_STIFFNESS_RANGE
+    end_loads: tuple[EndLoad, ...] = ()  # flywheel, pulley (``fe.whole_shaft.end_load_cases``)
 
     @property
     def thrust_bearing(self) -> MainBearing:
@@ -168,12 +176,13 @@ def _bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str, ef: str) -> 
         flat = (js.z1 - js.z0) - 2 * rf  # the cylinder between two fillets ...
         if n > 0 and j in (0, n):  # ... or, on an end journal, as wide as an inner bearing at most
             flat = min(js.z1 - js.z0 - rf, 2 * (js.centre - js.z0 if j == n else js.z1 - js.centre) - 2 * rf)
-        width = (b.width if b is not None else None) or spec.bearing_width or flat
+        stated = (b.width if b is not None else None) or spec.bearing_width
         law = (b.law if b is not None else None) or spec.bearing_law
         if law.film is not None:
             own = b is not None and b.law is not None
-            film_fits(law, width, g, gf, f"shaft.bearings[{k}].bearing" if own else "shaft.bearing")
-        out.append(MainBearing(str(j + 1) if b is None else b.name, j, js.centre, width, law))
+            film_fits(law, stated or flat, g, gf, f"shaft.bearings[{k}].bearing" if own else "shaft.bearing")
+        name = str(j + 1) if b is None else b.name
+        out.append(MainBearing(name, j, js.centre, stated or flat, law, width_stated=stated is not None))
     if len(out) < 2:
         raise InputError("a shaft needs at least two main bearings", file=gf, key="shaft.bearings")
     if spec.thrust_bearing is None:
@@ -229,6 +238,8 @@ def shaft_layout(
         power_takeoff=spec.power_takeoff,
         geometry_file=gf,
         engine_file=ef,
+        stiffness_range=spec.stiffness_range or DEFAULT_STIFFNESS_RANGE,
+        end_loads=spec.end_loads,
     )
 
 

@@ -182,6 +182,35 @@ class BearingInput:
     law: BearingLaw | None = None  # None: the shaft's default
 
 
+#: N/m: the main bearings' radial stiffness range the whole shaft's bearing loads are
+#: enveloped over when the geometry states none (``[shaft] stiffness_range``; docs/shaft.md)
+DEFAULT_STIFFNESS_RANGE = (3e8, 3e9)
+
+
+@dataclass(frozen=True)
+class EndLoad:
+    """A flywheel or pulley on one end of the shaft, beyond its end journal: the
+    centrifugal force of its unbalance m e, turning with the shaft (``unbalance_angle``
+    from the first throw's crankpin in the sense of rotation), and a belt pull fixed in the
+    engine frame (``belt_angle`` from +y towards +x), both at its centre plane ``offset``
+    beyond the shaft's end face.  Its weight is not a load of the model (gravity is not
+    modelled: neither the shaft's weight nor this)."""
+
+    name: str  # "flywheel" | "pulley"
+    end: str  # "front" | "rear"
+    mass: float  # kg
+    offset: float  # m, beyond the end journal's outer face
+    eccentricity: float = 0.0  # m, of its centre of mass from the axis
+    unbalance_angle: float = 0.0  # rad
+    belt_pull: float = 0.0  # N
+    belt_angle: float = 0.0  # rad
+
+    @property
+    def unbalance(self) -> float:
+        """m e, kg m."""
+        return self.mass * self.eccentricity
+
+
 @dataclass(frozen=True)
 class ShaftSpec:
     """The ``[shaft]`` section of a geometry file: what lies beyond the throws and how
@@ -194,8 +223,12 @@ class ShaftSpec:
     bearing_width: float | None = None  # m, default width of every bearing
     bearing_law: BearingLaw = BearingLaw()
     bearings: tuple[BearingInput, ...] | None = None  # None: one at every journal
+    #: N/m, the realistic range of the bearings' radial stiffness (oil film, shell, housing)
+    #: over which the main-bearing loads are enveloped; None: ``DEFAULT_STIFFNESS_RANGE``
+    stiffness_range: tuple[float, float] | None = None
     thrust_bearing: str | None = None  # None: the bearing nearest the power take-off
     power_takeoff: PowerTakeoff = "rear"  # "rear" (flywheel end) or "front"
+    end_loads: tuple[EndLoad, ...] = ()  # flywheel, pulley
 
 
 @dataclass(frozen=True)

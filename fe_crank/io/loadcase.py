@@ -40,6 +40,7 @@ from fe_crank.io.includes import input_root, resolve_reference
 from fe_crank.io.material import Material
 from fe_crank.io.operating import parse_operating
 from fe_crank.io.sections import SECTION_KEYS, parse_sections
+from fe_crank.io.shaft import require_bearing_widths
 from fe_crank.io.torsion import TorsionSettings
 from fe_crank.io.torsion_engine import check_torsion_engine
 from fe_crank.mesh.options import MeshSection
@@ -127,6 +128,8 @@ def _load(path: Path) -> LoadCase:
             layout = engine_shaft_layout(geometry, engine, geometry_file=gfile, engine_file=engine_file)
             if criteria is not None:
                 require_film(layout, [lim.key for lim in criteria.limits if "oil_film" in lim.key], path)
+                quantities = [lim.quantity for lim in criteria.limits]
+                require_bearing_widths(layout.bearings, quantities, gfile, str(path))
     film_keys = [lim.key for lim in criteria.limits if "oil_film" in lim.key] if criteria is not None else []
     if film_keys and not (isinstance(geometry, CrankGeometry) and whole_shaft_wanted(geometry, engine)):
         raise InputError(

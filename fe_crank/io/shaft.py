@@ -13,8 +13,17 @@
                                      # or { model = "clearance", clearance = "40 um", stiffness = "2e9 N/m" }
                                      # or { model = "hydrodynamic", clearance = "30 um", viscosity = "8 mPa*s" }
                                      #   (the oil film, fe_crank.fe.oil_film; ``HydrodynamicInput`` below)
+    stiffness_range = ["3e8 N/m", "3e9 N/m"]   # optional: the bearings' realistic radial stiffness;
+                                     # the main-bearing loads are the envelope of the law above and
+                                     # springs across this range (default 3e8 to 3e9 N/m)
     thrust_bearing = "3"             # optional: default the bearing nearest the power take-off
     power_takeoff = "rear"           # "rear" (flywheel end, default) or "front"
+    flywheel = { mass = "12 kg", offset = "40 mm", eccentricity = "0.1 mm", unbalance_angle = "0 deg" }
+                                     # optional, at the power take-off's end: its centre plane offset
+                                     # beyond the end journal's face; unbalance m e from the eccentricity
+    pulley = { mass = "1.5 kg", offset = "35 mm", belt_pull = "1.2 kN", belt_angle = "90 deg" }
+                                     # optional, at the other end; a belt pull fixed in the engine frame
+                                     # (direction from +y towards +x); their weights are not modelled
 
     [[shaft.bearings]]               # optional: default one bearing at every journal, named 1, 2, ...
     name = "1"
@@ -23,7 +32,9 @@
     bearing = { model = "spring", stiffness = "8e8 N/m" }   # optional: this bearing's law
 
 A negative stiffness or clearance, a spring or clearance bearing without its
-stiffness, two bearings on one journal or with one name are refused here; a bearing on
+stiffness, two bearings on one journal or with one name are refused here, and a
+specific-load criterion without a stated bearing width (``require_bearing_widths``: the
+journal's flat between its fillets is wider than a bearing shell); a bearing on
 a journal the shaft does not have and a thrust bearing that names no bearing are refused
 where the engine gives the journals (``fe_crank.geometry.shaft``).
 """
@@ -34,10 +45,21 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
+from fe_crank.errors import InputError
 from fe_crank.geometry.oil import FilmSpec, walther_viscosity
-from fe_crank.geometry.spec import BearingInput, BearingLaw, PlainCylinder, ShaftSpec
+from fe_crank.geometry.spec import BearingInput, BearingLaw, EndLoad, PlainCylinder, ShaftSpec
 from fe_crank.io.base import Strict
-from fe_crank.io.units import Density, KinematicViscosity, Length, Stiffness, Temperature, Viscosity
+from fe_crank.io.units import (
+    Angle,
+    Density,
+    Force,
+    KinematicViscosity,
+    Length,
+    Mass,
+    Stiffness,
+    Temperature,
+    Viscosity,
+)
 
 
 class CylinderInput(Strict):
@@ -146,6 +168,27 @@ class BearingLawInput(Strict):
         return BearingLaw(self.model, self.stiffness, self.clearance or 0.0)
 
 
+class EndLoadInput(Strict):
+    mass: Mass = Field(gt=0)
+    offset: Length = Field(ge=0)
+    eccentricity: Length = Field(default=0.0, ge=0)
+    unbalance_angle: Angle = 0.0
+    belt_pull: Force = Field(default=0.0, ge=0)
+    belt_angle: Angle = 0.0
+
+    def load(self, name: str, end: str) -> EndLoad:
+        return EndLoad(
+            name,
+            end,
+            self.mass,
+            self.offset,
+            self.eccentricity,
+            self.unbalance_angle,
+            self.belt_pull,
+            self.belt_angle,
+        )
+
+
 class BearingEntry(Strict):
     name: str = Field(min_length=1, max_length=64)
     journal: int = Field(ge=0, le=1000)
@@ -163,6 +206,19 @@ class ShaftInput(Strict):
     bearings: list[BearingEntry] | None = Field(default=None, min_length=2, max_length=1000)
     thrust_bearing: str | None = Field(default=None, min_length=1, max_length=64)
     power_takeoff: Literal["rear", "front"] = "rear"
+    stiffness_range: list[Stiffness] | None = Field(default=None, min_length=2, max_length=2)
+    flywheel: EndLoadInput | None = None
+    pulley: EndLoadInput | None = None
+
+    @model_validator(mode="after")
+    def _range(self):
+        if self.stiffness_range is not None:
+            lo, hi = self.stiffness_range
+            if not 0 < lo < hi:
+                raise ValueError(
+                    'stiffness_range: two positive stiffnesses, the lower first, e.g. ["3e8 N/m", "3e9 N/m"]'
+                )
+        return self
 
     @model_validator(mode="after")
     def _unique(self):
@@ -200,4 +256,41 @@ def shaft_spec(raw: ShaftInput | None) -> ShaftSpec | None:
         bearings=bearings,
         thrust_bearing=raw.thrust_bearing,
         power_takeoff=raw.power_takeoff,
+        stiffness_range=None if raw.stiffness_range is None else (raw.stiffness_range[0], raw.stiffness_range[1]),
+        end_loads=_end_loads(raw),
+    )
+
+
+def _end_loads(raw: ShaftInput) -> tuple[EndLoad, ...]:
+    """The flywheel at the power take-off's end, the pulley at the other."""
+    other = "front" if raw.power_takeoff == "rear" else "rear"
+    out = []
+    if raw.pulley is not None:
+        out.append(raw.pulley.load("pulley", other))
+    if raw.flywheel is not None:
+        out.append(raw.flywheel.load("flywheel", raw.power_takeoff))
+    return tuple(out)
+
+
+#: criteria that read a main bearing's width
+WIDTH_CRITERIA = ("main_bearing_specific_load",)
+
+
+def require_bearing_widths(bearings, quantities, geometry_file: str, criteria_file: str) -> None:
+    """Refuse a specific-load criterion (peak / (d w)) while a main bearing has no stated
+    width: the default, the journal's cylinder between its fillets, is wider than the
+    bearing shell on it and would under-state the specific load.  ``bearings``: the
+    layout's ``MainBearing``s; ``quantities``: the criteria's quantity names."""
+    asked = [q for q in quantities if q in WIDTH_CRITERIA]
+    missing = [b for b in bearings if not b.width_stated]
+    if not asked or not missing:
+        return
+    names = ", ".join(b.name for b in missing)
+    raise InputError(
+        f"the criterion max_{asked[0]} of {criteria_file} divides each main bearing's peak load by its "
+        f"projected area (journal diameter x bearing width), and main bearing(s) {names} have no stated "
+        f"width (the journal's flat between its fillets, {missing[0].width * 1e3:.3g} mm, is not a bearing "
+        'width): state it as [shaft] bearing_width = "24 mm" or per bearing ([[shaft.bearings]] width)',
+        file=geometry_file,
+        key="shaft.bearing_width",
     )
