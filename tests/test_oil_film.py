@@ -323,7 +323,7 @@ def test_film_sweep_in_si_units_and_the_shafts_sense(sense):
     slope = np.tile([0.0, -2e-4], (n, 1))  # along the load
 
     def loads(name, f):
-        return BearingLoads(name, 0.0, B, d, f, W, W, 0.0, W / (d * B), W / (d * B), slope)
+        return BearingLoads(name, 0.0, B, d, f, W, W, 0.0, W / (d * B), W / (d * B), slope=slope)
 
     st = BearingState(omega, FIRING, tuple(BearingResult(loads(k, load), loads(k, 0.5 * load)) for k in "12"))
     (out,) = film_sweep(_film_layout(sense, spec), (st,), deg)
