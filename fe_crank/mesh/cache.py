@@ -24,7 +24,10 @@ from fe_crank.mesh.types import MeshStats
 
 
 def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -> str:
-    """SHA-256 (hex, 20 chars) of everything that changes the mesh."""
+    """SHA-256 (hex, 20 chars) of everything that changes the mesh: the geometry of the
+    throw, the mesh options, the gmsh options the mesh is generated with
+    (``gmsh_io.SESSION_OPTIONS``, ``generate.GENERATE_OPTIONS``, the straightening
+    threshold), the versions of gmsh and of fe-crank, and the cache format."""
     import gmsh
 
     from fe_crank.version import __version__
@@ -42,7 +45,12 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
         del opts["web_divisions"]
     if opts["interface_sectors"] == 1:
         del opts["interface_sectors"]  # the key of every mesh without sectors stays as it was
+    from fe_crank.gmsh_io import SESSION_OPTIONS
+    from fe_crank.mesh.generate import GENERATE_OPTIONS
+    from fe_crank.mesh.quality import STRAIGHTEN_BELOW
+
     payload = {
+        "gmsh_options": {**SESSION_OPTIONS, **GENERATE_OPTIONS, "straighten_below": STRAIGHTEN_BELOW},
         "geometry": geo,
         "throw": th,
         "options": opts,

@@ -32,18 +32,26 @@ from fe_crank.mesh.options import MeshOptions
 from fe_crank.mesh.quality import _fillet_max_edge, _jacobian_ratio, _straighten_poor, _tet_tags
 from fe_crank.mesh.types import MeshStats, ThrowMesh
 
+#: the gmsh options every throw mesh is generated with (beside the session's single thread,
+#: ``fe_crank.gmsh_io``, and the size fields); part of the mesh cache key.  Delaunay 3D;
+#: Netgen's optimiser removes most boundary slivers (seed-001 coarse: 3866 -> 98 elements
+#: with Jacobian ratio < 0.1); gmsh's random seed stated, not left to its default.
+GENERATE_OPTIONS: dict[str, float] = {
+    "Mesh.Algorithm3D": 1,
+    "Mesh.Optimize": 1,
+    "Mesh.OptimizeNetgen": 1,
+    "Mesh.ElementOrder": 1,
+    "Mesh.RandomSeed": 1,
+}
+
 
 def generate(gmsh, throw_name: str, label: str, opt: MeshOptions) -> tuple[float, int]:
     """Mesh the current model (its size fields set) with quadratic tetrahedra.
 
     Returns gmsh's smallest minSICN of the linear tetrahedra and the number of quadratic
     elements made straight-sided.  ``label`` names the model in messages."""
-    gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
-    gmsh.option.setNumber("Mesh.Optimize", 1)
-    gmsh.option.setNumber(
-        "Mesh.OptimizeNetgen", 1
-    )  # removes most boundary slivers (seed-001 coarse: 3866 -> 98 elements with Jacobian ratio < 0.1)
-    gmsh.option.setNumber("Mesh.ElementOrder", 1)
+    for name, value in GENERATE_OPTIONS.items():
+        gmsh.option.setNumber(name, value)
     try:
         gmsh.model.mesh.generate(3)
         tags = _tet_tags(gmsh)

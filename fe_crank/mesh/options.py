@@ -11,7 +11,7 @@ import numpy as np
 
 from fe_crank.errors import MeshError
 
-CACHE_FORMAT = 3  # 2: Netgen optimisation and straightening of poorly curved elements (minSJ <= 0.1); 3: mirrored meshes of symmetric throws, `symmetry` in stats
+CACHE_FORMAT = 4  # 2: Netgen optimisation and straightening of poorly curved elements (minSJ <= 0.1); 3: mirrored meshes of symmetric throws, `symmetry` in stats; 4: the end-face sectors' edges with one stated master each (the same mesh on every run)
 DEFAULT_CACHE_DIR = Path(".cache") / "meshes"
 _SAFETY = 0.65  # target edge = SAFETY * r / fillet_divisions: gmsh's surface edges exceed the target by up to ~40 %
 
