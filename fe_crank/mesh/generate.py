@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fe_crank.errors import MeshError
+from fe_crank.errors import MeshError, environment_fault
 from fe_crank.mesh.cache import TMP_MARK, _save_npz, _stats_to_json, clean_stale_cache_temps, load_cache_entry
 from fe_crank.mesh.export import write_vtu
 from fe_crank.mesh.options import MeshOptions
@@ -141,7 +141,10 @@ def through_cache(
 
     ``cache_dir`` None: built into a temporary folder removed when the process exits."""
     if cache_dir is None:
-        folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
+        try:
+            folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
+        except OSError as exc:
+            raise environment_fault(exc, "creating a temporary mesh folder", tempfile.gettempdir()) from None
         atexit.register(shutil.rmtree, folder, True)  # no cache: the files live as long as the process
         mesh, stats = build(folder)
         write_vtu(folder / "throw.vtu", mesh)
@@ -152,9 +155,12 @@ def through_cache(
     if hit is not None:
         mesh, stats = hit
         return _throw_mesh(mesh, stats, final, throw_name, key, opt)
-    root.mkdir(parents=True, exist_ok=True)
-    clean_stale_cache_temps(root)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{key}{TMP_MARK}{os.getpid()}-", dir=root))
+    try:
+        root.mkdir(parents=True, exist_ok=True)
+        clean_stale_cache_temps(root)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{key}{TMP_MARK}{os.getpid()}-", dir=root))
+    except OSError as exc:  # a full disk, a folder without write permission, a read-only file system
+        raise environment_fault(exc, "creating the mesh cache", root) from None
     try:
         mesh, stats = build(tmp)
         _save_npz(tmp / "mesh.npz", mesh)
@@ -165,6 +171,9 @@ def through_cache(
             os.rename(tmp, final)
         except OSError:  # another process finished the same entry first: use theirs
             shutil.rmtree(tmp, ignore_errors=True)
+    except OSError as exc:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise environment_fault(exc, "writing the mesh cache", tmp) from None
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
