@@ -54,7 +54,7 @@ class OperatingInput(Strict):
     speed_range: tuple[Speed, Speed] | None = None
     speed_step: Speed | None = None
     gas: list | None = Field(default=None, min_length=1, max_length=MAX_SPEEDS)
-    misfire: str | list[str] | None = None  # "each" or cylinder names (checked against the engine)
+    misfire: Any = None  # "each" or a list of cylinder names (checked in _misfire, with its own message)
 
     @model_validator(mode="after")
     def _check(self):
@@ -157,24 +157,29 @@ def _diagrams(raw: OperatingInput, engine: model.Engine, file: str, key: str):
 
 def _misfire(raw: OperatingInput, engine: model.Engine, file: str, key: str) -> tuple[str, ...]:
     names = [c.name for c in engine.cylinders]
-    if raw.misfire is None:
+    value = raw.misfire
+    if value is None:
         return ()
     if engine.gas is None and not raw.gas:
         raise InputError("a misfire needs the engine's gas pressure (the firing cylinders)", file=file, key=key)
-    if isinstance(raw.misfire, str):
-        if raw.misfire != "each":
-            raise InputError('write misfire = "each" or a list of cylinder names, e.g. ["3"]', file=file, key=key)
+    usage = 'write misfire = "each" or a list of cylinder names, e.g. ["3"]'
+    if isinstance(value, str):
+        if value.strip() != "each":
+            raise InputError(usage, file=file, key=key)
         return tuple(names)
-    if not raw.misfire:
+    if not (isinstance(value, list) and all(isinstance(n, str) for n in value)):
+        raise InputError(usage, file=file, key=key)
+    given = [n.strip() for n in value]
+    if not given:
         raise InputError('name the misfiring cylinders, or write misfire = "each"', file=file, key=key)
-    for j, n in enumerate(raw.misfire):
+    for j, n in enumerate(given):
         if n not in names:
             raise InputError(
                 f"names cylinder {n!r}, which the engine does not have ({names})", file=file, key=f"{key}[{j}]"
             )
-        if n in raw.misfire[:j]:
+        if n in given[:j]:
             raise InputError(f"cylinder {n!r} is named twice", file=file, key=f"{key}[{j}]")
-    return tuple(raw.misfire)
+    return tuple(given)
 
 
 def parse_operating(
