@@ -75,7 +75,7 @@ INLINE4 = "inline4_rated.toml"
          "inline4_genset_torsion.toml", ["torsion.speed_range", "does not contain the operating speed"]),
         # a main-bearing criterion on the single throw without [shaft]
         ("loadcases/single_cylinder.toml", "[criteria]\n", '[criteria]\nmax_main_bearing_load = "100 kN"\n',
-         "single_cylinder.toml", ["criteria.max_main_bearing_load", "whole-shaft model", "[shaft]"]),
+         "single_cylinder.toml", ["single_cylinder.toml: criteria.max_main_bearing_load: needs the whole-shaft", "[shaft]"]),
     ],
     ids=["bolts-outside", "bolts-in-journal", "counterweight-600mm", "bores-overlap", "1e6rpm", "1um-stroke",
          "torsion-range", "main-bearing-single"],
@@ -99,3 +99,17 @@ def test_mean_piston_speed_bound(tmp_path, capsys):
 def test_shipped_inputs_lie_within_the_bounds():
     for path in sorted((ROOT / "loadcases").glob("*.toml")):
         assert main(["validate", str(path)]) == 0, path
+
+
+def test_main_bearing_criterion_on_a_cad_geometry_refused_before_recognition(tmp_path, capsys):
+    from cad_files import cad_loadcase, parametric_step
+
+    from fe_crank.io.geometry import load_geometry
+
+    parametric_step(load_geometry(ROOT / "tests" / "data" / "geometry_small.toml"), tmp_path / "throw.step")
+    lc = cad_loadcase(tmp_path, "throw.step", criteria='max_main_bearing_load = "100 kN"')
+    assert main(["validate", str(lc)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith(f"error {lc}: criteria.max_main_bearing_load: "), err
+    assert "CAD file" in err

@@ -196,9 +196,7 @@ def _check_whole_shaft_criteria(criteria: Criteria, geometry, engine: model.Engi
             )
         else:
             continue
-        raise InputError(
-            f"needs the whole-shaft model's main-bearing loads: {why}", file=str(path), key=f"criteria.{lim.key}"
-        )
+        raise InputError(f"needs the whole-shaft model's main-bearing loads: {why}", file=str(path), key=lim.key)
 
 
 def _check_counterweight_clearance(g: CrankGeometry, engine: model.Engine, engine_file: str) -> None:
