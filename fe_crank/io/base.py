@@ -116,7 +116,9 @@ def _clean(errors: list[ErrorDetails]) -> list[_Err]:
     models = _model_names()
     out: list[_Err] = []
     for err in errors:
-        loc, site, member = [], None, ""
+        loc: list[Any] = []
+        site: tuple[Any, ...] | None = None
+        member = ""
         for part in err.get("loc", ()):
             if _is_tag(part, models):
                 if site is None:

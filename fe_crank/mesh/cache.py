@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
-from fe_crank.mesh.options import CACHE_FORMAT, MeshOptions
+from fe_crank.mesh.options import CACHE_FORMAT, GENERATE_OPTIONS, MeshOptions
 from fe_crank.mesh.planes import mesh_planes
 from fe_crank.mesh.types import MeshStats
 
@@ -26,7 +26,7 @@ from fe_crank.mesh.types import MeshStats
 def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -> str:
     """SHA-256 (hex, 20 chars) of everything that changes the mesh: the geometry of the
     throw, the mesh options, the gmsh options the mesh is generated with
-    (``gmsh_io.SESSION_OPTIONS``, ``generate.GENERATE_OPTIONS``, the straightening
+    (``gmsh_io.SESSION_OPTIONS``, ``options.GENERATE_OPTIONS``, the straightening
     threshold), the versions of gmsh and of fe-crank, and the cache format."""
     import gmsh
 
@@ -46,7 +46,6 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     if opts["interface_sectors"] == 1:
         del opts["interface_sectors"]  # the key of every mesh without sectors stays as it was
     from fe_crank.gmsh_io import SESSION_OPTIONS
-    from fe_crank.mesh.generate import GENERATE_OPTIONS
     from fe_crank.mesh.quality import STRAIGHTEN_BELOW
 
     payload = {

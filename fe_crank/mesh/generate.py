@@ -28,21 +28,9 @@ import numpy as np
 from fe_crank.errors import MeshError, environment_fault
 from fe_crank.mesh.cache import TMP_MARK, _save_npz, _stats_to_json, clean_stale_cache_temps, load_cache_entry
 from fe_crank.mesh.export import write_vtu
-from fe_crank.mesh.options import MeshOptions
+from fe_crank.mesh.options import GENERATE_OPTIONS, MeshOptions
 from fe_crank.mesh.quality import _fillet_max_edge, _jacobian_ratio, _straighten_poor, _tet_tags
 from fe_crank.mesh.types import MeshStats, ThrowMesh
-
-#: the gmsh options every throw mesh is generated with (beside the session's single thread,
-#: ``fe_crank.gmsh_io``, and the size fields); part of the mesh cache key.  Delaunay 3D;
-#: Netgen's optimiser removes most boundary slivers (seed-001 coarse: 3866 -> 98 elements
-#: with Jacobian ratio < 0.1); gmsh's random seed stated, not left to its default.
-GENERATE_OPTIONS: dict[str, float] = {
-    "Mesh.Algorithm3D": 1,
-    "Mesh.Optimize": 1,
-    "Mesh.OptimizeNetgen": 1,
-    "Mesh.ElementOrder": 1,
-    "Mesh.RandomSeed": 1,
-}
 
 
 def generate(gmsh, throw_name: str, label: str, opt: MeshOptions) -> tuple[float, int]:

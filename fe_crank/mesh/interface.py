@@ -176,6 +176,7 @@ def imprint_sectors(gmsh, model, n: int, faces=("end_1", "end_2")):
         for i, s in enumerate(new_faces[name]):
             if s != master:
                 gmsh.model.mesh.setPeriodic(2, [s], [master], _rotation(2 * math.pi * i / n, z_of[name] - z0))
+    assert rim_angle is not None  # set by the first face (present is not empty)
     _fix_edge_masters(gmsh, new_faces, present, z_of, rim_angle, n)
     gmsh.model.removePhysicalGroups()
     for name in dict.fromkeys(name for _, name, _ in groups):  # first-seen order: the same tags on every run
