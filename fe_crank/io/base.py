@@ -144,8 +144,14 @@ def _clean(errors: list[ErrorDetails]) -> list[_Err]:
         if deep:
             keep.extend(deep)
             continue
-        wanted = [e.reason.removeprefix("Input should be ") for e in errs]
-        keep.append(_Err(site, None, "", "should be " + " or ".join(dict.fromkeys(wanted))))
+        reasons = list(dict.fromkeys(e.reason for e in errs))
+        if len(reasons) == 1:
+            text = reasons[0]
+        elif all(r.startswith("Input should be ") for r in reasons):  # the alternatives in one message
+            text = "should be " + " or ".join(r.removeprefix("Input should be ") for r in reasons)
+        else:
+            text = "; or ".join(reasons)
+        keep.append(_Err(site, None, "", text))
     unique: dict[tuple[str, str], _Err] = {}
     for e in keep:
         unique.setdefault((key_path(e.loc), e.reason), e)
