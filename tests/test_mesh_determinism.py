@@ -70,3 +70,18 @@ def test_a_mesh_is_the_same_in_two_fresh_processes(tmp_path, case, mode):
         assert first[name].dtype == second[name].dtype, name
         assert first[name].shape == second[name].shape, name
         assert np.array_equal(first[name], second[name]), name  # bit for bit: no tolerance
+
+
+def test_the_cache_key_holds_what_the_mesher_depends_on():
+    import gmsh
+
+    from fe_crank.gmsh_io import SESSION_OPTIONS
+    from fe_crank.mesh.cache import mesher_key
+    from fe_crank.mesh.options import CACHE_FORMAT, GENERATE_OPTIONS
+    from fe_crank.version import __version__
+
+    key = mesher_key()
+    assert key["gmsh"] == gmsh.__version__ and key["fe_crank"] == __version__ and key["format"] == CACHE_FORMAT
+    for name, value in {**SESSION_OPTIONS, **GENERATE_OPTIONS}.items():
+        assert key["gmsh_options"][name] == value
+    assert SESSION_OPTIONS["General.NumThreads"] == 1 and GENERATE_OPTIONS["Mesh.RandomSeed"] == 1
