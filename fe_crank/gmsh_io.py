@@ -36,6 +36,14 @@ from fe_crank.errors import MeshError
 GMSH_TO_SKFEM_TET10 = np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8])
 
 _TET4, _TET10, _TRI3, _TRI6 = 4, 11, 2, 9
+#: the thread counts a session sets (to ``threads``, 1 by default: gmsh's meshers then do
+#: not depend on the machine's load); the mesh cache key holds them (``mesh.cache``)
+SESSION_OPTIONS: dict[str, float] = {
+    "General.NumThreads": 1,
+    "Mesh.MaxNumThreads1D": 1,
+    "Mesh.MaxNumThreads2D": 1,
+    "Mesh.MaxNumThreads3D": 1,
+}
 _LOCK = threading.Lock()
 _OWNER: dict[str, int] = {}
 
@@ -87,10 +95,8 @@ def gmsh_session(*, threads: int = 1, verbosity: int = 2) -> Iterator[ModuleType
         try:
             gmsh.option.setNumber("General.Terminal", 0)
             gmsh.option.setNumber("General.Verbosity", verbosity)
-            gmsh.option.setNumber("General.NumThreads", threads)
-            gmsh.option.setNumber("Mesh.MaxNumThreads1D", threads)
-            gmsh.option.setNumber("Mesh.MaxNumThreads2D", threads)
-            gmsh.option.setNumber("Mesh.MaxNumThreads3D", threads)
+            for name in SESSION_OPTIONS:
+                gmsh.option.setNumber(name, threads)
             gmsh.model.add("fe_crank")
             yield gmsh
         finally:

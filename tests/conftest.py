@@ -46,3 +46,25 @@ def filleted_throw_cycle(filleted_throw):
     pin = np.column_stack([3e3 * np.sin(th), 2e4 * np.cos(th) + 5e3])
     co = load_coefficients(pin, 400.0 * np.sin(2 * th), 300.0, cases=us.cases, torque_mz=us.torque_mz)
     return us, co
+
+
+@pytest.fixture(autouse=True)
+def _refusals_without_library_internals(monkeypatch):
+    """Every ``InputError`` any test provokes (the whole bad-input set of the suite) is
+    checked: its message names no pydantic union member and no input class
+    (``tests/messages.py``)."""
+    from messages import internals
+
+    from fe_crank.errors import InputError
+
+    made: list[str] = []
+    original = InputError.__init__
+
+    def observed(self, message, **kwargs):
+        original(self, message, **kwargs)
+        made.append(str(self))
+
+    monkeypatch.setattr(InputError, "__init__", observed)
+    yield
+    bad = [(m, internals(m)) for m in made if internals(m)]
+    assert not bad, f"refusal messages with library internals: {bad}"

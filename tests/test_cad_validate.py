@@ -166,7 +166,7 @@ def test_the_load_cases_cad_keys(tmp_path, small_step, capsys):
     (tmp_path / SMALL.name).write_bytes(SMALL.read_bytes())
     refused(capsys, lc, lc, "cad", "goes with a CAD file")
     lc.write_text(text.replace('density = "7850 kg/m^3"', 'density = "-7850 kg/m^3"'))
-    refused(capsys, lc, lc, "cad", "density must be positive")
+    refused(capsys, lc, lc, "cad.density", "density must be positive")
     torsion = (ROOT / "tests" / "data" / "small_torsion.toml").read_text()
     lc.write_text(text + "\n" + torsion[torsion.index("[torsion]") :])
     refused(capsys, lc, lc, "torsion", "with a CAD geometry it is not available")

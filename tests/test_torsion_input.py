@@ -48,12 +48,27 @@ def test_stiffness_in_kn_m_per_degree_is_converted(tmp_path):
 @pytest.mark.parametrize(
     "old, new, key, reason",
     [
-        ('inertia = "0.15 kg*m^2"', 'inertia = "-0.15 kg*m^2"', "torsion.flywheel", "inertia must be positive"),
-        ('stiffness = "4e5 N*m/rad"', 'stiffness = "-4e5 N*m/rad"', "torsion.flywheel", "stiffness must be positive"),
+        ('inertia = "0.15 kg*m^2"', 'inertia = "-0.15 kg*m^2"', "torsion.flywheel.inertia", "inertia must be positive"),
+        (
+            'stiffness = "4e5 N*m/rad"',
+            'stiffness = "-4e5 N*m/rad"',
+            "torsion.flywheel.stiffness",
+            "stiffness must be positive",
+        ),
         ('stiffness = "4e5 N*m/rad"', 'stiffness = "4e5 N*m"', "torsion.flywheel.stiffness", "per angle"),
-        ("shaft_loss_factor = 0.025", "shaft_loss_factor = 0.5", "torsion", "shaft_loss_factor must lie in [0, 0.2]"),
-        ("shaft_loss_factor = 0.025", "shaft_loss_factor = -0.01", "torsion", "shaft_loss_factor must lie"),
-        ("loss_factor = 0.3", "loss_factor = 1.5", "torsion.driven[0]", "loss_factor must lie in [0, 1.0]"),
+        (
+            "shaft_loss_factor = 0.025",
+            "shaft_loss_factor = 0.5",
+            "torsion.shaft_loss_factor",
+            "shaft_loss_factor must lie in [0, 0.2]",
+        ),
+        (
+            "shaft_loss_factor = 0.025",
+            "shaft_loss_factor = -0.01",
+            "torsion.shaft_loss_factor",
+            "shaft_loss_factor must lie",
+        ),
+        ("loss_factor = 0.3", "loss_factor = 1.5", "torsion.driven[0].loss_factor", "loss_factor must lie in [0, 1.0]"),
         (
             'cylinder_damping = "0.2 N*m*s/rad"',
             'cylinder_damping = "0.2 N*m*s"',
@@ -72,7 +87,12 @@ def test_stiffness_in_kn_m_per_degree_is_converted(tmp_path):
             "torsion.shaft_loss_factor",
             "required key is missing",
         ),
-        ('speed_range = ["800 rpm", "3600 rpm"]', 'speed_range = ["3600 rpm", "800 rpm"]', "torsion", "increasing"),
+        (
+            'speed_range = ["800 rpm", "3600 rpm"]',
+            'speed_range = ["3600 rpm", "800 rpm"]',
+            "torsion.speed_range",
+            "increasing",
+        ),
     ],
 )
 def test_bad_input_names_file_key_and_reason(tmp_path, old, new, key, reason):

@@ -162,9 +162,14 @@ def test_two_station_chain_by_hand(tmp_path):
 
 BAD = [
     ('inertia = "0.3 kg*m^2"\n', "", "torsion.stations[1].inertia", "a station needs its inertia"),
-    ('inertia = "0.3 kg*m^2"', 'inertia = "0 kg*m^2"', "torsion.stations[1]", "inertia must be positive"),
-    ("loss_factor = 0.03", 'loss_factor = 0.03\ndamping = "-2 N*m*s/rad"', "torsion.stations[1]", "damping must not"),
-    ('stiffness = "2e5 N*m/rad"', 'stiffness = "-2e5 N*m/rad"', "torsion.stations[1]", "stiffness must not"),
+    ('inertia = "0.3 kg*m^2"', 'inertia = "0 kg*m^2"', "torsion.stations[1].inertia", "inertia must be positive"),
+    (
+        "loss_factor = 0.03",
+        'loss_factor = 0.03\ndamping = "-2 N*m*s/rad"',
+        "torsion.stations[1].damping",
+        "damping must not",
+    ),
+    ('stiffness = "2e5 N*m/rad"', 'stiffness = "-2e5 N*m/rad"', "torsion.stations[1].stiffness", "stiffness must not"),
     ('stiffness = "2e5 N*m/rad"', 'stiffness = "2e5 N*m"', "torsion.stations[1].stiffness", "per angle"),
     ('stiffness = "2e5 N*m/rad"\nloss_factor = 0.03\n', "", "torsion.stations[1]", "needs its connection"),
     ('cylinders = ["1"]', 'cylinders = ["1"]\nstiffness = "1e5 N*m/rad"', "torsion.stations[0]", "first station"),

@@ -13,6 +13,7 @@ import errno
 import hashlib
 import math
 import os
+import re
 import tomllib
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -61,21 +62,118 @@ def _reason(err: ErrorDetails) -> str:
     return msg
 
 
+#: the tags pydantic puts into an error's location for a member of a union (``str``,
+#: ``literal[False]``, ``list[constrained-str]``, ``function-after[...]``): never keys of a file
+_UNION_TAG = re.compile(
+    r"^(str|int|float|bool|none|bytes|decimal|date|datetime|any|"
+    r"(literal|list|tuple|dict|set|frozenset|union|nullable|tagged-union|chain|lax-or-strict|"
+    r"json-or-python|is-instance|function-(after|before|wrap|plain))\[.*\]|constrained-\w+)$"
+)
+
+
+def _model_names() -> set[str]:
+    """Names of every pydantic model class loaded: pydantic tags a union member that is a
+    model with its class name."""
+    names, stack = set(), [BaseModel]
+    while stack:
+        cls = stack.pop()
+        for sub in cls.__subclasses__():
+            if sub.__name__ not in names:
+                names.add(sub.__name__)
+                stack.append(sub)
+    return names
+
+
+def _is_tag(part: Any, models: set[str]) -> bool:
+    return isinstance(part, str) and (part in models or bool(_UNION_TAG.match(part)))
+
+
+_INSTANCE = re.compile(r"(a valid dictionary) or instance of \w+")
+
+
+def _plain(text: str) -> str:
+    """A pydantic message without its internals: "a valid dictionary or instance of
+    CounterweightInput" is a table."""
+    return _INSTANCE.sub("a table", text).replace("a valid dictionary", "a table")
+
+
+@dataclass(frozen=True)
+class _Err:
+    loc: tuple[Any, ...]  # the key path, union tags removed
+    site: tuple[Any, ...] | None  # the path of the union the error came through (None: no union)
+    member: str  # the union member's tag
+    reason: str
+
+
+def _clean(errors: list[ErrorDetails]) -> list[_Err]:
+    """The errors pydantic reports, one per fault of the file (module doc of ``validate``).
+
+    A value that matches no member of a union gets one error per member; the members
+    that failed only at the union's own key (wrong type) are dropped when another member
+    failed further inside (that member was meant: its errors are the file's), and when
+    every member failed at the key the alternatives become one message.  A model
+    validator's message that starts with a key of the table names that key."""
+    models = _model_names()
+    out: list[_Err] = []
+    for err in errors:
+        loc: list[Any] = []
+        site: tuple[Any, ...] | None = None
+        member = ""
+        for part in err.get("loc", ()):
+            if _is_tag(part, models):
+                if site is None:
+                    site, member = tuple(loc), str(part)
+                continue
+            loc.append(part)
+        reason = _plain(_reason(err))
+        data = err.get("input")
+        if err.get("type") == "value_error" and isinstance(data, dict):
+            word, _, rest = reason.partition(" ")
+            if word in data and rest.startswith(("must ", "cannot ")):  # "damping must not be negative"
+                loc.append(word)
+        out.append(_Err(tuple(loc), site, member, reason))
+    keep: list[_Err] = []
+    sites: dict[tuple[Any, ...], list[_Err]] = {}
+    for e in out:
+        if e.site is None:
+            keep.append(e)
+        else:
+            sites.setdefault(e.site, []).append(e)
+    for site, errs in sites.items():
+        deep = [e for e in errs if len(e.loc) > len(site)]
+        if deep:
+            keep.extend(deep)
+            continue
+        reasons = list(dict.fromkeys(e.reason for e in errs))
+        if len(reasons) == 1:
+            text = reasons[0]
+        elif all(r.startswith("Input should be ") for r in reasons):  # the alternatives in one message
+            text = "should be " + " or ".join(r.removeprefix("Input should be ") for r in reasons)
+        else:
+            text = "; or ".join(reasons)
+        keep.append(_Err(site, None, "", text))
+    unique: dict[tuple[str, str], _Err] = {}
+    for e in keep:
+        unique.setdefault((key_path(e.loc), e.reason), e)
+    return list(unique.values())
+
+
 def validation_to_input_error(exc: ValidationError, file: str | Path, prefix: str = "") -> InputError:
+    """One ``InputError`` for a pydantic validation error: one line per fault of the
+    file, each naming the file, the key path and the reason, without pydantic's union
+    members or class names (``_clean``)."""
     lines = []
     first_key = None
-    for err in exc.errors():
-        # pydantic appends the tag of union members to the location; drop internal parts
-        loc = tuple(p for p in err.get("loc", ()) if not (isinstance(p, str) and p.startswith("function-")))
-        key = key_path(loc)
+    for err in _clean(exc.errors()):
+        key = key_path(err.loc)
         if prefix:
             key = f"{prefix}.{key}" if key else prefix
         first_key = first_key or key
-        lines.append(f"{file}: {key or '(top level)'}: {_reason(err)}")
+        lines.append((key, err.reason))
     if len(lines) == 1:
-        e = InputError(lines[0].split(": ", 2)[-1], file=str(file), key=first_key or None)
-        return e
-    e = InputError("\n".join(lines))
+        key, reason = lines[0]
+        return InputError(reason, file=str(file), key=key or None)
+    e = InputError("\n".join(f"{file}: {key or '(top level)'}: {reason}" for key, reason in lines))
     e.file, e.key = str(file), first_key
     return e
 

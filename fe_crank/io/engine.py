@@ -38,6 +38,7 @@ from pydantic import Field, StrictBool, model_validator
 from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.io.base import Strict, read_toml, validate
+from fe_crank.io.bounds import check_crank_radius
 from fe_crank.io.firing import firing_offsets
 from fe_crank.io.gas import build_gas
 from fe_crank.io.includes import read_included, with_include_context
@@ -155,6 +156,35 @@ def _check_names(kind: str, names: list[str], file) -> None:
             raise InputError(f"duplicate name {n!r}", file=str(file), key=f"{kind}[{i}].name")
 
 
+def _check_cylinder_spacing(cylinders: list[CylinderInput], throws: dict, file: str, pre: str) -> None:
+    """Refuse two cylinders of one bank (the same shaft and bank angle, neither an
+    articulated rod's) whose bores overlap along the crank axis: their axes, at the
+    throws' axial positions (plus the rods' ``pin_position``), must lie at least half of
+    each bore apart.  An engine whose throws all keep the default axial position 0 states
+    no layout along the axis and is not compared."""
+    if all(t.axial_position == 0.0 for t in throws.values()):
+        return  # the engine states no axial layout (the default): nothing to compare
+    placed = []
+    for i, c in enumerate(cylinders):
+        if c.articulation is not None or c.throw not in throws:
+            continue
+        t = throws[c.throw]
+        z = t.axial_position + (c.pin_position or 0.0)
+        bank = round(math.remainder(c.bank_angle, 2 * math.pi), 9)
+        placed.append((i, c, t.shaft, bank, z))
+    for a, (i, ci, si, bi, zi) in enumerate(placed):
+        for _, cj, sj, bj, zj in placed[:a]:
+            gap = abs(zi - zj)
+            if si == sj and bi == bj and gap < 0.5 * (ci.bore + cj.bore) * (1 - 1e-9):
+                raise InputError(
+                    f"cylinders {cj.name!r} and {ci.name!r} of one bank are {gap * 1e3:.6g} mm apart along the "
+                    f"crank axis, less than their bores ({cj.bore * 1e3:.6g} and {ci.bore * 1e3:.6g} mm): the "
+                    "cylinders overlap; check the bores and the throws' axial_position",
+                    file=file,
+                    key=f"{pre}cylinders[{i}].bore",
+                )
+
+
 def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine:
     """Validate an engine table and return the frozen engine (SI)."""
     pre = f"{prefix}." if prefix else ""
@@ -177,7 +207,12 @@ def build_engine(data: dict, file: str | Path, prefix: str = "") -> model.Engine
                 file=str(file),
                 key=f"{pre}throws[{i}].shaft",
             )
+    for i, t in enumerate(raw.throws):
+        check_crank_radius(
+            t.radius, str(file), f"{pre}throws[{i}].{'crank_radius' if t.crank_radius is not None else 'stroke'}"
+        )
     names = [c.name for c in cylinders]
+    _check_cylinder_spacing(cylinders, throws, str(file), pre)
     for i, c in enumerate(cylinders):
         if c.throw not in throws:
             raise InputError(

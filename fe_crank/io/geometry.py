@@ -67,6 +67,7 @@ from fe_crank.geometry.spec import (
 )
 from fe_crank.io.base import Strict, read_toml, validate
 from fe_crank.io.bolted import BoltedInput
+from fe_crank.io.bounds import check_crank_radius
 from fe_crank.io.includes import read_included, with_include_context
 from fe_crank.io.shaft import ShaftInput, shaft_spec
 from fe_crank.io.units import Angle, Density, Length
@@ -215,8 +216,55 @@ def geometry_from_dict(data: dict, file: str | Path = "<geometry>", prefix: str 
         shaft=shaft_spec(raw.shaft),
         file=str(file),
     )
+    check_crank_radius(
+        g.crank_radius, str(file), _key(prefix, "crank_radius" if raw.crank_radius is not None else "stroke")
+    )
     check_geometry(g)
+    _check_bolts(g, raw, str(file), prefix)
     return g
+
+
+def _key(prefix: str, key: str) -> str:
+    return f"{prefix}.{key}" if prefix else key
+
+
+def _check_bolts(g: CrankGeometry, raw: GeometryInput, file: str, prefix: str) -> None:
+    """Refuse a bolted counterweight whose bolts do not pass through it: each bolt
+    (at ``pitch_radius`` from the crank axis, +- half its ``diameter`` for an axial bolt)
+    must lie outside the journal and within the counterweight's radial extent
+    (``inner_radius`` ... ``outer_radius``)."""
+    for i, t in enumerate(g.throws):
+        own = (
+            raw.throws is not None
+            and i < len(raw.throws)
+            and isinstance(raw.throws[i].counterweight, CounterweightInput)
+        )
+        where = f"throws[{i}].counterweight" if own else "counterweight"
+        for cw in t.counterweights:
+            b = cw.bolted
+            if b is None:
+                continue
+            half = b.diameter / 2 if b.direction == "axial" else 0.0  # a radial bolt runs along the radius
+            lo, hi = b.pitch_radius - half, b.pitch_radius + half
+            rj = g.journal_diameter / 2
+            if lo < rj:
+                reason = (
+                    f"the bolts ({b.diameter * 1e3:.6g} mm at a pitch radius of {b.pitch_radius * 1e3:.6g} mm) reach "
+                    f"into the journal (radius {rj * 1e3:.6g} mm)"
+                )
+            elif lo < cw.inner_radius or hi > cw.outer_radius:
+                reason = (
+                    f"the bolts ({b.diameter * 1e3:.6g} mm at a pitch radius of {b.pitch_radius * 1e3:.6g} mm, "
+                    f"{lo * 1e3:.6g}-{hi * 1e3:.6g} mm from the axis) do not lie within the counterweight "
+                    f"({cw.inner_radius * 1e3:.6g}-{cw.outer_radius * 1e3:.6g} mm from the axis)"
+                )
+            else:
+                continue
+            raise InputError(
+                reason + ": a bolt must pass through the counterweight into the web",
+                file=file,
+                key=_key(prefix, f"{where}.bolted.pitch_radius"),
+            )
 
 
 #: criteria (``io.criteria`` quantities) that judge the counterweights' FE stress

@@ -17,6 +17,7 @@ knows is an error.
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -150,6 +151,11 @@ def _load(path: Path) -> LoadCase:
         )
     if sections.torsion is not None:
         check_torsion_engine(sections.torsion, engine, path, full_load=operating.full_load)
+        _check_torsion_range(sections.torsion, operating, path)
+    if criteria is not None:
+        _check_whole_shaft_criteria(criteria, geometry, engine, path)
+    if isinstance(geometry, CrankGeometry):
+        _check_counterweight_clearance(geometry, engine, engine_file)
     if sections.fe is not None:
         check_torque_reaction(sections.fe, engine, path, torsion=sections.torsion is not None)
     if criteria is not None:
@@ -169,6 +175,68 @@ def _load(path: Path) -> LoadCase:
         torsion=sections.torsion,
         engine_file=engine_file,
     )
+
+
+def _check_torsion_range(torsion: TorsionSettings, operating: model.OperatingPoint, path: Path) -> None:
+    """The torsional sweep must contain the operating speed (the torsional stage's
+    journal torque is taken there)."""
+    lo, hi = torsion.speed_range
+    if not lo <= operating.speed <= hi:
+        raise InputError(
+            f"the torsional sweep {lo * 30 / math.pi:.6g}-{hi * 30 / math.pi:.6g} rpm does not contain the operating "
+            f"speed {operating.speed * 30 / math.pi:.6g} rpm (operating.speed): widen the range",
+            file=str(path),
+            key="torsion.speed_range",
+        )
+
+
+#: criteria (``io.criteria`` quantities) that only the whole-shaft model evaluates
+WHOLE_SHAFT_QUANTITIES = ("main_bearing_load", "main_bearing_specific_load")
+
+
+def _check_whole_shaft_criteria(criteria: Criteria, geometry, engine: model.Engine, path: Path) -> None:
+    """A main-bearing criterion needs the whole-shaft model: a parametric geometry of an
+    engine with several throws along one shaft, or a ``[shaft]`` section."""
+    for lim in criteria.limits:
+        if lim.quantity not in WHOLE_SHAFT_QUANTITIES:
+            continue
+        if isinstance(geometry, CadInput):
+            why = "the load case's geometry is a CAD file, for which the whole-shaft model is not built"
+        elif not isinstance(geometry, CrankGeometry):
+            why = "the load case has no geometry"
+        elif not whole_shaft_wanted(geometry, engine):
+            why = (
+                "the engine has a single throw (or its throws at one axial position) and the geometry no [shaft] "
+                "section; add a [shaft] section to the geometry (docs/shaft.md)"
+            )
+        else:
+            continue
+        raise InputError(f"needs the whole-shaft model's main-bearing loads: {why}", file=str(path), key=lim.key)
+
+
+def _check_counterweight_clearance(g: CrankGeometry, engine: model.Engine, engine_file: str) -> None:
+    """A counterweight must pass below the piston at bottom dead centre: its outer radius
+    must stay within ``L - R``, the distance of the gudgeon-pin centre from the crank
+    axis at BDC (rod length L, crank radius R) of every cylinder on the shaft that is not
+    an articulated rod's (the piston's skirt and the rod's big end lie closer still, so
+    this bound only refuses counterweights that cannot be built)."""
+    clear = [
+        (c.rod.length - engine.throw(c.throw).crank_radius, c.name) for c in engine.cylinders if c.articulation is None
+    ]
+    if not clear:
+        return
+    room, name = min(clear)
+    for i, t in enumerate(g.throws):
+        for cw in t.counterweights:
+            if cw.outer_radius > room:
+                key = f"throws[{i}].counterweight.outer_radius" if len(g.throws) > 1 else "counterweight.outer_radius"
+                raise InputError(
+                    f"{cw.outer_radius * 1e3:.6g} mm reaches beyond the piston pin of cylinder {name!r} at bottom dead "
+                    f"centre, {room * 1e3:.6g} mm from the crank axis (rod length less crank radius, {engine_file}): "
+                    "the counterweight cannot turn",
+                    file=g.file or engine_file,
+                    key=key,
+                )
 
 
 def _engine_file(value: object, path: Path) -> str:

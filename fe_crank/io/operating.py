@@ -38,6 +38,7 @@ from pydantic import Field, model_validator
 from fe_crank import model
 from fe_crank.errors import InputError
 from fe_crank.io.base import Strict, validate
+from fe_crank.io.bounds import check_piston_speed, check_speed
 from fe_crank.io.gas import build_gas
 from fe_crank.io.units import Speed, to_si
 
@@ -53,7 +54,7 @@ class OperatingInput(Strict):
     speed_range: tuple[Speed, Speed] | None = None
     speed_step: Speed | None = None
     gas: list | None = Field(default=None, min_length=1, max_length=MAX_SPEEDS)
-    misfire: str | list[str] | None = None  # "each" or cylinder names (checked against the engine)
+    misfire: Any = None  # "each" or a list of cylinder names (checked in _misfire, with its own message)
 
     @model_validator(mode="after")
     def _check(self):
@@ -66,6 +67,22 @@ class OperatingInput(Strict):
         if (self.speed_range is None) != (self.speed_step is None):
             raise ValueError("speed_range and speed_step go together")
         return self
+
+
+def _check_speeds(raw: OperatingInput, engine: model.Engine, file: str, key: str) -> None:
+    """Every speed of the section within the physical range (``io.bounds``), the mean
+    piston speed of each throw too."""
+    given = [(raw.speed, f"{key}.speed")]
+    if raw.overspeed is not None:
+        given.append((raw.overspeed, f"{key}.overspeed"))
+    given += [(w, f"{key}.speeds[{i}]") for i, w in enumerate(raw.speeds or ())]
+    given += [(w, f"{key}.speed_range[{i}]") for i, w in enumerate(raw.speed_range or ())]
+    for w, k in given:
+        check_speed(w, file, k)
+    w, k = max(given)
+    for t in engine.throws:
+        shaft = next((s for s in engine.shafts if s.name == t.shaft), None)
+        check_piston_speed(w * (abs(shaft.speed_ratio) if shaft is not None else 1.0), t.crank_radius, file, k)
 
 
 def _sweep(raw: OperatingInput, file: str, key: str) -> tuple[float, ...] | None:
@@ -130,6 +147,7 @@ def _diagrams(raw: OperatingInput, engine: model.Engine, file: str, key: str):
             w = to_si(item["speed"], "speed")
         except ValueError as exc:
             raise InputError(str(exc), file=file, key=f"{k}.speed") from None
+        check_speed(w, file, f"{k}.speed")
         if speeds and not w > speeds[-1]:
             raise InputError("the diagrams' speeds must increase", file=file, key=f"{k}.speed")
         speeds.append(w)
@@ -139,24 +157,29 @@ def _diagrams(raw: OperatingInput, engine: model.Engine, file: str, key: str):
 
 def _misfire(raw: OperatingInput, engine: model.Engine, file: str, key: str) -> tuple[str, ...]:
     names = [c.name for c in engine.cylinders]
-    if raw.misfire is None:
+    value = raw.misfire
+    if value is None:
         return ()
     if engine.gas is None and not raw.gas:
         raise InputError("a misfire needs the engine's gas pressure (the firing cylinders)", file=file, key=key)
-    if isinstance(raw.misfire, str):
-        if raw.misfire != "each":
-            raise InputError('write misfire = "each" or a list of cylinder names, e.g. ["3"]', file=file, key=key)
+    usage = 'write misfire = "each" or a list of cylinder names, e.g. ["3"]'
+    if isinstance(value, str):
+        if value.strip() != "each":
+            raise InputError(usage, file=file, key=key)
         return tuple(names)
-    if not raw.misfire:
+    if not (isinstance(value, list) and all(isinstance(n, str) for n in value)):
+        raise InputError(usage, file=file, key=key)
+    given = [n.strip() for n in value]
+    if not given:
         raise InputError('name the misfiring cylinders, or write misfire = "each"', file=file, key=key)
-    for j, n in enumerate(raw.misfire):
+    for j, n in enumerate(given):
         if n not in names:
             raise InputError(
                 f"names cylinder {n!r}, which the engine does not have ({names})", file=file, key=f"{key}[{j}]"
             )
-        if n in raw.misfire[:j]:
+        if n in given[:j]:
             raise InputError(f"cylinder {n!r} is named twice", file=file, key=f"{key}[{j}]")
-    return tuple(raw.misfire)
+    return tuple(given)
 
 
 def parse_operating(
@@ -169,6 +192,7 @@ def parse_operating(
     point."""
     file = str(file)
     raw = validate(OperatingInput, value, file, key)
+    _check_speeds(raw, engine, file, key)
     sweep = _sweep(raw, file, key)
     gas_speeds, diagrams = _diagrams(raw, engine, file, key)
     full = None

@@ -10,7 +10,7 @@ from fe_crank.mesh.cache import cache_key
 from fe_crank.mesh.generate import finish, generate, through_cache
 from fe_crank.mesh.interface import imprint_sectors
 from fe_crank.mesh.mirror import mirror_all, swap_side
-from fe_crank.mesh.msh import write_msh
+from fe_crank.mesh.msh import write_model, write_msh
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions, resolve_options
 from fe_crank.mesh.planes import mesh_planes
 from fe_crank.mesh.sizing import set_size_fields
@@ -31,7 +31,7 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
         min_quality, straightened = generate(gmsh, spec.name, geometry.name, opt)
         mesh = model_to_skfem()
         if not planes:
-            gmsh.write(str(folder / "throw.msh"))
+            write_model(gmsh, folder / "throw.msh")
     surfaces, volumes = set(model.surfaces), set(model.volumes)
     if planes:
         mesh = mirror_all(mesh, planes)

@@ -18,17 +18,36 @@ from pathlib import Path
 import numpy as np
 
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
-from fe_crank.mesh.options import CACHE_FORMAT, MeshOptions
+from fe_crank.mesh.options import CACHE_FORMAT, GENERATE_OPTIONS, MeshOptions
 from fe_crank.mesh.planes import mesh_planes
 from fe_crank.mesh.types import MeshStats
 
 
-def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -> str:
-    """SHA-256 (hex, 20 chars) of everything that changes the mesh."""
+def mesher_key() -> dict[str, object]:
+    """What every mesh depends on beside its geometry and mesh options: the gmsh options
+    it is generated with (``gmsh_io.SESSION_OPTIONS``, ``options.GENERATE_OPTIONS``, the
+    straightening threshold), the versions of gmsh and of fe-crank and the cache format;
+    part of every mesh cache key."""
     import gmsh
 
+    from fe_crank.gmsh_io import SESSION_OPTIONS
+    from fe_crank.mesh.quality import STRAIGHTEN_BELOW
     from fe_crank.version import __version__
 
+    return {
+        "gmsh_options": {**SESSION_OPTIONS, **GENERATE_OPTIONS, "straighten_below": STRAIGHTEN_BELOW},
+        "fe_crank": __version__,
+        "gmsh": gmsh.__version__,
+        "format": CACHE_FORMAT,
+    }
+
+
+def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -> str:
+    """SHA-256 (hex, 20 chars) of everything that changes the mesh: the geometry of the
+    throw, the mesh options, the gmsh options the mesh is generated with
+    (``gmsh_io.SESSION_OPTIONS``, ``options.GENERATE_OPTIONS``, the straightening
+    threshold), the versions of gmsh and of fe-crank, and the cache format
+    (``mesher_key``)."""
     geo = dataclasses.asdict(geometry)
     for k in ("name", "description", "source", "file", "throws", "shaft"):  # shaft: ends and bearings
         geo.pop(k, None)
@@ -43,12 +62,10 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     if opts["interface_sectors"] == 1:
         del opts["interface_sectors"]  # the key of every mesh without sectors stays as it was
     payload = {
+        **mesher_key(),
         "geometry": geo,
         "throw": th,
         "options": opts,
-        "fe_crank": __version__,
-        "gmsh": gmsh.__version__,
-        "format": CACHE_FORMAT,
         "planes": list(mesh_planes(geometry, throw)) if options.symmetric else [],
     }
     text = json.dumps(payload, sort_keys=True, default=repr)

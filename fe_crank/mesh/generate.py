@@ -25,10 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from fe_crank.errors import MeshError
+from fe_crank.errors import MeshError, environment_fault
 from fe_crank.mesh.cache import TMP_MARK, clean_stale_cache_temps, load_cache_entry, save_npz, stats_to_json
 from fe_crank.mesh.export import write_vtu
-from fe_crank.mesh.options import MeshOptions
+from fe_crank.mesh.options import GENERATE_OPTIONS, MeshOptions
 from fe_crank.mesh.quality import fillet_max_edge, jacobian_ratio, straighten_poor, tet_tags
 from fe_crank.mesh.types import MeshStats, ThrowMesh
 
@@ -38,12 +38,8 @@ def generate(gmsh, throw_name: str, label: str, opt: MeshOptions) -> tuple[float
 
     Returns gmsh's smallest minSICN of the linear tetrahedra and the number of quadratic
     elements made straight-sided.  ``label`` names the model in messages."""
-    gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
-    gmsh.option.setNumber("Mesh.Optimize", 1)
-    gmsh.option.setNumber(
-        "Mesh.OptimizeNetgen", 1
-    )  # removes most boundary slivers (seed-001 coarse: 3866 -> 98 elements with Jacobian ratio < 0.1)
-    gmsh.option.setNumber("Mesh.ElementOrder", 1)
+    for name, value in GENERATE_OPTIONS.items():
+        gmsh.option.setNumber(name, value)
     try:
         gmsh.model.mesh.generate(3)
         tags = tet_tags(gmsh)
@@ -133,7 +129,10 @@ def through_cache(
 
     ``cache_dir`` None: built into a temporary folder removed when the process exits."""
     if cache_dir is None:
-        folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
+        try:
+            folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
+        except OSError as exc:
+            raise environment_fault(exc, "creating a temporary mesh folder", tempfile.gettempdir()) from None
         atexit.register(shutil.rmtree, folder, True)  # no cache: the files live as long as the process
         mesh, stats = build(folder)
         write_vtu(folder / "throw.vtu", mesh)
@@ -144,9 +143,12 @@ def through_cache(
     if hit is not None:
         mesh, stats = hit
         return _throw_mesh(mesh, stats, final, throw_name, key, opt)
-    root.mkdir(parents=True, exist_ok=True)
-    clean_stale_cache_temps(root)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{key}{TMP_MARK}{os.getpid()}-", dir=root))
+    try:
+        root.mkdir(parents=True, exist_ok=True)
+        clean_stale_cache_temps(root)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{key}{TMP_MARK}{os.getpid()}-", dir=root))
+    except OSError as exc:  # a full disk, a folder without write permission, a read-only file system
+        raise environment_fault(exc, "creating the mesh cache", root) from None
     try:
         mesh, stats = build(tmp)
         save_npz(tmp / "mesh.npz", mesh)
@@ -157,6 +159,9 @@ def through_cache(
             os.rename(tmp, final)
         except OSError:  # another process finished the same entry first: use theirs
             shutil.rmtree(tmp, ignore_errors=True)
+    except OSError as exc:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise environment_fault(exc, "writing the mesh cache", tmp) from None
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise

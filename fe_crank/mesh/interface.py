@@ -76,6 +76,54 @@ def _renumbered(gmsh, before: dict[int, tuple[float, ...]], sectors: set[int]) -
     return out
 
 
+def _sector_edges(gmsh, faces: list[int], rim_angle: float, n: int) -> tuple[list[int], list[int]]:
+    """The radial lines (line i at ``rim_angle + 2 pi i / n``) and the rim arcs (arc i
+    bounding sector i) of one split end face, each list in angular order."""
+    edges = sorted({abs(t) for f in faces for _, t in gmsh.model.getBoundary([(2, f)], oriented=False)})
+    step = 2 * math.pi / n
+
+    def slot(tag: int, offset: float) -> int:
+        k = ((_angle(gmsh, 1, tag) - rim_angle) / step - offset) % n
+        i = round(k) % n
+        if abs(k - round(k)) > 1e-6:
+            return -1
+        return i
+
+    lines, arcs = [-1] * n, [-1] * n
+    for e in edges:
+        if gmsh.model.getType(1, e) == "Line":
+            i = slot(e, 0.0)
+            lines[i] = e if i >= 0 else lines[i]
+        else:
+            i = slot(e, 0.5)
+            arcs[i] = e if i >= 0 else arcs[i]
+    if -1 in lines or -1 in arcs:
+        raise MeshError("the sectors of a split end face do not have one radial line and one rim arc each")
+    return lines, arcs
+
+
+def _fix_edge_masters(gmsh, new_faces, present, z_of, rim_angle: float, n: int) -> None:
+    """Give every sector edge one master: radial line 0 and rim arc 0 of the first face.
+
+    Setting a face periodic makes gmsh pair its edges with the master face's edges itself;
+    with two sectors each radial line is the image of the other under the half turn, and
+    which of the two gmsh made the master depended on the order of objects in memory,
+    which changed the surface mesh from run to run.  The masters stated explicitly here
+    make the edge meshes, and so every mesh built on them, the same on every run."""
+    z0 = z_of[present[0]]
+    first_lines, first_arcs = _sector_edges(gmsh, new_faces[present[0]], rim_angle, n)
+    for e in (first_lines[0], first_arcs[0]):  # a master of its own (no longer another's slave)
+        gmsh.model.mesh.setPeriodic(1, [e], [e], _rotation(0.0))
+    for name in present:
+        lines, arcs = _sector_edges(gmsh, new_faces[name], rim_angle, n)
+        for i in range(n):
+            tfo = _rotation(2 * math.pi * i / n, z_of[name] - z0)
+            if lines[i] != first_lines[0]:
+                gmsh.model.mesh.setPeriodic(1, [lines[i]], [first_lines[0]], tfo)
+            if arcs[i] != first_arcs[0]:
+                gmsh.model.mesh.setPeriodic(1, [arcs[i]], [first_arcs[0]], tfo)
+
+
 def imprint_sectors(gmsh, model, n: int, faces=("end_1", "end_2")):
     """Split the named end faces of the built throw ``model`` (``geometry.throw.ThrowModel``)
     into ``n`` sectors with rotated-copy meshes (module doc); returns the model with its
@@ -128,8 +176,10 @@ def imprint_sectors(gmsh, model, n: int, faces=("end_1", "end_2")):
         for i, s in enumerate(new_faces[name]):
             if s != master:
                 gmsh.model.mesh.setPeriodic(2, [s], [master], _rotation(2 * math.pi * i / n, z_of[name] - z0))
+    assert rim_angle is not None  # set by the first face (present is not empty)
+    _fix_edge_masters(gmsh, new_faces, present, z_of, rim_angle, n)
     gmsh.model.removePhysicalGroups()
-    for name in {name for _, name, _ in groups}:
+    for name in dict.fromkeys(name for _, name, _ in groups):  # first-seen order: the same tags on every run
         gmsh.model.removePhysicalName(name)
     for dim, name, tags in groups:
         ptag = gmsh.model.addPhysicalGroup(dim, new_faces.get(name, tags))

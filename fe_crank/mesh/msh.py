@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from fe_crank.errors import MeshError, environment_fault
+
 
 def _edge_dofs(mesh, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """P2 node numbers of the edges (a, b) (scikit-fem: vertices first, then one node per edge)."""
@@ -54,4 +56,18 @@ def write_msh(path: Path, mesh) -> None:
             next_el += conn.shape[0]
             gmsh.model.mesh.addElementsByType(k, 9, els.tolist(), conn.ravel().tolist())
             gmsh.model.addPhysicalGroup(2, [k], name=name)
+        write_model(gmsh, path)
+
+
+def write_model(gmsh, path: str | Path) -> None:
+    """``gmsh.write(path)``; a file the machine does not let gmsh write (a full disk, no
+    permission) is an ``EnvironmentFault`` naming it, any other failure a ``MeshError``."""
+    try:
         gmsh.write(str(path))
+    except Exception as exc:  # gmsh raises bare Exception
+        try:  # the operating system's reason, which gmsh does not give
+            with open(path, "ab"):
+                pass
+        except OSError as os_exc:
+            raise environment_fault(os_exc, "writing the mesh", path) from None
+        raise MeshError(f"gmsh could not write {path}: {exc}") from None
