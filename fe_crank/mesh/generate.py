@@ -4,7 +4,7 @@ through the mesh cache.
 
 * :func:`generate`: Delaunay tetrahedra improved by gmsh's and Netgen's optimisers,
   refused when a linear tetrahedron is inverted (gmsh minSICN <= 0), raised to order 2,
-  poorly curved ones made straight-sided (``fe_crank.mesh.quality._straighten_poor``);
+  poorly curved ones made straight-sided (``fe_crank.mesh.quality.straighten_poor``);
 * :func:`finish`: every named group present and non-empty, the quadratic map's Jacobian
   ratio, the statistics, and the fillet edge rule (``<= r / fillet_divisions`` on every
   fillet of ``fillet_radii`` for presets with at least 4 divisions: IACS UR M53 App. III);
