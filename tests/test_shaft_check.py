@@ -22,7 +22,7 @@ from pipeline import stage_outputs, write_report
 
 from fe_crank.assess.results import schema_path
 from fe_crank.assess.shaft import piece_unit_stresses
-from fe_crank.check.shaft_stage import layout_of
+from fe_crank.check.stages import shaft_layout
 from fe_crank.fe.shaft_fields import piece_fields
 from fe_crank.fe.stress import stress_at_selected_nodes
 from fe_crank.fe.whole_shaft import analyse_whole_shaft
@@ -43,7 +43,7 @@ def test_a_throw_on_its_two_bearings_is_the_per_throw_model(tmp_path):
     out = stage_outputs(tmp_path / "case.toml", tmp_path / "cache", render=False, write_vtu=False)
     assert out.whole_shaft is not None and len(out.whole_shaft.layout.bearings) == 2
     (per,) = out.assessment.throws
-    (whole,) = out.whole_shaft.assessment.throws
+    (whole,) = out.assessment.shaft.throws
     by = {g.group: g for g in per.groups if not g.group.startswith("counterweight_")}
     assert {g.group for g in whole.groups} == set(by)
     for g in whole.groups:
@@ -66,7 +66,7 @@ def test_every_journal_carries_its_own_torque(tmp_path):
     lc = load_loadcase(DATA / "small_torsion.toml")
     out = stage_outputs(DATA / "small_torsion.toml", tmp_path, render=False, write_vtu=False)
     dyn = out.assessed_dynamics
-    layout = layout_of(lc)
+    layout = shaft_layout(lc)
     result, cases = analyse_whole_shaft(
         layout, lc.material, dyn, size=out.geometry.plan.options, cache_dir=tmp_path, torque_flow=True
     )
@@ -150,6 +150,6 @@ def test_small_shaft_results_and_report(tmp_path):
         assert (folder / f).stat().st_size > 10_000, f
     mesh = meshio.read(folder / "whole_shaft.vtu")
     assert mesh.cells[0].type == "tetra10"
-    h, fields = out.whole_shaft.governing, out.whole_shaft.fields
+    h, fields = out.assessment.shaft.governing, out.shaft_fields
     assert mesh.point_data["von_mises_Pa"][fields.hotspot_node] == pytest.approx(h.von_mises, rel=1e-6)
     assert np.linalg.norm(mesh.points[fields.hotspot_node] - np.asarray(h.point)) < 1e-9

@@ -25,13 +25,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank.assess.group import assess_groups
+from fe_crank.assess.loads import FIRING, misfire_label
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import run_blocks, thread_count
 from fe_crank.fe.node_groups import node_groups
 from fe_crank.fe.shaft_cases import ShaftCases
 from fe_crank.fe.stress import stress_at_selected_nodes
-from fe_crank.fe.whole_shaft import BearingResult, WholeShaftResult
+from fe_crank.fe.whole_shaft import BearingResult, WholeShaftResult, bearings_of, throw_masses
+from fe_crank.geometry.shaft import ShaftLayout
+from fe_crank.mechanism.cycles import EngineCycles
+from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.mesh.shaft import place
 
 #: the label of each model in the criteria's locations and the report
 PER_THROW = "per-throw model"
@@ -49,18 +54,91 @@ class BearingState:
 
 
 @dataclass(frozen=True)
+class WholeShaftOutput:
+    """The whole-shaft stage (``check.shaft_stage``): the shaft placed by the engine, its
+    bearing loads and web moments over the cycle with and without counterweights
+    (``result``), the main bearings' loads at every speed and load state of the full-load
+    sweep (``sweep``, ``bearing_sweep``), and its unit cases (``cases``: condensed, with each
+    throw's recovery fields at its assessed nodes, and the factorisations when whole fields
+    are wanted) which the assessment reads (``assess_shaft_throws``; None once the stages
+    that read them ran)."""
+
+    layout: ShaftLayout
+    result: WholeShaftResult
+    dynamics: DynamicsResult  # the operating cycle it was solved over (the assessed one)
+    sweep: tuple[BearingState, ...] = ()
+    cases: ShaftCases | None = None
+
+
+@dataclass(frozen=True)
+class ShaftHotSpot:
+    """Where and when the whole shaft's von Mises stress is largest over the cycle."""
+
+    throw: str
+    group: str
+    angle_deg: float  # cycle angle
+    von_mises: float  # Pa
+    point: tuple[float, float, float]  # m, shaft frame (the engine frame at crank angle zero)
+
+
+@dataclass(frozen=True)
 class ShaftAssessment:
     """What the criteria read from the whole-shaft model: its throws' group results at the
     operating speed ``speed`` (rad/s; None: not stated) and its overspeed cycles (the
     per-throw model's groups, ``ThrowAssessment.groups``; no UR M53, no counterweight
     checks), its main bearings' loads with and without counterweights at the operating
     speed, and at every speed and load state of the sweep (``sweep``; () : the operating
-    speed alone)."""
+    speed alone); ``governing``: its largest von Mises stress over the cycle (``governing``).
+    """
 
     throws: tuple[ThrowAssessment, ...]
     bearings: tuple[BearingResult, ...]
     speed: float | None = None
     sweep: tuple[BearingState, ...] = ()
+    governing: ShaftHotSpot | None = None
+    seconds: float = 0.0  # the time its throws' assessment took
+
+
+def bearing_sweep(
+    cycles: EngineCycles, cases: ShaftCases, layout: ShaftLayout, result: WholeShaftResult
+) -> tuple[BearingState, ...]:
+    """The main bearings' loads at every speed and load state of the full-load sweep (every
+    cylinder firing, each misfire case; ``mechanism.cycles.EngineCycles.sweep``): the
+    operating speed's firing state is the stage's own cycle (``result``, with the torsional
+    stage's journal torques when it ran), the others the dynamics stage's cycles on the
+    condensed shaft (``fe.whole_shaft.bearings_of``; each journal's torque quasi-static)."""
+    mass = throw_masses(layout)
+    out = []
+    for sc in cycles.sweep:
+        own = sc.firing is cycles.operating
+        out.append(
+            BearingState(sc.speed, FIRING, result.bearings if own else bearings_of(cases, layout, mass, sc.firing))
+        )
+        out.extend(
+            BearingState(sc.speed, misfire_label(m.cylinder), bearings_of(cases, layout, mass, m.dynamics))
+            for m in sc.misfire
+        )
+    return tuple(out)
+
+
+def governing(throws: tuple[ThrowAssessment, ...], layout: ShaftLayout) -> ShaftHotSpot | None:
+    """The largest von Mises stress over the cycle on the whole shaft's throws and where
+    it is (the first of equals), its point placed in the shaft frame."""
+    best = None
+    for t in throws:
+        for g in t.groups:
+            e = g.max_von_mises
+            if e.angle is not None and (best is None or e.value > best[1].value):
+                best = (t.name, e)
+    if best is None:
+        return None
+    name, e = best
+    assert e.angle is not None
+    th = next(t for t in layout.throws if t.name == name)
+    p = place(np.asarray(e.point, float)[:, None], layout.sense * th.angle, th.z)[:, 0]
+    return ShaftHotSpot(
+        name, e.group, float(np.degrees(e.angle)), float(e.value), (float(p[0]), float(p[1]), float(p[2]))
+    )
 
 
 def piece_unit_stresses(cases: ShaftCases, piece: int, material) -> UnitStresses:
