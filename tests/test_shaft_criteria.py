@@ -130,3 +130,42 @@ def test_the_whole_shaft_enters_at_the_operating_speed():
     values = {(v.criterion, v.model): v for v in model_values(crit, _throws(), shaft, sweep=sweep)}
     assert values["criteria.min_static_safety", WHOLE_SHAFT].governs
     assert values["criteria.min_fatigue_safety", PER_THROW].governs
+
+
+def test_the_whole_shaft_at_every_speed_and_load_state():
+    """Per-throw model at 2000 and 3000 rpm (static 5.0, fatigue 1.6 at both); the whole
+    shaft in every state (``ShaftAssessment.states``): 3000 rpm firing static 650/150 =
+    4.33, fatigue 1.8; 2000 rpm firing static 650/120 = 5.42, and with cylinder 1 misfiring
+    static 650/200 = 3.25, fatigue 1.2.  At 2000 rpm both criteria are the whole shaft's
+    misfire state (3.25 < 5.0, 1.2 < 1.6), which governs; at 3000 rpm the static safety is
+    the whole shaft's 4.33, the fatigue safety the per-throw model's 1.6."""
+    from fe_crank.assess.loads import FIRING
+    from fe_crank.assess.speeds import StateResults
+
+    w2, w3 = 2000 * math.pi / 30, 3000 * math.pi / 30
+    sweep = (StateResults(w2, FIRING, _throws()), StateResults(w3, FIRING, _throws()))
+
+    def whole(vm, fat):
+        return (ThrowAssessment("1", (_group("crankpin_fillet_1", 11, vm, 160e6, fat, 2.8),)),)
+
+    misfire = "cylinder 1 misfiring"
+    states = (
+        StateResults(w2, FIRING, whole(120e6, 2.0)),
+        StateResults(w2, misfire, whole(200e6, 1.2)),
+        StateResults(w3, FIRING, _shaft().throws),
+    )
+    shaft = ShaftAssessment(_shaft().throws, _shaft().bearings, w3, states=states)
+    crit = build_criteria({"min_static_safety": 1.5, "min_fatigue_safety": 1.5}, "t.toml")
+    by = {c.quantity: c for c in evaluate_criteria(crit, _throws(), sweep=sweep, shaft=shaft)}
+    st, fat = by["static_safety"], by["fatigue_safety"]
+    assert [p.value for p in st.per_speed] == [pytest.approx(650 / 200), pytest.approx(650 / 150)]
+    assert st.value == pytest.approx(650 / 200) and st.speed_rpm == pytest.approx(2000)
+    assert criterion_location(st) == (
+        f"{WHOLE_SHAFT}: throw 1, crankpin_fillet_1, node 11 at (11.0, 0.0, 2.0) mm, 30 deg; {misfire}; 2000 rpm"
+    )
+    assert [p.value for p in fat.per_speed] == [pytest.approx(1.2), pytest.approx(1.6)]
+    assert [p.where.model for p in fat.per_speed] == [WHOLE_SHAFT, PER_THROW]
+    assert fat.value == pytest.approx(1.2) and fat.speed_rpm == pytest.approx(2000)
+    values = {(v.criterion, v.model): v for v in model_values(crit, _throws(), shaft, sweep=sweep)}
+    assert values["criteria.min_fatigue_safety", WHOLE_SHAFT].value == pytest.approx(1.2)
+    assert values["criteria.min_fatigue_safety", WHOLE_SHAFT].governs

@@ -161,7 +161,7 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         for j, state in enumerate(states)
     ]
     if len(a.loads.speeds) > 1 or len(sweep) > 1:
-        notes.append(_assumption(_sweep_note(a.loads)))
+        notes.append(_assumption(_sweep_note(a.loads, shaft is not None)))
     qualifiers = criterion_qualifiers(basis, a.criteria, torsion=a.loads.torsion)
     factors = StudyFactors(a.convergence) if a.convergence else None
     judged = judge_criteria(
@@ -208,9 +208,10 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
 
 def _shaft(a: AssessInputs, basis: M53Basis) -> ShaftAssessment:
     """The whole shaft's throws assessed by the per-throw model's code (``assess.shaft``) at
-    the operating speed and the overspeed, with each throw's UR M53 diameters (the size
-    factor) and UR M53's sigma_add as the per-throw model; its governing hot spot; its
-    bearings."""
+    the operating speed and the overspeed, and in every load state at every speed of the
+    sweep with the per-throw model's pruning (``wanted_extremes``), with each throw's UR
+    M53 diameters (the size factor) and UR M53's sigma_add as the per-throw model; its
+    governing hot spot; its bearings."""
     ws = a.shaft
     assert ws is not None and ws.cases is not None
     t0 = time.perf_counter()
@@ -218,7 +219,7 @@ def _shaft(a: AssessInputs, basis: M53Basis) -> ShaftAssessment:
         name: (tg.m53.pin_diameter, tg.m53.journal_diameter) if tg.m53 is not None else (None, None)
         for name, tg in a.throw_geometry.items()
     }
-    throws = assess_shaft_throws(
+    throws, states = assess_shaft_throws(
         ws.cases,
         ws.result,
         ws.dynamics.theta,
@@ -227,18 +228,29 @@ def _shaft(a: AssessInputs, basis: M53Basis) -> ShaftAssessment:
         overspeed=a.operating.overspeed,
         diameters=diameters,
         additional_bending=basis.additional,
+        sweep=ws.sweep,
+        wanted=wanted_extremes(a.criteria),
     )
     worst = governing(throws, ws.layout)
     seconds = time.perf_counter() - t0
-    return ShaftAssessment(throws, ws.result.bearings, float(ws.dynamics.speed), ws.sweep, worst, seconds)
+    return ShaftAssessment(
+        throws,
+        ws.result.bearings,
+        float(ws.dynamics.speed),
+        ws.sweep,
+        worst,
+        seconds,
+        states if len(states) > 1 else (),
+    )
 
 
-def _sweep_note(loads: AssessedLoads) -> str:
+def _sweep_note(loads: AssessedLoads, both: bool) -> str:
     rpm = [w * 30.0 / math.pi for w in loads.speed_values]
     states = len(loads.speeds[0])
     text = (
         f"full-load curve: every criterion but the overspeed ones at {len(rpm)} speeds, "
-        f"{rpm[0]:.0f}-{rpm[-1]:.0f} rpm, on the same unit stresses; a criterion's value is its worst speed"
+        f"{rpm[0]:.0f}-{rpm[-1]:.0f} rpm, on the same unit stresses{' in both models' if both else ''}; "
+        "a criterion's value is its worst speed"
     )
     if states > 1:
         text += f"; at each speed all cylinders firing and {states - 1} misfire case(s), the worst governing"

@@ -19,8 +19,10 @@ search for one quantity; the convergence study's factor on the groups' stresses
 ``factors``; the study's own ``mesh_convergence`` criterion joins the criteria then).  The
 verdict line's remarks -- the factor, the qualifiers (``assess.qualifiers``) -- follow the
 location (``results.Location``) of the worst speed.  With the whole-shaft
-model a criterion takes the worse of the two models at each speed and the main-bearing
-quantities are the whole shaft's (``assess.shaft_criteria``).
+model a criterion takes the worse of the two models at each speed -- the whole shaft
+assessed at every speed and load state of the sweep as the per-throw model is
+(``ShaftAssessment.states``) -- and the main-bearing quantities are the whole shaft's
+(``assess.shaft_criteria``).
 """
 
 from __future__ import annotations
@@ -43,7 +45,14 @@ from fe_crank.assess.finders import (
 )
 from fe_crank.assess.refinement import SCALED, Refinement, StudyFactors
 from fe_crank.assess.shaft import ShaftAssessment
-from fe_crank.assess.shaft_criteria import ModelValue, combined, model_pair, no_throw_value, whole_shaft
+from fe_crank.assess.shaft_criteria import (
+    BEARING_FINDERS,
+    ModelValue,
+    combined,
+    model_pair,
+    no_throw_value,
+    whole_shaft,
+)
 from fe_crank.assess.speeds import RPM, Found, Located, StateResults, over_sweep
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.verdict import judge
@@ -123,6 +132,8 @@ def _parts(
             per = got[0], got[1], None, ()
     if shaft is None:
         return per, None
+    if ev.speed == SWEEP and sweep and shaft.states and quantity not in BEARING_FINDERS:
+        return per, over_sweep(find, sense, shaft.states)  # the whole shaft at every speed, as the per-throw model
     at = shaft.speed * RPM if ev.speed == SWEEP and shaft.speed is not None and sweep else None
     if ev.speed == OVERSPEED and overspeed is not None:
         at = overspeed * RPM

@@ -24,15 +24,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess.group import assess_groups
+from fe_crank.assess.extremes import Running, Wanted, group_extremes
+from fe_crank.assess.group import SIGMA_ADD_GROUPS, assess_groups, section_diameter
 from fe_crank.assess.loads import FIRING, misfire_label
+from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import run_blocks, thread_count
 from fe_crank.fe.node_groups import node_groups
 from fe_crank.fe.shaft_cases import ShaftCases
 from fe_crank.fe.stress import stress_at_selected_nodes
-from fe_crank.fe.whole_shaft import BearingResult, WholeShaftResult, bearings_of, throw_masses
+from fe_crank.fe.whole_shaft import BearingResult, WholeShaftResult, shaft_cycle_of, throw_masses
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
@@ -46,11 +48,14 @@ WHOLE_SHAFT = "whole-shaft model"
 @dataclass(frozen=True)
 class BearingState:
     """The main bearings' loads (with and without counterweights) in one load state at one
-    speed of the full-load sweep (rad/s; ``case``: ``assess.loads.FIRING`` or a misfire)."""
+    speed of the full-load sweep (rad/s; ``case``: ``assess.loads.FIRING`` or a misfire),
+    and the weights of the shaft's unit cases over that cycle with the counterweights
+    (``ShaftCycle.weights``: the stresses of the state by superposition)."""
 
     speed: float
     case: str
     bearings: tuple[BearingResult, ...]
+    weights: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -88,8 +93,10 @@ class ShaftAssessment:
     per-throw model's groups, ``ThrowAssessment.groups``; no UR M53, no counterweight
     checks), its main bearings' loads with and without counterweights at the operating
     speed, and at every speed and load state of the sweep (``sweep``; () : the operating
-    speed alone); ``governing``: its largest von Mises stress over the cycle (``governing``).
-    """
+    speed alone); ``governing``: its largest von Mises stress over the cycle (``governing``);
+    ``states``: its throws in every load state at every speed of the sweep, as the
+    per-throw model's (``speeds.StateResults``; the operating speed's firing state is
+    ``throws``, the others their extremes only; () : the operating speed alone)."""
 
     throws: tuple[ThrowAssessment, ...]
     bearings: tuple[BearingResult, ...]
@@ -97,6 +104,7 @@ class ShaftAssessment:
     sweep: tuple[BearingState, ...] = ()
     governing: ShaftHotSpot | None = None
     seconds: float = 0.0  # the time its throws' assessment took
+    states: tuple[StateResults, ...] = ()
 
 
 def bearing_sweep(
@@ -106,18 +114,25 @@ def bearing_sweep(
     cylinder firing, each misfire case; ``mechanism.cycles.EngineCycles.sweep``): the
     operating speed's firing state is the stage's own cycle (``result``, with the torsional
     stage's journal torques when it ran), the others the dynamics stage's cycles on the
-    condensed shaft (``fe.whole_shaft.bearings_of``; each journal's torque quasi-static)."""
+    condensed shaft (``fe.whole_shaft.shaft_cycle_of`` with and without counterweights;
+    each journal's torque quasi-static); each with its case weights for the stresses."""
     mass = throw_masses(layout)
+
+    def state(speed: float, case: str, dynamics) -> BearingState:
+        on, off = (shaft_cycle_of(cases, layout, mass, dynamics, counterweights=cw) for cw in (True, False))
+        return BearingState(
+            speed, case, tuple(BearingResult(a, b) for a, b in zip(on.bearings, off.bearings)), on.weights
+        )
+
     out = []
     for sc in cycles.sweep:
         own = sc.firing is cycles.operating
         out.append(
-            BearingState(sc.speed, FIRING, result.bearings if own else bearings_of(cases, layout, mass, sc.firing))
+            BearingState(sc.speed, FIRING, result.bearings, result.cycles[0].weights)
+            if own
+            else state(sc.speed, FIRING, sc.firing)
         )
-        out.extend(
-            BearingState(sc.speed, misfire_label(m.cylinder), bearings_of(cases, layout, mass, m.dynamics))
-            for m in sc.misfire
-        )
+        out.extend(state(sc.speed, misfire_label(m.cylinder), m.dynamics) for m in sc.misfire)
     return tuple(out)
 
 
@@ -185,13 +200,20 @@ def assess_shaft_throws(
     overspeed: float | None,
     diameters: dict[str, tuple[float | None, float | None]] | None = None,
     additional_bending: float = 0.0,
-) -> tuple[ThrowAssessment, ...]:
+    sweep: tuple[BearingState, ...] = (),
+    wanted: Wanted | None = None,
+) -> tuple[tuple[ThrowAssessment, ...], tuple[StateResults, ...]]:
     """Every throw of the whole shaft assessed with the per-throw model's group code
     (module doc), with the counterweights as built; ``theta`` the cycle's angles (rad);
     ``overspeed`` (rad/s) with ``result.overspeed``'s cycles; ``diameters``: throw name ->
     (pin, journal) diameter for the size factor (UR M53's dimensions; None: the factor's
     fallback); ``additional_bending``: UR M53 4's sigma_add on the shaft fillets (as the
-    per-throw model)."""
+    per-throw model).  Returns the throws at the operating cycle (in full, with the
+    overspeed) and, with ``sweep`` (``bearing_sweep``'s states, their weights), the throws
+    in every load state at every speed: the operating speed's firing state (the state whose
+    weights are the operating cycle's) in full, the others their extremes only
+    (``extremes.group_extremes`` with ``wanted``, each state searched with its own
+    ``Running``: the per-throw model's pruning)."""
     coeffs = result.cycles[0].weights
     theta = np.asarray(theta, float)
     coeffs_os = None
@@ -199,7 +221,11 @@ def assess_shaft_throws(
         coeffs_os = np.vstack([c.weights for c in result.overspeed])
     elif overspeed is not None:
         overspeed = None  # no overspeed cycle of the whole shaft: the per-throw model's alone
+    own = [i for i, st in enumerate(sweep) if st.weights is coeffs]
+    others = [i for i in range(len(sweep)) if i not in own]
+    running = {i: Running() for i in others}  # each state's least fatigue values so far, over the throws
     out = []
+    per_state: dict[int, list[ThrowAssessment]] = {i: [] for i in range(len(sweep))}
     for k, pp in enumerate(cases.model.pieces):
         if pp.kind != "throw":
             continue
@@ -217,6 +243,33 @@ def assess_shaft_throws(
             journal_diameter=journal_diameter,
             additional_bending=additional_bending,
         )
-        out.append(ThrowAssessment(str(pp.throw), groups, n_angles=int(theta.size)))
+        t = ThrowAssessment(str(pp.throw), groups, n_angles=int(theta.size))
+        out.append(t)
+        for i in own:
+            per_state[i].append(t)
+
+        def one(i: int, _scratch: dict, unit=unit, name=str(pp.throw), dp=pin_diameter, dj=journal_diameter) -> None:
+            w = sweep[i].weights
+            assert w is not None
+            extremes = tuple(
+                group_extremes(
+                    unit,
+                    g,
+                    w,
+                    theta,
+                    material,
+                    crank_radius=crank_radius,
+                    diameter=section_diameter(g, dp, dj),
+                    wanted=wanted or Wanted(),
+                    running=running[i],
+                    additional_bending=additional_bending if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+                )
+                for g in sorted(unit.groups)
+                if len(unit.groups[g])
+            )
+            per_state[i].append(ThrowAssessment(name, extremes, n_angles=int(theta.size)))
+
+        run_blocks(one, others)
         del unit
-    return tuple(out)
+    states = tuple(StateResults(st.speed, st.case, tuple(per_state[i])) for i, st in enumerate(sweep))
+    return tuple(out), states

@@ -1,14 +1,14 @@
 """The criteria with the whole-shaft model beside the per-throw one (``assess.criteria``).
 
 With the whole-shaft model (``assess.shaft.ShaftAssessment``) a stress quantity is found
-on both models' throws: the per-throw model (UR M53's statically determinate one) at every
-speed of the full-load sweep, and the whole shaft on its bearings at the operating speed
-(its overspeed cycles for an overspeed quantity).  At each speed the criterion's value is
-the worse of the models there (the whole shaft's enters at the operating speed's
-``per_speed`` entry), its location naming the model; the verdict is the worst speed, as
-without the whole shaft (``speeds.over_sweep``).  The main-bearing quantities are the whole
-shaft's alone: the peak bearing load with counterweights, and that peak over the projected
-area d w, at every speed and load state of the sweep (``ShaftAssessment.sweep``).
+on both models' throws, each at every speed and load state of the full-load sweep (the
+whole shaft's ``states``, assessed as the per-throw model's, with its pruning; its
+overspeed cycles for an overspeed quantity).  At each speed the criterion's value is the
+worse of the models there, its location naming the model; the verdict is the worst speed,
+as without the whole shaft (``speeds.over_sweep``).  The main-bearing quantities are the
+whole shaft's alone: the peak bearing load with counterweights, and that peak over the
+projected area d w, at every speed and load state of the sweep
+(``ShaftAssessment.sweep``).
 """
 
 from __future__ import annotations
