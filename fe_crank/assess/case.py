@@ -213,7 +213,9 @@ def _shaft(a: AssessInputs, basis: M53Basis) -> ShaftAssessment:
     M53 diameters (the size factor) and UR M53's sigma_add as the per-throw model; its
     governing hot spot; its bearings."""
     ws = a.shaft
-    assert ws is not None and ws.cases is not None
+    assert ws is not None
+    if ws.cases is None:
+        raise ValueError("the whole shaft's unit cases were released after its assessment: run its stage again")
     t0 = time.perf_counter()
     diameters: dict[str, tuple[float | None, float | None]] = {
         name: (tg.m53.pin_diameter, tg.m53.journal_diameter) if tg.m53 is not None else (None, None)
