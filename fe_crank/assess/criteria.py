@@ -1,8 +1,8 @@
 """The load case's criteria evaluated on the throws' results: one evaluator per quantity.
 
 ``EVALUATORS`` maps each quantity of ``fe_crank.io.criteria.QUANTITIES`` to the function
-that finds its worst value over every throw and where it occurs; ``evaluate_criteria``
-judges each limit of the load case with it (``verdict.judge``).  A criterion that cannot
+that finds its worst value over every throw and where it occurs (a ``results.Location``);
+``judge_criteria`` judges each limit of the load case with it (``verdict.judge``).  A criterion that cannot
 be evaluated (no data for it) is an ``InputError`` naming its key: it never passes
 silently; one the model's results must not judge (UR M53 on FE SCFs of a mesh UR M53
 App. III rejects) is refused with the reason.
