@@ -2,6 +2,8 @@
 
 The stages run in order (``fe_crank.check.stages``); each takes the frozen outputs of
 the stages before it and returns its own frozen result, which ``CaseOutputs`` collects.
+``WholeShaftOutput`` and ``ShaftHotSpot`` are the assessment's types (``assess.shaft``),
+named here too.
 A case that stops keeps the outputs of the stages that ran, so its report shows them.
 """
 
@@ -13,14 +15,13 @@ from fe_crank.assess.case import Assessment
 from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.m53 import M53Geometry
 from fe_crank.assess.scf import ScfResult
-from fe_crank.assess.shaft import ShaftAssessment
+from fe_crank.assess.shaft import ShaftHotSpot, WholeShaftOutput
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad.features import CadFeatures
 from fe_crank.fe.convergence import ConvergenceStudy
 from fe_crank.fe.shaft_fields import ShaftFields
 from fe_crank.fe.unit_cases import UnitSolutions
-from fe_crank.fe.whole_shaft import WholeShaftResult
 from fe_crank.geometry.mass import ThrowSolids
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.io.loadcase import LoadCase
@@ -39,12 +40,15 @@ class GeometryModel:
     throw, meshed how), each engine throw's geometry as the assessment reads it (UR M53
     dimensions, counterweights, rods' places, ``assess.throw_geometry``), the B-rep mass
     properties of the parametric throws whose inertias the torsional stage needs (None:
-    none needed), and, for a CAD geometry, everything recognised in the file."""
+    none needed), for a CAD geometry everything recognised in the file, and the whole
+    shaft placed by the engine when it is modelled too (``shaft``; None: the per-throw model
+    alone, ``check.stages.shaft_layout``)."""
 
     plan: MeshPlan
     throws: dict[str, ThrowGeometry]
     solids: ThrowSolids | None = None
     cad: CadFeatures | None = None
+    shaft: ShaftLayout | None = None
 
     def of_model(self, key: str) -> ThrowGeometry | None:
         """The geometry of the throw model ``key`` (of the plan): that of the first
@@ -83,32 +87,6 @@ class TorsionOutput:
 
 
 @dataclass(frozen=True)
-class ShaftHotSpot:
-    """Where and when the whole shaft's von Mises stress is largest over the cycle."""
-
-    throw: str
-    group: str
-    angle_deg: float  # cycle angle
-    von_mises: float  # Pa
-    point: tuple[float, float, float]  # m, shaft frame (the engine frame at crank angle zero)
-
-
-@dataclass(frozen=True)
-class WholeShaftOutput:
-    """The whole-shaft stage (``check.shaft_stage``): the shaft placed by the engine, its
-    bearing loads and web moments over the cycle with and without counterweights, its
-    throws' stresses assessed as the per-throw model's (``assessment``, what the criteria
-    read beside the per-throw model), and the whole mesh's state at the governing angle
-    (``fields``, for the report's picture and ``.vtu``; None when neither is wanted)."""
-
-    layout: ShaftLayout
-    result: WholeShaftResult
-    assessment: ShaftAssessment
-    governing: ShaftHotSpot | None  # the largest von Mises over the cycle (None: no assessed group)
-    fields: ShaftFields | None = None
-
-
-@dataclass(frozen=True)
 class CaseOutputs:
     """The outputs of one load case's stages (None: the stage did not run)."""
 
@@ -120,8 +98,9 @@ class CaseOutputs:
     fe: FeModels | None = None
     torsion: TorsionOutput | None = None
     whole_shaft: WholeShaftOutput | None = None
-    assessment: Assessment | None = None
     convergence: dict[str, ConvergenceStudy] | None = None
+    assessment: Assessment | None = None
+    shaft_fields: ShaftFields | None = None  # the whole mesh's state at the whole shaft's governing angle
 
     @property
     def assessed_dynamics(self) -> DynamicsResult | None:
@@ -134,3 +113,13 @@ class CaseOutputs:
     @property
     def unit_solutions(self) -> dict[str, UnitSolutions]:
         return self.fe.unit_solutions if self.fe is not None else {}
+
+
+__all__ = [
+    "CaseOutputs",
+    "FeModels",
+    "GeometryModel",
+    "ShaftHotSpot",
+    "TorsionOutput",
+    "WholeShaftOutput",
+]

@@ -174,7 +174,7 @@ class CaseResult:
             "source": self.source,
             "status": self.status,
             "message": self.message,
-            "criteria": [_finite(asdict(c)) for c in self.criteria],
+            "criteria": [_finite(_criterion(c)) for c in self.criteria],
             "timings": [asdict(t) for t in self.timings],
             "folder": self.folder,
             "seconds": self.seconds,
@@ -188,6 +188,17 @@ class CaseResult:
         w = self.worst
         d["worst"] = w.name if w else None
         return d
+
+
+def _criterion(c: CriterionResult) -> dict[str, Any]:
+    """A criterion of case.json: its verdict line's words (``location``), not the typed
+    ``where`` and ``remarks`` they were made from."""
+    d = asdict(c)
+    d.pop("where")
+    d.pop("remarks")
+    for p in d["per_speed"]:
+        p.pop("where")
+    return d
 
 
 def _finite(x: Any) -> Any:

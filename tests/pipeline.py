@@ -4,6 +4,7 @@ assessment, the report or a check of their own (no fakes: the stage functions of
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 from fe_crank.assess.case import AssessInputs
@@ -11,15 +12,15 @@ from fe_crank.assess.throw_geometry import parametric_throws
 from fe_crank.check.notes import case_notes
 from fe_crank.check.options import CheckOptions
 from fe_crank.check.stages import Run, run_stages
+from fe_crank.check.stages import assess_inputs as stage_assess_inputs
 from fe_crank.check.verdict import decide
 from fe_crank.geometry.mass import throw_solids
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import engine_cycles
-from fe_crank.mesh.plan import SIGN_OFF_RULE
-from fe_crank.outputs import CaseOutputs
+from fe_crank.mesh.plan import SIGN_OFF_RULE, mesh_plan
+from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel
 from fe_crank.records import CaseResult
 from fe_crank.report import write_case_report
-from fe_crank.torsion.loads import assessed_loads
 
 
 def stage_outputs(path: str | Path, cache_dir: str | Path, *, mesh_size: str = "test", **options) -> CaseOutputs:
@@ -49,31 +50,27 @@ def write_report(folder: Path, out: CaseOutputs, options: CheckOptions | None = 
 def assess_inputs(
     lc: LoadCase, unit_solutions: dict, *, models: dict | None = None, balance=None, **kw
 ) -> AssessInputs:
-    """``AssessInputs`` of a load case for hand-picked FE unit solutions (key -> solution):
-    the cycles by the dynamics stage's ``engine_cycles``, each throw's geometry (the
-    counterweights' mass properties, the UR M53 dimensions) as the geometry stage gives it."""
+    """``AssessInputs`` of a load case for hand-picked FE unit solutions (key -> solution),
+    by the check's own ``check.stages.assess_inputs`` on the outputs of the stages they stand
+    in for: the cycles by the dynamics stage's ``engine_cycles``, each throw's geometry (the
+    counterweights' mass properties, the UR M53 dimensions) as the geometry stage gives it;
+    ``kw``: fields of ``AssessInputs`` to set instead."""
     assert lc.material is not None and lc.criteria is not None
     cycles = engine_cycles(lc.engine, lc.operating)
     g = lc.geometry
     models = models or dict.fromkeys(unit_solutions, g.throws[0].name if g is not None else "")
-    if "throw_geometry" not in kw:  # else the geometry stage's, as given
+    throw_geometry = kw.pop("throw_geometry", None)
+    if throw_geometry is None:  # else the geometry stage's, as given
         names = tuple(t.name for t in g.throws if t.counterweights) if g is not None else ()
         solids = throw_solids(g, names) if g is not None and names else None
         design = balance.design if balance is not None else None
-        kw["throw_geometry"] = parametric_throws(g, models, lc.engine, solids, design) if g is not None else {}
-    args = dict(
-        case=lc.name,
-        source_file=lc.source_file,
-        engine=lc.engine,
-        operating=lc.operating,
-        material=lc.material,
-        criteria=lc.criteria,
+        throw_geometry = parametric_throws(g, models, lc.engine, solids, design) if g is not None else {}
+    plan = mesh_plan(models, lc.mesh, size="test")
+    out = CaseOutputs(
+        loadcase=lc,
         cycles=cycles,
-        dynamics=cycles.operating,
-        loads=assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction),
         balance=balance,
-        models=models,
-        unit_solutions=unit_solutions,
+        geometry=GeometryModel(plan, throw_geometry),
+        fe=FeModels(unit_solutions),
     )
-    args.update(kw)
-    return AssessInputs(**args)
+    return dataclasses.replace(stage_assess_inputs(lc, out), **kw)

@@ -25,6 +25,7 @@ from fe_crank.assess import m53_oil_bore as ob
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import assess_throw
 from fe_crank.io.material import load_material
+from fe_crank.report.locations import criterion_location
 
 GEO = m53.M53Geometry(
     pin_diameter=0.050,
@@ -126,4 +127,4 @@ def test_outlet_in_the_throw_assessment_and_q_criterion():
     v = evaluate_criteria(build_criteria({"min_m53_acceptability": 1.15}, "t.toml"), (t,))[0]
     assert v.value == min(f.acceptability for f in t.m53)
     if v.value == by["oil_bore"].acceptability:
-        assert "oil-bore outlet" in v.location
+        assert "oil-bore outlet" in criterion_location(v)

@@ -26,6 +26,7 @@ from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
+from fe_crank.report.locations import criterion_location, location_text
 from fe_crank.torsion.loads import assessed_loads
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -152,7 +153,7 @@ def test_each_speeds_value_is_that_of_a_single_speed_check(swept):
         worst = min(SPEEDS, key=lambda w: singles[w][name].value)
         assert c.value == pytest.approx(singles[worst][name].value, rel=1e-9)
         assert c.speed_rpm == pytest.approx(worst, rel=1e-9)
-        assert c.location.endswith(f"; {worst} rpm")
+        assert criterion_location(c).endswith(f"; {worst} rpm")
     os_ = crit["criteria.min_overspeed_safety"]
     assert [round(p.speed_rpm) for p in os_.per_speed] == [3600]
     assert os_.value == pytest.approx(singles[3000]["criteria.min_overspeed_safety"].value, rel=1e-12)
@@ -177,7 +178,7 @@ def test_misfire_is_part_of_each_speeds_worst_case(swept):
                 ].value
             )
         assert c.per_speed[i].value == pytest.approx(min(values), rel=1e-9)
-        assert ("misfiring" in c.per_speed[i].location) == (values[1] < values[0])
+        assert ("misfiring" in location_text(c.per_speed[i].where)) == (values[1] < values[0])
     # the notes say what the misfire states are: what the tool does, not a rule's clause
     (sweep,) = [n.text for n in out.assessment.notes if n.text.startswith("full-load curve")]
     assert "1 misfire case(s) (each cylinder motored in turn, judged against the continuous-operation limits)" in sweep
@@ -194,13 +195,13 @@ def test_m53_with_the_quasi_static_torque_is_marked_not_conform(tmp_path):
     throws = (ThrowAssessment("1", (), (fillet,)),)
     sweep = (StateResults(100.0, "all cylinders firing", throws), StateResults(200.0, "all cylinders firing", throws))
     (v,) = evaluate_criteria(crit, throws, sweep=sweep, qualifiers=words)
-    assert NOT_CONFORM in v.location and NOT_CONFORM in v.description
-    assert v.location.startswith("throw 1, journal fillet (empirical); 955 rpm; ")
+    assert NOT_CONFORM in criterion_location(v) and NOT_CONFORM in v.description
+    assert criterion_location(v).startswith("throw 1, journal fillet (empirical); 955 rpm; ")
     assert v.value == 2.0 and [p.value for p in v.per_speed] == [2.0, 2.0]
     (plain,) = evaluate_criteria(
         build_criteria({"min_m53_acceptability": 1.15}, tmp_path / "c.toml"), throws, sweep=sweep
     )
-    assert NOT_CONFORM not in plain.location + plain.description
+    assert NOT_CONFORM not in criterion_location(plain) + plain.description
 
 
 def _variant(tmp_path: Path, case: str, old: str, new: str) -> Path:

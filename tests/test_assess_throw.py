@@ -25,6 +25,7 @@ from fe_crank.assess.throw import assess_throw
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
+from fe_crank.report.locations import criterion_location
 
 CASES = ("centrifugal", "pin_x", "pin_y", "torque")
 THETA = np.deg2rad([0.0, 90.0, 180.0, 270.0])
@@ -207,7 +208,7 @@ def test_each_criterion_takes_the_worst_group_and_names_where():
     out = {c.quantity: c for c in evaluate_criteria(crit, (t1, t2), file="c.toml", overspeed=120.0)}
     # static: the largest vM over both throws, 2100 Pa in throw 2's counterweight (node 101)
     assert out["static_safety"].value == pytest.approx(650e6 / 2100.0, rel=1e-12)
-    assert out["static_safety"].location == "throw 2, counterweight_1, node 101 at (0.0, 0.0, 0.0) mm, 0 deg"
+    assert criterion_location(out["static_safety"]) == "throw 2, counterweight_1, node 101 at (0.0, 0.0, 0.0) mm, 0 deg"
     # overspeed: x 1.44 pin and 144 Pa body force: 2 x 1440 + 144 = 3024 Pa
     assert out["overspeed_safety"].value == pytest.approx(650e6 / 3024.0, rel=1e-12)
     # counterweight stress: the largest in a counterweight group only, in Pa, failing 1 kPa
@@ -219,13 +220,15 @@ def test_each_criterion_takes_the_worst_group_and_names_where():
     # fatigue: the crankpin fillets only (counterweights are static-only); throw 1's fillet
     # has the larger stress range, so the lower safety
     fat = out["fatigue_safety"]
-    assert fat.location.startswith("throw 1, crankpin_fillet_1, node 100 at (10.0, 20.0, 30.0) mm")
+    assert criterion_location(fat).startswith("throw 1, crankpin_fillet_1, node 100 at (10.0, 20.0, 30.0) mm")
     f1 = next(g for g in t1.groups if g.group == "crankpin_fillet_1").fatigue_safety.value
     f2 = next(g for g in t2.groups if g.group == "crankpin_fillet_1").fatigue_safety.value
     assert f1 < f2 and fat.value == f1
     # the static criterion's worst is a minimum of the safeties: with throw 2 alone the same
     alone = evaluate_criteria(build_criteria({"min_static_safety": 1.5}, "c.toml"), (t2, t1), file="c.toml")
-    assert alone[0].value == out["static_safety"].value and alone[0].location == out["static_safety"].location
+    assert alone[0].value == out["static_safety"].value and criterion_location(alone[0]) == criterion_location(
+        out["static_safety"]
+    )
     # names: the key in the file and the quantity's meaning
     assert out["static_safety"].name == "criteria.min_static_safety"
     assert out["static_safety"].description == "yield strength / max von Mises over the cycle"
@@ -276,13 +279,13 @@ def test_m53_and_counterweight_criteria_take_the_worst_over_throws():
     worst = min((f.acceptability, t.name, f.fillet, f.scf_source) for t in (t1, t2) for f in t.m53)
     assert worst[1] == "2"  # three times the radial force
     assert out["m53_acceptability"].value == worst[0]
-    assert out["m53_acceptability"].location == f"throw 2, {worst[2]} fillet ({worst[3]})"
+    assert criterion_location(out["m53_acceptability"]) == f"throw 2, {worst[2]} fillet ({worst[3]})"
     # |0.025 - 0.026| / 0.026 = 1/26 (throw 1) and |0.025 - 0.02| / 0.02 = 1/4 (throw 2)
     assert out["unbalance_error"].value == pytest.approx(0.25, rel=1e-12)
-    assert out["unbalance_error"].location == "throw 2, counterweight_2"
+    assert criterion_location(out["unbalance_error"]) == "throw 2, counterweight_2"
     # 360 N on 20 kN (throw 1) and on 40 kN (throw 2): 0.018 in throw 1
     assert out["bolt_utilisation"].value == pytest.approx(0.018, rel=1e-12)
-    assert out["bolt_utilisation"].location == "throw 1, counterweight_1"
+    assert criterion_location(out["bolt_utilisation"]) == "throw 1, counterweight_1"
 
 
 def test_torque_sense_and_unit_moment_reach_both_cycles():
@@ -431,8 +434,8 @@ def test_ties_go_to_the_first_throw_and_locations_are_in_millimetres():
     b = assess_throw("B", unit, THETA, PIN, np.zeros(4), **kw)
     crit = build_criteria({"min_static_safety": 1.5, "max_counterweight_stress": "1 MPa"}, "c.toml")
     out = evaluate_criteria(crit, (a, b), file="c.toml", overspeed=120.0)
-    assert out[0].location == "throw A, counterweight_1, node 100 at (250.0, -125.0, 1500.0) mm, 0 deg"
-    assert out[1].location == out[0].location
+    assert criterion_location(out[0]) == "throw A, counterweight_1, node 100 at (250.0, -125.0, 1500.0) mm, 0 deg"
+    assert criterion_location(out[1]) == criterion_location(out[0])
     assert out[0].unit == "" and out[1].unit == "Pa"
     with pytest.raises(InputError) as e:
         evaluate_criteria(build_criteria({"min_m53_acceptability": 1.15}, "c.toml"), (a,))

@@ -19,6 +19,7 @@ from fe_crank.assess.cw_joint import JOINT_QUANTITIES, check_joint
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import QUANTITIES, build_criteria
+from fe_crank.report.locations import criterion_location
 
 
 def _throws():
@@ -47,14 +48,14 @@ def test_the_five_bolt_criteria_judge_the_worst_joint():
     assert set(got) == set(JOINT_QUANTITIES)
     # R7: the larger utilisation, the joint at F_M,zul: 0.9 exactly, passes (<= 0.9)
     a = got["bolt_assembly_utilisation"]
-    assert a.value == pytest.approx(0.9, rel=1e-6) and a.location == "throw 1, counterweight_1 (per bolt)"
+    assert a.value == pytest.approx(0.9, rel=1e-6) and criterion_location(a) == "throw 1, counterweight_1 (per bolt)"
     # R8 at the overspeed: the tighter joint, 1.1327 by hand
     assert got["bolt_working_safety"].value == pytest.approx(1.1327, rel=2e-4)
     assert got["bolt_working_safety"].passed
     # the loose joint opens: S_sep 0.5458 and S_G 0 fail, in throw 4
     sep, slip = got["bolt_separation_safety"], got["bolt_slip_safety"]
     assert sep.value == pytest.approx((12500.0 - 3190.7) / 17054.7, rel=2e-4) and not sep.passed
-    assert slip.value == 0.0 and not slip.passed and slip.location.startswith("throw 4, counterweight_2")
+    assert slip.value == 0.0 and not slip.passed and criterion_location(slip).startswith("throw 4, counterweight_2")
     assert got["bolt_fatigue_safety"].value == pytest.approx(min(tight.fatigue_safety, loose.fatigue_safety))
 
 

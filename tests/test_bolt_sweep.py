@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from fe_crank.assess.cw_joint import JOINT_QUANTITIES, check_joint, check_joints
+from fe_crank.report.locations import criterion_location
 
 ROOT = Path(__file__).resolve().parents[1]
 SPEEDS = (3000, 4500, 6000)
@@ -100,7 +101,7 @@ def test_bolt_criteria_at_every_speed(swept_inline4):
             vals = [getattr(j, attr) for t in by_speed[round(p.speed_rpm)] for j in t.joints]
             assert p.value == pytest.approx(min(vals) if sense == "min" else max(vals), rel=1e-12)
     for q in ("bolt_fatigue_safety", "bolt_slip_safety"):
-        assert crit[q].speed_rpm == pytest.approx(6000) and crit[q].location.endswith(
+        assert crit[q].speed_rpm == pytest.approx(6000) and criterion_location(crit[q]).endswith(
             "(per bolt); 6000 rpm; friction mu_G 0.10, mu_K 0.10, mu_T 0.10"
         )
         assert crit[q].per_speed[0].value > crit[q].per_speed[-1].value

@@ -22,7 +22,7 @@ from pipeline import stage_outputs, write_report
 
 from fe_crank.assess.results import schema_path
 from fe_crank.assess.shaft import piece_unit_stresses
-from fe_crank.check.shaft_stage import layout_of
+from fe_crank.check.stages import shaft_layout
 from fe_crank.fe.shaft_fields import piece_fields
 from fe_crank.fe.stress import stress_at_selected_nodes
 from fe_crank.fe.whole_shaft import analyse_whole_shaft
@@ -43,7 +43,7 @@ def test_a_throw_on_its_two_bearings_is_the_per_throw_model(tmp_path):
     out = stage_outputs(tmp_path / "case.toml", tmp_path / "cache", render=False, write_vtu=False)
     assert out.whole_shaft is not None and len(out.whole_shaft.layout.bearings) == 2
     (per,) = out.assessment.throws
-    (whole,) = out.whole_shaft.assessment.throws
+    (whole,) = out.assessment.shaft.throws
     by = {g.group: g for g in per.groups if not g.group.startswith("counterweight_")}
     assert {g.group for g in whole.groups} == set(by)
     for g in whole.groups:
@@ -66,7 +66,7 @@ def test_every_journal_carries_its_own_torque(tmp_path):
     lc = load_loadcase(DATA / "small_torsion.toml")
     out = stage_outputs(DATA / "small_torsion.toml", tmp_path, render=False, write_vtu=False)
     dyn = out.assessed_dynamics
-    layout = layout_of(lc)
+    layout = shaft_layout(lc)
     result, cases = analyse_whole_shaft(
         layout, lc.material, dyn, size=out.geometry.plan.options, cache_dir=tmp_path, torque_flow=True
     )
@@ -150,6 +150,76 @@ def test_small_shaft_results_and_report(tmp_path):
         assert (folder / f).stat().st_size > 10_000, f
     mesh = meshio.read(folder / "whole_shaft.vtu")
     assert mesh.cells[0].type == "tetra10"
-    h, fields = out.whole_shaft.governing, out.whole_shaft.fields
+    h, fields = out.assessment.shaft.governing, out.shaft_fields
     assert mesh.point_data["von_mises_Pa"][fields.hotspot_node] == pytest.approx(h.von_mises, rel=1e-6)
     assert np.linalg.norm(mesh.points[fields.hotspot_node] - np.asarray(h.point)) < 1e-9
+
+
+def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path):
+    """The small single over two speeds with its misfire case, on its bearings (a [shaft]
+    section): the whole shaft's throws in every load state (``ShaftAssessment.states``,
+    the per-throw model's pruning: each group's extremes only) have the least static and
+    fatigue safety an evaluation of every node gives (``assess_groups`` on the state's
+    weights, here); each criterion takes the worse model at each speed."""
+    from test_assess_sweep import SWEPT
+
+    from fe_crank.assess.group import assess_groups
+    from fe_crank.assess.m53_basis import m53_basis
+    from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, bearing_sweep
+    from fe_crank.fe.shaft_model import ShaftFeOptions
+
+    (tmp_path / "case.toml").write_text(SWEPT.format(sweep='speeds = ["2000 rpm", "3000 rpm"]'))
+    g = (DATA / "geometry_small.toml").read_text() + '\n[shaft]\nend_journal_length = "12 mm"\n'
+    (tmp_path / "geometry_small.toml").write_text(g)
+    out = stage_outputs(tmp_path / "case.toml", tmp_path / "cache", render=False, write_vtu=False)
+    shaft = out.assessment.shaft
+    assert [(round(s.speed * 30 / np.pi), s.case) for s in shaft.states] == [
+        (2000, "all cylinders firing"),
+        (2000, "cylinder 1 misfiring"),
+        (3000, "all cylinders firing"),
+        (3000, "cylinder 1 misfiring"),
+    ]
+    lc = out.loadcase
+    layout = shaft_layout(lc)
+    options = ShaftFeOptions(solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry)
+    result, cases = analyse_whole_shaft(
+        layout,
+        lc.material,
+        out.assessed_dynamics,
+        size=out.geometry.plan.options,
+        cache_dir=tmp_path / "cache",
+        options=options,
+    )
+    sweep = bearing_sweep(out.cycles, cases, layout, result)
+    (k,) = [i for i, pp in enumerate(cases.model.pieces) if pp.kind == "throw"]
+    unit = piece_unit_stresses(cases, k, lc.material)
+    m53 = out.geometry.throws["1"].m53
+    basis = m53_basis(lc.engine, lc.material, None)
+    for st, got in zip(sweep, shaft.states):
+        groups = assess_groups(
+            unit,
+            st.weights,
+            out.assessed_dynamics.theta,
+            lc.material,
+            crank_radius=layout.geometry.crank_radius,
+            overspeed=None,
+            overspeed_coefficients=None,
+            pin_diameter=m53.pin_diameter,
+            journal_diameter=m53.journal_diameter,
+            additional_bending=basis.additional,
+        )
+        (t,) = got.throws
+        assert min(x.static_safety for x in t.groups) == pytest.approx(min(x.static_safety for x in groups), rel=1e-12)
+        fat = [x.fatigue_safety.value for x in groups if x.fatigue_safety is not None]
+        got_fat = [x.fatigue_safety.value for x in t.groups if x.fatigue_safety is not None]
+        assert min(got_fat) == pytest.approx(min(fat), rel=1e-9)
+    # the criteria: the worse model at each of the two speeds; a throw on its two bearings is
+    # statically determinate, so both models agree (to the solvers' round-off) at every speed
+    crit = {c.quantity: c for c in out.assessment.criteria}
+    static = min(x.static_safety for st in shaft.states for x in st.throws[0].groups)
+    both = {v.model: v.value for v in out.assessment.by_model if v.criterion == crit["static_safety"].name}
+    assert both[WHOLE_SHAFT] == static and both[PER_THROW] == pytest.approx(static, rel=1e-8)
+    for q in ("static_safety", "fatigue_safety"):
+        assert len(crit[q].per_speed) == 2
+        values = {v.model: v.value for v in out.assessment.by_model if v.criterion == crit[q].name}
+        assert crit[q].value == min(values.values())

@@ -114,7 +114,7 @@ def test_a_cad_shaft_keeps_its_recognised_journals(tmp_path):
     from cad_files import shaft_step
 
     from fe_crank.cad.config import CadInput
-    from fe_crank.check.shaft_stage import wanted
+    from fe_crank.check.stages import shaft_layout
     from fe_crank.io.geometry import load_geometry
     from fe_crank.io.loadcase import load_loadcase
 
@@ -125,7 +125,7 @@ def test_a_cad_shaft_keeps_its_recognised_journals(tmp_path):
     p.write_text(text + '\n[cad]\ndensity = "7850 kg/m^3"\n')
     lc = load_loadcase(p)
     assert isinstance(lc.geometry, CadInput) and len(lc.engine.throws) == 4
-    assert not wanted(lc)
+    assert shaft_layout(lc) is None
 
 
 _FILM = 'clearance = "25 um", groove = "full", groove_width = "3 mm"'

@@ -152,22 +152,7 @@ def test_patch_model_with_torsion_is_in_equilibrium_at_every_speed(v4_torsion):
 
 
 def _inputs_like(out):
-    """The assessment's inputs of the stage outputs (only the geometry and engine are read)."""
-    from fe_crank.assess.inputs import AssessInputs
+    """The assessment's inputs of the stage outputs (the check's own)."""
+    from fe_crank.check.stages import assess_inputs
 
-    lc = out.loadcase
-    return AssessInputs(
-        case=lc.name,
-        source_file=lc.source_file,
-        engine=lc.engine,
-        operating=lc.operating,
-        material=lc.material,
-        criteria=lc.criteria,
-        cycles=out.cycles,
-        dynamics=out.cycles.operating,
-        loads=out.torsion.loads,
-        balance=out.balance,
-        models=out.geometry.plan.throws,
-        unit_solutions=out.fe.unit_solutions,
-        throw_geometry=out.geometry.throws,
-    )
+    return assess_inputs(out.loadcase, out)

@@ -18,21 +18,30 @@ from fe_crank.notes import WARNING, verdict_remarks
 from fe_crank.outputs import CaseOutputs
 from fe_crank.records import CaseResult, InputHash, MeshRecord, Provenance
 from fe_crank.report.html import header_html
-from fe_crank.results import CriterionResult
+from fe_crank.report.locations import location_text
+from fe_crank.results import CriterionResult, Location
 
 ROOT = Path(__file__).resolve().parents[1]
 SMALL = ROOT / "tests" / "data" / "small_pass.toml"
 
 
-def _crit(key: str, quantity: str, location: str) -> CriterionResult:
+def _crit(key: str, quantity: str, where: Location) -> CriterionResult:
     return CriterionResult(
-        f"criteria.{key}", True, 2.0, 1.5, 2.0 / 1.5 - 1, location=location, quantity=quantity, sense="min"
+        f"criteria.{key}",
+        True,
+        2.0,
+        1.5,
+        2.0 / 1.5 - 1,
+        location=location_text(where),
+        quantity=quantity,
+        sense="min",
+        where=where,
     )
 
 
 CRITERIA = (
-    _crit("min_static_safety", "static_safety", "throw 1, crankpin_fillet_2, node 7 at (1.0, 2.0, 3.0) mm, 20 deg"),
-    _crit("min_fatigue_safety", "fatigue_safety", "throw 1, journal_fillet_1, node 9 at (1.0, 2.0, 3.0) mm"),
+    _crit("min_static_safety", "static_safety", Location("group", "1", "crankpin_fillet_2", 7, (1e-3, 2e-3, 3e-3), 20)),
+    _crit("min_fatigue_safety", "fatigue_safety", Location("group", "1", "journal_fillet_1", 9, (1e-3, 2e-3, 3e-3))),
 )
 
 
@@ -103,7 +112,9 @@ def test_no_gas_pressure_warns_on_the_fatigue_and_m53_verdicts():
     """tests/data/small_pass.toml has no pressure table: its dynamics warn case-wide, and the
     fatigue and M53 criteria carry the warning themselves (and the verdict line names them)."""
     path = SMALL
-    crit = CRITERIA + (_crit("min_m53_acceptability", "m53_acceptability", "throw 1, pin fillet (empirical)"),)
+    crit = CRITERIA + (
+        _crit("min_m53_acceptability", "m53_acceptability", Location("m53", "1", "pin", detail="empirical")),
+    )
     out = _outputs(path, {}, crit)
     lc = out.loadcase
     import dataclasses

@@ -73,7 +73,7 @@ def run(args) -> dict:
     result, cases = analyse_whole_shaft(layout, material, dyn, size=args.preset, cache_dir=args.cache)
     t1 = time.perf_counter()
     with threads(2):
-        throws = assess_shaft_throws(cases, result, dyn.theta, material, crank_radius=g.crank_radius, overspeed=None)
+        throws, _ = assess_shaft_throws(cases, result, dyn.theta, material, crank_radius=g.crank_radius, overspeed=None)
     result.timings["assessment"] = time.perf_counter() - t1
     out = {
         "groups": sum(len(t.groups) for t in throws),

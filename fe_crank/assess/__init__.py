@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from fe_crank.assess.case import AssessInputs, Assessment, assess_case
 from fe_crank.assess.counterweight import CounterweightData
-from fe_crank.assess.criteria import EVALUATORS, evaluate_criteria
+from fe_crank.assess.criteria import EVALUATORS, evaluate_criteria, judge_criteria
 from fe_crank.assess.groups import ASSESSED_BOUNDARIES, COUNTERWEIGHTS, assessed_groups, unit_stresses
 from fe_crank.assess.m53 import M53Geometry
 from fe_crank.assess.results import to_json
@@ -33,6 +33,7 @@ __all__ = [
     "assess_throw",
     "assessed_groups",
     "evaluate_criteria",
+    "judge_criteria",
     "load_coefficients",
     "to_json",
     "unit_stresses",

@@ -4,17 +4,21 @@ It takes what the earlier stages made (typed, ``AssessInputs``): the engine cycl
 (operating and overspeed, ``fe_crank.mechanism.cycles``; the journal torques with the
 vibratory torque when the torsional stage ran), the balance design, the counterweights'
 CAD mass properties (geometry stage), the FE unit solutions and, where UR M53's empirical
-SCFs are out of range, the SCF mode's result (FE stage).  It computes nothing any other
-stage owns.
+SCFs are out of range, the SCF mode's result (FE stage), the whole-shaft stage's model (its throws assessed here by
+the per-throw model's code, ``assess.shaft``), the hot-spot convergence study (its factors
+on the FE stress criteria, ``assess.refinement``).  It is the one owner of the assessment:
+both models, every speed and load state, every criterion judged once; it computes nothing
+any other stage owns.
 """
 
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 
 from fe_crank.assess import m53_oil_bore
-from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, evaluate_criteria, model_values
+from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, judge_criteria, model_values
 from fe_crank.assess.cw_joint import (
     JOINT_QUANTITIES,
     has_joints,
@@ -28,7 +32,8 @@ from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.m53_basis import M53Basis, m53_basis
 from fe_crank.assess.qualifiers import criterion_qualifiers
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
-from fe_crank.assess.shaft import ShaftAssessment
+from fe_crank.assess.refinement import Refinement, StudyFactors
+from fe_crank.assess.shaft import ShaftAssessment, assess_shaft_throws, governing
 from fe_crank.assess.shaft_criteria import ModelValue
 from fe_crank.assess.speeds import StateResults, wanted_extremes
 from fe_crank.assess.state_throws import assess_state, places_of, state_dynamics
@@ -36,7 +41,6 @@ from fe_crank.assess.states import ModelStates, model_states
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import run_blocks
-from fe_crank.errors import InputError
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.io.material import Material
 from fe_crank.mechanism.misfire import READING
@@ -68,6 +72,7 @@ class Assessment:
     qualifiers: dict[str, str] = field(default_factory=dict)  # quantity -> its verdict line's words
     by_model: tuple[ModelValue, ...] = ()  # with the whole shaft: each criterion's value in each model
     shaft: ShaftAssessment | None = None  # the whole-shaft model's results the criteria read
+    refinements: tuple[Refinement, ...] = ()  # the convergence study's factor of each FE stress criterion
 
     @property
     def passed(self) -> bool:
@@ -108,13 +113,10 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     geometry stage (``a.throw_geometry``).  ``fields``: also recover the whole-mesh
     stress of the states the report draws (``states.model_states``).
     """
-    lim = a.criteria
-    if not lim.limits:
-        raise InputError(
-            "the assessment needs a [criteria] section with at least one limit", file=a.source_file, key="criteria"
-        )
+    lim = a.criteria  # a material and at least one limit: checked where the inputs are made
     omega, overspeed = a.operating.speed, a.operating.overspeed
     basis = m53_basis(a.engine, a.material, lim.m53_additional_bending, file=a.source_file)
+    shaft = _shaft(a, basis) if a.shaft is not None else None
     notes = _notes(a, basis)
     senses = {t.name: a.engine.shaft(t.shaft).sense for t in a.engine.throws}
     units: dict[int, UnitStresses] = {}  # keys sharing one FE solution (equal meshes) share its unit stresses
@@ -133,14 +135,16 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
             if m53_geometry is None:
                 why = tg.m53_note if tg is not None and tg.m53_note else "no UR M53 dimensions from the geometry"
                 notes.append(_assumption(f"{why}; M53 route not run", (tname,)))
-            elif m53_geometry.oil_bore_diameter > 0 and m53_oil_bore.in_range(m53_geometry) is not None:
-                notes.append(
-                    _assumption(
-                        f"UR M53 oil-bore outlet not assessed empirically "
-                        f"({m53_oil_bore.in_range(m53_geometry)}); FE route only (group oil_bore)",
-                        (tname,),
+            elif m53_geometry.oil_bore_diameter > 0:
+                outside = m53_oil_bore.in_range(m53_geometry)
+                if outside is not None:
+                    notes.append(
+                        _assumption(
+                            f"UR M53 oil-bore outlet not assessed empirically ({outside}); FE route only "
+                            "(group oil_bore)",
+                            (tname,),
+                        )
                     )
-                )
     # the bolted joints by VDI 2230 when a criterion asks or the geometry has any (their data then
     # required; without a joint criterion VDI 2230's usual limits, said on each verdict line), at every speed
     defaulted: tuple[str, ...] = ()
@@ -187,19 +191,25 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         for j, state in enumerate(states)
     ]
     if len(a.loads.speeds) > 1 or len(sweep) > 1:
-        notes.append(_assumption(_sweep_note(a.loads)))
+        notes.append(_assumption(_sweep_note(a.loads, shaft is not None)))
     qualifiers = criterion_qualifiers(basis, a.criteria, torsion=a.loads.torsion)
     qualifiers.update(joint_qualifiers(a.throw_geometry, defaulted) if joints else {})
-    verdicts = evaluate_criteria(
+    factors = StudyFactors(a.convergence) if a.convergence else None
+    judged = judge_criteria(
         lim,
         done,
         file=a.source_file,
         overspeed=overspeed,
         sweep=tuple(sweep),
         qualifiers=qualifiers,
-        shaft=a.shaft,
+        shaft=shaft,
+        factors=factors,
     )
-    by_model = model_values(lim, done, a.shaft, sweep=tuple(sweep), overspeed=overspeed) if a.shaft is not None else ()
+    by_model = (
+        model_values(lim, done, shaft, sweep=tuple(sweep), overspeed=overspeed, factors=factors)
+        if shaft is not None
+        else ()
+    )
     # each rod at its place on the pin in the drawn states too (the assessment's coefficients)
     places = {t: places_of(a, t) for t in a.loads.operating_state.throws}
     states = []
@@ -216,22 +226,65 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         overspeed,
         a.material,
         done,
-        verdicts,
+        judged.criteria,
         tuple(grouped(notes)),
         tuple(states),
         tuple(sweep),
         qualifiers,
         by_model,
-        a.shaft,
+        shaft,
+        judged.refinements,
     )
 
 
-def _sweep_note(loads: AssessedLoads) -> str:
+def _shaft(a: AssessInputs, basis: M53Basis) -> ShaftAssessment:
+    """The whole shaft's throws assessed by the per-throw model's code (``assess.shaft``) at
+    the operating speed and the overspeed, and in every load state at every speed of the
+    sweep with the per-throw model's pruning (``wanted_extremes``), with each throw's UR
+    M53 diameters (the size factor) and UR M53's sigma_add as the per-throw model; its
+    governing hot spot; its bearings."""
+    ws = a.shaft
+    assert ws is not None
+    if ws.cases is None:
+        raise ValueError("the whole shaft's unit cases were released after its assessment: run its stage again")
+    t0 = time.perf_counter()
+    diameters: dict[str, tuple[float | None, float | None]] = {
+        name: (tg.m53.pin_diameter, tg.m53.journal_diameter) if tg.m53 is not None else (None, None)
+        for name, tg in a.throw_geometry.items()
+    }
+    throws, states = assess_shaft_throws(
+        ws.cases,
+        ws.result,
+        ws.dynamics.theta,
+        a.material,
+        crank_radius=ws.layout.geometry.crank_radius,
+        overspeed=a.operating.overspeed,
+        diameters=diameters,
+        additional_bending=basis.additional,
+        sweep=ws.sweep,
+        wanted=wanted_extremes(a.criteria),
+    )
+    worst = governing(throws, ws.layout)
+    seconds = time.perf_counter() - t0
+    return ShaftAssessment(
+        throws,
+        ws.result.bearings,
+        float(ws.dynamics.speed),
+        ws.sweep,
+        worst,
+        seconds,
+        states if len(states) > 1 else (),
+        ws.film,
+    )
+
+
+def _sweep_note(loads: AssessedLoads, both: bool) -> str:
     rpm = [w * 30.0 / math.pi for w in loads.speed_values]
     states = len(loads.speeds[0])
     text = (
         f"full-load curve: every criterion but the overspeed ones at {len(rpm)} speeds, "
-        f"{rpm[0]:.0f}-{rpm[-1]:.0f} rpm, on the same unit stresses; a criterion's value is its worst speed"
+        f"{rpm[0]:.0f}-{rpm[-1]:.0f} rpm, on the same unit stresses{' in both models' if both else ''}; "
+        "a criterion's value is its worst speed"
     )
     if states > 1:
         text += (

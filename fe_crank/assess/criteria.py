@@ -1,8 +1,8 @@
 """The load case's criteria evaluated on the throws' results: one evaluator per quantity.
 
 ``EVALUATORS`` maps each quantity of ``fe_crank.io.criteria.QUANTITIES`` to the function
-that finds its worst value over every throw and where it occurs; ``evaluate_criteria``
-judges each limit of the load case with it (``verdict.judge``).  A criterion that cannot
+that finds its worst value over every throw and where it occurs (a ``results.Location``);
+``judge_criteria`` judges each limit of the load case with it (``verdict.judge``).  A criterion that cannot
 be evaluated (no data for it) is an ``InputError`` naming its key: it never passes
 silently; one the model's results must not judge (UR M53 on FE SCFs of a mesh UR M53
 App. III rejects) is refused with the reason.
@@ -15,10 +15,14 @@ misfire case), its verdict the worst speed, reported with that speed (``per_spee
 lists them all, ``speeds.over_sweep``).  The overspeed criteria are evaluated at the
 overspeed (one speed); the unbalance error does not depend on speed.  ``locate`` is that
 search for one quantity; the convergence study's factor on the groups' stresses
-(``check.converged``) goes through it too.  The verdict line's qualifiers
-(``assess.qualifiers``) follow the location of the worst speed.  With the whole-shaft
-model a criterion takes the worse of the two models at each speed and the main-bearing
-quantities are the whole shaft's (``assess.shaft_criteria``).
+(``assess.refinement``) goes through it, once, when the study ran (``judge_criteria``'s
+``factors``; the study's own ``mesh_convergence`` criterion joins the criteria then).  The
+verdict line's remarks -- the factor, the qualifiers (``assess.qualifiers``) -- follow the
+location (``results.Location``) of the worst speed.  With the whole-shaft
+model a criterion takes the worse of the two models at each speed -- the whole shaft
+assessed at every speed and load state of the sweep as the per-throw model is
+(``ShaftAssessment.states``) -- and the main-bearing quantities are the whole shaft's
+(``assess.shaft_criteria``).
 """
 
 from __future__ import annotations
@@ -27,6 +31,7 @@ import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from fe_crank.assess import refinement
 from fe_crank.assess.cw_joint import JOINT_QUANTITIES
 from fe_crank.assess.finders import (
     GROUP_QUANTITIES,
@@ -38,10 +43,17 @@ from fe_crank.assess.finders import (
     over_groups,
     unbalance,
 )
-from fe_crank.assess.qualifiers import qualified
+from fe_crank.assess.refinement import SCALED, Refinement, StudyFactors
 from fe_crank.assess.shaft import ShaftAssessment
-from fe_crank.assess.shaft_criteria import Located, ModelValue, combined, model_pair, no_throw_value, whole_shaft
-from fe_crank.assess.speeds import RPM, Found, StateResults, over_sweep
+from fe_crank.assess.shaft_criteria import (
+    BEARING_FINDERS,
+    ModelValue,
+    combined,
+    model_pair,
+    no_throw_value,
+    whole_shaft,
+)
+from fe_crank.assess.speeds import RPM, Found, Located, StateResults, over_sweep
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.verdict import judge
 from fe_crank.errors import InputError
@@ -117,11 +129,13 @@ def _parts(
         if got is None:
             per = None
         elif ev.speed == OVERSPEED and overspeed is not None:
-            per = got[0], got[1], overspeed * RPM, (SpeedValue(overspeed * RPM, got[0], got[1]),)
+            per = got[0], got[1], overspeed * RPM, (SpeedValue(overspeed * RPM, got[0], where=got[1]),)
         else:
             per = got[0], got[1], None, ()
     if shaft is None:
         return per, None
+    if ev.speed == SWEEP and sweep and shaft.states and quantity not in BEARING_FINDERS:
+        return per, over_sweep(find, sense, shaft.states)  # the whole shaft at every speed, as the per-throw model
     at = shaft.speed * RPM if ev.speed == SWEEP and shaft.speed is not None and sweep else None
     if ev.speed == OVERSPEED and overspeed is not None:
         at = overspeed * RPM
@@ -149,6 +163,10 @@ def locate(
     return per if shaft is None else combined(per, whole, sense)
 
 
+def _factor_of(quantity: str, factors: StudyFactors | None) -> Callable[[str, str], float] | None:
+    return factors.factor if factors is not None and quantity in SCALED else None
+
+
 def model_values(
     criteria: Criteria,
     throws: tuple[ThrowAssessment, ...],
@@ -156,20 +174,33 @@ def model_values(
     *,
     sweep: tuple[StateResults, ...] = (),
     overspeed: float | None = None,
+    factors: StudyFactors | None = None,
 ) -> tuple[ModelValue, ...]:
     """Each criterion's worst value in each model that gives it, and which one governs
-    (the report's table of the two models)."""
+    (the report's table of the two models), at the convergence study's ``factors`` as the
+    criteria are."""
     out: list[ModelValue] = []
     for lim in criteria.limits:
         try:
-            per, whole = _parts(lim.quantity, lim.sense, throws, sweep, overspeed, None, shaft)
+            per, whole = _parts(
+                lim.quantity, lim.sense, throws, sweep, overspeed, _factor_of(lim.quantity, factors), shaft
+            )
         except Refused:
             continue
         out.extend(model_pair(lim.key, per, whole, lim.sense))
     return tuple(out)
 
 
-def evaluate_criteria(
+@dataclass(frozen=True)
+class Judged:
+    """The load case's criteria judged (``judge_criteria``), and the convergence study's
+    factor each FE stress criterion was taken at (none without the study)."""
+
+    criteria: tuple[CriterionResult, ...]
+    refinements: tuple[Refinement, ...] = ()
+
+
+def judge_criteria(
     criteria: Criteria,
     throws: tuple[ThrowAssessment, ...],
     *,
@@ -178,21 +209,32 @@ def evaluate_criteria(
     sweep: tuple[StateResults, ...] = (),
     qualifiers: dict[str, str] | None = None,
     shaft: ShaftAssessment | None = None,
-) -> tuple[CriterionResult, ...]:
+    factors: StudyFactors | None = None,
+) -> Judged:
     """Each limit of ``criteria`` -> a verdict (module docstring); ``shaft``: the whole-shaft
     model's results, when it ran (each criterion the worse of the two models).  ``throws``: the
     operating speed's results (with the overspeed); ``sweep``: every speed and state of
     the full-load curve (the operating speed's firing state among them), () for the
     operating speed alone.  ``qualifiers``: quantity -> words its verdict line carries
-    after the location (``assess.qualifiers``)."""
+    after the location (``assess.qualifiers``).  ``factors``: the hot-spot convergence
+    study's, on the FE stress criteria (``assess.refinement``; None: the assessed mesh's
+    values)."""
     qualifiers = qualifiers or {}
-    out = []
+    out, made = [], []
     for lim in criteria.limits:
         ev = EVALUATORS[lim.quantity]
         if ev.needs_overspeed and overspeed is None:
             raise InputError("needs operating.overspeed", file=file, key=lim.key)
         try:
-            found = locate(lim.quantity, lim.sense, throws, sweep=sweep, overspeed=overspeed, shaft=shaft)
+            found = locate(
+                lim.quantity,
+                lim.sense,
+                throws,
+                sweep=sweep,
+                overspeed=overspeed,
+                factor=_factor_of(lim.quantity, factors),
+                shaft=shaft,
+            )
         except Refused as exc:
             raise InputError(f"cannot be evaluated: {exc}", file=file, key=lim.key) from None
         if found is None:
@@ -211,15 +253,22 @@ def evaluate_criteria(
         meaning = QUANTITIES[lim.quantity].meaning
         if lim.quantity == "m53_acceptability" and criteria.m53_quasi_static_torque:
             meaning = f"{meaning}; {NOT_CONFORM} ({QUASI_STATIC_M53})"
-        verdict = judge(
-            lim.key,
-            lim.quantity,
-            lim.sense,
-            value,
-            lim.value,
-            unit=ev.unit,
-            location=qualified(where, qualifiers.get(lim.quantity, "")),
-            description=meaning,
+        remarks = []
+        r = factors.refinement(lim.key, where) if factors is not None and lim.quantity in SCALED else None
+        if r is not None:
+            made.append(r)
+            remarks.append(r.words)
+        if qualifiers.get(lim.quantity):
+            remarks.append(qualifiers[lim.quantity])
+        verdict = judge(lim.key, lim.quantity, lim.sense, value, lim.value, unit=ev.unit, description=meaning)
+        out.append(
+            dataclasses.replace(verdict, per_speed=per_speed, speed_rpm=speed_rpm, where=where, remarks=tuple(remarks))
         )
-        out.append(dataclasses.replace(verdict, per_speed=per_speed, speed_rpm=speed_rpm))
-    return tuple(out)
+    if factors is not None and factors.studies:
+        out.append(refinement.criterion(factors.studies))
+    return Judged(tuple(out), tuple(made))
+
+
+def evaluate_criteria(criteria: Criteria, throws: tuple[ThrowAssessment, ...], **kwargs) -> tuple[CriterionResult, ...]:
+    """The criteria of ``judge_criteria`` (its keywords) without the factors' record."""
+    return judge_criteria(criteria, throws, **kwargs).criteria

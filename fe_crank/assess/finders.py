@@ -15,16 +15,19 @@ from fe_crank.assess.cw_joint import JOINT_QUANTITIES
 from fe_crank.assess.group import STATIC_ONLY_PREFIXES, Extreme, GroupResult
 from fe_crank.assess.speeds import Found
 from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.results import Location
 
 
-def _where(throw: str, ext: Extreme | None) -> str:
-    if ext is None:
-        return ""
-    p = ", ".join(f"{c * 1e3:.1f}" for c in ext.point)
-    s = f"throw {throw}, {ext.group}, node {ext.node} at ({p}) mm"
-    if ext.angle is not None:
-        s += f", {math.degrees(ext.angle):.0f} deg"
-    return s
+def where(throw: str, ext: Extreme) -> Location:
+    """The location of an FE group's extreme on ``throw`` (its node, point, cycle angle)."""
+    return Location(
+        "group",
+        throw,
+        ext.group,
+        node=ext.node,
+        point=(float(ext.point[0]), float(ext.point[1]), float(ext.point[2])),
+        angle_deg=None if ext.angle is None else math.degrees(ext.angle),
+    )
 
 
 def _over_groups(
@@ -48,7 +51,7 @@ def _over_groups(
                 k = factor(t.name, g.group)
                 value = value / k if worst == "min" else value * k
             if best is None or (value < best[0] if worst == "min" else value > best[0]):
-                best = (value, _where(t.name, ext))
+                best = (value, where(t.name, ext))
     return best
 
 
@@ -91,9 +94,17 @@ def over_groups(
 ) -> Found:
     """The worst value of a group quantity (``GROUP_QUANTITIES``) over every throw's groups
     and where it occurs; ``factor(throw, group)``: k on each group's stresses (the
-    convergence study's, ``fe_crank.check.converged``; None: the assessed values)."""
+    convergence study's, ``fe_crank.assess.refinement``; None: the assessed values)."""
     getter, worst = GROUP_QUANTITIES[quantity]
     return _over_groups(throws, getter, worst, factor)
+
+
+def _value(found: tuple[float, Location]) -> tuple[float, str, str, str]:
+    """Order of (value, location): by value, equals by the throw, the part and what the value
+    rests on (as their words sort: the last of equals for a maximum, the first for a minimum)."""
+    v, loc = found
+    part = m53_oil_bore.where(loc.group) if loc.kind == "m53" else loc.group
+    return v, loc.throw, part, loc.detail
 
 
 def group_finder(quantity: str) -> Callable[[tuple[ThrowAssessment, ...]], Found]:
@@ -113,32 +124,28 @@ def m53_acceptability(throws: tuple[ThrowAssessment, ...]) -> Found:
                     f"App. III does not accept ({f.scf_source}); no UR M53 verdict is given on them "
                     "(refine the mesh or bring the throw into the empirical range)"
                 )
-    vals = [
-        (f.acceptability, f"throw {t.name}, {m53_oil_bore.where(f.fillet)} ({f.scf_source})")
-        for t in throws
-        for f in t.m53
-    ]
-    return min(vals) if vals else None
+    vals = [(f.acceptability, Location("m53", t.name, f.fillet, detail=f.scf_source)) for t in throws for f in t.m53]
+    return min(vals, key=_value) if vals else None
 
 
 def unbalance(throws: tuple[ThrowAssessment, ...]) -> Found:
     vals = [
-        (c.unbalance_error, f"throw {t.name}, {c.name}")
+        (c.unbalance_error, Location("counterweight", t.name, c.name))
         for t in throws
         for c in t.counterweights
         if c.unbalance_error is not None
     ]
-    return max(vals) if vals else None
+    return max(vals, key=_value) if vals else None
 
 
 def bolts(throws: tuple[ThrowAssessment, ...]) -> Found:
     vals = [
-        (c.bolt_utilisation, f"throw {t.name}, {c.name}")
+        (c.bolt_utilisation, Location("counterweight", t.name, c.name))
         for t in throws
         for c in t.counterweights
         if c.bolt_utilisation is not None
     ]
-    return max(vals) if vals else None
+    return max(vals, key=_value) if vals else None
 
 
 def joint_finder(quantity: str) -> Callable[[tuple[ThrowAssessment, ...]], Found]:
@@ -148,7 +155,7 @@ def joint_finder(quantity: str) -> Callable[[tuple[ThrowAssessment, ...]], Found
     attr, sense = JOINT_QUANTITIES[quantity]
 
     def find(throws: tuple[ThrowAssessment, ...]) -> Found:
-        vals = [(float(getattr(j, attr)), f"throw {t.name}, {j.name} (per bolt)") for t in throws for j in t.joints]
+        vals = [(float(getattr(j, attr)), Location("joint", t.name, j.name)) for t in throws for j in t.joints]
         if not vals:
             return None
         return min(vals, key=lambda v: v[0]) if sense == "min" else max(vals, key=lambda v: v[0])

@@ -8,9 +8,10 @@ from dataclasses import dataclass, field
 from fe_crank import model
 from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.scf import ScfResult
-from fe_crank.assess.shaft import ShaftAssessment
+from fe_crank.assess.shaft import WholeShaftOutput
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
+from fe_crank.fe.convergence import ConvergenceStudy
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.io.criteria import Criteria
 from fe_crank.io.material import Material
@@ -32,7 +33,10 @@ class AssessInputs:
     has its rods at mid-pin, no UR M53 route and no counterweights); ``scf``: key -> the
     SCF mode's result, for the models whose UR M53 dimensions are outside the empirical range;
     ``geometry_file``: the file of the geometry ("" for none); ``shaft``: the whole-shaft
-    model's results (``check.shaft_stage``), whose criteria take the worse of both models."""
+    stage's model (``check.shaft_stage``), whose throws the assessment assesses as the
+    per-throw model's, each criterion the worse of both models; ``convergence``: the
+    hot-spot convergence study per model key (None: it did not run), whose factors the FE
+    stress criteria are taken at (``assess.refinement``)."""
 
     case: str
     source_file: str
@@ -49,4 +53,5 @@ class AssessInputs:
     throw_geometry: dict[str, ThrowGeometry] = field(default_factory=dict)
     scf: dict[str, ScfResult] = field(default_factory=dict)
     geometry_file: str = ""  # the geometry's file (named in the bolted joints' input errors)
-    shaft: ShaftAssessment | None = None  # the whole-shaft model's results (its stage), when it ran
+    shaft: WholeShaftOutput | None = None  # the whole-shaft stage's model, when it ran
+    convergence: dict[str, ConvergenceStudy] | None = None

@@ -243,3 +243,14 @@ def polar_section_modulus(geo: M53Geometry, fillet: str) -> float:
     """W_P = pi/16 (D^4 - D_BH^4)/D (pin) or pi/16 (D_G^4 - D_BG^4)/D_G (journal) (UR M53 2.2.2), m^3."""
     d, bore = (geo.pin_diameter, geo.pin_bore) if fillet == "pin" else (geo.journal_diameter, geo.journal_bore)
     return math.pi / 16.0 * (d**4 - bore**4) / d
+
+
+def scf_mode_needed(material, geometries) -> bool:
+    """Whether UR M53's empirical SCFs are outside their validity range (3.2, 3.3) for the
+    pin or journal fillet of one of ``geometries`` (``M53Geometry`` or None, one per throw
+    model), with UR M53 run at all (``material``: a ``Material`` with a tensile strength and
+    the rule's k): the SCF mode of the FE appendix (App. III) then gives the factors
+    (``assess.scf``)."""
+    if material is None or material.tensile_strength is None or material.m53_k is None:
+        return False
+    return any(out_of_range(g.related(f)) for g in geometries if g is not None for f in ("pin", "journal"))

@@ -30,6 +30,7 @@ import numpy as np
 from fe_crank.assess.shaft import BearingState
 from fe_crank.assess.speeds import Found, over_states
 from fe_crank.fe.oil_film import ORBIT_TOL, JournalBearing, peak_pressure_factor, periodic_orbits
+from fe_crank.results import Location
 
 #: how the film is modelled, for the report and results.json
 FILM_MODEL = (
@@ -189,22 +190,24 @@ def _thinnest(bearings: tuple[BearingFilm, ...]) -> Found:
     vals = []
     for b in bearings:
         o = b.with_counterweights
-        where = f"main bearing {b.name}, {o.min_film_angle_deg:.0f} deg"
+        why = ""
         if not o.converged:
-            where += f" (no periodic orbit after {o.cycles} cycles: the journal runs towards the clearance; taken as 0)"
-        vals.append((o.judged_min_film_m, where))
-    return min(vals) if vals else None
+            why = f"no periodic orbit after {o.cycles} cycles: the journal runs towards the clearance; taken as 0"
+        vals.append(
+            (o.judged_min_film_m, Location("bearing", group=b.name, angle_deg=o.min_film_angle_deg, detail=why))
+        )
+    return min(vals, key=lambda v: v[0]) if vals else None
 
 
 def _peak_pressure(bearings: tuple[BearingFilm, ...]) -> Found:
     vals = [
         (
             b.with_counterweights.peak_pressure_pa,
-            f"main bearing {b.name}, {b.with_counterweights.peak_pressure_angle_deg:.0f} deg",
+            Location("bearing", group=b.name, angle_deg=b.with_counterweights.peak_pressure_angle_deg),
         )
         for b in bearings
     ]
-    return max(vals) if vals else None
+    return max(vals, key=lambda v: v[0]) if vals else None
 
 
 #: the film's quantities: quantity -> its finder over the bearings of one state

@@ -1,5 +1,5 @@
 """What a criterion's number is, stated on its verdict line: words appended to the
-criterion's location (``criteria.evaluate_criteria``'s ``qualifiers``), so that the report's
+criterion's remarks (``criteria.judge_criteria``'s ``qualifiers``), so that the report's
 row, results.json, the JUnit case and case.json all carry them.
 
 * UR M53 on a machine that is not an internal-combustion engine (an air motor, a

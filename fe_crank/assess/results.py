@@ -43,16 +43,6 @@ def group_json(g) -> dict:
     return _group(g)
 
 
-def _by_model(v) -> dict:
-    return {
-        "criterion": v.criterion,
-        "model": v.model,
-        "value": _num(v.value),
-        "location": v.location,
-        "governs": v.governs,
-    }
-
-
 def _group(g):
     return {
         "group": g.group,
@@ -194,7 +184,8 @@ def criterion_json(c: CriterionResult) -> dict:
 
 
 def to_json(assessment: Assessment) -> dict:
-    """The assessment as a JSON-ready dict following results.schema.json."""
+    """The assessment as a JSON-ready dict following results.schema.json (the criteria's
+    locations in words and ``criteria_by_model`` are the report's, ``report.results_json``)."""
     a = assessment
     m = a.material
     return {
@@ -230,7 +221,6 @@ def to_json(assessment: Assessment) -> dict:
         ],
         "balance_rate": _num(balance_rate(c for t in a.throws for c in t.counterweights)),
         "notes": [n.display for n in a.notes],
-        **({"criteria_by_model": [_by_model(v) for v in a.by_model]} if a.by_model else {}),
     }
 
 

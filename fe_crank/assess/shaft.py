@@ -24,14 +24,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess.group import assess_groups
+from fe_crank.assess.extremes import Running, Wanted, group_extremes
+from fe_crank.assess.group import SIGMA_ADD_GROUPS, assess_groups, section_diameter
+from fe_crank.assess.loads import FIRING, misfire_label
+from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import run_blocks, thread_count
 from fe_crank.fe.node_groups import node_groups
 from fe_crank.fe.shaft_cases import ShaftCases
 from fe_crank.fe.stress import stress_at_selected_nodes
-from fe_crank.fe.whole_shaft import BearingResult, WholeShaftResult
+from fe_crank.fe.whole_shaft import BearingResult, WholeShaftResult, bearings_of, shaft_cycle_of, throw_masses
+from fe_crank.geometry.shaft import ShaftLayout
+from fe_crank.mechanism.cycles import EngineCycles
+from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.mesh.shaft import place
 
 #: the label of each model in the criteria's locations and the report
 PER_THROW = "per-throw model"
@@ -41,11 +48,45 @@ WHOLE_SHAFT = "whole-shaft model"
 @dataclass(frozen=True)
 class BearingState:
     """The main bearings' loads (with and without counterweights) in one load state at one
-    speed of the full-load sweep (rad/s; ``case``: ``assess.loads.FIRING`` or a misfire)."""
+    speed of the full-load sweep (rad/s; ``case``: ``assess.loads.FIRING`` or a misfire),
+    and the weights of the shaft's unit cases over that cycle with the counterweights
+    (``ShaftCycle.weights``: the stresses of the state by superposition)."""
 
     speed: float
     case: str
     bearings: tuple[BearingResult, ...]
+    weights: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class WholeShaftOutput:
+    """The whole-shaft stage (``check.shaft_stage``): the shaft placed by the engine, its
+    bearing loads and web moments over the cycle with and without counterweights
+    (``result``), the main bearings' loads at every speed and load state of the full-load
+    sweep (``sweep``, ``bearing_sweep``), and its unit cases (``cases``: condensed, with each
+    throw's recovery fields at its assessed nodes, and the factorisations when whole fields
+    are wanted) which the assessment reads (``assess_shaft_throws``; None once the stages
+    that read them ran)."""
+
+    layout: ShaftLayout
+    result: WholeShaftResult
+    dynamics: DynamicsResult  # the operating cycle it was solved over (the assessed one)
+    sweep: tuple[BearingState, ...] = ()
+    cases: ShaftCases | None = None
+    #: the hydrodynamic bearings' oil film in every state of ``sweep`` (``assess.oil_film``;
+    #: () : no hydrodynamic bearing)
+    film: tuple = ()
+
+
+@dataclass(frozen=True)
+class ShaftHotSpot:
+    """Where and when the whole shaft's von Mises stress is largest over the cycle."""
+
+    throw: str
+    group: str
+    angle_deg: float  # cycle angle
+    von_mises: float  # Pa
+    point: tuple[float, float, float]  # m, shaft frame (the engine frame at crank angle zero)
 
 
 @dataclass(frozen=True)
@@ -55,15 +96,70 @@ class ShaftAssessment:
     per-throw model's groups, ``ThrowAssessment.groups``; no UR M53, no counterweight
     checks), its main bearings' loads with and without counterweights at the operating
     speed, and at every speed and load state of the sweep (``sweep``; () : the operating
-    speed alone)."""
+    speed alone); ``governing``: its largest von Mises stress over the cycle (``governing``);
+    ``states``: its throws in every load state at every speed of the sweep, as the
+    per-throw model's (``speeds.StateResults``; the operating speed's firing state is
+    ``throws``, the others their extremes only; () : the operating speed alone)."""
 
     throws: tuple[ThrowAssessment, ...]
     bearings: tuple[BearingResult, ...]
     speed: float | None = None
     sweep: tuple[BearingState, ...] = ()
+    governing: ShaftHotSpot | None = None
+    seconds: float = 0.0  # the time its throws' assessment took
+    states: tuple[StateResults, ...] = ()
     #: the hydrodynamic bearings' oil film in every state of ``sweep``
     #: (``assess.oil_film.FilmState``; () : no hydrodynamic bearing)
     film: tuple = ()
+
+
+def bearing_sweep(
+    cycles: EngineCycles, cases: ShaftCases, layout: ShaftLayout, result: WholeShaftResult
+) -> tuple[BearingState, ...]:
+    """The main bearings' loads at every speed and load state of the full-load sweep (every
+    cylinder firing, each misfire case; ``mechanism.cycles.EngineCycles.sweep``): the
+    operating speed's firing state is the stage's own cycle (``result``, with the torsional
+    stage's journal torques when it ran), the others the dynamics stage's cycles on the
+    condensed shaft (``fe.whole_shaft.bearings_of``, with and without counterweights, the
+    envelope over the bearing laws; each journal's torque quasi-static); each with the case
+    weights of the stated law with the counterweights for the stresses
+    (``fe.whole_shaft.shaft_cycle_of``)."""
+    mass = throw_masses(layout)
+
+    def state(speed: float, case: str, dynamics) -> BearingState:
+        on = shaft_cycle_of(cases, layout, mass, dynamics, counterweights=True)
+        return BearingState(speed, case, bearings_of(cases, layout, mass, dynamics), on.weights)
+
+    out = []
+    for sc in cycles.sweep:
+        own = sc.firing is cycles.operating
+        out.append(
+            BearingState(sc.speed, FIRING, result.bearings, result.cycles[0].weights)
+            if own
+            else state(sc.speed, FIRING, sc.firing)
+        )
+        out.extend(state(sc.speed, misfire_label(m.cylinder), m.dynamics) for m in sc.misfire)
+    return tuple(out)
+
+
+def governing(throws: tuple[ThrowAssessment, ...], layout: ShaftLayout) -> ShaftHotSpot | None:
+    """The largest von Mises stress over the cycle on the whole shaft's throws and where
+    it is (the first of equals), its point placed in the shaft frame."""
+    best = None
+    for t in throws:
+        for g in t.groups:
+            e = g.max_von_mises
+            if e.angle is not None and (best is None or e.value > best[1].value):
+                best = (t.name, e)
+    if best is None:
+        return None
+    name, e = best
+    assert e.angle is not None
+    th = next(t for t in layout.throws if t.name == name)
+    p = place(np.asarray(e.point, float)[:, None], layout.sense * th.angle, th.z)[:, 0]
+    return ShaftHotSpot(
+        name, e.group, float(np.degrees(e.angle)), float(e.value), (float(p[0]), float(p[1]), float(p[2]))
+    )
 
 
 def piece_unit_stresses(cases: ShaftCases, piece: int, material) -> UnitStresses:
@@ -110,13 +206,20 @@ def assess_shaft_throws(
     overspeed: float | None,
     diameters: dict[str, tuple[float | None, float | None]] | None = None,
     additional_bending: float = 0.0,
-) -> tuple[ThrowAssessment, ...]:
+    sweep: tuple[BearingState, ...] = (),
+    wanted: Wanted | None = None,
+) -> tuple[tuple[ThrowAssessment, ...], tuple[StateResults, ...]]:
     """Every throw of the whole shaft assessed with the per-throw model's group code
     (module doc), with the counterweights as built; ``theta`` the cycle's angles (rad);
     ``overspeed`` (rad/s) with ``result.overspeed``'s cycles; ``diameters``: throw name ->
     (pin, journal) diameter for the size factor (UR M53's dimensions; None: the factor's
     fallback); ``additional_bending``: UR M53 4's sigma_add on the shaft fillets (as the
-    per-throw model)."""
+    per-throw model).  Returns the throws at the operating cycle (in full, with the
+    overspeed) and, with ``sweep`` (``bearing_sweep``'s states, their weights), the throws
+    in every load state at every speed: the operating speed's firing state (the state whose
+    weights are the operating cycle's) in full, the others their extremes only
+    (``extremes.group_extremes`` with ``wanted``, each state searched with its own
+    ``Running``: the per-throw model's pruning)."""
     coeffs = result.cycles[0].weights
     theta = np.asarray(theta, float)
     coeffs_os = None
@@ -124,7 +227,11 @@ def assess_shaft_throws(
         coeffs_os = np.vstack([c.weights for c in result.overspeed])
     elif overspeed is not None:
         overspeed = None  # no overspeed cycle of the whole shaft: the per-throw model's alone
+    own = [i for i, st in enumerate(sweep) if st.weights is coeffs]
+    others = [i for i in range(len(sweep)) if i not in own]
+    running = {i: Running() for i in others}  # each state's least fatigue values so far, over the throws
     out = []
+    per_state: dict[int, list[ThrowAssessment]] = {i: [] for i in range(len(sweep))}
     for k, pp in enumerate(cases.model.pieces):
         if pp.kind != "throw":
             continue
@@ -142,6 +249,33 @@ def assess_shaft_throws(
             journal_diameter=journal_diameter,
             additional_bending=additional_bending,
         )
-        out.append(ThrowAssessment(str(pp.throw), groups, n_angles=int(theta.size)))
+        t = ThrowAssessment(str(pp.throw), groups, n_angles=int(theta.size))
+        out.append(t)
+        for i in own:
+            per_state[i].append(t)
+
+        def one(i: int, _scratch: dict, unit=unit, name=str(pp.throw), dp=pin_diameter, dj=journal_diameter) -> None:
+            w = sweep[i].weights
+            assert w is not None
+            extremes = tuple(
+                group_extremes(
+                    unit,
+                    g,
+                    w,
+                    theta,
+                    material,
+                    crank_radius=crank_radius,
+                    diameter=section_diameter(g, dp, dj),
+                    wanted=wanted or Wanted(),
+                    running=running[i],
+                    additional_bending=additional_bending if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+                )
+                for g in sorted(unit.groups)
+                if len(unit.groups[g])
+            )
+            per_state[i].append(ThrowAssessment(name, extremes, n_angles=int(theta.size)))
+
+        run_blocks(one, others)
         del unit
-    return tuple(out)
+    states = tuple(StateResults(st.speed, st.case, tuple(per_state[i])) for i, st in enumerate(sweep))
+    return tuple(out), states

@@ -1,30 +1,28 @@
 """The criteria with the whole-shaft model beside the per-throw one (``assess.criteria``).
 
 With the whole-shaft model (``assess.shaft.ShaftAssessment``) a stress quantity is found
-on both models' throws: the per-throw model (UR M53's statically determinate one) at every
-speed of the full-load sweep, and the whole shaft on its bearings at the operating speed
-(its overspeed cycles for an overspeed quantity).  At each speed the criterion's value is
-the worse of the models there (the whole shaft's enters at the operating speed's
-``per_speed`` entry), its location naming the model; the verdict is the worst speed, as
-without the whole shaft (``speeds.over_sweep``).  The main-bearing quantities are the whole
-shaft's alone: the peak bearing load with counterweights, and that peak over the projected
-area d w, at every speed and load state of the sweep (``ShaftAssessment.sweep``).
+on both models' throws, each at every speed and load state of the full-load sweep (the
+whole shaft's ``states``, assessed as the per-throw model's, with its pruning; its
+overspeed cycles for an overspeed quantity).  At each speed the criterion's value is the
+worse of the models there, its location naming the model; the verdict is the worst speed,
+as without the whole shaft (``speeds.over_sweep``).  The main-bearing quantities are the
+whole shaft's alone: the peak bearing load with counterweights, and that peak over the
+projected area d w, at every speed and load state of the sweep
+(``ShaftAssessment.sweep``).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
 from fe_crank.assess.oil_film import FILM_FINDERS, film_criterion
 from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, ShaftAssessment
-from fe_crank.assess.speeds import Found, over_states
+from fe_crank.assess.speeds import Found, Located, over_states
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.results import SpeedValue
-
-#: a located criterion: (worst value, where, its speed in rpm or None, per-speed values)
-Located = tuple[float, str, float | None, tuple[SpeedValue, ...]]
+from fe_crank.results import Location, SpeedValue
 
 
 def no_throw_value(throws: tuple[ThrowAssessment, ...]) -> Found:
@@ -33,31 +31,47 @@ def no_throw_value(throws: tuple[ThrowAssessment, ...]) -> Found:
 
 
 def _law(loads) -> str:
-    """ ", bearing law <law>" when the loads name theirs (the governing law of the envelope)."""
-    return f", bearing law {loads.law}" if loads.law else ""
+    """ "bearing law <law>" when the loads name theirs (the governing law of the envelope)."""
+    return f"bearing law {loads.law}" if loads.law else ""
+
+
+def _order(found: tuple[float, Location]) -> tuple[float, str, float]:
+    """By value, equals by the bearing's name and angle (the last of equals: ``max``)."""
+    v, loc = found
+    return v, loc.group, loc.angle_deg if loc.angle_deg is not None else 0.0
 
 
 def _bearing_load(bearings) -> Found:
     vals = [
         (
             b.with_counterweights.peak_n,
-            f"main bearing {b.name}, {b.with_counterweights.peak_angle_deg:.0f} deg{_law(b.with_counterweights)}",
+            Location(
+                "bearing",
+                group=b.name,
+                angle_deg=b.with_counterweights.peak_angle_deg,
+                detail=_law(b.with_counterweights),
+            ),
         )
         for b in bearings
     ]
-    return max(vals) if vals else None
+    return max(vals, key=_order) if vals else None
 
 
 def _bearing_specific_load(bearings) -> Found:
     vals = [
         (
             b.with_counterweights.specific_load_pa,
-            f"main bearing {b.name} (peak / (d w), w = {b.with_counterweights.width * 1e3:.4g} mm), "
-            f"{b.with_counterweights.peak_angle_deg:.0f} deg{_law(b.with_counterweights)}",
+            Location(
+                "bearing_specific",
+                group=b.name,
+                angle_deg=b.with_counterweights.peak_angle_deg,
+                width=b.with_counterweights.width,
+                detail=_law(b.with_counterweights),
+            ),
         )
         for b in bearings
     ]
-    return max(vals) if vals else None
+    return max(vals, key=_order) if vals else None
 
 
 #: the main bearings' quantities: quantity -> its finder over the bearings of one state
@@ -71,13 +85,13 @@ def _worse(a: float, b: float, sense: str) -> bool:
     return a < b if sense == "min" else a > b
 
 
-def _labelled(model: str, where: str) -> str:
-    return f"{model}: {where}" if where else model
+def _labelled(model: str, where: Location | None) -> Location:
+    return dataclasses.replace(where if where is not None else Location(), model=model)
 
 
 def _label(found: Located, model: str) -> Located:
     v, w, s, per = found
-    return v, _labelled(model, w), s, tuple(SpeedValue(x.speed_rpm, x.value, _labelled(model, x.location)) for x in per)
+    return v, _labelled(model, w), s, tuple(dataclasses.replace(x, where=_labelled(model, x.where)) for x in per)
 
 
 def whole_shaft(
@@ -102,7 +116,7 @@ def whole_shaft(
         got = find(shaft.throws)
     if got is None:
         return None
-    per = (SpeedValue(speed_rpm, got[0], got[1]),) if speed_rpm is not None else ()
+    per = (SpeedValue(speed_rpm, got[0], where=got[1]),) if speed_rpm is not None else ()
     return got[0], got[1], speed_rpm, per
 
 
@@ -120,13 +134,14 @@ def combined(per_throw: Located | None, whole: Located | None, sense: str) -> Lo
     for x in b[3]:
         key = next((k for k in entries if math.isclose(k, x.speed_rpm, rel_tol=1e-9)), x.speed_rpm)
         if key not in entries or _worse(x.value, entries[key].value, sense):
-            entries[key] = SpeedValue(key, x.value, x.location)
+            entries[key] = SpeedValue(key, x.value, where=x.where)
     per = tuple(entries[k] for k in sorted(entries))
     best = per[0]
     for x in per[1:]:
         if _worse(x.value, best.value, sense):
             best = x
-    loc = f"{best.location}; {best.speed_rpm:.0f} rpm" if len(per) > 1 else best.location
+    assert best.where is not None
+    loc = dataclasses.replace(best.where, speed_rpm=best.speed_rpm) if len(per) > 1 else best.where
     return best.value, loc, best.speed_rpm, per
 
 
@@ -137,7 +152,7 @@ class ModelValue:
     criterion: str  # the criterion's key
     model: str  # PER_THROW or WHOLE_SHAFT
     value: float
-    location: str
+    where: Location
     governs: bool  # the criterion took this model's value
 
 
@@ -149,8 +164,8 @@ def model_pair(key: str, per_throw: Located | None, whole: Located | None, sense
     out = []
     for model, found in ((PER_THROW, per_throw), (WHOLE_SHAFT, whole)):
         if found is not None:
-            out.append(ModelValue(key, model, found[0], found[1], both[1].startswith(f"{model}:")))
+            out.append(ModelValue(key, model, found[0], found[1], both[1].model == model))
     return tuple(out)
 
 
-__all__ = ["BEARING_FINDERS", "Located", "ModelValue", "combined", "model_pair", "no_throw_value", "whole_shaft"]
+__all__ = ["BEARING_FINDERS", "ModelValue", "combined", "model_pair", "no_throw_value", "whole_shaft"]

@@ -12,8 +12,8 @@
   fillet above 5 %, on the FE criteria located at that fillet (``fillet_criteria``; all
   the FE stress criteria when none is: a better-resolved peak there could govern them),
   named on the verdict line;
-* the FE stress criteria the hot-spot convergence study sets (``check.converged``): on
-  each, the factor and the estimate it rests on;
+* the FE stress criteria the hot-spot convergence study sets (``assess.refinement``, the
+  assessment's ``refinements``): on each, the factor and the estimate it rests on;
 * a counterweight whose built m r differs from the requirement by more than 10 % when
   the load case has no ``unbalance_error`` criterion to judge it;
 * an engine without gas pressure (inertia loads only), on the fatigue and M53 criteria
@@ -29,8 +29,6 @@ Notes that differ only in the throws they concern are shown once, naming the thr
 from __future__ import annotations
 
 from fe_crank.assess.case import Assessment
-from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT
-from fe_crank.check import converged
 from fe_crank.notes import ASSUMPTION, NOT_A_SIGN_OFF, WARNING, Note, from_strings, grouped
 from fe_crank.outputs import CaseOutputs
 from fe_crank.records import SolverRecord
@@ -52,12 +50,16 @@ def _names(assessment: Assessment | None, quantities) -> tuple[str, ...]:
 
 
 def fillet_criteria(assessment: Assessment, fillet: str, throws) -> tuple[str, ...]:
-    """The FE stress criteria whose governing location is ``fillet`` of one of ``throws``
-    (the location reads "throw <name>, <group>, node ...", ``assess.criteria``; with the
-    whole shaft after the model's name, "per-throw model: throw ...")."""
-    heads = tuple(f"{m}throw {t}, {fillet}," for t in throws for m in ("", f"{PER_THROW}: ", f"{WHOLE_SHAFT}: "))
+    """The FE stress criteria whose governing location (``CriterionResult.where``, in
+    either model) is the FE group ``fillet`` of one of ``throws``."""
     return tuple(
-        c.name for c in assessment.criteria if c.quantity in FE_STRESS_QUANTITIES and c.location.startswith(heads)
+        c.name
+        for c in assessment.criteria
+        if c.quantity in FE_STRESS_QUANTITIES
+        and c.where is not None
+        and c.where.kind == "group"
+        and c.where.group == fillet
+        and c.where.throw in throws
     )
 
 
@@ -123,12 +125,7 @@ def case_notes(
                         else "",
                     )
                 )
-    found = (
-        converged.refinements(a.criteria, a.throws, out.convergence, **converged.of_assessment(a))
-        if a is not None and out.convergence
-        else ()
-    )
-    for r in found:
+    for r in a.refinements if a is not None else ():
         notes.append(
             Note(
                 f"{r.criterion.split('.')[-1]} taken at the convergence study's estimate of the converged peak, "

@@ -1,12 +1,13 @@
 """The stages of one load case, in the order they run (``run_stages``).
 
 load -> dynamics (operating and overspeed cycles) -> balance -> geometry (mesh plan, UR
-M53 dimensions, CAD mass properties) -> mesh (cached) -> FE unit cases -> SCF mode (only
-where UR M53's empirical SCFs are out of range) -> torsion (with a ``[torsion]``
-section) -> whole shaft (several throws on one shaft, or a ``[shaft]`` section:
-``check.shaft_stage``) -> assessment -> hot-spot convergence study (sign-off meshes).  Each stage is a
-plain typed call into its package, timed on its own; no stage computes what another
-owns, and each reads only the outputs of the stages before it (``CaseOutputs``).
+M53 dimensions, CAD mass properties, the whole shaft placed) -> mesh (cached) -> FE unit
+cases -> SCF mode (only where UR M53's empirical SCFs are out of range) -> torsion (with
+a ``[torsion]`` section) -> hot-spot convergence study (sign-off meshes) -> whole shaft (several throws on one shaft, or a ``[shaft]``
+section: ``check.shaft_stage``) -> assessment (both models, every speed, the study's factors: ``assess.case``) -> the whole
+shaft's fields at its governing angle (for the report).  Each stage is a plain typed call
+into its package, timed on its own; no stage computes what another owns, and each reads
+only the outputs of the stages before it (``CaseOutputs``).
 """
 
 from __future__ import annotations
@@ -19,8 +20,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TypeVar
 
-from fe_crank.assess import m53
 from fe_crank.assess.case import AssessInputs, Assessment, assess_case
+from fe_crank.assess.m53 import scf_mode_needed
 from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.scf_refine import accepted_scf
 from fe_crank.assess.throw_geometry import parametric_throws
@@ -38,6 +39,8 @@ from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.pin_patches import pin_patch_options
 from fe_crank.fe.unit_cases import UnitSolutions
 from fe_crank.geometry.mass import throw_solids
+from fe_crank.geometry.shaft import ShaftLayout, engine_shaft_layout, whole_shaft_wanted
+from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.base import InputFile
 from fe_crank.io.loadcase import LoadCase, load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
@@ -107,15 +110,6 @@ def run_stages(run: Run) -> None:
     assert cycles is not None
     if lc.torsion is not None:  # torsional vibration (docs/torsion.md): only with a [torsion] section
         run.keep(torsion=run.timed("torsion", torsion_stage, lc, geo, unit_solutions, cycles))
-    if shaft_stage.wanted(lc):  # the whole shaft on its bearings (docs/shaft.md)
-        with threads(assess_threads_of(opts)):
-            shaft = run.timed(
-                "whole_shaft", shaft_stage.whole_shaft_stage, lc, geo, run.out, opts.render or opts.write_vtu
-            )
-        run.keep(whole_shaft=shaft)
-    with threads(assess_threads_of(opts)):
-        assessment = run.timed("assess", assess_stage, lc, run.out, opts.render or opts.write_vtu)
-    run.keep(assessment=assessment)
     if convergence.wanted(opts.convergence if opts.convergence is not None else lc.mesh.convergence, geo.plan.preset):
         run.keep(
             convergence=run.timed(
@@ -130,6 +124,26 @@ def run_stages(run: Run) -> None:
                 unit_solutions=unit_solutions,
             )
         )
+    fields = opts.render or opts.write_vtu
+    if geo.shaft is not None:  # the whole shaft on its bearings (docs/shaft.md)
+        with threads(assess_threads_of(opts)):
+            shaft = run.timed("whole_shaft", shaft_stage.whole_shaft_stage, lc, geo, run.out, fields)
+        run.keep(whole_shaft=shaft)
+    with threads(assess_threads_of(opts)):
+        assessment = run.timed("assess", assess_stage, lc, run.out, fields)
+    run.keep(assessment=assessment)
+    ws = run.out.whole_shaft
+    if ws is not None:
+        hot_spot = assessment.shaft.governing if assessment.shaft is not None else None
+        if fields and hot_spot is not None:
+            with threads(assess_threads_of(opts)):
+                picture = run.timed("shaft_fields", shaft_stage.shaft_fields_stage, lc, ws, hot_spot)
+            run.keep(shaft_fields=picture)
+        else:
+            assert ws.cases is not None
+            ws.cases.model.free_factors()
+        # the shaft's unit cases are read: the record keeps its results, not its working model
+        run.keep(whole_shaft=dataclasses.replace(ws, cases=None))
 
 
 def assess_threads_of(options: CheckOptions) -> int:
@@ -158,6 +172,7 @@ def geometry_stage(lc: LoadCase, options: CheckOptions, balance: BalanceResult |
     g = _require_geometry(lc)
     if isinstance(g, CadInput):
         return cad_geometry_stage(lc, g, options, balance)
+    layout = shaft_layout(lc)
     plan = plan_meshes(
         g,
         tuple(t.name for t in lc.engine.throws),
@@ -166,15 +181,29 @@ def geometry_stage(lc: LoadCase, options: CheckOptions, balance: BalanceResult |
         max_elements=options.max_elements,
         cache_dir=options.cache_dir,
         file=lc.source_file,
+        shaft=layout,
     )
-    if shaft_stage.wanted(lc):  # the per-throw model meshes the whole shaft's throws (one cached mesh each)
-        plan = dataclasses.replace(plan, options=shaft_stage.throw_mesh_options(lc, plan.options))
     wanted = tuple(sorted({t.name for t in g.throws if t.counterweights}))
     if lc.torsion is not None:
         wanted = tuple(t.name for t in g.throws)
     solids = throw_solids(g, wanted) if wanted else None
     design = balance.design if balance is not None else None
-    return GeometryModel(plan, parametric_throws(g, plan.throws, lc.engine, solids, design), solids)
+    return GeometryModel(plan, parametric_throws(g, plan.throws, lc.engine, solids, design), solids, shaft=layout)
+
+
+def shaft_layout(lc: LoadCase) -> ShaftLayout | None:
+    """The shaft of the load case placed by its engine (``geometry.shaft.engine_shaft_layout``;
+    a geometry of one throw stands for every throw) when the whole shaft is modelled:
+    several throws on one shaft, or a ``[shaft]`` section (``whole_shaft_wanted``), for a
+    load case with a material and a parametric geometry (a CAD geometry's throws are meshed
+    from the file one by one, on the journals' middles it recognises: the per-throw model
+    alone, docs/shaft.md); None otherwise."""
+    g = lc.geometry
+    if lc.material is None or not isinstance(g, CrankGeometry) or not whole_shaft_wanted(g, lc.engine):
+        return None
+    return engine_shaft_layout(
+        g, lc.engine, geometry_file=g.file or lc.source_file, engine_file=lc.engine_file or lc.source_file
+    )
 
 
 def mesh_stage(lc: LoadCase, geo: GeometryModel) -> dict[str, ThrowMesh]:
@@ -224,17 +253,9 @@ def fe_stage(lc: LoadCase, geo: GeometryModel, meshes: dict[str, ThrowMesh]) -> 
 
 
 def needs_scf(lc: LoadCase, geo: GeometryModel) -> bool:
-    """UR M53 route outside its empirical SCFs' validity range: the SCF mode of the FE
-    appendix (App. III) gives the factors (``assess.scf``)."""
-    mat = lc.material
-    if mat is None or mat.tensile_strength is None or mat.m53_k is None:
-        return False
-    return any(
-        m53.out_of_range(g.related(f))
-        for g in (geo.m53_of(key) for key in geo.plan.throws)
-        if g is not None
-        for f in ("pin", "journal")
-    )
+    """Whether the SCF stage runs: UR M53's empirical SCFs out of range for a throw model of
+    the plan (``assess.m53.scf_mode_needed``)."""
+    return scf_mode_needed(lc.material, [geo.m53_of(key) for key in geo.plan.throws])
 
 
 def scf_stage(lc: LoadCase, geo: GeometryModel, meshes: dict[str, ThrowMesh]) -> dict[str, ScfResult]:
@@ -256,9 +277,13 @@ def scf_stage(lc: LoadCase, geo: GeometryModel, meshes: dict[str, ThrowMesh]) ->
     return out
 
 
-def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
-    """Stresses, safety factors and the load case's criteria; ``fields``: also the
-    whole-mesh stress of the states the report draws."""
+def assess_inputs(lc: LoadCase, out: CaseOutputs) -> AssessInputs:
+    """What the assessment reads (``assess.case.AssessInputs``), from the load case and the
+    outputs of the stages before it: the cycles, the loads of every speed and load state
+    (the torsional stage's, with its vibration, else the rigid shaft's torque flow), the
+    balance, the mesh plan's models, the unit solutions and SCF results, each throw's
+    geometry, the whole shaft's model and the convergence study when they ran.  A load case
+    without a material or a limit is an ``InputError`` (checked here, once)."""
     if lc.material is None:
         raise InputError("the assessment needs a [material] section", file=lc.source_file, key="material")
     if lc.criteria is None or not lc.criteria.limits:
@@ -269,7 +294,7 @@ def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
     loads = out.torsion.loads if out.torsion is not None else None
     if loads is None:  # rigid shaft: the torque flow of each speed and state for the power take-off end
         loads = assessed_loads(lc.engine, out.cycles, reaction=lc.fe.torque_reaction)
-    inputs = AssessInputs(
+    return AssessInputs(
         case=lc.name,
         source_file=lc.source_file,
         engine=lc.engine,
@@ -285,6 +310,13 @@ def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
         throw_geometry=out.geometry.throws,
         scf=out.fe.scf,
         geometry_file=str(lc.geometry.file) if lc.geometry is not None else "",
-        shaft=out.whole_shaft.assessment if out.whole_shaft is not None else None,
+        shaft=out.whole_shaft,
+        convergence=out.convergence or None,
     )
-    return assess_case(inputs, fields=fields)
+
+
+def assess_stage(lc: LoadCase, out: CaseOutputs, fields: bool) -> Assessment:
+    """Stresses, safety factors and the load case's criteria, both models, every speed
+    (``assess.case.assess_case``); ``fields``: also the whole-mesh stress of the states the
+    report draws."""
+    return assess_case(assess_inputs(lc, out), fields=fields)

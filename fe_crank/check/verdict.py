@@ -1,19 +1,19 @@
 """The verdict of one load case, built in one place (``decide``) from every criterion.
 
-The criteria are the assessment's (``fe_crank.assess.criteria``) and, when the hot-spot
-convergence study ran, its ``mesh_convergence`` criterion; the study then also sets the
-values of the FE stress criteria at the hot spots it follows: the finest level's (or their
-Richardson extrapolation), never below the assessed mesh's (``fe_crank.check.converged``).
-A case passes when every criterion passes, fails when one does not, and is an error
-when a stage stopped, when a criterion came out NaN, or when nothing was checked.
+The criteria are the assessment's (``fe_crank.assess.criteria``: both models, every speed,
+the FE stress criteria at the hot-spot convergence study's factors and its
+``mesh_convergence`` criterion when it ran, ``assess.refinement``); the verdict only
+aggregates them and writes each one's location in words (``report.locations``, the verdict
+line's).  A case passes when every criterion passes, fails when one does not, and is an
+error when a stage stopped, when a criterion came out NaN, or when nothing was checked.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from fe_crank.check import converged
 from fe_crank.outputs import CaseOutputs
+from fe_crank.report.locations import with_words
 from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CriterionResult
 
 
@@ -43,11 +43,7 @@ def decide(out: CaseOutputs, error: str = "") -> Verdict:
     if error:
         return Verdict(STATUS_ERROR, (), error)
     a = out.assessment
-    criteria = a.criteria if a is not None else ()
-    if out.convergence:
-        if a is not None:
-            criteria = converged.refined(criteria, a.throws, out.convergence, **converged.of_assessment(a))
-        criteria += (converged.criterion(out.convergence),)
+    criteria = tuple(with_words(c) for c in a.criteria) if a is not None else ()
     nan = _nan_criterion(criteria)
     if nan:
         return Verdict(STATUS_ERROR, (), nan)

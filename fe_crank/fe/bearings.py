@@ -208,7 +208,7 @@ def _contact(sys_: BearingSystem, d_start: np.ndarray, d0: np.ndarray, R0: np.nd
         g = np.zeros_like(y)
         g[:, : 2 * m] = (y[:, : 2 * m] - (delta0 if k is None else delta0[k])) @ K
         g[:, 2 * m :] = lin if k is None else lin[k]
-        H = np.zeros((y.shape[0], y.shape[1], y.shape[1])) if hessian else None
+        H = np.zeros((y.shape[0], y.shape[1], y.shape[1]) if hessian else (0, 0, 0))
         if hessian and m:
             H[:, : 2 * m, : 2 * m] = K
         d = y @ G.T

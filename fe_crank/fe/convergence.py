@@ -15,8 +15,16 @@ differs from the assessed mesh's by at most ``TOLERANCE`` (5 %),
 
 the change of each step, |sigma_k - sigma_(k-1)| / sigma_k, is reported beside it (a
 monotone, roughly geometric sequence puts the remaining error of the finest level at
-most about the last change).  The verdict takes the finest level's values (or their
-Richardson extrapolation) in place of the assessed mesh's (``fe_crank.check.converged``).
+most about the last change).  The assessment takes the finest level's values (or their
+Richardson extrapolation, ``estimate``) in place of the assessed mesh's
+(``fe_crank.assess.refinement``).
+
+``estimate``: sigma_est / sigma_assessed of one load set, sigma_est the finest level's
+peak, or, where the three levels h_1 > h_2 > h_3 (h = r/n) give a monotone rising sequence
+with shrinking steps, its Richardson extrapolation
+sigma_3 + (sigma_3 - sigma_2) h_3^p / (h_2^p - h_3^p), the order p solved from
+(sigma_2 - sigma_1)/(sigma_3 - sigma_2) = (h_1^p - h_2^p)/(h_2^p - h_3^p) in
+[P_MIN, P_MAX] (``richardson``).
 
 The counterweights' transition fillets (``counterweight_fillet_<web>`` surfaces, present
 when the geometry states ``counterweight.fillet_radius``; the mesh grades them to
@@ -53,6 +61,8 @@ log = logging.getLogger(__name__)
 
 FACTORS = (1.0, 1.5, 2.0)
 TOLERANCE = 0.05
+#: the orders of convergence a Richardson extrapolation may take (``richardson``)
+P_MIN, P_MAX = 0.3, 8.0
 #: the peak on the counterweight fillets under load set X is the entry "counterweight fillets, X"
 COUNTERWEIGHT_PREFIX = "counterweight fillets, "
 #: ... and on the oil bore's surface the entry "oil bore, X"
@@ -278,3 +288,42 @@ def check_studies(
         )
         out[key] = done[tm.key] = study
     return out
+
+
+def richardson(h, s) -> tuple[float, float] | None:
+    """(extrapolated value, order p) of three levels h_1 > h_2 > h_3 with peaks s; None when
+    the sequence is not monotone with shrinking steps or p falls outside [P_MIN, P_MAX]."""
+    if len(s) != 3 or len(h) != 3:
+        return None
+    d1, d2 = s[1] - s[0], s[2] - s[1]
+    if d1 == 0 or d2 == 0 or (d1 > 0) != (d2 > 0) or abs(d2) >= abs(d1):
+        return None
+    target = d1 / d2
+
+    def f(p):
+        return (h[0] ** p - h[1] ** p) / (h[1] ** p - h[2] ** p) - target
+
+    lo, hi = P_MIN, P_MAX
+    if f(lo) * f(hi) > 0:
+        return None
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if f(lo) * f(mid) <= 0:
+            hi = mid
+        else:
+            lo = mid
+    p = 0.5 * (lo + hi)
+    return s[2] + d2 * h[2] ** p / (h[1] ** p - h[2] ** p), p
+
+
+def estimate(study: ConvergenceStudy, name: str) -> tuple[float, str]:
+    """(sigma_est / sigma_assessed, the estimate in words) of load set ``name`` (module doc):
+    the Richardson extrapolation of a rising sequence where it exists, else the finest level."""
+    lv = study.levels
+    s = [x.peaks[name] for x in lv]
+    h = [1.0 / x.fillet_divisions for x in lv]
+    sizes = ", ".join(f"r/{x.fillet_divisions:g}" for x in lv)
+    ext = richardson(h, s) if s[-1] > s[0] else None
+    if ext is not None:
+        return ext[0] / s[0], f"Richardson extrapolation of {sizes}, order {ext[1]:.2f}"
+    return s[-1] / s[0], f"finest level r/{lv[-1].fillet_divisions:g} of {sizes}"

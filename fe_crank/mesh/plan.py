@@ -5,7 +5,10 @@ A geometry with a single throw stands for every throw of the engine (key ``ALL_T
 throws that differ only in name and angle; otherwise the geometry's throw names must be
 the engine's throw names, so that no throw goes unchecked.  The size is the command
 line's ``--mesh-size``, else the load case's ``[mesh] size`` (``coarse`` by default);
-``[mesh] symmetric = false`` meshes a mirror-symmetric throw whole.
+``[mesh] symmetric = false`` meshes a mirror-symmetric throw whole.  When the whole
+shaft is modelled too (``shaft``: its layout), the throws are meshed with the whole
+shaft's options (``mesh.shaft.shaft_options``: end faces split into rotated-copy sectors),
+so that both models mesh each throw once (one cached mesh).
 """
 
 from __future__ import annotations
@@ -14,6 +17,7 @@ import dataclasses
 from dataclasses import dataclass
 
 from fe_crank.errors import InputError
+from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
 from fe_crank.mesh.options import PRESETS, MeshOptions, MeshSection
 from fe_crank.throw_scope import ALL_THROWS
@@ -56,11 +60,18 @@ def plan_meshes(
     max_elements: int | None = None,
     cache_dir: str | None = None,
     file: str = "",
+    shaft: ShaftLayout | None = None,
 ) -> MeshPlan:
     """The plan of one load case (module docstring); ``size``/``max_elements`` override the
-    section's.  An engine whose throws the geometry does not cover is an InputError."""
+    section's; ``shaft``: the whole shaft's layout when it is modelled too.  An engine whose
+    throws the geometry does not cover is an InputError."""
+    from fe_crank.mesh.shaft import shaft_options
+
     keys = throw_keys(geometry, engine_throws, file=file)
-    return mesh_plan(keys, section, size=size, max_elements=max_elements, cache_dir=cache_dir)
+    plan = mesh_plan(keys, section, size=size, max_elements=max_elements, cache_dir=cache_dir)
+    if shaft is not None:
+        plan = dataclasses.replace(plan, options=shaft_options(shaft, plan.options))
+    return plan
 
 
 def mesh_plan(

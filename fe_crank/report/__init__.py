@@ -12,6 +12,7 @@ by a stage (``fe_crank.outputs.CaseOutputs``).  Pictures: matplotlib for curves
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 from fe_crank.files import write_atomic
@@ -20,6 +21,7 @@ from fe_crank.outputs import CaseOutputs
 from fe_crank.records import CaseResult
 from fe_crank.report.html import Page, criteria_table, esc, header_html, table, timings_table
 from fe_crank.report.inputs import cad_features_html, criteria_rows, engine_rows, section_rows
+from fe_crank.report.locations import location_text
 from fe_crank.results import CriterionResult
 
 
@@ -79,7 +81,21 @@ def results_json(
     from fe_crank.assess.results import criterion_json, to_json
 
     assert out.assessment is not None
-    doc = {**to_json(out.assessment), **fe_results(out)}
+    by_model = [  # each criterion's value in each model, its location in words
+        {
+            "criterion": v.criterion,
+            "model": v.model,
+            "value": _num(v.value),
+            "location": location_text(v.where),
+            "governs": v.governs,
+        }
+        for v in out.assessment.by_model
+    ]
+    doc = {
+        **to_json(out.assessment),
+        **({"criteria_by_model": by_model} if by_model else {}),
+        **fe_results(out, result),
+    }
     doc["criteria"] = [criterion_json(c) for c in criteria]
     doc["passed"] = bool(all(c.passed for c in criteria))
     if result.provenance is not None:
@@ -95,9 +111,14 @@ def _plain(o):
     raise TypeError(f"not JSON serialisable: {type(o).__name__}")
 
 
-def fe_results(out: CaseOutputs) -> dict:
+def _num(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+def fe_results(out: CaseOutputs, result: CaseResult | None = None) -> dict:
     """FE fields of results.json: ``support_model`` (text) and, when the study ran,
-    ``mesh_convergence`` (throw key -> ``ConvergenceStudy.to_dict()``)."""
+    ``mesh_convergence`` (throw key -> ``ConvergenceStudy.to_dict()``); with the whole
+    shaft its ``whole_shaft`` object (``result``: the stage timings, of its fields)."""
     res: dict = {}
     units = out.unit_solutions
     if units:
@@ -107,5 +128,9 @@ def fe_results(out: CaseOutputs) -> dict:
     if out.whole_shaft is not None:
         from fe_crank.report.shaft import shaft_results
 
-        res["whole_shaft"] = shaft_results(out.whole_shaft)
+        assert out.assessment is not None and out.assessment.shaft is not None
+        seconds = {t.stage: t.seconds for t in result.timings} if result is not None else {}
+        res["whole_shaft"] = shaft_results(
+            out.whole_shaft, out.assessment.shaft, seconds.get("shaft_fields") if out.shaft_fields else None
+        )
     return res

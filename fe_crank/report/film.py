@@ -80,7 +80,7 @@ def _um(x: float | None) -> str:
 def film_section(folder: Path, ws: WholeShaftOutput, render: bool) -> list[str]:
     """The report's oil-film part of the whole-shaft section (module doc); empty without
     a hydrodynamic bearing."""
-    states = ws.assessment.film
+    states = ws.film
     if not states:
         return []
     first = states[0].bearings

@@ -1,5 +1,6 @@
 """The whole-shaft model in the report and in results.json (formatting only: every number
-comes from the whole-shaft stage, ``fe_crank.check.shaft_stage``, and the assessment).
+comes from the whole-shaft stage, ``fe_crank.check.shaft_stage``, and the assessment,
+``assess.shaft.ShaftAssessment``).
 
 * ``shaft_results``: the ``whole_shaft`` object of results.json (per main bearing its load
   over the cycle with and without counterweights, per web its bending moment, the throws'
@@ -20,22 +21,25 @@ import numpy as np
 
 from fe_crank.assess.oil_film import film_json
 from fe_crank.assess.results import group_json
+from fe_crank.assess.shaft import ShaftAssessment
 from fe_crank.outputs import CaseOutputs, WholeShaftOutput
 from fe_crank.report.film import film_section
 from fe_crank.report.html import Page, esc, table
+from fe_crank.report.locations import location_text
 from fe_crank.report.plots import figure, plot_bars, save
 
 
-def shaft_results(ws: WholeShaftOutput) -> dict:
-    """The ``whole_shaft`` object of results.json (schema ``$defs`` in results.schema.json)."""
+def shaft_results(ws: WholeShaftOutput, assessed: ShaftAssessment, fields_seconds: float | None = None) -> dict:
+    """The ``whole_shaft`` object of results.json (schema ``$defs`` in results.schema.json):
+    the stage's shaft ``ws``, its assessment ``assessed``; ``fields_seconds``: the time of
+    the whole fields (None: not computed)."""
     doc = ws.result.to_dict()
     doc.pop("n_dof")
     doc = {"support_model": ws.result.support_model, "n_dof": ws.result.n_dof, **doc}
     doc["throws"] = [
-        {"name": t.name, "n_angles": t.n_angles, "groups": [group_json(g) for g in t.groups]}
-        for t in ws.assessment.throws
+        {"name": t.name, "n_angles": t.n_angles, "groups": [group_json(g) for g in t.groups]} for t in assessed.throws
     ]
-    if ws.assessment.sweep:  # the main-bearing criteria's speeds and load states
+    if assessed.sweep:  # the main-bearing criteria's speeds and load states
         doc["main_bearings_per_speed"] = [
             {
                 "speed_rpm": st.speed * 30.0 / math.pi,
@@ -51,13 +55,16 @@ def shaft_results(ws: WholeShaftOutput) -> dict:
                     for b in st.bearings
                 ],
             }
-            for st in ws.assessment.sweep
+            for st in assessed.sweep
         ]
-    if ws.assessment.film:  # the hydrodynamic bearings' oil film (assess.oil_film)
-        doc["oil_film"] = film_json(ws.assessment.film)
-    h = ws.governing
+    if ws.film:  # the hydrodynamic bearings' oil film (assess.oil_film)
+        doc["oil_film"] = film_json(ws.film)
+    h = assessed.governing
     doc["governing"] = None if h is None else {"throw": h.throw, "group": h.group, "crank_angle_deg": h.angle_deg}
-    doc["timings_s"] = {k: float(v) for k, v in ws.result.timings.items()}
+    timings = {**ws.result.timings, "assessment": assessed.seconds}
+    if fields_seconds is not None:
+        timings["fields"] = fields_seconds
+    doc["timings_s"] = {k: float(v) for k, v in timings.items()}
     return doc
 
 
@@ -91,7 +98,7 @@ def _by_model_rows(so: CaseOutputs) -> list[list[str]]:
     if a is None or not a.by_model:
         return []
     return [
-        [esc(v.criterion), esc(v.model), f"{v.value:.4g}", esc(v.location), "governs" if v.governs else ""]
+        [esc(v.criterion), esc(v.model), f"{v.value:.4g}", esc(location_text(v.where)), "governs" if v.governs else ""]
         for v in a.by_model
     ]
 
@@ -150,11 +157,12 @@ def plot_web_moments(path: Path, ws: WholeShaftOutput) -> Path:
     return save(fig, path)
 
 
-def _picture(folder: Path, ws: WholeShaftOutput, render: bool, vtu: bool) -> list[str]:
+def _picture(folder: Path, so: CaseOutputs, render: bool, vtu: bool) -> list[str]:
     from fe_crank.mesh.shaft import tet10
     from fe_crank.vtu_writer import quadratic_tet_mesh, write_vtu
 
-    f, h = ws.fields, ws.governing
+    f = so.shaft_fields
+    h = so.assessment.shaft.governing if so.assessment is not None and so.assessment.shaft is not None else None
     if f is None or h is None:
         return []
     mesh = quadratic_tet_mesh(
@@ -263,4 +271,4 @@ def shaft_section(folder: Path, so: CaseOutputs, options) -> list[str]:
             ),
             Page.figure("shaft_web_moments.png", "The shaft's bending moment at every web centre over the cycle"),
         ]
-    return parts + film_section(folder, ws, render) + _picture(folder, ws, render, vtu)
+    return parts + film_section(folder, ws, render) + _picture(folder, so, render, vtu)

@@ -10,6 +10,7 @@ from pathlib import Path
 from fe_crank.mechanism.misfire import READING
 from fe_crank.outputs import CaseOutputs
 from fe_crank.report.html import Page, esc, table
+from fe_crank.report.locations import location_text
 from fe_crank.report.plots import plot_against_speed
 
 RPM = 30.0 / math.pi
@@ -48,7 +49,7 @@ def sweep_section(folder: Path, so: CaseOutputs, options) -> list[str]:
             panels.append((label, values, k * c.limit, worst))
             captions.append(
                 f"{c.name} ({c.description}): limit {k * c.limit:.4g} {unit}, worst "
-                f"{values[worst]:.4g} at {c.per_speed[worst].speed_rpm:.0f} rpm ({c.per_speed[worst].location})"
+                f"{values[worst]:.4g} at {c.per_speed[worst].speed_rpm:.0f} rpm ({location_text(c.per_speed[worst].where)})"
             )
             header.append(label)
             columns.append(values)

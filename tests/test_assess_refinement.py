@@ -1,4 +1,5 @@
-"""The convergence study feeds the verdict (``fe_crank.check.converged``, ``check.verdict.decide``):
+"""The convergence study's factors in the assessment (``fe_crank.assess.refinement``, passed
+once into ``assess.criteria.judge_criteria``), the verdict aggregating (``check.verdict.decide``):
 the FE stress criteria at the hot spots the study follows are taken at the finest level's
 peak (or its Richardson extrapolation), never below the assessed mesh's; the sign-off fails
 as not converged when the assessed mesh and the finest level differ by more than 5 %.
@@ -12,17 +13,24 @@ import math
 import pytest
 
 from fe_crank.assess.case import Assessment
-from fe_crank.assess.criteria import evaluate_criteria
+from fe_crank.assess.criteria import judge_criteria
 from fe_crank.assess.group import Extreme, GroupResult
 from fe_crank.assess.loads import FIRING
+from fe_crank.assess.refinement import StudyFactors, criterion, surface_factor
 from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.check.converged import criterion, refined, richardson, surface_factor
 from fe_crank.check.verdict import decide
-from fe_crank.fe.convergence import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceLevel, ConvergenceStudy
+from fe_crank.fe.convergence import (
+    COUNTERWEIGHT_PREFIX,
+    OIL_BORE_PREFIX,
+    ConvergenceLevel,
+    ConvergenceStudy,
+    richardson,
+)
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
 from fe_crank.outputs import CaseOutputs
+from fe_crank.report.locations import criterion_location, location_text
 from fe_crank.throw_scope import ALL_THROWS
 
 
@@ -68,10 +76,14 @@ def _group(name, node, vm, fat=None):
     )
 
 
-def _assessment(groups, criteria_toml: dict) -> Assessment:
+def _assessment(groups, criteria_toml: dict, studies=None) -> Assessment:
     throws = (ThrowAssessment("1", tuple(groups)),)
-    crit = evaluate_criteria(build_criteria(criteria_toml, "c.toml"), throws)
-    return Assessment("c", "c.toml", 1.0, None, load_material("C45"), throws, crit)
+    judged = judge_criteria(
+        build_criteria(criteria_toml, "c.toml"), throws, factors=StudyFactors(studies) if studies else None
+    )
+    return Assessment(
+        "c", "c.toml", 1.0, None, load_material("C45"), throws, judged.criteria, refinements=judged.refinements
+    )
 
 
 def test_the_verdict_takes_the_finest_level_at_the_studied_hot_spots():
@@ -88,22 +100,18 @@ def test_the_verdict_takes_the_finest_level_at_the_studied_hot_spots():
     )
     k = richardson([1 / 4, 1 / 6, 1 / 8], shaft)[0] / 100.0
     assert k > 1.06
-    a = _assessment(
-        [
-            _group("journal_fillet_2", 3, 200e6, fat=1.6),  # static 3.0
-            _group("oil_bore", 7, 195e6, fat=1.62),  # static 3.077: governs after the fillet's k
-            _group("counterweight_fillet_1", 11, 100e6),
-            _group("junction_1", 13, 110e6),  # not studied: keeps its 110 MPa
-        ],
-        {
-            "min_static_safety": 2.0,
-            "min_fatigue_safety": 1.5,
-            "max_counterweight_stress": "150 MPa",
-        },
-    )
-    by0 = {c.quantity: c for c in a.criteria}
-    assert by0["static_safety"].location.startswith("throw 1, journal_fillet_2")
+    groups = [
+        _group("journal_fillet_2", 3, 200e6, fat=1.6),  # static 3.0
+        _group("oil_bore", 7, 195e6, fat=1.62),  # static 3.077: governs after the fillet's k
+        _group("counterweight_fillet_1", 11, 100e6),
+        _group("junction_1", 13, 110e6),  # not studied: keeps its 110 MPa
+    ]
+    limits = {"min_static_safety": 2.0, "min_fatigue_safety": 1.5, "max_counterweight_stress": "150 MPa"}
+    plain = _assessment(groups, limits)
+    by0 = {c.quantity: c for c in plain.criteria}
+    assert location_text(by0["static_safety"].where).startswith("throw 1, journal_fillet_2")
     assert by0["counterweight_stress"].value == 110e6
+    a = _assessment(groups, limits, {ALL_THROWS: st})
     v = decide(CaseOutputs(assessment=a, convergence={ALL_THROWS: st}))
     by = {c.quantity: c for c in v.criteria}
     fat = by["fatigue_safety"]  # the fillet's 1.6 / k = 1.505 < the oil bore's 1.62
@@ -120,22 +128,30 @@ def test_the_verdict_takes_the_finest_level_at_the_studied_hot_spots():
     conv = by["mesh_convergence"]
     assert conv.value == pytest.approx(6.0 / 56.0) and not conv.passed and "NOT CONVERGED" in conv.location
     assert v.status == "fail"
-    # without the study: the assessment's criteria as they are
-    assert decide(CaseOutputs(assessment=a)).criteria == a.criteria
+    # the factors each criterion was taken at, kept by the assessment (the notes read them)
+    assert {r.criterion for r in a.refinements} == {
+        "criteria.min_static_safety",
+        "criteria.min_fatigue_safety",
+        "criteria.max_counterweight_stress",
+    }
+    # without the study: the assessment's criteria as they are, in words
+    assert [c.value for c in decide(CaseOutputs(assessment=plain)).criteria] == [c.value for c in plain.criteria]
 
 
 def test_oil_bore_without_credit_and_a_study_per_throw_found_by_name():
     st = _study({"peak pin force": [100.0, 101.0, 101.5], OIL_BORE_PREFIX + "peak pin force": [80.0, 79.0, 78.0]})
-    a = _assessment([_group("oil_bore", 7, 200e6), _group("crankpin_fillet_1", 3, 150e6)], {"min_static_safety": 2.0})
-    (c,) = refined(a.criteria, a.throws, {"1": st})
-    assert c.value == 3.0 and "x1.000" in c.location and "oil-bore outlet" in c.location
-    assert "the peak falls with refinement: no credit taken" in c.location
-    (same,) = refined(a.criteria, a.throws, {"2": st})  # no study for throw 1
-    assert same == a.criteria[0]
+    groups = [_group("oil_bore", 7, 200e6), _group("crankpin_fillet_1", 3, 150e6)]
+    c, _ = _assessment(groups, {"min_static_safety": 2.0}, {"1": st}).criteria
+    words = criterion_location(c)
+    assert c.value == 3.0 and "x1.000" in words and "oil-bore outlet" in words
+    assert "the peak falls with refinement: no credit taken" in words
+    same, _ = _assessment(groups, {"min_static_safety": 2.0}, {"2": st}).criteria  # no study for throw 1
+    assert same == _assessment(groups, {"min_static_safety": 2.0}).criteria[0]
     conv = criterion({"1": st})
     assert conv.passed and conv.value == pytest.approx(2.0 / 78.0)  # 2.6 % <= 5 %
     ok = criterion({"1": _study({"peak pin force": [100.0, 101.0, 101.5]})})
-    assert ok.passed and ok.value == pytest.approx(1.5 / 101.5) and ok.location.startswith("throw 1, crankpin_fillet_1")
+    assert ok.passed and ok.value == pytest.approx(1.5 / 101.5)
+    assert criterion_location(ok) == "throw 1, crankpin_fillet_1, peak pin force, r/4 (assessed) -> r/8 (finest)"
 
 
 @pytest.mark.heavy
@@ -180,9 +196,11 @@ def test_the_study_scales_every_speed_of_the_full_load_curve():
     high = (ThrowAssessment("1", (_group("journal_fillet_2", 3, 170e6), _group("junction_1", 13, 205e6))),)
     w_low, w_high = 1000 * math.pi / 30, 2000 * math.pi / 30
     sweep = (StateResults(w_low, FIRING, low), StateResults(w_high, FIRING, high))
-    crit = evaluate_criteria(build_criteria({"min_static_safety": 2.0}, "c.toml"), high, sweep=sweep)
+    limits = build_criteria({"min_static_safety": 2.0}, "c.toml")
+    crit = judge_criteria(limits, high, sweep=sweep).criteria
     assert crit[0].value == pytest.approx(600 / 205) and crit[0].speed_rpm == pytest.approx(2000)
-    a = Assessment("c", "c.toml", w_high, None, load_material("C45"), high, crit, sweep=sweep)
+    judged = judge_criteria(limits, high, sweep=sweep, factors=StudyFactors({ALL_THROWS: st}))
+    a = Assessment("c", "c.toml", w_high, None, load_material("C45"), high, judged.criteria, sweep=sweep)
     (c, _) = decide(CaseOutputs(assessment=a, convergence={ALL_THROWS: st})).criteria
     assert c.value == pytest.approx(3.0 / 1.1, rel=1e-12) and c.speed_rpm == pytest.approx(1000)
     assert c.location.startswith("throw 1, journal_fillet_2") and "; 1000 rpm; x1.100 by the convergence" in c.location
