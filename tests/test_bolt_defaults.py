@@ -14,6 +14,7 @@ import pytest
 from fe_crank.assess.cw_joint import DEFAULT_LIMITS, DEFAULT_WORDS, JOINT_QUANTITIES
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.report.locations import criterion_location
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -57,7 +58,7 @@ def test_joints_without_criteria_are_checked_with_the_default_limits(tmp_path):
     for q, c in got.items():
         attr, sense = JOINT_QUANTITIES[q]
         assert c.limit == DEFAULT_LIMITS[q] and c.name == f"criteria.{sense}_{q}"
-        assert c.location.endswith(f"friction mu_G 0.10, mu_K 0.10, mu_T 0.10; {DEFAULT_WORDS}")
+        assert criterion_location(c).endswith(f"friction mu_G 0.10, mu_K 0.10, mu_T 0.10; {DEFAULT_WORDS}")
         vals = [getattr(j, attr) for j in joints]  # one speed: the operating one's joints
         assert c.value == pytest.approx(min(vals) if sense == "min" else max(vals), rel=1e-12)
     assert any("default limits" in n.text for n in a.notes)

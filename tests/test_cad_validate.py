@@ -235,7 +235,7 @@ def test_a_refused_cad_case_in_the_check_writes_its_error_and_nothing_else(tmp_p
 def test_a_main_bearing_criterion_is_refused_before_meshing(tmp_path, small_step, capsys):
     from fe_crank.assess.criteria import EVALUATORS
     from fe_crank.assess.shaft_criteria import no_throw_value
-    from fe_crank.check.cad_geometry import WHOLE_SHAFT_QUANTITIES
+    from fe_crank.io.loadcase import WHOLE_SHAFT_QUANTITIES
 
     assert sorted(WHOLE_SHAFT_QUANTITIES) == sorted(q for q, ev in EVALUATORS.items() if ev.find is no_throw_value)
     (tmp_path / "throw.step").write_bytes(small_step.read_bytes())

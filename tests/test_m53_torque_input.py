@@ -17,6 +17,7 @@ from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.cli import main
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.report.locations import criterion_location
 
 ROOT = Path(__file__).resolve().parents[1]
 FLAG = "m53_quasi_static_torque = true"
@@ -77,7 +78,7 @@ def test_single_cylinder_with_the_quasi_static_torque_accepted_says_so(tmp_path)
     fillet = M53Fillet("pin", "empirical", 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.88)
     m53_only = dataclasses.replace(lc.criteria, limits=(lc.criteria.limit("m53_acceptability"),))
     (m,) = evaluate_criteria(m53_only, (ThrowAssessment("1", (), (fillet,)),), qualifiers=words)
-    assert m.location == "throw 1, pin fillet (empirical); not UR M53-conform (quasi-static torque)"
+    assert criterion_location(m) == "throw 1, pin fillet (empirical); not UR M53-conform (quasi-static torque)"
     assert m.passed and "not UR M53-conform" in m.description
 
 

@@ -16,7 +16,7 @@ import pytest
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState
-from fe_crank.check.shaft_stage import layout_of
+from fe_crank.check.stages import shaft_layout
 from fe_crank.fe.whole_shaft import analyse_whole_shaft
 from fe_crank.geometry.oil import FilmSpec
 from fe_crank.io.loadcase import load_loadcase
@@ -28,7 +28,7 @@ ROOT = Path(__file__).resolve().parents[1]
 @pytest.mark.heavy
 def test_inline4_film_follows_the_bearing_loads(tmp_path):
     lc = load_loadcase(ROOT / "loadcases" / "inline4_rated.toml")
-    layout = layout_of(lc)
+    layout = shaft_layout(lc)
     film = FilmSpec(clearance=25e-6, viscosity=7e-3, groove="full", groove_width=3e-3)
     with_film = dataclasses.replace(
         layout,

@@ -61,29 +61,9 @@ def require_cad_counterweight_fillets(features: CadFeatures, cad: CadInput, lc: 
                 )
 
 
-#: the criteria only the whole-shaft model gives (``assess.criteria.EVALUATORS`` whose
-#: finder is ``no_throw_value``): the main bearings' loads
-WHOLE_SHAFT_QUANTITIES = ("main_bearing_load", "main_bearing_specific_load")
-
-
-def refuse_whole_shaft_criteria(cad: CadInput, lc: LoadCase) -> None:
-    """Refuse, before any meshing, a criterion the whole-shaft model gives: with a CAD
-    geometry the check runs the per-throw model alone (docs/geometry.md)."""
-    for lim in lc.criteria.limits if lc.criteria else ():
-        if lim.quantity in WHOLE_SHAFT_QUANTITIES:
-            raise InputError(
-                f"cannot be evaluated with the CAD geometry {cad.file.name}: the main bearings' loads come from the "
-                "whole-shaft model, which runs on a parametric geometry only (the CAD file's throws are checked one "
-                "by one); give the shaft as a geometry TOML file for this criterion, or drop it",
-                file=lc.source_file,
-                key=lim.key,
-            )
-
-
 def recognise_case(lc: LoadCase, cad: CadInput) -> tuple[CadFeatures, dict[str, str]]:
     """Recognise the load case's CAD file and check it against the engine and the
     criteria: the features and the mesh plan's keys (key -> recognised throw name)."""
-    refuse_whole_shaft_criteria(cad, lc)
     features = recognise(cad)
     keys = engine_keys(features, cad, lc.engine, engine_file=lc.engine_file, loadcase=lc.source_file)
     require_cad_counterweight_fillets(features, cad, lc)

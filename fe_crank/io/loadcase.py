@@ -131,14 +131,6 @@ def _load(path: Path) -> LoadCase:
                 require_film(layout, [lim.key for lim in criteria.limits if "oil_film" in lim.key], path)
                 quantities = [lim.quantity for lim in criteria.limits]
                 require_bearing_widths(layout.bearings, quantities, gfile, str(path))
-    film_keys = [lim.key for lim in criteria.limits if "oil_film" in lim.key] if criteria is not None else []
-    if film_keys and not (isinstance(geometry, CrankGeometry) and whole_shaft_wanted(geometry, engine)):
-        raise InputError(
-            "cannot be evaluated: the oil film is the whole-shaft model's, which runs for a parametric geometry of an "
-            'engine with several throws on one shaft or with a [shaft] section, with a model = "hydrodynamic" bearing',
-            file=str(path),
-            key=f"criteria.{film_keys[0]}",
-        )
     if criteria is not None and isinstance(geometry, CrankGeometry):
         require_counterweight_fillets(geometry, [lim.quantity for lim in criteria.limits], path)
         require_joint_data(geometry, path)
@@ -191,7 +183,9 @@ def _check_torsion_range(torsion: TorsionSettings, operating: model.OperatingPoi
 
 
 #: criteria (``io.criteria`` quantities) that only the whole-shaft model evaluates
-WHOLE_SHAFT_QUANTITIES = ("main_bearing_load", "main_bearing_specific_load")
+#: (``assess.criteria.EVALUATORS`` whose per-throw finder is ``no_throw_value``): the main
+#: bearings' loads and their oil film
+WHOLE_SHAFT_QUANTITIES = ("main_bearing_load", "main_bearing_specific_load", "oil_film_thickness", "oil_film_pressure")
 
 
 def _check_whole_shaft_criteria(criteria: Criteria, geometry, engine: model.Engine, path: Path) -> None:
@@ -201,7 +195,11 @@ def _check_whole_shaft_criteria(criteria: Criteria, geometry, engine: model.Engi
         if lim.quantity not in WHOLE_SHAFT_QUANTITIES:
             continue
         if isinstance(geometry, CadInput):
-            why = "the load case's geometry is a CAD file, for which the whole-shaft model is not built"
+            why = (
+                f"the load case's geometry is the CAD file {geometry.file.name}, for which the whole-shaft model is "
+                "not built (its throws are checked one by one); give the shaft as a geometry TOML file for this "
+                "criterion, or drop it"
+            )
         elif not isinstance(geometry, CrankGeometry):
             why = "the load case has no geometry"
         elif not whole_shaft_wanted(geometry, engine):
@@ -211,7 +209,8 @@ def _check_whole_shaft_criteria(criteria: Criteria, geometry, engine: model.Engi
             )
         else:
             continue
-        raise InputError(f"needs the whole-shaft model's main-bearing loads: {why}", file=str(path), key=lim.key)
+        what = "oil film" if "oil_film" in lim.quantity else "main-bearing loads"
+        raise InputError(f"needs the whole-shaft model's {what}: {why}", file=str(path), key=lim.key)
 
 
 def _check_counterweight_clearance(g: CrankGeometry, engine: model.Engine, engine_file: str) -> None:
