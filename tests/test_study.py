@@ -5,6 +5,7 @@ m r sums computed here, and its refusals of bad input."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -71,8 +72,7 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
         web_shape(w, 1.0, drawn[w], res.shaft.layout, res.spec, res.shaft.layout.geometry.density) for w in drawn
     )
     cand = Candidate(99, "all at 1", math.nan, 0.0, 0.0, ones, shapes)
-    r = next(x for x in res.results)  # any result; write_candidate takes the candidate's shapes
-    r = type(r)(cand, *[getattr(r, f) for f in list(r.__dataclass_fields__)[1:]])
+    r = dataclasses.replace(res.results[0], candidate=cand)  # write_candidate takes the candidate's shapes
     _, lc_path = write_candidate(res, r, d / "written")
     lc2 = load_loadcase(lc_path)
     layout2 = engine_shaft_layout(lc2.geometry, lc2.engine, geometry_file="g", engine_file="e")

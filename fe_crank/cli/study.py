@@ -15,7 +15,8 @@ from pathlib import Path
 
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, PRESETS
-from fe_crank.study.outputs import pareto_plot, write_candidate, write_tables
+from fe_crank.study.candidates import achieved_unbalance
+from fe_crank.study.outputs import leaves_tree, pareto_plot, write_candidate, write_tables
 from fe_crank.study.run import run_study
 from fe_crank.study.spec import parse_study
 
@@ -45,7 +46,8 @@ def run(args) -> int:
     res = run_study(lc, spec, size=size, cache_dir=Path(args.cache_dir), max_elements=lc.mesh.max_elements)
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
-    paths = write_tables(res, out)
+    achieved = achieved_unbalance(res.shaft.layout, res.recommended.candidate, res.drawn) if res.recommended else {}
+    paths = write_tables(res, out, achieved)
     pareto_plot(res, out / "study_pareto.png")
     print(
         f"{len(res.results)} candidates over {len(res.states)} engine states, mesh {size} "
@@ -57,5 +59,8 @@ def run(args) -> int:
         return 1
     geo, lcp = write_candidate(res, res.recommended, out)
     print(f"recommended #{res.recommended.candidate.index} ({res.recommended.candidate.label}): {res.why}")
-    print(f"check it: fe-crank check {lcp}  (geometry {geo})")
+    for (t, w), (want, got) in achieved.items():
+        print(f"  web {t}.{w}: m r {want:.5g} kg m screened, {got:.5g} kg m of the written sector's solid")
+    flag = " --allow-outside-paths" if leaves_tree(lcp) else ""
+    print(f"check it: fe-crank check {lcp}{flag}  (geometry {geo})")
     return 0

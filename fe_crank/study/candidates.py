@@ -30,6 +30,7 @@ masses k_w U_w at their planes (the parts' centroids), first order.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -39,7 +40,8 @@ from fe_crank.balance.forces import FreeForces, free_forces
 from fe_crank.balance.mechanism import reciprocating_mass, rotating_mass
 from fe_crank.balance.sector import SectorProperties, annular_sector, solve_sector
 from fe_crank.balance.terms import point_term, rotating_force
-from fe_crank.errors import InputError
+from fe_crank.errors import GeometryError, InputError
+from fe_crank.geometry.checks import check_geometry
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.geometry.spec import CounterweightSpec
 from fe_crank.model import Engine
@@ -96,8 +98,8 @@ class Candidate:
 
     @property
     def label(self) -> str:
-        rec = f" + {self.reciprocating * 100:g} % recip." if self.reciprocating else ""
-        return f"{self.placement}, {self.rotating * 100:g} %{rec}"
+        rec = f" + {round(self.reciprocating * 100, 9):g} % recip." if self.reciprocating else ""
+        return f"{self.placement}, {round(self.rotating * 100, 9):g} %{rec}"
 
 
 def drawn_webs(layout: ShaftLayout, mass: dict) -> dict[Web, DrawnWeb]:
@@ -184,6 +186,19 @@ def _clash(r1: float, r2: float, angle: float, layout: ShaftLayout, envelope: fl
     return None
 
 
+def _geometry_refuses(layout: ShaftLayout, web: Web, cw: CounterweightSpec, s: SectorProperties) -> str | None:
+    """The geometry's own rules (``geometry.checks``: clear of the pin and its fillet,
+    the fillet fits the step to the web's face, ...) on the throw with this sector."""
+    new = dataclasses.replace(cw, outer_radius=s.r_outer, inner_radius=s.r_inner, angle=s.angle, thickness=s.thickness)
+    th = next(t for t in layout.throws if t.name == web[0])
+    g = dataclasses.replace(layout.geometry, throws=(dataclasses.replace(th.spec, counterweights=(new,)),))
+    try:
+        check_geometry(g)
+    except GeometryError as exc:
+        return exc.reason
+    return None
+
+
 def web_shape(web: Web, k: float, d: DrawnWeb, layout: ShaftLayout, spec: StudySpec, density: float) -> WebShape:
     """The sector that builds k U_w on this web (module doc)."""
     if k == 0.0:
@@ -219,7 +234,7 @@ def web_shape(web: Web, k: float, d: DrawnWeb, layout: ShaftLayout, spec: StudyS
         if s.thickness > t_web * (1 + 1e-12):
             reasons.append(f"thickness: {s.thickness * 1e3:.4g} mm, thicker than the web ({t_web * 1e3:.4g} mm)")
             continue
-        why = _clash(s.r_outer, s.r_inner, s.angle, layout, spec.envelope)
+        why = _clash(s.r_outer, s.r_inner, s.angle, layout, spec.envelope) or _geometry_refuses(layout, web, cw, s)
         if why:
             reasons.append(f"{free}: {why}")
             continue
@@ -276,3 +291,29 @@ def first_order(ff: FreeForces) -> tuple[float, float]:
 
 def unbalance_total(factors: dict[Web, float], drawn: dict[Web, DrawnWeb]) -> float:
     return float(np.sum([k * drawn[w].unbalance for w, k in factors.items()]))
+
+
+def achieved_unbalance(
+    layout: ShaftLayout, cand: Candidate, drawn: dict[Web, DrawnWeb]
+) -> dict[Web, tuple[float, float]]:
+    """Per placed web: (target k_w U_w, the m r of the written sector's solid) in kg m,
+    from the solid's exact mass properties (``geometry.mass``): the check of the sector
+    synthesis where the counterweight overlaps the web."""
+    from fe_crank.geometry.mass import mass_properties
+
+    out = {}
+    for s in cand.shapes:
+        if s.sector is None or s.factor == 0.0:
+            continue
+        cw = drawn[s.web].spec
+        new = dataclasses.replace(
+            cw,
+            outer_radius=s.sector.r_outer,
+            inner_radius=s.sector.r_inner,
+            angle=s.sector.angle,
+            thickness=s.sector.thickness,
+        )
+        th = next(t for t in layout.throws if t.name == s.web[0])
+        mp = mass_properties(layout.geometry, dataclasses.replace(th.spec, counterweights=(new,)))
+        out[s.web] = (s.factor * drawn[s.web].unbalance, mp.counterweight_unbalance(s.web[1]))
+    return out

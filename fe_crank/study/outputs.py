@@ -13,6 +13,7 @@ from pathlib import Path
 from fe_crank.errors import InputError
 from fe_crank.files import write_atomic
 from fe_crank.io.base import read_toml
+from fe_crank.io.includes import folder_tree
 from fe_crank.study.run import CandidateResult, StudyResult
 
 COLUMNS = (
@@ -39,8 +40,8 @@ def row(r: CandidateResult, recommended: bool) -> dict:
     return {
         "index": c.index,
         "placement": c.placement,
-        "rotating_rate_percent": c.rotating * 100,
-        "reciprocating_share_percent": c.reciprocating * 100,
+        "rotating_rate_percent": round(c.rotating * 100, 9),
+        "reciprocating_share_percent": round(c.reciprocating * 100, 9),
         "counterweight_mass_kg": r.counterweight_mass,
         "mass_change_kg": r.mass_change,
         "polar_inertia_change_kg_m2": r.polar_inertia_change,
@@ -65,6 +66,7 @@ def detail(r: CandidateResult) -> dict:
         "balance_rate_by_throw": {k: (None if math.isnan(v) else v) for k, v in r.rates.items()},
         "bearing_peak_n": r.bearing_peaks,
         "bearing_mean_n": r.bearing_means,
+        "web_moment_peak_nm": r.web_peaks,
         "limits_failed": list(r.failed),
         "not_buildable": list(c.refusals),
         "factors": {f"{w[0]}.{w[1]}": k for w, k in c.factors.items()},
@@ -89,7 +91,10 @@ def _fmt(v) -> str:
     return str(v)
 
 
-def write_tables(res: StudyResult, out: Path) -> dict[str, Path]:
+def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> dict[str, Path]:
+    """The table in CSV, JSON and markdown; ``achieved``: per web of the recommended
+    candidate (screened m r, the written sector solid's m r), kg m."""
+    achieved = achieved or {}
     best = res.recommended
     rows = [row(r, r is best) for r in res.results]
     buf = io.StringIO()
@@ -110,6 +115,9 @@ def write_tables(res: StudyResult, out: Path) -> dict[str, Path]:
         "n_dof": res.shaft.n_dof,
         "recommended": None if best is None else best.candidate.index,
         "why": res.why,
+        "recommended_unbalance_kg_m": {
+            f"{t}.{w}": {"screened": a, "written_solid": b} for (t, w), (a, b) in achieved.items()
+        },
         "notes": list(res.notes),
         "candidates": [detail(r) | {"recommended": r is best} for r in res.results],
     }
@@ -126,6 +134,12 @@ def write_tables(res: StudyResult, out: Path) -> dict[str, Path]:
         + res.why,
         "",
     ]
+    for (t, w), (a, b) in achieved.items():
+        lines.append(
+            f"* web {t}.{w}: m r {a:.5g} kg m screened, {b:.5g} kg m of the written sector's solid "
+            f"({(b / a - 1) * 100:+.2f} %)"
+        )
+    lines.append("")
     for r in res.results:
         if r.candidate.refusals or r.failed:
             lines.append(f"* #{r.candidate.index} {r.candidate.label}: " + "; ".join(r.candidate.refusals + r.failed))
@@ -232,6 +246,18 @@ def to_toml(data: dict, head: str = "") -> str:
 
 def _mm(x: float) -> str:
     return f"{x * 1e3!r} mm"
+
+
+def leaves_tree(lc_path: Path) -> bool:
+    """Whether the written load case names a file outside its folder tree (``fe-crank
+    check`` then wants ``--allow-outside-paths``)."""
+    root = folder_tree(lc_path)
+    data = read_toml(lc_path, record=False)
+    for key in ("engine", "geometry"):
+        v = data.get(key)
+        if isinstance(v, str) and not (lc_path.parent / v).resolve().is_relative_to(root):
+            return True
+    return False
 
 
 def write_candidate(res: StudyResult, r: CandidateResult, out: Path) -> tuple[Path, Path]:

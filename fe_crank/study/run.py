@@ -33,6 +33,7 @@ class CandidateResult:
     peak_specific_load: float  # Pa
     bearing_peaks: dict[str, float]  # bearing -> N over every state
     bearing_means: dict[str, float]  # bearing -> N, the largest cycle mean over the states
+    web_peaks: dict[str, float]  # web "<throw>.<web>" -> N m over every state
     max_web_moment: float  # N m, any web, state, angle
     web_where: str
     free_force: float  # N, first order at the highest speed
@@ -89,6 +90,7 @@ def _metrics(
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where, peaks, means = 0.0, "", {}, {}
+    web_peaks: dict[str, float] = {}
     wmax, wwhere = 0.0, ""
     web_names = [f"{th.name}.{w}" for th in layout.throws for w in (1, 2)]
     for sl in loads:
@@ -100,6 +102,8 @@ def _metrics(
             if p > peak:
                 peak, where = p, f"bearing {b.name}, {sl.state.label} at {sl.state.speed * 30 / math.pi:.0f} rpm"
         wm = np.hypot(sl.webs[..., 0], sl.webs[..., 1])
+        for i, name in enumerate(web_names):
+            web_peaks[name] = max(web_peaks.get(name, 0.0), float(wm[:, i].max()))
         i = int(np.argmax(wm.max(axis=0)))
         if float(wm[:, i].max()) > wmax:
             wmax = float(wm[:, i].max())
@@ -129,7 +133,23 @@ def _metrics(
         f"{k} {values[k][0]:.4g} > {lim:.4g} {values[k][1]}" for k, lim in spec.limits.items() if values[k][0] > lim
     )
     return CandidateResult(
-        cand, cw_mass, d_mass, d_j, u, rates, peak, where, spec_load, peaks, means, wmax, wwhere, f1, m1, failed
+        cand,
+        cw_mass,
+        d_mass,
+        d_j,
+        u,
+        rates,
+        peak,
+        where,
+        spec_load,
+        peaks,
+        means,
+        web_peaks,
+        wmax,
+        wwhere,
+        f1,
+        m1,
+        failed,
     )
 
 
