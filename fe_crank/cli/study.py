@@ -13,6 +13,7 @@ import logging
 import time
 from pathlib import Path
 
+from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, PRESETS
 from fe_crank.study.candidates import achieved_unbalance
@@ -36,6 +37,13 @@ def add_arguments(p) -> None:
         help="mesh preset (default: the load case's [mesh] size)",
     )
     p.add_argument("--cache-dir", default=str(DEFAULT_CACHE_DIR), metavar="DIR", help="mesh cache folder")
+    p.add_argument(
+        "--candidate",
+        type=int,
+        default=None,
+        metavar="N",
+        help="write candidate N's geometry and load case (default: the recommended one)",
+    )
 
 
 def run(args) -> int:
@@ -46,7 +54,16 @@ def run(args) -> int:
     res = run_study(lc, spec, size=size, cache_dir=Path(args.cache_dir), max_elements=lc.mesh.max_elements)
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
-    achieved = achieved_unbalance(res.shaft.layout, res.recommended.candidate, res.drawn) if res.recommended else {}
+    chosen = res.recommended
+    if args.candidate is not None:
+        if not 0 <= args.candidate < len(res.results):
+            raise InputError(f"there are candidates 0 to {len(res.results) - 1}", key="--candidate")
+        chosen = res.results[args.candidate]
+        if not chosen.candidate.buildable:
+            raise InputError(
+                f"candidate {args.candidate} cannot be built: {'; '.join(chosen.candidate.refusals)}", key="--candidate"
+            )
+    achieved = achieved_unbalance(res.shaft.layout, chosen.candidate, res.drawn) if chosen else {}
     paths = write_tables(res, out, achieved)
     pareto_plot(res, out / "study_pareto.png")
     print(
@@ -56,11 +73,14 @@ def run(args) -> int:
     print(f"table: {paths['md']}")
     if res.recommended is None:
         print(f"no recommendation: {res.why}")
+    else:
+        print(f"recommended #{res.recommended.candidate.index} ({res.recommended.candidate.label}): {res.why}")
+    if chosen is None:
         return 1
-    geo, lcp = write_candidate(res, res.recommended, out)
-    print(f"recommended #{res.recommended.candidate.index} ({res.recommended.candidate.label}): {res.why}")
+    geo, lcp = write_candidate(res, chosen, out)
+    print(f"written: candidate #{chosen.candidate.index} ({chosen.candidate.label})")
     for (t, w), (want, got) in achieved.items():
         print(f"  web {t}.{w}: m r {want:.5g} kg m screened, {got:.5g} kg m of the written sector's solid")
     flag = " --allow-outside-paths" if leaves_tree(lcp) else ""
     print(f"check it: fe-crank check {lcp}{flag}  (geometry {geo})")
-    return 0
+    return 0 if res.recommended is not None else 1

@@ -212,7 +212,12 @@ def web_shape(web: Web, k: float, d: DrawnWeb, layout: ShaftLayout, spec: StudyS
     t_web = layout.geometry.web_thickness
     reasons = []
     for free in spec.free:
-        given = {"r_outer": cw.outer_radius, "r_inner": cw.inner_radius, "thickness": cw.thickness, "angle": cw.angle}
+        given: dict[str, float | None] = {
+            "r_outer": cw.outer_radius,
+            "r_inner": cw.inner_radius,
+            "thickness": cw.thickness,
+            "angle": cw.angle,
+        }
         given[free] = None
         try:
             s = solve_sector(
@@ -249,7 +254,7 @@ def candidates(
     webs_of = placed_webs(spec, drawn, layout)
     check_buildable_as_drawn(spec, drawn, layout)
     density = layout.geometry.density
-    out = []
+    out: list[Candidate] = []
     for p in spec.placements:
         webs = webs_of[p.name]
         for f_rot in spec.rotating:

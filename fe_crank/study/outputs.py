@@ -10,6 +10,8 @@ import math
 import os
 from pathlib import Path
 
+import numpy as np
+
 from fe_crank.errors import InputError
 from fe_crank.files import write_atomic
 from fe_crank.io.base import read_toml
@@ -92,7 +94,7 @@ def _fmt(v) -> str:
 
 
 def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> dict[str, Path]:
-    """The table in CSV, JSON and markdown; ``achieved``: per web of the recommended
+    """The table in CSV, JSON and markdown; ``achieved``: per web of the written
     candidate (screened m r, the written sector solid's m r), kg m."""
     achieved = achieved or {}
     best = res.recommended
@@ -115,7 +117,7 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
         "n_dof": res.shaft.n_dof,
         "recommended": None if best is None else best.candidate.index,
         "why": res.why,
-        "recommended_unbalance_kg_m": {
+        "written_unbalance_kg_m": {
             f"{t}.{w}": {"screened": a, "written_solid": b} for (t, w), (a, b) in achieved.items()
         },
         "notes": list(res.notes),
@@ -245,7 +247,7 @@ def to_toml(data: dict, head: str = "") -> str:
 
 
 def _mm(x: float) -> str:
-    return f"{x * 1e3!r} mm"
+    return f"{x * 1e3:.12g} mm"
 
 
 def leaves_tree(lc_path: Path) -> bool:
@@ -284,8 +286,8 @@ def write_candidate(res: StudyResult, r: CandidateResult, out: Path) -> tuple[Pa
         if not own:
             t_out["counterweight"] = False
         else:
-            secs = {(s.sector.r_outer, s.sector.r_inner, s.sector.angle, s.sector.thickness) for s in own if s.sector}
-            if len(secs) != 1 or any(s.sector is None for s in own):
+            dims = [(x.sector.r_outer, x.sector.r_inner, x.sector.angle, x.sector.thickness) for x in own if x.sector]
+            if len(dims) != len(own) or not np.allclose(dims, dims[0], rtol=1e-9, atol=0.0):
                 raise InputError(
                     f"throw {th.name}: its webs' counterweights differ and a geometry file takes one per throw",
                     file=res.spec.file,
@@ -297,7 +299,7 @@ def write_candidate(res: StudyResult, r: CandidateResult, out: Path) -> tuple[Pa
             cw: dict = {
                 "outer_radius": _mm(s.r_outer),
                 "inner_radius": _mm(s.r_inner),
-                "angle": f"{math.degrees(s.angle)!r} deg",
+                "angle": f"{math.degrees(s.angle):.12g} deg",
                 "thickness": _mm(s.thickness),
                 "webs": [x.web[1] for x in own],
             }

@@ -89,7 +89,9 @@ def _metrics(
     cand: Candidate, loads, shaft: StudyShaft, drawn: dict[tuple, DrawnWeb], lc: LoadCase, spec: StudySpec, w_max: float
 ) -> CandidateResult:
     layout = shaft.layout
-    peak, where, peaks, means = 0.0, "", {}, {}
+    peak, where = 0.0, ""
+    peaks: dict[str, float] = {}
+    means: dict[str, float] = {}
     web_peaks: dict[str, float] = {}
     wmax, wwhere = 0.0, ""
     web_names = [f"{th.name}.{w}" for th in layout.throws for w in (1, 2)]
