@@ -188,6 +188,16 @@ def pareto_plot(res: StudyResult, path: Path) -> Path:
     lim = res.spec.limits
     if "max_main_bearing_load" in lim:
         ax.axhline(lim["max_main_bearing_load"] / 1e3, color="k", ls="--", lw=1, label="bearing load limit")
+    if "max_main_bearing_specific_load" in lim:
+        layout = res.shaft.layout
+        w = min(b.width for b in layout.bearings)
+        ax.axhline(
+            lim["max_main_bearing_specific_load"] * layout.geometry.journal_diameter * w / 1e3,
+            color="k",
+            ls="-.",
+            lw=1,
+            label="specific load limit (narrowest bearing)",
+        )
     if "max_counterweight_mass" in lim:
         ax.axvline(lim["max_counterweight_mass"], color="k", ls=":", lw=1, label="mass limit")
     if res.recommended is not None:
