@@ -20,7 +20,7 @@ import argparse
 import sys
 from types import ModuleType
 
-from fe_crank.cli import balance, check, compare, dynamics, mesh, torsion, validate
+from fe_crank.cli import balance, check, compare, dynamics, mesh, study, torsion, validate
 from fe_crank.errors import FeCrankError
 from fe_crank.logs import command_logging
 from fe_crank.version import __version__
@@ -34,6 +34,7 @@ COMMANDS: dict[str, tuple[ModuleType, str]] = {
     "mesh": (mesh, "build and mesh a crank geometry (cached); statistics and a picture"),
     "torsion": (torsion, "torsional vibration of the crank train: modes, Campbell, forced response"),
     "check": (check, "run load cases end to end and give verdicts (CI check)"),
+    "study": (study, "counterweight candidates (balance rate, placement) screened on the whole shaft"),
     "compare": (compare, "compare the numbers of two report folders of check; exit 0 equal, 1 different"),
 }
 

@@ -46,6 +46,9 @@ class ShaftFeOptions:
     #: keep each distinct piece's factorisation after its condensation, for whole fields
     #: (``fe.shaft_fields``; ``ShaftModel.free_factors`` releases them)
     keep_factors: bool = False
+    #: each web's counterweight as a centrifugal pattern of its own (``centrifugal_cw_1``,
+    #: ``centrifugal_cw_2``: a counterweight study's per-web mass factors)
+    counterweight_webs: bool = False
 
 
 @dataclass
@@ -142,7 +145,7 @@ def _condense_piece(mesh, kind: PieceKind, stubs, torque_faces, material, opt: S
     basis = cell_basis(mesh, 2)
     rho = material.density
     if kind == "throw":
-        pats = throw_patterns(basis, rho, opt.pin_half_angle, torque_faces)
+        pats = throw_patterns(basis, rho, opt.pin_half_angle, torque_faces, opt.counterweight_webs)
         rec = _recovery_nodes(basis, mesh, opt.recover or ())
     else:
         pats = end_patterns(basis, rho, torque_faces)

@@ -41,8 +41,10 @@ def _sub_basis(basis, elements: np.ndarray):
     )
 
 
-def body_loads(basis, density: float) -> dict[str, np.ndarray]:
-    """``centrifugal``, ``centrifugal_cw`` (zero without counterweights) and ``spin_up``."""
+def body_loads(basis, density: float, per_web: bool = False) -> dict[str, np.ndarray]:
+    """``centrifugal``, ``centrifugal_cw`` (zero without counterweights) and ``spin_up``;
+    ``per_web``: also ``centrifugal_cw_1`` and ``centrifugal_cw_2``, the counterweight of
+    each web alone (zero where the web has none; their sum is ``centrifugal_cw``)."""
     mesh = basis.mesh
     cw = np.unique(
         np.concatenate(
@@ -61,6 +63,11 @@ def body_loads(basis, density: float) -> dict[str, np.ndarray]:
     out = {"centrifugal": assemble_body_load(_sub_basis(basis, rest), radial)}
     out["centrifugal_cw"] = assemble_body_load(_sub_basis(basis, cw), radial) if cw.size else np.zeros(3 * basis.N)
     out["spin_up"] = assemble_body_load(basis, tangential)
+    for name in COUNTERWEIGHTS if per_web else ():
+        own = np.asarray((mesh.subdomains or {}).get(name, np.zeros(0, int)))
+        out[f"centrifugal_cw_{name[-1]}"] = (
+            assemble_body_load(_sub_basis(basis, own), radial) if own.size else np.zeros(3 * basis.N)
+        )
     return out
 
 
@@ -96,13 +103,16 @@ def surface_patterns(basis, boundary: str) -> tuple[dict[str, np.ndarray], tuple
     return out, (m0, m1, m2)
 
 
-def throw_patterns(basis, density: float, half_angle: float, torque_faces=()) -> dict[str, np.ndarray]:
-    """Pin, body and torque patterns of a throw (module doc)."""
+def throw_patterns(
+    basis, density: float, half_angle: float, torque_faces=(), per_web: bool = False
+) -> dict[str, np.ndarray]:
+    """Pin, body and torque patterns of a throw (module doc); ``per_web``: the counterweight
+    of each web as a centrifugal pattern of its own (``body_loads``)."""
     out = {}
     surface = pin_surface(basis, "crankpin")
     for name in pin_cases():
         out[name], _ = pin_pressure_load(basis, unit_force(name), half_angle=half_angle, surface=surface)
-    out.update(body_loads(basis, density))
+    out.update(body_loads(basis, density, per_web))
     for face in torque_faces:
         out[f"torque_{face}"] = face_torque_load(basis, 1.0, boundary=face)
     return out

@@ -1,0 +1,201 @@
+"""The counterweight study end to end: candidates, their screening on the whole shaft,
+the table's numbers and the recommendation by the study's rule (docs/study.md)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fe_crank.balance.mechanism import rotating_mass
+from fe_crank.errors import InputError
+from fe_crank.fe.whole_shaft import throw_masses
+from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
+from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.io.loadcase import LoadCase
+from fe_crank.mechanism.cycles import engine_cycles
+from fe_crank.study.candidates import Candidate, DrawnWeb, candidates, drawn_webs, first_order, residual
+from fe_crank.study.screen import StudyShaft, candidate_loads, engine_states, state_base, study_shaft
+from fe_crank.study.spec import StudySpec
+
+
+@dataclass(frozen=True)
+class CandidateResult:
+    candidate: Candidate
+    counterweight_mass: float  # kg, the shaft's counterweights together
+    mass_change: float  # kg against the shaft as drawn
+    polar_inertia_change: float  # kg m^2 against the shaft as drawn
+    unbalance: float  # kg m, sum of the counterweights' m r
+    rates: dict[str, float]  # throw -> counterweights' m r / rotating m r
+    peak_bearing_load: float  # N, any bearing, state, angle
+    peak_where: str
+    peak_specific_load: float  # Pa
+    bearing_peaks: dict[str, float]  # bearing -> N over every state
+    bearing_means: dict[str, float]  # bearing -> N, the largest cycle mean over the states
+    web_peaks: dict[str, float]  # web "<throw>.<web>" -> N m over every state
+    max_web_moment: float  # N m, any web, state, angle
+    web_where: str
+    free_force: float  # N, first order at the highest speed
+    free_moment: float  # N m
+    failed: tuple[str, ...]  # limits not met (with the values)
+
+    @property
+    def meets_limits(self) -> bool:
+        return self.candidate.buildable and not self.failed
+
+
+@dataclass(frozen=True)
+class StudyResult:
+    spec: StudySpec
+    loadcase: LoadCase
+    shaft: StudyShaft
+    drawn: dict
+    states: tuple
+    results: tuple[CandidateResult, ...]
+    recommended: CandidateResult | None
+    why: str
+    residual_speed: float  # rad/s
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+
+def _layout(lc: LoadCase):
+    g = lc.geometry
+    if not isinstance(g, CrankGeometry) or lc.material is None or not whole_shaft_wanted(g, lc.engine):
+        raise InputError(
+            "the study needs a parametric geometry on a whole shaft (several throws, or a [shaft] section) "
+            "and a [material]",
+            file=lc.source_file,
+            key="geometry",
+        )
+    return engine_shaft_layout(
+        g, lc.engine, geometry_file=g.file or lc.source_file, engine_file=lc.engine_file or lc.source_file
+    )
+
+
+def prepare(lc: LoadCase, spec: StudySpec):
+    """The candidates and the drawn webs, every input check done (before any meshing)."""
+    layout = _layout(lc)
+    mass = throw_masses(layout)
+    drawn = drawn_webs(layout, mass)
+    if not drawn:
+        raise InputError(
+            "the geometry draws no counterweight: the study scales the drawn ones", file=spec.file, key="study"
+        )
+    return layout, drawn, candidates(spec, drawn, layout, lc.engine)
+
+
+def _metrics(
+    cand: Candidate, loads, shaft: StudyShaft, drawn: dict[tuple, DrawnWeb], lc: LoadCase, spec: StudySpec, w_max: float
+) -> CandidateResult:
+    layout = shaft.layout
+    peak, where = 0.0, ""
+    peaks: dict[str, float] = {}
+    means: dict[str, float] = {}
+    web_peaks: dict[str, float] = {}
+    wmax, wwhere = 0.0, ""
+    web_names = [f"{th.name}.{w}" for th in layout.throws for w in (1, 2)]
+    for sl in loads:
+        mag = np.hypot(sl.bearings[..., 0], sl.bearings[..., 1])  # (n, nb)
+        for j, b in enumerate(layout.bearings):
+            p, m = float(mag[:, j].max()), float(mag[:, j].mean())
+            peaks[b.name] = max(peaks.get(b.name, 0.0), p)
+            means[b.name] = max(means.get(b.name, 0.0), m)
+            if p > peak:
+                peak, where = p, f"bearing {b.name}, {sl.state.label} at {sl.state.speed * 30 / math.pi:.0f} rpm"
+        wm = np.hypot(sl.webs[..., 0], sl.webs[..., 1])
+        for i, name in enumerate(web_names):
+            web_peaks[name] = max(web_peaks.get(name, 0.0), float(wm[:, i].max()))
+        i = int(np.argmax(wm.max(axis=0)))
+        if float(wm[:, i].max()) > wmax:
+            wmax = float(wm[:, i].max())
+            wwhere = f"web {web_names[i]}, {sl.state.label} at {sl.state.speed * 30 / math.pi:.0f} rpm"
+    dj = layout.geometry.journal_diameter
+    spec_load = max(peaks[b.name] / (dj * b.width) for b in layout.bearings)
+    f1, m1 = first_order(residual(lc.engine, w_max, drawn, cand.factors))
+    cw_mass = sum(k * drawn[w].mass for w, k in cand.factors.items())
+    d_mass = sum((k - 1.0) * drawn[w].mass for w, k in cand.factors.items())
+    d_j = sum((k - 1.0) * drawn[w].polar_inertia for w, k in cand.factors.items())
+    u = sum(k * drawn[w].unbalance for w, k in cand.factors.items())
+    rates = {}
+    for th in layout.throws:
+        t = lc.engine.throw(th.name)
+        mr = rotating_mass(lc.engine, th.name) * t.crank_radius
+        own = sum(k * drawn[w].unbalance for w, k in cand.factors.items() if w[0] == th.name)
+        rates[th.name] = own / mr if mr > 0 else math.nan
+    values = {
+        "max_main_bearing_load": (peak, "N"),
+        "max_main_bearing_specific_load": (spec_load, "Pa"),
+        "max_web_bending_moment": (wmax, "N m"),
+        "max_free_force": (f1, "N"),
+        "max_free_moment": (m1, "N m"),
+        "max_counterweight_mass": (cw_mass, "kg"),
+    }
+    failed = tuple(
+        f"{k} {values[k][0]:.4g} > {lim:.4g} {values[k][1]}" for k, lim in spec.limits.items() if values[k][0] > lim
+    )
+    return CandidateResult(
+        cand,
+        cw_mass,
+        d_mass,
+        d_j,
+        u,
+        rates,
+        peak,
+        where,
+        spec_load,
+        peaks,
+        means,
+        web_peaks,
+        wmax,
+        wwhere,
+        f1,
+        m1,
+        failed,
+    )
+
+
+def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[CandidateResult | None, str]:
+    """The candidate the rule picks among the buildable ones meeting every limit."""
+    ok = [r for r in results if r.meets_limits]
+    if not ok:
+        n_build = sum(r.candidate.buildable for r in results)
+        return None, (
+            f"no candidate meets every limit ({n_build} of {len(results)} buildable; "
+            "the table says which limit each misses)"
+        )
+    if rule == "least_mass":
+        best = min(ok, key=lambda r: (round(r.counterweight_mass, 9), r.peak_bearing_load, r.candidate.index))
+        why = (
+            f"the least counterweight mass ({best.counterweight_mass:.3f} kg) of the {len(ok)} buildable "
+            f"candidates meeting every limit; peak main-bearing load {best.peak_bearing_load / 1e3:.2f} kN"
+        )
+    else:
+        best = min(ok, key=lambda r: (round(r.peak_bearing_load, 6), r.counterweight_mass, r.candidate.index))
+        why = (
+            f"the least peak main-bearing load ({best.peak_bearing_load / 1e3:.2f} kN) of the {len(ok)} buildable "
+            f"candidates meeting every limit; counterweight mass {best.counterweight_mass:.3f} kg"
+        )
+    return best, why
+
+
+def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=None) -> StudyResult:
+    """The study (module doc)."""
+    layout, drawn, cands = prepare(lc, spec)
+    assert lc.material is not None
+    cycles = engine_cycles(lc.engine, lc.operating, file=lc.source_file)
+    states = engine_states(lc.engine, lc.operating, cycles)
+    shaft = study_shaft(layout, lc.material, lc.fe, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    bases = [state_base(shaft, s) for s in states]
+    w_max = max(s.speed for s in states)
+    results = []
+    for c in cands:
+        loads = [candidate_loads(shaft, b, c.factors, drawn) for b in bases]
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max))
+    best, why = recommend(tuple(results), spec.rule)
+    notes = []
+    if lc.engine.gas is None:
+        notes.append("the engine has no gas table: full load is the inertia load, no separate no-load state")
+    if lc.torsion is not None:
+        notes.append("journal torques quasi-static (the torsional stage's vibratory torque enters the full check only)")
+    return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes))
