@@ -81,8 +81,10 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
     base = state_base(res.shaft, res.states[0])
     on = candidate_loads(res.shaft, base, ones, drawn)
     off = candidate_loads(res.shaft, base, dict.fromkeys(drawn, 0.0), drawn)
-    ref_on = np.stack([b.with_counterweights.load_n for b in full.bearings], axis=1)
-    ref_off = np.stack([b.without_counterweights.load_n for b in full.bearings], axis=1)
+    # the stated bearing law's loads (the check's main-bearing criteria envelope them over a
+    # stiffness range; the screening stays on the stated law, docs/study.md)
+    ref_on = np.stack([b.load_n for b in full.cycles[0].bearings], axis=1)
+    ref_off = np.stack([b.load_n for b in full.cycles[1].bearings], axis=1)
     scale = np.abs(ref_on).max()
     assert np.abs(on.bearings - ref_on).max() <= 1e-9 * scale
     assert np.abs(off.bearings - ref_off).max() <= 1e-9 * scale
