@@ -18,9 +18,7 @@ NOT_RUN = {
     "make demo": "runs fe-crank check loadcases/ itself (minutes); CI runs it",
     "make test": "runs this test suite",
     "pip install": "installation",
-    "fe-crank check loadcases/": "the whole shipped batch (minutes): make demo",
-    "fe-crank check loadcases/single_cylinder.toml --mesh-size coarse": "sign-off mesh, over a minute",
-    "fe-crank check loadcases/inline4_rated.toml --mesh-size coarse": "the whole shaft on the sign-off mesh, minutes",
+    "fe-crank check loadcases/": "the shipped cases (the batch: make demo; the worked example fails by design, exit 1)",
 }
 
 

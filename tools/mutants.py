@@ -129,9 +129,9 @@ MUTANTS = (
     Mutant(
         "joint-slip-friction",
         "fe_crank/assess/cw_joint.py",
-        "slip_safety=max(f_kr, 0.0) * joint.interface_friction / loads.transverse_max",
-        "slip_safety=max(f_kr, 0.0) * joint.thread_friction / loads.transverse_max",
-        ("tests/test_assess_cw_joint.py", "tests/test_bolt_criteria.py"),
+        "mu_t = joint.interface_friction",
+        "mu_t = joint.thread_friction",
+        ("tests/test_bolt_eccentric.py", "tests/test_assess_cw_joint.py"),
         "the VDI 2230 slip safety (R12) with the thread friction instead of the joint interface friction",
     ),
 )
