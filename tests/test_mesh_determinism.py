@@ -85,3 +85,18 @@ def test_the_cache_key_holds_what_the_mesher_depends_on():
     for name, value in {**SESSION_OPTIONS, **GENERATE_OPTIONS}.items():
         assert key["gmsh_options"][name] == value
     assert SESSION_OPTIONS["General.NumThreads"] == 1 and GENERATE_OPTIONS["Mesh.RandomSeed"] == 1
+
+
+def test_a_cad_mesh_key_moves_with_the_mesher_options(monkeypatch):
+    """The CAD route's cache key holds the same mesher key as the parametric route's: a
+    changed gmsh generation option gives another key (no mesh of other options reused)."""
+    from fe_crank.cad.config import CadInput
+    from fe_crank.cad.mesh import cad_cache_key
+    from fe_crank.mesh import options
+
+    cad = CadInput(file=Path("crank.step"), density=7850.0)
+    opt = options.resolve_options("test")
+    before = cad_cache_key(cad, "0" * 64, "1", opt)
+    assert cad_cache_key(cad, "0" * 64, "1", opt) == before
+    monkeypatch.setitem(options.GENERATE_OPTIONS, "Mesh.RandomSeed", 2)
+    assert cad_cache_key(cad, "0" * 64, "1", opt) != before

@@ -34,19 +34,17 @@ import numpy as np
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import ThrowFeatures
 from fe_crank.errors import GeometryError
+from fe_crank.mesh.cache import mesher_key
 from fe_crank.mesh.fields import apply_fields, bore_field, surface_field, torus_distance, torus_field, web_field
 from fe_crank.mesh.generate import finish, generate, through_cache
-from fe_crank.mesh.options import CACHE_FORMAT, DEFAULT_CACHE_DIR, FILLET_SAFETY, MeshOptions, resolve_options
+from fe_crank.mesh.options import DEFAULT_CACHE_DIR, FILLET_SAFETY, MeshOptions, resolve_options
 from fe_crank.mesh.types import ThrowMesh
 
 
 def cad_cache_key(cad: CadInput, sha256: str, throw: str, opt: MeshOptions) -> str:
     """SHA-256 (hex, 20 chars) of the file's bytes, the ``[cad]`` entries that change
-    the solid, the throw, the mesh options and the versions."""
-    import gmsh
-
-    from fe_crank.version import __version__
-
+    the solid, the throw, the mesh options and what every mesh depends on beside them
+    (``mesh.cache.mesher_key``: the gmsh options, the versions, the cache format)."""
     opts = dataclasses.asdict(opt)
     if opts["web_divisions"] is None:  # the meshes made before the web control keep their keys
         del opts["web_divisions"]
@@ -64,9 +62,7 @@ def cad_cache_key(cad: CadInput, sha256: str, throw: str, opt: MeshOptions) -> s
         },
         "throw": throw,
         "options": opts,
-        "fe_crank": __version__,
-        "gmsh": gmsh.__version__,
-        "format": CACHE_FORMAT,
+        "mesher": mesher_key(),  # the gmsh options, versions and cache format, as the parametric route's
     }
     return hashlib.sha256(json.dumps(payload, sort_keys=True, default=repr).encode()).hexdigest()[:20]
 
