@@ -103,7 +103,7 @@ class Cylinder:
     firing_offset: float = 0.0  # rad of cycle angle
     articulation: Articulation | None = None
     #: m, axial position of the rod's big end on the crankpin from the pin's middle (+z to
-    #: the rear); None: the default layout (``fe_crank.fe.pin_patches.rod_positions``)
+    #: the rear); None: the default layout (``fe_crank.fe.throw.pin_patches.rod_positions``)
     pin_position: float | None = None
 
     @property
@@ -140,7 +140,7 @@ class Engine:
     #: "trunk_piston" (default) or "crosshead": sets UR M53's additional bending stress (section 4)
     construction: Literal["trunk_piston", "crosshead"] = "trunk_piston"
     #: False for a machine that burns nothing in its cylinders (air motor, compressor): the
-    #: UR M53 route, written for I.C. engines, is then an analogy (``assess.m53_basis``)
+    #: UR M53 route, written for I.C. engines, is then an analogy (``rules.m53.basis``)
     internal_combustion: bool = True
 
     @property

@@ -10,7 +10,7 @@ concerns (empty: not one throw's); notes that differ only in their throws are sh
 once with all of them (``grouped``).
 
 Stages add notes to their own results (the dynamics' ``warnings``, the assessment's
-``notes``); ``fe_crank.check.notes`` adds the checks of the outputs themselves and
+``notes``); ``fe_crank.pipeline.notes`` adds the checks of the outputs themselves and
 groups them.  The report shows each note beside the criteria it concerns, results.json
 lists them under ``warnings``, the JUnit XML under the test cases they concern.
 """

@@ -1,6 +1,6 @@
 """What the stages of one load case produce, one typed field per stage (``CaseOutputs``).
 
-The stages run in order (``fe_crank.check.stages``); each takes the frozen outputs of
+The stages run in order (``fe_crank.pipeline.stages``); each takes the frozen outputs of
 the stages before it and returns its own frozen result, which ``CaseOutputs`` collects.
 ``WholeShaftOutput`` and ``ShaftHotSpot`` are the assessment's types (``assess.shaft``),
 named here too.
@@ -13,15 +13,13 @@ from dataclasses import dataclass, field
 
 from fe_crank.assess.case import Assessment
 from fe_crank.assess.loads import AssessedLoads
-from fe_crank.assess.m53 import M53Geometry
-from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.shaft import ShaftHotSpot, WholeShaftOutput
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad.features import CadFeatures
 from fe_crank.fe.convergence import ConvergenceStudy
-from fe_crank.fe.shaft_fields import ShaftFields
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.shaft.fields import ShaftFields
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.geometry.mass import ThrowSolids
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.io.loadcase import LoadCase
@@ -29,6 +27,8 @@ from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.mesh.plan import MeshPlan
 from fe_crank.mesh.types import ThrowMesh
+from fe_crank.rules.m53.calculation import M53Geometry
+from fe_crank.rules.m53.scf_mode import ScfResult
 from fe_crank.throw_scope import throws_of
 from fe_crank.torsion.analysis import TorsionResult
 from fe_crank.torsion.misfire import MisfireTorsion
@@ -42,7 +42,7 @@ class GeometryModel:
     properties of the parametric throws whose inertias the torsional stage needs (None:
     none needed), for a CAD geometry everything recognised in the file, and the whole
     shaft placed by the engine when it is modelled too (``shaft``; None: the per-throw model
-    alone, ``check.stages.shaft_layout``)."""
+    alone, ``pipeline.stages.shaft_layout``)."""
 
     plan: MeshPlan
     throws: dict[str, ThrowGeometry]

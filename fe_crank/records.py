@@ -1,6 +1,6 @@
 """The record of one checked load case: ``CaseResult`` and its ``Provenance``.
 
-``CaseResult`` is what ``fe_crank.check.case.run_case`` returns and the batch, the CLI's
+``CaseResult`` is what ``fe_crank.pipeline.case.run_case`` returns and the batch, the CLI's
 summary, ``case.json`` and the JUnit XML read: the verdict, the criteria, the stage
 timings, the warnings beside the verdict and what produced the result.  Frozen and
 picklable (it travels back from worker processes).
@@ -152,7 +152,7 @@ class CaseResult:
     error_stage: str = ""
     started: str = ""  # ISO 8601 UTC
     provenance: Provenance | None = field(default=None, compare=False)
-    warnings: tuple[Note, ...] = ()  # warnings shown beside the verdict (fe_crank.check.notes)
+    warnings: tuple[Note, ...] = ()  # warnings shown beside the verdict (fe_crank.pipeline.notes)
     planned_criteria: tuple[str, ...] = ()  # the load case's criteria (listed as errored when the case errors)
 
     @property

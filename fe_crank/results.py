@@ -1,7 +1,7 @@
 """Result types shared by every layer (plain, frozen, picklable data).
 
-``CriterionResult`` is the verdict on one criterion (``fe_crank.assess.verdict.judge``
-makes the assessment's; ``fe_crank.check.verdict`` collects every stage's);
+``CriterionResult`` is the verdict on one criterion (``fe_crank.assess.criteria.verdict.judge``
+makes the assessment's; ``fe_crank.pipeline.verdict`` collects every stage's);
 ``StageTime`` one stage's wall time; ``Location`` where a criterion's value occurs (its
 words are made in ``fe_crank.report.locations``).  The record of a whole case, ``CaseResult``, is in
 ``fe_crank.records``.
@@ -74,9 +74,9 @@ class CriterionResult:
     full-load curve, or the overspeed; () for a criterion that does not depend on
     speed); ``speed_rpm`` the speed of ``value`` (None: no speed).  ``where``: where the
     value occurs (``Location``); ``remarks``: the words the verdict line carries after it
-    (the convergence study's factor, the qualifiers of ``assess.qualifiers``);
+    (the convergence study's factor, the qualifiers of ``assess.criteria.qualifiers``);
     ``location``: the verdict line's words of both, made by the verdict
-    (``fe_crank.check.verdict.decide`` with ``fe_crank.report.locations``).
+    (``fe_crank.pipeline.verdict.decide`` with ``fe_crank.report.locations``).
     """
 
     name: str

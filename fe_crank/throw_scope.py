@@ -1,6 +1,6 @@
 """Which throws of the engine one throw model stands for.
 
-The check meshes and solves one model per key of ``fe_crank.check.throw_keys`` and the
+The check meshes and solves one model per key of ``fe_crank.pipeline.throw_keys`` and the
 assessment (``fe_crank.assess.assess_case``) takes the meshes and unit solutions in
 dicts keyed alike.  A key is either the name of one throw of the engine (the model is
 that throw) or ``ALL_THROWS`` (one model stands for every throw, each assessed with its

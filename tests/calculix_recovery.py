@@ -17,7 +17,7 @@ stresses in three steps:
 3. each mid-edge node gets the mean of its edge's two corner values, and every node the
    unweighted mean over the elements that share it.
 
-fe-crank (``fe.stress.stress_at_selected_nodes``) evaluates each element's stress at its
+fe-crank (``fe.core.stress.stress_at_selected_nodes``) evaluates each element's stress at its
 10 nodes from the P2 field itself and averages the same way.  On a straight-sided
 element the stress is linear, so steps 1-3 reproduce it exactly and both recoveries give
 the same nodal average; they differ only where a curved (isoparametric) element shares
@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 from skfem import Basis, ElementTetP2
 
-from fe_crank.fe.stress import elements_of_nodes, stress_at_quadrature
+from fe_crank.fe.core.stress import elements_of_nodes, stress_at_quadrature
 
 GAUSS_A = (5.0 + 3.0 * np.sqrt(5.0)) / 20.0
 GAUSS_B = (5.0 - np.sqrt(5.0)) / 20.0

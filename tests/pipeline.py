@@ -1,6 +1,6 @@
 """Running the check's own stages in a test, to hand their typed outputs to the
 assessment, the report or a check of their own (no fakes: the stage functions of
-``fe_crank.check.stages``, the same calls ``fe-crank check`` makes)."""
+``fe_crank.pipeline.stages``, the same calls ``fe-crank check`` makes)."""
 
 from __future__ import annotations
 
@@ -9,16 +9,16 @@ from pathlib import Path
 
 from fe_crank.assess.case import AssessInputs
 from fe_crank.assess.throw_geometry import parametric_throws
-from fe_crank.check.notes import case_notes
-from fe_crank.check.options import CheckOptions
-from fe_crank.check.stages import Run, run_stages
-from fe_crank.check.stages import assess_inputs as stage_assess_inputs
-from fe_crank.check.verdict import decide
 from fe_crank.geometry.mass import throw_solids
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.mesh.plan import SIGN_OFF_RULE, mesh_plan
 from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel
+from fe_crank.pipeline.notes import case_notes
+from fe_crank.pipeline.options import CheckOptions
+from fe_crank.pipeline.stages import Run, run_stages
+from fe_crank.pipeline.stages import assess_inputs as stage_assess_inputs
+from fe_crank.pipeline.verdict import decide
 from fe_crank.records import CaseResult
 from fe_crank.report import write_case_report
 
@@ -51,7 +51,7 @@ def assess_inputs(
     lc: LoadCase, unit_solutions: dict, *, models: dict | None = None, balance=None, **kw
 ) -> AssessInputs:
     """``AssessInputs`` of a load case for hand-picked FE unit solutions (key -> solution),
-    by the check's own ``check.stages.assess_inputs`` on the outputs of the stages they stand
+    by the check's own ``pipeline.stages.assess_inputs`` on the outputs of the stages they stand
     in for: the cycles by the dynamics stage's ``engine_cycles``, each throw's geometry (the
     counterweights' mass properties, the UR M53 dimensions) as the geometry stage gives it;
     ``kw``: fields of ``AssessInputs`` to set instead."""

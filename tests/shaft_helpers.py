@@ -6,9 +6,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.fe.shaft_cases import solve_cases
-from fe_crank.fe.shaft_cycle import solve_cycle
-from fe_crank.fe.shaft_model import build_shaft_model
+from fe_crank.fe.shaft.cases import solve_cases
+from fe_crank.fe.shaft.cycle import solve_cycle
+from fe_crank.fe.shaft.model import build_shaft_model
 from fe_crank.geometry.shaft import MainBearing, ShaftLayout
 from fe_crank.geometry.spec import BearingLaw
 from fe_crank.mesh.extrude import extrude, round_disc

@@ -21,8 +21,8 @@ import fe_crank.balance.sector as sector
 import fe_crank.geometry.spec as spec
 import fe_crank.io.geometry as geo_io
 from fe_crank.assess.adapters import counterweights_of, m53_geometry_of, stress_area
-from fe_crank.assess.m53 import out_of_range
 from fe_crank.geometry.mass import mass_properties, throw_solids
+from fe_crank.rules.m53.calculation import out_of_range
 
 
 @pytest.fixture(scope="module")

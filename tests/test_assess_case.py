@@ -14,7 +14,7 @@ from pipeline import assess_inputs
 from skfem import MeshTet, MeshTet2
 from verification_meshes import as_throw_mesh
 
-import fe_crank.fe.unit_cases as fe
+import fe_crank.fe.throw.unit_cases as fe
 from fe_crank.assess import assess_case, assessed_groups, to_json
 from fe_crank.assess.results import load_schema
 from fe_crank.errors import InputError
@@ -181,7 +181,7 @@ def test_criterion_that_cannot_be_evaluated_is_an_error(tmp_path, solved):
 
 def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solved):
     from fe_crank.assess import CounterweightData, M53Geometry, assess_throw, evaluate_criteria, unit_stresses
-    from fe_crank.assess.scf import compute_scf
+    from fe_crank.rules.m53.scf_mode import compute_scf
 
     p = tmp_path / "c.toml"
     p.write_text(

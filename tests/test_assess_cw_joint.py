@@ -39,11 +39,11 @@ import math
 
 import pytest
 
-from fe_crank.assess import vdi2230
 from fe_crank.assess.cw_joint import check_joint, counterweight_loads
 from fe_crank.errors import InputError
 from fe_crank.geometry.spec import BoltedJoint
 from fe_crank.io.geometry import geometry_from_dict
+from fe_crank.rules import vdi2230
 
 JOINT = BoltedJoint(
     count=1,

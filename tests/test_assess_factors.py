@@ -14,11 +14,11 @@ import pytest
 from fe_crank.assess import assess_throw, to_json
 from fe_crank.assess.case import Assessment
 from fe_crank.assess.factors import factors, reliability_factor, size_factor, surface_factor
-from fe_crank.assess.m53 import M53Geometry
 from fe_crank.assess.results import load_schema
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.errors import InputError
 from fe_crank.io.material import load_material
+from fe_crank.rules.m53.calculation import M53Geometry
 
 
 def test_surface_factor_table_6_2():

@@ -1,4 +1,4 @@
-"""``assess.group`` on hand-built unit stresses: the tie rule of ``first_extreme``, the
+"""``assess.group.assessment`` on hand-built unit stresses: the tie rule of ``first_extreme``, the
 section of each group, and ``assess_group``'s static, overspeed and fatigue results
 against hand values (uniaxial and pure-shear unit states: von Mises |sigma| or
 sqrt(3) |tau|).  Tie-band values sit 5e-10 (inside) and 2e-9 (outside) relative from the
@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from fe_crank.assess.factors import factors
-from fe_crank.assess.group import assess_group, first_extreme, section_diameter
+from fe_crank.assess.group.assessment import assess_group, first_extreme, section_diameter
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.io.material import load_material
 

@@ -1,4 +1,4 @@
-"""``assess.groups`` on the small bar 'throw' of test_assess_case.py (real mesh, real
+"""``assess.group.nodes`` on the small bar 'throw' of test_assess_case.py (real mesh, real
 scikit-fem solve): which groups are taken and which nodes they hold, against the mesh
 geometry, and the unit stresses' bookkeeping against the whole-mesh nodal average.
 
@@ -15,8 +15,8 @@ import pytest
 from test_assess_case import L, _bar
 from verification_meshes import as_throw_mesh
 
-import fe_crank.fe.unit_cases as fe
-from fe_crank.assess.groups import assessed_groups, unit_stresses
+import fe_crank.fe.throw.unit_cases as fe
+from fe_crank.assess.group.nodes import assessed_groups, unit_stresses
 from fe_crank.errors import InputError
 from fe_crank.io.material import load_material
 

@@ -10,11 +10,11 @@ import pytest
 
 from fe_crank import model
 from fe_crank.assess import assess_throw
-from fe_crank.assess.m53_basis import additional_bending, m53_basis
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.errors import InputError
 from fe_crank.io.engine import build_engine
 from fe_crank.io.material import load_material, parse_material
+from fe_crank.rules.m53.basis import additional_bending, m53_basis
 
 D = 0.05
 M_A, T_M = 2000.0, 3000.0  # N m

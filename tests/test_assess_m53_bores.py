@@ -14,7 +14,7 @@ import math
 
 import pytest
 
-from fe_crank.assess import m53
+from fe_crank.rules.m53 import calculation as m53
 
 BASE = {"s": 0.2, "w": 0.3, "b": 1.5, "r": 0.05, "dG": 0.0, "dH": 0.0, "tH": 0.0, "tG": 0.0}
 BORED = {**BASE, "dG": 0.4, "dH": 0.3}

@@ -1,4 +1,4 @@
-"""UR M53 oil-bore outlet (fe_crank.assess.m53_oil_bore) against a hand calculation
+"""UR M53 oil-bore outlet (fe_crank.rules.m53.oil_bore) against a hand calculation
 with the rule's formulas (3.1, 3.4, 2.1.2.2, 2.2.3, 5.2, 6, 7), arithmetic shown.  The
 coefficients are those of the rule text as reproduced clause by clause in the Korean
 Register's Rules for the Classification of Steel Ships, Pt 5, Annex 5-3 (2025):
@@ -20,12 +20,12 @@ import math
 import numpy as np
 import pytest
 
-from fe_crank.assess import m53
-from fe_crank.assess import m53_oil_bore as ob
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import assess_throw
 from fe_crank.io.material import load_material
 from fe_crank.report.locations import criterion_location
+from fe_crank.rules.m53 import calculation as m53
+from fe_crank.rules.m53 import oil_bore as ob
 
 GEO = m53.M53Geometry(
     pin_diameter=0.050,
@@ -99,7 +99,7 @@ def test_validity_range_d_o():
 def test_outlet_in_the_throw_assessment_and_q_criterion():
     """assess_throw adds the outlet beside the fillets; the M53 Q criterion takes the
     smallest Q of the three and names the outlet when it governs."""
-    from fe_crank.assess.criteria import evaluate_criteria
+    from fe_crank.assess.criteria.judge import evaluate_criteria
     from fe_crank.io.criteria import build_criteria
 
     n = 8

@@ -1,4 +1,4 @@
-"""UR M53 oil-bore outlet (fe_crank.assess.m53_oil_bore): the bored pin section, K at the
+"""UR M53 oil-bore outlet (fe_crank.rules.m53.oil_bore): the bored pin section, K at the
 outlet, the range of d_O at both ends and without a bore, the record's texts -- by hand.
 Geometry and loads as in tests/test_assess_m53_oil_bore.py (D = 50 mm, D_O = 6 mm at
 30 deg, arm L/2 = 60 mm, F_R = 20 kN cos, F_T = 5 kN sin, 500 N m sin)."""
@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from test_assess_m53_oil_bore import GEO, PIN, TH, TQ  # the same throw and cycle as the hand calculations there
 
-from fe_crank.assess import m53
-from fe_crank.assess import m53_oil_bore as ob
+from fe_crank.rules.m53 import calculation as m53
+from fe_crank.rules.m53 import oil_bore as ob
 
 
 def test_nominal_bending_of_a_bored_pin_by_hand():

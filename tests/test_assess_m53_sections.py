@@ -9,7 +9,7 @@ import math
 
 import pytest
 
-from fe_crank.assess import m53
+from fe_crank.rules.m53 import calculation as m53
 
 # D = 100, D_G = 120, crank radius 90 mm, W = 30, B = 150, R_H = 5, R_G = 6 mm (s = 0.2,
 # w = 0.3, b = 1.5, r = 0.05 / 0.06: inside 3.1), bores D_BH = 30, D_BG = 40 mm

@@ -1,4 +1,4 @@
-"""``assess.peak``: the tie rule of ``max_over_cycle``, the bound B of ``peak_bound`` by
+"""``assess.group.peak``: the tie rule of ``max_over_cycle``, the bound B of ``peak_bound`` by
 hand, and which nodes ``group_peak`` evaluates.
 
 On hand-built unit stresses with one unit case and uniaxial unit stresses the bound is exact (B = max_t |a(t)|
@@ -19,8 +19,8 @@ import math
 import numpy as np
 import pytest
 
-from fe_crank.assess.group import first_extreme
-from fe_crank.assess.peak import BOUND_RTOL, TIE_RTOL, group_peak, max_over_cycle, peak_bound
+from fe_crank.assess.group.assessment import first_extreme
+from fe_crank.assess.group.peak import BOUND_RTOL, TIE_RTOL, group_peak, max_over_cycle, peak_bound
 from fe_crank.assess.stress import von_mises
 from fe_crank.assess.superpose import UnitStresses, stress_history
 

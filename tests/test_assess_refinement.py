@@ -1,5 +1,5 @@
 """The convergence study's factors in the assessment (``fe_crank.assess.refinement``, passed
-once into ``assess.criteria.judge_criteria``), the verdict aggregating (``check.verdict.decide``):
+once into ``assess.criteria.judge.judge_criteria``), the verdict aggregating (``pipeline.verdict.decide``):
 the FE stress criteria at the hot spots the study follows are taken at the finest level's
 peak (or its Richardson extrapolation), never below the assessed mesh's; the sign-off fails
 as not converged when the assessed mesh and the finest level differ by more than 5 %.
@@ -13,13 +13,12 @@ import math
 import pytest
 
 from fe_crank.assess.case import Assessment
-from fe_crank.assess.criteria import judge_criteria
-from fe_crank.assess.group import Extreme, GroupResult
+from fe_crank.assess.criteria.judge import judge_criteria
+from fe_crank.assess.group.assessment import Extreme, GroupResult
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.refinement import StudyFactors, criterion, surface_factor
 from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.check.verdict import decide
 from fe_crank.fe.convergence import (
     COUNTERWEIGHT_PREFIX,
     OIL_BORE_PREFIX,
@@ -30,6 +29,7 @@ from fe_crank.fe.convergence import (
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
 from fe_crank.outputs import CaseOutputs
+from fe_crank.pipeline.verdict import decide
 from fe_crank.report.locations import criterion_location, location_text
 from fe_crank.throw_scope import ALL_THROWS
 

@@ -22,7 +22,7 @@ import pytest
 from skfem import MeshTet, MeshTet2
 from verification_meshes import as_throw_mesh
 
-import fe_crank.fe.unit_cases as fe
+import fe_crank.fe.throw.unit_cases as fe
 from fe_crank.assess import unit_stresses
 from fe_crank.assess.superpose import (
     UNIT_CASES,
@@ -33,8 +33,8 @@ from fe_crank.assess.superpose import (
     load_coefficients,
     stress_history,
 )
-from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load
-from fe_crank.fe.pin_directions import pin_direction
+from fe_crank.fe.core.loads import centrifugal_load, face_torque_load, pin_pressure_load
+from fe_crank.fe.throw.pin_directions import pin_direction
 from fe_crank.io.material import load_material
 
 RADIUS, LENGTH = 0.02, 0.12
@@ -115,7 +115,7 @@ def test_default_twelve_directions_bracket_every_force():
     """Default pin cases 30 deg apart: each force on the two directions that bracket it,
     non-negative weights whose resultant is the force (over a full turn of directions)."""
     from fe_crank.assess.superpose import UNIT_CASES
-    from fe_crank.fe.pin_directions import pin_direction, unit_force
+    from fe_crank.fe.throw.pin_directions import pin_direction, unit_force
 
     ang = np.deg2rad(np.arange(0.0, 360.0, 0.7))
     pin = 1e4 * np.column_stack([np.cos(ang), np.sin(ang)])
@@ -134,7 +134,7 @@ def test_default_twelve_directions_bracket_every_force():
 
 
 def test_pin_direction_sets_that_cannot_carry_a_force_are_refused():
-    from fe_crank.fe.pin_directions import pin_case_weights
+    from fe_crank.fe.throw.pin_directions import pin_case_weights
 
     with pytest.raises(ValueError, match="gap of 180"):
         pin_case_weights(np.array([[1.0, 1.0]]), ["pin_x", "pin_y", "pin_-y"])

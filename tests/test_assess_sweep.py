@@ -16,10 +16,8 @@ from cad_files import SMALL_ENGINE
 from pipeline import assess_inputs
 
 from fe_crank.assess.case import AssessInputs, assess_case
-from fe_crank.assess.criteria import NOT_CONFORM, evaluate_criteria
-from fe_crank.assess.m53 import M53Fillet
-from fe_crank.assess.m53_basis import m53_basis
-from fe_crank.assess.qualifiers import criterion_qualifiers
+from fe_crank.assess.criteria.judge import NOT_CONFORM, evaluate_criteria
+from fe_crank.assess.criteria.qualifiers import criterion_qualifiers
 from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.errors import InputError
@@ -27,6 +25,8 @@ from fe_crank.io.criteria import build_criteria
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.report.locations import criterion_location, location_text
+from fe_crank.rules.m53.basis import m53_basis
+from fe_crank.rules.m53.calculation import M53Fillet
 from fe_crank.torsion.loads import assessed_loads
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -249,9 +249,9 @@ def test_front_take_off_without_torsion_takes_the_torque_from_the_rear(tmp_path)
 def test_box_bounds_of_von_mises_and_the_largest_principal_stress():
     """Closed forms: a uniaxial box gives sigma_v = r exactly, a pure shear box sqrt(3) t;
     and for random tensors inside a random box neither bound is ever exceeded."""
-    from fe_crank.assess.bounds import box_principal, box_von_mises
+    from fe_crank.assess.group.bounds import box_principal, box_von_mises
     from fe_crank.assess.stress import von_mises
-    from fe_crank.fe.stress import principal
+    from fe_crank.fe.core.stress import principal
 
     assert box_von_mises(np.array([[5.0], [0], [0], [0], [0], [0]]))[0] == pytest.approx(5.0, rel=1e-15)
     assert box_von_mises(np.array([[0.0], [0], [0], [2.0], [0], [0]]))[0] == pytest.approx(2 * math.sqrt(3), rel=1e-15)

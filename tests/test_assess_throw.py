@@ -17,15 +17,15 @@ import math
 import numpy as np
 import pytest
 
-from fe_crank.assess import m53
 from fe_crank.assess.counterweight import CounterweightData
-from fe_crank.assess.criteria import evaluate_criteria
+from fe_crank.assess.criteria.judge import evaluate_criteria
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import assess_throw
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
 from fe_crank.report.locations import criterion_location
+from fe_crank.rules.m53 import calculation as m53
 
 CASES = ("centrifugal", "pin_x", "pin_y", "torque")
 THETA = np.deg2rad([0.0, 90.0, 180.0, 270.0])
@@ -351,7 +351,7 @@ def test_each_fillet_gets_the_size_factor_of_its_own_section():
 
 
 def _scf_result():
-    from fe_crank.assess.scf import ScfResult
+    from fe_crank.rules.m53.scf_mode import ScfResult
 
     # hand-chosen FE SCFs and mesh checks (principal criterion 1 %, averaging 2 %)
     return ScfResult(

@@ -9,14 +9,14 @@ import math
 import pytest
 
 from fe_crank.assess.counterweight import CounterweightCheck
-from fe_crank.assess.criteria import evaluate_criteria
-from fe_crank.assess.group import Extreme, GroupResult
-from fe_crank.assess.m53 import M53Fillet
+from fe_crank.assess.criteria.judge import evaluate_criteria
+from fe_crank.assess.criteria.verdict import judge
+from fe_crank.assess.group.assessment import Extreme, GroupResult
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.assess.verdict import judge
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.report.locations import criterion_location
+from fe_crank.rules.m53.calculation import M53Fillet
 
 
 def test_judge_margins_by_hand():

@@ -13,7 +13,7 @@ one block of every node: the per-node results to 1e-12 (the history products may
 in the last bit between block sizes).
 
 The worker count: the cores of the process's affinity shared among the batch's processes
-(``check.options.assess_threads``), checked against ``os.sched_getaffinity``.
+(``pipeline.options.assess_threads``), checked against ``os.sched_getaffinity``.
 """
 
 from __future__ import annotations
@@ -25,13 +25,13 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import assessed_groups, unit_stresses
-from fe_crank.assess.group import assess_group
+from fe_crank.assess.group.assessment import assess_group
 from fe_crank.assess.superpose import load_coefficients
 from fe_crank.assess.throw import assess_throw
 from fe_crank.assess.workers import run_blocks
 from fe_crank.assess.workers import threads as threads_context
-from fe_crank.check.options import CheckOptions, assess_threads, cores_available
 from fe_crank.io.material import load_material
+from fe_crank.pipeline.options import CheckOptions, assess_threads, cores_available
 
 FIELDS = ("node_ids", "max_von_mises", "amplitude", "mean", "fatigue_safety", "gough_pollard_safety")
 

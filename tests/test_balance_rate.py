@@ -16,10 +16,10 @@ from fe_crank.assess.counterweight import check_counterweight
 from fe_crank.assess.results import load_schema, to_json
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.balance.analysis import analyse_balance
-from fe_crank.check.options import CheckOptions
-from fe_crank.check.stages import geometry_stage
 from fe_crank.geometry.mass import throw_solids
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.pipeline.options import CheckOptions
+from fe_crank.pipeline.stages import geometry_stage
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -14,7 +14,7 @@ import dataclasses
 import pytest
 from test_assess_cw_joint import JOINT, _loads
 
-from fe_crank.assess.criteria import EVALUATORS, evaluate_criteria
+from fe_crank.assess.criteria.judge import EVALUATORS, evaluate_criteria
 from fe_crank.assess.cw_joint import JOINT_QUANTITIES, check_joint
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.errors import InputError

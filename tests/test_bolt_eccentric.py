@@ -49,7 +49,6 @@ import numpy as np
 import pytest
 from test_assess_cw_joint import JOINT, _loads
 
-from fe_crank.assess import vdi2230
 from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry
 from fe_crank.assess.cw_joint import (
     DEFAULT_LIMITS,
@@ -63,6 +62,7 @@ from fe_crank.assess.cw_joint import (
 )
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.io.criteria import build_criteria
+from fe_crank.rules import vdi2230
 
 
 def _ecc(s=0.0, a=0.0):

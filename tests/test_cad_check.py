@@ -28,9 +28,9 @@ import pytest
 from cad_files import cad_loadcase, lightened_throw_step, parametric_step, recessed_throw_step
 
 from fe_crank.assess.results import load_schema
-from fe_crank.check import CheckOptions
-from fe_crank.check.case import run_case
 from fe_crank.io.geometry import load_geometry
+from fe_crank.pipeline import CheckOptions
+from fe_crank.pipeline.case import run_case
 
 pytestmark = pytest.mark.heavy
 ROOT = Path(__file__).resolve().parents[1]

@@ -24,11 +24,11 @@ import numpy as np
 import pytest
 from cad_files import parametric_step
 
-from fe_crank.assess.groups import unit_stresses
+from fe_crank.assess.group.nodes import unit_stresses
 from fe_crank.cad import CadInput, mesh_cad_throw, recognise
 from fe_crank.cad.mesh import estimate_cad_elements
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.stress import von_mises
+from fe_crank.fe.core.stress import von_mises
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import mesh_throw
 

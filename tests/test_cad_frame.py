@@ -63,11 +63,11 @@ def test_the_scf_mode_and_the_convergence_study_mesh_a_cad_throw(tmp_path):
     specification); the convergence study refines the CAD throw's fillets.  (The SCFs of
     both routes on this throw at r/4: docs/geometry.md.)"""
     from fe_crank import model
-    from fe_crank.assess.scf import scf_mesh, web_centres_of
     from fe_crank.assess.throw_geometry import cad_throws
     from fe_crank.cad import recognise
     from fe_crank.fe.convergence import fillet_convergence
     from fe_crank.io.material import load_material
+    from fe_crank.rules.m53.scf_mode import scf_mesh, web_centres_of
 
     g = load_geometry(ROOT / "tests" / "data" / "geometry_small.toml")
     cad = CadInput(parametric_step(g, tmp_path / "throw.step"), density=g.density)

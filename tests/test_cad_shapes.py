@@ -17,7 +17,7 @@ import pytest
 from cad_files import lightened_throw_step, parametric_step, recessed_throw_step, sector_throw_step
 
 from fe_crank.assess.cad_inputs import m53_geometry_of_cad, m53_scope
-from fe_crank.assess.groups import assessed_groups
+from fe_crank.assess.group.nodes import assessed_groups
 from fe_crank.cad import CadInput, cad_record, feature_lines, mesh_cad_throw, recognise
 from fe_crank.errors import InputError
 from fe_crank.fe import FeOptions, solve_unit_cases

@@ -208,8 +208,8 @@ def test_a_whole_shaft_against_the_engines_throws(tmp_path):
 
 
 def test_a_refused_cad_case_in_the_check_writes_its_error_and_nothing_else(tmp_path):
-    from fe_crank.check import CheckOptions
-    from fe_crank.check.case import run_case
+    from fe_crank.pipeline import CheckOptions
+    from fe_crank.pipeline.case import run_case
 
     (tmp_path / "empty.step").write_bytes(b"")
     with gmsh_session() as gmsh:
@@ -233,8 +233,8 @@ def test_a_refused_cad_case_in_the_check_writes_its_error_and_nothing_else(tmp_p
 
 
 def test_a_main_bearing_criterion_is_refused_before_meshing(tmp_path, small_step, capsys):
-    from fe_crank.assess.criteria import EVALUATORS
-    from fe_crank.assess.shaft_criteria import no_throw_value
+    from fe_crank.assess.criteria.judge import EVALUATORS
+    from fe_crank.assess.criteria.models import no_throw_value
     from fe_crank.io.loadcase import WHOLE_SHAFT_QUANTITIES
 
     assert sorted(WHOLE_SHAFT_QUANTITIES) == sorted(q for q, ev in EVALUATORS.items() if ev.find is no_throw_value)

@@ -2,8 +2,8 @@
 thickness in an SCF model) in the CAD route: the small test throw exported to STEP and
 meshed by the CAD route at the ``test`` preset has about two elements across its 12 mm
 webs; with ``web_divisions = 6`` (what the SCF stage's refinement sets,
-``assess.scf_refine``) each recognised web gets edges of at most 0.7 W/6 and at least 6
-elements across (``fe.web_mesh``'s measure), as the parametric route does."""
+``rules.m53.scf_refine``) each recognised web gets edges of at most 0.7 W/6 and at least 6
+elements across (``rules.m53.web_mesh``'s measure), as the parametric route does."""
 
 from __future__ import annotations
 
@@ -13,9 +13,9 @@ import pytest
 from cad_files import parametric_step
 
 from fe_crank.cad import CadInput, mesh_cad_throw
-from fe_crank.fe.web_mesh import MIN_ELEMENTS_ACROSS, web_elements_across, web_groups
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS
+from fe_crank.rules.m53.web_mesh import MIN_ELEMENTS_ACROSS, web_elements_across, web_groups
 
 pytestmark = pytest.mark.heavy
 

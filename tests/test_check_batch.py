@@ -19,9 +19,9 @@ from pathlib import Path
 
 import pytest
 
-from fe_crank.check import batch_exit_code, find_loadcases, run_case, run_cases
 from fe_crank.cli import main
 from fe_crank.files import write_atomic
+from fe_crank.pipeline import batch_exit_code, find_loadcases, run_case, run_cases
 from fe_crank.records import CaseResult
 from fe_crank.report.junit import junit_xml
 from fe_crank.results import CriterionResult
@@ -158,7 +158,7 @@ KILL_SCRIPT = textwrap.dedent(
         time.sleep(60)                 # ... but the case is not finished yet
 
     rep.write_case_report = slow
-    from fe_crank.check import run_cases
+    from fe_crank.pipeline import run_cases
     run_cases(sys.argv[2:], sys.argv[1])
     """
 )

@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 from images import image_statistics
 
-from fe_crank.check import CheckOptions, run_cases
 from fe_crank.cli import main
+from fe_crank.pipeline import CheckOptions, run_cases
 
 pytestmark = pytest.mark.heavy  # two meshes' worth of FE solves and renders
 

@@ -1,5 +1,5 @@
-"""Warnings beside the verdict (``fe_crank.notes``, ``fe_crank.check.notes``) and the
-provenance's input hash (``fe_crank.check.provenance``), on real files and plain stage data."""
+"""Warnings beside the verdict (``fe_crank.notes``, ``fe_crank.pipeline.notes``) and the
+provenance's input hash (``fe_crank.pipeline.provenance``), on real files and plain stage data."""
 
 from __future__ import annotations
 
@@ -11,12 +11,12 @@ import numpy as np
 
 from fe_crank.assess.case import Assessment
 from fe_crank.assess.states import HotSpot, ModelStates
-from fe_crank.check.notes import case_notes
-from fe_crank.check.provenance import input_hash
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.material import load_material
 from fe_crank.notes import ASSUMPTION, Note, from_strings, grouped
 from fe_crank.outputs import CaseOutputs
+from fe_crank.pipeline.notes import case_notes
+from fe_crank.pipeline.provenance import input_hash
 from fe_crank.records import CaseResult, InputHash, MeshRecord, Provenance, SolverRecord
 from fe_crank.report.html import criteria_table, header_html
 from fe_crank.results import CriterionResult

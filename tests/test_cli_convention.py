@@ -83,12 +83,12 @@ def test_quiet_and_verbose_exclude_each_other(capsys):
 def test_plain_log_is_one_line_per_record_and_written_at_once():
     buf = io.StringIO()
     with command_logging(0, buf):
-        logging.getLogger("fe_crank.check.stages").info("%s: %s done in %.1f s", "case", "mesh", 1.25)
+        logging.getLogger("fe_crank.pipeline.stages").info("%s: %s done in %.1f s", "case", "mesh", 1.25)
         assert buf.getvalue().count("\n") == 1  # already in the stream: no buffering until the batch ends
         line = buf.getvalue().strip()
         assert line.endswith("INFO case: mesh done in 1.2 s") and "\x1b[" not in line
         setup_logging(-1, buf)
-        logging.getLogger("fe_crank.check.stages").info("hidden")
+        logging.getLogger("fe_crank.pipeline.stages").info("hidden")
         assert "hidden" not in buf.getvalue()
 
 
@@ -98,7 +98,7 @@ def test_ties_of_the_maximum_go_to_the_first_angle_whatever_the_last_digits():
     # runs report the same angle; a real difference (1e-6) still wins
     import numpy as np
 
-    from fe_crank.assess.group import first_extreme
+    from fe_crank.assess.group.assessment import first_extreme
 
     base = np.array([[1.0, 5.0], [3.0, 2.0], [3.0 * (1 + 1e-13), 2.0]])
     assert list(first_extreme(base, "max")) == [1, 0]
@@ -112,10 +112,10 @@ def test_ties_of_the_maximum_go_to_the_first_angle_whatever_the_last_digits():
 
 def test_the_top_level_api_survives_importing_the_check_package():
     import fe_crank
-    import fe_crank.check.batch
-    import fe_crank.check.case as case_module  # a submodule import still works
+    import fe_crank.pipeline.batch
+    import fe_crank.pipeline.case as case_module  # a submodule import still works
 
-    assert callable(fe_crank.run_check) and case_module.run_case is fe_crank.check.run_case
+    assert callable(fe_crank.run_check) and case_module.run_case is fe_crank.pipeline.run_case
     assert callable(fe_crank.load_case)
 
 
@@ -134,5 +134,5 @@ def test_the_command_leaves_logging_as_it_found_it(monkeypatch):
     assert (list(log.handlers), log.level, log.propagate) == before
     later = io.StringIO()
     monkeypatch.setattr(sys, "stderr", later)
-    logging.getLogger("fe_crank.check.stages").warning("a record after the command")
+    logging.getLogger("fe_crank.pipeline.stages").warning("a record after the command")
     assert "Logging error" not in later.getvalue()

@@ -24,7 +24,7 @@ from fe_crank.fe.convergence import (  # FILLETS: the four shaft fillets of a th
     fillet_convergence,
     peak_fillet_stress,
 )
-from fe_crank.fe.supports import boundary_facets
+from fe_crank.fe.core.supports import boundary_facets
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS, mesh_throw
 

@@ -122,9 +122,9 @@ def _cw_peak(geometry: dict, options) -> tuple[float, float, bool]:
     """(peak von Mises over the counterweight groups under the unit centrifugal load
     omega = 1 rad/s, Pa; the largest edge on the counterweight fillet faces, m (0 when
     sharp); whether the peak node lies on those faces)."""
-    from fe_crank.assess.groups import assessed_groups
+    from fe_crank.assess.group.nodes import assessed_groups
     from fe_crank.fe import FeOptions, solve_unit_cases
-    from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
+    from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
     from fe_crank.io.material import load_material
     from fe_crank.mesh import mesh_throw
 

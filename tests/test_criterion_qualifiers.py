@@ -4,14 +4,14 @@ place of UR M53 2.2's forced-vibration calculation is not UR M53-conform."""
 
 from __future__ import annotations
 
-from fe_crank.assess.criteria import evaluate_criteria
-from fe_crank.assess.m53 import M53Fillet
-from fe_crank.assess.m53_basis import m53_basis
-from fe_crank.assess.qualifiers import ANALOGY, QUASI_STATIC, criterion_qualifiers
+from fe_crank.assess.criteria.judge import evaluate_criteria
+from fe_crank.assess.criteria.qualifiers import ANALOGY, QUASI_STATIC, criterion_qualifiers
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.report.locations import criterion_location
+from fe_crank.rules.m53.basis import m53_basis
+from fe_crank.rules.m53.calculation import M53Fillet
 
 
 def _fillet(q: float) -> M53Fillet:

@@ -123,11 +123,11 @@ def test_every_path_and_name_a_doc_names_exists(doc: Path):
 
 def test_the_reader_finds_paths_and_names():
     text = (
-        "see `assess/fatigue.py`, fe_crank/fe/linalg.py and tests/test_none_such.py; "
+        "see `assess/fatigue.py`, fe_crank/fe/linalg/factorise.py and tests/test_none_such.py; "
         "`fe_crank.fe.linalg.factorise`, fe_crank.nothing.here, `assess.fatigue.no_such`, "
         "`cad.faces.axis` (a key), `.cache/meshes/<key>/`, `gone.py`"
     )
-    assert _paths(text) == {"assess/fatigue.py", "fe_crank/fe/linalg.py", "tests/test_none_such.py"}
+    assert _paths(text) == {"assess/fatigue.py", "fe_crank/fe/linalg/factorise.py", "tests/test_none_such.py"}
     assert not _exists("tests/test_none_such.py") and _exists("assess/fatigue.py")
     assert _resolve("fe_crank.fe.linalg.factorise") is None
     assert _resolve("fe_crank.nothing.here") is not None

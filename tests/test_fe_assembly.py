@@ -10,10 +10,10 @@ from skfem.models.elasticity import linear_elasticity
 
 from fe_crank.errors import InputError, SolverError
 from fe_crank.fe import bearing_support, centrifugal, elasticity, factorise
-from fe_crank.fe.assembly import assemble_foundation, assemble_stiffness
-from fe_crank.fe.forms import lame_parameters
-from fe_crank.fe.loads import centrifugal_load
-from fe_crank.fe.supports import radial_direction
+from fe_crank.fe.core.assembly import assemble_foundation, assemble_stiffness
+from fe_crank.fe.core.forms import lame_parameters
+from fe_crank.fe.core.loads import centrifugal_load
+from fe_crank.fe.core.supports import radial_direction
 
 E, NU = 210e9, 0.3
 
@@ -135,7 +135,7 @@ def _identity(K):
 def test_unique_inverse_equals_numpy_unique(bound):
     """The packed-sort unique (and, keys too wide to pack, its np.unique fallback)
     against numpy's own ``np.unique(return_inverse=True)`` on random keys with repeats."""
-    from fe_crank.fe.assembly import unique_inverse
+    from fe_crank.fe.core.assembly import unique_inverse
 
     key = np.random.default_rng(3).integers(0, bound, size=5000, dtype=np.int64)
     uniq, inv = unique_inverse(key, bound)

@@ -12,7 +12,7 @@ from skfem import ElementTetP2
 from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.bases import robust_mapping
+from fe_crank.fe.core.bases import robust_mapping
 
 # simple_throw defaults (m): journals d 50 x 30, webs 80 wide x 20 thick (box), pin d 45 x 30
 # at R = 45; axial layout: journal_1 [-65, -35] mm, web_1 [-35, -15], pin [-15, 15], ...

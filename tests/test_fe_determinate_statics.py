@@ -1,4 +1,4 @@
-"""The statically determinate support (``fe_crank.fe.determinate``) on tiny meshes, by statics.
+"""The statically determinate support (``fe_crank.fe.core.determinate``) on tiny meshes, by statics.
 
 The main model is a square bar (scikit-fem tensor mesh, straight P2 tets: every area,
 centroid and resultant is exact to round-off) along z from -50 to +50 mm, 20 x 20 mm:
@@ -20,8 +20,8 @@ from skfem import Basis, ElementTetP2
 from verification_meshes import _mapped_tensor_mesh, _mesh, _name_surfaces
 
 from fe_crank.errors import MeshError, SolverError
-from fe_crank.fe.assembly import assemble_stiffness
-from fe_crank.fe.determinate import (
+from fe_crank.fe.core.assembly import assemble_stiffness
+from fe_crank.fe.core.determinate import (
     DeterminateLayout,
     _resultants,
     bearing_surface_load,
@@ -30,8 +30,8 @@ from fe_crank.fe.determinate import (
     point_constraints,
     transfer_moment_load,
 )
-from fe_crank.fe.loads import pin_pressure_load
-from fe_crank.fe.supports import rigid_body_modes
+from fe_crank.fe.core.loads import pin_pressure_load
+from fe_crank.fe.core.supports import rigid_body_modes
 from fe_crank.gmsh_io import gmsh_session
 
 H, Z1, Z2, LJ = 0.01, -0.05, 0.05, 0.02

@@ -9,7 +9,6 @@ import pytest
 from conftest import ROOT
 from verification_meshes import Steel
 
-from fe_crank.assess import m53
 from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.convergence import (
@@ -17,9 +16,10 @@ from fe_crank.fe.convergence import (
     fillet_convergence,
     peak_fillet_stress,
 )
-from fe_crank.fe.supports import boundary_facets
+from fe_crank.fe.core.supports import boundary_facets
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS, mesh_throw
+from fe_crank.rules.m53 import calculation as m53
 
 
 @pytest.fixture(scope="module")
@@ -63,7 +63,7 @@ def test_fillet_stress_of_three_point_bending_against_ur_m53(geometry, solved):
     M_BN = R_1 (z_w - z_1) = 0.5 N x 36 mm, sigma_BN = M_BN / (B W^2 / 6),
     sigma_QN = R_1 / (B W), B = 80 mm (stadium web), W = 22 mm.  Fillet stresses of
     UR M53 3.2/3.3/5: crankpin sigma = alpha_B sigma_BN, journal sigma = beta_B sigma_BN +
-    beta_Q sigma_QN, with the empirical alpha_B, beta_B, beta_Q of ``assess.m53`` (the
+    beta_Q sigma_QN, with the empirical alpha_B, beta_B, beta_Q of ``rules.m53.calculation`` (the
     geometry is inside their validity range: s = -0.18, w = 0.44, b = 1.6, r = 0.08).
     FE: the largest principal stress magnitude on each fillet.  Measured on this `test`
     mesh: crankpin 1.05, journal 0.92-0.94 of the M53 values; the M53 fit itself scatters

@@ -14,7 +14,7 @@ import pytest
 from verification_meshes import stepped_shaft
 
 from fe_crank.fe import Coupling, build_system
-from fe_crank.fe.stress import averaging_indicator, principal, stress_at_nodes
+from fe_crank.fe.core.stress import averaging_indicator, principal, stress_at_nodes
 
 E, NU = 210e9, 0.3
 ALL6 = ("ux", "uy", "uz", "rx", "ry", "rz")

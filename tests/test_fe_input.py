@@ -7,7 +7,7 @@ import pytest
 
 from fe_crank.errors import InputError
 from fe_crank.fe.input import parse_fe
-from fe_crank.fe.unit_cases import FeOptions
+from fe_crank.fe.throw.unit_cases import FeOptions
 
 
 def test_fe_section_parses_units_to_si():

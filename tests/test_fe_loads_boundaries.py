@@ -1,5 +1,5 @@
 """A load or support on a boundary the mesh lacks, or on a degenerate one: one MeshError that
-names the boundary and what needed it (``fe.loads``, ``fe.determinate``), in full."""
+names the boundary and what needed it (``fe.core.loads``, ``fe.core.determinate``), in full."""
 
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ from skfem import Basis, ElementTetP2
 from test_fe_determinate_statics import _square_bar
 
 from fe_crank.errors import MeshError
-from fe_crank.fe.determinate import DeterminateLayout, bearing_surface_load, determinate_support, face_centre
-from fe_crank.fe.loads import face_torque_load, pin_centre, pin_pressure_load, pin_surface
+from fe_crank.fe.core.determinate import DeterminateLayout, bearing_surface_load, determinate_support, face_centre
+from fe_crank.fe.core.loads import face_torque_load, pin_centre, pin_pressure_load, pin_surface
 
 HAVE = "crankpin, end_1, end_2, journal_1, journal_2"
 

@@ -1,4 +1,4 @@
-"""The FE load vectors of ``fe_crank.fe.loads`` on tiny meshes, against closed forms.
+"""The FE load vectors of ``fe_crank.fe.core.loads`` on tiny meshes, against closed forms.
 
 * centrifugal load on a box (scikit-fem tensor mesh, straight P2 tets: volume, centroid
   and second moments exact): resultant rho omega^2 V r_perp(c) and moment about the axis
@@ -30,7 +30,7 @@ from skfem.helpers import dot
 from verification_meshes import box_beam, round_bar, simple_throw
 
 from fe_crank.errors import InputError, MeshError
-from fe_crank.fe.loads import (
+from fe_crank.fe.core.loads import (
     SURFACE_INTORDER,
     centrifugal_load,
     face_torque_load,
@@ -38,7 +38,7 @@ from fe_crank.fe.loads import (
     pin_pressure_load,
     pin_surface,
 )
-from fe_crank.fe.pin_directions import pin_cases, unit_force
+from fe_crank.fe.throw.pin_directions import pin_cases, unit_force
 
 RHO, OMEGA = 7850.0, 30.0
 R, L, CX, CY = 0.020, 0.030, 0.004, 0.045

@@ -1,5 +1,5 @@
 """Crankpin unit-case names, unit forces and the weights that build a pin force from them
-(``fe_crank.fe.pin_directions``), against their definitions worked by hand.
+(``fe_crank.fe.throw.pin_directions``), against their definitions worked by hand.
 
 Pure arithmetic, no mesh: the weights are the sine rule of the triangle F = a e_lo + b e_hi
 (a = |F| sin(hi - psi) / sin(hi - lo), b = |F| sin(psi - lo) / sin(hi - lo)), evaluated
@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fe_crank.fe.pin_directions import (
+from fe_crank.fe.throw.pin_directions import (
     AXIS_NAMES,
     STEP_DEG,
     pin_case_weights,

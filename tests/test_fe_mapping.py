@@ -7,7 +7,7 @@ import pytest
 from skfem import ElementTetP2, FacetBasis, MeshTet, MeshTet2
 
 from fe_crank.errors import MeshError
-from fe_crank.fe.supports import RobustIsoparametric, facet_basis
+from fe_crank.fe.core.supports import RobustIsoparametric, facet_basis
 
 
 def curved_cube() -> MeshTet2:
@@ -57,7 +57,7 @@ def test_shared_bases_are_bit_for_bit_the_scikit_fem_ones():
     equal the basis scikit-fem builds from scratch (fresh mapping, own ``Dofs``), exactly."""
     from skfem import Basis
 
-    from fe_crank.fe.supports import cell_basis
+    from fe_crank.fe.core.supports import cell_basis
 
     m = curved_cube()
     ours = cell_basis(m, 2)
@@ -83,7 +83,7 @@ def test_edge_tables_are_scikit_fem_s():
     """``prime_edge_tables`` fills facets, t2f, edges, t2e and f2e by integer keys; scikit-fem's own
     ``np.unique(axis=1)`` build on a second copy of the mesh is the reference (equal
     arrays, dtypes and memory layout: the P2 edge-node numbering depends on them)."""
-    from fe_crank.fe.supports import prime_edge_tables
+    from fe_crank.fe.core.supports import prime_edge_tables
 
     m = curved_cube()
     ours, ref = MeshTet2(m.doflocs, m.t), MeshTet2(m.doflocs, m.t)
@@ -100,7 +100,7 @@ def test_a_mesh_s_mapping_and_numbering_are_shared_while_held_and_freed_with_it(
     import gc
     import weakref
 
-    from fe_crank.fe.bases import cell_basis, mesh_dofs, robust_mapping
+    from fe_crank.fe.core.bases import cell_basis, mesh_dofs, robust_mapping
 
     m = curved_cube()
     cb = cell_basis(m, 2)

@@ -9,9 +9,9 @@ from skfem import Basis, ElementTetP2
 from verification_meshes import annulus_sector
 
 from fe_crank.fe import Dirichlet, build_system, max_shear, principal, von_mises
-from fe_crank.fe.loads import centrifugal_load
-from fe_crank.fe.result_fields import write_fields
-from fe_crank.fe.stress import averaging_indicator, stress_at_nodes, stress_at_quadrature
+from fe_crank.fe.core.loads import centrifugal_load
+from fe_crank.fe.core.result_fields import write_fields
+from fe_crank.fe.core.stress import averaging_indicator, stress_at_nodes, stress_at_quadrature
 
 E, NU = 210e9, 0.3
 

@@ -12,8 +12,8 @@ from verification_meshes import Steel, as_throw_mesh, simple_throw
 from fe_crank.assess import unit_stresses
 from fe_crank.assess.superpose import combine, cycle_coefficients, stress_history
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
-from fe_crank.fe.pin_directions import patch_case, patch_cases, unit_force
+from fe_crank.fe.core.loads import centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
+from fe_crank.fe.throw.pin_directions import patch_case, patch_cases, unit_force
 
 BANDS = ((-0.015, 0.0), (0.0, 0.015))  # the 30 mm pin of simple_throw, two rods side by side
 Z1, Z2 = -0.065, 0.065  # the bearing centres (end faces)

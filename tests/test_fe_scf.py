@@ -1,4 +1,4 @@
-"""SCF mode, FE part (UR M53 FE appendix, ``fe_crank.fe.scf``): stress measures, supports and
+"""SCF mode, FE part (UR M53 FE appendix, ``fe_crank.rules.m53.fe_cases``): stress measures, supports and
 loads of its three cases on a real ``mesh_throw`` throw, checked against statics by hand.
 
 The throw is tests/data/geometry_small.toml (D = 28 mm, D_G = 32 mm, L_pin = 18 mm,
@@ -16,8 +16,11 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2
 
-from fe_crank.fe.assembly import assemble_stiffness
-from fe_crank.fe.scf import (
+from fe_crank.fe.core.assembly import assemble_stiffness
+from fe_crank.fe.core.stress import von_mises
+from fe_crank.io.geometry import load_geometry
+from fe_crank.mesh import MeshOptions, mesh_throw
+from fe_crank.rules.m53.fe_cases import (
     PRINCIPAL_LIMIT,
     Peak,
     scf_stresses,
@@ -26,9 +29,6 @@ from fe_crank.fe.scf import (
     tau_equiv,
     web_centres_from_mesh,
 )
-from fe_crank.fe.stress import von_mises
-from fe_crank.io.geometry import load_geometry
-from fe_crank.mesh import MeshOptions, mesh_throw
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -1,4 +1,4 @@
-"""SCF mode, factors and the UR M53 FE fallback (``fe_crank.assess.scf``, ``assess.throw``).
+"""SCF mode, factors and the UR M53 FE fallback (``fe_crank.rules.m53.scf_mode``, ``assess.throw``).
 
 Factors against hand-computed nominal stresses (UR M53 2.1.2.1, 2.1.2.2, 2.2.2) and the
 appendix's definitions (App. III 3.1.3, 3.2.3, 3.3.3 method 1 and 2); the M53 route on a
@@ -14,19 +14,19 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fe_crank.assess import m53
-from fe_crank.assess.scf import ScfResult, compute_scf, factors, scf_mesh, scf_mesh_options, web_centres_of
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import assess_throw
 from fe_crank.assess.throw_geometry import ThrowGeometry
-from fe_crank.check.stages import needs_scf
-from fe_crank.fe.scf import Peak, ScfStresses
 from fe_crank.io.geometry import load_geometry
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.material import load_material
 from fe_crank.mesh import MeshOptions, mesh_throw
 from fe_crank.mesh.plan import plan_meshes
 from fe_crank.outputs import GeometryModel
+from fe_crank.pipeline.stages import needs_scf
+from fe_crank.rules.m53 import calculation as m53
+from fe_crank.rules.m53.fe_cases import Peak, ScfStresses
+from fe_crank.rules.m53.scf_mode import ScfResult, compute_scf, factors, scf_mesh, scf_mesh_options, web_centres_of
 
 ROOT = Path(__file__).resolve().parents[1]
 # tests/data/geometry_small.toml as UR M53 sees it (B: stadium web 40 mm wide)
@@ -194,7 +194,7 @@ def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet):
 
 def test_m53_route_inside_the_range_never_runs_the_scf_mode(tmp_path):
     """Inside the range the empirical SCFs are used, even when SCF-mode factors are at hand,
-    and the check does not solve the SCF mode (``check.stages.needs_scf``)."""
+    and the check does not solve the SCF mode (``pipeline.stages.needs_scf``)."""
     theta = np.deg2rad(np.arange(720.0))
     unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     pin = np.column_stack([np.zeros(720), 2e4 * np.cos(theta)])

@@ -1,4 +1,4 @@
-"""The FE stage's linear solvers (``fe.linalg``): which solver runs, and the memory of
+"""The FE stage's linear solvers (``fe.linalg.factorise``): which solver runs, and the memory of
 its factor.
 
 Solver choice: without pypardiso the run says so and falls back to CHOLMOD (cholespy).
@@ -32,8 +32,9 @@ import pytest
 from skfem import Basis, ElementTetP2, MeshTet2
 
 from fe_crank.errors import SolverError
-from fe_crank.fe import linalg, solver_choice
-from fe_crank.fe.assembly import assemble_stiffness
+from fe_crank.fe.core.assembly import assemble_stiffness
+from fe_crank.fe.linalg import choice as solver_choice
+from fe_crank.fe.linalg import factorise as linalg
 
 needs_cholmod = pytest.mark.skipif(importlib.util.find_spec("cholespy") is None, reason="cholespy not installed")
 needs_pardiso = pytest.mark.skipif(importlib.util.find_spec("pypardiso") is None, reason="pypardiso not installed")
@@ -60,7 +61,7 @@ def test_without_pardiso_auto_falls_back_to_cholmod_and_says_so(system, monkeypa
     monkeypatch.setitem(sys.modules, "pypardiso", None)
     monkeypatch.setattr(linalg, "_warned", set())
     assert not solver_choice.pardiso_available()
-    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.linalg"):
+    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.linalg.factorise"):
         fac = linalg.factorise(K, "auto")
     assert fac.method == "cholmod"
     assert "pypardiso (MKL PARDISO) is not installed" in fac.note
@@ -71,7 +72,7 @@ def test_without_pardiso_auto_falls_back_to_cholmod_and_says_so(system, monkeypa
     assert np.abs(x - x_ref).max() < 1e-10 * np.abs(x_ref).max()
     # the warning is given once per process, the note every time
     caplog.clear()
-    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.linalg"):
+    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.linalg.factorise"):
         again = linalg.factorise(K, "auto")
     assert again.note == fac.note and not caplog.records
 
@@ -155,7 +156,7 @@ _SCRIPT = r"""
 import gc, json, sys
 import numpy as np
 import scipy.sparse as sp
-from fe_crank.fe.linalg import factorise, factorise_shared
+from fe_crank.fe.linalg.factorise import factorise, factorise_shared
 
 def rss():
     with open("/proc/self/statm") as fh:
@@ -222,7 +223,7 @@ def test_free_then_drop_releases_once():
     import numpy as np
     import scipy.sparse as sp
 
-    from fe_crank.fe.linalg import factorise
+    from fe_crank.fe.linalg.factorise import factorise
 
     K = (sp.diags([-np.ones(99), 2.5 * np.ones(100), -np.ones(99)], [-1, 0, 1])).tocsr()
     fac = factorise(K, "pardiso")

@@ -1,4 +1,4 @@
-"""Displacements in the frame of the determinate supports (``fe_crank.fe.support_frame``):
+"""Displacements in the frame of the determinate supports (``fe_crank.fe.core.support_frame``):
 after the removal the main-bearing centres do not move (radially at both, axially at the
 torque end's journal) and the torque face does not turn; a known rigid motion added to a
 field is removed exactly; the removed part is rigid (stresses unchanged)."""
@@ -10,13 +10,13 @@ import pytest
 from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.support_frame import (
+from fe_crank.fe.core.support_frame import (
     in_support_frame,
     rigid_motion_at_supports,
     support_displacements,
     unit_case_in_support_frame,
 )
-from fe_crank.fe.supports import rigid_body_modes
+from fe_crank.fe.core.supports import rigid_body_modes
 
 
 @pytest.fixture(scope="module")

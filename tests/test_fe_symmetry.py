@@ -1,4 +1,4 @@
-"""Unit cases solved on the symmetry components of a mirror-symmetric mesh (fe.symmetric).
+"""Unit cases solved on the symmetry components of a mirror-symmetric mesh (fe.core.symmetric).
 
 The independent method is the full model on the same mesh (``FeOptions(symmetry=False)``):
 both are direct solves of the same Galerkin equations, so they agree to the round-off of
@@ -19,9 +19,9 @@ from verification_meshes import Steel, as_throw_mesh, simple_throw
 
 from fe_crank.errors import InputError, SolverError
 from fe_crank.fe import FeOptions, solve_unit_cases
+from fe_crank.fe.core.supports import rigid_body_modes
+from fe_crank.fe.core.symmetric import component, mode_characters, reflect, verify_mirror
 from fe_crank.fe.input import parse_fe
-from fe_crank.fe.supports import rigid_body_modes
-from fe_crank.fe.symmetric import component, mode_characters, reflect, verify_mirror
 
 REL = 1e-10
 
@@ -120,7 +120,7 @@ def test_rigid_mode_characters_match_the_reflections(pair):
 
 def test_non_symmetric_mesh_falls_back_and_says_why(caplog):
     throw = simple_throw(size=0.014)  # meshed whole: not an exact mirror image
-    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.symmetric"):
+    with caplog.at_level(logging.WARNING, logger="fe_crank.fe.core.symmetric"):
         sol = solve_unit_cases(as_throw_mesh(throw, symmetry=(0, 2)), Steel(), FeOptions(cases=("pin_y", "torque")))
     assert "symmetry" not in sol.solver_description
     assert "not" in caplog.text and "solving the full model" in caplog.text
@@ -175,7 +175,7 @@ def test_symmetry_switch_is_read_from_the_fe_section():
 def test_one_shared_analysis_equals_separate_factorisations(monkeypatch):
     """The components on one PARDISO handle (one analysis, maxfct = 4) against each component
     factorised on its own (phase 12 each): the same factors, so the same answer to round-off."""
-    from fe_crank.fe import symmetric
+    from fe_crank.fe.core import symmetric
 
     throw = mirrored_throw((0, 2), size=0.02)
     opts = FeOptions(cases=("pin_030", "centrifugal", "torque"))
@@ -192,7 +192,7 @@ def test_one_shared_analysis_equals_separate_factorisations(monkeypatch):
 
 @pytest.mark.parametrize("method", ["superlu", "cholmod"])
 def test_other_direct_solvers_on_the_components(method):
-    from fe_crank.fe.solver_choice import cholmod_available
+    from fe_crank.fe.linalg.choice import cholmod_available
 
     if method == "cholmod" and not cholmod_available():
         pytest.skip("cholespy not installed")

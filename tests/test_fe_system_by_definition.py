@@ -18,10 +18,11 @@ import numpy as np
 import pytest
 from verification_meshes import Steel, as_throw_mesh, simple_throw
 
-from fe_crank.fe import solve_unit_cases, symmetric
-from fe_crank.fe.loads import centrifugal_load, pin_pressure_load
-from fe_crank.fe.supports import Coupling, Foundation
-from fe_crank.fe.system import build_system
+from fe_crank.fe import solve_unit_cases
+from fe_crank.fe.core import symmetric
+from fe_crank.fe.core.loads import centrifugal_load, pin_pressure_load
+from fe_crank.fe.core.supports import Coupling, Foundation
+from fe_crank.fe.core.system import build_system
 
 
 @pytest.fixture(scope="module")
@@ -91,9 +92,9 @@ def _load(unit, name):
     basis = unit.system.basis
     if name == "centrifugal":
         return centrifugal_load(basis, 7850.0, 1.0)
-    from fe_crank.fe.loads import face_torque_load
-    from fe_crank.fe.loads import pin_pressure_load as ppl
-    from fe_crank.fe.pin_directions import unit_force
+    from fe_crank.fe.core.loads import face_torque_load
+    from fe_crank.fe.core.loads import pin_pressure_load as ppl
+    from fe_crank.fe.throw.pin_directions import unit_force
 
     if name == "torque":
         return face_torque_load(basis, -1.0, boundary=unit.options.torque_face)
@@ -136,8 +137,8 @@ def test_part_stiffness_equals_the_part_basis_route(shipped):
     import scipy.sparse as sp
     from skfem import Basis
 
-    from fe_crank.fe.assembly import assemble_stiffness, part_stiffness
-    from fe_crank.fe.bases import cell_basis
+    from fe_crank.fe.core.assembly import assemble_stiffness, part_stiffness
+    from fe_crank.fe.core.bases import cell_basis
 
     mesh = shipped.mesh
     basis = cell_basis(mesh, 2)
@@ -158,7 +159,7 @@ def test_part_stiffness_equals_the_part_basis_route(shipped):
 def test_selection_equals_the_coo_route():
     import scipy.sparse as sp
 
-    from fe_crank.fe.system import selection
+    from fe_crank.fe.core.system import selection
 
     n, held = 3000, np.array([5, 6, 17, 1200, 2999, 0])
     rows = np.unique(held)
@@ -193,9 +194,9 @@ def test_component_matrices_equal_the_masked_half_triangle():
     import scipy.sparse as sp
     from symmetric_meshes import mirrored_throw
 
-    from fe_crank.fe.assembly import part_stiffness
-    from fe_crank.fe.bases import cell_basis
-    from fe_crank.fe.symmetric import build_symmetric_solver, mesh_mirror
+    from fe_crank.fe.core.assembly import part_stiffness
+    from fe_crank.fe.core.bases import cell_basis
+    from fe_crank.fe.core.symmetric import build_symmetric_solver, mesh_mirror
 
     throw = mirrored_throw((0, 2), size=0.016)
     basis = cell_basis(throw.mesh, 2)
@@ -228,8 +229,8 @@ def test_upper_triangle_equals_scipy_triu(shipped):
     stiffness (explicit zeros and all), and a small matrix with empty rows at both ends."""
     import scipy.sparse as sp
 
-    from fe_crank.fe.assembly import assemble_stiffness, upper_triangle
-    from fe_crank.fe.bases import cell_basis
+    from fe_crank.fe.core.assembly import assemble_stiffness, upper_triangle
+    from fe_crank.fe.core.bases import cell_basis
 
     K = assemble_stiffness(cell_basis(shipped.mesh, 2), 210e9, 0.3)
     S = sp.csr_matrix(

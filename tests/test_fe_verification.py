@@ -8,9 +8,9 @@ from skfem import ElementTetP2, FacetBasis
 from verification_meshes import annulus_sector, box_beam, round_bar
 
 from fe_crank.fe import Coupling, Dirichlet, build_system
-from fe_crank.fe.assembly import assemble_surface_load
-from fe_crank.fe.loads import centrifugal_load
-from fe_crank.fe.stress import stress_at_nodes
+from fe_crank.fe.core.assembly import assemble_surface_load
+from fe_crank.fe.core.loads import centrifugal_load
+from fe_crank.fe.core.stress import stress_at_nodes
 
 E, NU, RHO = 210e9, 0.3, 7850.0
 ALL6 = ("ux", "uy", "uz", "rx", "ry", "rz")

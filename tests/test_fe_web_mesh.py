@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from skfem import MeshTet
 
-from fe_crank.fe.web_mesh import MIN_ELEMENTS_ACROSS, web_elements_across, web_groups
+from fe_crank.rules.m53.web_mesh import MIN_ELEMENTS_ACROSS, web_elements_across, web_groups
 
 
 def _layers(layers: int, thickness: float = 0.02, n_xy: int = 5) -> MeshTet:

@@ -67,7 +67,7 @@ def test_deep_nesting_refused(tmp_path, capsys, deep):
 def test_deep_nesting_in_a_folder_scan_does_not_stop_the_batch(tmp_path, capsys):
     """A nested-array bomb among the load cases of a folder: the folder scan reports it
     as an error case (exit 2) and does not crash while looking for [operating]."""
-    from fe_crank.check import find_loadcases
+    from fe_crank.pipeline import find_loadcases
 
     d = tmp_path / "cases"
     d.mkdir()
@@ -226,7 +226,7 @@ def test_unreadable_loadcase(tmp_path, capsys):
 def test_symlink_loop_loadcase_in_folder_scan(tmp_path):
     """A self-referencing link among the load cases becomes an error case; the valid
     case of the folder is still found."""
-    from fe_crank.check import find_loadcases
+    from fe_crank.pipeline import find_loadcases
 
     d = tmp_path / "cases"
     d.mkdir()

@@ -9,15 +9,15 @@ from pathlib import Path
 
 import pytest
 
-from fe_crank.assess.criteria import evaluate_criteria
-from fe_crank.assess.m53 import M53Fillet
-from fe_crank.assess.m53_basis import m53_basis
-from fe_crank.assess.qualifiers import criterion_qualifiers
+from fe_crank.assess.criteria.judge import evaluate_criteria
+from fe_crank.assess.criteria.qualifiers import criterion_qualifiers
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.cli import main
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.report.locations import criterion_location
+from fe_crank.rules.m53.basis import m53_basis
+from fe_crank.rules.m53.calculation import M53Fillet
 
 ROOT = Path(__file__).resolve().parents[1]
 FLAG = "m53_quasi_static_torque = true"

@@ -270,7 +270,7 @@ def test_facet_quadrature_on_curved_journal_maps_back(tmp_path):
     """scikit-fem's own inverse map stuck at a unit-cube corner on this mesh (inline-4,
     test preset, journal_2); the robust inverse maps every facet point back exactly:
     the journal diameter integrated over its surface is the drawing's."""
-    from fe_crank.fe.unit_cases import journal_diameter
+    from fe_crank.fe.throw.unit_cases import journal_diameter
 
     g = load_geometry(ROOT / "geometry" / "inline4.toml")
     tm = mesh_throw(g, size="test", cache_dir=tmp_path)

@@ -1,21 +1,21 @@
 """Where a criterion's value occurs is data (``results.Location``), put into words in one
 place (``report.locations``): each kind's words written out by hand here, and the
-verdict (``check.verdict.decide``) giving every criterion and speed its words."""
+verdict (``pipeline.verdict.decide``) giving every criterion and speed its words."""
 
 from __future__ import annotations
 
 import math
 
 from fe_crank.assess.case import Assessment
-from fe_crank.assess.criteria import judge_criteria
-from fe_crank.assess.group import Extreme, GroupResult
+from fe_crank.assess.criteria.judge import judge_criteria
+from fe_crank.assess.group.assessment import Extreme, GroupResult
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.check.verdict import decide
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
 from fe_crank.outputs import CaseOutputs
+from fe_crank.pipeline.verdict import decide
 from fe_crank.report.locations import criterion_location, location_text
 from fe_crank.results import CriterionResult, Location
 

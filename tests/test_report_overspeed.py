@@ -23,7 +23,7 @@ from pipeline import stage_outputs, write_report
 
 import fe_crank.assess as assess
 from fe_crank.assess.superpose import combine, load_coefficients
-from fe_crank.fe.stress import von_mises
+from fe_crank.fe.core.stress import von_mises
 from fe_crank.mechanism.cycles import overspeed_cycles
 
 pytestmark = pytest.mark.heavy  # one test-preset mesh and solve, three renders: about 30 s
@@ -80,7 +80,7 @@ def _overspeed_von_mises(lc, dyn, units, nodes) -> tuple[np.ndarray, np.ndarray]
 
 def _governing_state(hist: np.ndarray) -> tuple[int, int]:
     """(angle index, node index) of the group's maximum as the assessment names it
-    (``assess.group.first_extreme``, ties within 1e-9 = ``TIE_RTOL``): the first node whose
+    (``assess.group.assessment.first_extreme``, ties within 1e-9 = ``TIE_RTOL``): the first node whose
     cycle maximum ties with the group's, then that node's first angle of its maximum.  Ties
     are real: the motored cycle repeats every revolution (TDC at 0 and 360 deg alike), and
     on a mirrored mesh a node and its mirror image peak at mirrored crank angles."""

@@ -8,7 +8,7 @@ import pytest
 from images import image_statistics
 from skfem import Basis, ElementTetP2, MeshTet, MeshTet2
 
-from fe_crank.fe.result_fields import quadratic_tet_mesh, write_vtu
+from fe_crank.fe.core.result_fields import quadratic_tet_mesh, write_vtu
 from fe_crank.report.render import (
     exaggeration_factor,
     grid_of,

@@ -10,11 +10,11 @@ from test_assess_cw_joint import JOINT, _loads
 
 from fe_crank.assess.case import Assessment
 from fe_crank.assess.cw_joint import check_joint
-from fe_crank.assess.group import Extreme, GroupResult
-from fe_crank.assess.m53 import M53Fillet
+from fe_crank.assess.group.assessment import Extreme, GroupResult
 from fe_crank.assess.results import load_schema, to_json
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.io.material import load_material
+from fe_crank.rules.m53.calculation import M53Fillet
 
 
 def test_joints_sigma_add_and_the_oil_bore_outlet_validate():

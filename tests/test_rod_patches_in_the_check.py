@@ -12,7 +12,7 @@ import pytest
 from pipeline import stage_outputs
 
 from fe_crank.assess.states import von_mises_at
-from fe_crank.fe.pin_directions import patch_case
+from fe_crank.fe.throw.pin_directions import patch_case
 
 DATA = Path(__file__).parent / "data"
 

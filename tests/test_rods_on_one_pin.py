@@ -11,12 +11,14 @@ import numpy as np
 import pytest
 
 from fe_crank import model
-from fe_crank.assess import m53, m53_oil_bore, m53_rods
 from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.errors import InputError
-from fe_crank.fe.pin_patches import patch_bands, patch_forces, pin_patch_options, rod_positions
+from fe_crank.fe.throw.pin_patches import patch_bands, patch_forces, pin_patch_options, rod_positions
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism import dynamics
+from fe_crank.rules.m53 import calculation as m53
+from fe_crank.rules.m53 import oil_bore as m53_oil_bore
+from fe_crank.rules.m53 import rods as m53_rods
 
 V4 = "loadcases/v4_90_pneumatic_operating.toml"
 

@@ -11,14 +11,14 @@ import numpy as np
 import pytest
 from test_fe_scf_assess import SMALL, big_fillet  # noqa: F401 (the module's fixture: a coarse throw out of range)
 
-from fe_crank.assess.criteria import evaluate_criteria
-from fe_crank.assess.scf import compute_scf, web_centres_of
-from fe_crank.assess.scf_refine import FILLET_STEP, accepted_scf, refined_options
+from fe_crank.assess.criteria.judge import evaluate_criteria
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import assess_throw
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
+from fe_crank.rules.m53.scf_mode import compute_scf, web_centres_of
+from fe_crank.rules.m53.scf_refine import FILLET_STEP, accepted_scf, refined_options
 
 GEO = dataclasses.replace(SMALL, pin_fillet_radius=0.0038, journal_fillet_radius=0.0038)
 

@@ -91,7 +91,7 @@ def test_journal_slopes_at_the_bearings(three):
     equation), so the slopes at the bearings are 3 P L^2 / (64 EI) (A), P L^2 / (32 EI) (B)
     and P L^2 / (64 EI) (C), A and C turning the same way, B the other (beam theory; the
     coupling's mean over its layer of journal, shear deformation neglected)."""
-    from fe_crank.fe.shaft_cycle import journal_slopes, solve_cycle
+    from fe_crank.fe.shaft.cycle import journal_slopes, solve_cycle
 
     cases = point_loads(three, {0: 1000.0})
     W = np.zeros((1, len(cases.names)))

@@ -22,11 +22,11 @@ from pipeline import stage_outputs, write_report
 
 from fe_crank.assess.results import schema_path
 from fe_crank.assess.shaft import piece_unit_stresses
-from fe_crank.check.stages import shaft_layout
-from fe_crank.fe.shaft_fields import piece_fields
-from fe_crank.fe.stress import stress_at_selected_nodes
-from fe_crank.fe.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.core.stress import stress_at_selected_nodes
+from fe_crank.fe.shaft.fields import piece_fields
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.pipeline.stages import shaft_layout
 
 DATA = Path(__file__).parent / "data"
 pytestmark = pytest.mark.heavy
@@ -163,10 +163,10 @@ def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path):
     weights, here); each criterion takes the worse model at each speed."""
     from test_assess_sweep import SWEPT
 
-    from fe_crank.assess.group import assess_groups
-    from fe_crank.assess.m53_basis import m53_basis
+    from fe_crank.assess.group.assessment import assess_groups
     from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, bearing_sweep
-    from fe_crank.fe.shaft_model import ShaftFeOptions
+    from fe_crank.fe.shaft.model import ShaftFeOptions
+    from fe_crank.rules.m53.basis import m53_basis
 
     (tmp_path / "case.toml").write_text(SWEPT.format(sweep='speeds = ["2000 rpm", "3000 rpm"]'))
     g = (DATA / "geometry_small.toml").read_text() + '\n[shaft]\nend_journal_length = "12 mm"\n'

@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 from test_assess_verdict import _group, _throws
 
-from fe_crank.assess.criteria import evaluate_criteria, model_values
+from fe_crank.assess.criteria.judge import evaluate_criteria, model_values
 from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, ShaftAssessment
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.errors import InputError
-from fe_crank.fe.shaft_cycle import BearingLoads
-from fe_crank.fe.whole_shaft import BearingResult
+from fe_crank.fe.shaft.cycle import BearingLoads
+from fe_crank.fe.shaft.whole_shaft import BearingResult
 from fe_crank.io.criteria import build_criteria
 from fe_crank.report.locations import criterion_location, location_text
 

@@ -25,8 +25,8 @@ import pytest
 from shaft_helpers import Steel, small_engine, small_geometry
 
 from fe_crank import model
-from fe_crank.fe.shaft_cases import solve_cases
-from fe_crank.fe.whole_shaft import condensed_shaft, shaft_cycle_of
+from fe_crank.fe.shaft.cases import solve_cases
+from fe_crank.fe.shaft.whole_shaft import condensed_shaft, shaft_cycle_of
 from fe_crank.geometry.mass import mass_properties
 from fe_crank.geometry.shaft import shaft_layout
 from fe_crank.geometry.spec import EndLoad
@@ -212,7 +212,7 @@ def test_every_journal_carries_its_own_torque_turning_the_other_way(overhung):
     under vibration (T_r - T_f - T_own, any function of the angle), the moment about the
     axis of the forces the neighbours exert on the throw is -sense T_f on its front face
     and sense T_r on its rear face (a torque T acts about -sense z), at every angle."""
-    from fe_crank.fe.whole_shaft import end_load_cases, torque_flow_cases
+    from fe_crank.fe.shaft.whole_shaft import end_load_cases, torque_flow_cases
 
     layout, cases0, mass, e = overhung
     shaft = cases0.model

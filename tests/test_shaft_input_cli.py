@@ -114,9 +114,9 @@ def test_a_cad_shaft_keeps_its_recognised_journals(tmp_path):
     from cad_files import shaft_step
 
     from fe_crank.cad.config import CadInput
-    from fe_crank.check.stages import shaft_layout
     from fe_crank.io.geometry import load_geometry
     from fe_crank.io.loadcase import load_loadcase
+    from fe_crank.pipeline.stages import shaft_layout
 
     p, _ = _tree(tmp_path, "inline4_rated.toml")
     g = load_geometry(ROOT / "geometry" / "inline4.toml")

@@ -8,7 +8,7 @@ from scipy.spatial import cKDTree
 from shaft_helpers import small_engine, small_geometry
 
 from fe_crank.errors import InputError
-from fe_crank.fe.bases import cell_basis
+from fe_crank.fe.core.bases import cell_basis
 from fe_crank.geometry.shaft import shaft_layout
 from fe_crank.gmsh_io import corner_jacobians
 from fe_crank.mesh.extrude import extrude, round_disc

@@ -13,9 +13,9 @@ import pytest
 from shaft_helpers import Steel, small_engine, small_geometry
 
 from fe_crank import model
-from fe_crank.fe.shaft_cases import solve_cases
-from fe_crank.fe.shaft_cycle import ThrowCycleLoad, shaft_cycle
-from fe_crank.fe.shaft_model import build_shaft_model
+from fe_crank.fe.shaft.cases import solve_cases
+from fe_crank.fe.shaft.cycle import ThrowCycleLoad, shaft_cycle
+from fe_crank.fe.shaft.model import build_shaft_model
 from fe_crank.geometry.mass import mass_properties
 from fe_crank.geometry.shaft import shaft_layout
 from fe_crank.mechanism.dynamics import analyse
@@ -134,10 +134,10 @@ def test_condensed_fields_equal_a_direct_solve_of_the_joined_mesh(twin):
     import scipy.sparse as sp
     from scipy.spatial import cKDTree
 
-    from fe_crank.fe.assembly import assemble_stiffness
-    from fe_crank.fe.bases import cell_basis
-    from fe_crank.fe.linalg import factorise
-    from fe_crank.fe.shaft_patterns import end_patterns, surface_patterns, throw_patterns
+    from fe_crank.fe.core.assembly import assemble_stiffness
+    from fe_crank.fe.core.bases import cell_basis
+    from fe_crank.fe.linalg.factorise import factorise
+    from fe_crank.fe.shaft.patterns import end_patterns, surface_patterns, throw_patterns
     from fe_crank.mesh.shaft import node_maps
 
     layout, cases, dyn, mass, loads, psi = twin
@@ -228,7 +228,7 @@ def test_main_bearing_loads_are_the_envelope_over_the_stiffness_range(twin):
     3e8, 9.5e8 and 3e9 N/m (the default range, its geometric mean between), each law
     computed here on its own; the governing law is named with the loads, which are that
     law's whole cycle (peak and specific load from them)."""
-    from fe_crank.fe.whole_shaft import bearings_of
+    from fe_crank.fe.shaft.whole_shaft import bearings_of
     from fe_crank.geometry.spec import BearingLaw
 
     layout, cases, dyn, mass, loads, psi = twin

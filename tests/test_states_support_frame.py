@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 from pipeline import stage_outputs, write_report
 
-from fe_crank.check.options import CheckOptions
-from fe_crank.fe.stress import von_mises
-from fe_crank.fe.support_frame import support_displacements
+from fe_crank.fe.core.stress import von_mises
+from fe_crank.fe.core.support_frame import support_displacements
+from fe_crank.pipeline.options import CheckOptions
 
 DATA = Path(__file__).parent / "data"
 

@@ -3,7 +3,7 @@
 import numpy as np
 
 from fe_crank.assess.stress import principal as principal_stacked
-from fe_crank.fe.stress import principal
+from fe_crank.fe.core.stress import principal
 
 
 def test_principal_stresses_mohr_circle_in_both_layouts():

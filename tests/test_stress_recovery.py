@@ -1,6 +1,6 @@
 """Nodal stress recovery at the assessed nodes against independent computations.
 
-* ``fe.stress.stress_at_selected_nodes`` visits only the elements that share a node with
+* ``fe.core.stress.stress_at_selected_nodes`` visits only the elements that share a node with
   the assessed groups.  References: the whole-mesh recovery (every element's nodal
   stress averaged over all elements at each node, then read at the assessed nodes; the
   two differ only in the order of the additions of each average, a few ulp, so 1e-12
@@ -29,8 +29,8 @@ from skfem.assembly import Dofs
 from fe_crank.assess import assessed_groups, unit_stresses
 from fe_crank.assess.recovery import recovery_ratios
 from fe_crank.assess.stress import von_mises as vm_nodes
-from fe_crank.fe.forms import lame_parameters
-from fe_crank.fe.stress import (
+from fe_crank.fe.core.forms import lame_parameters
+from fe_crank.fe.core.stress import (
     averaging_indicator,
     element_nodal_stress,
     elements_of_nodes,

@@ -15,7 +15,7 @@ from skfem import Basis, ElementTetP2, Functional
 
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
-from fe_crank.fe.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
 from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.study.candidates import Candidate, web_shape

@@ -103,7 +103,7 @@ def test_patch_model_with_torsion_is_in_equilibrium_at_every_speed(v4_torsion):
     assert len(units.options.pin_patches) == 2 and "angular_acceleration" in units.cases
     from fe_crank.assess.state_throws import places_of
     from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
-    from fe_crank.fe.pin_directions import patch_case, unit_force
+    from fe_crank.fe.throw.pin_directions import patch_case, unit_force
 
     cases = tuple(units.cases)
     mz = np.array([units.cases[k].reactions["end_2"][5] for k in cases])
@@ -153,6 +153,6 @@ def test_patch_model_with_torsion_is_in_equilibrium_at_every_speed(v4_torsion):
 
 def _inputs_like(out):
     """The assessment's inputs of the stage outputs (the check's own)."""
-    from fe_crank.check.stages import assess_inputs
+    from fe_crank.pipeline.stages import assess_inputs
 
     return assess_inputs(out.loadcase, out)

@@ -10,7 +10,7 @@ import pytest
 from verification_meshes import round_bar
 
 from fe_crank.fe import Coupling, build_system
-from fe_crank.fe.loads import face_torque_load
+from fe_crank.fe.core.loads import face_torque_load
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.torsion.build import pitch_stiffness, shear_modulus
 from fe_crank.torsion.stiffness import carter_throw_stiffness, face_rotation

@@ -92,8 +92,8 @@ def test_torsional_sweep_values_are_those_of_single_speed_checks(torsion_swept):
     the per-throw model's check of the same case at that speed alone, every node evaluated
     (its own torsional stage on the same FE solution).  (The whole shaft's states are
     checked likewise in ``test_shaft_check``.)"""
-    from fe_crank.assess.criteria import evaluate_criteria
-    from fe_crank.check.stages import assess_stage, torsion_stage
+    from fe_crank.assess.criteria.judge import evaluate_criteria
+    from fe_crank.pipeline.stages import assess_stage, torsion_stage
 
     folder, out = torsion_swept
     a = out.assessment

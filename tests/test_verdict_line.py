@@ -1,5 +1,5 @@
 """Models that are not a sign-off do not look like one, and a quality warning says on the
-verdict line which verdicts it concerns (``fe_crank.check.notes``, ``fe_crank.notes.verdict_remarks``)."""
+verdict line which verdicts it concerns (``fe_crank.pipeline.notes``, ``fe_crank.notes.verdict_remarks``)."""
 
 from __future__ import annotations
 
@@ -9,13 +9,13 @@ import numpy as np
 
 from fe_crank.assess.case import Assessment
 from fe_crank.assess.states import HotSpot, ModelStates
-from fe_crank.check.notes import case_notes
 from fe_crank.cli.check import format_plain
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.io.material import load_material
 from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.notes import WARNING, verdict_remarks
 from fe_crank.outputs import CaseOutputs
+from fe_crank.pipeline.notes import case_notes
 from fe_crank.records import CaseResult, InputHash, MeshRecord, Provenance
 from fe_crank.report.html import header_html
 from fe_crank.report.locations import location_text

@@ -73,8 +73,8 @@ def main(argv=None) -> int:
     import logging
 
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", datefmt="%H:%M:%S")
-    from fe_crank.check.case import run_case
-    from fe_crank.check.options import CheckOptions
+    from fe_crank.pipeline.case import run_case
+    from fe_crank.pipeline.options import CheckOptions
 
     sampler = RssSampler()
     sampler.start()

@@ -48,7 +48,7 @@ _SHAFT_TESTS = ("tests/test_shaft_frames.py", "tests/test_shaft_throws.py")
 MUTANTS = (
     Mutant(
         "shaft-reference-offset",
-        "fe_crank/fe/whole_shaft.py",
+        "fe_crank/fe/shaft/whole_shaft.py",
         "psi = np.asarray(dynamics.throws[first.name].angle_global) - layout.sense * first.angle",
         "psi = np.asarray(dynamics.throws[first.name].angle_global)",
         _SHAFT_TESTS,
@@ -56,7 +56,7 @@ MUTANTS = (
     ),
     Mutant(
         "shaft-web-sense",
-        "fe_crank/fe/shaft_cycle.py",
+        "fe_crank/fe/shaft/cycle.py",
         "R = rotation(layout.sense * th.angle)[:2, :2]",
         "R = rotation(th.angle)[:2, :2]",
         _SHAFT_TESTS,
@@ -64,7 +64,7 @@ MUTANTS = (
     ),
     Mutant(
         "shaft-web-counterweights",
-        "fe_crank/fe/shaft_cycle.py",
+        "fe_crank/fe/shaft/cycle.py",
         '        if name.startswith("counterweight") and not counterweights:\n            continue\n',
         "",
         _SHAFT_TESTS,
@@ -72,7 +72,7 @@ MUTANTS = (
     ),
     Mutant(
         "shaft-web-plane",
-        "fe_crank/fe/shaft_cycle.py",
+        "fe_crank/fe/shaft/cycle.py",
         "for web, zc in ((1, th.z - zp - t / 2), (2, th.z + zp + t / 2)):",
         "for web, zc in ((1, th.z - zp - t - g.journal_length), (2, th.z + zp + t + g.journal_length)):",
         _SHAFT_TESTS,
@@ -80,7 +80,7 @@ MUTANTS = (
     ),
     Mutant(
         "shaft-front-torque-sense",
-        "fe_crank/fe/whole_shaft.py",
+        "fe_crank/fe/shaft/whole_shaft.py",
         "return spin, -sense * np.asarray(dynamics.throws[first].torque_front, float)",
         "return spin, -np.asarray(dynamics.throws[first].torque_front, float)",
         ("tests/test_shaft_frames.py",),
@@ -88,7 +88,7 @@ MUTANTS = (
     ),
     Mutant(
         "shaft-spin-up-sense",
-        "fe_crank/fe/whole_shaft.py",
+        "fe_crank/fe/shaft/whole_shaft.py",
         "spin[pp.throw] = -sense * rest / jz",
         "spin[pp.throw] = -rest / jz",
         ("tests/test_shaft_frames.py",),
@@ -96,7 +96,7 @@ MUTANTS = (
     ),
     Mutant(
         "shaft-end-unbalance-sense",
-        "fe_crank/fe/whole_shaft.py",
+        "fe_crank/fe/shaft/whole_shaft.py",
         "alpha = layout.sense * (a1 + e.unbalance_angle)",
         "alpha = a1 + e.unbalance_angle",
         ("tests/test_shaft_frames.py",),
@@ -104,7 +104,7 @@ MUTANTS = (
     ),
     Mutant(
         "shaft-end-lever",
-        "fe_crank/fe/whole_shaft.py",
+        "fe_crank/fe/shaft/whole_shaft.py",
         "c = model.coupling(e.name, z + sign * e.offset, [(k, face)])",
         "c = model.coupling(e.name, z, [(k, face)])",
         ("tests/test_shaft_frames.py",),
@@ -112,7 +112,7 @@ MUTANTS = (
     ),
     Mutant(
         "bearing-envelope-best",
-        "fe_crank/fe/whole_shaft.py",
+        "fe_crank/fe/shaft/whole_shaft.py",
         "return tuple(max(loads, key=lambda b: b.peak_n) for loads in zip(*per_law))",
         "return tuple(min(loads, key=lambda b: b.peak_n) for loads in zip(*per_law))",
         ("tests/test_shaft_throws.py",),
@@ -120,7 +120,7 @@ MUTANTS = (
     ),
     Mutant(
         "bearing-clearance-gap",
-        "fe_crank/fe/bearings.py",
+        "fe_crank/fe/shaft/bearings.py",
         "F = -k * np.where(on, r - c, 0.0)[:, None] * e",
         "F = -k * np.where(on, r, 0.0)[:, None] * e",
         ("tests/test_shaft_beam.py",),

@@ -112,8 +112,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "torsion.forced": ("fe_crank/torsion/forced.py", _TORSION_TESTS),
     "torsion.stiffness": ("fe_crank/torsion/stiffness.py", _TORSION_TESTS),
     "torsion.excitation": ("fe_crank/torsion/excitation.py", _TORSION_TESTS),
-    "assess.m53": (
-        "fe_crank/assess/m53.py",
+    "rules.m53.calculation": (
+        "fe_crank/rules/m53/calculation.py",
         [
             "tests/test_assess_m53.py",
             "tests/test_assess_m53_oil_bore.py",
@@ -122,8 +122,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
             "tests/test_assess_m53_sections.py",
         ],
     ),
-    "assess.m53_oil_bore": (
-        "fe_crank/assess/m53_oil_bore.py",
+    "rules.m53.oil_bore": (
+        "fe_crank/rules/m53/oil_bore.py",
         [
             "tests/test_assess_m53_oil_bore.py",
             "tests/test_assess_m53.py",
@@ -144,10 +144,13 @@ MODULES: dict[str, tuple[str, list[str]]] = {
             "tests/test_assess_fatigue_means.py",
         ],
     ),
-    "assess.verdict": ("fe_crank/assess/verdict.py", ["tests/test_assess_verdict.py", "tests/test_assess_fatigue.py"]),
+    "assess.criteria.verdict": (
+        "fe_crank/assess/criteria/verdict.py",
+        ["tests/test_assess_verdict.py", "tests/test_assess_fatigue.py"],
+    ),
     "assess.superpose": ("fe_crank/assess/superpose.py", _ASSESS_TESTS),
     "assess.stress": ("fe_crank/assess/stress.py", _ASSESS_TESTS),
-    "assess.peak": ("fe_crank/assess/peak.py", _ASSESS_TESTS),
+    "assess.group.peak": ("fe_crank/assess/group/peak.py", _ASSESS_TESTS),
     "mechanism.cycles": ("fe_crank/mechanism/cycles.py", _ASSESS_TESTS),
     "assess.throw": (
         "fe_crank/assess/throw.py",
@@ -159,12 +162,12 @@ MODULES: dict[str, tuple[str, list[str]]] = {
             "tests/test_assess_m53_oil_bore.py",
         ],
     ),
-    "assess.group": (
-        "fe_crank/assess/group.py",
+    "assess.group.assessment": (
+        "fe_crank/assess/group/assessment.py",
         _ASSESS_TESTS + ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py"],
     ),
-    "assess.groups": (
-        "fe_crank/assess/groups.py",
+    "assess.group.nodes": (
+        "fe_crank/assess/group/nodes.py",
         ["tests/test_assess_groups.py", "tests/test_assess_case.py", "tests/test_assess_superpose.py"],
     ),
     "assess.recovery": (
@@ -174,8 +177,8 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     # the FE load and support modules: tiny meshes only (a few seconds per test file); the
     # unit-case tests on the seed throw (tests/test_fe_unit_cases.py, test_fe_determinate*.py
     # of the throw, test_assess_superpose.py) solve FE models for tens of seconds a mutant
-    "fe.loads": (
-        "fe_crank/fe/loads.py",
+    "fe.core.loads": (
+        "fe_crank/fe/core/loads.py",
         [
             "tests/test_fe_loads_closed_form.py",
             "tests/test_fe_determinate_statics.py",
@@ -184,15 +187,15 @@ MODULES: dict[str, tuple[str, list[str]]] = {
             "tests/test_fe_verification.py",
         ],
     ),
-    "fe.determinate": (
-        "fe_crank/fe/determinate.py",
+    "fe.core.determinate": (
+        "fe_crank/fe/core/determinate.py",
         ["tests/test_fe_determinate_statics.py", "tests/test_fe_loads_boundaries.py"],
     ),
-    "fe.pin_directions": (
-        "fe_crank/fe/pin_directions.py",
+    "fe.throw.pin_directions": (
+        "fe_crank/fe/throw/pin_directions.py",
         ["tests/test_fe_loads_pin_directions.py", "tests/test_fe_loads_closed_form.py"],
     ),
-    "fe.forms": ("fe_crank/fe/forms.py", ["tests/test_fe_assembly.py", "tests/test_fe_verification.py"]),
+    "fe.core.forms": ("fe_crank/fe/core/forms.py", ["tests/test_fe_assembly.py", "tests/test_fe_verification.py"]),
 }
 
 

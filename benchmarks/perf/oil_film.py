@@ -36,12 +36,12 @@ def main() -> None:
     from fe_crank.assess.loads import FIRING
     from fe_crank.assess.oil_film import film_sweep
     from fe_crank.assess.shaft import BearingState
-    from fe_crank.check.shaft_stage import layout_of
-    from fe_crank.fe.shaft_cycle import BearingLoads
-    from fe_crank.fe.whole_shaft import BearingResult, analyse_whole_shaft
+    from fe_crank.fe.shaft.cycle import BearingLoads
+    from fe_crank.fe.shaft.whole_shaft import BearingResult, analyse_whole_shaft
     from fe_crank.geometry.oil import FilmSpec
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mechanism.cycles import engine_cycles
+    from fe_crank.pipeline.shaft_stage import layout_of
 
     lc = load_loadcase(a.loadcase)
     layout = layout_of(lc)

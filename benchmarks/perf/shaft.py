@@ -41,7 +41,7 @@ def run(args) -> dict:
     from fe_crank import model
     from fe_crank.assess.shaft import assess_shaft_throws
     from fe_crank.assess.workers import threads
-    from fe_crank.fe.whole_shaft import analyse_whole_shaft
+    from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
     from fe_crank.geometry.shaft import shaft_layout
     from fe_crank.mechanism.dynamics import analyse
 

@@ -115,8 +115,8 @@ def fe(loadcase: str, preset: str, cache: str, solver: str, symmetry: bool) -> d
 def _unit_loads(units, density: float) -> dict[str, np.ndarray]:
     """The unit load vectors of the FE stage, rebuilt from its options (checked against
     the resultants the stage recorded)."""
-    from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load
-    from fe_crank.fe.pin_directions import unit_force
+    from fe_crank.fe.core.loads import centrifugal_load, face_torque_load, pin_pressure_load
+    from fe_crank.fe.throw.pin_directions import unit_force
 
     basis, o = units.system.basis, units.options
     out = {}
@@ -140,7 +140,7 @@ def cycle(loadcase: str, preset: str, cache: str, solver: str, angles: int) -> d
     from fe_crank.assess.superpose import load_coefficients, stress_history
     from fe_crank.assess.throw import assess_throw
     from fe_crank.fe import solve_unit_cases
-    from fe_crank.fe.loads import pin_pressure_load
+    from fe_crank.fe.core.loads import pin_pressure_load
     from fe_crank.mechanism.dynamics import analyse
     from fe_crank.mesh import mesh_throw
 
@@ -246,9 +246,9 @@ def _group_on_threads(n: int, repeat: int, threads: int) -> dict:
     """One group of ``n`` synthetic nodes assessed (superposition, static, both fatigue
     criteria, overspeed peak) on 1 and on ``threads`` threads (``assess.workers``)."""
     from fe_crank.assess import workers
-    from fe_crank.assess.group import assess_group
+    from fe_crank.assess.group.assessment import assess_group
     from fe_crank.assess.superpose import UnitStresses, load_coefficients
-    from fe_crank.fe.unit_cases import CASES
+    from fe_crank.fe.throw.unit_cases import CASES
     from fe_crank.io.material import load_material
 
     rng = np.random.default_rng(2)

@@ -1,7 +1,7 @@
 """The ``sweep`` stage of ``run.py``: what a full-load sweep adds to the check.
 
 The load case is checked twice on the same cached mesh, as ``fe-crank check --no-render
---no-vtu --no-convergence`` runs it (``fe_crank.check.case.run_case``, the report
+--no-vtu --no-convergence`` runs it (``fe_crank.pipeline.case.run_case``, the report
 written): once at its operating speed alone (its ``[operating]`` without the full-load
 keys) and once over ``speeds`` speeds spread evenly over ``[lo, hi]`` rpm (``speeds =
 [...]``, the operating speed among them; the engine's one diagram at every speed).
@@ -53,8 +53,8 @@ def variants(text: str, speeds_rpm: list[float]) -> tuple[str, str]:
 
 
 def _check(path: Path, preset: str, cache: str, out_dir: str) -> dict:
-    from fe_crank.check.case import run_case
-    from fe_crank.check.options import CheckOptions
+    from fe_crank.pipeline.case import run_case
+    from fe_crank.pipeline.options import CheckOptions
 
     opts = CheckOptions(mesh_size=preset, cache_dir=cache, render=False, write_vtu=False, convergence=False)
     t = os.times()

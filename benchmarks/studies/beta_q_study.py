@@ -25,10 +25,10 @@ import dataclasses
 import time
 
 from fe_crank.assess.adapters import m53_geometry_of
-from fe_crank.assess.scf import compute_scf, web_centres_of
 from fe_crank.io.geometry import load_geometry
 from fe_crank.io.material import load_material
 from fe_crank.mesh import PRESETS, MeshOptions, mesh_throw
+from fe_crank.rules.m53.scf_mode import compute_scf, web_centres_of
 
 
 def main() -> None:

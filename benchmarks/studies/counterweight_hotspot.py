@@ -37,9 +37,9 @@ def corner_points(g, spec):
 
 
 def main(argv=None):
-    from fe_crank.assess.groups import assessed_groups
+    from fe_crank.assess.group.nodes import assessed_groups
     from fe_crank.fe import FeOptions, solve_unit_cases
-    from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
+    from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
     from fe_crank.geometry.throw import add_throw
     from fe_crank.gmsh_io import gmsh_session, model_to_skfem
     from fe_crank.io.geometry import load_geometry

@@ -112,7 +112,7 @@ def worker(args) -> int:
     from fe_crank.assess import assessed_groups
     from fe_crank.assess.superpose import unit_nodal_stress
     from fe_crank.fe import FeOptions, solve_unit_cases
-    from fe_crank.fe.unit_cases import CASES
+    from fe_crank.fe.throw.unit_cases import CASES
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mesh import mesh_throw
 

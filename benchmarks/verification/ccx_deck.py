@@ -41,8 +41,8 @@ def unit_loads(units) -> dict[str, np.ndarray]:
     determinate support model the FE stage's ``System.solve`` adds to each load its
     distributed reactions (``System.determinate``), held by six point constraints only:
     CalculiX gets the same self-equilibrated nodal loads."""
-    from fe_crank.fe.loads import centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
-    from fe_crank.fe.pin_directions import unit_force
+    from fe_crank.fe.core.loads import centrifugal_load, face_torque_load, pin_pressure_load, pin_surface
+    from fe_crank.fe.throw.pin_directions import unit_force
 
     basis, opt = units.system.basis, units.options
     surf, loads = None, {}

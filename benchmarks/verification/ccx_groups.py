@@ -7,7 +7,7 @@ sigma_v,fe-crank| over the group's nodes relative to the group's largest fe-cran
 
 Over the cycle (all unit cases): each code's unit stresses superposed with the check's
 own coefficients (``superpose.load_coefficients``, the overspeed cycles of
-``mechanism.cycles``) and assessed by the check's ``assess.group.assess_group``: the
+``mechanism.cycles``) and assessed by the check's ``assess.group.assessment.assess_group``: the
 static and overspeed peak sigma_v and the Goodman safety of each group, at the node the
 check reports (fe-crank's) and at each code's own worst node.  A third recovery,
 CalculiX's reproduced on fe-crank's displacements (``ccx_recovery``), shows that the
@@ -20,7 +20,7 @@ import dataclasses
 
 import numpy as np
 
-from fe_crank.fe.stress import von_mises
+from fe_crank.fe.core.stress import von_mises
 
 PLACE_FLAGS = ("plane", "point", "near_point", "edge")
 
@@ -131,7 +131,7 @@ def cycle_table(loadcase_path: str, unit, stresses: dict[str, np.ndarray], flags
     """Per throw and group: static / overspeed peak and Goodman safety with each code's unit
     stresses (``stresses``: name -> (n_cases, 6, n), the first fe-crank's), at the node the
     check reports and at each code's own worst node."""
-    from fe_crank.assess.group import assess_group, section_diameter
+    from fe_crank.assess.group.assessment import assess_group, section_diameter
 
     pos_of = {int(n): k for k, n in enumerate(unit.node_ids)}
     out = {}

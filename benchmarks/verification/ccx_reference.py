@@ -6,7 +6,7 @@ fillet elements are refined.
 For each refinement f (fillet element edge r / f, 6 f elements round the oil bore per pi;
 the bulk of the ``test`` preset: coarse divisions 1.5, grading 2.0; f = 1 is the
 ``test`` preset itself), in a process of its own: the FE stage's unit cases, then per assessed group the check's static peak
-sigma_v over the cycle and its Goodman safety (``assess.group.assess_group`` with the
+sigma_v over the cycle and its Goodman safety (``assess.group.assessment.assess_group`` with the
 check's coefficients, ``ccx_groups.cycle_table``) from two nodal recoveries of the same
 displacements -- fe-crank's (the P2 stress at the node, averaged) and CalculiX's C3D10
 recovery (``ccx_recovery``: linear extrapolation from the 4 integration points, mid-edge
@@ -35,7 +35,7 @@ def level(loadcase: str, f: float) -> dict:
     from ccx_groups import cycle_table
     from ccx_recovery import calculix_nodal_stress, edge_nodes, places
 
-    from fe_crank.assess.groups import assessed_groups, unit_stresses
+    from fe_crank.assess.group.nodes import assessed_groups, unit_stresses
     from fe_crank.fe import FeOptions, solve_unit_cases
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mesh import mesh_throw

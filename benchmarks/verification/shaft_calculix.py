@@ -43,7 +43,7 @@ FILLETS = ("crankpin_fillet_1", "crankpin_fillet_2", "journal_fillet_1", "journa
 
 
 def _patterns(cond, kind: str, material, half_angle: float) -> dict[str, np.ndarray]:
-    from fe_crank.fe.shaft_patterns import end_patterns, surface_patterns, throw_patterns
+    from fe_crank.fe.shaft.patterns import end_patterns, surface_patterns, throw_patterns
 
     faces = ("end_1", "end_2")
     basis = cond.basis
@@ -63,10 +63,10 @@ def fe_worker(args) -> int:
     """fe-crank's side; writes <work>/fe.npz and the CalculiX deck."""
     from ccx_deck import c3d10_connectivity
 
-    from fe_crank.fe.shaft_cases import _terms, applied_loads
-    from fe_crank.fe.shaft_fields import piece_fields
-    from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
-    from fe_crank.fe.whole_shaft import analyse_whole_shaft
+    from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
+    from fe_crank.fe.shaft.cases import _terms, applied_loads
+    from fe_crank.fe.shaft.fields import piece_fields
+    from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
     from fe_crank.geometry.shaft import engine_shaft_layout
     from fe_crank.geometry.spec import BearingLaw
     from fe_crank.io.loadcase import load_loadcase
@@ -266,7 +266,7 @@ def main(argv=None) -> int:
     d_cx = np.array([disp[r][:2] for r in refs])
     d_fe = z["d"]
     f_fe, f_cx = -args.stiffness * d_fe, -args.stiffness * d_cx
-    from fe_crank.fe.stress import von_mises
+    from fe_crank.fe.core.stress import von_mises
 
     nodes = z["fillet_nodes"]
     vm_cx = np.array([von_mises(stress[n + 1]) for n in nodes])

@@ -21,10 +21,10 @@ import math
 
 from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry
 from fe_crank.assess.cw_joint import yield_point
-from fe_crank.assess.m53 import M53Geometry
 from fe_crank.balance.counterweights import CounterweightDesign
 from fe_crank.geometry.mass import MassProperties
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
+from fe_crank.rules.m53.calculation import M53Geometry
 
 #: ISO 898-1 tensile stress area (mm^2) of coarse-pitch metric threads by nominal d (mm)
 STRESS_AREA_MM2 = {

@@ -23,11 +23,11 @@ from __future__ import annotations
 import math
 
 from fe_crank.assess.counterweight import CounterweightData
-from fe_crank.assess.m53 import M53Geometry
 from fe_crank.balance.counterweights import CounterweightDesign
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import BoltedBody, ThrowFeatures
 from fe_crank.errors import InputError
+from fe_crank.rules.m53.calculation import M53Geometry
 
 
 def _recess(cad: CadInput, throw: ThrowFeatures, kind: str, given: float | None) -> float:

@@ -17,8 +17,9 @@ import math
 import time
 from dataclasses import dataclass, field
 
-from fe_crank.assess import m53_oil_bore
-from fe_crank.assess.criteria import NOT_CONFORM, QUASI_STATIC_M53, judge_criteria, model_values
+from fe_crank.assess.criteria.judge import NOT_CONFORM, QUASI_STATIC_M53, judge_criteria, model_values
+from fe_crank.assess.criteria.models import ModelValue
+from fe_crank.assess.criteria.qualifiers import criterion_qualifiers
 from fe_crank.assess.cw_joint import (
     JOINT_QUANTITIES,
     has_joints,
@@ -26,26 +27,25 @@ from fe_crank.assess.cw_joint import (
     unchecked_joints,
     with_default_limits,
 )
-from fe_crank.assess.groups import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
+from fe_crank.assess.group.nodes import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
 from fe_crank.assess.inputs import AssessInputs
 from fe_crank.assess.loads import AssessedLoads
-from fe_crank.assess.m53_basis import M53Basis, m53_basis
-from fe_crank.assess.qualifiers import criterion_qualifiers
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.refinement import Refinement, StudyFactors
 from fe_crank.assess.shaft import ShaftAssessment, assess_shaft_throws, governing
-from fe_crank.assess.shaft_criteria import ModelValue
 from fe_crank.assess.speeds import StateResults, wanted_extremes
 from fe_crank.assess.state_throws import assess_state, places_of, state_dynamics
 from fe_crank.assess.states import ModelStates, model_states
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import run_blocks
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.io.material import Material
 from fe_crank.mechanism.misfire import READING
 from fe_crank.notes import ASSUMPTION, WARNING, Note, grouped
 from fe_crank.results import CriterionResult
+from fe_crank.rules.m53 import oil_bore as m53_oil_bore
+from fe_crank.rules.m53.basis import M53Basis, m53_basis
 from fe_crank.throw_scope import throws_of
 
 #: 1.1: optional provenance and warnings (written by the report); 1.2: warnings name their throws;

@@ -81,8 +81,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess import vdi2230 as v
 from fe_crank.assess.counterweight import JointGeometry
+from fe_crank.rules import vdi2230 as v
 
 E_BOLT = 205e9  # Pa, steel bolts (VDI 2230)
 

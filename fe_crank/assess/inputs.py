@@ -7,16 +7,16 @@ from dataclasses import dataclass, field
 
 from fe_crank import model
 from fe_crank.assess.loads import AssessedLoads
-from fe_crank.assess.scf import ScfResult
 from fe_crank.assess.shaft import WholeShaftOutput
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.fe.convergence import ConvergenceStudy
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.io.criteria import Criteria
 from fe_crank.io.material import Material
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.rules.m53.scf_mode import ScfResult
 
 
 @dataclass(frozen=True)
@@ -33,7 +33,7 @@ class AssessInputs:
     has its rods at mid-pin, no UR M53 route and no counterweights); ``scf``: key -> the
     SCF mode's result, for the models whose UR M53 dimensions are outside the empirical range;
     ``geometry_file``: the file of the geometry ("" for none); ``shaft``: the whole-shaft
-    stage's model (``check.shaft_stage``), whose throws the assessment assesses as the
+    stage's model (``pipeline.shaft_stage``), whose throws the assessment assesses as the
     per-throw model's, each criterion the worse of both models; ``convergence``: the
     hot-spot convergence study per model key (None: it did not run), whose factors the FE
     stress criteria are taken at (``assess.refinement``)."""

@@ -40,7 +40,7 @@ class ThrowCycle:
     and of the CAD-vs-mesh inertia difference added as a tangential force
     (``torsion.flow.fe_loads``), which the FE pin cases carry (None: the rods' force,
     no vibration); ``rods``: each rod's own force, at its place on the pin for UR M53's
-    moments (``fe.pin_patches.rod_loads``); ``fe_rods``: with vibration, each rod's force
+    moments (``fe.throw.pin_patches.rod_loads``); ``fe_rods``: with vibration, each rod's force
     with its share of the vibratory tangential force (``fe_pin_force - pin_force``), which
     the FE model's patch cases carry where rods bear at more than one place (the shares sum
     to one, so the rods' FE forces sum to ``fe_pin_force``); () without vibration."""
@@ -60,7 +60,7 @@ class ThrowCycle:
 
     def fe_rod_loads(self, places: dict[str, float]) -> tuple | None:
         """(force (n, 2), place m) of each rod as the FE patch cases take it (``fe_rods``
-        with vibration, else ``rods``) at ``places`` (``fe.pin_patches.rod_positions``);
+        with vibration, else ``rods``) at ``places`` (``fe.throw.pin_patches.rod_positions``);
         None without places (the summed force at mid-pin)."""
         if not places:
             return None

@@ -15,8 +15,8 @@ import numpy as np
 
 from fe_crank.assess.stress import von_mises
 from fe_crank.assess.superpose import UnitStresses
-from fe_crank.fe.stress import stress_at_quadrature, stress_at_selected_nodes
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.core.stress import stress_at_quadrature, stress_at_selected_nodes
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 
 #: ratios above this are reported
 RATIO_LIMIT = 1.25

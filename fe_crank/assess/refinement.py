@@ -3,7 +3,7 @@
 When the study ran (``fe_crank.fe.convergence``), the assessment does not keep the
 assessed mesh's hot-spot values: on every surface the study follows -- the shaft fillets,
 the counterweights' transition fillets, the oil-bore outlet -- the FE stress criteria are
-evaluated over the groups (``assess.finders.over_groups``) with each group's stresses taken
+evaluated over the groups (``assess.criteria.finders.over_groups``) with each group's stresses taken
 at the study's best estimate of the converged peak,
 
     sigma_criterion = k sigma_assessed,   k = max(1, sigma_est / sigma_assessed),

@@ -1,9 +1,9 @@
 """The whole shaft's stresses, assessed as the per-throw model's are.
 
-Every throw of the whole-shaft model (``fe.whole_shaft``) is assessed at the nodes of the
-per-throw model's groups (``fe.node_groups``: fillets, oil bore, counterweight fillets and
+Every throw of the whole-shaft model (``fe.shaft.whole_shaft``) is assessed at the nodes of the
+per-throw model's groups (``fe.throw.node_groups``: fillets, oil bore, counterweight fillets and
 junctions; the counterweight bodies, loaded by their own centrifugal force alike in both
-models, stay with the per-throw model) by the same code (``assess.group.assess_group``:
+models, stay with the per-throw model) by the same code (``assess.group.assessment.assess_group``:
 static, overspeed, Goodman and Gough-Pollard fatigue, UR M53's sigma_add on the shaft
 fillets, the size and surface factors), from the whole shaft's unit cases:
 
@@ -24,17 +24,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess.extremes import Running, Wanted, group_extremes
-from fe_crank.assess.group import SIGMA_ADD_GROUPS, assess_groups, section_diameter
+from fe_crank.assess.group.assessment import SIGMA_ADD_GROUPS, assess_groups, section_diameter
+from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.loads import FIRING, misfire_label
 from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import run_blocks, thread_count
-from fe_crank.fe.node_groups import node_groups
-from fe_crank.fe.shaft_cases import ShaftCases
-from fe_crank.fe.stress import stress_at_selected_nodes
-from fe_crank.fe.whole_shaft import BearingResult, WholeShaftResult, bearings_of, shaft_cycle_of, throw_masses
+from fe_crank.fe.core.stress import stress_at_selected_nodes
+from fe_crank.fe.shaft.cases import ShaftCases
+from fe_crank.fe.shaft.whole_shaft import BearingResult, WholeShaftResult, bearings_of, shaft_cycle_of, throw_masses
+from fe_crank.fe.throw.node_groups import node_groups
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
@@ -60,7 +60,7 @@ class BearingState:
 
 @dataclass(frozen=True)
 class WholeShaftOutput:
-    """The whole-shaft stage (``check.shaft_stage``): the shaft placed by the engine, its
+    """The whole-shaft stage (``pipeline.shaft_stage``): the shaft placed by the engine, its
     bearing loads and web moments over the cycle with and without counterweights
     (``result``), the main bearings' loads at every speed and load state of the full-load
     sweep (``sweep``, ``bearing_sweep``), and its unit cases (``cases``: condensed, with each
@@ -120,10 +120,10 @@ def bearing_sweep(
     cylinder firing, each misfire case; ``mechanism.cycles.EngineCycles.sweep``): the
     operating speed's firing state is the stage's own cycle (``result``, with the torsional
     stage's journal torques when it ran), the others the dynamics stage's cycles on the
-    condensed shaft (``fe.whole_shaft.bearings_of``, with and without counterweights, the
+    condensed shaft (``fe.shaft.whole_shaft.bearings_of``, with and without counterweights, the
     envelope over the bearing laws; each journal's torque quasi-static); each with the case
     weights of the stated law with the counterweights for the stresses
-    (``fe.whole_shaft.shaft_cycle_of``)."""
+    (``fe.shaft.whole_shaft.shaft_cycle_of``)."""
     mass = throw_masses(layout)
 
     def state(speed: float, case: str, dynamics) -> BearingState:

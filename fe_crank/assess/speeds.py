@@ -1,5 +1,5 @@
 """A criterion over the speeds of the full-load curve: the worst load state at each
-speed, the worst speed for the verdict (``assess.criteria``).
+speed, the worst speed for the verdict (``assess.criteria.judge``).
 
 ``StateResults`` holds the throws' results of one load state (all cylinders firing or a
 misfire case) at one speed of the sweep.  ``over_sweep`` applies a quantity's finder
@@ -18,7 +18,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TypeVar
 
-from fe_crank.assess.extremes import Wanted
+from fe_crank.assess.group.extremes import Wanted
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.io.criteria import Criteria
@@ -64,7 +64,7 @@ def over_sweep(
 
 def over_states(find: Callable[[T], Found], sense: str, states: Sequence[tuple[float, str, T]]) -> Located | None:
     """``over_sweep`` of any results per load state: (speed rad/s, case, results) each,
-    ``find`` on the results (the whole shaft's main bearings, ``assess.shaft_criteria``)."""
+    ``find`` on the results (the whole shaft's main bearings, ``assess.criteria.models``)."""
     per: dict[float, tuple[float, Location]] = {}
     for speed, case, results in states:
         got = find(results)

@@ -7,19 +7,19 @@ the joints take of it."""
 from __future__ import annotations
 
 from fe_crank.assess.cw_joint import cycle_speed_data
-from fe_crank.assess.extremes import Running, Wanted
+from fe_crank.assess.group.extremes import Running, Wanted
 from fe_crank.assess.inputs import AssessInputs
 from fe_crank.assess.loads import FIRING, LoadState, misfire_label
-from fe_crank.assess.m53_basis import M53Basis
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment, assess_throw
-from fe_crank.fe.pin_patches import rod_loads, rod_positions
+from fe_crank.fe.throw.pin_patches import rod_loads, rod_positions
 from fe_crank.mechanism.dynamics import DynamicsResult
+from fe_crank.rules.m53.basis import M53Basis
 from fe_crank.throw_scope import throws_of
 
 
 def places_of(a: AssessInputs, throw: str) -> dict[str, float]:
-    """Each rod's place on the throw's pin (UR M53 2.1, ``fe.pin_patches``); {} without a
+    """Each rod's place on the throw's pin (UR M53 2.1, ``fe.throw.pin_patches``); {} without a
     throw geometry (the summed force at mid-pin)."""
     tg = a.throw_geometry.get(throw)
     return rod_positions(a.engine, throw, tg.crankpin_length) if tg is not None else {}
@@ -57,7 +57,7 @@ def assess_state(
 ) -> tuple[ThrowAssessment, ...]:
     """Every throw in one load state: in full (``extremes`` None: the operating speed's
     firing state, with the overspeed cycles) or its extremes only.  Each rod bears at its
-    place on the pin (UR M53 2.1, ``fe.pin_patches``); without a throw geometry, the
+    place on the pin (UR M53 2.1, ``fe.throw.pin_patches``); without a throw geometry, the
     summed force at mid-pin.  ``cycles``: ``state_dynamics`` when the bolted joints are
     checked (with the state's cycle, ``joint_speed``); None: not checked."""
     dynamics = None

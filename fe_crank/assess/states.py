@@ -6,7 +6,7 @@ superposition of the FE unit cases with the assessment's own coefficients
 
 Stress recovery is linear in u, so the stress of a state equals the assessment's
 superposed unit stresses at every node: pictures, fields and tables agree.  The
-displacement is kept in the frame of the supports (``fe.support_frame``: the main-bearing
+displacement is kept in the frame of the supports (``fe.core.support_frame``: the main-bearing
 centres at rest, the torque face not turning), the rigid motion of the determinate solve
 removed: the report's VTU fields and deformed pictures show the deformation only.
 
@@ -29,14 +29,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess.group import GroupResult
-from fe_crank.assess.groups import COUNTERWEIGHTS
+from fe_crank.assess.group.assessment import GroupResult
+from fe_crank.assess.group.nodes import COUNTERWEIGHTS
 from fe_crank.assess.loads import LoadState
 from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.fe.stress import stress_at_selected_nodes, von_mises
-from fe_crank.fe.support_frame import field_in_support_frame
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
+from fe_crank.fe.core.support_frame import field_in_support_frame
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.throw_scope import throws_of
 
 #: the shaft fillets whose averaging indicator is checked (UR M53 App. III 2.3)
@@ -120,9 +120,9 @@ def field_at_angle(
     ``state`` (the operating cycle, or an overspeed cycle: ``state.speed`` is the omega
     of its centrifugal term), with the assessment's loads (``assess.loads.ThrowCycle``)
     and coefficients (``superpose.cycle_coefficients``).  ``places``: each rod's place on
-    the pin (``fe.pin_patches.rod_positions``): with the FE model's patch cases, each rod's
+    the pin (``fe.throw.pin_patches.rod_positions``): with the FE model's patch cases, each rod's
     force goes to its band, as in the assessment.  The displacement is in the frame of the
-    supports (``fe.support_frame``: the rigid motion the determinate solve leaves in
+    supports (``fe.core.support_frame``: the rigid motion the determinate solve leaves in
     removed, the main-bearing centres at rest), as the report writes and draws it; its
     stresses are the solve's (a rigid motion has none)."""
     tc = state.throws[throw]
@@ -278,7 +278,7 @@ def model_states(
     firing) and the overspeed cycles; None when the assessment has no hot spot for it.
     ``fields``: also recover the averaged nodal stress of both states on the whole mesh
     (for the report's ``.vtu`` fields and pictures).  ``places``: throw -> its rods' places
-    on the pin (``fe.pin_patches.rod_positions``), for a model loaded per rod place."""
+    on the pin (``fe.throw.pin_patches.rod_positions``), for a model loaded per rod place."""
     names = throw_names(keys, dyn.throws)
     crit = critical(throws, names)
     if crit is None:

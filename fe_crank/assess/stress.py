@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from fe_crank.fe.stress import principal as _principal
-from fe_crank.fe.stress import von_mises as _von_mises
+from fe_crank.fe.core.stress import principal as _principal
+from fe_crank.fe.core.stress import von_mises as _von_mises
 
 COMPONENTS = ("xx", "yy", "zz", "xy", "yz", "xz")
 
@@ -19,7 +19,7 @@ def von_mises(s: np.ndarray) -> np.ndarray:
     """von Mises stress of ``s`` in this module's layout ``(..., 6, n)``.
 
     The formula (von Mises 1913; e.g. Shigley eq. 5-13) is implemented once, in
-    ``fe_crank.fe.stress.von_mises`` (components on axis 0); this moves the component
+    ``fe_crank.fe.core.stress.von_mises`` (components on axis 0); this moves the component
     axis there.
     """
     return _von_mises(np.moveaxis(s, -2, 0))
@@ -85,7 +85,7 @@ def to_matrix(s: np.ndarray) -> np.ndarray:
 
 def principal(s: np.ndarray) -> np.ndarray:
     """Principal stresses in this module's layout, shape (..., 3, n), descending
-    sigma_1 >= sigma_2 >= sigma_3: implemented once, in ``fe_crank.fe.stress.principal``
+    sigma_1 >= sigma_2 >= sigma_3: implemented once, in ``fe_crank.fe.core.stress.principal``
     (components on axis 0); this moves the component axis there and back."""
     return np.moveaxis(_principal(np.moveaxis(s, -2, 0)), 0, -2)
 

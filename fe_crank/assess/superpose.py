@@ -9,7 +9,7 @@ with ``S_c`` the stress of the centrifugal case at omega = 1 rad/s (body force
 rho omega^2 r scales with omega^2), ``S_pk`` the stresses of 1 N on the crankpin in
 direction k of the throw frame (x tangential, y radial outward; 12 directions 30 deg
 apart by default), ``a_k`` the weights of the two directions that bracket the pin force
-F (``fe_crank.fe.pin_directions``), ``S_t`` the stress of 1 N m through the throw, and
+F (``fe_crank.fe.throw.pin_directions``), ``S_t`` the stress of 1 N m through the throw, and
 ``F, T`` the crankpin force and the torque entering the throw at its front journal
 (``torque_front``) from the dynamics stage.  With torsional vibration the throw's own
 inertia torque enters as the body force of its angular acceleration ``alpha(theta)``
@@ -24,11 +24,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fe_crank.fe.pin_directions import patch_case, pin_case_weights, pin_direction
-from fe_crank.fe.pin_patches import patch_forces
-from fe_crank.fe.stress import stress_at_selected_nodes
-from fe_crank.fe.unit_cases import CASES as UNIT_CASES  # the FE stage's default unit cases
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.core.stress import stress_at_selected_nodes
+from fe_crank.fe.throw.pin_directions import patch_case, pin_case_weights, pin_direction
+from fe_crank.fe.throw.pin_patches import patch_forces
+from fe_crank.fe.throw.unit_cases import CASES as UNIT_CASES  # the FE stage's default unit cases
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 
 
 @dataclass(frozen=True)
@@ -60,7 +60,7 @@ def unit_nodal_stress(unit_solutions: UnitSolutions, cases, node_ids) -> np.ndar
 
     Equal to ``unit_solutions.stress_at_nodes(u_c)[:, node_ids]`` for each case (the average at a node
     takes every element sharing it), computed on those elements only and with one node
-    basis for all cases (``fe_crank.fe.stress.stress_at_selected_nodes``).
+    basis for all cases (``fe_crank.fe.core.stress.stress_at_selected_nodes``).
     """
     mat = unit_solutions.material
     return stress_at_selected_nodes(
@@ -99,7 +99,7 @@ def load_coefficients(
     rotation of a sense +1 shaft): ``angular_acceleration`` (n,) rad/s^2 in the shaft's
     sense (the throw's torsional vibration, ``fe_crank.torsion.flow``), coefficient
     sense * alpha; zero when not given.
-    Patch cases ``<pin case>@<k>`` (one band per rod place, ``fe.pin_patches``) carry
+    Patch cases ``<pin case>@<k>`` (one band per rod place, ``fe.throw.pin_patches``) carry
     ``patch_forces[k]`` (n, 2), the force of the rods bearing on band k, the same way.
     """
     pin_force = np.asarray(pin_force, float)
@@ -155,7 +155,7 @@ def cycle_coefficients(
     vibration: bool = False,
 ):
     """``load_coefficients`` of ``unit``'s cases; with patch cases, the rods' forces go to the
-    bands of their places (``rod_loads``: (force (n, 2), place m) per rod, ``fe.pin_patches``).
+    bands of their places (``rod_loads``: (force (n, 2), place m) per rod, ``fe.throw.pin_patches``).
     ``angular_acceleration`` and ``vibration`` (``pin_force`` then carries the cylinders'
     vibratory inertia torque as a tangential force, ``torsion.flow.fe_loads``): the throw's
     torsional vibration; the rods' own forces do not carry that torque, so a model loaded per

@@ -7,16 +7,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess import m53, m53_oil_bore, m53_rods
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
 from fe_crank.assess.cw_joint import JointCheck, check_joints
-from fe_crank.assess.extremes import Running, Wanted, group_extremes
-from fe_crank.assess.group import SIGMA_ADD_GROUPS, GroupResult, assess_groups, section_diameter
-from fe_crank.assess.m53 import M53Fillet, NominalStresses
-from fe_crank.assess.scf import ScfResult
+from fe_crank.assess.group.assessment import SIGMA_ADD_GROUPS, GroupResult, assess_groups, section_diameter
+from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
 from fe_crank.errors import InputError
 from fe_crank.io.material import Material
+from fe_crank.rules.m53 import calculation as m53
+from fe_crank.rules.m53 import oil_bore as m53_oil_bore
+from fe_crank.rules.m53 import rods as m53_rods
+from fe_crank.rules.m53.calculation import M53Fillet, NominalStresses
+from fe_crank.rules.m53.scf_mode import ScfResult
 
 
 @dataclass(frozen=True)
@@ -32,7 +34,7 @@ class ThrowAssessment:
 
 def fe_scfs(scf: ScfResult) -> dict[str, dict[str, float]]:
     """The ``fe_scf`` dictionaries of ``m53.assess_fillet`` from the SCF mode of the UR M53
-    FE appendix (``fe_crank.assess.scf.ScfResult``): alpha_B, alpha_T for the pin,
+    FE appendix (``fe_crank.rules.m53.scf_mode.ScfResult``): alpha_B, alpha_T for the pin,
     beta_B, beta_Q (method 1 of App. III 3.3.3), beta_T for the journal fillet, from the
     appendix's own models and stress measures -- not from the cycle model's stresses,
     whose supports and single radial case give neither the nominal-stress basis nor the
@@ -76,7 +78,7 @@ def assess_throw(
     ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
     larger alternating part, the one the throw's fillets carry.  Outside the validity
     range of the empirical SCFs UR M53 takes FE SCFs: ``fe_scf`` as given, else those of
-    ``scf`` (the SCF mode's ``assess.scf.ScfResult``, which the FE stage solves for such a throw).
+    ``scf`` (the SCF mode's ``rules.m53.scf_mode.ScfResult``, which the FE stage solves for such a throw).
     ``m53_additional``: UR M53 4's sigma_add, Pa, on the fillets' alternating bending stress in
     both routes (the FE route: ``assess_group``'s ``additional_bending``).
     ``m53_ke``: UR M53 2.1.2.1's K_e on the web's nominal stresses (``m53.ke_factor``:
@@ -100,7 +102,7 @@ def assess_throw(
     (``extremes.group_extremes``: no overspeed, no per-node fields), for the speeds of a
     sweep other than the operating one; ``running``: the least fatigue values of the
     throws of the same load state assessed before (``extremes.Running``).
-    ``rod_loads``: (force (n, 2), place on the pin m) per rod (``fe.pin_patches``): UR M53's
+    ``rod_loads``: (force (n, 2), place on the pin m) per rod (``fe.throw.pin_patches``): UR M53's
     moments rod by rod and, where the FE model has patch cases, each rod on its band; an
     overspeed cycle is then (pin force, torque, rod loads).  ``fe_rod_loads``: the rods'
     loads the FE patch cases take with torsional vibration (each rod's force with its share

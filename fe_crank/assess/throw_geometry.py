@@ -22,13 +22,13 @@ from fe_crank import model
 from fe_crank.assess.adapters import counterweights_of, m53_geometry_of
 from fe_crank.assess.cad_inputs import counterweights_of_cad, m53_geometry_of_cad, m53_scope
 from fe_crank.assess.counterweight import CounterweightData
-from fe_crank.assess.m53 import M53Geometry
-from fe_crank.assess.scf import web_centres_of
 from fe_crank.balance.counterweights import CounterweightDesign
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import CadFeatures
 from fe_crank.geometry.mass import ThrowSolids
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.rules.m53.calculation import M53Geometry
+from fe_crank.rules.m53.scf_mode import web_centres_of
 from fe_crank.throw_scope import throws_of
 
 

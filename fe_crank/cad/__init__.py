@@ -14,7 +14,7 @@
 The parser of the ``[cad]`` section and of a load case's CAD geometry is
 ``fe_crank.io.cad``; the UR M53 dimensions and counterweight data for the assessment are
 in ``fe_crank.assess.cad_inputs``; the check's geometry stage for a CAD file is
-``fe_crank.check.cad_geometry``.
+``fe_crank.pipeline.cad_geometry``.
 """
 
 from fe_crank.cad.config import CadInput, FaceOverride

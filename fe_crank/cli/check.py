@@ -83,7 +83,7 @@ def add_arguments(p) -> None:
 
 
 def _options(args):
-    from fe_crank.check import CheckOptions
+    from fe_crank.pipeline import CheckOptions
 
     return CheckOptions(
         mesh_size=args.mesh_size,
@@ -145,7 +145,7 @@ def _print_rich(results, console) -> None:
 
 
 def run(args) -> int:
-    from fe_crank.check import batch_exit_code, find_loadcases, run_cases
+    from fe_crank.pipeline import batch_exit_code, find_loadcases, run_cases
 
     if args.jobs < 1:
         raise InputError("must be at least 1", key="--jobs")
@@ -238,7 +238,7 @@ def _run_with_progress(paths, args, options):
     in a serial run, the stage each case is in."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
-    from fe_crank.check import run_cases
+    from fe_crank.pipeline import run_cases
 
     with Progress(
         SpinnerColumn(),

@@ -5,13 +5,13 @@ Public API: :func:`solve_unit_cases` -> :class:`UnitSolutions`; stress recovery
 lower level: :func:`build_system`, :func:`factorise`, loads and supports.
 """
 
-from fe_crank.fe.forms import bearing_support, centrifugal, elasticity, lame_parameters
-from fe_crank.fe.linalg import factorise
-from fe_crank.fe.result_fields import write_fields
-from fe_crank.fe.stress import max_shear, principal, stress_at_nodes, von_mises
-from fe_crank.fe.supports import Coupling, Dirichlet, Foundation
-from fe_crank.fe.system import System, build_system
-from fe_crank.fe.unit_cases import CASES, FeOptions, UnitCase, UnitSolutions, solve_unit_cases
+from fe_crank.fe.core.forms import bearing_support, centrifugal, elasticity, lame_parameters
+from fe_crank.fe.core.result_fields import write_fields
+from fe_crank.fe.core.stress import max_shear, principal, stress_at_nodes, von_mises
+from fe_crank.fe.core.supports import Coupling, Dirichlet, Foundation
+from fe_crank.fe.core.system import System, build_system
+from fe_crank.fe.linalg.factorise import factorise
+from fe_crank.fe.throw.unit_cases import CASES, FeOptions, UnitCase, UnitSolutions, solve_unit_cases
 
 __all__ = [
     "CASES",

@@ -18,7 +18,7 @@ def check_loads(throw_loads, omega: float) -> dict[str, dict[str, float]]:
     bracketing directions) with the centrifugal load at ``omega`` (rad/s); "peak torque":
     the largest journal torque through the throw (skipped when zero).
     """
-    from fe_crank.fe.pin_directions import pin_case_weights, pin_cases
+    from fe_crank.fe.throw.pin_directions import pin_case_weights, pin_cases
 
     best, tmax = None, 0.0
     for tl in throw_loads:

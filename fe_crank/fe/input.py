@@ -1,4 +1,4 @@
-"""The load case's ``[fe]`` section -> frozen :class:`~fe_crank.fe.unit_cases.FeOptions`.
+"""The load case's ``[fe]`` section -> frozen :class:`~fe_crank.fe.throw.unit_cases.FeOptions`.
 
 ::
 
@@ -19,9 +19,10 @@ import numpy as np
 from pydantic import Field, StrictBool, model_validator
 
 from fe_crank.errors import InputError
-from fe_crank.fe.fe_options import SolverMethod, Support, TorqueEnd
-from fe_crank.fe.pin_directions import pin_case_weights, pin_direction
-from fe_crank.fe.unit_cases import CASES, FeOptions
+from fe_crank.fe.linalg.choice import SolverMethod
+from fe_crank.fe.throw.options import Support, TorqueEnd
+from fe_crank.fe.throw.pin_directions import pin_case_weights, pin_direction
+from fe_crank.fe.throw.unit_cases import CASES, FeOptions
 from fe_crank.io.base import Strict, validate
 from fe_crank.io.units import Angle, StiffnessPerArea
 

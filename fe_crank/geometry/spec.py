@@ -155,7 +155,7 @@ BEARING_MODELS = ("rigid", "spring", "clearance")
 
 @dataclass(frozen=True)
 class BearingLaw:
-    """Radial law of a main bearing in the whole-shaft model (``fe_crank.fe.bearings``).
+    """Radial law of a main bearing in the whole-shaft model (``fe_crank.fe.shaft.bearings``).
 
     ``rigid``: the journal's reference point does not move radially; ``spring``: force
     = -stiffness x displacement (bearing, shell and housing in series, N/m);

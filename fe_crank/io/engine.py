@@ -23,8 +23,8 @@ An engine file looks like::
 alone: evenly spaced over the cycle) and per-cylinder ``firing_offset``: either or both,
 and when both they must agree (``fe_crank.io.firing``).
 ``construction`` ("trunk_piston" default, "crosshead") and ``internal_combustion`` (true
-default; false: an air motor) are UR M53's (``assess.m53_basis``); a cylinder's
-``pin_position``: its rod on the pin (``fe.pin_patches``).
+default; false: an air motor) are UR M53's (``rules.m53.basis``); a cylinder's
+``pin_position``: its rod on the pin (``fe.throw.pin_patches``).
 """
 
 from __future__ import annotations

@@ -26,8 +26,8 @@ from pydantic import Field
 from fe_crank import model
 from fe_crank.cad.config import CadInput
 from fe_crank.errors import InputError
-from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
+from fe_crank.fe.throw.options import FeOptions
 from fe_crank.geometry.engine_fit import throw_at_bearings
 from fe_crank.geometry.shaft import engine_shaft_layout, require_film, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
@@ -183,7 +183,7 @@ def _check_torsion_range(torsion: TorsionSettings, operating: model.OperatingPoi
 
 
 #: criteria (``io.criteria`` quantities) that only the whole-shaft model evaluates
-#: (``assess.criteria.EVALUATORS`` whose per-throw finder is ``no_throw_value``): the main
+#: (``assess.criteria.judge.EVALUATORS`` whose per-throw finder is ``no_throw_value``): the main
 #: bearings' loads and their oil film
 WHOLE_SHAFT_QUANTITIES = ("main_bearing_load", "main_bearing_specific_load", "oil_film_thickness", "oil_film_pressure")
 

@@ -12,8 +12,8 @@ from pathlib import Path
 from typing import Any
 
 from fe_crank.cad.config import CadInput
-from fe_crank.fe.fe_options import FeOptions
 from fe_crank.fe.input import parse_fe
+from fe_crank.fe.throw.options import FeOptions
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.balance import BalanceSettings, parse_balance
 from fe_crank.io.cad import parse_geometry_source

@@ -35,7 +35,7 @@ class CylinderForces:
 @dataclass(frozen=True)
 class RodLoad:
     """One rod's force on the crankpin (n, 2), throw frame, and its stated place on the pin
-    (``Cylinder.pin_position``, m; None: the default layout, ``fe.pin_patches.rod_positions``)."""
+    (``Cylinder.pin_position``, m; None: the default layout, ``fe.throw.pin_patches.rod_positions``)."""
 
     cylinder: str
     pin_force: np.ndarray

@@ -70,7 +70,7 @@ def surface_field(gmsh, tags: list[int], h: float, size_max: float, grading: flo
 
 
 #: target edge in the webs = WEB_SAFETY W / divisions: W/6 targets gave 6.75 elements
-#: across (``fe.web_mesh``'s measure) on the small test throw with 3.8 mm fillets
+#: across (``rules.m53.web_mesh``'s measure) on the small test throw with 3.8 mm fillets
 WEB_SAFETY = 0.7
 
 

@@ -53,7 +53,7 @@ class MeshOptions:
     )
     symmetric: bool = True  # mesh the fundamental part of a mirror-symmetric throw and mirror it (fe_crank.mesh.planes; docs/geometry.md)
     #: elements across the web thickness W: edge <= W / web_divisions in the webs (UR M53 App.
-    #: III 2.2 asks for at least 6 in its SCF models, ``fe.web_mesh``); None: no web control
+    #: III 2.2 asks for at least 6 in its SCF models, ``rules.m53.web_mesh``); None: no web control
     web_divisions: float | None = None
 
     def __post_init__(self):

@@ -3,7 +3,7 @@
 the fillets.  The counterweight-to-web transition fillets (``counterweight_fillet_<web>``
 surfaces, ``fe_crank.geometry.cw_fillet``) get the same ``r / fillet_divisions`` rule.
 With ``web_divisions`` the web volumes get edges of at most ``W / web_divisions`` (UR M53
-App. III 2.2's elements across the web thickness W, ``fe_crank.fe.web_mesh``).
+App. III 2.2's elements across the web thickness W, ``fe_crank.rules.m53.web_mesh``).
 The fields themselves: ``fe_crank.mesh.fields`` (shared with the CAD route)."""
 
 from __future__ import annotations

@@ -3,7 +3,7 @@ the PNGs also beside it), ``.vtu`` fields.
 
 ``write_case_report(folder, result, outputs, notes, *, options, trace)``
 writes into a folder that the pipeline later renames into place (see
-``fe_crank.check.case``).  The report only formats: every number it shows was computed
+``fe_crank.pipeline.case``).  The report only formats: every number it shows was computed
 by a stage (``fe_crank.outputs.CaseOutputs``).  Pictures: matplotlib for curves
 (``fe_crank.report.plots``), pyvista offscreen for the stress fields
 (``fe_crank.report.render``, imported lazily).
@@ -75,7 +75,7 @@ def results_json(
 ) -> str:
     """``results.json``: the assessment's document (``fe_crank.assess.to_json``, schema
     ``fe_crank/data/results.schema.json``) with the verdict's criteria (every stage's,
-    ``fe_crank.check.verdict``), the FE fields, the provenance and the ``warnings`` (the
+    ``fe_crank.pipeline.verdict``), the FE fields, the provenance and the ``warnings`` (the
     notes shown beside the verdict).  Written only for cases whose assessment ran; the
     pipeline's own record (status, message, timings) is ``case.json``."""
     from fe_crank.assess.results import criterion_json, to_json

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fe_crank.fe.result_fields import write_vtu
+from fe_crank.fe.core.result_fields import write_vtu
 from fe_crank.outputs import CaseOutputs
 from fe_crank.report import render as rd
 from fe_crank.report.fields import field_peak, throw_fields

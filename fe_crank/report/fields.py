@@ -1,6 +1,6 @@
 """The result fields of one FE model: what the ``.vtu`` file holds and the pictures show.
 
-One ``meshio.Mesh`` of quadratic tetrahedra (``fe_crank.fe.result_fields``) per FE model,
+One ``meshio.Mesh`` of quadratic tetrahedra (``fe_crank.fe.core.result_fields``) per FE model,
 built once from the assessment's states (``fe_crank.assess.states``) and both written and
 drawn, so file, pictures and tables agree:
 
@@ -25,11 +25,11 @@ from dataclasses import dataclass
 import meshio
 import numpy as np
 
-from fe_crank.assess.group import GroupResult
+from fe_crank.assess.group.assessment import GroupResult
 from fe_crank.assess.states import HotSpot, ModelStates, OverspeedState
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.fe.result_fields import boundary_point_ids, quadratic_tet_mesh, region_ids, stress_fields
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.core.result_fields import boundary_point_ids, quadratic_tet_mesh, region_ids, stress_fields
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 
 #: assessment per-node arrays -> VTU names, and how nodes in two groups combine
 _ASSESSED = (

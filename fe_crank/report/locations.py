@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import dataclasses
 
-from fe_crank.assess.m53_oil_bore import where as m53_where
 from fe_crank.results import CriterionResult, Location
+from fe_crank.rules.m53.oil_bore import where as m53_where
 
 
 def _base(loc: Location) -> str:

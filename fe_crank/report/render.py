@@ -1,7 +1,7 @@
 """Offscreen pyvista pictures of a stress field (no window is ever opened).
 
 The pictures are drawn from the same ``meshio.Mesh`` of quadratic tetrahedra that is
-written as the ``.vtu`` file (``fe_crank.fe.result_fields``): every P2 node, mid-edge nodes
+written as the ``.vtu`` file (``fe_crank.fe.core.result_fields``): every P2 node, mid-edge nodes
 included, carries its value, so the colour bar, the written file and the verdict
 table agree on the peak.  Only ``pyvista.Plotter(off_screen=True)`` is used: no
 process-wide pyvista or VTK setting is changed.  pyvista is imported inside the

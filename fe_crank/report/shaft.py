@@ -1,5 +1,5 @@
 """The whole-shaft model in the report and in results.json (formatting only: every number
-comes from the whole-shaft stage, ``fe_crank.check.shaft_stage``, and the assessment,
+comes from the whole-shaft stage, ``fe_crank.pipeline.shaft_stage``, and the assessment,
 ``assess.shaft.ShaftAssessment``).
 
 * ``shaft_results``: the ``whole_shaft`` object of results.json (per main bearing its load

@@ -10,7 +10,7 @@ import numpy as np
 
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.errors import InputError
-from fe_crank.fe.whole_shaft import throw_masses
+from fe_crank.fe.shaft.whole_shaft import throw_masses
 from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.loadcase import LoadCase

@@ -14,7 +14,7 @@ nominal torsional stress from the largest alternating torque over the torsional 
 range: each throw also receives the hand-over histories of its journals
 (``handover.journal_torques``, or the worst case of ``misfire.MisfireTorsion``).
 
-Where the FE model loads the pin per rod place (``fe.pin_patches``), the vibratory
+Where the FE model loads the pin per rod place (``fe.throw.pin_patches``), the vibratory
 tangential force ``fe_pin_force - pin_force`` (the inertia and damping torque of the
 throw's mass in the chain, ``flow.fe_loads``) is shared among the throw's rods in
 proportion to their cylinders' inertias in the chain (``build.reciprocating_inertia``:
@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from fe_crank import model
 from fe_crank.assess.loads import FIRING, AssessedLoads, LoadState, ThrowCycle, misfire_label
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult, RodLoad
 from fe_crank.throw_scope import throws_of

@@ -16,7 +16,7 @@ it), the two webs in bending about their thickness (the beam value
 web-journal junctions).  The formula is empirical; it is compared with the FE value
 in docs/torsion.md.
 
-FE: the torque unit case of ``fe_crank.fe.unit_cases`` applies 1 N m as the Saint-Venant
+FE: the torque unit case of ``fe_crank.fe.throw.unit_cases`` applies 1 N m as the Saint-Venant
 shear flow on ``end_1`` and holds ``end_2`` (rigidly coupled to the axis in rotation);
 the radial journal foundation carries no torque.  The rotation of an end face is the
 least-squares rigid rotation of its nodes, ``phi = sum (x u_y - y u_x) / sum (x^2 + y^2)``,
@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from fe_crank.errors import InputError
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 
 
 def carter_equivalent_length(
