@@ -33,7 +33,7 @@ from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import run_blocks, thread_count
 from fe_crank.fe.core.stress import stress_at_selected_nodes
 from fe_crank.fe.shaft.cases import ShaftCases
-from fe_crank.fe.shaft.whole_shaft import BearingResult, WholeShaftResult, bearings_of, shaft_cycle_of, throw_masses
+from fe_crank.fe.shaft.whole_shaft import BearingResult, WholeShaftResult, bearing_state_of
 from fe_crank.fe.throw.node_groups import node_groups
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.mechanism.cycles import EngineCycles
@@ -120,15 +120,14 @@ def bearing_sweep(
     cylinder firing, each misfire case; ``mechanism.cycles.EngineCycles.sweep``): the
     operating speed's firing state is the stage's own cycle (``result``, with the torsional
     stage's journal torques when it ran), the others the dynamics stage's cycles on the
-    condensed shaft (``fe.shaft.whole_shaft.bearings_of``, with and without counterweights, the
-    envelope over the bearing laws; each journal's torque quasi-static); each with the case
-    weights of the stated law with the counterweights for the stresses
-    (``fe.shaft.whole_shaft.shaft_cycle_of``)."""
-    mass = throw_masses(layout)
+    condensed shaft with and without counterweights, the envelope over the bearing laws, each
+    journal's torque quasi-static; each with the case weights of the stated law with the
+    counterweights for the stresses (``fe.shaft.whole_shaft.bearing_state_of``: the stated
+    law solved once for both)."""
 
     def state(speed: float, case: str, dynamics) -> BearingState:
-        on = shaft_cycle_of(cases, layout, mass, dynamics, counterweights=True)
-        return BearingState(speed, case, bearings_of(cases, layout, mass, dynamics), on.weights)
+        bearings, weights = bearing_state_of(cases, layout, dynamics)
+        return BearingState(speed, case, bearings, weights)
 
     out = []
     for sc in cycles.sweep:

@@ -219,11 +219,38 @@ def bearing_cycle(
 ) -> tuple[BearingLoads, ...]:
     """The main bearings' loads alone (``shaft_cycle`` without its web moments and weights):
     another bearing law on the same cycle costs one bearing solve."""
+    return bearing_solve(
+        cases,
+        loads,
+        cycle_angle,
+        shaft_angle,
+        speed,
+        counterweights=counterweights,
+        laws=laws,
+        front_torque=front_torque,
+        ends=ends,
+    )[0]
+
+
+def bearing_solve(
+    cases: ShaftCases,
+    loads: tuple[ThrowCycleLoad, ...],
+    cycle_angle: np.ndarray,
+    shaft_angle: np.ndarray,
+    speed: float,
+    *,
+    counterweights: bool = True,
+    laws=None,
+    front_torque: np.ndarray | None = None,
+    ends: tuple[EndCycleLoad, ...] = (),
+) -> tuple[tuple[BearingLoads, ...], np.ndarray]:
+    """``bearing_cycle`` and the case weights of its solve (``ShaftCycle.weights``: the same
+    numbers ``shaft_cycle`` gives for this law), without the web moments."""
     layout = cases.model.mesh.layout
     laws = laws or [b.law for b in layout.bearings]
     _, W = _weights(cases, loads, speed, counterweights, front_torque, ends)
     f, d, W = solve_cycle(cases, W, laws)
-    return bearing_loads(layout, f, cycle_angle, shaft_angle, laws, journal_slopes(cases, W, d))
+    return bearing_loads(layout, f, cycle_angle, shaft_angle, laws, journal_slopes(cases, W, d)), W
 
 
 def shaft_cycle(

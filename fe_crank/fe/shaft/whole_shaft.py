@@ -32,7 +32,7 @@ from fe_crank.fe.shaft.cycle import (
     ShaftCycle,
     ThrowCycleLoad,
     WebMoment,
-    bearing_cycle,
+    bearing_solve,
     shaft_cycle,
 )
 from fe_crank.fe.shaft.model import ShaftFeOptions, build_shaft_model
@@ -303,28 +303,40 @@ def bearings_of(
     """The main bearings' loads over the cycle of ``dynamics`` (another speed or load state
     on the same condensed shaft), with and without counterweights: the envelope over
     ``envelope_laws``."""
+    return bearing_state_of(cases, layout, dynamics, laws=laws)[0]
+
+
+def bearing_state_of(
+    cases: ShaftCases, layout: ShaftLayout, dynamics, *, laws=None
+) -> tuple[tuple[BearingResult, ...], np.ndarray]:
+    """``bearings_of`` and the case weights of the stated law with the counterweights
+    (``shaft_cycle_of(...).weights``, the stresses' weights): the stated law's solve
+    is the envelope's first, made once for both."""
     loads, psi, front, ends = _cycle_inputs(cases, layout, dynamics)
     sets = envelope_laws(layout, laws)
-    on, off = (
-        envelope(
-            [
-                bearing_cycle(
-                    cases,
-                    loads,
-                    dynamics.theta,
-                    psi,
-                    dynamics.speed,
-                    counterweights=cw,
-                    laws=w,
-                    front_torque=front,
-                    ends=ends,
-                )
-                for w in sets
-            ]
-        )
-        for cw in (True, False)
-    )
-    return tuple(BearingResult(a, b) for a, b in zip(on, off))
+    weights = None
+    per_cw = []
+    for cw in (True, False):
+        per_law = []
+        for k, w in enumerate(sets):
+            bearings, W = bearing_solve(
+                cases,
+                loads,
+                dynamics.theta,
+                psi,
+                dynamics.speed,
+                counterweights=cw,
+                laws=w,
+                front_torque=front,
+                ends=ends,
+            )
+            if cw and k == 0:
+                weights = W
+            per_law.append(bearings)
+        per_cw.append(envelope(per_law))
+    on, off = per_cw
+    assert weights is not None
+    return tuple(BearingResult(a, b) for a, b in zip(on, off)), weights
 
 
 def condensed_shaft(sm, material, options: ShaftFeOptions | None = None, *, torque_flow: bool = False):
