@@ -180,7 +180,14 @@ def test_criterion_that_cannot_be_evaluated_is_an_error(tmp_path, solved):
 
 
 def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solved):
-    from fe_crank.assess import CounterweightData, M53Geometry, assess_throw, evaluate_criteria, unit_stresses
+    from fe_crank.assess import (
+        CounterweightData,
+        M53Geometry,
+        ThrowContext,
+        assess_throw,
+        evaluate_criteria,
+        unit_stresses,
+    )
     from fe_crank.rules.m53.scf_mode import compute_scf
 
     p = tmp_path / "c.toml"
@@ -209,21 +216,23 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
     )
     tl = dyn.throws["1"]
     throw = assess_throw(
-        "1",
-        unit_stresses(units),
-        dyn.theta,
-        tl.pin_force,
-        tl.torque_front,
-        omega=lc.operating.speed,
-        overspeed=lc.operating.overspeed,
-        material=lc.material,
-        crank_radius=0.02,
-        m53_geometry=inside,
-        counterweights=(cw,),
-        torque_rear=tl.torque_rear,
-        overspeed_loads=[
-            (c.dynamics.throws["1"].pin_force, c.dynamics.throws["1"].torque_front) for c in inputs.cycles.overspeed
-        ],
+        ThrowContext(
+            "1",
+            unit_stresses(units),
+            dyn.theta,
+            tl.pin_force,
+            tl.torque_front,
+            omega=lc.operating.speed,
+            overspeed=lc.operating.overspeed,
+            material=lc.material,
+            crank_radius=0.02,
+            m53_geometry=inside,
+            counterweights=(cw,),
+            torque_rear=tl.torque_rear,
+            overspeed_loads=[
+                (c.dynamics.throws["1"].pin_force, c.dynamics.throws["1"].torque_front) for c in inputs.cycles.overspeed
+            ],
+        )
     )
     criteria = evaluate_criteria(lc.criteria, (throw,), file=lc.source_file, overspeed=lc.operating.overspeed)
     pin = throw.m53[0]
@@ -250,16 +259,18 @@ def test_m53_route_empirical_inside_fe_outside_and_counterweights(tmp_path, solv
     # and without the SCF mode's factors the M53 route outside its range is refused
     with pytest.raises(InputError, match="throw 1: "):
         assess_throw(
-            "1",
-            unit_stresses(units),
-            dyn.theta,
-            tl.pin_force,
-            tl.torque_front,
-            omega=lc.operating.speed,
-            overspeed=None,
-            material=lc.material,
-            crank_radius=0.02,
-            m53_geometry=thin,
+            ThrowContext(
+                "1",
+                unit_stresses(units),
+                dyn.theta,
+                tl.pin_force,
+                tl.torque_front,
+                omega=lc.operating.speed,
+                overspeed=None,
+                material=lc.material,
+                crank_radius=0.02,
+                m53_geometry=thin,
+            )
         )
 
 
@@ -333,19 +344,21 @@ def test_overspeed_includes_rod_and_piston_inertia_hand_calc(tmp_path, solved):
         if "fillet" in g.group:
             assert ext.value > 3 * centrifugal_only[idx].max()
     # the TDC state alone, with the hand force as the overspeed load: equal at every group
-    from fe_crank.assess.throw import assess_throw
+    from fe_crank.assess.throw import ThrowContext, assess_throw
 
     t0 = assess_throw(
-        "1",
-        unit,
-        np.zeros(1),
-        np.zeros((1, 2)),
-        np.zeros(1),
-        omega=w,
-        overspeed=w,
-        material=lc.material,
-        crank_radius=0.02,
-        overspeed_loads=(np.array([[0.0, f]]), np.zeros(1)),
+        ThrowContext(
+            "1",
+            unit,
+            np.zeros(1),
+            np.zeros((1, 2)),
+            np.zeros(1),
+            omega=w,
+            overspeed=w,
+            material=lc.material,
+            crank_radius=0.02,
+            overspeed_loads=(np.array([[0.0, f]]), np.zeros(1)),
+        )
     )
     for g in t0.groups:
         assert g.max_von_mises_overspeed.value == pytest.approx(by_hand[unit.groups[g.group]].max(), rel=1e-9)
@@ -364,7 +377,7 @@ def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
     is exactly |c| vM(S_t) (closed form for a proportional history)."""
     from fe_crank.assess import unit_stresses
     from fe_crank.assess.stress import von_mises
-    from fe_crank.assess.throw import assess_throw
+    from fe_crank.assess.throw import ThrowContext, assess_throw
     from fe_crank.io.material import load_material
 
     _, units = solved
@@ -373,16 +386,18 @@ def test_reversed_torque_amplitude_at_real_fillet_nodes(solved):
     t_a = 300.0
     mat = load_material("42CrMo4", surface_factor=1.0, size_factor=1.0, reliability=0.5)
     t = assess_throw(
-        "1",
-        unit,
-        theta,
-        np.zeros((360, 2)),
-        t_a * np.cos(theta),
-        omega=0.0,
-        overspeed=None,
-        material=mat,
-        crank_radius=R,
-        m53_additional=0.0,  # the FE model's own stresses
+        ThrowContext(
+            "1",
+            unit,
+            theta,
+            np.zeros((360, 2)),
+            t_a * np.cos(theta),
+            omega=0.0,
+            overspeed=None,
+            material=mat,
+            crank_radius=R,
+            m53_additional=0.0,  # the FE model's own stresses
+        )
     )
     s_t = unit.stress[unit.cases.index("torque")] * (t_a / abs(unit.torque_mz))
     for g in t.groups:

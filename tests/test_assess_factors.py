@@ -11,7 +11,7 @@ import jsonschema
 import numpy as np
 import pytest
 
-from fe_crank.assess import assess_throw, to_json
+from fe_crank.assess import ThrowContext, assess_throw, to_json
 from fe_crank.assess.case import Assessment
 from fe_crank.assess.factors import factors, reliability_factor, size_factor, surface_factor
 from fe_crank.assess.results import load_schema
@@ -104,17 +104,19 @@ def test_size_factor_per_section_in_the_assessment():
     theta = np.deg2rad(np.arange(360.0))
     pin = np.column_stack([1000.0 * np.sin(theta), np.zeros_like(theta)])
     t = assess_throw(
-        "1",
-        unit,
-        theta,
-        pin,
-        np.zeros(360),
-        omega=0.0,
-        overspeed=None,
-        material=mat,
-        crank_radius=0.1,
-        m53_geometry=geo,
-        m53_additional=0.0,  # the FE model's own stresses (UR M53 sigma_add: test_assess_m53_basis.py)
+        ThrowContext(
+            "1",
+            unit,
+            theta,
+            pin,
+            np.zeros(360),
+            omega=0.0,
+            overspeed=None,
+            material=mat,
+            crank_radius=0.1,
+            m53_geometry=geo,
+            m53_additional=0.0,  # the FE model's own stresses (UR M53 sigma_add: test_assess_m53_basis.py)
+        )
     )
     sa = 32 * 1000.0 / (np.pi * d**3)
     by = {g.group: g for g in t.groups}

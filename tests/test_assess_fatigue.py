@@ -17,7 +17,7 @@ import jsonschema
 import numpy as np
 import pytest
 
-from fe_crank.assess import assess_throw, evaluate_criteria, to_json
+from fe_crank.assess import ThrowContext, assess_throw, evaluate_criteria, to_json
 from fe_crank.assess.case import Assessment
 from fe_crank.assess.fatigue import goodman_safety, gough_pollard_safety, max_and_first
 from fe_crank.assess.results import load_schema
@@ -60,17 +60,19 @@ def test_bar_bending_plus_mean_torsion_closed_form():
     pin = np.column_stack([M_A * np.sin(theta), np.zeros_like(theta)])
     # torque coefficient is -sense * torque_front / torque_mz: sense -1 gives +T_m on the unit case
     t = assess_throw(
-        "1",
-        _bar_units(),
-        theta,
-        pin,
-        np.full(theta.size, T_M),
-        omega=0.0,
-        sense=-1,
-        overspeed=None,
-        material=mat,
-        crank_radius=0.0,
-        m53_additional=0.0,  # the FE model's own stresses (UR M53 sigma_add: test_assess_m53_basis.py)
+        ThrowContext(
+            "1",
+            _bar_units(),
+            theta,
+            pin,
+            np.full(theta.size, T_M),
+            omega=0.0,
+            sense=-1,
+            overspeed=None,
+            material=mat,
+            crank_radius=0.0,
+            m53_additional=0.0,  # the FE model's own stresses (UR M53 sigma_add: test_assess_m53_basis.py)
+        )
     )
     g = t.groups[0]
     sa = 32 * M_A / (np.pi * D**3)
@@ -120,16 +122,18 @@ def test_pure_torsion_gough_pollard_and_goodman():
     theta = np.deg2rad(np.arange(360.0))
     tq = 500.0 * np.cos(theta)
     t = assess_throw(
-        "1",
-        _bar_units(),
-        theta,
-        np.zeros((360, 2)),
-        tq,
-        omega=0.0,
-        overspeed=None,
-        material=mat,
-        crank_radius=0.0,
-        m53_additional=0.0,  # the FE model's own stresses
+        ThrowContext(
+            "1",
+            _bar_units(),
+            theta,
+            np.zeros((360, 2)),
+            tq,
+            omega=0.0,
+            overspeed=None,
+            material=mat,
+            crank_radius=0.0,
+            m53_additional=0.0,  # the FE model's own stresses
+        )
     )
     ta = 16 * 500.0 / (np.pi * D**3)
     g = t.groups[0]

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fe_crank.assess import assess_throw
+from fe_crank.assess import ThrowContext, assess_throw
 from fe_crank.assess.fatigue import amplitude_mean, goodman_safety, gough_pollard_safety, half_range, signed_mean
 from fe_crank.assess.stress import von_mises
 from fe_crank.assess.superpose import UnitStresses
@@ -46,17 +46,19 @@ def _node_throw(sigma_m: float, tau_m: float):
     mat = load_material("42CrMo4", surface_factor=1.0, size_factor=1.0, reliability=0.5)
     pin = np.column_stack([SA * np.sin(THETA), np.zeros_like(THETA)])
     t = assess_throw(
-        "1",
-        unit,
-        THETA,
-        pin,
-        TA * np.cos(THETA),
-        omega=1.0,
-        sense=-1,
-        overspeed=None,
-        material=mat,
-        crank_radius=0.0,
-        m53_additional=0.0,  # the FE model's own stresses (UR M53 sigma_add: test_assess_m53_basis.py)
+        ThrowContext(
+            "1",
+            unit,
+            THETA,
+            pin,
+            TA * np.cos(THETA),
+            omega=1.0,
+            sense=-1,
+            overspeed=None,
+            material=mat,
+            crank_radius=0.0,
+            m53_additional=0.0,  # the FE model's own stresses (UR M53 sigma_add: test_assess_m53_basis.py)
+        )
     )
     return t.groups[0]
 

@@ -95,7 +95,7 @@ def test_m53_takes_the_journal_torque_with_the_larger_alternating_part():
     """A single throw at the free end carries no torque in front and the whole cylinder
     torque behind: UR M53 must see the rear one."""
     from fe_crank.assess.superpose import UnitStresses
-    from fe_crank.assess.throw import assess_throw
+    from fe_crank.assess.throw import ThrowContext, assess_throw
     from fe_crank.io.material import load_material
 
     theta = np.deg2rad(np.arange(720.0))
@@ -103,17 +103,19 @@ def test_m53_takes_the_journal_torque_with_the_larger_alternating_part():
     pin = np.column_stack([np.zeros(720), 4e4 * np.cos(theta)])
     rear = 900.0 * np.sin(theta)
     t = assess_throw(
-        "1",
-        unit,
-        theta,
-        pin,
-        np.zeros(720),
-        omega=0.0,
-        overspeed=None,
-        material=load_material("42CrMo4"),
-        crank_radius=0.09,
-        m53_geometry=GEO,
-        torque_rear=rear,
+        ThrowContext(
+            "1",
+            unit,
+            theta,
+            pin,
+            np.zeros(720),
+            omega=0.0,
+            overspeed=None,
+            material=load_material("42CrMo4"),
+            crank_radius=0.09,
+            m53_geometry=GEO,
+            torque_rear=rear,
+        )
     )
     assert t.m53_nominal.torsion_pin == pytest.approx(900.0 / (math.pi / 16 * 0.1**3), rel=1e-9)
 
@@ -142,12 +144,12 @@ def test_ke_two_stroke_scales_the_web_stresses_only():
 
 
 def test_ke_reaches_the_route_through_assess_throw_but_not_the_outlet():
-    """``assess_throw(m53_ke=0.8)``: the web's nominal bending is 0.8 x the four-stroke
+    """``assess_throw(ThrowContext(m53_ke=0.8))``: the web's nominal bending is 0.8 x the four-stroke
     value, the oil-bore outlet's bending stress is the same for both."""
     import dataclasses
 
     from fe_crank.assess.superpose import UnitStresses
-    from fe_crank.assess.throw import assess_throw
+    from fe_crank.assess.throw import ThrowContext, assess_throw
     from fe_crank.io.material import load_material
 
     geo = dataclasses.replace(GEO, pin_length=0.08, oil_bore_diameter=0.01)
@@ -157,8 +159,8 @@ def test_ke_reaches_the_route_through_assess_throw_but_not_the_outlet():
     )
     pin = np.column_stack([1e4 * np.sin(theta), 4e4 * np.cos(theta)])
     kw = dict(omega=0.0, overspeed=None, material=load_material("42CrMo4"), crank_radius=0.09, m53_geometry=geo)
-    four = assess_throw("1", unit, theta, pin, 900.0 * np.sin(theta), **kw)
-    two = assess_throw("1", unit, theta, pin, 900.0 * np.sin(theta), m53_ke=0.8, **kw)
+    four = assess_throw(ThrowContext("1", unit, theta, pin, 900.0 * np.sin(theta), **kw))
+    two = assess_throw(ThrowContext("1", unit, theta, pin, 900.0 * np.sin(theta), m53_ke=0.8, **kw))
     assert two.m53_nominal.bending == pytest.approx(0.8 * four.m53_nominal.bending, rel=1e-12)
     assert two.m53_nominal.shear == pytest.approx(0.8 * four.m53_nominal.shear, rel=1e-12)
     o4, o2 = (next(f for f in t.m53 if f.fillet == "oil_bore") for t in (four, two))

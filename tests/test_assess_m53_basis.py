@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from fe_crank import model
-from fe_crank.assess import assess_throw
+from fe_crank.assess import ThrowContext, assess_throw
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.errors import InputError
 from fe_crank.io.engine import build_engine
@@ -126,7 +126,7 @@ def test_fe_route_adds_sigma_add_to_the_fillet_bending_amplitude():
     theta = np.deg2rad(np.arange(720.0))
     pin = np.column_stack([M_A * np.sin(theta), np.zeros_like(theta)])
     kw = dict(omega=0.0, sense=-1, overspeed=None, material=mat, crank_radius=0.0)
-    t = assess_throw("1", _bar_units(), theta, pin, np.full(theta.size, T_M), m53_additional=30e6, **kw)
+    t = assess_throw(ThrowContext("1", _bar_units(), theta, pin, np.full(theta.size, T_M), m53_additional=30e6, **kw))
     g = t.groups[0]
     sa = 32 * M_A / (np.pi * D**3)  # 162.97 MPa
     tm = 16 * T_M / (np.pi * D**3)
@@ -134,7 +134,7 @@ def test_fe_route_adds_sigma_add_to_the_fillet_bending_amplitude():
     assert g.fatigue_safety.value == pytest.approx(1 / ((sa + 30e6) / (k * 450e6) + np.sqrt(3) * tm / 900e6), rel=1e-12)
     assert g.gough_pollard_safety.value == pytest.approx(k * 450e6 / (sa + 30e6), rel=1e-12)
     o = assess_throw(
-        "1", _bar_units("oil_bore"), theta, pin, np.full(theta.size, T_M), m53_additional=30e6, **kw
+        ThrowContext("1", _bar_units("oil_bore"), theta, pin, np.full(theta.size, T_M), m53_additional=30e6, **kw)
     ).groups[0]
     assert o.additional_bending == 0.0
     k_bore = 4.51 * 900.0**-0.265 * 0.95  # the drilled outlet's own surface (test_assess_surfaces.py)

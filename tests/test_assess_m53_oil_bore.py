@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 from fe_crank.assess.superpose import UnitStresses
-from fe_crank.assess.throw import assess_throw
+from fe_crank.assess.throw import ThrowContext, assess_throw
 from fe_crank.io.material import load_material
 from fe_crank.report.locations import criterion_location
 from fe_crank.rules.m53 import calculation as m53
@@ -110,16 +110,18 @@ def test_outlet_in_the_throw_assessment_and_q_criterion():
         cases=("pin_x", "pin_y", "torque"),
     )
     t = assess_throw(
-        "1",
-        unit,
-        TH,
-        PIN,
-        TQ,
-        omega=0.0,
-        overspeed=None,
-        material=load_material("42CrMo4"),
-        crank_radius=0.064,
-        m53_geometry=GEO,
+        ThrowContext(
+            "1",
+            unit,
+            TH,
+            PIN,
+            TQ,
+            omega=0.0,
+            overspeed=None,
+            material=load_material("42CrMo4"),
+            crank_radius=0.064,
+            m53_geometry=GEO,
+        )
     )
     by = {f.fillet: f for f in t.m53}
     assert set(by) == {"pin", "journal", "oil_bore"}

@@ -216,7 +216,7 @@ def test_overspeed_takes_the_worse_of_several_cycles():
     """``assess_throw`` with two overspeed cycles: one node, sigma_xx = 1 Pa per N of pin_y;
     cycle A peaks at +100 N, cycle B at -300 N: von Mises 300 Pa, at B's angle."""
     from fe_crank.assess.superpose import UnitStresses
-    from fe_crank.assess.throw import assess_throw
+    from fe_crank.assess.throw import ThrowContext, assess_throw
     from fe_crank.io.material import load_material
 
     stress = np.zeros((3, 6, 1))
@@ -231,8 +231,10 @@ def test_overspeed_takes_the_worse_of_several_cycles():
     a = np.column_stack([np.zeros(4), [100.0, 0.0, -50.0, 0.0]])
     b = np.column_stack([np.zeros(4), [0.0, 0.0, -300.0, 10.0]])
     kw = dict(omega=1.0, overspeed=1.0, material=load_material("42CrMo4"), crank_radius=0.05)
-    one = assess_throw("1", unit, theta, a, np.zeros(4), overspeed_loads=[(a, np.zeros(4))], **kw)
-    both = assess_throw("1", unit, theta, a, np.zeros(4), overspeed_loads=[(a, np.zeros(4)), (b, np.zeros(4))], **kw)
+    one = assess_throw(ThrowContext("1", unit, theta, a, np.zeros(4), overspeed_loads=[(a, np.zeros(4))], **kw))
+    both = assess_throw(
+        ThrowContext("1", unit, theta, a, np.zeros(4), overspeed_loads=[(a, np.zeros(4)), (b, np.zeros(4))], **kw)
+    )
     assert one.groups[0].max_von_mises_overspeed.value == pytest.approx(100.0, rel=1e-12)
     ext = both.groups[0].max_von_mises_overspeed
     assert ext.value == pytest.approx(300.0, rel=1e-12) and np.rad2deg(ext.angle) == pytest.approx(180.0)

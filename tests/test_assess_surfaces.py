@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fe_crank.assess import assess_throw
+from fe_crank.assess import ThrowContext, assess_throw
 from fe_crank.assess.factors import factors, location_of
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.errors import InputError
@@ -92,7 +92,9 @@ def test_oil_bore_group_assessed_with_its_own_surface():
     mat = load_material("C45", surface_finish="ground", size_factor=1.0, reliability=0.5)
     theta = np.deg2rad(np.arange(360.0))
     pin = np.column_stack([1000.0 * np.sin(theta), np.zeros_like(theta)])
-    g = assess_throw("1", unit, theta, pin, np.zeros(360), omega=0.0, overspeed=None, material=mat, crank_radius=0.0)
+    g = assess_throw(
+        ThrowContext("1", unit, theta, pin, np.zeros(360), omega=0.0, overspeed=None, material=mat, crank_radius=0.0)
+    )
     sa = 32 * 1000.0 / (np.pi * d**3)
     assert g.groups[0].fatigue_factors.surface == pytest.approx(MACHINED_C45, rel=1e-12)
     assert g.groups[0].fatigue_safety.value == pytest.approx(MACHINED_C45 * 290e6 / sa, rel=1e-9)

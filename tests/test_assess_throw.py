@@ -20,7 +20,7 @@ import pytest
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.criteria.judge import evaluate_criteria
 from fe_crank.assess.superpose import UnitStresses
-from fe_crank.assess.throw import assess_throw
+from fe_crank.assess.throw import ThrowContext, assess_throw
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
@@ -67,26 +67,32 @@ def test_overspeed_scales_the_operating_loads_by_the_speed_ratio_squared():
     omega = 0 (a standstill cycle): the loads are kept (x 1), the body force is at
     omega_os: 144 + 1000 = 1144 Pa."""
     unit = _unit({"counterweight_1": [0]})
-    t = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=120.0, material=MAT, crank_radius=0.05)
+    t = assess_throw(
+        ThrowContext("1", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=120.0, material=MAT, crank_radius=0.05)
+    )
     g = _vm(t, "counterweight_1")
     assert g.max_von_mises.value == pytest.approx(1100.0, rel=1e-12)
     assert g.max_von_mises_overspeed.value == pytest.approx(1584.0, rel=1e-12)
     assert g.max_von_mises_overspeed.angle == 0.0
     assert g.overspeed_safety == pytest.approx(650e6 / 1584.0, rel=1e-12)
-    t0 = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=0.0, overspeed=120.0, material=MAT, crank_radius=0.05)
+    t0 = assess_throw(
+        ThrowContext("1", unit, THETA, PIN, np.zeros(4), omega=0.0, overspeed=120.0, material=MAT, crank_radius=0.05)
+    )
     assert _vm(t0, "counterweight_1").max_von_mises_overspeed.value == pytest.approx(1144.0, rel=1e-12)
     # the torque is scaled too: T = 10 N m at 90 deg -> tau = 1.44 x 20 = 28.8 Pa, vM = sqrt(3) 28.8
     # (the largest at 90 deg, where the pin force is zero: 144 Pa and tau 28.8 -> sqrt(144^2 + 3 28.8^2))
     t1 = assess_throw(
-        "1",
-        unit,
-        THETA,
-        np.zeros((4, 2)),
-        np.array([0.0, 10.0, 0.0, 0.0]),
-        omega=100.0,
-        overspeed=120.0,
-        material=MAT,
-        crank_radius=0.05,
+        ThrowContext(
+            "1",
+            unit,
+            THETA,
+            np.zeros((4, 2)),
+            np.array([0.0, 10.0, 0.0, 0.0]),
+            omega=100.0,
+            overspeed=120.0,
+            material=MAT,
+            crank_radius=0.05,
+        )
     )
     g1 = _vm(t1, "counterweight_1").max_von_mises_overspeed
     assert g1.value == pytest.approx(math.sqrt(144.0**2 + 3 * 28.8**2), rel=1e-12)
@@ -95,7 +101,9 @@ def test_overspeed_scales_the_operating_loads_by_the_speed_ratio_squared():
 
 def test_groups_sorted_empty_ones_skipped_and_the_angle_count():
     unit = _unit({"junction_2": [0], "counterweight_1": [0], "junction_0": []})
-    t = assess_throw("7", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=None, material=MAT, crank_radius=0.05)
+    t = assess_throw(
+        ThrowContext("7", unit, THETA, PIN, np.zeros(4), omega=100.0, overspeed=None, material=MAT, crank_radius=0.05)
+    )
     assert t.name == "7" and [g.group for g in t.groups] == ["counterweight_1", "junction_2"]
     assert t.n_angles == 4 and t.m53 == () and t.m53_nominal is None and t.counterweights == ()
     assert t.groups[0].max_von_mises_overspeed is None
@@ -112,22 +120,26 @@ def test_m53_takes_the_journal_torque_with_the_larger_range_and_its_options():
     rear = 300.0 * np.cos(THETA) + 50.0
     pin = np.column_stack([np.zeros(4), [20e3, -5e3, 8e3, -5e3]])
     kw = dict(omega=100.0, overspeed=None, material=MAT, crank_radius=0.09, m53_geometry=INSIDE)
-    t = assess_throw("1", unit, THETA, pin, front, torque_rear=rear, m53_ke=0.8, m53_additional=20e6, **kw)
+    t = assess_throw(
+        ThrowContext("1", unit, THETA, pin, front, torque_rear=rear, m53_ke=0.8, m53_additional=20e6, **kw)
+    )
     nominal = m53.nominal_stresses(INSIDE, pin[:, 1], rear, ke=0.8)
     assert t.m53_nominal == nominal
     for f, name in zip(t.m53, ("pin", "journal")):
         ref = m53.assess_fillet(INSIDE, nominal, name, tensile=MAT.tensile_strength, k=MAT.m53_k, additional=20e6)
         assert f == ref
-    t2 = assess_throw("1", unit, THETA, pin, rear, torque_rear=front, **kw)
+    t2 = assess_throw(ThrowContext("1", unit, THETA, pin, rear, torque_rear=front, **kw))
     assert t2.m53_nominal == m53.nominal_stresses(INSIDE, pin[:, 1], rear, ke=1.0)
-    t3 = assess_throw("1", unit, THETA, pin, front, **kw)
+    t3 = assess_throw(ThrowContext("1", unit, THETA, pin, front, **kw))
     assert t3.m53_nominal == m53.nominal_stresses(INSIDE, pin[:, 1], front, ke=1.0)
     assert t3.m53[0] == m53.assess_fillet(
         INSIDE, t3.m53_nominal, "pin", tensile=MAT.tensile_strength, k=MAT.m53_k, additional=10e6
     )
     # a material without UR M53's K (or without a tensile strength): no M53 results
     for field in ("m53_k", "tensile_strength"):
-        t4 = assess_throw("1", unit, THETA, pin, front, **dict(kw, material=dataclasses.replace(MAT, **{field: None})))
+        t4 = assess_throw(
+            ThrowContext("1", unit, THETA, pin, front, **dict(kw, material=dataclasses.replace(MAT, **{field: None})))
+        )
         assert t4.m53 == () and t4.m53_nominal is None
 
 
@@ -140,16 +152,18 @@ def test_m53_outside_the_range_without_fe_scfs_names_the_throw_and_key():
         m53.assess_fillet(thin, nominal, "pin", tensile=MAT.tensile_strength, k=MAT.m53_k)
     with pytest.raises(InputError) as e:
         assess_throw(
-            "3",
-            unit,
-            THETA,
-            pin,
-            np.zeros(4),
-            omega=100.0,
-            overspeed=None,
-            material=MAT,
-            crank_radius=0.09,
-            m53_geometry=thin,
+            ThrowContext(
+                "3",
+                unit,
+                THETA,
+                pin,
+                np.zeros(4),
+                omega=100.0,
+                overspeed=None,
+                material=MAT,
+                crank_radius=0.09,
+                m53_geometry=thin,
+            )
         )
     assert e.value.key == "geometry" and str(e.value) == f"geometry: throw 3: {ref.value}"
 
@@ -162,16 +176,18 @@ def test_counterweight_checks_at_the_speed_and_overspeed():
         "counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026, bolted=True, bolt_capacity=20e3
     )
     t = assess_throw(
-        "1",
-        unit,
-        THETA,
-        PIN,
-        np.zeros(4),
-        omega=100.0,
-        overspeed=120.0,
-        material=MAT,
-        crank_radius=0.05,
-        counterweights=(cw,),
+        ThrowContext(
+            "1",
+            unit,
+            THETA,
+            PIN,
+            np.zeros(4),
+            omega=100.0,
+            overspeed=120.0,
+            material=MAT,
+            crank_radius=0.05,
+            counterweights=(cw,),
+        )
     )
     (c,) = t.counterweights
     assert c.unbalance_error == pytest.approx(1 / 26, rel=1e-12)
@@ -185,11 +201,11 @@ def _two_throws():
     pts = np.array([[0.010, 0.0], [0.020, 0.0], [0.030, 0.0]])
     unit = _unit({"crankpin_fillet_1": [0], "counterweight_1": [1]}, n=2, points=pts)
     kw = dict(omega=100.0, overspeed=120.0, material=MAT, crank_radius=0.05)
-    t1 = assess_throw("1", unit, THETA, PIN, np.zeros(4), **kw)
+    t1 = assess_throw(ThrowContext("1", unit, THETA, PIN, np.zeros(4), **kw))
     s = unit.stress.copy()
     s[2, 0, 0] = 0.5
     s[2, 0, 1] = 2.0
-    t2 = assess_throw("2", dataclasses.replace(unit, stress=s), THETA, PIN, np.zeros(4), **kw)
+    t2 = assess_throw(ThrowContext("2", dataclasses.replace(unit, stress=s), THETA, PIN, np.zeros(4), **kw))
     return t1, t2
 
 
@@ -270,8 +286,8 @@ def test_m53_and_counterweight_criteria_take_the_worst_over_throws():
     cw_b = CounterweightData(
         "counterweight_2", mass=0.5, centroid_radius=0.05, required_unbalance=0.02, bolted=True, bolt_capacity=40e3
     )
-    t1 = assess_throw("1", unit, THETA, pin, 100.0 * np.cos(THETA), counterweights=(cw_a,), **kw)
-    t2 = assess_throw("2", unit, THETA, 3 * pin, 100.0 * np.cos(THETA), counterweights=(cw_b,), **kw)
+    t1 = assess_throw(ThrowContext("1", unit, THETA, pin, 100.0 * np.cos(THETA), counterweights=(cw_a,), **kw))
+    t2 = assess_throw(ThrowContext("2", unit, THETA, 3 * pin, 100.0 * np.cos(THETA), counterweights=(cw_b,), **kw))
     crit = build_criteria(
         {"min_m53_acceptability": 1.15, "max_unbalance_error": 0.05, "max_bolt_utilisation": 0.8}, "c.toml"
     )
@@ -301,17 +317,19 @@ def test_torque_sense_and_unit_moment_reach_both_cycles():
     torque = np.array([100.0, 0.0, 0.0, 0.0])
     for sense, expected in ((1, 1100.0), (-1, 900.0)):
         t = assess_throw(
-            "1",
-            unit,
-            THETA,
-            PIN,
-            torque,
-            omega=1.0,
-            sense=sense,
-            overspeed=1.0,
-            material=MAT,
-            crank_radius=0.05,
-            overspeed_loads=(PIN, torque),
+            ThrowContext(
+                "1",
+                unit,
+                THETA,
+                PIN,
+                torque,
+                omega=1.0,
+                sense=sense,
+                overspeed=1.0,
+                material=MAT,
+                crank_radius=0.05,
+                overspeed_loads=(PIN, torque),
+            )
         )
         g = _vm(t, "counterweight_1")
         assert g.max_von_mises.value == pytest.approx(expected, rel=1e-12)
@@ -322,7 +340,9 @@ def test_overspeed_scaling_below_one_radian_per_second():
     """omega = 0.5 rad/s, omega_os = 1 rad/s: the loads x (1 / 0.5)^2 = 4: 4000 Pa plus the
     body force 0.01 x 1 = 0.01 Pa at angle 0 (the factor 1 is only for omega = 0)."""
     unit = _unit({"counterweight_1": [0]})
-    t = assess_throw("1", unit, THETA, PIN, np.zeros(4), omega=0.5, overspeed=1.0, material=MAT, crank_radius=0.05)
+    t = assess_throw(
+        ThrowContext("1", unit, THETA, PIN, np.zeros(4), omega=0.5, overspeed=1.0, material=MAT, crank_radius=0.05)
+    )
     assert _vm(t, "counterweight_1").max_von_mises_overspeed.value == pytest.approx(4000.01, rel=1e-12)
 
 
@@ -334,16 +354,18 @@ def test_each_fillet_gets_the_size_factor_of_its_own_section():
     unit = _unit({"crankpin_fillet_1": [0], "journal_fillet_1": [0]}, points=np.array([[0.01], [0.05], [0.0]]))
     pin = np.column_stack([np.zeros(4), [20e3, -5e3, 8e3, -5e3]])
     t = assess_throw(
-        "1",
-        unit,
-        THETA,
-        pin,
-        np.zeros(4),
-        omega=100.0,
-        overspeed=None,
-        material=MAT,
-        crank_radius=0.09,
-        m53_geometry=INSIDE,
+        ThrowContext(
+            "1",
+            unit,
+            THETA,
+            pin,
+            np.zeros(4),
+            omega=100.0,
+            overspeed=None,
+            material=MAT,
+            crank_radius=0.09,
+            m53_geometry=INSIDE,
+        )
     )
     assert factors(MAT, 0.1) != factors(MAT, 0.12)
     assert _vm(t, "crankpin_fillet_1").fatigue_factors == factors(MAT, 0.1)
@@ -382,9 +404,9 @@ def test_fe_scfs_out_of_range_from_the_given_factors_or_the_scf_mode():
     ]
     assert ref[0].out_of_range == () and ref[1].out_of_range == ("r = 0.02 not in [0.03, 0.13]",)
     kw = dict(omega=100.0, overspeed=None, material=MAT, crank_radius=0.09, m53_geometry=geo)
-    given = assess_throw("1", unit, THETA, pin, np.zeros(4), fe_scf=fe_scf, **kw)
+    given = assess_throw(ThrowContext("1", unit, THETA, pin, np.zeros(4), fe_scf=fe_scf, **kw))
     assert list(given.m53) == ref
-    mode = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result(), **kw)
+    mode = assess_throw(ThrowContext("1", unit, THETA, pin, np.zeros(4), scf=_scf_result(), **kw))
     summary = (
         "FE, UR M53 App. III SCF mode (mesh accepted: principal criterion max 1.0 % (< 3 %); "
         "averaging max 2.0 % (< 5 %))"
@@ -396,7 +418,9 @@ def test_fe_scfs_out_of_range_from_the_given_factors_or_the_scf_mode():
     )
     # two reasons are joined by "; "
     geo2 = dataclasses.replace(geo, web_thickness=0.015)
-    two = assess_throw("1", unit, THETA, pin, np.zeros(4), scf=_scf_result(), **dict(kw, m53_geometry=geo2))
+    two = assess_throw(
+        ThrowContext("1", unit, THETA, pin, np.zeros(4), scf=_scf_result(), **dict(kw, m53_geometry=geo2))
+    )
     assert two.m53[1].scf_source == (
         summary + "; outside the UR M53 validity range: w = 0.15 not in [0.2, 0.8]; r = 0.02 not in [0.03, 0.13]"
     )
@@ -409,16 +433,18 @@ def test_counterweight_bolt_load_at_the_speed_without_an_overspeed():
         "counterweight_1", mass=0.5, centroid_radius=0.05, required_unbalance=0.026, bolted=True, bolt_capacity=20e3
     )
     t = assess_throw(
-        "1",
-        unit,
-        THETA,
-        PIN,
-        np.zeros(4),
-        omega=100.0,
-        overspeed=None,
-        material=MAT,
-        crank_radius=0.05,
-        counterweights=(cw,),
+        ThrowContext(
+            "1",
+            unit,
+            THETA,
+            PIN,
+            np.zeros(4),
+            omega=100.0,
+            overspeed=None,
+            material=MAT,
+            crank_radius=0.05,
+            counterweights=(cw,),
+        )
     )
     assert t.counterweights[0].bolt_utilisation == pytest.approx(250.0 / 20e3, rel=1e-12)
 
@@ -430,8 +456,8 @@ def test_ties_go_to_the_first_throw_and_locations_are_in_millimetres():
     pts = np.array([[0.25], [-0.125], [1.5]])
     unit = _unit({"counterweight_1": [0]}, points=pts)
     kw = dict(omega=100.0, overspeed=120.0, material=MAT, crank_radius=0.05)
-    a = assess_throw("A", unit, THETA, PIN, np.zeros(4), **kw)
-    b = assess_throw("B", unit, THETA, PIN, np.zeros(4), **kw)
+    a = assess_throw(ThrowContext("A", unit, THETA, PIN, np.zeros(4), **kw))
+    b = assess_throw(ThrowContext("B", unit, THETA, PIN, np.zeros(4), **kw))
     crit = build_criteria({"min_static_safety": 1.5, "max_counterweight_stress": "1 MPa"}, "c.toml")
     out = evaluate_criteria(crit, (a, b), file="c.toml", overspeed=120.0)
     assert criterion_location(out[0]) == "throw A, counterweight_1, node 100 at (250.0, -125.0, 1500.0) mm, 0 deg"
@@ -453,17 +479,19 @@ def test_the_scf_mode_runs_when_only_the_pin_fillet_is_out_of_range():
     unit = _unit({"counterweight_1": [0]})
     pin = np.column_stack([np.zeros(4), [20e3, -5e3, 8e3, -5e3]])
     t = assess_throw(
-        "1",
-        unit,
-        THETA,
-        pin,
-        np.zeros(4),
-        omega=100.0,
-        overspeed=None,
-        material=MAT,
-        crank_radius=0.09,
-        m53_geometry=geo,
-        scf=_scf_result(),
+        ThrowContext(
+            "1",
+            unit,
+            THETA,
+            pin,
+            np.zeros(4),
+            omega=100.0,
+            overspeed=None,
+            material=MAT,
+            crank_radius=0.09,
+            m53_geometry=geo,
+            scf=_scf_result(),
+        )
     )
     assert t.m53[0].scf_source.startswith("FE, UR M53 App. III SCF mode (mesh accepted")
     assert t.m53[0].scf_source.endswith("; outside the UR M53 validity range: r = 0.02 not in [0.03, 0.13]")

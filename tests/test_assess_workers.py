@@ -27,7 +27,7 @@ import pytest
 from fe_crank.assess import assessed_groups, unit_stresses
 from fe_crank.assess.group.assessment import assess_group
 from fe_crank.assess.superpose import load_coefficients
-from fe_crank.assess.throw import assess_throw
+from fe_crank.assess.throw import ThrowContext, assess_throw
 from fe_crank.assess.workers import run_blocks
 from fe_crank.assess.workers import threads as threads_context
 from fe_crank.io.material import load_material
@@ -102,9 +102,9 @@ def test_assess_throw_on_threads_equals_one_thread_bitwise(filleted_throw):
     th, pin, torque = _loads()
     mat = load_material("42CrMo4")
     kw = dict(omega=300.0, overspeed=360.0, material=mat, crank_radius=0.045)
-    one = assess_throw("t", us, th, pin, torque, **kw)
+    one = assess_throw(ThrowContext("t", us, th, pin, torque, **kw))
     with threads_context(2):
-        two = assess_throw("t", us, th, pin, torque, **kw)
+        two = assess_throw(ThrowContext("t", us, th, pin, torque, **kw))
     assert len(one.groups) == len(two.groups) > 0
     for a, b in zip(one.groups, two.groups):
         _same_group(a, b)

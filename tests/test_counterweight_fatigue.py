@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fe_crank.assess import assess_throw, unit_stresses
+from fe_crank.assess import ThrowContext, assess_throw, unit_stresses
 from fe_crank.assess.factors import size_factor
 from fe_crank.assess.stress import von_mises
 from fe_crank.io.geometry import geometry_from_dict
@@ -34,15 +34,17 @@ def test_counterweight_fillet_fatigue_under_reversed_torque():
     theta = np.deg2rad(np.arange(360.0))
     t_a = 40.0
     t = assess_throw(
-        "1",
-        unit,
-        theta,
-        np.zeros((360, 2)),
-        t_a * np.cos(theta),
-        omega=0.0,
-        overspeed=None,
-        material=mat,
-        crank_radius=0.02,
+        ThrowContext(
+            "1",
+            unit,
+            theta,
+            np.zeros((360, 2)),
+            t_a * np.cos(theta),
+            omega=0.0,
+            overspeed=None,
+            material=mat,
+            crank_radius=0.02,
+        )
     )
     by = {grp.group: grp for grp in t.groups}
     k = 272.0 * 580.0**-0.995 * size_factor(None)  # as forged 0.48376 x 0.63300, k_e = 1

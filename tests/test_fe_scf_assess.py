@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from fe_crank.assess.superpose import UnitStresses
-from fe_crank.assess.throw import assess_throw
+from fe_crank.assess.throw import ThrowContext, assess_throw
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.io.geometry import load_geometry
 from fe_crank.io.loadcase import load_loadcase
@@ -168,17 +168,19 @@ def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet):
     unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     pin = np.column_stack([np.zeros(720), 2e4 * np.cos(theta)])
     t = assess_throw(
-        "1",
-        unit,
-        theta,
-        pin,
-        300.0 * np.sin(theta),
-        omega=0.0,
-        overspeed=None,
-        material=material,
-        crank_radius=0.02,
-        m53_geometry=geo,
-        scf=r,
+        ThrowContext(
+            "1",
+            unit,
+            theta,
+            pin,
+            300.0 * np.sin(theta),
+            omega=0.0,
+            overspeed=None,
+            material=material,
+            crank_radius=0.02,
+            m53_geometry=geo,
+            scf=r,
+        )
     )
     pin_f, jou_f = t.m53
     assert pin_f.scf_source.startswith("FE, UR M53 App. III SCF mode (mesh NOT accepted")
@@ -202,17 +204,19 @@ def test_m53_route_inside_the_range_never_runs_the_scf_mode(tmp_path):
     no_scf = ScfResult(fe={}, empirical={}, out_of_range={}, quality={}, element_size={}, stresses=None)  # type: ignore[arg-type]
 
     t = assess_throw(
-        "1",
-        unit,
-        theta,
-        pin,
-        300.0 * np.sin(theta),
-        omega=0.0,
-        overspeed=None,
-        material=load_material("42CrMo4"),
-        crank_radius=0.02,
-        m53_geometry=SMALL,
-        scf=no_scf,
+        ThrowContext(
+            "1",
+            unit,
+            theta,
+            pin,
+            300.0 * np.sin(theta),
+            omega=0.0,
+            overspeed=None,
+            material=load_material("42CrMo4"),
+            crank_radius=0.02,
+            m53_geometry=SMALL,
+            scf=no_scf,
+        )
     )
     assert all(f.scf_source.startswith("empirical") for f in t.m53)
     assert t.m53[0].scf_bending == pytest.approx(m53.alpha_b(SMALL.related("pin")), rel=1e-12)

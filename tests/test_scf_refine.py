@@ -13,7 +13,7 @@ from test_fe_scf_assess import SMALL, big_fillet  # noqa: F401 (the module's fix
 
 from fe_crank.assess.criteria.judge import evaluate_criteria
 from fe_crank.assess.superpose import UnitStresses
-from fe_crank.assess.throw import assess_throw
+from fe_crank.assess.throw import ThrowContext, assess_throw
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
@@ -64,17 +64,19 @@ def test_a_rejected_scf_refuses_the_m53_criterion(big_fillet):  # noqa: F811
     theta = np.deg2rad(np.arange(0.0, 720.0, 5.0))
     unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     t = assess_throw(
-        "1",
-        unit,
-        theta,
-        np.column_stack([np.zeros(theta.size), 2e4 * np.cos(theta)]),
-        300.0 * np.sin(theta),
-        omega=0.0,
-        overspeed=None,
-        material=load_material("42CrMo4"),
-        crank_radius=0.02,
-        m53_geometry=GEO,
-        scf=r0,
+        ThrowContext(
+            "1",
+            unit,
+            theta,
+            np.column_stack([np.zeros(theta.size), 2e4 * np.cos(theta)]),
+            300.0 * np.sin(theta),
+            omega=0.0,
+            overspeed=None,
+            material=load_material("42CrMo4"),
+            crank_radius=0.02,
+            m53_geometry=GEO,
+            scf=r0,
+        )
     )
     pin, journal = t.m53
     assert not pin.scf_accepted and not journal.scf_accepted

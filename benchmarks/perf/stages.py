@@ -138,7 +138,7 @@ def cycle(loadcase: str, preset: str, cache: str, solver: str, angles: int) -> d
     from fe_crank.assess import unit_stresses
     from fe_crank.assess.stress import von_mises
     from fe_crank.assess.superpose import load_coefficients, stress_history
-    from fe_crank.assess.throw import assess_throw
+    from fe_crank.assess.throw import ThrowContext, assess_throw
     from fe_crank.fe import solve_unit_cases
     from fe_crank.fe.core.loads import pin_pressure_load
     from fe_crank.mechanism.dynamics import analyse
@@ -158,15 +158,17 @@ def cycle(loadcase: str, preset: str, cache: str, solver: str, angles: int) -> d
     out["unit_stress_recovery_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     assess_throw(
-        tm.throw,
-        unit,
-        dyn.theta,
-        tl.pin_force,
-        tl.torque_front,
-        omega=lc.operating.speed,
-        overspeed=lc.operating.overspeed,
-        material=lc.material,
-        crank_radius=lc.geometry.crank_radius,
+        ThrowContext(
+            tm.throw,
+            unit,
+            dyn.theta,
+            tl.pin_force,
+            tl.torque_front,
+            omega=lc.operating.speed,
+            overspeed=lc.operating.overspeed,
+            material=lc.material,
+            crank_radius=lc.geometry.crank_radius,
+        )
     )
     out["superposition_and_assessment_s"] = time.perf_counter() - t0
     out["assessed_nodes"] = int(unit.n_nodes)

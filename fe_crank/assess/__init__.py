@@ -16,7 +16,7 @@ from fe_crank.assess.criteria.judge import EVALUATORS, evaluate_criteria, judge_
 from fe_crank.assess.group.nodes import ASSESSED_BOUNDARIES, COUNTERWEIGHTS, assessed_groups, unit_stresses
 from fe_crank.assess.results import to_json
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
-from fe_crank.assess.throw import ThrowAssessment, assess_throw
+from fe_crank.assess.throw import ThrowAssessment, ThrowContext, assess_throw
 from fe_crank.rules.m53.calculation import M53Geometry
 
 __all__ = [
@@ -28,6 +28,7 @@ __all__ = [
     "CounterweightData",
     "M53Geometry",
     "ThrowAssessment",
+    "ThrowContext",
     "UnitStresses",
     "assess_case",
     "assess_throw",

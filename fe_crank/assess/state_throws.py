@@ -11,7 +11,7 @@ from fe_crank.assess.group.extremes import Running, Wanted
 from fe_crank.assess.inputs import AssessInputs
 from fe_crank.assess.loads import FIRING, LoadState, misfire_label
 from fe_crank.assess.superpose import UnitStresses
-from fe_crank.assess.throw import ThrowAssessment, assess_throw
+from fe_crank.assess.throw import ThrowAssessment, ThrowContext, assess_throw
 from fe_crank.fe.throw.pin_patches import rod_loads, rod_positions
 from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.rules.m53.basis import M53Basis
@@ -80,32 +80,34 @@ def assess_state(
             ]
             out.append(
                 assess_throw(
-                    tname,
-                    unit,
-                    state.theta,
-                    tc.pin_force,
-                    tc.torque_in,
-                    omega=state.speed,
-                    sense=senses[tname],
-                    overspeed=a.operating.overspeed,
-                    material=a.material,
-                    crank_radius=throw.crank_radius,
-                    m53_geometry=tg.m53 if tg is not None else None,
-                    m53_additional=basis.additional,
-                    m53_ke=basis.ke,
-                    counterweights=tg.counterweights if tg is not None else (),
-                    torque_rear=tc.torque_out,
-                    overspeed_loads=overspeed_loads or None,
-                    scf=a.scf.get(key),
-                    angular_acceleration=tc.angular_acceleration,
-                    fe_pin_force=tc.fe_pin_force,
-                    m53_torques=a.loads.m53_torques.get(tname, ()),
-                    extremes=extremes,
-                    running=running,
-                    rod_loads=rod_loads(tc, places),
-                    fe_rod_loads=tc.fe_rod_loads(places) if tc.fe_rods else None,
-                    joint_speed=None if dynamics is None else joint_speed(a, dynamics, tc.angular_acceleration),
-                    geometry_file=a.geometry_file or a.source_file,
+                    ThrowContext(
+                        tname,
+                        unit,
+                        state.theta,
+                        tc.pin_force,
+                        tc.torque_in,
+                        omega=state.speed,
+                        sense=senses[tname],
+                        overspeed=a.operating.overspeed,
+                        material=a.material,
+                        crank_radius=throw.crank_radius,
+                        m53_geometry=tg.m53 if tg is not None else None,
+                        m53_additional=basis.additional,
+                        m53_ke=basis.ke,
+                        counterweights=tg.counterweights if tg is not None else (),
+                        torque_rear=tc.torque_out,
+                        overspeed_loads=overspeed_loads or None,
+                        scf=a.scf.get(key),
+                        angular_acceleration=tc.angular_acceleration,
+                        fe_pin_force=tc.fe_pin_force,
+                        m53_torques=a.loads.m53_torques.get(tname, ()),
+                        extremes=extremes,
+                        running=running,
+                        rod_loads=rod_loads(tc, places),
+                        fe_rod_loads=tc.fe_rod_loads(places) if tc.fe_rods else None,
+                        joint_speed=None if dynamics is None else joint_speed(a, dynamics, tc.angular_acceleration),
+                        geometry_file=a.geometry_file or a.source_file,
+                    )
                 )
             )
     return tuple(out)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 
 import numpy as np
 
@@ -43,39 +43,11 @@ def fe_scfs(scf: ScfResult) -> dict[str, dict[str, float]]:
     return scf.for_assessment()
 
 
-def assess_throw(
-    name: str,
-    unit: UnitStresses,
-    theta: np.ndarray,
-    pin_force: np.ndarray,
-    torque: np.ndarray,
-    *,
-    omega: float,
-    sense: int = 1,
-    overspeed: float | None,
-    material: Material,
-    crank_radius: float,
-    m53_geometry: m53.M53Geometry | None = None,
-    m53_additional: float = 10e6,
-    m53_ke: float = 1.0,
-    fe_scf: dict[str, dict[str, float]] | None = None,
-    scf: ScfResult | None = None,
-    counterweights: tuple[CounterweightData, ...] = (),
-    torque_rear: np.ndarray | None = None,
-    overspeed_loads: tuple | list | None = None,
-    angular_acceleration: np.ndarray | None = None,
-    fe_pin_force: np.ndarray | None = None,
-    m53_torques: tuple[np.ndarray, ...] = (),
-    extremes: Wanted | None = None,
-    running: Running | None = None,
-    rod_loads: tuple | None = None,
-    fe_rod_loads: tuple | None = None,
-    joint_speed: tuple[float, float] | None = None,
-    geometry_file: str = "",
-) -> ThrowAssessment:
-    """Assess one throw from plain arrays: unit stresses, the pin force (n, 2) in the
-    throw frame and the torque through the front journal (n,) over the cycle angles
-    ``theta``.  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
+@dataclass(frozen=True)
+class ThrowContext:
+    """What one throw is assessed from (``assess_throw``), frozen: unit stresses, the pin
+    force (n, 2) in the throw frame and the torque through the front journal (n,) over the
+    cycle angles ``theta`` (plain arrays).  UR M53 takes the journal torque (front or rear, ``torque_rear``) with the
     larger alternating part, the one the throw's fillets carry.  Outside the validity
     range of the empirical SCFs UR M53 takes FE SCFs: ``fe_scf`` as given, else those of
     ``scf`` (the SCF mode's ``rules.m53.scf_mode.ScfResult``, which the FE stage solves for such a throw).
@@ -114,109 +86,151 @@ def assess_throw(
     overspeed) (``cw_joint.check_joints``, an ``InputError`` naming the keys a joint lacks,
     in ``geometry_file``), with the web's bending moment from ``pin_force`` (or ``rod_loads``)
     and the overspeed cycles' pin force; None: not checked."""
-    fe_pin = pin_force if fe_pin_force is None else fe_pin_force
+
+    name: str
+    unit: UnitStresses
+    theta: np.ndarray
+    pin_force: np.ndarray
+    torque: np.ndarray
+    _: KW_ONLY
+    omega: float
+    sense: int = 1
+    overspeed: float | None
+    material: Material
+    crank_radius: float
+    m53_geometry: m53.M53Geometry | None = None
+    m53_additional: float = 10e6
+    m53_ke: float = 1.0
+    fe_scf: dict[str, dict[str, float]] | None = None
+    scf: ScfResult | None = None
+    counterweights: tuple[CounterweightData, ...] = ()
+    torque_rear: np.ndarray | None = None
+    overspeed_loads: tuple | list | None = None
+    angular_acceleration: np.ndarray | None = None
+    fe_pin_force: np.ndarray | None = None
+    m53_torques: tuple[np.ndarray, ...] = ()
+    extremes: Wanted | None = None
+    running: Running | None = None
+    rod_loads: tuple | None = None
+    fe_rod_loads: tuple | None = None
+    joint_speed: tuple[float, float] | None = None
+    geometry_file: str = ""
+
+
+def assess_throw(ctx: ThrowContext) -> ThrowAssessment:
+    """Assess one throw (``ThrowContext`` says from what)."""
+    overspeed_loads = ctx.overspeed_loads
+    fe_pin = ctx.pin_force if ctx.fe_pin_force is None else ctx.fe_pin_force
     coeffs = cycle_coefficients(
-        unit,
+        ctx.unit,
         fe_pin,
-        torque,
-        omega,
-        sense=sense,
-        rod_loads=rod_loads if fe_rod_loads is None else fe_rod_loads,
-        angular_acceleration=angular_acceleration,
-        vibration=fe_pin_force is not None and fe_rod_loads is None,
+        ctx.torque,
+        ctx.omega,
+        sense=ctx.sense,
+        rod_loads=ctx.rod_loads if ctx.fe_rod_loads is None else ctx.fe_rod_loads,
+        angular_acceleration=ctx.angular_acceleration,
+        vibration=ctx.fe_pin_force is not None and ctx.fe_rod_loads is None,
     )
     coeffs_os = None
-    if overspeed is not None and extremes is None:
+    if ctx.overspeed is not None and ctx.extremes is None:
         if overspeed_loads is None:
-            scale = (overspeed / omega) ** 2 if omega > 0 else 1.0
-            rods_os = None if rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in rod_loads)
-            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float), rods_os)
+            scale = (ctx.overspeed / ctx.omega) ** 2 if ctx.omega > 0 else 1.0
+            rods_os = (
+                None if ctx.rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in ctx.rod_loads)
+            )
+            overspeed_loads = (scale * np.asarray(ctx.pin_force, float), scale * np.asarray(ctx.torque, float), rods_os)
         cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
         coeffs_os = np.vstack(
             [
-                cycle_coefficients(unit, c[0], c[1], overspeed, sense=sense, rod_loads=c[2] if len(c) > 2 else None)
+                cycle_coefficients(
+                    ctx.unit, c[0], c[1], ctx.overspeed, sense=ctx.sense, rod_loads=c[2] if len(c) > 2 else None
+                )
                 for c in cycles
             ]
         )
-    dp = m53_geometry.pin_diameter if m53_geometry is not None else None
-    dj = m53_geometry.journal_diameter if m53_geometry is not None else None
-    if extremes is not None:
+    dp = ctx.m53_geometry.pin_diameter if ctx.m53_geometry is not None else None
+    dj = ctx.m53_geometry.journal_diameter if ctx.m53_geometry is not None else None
+    if ctx.extremes is not None:
         groups = tuple(
             group_extremes(
-                unit,
+                ctx.unit,
                 g,
                 coeffs,
-                np.asarray(theta),
-                material,
-                crank_radius=crank_radius,
+                np.asarray(ctx.theta),
+                ctx.material,
+                crank_radius=ctx.crank_radius,
                 diameter=section_diameter(g, dp, dj),
-                wanted=extremes,
-                running=running,
-                additional_bending=m53_additional if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+                wanted=ctx.extremes,
+                running=ctx.running,
+                additional_bending=ctx.m53_additional if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
             )
-            for g in sorted(unit.groups)
-            if len(unit.groups[g])
+            for g in sorted(ctx.unit.groups)
+            if len(ctx.unit.groups[g])
         )
     else:
         groups = assess_groups(
-            unit,
+            ctx.unit,
             coeffs,
-            theta,
-            material,
-            crank_radius=crank_radius,
-            overspeed=overspeed,
+            ctx.theta,
+            ctx.material,
+            crank_radius=ctx.crank_radius,
+            overspeed=ctx.overspeed,
             overspeed_coefficients=coeffs_os,
             pin_diameter=dp,
             journal_diameter=dj,
-            additional_bending=m53_additional,
+            additional_bending=ctx.m53_additional,
         )
     fillets, nominal = _m53(
-        name,
-        m53_geometry,
-        material,
-        pin_force,
-        (torque, *(() if torque_rear is None else (torque_rear,)), *m53_torques),
-        fe_scf=fe_scf,
-        scf=scf,
-        additional=m53_additional,
-        ke=m53_ke,
-        rod_loads=rod_loads,
+        ctx.name,
+        ctx.m53_geometry,
+        ctx.material,
+        ctx.pin_force,
+        (ctx.torque, *(() if ctx.torque_rear is None else (ctx.torque_rear,)), *ctx.m53_torques),
+        fe_scf=ctx.fe_scf,
+        scf=ctx.scf,
+        additional=ctx.m53_additional,
+        ke=ctx.m53_ke,
+        rod_loads=ctx.rod_loads,
     )
-    cws = tuple(check_counterweight(c, omega, overspeed) for c in counterweights)
+    cws = tuple(check_counterweight(c, ctx.omega, ctx.overspeed) for c in ctx.counterweights)
     joints: tuple[JointCheck, ...] = ()
-    if joint_speed is not None:
-        delta, alpha = joint_speed
+    if ctx.joint_speed is not None:
+        delta, alpha = ctx.joint_speed
         if overspeed_loads is None:  # the web's moment at the overspeed: the operating loads scaled as above
-            scale = (overspeed / omega) ** 2 if overspeed is not None and omega > 0 else 1.0
-            rods_os = None if rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in rod_loads)
-            overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float), rods_os)
+            scale = (ctx.overspeed / ctx.omega) ** 2 if ctx.overspeed is not None and ctx.omega > 0 else 1.0
+            rods_os = (
+                None if ctx.rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in ctx.rod_loads)
+            )
+            overspeed_loads = (scale * np.asarray(ctx.pin_force, float), scale * np.asarray(ctx.torque, float), rods_os)
         web_cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
         joint_os = coeffs_os
-        if joint_os is None and overspeed is not None:
+        if joint_os is None and ctx.overspeed is not None:
             joint_os = np.vstack(
                 [
-                    cycle_coefficients(unit, c[0], c[1], overspeed, sense=sense, rod_loads=c[2] if len(c) > 2 else None)
+                    cycle_coefficients(
+                        ctx.unit, c[0], c[1], ctx.overspeed, sense=ctx.sense, rod_loads=c[2] if len(c) > 2 else None
+                    )
                     for c in web_cycles
                 ]
             )
         joints = tuple(
             j
-            for c in counterweights
+            for c in ctx.counterweights
             for j in check_joints(
                 c,
-                omega=omega,
-                overspeed=overspeed,
-                e_clamped=material.youngs_modulus,
+                omega=ctx.omega,
+                overspeed=ctx.overspeed,
+                e_clamped=ctx.material.youngs_modulus,
                 speed_fluctuation=delta,
                 angular_acceleration=alpha,
-                file=geometry_file,
-                pin_force=pin_force,
-                rod_loads=rod_loads,
+                file=ctx.geometry_file,
+                pin_force=ctx.pin_force,
+                rod_loads=ctx.rod_loads,
                 overspeed_loads=web_cycles,
-                fe=(unit, coeffs, joint_os),
+                fe=(ctx.unit, coeffs, joint_os),
             )
         )
-    return ThrowAssessment(name, groups, fillets, nominal, cws, int(len(theta)), joints)
+    return ThrowAssessment(ctx.name, groups, fillets, nominal, cws, int(len(ctx.theta)), joints)
 
 
 def _m53(
