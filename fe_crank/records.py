@@ -17,7 +17,7 @@ from fe_crank.cad.features import CadFeatures
 from fe_crank.cad.record import cad_record
 from fe_crank.mesh.types import MeshStats
 from fe_crank.notes import Note
-from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CriterionResult, StageTime
+from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CriterionResult, StageTime, Status
 
 _EXIT = {STATUS_PASS: 0, STATUS_FAIL: 1, STATUS_ERROR: 2}
 
@@ -143,7 +143,7 @@ class CaseResult:
 
     name: str
     source: str
-    status: str  # "pass" | "fail" | "error"
+    status: Status
     message: str = ""
     criteria: tuple[CriterionResult, ...] = ()
     timings: tuple[StageTime, ...] = ()

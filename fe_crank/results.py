@@ -10,8 +10,17 @@ words are made in ``fe_crank.report.locations``).  The record of a whole case, `
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Final, Literal
 
-STATUS_PASS, STATUS_FAIL, STATUS_ERROR = "pass", "fail", "error"
+#: a load case's outcome: every criterion passed, one failed, or it could not be assessed
+Status = Literal["pass", "fail", "error"]
+STATUS_PASS: Final = "pass"
+STATUS_FAIL: Final = "fail"
+STATUS_ERROR: Final = "error"
+#: a criterion's sense: its value must not fall below ("min", a safety factor) or rise
+#: above ("max", a stress) its limit
+Sense = Literal["min", "max"]
+SENSES: dict[str, Sense] = {"min": "min", "max": "max"}
 
 
 #: what a ``Location`` points at: an FE node group's node, a UR M53 fillet (or the oil-bore
@@ -88,7 +97,7 @@ class CriterionResult:
     location: str = ""
     unit: str = ""
     quantity: str = ""
-    sense: str = ""  # "min" | "max"
+    sense: Sense | Literal[""] = ""  # "" only where no criterion was judged
     per_speed: tuple[SpeedValue, ...] = ()
     speed_rpm: float | None = None
     where: Location | None = None

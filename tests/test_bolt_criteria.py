@@ -15,7 +15,8 @@ import pytest
 from test_assess_cw_joint import JOINT, _loads
 
 from fe_crank.assess.criteria.judge import EVALUATORS, evaluate_criteria
-from fe_crank.assess.cw_joint import JOINT_QUANTITIES, check_joint
+from fe_crank.assess.cw_joint import check_joint
+from fe_crank.assess.joint_criteria import JOINT_QUANTITIES
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import QUANTITIES, build_criteria

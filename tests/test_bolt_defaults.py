@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from fe_crank.assess.cw_joint import DEFAULT_LIMITS, DEFAULT_WORDS, JOINT_QUANTITIES
+from fe_crank.assess.joint_criteria import DEFAULT_LIMITS, DEFAULT_WORDS, JOINT_QUANTITIES
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.report.locations import criterion_location

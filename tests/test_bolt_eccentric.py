@@ -50,14 +50,12 @@ import pytest
 from test_assess_cw_joint import JOINT, _loads
 
 from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry
-from fe_crank.assess.cw_joint import (
+from fe_crank.assess.cw_joint import check_joint, joint_loads, web_moments
+from fe_crank.assess.joint_criteria import (
     DEFAULT_LIMITS,
     DEFAULT_WORDS,
     JOINT_QUANTITIES,
-    check_joint,
-    joint_loads,
     joint_qualifiers,
-    web_moments,
     with_default_limits,
 )
 from fe_crank.assess.throw_geometry import ThrowGeometry
@@ -269,7 +267,7 @@ def test_the_fe_section_fit_recovers_a_linear_stress_field():
 
 def test_bolted_bodies_without_joint_data_are_named():
     """A CAD geometry's bolted bodies carry no joint data: named for the case's warning."""
-    from fe_crank.assess.cw_joint import has_joints, unchecked_joints
+    from fe_crank.assess.joint_criteria import has_joints, unchecked_joints
 
     cad = (CounterweightData("counterweight_1", 0.5, 0.055, bolted=True),)
     tg = {"1": ThrowGeometry(0.024, (-0.0205, 0.0205), None, None, cad)}

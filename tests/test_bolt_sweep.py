@@ -14,7 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fe_crank.assess.cw_joint import JOINT_QUANTITIES, check_joint, check_joints
+from fe_crank.assess.cw_joint import check_joint, check_joints
+from fe_crank.assess.joint_criteria import JOINT_QUANTITIES
 from fe_crank.report.locations import criterion_location
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -20,15 +20,15 @@ from dataclasses import dataclass, field
 from fe_crank.assess.criteria.judge import NOT_CONFORM, QUASI_STATIC_M53, judge_criteria, model_values
 from fe_crank.assess.criteria.models import ModelValue
 from fe_crank.assess.criteria.qualifiers import criterion_qualifiers
-from fe_crank.assess.cw_joint import (
+from fe_crank.assess.group.nodes import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
+from fe_crank.assess.inputs import AssessInputs
+from fe_crank.assess.joint_criteria import (
     JOINT_QUANTITIES,
     has_joints,
     joint_qualifiers,
     unchecked_joints,
     with_default_limits,
 )
-from fe_crank.assess.group.nodes import ASSESSED_BOUNDARIES, assessed_groups, unit_stresses
-from fe_crank.assess.inputs import AssessInputs
 from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.refinement import Refinement, StudyFactors

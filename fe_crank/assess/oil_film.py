@@ -30,7 +30,7 @@ import numpy as np
 from fe_crank.assess.shaft import BearingState
 from fe_crank.assess.speeds import Found, over_states
 from fe_crank.fe.oil_film import ORBIT_TOL, JournalBearing, peak_pressure_factor, periodic_orbits
-from fe_crank.results import Location
+from fe_crank.results import Location, Sense
 
 #: how the film is modelled, for the report and results.json
 FILM_MODEL = (
@@ -214,7 +214,7 @@ def _peak_pressure(bearings: tuple[BearingFilm, ...]) -> Found:
 FILM_FINDERS = {"oil_film_thickness": _thinnest, "oil_film_pressure": _peak_pressure}
 
 
-def film_criterion(quantity: str, sense: str, states: tuple[FilmState, ...]):
+def film_criterion(quantity: str, sense: Sense, states: tuple[FilmState, ...]):
     """The worst value of a film quantity over every state (``speeds.over_states``: each
     speed's worst load state, the worst speed governing), with the counterweights as built."""
     return over_states(FILM_FINDERS[quantity], sense, [(s.speed, s.case, s.bearings) for s in states])

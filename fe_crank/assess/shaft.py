@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess.group.assessment import SIGMA_ADD_GROUPS, assess_groups, section_diameter
+from fe_crank.assess.group.assessment import assess_groups, section_diameter, sigma_add_applies
 from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.loads import FIRING, misfire_label
 from fe_crank.assess.speeds import StateResults
@@ -267,7 +267,7 @@ def assess_shaft_throws(
                     diameter=section_diameter(g, dp, dj),
                     wanted=wanted or Wanted(),
                     running=running[i],
-                    additional_bending=additional_bending if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+                    additional_bending=additional_bending if sigma_add_applies(g) else 0.0,
                 )
                 for g in sorted(unit.groups)
                 if len(unit.groups[g])

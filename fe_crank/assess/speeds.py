@@ -22,7 +22,7 @@ from fe_crank.assess.group.extremes import Wanted
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.io.criteria import Criteria
-from fe_crank.results import Location, SpeedValue
+from fe_crank.results import Location, Sense, SpeedValue
 
 RPM = 30.0 / math.pi
 
@@ -49,20 +49,20 @@ def wanted_extremes(criteria: Criteria) -> Wanted:
     return Wanted(fatigue="fatigue_safety" in q, gough_pollard="gough_pollard_safety" in q)
 
 
-def _worse(a: tuple[float, Location], b: tuple[float, Location] | None, sense: str) -> bool:
+def _worse(a: tuple[float, Location], b: tuple[float, Location] | None, sense: Sense) -> bool:
     """``a`` is worse than ``b`` (None: nothing yet); equals keep the first."""
     return b is None or (a[0] < b[0] if sense == "min" else a[0] > b[0])
 
 
 def over_sweep(
-    find: Callable[[tuple[ThrowAssessment, ...]], Found], sense: str, sweep: tuple[StateResults, ...]
+    find: Callable[[tuple[ThrowAssessment, ...]], Found], sense: Sense, sweep: tuple[StateResults, ...]
 ) -> Located | None:
     """(worst value, its location with its speed and case, its speed in rpm, per-speed
     values) over the sweep, or None when no state gives a value."""
     return over_states(find, sense, [(st.speed, st.case, st.throws) for st in sweep])
 
 
-def over_states(find: Callable[[T], Found], sense: str, states: Sequence[tuple[float, str, T]]) -> Located | None:
+def over_states(find: Callable[[T], Found], sense: Sense, states: Sequence[tuple[float, str, T]]) -> Located | None:
     """``over_sweep`` of any results per load state: (speed rad/s, case, results) each,
     ``find`` on the results (the whole shaft's main bearings, ``assess.criteria.models``)."""
     per: dict[float, tuple[float, Location]] = {}

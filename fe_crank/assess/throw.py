@@ -9,7 +9,7 @@ import numpy as np
 
 from fe_crank.assess.counterweight import CounterweightCheck, CounterweightData, check_counterweight
 from fe_crank.assess.cw_joint import JointCheck, check_joints
-from fe_crank.assess.group.assessment import SIGMA_ADD_GROUPS, GroupResult, assess_groups, section_diameter
+from fe_crank.assess.group.assessment import GroupResult, assess_groups, section_diameter, sigma_add_applies
 from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.superpose import UnitStresses, cycle_coefficients
 from fe_crank.errors import InputError
@@ -17,6 +17,7 @@ from fe_crank.io.material import Material
 from fe_crank.rules.m53 import calculation as m53
 from fe_crank.rules.m53 import oil_bore as m53_oil_bore
 from fe_crank.rules.m53 import rods as m53_rods
+from fe_crank.rules.m53 import scf_empirical
 from fe_crank.rules.m53.calculation import M53Fillet, NominalStresses
 from fe_crank.rules.m53.scf_mode import ScfResult
 
@@ -162,7 +163,7 @@ def assess_throw(ctx: ThrowContext) -> ThrowAssessment:
                 diameter=section_diameter(g, dp, dj),
                 wanted=ctx.extremes,
                 running=ctx.running,
-                additional_bending=ctx.m53_additional if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+                additional_bending=ctx.m53_additional if sigma_add_applies(g) else 0.0,
             )
             for g in sorted(ctx.unit.groups)
             if len(ctx.unit.groups[g])
@@ -257,7 +258,7 @@ def _m53(
         if (
             fe_scf is None
             and scf is not None
-            and any(m53.out_of_range(m53_geometry.related(f)) for f in ("pin", "journal"))
+            and any(scf_empirical.out_of_range(m53_geometry.related(f)) for f in ("pin", "journal"))
         ):
             fe_scf, scf_note, accepted = fe_scfs(scf), scf.summary(), scf.mesh_ok
         m53_torque = torques[0]

@@ -36,6 +36,7 @@ from typing import Any
 from fe_crank.errors import InputError
 from fe_crank.io.base import read_toml
 from fe_crank.io.units import to_si
+from fe_crank.results import SENSES, Sense
 
 
 @dataclass(frozen=True)
@@ -43,7 +44,7 @@ class Quantity:
     """A quantity a criterion may limit: its sense, unit kind (None: pure number), the
     material properties it needs and what it means."""
 
-    sense: str  # "min" or "max"
+    sense: Sense
     unit_kind: str | None
     needs: tuple[str, ...]
     meaning: str
@@ -135,7 +136,7 @@ OPTIONS: dict[str, str] = {"m53_additional_bending": "pressure", "m53_quasi_stat
 @dataclass(frozen=True)
 class Limit:
     quantity: str
-    sense: str  # "min" or "max"
+    sense: Sense
     value: float  # SI or pure number
     key: str  # the key in the file, for messages
 
@@ -184,8 +185,9 @@ def build_criteria(value: object, file: str | Path, key: str = "criteria") -> Cr
             except ValueError as exc:
                 raise InputError(str(exc), file=str(file), key=full) from None
             continue
-        sense, _, quantity = k.partition("_")
-        if sense not in ("min", "max") or not quantity:
+        word, _, quantity = k.partition("_")
+        sense = SENSES.get(word)
+        if sense is None or not quantity:
             raise InputError(
                 f"not a criterion: write min_<quantity> or max_<quantity> (quantities: {sorted(QUANTITIES)}) "
                 f"or an option ({sorted(OPTIONS)})",
@@ -199,7 +201,7 @@ def build_criteria(value: object, file: str | Path, key: str = "criteria") -> Cr
             )
         if q.sense != sense:
             raise InputError(
-                f"{quantity} takes a {q.sense}imum, not a {sense}imum: write {q.sense}_{quantity}",
+                f"{quantity} takes a {q.sense}imum, not a {word}imum: write {q.sense}_{quantity}",
                 file=str(file),
                 key=full,
             )

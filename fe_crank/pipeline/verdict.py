@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from fe_crank.outputs import CaseOutputs
 from fe_crank.report.locations import with_words
-from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CriterionResult
+from fe_crank.results import STATUS_ERROR, STATUS_FAIL, STATUS_PASS, CriterionResult, Status
 
 
 @dataclass(frozen=True)
@@ -22,7 +22,7 @@ class Verdict:
     """``status`` pass | fail | error, the criteria it was decided on, and the message of
     an error ("" otherwise)."""
 
-    status: str
+    status: Status
     criteria: tuple[CriterionResult, ...]
     message: str = ""
 

@@ -10,11 +10,11 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
-from fe_crank.assess.cw_joint import JOINT_QUANTITIES
-from fe_crank.assess.group.assessment import STATIC_ONLY_PREFIXES, Extreme, GroupResult
+from fe_crank.assess.group.assessment import Extreme, GroupResult, of_counterweight
+from fe_crank.assess.joint_criteria import JOINT_QUANTITIES
 from fe_crank.assess.speeds import Found
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.results import Location
+from fe_crank.results import Location, Sense
 from fe_crank.rules.m53 import oil_bore as m53_oil_bore
 
 
@@ -33,7 +33,7 @@ def where(throw: str, ext: Extreme) -> Location:
 def _over_groups(
     throws: tuple[ThrowAssessment, ...],
     getter: Callable[[GroupResult], tuple[float, Extreme] | None],
-    worst: str,
+    worst: Sense,
     factor: Callable[[str, str], float] | None = None,
 ) -> Found:
     """(value, location) of the worst non-None value of getter(group) over all groups
@@ -57,16 +57,16 @@ def _over_groups(
 
 def _cw_stress(g: GroupResult) -> tuple[float, Extreme] | None:
     ext = g.max_von_mises
-    return (ext.value, ext) if g.group.startswith(STATIC_ONLY_PREFIXES) else None
+    return (ext.value, ext) if of_counterweight(g.group) else None
 
 
 def _cw_overspeed_stress(g: GroupResult) -> tuple[float, Extreme] | None:
     ext = g.max_von_mises_overspeed
-    return (ext.value, ext) if ext is not None and g.group.startswith(STATIC_ONLY_PREFIXES) else None
+    return (ext.value, ext) if ext is not None and of_counterweight(g.group) else None
 
 
 #: the quantities read from the FE groups' results: quantity -> (getter, worst)
-GROUP_QUANTITIES: dict[str, tuple[Callable[[GroupResult], tuple[float, Extreme] | None], str]] = {
+GROUP_QUANTITIES: dict[str, tuple[Callable[[GroupResult], tuple[float, Extreme] | None], Sense]] = {
     "static_safety": (lambda g: (g.static_safety, g.max_von_mises), "min"),
     "overspeed_safety": (
         lambda g: (
@@ -149,7 +149,7 @@ def bolts(throws: tuple[ThrowAssessment, ...]) -> Found:
 
 
 def joint_finder(quantity: str) -> Callable[[tuple[ThrowAssessment, ...]], Found]:
-    """The evaluator of a VDI 2230 quantity (``cw_joint.JOINT_QUANTITIES``: the
+    """The evaluator of a VDI 2230 quantity (``joint_criteria.JOINT_QUANTITIES``: the
     ``JointCheck`` field and its sense): the worst bolted joint over the throws, from the
     joint checks the assessment made once (``ThrowAssessment.joints``)."""
     attr, sense = JOINT_QUANTITIES[quantity]

@@ -51,14 +51,14 @@ from fe_crank.assess.criteria.models import (
     whole_shaft,
 )
 from fe_crank.assess.criteria.verdict import judge
-from fe_crank.assess.cw_joint import JOINT_QUANTITIES
+from fe_crank.assess.joint_criteria import JOINT_QUANTITIES
 from fe_crank.assess.refinement import SCALED, Refinement, StudyFactors
 from fe_crank.assess.shaft import ShaftAssessment
 from fe_crank.assess.speeds import RPM, Found, Located, StateResults, over_sweep
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import QUANTITIES, Criteria
-from fe_crank.results import CriterionResult, SpeedValue
+from fe_crank.results import CriterionResult, Sense, SpeedValue
 
 NOT_CONFORM = "not UR M53-conform"
 QUASI_STATIC_M53 = (
@@ -106,7 +106,7 @@ EVALUATORS: dict[str, Evaluator] = {
 
 def _parts(
     quantity: str,
-    sense: str,
+    sense: Sense,
     throws: tuple[ThrowAssessment, ...],
     sweep: tuple[StateResults, ...],
     overspeed: float | None,
@@ -144,7 +144,7 @@ def _parts(
 
 def locate(
     quantity: str,
-    sense: str,
+    sense: Sense,
     throws: tuple[ThrowAssessment, ...],
     *,
     sweep: tuple[StateResults, ...] = (),

@@ -22,7 +22,7 @@ from fe_crank.assess.oil_film import FILM_FINDERS, film_criterion
 from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, ShaftAssessment
 from fe_crank.assess.speeds import Found, Located, over_states
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.results import Location, SpeedValue
+from fe_crank.results import Location, Sense, SpeedValue
 
 
 def no_throw_value(throws: tuple[ThrowAssessment, ...]) -> Found:
@@ -81,7 +81,7 @@ BEARING_FINDERS: dict[str, Callable[[tuple], Found]] = {
 }
 
 
-def _worse(a: float, b: float, sense: str) -> bool:
+def _worse(a: float, b: float, sense: Sense) -> bool:
     return a < b if sense == "min" else a > b
 
 
@@ -96,7 +96,7 @@ def _label(found: Located, model: str) -> Located:
 
 def whole_shaft(
     quantity: str,
-    sense: str,
+    sense: Sense,
     find: Callable[[tuple[ThrowAssessment, ...]], Found],
     shaft: ShaftAssessment,
     *,
@@ -120,7 +120,7 @@ def whole_shaft(
     return got[0], got[1], speed_rpm, per
 
 
-def combined(per_throw: Located | None, whole: Located | None, sense: str) -> Located | None:
+def combined(per_throw: Located | None, whole: Located | None, sense: Sense) -> Located | None:
     """The criterion from both models (module doc): at each speed the worse of the two (the
     per-throw model's on equals), the verdict the worst speed (the lowest of equals)."""
     if whole is None:
@@ -156,7 +156,7 @@ class ModelValue:
     governs: bool  # the criterion took this model's value
 
 
-def model_pair(key: str, per_throw: Located | None, whole: Located | None, sense: str) -> tuple[ModelValue, ...]:
+def model_pair(key: str, per_throw: Located | None, whole: Located | None, sense: Sense) -> tuple[ModelValue, ...]:
     """The worst value of criterion ``key`` in each model that gives it, and which governs."""
     both = combined(per_throw, whole, sense)
     if both is None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from fe_crank.results import CriterionResult
+from fe_crank.results import CriterionResult, Sense
 
 __all__ = ["CriterionResult", "judge"]
 
@@ -13,7 +13,7 @@ __all__ = ["CriterionResult", "judge"]
 def judge(
     name: str,
     quantity: str,
-    sense: str,
+    sense: Sense,
     value: float,
     limit: float,
     *,

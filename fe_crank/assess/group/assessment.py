@@ -19,22 +19,37 @@ from fe_crank.assess.group.peak import TIE_RTOL, group_peak, max_over_cycle
 from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
 from fe_crank.assess.workers import run_blocks, scratch_array
+from fe_crank.fe.throw.node_groups import GroupKind, group_kind
 
-#: groups assessed for fatigue with Gough-Pollard need a local axis: these prefixes use
-#: the crankpin axis (x, y) = (0, R); the journal fillets the crank axis (0, 0).
-PIN_AXIS_GROUPS = ("crankpin_fillet", "oil_bore", "crankpin")
-JOURNAL_AXIS_GROUPS = ("journal_fillet",)
-#: groups belonging to a counterweight: its stress criteria take their largest von Mises;
-#: they are not assessed for fatigue (their own stress criteria apply) except the
-#: counterweight's transition fillet (``CW_FILLET_PREFIX``), whose stress cycles with the
-#: pin force like the web's
-STATIC_ONLY_PREFIXES = ("counterweight", "junction")
-CW_FILLET_PREFIX = "counterweight_fillet"
+#: groups assessed for fatigue with Gough-Pollard need a local axis: these kinds lie on
+#: the crankpin, axis (x, y) = (0, R); the journal fillets on the crank axis (0, 0)
+PIN_AXIS_KINDS: tuple[GroupKind, ...] = ("crankpin_fillet", "oil_bore", "crankpin")
+JOURNAL_AXIS_KINDS: tuple[GroupKind, ...] = ("journal_fillet",)
+#: groups belonging to a counterweight: its stress criteria take their largest von Mises
+COUNTERWEIGHT_KINDS: tuple[GroupKind, ...] = ("counterweight_fillet", "counterweight", "junction")
+#: of these, the ones not assessed for fatigue (their own stress criteria apply); the
+#: counterweight's transition fillet is, its stress cycling with the pin force like the web's
+STATIC_ONLY_KINDS: tuple[GroupKind, ...] = ("counterweight", "junction")
 #: the shaft fillets, where UR M53 section 4's additional bending stress sigma_add
 #: (misalignment, bedplate deformation, axial and bending vibration: loads no single-throw
 #: model carries) is added to the alternating bending stress, in the FE route as in the M53
 #: route (5.2); not at the oil-bore outlet (5.2 has no sigma_add there)
-SIGMA_ADD_GROUPS = ("crankpin_fillet", "journal_fillet")
+SIGMA_ADD_KINDS: tuple[GroupKind, ...] = ("crankpin_fillet", "journal_fillet")
+
+
+def fatigue_assessed(group: str) -> bool:
+    """Whether the group is assessed for fatigue (every kind but ``STATIC_ONLY_KINDS``)."""
+    return group_kind(group) not in STATIC_ONLY_KINDS
+
+
+def of_counterweight(group: str) -> bool:
+    """Whether the group belongs to a counterweight (``COUNTERWEIGHT_KINDS``)."""
+    return group_kind(group) in COUNTERWEIGHT_KINDS
+
+
+def sigma_add_applies(group: str) -> bool:
+    """Whether UR M53's sigma_add is added at the group (``SIGMA_ADD_KINDS``)."""
+    return group_kind(group) in SIGMA_ADD_KINDS
 
 
 @dataclass(frozen=True)
@@ -63,7 +78,7 @@ class GroupResult:
     amplitude_at_critical: float | None = None  # sigma_a' at the fatigue-critical node, Pa
     mean_at_critical: float | None = None  # sigma_m' there, Pa
     fatigue_factors: FatigueFactors | None = None  # applied to the specimen fatigue limits
-    additional_bending: float = 0.0  # Pa, UR M53 sigma_add added to the amplitudes (SIGMA_ADD_GROUPS)
+    additional_bending: float = 0.0  # Pa, UR M53 sigma_add added to the amplitudes (SIGMA_ADD_KINDS)
     #: per-node arrays for reports/VTU (not in the JSON): "node_ids", "max_von_mises",
     #: "amplitude", "mean" (equivalent sigma_a', signed sigma_m'), "fatigue_safety",
     #: "gough_pollard_safety" (inf where not computed)
@@ -73,9 +88,10 @@ class GroupResult:
 def axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
     """Axis (x, y) of the cylinder a group lies on (the crankpin's or the journal's); None
     for the groups not on a cylinder."""
-    if group.startswith(PIN_AXIS_GROUPS):
+    kind = group_kind(group)
+    if kind in PIN_AXIS_KINDS:
         return (0.0, crank_radius)
-    if group.startswith(JOURNAL_AXIS_GROUPS):
+    if kind in JOURNAL_AXIS_KINDS:
         return (0.0, 0.0)
     return None
 
@@ -92,9 +108,10 @@ def first_extreme(values: np.ndarray, worst: str = "max", axis: int = 0) -> np.n
 def section_diameter(group: str, pin_diameter: float | None, journal_diameter: float | None) -> float | None:
     """Diameter of the section a group belongs to, for the size factor: the crankpin's
     for its fillets and the oil bore, the journal's for the journal fillets."""
-    if group.startswith(PIN_AXIS_GROUPS):
+    kind = group_kind(group)
+    if kind in PIN_AXIS_KINDS:
         return pin_diameter
-    if group.startswith(JOURNAL_AXIS_GROUPS):
+    if kind in JOURNAL_AXIS_KINDS:
         return journal_diameter
     return None
 
@@ -146,9 +163,7 @@ def assess_group(
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
     do_fatigue = (
-        (group.startswith(CW_FILLET_PREFIX) or not group.startswith(STATIC_ONLY_PREFIXES))
-        and material.fatigue_limit_bending is not None
-        and material.tensile_strength is not None
+        fatigue_assessed(group) and material.fatigue_limit_bending is not None and material.tensile_strength is not None
     )
     axis = axis_for(group, crank_radius)
     do_gp = do_fatigue and axis is not None and material.fatigue_limit_torsion is not None
@@ -268,7 +283,7 @@ def assess_groups(
             overspeed=overspeed,
             overspeed_coefficients=overspeed_coefficients,
             diameter=section_diameter(g, pin_diameter, journal_diameter),
-            additional_bending=additional_bending if g.startswith(SIGMA_ADD_GROUPS) else 0.0,
+            additional_bending=additional_bending if sigma_add_applies(g) else 0.0,
         )
         for g in sorted(unit.groups)
         if len(unit.groups[g])

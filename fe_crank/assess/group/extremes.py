@@ -51,10 +51,9 @@ import numpy as np
 from fe_crank.assess import fatigue
 from fe_crank.assess.factors import factors, location_of
 from fe_crank.assess.group.assessment import (
-    CW_FILLET_PREFIX,
-    STATIC_ONLY_PREFIXES,
     GroupResult,
     axis_for,
+    fatigue_assessed,
     node_extreme,
 )
 from fe_crank.assess.group.bounds import (
@@ -159,7 +158,7 @@ def group_extremes(
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
-    fatigue_group = group.startswith(CW_FILLET_PREFIX) or not group.startswith(STATIC_ONLY_PREFIXES)
+    fatigue_group = fatigue_assessed(group)
     do_fatigue = (
         wanted.fatigue
         and fatigue_group

@@ -5,7 +5,26 @@ condensed fields there)."""
 
 from __future__ import annotations
 
+from typing import Literal
+
 import numpy as np
+
+#: what a node group is, from its name (``group_kind``): the shaft fillets, the oil-bore
+#: outlet, another crankpin surface, a counterweight's transition fillet to the web, a
+#: counterweight body, a counterweight's junction with its web
+GroupKind = Literal[
+    "crankpin_fillet", "journal_fillet", "oil_bore", "crankpin", "counterweight_fillet", "counterweight", "junction"
+]
+#: the name prefix of each kind, the longer first where one prefix starts another
+_PREFIXES: tuple[GroupKind, ...] = (
+    "crankpin_fillet",
+    "journal_fillet",
+    "oil_bore",
+    "crankpin",
+    "counterweight_fillet",
+    "counterweight",
+    "junction",
+)
 
 #: boundary groups assessed at their nodes; subdomains assessed with all their nodes
 ASSESSED_BOUNDARIES = (
@@ -18,6 +37,16 @@ ASSESSED_BOUNDARIES = (
     "counterweight_fillet_2",
 )
 COUNTERWEIGHTS = ("counterweight_1", "counterweight_2")
+
+
+def group_kind(name: str) -> GroupKind | None:
+    """The kind of the node group ``name`` (``crankpin_fillet_2`` -> ``crankpin_fillet``,
+    ``counterweight_fillet_1`` -> ``counterweight_fillet``, ``junction_1`` -> ``junction``);
+    None for a name of no kind."""
+    for kind in _PREFIXES:
+        if name.startswith(kind):
+            return kind
+    return None
 
 
 def _element_nodes(basis, elements) -> np.ndarray:
