@@ -14,9 +14,7 @@ from pathlib import Path
 PACKAGE = Path(__file__).resolve().parents[1] / "fe_crank"
 
 #: (importing module, imported module, name) still to be made public; each entry is a debt
-KNOWN: set[tuple[str, str, str]] = {
-    ("fe_crank.pipeline.case", "fe_crank.pipeline.publish", "_publish"),
-}
+KNOWN: set[tuple[str, str, str]] = set()
 
 
 def _module_name(path: Path, package: Path) -> str:

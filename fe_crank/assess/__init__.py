@@ -10,10 +10,11 @@ groups are in ``group/nodes.py``, the criteria table in ``criteria/judge.py``, t
 
 from __future__ import annotations
 
-from fe_crank.assess.case import AssessInputs, Assessment, assess_case
+from fe_crank.assess.case import Assessment, assess_case
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.criteria.judge import EVALUATORS, evaluate_criteria, judge_criteria
 from fe_crank.assess.group.nodes import ASSESSED_BOUNDARIES, COUNTERWEIGHTS, assessed_groups, unit_stresses
+from fe_crank.assess.inputs import AssessInputs
 from fe_crank.assess.results import to_json
 from fe_crank.assess.superpose import UnitStresses, load_coefficients
 from fe_crank.assess.throw import ThrowAssessment, ThrowContext, assess_throw

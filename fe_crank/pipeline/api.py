@@ -35,7 +35,7 @@ def run_check(
     mesh_size: str | None = None,
     cache_dir: str | Path = ".cache/meshes",
     jobs: int = 1,
-    scheduler=None,
+    scheduler: object = None,
     render: bool = True,
     write_vtu: bool = True,
     junit: str | Path | None = None,

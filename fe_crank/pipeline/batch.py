@@ -13,8 +13,10 @@ import logging
 import os
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures import Future
 from dataclasses import asdict
 from pathlib import Path
+from typing import Any
 
 from fe_crank.errors import InputError
 from fe_crank.notes import verdict_remarks
@@ -110,7 +112,7 @@ def run_cases(
     return [r for r in results if r is not None]
 
 
-def _result_or_crash(fut, path: Path) -> CaseResult:
+def _result_or_crash(fut: Future[CaseResult], path: Path) -> CaseResult:
     """A worker that died (killed, out of memory) is an error result for its case."""
     try:
         return fut.result()
@@ -124,14 +126,21 @@ def _result_or_crash(fut, path: Path) -> CaseResult:
         )
 
 
-def _run_dask(files, slugs, out_dir: Path, options, scheduler, done) -> None:
+def _run_dask(
+    files: Sequence[Path],
+    slugs: Sequence[str],
+    out_dir: Path,
+    options: CheckOptions,
+    scheduler: Any,
+    done: Callable[[int, CaseResult], None],
+) -> None:
     try:
         from distributed import Client, as_completed
     except ModuleNotFoundError:  # pragma: no cover - distributed is a dependency
         raise InputError("--dask-scheduler needs the 'distributed' package") from None
     own = not hasattr(scheduler, "submit")
     try:
-        client = Client(scheduler, timeout="20s") if own else scheduler
+        client: Any = Client(scheduler, timeout="20s") if own else scheduler  # type: ignore[no-untyped-call]
     except OSError as exc:
         raise InputError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") from None
     try:
@@ -147,7 +156,7 @@ def _run_dask(files, slugs, out_dir: Path, options, scheduler, done) -> None:
                 pure=False,
             )
             futs[f] = i
-        for fut in as_completed(list(futs)):
+        for fut in as_completed(list(futs)):  # type: ignore[no-untyped-call]
             i = futs[fut]
             done(i, _result_or_crash(fut, files[i]))
     finally:

@@ -28,7 +28,7 @@ from fe_crank.notes import WARNING, Note
 from fe_crank.pipeline.notes import case_notes
 from fe_crank.pipeline.options import CheckOptions
 from fe_crank.pipeline.provenance import collect
-from fe_crank.pipeline.publish import PARTIAL_MARK, _publish, case_slug
+from fe_crank.pipeline.publish import PARTIAL_MARK, case_slug, publish_folder
 from fe_crank.pipeline.stages import Run, run_stages
 from fe_crank.pipeline.verdict import Verdict, decide
 from fe_crank.records import CaseResult, now_utc
@@ -108,7 +108,7 @@ def run_case(
             partial, timings=tuple(run.timings), seconds=time.perf_counter() - t0, folder=str(out_dir / slug)
         )
         write_atomic(tmp / "case.json", json.dumps(final.to_dict(), indent=2, default=_json_default, allow_nan=False))
-        _publish(tmp, out_dir / slug)
+        publish_folder(tmp, out_dir / slug)
         return final
     finally:
         if tmp.exists():
@@ -119,7 +119,7 @@ def _as_error(r: CaseResult, message: str, stage: str) -> CaseResult:
     return replace(r, status=STATUS_ERROR, message=message, error_stage=stage)
 
 
-def _json_default(o):
+def _json_default(o: object) -> object:
     import numpy as np
 
     if isinstance(o, np.generic):

@@ -28,6 +28,8 @@ Notes that differ only in the throws they concern are shown once, naming the thr
 
 from __future__ import annotations
 
+from collections.abc import Collection, Iterable
+
 from fe_crank.assess.case import Assessment
 from fe_crank.notes import ASSUMPTION, NOT_A_SIGN_OFF, WARNING, Note, from_strings, grouped
 from fe_crank.outputs import CaseOutputs
@@ -43,13 +45,13 @@ FE_STRESS_QUANTITIES = ("static_safety", "fatigue_safety", "gough_pollard_safety
 FATIGUE_QUANTITIES = ("fatigue_safety", "gough_pollard_safety", "m53_acceptability")
 
 
-def _names(assessment: Assessment | None, quantities) -> tuple[str, ...]:
+def _names(assessment: Assessment | None, quantities: Collection[str]) -> tuple[str, ...]:
     if assessment is None:
         return ()
     return tuple(c.name for c in assessment.criteria if c.quantity in quantities)
 
 
-def fillet_criteria(assessment: Assessment, fillet: str, throws) -> tuple[str, ...]:
+def fillet_criteria(assessment: Assessment, fillet: str, throws: Collection[str]) -> tuple[str, ...]:
     """The FE stress criteria whose governing location (``CriterionResult.where``, in
     either model) is the FE group ``fillet`` of one of ``throws``."""
     return tuple(
@@ -63,7 +65,7 @@ def fillet_criteria(assessment: Assessment, fillet: str, throws) -> tuple[str, .
     )
 
 
-def _short(names) -> str:
+def _short(names: Iterable[str]) -> str:
     return ", ".join(n.split(".")[-1] for n in names)
 
 

@@ -41,7 +41,7 @@ def clean_stale_partials(out_dir: str | Path) -> list[Path]:
     return removed
 
 
-def _publish(tmp_dir: Path, final: Path) -> Path:
+def publish_folder(tmp_dir: Path, final: Path) -> Path:
     """Rename the finished ``tmp_dir`` to ``final``, replacing an older report.
 
     A folder cannot be renamed over a non-empty one, so the old folder is first

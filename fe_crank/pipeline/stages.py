@@ -18,9 +18,10 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TypeVar
+from typing import Any, TypeVar
 
-from fe_crank.assess.case import AssessInputs, Assessment, assess_case
+from fe_crank.assess.case import Assessment, assess_case
+from fe_crank.assess.inputs import AssessInputs
 from fe_crank.assess.throw_geometry import parametric_throws
 from fe_crank.assess.workers import threads
 from fe_crank.balance.analysis import BalanceResult, analyse_balance
@@ -69,7 +70,7 @@ class Run:
     stage: str = ""
     files_read: list[InputFile] = field(default_factory=list)
 
-    def timed(self, stage: str, fn: Callable[..., T], *args, **kwargs) -> T:
+    def timed(self, stage: str, fn: Callable[..., T], *args: Any, **kwargs: Any) -> T:
         self.stage = stage
         if self.on_stage is not None:
             self.on_stage(str(self.path), stage)
@@ -84,7 +85,7 @@ class Run:
             self.timings.append(StageTime(stage, dt))
             log.info("%s: %s %s in %.1f s", self.path.stem, stage, "done" if ok else "stopped", dt)
 
-    def keep(self, **outputs) -> None:
+    def keep(self, **outputs: Any) -> None:
         self.out = dataclasses.replace(self.out, **outputs)
 
 

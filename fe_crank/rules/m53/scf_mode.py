@@ -35,6 +35,7 @@ from fe_crank.cad.source import mesh_source_throw
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.mesh.types import ThrowMesh
 from fe_crank.rules.m53 import calculation as m53
+from fe_crank.rules.m53 import scf_empirical
 from fe_crank.rules.m53.fe_cases import JOURNAL_FILLETS, PIN_FILLETS, ScfStresses, scf_stresses, web_centres_from_mesh
 from fe_crank.rules.m53.web_mesh import MIN_ELEMENTS_ACROSS, WebElements, web_elements_across, web_groups
 
@@ -168,13 +169,13 @@ def factors(st: ScfStresses, geo: m53.M53Geometry) -> tuple[dict[str, float], di
 def empirical(geo: m53.M53Geometry) -> tuple[dict[str, float | None], dict[str, tuple[str, ...]]]:
     """UR M53 3.2/3.3 empirical SCFs of the same throw, None outside the validity range (3.1)."""
     rel_p, rel_j = geo.related("pin"), geo.related("journal")
-    bad_p, bad_j = tuple(m53.out_of_range(rel_p)), tuple(m53.out_of_range(rel_j))
+    bad_p, bad_j = tuple(scf_empirical.out_of_range(rel_p)), tuple(scf_empirical.out_of_range(rel_j))
     emp = {
-        "alpha_B": None if bad_p else m53.alpha_b(rel_p),
-        "alpha_T": None if bad_p else m53.alpha_t(rel_p),
-        "beta_B": None if bad_j else m53.beta_b(rel_j),
-        "beta_T": None if bad_j else m53.beta_t(rel_j, geo.journal_fillet_radius / geo.journal_diameter),
-        "beta_Q": None if bad_j else m53.beta_q(rel_j),
+        "alpha_B": None if bad_p else scf_empirical.alpha_b(rel_p),
+        "alpha_T": None if bad_p else scf_empirical.alpha_t(rel_p),
+        "beta_B": None if bad_j else scf_empirical.beta_b(rel_j),
+        "beta_T": None if bad_j else scf_empirical.beta_t(rel_j, geo.journal_fillet_radius / geo.journal_diameter),
+        "beta_Q": None if bad_j else scf_empirical.beta_q(rel_j),
     }
     return emp, {"pin": bad_p, "journal": bad_j}
 
