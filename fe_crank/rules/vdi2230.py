@@ -217,7 +217,9 @@ def interface_section(ecc: Eccentric, hole_diameter: float) -> tuple[float, floa
     return b * c**3 / 12.0 - math.pi * dh**4 / 64.0, b * c - math.pi * dh**2 / 4.0
 
 
-def eccentric_resiliences(delta_p: float, ecc: Eccentric, clamp_length: float, e_plate: float, i_bers: float):
+def eccentric_resiliences(
+    delta_p: float, ecc: Eccentric, clamp_length: float, e_plate: float, i_bers: float
+) -> tuple[float, float]:
     """(delta_P*, delta_P**) (m/N), VDI 2230 R3 (eccentric clamping and loading)."""
     k = clamp_length / (e_plate * i_bers)
     return delta_p + ecc.s_sym**2 * k, delta_p + ecc.a * ecc.s_sym * k
@@ -250,7 +252,9 @@ def opening_limit_both_edges(f_a: float, m_b: float, ecc: Eccentric, i_bt: float
     return max(0.0, opening_limit(f_a, m_b, ecc, u, i_bt, a_d), opening_limit(f_a, -m_b, mirrored, u, i_bt, a_d))
 
 
-def bending_length(d: float, pitch: float, clamp_length: float, shank_length: float = 0.0, shank_diameter=None):
+def bending_length(
+    d: float, pitch: float, clamp_length: float, shank_length: float = 0.0, shank_diameter: float | None = None
+) -> float:
     """l_ers (m): the bolt's substitutional bending length within the clamp length, referred
     to the stress diameter d_S (VDI 2230 5.5.3: sum of l_i (d_S/d_i)^4; the free thread at d_3,
     the shank at its diameter; the head and the engaged thread left out, which shortens l_ers

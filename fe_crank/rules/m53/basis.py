@@ -26,7 +26,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from fe_crank.errors import InputError
-from fe_crank.rules.m53.calculation import ke_factor
+from fe_crank.model import Engine
+from fe_crank.rules.m53.calculation import M53Material, ke_factor
 
 #: UR M53 section 4: sigma_add by engine construction, Pa
 ADDITIONAL_BENDING = {"trunk_piston": 10e6, "crosshead": 30e6}
@@ -66,14 +67,16 @@ def additional_bending(construction: str, stated: float | None, *, file: str = "
     return stated, f"stated in the load case: {stated / 1e6:g} MPa (UR M53 4 gives {rule / 1e6:g} MPa)"
 
 
-def m53_basis(engine, material, stated_additional: float | None, *, file: str = "") -> M53Basis:
+def m53_basis(
+    engine: Engine, material: M53Material | None, stated_additional: float | None, *, file: str = ""
+) -> M53Basis:
     """The UR M53 basis of a load case: ``engine`` a ``model.Engine``, ``material`` an
     ``io.material.Material``, ``stated_additional`` the load case's sigma_add or None."""
     ic = bool(engine.internal_combustion)
     ke = ke_factor(engine.strokes) if ic else 1.0
     add, add_source = additional_bending(engine.construction, stated_additional, file=file)
     k = material.m53_k if material is not None else None
-    if k is None:
+    if k is None or material is None:  # no material: no k either
         k_source = "no UR M53 factor K: the material is not a steel the rule covers"
     elif material.forging is not None:
         k_source = f"K = {k:g}: {material.forging.replace('_', ' ')} (UR M53 6)"

@@ -24,9 +24,12 @@ d_G = D_BG/D, d_H = D_BH/D (bores), t_H = T_H/D, t_G = T_G/D (fillet recesses).
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from fe_crank.rules.m53.scf_empirical import (  # noqa: F401  (re-exported: the rule's SCFs)
     F_B_CUBIC,
@@ -38,6 +41,23 @@ from fe_crank.rules.m53.scf_empirical import (  # noqa: F401  (re-exported: the 
     beta_t,
     out_of_range,
 )
+
+#: the rods' loads on one crankpin: (force (n, 2) N over the cycle, place on the pin m) per
+#: rod (``fe.throw.pin_patches``)
+RodLoads = Sequence[tuple[ArrayLike, float]]
+
+
+class M53Material(Protocol):
+    """What UR M53 reads from a material (``io.material.Material``; SI)."""
+
+    @property
+    def tensile_strength(self) -> float | None: ...
+    @property
+    def m53_k(self) -> float | None: ...
+    @property
+    def forging(self) -> str | None: ...
+    @property
+    def kind(self) -> str | None: ...
 
 
 @dataclass(frozen=True)
@@ -91,12 +111,13 @@ def fatigue_strength(tensile: float, diameter: float, fillet_radius: float, k: f
     rm = tensile / 1e6
     d = diameter * 1e3
     rx = max(fillet_radius * 1e3, 2.0)
-    return (
+    value: float = (
         1e6
         * k
         * (0.42 * rm + 39.3)
         * (0.264 + 1.073 * d**-0.2 + (785.0 - rm) / 4900.0 + (196.0 / rm) * math.sqrt(1.0 / rx))
     )
+    return value
 
 
 def equivalent_stress(bending: float, torsion: float, additional: float) -> float:
@@ -130,12 +151,14 @@ class NominalStresses:
     ke: float = 1.0  # K_e of 2.1.2.1 (0.8 two-stroke, 1.0 four-stroke)
 
 
-def half_range(x) -> float:
+def half_range(x: ArrayLike) -> float:
     x = np.asarray(x, float)
     return 0.5 * float(x.max() - x.min())
 
 
-def nominal_stresses(geo: M53Geometry, radial_force, torque, *, ke: float = 1.0) -> NominalStresses:
+def nominal_stresses(
+    geo: M53Geometry, radial_force: ArrayLike, torque: ArrayLike, *, ke: float = 1.0
+) -> NominalStresses:
     """Nominal alternating stresses from the cycle of the radial pin force and the torque.
 
     Statically determinate throw (UR M53 2.1.1): supports at the main-bearing centres,
@@ -245,7 +268,7 @@ def polar_section_modulus(geo: M53Geometry, fillet: str) -> float:
     return math.pi / 16.0 * (d**4 - bore**4) / d
 
 
-def scf_mode_needed(material, geometries) -> bool:
+def scf_mode_needed(material: M53Material | None, geometries: Iterable[M53Geometry | None]) -> bool:
     """Whether UR M53's empirical SCFs are outside their validity range (3.2, 3.3) for the
     pin or journal fillet of one of ``geometries`` (``M53Geometry`` or None, one per throw
     model), with UR M53 run at all (``material``: a ``Material`` with a tensile strength and

@@ -37,16 +37,18 @@ The appendix asks for a refined mesh when neither holds; both are reported.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
-from skfem import Basis, ElementTetP2
+from skfem import Basis, ElementTetP2, Mesh
 
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.core.assembly import assemble_surface_load
 from fe_crank.fe.core.stress import element_nodal_stress, nodal_average, principal, von_mises
 from fe_crank.fe.core.supports import Coupling, boundary_facets, facet_basis
-from fe_crank.fe.core.system import EQUILIBRIUM_TOL, build_system
+from fe_crank.fe.core.system import EQUILIBRIUM_TOL, System, build_system
+from fe_crank.fe.throw.options import Material
 from fe_crank.mesh.types import ThrowMesh
 
 ALL6 = ("ux", "uy", "uz", "rx", "ry", "rz")
@@ -59,7 +61,8 @@ AVERAGING_LIMIT = 0.05  # UR M53 App. III 2.3.2
 def tau_equiv(s: np.ndarray) -> np.ndarray:
     """tau_equiv = max(|s1 - s2|, |s2 - s3|, |s1 - s3|)/2 = (s1 - s3)/2 for s1 >= s2 >= s3 (App. III 3.1.2)."""
     p = principal(s)
-    return 0.5 * (p[0] - p[2])
+    out: np.ndarray = 0.5 * (p[0] - p[2])
+    return out
 
 
 MEASURES = {"von_mises": von_mises, "tau_equiv": tau_equiv}
@@ -117,7 +120,9 @@ class ScfStresses:
         return {k: self.reaction[k] * self.lever[k] for k in self.reaction}
 
 
-def _peaks(mesh, u, E, nu, groups, measure: str, basis) -> dict[str, Peak]:
+def _peaks(
+    mesh: Mesh, u: np.ndarray, E: float, nu: float, groups: Iterable[str], measure: str, basis: Basis
+) -> dict[str, Peak]:
     dofs = basis.dofs
     s_el, nodes = element_nodal_stress(mesh, u, E, nu, dofs=dofs)
     n = u.size // 3
@@ -144,7 +149,7 @@ def _peaks(mesh, u, E, nu, groups, measure: str, basis) -> dict[str, Peak]:
     return out
 
 
-def _pin_traction_load(basis, force_y: float, boundary: str = "crankpin") -> np.ndarray:
+def _pin_traction_load(basis: Basis, force_y: float, boundary: str = "crankpin") -> np.ndarray:
     """Uniform traction (0, F/A, 0) over the pin surface: a distributing coupling of F (App. III 3.3.1)."""
     mesh = basis.mesh
     fb = facet_basis(
@@ -152,7 +157,7 @@ def _pin_traction_load(basis, force_y: float, boundary: str = "crankpin") -> np.
     )
     area = float(fb.dx.sum())
 
-    def traction(x, n):
+    def traction(x: np.ndarray, n: np.ndarray) -> np.ndarray:
         t = np.zeros_like(x)
         t[1] = force_y / area
         return t
@@ -160,7 +165,9 @@ def _pin_traction_load(basis, force_y: float, boundary: str = "crankpin") -> np.
     return assemble_surface_load(fb, traction)
 
 
-def solve_bending_torsion(mesh, E: float, nu: float, *, solver: str = "auto"):
+def solve_bending_torsion(
+    mesh: Mesh, E: float, nu: float, *, solver: str = "auto"
+) -> tuple[System, np.ndarray, list[dict[str, np.ndarray]]]:
     """App. III 3.1 and 3.2: ``end_1`` master node held in all six dofs, M_x = 1 N m (bending
     in the crank plane y-z) and M_z = 1 N m (torsion) at the ``end_2`` master node.
 
@@ -172,7 +179,9 @@ def solve_bending_torsion(mesh, E: float, nu: float, *, solver: str = "auto"):
     return system, system.solve(np.column_stack([zero, zero]), loads), loads
 
 
-def solve_three_point(mesh, E: float, nu: float, *, solver: str = "auto"):
+def solve_three_point(
+    mesh: Mesh, E: float, nu: float, *, solver: str = "auto"
+) -> tuple[System, np.ndarray, np.ndarray]:
     """App. III 3.3: both master nodes held in ux, uy (``end_1`` also in uz and rz, against
     the rigid slide and spin), a 1 N force towards the axis (-y) distributed over the pin.
 
@@ -191,12 +200,12 @@ def solve_three_point(mesh, E: float, nu: float, *, solver: str = "auto"):
 
 def scf_stresses(
     throw_mesh: ThrowMesh,
-    material,
+    material: Material,
     *,
     web_centres: tuple[float, float],
     solver: str = "auto",
-    pin_fillets=PIN_FILLETS,
-    journal_fillets=JOURNAL_FILLETS,
+    pin_fillets: tuple[str, ...] = PIN_FILLETS,
+    journal_fillets: tuple[str, ...] = JOURNAL_FILLETS,
 ) -> ScfStresses:
     """Solve the three UR M53 App. III cases for unit loads (see module docstring).
 
@@ -242,7 +251,7 @@ def scf_stresses(
 
 
 def web_centres_from_mesh(
-    throw_mesh: ThrowMesh, web_thickness: float, journal_fillets=JOURNAL_FILLETS
+    throw_mesh: ThrowMesh, web_thickness: float, journal_fillets: tuple[str, ...] = JOURNAL_FILLETS
 ) -> tuple[float, float]:
     """Web centre planes estimated from the mesh: each journal fillet's web-side edge -/+ W/2.
 

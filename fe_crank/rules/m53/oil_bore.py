@@ -44,8 +44,16 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from fe_crank.rules.m53.calculation import M53Fillet, M53Geometry, NominalStresses, fatigue_strength, half_range
+from fe_crank.rules.m53.calculation import (
+    M53Fillet,
+    M53Geometry,
+    NominalStresses,
+    RodLoads,
+    fatigue_strength,
+    half_range,
+)
 from fe_crank.rules.m53.rods import moment_at_pin_middle
 
 #: d_O = D_O/D range of UR M53 3.1
@@ -72,7 +80,7 @@ def in_range(geo: M53Geometry) -> str | None:
     return f"d_O = D_O/D = {d_o:.4g} not in [{lo}, {hi}] (UR M53 3.1)"
 
 
-def nominal_bending(geo: M53Geometry, pin_force, rod_loads=None) -> float:
+def nominal_bending(geo: M53Geometry, pin_force: ArrayLike, rod_loads: RodLoads | None = None) -> float:
     """sigma_BON [Pa]: half range of M_BO / W_e over the cycle (UR M53 2.1.2.2, no K_e).
 
     ``pin_force`` (n, 2): (tangential, radial) force on the crankpin in the throw frame, at
@@ -98,7 +106,13 @@ def equivalent_stress(bending: float, torsion: float) -> float:
 
 
 def assess_outlet(
-    geo: M53Geometry, nominal: NominalStresses, pin_force, *, tensile: float, k: float, rod_loads=None
+    geo: M53Geometry,
+    nominal: NominalStresses,
+    pin_force: ArrayLike,
+    *,
+    tensile: float,
+    k: float,
+    rod_loads: RodLoads | None = None,
 ) -> M53Fillet | None:
     """UR M53 result at the oil-bore outlet (``fillet`` = "oil_bore"), or None when the
     geometry has no oil bore or d_O is outside 3.4's range (see ``in_range``)."""

@@ -21,8 +21,9 @@ tangential forces alike.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from fe_crank.rules.m53.calculation import M53Geometry, NominalStresses, half_range, nominal_stresses
+from fe_crank.rules.m53.calculation import M53Geometry, NominalStresses, RodLoads, half_range, nominal_stresses
 
 
 def span(geo: M53Geometry) -> float:
@@ -30,7 +31,7 @@ def span(geo: M53Geometry) -> float:
     return 2.0 * (geo.bearing_to_web + 0.5 * geo.web_thickness + 0.5 * geo.pin_length)
 
 
-def web_reactions(geo: M53Geometry, rod_loads, component: int = 1) -> tuple[np.ndarray, np.ndarray]:
+def web_reactions(geo: M53Geometry, rod_loads: RodLoads, component: int = 1) -> tuple[np.ndarray, np.ndarray]:
     """Support reactions (R_1, R_2) (n,) of the rods' forces' ``component`` (1 radial, 0
     tangential); ``rod_loads``: (force (n, 2), place e m) per rod."""
     s = span(geo)
@@ -39,7 +40,9 @@ def web_reactions(geo: M53Geometry, rod_loads, component: int = 1) -> tuple[np.n
     return np.asarray(r1, float), np.asarray(r2, float)
 
 
-def nominal_stresses_by_rod(geo: M53Geometry, rod_loads, torque, *, ke: float = 1.0) -> tuple[NominalStresses, int]:
+def nominal_stresses_by_rod(
+    geo: M53Geometry, rod_loads: RodLoads, torque: ArrayLike, *, ke: float = 1.0
+) -> tuple[NominalStresses, int]:
     """UR M53 nominal stresses of the web with the larger alternating moment (and which: 1
     front, 2 rear) from each rod's force at its place; torsion as ``m53.nominal_stresses``."""
     r1, r2 = web_reactions(geo, rod_loads)
@@ -48,7 +51,7 @@ def nominal_stresses_by_rod(geo: M53Geometry, rod_loads, torque, *, ke: float = 
     return nominal_stresses(geo, 2.0 * r, torque, ke=ke), web
 
 
-def moment_at_pin_middle(geo: M53Geometry, rod_loads) -> np.ndarray:
+def moment_at_pin_middle(geo: M53Geometry, rod_loads: RodLoads) -> np.ndarray:
     """(n, 2) bending moments (about the tangential and the radial direction's axes: the
     tangential and the radial forces' moments) at the pin's middle: R_1 S/2 minus the
     moments of the rods in front of it, sum_{e < 0} F (-e)."""

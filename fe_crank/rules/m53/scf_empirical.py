@@ -73,7 +73,8 @@ def alpha_b(rel: dict[str, float]) -> float:
     fr = 0.2081 * r ** (-0.5231)
     fdg = 0.9993 + 0.27 * dg - 1.0211 * dg**2 + 0.5306 * dg**3
     fdh = 0.9978 + 0.3145 * dh - 1.5241 * dh**2 + 2.4147 * dh**3
-    return 2.6914 * fsw * fw * fb * fr * fdg * fdh * _recess(rel)
+    value: float = 2.6914 * fsw * fw * fb * fr * fdg * fdh * _recess(rel)
+    return value
 
 
 def alpha_t(rel: dict[str, float]) -> float:
@@ -82,7 +83,8 @@ def alpha_t(rel: dict[str, float]) -> float:
     frs = r ** (-0.322 + 0.1015 * (1.0 - s))
     fb = 7.8955 - 10.654 * b + 5.3482 * b**2 - F_B_CUBIC * b**3
     fw = w ** (-0.145)
-    return 0.8 * frs * fb * fw
+    value: float = 0.8 * frs * fb * fw
+    return value
 
 
 def beta_t(rel: dict[str, float], journal_fillet_over_journal_diameter: float) -> float:
@@ -109,7 +111,8 @@ def beta_b(rel: dict[str, float]) -> float:
     fr = 0.1908 * r ** (-0.5568)
     fdg = 1.0012 - 0.6441 * dg + 1.2265 * dg**2
     fdh = 1.0022 - 0.1903 * dh + 0.0073 * dh**2
-    return 2.7146 * fsw * fw * fb * fr * fdg * fdh * _recess(rel)
+    value: float = 2.7146 * fsw * fw * fb * fr * fdg * fdh * _recess(rel)
+    return value
 
 
 def beta_q(rel: dict[str, float]) -> float:
@@ -121,4 +124,5 @@ def beta_q(rel: dict[str, float]) -> float:
     fb = -0.5 + b
     fr = 0.5331 * r ** (-0.2038)
     fdh = 0.9937 - 1.1949 * dh + 1.7373 * dh**2
-    return 3.0128 * fs * fw * fb * fr * fdh * _recess(rel)
+    value: float = 3.0128 * fs * fw * fb * fr * fdh * _recess(rel)
+    return value

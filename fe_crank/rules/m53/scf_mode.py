@@ -27,16 +27,27 @@ accept never enter a verdict (the M53 criterion is refused, ``assess.criteria.ju
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.source import mesh_source_throw
+from fe_crank.fe.throw.options import Material
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.mesh.options import MeshOptions
 from fe_crank.mesh.types import ThrowMesh
 from fe_crank.rules.m53 import calculation as m53
 from fe_crank.rules.m53 import scf_empirical
-from fe_crank.rules.m53.fe_cases import JOURNAL_FILLETS, PIN_FILLETS, ScfStresses, scf_stresses, web_centres_from_mesh
+from fe_crank.rules.m53.fe_cases import (
+    JOURNAL_FILLETS,
+    PIN_FILLETS,
+    Peak,
+    ScfStresses,
+    scf_stresses,
+    web_centres_from_mesh,
+)
 from fe_crank.rules.m53.web_mesh import MIN_ELEMENTS_ACROSS, WebElements, web_elements_across, web_groups
 
 ELEMENT_SIZE_LIMIT = 0.25  # fillet element edge / r, UR M53 App. III 2.1
@@ -51,10 +62,10 @@ class ScfResult:
     fe: dict[str, float]
     empirical: dict[str, float | None]
     out_of_range: dict[str, tuple[str, ...]]
-    quality: dict[str, dict]
+    quality: dict[str, dict[str, Any]]
     element_size: dict[str, float]  # fillet group -> longest element edge / r
     stresses: ScfStresses
-    details: dict = field(default_factory=dict)
+    details: dict[str, Any] = field(default_factory=dict)
     web_elements: tuple[WebElements, ...] = ()  # App. III 2.2, per web (meshes with web subdomains)
     refinement: tuple[str, ...] = ()  # the meshes tried before this one and why each was refined
 
@@ -106,7 +117,7 @@ class ScfResult:
         return f"FE, UR M53 App. III SCF mode ({verdict}: {'; '.join(parts)})"
 
 
-def _quality(peak) -> dict:
+def _quality(peak: Peak) -> dict[str, Any]:
     return {
         "group": peak.group,
         "point": peak.point,
@@ -118,11 +129,13 @@ def _quality(peak) -> dict:
     }
 
 
-def _worst(peaks: dict, groups):
+def _worst(peaks: dict[str, Peak], groups: Iterable[str]) -> Peak:
     return max((peaks[g] for g in groups), key=lambda p: p.value)
 
 
-def factors(st: ScfStresses, geo: m53.M53Geometry) -> tuple[dict[str, float], dict[str, dict], dict]:
+def factors(
+    st: ScfStresses, geo: m53.M53Geometry
+) -> tuple[dict[str, float], dict[str, dict[str, Any]], dict[str, Any]]:
     """SCFs of UR M53 App. III from unit-load stress measures (module docstring)."""
     w_eq, area = m53.web_section_modulus(geo), m53.web_area(geo)
     wp = {"pin": m53.polar_section_modulus(geo, "pin"), "journal": m53.polar_section_modulus(geo, "journal")}
@@ -135,7 +148,7 @@ def factors(st: ScfStresses, geo: m53.M53Geometry) -> tuple[dict[str, float], di
         "alpha_T": pt.value / tau_n["pin"],
         "beta_T": jt.value / tau_n["journal"],
     }
-    per_side = []
+    per_side: list[dict[str, Any]] = []
     for side, g in zip(("end_1", "end_2"), JOURNAL_FILLETS):
         q, lever = st.reaction[side], st.lever[side]
         s3p = st.three_point[g].value
@@ -197,7 +210,7 @@ def _element_size(throw_mesh: ThrowMesh) -> dict[str, float]:
 
 def compute_scf(
     throw_mesh: ThrowMesh,
-    material,
+    material: Material,
     geo: m53.M53Geometry,
     *,
     web_centres: tuple[float, float] | None = None,
@@ -229,7 +242,7 @@ def compute_scf(
     )
 
 
-def scf_mesh_options(options):
+def scf_mesh_options(options: MeshOptions | None) -> MeshOptions | None:
     """Mesh options for the SCF mode: the load case's own when its fillet elements are at most
     r/4 (UR M53 App. III 2.1), else the same options with ``fillet_divisions = 4``."""
     if options is None or options.fillet_divisions >= 4.0:
@@ -237,7 +250,7 @@ def scf_mesh_options(options):
     return dataclasses.replace(options, fillet_divisions=4.0)
 
 
-def scf_mesh(throw_mesh: ThrowMesh, geometry) -> ThrowMesh:
+def scf_mesh(throw_mesh: ThrowMesh, geometry: object) -> ThrowMesh:
     """The throw mesh the SCF mode runs on: the load case's mesh, or, when that mesh is
     coarser than r/4 in the fillets (e.g. the ``test`` preset), the same throw of
     ``geometry`` (a ``CrankGeometry`` or a CAD file's ``CadInput``) meshed again with
@@ -245,7 +258,7 @@ def scf_mesh(throw_mesh: ThrowMesh, geometry) -> ThrowMesh:
     mesh as it is (its ``mesh_ok`` says whether the appendix accepts it)."""
     opt = throw_mesh.options
     want = scf_mesh_options(opt)
-    if want is opt or not isinstance(geometry, CrankGeometry | CadInput):
+    if want is None or want is opt or not isinstance(geometry, CrankGeometry | CadInput):
         return throw_mesh
     folder = Path(throw_mesh.msh_path).parent
     cache = folder.parent if folder.name == throw_mesh.key else None

@@ -24,7 +24,9 @@ from pathlib import Path
 
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.source import mesh_source_throw
+from fe_crank.fe.throw.options import Material
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.mesh.options import MeshOptions
 from fe_crank.mesh.types import ThrowMesh
 from fe_crank.rules.m53 import calculation as m53
 from fe_crank.rules.m53.scf_mode import ScfResult, compute_scf, scf_mesh
@@ -35,7 +37,7 @@ FILLET_STEP = 1.5
 WEB_MARGIN = 1.1
 
 
-def refined_options(options, result: ScfResult):
+def refined_options(options: MeshOptions, result: ScfResult) -> tuple[MeshOptions, str]:
     """(mesh options of the next mesh, why) for a result the appendix rejects (module doc)."""
     why = []
     new = options
@@ -58,15 +60,15 @@ def refined_options(options, result: ScfResult):
     return new, "; ".join(why)
 
 
-def _words(options) -> str:
+def _words(options: MeshOptions) -> str:
     web = "" if options.web_divisions is None else f", web edge <= W/{options.web_divisions:.3g}"
     return f"fillets r/{options.fillet_divisions:.3g}{web}"
 
 
 def accepted_scf(
     throw_mesh: ThrowMesh,
-    geometry,
-    material,
+    geometry: object,
+    material: Material,
     geo: m53.M53Geometry,
     *,
     web_centres: tuple[float, float] | None = None,

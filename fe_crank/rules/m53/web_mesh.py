@@ -20,6 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from skfem import Mesh
 
 #: UR M53 App. III 2.2
 MIN_ELEMENTS_ACROSS = 6
@@ -67,7 +68,7 @@ def sample_points(p: np.ndarray, tets: np.ndarray, n: int = 5) -> np.ndarray:
 
 
 def web_elements_across(
-    mesh, webs: dict[str, np.ndarray], thickness: float, points: dict[str, np.ndarray] | None = None
+    mesh: Mesh, webs: dict[str, np.ndarray], thickness: float, points: dict[str, np.ndarray] | None = None
 ) -> tuple[WebElements, ...]:
     """Elements across the thickness ``thickness`` (m) of each web: ``webs`` maps a web's
     name to its element indices (the mesh's ``web_i`` subdomains); ``points`` (name ->
@@ -93,7 +94,7 @@ def web_elements_across(
     return tuple(out)
 
 
-def web_groups(mesh) -> dict[str, np.ndarray]:
+def web_groups(mesh: Mesh) -> dict[str, np.ndarray]:
     """The mesh's web subdomains (``web_1``, ``web_2``) that are present."""
     subs = mesh.subdomains or {}
     return {k: np.asarray(subs[k]) for k in ("web_1", "web_2") if k in subs}
