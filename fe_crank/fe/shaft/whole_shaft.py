@@ -307,11 +307,18 @@ def bearings_of(
 
 
 def bearing_state_of(
-    cases: ShaftCases, layout: ShaftLayout, dynamics, *, laws=None
+    cases: ShaftCases,
+    layout: ShaftLayout,
+    dynamics,
+    *,
+    laws=None,
+    stated: tuple[ShaftCycle, ShaftCycle] | None = None,
 ) -> tuple[tuple[BearingResult, ...], np.ndarray]:
     """``bearings_of`` and the case weights of the stated law with the counterweights
     (``shaft_cycle_of(...).weights``, the stresses' weights): the stated law's solve
-    is the envelope's first, made once for both."""
+    is the envelope's first, made once for both.  ``stated``: the stated law's cycles of
+    ``dynamics`` with and without counterweights when they are solved already
+    (``shaft_cycle_of``), taken as the envelope's first instead of solving them again."""
     loads, psi, front, ends = _cycle_inputs(cases, layout, dynamics)
     sets = envelope_laws(layout, laws)
     weights = None
@@ -319,6 +326,13 @@ def bearing_state_of(
     for cw in (True, False):
         per_law = []
         for k, w in enumerate(sets):
+            if k == 0 and stated is not None:
+                done = stated[0] if cw else stated[1]
+                assert done.counterweights == cw
+                if cw:
+                    weights = done.weights
+                per_law.append(done.bearings)
+                continue
             bearings, W = bearing_solve(
                 cases,
                 loads,
@@ -379,7 +393,7 @@ def analyse_whole_shaft(
     mass = throw_masses(layout)
     on, off = (shaft_cycle_of(cases, layout, mass, dynamics, counterweights=cw, laws=laws) for cw in (True, False))
     os_cycles = tuple(shaft_cycle_of(cases, layout, mass, d, laws=laws) for d in overspeed)
-    bearings = bearings_of(cases, layout, mass, dynamics, laws=laws)
+    bearings = bearing_state_of(cases, layout, dynamics, laws=laws, stated=(on, off))[0]
     t["cycle"] = time.perf_counter() - t0
     result = WholeShaftResult(
         crank_angle_deg=on.crank_angle_deg,
