@@ -18,6 +18,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry
 from fe_crank.assess.cw_joint import yield_point
@@ -112,7 +113,7 @@ def counterweights_of(
     """
     if not spec.counterweights:
         return ()
-    groups: dict[object, list] = {}
+    groups: dict[object, list[Any]] = {}
     for cw in spec.counterweights:
         part = props.parts.get(f"counterweight_{cw.web}")
         if part is None:

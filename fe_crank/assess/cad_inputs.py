@@ -21,6 +21,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.balance.counterweights import CounterweightDesign
@@ -102,7 +103,7 @@ def counterweights_of_cad(
     centrifugal force is the bolts' load (no bolt data: no utilisation)."""
     parts = [(f"counterweight_{cw.web}", cw.mass, False, cw.web) for cw in throw.counterweights]
     parts += [(f"bolted_body_{i}", b.mass, True, b.web) for i, b in bolted]
-    groups: dict[object, list] = {}
+    groups: dict[object, list[Any]] = {}
     for name, mass, is_bolted, web in parts:
         z = axial_position + mass.centroid[2]
         plane = design.nearest(shaft, z) if design is not None else None

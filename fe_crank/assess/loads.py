@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fe_crank.mechanism.dynamics import RodLoad
+from fe_crank.rules.m53.calculation import RodLoads
 
 #: the load state with every cylinder firing (misfire states: "cylinder <name> misfiring")
 FIRING = "all cylinders firing"
@@ -58,7 +59,7 @@ class ThrowCycle:
         """The pin force the FE superposition takes."""
         return self.pin_force if self.fe_pin_force is None else self.fe_pin_force
 
-    def fe_rod_loads(self, places: dict[str, float]) -> tuple | None:
+    def fe_rod_loads(self, places: dict[str, float]) -> RodLoads | None:
         """(force (n, 2), place m) of each rod as the FE patch cases take it (``fe_rods``
         with vibration, else ``rods``) at ``places`` (``fe.throw.pin_patches.rod_positions``);
         None without places (the summed force at mid-pin)."""

@@ -12,21 +12,26 @@ import importlib.resources
 import json
 import math
 from pathlib import Path
+from typing import Any
 
 from fe_crank.assess.case import SCHEMA_VERSION, Assessment
-from fe_crank.assess.counterweight import balance_rate
+from fe_crank.assess.counterweight import CounterweightCheck, balance_rate
+from fe_crank.assess.cw_joint import JointCheck
 from fe_crank.assess.factors import factors
+from fe_crank.assess.group.assessment import Extreme, GroupResult
+from fe_crank.io.material import Material
 from fe_crank.results import CriterionResult
+from fe_crank.rules.m53.calculation import M53Fillet
 
 
-def _num(x):
+def _num(x: float | None) -> float | None:
     if x is None:
         return None
     x = float(x)
     return x if math.isfinite(x) else None
 
 
-def _extreme(e):
+def _extreme(e: Extreme | None) -> dict[str, Any] | None:
     if e is None:
         return None
     return {
@@ -38,12 +43,12 @@ def _extreme(e):
     }
 
 
-def group_json(g) -> dict:
+def group_json(g: GroupResult) -> dict[str, Any]:
     """One ``GroupResult`` as results.json writes it (``$defs/group`` of the schema)."""
     return _group(g)
 
 
-def _group(g):
+def _group(g: GroupResult) -> dict[str, Any]:
     return {
         "group": g.group,
         "n_nodes": g.n_nodes,
@@ -71,7 +76,7 @@ def _group(g):
     }
 
 
-def _material(m):
+def _material(m: Material) -> dict[str, Any]:
     """Material table: library values and the fatigue factors common to every section
     (``fatigue_factor`` = surface x reliability x treatment x notch support, x size when
     the size factor is given; otherwise the size factor is per section, in each group)."""
@@ -97,7 +102,7 @@ def _material(m):
     }
 
 
-def _m53(f):
+def _m53(f: M53Fillet) -> dict[str, Any]:
     return {
         "fillet": f.fillet,
         "scf_source": f.scf_source,
@@ -113,7 +118,7 @@ def _m53(f):
     }
 
 
-def _cw(c):
+def _cw(c: CounterweightCheck) -> dict[str, Any]:
     return {
         "name": c.name,
         "built_unbalance": c.built_unbalance,
@@ -124,7 +129,7 @@ def _cw(c):
     }
 
 
-def _joint(j):
+def _joint(j: JointCheck) -> dict[str, Any]:
     """One bolted counterweight's VDI 2230 results, per bolt (``cw_joint.JointCheck``)."""
     ld = j.loads
     return {
@@ -165,7 +170,7 @@ def _joint(j):
     }
 
 
-def criterion_json(c: CriterionResult) -> dict:
+def criterion_json(c: CriterionResult) -> dict[str, Any]:
     """One criterion of results.json (an infinite value, an unloaded part's safety, is null)."""
     return {
         "name": c.name,
@@ -183,7 +188,7 @@ def criterion_json(c: CriterionResult) -> dict:
     }
 
 
-def to_json(assessment: Assessment) -> dict:
+def to_json(assessment: Assessment) -> dict[str, Any]:
     """The assessment as a JSON-ready dict following results.schema.json (the criteria's
     locations in words and ``criteria_by_model`` are the report's, ``report.results_json``)."""
     a = assessment
@@ -228,5 +233,6 @@ def schema_path() -> Path:
     return Path(str(importlib.resources.files("fe_crank") / "data" / "results.schema.json"))
 
 
-def load_schema() -> dict:
-    return json.loads(schema_path().read_text())
+def load_schema() -> dict[str, Any]:
+    schema: dict[str, Any] = json.loads(schema_path().read_text())
+    return schema

@@ -21,6 +21,7 @@ the Gough-Pollard split and the groups' names are the same.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -30,7 +31,7 @@ from fe_crank.assess.loads import FIRING, misfire_label
 from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.assess.workers import run_blocks, thread_count
+from fe_crank.assess.workers import Scratch, run_blocks, thread_count
 from fe_crank.fe.core.stress import stress_at_selected_nodes
 from fe_crank.fe.shaft.cases import ShaftCases
 from fe_crank.fe.shaft.whole_shaft import BearingResult, WholeShaftResult, bearing_state_of
@@ -75,7 +76,7 @@ class WholeShaftOutput:
     cases: ShaftCases | None = None
     #: the hydrodynamic bearings' oil film in every state of ``sweep`` (``assess.oil_film``;
     #: () : no hydrodynamic bearing)
-    film: tuple = ()
+    film: tuple[Any, ...] = ()  # assess.oil_film.FilmState (that module reads this one)
 
 
 @dataclass(frozen=True)
@@ -110,7 +111,7 @@ class ShaftAssessment:
     states: tuple[StateResults, ...] = ()
     #: the hydrodynamic bearings' oil film in every state of ``sweep``
     #: (``assess.oil_film.FilmState``; () : no hydrodynamic bearing)
-    film: tuple = ()
+    film: tuple[Any, ...] = ()
 
 
 def bearing_sweep(
@@ -176,7 +177,7 @@ def piece_unit_stresses(cases: ShaftCases, piece: int, material) -> UnitStresses
     stress = np.empty((n, 6, ids.size))
     sets = [x for x in np.array_split(np.arange(n), max(1, min(thread_count(), n))) if x.size]
 
-    def block(sel: np.ndarray, _scratch: dict) -> None:  # each case's stress alone: any thread count, same bits
+    def block(sel: np.ndarray, _scratch: Scratch) -> None:  # each case's stress alone: any thread count, same bits
         w = np.zeros((n, sel.size))
         w[sel, np.arange(sel.size)] = 1.0
         u = np.zeros((sel.size, 3 * c.basis.N))  # full-length fields, zero away from the recovery nodes
@@ -253,7 +254,7 @@ def assess_shaft_throws(
         for i in own:
             per_state[i].append(t)
 
-        def one(i: int, _scratch: dict, unit=unit, name=str(pp.throw), dp=pin_diameter, dj=journal_diameter) -> None:
+        def one(i: int, _scratch: Scratch, unit=unit, name=str(pp.throw), dp=pin_diameter, dj=journal_diameter) -> None:
             w = sweep[i].weights
             assert w is not None
             extremes = tuple(

@@ -25,7 +25,9 @@ Per FE model (one model may stand for several throws, ``fe_crank.throw_scope``):
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -93,7 +95,7 @@ class ModelStates:
     stress: np.ndarray | None = None  # (6, n_nodes) averaged nodal stress at the hot spot's angle (fields kept)
 
 
-def throw_names(keys, throws: dict) -> list[str]:
+def throw_names(keys: Iterable[str], throws: dict[str, Any]) -> list[str]:
     """The engine throws an FE model stands for, in the engine's order: its keys (throw
     names, or ``ALL_THROWS`` for every throw, ``fe_crank.throw_scope.throws_of``)."""
     keys = [keys] if isinstance(keys, str) else list(keys)

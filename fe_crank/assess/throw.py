@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import KW_ONLY, dataclass
+from typing import Any
 
 import numpy as np
 
@@ -18,8 +19,11 @@ from fe_crank.rules.m53 import calculation as m53
 from fe_crank.rules.m53 import oil_bore as m53_oil_bore
 from fe_crank.rules.m53 import rods as m53_rods
 from fe_crank.rules.m53 import scf_empirical
-from fe_crank.rules.m53.calculation import M53Fillet, NominalStresses
+from fe_crank.rules.m53.calculation import M53Fillet, NominalStresses, RodLoads
 from fe_crank.rules.m53.scf_mode import ScfResult
+
+#: the loads of an overspeed cycle: (pin force (n, 2), front torque (n,)[, rod loads])
+OverspeedLoads = tuple[Any, ...]
 
 
 @dataclass(frozen=True)
@@ -106,14 +110,14 @@ class ThrowContext:
     scf: ScfResult | None = None
     counterweights: tuple[CounterweightData, ...] = ()
     torque_rear: np.ndarray | None = None
-    overspeed_loads: tuple | list | None = None
+    overspeed_loads: OverspeedLoads | list[OverspeedLoads] | None = None
     angular_acceleration: np.ndarray | None = None
     fe_pin_force: np.ndarray | None = None
     m53_torques: tuple[np.ndarray, ...] = ()
     extremes: Wanted | None = None
     running: Running | None = None
-    rod_loads: tuple | None = None
-    fe_rod_loads: tuple | None = None
+    rod_loads: RodLoads | None = None
+    fe_rod_loads: RodLoads | None = None
     joint_speed: tuple[float, float] | None = None
     geometry_file: str = ""
 
@@ -245,7 +249,7 @@ def _m53(
     scf: ScfResult | None,
     additional: float,
     ke: float,
-    rod_loads: tuple | None = None,
+    rod_loads: RodLoads | None = None,
 ) -> tuple[tuple[M53Fillet, ...], NominalStresses | None]:
     """UR M53 of one throw: the radial pin force's bending and, of the journal torque
     histories ``torques``, the one with the largest alternating part (the first of

@@ -21,7 +21,10 @@ import threading
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
+
+if TYPE_CHECKING:
+    import numpy as np
 
 T = TypeVar("T")
 
@@ -41,12 +44,16 @@ def threads(count: int) -> Iterator[None]:
         _THREADS.reset(token)
 
 
+#: a thread's reusable buffers by name (``scratch_array``), kept from one block to the next
+Scratch = dict[str, "np.ndarray"]
+
+
 def thread_count() -> int:
     """The threads ``run_blocks`` uses in the current context (1 unless ``threads`` set it)."""
     return _THREADS.get()
 
 
-def run_blocks(fn: Callable[[T, dict], None], items: Iterable[T], threads: int | None = None) -> None:
+def run_blocks(fn: Callable[[T, Scratch], None], items: Iterable[T], threads: int | None = None) -> None:
     """Call ``fn(item, scratch)`` for every item, on ``threads`` threads (default: the
     context's, ``thread_count``; 1: in this thread, in order).  ``scratch`` is a dict
     private to the calling thread, kept from one item to the next (reusable buffers).  An
@@ -54,7 +61,7 @@ def run_blocks(fn: Callable[[T, dict], None], items: Iterable[T], threads: int |
     threads = thread_count() if threads is None else threads
     items = list(items)
     if threads <= 1 or len(items) <= 1:
-        scratch: dict = {}
+        scratch: Scratch = {}
         for it in items:
             fn(it, scratch)
         return
@@ -62,7 +69,7 @@ def run_blocks(fn: Callable[[T, dict], None], items: Iterable[T], threads: int |
 
     local = threading.local()
 
-    def call(it):
+    def call(it: T) -> None:
         s = getattr(local, "scratch", None)
         if s is None:
             s = local.scratch = {}
@@ -73,7 +80,9 @@ def run_blocks(fn: Callable[[T, dict], None], items: Iterable[T], threads: int |
             pass
 
 
-def scratch_array(scratch: dict, name: str, shape: tuple, factory=None):
+def scratch_array(
+    scratch: Scratch, name: str, shape: tuple[int, ...], factory: Callable[[tuple[int, ...]], np.ndarray] | None = None
+) -> np.ndarray:
     """A buffer of ``shape`` from ``scratch`` (made, or remade when the shape changed)."""
     import numpy as np
 

@@ -22,6 +22,7 @@ from fe_crank.assess.oil_film import FILM_FINDERS, film_criterion
 from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, ShaftAssessment
 from fe_crank.assess.speeds import Found, Located, over_states
 from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.fe.shaft.whole_shaft import BearingResult
 from fe_crank.results import Location, Sense, SpeedValue
 
 
@@ -75,7 +76,7 @@ def _bearing_specific_load(bearings) -> Found:
 
 
 #: the main bearings' quantities: quantity -> its finder over the bearings of one state
-BEARING_FINDERS: dict[str, Callable[[tuple], Found]] = {
+BEARING_FINDERS: dict[str, Callable[[tuple[BearingResult, ...]], Found]] = {
     "main_bearing_load": _bearing_load,
     "main_bearing_specific_load": _bearing_specific_load,
 }

@@ -18,7 +18,7 @@ from fe_crank.assess.factors import FatigueFactors, factors, location_of
 from fe_crank.assess.group.peak import TIE_RTOL, group_peak, max_over_cycle
 from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
-from fe_crank.assess.workers import run_blocks, scratch_array
+from fe_crank.assess.workers import Scratch, run_blocks, scratch_array
 from fe_crank.fe.throw.node_groups import GroupKind, group_kind
 
 #: groups assessed for fatigue with Gough-Pollard need a local axis: these kinds lie on
@@ -82,7 +82,7 @@ class GroupResult:
     #: per-node arrays for reports/VTU (not in the JSON): "node_ids", "max_von_mises",
     #: "amplitude", "mean" (equivalent sigma_a', signed sigma_m'), "fatigue_safety",
     #: "gough_pollard_safety" (inf where not computed)
-    fields: dict = field(default_factory=dict, repr=False, compare=False)
+    fields: dict[str, np.ndarray] = field(default_factory=dict, repr=False, compare=False)
 
 
 def axis_for(group: str, crank_radius: float) -> tuple[float, float] | None:
@@ -176,7 +176,7 @@ def assess_group(
     sm_eq = np.zeros(nodes.size)
     gp = np.full(nodes.size, np.inf)
 
-    def block(pos: int, scratch: dict) -> None:
+    def block(pos: int, scratch: Scratch) -> None:
         # every criterion reads the same history, ``chunk`` nodes at a time as its six
         # component planes (6, n_t, k): cache-resident and contiguous for every pass; the
         # block writes its own slice only (``workers.run_blocks``)
