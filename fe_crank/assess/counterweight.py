@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from fe_crank.geometry.spec import BoltedJoint
+
 
 @dataclass(frozen=True)
 class JointGeometry:
@@ -34,7 +36,7 @@ class BoltedCounterweight:
     bears on the web (None: checked as a centric joint without moment)."""
 
     name: str
-    joint: object
+    joint: BoltedJoint
     mass: float
     radius: float
     geometry: JointGeometry | None = None
