@@ -38,7 +38,7 @@ from fe_crank.assess.state_throws import assess_state, places_of, state_dynamics
 from fe_crank.assess.states import ModelStates, model_states
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.assess.workers import run_blocks
+from fe_crank.assess.workers import Scratch, run_blocks
 from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.io.material import Material
 from fe_crank.mechanism.misfire import READING
@@ -181,7 +181,7 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
     found: dict[tuple[int, int], tuple[ThrowAssessment, ...]] = {(a.loads.operating, 0): done}
     wanted = wanted_extremes(a.criteria)
 
-    def one(ij, _scratch) -> None:  # each state on its own: independent, one thread each
+    def one(ij: tuple[int, int], _scratch: Scratch) -> None:  # each state on its own: independent, one thread each
         found[ij] = assess_state(a, units, a.loads.speeds[ij[0]][ij[1]], senses, basis, wanted, cycles)
 
     run_blocks(one, others)

@@ -8,6 +8,7 @@ Unbalance error: |m r_built - m r_required| / m r_required.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from fe_crank.geometry.spec import BoltedJoint
@@ -69,14 +70,15 @@ class CounterweightCheck:
     bolt_utilisation: float | None
 
 
-def balance_rate(checks) -> float | None:
+def balance_rate(checks: Iterable[CounterweightCheck]) -> float | None:
     """The balance rate of ``checks`` (counterweight checks of one throw, or of every throw
     for the shaft): the built m r over the required m r, each summed over the checks that
     have a requirement (1.0: as required; None when none has one)."""
     own = [c for c in checks if c.required_unbalance is not None and c.required_unbalance > 0]
     if not own:
         return None
-    return sum(c.built_unbalance for c in own) / sum(c.required_unbalance for c in own)
+    rate: float = sum(c.built_unbalance for c in own) / sum(c.required_unbalance or 0.0 for c in own)
+    return rate
 
 
 def centrifugal_force(mass: float, radius: float, omega: float) -> float:

@@ -6,7 +6,10 @@ checked in ``assess.cw_joint``."""
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 
+from fe_crank.assess.throw_geometry import ThrowGeometry
+from fe_crank.io.criteria import Criteria
 from fe_crank.results import Sense
 
 #: criterion quantity -> (JointCheck field, sense); the worst over the joints is judged
@@ -33,12 +36,12 @@ DEFAULT_LIMITS = {
 DEFAULT_WORDS = "default limit (VDI 2230's usual value; the load case names no bolted-joint criterion)"
 
 
-def has_joints(throw_geometry) -> bool:
+def has_joints(throw_geometry: Mapping[str, ThrowGeometry | None]) -> bool:
     """Whether any throw's geometry (``ThrowGeometry`` by name) has a bolted counterweight."""
     return any(c.joints for tg in throw_geometry.values() if tg is not None for c in tg.counterweights)
 
 
-def unchecked_joints(throw_geometry) -> list[str]:
+def unchecked_joints(throw_geometry: Mapping[str, ThrowGeometry | None]) -> list[str]:
     """ "throw <name>: <counterweight>" of every bolted counterweight that carries no joint data
     (a CAD geometry's bolted bodies): VDI 2230 cannot check them, which the case must say."""
     return [
@@ -50,7 +53,7 @@ def unchecked_joints(throw_geometry) -> list[str]:
     ]
 
 
-def with_default_limits(criteria, file: str = ""):
+def with_default_limits(criteria: Criteria, file: str = "") -> tuple[Criteria, tuple[str, ...]]:
     """``criteria`` (``io.criteria.Criteria``) with ``DEFAULT_LIMITS`` added when it names none of
     the joint quantities; (criteria, the quantities added)."""
     from fe_crank.io.criteria import Limit
@@ -64,7 +67,9 @@ def with_default_limits(criteria, file: str = ""):
     return dataclasses.replace(criteria, limits=criteria.limits + added), tuple(q for q in DEFAULT_LIMITS)
 
 
-def joint_qualifiers(throw_geometry, defaulted: tuple[str, ...] = ()) -> dict[str, str]:
+def joint_qualifiers(
+    throw_geometry: Mapping[str, ThrowGeometry | None], defaulted: tuple[str, ...] = ()
+) -> dict[str, str]:
     """quantity -> the words each joint criterion's verdict line carries: the friction
     coefficients the joints were checked with (thread mu_G, head mu_K, interface mu_T) and,
     where the limit is a default, that it is one."""

@@ -6,6 +6,8 @@ the joints take of it."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from fe_crank.assess.cw_joint import cycle_speed_data
 from fe_crank.assess.group.extremes import Running, Wanted
 from fe_crank.assess.inputs import AssessInputs
@@ -36,7 +38,7 @@ def state_dynamics(a: AssessInputs) -> dict[tuple[float, str], DynamicsResult]:
     return out
 
 
-def joint_speed(a: AssessInputs, dynamics, alpha) -> tuple[float, float]:
+def joint_speed(a: AssessInputs, dynamics: DynamicsResult, alpha: np.ndarray | None) -> tuple[float, float]:
     """(delta, max |alpha|) the bolted joints take in one load state: the cycle's speed
     fluctuation and rigid angular acceleration with the operating cycle's flywheel
     (``cw_joint.cycle_speed_data``), plus the largest torsional angular acceleration of the

@@ -245,7 +245,7 @@ def _m53(
     pin_force: np.ndarray,
     torques: tuple[np.ndarray, ...],
     *,
-    fe_scf,
+    fe_scf: dict[str, dict[str, float]] | None,
     scf: ScfResult | None,
     additional: float,
     ke: float,

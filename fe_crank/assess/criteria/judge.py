@@ -30,6 +30,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 from fe_crank.assess import refinement
 from fe_crank.assess.criteria.finders import (
@@ -269,6 +270,8 @@ def judge_criteria(
     return Judged(tuple(out), tuple(made))
 
 
-def evaluate_criteria(criteria: Criteria, throws: tuple[ThrowAssessment, ...], **kwargs) -> tuple[CriterionResult, ...]:
+def evaluate_criteria(
+    criteria: Criteria, throws: tuple[ThrowAssessment, ...], **kwargs: Any
+) -> tuple[CriterionResult, ...]:
     """The criteria of ``judge_criteria`` (its keywords) without the factors' record."""
     return judge_criteria(criteria, throws, **kwargs).criteria

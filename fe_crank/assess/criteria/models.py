@@ -22,6 +22,7 @@ from fe_crank.assess.oil_film import FILM_FINDERS, film_criterion
 from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, ShaftAssessment
 from fe_crank.assess.speeds import Found, Located, over_states
 from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.fe.shaft.cycle import BearingLoads
 from fe_crank.fe.shaft.whole_shaft import BearingResult
 from fe_crank.results import Location, Sense, SpeedValue
 
@@ -31,7 +32,7 @@ def no_throw_value(throws: tuple[ThrowAssessment, ...]) -> Found:
     return None
 
 
-def _law(loads) -> str:
+def _law(loads: BearingLoads) -> str:
     """ "bearing law <law>" when the loads name theirs (the governing law of the envelope)."""
     return f"bearing law {loads.law}" if loads.law else ""
 
@@ -42,7 +43,7 @@ def _order(found: tuple[float, Location]) -> tuple[float, str, float]:
     return v, loc.group, loc.angle_deg if loc.angle_deg is not None else 0.0
 
 
-def _bearing_load(bearings) -> Found:
+def _bearing_load(bearings: tuple[BearingResult, ...]) -> Found:
     vals = [
         (
             b.with_counterweights.peak_n,
@@ -58,7 +59,7 @@ def _bearing_load(bearings) -> Found:
     return max(vals, key=_order) if vals else None
 
 
-def _bearing_specific_load(bearings) -> Found:
+def _bearing_specific_load(bearings: tuple[BearingResult, ...]) -> Found:
     vals = [
         (
             b.with_counterweights.specific_load_pa,

@@ -12,11 +12,14 @@ row, results.json, the JUnit case and case.json all carry them.
 
 from __future__ import annotations
 
+from fe_crank.io.criteria import Criteria
+from fe_crank.rules.m53.basis import M53Basis
+
 ANALOGY = "UR M53 by analogy: not an internal-combustion engine"
 QUASI_STATIC = "not UR M53-conform (quasi-static torque)"
 
 
-def criterion_qualifiers(basis, criteria, *, torsion: bool) -> dict[str, str]:
+def criterion_qualifiers(basis: M53Basis, criteria: Criteria, *, torsion: bool) -> dict[str, str]:
     """quantity -> the words its verdict line carries (module docstring); ``basis`` an
     ``m53_basis.M53Basis``, ``criteria`` the load case's ``Criteria``, ``torsion``: the
     journal torques carry the torsional stage's vibratory torque."""

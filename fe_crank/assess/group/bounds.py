@@ -28,18 +28,21 @@ _WEIGHTS = np.array([1.0, 1.0, 1.0, 2.0, 2.0, 2.0])[:, None]
 def box_von_mises(r: np.ndarray) -> np.ndarray:
     """The largest von Mises stress of a tensor whose components lie within +-r (6, n)."""
     x, y, z, xy, yz, zx = r
-    return np.sqrt(0.5 * ((x + y) ** 2 + (y + z) ** 2 + (z + x) ** 2) + 3.0 * (xy**2 + yz**2 + zx**2))
+    out: np.ndarray = np.sqrt(0.5 * ((x + y) ** 2 + (y + z) ** 2 + (z + x) ** 2) + 3.0 * (xy**2 + yz**2 + zx**2))
+    return out
 
 
 def box_principal(m: np.ndarray) -> np.ndarray:
     """Gershgorin's bound of the largest principal stress of a tensor whose components
     lie within +-m (6, n)."""
     x, y, z, xy, yz, zx = m
-    return np.maximum(np.maximum(x + xy + zx, y + xy + yz), z + yz + zx)
+    out: np.ndarray = np.maximum(np.maximum(x + xy + zx, y + xy + yz), z + yz + zx)
+    return out
 
 
 def _frobenius(r: np.ndarray) -> np.ndarray:
-    return np.sqrt(np.sum(_WEIGHTS * r**2, axis=0))
+    out: np.ndarray = np.sqrt(np.sum(_WEIGHTS * r**2, axis=0))
+    return out
 
 
 def goodman_lower(
@@ -80,7 +83,7 @@ def goodman_radius_lower(
 
 
 def gough_pollard_lower(
-    amp, mean, endurance_b: float, endurance_t: float, tensile: float, additional: float = 0.0
+    amp: np.ndarray, mean: np.ndarray, endurance_b: float, endurance_t: float, tensile: float, additional: float = 0.0
 ) -> np.ndarray:
     """Gough-Pollard's safety is at least this where both half ranges are <= ``amp`` and
     both means' magnitudes <= ``mean`` (module docstring); ``additional``: a stress added

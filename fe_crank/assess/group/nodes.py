@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from fe_crank.assess.superpose import UnitStresses, unit_nodal_stress
-from fe_crank.assess.workers import run_blocks, thread_count
+from fe_crank.assess.workers import Scratch, run_blocks, thread_count
 from fe_crank.errors import InputError
 from fe_crank.fe.throw.node_groups import ASSESSED_BOUNDARIES, COUNTERWEIGHTS, node_groups
 from fe_crank.fe.throw.pin_directions import patch_case, pin_direction
@@ -34,7 +34,7 @@ def _recover(unit_solutions: UnitSolutions, cases: tuple[str, ...], ids: np.ndar
         return unit_nodal_stress(unit_solutions, cases, ids)
     out = np.empty((len(cases), 6, ids.size))
 
-    def one(sel, _scratch):
+    def one(sel: np.ndarray, _scratch: Scratch) -> None:
         out[sel] = unit_nodal_stress(unit_solutions, tuple(cases[j] for j in sel), ids)
 
     run_blocks(one, sets, len(sets))
