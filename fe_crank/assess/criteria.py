@@ -43,6 +43,7 @@ from fe_crank.assess.finders import (
     over_groups,
     unbalance,
 )
+from fe_crank.assess.oil_film import FILM_FINDERS
 from fe_crank.assess.refinement import SCALED, Refinement, StudyFactors
 from fe_crank.assess.shaft import ShaftAssessment
 from fe_crank.assess.shaft_criteria import (
@@ -134,7 +135,14 @@ def _parts(
             per = got[0], got[1], None, ()
     if shaft is None:
         return per, None
-    if ev.speed == SWEEP and sweep and shaft.states and quantity not in BEARING_FINDERS:
+    # the main bearings' loads and films are the whole shaft's own, over its bearing sweep
+    if (
+        ev.speed == SWEEP
+        and sweep
+        and shaft.states
+        and quantity not in BEARING_FINDERS
+        and quantity not in FILM_FINDERS
+    ):
         return per, over_sweep(find, sense, shaft.states)  # the whole shaft at every speed, as the per-throw model
     at = shaft.speed * RPM if ev.speed == SWEEP and shaft.speed is not None and sweep else None
     if ev.speed == OVERSPEED and overspeed is not None:
