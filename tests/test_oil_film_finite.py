@@ -22,7 +22,7 @@ from fe_crank.fe.oil_film import FIT_MAX_ECCENTRICITY, MAX_LAND_ASPECT, film_for
 from fe_crank.geometry.shaft import MAX_FILM_ASPECT
 
 
-def reynolds_force(eps, deps, spin, lam, nt, nz=24):
+def reynolds_force(eps, deps, spin, lam, nt, nz=16):
     """The film's force on the bearing over mu omega R^4 / c^2 of a bearing of width /
     diameter ``lam`` at eccentricity ratio ``eps`` (x, y), centre velocity ``deps`` (per
     unit omega) and journal speed ``spin`` (omega's multiple, turning from +x to +y):
