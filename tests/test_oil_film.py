@@ -313,8 +313,8 @@ def test_film_sweep_in_si_units_and_the_shafts_sense(sense):
     from fe_crank.assess.loads import FIRING
     from fe_crank.assess.oil_film import film_sweep
     from fe_crank.assess.shaft import BearingState
-    from fe_crank.fe.shaft_cycle import BearingLoads
-    from fe_crank.fe.whole_shaft import BearingResult
+    from fe_crank.fe.shaft.cycle import BearingLoads
+    from fe_crank.fe.shaft.whole_shaft import BearingResult
     from fe_crank.geometry.oil import FilmSpec
 
     mu, c, d, B, omega, eps = 0.007, 25e-6, 0.056, 0.02, 3000 * math.pi / 30, 0.7

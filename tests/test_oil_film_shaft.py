@@ -16,8 +16,8 @@ import pytest
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState
-from fe_crank.check.stages import shaft_layout
-from fe_crank.fe.whole_shaft import analyse_whole_shaft
+from fe_crank.pipeline.stages import shaft_layout
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
 

@@ -132,7 +132,7 @@ def test_a_cad_shaft_keeps_its_recognised_journals(tmp_path):
     from cad_files import shaft_step
 
     from fe_crank.cad.config import CadInput
-    from fe_crank.check.stages import shaft_layout
+    from fe_crank.pipeline.stages import shaft_layout
     from fe_crank.io.geometry import load_geometry
     from fe_crank.io.loadcase import load_loadcase
 

@@ -37,9 +37,9 @@ def main() -> None:
     from fe_crank.assess.loads import FIRING
     from fe_crank.assess.oil_film import film_sweep
     from fe_crank.assess.shaft import BearingState
-    from fe_crank.check.stages import shaft_layout
-    from fe_crank.fe.shaft_cycle import BearingLoads
-    from fe_crank.fe.whole_shaft import BearingResult, analyse_whole_shaft
+    from fe_crank.pipeline.stages import shaft_layout
+    from fe_crank.fe.shaft.cycle import BearingLoads
+    from fe_crank.fe.shaft.whole_shaft import BearingResult, analyse_whole_shaft
     from fe_crank.geometry.oil import FilmSpec
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mechanism.cycles import engine_cycles

@@ -17,12 +17,12 @@ overspeed (one speed); the unbalance error does not depend on speed.  ``locate``
 search for one quantity; the convergence study's factor on the groups' stresses
 (``assess.refinement``) goes through it, once, when the study ran (``judge_criteria``'s
 ``factors``; the study's own ``mesh_convergence`` criterion joins the criteria then).  The
-verdict line's remarks -- the factor, the qualifiers (``assess.qualifiers``) -- follow the
+verdict line's remarks -- the factor, the qualifiers (``assess.criteria.qualifiers``) -- follow the
 location (``results.Location``) of the worst speed.  With the whole-shaft
 model a criterion takes the worse of the two models at each speed -- the whole shaft
 assessed at every speed and load state of the sweep as the per-throw model is
 (``ShaftAssessment.states``) -- and the main-bearing quantities are the whole shaft's
-(``assess.shaft_criteria``).
+(``assess.criteria.models``).
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 from fe_crank.assess import refinement
 from fe_crank.assess.cw_joint import JOINT_QUANTITIES
-from fe_crank.assess.finders import (
+from fe_crank.assess.criteria.finders import (
     GROUP_QUANTITIES,
     Refused,
     bolts,
@@ -46,7 +46,7 @@ from fe_crank.assess.finders import (
 from fe_crank.assess.oil_film import FILM_FINDERS
 from fe_crank.assess.refinement import SCALED, Refinement, StudyFactors
 from fe_crank.assess.shaft import ShaftAssessment
-from fe_crank.assess.shaft_criteria import (
+from fe_crank.assess.criteria.models import (
     BEARING_FINDERS,
     ModelValue,
     combined,
@@ -56,7 +56,7 @@ from fe_crank.assess.shaft_criteria import (
 )
 from fe_crank.assess.speeds import RPM, Found, Located, StateResults, over_sweep
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.assess.verdict import judge
+from fe_crank.assess.criteria.verdict import judge
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import QUANTITIES, Criteria
 from fe_crank.results import CriterionResult, SpeedValue
@@ -224,7 +224,7 @@ def judge_criteria(
     operating speed's results (with the overspeed); ``sweep``: every speed and state of
     the full-load curve (the operating speed's firing state among them), () for the
     operating speed alone.  ``qualifiers``: quantity -> words its verdict line carries
-    after the location (``assess.qualifiers``).  ``factors``: the hot-spot convergence
+    after the location (``assess.criteria.qualifiers``).  ``factors``: the hot-spot convergence
     study's, on the FE stress criteria (``assess.refinement``; None: the assessed mesh's
     values)."""
     qualifiers = qualifiers or {}
