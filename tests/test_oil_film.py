@@ -17,6 +17,7 @@ from scipy.integrate import quad, solve_ivp
 from fe_crank.fe.oil_film import (
     JournalBearing,
     film_force,
+    finite_factor,
     mobility,
     peak_pressure_factor,
     periodic_orbits,
@@ -268,8 +269,8 @@ def reynolds_fd_load(eps, l_over_d, nt=240, nz=40):
 @pytest.mark.parametrize("eps", [0.3, 0.6])
 def test_short_bearing_is_the_limit_of_the_finite_bearing(eps):
     """The finite bearing's load (finite differences of Reynolds' equation) tends to
-    Ocvirk's as the bearing narrows; at land width / diameter 1/4, the largest the check
-    accepts, the short bearing carries more (docs/shaft.md gives by how much)."""
+    Ocvirk's as the bearing narrows; at land width / diameter 1/4 the short bearing
+    carries more (the finite-length factor corrects it: tests/test_oil_film_finite.py)."""
 
     def short(ld):  # Ocvirk's load over mu omega R^4 / c^2, L = 2 (L/D) R
         return ocvirk_load(eps) * (2 * ld) ** 3
@@ -303,9 +304,11 @@ def _film_layout(sense: int, spec):
 @pytest.mark.parametrize("sense", [1, -1])
 def test_film_sweep_in_si_units_and_the_shafts_sense(sense):
     """``assess.oil_film.film_sweep`` on two bearings under constant loads, in SI: h_min is
-    c (1 - eps) with eps from Ocvirk's relation for W = (mu omega R B^3 / c^2) f(eps), the
+    c (1 - eps) with eps from Ocvirk's relation over the finite-length factor R_fit of the
+    bearing's B / D (``fe.oil_film.finite_factor``, checked against Reynolds' equation in
+    tests/test_oil_film_finite.py) for W = (mu omega R B^3 / c^2) f(eps) / R_fit, the
     journal sits off the load line in the shaft's sense of rotation (sense +1 turns from +y
-    towards +x), the peak pressure is Ocvirk's, and a stated slope gives its misalignment
+    towards +x), the peak pressure is Ocvirk's over R_fit, and a stated slope gives its misalignment
     slope B / 2 and the edge film c - |c eps| - slope B/2 when the slope lies along eps."""
     from fe_crank.assess.loads import FIRING
     from fe_crank.assess.oil_film import film_sweep
@@ -316,7 +319,8 @@ def test_film_sweep_in_si_units_and_the_shafts_sense(sense):
 
     mu, c, d, B, omega, eps = 0.007, 25e-6, 0.056, 0.02, 3000 * math.pi / 30, 0.7
     spec = FilmSpec(clearance=c, viscosity=mu, diameter=d)
-    W = mu * (d / 2) * B**3 / c**2 * omega * ocvirk_load(eps)
+    r_fit = float(finite_factor(np.array(eps), np.array(B / d))[0])
+    W = mu * (d / 2) * B**3 / c**2 * omega * ocvirk_load(eps) / r_fit
     n = 180
     deg = np.arange(n) * 720.0 / n
     load = np.tile([0.0, -W], (n, 1))
@@ -335,7 +339,7 @@ def test_film_sweep_in_si_units_and_the_shafts_sense(sense):
     assert np.sign(e[0]) == -sense  # off the load line (-y) in the sense of rotation
     t = np.linspace(0, np.pi, 200001)
     p_ref = np.max(3 * mu * omega * B**2 / 4 * eps * np.sin(t) / (c**2 * (1 + eps * np.cos(t)) ** 3))
-    assert f.peak_pressure_pa == pytest.approx(p_ref, rel=1e-6)
+    assert f.peak_pressure_pa == pytest.approx(p_ref / r_fit, rel=1e-6)
     assert f.max_slope == pytest.approx(2e-4)
     assert f.edge_misalignment_m == pytest.approx(2e-4 * B / 2)
     # the slope along -y, eps at the attitude angle: the edge reaches |c eps + s B/2| by hand

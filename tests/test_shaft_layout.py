@@ -30,7 +30,8 @@ def layout(g, e):
 
 def test_inline4_bearings_sit_at_mid_gap(inline4):
     """92 mm pitch, webs 17 mm, pin 24 mm: gap 92 - 58 = 34 mm, the stub reaches 17 mm
-    from the web to the bearing centre, the lever to the web centre is 25.5 mm."""
+    from the web to the bearing centre, the lever to the web centre is 25.5 mm; the
+    bearings are the [shaft] section's 20 mm wide, else the journal's flat."""
     g, e = inline4
     L = layout(g, e)
     assert L.stub == pytest.approx(0.017)
@@ -38,7 +39,12 @@ def test_inline4_bearings_sit_at_mid_gap(inline4):
     assert [b.z for b in L.bearings] == pytest.approx([-0.184, -0.092, 0.0, 0.092, 0.184])
     assert [b.name for b in L.bearings] == ["1", "2", "3", "4", "5"]
     assert [b.thrust for b in L.bearings] == [False] * 4 + [True]  # next to the flywheel
-    assert [b.width for b in L.bearings] == pytest.approx([0.029] * 5)  # 34 - 2 x 2.5 mm
+    assert [b.width for b in L.bearings] == pytest.approx([0.020] * 5)  # [shaft] bearing_width
+    assert all(b.width_stated for b in L.bearings)
+    # without a stated width: the journal's flat, 34 - 2 x 2.5 mm
+    flat = layout(dataclasses.replace(g, shaft=None), e)
+    assert [b.width for b in flat.bearings] == pytest.approx([0.029] * 5)
+    assert not any(b.width_stated for b in flat.bearings)
     assert throw_at_bearings(g, e, geometry_file=GF, engine_file=EF).journal_length == pytest.approx(0.017)
     assert bearing_stub(g, e, geometry_file=GF, engine_file=EF) == pytest.approx(0.017)
 

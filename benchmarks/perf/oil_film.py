@@ -2,8 +2,9 @@
 
 The whole shaft of a load case is solved once at the ``test`` preset; its main bearings'
 loads at the operating speed are then scaled to ``--speeds`` speeds (the inertia loads as
-omega^2, the bearing loads of a full-load curve stand-in) and every bearing is given the
-film of ``--clearance`` / ``--viscosity`` with a full groove, so that the film stage sees
+omega^2, the bearing loads of a full-load curve stand-in) and every bearing keeps the
+film its geometry states (the shipped inline-4's), or without one is given the film of
+``--clearance`` / ``--viscosity`` with a full groove, so that the film stage sees
 n_bearings x speeds x 2 counterweight states orbits, timed alone:
 
     .venv/bin/python benchmarks/perf/oil_film.py --loadcase loadcases/inline4_rated.toml --speeds 20
@@ -41,14 +42,18 @@ def main() -> None:
     from fe_crank.geometry.oil import FilmSpec
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mechanism.cycles import engine_cycles
-    from fe_crank.pipeline.shaft_stage import layout_of
+    from fe_crank.pipeline.stages import shaft_layout
 
     lc = load_loadcase(a.loadcase)
-    layout = layout_of(lc)
+    layout = shaft_layout(lc)
+    assert layout is not None
     film = FilmSpec(a.clearance, a.viscosity, "full", a.groove)
     layout = dataclasses.replace(
         layout,
-        bearings=tuple(dataclasses.replace(b, law=dataclasses.replace(b.law, film=film)) for b in layout.bearings),
+        bearings=tuple(
+            b if b.law.film is not None else dataclasses.replace(b, law=dataclasses.replace(b.law, film=film))
+            for b in layout.bearings
+        ),
     )
     dyn = engine_cycles(lc.engine, lc.operating).operating
     result, cases = analyse_whole_shaft(layout, lc.material, dyn, size="test")

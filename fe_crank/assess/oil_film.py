@@ -4,15 +4,16 @@ For every hydrodynamic main bearing (``[shaft]`` bearing ``model = "hydrodynamic
 ``geometry.oil.FilmSpec``) and every state of the whole shaft's bearing sweep
 (``assess.shaft.BearingState``: each speed of the full-load curve, all cylinders firing
 and each misfire case), with the counterweights as built and without them, the journal's
-periodic orbit under the bearing's load over the cycle (``fe.oil_film``: short bearing,
-half-Sommerfeld, Booker's mobility, all orbits integrated at once).  The loads are the
+periodic orbit under the bearing's load over the cycle (``fe.oil_film``: the finite
+bearing as the short bearing with the finite-length factor of its land's width /
+diameter, half-Sommerfeld, Booker's mobility, all orbits integrated at once).  The loads are the
 whole shaft's from its structural bearing law (rigid, or a stated spring): the film's own
 stiffness is not fed back into the shaft (docs/shaft.md).  The journal turns at the
 state's constant speed, in the shaft's sense.
 
 Per orbit: the minimum oil film thickness h_min = c (1 - eps_max) and its crank angle, the
-largest eccentricity ratio, the peak film pressure (short bearing, middle of a land) and
-its angle, the orbit, whether it repeated (else the film criterion takes h_min = 0: a
+largest eccentricity ratio, the peak film pressure (the short bearing's at the middle of
+a land over the finite-length factor) and its angle, the orbit, whether it repeated (else the film criterion takes h_min = 0: a
 journal that runs towards the clearance has no film to credit), and from the whole shaft's
 deflection the journal's slope in the bearing: its largest value, the misalignment it
 means at the bearing's edges (|slope| B/2) and the edges' film, c - max |c eps +- slope B/2|
@@ -29,13 +30,15 @@ import numpy as np
 
 from fe_crank.assess.shaft import BearingState
 from fe_crank.assess.speeds import Found, over_states
-from fe_crank.fe.oil_film import ORBIT_TOL, JournalBearing, peak_pressure_factor, periodic_orbits
+from fe_crank.fe.oil_film import ORBIT_TOL, JournalBearing, finite_factor, peak_pressure_factor, periodic_orbits
 from fe_crank.results import Location, Sense
 
 #: how the film is modelled, for the report and results.json
 FILM_MODEL = (
-    "short bearing (Ocvirk) with half-Sommerfeld cavitation, rigid journal and bearing, isoviscous film, "
-    "Booker's mobility: periodic orbit by implicit BDF2 steps at every load angle"
+    "finite bearing: the short bearing (Ocvirk) over a finite-length factor fitted to finite-difference "
+    "solutions of Reynolds' equation (land width / diameter up to 0.5), half-Sommerfeld cavitation, rigid "
+    "journal and bearing, isoviscous film, Booker's mobility: periodic orbit by implicit BDF2 steps at every "
+    "load angle"
 )
 
 
@@ -112,7 +115,8 @@ def journal_bearing(spec, width: float, journal_diameter: float | None) -> Journ
 def _orbit(b: JournalBearing, eps, squeeze, omega, deg, slope, conv, cycles, change) -> FilmOrbit:
     r = np.hypot(eps[:, 0], eps[:, 1])
     k = int(np.argmax(r))
-    p = b.pressure_scale() * omega * peak_pressure_factor(eps, squeeze)
+    e = np.minimum(r, 1.0 - 1e-12)
+    p = b.pressure_scale() * omega * peak_pressure_factor(eps, squeeze) / finite_factor(e, b.land_aspect)[0]
     kp = int(np.argmax(p))
     ms = mis = edge = None
     if slope is not None:
@@ -151,7 +155,7 @@ def film_sweep(layout, states: tuple[BearingState, ...], crank_angle_deg) -> tup
     turns = (deg[1] - deg[0]) * n / 360.0  # journal revolutions per cycle
     d_j = layout.geometry.journal_diameter if layout.geometry is not None else None
     jb = {j: journal_bearing(b.law.film, b.width, d_j) for j, b in films}
-    rows, loads = [], []
+    rows, loads, aspect = [], [], []
     for si, st in enumerate(states):
         by_name = {r.name: r for r in st.bearings}
         for j, b in films:
@@ -159,8 +163,11 @@ def film_sweep(layout, states: tuple[BearingState, ...], crank_angle_deg) -> tup
             for cw, loads_of in ((True, res.with_counterweights), (False, res.without_counterweights)):
                 rows.append((si, j, cw, loads_of.slope))
                 loads.append(np.asarray(loads_of.load_n, float) / (jb[j].k0 * st.speed))
+                aspect.append(jb[j].land_aspect)
     # the journal turns in the shaft's sense: sense +1 turns from +y towards +x, negative about +z
-    orbits = periodic_orbits(np.stack(loads), turns, mean_speed=-0.5 * layout.sense, tol=ORBIT_TOL)
+    orbits = periodic_orbits(
+        np.stack(loads), turns, mean_speed=-0.5 * layout.sense, tol=ORBIT_TOL, aspect=np.asarray(aspect)
+    )
     done: dict[tuple[int, int, bool], FilmOrbit] = {}
     for i, (si, j, cw, slope) in enumerate(rows):
         done[(si, j, cw)] = _orbit(
@@ -258,6 +265,7 @@ def film_json(states: tuple[FilmState, ...]) -> dict:
                 "groove": b.bearing.groove,
                 "groove_width_m": b.bearing.groove_width,
                 "land_width_to_diameter": b.bearing.land_width / b.bearing.diameter,
+                "film_model": "finite bearing (short bearing over the finite-length factor of its land)",
             }
             for b in first
         ],

@@ -110,14 +110,15 @@ class ShaftLayout:
         return self.geometry.crankpin_length / 2 + self.geometry.web_thickness
 
 
-#: the largest land width / diameter the short-bearing film (``fe.oil_film``) is offered for
-MAX_FILM_ASPECT = 0.25
+#: the largest land width / diameter the oil film (``fe.oil_film``: its finite-length
+#: factor's fitted range, ``fe.oil_film.MAX_LAND_ASPECT``) is offered for
+MAX_FILM_ASPECT = 0.5
 
 
 def film_fits(law: BearingLaw, width: float, g: CrankGeometry, gf: str, key: str) -> None:
     """A hydrodynamic bearing's film against its journal and width: the clearance below the
     journal's radius, the groove narrower than the bearing, each land's width / diameter at
-    most ``MAX_FILM_ASPECT`` (the short-bearing film's range, docs/shaft.md)."""
+    most ``MAX_FILM_ASPECT`` (the finite-bearing film's fitted range, docs/shaft.md)."""
     f = law.film
     assert f is not None
     d = f.diameter or g.journal_diameter
@@ -139,8 +140,8 @@ def film_fits(law: BearingLaw, width: float, g: CrankGeometry, gf: str, key: str
     if land / d > MAX_FILM_ASPECT:
         raise InputError(
             f"a land {land * 1e3:.4g} mm wide on a {d * 1e3:.4g} mm journal (width / diameter {land / d:.3g}) is beyond "
-            f"the short-bearing oil film's range (at most {MAX_FILM_ASPECT}; no finite-bearing film model is "
-            "offered): state a narrower bearing_width or a full groove",
+            f"the oil film model's range (at most {MAX_FILM_ASPECT}: its finite-length factor is fitted up to "
+            "there): state a narrower bearing_width or a full groove",
             file=gf,
             key=key,
         )

@@ -93,13 +93,13 @@ QUANTITIES: dict[str, Quantity] = {
         "min",
         "length",
         (),
-        "minimum oil film thickness over the cycle, hydrodynamic main bearings (short bearing), counterweights as built",
+        "minimum oil film thickness over the cycle, hydrodynamic main bearings (finite bearing), counterweights as built",
     ),
     "oil_film_pressure": Quantity(
         "max",
         "pressure",
         (),
-        "peak oil film pressure over the cycle, hydrodynamic main bearings (short bearing), counterweights as built",
+        "peak oil film pressure over the cycle, hydrodynamic main bearings (finite bearing), counterweights as built",
     ),
     "bolt_assembly_utilisation": Quantity(
         "max", None, (), "VDI 2230 R7: equivalent assembly stress / R_p0.2 at the largest preload (<= 0.9)"

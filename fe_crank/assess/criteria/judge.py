@@ -53,6 +53,7 @@ from fe_crank.assess.criteria.models import (
 )
 from fe_crank.assess.criteria.verdict import judge
 from fe_crank.assess.joint_criteria import JOINT_QUANTITIES
+from fe_crank.assess.oil_film import FILM_FINDERS
 from fe_crank.assess.refinement import SCALED, Refinement, StudyFactors
 from fe_crank.assess.shaft import ShaftAssessment
 from fe_crank.assess.speeds import RPM, Found, Located, StateResults, over_sweep
@@ -135,7 +136,14 @@ def _parts(
             per = got[0], got[1], None, ()
     if shaft is None:
         return per, None
-    if ev.speed == SWEEP and sweep and shaft.states and quantity not in BEARING_FINDERS:
+    # the main bearings' loads and films are the whole shaft's own, over its bearing sweep
+    if (
+        ev.speed == SWEEP
+        and sweep
+        and shaft.states
+        and quantity not in BEARING_FINDERS
+        and quantity not in FILM_FINDERS
+    ):
         return per, over_sweep(find, sense, shaft.states)  # the whole shaft at every speed, as the per-throw model
     at = shaft.speed * RPM if ev.speed == SWEEP and shaft.speed is not None and sweep else None
     if ev.speed == OVERSPEED and overspeed is not None:
