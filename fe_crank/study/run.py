@@ -15,7 +15,17 @@ from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import engine_cycles
-from fe_crank.study.candidates import Candidate, DrawnWeb, candidates, drawn_webs, first_order, residual
+from fe_crank.study.candidates import (
+    Candidate,
+    DrawnWeb,
+    ThrowSolidCache,
+    WrittenMass,
+    candidates,
+    drawn_webs,
+    first_order,
+    residual,
+    written_mass,
+)
 from fe_crank.study.screen import StudyShaft, candidate_loads, engine_states, state_base, study_shaft
 from fe_crank.study.spec import StudySpec
 
@@ -39,6 +49,7 @@ class CandidateResult:
     free_force: float  # N, first order at the highest speed
     free_moment: float  # N m
     failed: tuple[str, ...]  # limits not met (with the values)
+    written: WrittenMass | None = None  # the written shaft's mass properties and load factors
 
     @property
     def meets_limits(self) -> bool:
@@ -86,7 +97,14 @@ def prepare(lc: LoadCase, spec: StudySpec):
 
 
 def _metrics(
-    cand: Candidate, loads, shaft: StudyShaft, drawn: dict[tuple, DrawnWeb], lc: LoadCase, spec: StudySpec, w_max: float
+    cand: Candidate,
+    loads,
+    shaft: StudyShaft,
+    drawn: dict[tuple, DrawnWeb],
+    lc: LoadCase,
+    spec: StudySpec,
+    w_max: float,
+    written: WrittenMass,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -112,16 +130,12 @@ def _metrics(
             wwhere = f"web {web_names[i]}, {sl.state.label} at {sl.state.speed * 30 / math.pi:.0f} rpm"
     dj = layout.geometry.journal_diameter
     spec_load = max(peaks[b.name] / (dj * b.width) for b in layout.bearings)
-    f1, m1 = first_order(residual(lc.engine, w_max, drawn, cand.factors))
-    cw_mass = sum(k * drawn[w].mass for w, k in cand.factors.items())
-    d_mass = sum((k - 1.0) * drawn[w].mass for w, k in cand.factors.items())
-    d_j = sum((k - 1.0) * drawn[w].polar_inertia for w, k in cand.factors.items())
-    u = sum(k * drawn[w].unbalance for w, k in cand.factors.items())
+    f1, m1 = first_order(residual(lc.engine, w_max, drawn, written.load_factors, written.planes))
     rates = {}
     for th in layout.throws:
         t = lc.engine.throw(th.name)
         mr = rotating_mass(lc.engine, th.name) * t.crank_radius
-        own = sum(k * drawn[w].unbalance for w, k in cand.factors.items() if w[0] == th.name)
+        own = sum(k * drawn[w].unbalance for w, k in written.load_factors.items() if w[0] == th.name)
         rates[th.name] = own / mr if mr > 0 else math.nan
     values = {
         "max_main_bearing_load": (peak, "N"),
@@ -129,17 +143,17 @@ def _metrics(
         "max_web_bending_moment": (wmax, "N m"),
         "max_free_force": (f1, "N"),
         "max_free_moment": (m1, "N m"),
-        "max_counterweight_mass": (cw_mass, "kg"),
+        "max_counterweight_mass": (written.counterweight_mass, "kg"),
     }
     failed = tuple(
         f"{k} {values[k][0]:.4g} > {lim:.4g} {values[k][1]}" for k, lim in spec.limits.items() if values[k][0] > lim
     )
     return CandidateResult(
         cand,
-        cw_mass,
-        d_mass,
-        d_j,
-        u,
+        written.counterweight_mass,
+        written.mass_change,
+        written.polar_inertia_change,
+        written.unbalance,
         rates,
         peak,
         where,
@@ -152,6 +166,7 @@ def _metrics(
         f1,
         m1,
         failed,
+        written,
     )
 
 
@@ -188,10 +203,12 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     shaft = study_shaft(layout, lc.material, lc.fe, size=size, cache_dir=cache_dir, max_elements=max_elements)
     bases = [state_base(shaft, s) for s in states]
     w_max = max(s.speed for s in states)
+    solids = ThrowSolidCache(layout)
     results = []
     for c in cands:
-        loads = [candidate_loads(shaft, b, c.factors, drawn) for b in bases]
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max))
+        wm = written_mass(layout, c, drawn, shaft.mass, solids)
+        loads = [candidate_loads(shaft, b, wm.load_factors, drawn) for b in bases]
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:
