@@ -90,6 +90,11 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
     scale = np.abs(ref_on).max()
     assert np.abs(on.bearings - ref_on).max() <= 1e-9 * scale
     assert np.abs(off.bearings - ref_off).max() <= 1e-9 * scale
+    # the main-bearing criteria's envelope over the stiffness range: the check's per bearing
+    env = np.hypot(on.bearing_sets[..., 0], on.bearing_sets[..., 1]).max(axis=1)  # (sets, nb)
+    for j, b in enumerate(full.bearings):
+        assert env[:, j].max() == pytest.approx(b.with_counterweights.peak_n, rel=1e-9)
+    assert len(res.shaft.law_sets) == 4  # the stated law and three stiffnesses of the range
     web_on = np.stack([w.with_counterweights.bending_moment_nm for w in full.webs], axis=1)
     web_off = np.stack([w.without_counterweights.bending_moment_nm for w in full.webs], axis=1)
     assert np.abs(on.webs - web_on).max() <= 1e-9 * np.abs(web_on).max()
