@@ -95,7 +95,8 @@ def _fmt(v) -> str:
 
 def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> dict[str, Path]:
     """The table in CSV, JSON and markdown; ``achieved``: per web of the written
-    candidate (screened m r, the written sector solid's m r), kg m."""
+    candidate (the m r aimed at, the written sector solid's m r, which the screening
+    takes), kg m."""
     achieved = achieved or {}
     best = res.recommended
     rows = [row(r, r is best) for r in res.results]
@@ -118,7 +119,7 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
         "recommended": None if best is None else best.candidate.index,
         "why": res.why,
         "written_unbalance_kg_m": {
-            f"{t}.{w}": {"screened": a, "written_solid": b} for (t, w), (a, b) in achieved.items()
+            f"{t}.{w}": {"aimed_at": a, "written_solid": b} for (t, w), (a, b) in achieved.items()
         },
         "notes": list(res.notes),
         "candidates": [detail(r) | {"recommended": r is best} for r in res.results],
@@ -138,8 +139,8 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
     ]
     for (t, w), (a, b) in achieved.items():
         lines.append(
-            f"* web {t}.{w}: m r {a:.5g} kg m screened, {b:.5g} kg m of the written sector's solid "
-            f"({(b / a - 1) * 100:+.2f} %)"
+            f"* web {t}.{w}: m r {a:.5g} kg m aimed at, {b:.5g} kg m of the written sector's solid "
+            f"({(b / a - 1) * 100:+.2f} %; the screening takes the written solid's)"
         )
     lines.append("")
     for r in res.results:
