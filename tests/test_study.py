@@ -13,12 +13,17 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2, Functional
 
+from fe_crank.assess.loads import FIRING
+from fe_crank.assess.oil_film import film_sweep
+from fe_crank.assess.shaft import BearingState
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
 from fe_crank.fe.whole_shaft import analyse_whole_shaft
+from fe_crank.geometry.oil import FilmSpec
 from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
+from fe_crank.study.film import film_metrics
 from fe_crank.study.outputs import write_candidate
 from fe_crank.study.run import run_study
 from fe_crank.study.screen import candidate_loads, state_base
@@ -95,6 +100,21 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
     for j, b in enumerate(full.bearings):
         assert env[:, j].max() == pytest.approx(b.with_counterweights.peak_n, rel=1e-9)
     assert len(res.shaft.law_sets) == 4  # the stated law and three stiffnesses of the range
+    # the oil film of hydrodynamic bearings: the check's film stage on the full solve's loads
+    spec = FilmSpec(clearance=25e-6, viscosity=7e-3, groove="full", groove_width=3e-3)
+    lay_f = dataclasses.replace(
+        res.shaft.layout,
+        bearings=tuple(
+            dataclasses.replace(b, law=dataclasses.replace(b.law, film=spec)) for b in res.shaft.layout.bearings
+        ),
+    )
+    mine = film_metrics(lay_f, [on])
+    (st,) = film_sweep(lay_f, (BearingState(res.states[0].speed, FIRING, full.bearings),), full.crank_angle_deg)
+    h = min(f.with_counterweights.judged_min_film_m for f in st.bearings)
+    p = max(f.with_counterweights.peak_pressure_pa for f in st.bearings)
+    assert mine is not None and mine.converged and h > 0
+    assert mine.min_film == pytest.approx(h, rel=2e-3)  # the orbits' repeat tolerance, 1e-4 in eps
+    assert mine.peak_pressure == pytest.approx(p, rel=2e-3)
     web_on = np.stack([w.with_counterweights.bending_moment_nm for w in full.webs], axis=1)
     web_off = np.stack([w.without_counterweights.bending_moment_nm for w in full.webs], axis=1)
     assert np.abs(on.webs - web_on).max() <= 1e-9 * np.abs(web_on).max()

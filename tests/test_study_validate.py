@@ -21,6 +21,10 @@ BAD = [
         "study.limits.max_counterweight_mass",
     ),
     ('rotating_rate_percent = [50]\nenvelope = "30 mm"', "study.envelope"),  # drawn r_outer 40 mm
+    (  # rigid bearings: no film to judge
+        'rotating_rate_percent = [50]\n[study.limits]\nmin_oil_film = "1 um"',
+        "study.limits.min_oil_film",
+    ),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.3"]', "study.placements[0].webs[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.1"]', "study.placements[0].webs"),
 ]

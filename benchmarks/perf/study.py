@@ -101,9 +101,10 @@ def main() -> int:
         lc, st = _loadcase(d, args.speeds), _study(d, args.candidates)
         common = ["--mesh-size", args.preset]
         study = _child(fe + ["study", str(lc), str(st), "-o", str(d / "study"), "--cache-dir", str(d / "c1"), *common])
+        print("study:", json.dumps(study), flush=True)
         check = _child(
             fe
-            + ["check", str(lc), "-o", str(d / "check"), "--cache-dir", str(d / "c2")]
+            + ["check", str(lc), "-o", str(d / "check"), "--cache-dir", str(d / "c2"), "--allow-outside-paths"]
             + ["--no-render", "--no-vtu", "--no-convergence", *common]
         )
     out = {

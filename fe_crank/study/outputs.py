@@ -29,6 +29,8 @@ COLUMNS = (
     ("peak_main_bearing_load_n", "peak bearing load N"),
     ("peak_specific_load_mpa", "peak specific load MPa"),
     ("max_web_bending_moment_nm", "max web moment N m"),
+    ("min_oil_film_um", "min oil film um"),
+    ("peak_film_pressure_mpa", "peak film pressure MPa"),
     ("free_force_first_order_n", "free force 1st N"),
     ("free_moment_first_order_nm", "free moment 1st N m"),
     ("buildable", "buildable"),
@@ -50,6 +52,8 @@ def row(r: CandidateResult, recommended: bool) -> dict:
         "peak_main_bearing_load_n": r.peak_bearing_load,
         "peak_specific_load_mpa": r.peak_specific_load / 1e6,
         "max_web_bending_moment_nm": r.max_web_moment,
+        "min_oil_film_um": None if r.film is None else r.film.min_film * 1e6,
+        "peak_film_pressure_mpa": None if r.film is None else r.film.peak_pressure / 1e6,
         "free_force_first_order_n": r.free_force,
         "free_moment_first_order_nm": r.free_moment,
         "buildable": c.buildable,
@@ -64,6 +68,13 @@ def detail(r: CandidateResult) -> dict:
         **row(r, False),
         "peak_where": r.peak_where,
         "web_moment_where": r.web_where,
+        "oil_film": None
+        if r.film is None
+        else {
+            "min_film_where": r.film.min_film_where,
+            "peak_pressure_where": r.film.peak_pressure_where,
+            "every_orbit_repeated": r.film.converged,
+        },
         "unbalance_kg_m": r.unbalance,
         "balance_rate_by_throw": {k: (None if math.isnan(v) else v) for k, v in r.rates.items()},
         "bearing_peak_n": r.bearing_peaks,
@@ -100,8 +111,11 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
     achieved = achieved or {}
     best = res.recommended
     rows = [row(r, r is best) for r in res.results]
+    # the oil-film columns only where a bearing has a film
+    cols = [(k, h) for k, h in COLUMNS if any(x[k] is not None for x in rows)]
+    rows = [{k: x[k] for k, _ in cols} for x in rows]
     buf = io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=[k for k, _ in COLUMNS], lineterminator="\n")
+    w = csv.DictWriter(buf, fieldnames=[k for k, _ in cols], lineterminator="\n")
     w.writeheader()
     for x in rows:
         w.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in x.items()})
@@ -126,10 +140,10 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
     }
     write_atomic(paths["json"], json.dumps(doc, indent=1, allow_nan=False) + "\n")
     lines = [f"# Counterweight study: {res.spec.name}", "", f"Load case: `{res.loadcase.source_file}`", ""]
-    lines.append("| " + " | ".join(h for _, h in COLUMNS) + " |")
-    lines.append("|" + "---|" * len(COLUMNS))
+    lines.append("| " + " | ".join(h for _, h in cols) + " |")
+    lines.append("|" + "---|" * len(cols))
     for x in rows:
-        lines.append("| " + " | ".join(_fmt(x[k]) for k, _ in COLUMNS) + " |")
+        lines.append("| " + " | ".join(_fmt(x[k]) for k, _ in cols) + " |")
     lines += [
         "",
         f"**Recommended** ({res.spec.rule}): "

@@ -26,6 +26,7 @@ from fe_crank.study.candidates import (
     residual,
     written_mass,
 )
+from fe_crank.study.film import FilmMetrics, film_metrics
 from fe_crank.study.screen import StudyShaft, candidate_loads, engine_states, state_base, study_shaft
 from fe_crank.study.spec import StudySpec
 
@@ -50,6 +51,7 @@ class CandidateResult:
     free_moment: float  # N m
     failed: tuple[str, ...]  # limits not met (with the values)
     written: WrittenMass | None = None  # the written shaft's mass properties and load factors
+    film: FilmMetrics | None = None  # the hydrodynamic bearings' film; None without one
 
     @property
     def meets_limits(self) -> bool:
@@ -93,6 +95,15 @@ def prepare(lc: LoadCase, spec: StudySpec):
         raise InputError(
             "the geometry draws no counterweight: the study scales the drawn ones", file=spec.file, key="study"
         )
+    if not any(b.law.film is not None for b in layout.bearings):
+        for k in ("min_oil_film", "max_film_pressure"):
+            if k in spec.limits:
+                raise InputError(
+                    "an oil-film limit needs a hydrodynamic main bearing "
+                    '(a [shaft] bearing with model = "hydrodynamic"); the load case has none',
+                    file=spec.file,
+                    key=f"study.limits.{k}",
+                )
     return layout, drawn, candidates(spec, drawn, layout, lc.engine)
 
 
@@ -141,6 +152,7 @@ def _metrics(
         mr = rotating_mass(lc.engine, th.name) * t.crank_radius
         own = sum(k * drawn[w].unbalance for w, k in written.load_factors.items() if w[0] == th.name)
         rates[th.name] = own / mr if mr > 0 else math.nan
+    film = film_metrics(layout, loads)
     values = {
         "max_main_bearing_load": (peak, "N"),
         "max_main_bearing_specific_load": (spec_load, "Pa"),
@@ -148,10 +160,15 @@ def _metrics(
         "max_free_force": (f1, "N"),
         "max_free_moment": (m1, "N m"),
         "max_counterweight_mass": (written.counterweight_mass, "kg"),
+        "max_film_pressure": (film.peak_pressure if film else math.nan, "Pa"),
     }
     failed = tuple(
-        f"{k} {values[k][0]:.4g} > {lim:.4g} {values[k][1]}" for k, lim in spec.limits.items() if values[k][0] > lim
+        f"{k} {values[k][0]:.4g} > {lim:.4g} {values[k][1]}"
+        for k, lim in spec.limits.items()
+        if k in values and values[k][0] > lim
     )
+    if "min_oil_film" in spec.limits and film is not None and film.min_film < spec.limits["min_oil_film"]:
+        failed += (f"min_oil_film {film.min_film * 1e6:.4g} < {spec.limits['min_oil_film'] * 1e6:.4g} um",)
     return CandidateResult(
         cand,
         written.counterweight_mass,
@@ -171,6 +188,7 @@ def _metrics(
         m1,
         failed,
         written,
+        film,
     )
 
 

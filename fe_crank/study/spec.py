@@ -18,6 +18,8 @@ A study TOML beside the load case (``fe-crank study LOADCASE STUDY``)::
     max_free_force = "100 N"                           # first-order resultant, amplitude
     max_free_moment = "200 N*m"                        # first-order couple, amplitude
     max_counterweight_mass = "6 kg"                    # the shaft's counterweights together
+    min_oil_film = "1 um"                              # hydrodynamic bearings only
+    max_film_pressure = "300 MPa"                      # hydrodynamic bearings only
 
     [[study.placements]]
     name = "8 counterweights"
@@ -51,6 +53,8 @@ LIMITS = {
     "max_free_force": "force",
     "max_free_moment": "moment",
     "max_counterweight_mass": "mass",
+    "min_oil_film": "length",  # hydrodynamic bearings: the least h_min (docs/study.md)
+    "max_film_pressure": "pressure",  # hydrodynamic bearings: the peak film pressure
 }
 KEYS = (
     "name",
