@@ -175,8 +175,9 @@ def parse_study(path: str | Path) -> StudySpec:
     for i, o in enumerate(offsets):
         if o != 0.0:
             raise InputError(
-                "a counterweight turned from opposite its pin cannot be written to a geometry file "
-                "(counterweights are centred opposite the pin); only 0 deg is screened",
+                "a counterweight turned from opposite its pin cannot be screened or written: the geometry "
+                "format centres every counterweight sector on the web's anti-pin direction (the mesher's "
+                "mirror plane, the fillet tools and the balance terms rely on it); only 0 deg",
                 file=file,
                 key=f"study.offset[{i}]",
             )
