@@ -18,7 +18,7 @@ from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
-from fe_crank.fe.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
 from fe_crank.geometry.oil import FilmSpec
 from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.io.loadcase import load_loadcase

@@ -104,7 +104,7 @@ class Candidate:
 
 def drawn_webs(layout: ShaftLayout, mass: dict) -> dict[Web, DrawnWeb]:
     """Every web drawn with a counterweight, in axial order (``mass``: throw name ->
-    ``geometry.mass.MassProperties``, ``fe.whole_shaft.throw_masses``)."""
+    ``geometry.mass.MassProperties``, ``fe.shaft.whole_shaft.throw_masses``)."""
     out = {}
     for th in layout.throws:
         for cw in sorted(th.spec.counterweights, key=lambda c: c.web):

@@ -10,7 +10,7 @@ import numpy as np
 
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.errors import InputError
-from fe_crank.fe.whole_shaft import throw_masses
+from fe_crank.fe.shaft.whole_shaft import throw_masses
 from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.loadcase import LoadCase
@@ -129,7 +129,7 @@ def _metrics(
         mags = np.hypot(sets[..., 0], sets[..., 1])  # (sets, n, nb)
         for j, b in enumerate(layout.bearings):
             # the envelope over the law sets: per bearing the set of the largest peak
-            # (its mean with it), as the check's main-bearing criteria (fe.whole_shaft.envelope)
+            # (its mean with it), as the check's main-bearing criteria (fe.shaft.whole_shaft.envelope)
             s = int(np.argmax(mags[:, :, j].max(axis=1)))
             p, m = float(mags[s, :, j].max()), float(mags[s, :, j].mean())
             peaks[b.name] = max(peaks.get(b.name, 0.0), p)

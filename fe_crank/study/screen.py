@@ -1,19 +1,19 @@
 """The candidates on the whole shaft: bearing loads and web moments by superposition.
 
-The shaft of the load case is meshed and condensed once (``fe.shaft_model``) with every
+The shaft of the load case is meshed and condensed once (``fe.shaft.model``) with every
 web's counterweight as a centrifugal pattern of its own, and its unit cases solved once
-on the determinate base (``fe.shaft_cases``) with a case ``cw_<web>@<throw>`` per web.
+on the determinate base (``fe.shaft.cases``) with a case ``cw_<web>@<throw>`` per web.
 A candidate's counterweight on a web is the drawn one scaled in mass by k_w, so its
 centrifugal load is k_w omega^2 times that case: per state of the engine (a speed of the
 full-load curve, all cylinders firing or a misfire case; no load where the engine has a
 gas table) the applied weights are those of the shaft without counterweights
-(``fe.whole_shaft.shaft_cycle_of``, ``counterweights=False``) with the per-web cases
-added, and the bearings' laws are solved again (``fe.shaft_cycle.solve_cycle``).  With
+(``fe.shaft.whole_shaft.shaft_cycle_of``, ``counterweights=False``) with the per-web cases
+added, and the bearings' laws are solved again (``fe.shaft.cycle.solve_cycle``).  With
 k_w = 1 on every drawn web this is the whole-shaft model's own "with counterweights"
 cycle (the per-web patterns sum to ``centrifugal_cw``).
 
 Web bending moments: the moment of every load in front of the web's mid-plane (as
-``fe.shaft_cycle``): the shaft's without counterweights, plus the change of the bearing
+``fe.shaft.cycle``): the shaft's without counterweights, plus the change of the bearing
 forces, plus k_w times each counterweight's centrifugal force (a prism along z flush
 with its web's outer face: the share of it in front of the mid-plane is its share of the
 thickness).
@@ -30,10 +30,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.fe.shaft_cases import ShaftCases, solve_cases
-from fe_crank.fe.shaft_cycle import solve_cycle
-from fe_crank.fe.shaft_model import ShaftFeOptions, build_shaft_model
-from fe_crank.fe.whole_shaft import envelope_laws, shaft_cycle_of, throw_masses
+from fe_crank.fe.shaft.cases import ShaftCases, solve_cases
+from fe_crank.fe.shaft.cycle import solve_cycle
+from fe_crank.fe.shaft.model import ShaftFeOptions, build_shaft_model
+from fe_crank.fe.shaft.whole_shaft import envelope_laws, shaft_cycle_of, throw_masses
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult, analyse
@@ -57,7 +57,7 @@ class StudyShaft:
     laws: list
     n_dof: int
     #: the law sets the main-bearing loads are enveloped over, the stated one first
-    #: (``fe.whole_shaft.envelope_laws``: the check's main-bearing criteria take the same)
+    #: (``fe.shaft.whole_shaft.envelope_laws``: the check's main-bearing criteria take the same)
     law_sets: tuple = ()
 
 
