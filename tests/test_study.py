@@ -13,12 +13,17 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2, Functional
 
+from fe_crank.assess.loads import FIRING
+from fe_crank.assess.oil_film import film_sweep
+from fe_crank.assess.shaft import BearingState
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
 from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+from fe_crank.geometry.oil import FilmSpec
 from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.io.loadcase import load_loadcase
-from fe_crank.study.candidates import Candidate, web_shape
+from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
+from fe_crank.study.film import film_metrics
 from fe_crank.study.outputs import write_candidate
 from fe_crank.study.run import run_study
 from fe_crank.study.screen import candidate_loads, state_base
@@ -72,6 +77,8 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
         web_shape(w, 1.0, drawn[w], res.shaft.layout, res.spec, res.shaft.layout.geometry.density) for w in drawn
     )
     cand = Candidate(99, "all at 1", math.nan, 0.0, 0.0, ones, shapes)
+    wm = written_mass(res.shaft.layout, cand, drawn, res.shaft.mass, ThrowSolidCache(res.shaft.layout))
+    assert all(abs(k - 1.0) <= 1e-12 for k in wm.load_factors.values())  # the written shaft is the drawn one
     r = dataclasses.replace(res.results[0], candidate=cand)  # write_candidate takes the candidate's shapes
     _, lc_path = write_candidate(res, r, d / "written")
     lc2 = load_loadcase(lc_path)
@@ -88,6 +95,26 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
     scale = np.abs(ref_on).max()
     assert np.abs(on.bearings - ref_on).max() <= 1e-9 * scale
     assert np.abs(off.bearings - ref_off).max() <= 1e-9 * scale
+    # the main-bearing criteria's envelope over the stiffness range: the check's per bearing
+    env = np.hypot(on.bearing_sets[..., 0], on.bearing_sets[..., 1]).max(axis=1)  # (sets, nb)
+    for j, b in enumerate(full.bearings):
+        assert env[:, j].max() == pytest.approx(b.with_counterweights.peak_n, rel=1e-9)
+    assert len(res.shaft.law_sets) == 4  # the stated law and three stiffnesses of the range
+    # the oil film of hydrodynamic bearings: the check's film stage on the full solve's loads
+    spec = FilmSpec(clearance=25e-6, viscosity=7e-3, groove="full", groove_width=3e-3)
+    lay_f = dataclasses.replace(
+        res.shaft.layout,
+        bearings=tuple(
+            dataclasses.replace(b, law=dataclasses.replace(b.law, film=spec)) for b in res.shaft.layout.bearings
+        ),
+    )
+    mine = film_metrics(lay_f, [on])
+    (st,) = film_sweep(lay_f, (BearingState(res.states[0].speed, FIRING, full.bearings),), full.crank_angle_deg)
+    h = min(f.with_counterweights.judged_min_film_m for f in st.bearings)
+    p = max(f.with_counterweights.peak_pressure_pa for f in st.bearings)
+    assert mine is not None and mine.converged and h > 0
+    assert mine.min_film == pytest.approx(h, rel=2e-3)  # the orbits' repeat tolerance, 1e-4 in eps
+    assert mine.peak_pressure == pytest.approx(p, rel=2e-3)
     web_on = np.stack([w.with_counterweights.bending_moment_nm for w in full.webs], axis=1)
     web_off = np.stack([w.without_counterweights.bending_moment_nm for w in full.webs], axis=1)
     assert np.abs(on.webs - web_on).max() <= 1e-9 * np.abs(web_on).max()
@@ -99,9 +126,10 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
 
 @pytest.mark.heavy
 def test_balance_residual_of_every_candidate_against_m_r_sums(study):
-    """First-order free force and couple: the throws' rotating m_rot R and the
-    counterweights' k_w U_w (the solids' m r) as vectors turning with their throws,
-    summed here; the flat-4's first-order reciprocating force and couple cancel."""
+    """First-order free force and couple: the throws' rotating m_rot R and the written
+    shaft's counterweight m r per web (its solids' m r, at the plane of their first
+    moment) as vectors turning with their throws, summed here; the flat-4's first-order
+    reciprocating force and couple cancel."""
     res, _, _ = study
     lc = res.loadcase
     w = res.residual_speed
@@ -112,11 +140,12 @@ def test_balance_residual_of_every_candidate_against_m_r_sums(study):
             e = np.exp(1j * t.angle)
             F += rotating_mass(lc.engine, t.name) * t.crank_radius * e
             M += rotating_mass(lc.engine, t.name) * t.crank_radius * t.axial_position * e
-        for web, k in r.candidate.factors.items():
+        wm = r.written  # the written shaft's m r per web and its plane
+        for web, k in wm.load_factors.items():
             dw = res.drawn[web]
             e = np.exp(1j * lc.engine.throw(web[0]).angle)
             F -= k * dw.unbalance * e
-            M -= k * dw.unbalance * dw.z * e
+            M -= k * dw.unbalance * wm.planes[web] * e
         assert r.free_force == pytest.approx(abs(F) * w**2, rel=1e-9, abs=1e-9 * scale)
         assert r.free_moment == pytest.approx(abs(M) * w**2, rel=1e-9, abs=1e-9 * scale * 0.1)
     # one web per throw: each throw's counterweight beside its pin makes a couple c U omega^2;
@@ -194,3 +223,37 @@ def test_bad_study_input_is_one_message_with_file_and_key(tmp_path, capsys, body
     assert str(f) in err and key in err and "Traceback" not in err
     assert len(err.strip().splitlines()) == 1
     assert not (tmp_path / "c").exists()  # refused before any meshing
+
+
+@pytest.mark.heavy
+def test_screened_mass_properties_are_the_written_shafts(study):
+    """Candidate "4" at 50 % (angle and thickness solved on one web per throw, the other
+    web's counterweight left out): the geometry the study writes, read back from its file,
+    built and integrated here (``geometry.mass``, exact B-rep integrals): per throw the
+    screened m r (sum of k_eff U_w over its webs) equals the written throw's total m r
+    minus the drawn throw's without its counterweights, and the table's mass and polar
+    inertia changes the written shaft's, to round-off."""
+    from fe_crank.geometry.mass import mass_properties
+
+    res, d, _ = study
+    r = next(x for x in res.results if x.candidate.placement == "4" and x.candidate.rotating == 0.5)
+    assert r.candidate.buildable and r.written is not None and r.written.exact
+    _, lc_path = write_candidate(res, r, d / "written_4_50")
+    g2 = load_loadcase(lc_path).geometry
+    layout = res.shaft.layout
+    dm = dj = 0.0
+    for th in layout.throws:
+        old = res.shaft.mass[th.name]
+        new = mass_properties(g2, th.name)
+        dm += new.total.mass - old.total.mass
+        dj += new.total.inertia_axis - old.total.inertia_axis
+        bare = np.asarray(old.total.unbalance_vector) - sum(
+            np.asarray(res.drawn[(th.name, w)].unbalance_vector) for w in (1, 2) if (th.name, w) in res.drawn
+        )
+        want = np.asarray(new.total.unbalance_vector) - bare
+        got = sum(
+            k * np.asarray(res.drawn[w].unbalance_vector) for w, k in r.written.load_factors.items() if w[0] == th.name
+        )
+        assert np.abs(got - want).max() <= 1e-9 * np.abs(want).max()
+    assert r.mass_change == pytest.approx(dm, rel=1e-9, abs=1e-12)
+    assert r.polar_inertia_change == pytest.approx(dj, rel=1e-9, abs=1e-15)

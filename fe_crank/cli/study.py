@@ -80,7 +80,7 @@ def run(args) -> int:
     geo, lcp = write_candidate(res, chosen, out)
     print(f"written: candidate #{chosen.candidate.index} ({chosen.candidate.label})")
     for (t, w), (want, got) in achieved.items():
-        print(f"  web {t}.{w}: m r {want:.5g} kg m screened, {got:.5g} kg m of the written sector's solid")
+        print(f"  web {t}.{w}: m r {want:.5g} kg m aimed at, {got:.5g} kg m of the written sector's solid (screened)")
     flag = " --allow-outside-paths" if leaves_tree(lcp) else ""
     print(f"check it: fe-crank check {lcp}{flag}  (geometry {geo})")
     return 0 if res.recommended is not None else 1

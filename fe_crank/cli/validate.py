@@ -11,7 +11,17 @@ from fe_crank.io.base import read_toml
 
 def add_arguments(p) -> None:
     p.add_argument(
-        "files", nargs="+", type=Path, help="load-case, engine, geometry or CAD geometry ([cad]) .toml files"
+        "files",
+        nargs="+",
+        type=Path,
+        help="load-case, engine, geometry, CAD geometry ([cad]) or study ([study]) .toml files",
+    )
+    p.add_argument(
+        "--loadcase",
+        type=Path,
+        default=None,
+        metavar="FILE",
+        help="the load case a study file is checked against (default: the load cases among FILES)",
     )
     p.add_argument(
         "--allow-outside-paths",
@@ -21,6 +31,8 @@ def add_arguments(p) -> None:
 
 
 def _kind(data: dict) -> str:
+    if "study" in data:
+        return "study"
     if "operating" in data:
         return "loadcase"
     if "cad" in data:
@@ -40,12 +52,41 @@ def _recognised(features) -> str:
     )
 
 
+def validate_study(path: Path, loadcases: list[Path], allow_outside_paths: bool = False) -> str:
+    """A study file alone, then against each load case: every refusal of ``fe-crank
+    study`` before meshing (rates, limits, placements, the drawn counterweights against
+    the envelope and the crankpin, the candidates' shapes).  Candidates that cannot be
+    built inside a valid range are counted, not refused (the study reports them)."""
+    from fe_crank.io.loadcase import load_loadcase
+    from fe_crank.study.run import prepare
+    from fe_crank.study.spec import parse_study
+
+    spec = parse_study(path)
+    if not loadcases:
+        return (
+            f"study '{spec.name}': read alone (give --loadcase, or its load case among the files, "
+            "to check its webs and shapes)"
+        )
+    parts = []
+    for lcp in loadcases:
+        lc = load_loadcase(lcp, allow_outside_paths=allow_outside_paths or None)
+        _, _, cands = prepare(lc, spec)
+        bad = [c for c in cands if not c.buildable]
+        text = f"{len(cands)} candidates on {lcp}"
+        if bad:
+            text += f", {len(bad)} cannot be built (#{', #'.join(str(c.index) for c in bad)}: the study reports why)"
+        parts.append(text)
+    return f"study '{spec.name}': " + "; ".join(parts)
+
+
 def validate_file(path: Path, allow_outside_paths: bool = False) -> str:
     """Validate one file of any kind; return a one-line summary.  Raises InputError.
     A CAD geometry (a ``[cad]`` file, or a load case's) is read and recognised, and a
     load case's checked against its engine, as the check's geometry stage does."""
     data = read_toml(path)
     kind = _kind(data)
+    if kind == "study":
+        return validate_study(path, [], allow_outside_paths)
     if kind == "engine":
         from fe_crank.io.engine import load_engine
 
@@ -78,10 +119,28 @@ def validate_file(path: Path, allow_outside_paths: bool = False) -> str:
 
 def run(args) -> int:
     bad = 0
+    outside = getattr(args, "allow_outside_paths", False)
+    loadcases = [args.loadcase] if getattr(args, "loadcase", None) else None
     for path in args.files:
         try:
-            print(f"ok    {path}: {validate_file(path, getattr(args, 'allow_outside_paths', False))}")
+            if loadcases is None and _is_study(path):
+                loadcases = [p for p in args.files if _kind_or_none(p) == "loadcase"]
+            if _is_study(path):
+                print(f"ok    {path}: {validate_study(path, loadcases or [], outside)}")
+                continue
+            print(f"ok    {path}: {validate_file(path, outside)}")
         except FeCrankError as exc:
             bad += 1
             print(f"error {exc}", file=sys.stderr)
     return 2 if bad else 0
+
+
+def _kind_or_none(path: Path) -> str | None:
+    try:
+        return _kind(read_toml(path))
+    except FeCrankError:
+        return None
+
+
+def _is_study(path: Path) -> bool:
+    return _kind_or_none(path) == "study"

@@ -24,13 +24,30 @@ BIG = 10.0  # m: tools larger than any crank
 
 
 def _arc_points(occ, cx, cy, z, r, a0, a1, max_step=math.pi / 2):
-    """Points on a circle (centre cx, cy) from angle a0 to a1 (angles from +y towards +x)."""
-    n = max(1, math.ceil(abs(a1 - a0) / max_step - 1e-12))
-    pts = []
-    for k in range(n + 1):
-        a = a0 + (a1 - a0) * k / n
-        pts.append(occ.addPoint(cx + r * math.sin(a), cy + r * math.cos(a), z))
-    return pts
+    """Points on a circle (centre cx, cy) from angle a0 to a1 (angles from +y towards +x).
+
+    OpenCASCADE parametrises each circle (and the cylinder a web's arc is extruded to)
+    from its +x direction (a = 90 deg here): a face whose arc runs across that direction
+    straddles the periodic surface's seam, and gmsh then takes the edge at the arc's end
+    for a seam and fails on an uncut throw ("the 1D mesh seems not to be forming a
+    closed loop"; measured on the pear web of geometry/inline4.toml without a
+    counterweight).  The arc is therefore broken at that direction, then into steps of
+    at most ``max_step``.
+    """
+    lo, hi = min(a0, a1), max(a0, a1)
+    seams = [
+        a
+        for k in range(
+            math.floor((lo - math.pi / 2) / (2 * math.pi)), math.ceil((hi - math.pi / 2) / (2 * math.pi)) + 1
+        )
+        if lo + 1e-9 < (a := math.pi / 2 + 2 * math.pi * k) < hi - 1e-9
+    ]
+    breaks = [a0, *(seams if a1 > a0 else seams[::-1]), a1]
+    angles = [a0]
+    for b0, b1 in zip(breaks[:-1], breaks[1:], strict=True):
+        n = max(1, math.ceil(abs(b1 - b0) / max_step - 1e-12))
+        angles += [b0 + (b1 - b0) * k / n for k in range(1, n + 1)]
+    return [occ.addPoint(cx + r * math.sin(a), cy + r * math.cos(a), z) for a in angles]
 
 
 def _arc_curves(occ, pts, centre):

@@ -43,7 +43,7 @@ from fe_crank.balance.terms import point_term, rotating_force
 from fe_crank.errors import GeometryError, InputError
 from fe_crank.geometry.checks import check_geometry
 from fe_crank.geometry.shaft import ShaftLayout
-from fe_crank.geometry.spec import CounterweightSpec
+from fe_crank.geometry.spec import CounterweightSpec, ThrowSpec
 from fe_crank.model import Engine
 from fe_crank.study.spec import StudySpec
 
@@ -272,19 +272,27 @@ def candidates(
     return tuple(out)
 
 
-def residual(engine: Engine, speed: float, drawn: dict[Web, DrawnWeb], factors: dict[Web, float]) -> FreeForces:
-    """The free forces with the candidate's counterweights (module doc; reference z = 0)."""
+def residual(
+    engine: Engine,
+    speed: float,
+    drawn: dict[Web, DrawnWeb],
+    factors: dict[Web, float],
+    planes: dict[Web, float] | None = None,
+) -> FreeForces:
+    """The free forces with the candidate's counterweights (module doc; reference z = 0):
+    each web's k_w U_w opposite its pin at ``planes`` (default the drawn part's centroid)."""
     before = free_forces(engine, speed)
     terms = []
     for w, k in factors.items():
         if k == 0.0:
             continue
         d = drawn[w]
+        z = d.z if planes is None else planes[w]
         t = engine.throw(w[0])
         sh = engine.shaft(t.shaft)
         psi = sh.phase + sh.sense * t.angle + math.pi  # opposite the pin (a sector centred on -y)
         force = rotating_force(k * d.unbalance * (sh.speed_ratio * speed) ** 2, psi, sh.sense)
-        terms.append(point_term("counterweights", sh.speed_ratio, force, (sh.centre[0], sh.centre[1], d.z)))
+        terms.append(point_term("counterweights", sh.speed_ratio, force, (sh.centre[0], sh.centre[1], z)))
     return before.with_terms(terms)
 
 
@@ -322,3 +330,103 @@ def achieved_unbalance(
         mp = mass_properties(layout.geometry, dataclasses.replace(th.spec, counterweights=(new,)))
         out[s.web] = (s.factor * drawn[s.web].unbalance, mp.counterweight_unbalance(s.web[1]))
     return out
+
+
+def written_throw(th_spec: ThrowSpec, cand: Candidate) -> ThrowSpec:
+    """The throw the candidate writes (``study.outputs.write_candidate``): each placed
+    web's counterweight the solved sector, a drawn web left out without one."""
+    shapes = {s.web: s for s in cand.shapes}
+    cws = []
+    for cw in th_spec.counterweights:
+        s = shapes.get((th_spec.name, cw.web))
+        if s is None or s.factor == 0.0 or s.sector is None:
+            continue
+        cws.append(
+            dataclasses.replace(
+                cw,
+                outer_radius=s.sector.r_outer,
+                inner_radius=s.sector.r_inner,
+                angle=s.sector.angle,
+                thickness=s.sector.thickness,
+            )
+        )
+    return dataclasses.replace(th_spec, counterweights=tuple(cws))
+
+
+@dataclass(frozen=True)
+class WrittenMass:
+    """The shaft a candidate writes, from its solids' exact mass properties
+    (``geometry.mass``; docs/study.md, "The shape that reaches each mass").
+
+    ``load_factors``: per drawn web, the factor on the drawn counterweight's centrifugal
+    case whose m r equals the written shaft's change on that web: the written
+    counterweight's m r plus the web material the drawn prism took and the written one
+    leaves to the web (the web part's m r, written minus drawn), projected on the drawn
+    counterweight's direction; ``planes``: the axial position (m, shaft) of that m r's
+    first moment."""
+
+    exact: bool  # False: a shape could not be built, the drawn one scaled stands in
+    counterweight_mass: float  # kg, the written counterweights together
+    mass_change: float  # kg, the written shaft against the drawn one
+    polar_inertia_change: float  # kg m^2
+    unbalance: float  # kg m, the written counterweights' m r together
+    load_factors: dict[Web, float]
+    planes: dict[Web, float]
+
+
+class ThrowSolidCache:
+    """``mass_properties`` of throw solids, each distinct solid (its counterweights'
+    dimensions; name, angle and bolts do not change it) built once."""
+
+    def __init__(self, layout: ShaftLayout):
+        self.geometry = layout.geometry
+        self._by: dict = {}
+
+    def of(self, spec: ThrowSpec):
+        from fe_crank.geometry.mass import mass_properties
+
+        key = tuple(dataclasses.replace(cw, bolted=None) for cw in spec.counterweights)
+        if key not in self._by:
+            self._by[key] = mass_properties(self.geometry, spec)
+        return self._by[key]
+
+
+def written_mass(
+    layout: ShaftLayout, cand: Candidate, drawn: dict[Web, DrawnWeb], mass: dict, solids: ThrowSolidCache
+) -> WrittenMass:
+    """The candidate's written shaft (class doc); ``mass``: the drawn throws' properties."""
+    if not cand.buildable:
+        return WrittenMass(
+            False,
+            sum(k * drawn[w].mass for w, k in cand.factors.items()),
+            sum((k - 1.0) * drawn[w].mass for w, k in cand.factors.items()),
+            sum((k - 1.0) * drawn[w].polar_inertia for w, k in cand.factors.items()),
+            sum(k * drawn[w].unbalance for w, k in cand.factors.items()),
+            dict(cand.factors),
+            {w: d.z for w, d in drawn.items()},
+        )
+    cw_mass = d_mass = d_j = u_sum = 0.0
+    factors: dict[Web, float] = {}
+    planes: dict[Web, float] = {}
+    for th in layout.throws:
+        old = mass[th.name]
+        new = solids.of(written_throw(th.spec, cand))
+        d_mass += new.total.mass - old.total.mass
+        d_j += new.total.inertia_axis - old.total.inertia_axis
+        for w in (1, 2):
+            part = new.parts.get(f"counterweight_{w}")
+            if part is not None:
+                cw_mass += part.mass
+                u_sum += part.unbalance
+            d = drawn.get((th.name, w))
+            if d is None:
+                continue
+            uw = np.asarray(d.unbalance_vector)
+            web_new, web_old = new.parts[f"web_{w}"], old.parts[f"web_{w}"]
+            items = [(web_new, 1.0), (web_old, -1.0)] + ([(part, 1.0)] if part is not None else [])
+            u = sum(s * np.asarray(p.unbalance_vector) for p, s in items)
+            first = sum(s * np.asarray(p.unbalance_vector) * p.centroid[2] for p, s in items)
+            proj = float(u @ uw)
+            factors[(th.name, w)] = proj / float(uw @ uw)
+            planes[(th.name, w)] = th.z + (float(first @ uw) / proj if proj != 0.0 else d.z - th.z)
+    return WrittenMass(True, cw_mass, d_mass, d_j, u_sum, factors, planes)

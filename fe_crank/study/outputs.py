@@ -29,6 +29,8 @@ COLUMNS = (
     ("peak_main_bearing_load_n", "peak bearing load N"),
     ("peak_specific_load_mpa", "peak specific load MPa"),
     ("max_web_bending_moment_nm", "max web moment N m"),
+    ("min_oil_film_um", "min oil film um"),
+    ("peak_film_pressure_mpa", "peak film pressure MPa"),
     ("free_force_first_order_n", "free force 1st N"),
     ("free_moment_first_order_nm", "free moment 1st N m"),
     ("buildable", "buildable"),
@@ -50,6 +52,8 @@ def row(r: CandidateResult, recommended: bool) -> dict:
         "peak_main_bearing_load_n": r.peak_bearing_load,
         "peak_specific_load_mpa": r.peak_specific_load / 1e6,
         "max_web_bending_moment_nm": r.max_web_moment,
+        "min_oil_film_um": None if r.film is None else r.film.min_film * 1e6,
+        "peak_film_pressure_mpa": None if r.film is None else r.film.peak_pressure / 1e6,
         "free_force_first_order_n": r.free_force,
         "free_moment_first_order_nm": r.free_moment,
         "buildable": c.buildable,
@@ -64,6 +68,13 @@ def detail(r: CandidateResult) -> dict:
         **row(r, False),
         "peak_where": r.peak_where,
         "web_moment_where": r.web_where,
+        "oil_film": None
+        if r.film is None
+        else {
+            "min_film_where": r.film.min_film_where,
+            "peak_pressure_where": r.film.peak_pressure_where,
+            "every_orbit_repeated": r.film.converged,
+        },
         "unbalance_kg_m": r.unbalance,
         "balance_rate_by_throw": {k: (None if math.isnan(v) else v) for k, v in r.rates.items()},
         "bearing_peak_n": r.bearing_peaks,
@@ -95,12 +106,16 @@ def _fmt(v) -> str:
 
 def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> dict[str, Path]:
     """The table in CSV, JSON and markdown; ``achieved``: per web of the written
-    candidate (screened m r, the written sector solid's m r), kg m."""
+    candidate (the m r aimed at, the written sector solid's m r, which the screening
+    takes), kg m."""
     achieved = achieved or {}
     best = res.recommended
     rows = [row(r, r is best) for r in res.results]
+    # the oil-film columns only where a bearing has a film
+    cols = [(k, h) for k, h in COLUMNS if any(x[k] is not None for x in rows)]
+    rows = [{k: x[k] for k, _ in cols} for x in rows]
     buf = io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=[k for k, _ in COLUMNS], lineterminator="\n")
+    w = csv.DictWriter(buf, fieldnames=[k for k, _ in cols], lineterminator="\n")
     w.writeheader()
     for x in rows:
         w.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in x.items()})
@@ -118,17 +133,17 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
         "recommended": None if best is None else best.candidate.index,
         "why": res.why,
         "written_unbalance_kg_m": {
-            f"{t}.{w}": {"screened": a, "written_solid": b} for (t, w), (a, b) in achieved.items()
+            f"{t}.{w}": {"aimed_at": a, "written_solid": b} for (t, w), (a, b) in achieved.items()
         },
         "notes": list(res.notes),
         "candidates": [detail(r) | {"recommended": r is best} for r in res.results],
     }
     write_atomic(paths["json"], json.dumps(doc, indent=1, allow_nan=False) + "\n")
     lines = [f"# Counterweight study: {res.spec.name}", "", f"Load case: `{res.loadcase.source_file}`", ""]
-    lines.append("| " + " | ".join(h for _, h in COLUMNS) + " |")
-    lines.append("|" + "---|" * len(COLUMNS))
+    lines.append("| " + " | ".join(h for _, h in cols) + " |")
+    lines.append("|" + "---|" * len(cols))
     for x in rows:
-        lines.append("| " + " | ".join(_fmt(x[k]) for k, _ in COLUMNS) + " |")
+        lines.append("| " + " | ".join(_fmt(x[k]) for k, _ in cols) + " |")
     lines += [
         "",
         f"**Recommended** ({res.spec.rule}): "
@@ -138,8 +153,8 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
     ]
     for (t, w), (a, b) in achieved.items():
         lines.append(
-            f"* web {t}.{w}: m r {a:.5g} kg m screened, {b:.5g} kg m of the written sector's solid "
-            f"({(b / a - 1) * 100:+.2f} %)"
+            f"* web {t}.{w}: m r {a:.5g} kg m aimed at, {b:.5g} kg m of the written sector's solid "
+            f"({(b / a - 1) * 100:+.2f} %; the screening takes the written solid's)"
         )
     lines.append("")
     for r in res.results:

@@ -15,7 +15,18 @@ from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import engine_cycles
-from fe_crank.study.candidates import Candidate, DrawnWeb, candidates, drawn_webs, first_order, residual
+from fe_crank.study.candidates import (
+    Candidate,
+    DrawnWeb,
+    ThrowSolidCache,
+    WrittenMass,
+    candidates,
+    drawn_webs,
+    first_order,
+    residual,
+    written_mass,
+)
+from fe_crank.study.film import FilmMetrics, film_metrics
 from fe_crank.study.screen import StudyShaft, candidate_loads, engine_states, state_base, study_shaft
 from fe_crank.study.spec import StudySpec
 
@@ -39,6 +50,8 @@ class CandidateResult:
     free_force: float  # N, first order at the highest speed
     free_moment: float  # N m
     failed: tuple[str, ...]  # limits not met (with the values)
+    written: WrittenMass | None = None  # the written shaft's mass properties and load factors
+    film: FilmMetrics | None = None  # the hydrodynamic bearings' film; None without one
 
     @property
     def meets_limits(self) -> bool:
@@ -82,11 +95,27 @@ def prepare(lc: LoadCase, spec: StudySpec):
         raise InputError(
             "the geometry draws no counterweight: the study scales the drawn ones", file=spec.file, key="study"
         )
+    if not any(b.law.film is not None for b in layout.bearings):
+        for k in ("min_oil_film", "max_film_pressure"):
+            if k in spec.limits:
+                raise InputError(
+                    "an oil-film limit needs a hydrodynamic main bearing "
+                    '(a [shaft] bearing with model = "hydrodynamic"); the load case has none',
+                    file=spec.file,
+                    key=f"study.limits.{k}",
+                )
     return layout, drawn, candidates(spec, drawn, layout, lc.engine)
 
 
 def _metrics(
-    cand: Candidate, loads, shaft: StudyShaft, drawn: dict[tuple, DrawnWeb], lc: LoadCase, spec: StudySpec, w_max: float
+    cand: Candidate,
+    loads,
+    shaft: StudyShaft,
+    drawn: dict[tuple, DrawnWeb],
+    lc: LoadCase,
+    spec: StudySpec,
+    w_max: float,
+    written: WrittenMass,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -96,9 +125,13 @@ def _metrics(
     wmax, wwhere = 0.0, ""
     web_names = [f"{th.name}.{w}" for th in layout.throws for w in (1, 2)]
     for sl in loads:
-        mag = np.hypot(sl.bearings[..., 0], sl.bearings[..., 1])  # (n, nb)
+        sets = sl.bearings[None] if sl.bearing_sets is None else sl.bearing_sets
+        mags = np.hypot(sets[..., 0], sets[..., 1])  # (sets, n, nb)
         for j, b in enumerate(layout.bearings):
-            p, m = float(mag[:, j].max()), float(mag[:, j].mean())
+            # the envelope over the law sets: per bearing the set of the largest peak
+            # (its mean with it), as the check's main-bearing criteria (fe.shaft.whole_shaft.envelope)
+            s = int(np.argmax(mags[:, :, j].max(axis=1)))
+            p, m = float(mags[s, :, j].max()), float(mags[s, :, j].mean())
             peaks[b.name] = max(peaks.get(b.name, 0.0), p)
             means[b.name] = max(means.get(b.name, 0.0), m)
             if p > peak:
@@ -112,34 +145,36 @@ def _metrics(
             wwhere = f"web {web_names[i]}, {sl.state.label} at {sl.state.speed * 30 / math.pi:.0f} rpm"
     dj = layout.geometry.journal_diameter
     spec_load = max(peaks[b.name] / (dj * b.width) for b in layout.bearings)
-    f1, m1 = first_order(residual(lc.engine, w_max, drawn, cand.factors))
-    cw_mass = sum(k * drawn[w].mass for w, k in cand.factors.items())
-    d_mass = sum((k - 1.0) * drawn[w].mass for w, k in cand.factors.items())
-    d_j = sum((k - 1.0) * drawn[w].polar_inertia for w, k in cand.factors.items())
-    u = sum(k * drawn[w].unbalance for w, k in cand.factors.items())
+    f1, m1 = first_order(residual(lc.engine, w_max, drawn, written.load_factors, written.planes))
     rates = {}
     for th in layout.throws:
         t = lc.engine.throw(th.name)
         mr = rotating_mass(lc.engine, th.name) * t.crank_radius
-        own = sum(k * drawn[w].unbalance for w, k in cand.factors.items() if w[0] == th.name)
+        own = sum(k * drawn[w].unbalance for w, k in written.load_factors.items() if w[0] == th.name)
         rates[th.name] = own / mr if mr > 0 else math.nan
+    film = film_metrics(layout, loads)
     values = {
         "max_main_bearing_load": (peak, "N"),
         "max_main_bearing_specific_load": (spec_load, "Pa"),
         "max_web_bending_moment": (wmax, "N m"),
         "max_free_force": (f1, "N"),
         "max_free_moment": (m1, "N m"),
-        "max_counterweight_mass": (cw_mass, "kg"),
+        "max_counterweight_mass": (written.counterweight_mass, "kg"),
+        "max_film_pressure": (film.peak_pressure if film else math.nan, "Pa"),
     }
     failed = tuple(
-        f"{k} {values[k][0]:.4g} > {lim:.4g} {values[k][1]}" for k, lim in spec.limits.items() if values[k][0] > lim
+        f"{k} {values[k][0]:.4g} > {lim:.4g} {values[k][1]}"
+        for k, lim in spec.limits.items()
+        if k in values and values[k][0] > lim
     )
+    if "min_oil_film" in spec.limits and film is not None and film.min_film < spec.limits["min_oil_film"]:
+        failed += (f"min_oil_film {film.min_film * 1e6:.4g} < {spec.limits['min_oil_film'] * 1e6:.4g} um",)
     return CandidateResult(
         cand,
-        cw_mass,
-        d_mass,
-        d_j,
-        u,
+        written.counterweight_mass,
+        written.mass_change,
+        written.polar_inertia_change,
+        written.unbalance,
         rates,
         peak,
         where,
@@ -152,6 +187,8 @@ def _metrics(
         f1,
         m1,
         failed,
+        written,
+        film,
     )
 
 
@@ -188,10 +225,12 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     shaft = study_shaft(layout, lc.material, lc.fe, size=size, cache_dir=cache_dir, max_elements=max_elements)
     bases = [state_base(shaft, s) for s in states]
     w_max = max(s.speed for s in states)
+    solids = ThrowSolidCache(layout)
     results = []
     for c in cands:
-        loads = [candidate_loads(shaft, b, c.factors, drawn) for b in bases]
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max))
+        wm = written_mass(layout, c, drawn, shaft.mass, solids)
+        loads = [candidate_loads(shaft, b, wm.load_factors, drawn) for b in bases]
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:

@@ -33,7 +33,7 @@ import numpy as np
 from fe_crank.fe.shaft.cases import ShaftCases, solve_cases
 from fe_crank.fe.shaft.cycle import solve_cycle
 from fe_crank.fe.shaft.model import ShaftFeOptions, build_shaft_model
-from fe_crank.fe.shaft.whole_shaft import shaft_cycle_of, throw_masses
+from fe_crank.fe.shaft.whole_shaft import envelope_laws, shaft_cycle_of, throw_masses
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult, analyse
@@ -56,6 +56,9 @@ class StudyShaft:
     mass: dict
     laws: list
     n_dof: int
+    #: the law sets the main-bearing loads are enveloped over, the stated one first
+    #: (``fe.shaft.whole_shaft.envelope_laws``: the check's main-bearing criteria take the same)
+    law_sets: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -64,8 +67,10 @@ class StateLoads:
     frame; per web (n, 2) N m."""
 
     state: EngineState
-    bearings: np.ndarray  # (n, nb, 2)
-    webs: np.ndarray  # (n, n_webs, 2)
+    bearings: np.ndarray  # (n, nb, 2), the stated bearing law
+    webs: np.ndarray  # (n, n_webs, 2), the stated bearing law
+    #: (sets, n, nb, 2): every law set of ``StudyShaft.law_sets`` (the stated one first)
+    bearing_sets: np.ndarray | None = None
 
 
 def web_case(web: Web) -> str:
@@ -88,7 +93,8 @@ def study_shaft(layout: ShaftLayout, material, fe, *, size, cache_dir, max_eleme
     }
     cases = solve_cases(model, extra)
     model.release_recovery()  # the study takes no stresses: the largest arrays go
-    return StudyShaft(layout, cases, throw_masses(layout), [b.law for b in layout.bearings], sm.n_dof)
+    laws = [b.law for b in layout.bearings]
+    return StudyShaft(layout, cases, throw_masses(layout), laws, sm.n_dof, envelope_laws(layout, laws))
 
 
 def engine_states(engine, operating, cycles: EngineCycles) -> tuple[EngineState, ...]:
@@ -155,6 +161,7 @@ def candidate_loads(
         W[:, cases.index(web_case(web))] = k * w2
     f, _, _ = solve_cycle(cases, W, shaft.laws)
     bearings = _to_engine(-f, base.psi[:, None])
+    sets = [bearings] + [_to_engine(-solve_cycle(cases, W, laws)[0], base.psi[:, None]) for laws in shaft.law_sets[1:]]
     # web moments: the change of the bearing forces and the counterweights' forces
     dF = -(bearings - base.bearings_off)  # forces on the shaft, engine frame
     g = layout.geometry
@@ -187,4 +194,4 @@ def candidate_loads(
                 continue
             M += _moment(0.5 * (z0 + b_) - zc, (b_ - z0) / (z1 - z0) * F)
         webs[:, i] += M
-    return StateLoads(base.state, bearings, webs)
+    return StateLoads(base.state, bearings, webs, np.stack(sets))

@@ -18,6 +18,8 @@ A study TOML beside the load case (``fe-crank study LOADCASE STUDY``)::
     max_free_force = "100 N"                           # first-order resultant, amplitude
     max_free_moment = "200 N*m"                        # first-order couple, amplitude
     max_counterweight_mass = "6 kg"                    # the shaft's counterweights together
+    min_oil_film = "1 um"                              # hydrodynamic bearings only
+    max_film_pressure = "300 MPa"                      # hydrodynamic bearings only
 
     [[study.placements]]
     name = "8 counterweights"
@@ -51,6 +53,8 @@ LIMITS = {
     "max_free_force": "force",
     "max_free_moment": "moment",
     "max_counterweight_mass": "mass",
+    "min_oil_film": "length",  # hydrodynamic bearings: the least h_min (docs/study.md)
+    "max_film_pressure": "pressure",  # hydrodynamic bearings: the peak film pressure
 }
 KEYS = (
     "name",
@@ -171,8 +175,9 @@ def parse_study(path: str | Path) -> StudySpec:
     for i, o in enumerate(offsets):
         if o != 0.0:
             raise InputError(
-                "a counterweight turned from opposite its pin cannot be written to a geometry file "
-                "(counterweights are centred opposite the pin); only 0 deg is screened",
+                "a counterweight turned from opposite its pin cannot be screened or written: the geometry "
+                "format centres every counterweight sector on the web's anti-pin direction (the mesher's "
+                "mirror plane, the fillet tools and the balance terms rely on it); only 0 deg",
                 file=file,
                 key=f"study.offset[{i}]",
             )
