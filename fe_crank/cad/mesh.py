@@ -37,8 +37,18 @@ from fe_crank.errors import GeometryError
 from fe_crank.mesh.cache import mesher_key
 from fe_crank.mesh.fields import apply_fields, bore_field, surface_field, torus_distance, torus_field, web_field
 from fe_crank.mesh.generate import finish, generate, through_cache
+from fe_crank.mesh.interface import imprint_sectors
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, FILLET_SAFETY, MeshOptions, resolve_options
 from fe_crank.mesh.types import ThrowMesh
+
+
+@dataclasses.dataclass(frozen=True)
+class _Parts:
+    """The built throw's named gmsh entities, as ``mesh.interface.imprint_sectors`` reads them."""
+
+    volumes: dict[str, list[int]]
+    surfaces: dict[str, list[int]]
+    fillet_radii: dict[str, float]
 
 
 def cad_cache_key(cad: CadInput, sha256: str, throw: str, opt: MeshOptions) -> str:
@@ -141,7 +151,16 @@ def _build(cad: CadInput, throw: str | int | None, opt: MeshOptions, folder: Pat
         prep = prepare(gmsh, cad)
         index = prep.index(throw)
         feats, built, _, frame = throw_features(
-            gmsh, prep.read.shaft, prep.faces, prep.nbrs, prep.axis, prep.raw, index, cad, prep.tol
+            gmsh,
+            prep.read.shaft,
+            prep.faces,
+            prep.nbrs,
+            prep.axis,
+            prep.raw,
+            index,
+            cad,
+            prep.tol,
+            joinable=opt.interface_sectors > 1,
         )
         from fe_crank.geometry.estimate import MAX_ELEMENTS
 
@@ -165,6 +184,8 @@ def _build(cad: CadInput, throw: str | int | None, opt: MeshOptions, folder: Pat
             gmsh.model.addPhysicalGroup(3, tags, name=name)
         for name, tags in surfaces.items():
             gmsh.model.addPhysicalGroup(2, tags, name=name)
+        if opt.interface_sectors > 1:  # end faces that join the turned neighbours node to node
+            surfaces = imprint_sectors(gmsh, _Parts(built.volumes, surfaces, {}), opt.interface_sectors).surfaces
         radii = _size_fields(gmsh, feats, surfaces, built.volumes, opt)
         min_quality, straightened = generate(gmsh, feats.name, cad.file.name, opt)
         mesh = model_to_skfem()

@@ -12,15 +12,21 @@ the counterweights' built m r per engine throw are measured on the recognised th
 
 from __future__ import annotations
 
+import dataclasses
+
 from fe_crank.assess.throw_geometry import cad_throws
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad import CadFeatures, CadInput, recognise
 from fe_crank.cad.engine import engine_keys
+from fe_crank.cad.whole import cad_shaft_layout, shared_meshes
 from fe_crank.check.options import CheckOptions
 from fe_crank.errors import InputError
+from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.io.geometry import COUNTERWEIGHT_STRESS_QUANTITIES
-from fe_crank.io.loadcase import LoadCase
+from fe_crank.io.loadcase import WHOLE_SHAFT_QUANTITIES, LoadCase
+from fe_crank.io.shaft import WIDTH_CRITERIA
 from fe_crank.mesh.plan import mesh_plan
+from fe_crank.mesh.shaft import shaft_options
 from fe_crank.outputs import GeometryModel
 
 
@@ -70,13 +76,56 @@ def recognise_case(lc: LoadCase, cad: CadInput) -> tuple[CadFeatures, dict[str, 
     return features, keys
 
 
+def cad_layout(lc: LoadCase, cad: CadInput, features: CadFeatures) -> ShaftLayout | None:
+    """The drawn whole shaft (``fe_crank.cad.whole``) when the check models it: a load
+    case with a material whose engine spreads several throws along one shaft and a
+    drawing of them; None where no whole shaft is wanted, or where it cannot be built
+    from the drawing and no criterion needs it (the throws then checked one by one, as
+    before).  A main-bearing criterion on a drawing the whole-shaft model cannot take is
+    refused with the reason."""
+    engine = lc.engine
+    z = [t.axial_position for t in engine.throws]
+    if lc.material is None or len(engine.shafts) != 1 or len(z) < 2 or max(z) - min(z) <= 0:
+        return None
+    needs = [lim.key for lim in (lc.criteria.limits if lc.criteria else ()) if lim.quantity in WHOLE_SHAFT_QUANTITIES]
+    if len(features.throws) < 2 and not needs:
+        return None
+    try:
+        layout = cad_shaft_layout(features, cad, engine, engine_file=lc.engine_file or lc.source_file)
+    except InputError:
+        if needs:
+            raise
+        return None
+    widths = [lim for lim in (lc.criteria.limits if lc.criteria else ()) if lim.quantity in WIDTH_CRITERIA]
+    if widths:  # a drawing states no bearing shell: the journal's flat would under-state the specific load
+        raise InputError(
+            f"divides each main bearing's peak load by its projected area (journal diameter x bearing width); the "
+            f"CAD file {cad.file.name} draws the journals, not the bearing shells on them (the journal's flat "
+            f"between its fillets, {layout.bearings[0].width * 1e3:.3g} mm, is not a bearing width): the specific "
+            "load of a drawn shaft is not offered; drop the criterion (the main-bearing load criterion is)",
+            file=lc.source_file,
+            key=widths[0].key,
+        )
+    return layout
+
+
 def cad_geometry_stage(
     lc: LoadCase, cad: CadInput, options: CheckOptions, balance: BalanceResult | None
 ) -> GeometryModel:
-    """The geometry stage for a CAD file (module docstring)."""
+    """The geometry stage for a CAD file (module docstring); with the whole shaft
+    (``cad_layout``) every engine throw's model is its drawn throw's mesh with the whole
+    shaft's end-face sectors (the first of the throws that are the same solid,
+    ``cad.whole.shared_meshes``; one mesh for both models, as a parametric shaft's)."""
     features, keys = recognise_case(lc, cad)
+    layout = cad_layout(lc, cad, features)
     plan = mesh_plan(
         keys, lc.mesh, size=options.mesh_size, max_elements=options.max_elements, cache_dir=options.cache_dir
     )
     design = balance.design if balance is not None else None
-    return GeometryModel(plan, cad_throws(features, cad, plan.throws, lc.engine, design), None, features)
+    throws = cad_throws(features, cad, plan.throws, lc.engine, design)
+    if layout is not None:
+        shared = shared_meshes(features)
+        plan = dataclasses.replace(
+            plan, options=shaft_options(layout, plan.options), throws={k: shared[v] for k, v in plan.throws.items()}
+        )
+    return GeometryModel(plan, throws, None, features, shaft=layout)

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -31,7 +32,7 @@ from scipy.spatial import cKDTree
 from skfem import Mesh
 
 from fe_crank.errors import InputError, MeshError
-from fe_crank.geometry.shaft import ShaftLayout
+from fe_crank.geometry.shaft import PlacedThrow, ShaftLayout
 from fe_crank.mesh.build import mesh_throw
 from fe_crank.mesh.cache import cache_key
 from fe_crank.mesh.extrude import extrude, face_disc
@@ -131,8 +132,12 @@ def mesh_shaft(
     size: str | MeshOptions = "coarse",
     cache_dir=DEFAULT_CACHE_DIR,
     max_elements: int | None = None,
+    throw_mesh: Callable[[PlacedThrow, MeshOptions], tuple[str, ThrowMesh]] | None = None,
 ) -> ShaftMesh:
-    """Mesh the whole shaft as joined pieces (module doc)."""
+    """Mesh the whole shaft as joined pieces (module doc).  ``throw_mesh``: (key, mesh)
+    of a placed throw meshed with the given options (its end faces split into their
+    sectors), for a shaft whose throws are not the layout's parametric ones (a drawn
+    shaft, ``fe_crank.cad.whole``); default ``mesh_throw`` of the layout's geometry."""
     angles = throw_angles(layout)
     opt = shaft_options(layout, size)
     n = opt.interface_sectors
@@ -140,7 +145,11 @@ def mesh_shaft(
     meshes, throw_meshes, pieces = {}, {}, []
     keys = []
     for t, a in zip(layout.throws, angles):
-        key = cache_key(g, t.spec, opt)
+        if throw_mesh is not None:
+            key, tm = throw_mesh(t, opt)
+            meshes[key], throw_meshes[key] = tm.mesh, tm
+        else:
+            key = cache_key(g, t.spec, opt)
         if key not in meshes:
             tm = mesh_throw(g, t.spec, size=opt, cache_dir=cache_dir, max_elements=max_elements)
             meshes[key], throw_meshes[key] = tm.mesh, tm

@@ -1,0 +1,279 @@
+"""The whole crankshaft as drawn: the recognised throws placed on their drawn bearings.
+
+``cad_shaft_layout`` gives the ``fe_crank.geometry.shaft.ShaftLayout`` of a drawing of
+several throws (its throw positions, journals and bearing centres as drawn, the engine's
+throw angles, which ``fe_crank.cad.engine`` has checked against the drawing), and
+``cad_shaft_mesh`` its mesh as the parametric whole shaft is meshed
+(``fe_crank.mesh.shaft.mesh_shaft``): each throw's mesh turned and shifted to its place,
+its end faces at the bearing centres split into equal sectors with rotated-copy meshes
+(``fe_crank.mesh.interface``, the journal redrawn there as a round bar whose seam lies
+on the throw frame's ``+y``: ``fe_crank.cad.model.redraw_ends``), so that neighbouring
+throws meet node to node; the end journals' outer halves extruded from the end faces.
+
+Throws that are the same solid share one mesh (as a parametric shaft's equal throws do):
+each throw's recognised dimensions equal an earlier throw's to ``SAME_TOL`` (relative to
+the crank radius) and its exact mass properties (volume, centroid, inertia tensor of the
+throw between its bearing centres, in its throw frame) to ``SAME_TOL`` relative; the
+others are meshed each on its own, with end faces that still meet node to node (the same
+journal, the same sectors; checked when the shaft is joined).  The journals, pin length,
+webs and bearing centres must be every throw's the same (``COMMON``: one geometry carries
+them for the whole-shaft stage); a drawing whose throws differ there is refused, naming
+the throw and the quantity, as is a drawing with bolted bodies (their forces on the shaft
+are not in the whole-shaft model) or one whose throws are not evenly pitched (the
+bearing centres of neighbours must meet).
+
+The ``ShaftLayout``'s ``geometry`` carries the drawing's recognised dimensions that the
+whole-shaft stage reads (crank radius, journal and pin diameters, pin length, web
+thickness, bearing centre to web, fillet radii; no counterweight specs: the web moments
+take a drawn counterweight over its web's thickness, ``fe.shaft_cycle``); its web outline is the web's recognised side radius
+(no parametric solid is built from it).  The bearings are ``ShaftSpec``'s defaults: one
+rigid main bearing per journal, named ``"1"``, ``"2"``, ... from the front, their widths
+the drawn journals' flats between the fillets (not stated: no specific-load criterion).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fe_crank.cad.config import CadInput
+from fe_crank.cad.features import CadFeatures, ThrowFeatures
+from fe_crank.errors import InputError
+from fe_crank.geometry.shaft import JournalSpan, PlacedThrow, ShaftLayout, main_bearings
+from fe_crank.geometry.spec import (
+    DEFAULT_STIFFNESS_RANGE,
+    CrankGeometry,
+    ShaftSpec,
+    ThrowSpec,
+    WebOutline,
+)
+
+#: relative agreement of two drawn throws that one mesh stands for
+SAME_TOL = 1e-9
+
+
+def _dims(t: ThrowFeatures) -> dict[str, float]:
+    out = {
+        "crank radius": t.crank_radius,
+        "crankpin diameter": t.crankpin.diameter,
+        "crankpin bore diameter": t.crankpin.bore_diameter,
+        "pin length": t.pin_length,
+    }
+    for k in (0, 1):
+        out[f"journal_{k + 1} diameter"] = t.journals[k].diameter
+        out[f"journal_{k + 1} bore diameter"] = t.journals[k].bore_diameter
+        out[f"bearing centre {k + 1} (z)"] = t.bearings[k].z
+        out[f"web_{k + 1} outer face (z)"] = t.webs[k].z_outer
+        out[f"web_{k + 1} inner face (z)"] = t.webs[k].z_inner
+    for f in t.fillets:
+        out[f"{f.name} radius"] = f.radius
+    out["oil bores"] = float(len(t.oil_bores))
+    out["counterweights"] = float(len(t.counterweights))
+    return out
+
+
+def _mass(t: ThrowFeatures) -> dict[str, float]:
+    m = t.mass.total
+    out = {"volume": m.volume}
+    for i, c in enumerate(m.centroid):
+        out[f"centroid {'xyz'[i]}"] = c
+    for i in range(3):
+        for j in range(i, 3):
+            out[f"inertia {'xyz'[i]}{'xyz'[j]}"] = m.inertia[i][j]
+    return out
+
+
+#: the dimensions every throw of a whole shaft shares (its journals, pin length and webs:
+#: one ``CrankGeometry`` carries them for the whole-shaft stage)
+COMMON = (
+    "crank radius",
+    "crankpin diameter",
+    "pin length",
+    "journal_1 diameter",
+    "journal_2 diameter",
+    "bearing centre 1 (z)",
+    "bearing centre 2 (z)",
+    "web_1 outer face (z)",
+    "web_2 outer face (z)",
+    "web_1 inner face (z)",
+    "web_2 inner face (z)",
+)
+
+
+def _differs(a: ThrowFeatures, b: ThrowFeatures, keys=None) -> tuple[str, float | None, float] | None:
+    """The first quantity in which throw ``a`` differs from ``b`` (module doc), or None."""
+    scale = b.crank_radius
+    da, db, ma, mb = _dims(a), _dims(b), _mass(a), _mass(b)
+    inertia = max(abs(v) for k, v in mb.items() if k.startswith("inertia"))
+    for k, v in db.items():
+        if (keys is None or k in keys) and (k not in da or abs(da[k] - v) > SAME_TOL * scale):
+            return k, da.get(k), v
+    if keys is not None:
+        return None
+    if set(da) != set(db):
+        return "fillets", float(len(da)), float(len(db))
+    for k, v in mb.items():
+        tol = SAME_TOL * (mb["volume"] if k == "volume" else inertia if k.startswith("inertia") else scale)
+        if abs(ma[k] - v) > tol:
+            return k, ma[k], v
+    return None
+
+
+def shared_meshes(features: CadFeatures) -> dict[str, str]:
+    """Throw name -> the name of the first throw that is the same solid (itself where
+    none before it is): the throws one mesh stands for."""
+    out: dict[str, str] = {}
+    for i, t in enumerate(features.throws):
+        out[t.name] = next((u.name for u in features.throws[:i] if _differs(t, u) is None), t.name)
+    return out
+
+
+def require_common_dimensions(features: CadFeatures, cad: CadInput) -> None:
+    """Every throw's journals, pin length, webs and bearing centres the first throw's
+    (``COMMON``), else an ``InputError`` naming the throw and the quantity."""
+    first = features.throws[0]
+    for t in features.throws[1:]:
+        bad = _differs(t, first, COMMON)
+        if bad is not None:
+            what, a, b = bad
+            raise InputError(
+                f"the whole-shaft model takes one set of journal, pin and web dimensions for every throw; throw "
+                f"{t.name} of the CAD file differs from throw {first.name} in its {what} ({a} against {b} m, in the "
+                "throw frame): a drawing whose throws differ there is checked throw by throw only; drop the "
+                "main-bearing criteria",
+                file=str(cad.file),
+                key=cad.file_key,
+            )
+
+
+def _shaft_position(features: CadFeatures, t: ThrowFeatures) -> float:
+    return sum((o - p) * e for o, p, e in zip(t.origin, features.axis.point, features.axis.direction, strict=True))
+
+
+def _end_reach(features: CadFeatures, t: ThrowFeatures, side: int) -> float:
+    """Throw-frame z of the end journal's far end (its cylinder's extent, or the free
+    end face where the journal ends in one)."""
+    j, b = t.journals[side], t.bearings[side]
+    if b.free_end:
+        return b.z
+    return j.z_min if side == 0 else j.z_max
+
+
+def recognised_geometry(features: CadFeatures, cad: CadInput, angles: dict[str, float]) -> CrankGeometry:
+    """The dimensions of the drawing's first throw as the whole-shaft stage reads them
+    (module doc); ``angles``: throw name -> the engine's angle."""
+    t = features.throws[0]
+    thick = t.webs[0].thickness
+    radius = {f.name: f.radius for f in t.fillets}
+    throws = tuple(ThrowSpec(ft.name, angles[ft.name]) for ft in features.throws)
+    return CrankGeometry(
+        name=cad.file.name,
+        density=cad.density,
+        crank_radius=t.crank_radius,
+        journal_diameter=t.journals[0].diameter,
+        journal_length=t.bearings[1].z - t.webs[1].z_outer,
+        crankpin_diameter=t.crankpin.diameter,
+        crankpin_length=t.pin_length,
+        web_thickness=thick,
+        web=WebOutline("stadium", t.webs[0].side_radius, t.webs[0].side_radius),
+        crankpin_fillet=radius.get("crankpin_fillet_1", 0.0),
+        journal_fillet=radius.get("journal_fillet_1", 0.0),
+        throws=throws,
+        file=str(cad.file),
+    )
+
+
+def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_file: str) -> ShaftLayout:
+    """The drawn shaft placed on its drawn bearings (module doc).  The engine check
+    (``fe_crank.cad.engine.engine_keys``) has run: the throws are the engine's, in order."""
+    if len(features.throws) < 2:
+        raise InputError(
+            "the whole-shaft model needs the whole shaft drawn: the CAD file holds one throw",
+            file=str(cad.file),
+            key=cad.file_key,
+        )
+    if features.bolted:
+        raise InputError(
+            f"the CAD file's {len(features.bolted)} bolted bodies are kept out of the FE model, and their forces on "
+            "the shaft out of the whole-shaft model: the main-bearing loads would miss them; fuse them to the shaft "
+            f'(bodies = "fuse" in {cad.where}) for the whole-shaft model',
+            file=str(cad.file),
+            key="cad.bodies",
+        )
+    require_common_dimensions(features, cad)
+    first = features.throws[0]
+    e0 = engine.throw(first.name)
+    s = [_shaft_position(features, t) for t in features.throws]
+    b1, b2 = first.bearings[0].z, first.bearings[1].z
+    for k in range(len(s) - 1):
+        a, b = features.throws[k], features.throws[k + 1]
+        if abs((s[k + 1] - s[k]) - (b2 - b1)) > SAME_TOL * first.crank_radius:
+            raise InputError(
+                f"throws {a.name} and {b.name} of the CAD file are {(s[k + 1] - s[k]) * 1e3:.9g} mm apart, their bearing "
+                f"centres {(b2 - b1) * 1e3:.9g} mm: the whole-shaft model joins the throws at shared bearing centres",
+                file=str(cad.file),
+                key=cad.file_key,
+            )
+    z = [e0.axial_position + (v - s[0]) for v in s]
+    angles = {t.name: engine.throw(t.name).angle for t in features.throws}
+    g = recognised_geometry(features, cad, angles)
+    throws = tuple(PlacedThrow(t.name, i, z[i], angles[t.name], g.throws[i]) for i, t in enumerate(features.throws))
+    last = features.throws[-1]
+    journals = [JournalSpan(0, z[0] + _end_reach(features, first, 0), z[0] + first.webs[0].z_outer, z[0] + b1)]
+    for i in range(1, len(z)):
+        journals.append(JournalSpan(i, z[i - 1] + first.webs[1].z_outer, z[i] + first.webs[0].z_outer, z[i - 1] + b2))
+    journals.append(
+        JournalSpan(len(z), z[-1] + last.webs[1].z_outer, z[-1] + _end_reach(features, last, 1), z[-1] + b2)
+    )
+    spec = ShaftSpec()
+    gf, ef = str(cad.file), engine_file
+    bearings = main_bearings(spec, journals, g, gf, ef)
+    sense = engine.shaft(e0.shaft).sense
+    return ShaftLayout(
+        geometry=g,
+        throws=throws,
+        journals=tuple(journals),
+        bearings=bearings,
+        stub=g.journal_length,
+        pitch=float(np.mean(np.diff(z))),
+        sense=int(sense),
+        nose=None,
+        flange=None,
+        power_takeoff=spec.power_takeoff,
+        geometry_file=gf,
+        engine_file=ef,
+        stiffness_range=DEFAULT_STIFFNESS_RANGE,
+    )
+
+
+def cad_throw_masses(features: CadFeatures, layout: ShaftLayout) -> dict:
+    """Throw name -> the exact mass properties of the drawn throw (its throw frame)."""
+    return {t.name: features.throw(t.name).mass for t in layout.throws}
+
+
+def cad_shaft_mesh(cad: CadInput, features: CadFeatures, layout: ShaftLayout, *, size, cache_dir, max_elements=None):
+    """The drawn shaft's ``ShaftMesh`` (module doc): each throw's mesh (one for the throws
+    that are the same solid, ``shared_meshes``), its end faces split to join."""
+    from fe_crank.cad.mesh import mesh_cad_throw
+    from fe_crank.mesh.shaft import mesh_shaft
+
+    shared = shared_meshes(features)
+    done: dict = {}
+
+    def throw_mesh(t: PlacedThrow, opt):
+        name = shared[t.name]
+        if name not in done:
+            done[name] = mesh_cad_throw(cad, name, size=opt, cache_dir=cache_dir, max_elements=max_elements)
+        return done[name].key, done[name]
+
+    return mesh_shaft(layout, size=size, cache_dir=cache_dir, max_elements=max_elements, throw_mesh=throw_mesh)
+
+
+__all__ = [
+    "SAME_TOL",
+    "cad_shaft_layout",
+    "cad_shaft_mesh",
+    "cad_throw_masses",
+    "recognised_geometry",
+    "require_common_dimensions",
+    "shared_meshes",
+]
