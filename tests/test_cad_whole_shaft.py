@@ -49,7 +49,7 @@ def shaft(tmp_path_factory):
 
 
 def test_the_drawn_layout_is_the_parametric_one(shaft):
-    g, _, par, _, _, drawn, _ = shaft
+    g, e, par, cad, features, drawn, _ = shaft
     for name in ("crank_radius", "journal_diameter", "journal_length", "crankpin_diameter", "crankpin_length"):
         assert getattr(drawn.geometry, name) == pytest.approx(getattr(par.geometry, name), abs=POS), name
     assert drawn.geometry.web_thickness == pytest.approx(g.web_thickness, abs=POS)
@@ -62,6 +62,9 @@ def test_the_drawn_layout_is_the_parametric_one(shaft):
     flat = (par.journals[1].z1 - par.journals[1].z0) - 2 * g.journal_fillet
     assert [b.width for b in drawn.bearings] == pytest.approx([flat] * 3, abs=POS)
     assert not any(b.width_stated for b in drawn.bearings)
+    # the shells' width stated in [cad], as [shaft] bearing_width states it for the parametric shaft
+    stated = cad_shaft_layout(features, dataclasses.replace(cad, bearing_width=0.016), e, engine_file="e.toml")
+    assert [(b.width, b.width_stated) for b in stated.bearings] == [(b.width, True) for b in par.bearings]
 
 
 def test_main_bearing_loads_equal_the_parametric_models(shaft):
@@ -155,13 +158,18 @@ max_main_bearing_load = "20 kN"
 
 
 def test_validate_refuses_the_bearing_specific_load_of_a_drawn_shaft(shaft, capsys):
-    """A drawing states no bearing shell: ``validate`` refuses the specific-load criterion
-    before any meshing, naming the load case and the key."""
+    """A drawing holds no bearing shell: ``validate`` takes the specific-load criterion with
+    ``[cad] bearing_width`` and refuses it without, before any meshing, naming the load
+    case and the key."""
     from fe_crank.cli import main
 
     folder = shaft[-1]
     case = folder / "case.toml"
-    case.write_text(TWO_THROWS + 'max_main_bearing_specific_load = "40 MPa"\n')
+    specific = 'max_main_bearing_specific_load = "40 MPa"\n'
+    case.write_text(TWO_THROWS.replace("[material]", 'bearing_width = "16 mm"\n\n[material]') + specific)
+    assert main(["validate", str(case)]) == 0
+    assert "whole shaft on 3 main bearings" in capsys.readouterr().out
+    case.write_text(TWO_THROWS + specific)
     assert main(["validate", str(case)]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith(f"error {case}: criteria.max_main_bearing_specific_load: "), err

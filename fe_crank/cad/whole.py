@@ -28,7 +28,8 @@ thickness, bearing centre to web, fillet radii; no counterweight specs: the web 
 take a drawn counterweight over its web's thickness, ``fe.shaft_cycle``); its web outline is the web's recognised side radius
 (no parametric solid is built from it).  The bearings are ``ShaftSpec``'s defaults: one
 rigid main bearing per journal, named ``"1"``, ``"2"``, ... from the front, their widths
-the drawn journals' flats between the fillets (not stated: no specific-load criterion).
+``[cad] bearing_width``, else the drawn journals' flats between the fillets (not stated:
+no specific-load criterion).
 """
 
 from __future__ import annotations
@@ -224,7 +225,7 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
     journals.append(
         JournalSpan(len(z), z[-1] + last.webs[1].z_outer, z[-1] + _end_reach(features, last, 1), z[-1] + b2)
     )
-    spec = ShaftSpec()
+    spec = ShaftSpec(bearing_width=cad.bearing_width)
     gf, ef = str(cad.file), engine_file
     bearings = main_bearings(spec, journals, g, gf, ef)
     sense = engine.shaft(e0.shaft).sense

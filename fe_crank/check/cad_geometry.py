@@ -97,12 +97,12 @@ def cad_layout(lc: LoadCase, cad: CadInput, features: CadFeatures) -> ShaftLayou
             raise
         return None
     widths = [lim for lim in (lc.criteria.limits if lc.criteria else ()) if lim.quantity in WIDTH_CRITERIA]
-    if widths:  # a drawing states no bearing shell: the journal's flat would under-state the specific load
+    if widths and cad.bearing_width is None:  # a drawing holds no bearing shell: the journal's flat would under-state
         raise InputError(
             f"divides each main bearing's peak load by its projected area (journal diameter x bearing width); the "
             f"CAD file {cad.file.name} draws the journals, not the bearing shells on them (the journal's flat "
             f"between its fillets, {layout.bearings[0].width * 1e3:.3g} mm, is not a bearing width): the specific "
-            "load of a drawn shaft is not offered; drop the criterion (the main-bearing load criterion is)",
+            f'load needs the shells\' width: state it as bearing_width (e.g. "16 mm") in {cad.where}',
             file=lc.source_file,
             key=widths[0].key,
         )
