@@ -175,3 +175,16 @@ def test_validate_refuses_the_bearing_specific_load_of_a_drawn_shaft(shaft, caps
     assert err.startswith(f"error {case}: criteria.max_main_bearing_specific_load: "), err
     assert "draws the journals, not the bearing shells" in err
     assert not (folder / ".cache").exists()
+
+
+def test_validate_refuses_a_bolt_criterion_on_a_drawing(shaft, capsys):
+    """No bolt data in a drawing: a bolt criterion is refused before recognition."""
+    from fe_crank.cli import main
+
+    folder = shaft[-1]
+    case = folder / "bolts.toml"
+    case.write_text(TWO_THROWS + "min_bolt_working_safety = 1.0\n")
+    assert main(["validate", str(case)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"error {case}: criteria.min_bolt_working_safety: "), err
+    assert "no bolt data" in err

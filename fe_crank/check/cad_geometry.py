@@ -7,13 +7,17 @@ counterweight to leave its web in a rounded face (as ``io.geometry.
 require_counterweight_fillets`` for a parametric geometry) and at least one recognised
 counterweight (else the criterion has nothing to evaluate); the UR M53 dimensions and
 the counterweights' built m r per engine throw are measured on the recognised throws
-(``assess.throw_geometry.cad_throws``).
+(``assess.throw_geometry.cad_throws``).  A bolt criterion is refused (a drawing gives no
+bolt data); a drawing of the whole shaft gets its layout (``cad_layout``,
+``fe_crank.cad.whole``) for the whole-shaft stage, or, where a main-bearing criterion
+needs it and the drawing cannot give it, the reason.  ``validate`` runs all of this.
 """
 
 from __future__ import annotations
 
 import dataclasses
 
+from fe_crank.assess.cw_joint import JOINT_QUANTITIES
 from fe_crank.assess.throw_geometry import cad_throws
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad import CadFeatures, CadInput, recognise
@@ -67,9 +71,28 @@ def require_cad_counterweight_fillets(features: CadFeatures, cad: CadInput, lc: 
                 )
 
 
+#: criteria on the counterweights' bolts: they need bolt data (size, preload, joint), which
+#: a drawing does not give (``assess.cad_inputs``: no bolt data, no utilisation)
+BOLT_QUANTITIES = ("bolt_utilisation", *JOINT_QUANTITIES)
+
+
+def refuse_bolt_criteria(lc: LoadCase, cad: CadInput) -> None:
+    """A bolt criterion with a CAD geometry: refused (``BOLT_QUANTITIES``), before any meshing."""
+    for lim in lc.criteria.limits if lc.criteria else ():
+        if lim.quantity in BOLT_QUANTITIES:
+            raise InputError(
+                f"cannot be evaluated with the CAD file {cad.file.name}: a drawing gives the bolted counterweights' "
+                'mass (bodies = "bolted") but no bolt data (size, preload, clamped parts), which the bolt '
+                "criteria need; drop the criterion, or check the bolts with a parametric geometry's bolted table",
+                file=lc.source_file,
+                key=lim.key,
+            )
+
+
 def recognise_case(lc: LoadCase, cad: CadInput) -> tuple[CadFeatures, dict[str, str]]:
     """Recognise the load case's CAD file and check it against the engine and the
     criteria: the features and the mesh plan's keys (key -> recognised throw name)."""
+    refuse_bolt_criteria(lc, cad)
     features = recognise(cad)
     keys = engine_keys(features, cad, lc.engine, engine_file=lc.engine_file, loadcase=lc.source_file)
     require_cad_counterweight_fillets(features, cad, lc)
