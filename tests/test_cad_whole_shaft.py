@@ -10,6 +10,7 @@ builds it from its dimensions, the CAD route from the file's faces)."""
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -188,3 +189,24 @@ def test_validate_refuses_a_bolt_criterion_on_a_drawing(shaft, capsys):
     err = capsys.readouterr().err.strip()
     assert err.startswith(f"error {case}: criteria.min_bolt_working_safety: "), err
     assert "no bolt data" in err
+
+
+def test_a_journal_that_is_no_plain_round_bar_at_its_bearing_centre_is_refused(shaft):
+    """The whole-shaft model joins the throws on whole round end faces at the bearing
+    centres: an oil bore opening there, or an axial bore, is refused before meshing."""
+    from fe_crank.cad.features import OilBore
+
+    _, e, _, cad, features, _, _ = shaft
+    t = features.throws[0]
+    b2 = t.bearings[1].z
+    bore = OilBore((), 0.003, ("journal_2",), (0.0, 0.0, b2 + 0.002), (1.0, 0.0, 0.0), math.pi / 2)
+    drilled = dataclasses.replace(features, throws=(dataclasses.replace(t, oil_bores=(bore,)), *features.throws[1:]))
+    with pytest.raises(InputError, match="an oil bore \\(3 mm\\) opens on its journal_2 0.5 mm from the bearing"):
+        cad_shaft_layout(drilled, cad, e, engine_file="e.toml")
+    far = dataclasses.replace(bore, point=(0.0, 0.0, t.webs[1].z_outer))  # at the web: outside the redrawn bar
+    drilled = dataclasses.replace(features, throws=(dataclasses.replace(t, oil_bores=(far,)), *features.throws[1:]))
+    cad_shaft_layout(drilled, cad, e, engine_file="e.toml")
+    hollow = dataclasses.replace(t.journals[0], bore_diameter=0.01)
+    bored = dataclasses.replace(t, journals=(hollow, t.journals[1]))
+    with pytest.raises(InputError, match="journal_1 is bored along the axis \\(10 mm\\)"):
+        cad_shaft_layout(dataclasses.replace(features, throws=(bored, *features.throws[1:])), cad, e, engine_file="e")

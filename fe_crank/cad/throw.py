@@ -117,7 +117,7 @@ def _cw_fillets(faces, frame, radius, z_range, lines, used, tol) -> list[Face]:
 
 
 #: the journal redrawn at a bearing centre (``cad.model.redraw_ends``) over this fraction
-#: of its cylinder's length from the centre towards the web
+#: of its cylinder's length from the centre towards the web (``cad.whole.SLAB`` checks it)
 SLAB_FRACTION = 0.25
 
 

@@ -38,6 +38,7 @@ import numpy as np
 
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import CadFeatures, ThrowFeatures
+from fe_crank.cad.throw import SLAB_FRACTION
 from fe_crank.errors import InputError
 from fe_crank.geometry.shaft import JournalSpan, PlacedThrow, ShaftLayout, main_bearings
 from fe_crank.geometry.spec import (
@@ -146,6 +147,50 @@ def require_common_dimensions(features: CadFeatures, cad: CadInput) -> None:
             )
 
 
+def require_round_journals(features: CadFeatures, cad: CadInput) -> None:
+    """Each journal a plain round bar where ``cad.model.redraw_ends`` redraws it (the
+    whole-shaft model's end faces are whole discs at the bearing centres): no axial bore
+    through a journal, no oil bore opening on one within the redrawn length of its
+    bearing centre (its mouth's extent along the axis, its diameter around the point where
+    its axis leaves the journal); else an ``InputError`` naming the throw, the journal and
+    the distances, before any meshing (``redraw_ends`` checks the solid itself too)."""
+    for t in features.throws:
+        for k, (j, b) in enumerate(zip(t.journals, t.bearings, strict=True)):
+            name = f"journal_{k + 1}"
+            if j.bore_diameter > 0:
+                raise InputError(
+                    f"throw {t.name}: its {name} is bored along the axis ({j.bore_diameter * 1e3:.6g} mm): the "
+                    "whole-shaft model joins its throws on whole round end faces at the bearing centres; a hollow "
+                    "journal is checked throw by throw only",
+                    file=str(cad.file),
+                    key=cad.file_key,
+                )
+            reach = SLAB_FRACTION * (j.z_max - b.z if k == 0 else b.z - j.z_min)
+            for bore in t.oil_bores:
+                if name not in bore.ends_on:
+                    continue
+                p, d = np.asarray(bore.point), np.asarray(bore.direction)
+                # where the bore's axis leaves the journal's cylinder (radius r about z)
+                a2 = d[0] ** 2 + d[1] ** 2
+                r = j.diameter / 2
+                b1 = p[0] * d[0] + p[1] * d[1]
+                c = p[0] ** 2 + p[1] ** 2 - r * r
+                disc = b1 * b1 - a2 * c
+                if a2 <= 0 or disc < 0:
+                    continue
+                zs = [p[2] + d[2] * (-b1 + sgn * np.sqrt(disc)) / a2 for sgn in (1, -1)]
+                near = min(abs(z - b.z) for z in zs) - bore.diameter / 2
+                if near < reach:
+                    raise InputError(
+                        f"throw {t.name}: an oil bore ({bore.diameter * 1e3:.6g} mm) opens on its {name} "
+                        f"{max(near, 0.0) * 1e3:.4g} mm from the bearing centre, within the {reach * 1e3:.4g} mm "
+                        "where the whole-shaft model joins its throws on whole round end faces: such a drawing is "
+                        "checked throw by throw only",
+                        file=str(cad.file),
+                        key=cad.file_key,
+                    )
+
+
 def _shaft_position(features: CadFeatures, t: ThrowFeatures) -> float:
     return sum((o - p) * e for o, p, e in zip(t.origin, features.axis.point, features.axis.direction, strict=True))
 
@@ -201,6 +246,7 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
             key="cad.bodies",
         )
     require_common_dimensions(features, cad)
+    require_round_journals(features, cad)
     first = features.throws[0]
     e0 = engine.throw(first.name)
     s = [_shaft_position(features, t) for t in features.throws]
@@ -276,5 +322,6 @@ __all__ = [
     "cad_throw_masses",
     "recognised_geometry",
     "require_common_dimensions",
+    "require_round_journals",
     "shared_meshes",
 ]
