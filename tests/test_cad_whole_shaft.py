@@ -210,3 +210,13 @@ def test_a_journal_that_is_no_plain_round_bar_at_its_bearing_centre_is_refused(s
     bored = dataclasses.replace(t, journals=(hollow, t.journals[1]))
     with pytest.raises(InputError, match="journal_1 is bored along the axis \\(10 mm\\)"):
         cad_shaft_layout(dataclasses.replace(features, throws=(bored, *features.throws[1:])), cad, e, engine_file="e")
+
+
+def test_throw_angles_the_joined_meshes_cannot_take_are_refused(shaft):
+    _, e, _, cad, features, _, _ = shaft
+    turned = dataclasses.replace(
+        e, throws=tuple(dataclasses.replace(t, angle=math.radians(170)) if t.name == "2" else t for t in e.throws)
+    )
+    with pytest.raises(InputError, match=r"\(170 deg\) are not multiples of 360/24 deg") as err:
+        cad_shaft_layout(features, cad, turned, engine_file="e.toml")
+    assert err.value.key == "cad.throws"

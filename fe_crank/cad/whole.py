@@ -34,6 +34,8 @@ no specific-load criterion).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from fe_crank.cad.config import CadInput
@@ -48,9 +50,14 @@ from fe_crank.geometry.spec import (
     ThrowSpec,
     WebOutline,
 )
+from fe_crank.mesh.interface import MAX_SECTORS, sectors_for
 
 #: relative agreement of two drawn throws that one mesh stands for
 SAME_TOL = 1e-9
+#: a drawn throw's end faces are split into two sectors at least: its rear face's mesh is
+#: then a translated copy of its front face's (``mesh.interface``) even where every throw
+#: has the same angle (a split into one sector is no split)
+MIN_SECTORS = 2
 
 
 def _dims(t: ThrowFeatures) -> dict[str, float]:
@@ -249,6 +256,7 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
     require_round_journals(features, cad)
     first = features.throws[0]
     e0 = engine.throw(first.name)
+    sense = engine.shaft(e0.shaft).sense
     s = [_shaft_position(features, t) for t in features.throws]
     b1, b2 = first.bearings[0].z, first.bearings[1].z
     for k in range(len(s) - 1):
@@ -260,6 +268,18 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
                 file=str(cad.file),
                 key=cad.file_key,
             )
+    steps = [
+        sense * (engine.throw(b.name).angle - engine.throw(a.name).angle)
+        for a, b in zip(features.throws, features.throws[1:])
+    ]
+    if sectors_for(steps) == 0:
+        raise InputError(
+            f"the angles between adjacent throws ({', '.join(f'{math.degrees(a):g}' for a in steps)} deg) are not "
+            f"multiples of 360/{MAX_SECTORS} deg: the whole-shaft model cannot join the drawn throws' meshes node to "
+            "node; such a drawing is checked throw by throw only",
+            file=str(cad.file),
+            key="cad.throws",
+        )
     z = [e0.axial_position + (v - s[0]) for v in s]
     angles = {t.name: engine.throw(t.name).angle for t in features.throws}
     g = recognised_geometry(features, cad, angles)
@@ -274,7 +294,6 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
     spec = ShaftSpec(bearing_width=cad.bearing_width)
     gf, ef = str(cad.file), engine_file
     bearings = main_bearings(spec, journals, g, gf, ef)
-    sense = engine.shaft(e0.shaft).sense
     return ShaftLayout(
         geometry=g,
         throws=throws,
@@ -312,10 +331,18 @@ def cad_shaft_mesh(cad: CadInput, features: CadFeatures, layout: ShaftLayout, *,
             done[name] = mesh_cad_throw(cad, name, size=opt, cache_dir=cache_dir, max_elements=max_elements)
         return done[name].key, done[name]
 
-    return mesh_shaft(layout, size=size, cache_dir=cache_dir, max_elements=max_elements, throw_mesh=throw_mesh)
+    return mesh_shaft(
+        layout,
+        size=size,
+        cache_dir=cache_dir,
+        max_elements=max_elements,
+        throw_mesh=throw_mesh,
+        min_sectors=MIN_SECTORS,
+    )
 
 
 __all__ = [
+    "MIN_SECTORS",
     "SAME_TOL",
     "cad_shaft_layout",
     "cad_shaft_mesh",

@@ -22,7 +22,7 @@ from fe_crank.assess.throw_geometry import cad_throws
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad import CadFeatures, CadInput, recognise
 from fe_crank.cad.engine import engine_keys
-from fe_crank.cad.whole import cad_shaft_layout, shared_meshes
+from fe_crank.cad.whole import MIN_SECTORS, cad_shaft_layout, shared_meshes
 from fe_crank.check.options import CheckOptions
 from fe_crank.errors import InputError
 from fe_crank.geometry.shaft import ShaftLayout
@@ -149,6 +149,8 @@ def cad_geometry_stage(
     if layout is not None:
         shared = shared_meshes(features)
         plan = dataclasses.replace(
-            plan, options=shaft_options(layout, plan.options), throws={k: shared[v] for k, v in plan.throws.items()}
+            plan,
+            options=shaft_options(layout, plan.options, MIN_SECTORS),
+            throws={k: shared[v] for k, v in plan.throws.items()},
         )
     return GeometryModel(plan, throws, None, features, shaft=layout)

@@ -109,10 +109,12 @@ def throw_angles(layout: ShaftLayout) -> list[float]:
     return [layout.sense * t.angle for t in layout.throws]
 
 
-def shaft_options(layout: ShaftLayout, size: str | MeshOptions = "coarse") -> MeshOptions:
+def shaft_options(layout: ShaftLayout, size: str | MeshOptions = "coarse", min_sectors: int = 1) -> MeshOptions:
     """The throws' mesh options on the shaft: ``size``'s with the end faces split into the
     sectors that let the turned throws meet node to node (module doc); the per-throw
-    model meshed with these shares the whole shaft's throw meshes (cache)."""
+    model meshed with these shares the whole shaft's throw meshes (cache).  ``min_sectors``:
+    at least so many (a drawn throw's end faces are split into two at least, so that its
+    rear face's mesh is a translated copy of its front face's, ``fe_crank.cad.whole``)."""
     angles = throw_angles(layout)
     steps = [b - a for a, b in zip(angles, angles[1:])]
     n = sectors_for(steps)
@@ -123,6 +125,8 @@ def shaft_options(layout: ShaftLayout, size: str | MeshOptions = "coarse") -> Me
             file=layout.geometry_file,
             key="throws",
         )
+    if n < min_sectors:  # a multiple of n: every angle stays a multiple of 2 pi / n
+        n *= -(-min_sectors // n)
     return dataclasses.replace(resolve_options(size), interface_sectors=n)
 
 
@@ -133,13 +137,15 @@ def mesh_shaft(
     cache_dir=DEFAULT_CACHE_DIR,
     max_elements: int | None = None,
     throw_mesh: Callable[[PlacedThrow, MeshOptions], tuple[str, ThrowMesh]] | None = None,
+    min_sectors: int = 1,
 ) -> ShaftMesh:
     """Mesh the whole shaft as joined pieces (module doc).  ``throw_mesh``: (key, mesh)
     of a placed throw meshed with the given options (its end faces split into their
     sectors), for a shaft whose throws are not the layout's parametric ones (a drawn
-    shaft, ``fe_crank.cad.whole``); default ``mesh_throw`` of the layout's geometry."""
+    shaft, ``fe_crank.cad.whole``); default ``mesh_throw`` of the layout's geometry;
+    ``min_sectors``: ``shaft_options``'s."""
     angles = throw_angles(layout)
-    opt = shaft_options(layout, size)
+    opt = shaft_options(layout, size, min_sectors)
     n = opt.interface_sectors
     g = layout.geometry
     meshes, throw_meshes, pieces = {}, {}, []
