@@ -11,9 +11,10 @@ on the throw frame's ``+y``: ``fe_crank.cad.model.redraw_ends``), so that neighb
 throws meet node to node; the end journals' outer halves extruded from the end faces.
 
 Throws that are the same solid share one mesh (as a parametric shaft's equal throws do):
-each throw's recognised dimensions equal an earlier throw's to ``SAME_TOL`` (relative to
-the crank radius) and its exact mass properties (volume, centroid, inertia tensor of the
-throw between its bearing centres, in its throw frame) to ``SAME_TOL`` relative; the
+each throw's recognised dimensions (oil bores and counterweights included) equal an
+earlier throw's to ``SAME_TOL`` (relative to the crank radius) and its exact mass
+properties (volume, centroid, inertia tensor of the throw between its bearing centres and
+of each of its parts, in its throw frame) to ``SAME_TOL`` relative; the
 others are meshed each on its own, with end faces that still meet node to node (the same
 journal, the same sectors; checked when the shaft is joined).  The journals, pin length,
 webs and bearing centres must be every throw's the same (``COMMON``: one geometry carries
@@ -76,18 +77,28 @@ def _dims(t: ThrowFeatures) -> dict[str, float]:
     for f in t.fillets:
         out[f"{f.name} radius"] = f.radius
     out["oil bores"] = float(len(t.oil_bores))
+    for i, b in enumerate(t.oil_bores):
+        out[f"oil bore {i + 1} diameter"] = b.diameter
+        out[f"oil bore {i + 1} angle (rad x crank radius)"] = b.angle * t.crank_radius
+        for c, v in zip("xyz", b.point, strict=True):
+            out[f"oil bore {i + 1} point {c}"] = v
     out["counterweights"] = float(len(t.counterweights))
+    for cw in t.counterweights:
+        out[f"counterweight_{cw.web} radius"] = cw.radius
+        out[f"counterweight_{cw.web} fillet radius"] = cw.fillet_radius or 0.0
     return out
 
 
 def _mass(t: ThrowFeatures) -> dict[str, float]:
-    m = t.mass.total
-    out = {"volume": m.volume}
-    for i, c in enumerate(m.centroid):
-        out[f"centroid {'xyz'[i]}"] = c
-    for i in range(3):
-        for j in range(i, 3):
-            out[f"inertia {'xyz'[i]}{'xyz'[j]}"] = m.inertia[i][j]
+    """The exact mass properties of the throw and of each of its parts (throw frame)."""
+    out = {}
+    for name, m in (("", t.mass.total), *((f"{k} ", v) for k, v in sorted(t.mass.parts.items()))):
+        out[f"{name}volume"] = m.volume
+        for i, c in enumerate(m.centroid):
+            out[f"{name}centroid {'xyz'[i]}"] = c
+        for i in range(3):
+            for j in range(i, 3):
+                out[f"{name}inertia {'xyz'[i]}{'xyz'[j]}"] = m.inertia[i][j]
     return out
 
 
@@ -112,16 +123,16 @@ def _differs(a: ThrowFeatures, b: ThrowFeatures, keys=None) -> tuple[str, float 
     """The first quantity in which throw ``a`` differs from ``b`` (module doc), or None."""
     scale = b.crank_radius
     da, db, ma, mb = _dims(a), _dims(b), _mass(a), _mass(b)
-    inertia = max(abs(v) for k, v in mb.items() if k.startswith("inertia"))
+    inertia = max(abs(v) for k, v in mb.items() if "inertia" in k)
     for k, v in db.items():
         if (keys is None or k in keys) and (k not in da or abs(da[k] - v) > SAME_TOL * scale):
             return k, da.get(k), v
     if keys is not None:
         return None
-    if set(da) != set(db):
-        return "fillets", float(len(da)), float(len(db))
+    if set(da) != set(db) or set(ma) != set(mb):
+        return "features or parts", float(len(da) + len(ma)), float(len(db) + len(mb))
     for k, v in mb.items():
-        tol = SAME_TOL * (mb["volume"] if k == "volume" else inertia if k.startswith("inertia") else scale)
+        tol = SAME_TOL * (mb["volume"] if "volume" in k else inertia if "inertia" in k else scale)
         if abs(ma[k] - v) > tol:
             return k, ma[k], v
     return None
