@@ -178,6 +178,19 @@ def test_validate_refuses_the_bearing_specific_load_of_a_drawn_shaft(shaft, caps
     assert not (folder / ".cache").exists()
 
 
+def test_validate_refuses_an_oil_film_criterion_on_a_drawn_shaft(shaft, capsys):
+    """A drawn shaft's bearings are rigid: an oil-film criterion is refused by ``validate``."""
+    from fe_crank.cli import main
+
+    folder = shaft[-1]
+    case = folder / "film.toml"
+    case.write_text(TWO_THROWS + 'min_oil_film_thickness = "1 um"\n')
+    assert main(["validate", str(case)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"error {case}: criteria.min_oil_film_thickness: "), err
+    assert "rigid" in err
+
+
 def test_validate_refuses_a_bolt_criterion_on_a_drawing(shaft, capsys):
     """No bolt data in a drawing: a bolt criterion is refused before recognition."""
     from fe_crank.cli import main

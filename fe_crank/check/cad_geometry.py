@@ -119,6 +119,15 @@ def cad_layout(lc: LoadCase, cad: CadInput, features: CadFeatures) -> ShaftLayou
         if needs:
             raise
         return None
+    film = [lim for lim in (lc.criteria.limits if lc.criteria else ()) if "oil_film" in lim.quantity]
+    if film:  # the drawn shaft's bearings are ShaftSpec's rigid ones: no film to compute
+        raise InputError(
+            f"cannot be evaluated: the main bearings of a drawn shaft (the CAD file {cad.file.name}) are rigid, a "
+            "[cad] section states no bearing law, and a rigid bearing has no oil film; drop the criterion, or check "
+            "the film with a parametric geometry's [shaft] section",
+            file=lc.source_file,
+            key=film[0].key,
+        )
     widths = [lim for lim in (lc.criteria.limits if lc.criteria else ()) if lim.quantity in WIDTH_CRITERIA]
     if widths and cad.bearing_width is None:  # a drawing holds no bearing shell: the journal's flat would under-state
         raise InputError(
