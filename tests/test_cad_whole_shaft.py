@@ -85,6 +85,8 @@ def test_main_bearing_loads_equal_the_parametric_models(shaft):
     sm = cases.model.mesh
     # one drawn throw mesh for both throws, turned by 180 deg: the end faces meet node to node
     assert len(sm.throw_meshes) == 1 and sm.sectors == 2
+    # the drawn throw is its own mirror image across z = 0: meshed as its half and mirrored
+    assert next(iter(sm.throw_meshes.values())).stats.symmetry == (2,)
     for (na, nb), k in zip(joints(sm), range(len(sm.pieces) - 1), strict=True):
         xa, xb = sm.placed_points(k)[:, na], sm.placed_points(k + 1)[:, nb]
         assert np.abs(xa - xb).max() < 1e-12

@@ -171,10 +171,13 @@ def build_throw(
     tol: float,
     file: str,
     ends: tuple[EndSlab, EndSlab] | None = None,
+    half: bool = False,
 ) -> Built:
     """Build the throw's named parts in the current model (the shaft stays as it is).
     ``origin``: the crank axis's point of shaft position 0; ``ends``: redraw the journal
-    at both bearing centres (``redraw_ends``, for end faces that join the neighbours)."""
+    at both bearing centres (``redraw_ends``, for end faces that join the neighbours);
+    ``half``: only the front half, ``z <= 0`` of the throw frame (a throw that is its own
+    mirror image across ``z = 0``, meshed as its half and mirrored: ``cad.mesh``)."""
     occ = gmsh.model.occ
     (copy,) = occ.copy([(3, shaft)])
     b1 = -BIG if plan.free[0] else plan.bearings[0]
@@ -189,6 +192,9 @@ def build_throw(
         )
     if ends is not None:
         out = redraw_ends(gmsh, out, frame, origin, plan, ends, file)
+    if half:
+        out, _ = occ.intersect(out, [(3, frame.prism(occ, _SQUARE, -BIG, plan.mid, origin))])
+        occ.synchronize()
     so1, si1, si2, so2 = plan.webs
     slabs = [(-BIG, so1), (so1, si1), (si1, si2), (si2, so2)]
     tools = [frame.prism(occ, _SQUARE, a, b, origin) for a, b in slabs]
@@ -214,7 +220,7 @@ def build_throw(
         name = "journal_1" if s < so1 else "web_1" if s < si1 else "crankpin" if s <= si2 else "web_2"
         volumes[name if s <= so2 else "journal_2"].append(t)
     for name, tags in volumes.items():
-        if not tags:
+        if not tags and not (half and name.endswith("_2")):
             raise InputError(
                 f"throw {plan.name}: splitting the throw at its web faces left no {name} (OpenCASCADE cuts "
                 "exactly only along a crank axis that runs along a coordinate axis of the file: export it so)",
@@ -222,7 +228,7 @@ def build_throw(
                 key="cad.file",
             )
     surfaces = _name_faces(gmsh, keep, frame, origin, plan, tol)
-    return Built(volumes, surfaces)
+    return Built({k: v for k, v in volumes.items() if v}, surfaces)
 
 
 def _name_faces(gmsh, keep: set[int], frame: Frame, origin, plan: Plan, tol: float) -> dict[str, list[int]]:
