@@ -22,7 +22,7 @@ from fe_crank.cad import CadInput, recognise
 from fe_crank.cad.engine import engine_keys
 from fe_crank.cad.whole import cad_shaft_layout, cad_shaft_mesh, cad_throw_masses
 from fe_crank.errors import InputError
-from fe_crank.fe.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
 from fe_crank.geometry.shaft import shaft_layout
 from fe_crank.mechanism.dynamics import analyse
 from fe_crank.mesh.shaft import joints

@@ -1,7 +1,7 @@
 """Benchmark: ``fe-crank check`` of a whole shaft given as STEP against the same shaft given
 parametrically.
 
-The load case's parametric shaft (``check.stages.shaft_layout``: its throws placed by the
+The load case's parametric shaft (``pipeline.stages.shaft_layout``: its throws placed by the
 engine, the end journals to their length) is written to STEP by fe-crank itself (each
 throw's solid, ``geometry.solid.throw_solid``, turned and placed, fused, gmsh's
 OpenCASCADE writer), with a nose and a flange beyond the end journals so that these end
@@ -36,7 +36,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 def write_step(lc_path: Path, path: Path) -> float:
     """The load case's parametric shaft as one STEP solid; returns the geometry's density."""
-    from fe_crank.check.stages import shaft_layout
+    from fe_crank.pipeline.stages import shaft_layout
     from fe_crank.geometry.solid import throw_solid
     from fe_crank.gmsh_io import gmsh_session
     from fe_crank.io.loadcase import load_loadcase

@@ -26,7 +26,7 @@ bearing centres of neighbours must meet).
 The ``ShaftLayout``'s ``geometry`` carries the drawing's recognised dimensions that the
 whole-shaft stage reads (crank radius, journal and pin diameters, pin length, web
 thickness, bearing centre to web, fillet radii; no counterweight specs: the web moments
-take a drawn counterweight over its web's thickness, ``fe.shaft_cycle``); its web outline is the web's recognised side radius
+take a drawn counterweight over its web's thickness, ``fe.shaft.cycle``); its web outline is the web's recognised side radius
 (no parametric solid is built from it).  The bearings are ``ShaftSpec``'s defaults: one
 rigid main bearing per journal, named ``"1"``, ``"2"``, ... from the front, their widths
 ``[cad] bearing_width``, else the drawn journals' flats between the fillets (not stated:

@@ -23,7 +23,7 @@ from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad import CadFeatures, CadInput, recognise
 from fe_crank.cad.engine import engine_keys
 from fe_crank.cad.whole import MIN_SECTORS, cad_shaft_layout, shared_meshes
-from fe_crank.check.options import CheckOptions
+from fe_crank.pipeline.options import CheckOptions
 from fe_crank.errors import InputError
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.io.geometry import COUNTERWEIGHT_STRESS_QUANTITIES

@@ -7,7 +7,7 @@ several throws on one shaft, or a single throw whose geometry states its shaft, 
 
 * the shaft meshed, condensed and solved on its bearings over the operating cycle, with
   and without counterweights, and over the overspeed cycles
-  (``fe.whole_shaft.analyse_whole_shaft``); each journal carries its own torque
+  (``fe.shaft.whole_shaft.analyse_whole_shaft``); each journal carries its own torque
   (``torque_flow``: the journal torques the assessment takes, with the torsional stage's
   vibratory torque when it ran);
 * its main bearings' loads at every speed and load state of the full-load sweep
@@ -33,9 +33,9 @@ from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState, ShaftHotSpot, WholeShaftOutput, bearing_sweep
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.whole import cad_shaft_mesh, cad_throw_masses
-from fe_crank.fe.shaft_fields import ShaftFields, shaft_fields
-from fe_crank.fe.shaft_model import ShaftFeOptions
-from fe_crank.fe.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.shaft.fields import ShaftFields, shaft_fields
+from fe_crank.fe.shaft.model import ShaftFeOptions
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.outputs import CaseOutputs, GeometryModel
 

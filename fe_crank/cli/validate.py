@@ -70,7 +70,7 @@ def validate_file(path: Path, allow_outside_paths: bool = False) -> str:
     lc = load_loadcase(path, allow_outside_paths=allow_outside_paths or None)
     text = f"load case '{lc.name}': engine '{lc.engine.name}', {lc.operating.speed * 30 / 3.141592653589793:.0f} rpm"
     if isinstance(lc.geometry, CadInput):
-        from fe_crank.check.cad_geometry import cad_layout, recognise_case
+        from fe_crank.pipeline.cad_geometry import cad_layout, recognise_case
 
         features = recognise_case(lc, lc.geometry)[0]
         text += "; " + _recognised(features)

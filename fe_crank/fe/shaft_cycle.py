@@ -1,9 +1,9 @@
 """Main-bearing loads and the shaft's internal bending moments over the engine's cycle.
 
 ``shaft_cycle(cases, loads, shaft_angle, speed, laws=...)`` superposes the unit cases of
-``fe.shaft_cases`` at every crank angle: each throw's pin force (throw frame, N) by the two
+``fe.shaft.cases`` at every crank angle: each throw's pin force (throw frame, N) by the two
 pin cases that bracket it, the centrifugal cases times omega^2, and the bearings' forces
-from their laws (``fe.bearings``); once with the counterweights as built and once without
+from their laws (``fe.shaft.bearings``); once with the counterweights as built and once without
 them (their centrifugal case switched off).  Results are frozen and in the engine frame:
 the shaft frame turned by the shaft's angle psi(theta) (``model.crank_angle_global`` of
 the reference throw, from +y towards +x).
@@ -26,9 +26,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank.errors import InputError
-from fe_crank.fe.bearings import BearingSystem, bearing_forces
-from fe_crank.fe.pin_directions import pin_case_weights, pin_cases
-from fe_crank.fe.shaft_cases import ShaftCases
+from fe_crank.fe.shaft.bearings import BearingSystem, bearing_forces
+from fe_crank.fe.throw.pin_directions import pin_case_weights, pin_cases
+from fe_crank.fe.shaft.cases import ShaftCases
 from fe_crank.mesh.shaft import rotation
 
 

@@ -1,9 +1,9 @@
 """The whole-shaft model's typed entry point: main-bearing loads and web moments over the cycle.
 
 ``analyse_whole_shaft(layout, material, dynamics, size=...)`` meshes the shaft
-(``mesh.shaft``), condenses it onto its bearing-centre planes (``fe.shaft_model``), solves
-the unit cases on the determinate base (``fe.shaft_cases``) and superposes them over the
-dynamics stage's cycle with the bearings' laws (``fe.shaft_cycle``), with the
+(``mesh.shaft``), condenses it onto its bearing-centre planes (``fe.shaft.model``), solves
+the unit cases on the determinate base (``fe.shaft.cases``) and superposes them over the
+dynamics stage's cycle with the bearings' laws (``fe.shaft.cycle``), with the
 counterweights as built and without them.  ``dynamics``: the dynamics stage's result
 (``theta``, ``speed`` and per throw ``pin_force`` (n, 2) in the throw frame and
 ``angle_global``).  ``WholeShaftResult.to_dict()`` gives the fields of results.json.
@@ -25,8 +25,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fe_crank.fe.shaft_cases import ShaftCases, solve_cases
-from fe_crank.fe.shaft_cycle import (
+from fe_crank.fe.shaft.cases import ShaftCases, solve_cases
+from fe_crank.fe.shaft.cycle import (
     BearingLoads,
     EndCycleLoad,
     ShaftCycle,
@@ -35,7 +35,7 @@ from fe_crank.fe.shaft_cycle import (
     bearing_cycle,
     shaft_cycle,
 )
-from fe_crank.fe.shaft_model import ShaftFeOptions, build_shaft_model
+from fe_crank.fe.shaft.model import ShaftFeOptions, build_shaft_model
 from fe_crank.geometry.mass import mass_properties
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.geometry.spec import BearingLaw

@@ -96,9 +96,9 @@ class ShaftLayout:
     power_takeoff: PowerTakeoff
     geometry_file: str
     engine_file: str
-    #: N/m, the stiffness range the main-bearing loads are enveloped over (``fe.whole_shaft``)
+    #: N/m, the stiffness range the main-bearing loads are enveloped over (``fe.shaft.whole_shaft``)
     stiffness_range: tuple[float, float] = DEFAULT_STIFFNESS_RANGE
-    end_loads: tuple[EndLoad, ...] = ()  # flywheel, pulley (``fe.whole_shaft.end_load_cases``)
+    end_loads: tuple[EndLoad, ...] = ()  # flywheel, pulley (``fe.shaft.whole_shaft.end_load_cases``)
 
     @property
     def thrust_bearing(self) -> MainBearing:

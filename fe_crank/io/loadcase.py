@@ -26,7 +26,7 @@ from pydantic import Field
 from fe_crank import model
 from fe_crank.cad.config import CadInput
 from fe_crank.errors import InputError
-from fe_crank.fe.fe_options import FeOptions
+from fe_crank.fe.throw.options import FeOptions
 from fe_crank.fe.input import check_torque_reaction
 from fe_crank.geometry.engine_fit import throw_at_bearings
 from fe_crank.geometry.shaft import engine_shaft_layout, require_film, whole_shaft_wanted
@@ -183,7 +183,7 @@ def _check_torsion_range(torsion: TorsionSettings, operating: model.OperatingPoi
 
 
 #: criteria (``io.criteria`` quantities) that only the whole-shaft model evaluates
-#: (``assess.criteria.EVALUATORS`` whose per-throw finder is ``no_throw_value``): the main
+#: (``assess.criteria.judge.EVALUATORS`` whose per-throw finder is ``no_throw_value``): the main
 #: bearings' loads and their oil film
 WHOLE_SHAFT_QUANTITIES = ("main_bearing_load", "main_bearing_specific_load", "oil_film_thickness", "oil_film_pressure")
 
@@ -197,7 +197,7 @@ def _check_whole_shaft_criteria(criteria: Criteria, geometry, engine: model.Engi
         if isinstance(geometry, CadInput):
             z = [t.axial_position for t in engine.throws]
             if len(engine.shafts) == 1 and len(z) > 1 and max(z) - min(z) > 0:
-                continue  # the drawing is checked when it is recognised (``check.cad_geometry.cad_layout``)
+                continue  # the drawing is checked when it is recognised (``pipeline.cad_geometry.cad_layout``)
             why = (
                 f"the load case's geometry is the CAD file {geometry.file.name} and the engine has a single throw "
                 "(or its throws at one axial position, or several shafts): the whole-shaft model of a drawing is "
