@@ -36,6 +36,7 @@ def test_a_full_section(folder):
         counterweight_radius="40 mm",
         pin_recess="0.5 mm",
         journal_recess="0 mm",
+        bearing_width="16 mm",
         faces={"axis": [3, 4], "2": {"crankpin": [7], "oil_bore": []}},
     )
     assert cad.file == folder / "crank.step"
@@ -45,6 +46,7 @@ def test_a_full_section(folder):
     assert cad.throws == ("1", "2") and cad.bodies == "fuse"
     assert cad.counterweight_radius == pytest.approx(0.04)
     assert (cad.pin_recess, cad.journal_recess) == (pytest.approx(5e-4), 0.0)
+    assert cad.bearing_width == pytest.approx(0.016)
     assert cad.override("axis").faces == (3, 4)
     assert cad.override("crankpin", "2").faces == (7,)
     assert cad.override("oil_bore", "2").faces == ()
@@ -78,6 +80,7 @@ def test_axis_as_a_vector_is_normalised(folder):
         ({"bodies": "glued"}, "cad.bodies", "one"),
         ({"counterweight_radius": "-4 mm"}, "cad.counterweight_radius", "positive"),
         ({"pin_recess": "-1 mm"}, "cad.pin_recess", "negative"),
+        ({"bearing_width": "0 mm"}, "cad.bearing_width", "positive"),
         ({"faces": {"crankpn": [3]}}, "cad.faces.crankpn", "unknown feature"),
         ({"faces": {"crankpin": [0]}}, "cad.faces.crankpin", "positive"),
         ({"faces": {"crankpin": []}}, "cad.faces.crankpin", "at least one"),

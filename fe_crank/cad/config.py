@@ -15,6 +15,8 @@
     counterweight_radius = "40 mm"  # optional: where a web's counterweight begins
     pin_recess = "0 mm"          # UR M53 T_H / T_G of recessed fillets (required when the
     journal_recess = "0 mm"      # CAD shows a fillet recessed into the web)
+    bearing_width = "16 mm"      # optional: the main bearings' shell width on a drawn whole
+                                 # shaft (for the bearing specific load)
 
     [cad.faces]                  # optional: face numbers fe-crank reports, naming a feature
     axis = [15, 33]              # faces whose common axis is the crank axis
@@ -81,6 +83,7 @@ class CadInput:
     counterweight_radius: float | None = None  # m
     pin_recess: float | None = None  # m, UR M53 T_H
     journal_recess: float | None = None  # m, UR M53 T_G
+    bearing_width: float | None = None  # m, every main bearing's shell on a drawn whole shaft
     faces: tuple[FaceOverride, ...] = ()
     toml: str = ""  # the file holding the [cad] section ("" when built in Python)
     file_key: str = "cad.file"  # the key that names the CAD file ("geometry" in a load case)

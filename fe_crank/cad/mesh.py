@@ -37,8 +37,20 @@ from fe_crank.errors import GeometryError
 from fe_crank.mesh.cache import mesher_key
 from fe_crank.mesh.fields import apply_fields, bore_field, surface_field, torus_distance, torus_field, web_field
 from fe_crank.mesh.generate import finish, generate, through_cache
+from fe_crank.mesh.interface import imprint_sectors
+from fe_crank.mesh.mirror import mirror_all, swap_side
+from fe_crank.mesh.msh import write_msh
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, FILLET_SAFETY, MeshOptions, resolve_options
 from fe_crank.mesh.types import ThrowMesh
+
+
+@dataclasses.dataclass(frozen=True)
+class _Parts:
+    """The built throw's named gmsh entities, as ``mesh.interface.imprint_sectors`` reads them."""
+
+    volumes: dict[str, list[int]]
+    surfaces: dict[str, list[int]]
+    fillet_radii: dict[str, float]
 
 
 def cad_cache_key(cad: CadInput, sha256: str, throw: str, opt: MeshOptions) -> str:
@@ -62,7 +74,11 @@ def cad_cache_key(cad: CadInput, sha256: str, throw: str, opt: MeshOptions) -> s
         },
         "throw": throw,
         "options": opts,
-        "mesher": mesher_key(),  # the gmsh options, versions and cache format, as the parametric route's
+        "mesher": mesher_key(),
+        # a joinable mesh (end faces in sectors): mirrored across z = 0 where the throw is symmetric
+        **(
+            {"joinable": "mirrored where symmetric"} if opt.interface_sectors > 1 else {}
+        ),  # the gmsh options, versions and cache format, as the parametric route's
     }
     return hashlib.sha256(json.dumps(payload, sort_keys=True, default=repr).encode()).hexdigest()[:20]
 
@@ -85,7 +101,7 @@ def _size_fields(
         for arc in f.arcs:
             expr = torus_distance(cy, arc.spine_z, arc.spine_radius, arc.radius)
             fields.append(torus_field(gmsh, expr, h, size_max, opt.grading))
-        if len(f.arcs) < len(f.faces):  # blends that are no torus: the sampled distance
+        if len(f.arcs) < len(f.faces) and f.name in surfaces:  # blends that are no torus: the sampled distance
             fields.append(surface_field(gmsh, surfaces[f.name], h, size_max, opt.grading))
     if t.oil_bores and "oil_bore" in surfaces:
         d = min(b.diameter for b in t.oil_bores)
@@ -131,17 +147,83 @@ def estimate_cad_elements(t: ThrowFeatures, opt: MeshOptions) -> int:
     return int(np.ceil(n))
 
 
+def mirror_symmetric(gmsh, t: ThrowFeatures, built, frame) -> bool:
+    """Is the built throw its own mirror image across its frame's ``z = 0``?  The
+    recognised features first (web faces, bearing centres, fillet radii and counterweights
+    in pairs, within 1e-9 of the crank radius), then the B-rep: the mirror image of every
+    face of the built parts is a face of them (area within 1e-7 of the largest face's,
+    centroid within 1e-7 of the crank radius: faces are matched one to one), and each
+    part of the front side has the mirror image's exact mass properties of its rear
+    partner (volume, centroid, inertia tensor, to 1e-9).  Any doubt: no."""
+    tol = 1e-9 * t.crank_radius
+    w1, w2 = t.webs
+    b1, b2 = t.bearings
+    pairs = [(w1.z_inner, -w2.z_inner), (w1.z_outer, -w2.z_outer), (b1.z, -b2.z)]
+    for name in ("crankpin_fillet", "journal_fillet"):
+        f1, f2 = t.fillet(f"{name}_1"), t.fillet(f"{name}_2")
+        if (f1 is None) != (f2 is None):
+            return False
+        if f1 is not None and f2 is not None:
+            pairs.append((f1.radius, f2.radius))
+    cws = {cw.web: cw for cw in t.counterweights}
+    if set(cws) not in (set(), {1, 2}):
+        return False
+    if cws:
+        pairs.append((cws[1].radius, cws[2].radius))
+    if any(abs(a - b) > tol for a, b in pairs) or any(abs(b.point[2]) > tol for b in t.oil_bores):
+        return False
+    occ = gmsh.model.occ
+    R, o = frame.rotation, frame.origin
+    faces = sorted({abs(f) for vs in built.volumes.values() for v in vs for _, f in gmsh.model.getBoundary([(3, v)])})
+    sig = np.array([[occ.getMass(2, f), *(R @ (np.asarray(occ.getCenterOfMass(2, f)) - o))] for f in faces])
+    image = sig * np.array([1.0, 1.0, 1.0, -1.0])
+    # OpenCASCADE integrates a face's area and centroid to about 1e-8 (a face across the
+    # plane, its own image, shows a centroid 4e-8 R off it): matched within 1e-7
+    loose = 100 * tol
+    scale = np.array([1e-7 * max(float(sig[:, 0].max()), 1e-300), loose, loose, loose])
+    used = np.zeros(len(sig), bool)
+    for row in image:  # every face's mirror image is a face of the throw (area and centroid)
+        hit = np.flatnonzero(np.all(np.abs(sig - row) <= scale, axis=1) & ~used)
+        if hit.size == 0:
+            return False
+        used[hit[0]] = True
+    for a, b in (("journal_1", "journal_2"), ("web_1", "web_2"), ("counterweight_1", "counterweight_2")):
+        pa, pb = t.mass.parts.get(a), t.mass.parts.get(b)
+        if (pa is None) != (pb is None):
+            return False
+        if pa is not None and pb is not None:
+            ca, cb = np.asarray(pa.centroid), np.asarray(pb.centroid) * np.array([1.0, 1.0, -1.0])
+            Ja, Jb = np.asarray(pa.inertia), np.asarray(pb.inertia) * np.array([[1, 1, -1], [1, 1, -1], [-1, -1, 1]])
+            if (
+                abs(pa.volume - pb.volume) > 1e-9 * pa.volume
+                or np.abs(ca - cb).max() > tol
+                or np.abs(Ja - Jb).max() > 1e-9 * np.abs(Ja).max()
+            ):
+                return False
+    return True
+
+
 def _build(cad: CadInput, throw: str | int | None, opt: MeshOptions, folder: Path, max_elements: int | None = None):
+    from fe_crank.cad.model import build_throw
     from fe_crank.cad.recognise import prepare
-    from fe_crank.cad.throw import throw_features
+    from fe_crank.cad.throw import end_slabs, throw_features
     from fe_crank.gmsh_io import gmsh_session, model_to_skfem
 
     t0 = time.perf_counter()
     with gmsh_session() as gmsh:
         prep = prepare(gmsh, cad)
         index = prep.index(throw)
-        feats, built, _, frame = throw_features(
-            gmsh, prep.read.shaft, prep.faces, prep.nbrs, prep.axis, prep.raw, index, cad, prep.tol
+        feats, built, plan, frame = throw_features(
+            gmsh,
+            prep.read.shaft,
+            prep.faces,
+            prep.nbrs,
+            prep.axis,
+            prep.raw,
+            index,
+            cad,
+            prep.tol,
+            joinable=opt.interface_sectors > 1,
         )
         from fe_crank.geometry.estimate import MAX_ELEMENTS
 
@@ -155,6 +237,24 @@ def _build(cad: CadInput, throw: str | int | None, opt: MeshOptions, folder: Pat
                 file=str(cad.file),
             )
         occ = gmsh.model.occ
+        planes: tuple[int, ...] = ()
+        if opt.interface_sectors > 1 and opt.symmetric and mirror_symmetric(gmsh, feats, built, frame):
+            # its own mirror image across z = 0: its front half meshed and mirrored, as a
+            # symmetric parametric throw is (``mesh.mirror``; half the interface solves)
+            occ.remove([(3, v) for tags in built.volumes.values() for v in tags], recursive=True)
+            occ.synchronize()
+            built = build_throw(
+                gmsh,
+                prep.read.shaft,
+                frame,
+                prep.axis.origin,
+                plan,
+                prep.tol,
+                str(cad.file),
+                end_slabs(prep.raw[index]),
+                half=True,
+            )
+            planes = (2,)
         keep = {v for tags in built.volumes.values() for v in tags}
         occ.remove([(3, v) for _, v in gmsh.model.getEntities(3) if v not in keep], recursive=True)
         occ.synchronize()
@@ -165,12 +265,30 @@ def _build(cad: CadInput, throw: str | int | None, opt: MeshOptions, folder: Pat
             gmsh.model.addPhysicalGroup(3, tags, name=name)
         for name, tags in surfaces.items():
             gmsh.model.addPhysicalGroup(2, tags, name=name)
+        if opt.interface_sectors > 1:  # end faces that join the turned neighbours node to node
+            surfaces = imprint_sectors(gmsh, _Parts(built.volumes, surfaces, {}), opt.interface_sectors).surfaces
         radii = _size_fields(gmsh, feats, surfaces, built.volumes, opt)
         min_quality, straightened = generate(gmsh, feats.name, cad.file.name, opt)
         mesh = model_to_skfem()
-        gmsh.write(str(folder / "throw.msh"))
-    expected = (set(built.surfaces), set(built.volumes))
-    stats = finish(mesh, expected, radii, opt, min_quality=min_quality, straightened=straightened, t0=t0)
+        if not planes:
+            gmsh.write(str(folder / "throw.msh"))
+    surfaces_named, volumes_named = set(built.surfaces), set(built.volumes)
+    if planes:
+        mesh = mirror_all(mesh, planes)
+        straightened *= 2  # each straightened element and its image
+        surfaces_named |= {swap_side(n) for n in surfaces_named}
+        volumes_named |= {swap_side(n) for n in volumes_named}
+        write_msh(folder / "throw.msh", mesh)
+    stats = finish(
+        mesh,
+        (surfaces_named, volumes_named),
+        radii,
+        opt,
+        min_quality=min_quality,
+        straightened=straightened,
+        t0=t0,
+        planes=planes,
+    )
     return mesh, stats
 
 

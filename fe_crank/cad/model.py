@@ -90,9 +90,94 @@ def _on_face(gmsh, face: int, pts: np.ndarray, tol: float) -> bool:
     return sum(_in_face(gmsh, face, q) for q in uv) >= 0.8 * len(uv)
 
 
-def build_throw(gmsh, shaft: int, frame: Frame, origin: np.ndarray, plan: Plan, tol: float, file: str) -> Built:
+@dataclass(frozen=True)
+class EndSlab:
+    """Internal: the round bar of the journal at an end of the throw model that is drawn
+    anew (``build_throw``'s ``ends``): its radius and its length from the bearing centre."""
+
+    radius: float
+    length: float
+
+
+def _seam_at_y(gmsh, occ, vol: int, frame: Frame, base: np.ndarray) -> None:
+    """Turn the new cylinder ``vol`` about the crank axis so that its seam (the one vertex
+    of each circle) lies on the throw frame's +y."""
+    x, y, e = frame.rotation
+    (vertex, *_) = [t for d, t in gmsh.model.getBoundary([(3, vol)], recursive=True) if d == 0]
+    p = np.asarray(occ.getBoundingBox(0, vertex)[:3]) - base
+    a = float(np.arctan2(p @ x, p @ y))  # from +y towards +x
+    if a != 0.0:
+        # a turn by -a about e, right-handed, takes the angle from +y towards +x back by a
+        occ.rotate([(3, vol)], *map(float, base), *map(float, e), a)
+
+
+def redraw_ends(gmsh, piece, frame: Frame, origin, plan: Plan, ends: tuple[EndSlab, EndSlab], file: str):
+    """The piece with the journal at each end, from its bearing centre inwards over the
+    slab's length, replaced by a new round bar of the same radius whose seam lies on the
+    throw frame's +y, so that the end face is a disc with one rim vertex at the same place
+    on every throw (``mesh.interface.imprint_sectors`` splits it into equal sectors; the
+    file's own seams and edges there fall where they were drawn).  The slab must be the
+    whole round bar in the drawing (its volume that of the cylinder, to 1e-9): a bore,
+    flat or groove there is refused rather than drawn over."""
+    occ = gmsh.model.occ
+    out = piece
+    for k, (s, sign) in enumerate(((plan.bearings[0], 1.0), (plan.bearings[1], -1.0))):
+        slab = ends[k]
+        s0, s1 = sorted((s, s + sign * slab.length))
+        want = np.pi * slab.radius**2 * slab.length
+        (probe,) = occ.copy(out)
+        base = origin + s0 * frame.rotation[2]
+        bar = occ.addCylinder(*map(float, base), *map(float, (s1 - s0) * frame.rotation[2]), slab.radius)
+        inside, _ = occ.intersect([probe], [(3, bar)])
+        occ.synchronize()
+        have = sum(occ.getMass(d, t) for d, t in inside if d == 3)
+        occ.remove(inside, recursive=True)
+        (probe,) = occ.copy(out)
+        box = frame.prism(occ, _SQUARE, s0, s1, origin)
+        region, _ = occ.intersect([probe], [(3, box)])
+        occ.synchronize()
+        total = sum(occ.getMass(d, t) for d, t in region if d == 3)
+        occ.remove(region, recursive=True)
+        if abs(have - want) > 1e-9 * want or abs(total - want) > 1e-9 * want:
+            raise InputError(
+                f"throw {plan.name}: the main journal at its {'front' if k == 0 else 'rear'} bearing centre is not a "
+                f"plain round bar of {2e3 * slab.radius:.6g} mm within {slab.length * 1e3:.4g} mm of that centre "
+                f"(material there {total:.6g} m^3, of it within the journal's radius {have:.6g} m^3, the bar's "
+                f"{want:.6g} m^3): the whole-shaft model joins its throws on round end faces at the bearing centres",
+                file=file,
+                key="cad.file",
+            )
+        cut, _ = occ.cut(out, [(3, frame.prism(occ, _SQUARE, s0, s1, origin))])
+        new = occ.addCylinder(*map(float, base), *map(float, (s1 - s0) * frame.rotation[2]), slab.radius)
+        occ.synchronize()
+        _seam_at_y(gmsh, occ, new, frame, base)
+        out, _ = occ.fuse(cut, [(3, new)])
+        occ.synchronize()
+        if len(out) != 1:
+            raise InputError(
+                f"throw {plan.name}: its journal redrawn at a bearing centre the piece is {len(out)} solids",
+                file=file,
+                key="cad.file",
+            )
+    return out
+
+
+def build_throw(
+    gmsh,
+    shaft: int,
+    frame: Frame,
+    origin: np.ndarray,
+    plan: Plan,
+    tol: float,
+    file: str,
+    ends: tuple[EndSlab, EndSlab] | None = None,
+    half: bool = False,
+) -> Built:
     """Build the throw's named parts in the current model (the shaft stays as it is).
-    ``origin``: the crank axis's point of shaft position 0."""
+    ``origin``: the crank axis's point of shaft position 0; ``ends``: redraw the journal
+    at both bearing centres (``redraw_ends``, for end faces that join the neighbours);
+    ``half``: only the front half, ``z <= 0`` of the throw frame (a throw that is its own
+    mirror image across ``z = 0``, meshed as its half and mirrored: ``cad.mesh``)."""
     occ = gmsh.model.occ
     (copy,) = occ.copy([(3, shaft)])
     b1 = -BIG if plan.free[0] else plan.bearings[0]
@@ -105,6 +190,11 @@ def build_throw(gmsh, shaft: int, frame: Frame, origin: np.ndarray, plan: Plan, 
             file=file,
             key="cad.faces",
         )
+    if ends is not None:
+        out = redraw_ends(gmsh, out, frame, origin, plan, ends, file)
+    if half:
+        out, _ = occ.intersect(out, [(3, frame.prism(occ, _SQUARE, -BIG, plan.mid, origin))])
+        occ.synchronize()
     so1, si1, si2, so2 = plan.webs
     slabs = [(-BIG, so1), (so1, si1), (si1, si2), (si2, so2)]
     tools = [frame.prism(occ, _SQUARE, a, b, origin) for a, b in slabs]
@@ -130,7 +220,7 @@ def build_throw(gmsh, shaft: int, frame: Frame, origin: np.ndarray, plan: Plan, 
         name = "journal_1" if s < so1 else "web_1" if s < si1 else "crankpin" if s <= si2 else "web_2"
         volumes[name if s <= so2 else "journal_2"].append(t)
     for name, tags in volumes.items():
-        if not tags:
+        if not tags and not (half and name.endswith("_2")):
             raise InputError(
                 f"throw {plan.name}: splitting the throw at its web faces left no {name} (OpenCASCADE cuts "
                 "exactly only along a crank axis that runs along a coordinate axis of the file: export it so)",
@@ -138,7 +228,7 @@ def build_throw(gmsh, shaft: int, frame: Frame, origin: np.ndarray, plan: Plan, 
                 key="cad.file",
             )
     surfaces = _name_faces(gmsh, keep, frame, origin, plan, tol)
-    return Built(volumes, surfaces)
+    return Built({k: v for k, v in volumes.items() if v}, surfaces)
 
 
 def _name_faces(gmsh, keep: set[int], frame: Frame, origin, plan: Plan, tol: float) -> dict[str, list[int]]:

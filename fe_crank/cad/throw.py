@@ -23,7 +23,7 @@ from fe_crank.cad.chains import End, extent
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import Arc, Bearing, Counterweight, Cylinder, Fillet, OilBore, ThrowFeatures, Web
 from fe_crank.cad.frame import Frame, chord, turn_angle
-from fe_crank.cad.model import Built, Plan, build_throw, throw_mass
+from fe_crank.cad.model import Built, EndSlab, Plan, build_throw, throw_mass
 from fe_crank.cad.shaft import RawThrow
 from fe_crank.cad.survey import Face, coverage
 from fe_crank.errors import InputError
@@ -116,9 +116,36 @@ def _cw_fillets(faces, frame, radius, z_range, lines, used, tol) -> list[Face]:
     return out
 
 
-def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, ...], index: int, cad: CadInput, tol):
+#: the journal redrawn at a bearing centre (``cad.model.redraw_ends``) over this fraction
+#: of its cylinder's length from the centre towards the web (``cad.whole.SLAB`` checks it)
+SLAB_FRACTION = 0.25
+
+
+def end_slabs(t: RawThrow) -> tuple[EndSlab, EndSlab]:
+    """The round bars at the throw's bearing centres that ``cad.model.redraw_ends`` redraws."""
+    j1, j2 = t.journals
+    return (
+        EndSlab(j1.radius, SLAB_FRACTION * (j1.hi - j1.centre)),
+        EndSlab(j2.radius, SLAB_FRACTION * (j2.centre - j2.lo)),
+    )
+
+
+def throw_features(
+    gmsh,
+    shaft,
+    faces,
+    nbrs,
+    axis: Line,
+    raws: tuple[RawThrow, ...],
+    index: int,
+    cad: CadInput,
+    tol,
+    *,
+    joinable: bool = False,
+):
     """``(ThrowFeatures, Built, Plan, Frame)`` of throw ``index``; builds its parts in the
-    current model (the caller removes the shaft before meshing them)."""
+    current model (the caller removes the shaft before meshing them); ``joinable``: with
+    its journal redrawn at both bearing centres (``end_slabs``), for the whole shaft."""
     t = raws[index]
     mid = t.mid
     frame = Frame.of(axis.origin, axis.e, t.u, mid)
@@ -208,7 +235,7 @@ def throw_features(gmsh, shaft, faces, nbrs, axis: Line, raws: tuple[RawThrow, .
         (cw_top[0], cw_top[1]),
         groups,
     )
-    built = build_throw(gmsh, shaft, frame, axis.origin, plan, tol, str(cad.file))
+    built = build_throw(gmsh, shaft, frame, axis.origin, plan, tol, str(cad.file), end_slabs(t) if joinable else None)
     _check_groups(built, groups, cad, t.name)
     mass = throw_mass(gmsh, built.volumes, cad.density, frame, t.name)
     cws = tuple(

@@ -111,9 +111,13 @@ def validate_file(path: Path, allow_outside_paths: bool = False) -> str:
     lc = load_loadcase(path, allow_outside_paths=allow_outside_paths or None)
     text = f"load case '{lc.name}': engine '{lc.engine.name}', {lc.operating.speed * 30 / 3.141592653589793:.0f} rpm"
     if isinstance(lc.geometry, CadInput):
-        from fe_crank.pipeline.cad_geometry import recognise_case
+        from fe_crank.pipeline.cad_geometry import cad_layout, recognise_case
 
-        text += "; " + _recognised(recognise_case(lc, lc.geometry)[0])
+        features = recognise_case(lc, lc.geometry)[0]
+        text += "; " + _recognised(features)
+        layout = cad_layout(lc, lc.geometry, features)  # the whole shaft's refusals, before any meshing
+        if layout is not None:
+            text += f"; whole shaft on {len(layout.bearings)} main bearings"
     return text
 
 

@@ -244,6 +244,13 @@ def shaft_layout(
     )
 
 
+def main_bearings(spec: ShaftSpec, journals, g: CrankGeometry, gf: str, ef: str) -> tuple[MainBearing, ...]:
+    """The main bearings of ``spec`` on ``journals`` (``JournalSpan``s, front to rear):
+    names, widths, laws and the thrust bearing, as ``shaft_layout`` places them (a drawn
+    shaft's journals too, ``fe_crank.cad.whole``)."""
+    return _bearings(spec, journals, g, gf, ef)
+
+
 def whole_shaft_wanted(g: CrankGeometry | None, engine) -> bool:
     """Whether a check builds the whole shaft: an engine of one shaft whose throws the
     engine spreads along the axis (two or more), or a geometry with a ``[shaft]`` section."""

@@ -48,6 +48,7 @@ class CadSection(Strict):
     counterweight_radius: Length | None = None
     pin_recess: Length | None = None
     journal_recess: Length | None = None
+    bearing_width: Length | None = None
     faces: dict[str, FaceList | dict[str, FaceList]] = Field(default_factory=dict, max_length=256)
 
     @field_validator("length_unit")
@@ -73,13 +74,12 @@ class CadSection(Strict):
             raise ValueError("throw names must be different and not empty")
         return v
 
-    @field_validator("counterweight_radius", "pin_recess", "journal_recess")
+    @field_validator("counterweight_radius", "pin_recess", "journal_recess", "bearing_width")
     @classmethod
     def _sizes(cls, v, info):
-        if v is not None and (v < 0 or (v == 0 and info.field_name == "counterweight_radius")):
-            raise ValueError(
-                "must be positive" if info.field_name == "counterweight_radius" else "must not be negative"
-            )
+        positive = info.field_name in ("counterweight_radius", "bearing_width")
+        if v is not None and (v < 0 or (v == 0 and positive)):
+            raise ValueError("must be positive" if positive else "must not be negative")
         return v
 
     @model_validator(mode="after")
@@ -162,6 +162,7 @@ def cad_from_dict(data: dict, file: str | Path, prefix: str = "cad", *, file_key
         counterweight_radius=raw.counterweight_radius,
         pin_recess=raw.pin_recess,
         journal_recess=raw.journal_recess,
+        bearing_width=raw.bearing_width,
         faces=_faces(raw.faces, raw.throws, str(file), prefix),
         toml=str(file),
         file_key=file_key,

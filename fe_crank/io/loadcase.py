@@ -195,10 +195,13 @@ def _check_whole_shaft_criteria(criteria: Criteria, geometry, engine: model.Engi
         if lim.quantity not in WHOLE_SHAFT_QUANTITIES:
             continue
         if isinstance(geometry, CadInput):
+            z = [t.axial_position for t in engine.throws]
+            if len(engine.shafts) == 1 and len(z) > 1 and max(z) - min(z) > 0:
+                continue  # the drawing is checked when it is recognised (``pipeline.cad_geometry.cad_layout``)
             why = (
-                f"the load case's geometry is the CAD file {geometry.file.name}, for which the whole-shaft model is "
-                "not built (its throws are checked one by one); give the shaft as a geometry TOML file for this "
-                "criterion, or drop it"
+                f"the load case's geometry is the CAD file {geometry.file.name} and the engine has a single throw "
+                "(or its throws at one axial position, or several shafts): the whole-shaft model of a drawing is "
+                "built for an engine of several throws along one shaft; drop the criterion"
             )
         elif not isinstance(geometry, CrankGeometry):
             why = "the load case has no geometry"

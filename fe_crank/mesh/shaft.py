@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -31,7 +32,7 @@ from scipy.spatial import cKDTree
 from skfem import Mesh
 
 from fe_crank.errors import InputError, MeshError
-from fe_crank.geometry.shaft import ShaftLayout
+from fe_crank.geometry.shaft import PlacedThrow, ShaftLayout
 from fe_crank.mesh.build import mesh_throw
 from fe_crank.mesh.cache import cache_key
 from fe_crank.mesh.extrude import extrude, face_disc
@@ -108,10 +109,12 @@ def throw_angles(layout: ShaftLayout) -> list[float]:
     return [layout.sense * t.angle for t in layout.throws]
 
 
-def shaft_options(layout: ShaftLayout, size: str | MeshOptions = "coarse") -> MeshOptions:
+def shaft_options(layout: ShaftLayout, size: str | MeshOptions = "coarse", min_sectors: int = 1) -> MeshOptions:
     """The throws' mesh options on the shaft: ``size``'s with the end faces split into the
     sectors that let the turned throws meet node to node (module doc); the per-throw
-    model meshed with these shares the whole shaft's throw meshes (cache)."""
+    model meshed with these shares the whole shaft's throw meshes (cache).  ``min_sectors``:
+    at least so many (a drawn throw's end faces are split into two at least, so that its
+    rear face's mesh is a translated copy of its front face's, ``fe_crank.cad.whole``)."""
     angles = throw_angles(layout)
     steps = [b - a for a, b in zip(angles, angles[1:])]
     n = sectors_for(steps)
@@ -122,6 +125,8 @@ def shaft_options(layout: ShaftLayout, size: str | MeshOptions = "coarse") -> Me
             file=layout.geometry_file,
             key="throws",
         )
+    if n < min_sectors:  # a multiple of n: every angle stays a multiple of 2 pi / n
+        n *= -(-min_sectors // n)
     return dataclasses.replace(resolve_options(size), interface_sectors=n)
 
 
@@ -131,16 +136,26 @@ def mesh_shaft(
     size: str | MeshOptions = "coarse",
     cache_dir=DEFAULT_CACHE_DIR,
     max_elements: int | None = None,
+    throw_mesh: Callable[[PlacedThrow, MeshOptions], tuple[str, ThrowMesh]] | None = None,
+    min_sectors: int = 1,
 ) -> ShaftMesh:
-    """Mesh the whole shaft as joined pieces (module doc)."""
+    """Mesh the whole shaft as joined pieces (module doc).  ``throw_mesh``: (key, mesh)
+    of a placed throw meshed with the given options (its end faces split into their
+    sectors), for a shaft whose throws are not the layout's parametric ones (a drawn
+    shaft, ``fe_crank.cad.whole``); default ``mesh_throw`` of the layout's geometry;
+    ``min_sectors``: ``shaft_options``'s."""
     angles = throw_angles(layout)
-    opt = shaft_options(layout, size)
+    opt = shaft_options(layout, size, min_sectors)
     n = opt.interface_sectors
     g = layout.geometry
     meshes, throw_meshes, pieces = {}, {}, []
     keys = []
     for t, a in zip(layout.throws, angles):
-        key = cache_key(g, t.spec, opt)
+        if throw_mesh is not None:
+            key, tm = throw_mesh(t, opt)
+            meshes[key], throw_meshes[key] = tm.mesh, tm
+        else:
+            key = cache_key(g, t.spec, opt)
         if key not in meshes:
             tm = mesh_throw(g, t.spec, size=opt, cache_dir=cache_dir, max_elements=max_elements)
             meshes[key], throw_meshes[key] = tm.mesh, tm

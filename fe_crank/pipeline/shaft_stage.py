@@ -31,6 +31,8 @@ import numpy as np
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState, ShaftHotSpot, WholeShaftOutput, bearing_sweep
+from fe_crank.cad.config import CadInput
+from fe_crank.cad.whole import cad_shaft_mesh, cad_throw_masses
 from fe_crank.fe.shaft.fields import ShaftFields, shaft_fields
 from fe_crank.fe.shaft.model import ShaftFeOptions
 from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
@@ -49,6 +51,15 @@ def whole_shaft_stage(lc: LoadCase, geo: GeometryModel, out: CaseOutputs, fields
     options = ShaftFeOptions(
         solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry, keep_factors=fields
     )
+    mesher, mass = None, None
+    features = geo.cad
+    if features is not None and isinstance(lc.geometry, CadInput):  # the shaft as drawn: its mesh and masses
+        cad = lc.geometry
+
+        def mesher(*, size, cache_dir, max_elements):
+            return cad_shaft_mesh(cad, features, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
+
+        mass = cad_throw_masses(features, layout)
     result, cases = analyse_whole_shaft(
         layout,
         mat,
@@ -59,6 +70,8 @@ def whole_shaft_stage(lc: LoadCase, geo: GeometryModel, out: CaseOutputs, fields
         torque_flow=lc.torsion is not None,
         overspeed=overspeed,
         max_elements=geo.plan.max_elements,
+        mesher=mesher,
+        mass=mass,
     )
     try:
         t0 = time.perf_counter()

@@ -325,7 +325,8 @@ def _web_moments(cases, by, f, speed, psi, mass, counterweights, spin=None, ends
 
 def _mass_pieces(mp, g, spec, counterweights: bool):
     """(z0, z1, unbalance (2,) kg m) of each part of a throw along z (throw frame): webs and
-    counterweights are prisms over [z0, z1]; the other parts, never cut by a web's
+    counterweights are prisms over [z0, z1] (a counterweight the spec does not size, a
+    drawn one, over its web's thickness); the other parts, never cut by a web's
     mid-plane, act at their centroid (z0 = z1)."""
     zp, t, L = g.crankpin_length / 2, g.web_thickness, g.journal_length
     span = {
@@ -343,7 +344,8 @@ def _mass_pieces(mp, g, spec, counterweights: bool):
     for name, part in mp.parts.items():
         if name.startswith("counterweight") and not counterweights:
             continue
-        z0, z1 = span[name]
+        # a counterweight the spec does not size (a drawn one, ``cad.whole``): over its web's thickness
+        z0, z1 = span.get(name, span.get(name.replace("counterweight", "web"), (0.0, 0.0)))
         if not name.startswith(("web", "counterweight")):
             z0 = z1 = part.centroid[2]
         out.append((z0, z1, np.asarray(part.unbalance_vector)))

@@ -364,6 +364,15 @@ def condensed_shaft(sm, material, options: ShaftFeOptions | None = None, *, torq
     return model, cases, time.perf_counter() - t0
 
 
+def mesh_shaft_of(layout: ShaftLayout):
+    """The parametric layout's mesher: ``mesh_shaft`` of ``layout``."""
+
+    def mesher(*, size, cache_dir, max_elements):
+        return mesh_shaft(layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
+
+    return mesher
+
+
 def analyse_whole_shaft(
     layout: ShaftLayout,
     material,
@@ -376,21 +385,26 @@ def analyse_whole_shaft(
     torque_flow: bool = False,
     overspeed=(),
     max_elements: int | None = None,
+    mesher=None,
+    mass: dict | None = None,
 ) -> tuple[WholeShaftResult, ShaftCases]:
     """The whole shaft over the cycle (module doc); also returns the unit cases (stresses
     by superposition: ``ShaftCases.recover`` with ``WholeShaftResult.cycles[i].weights``).
     ``torque_flow``: every journal carries its own torque (``torque_flow_loads``: the
     dynamics' journal torques, e.g. with the torsional stage's vibratory torque);
-    ``overspeed``: dynamics results of the overspeed cycles (with counterweights)."""
+    ``overspeed``: dynamics results of the overspeed cycles (with counterweights);
+    ``mesher``: ``(size, cache_dir, max_elements) -> ShaftMesh`` and ``mass``: throw name ->
+    mass properties, for a shaft whose throws are not the layout's parametric solids (a
+    drawn shaft, ``fe_crank.cad.whole``); default ``mesh_shaft`` and ``throw_masses``."""
     t = {}
     t0 = time.perf_counter()
-    sm = mesh_shaft(layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    sm = (mesher or mesh_shaft_of(layout))(size=size, cache_dir=cache_dir, max_elements=max_elements)
     t["mesh"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     model, cases, t["cases"] = condensed_shaft(sm, material, options, torque_flow=torque_flow)
     t["condensation"] = time.perf_counter() - t0 - t["cases"]
     t0 = time.perf_counter()
-    mass = throw_masses(layout)
+    mass = mass if mass is not None else throw_masses(layout)
     on, off = (shaft_cycle_of(cases, layout, mass, dynamics, counterweights=cw, laws=laws) for cw in (True, False))
     os_cycles = tuple(shaft_cycle_of(cases, layout, mass, d, laws=laws) for d in overspeed)
     bearings = bearing_state_of(cases, layout, dynamics, laws=laws, stated=(on, off))[0]
