@@ -4,7 +4,7 @@
 finer fillet size.  ``zone_convergence`` gives the same levels from submodels
 (``fe.zone``): the first level is the assessed mesh's own solution, as there; for each
 finer level, every hot spot is meshed again inside a ball of radius
-``ZONE_RADIUS`` x its fillet radius (the oil bore: its radius) round the assessed mesh's
+``ZONE_RADIUS`` x its fillet radius (the oil bore: its diameter) round the assessed mesh's
 peak (``mesh.zone``, the throw mesher's size fields at that level's fillet size), driven
 on its cut by the assessed solution of every load set (all zones of a level in one
 mesh and one factorisation), and its peak read at the hot-spot surface's nodes within ``REACH`` x the zone
@@ -67,13 +67,13 @@ class HotSpot:
 
 
 def hot_spot_radius(geometry: CrankGeometry, throw_mesh: ThrowMesh, surface: str) -> float:
-    """The length the zone radius is measured in: the fillet's radius, the oil bore's radius."""
+    """The length the zone radius is measured in: the fillet's radius, the oil bore's diameter."""
     if surface in throw_mesh.fillet_radii:
         return throw_mesh.fillet_radii[surface]
     if surface.startswith("counterweight_fillet_"):
         return counterweight_fillet_radius(geometry, int(surface.rsplit("_", 1)[1]))
     assert geometry.oil_bore is not None
-    return geometry.oil_bore.diameter / 2
+    return geometry.oil_bore.diameter  # its outlet's stress field reaches further than a fillet's
 
 
 def hot_spots(
@@ -129,19 +129,19 @@ RETRY_GROWTH = 1.07
 
 def mesh_zones(geometry: CrankGeometry, spec, options, spots: list[HotSpot], samples) -> list[ZoneMesh]:
     """The zones of one level: every ball in one model (one mesh, one factorisation), or,
-    where gmsh cannot mesh that model, each ball on its own, a ball that fails once tried
-    again ``RETRY_GROWTH`` larger."""
+    where gmsh cannot mesh that model, the balls split into two halves, each meshed the
+    same way; a single ball that fails is tried again ``RETRY_GROWTH`` larger."""
     try:
         return [mesh_zone(geometry, spec, options, [h.centre for h in spots], [h.radius for h in spots], samples)]
     except MeshError as exc:
-        log.info("the hot-spot zones in one model: %s; meshed one by one", exc)
-    out = []
-    for h in spots:
-        try:
-            out.append(mesh_zone(geometry, spec, options, [h.centre], [h.radius], samples))
-        except MeshError:
-            out.append(mesh_zone(geometry, spec, options, [h.centre], [RETRY_GROWTH * h.radius], samples))
-    return out
+        if len(spots) == 1:
+            h = spots[0]
+            log.info("the hot-spot zone on %s: %s; tried %g x larger", h.surface, exc, RETRY_GROWTH)
+            return [mesh_zone(geometry, spec, options, [h.centre], [RETRY_GROWTH * h.radius], samples)]
+    half = len(spots) // 2
+    return mesh_zones(geometry, spec, options, spots[:half], samples) + mesh_zones(
+        geometry, spec, options, spots[half:], samples
+    )
 
 
 def zone_convergence(

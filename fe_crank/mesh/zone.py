@@ -82,6 +82,8 @@ def mesh_zone(
             # where they would cut its edges at a point (a degenerate loop for the mesher)
             occ.rotate([(3, ball)], float(c[0]), float(c[1]), float(c[2]), *TILT_AXIS, TILT)
             balls.append((3, ball))
+        if len(balls) > 1:  # their union: no faces of one ball inside another
+            balls, _ = occ.fuse(balls[:1], balls[1:])
         _, out_map = occ.fragment(vols, balls)
         occ.synchronize()
         in_ball = {t for m in out_map[len(vols) :] for d, t in m if d == 3}
