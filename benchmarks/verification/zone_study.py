@@ -39,6 +39,7 @@ def main(argv=None) -> int:
     ap.add_argument("--cache-dir", type=Path, default=None, help="mesh cache (default: none)")
     ap.add_argument("--out", type=Path, default=Path("zone_study"), help="output stem (.json, .md)")
     ap.add_argument("--no-full", action="store_true", help="the zones only (no full re-meshed study)")
+    ap.add_argument("--factors", type=float, nargs="+", default=[1.0, 1.5, 2.0], help="fillet refinement factors")
     args = ap.parse_args(argv)
 
     from fe_crank.fe import solve_unit_cases
@@ -63,7 +64,9 @@ def main(argv=None) -> int:
     studies = {}
     for r in args.radii:
         t0, c0 = time.perf_counter(), _cpu()
-        studies[f"zones {r:g} r"] = zone_convergence(lc.geometry, lc.material, tm, units, loads, zone_radius=r)
+        studies[f"zones {r:g} r"] = zone_convergence(
+            lc.geometry, lc.material, tm, units, loads, zone_radius=r, factors=tuple(args.factors)
+        )
         times[f"zones {r:g} r"] = time.perf_counter() - t0
         times[f"zones {r:g} r CPU"] = _cpu() - c0
     if not args.no_full:
@@ -76,6 +79,7 @@ def main(argv=None) -> int:
             fe_options=opts,
             cache_dir=args.cache_dir,
             first=(tm, units),
+            factors=tuple(args.factors),
         )
         times["full"] = time.perf_counter() - t0
         times["full CPU"] = _cpu() - c0
