@@ -79,3 +79,17 @@ def test_zone_study_equals_full_refinement_within_mesh_noise(check_solution):
     for name in full.changes:  # shaft fillets, counterweight fillets, oil bore under each load set
         assert zones.levels[0].peaks[name] == full.levels[0].peaks[name]  # the assessed mesh's own
         assert zones.levels[1].peaks[name] == pytest.approx(full.levels[1].peaks[name], rel=NOISE_TOL), name
+
+
+def test_a_zone_must_cut_the_throw(check_solution):
+    """A ball holding the whole throw has no cut to drive, one outside it no solid: both refused."""
+    from fe_crank.errors import MeshError
+    from fe_crank.fe.zone import boundary_samples
+    from fe_crank.mesh.zone import mesh_zone
+
+    geometry, _, tm, units = check_solution
+    spec, samples = geometry.throw(tm.throw), boundary_samples(units.mesh)
+    with pytest.raises(MeshError, match="hold the whole throw"):
+        mesh_zone(geometry, spec, PRESETS["test"], [(0.0, 0.0, 0.0)], [1.0], samples)
+    with pytest.raises(MeshError, match="hold no part of throw"):
+        mesh_zone(geometry, spec, PRESETS["test"], [(2.0, 2.0, 2.0)], [0.01], samples)
