@@ -54,15 +54,15 @@ from fe_crank.fe.convergence_levels import (  # noqa: F401 (the study's types an
     level_peaks,
 )
 from fe_crank.fe.convergence_loads import DEFAULT_LOADS, check_loads
-from fe_crank.fe.fe_options import Material
-from fe_crank.fe.surface_peaks import (  # noqa: F401 (FILLETS, peak_fillet_stress: the study's measures, named here too)
+from fe_crank.fe.throw.options import Material
+from fe_crank.fe.throw.surface_peaks import (  # noqa: F401 (FILLETS, peak_fillet_stress: the study's measures, named here too)
     COUNTERWEIGHT_FILLETS,
     FILLETS,
     OIL_BORE,
     peak_fillet_stress,
     peak_fillet_stresses,
 )
-from fe_crank.fe.unit_cases import FeOptions, UnitSolutions, solve_unit_cases
+from fe_crank.fe.throw.unit_cases import FeOptions, UnitSolutions, solve_unit_cases
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.mesh.types import ThrowMesh

@@ -9,8 +9,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fe_crank.fe.surface_peaks import COUNTERWEIGHT_FILLETS, OIL_BORE, peak_fillet_stresses
-from fe_crank.fe.unit_cases import UnitSolutions
+from fe_crank.fe.throw.surface_peaks import COUNTERWEIGHT_FILLETS, OIL_BORE, peak_fillet_stresses
+from fe_crank.fe.throw.unit_cases import UnitSolutions
 
 FACTORS = (1.0, 1.5, 2.0)
 TOLERANCE = 0.05
