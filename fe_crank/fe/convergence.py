@@ -40,9 +40,19 @@ from __future__ import annotations
 import dataclasses
 import logging
 import time
-from dataclasses import dataclass, field
 
 from fe_crank.cad.config import CadInput
+from fe_crank.fe.convergence_levels import (  # noqa: F401 (the study's types and constants, named here too)
+    COUNTERWEIGHT_PREFIX,
+    FACTORS,
+    OIL_BORE_PREFIX,
+    P_MAX,
+    P_MIN,
+    TOLERANCE,
+    ConvergenceLevel,
+    ConvergenceStudy,
+    level_peaks,
+)
 from fe_crank.fe.convergence_loads import DEFAULT_LOADS, check_loads
 from fe_crank.fe.throw.options import Material
 from fe_crank.fe.throw.surface_peaks import (  # noqa: F401 (FILLETS, peak_fillet_stress: the study's measures, named here too)
@@ -58,78 +68,6 @@ from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.mesh.types import ThrowMesh
 
 log = logging.getLogger(__name__)
-
-FACTORS = (1.0, 1.5, 2.0)
-TOLERANCE = 0.05
-#: the orders of convergence a Richardson extrapolation may take (``richardson``)
-P_MIN, P_MAX = 0.3, 8.0
-#: the peak on the counterweight fillets under load set X is the entry "counterweight fillets, X"
-COUNTERWEIGHT_PREFIX = "counterweight fillets, "
-#: ... and on the oil bore's surface the entry "oil bore, X"
-OIL_BORE_PREFIX = "oil bore, "
-
-
-@dataclass(frozen=True)
-class ConvergenceLevel:
-    """One mesh of the study: its fillet size and the peak fillet stress of each load set."""
-
-    fillet_divisions: float  # fillet element edge = r / fillet_divisions
-    n_dof: int
-    fillet_max_edge: dict[str, float]  # m, longest triangle edge on each fillet (mesh statistics)
-    peaks: dict[str, float]  # load set -> peak von Mises on the fillets, Pa (and the
-    # counterweight fillets' entries, COUNTERWEIGHT_PREFIX)
-    where: dict[str, str]  # load set -> fillet of the peak
-    seconds: float
-    reused: bool = False  # the check's own mesh and solution (no mesh, no solve)
-    bore_divisions: float = 6.0  # oil-bore elements: pi d / (2 bore_divisions) round its circumference
-
-
-@dataclass(frozen=True)
-class ConvergenceStudy:
-    """Levels coarse -> fine, the relative change of the last step per load set, the verdict."""
-
-    levels: tuple[ConvergenceLevel, ...]
-    loads: dict[str, dict[str, float]]
-    tolerance: float
-    changes: dict[str, list[float]] = field(default_factory=dict)  # load set -> change of each step
-
-    @property
-    def change(self) -> float:
-        """Largest relative change of the last refinement over the load sets."""
-        return max(c[-1] for c in self.changes.values())
-
-    @property
-    def assessed_changes(self) -> dict[str, float]:
-        """Load set -> |finest - assessed| / finest (the first level is the assessed mesh)."""
-        a, b = self.levels[0], self.levels[-1]
-        return {name: abs(b.peaks[name] - a.peaks[name]) / b.peaks[name] for name in self.changes}
-
-    @property
-    def assessed_change(self) -> float:
-        """Largest difference between the assessed mesh and the finest level over the load sets."""
-        return max(self.assessed_changes.values())
-
-    @property
-    def converged(self) -> bool:
-        return bool(self.assessed_change <= self.tolerance)
-
-    def to_dict(self) -> dict:
-        """The ``mesh_convergence`` entry of results.json (SI: Pa, m)."""
-        return {
-            "levels": [lv.fillet_divisions for lv in self.levels],
-            "fillet_size": [f"r/{lv.fillet_divisions:g}" for lv in self.levels],
-            "bore_divisions": [lv.bore_divisions for lv in self.levels],
-            "n_dof": [lv.n_dof for lv in self.levels],
-            "peaks": {name: [lv.peaks[name] for lv in self.levels] for name in self.changes},
-            "where": {name: [lv.where[name] for lv in self.levels] for name in self.changes},
-            "loads": self.loads,
-            "changes": self.changes,
-            "change": self.change,
-            "assessed_changes": self.assessed_changes,
-            "assessed_change": self.assessed_change,
-            "tolerance": self.tolerance,
-            "converged": self.converged,
-        }
 
 
 def fillet_convergence(
@@ -179,13 +117,7 @@ def fillet_convergence(
             tm = mesh_source_throw(geometry, throw, size=mopt, cache_dir=cache_dir)
             unit_solutions = solve_unit_cases(tm, material, opts)
         fields = {name: unit_solutions.combine(w) for name, w in loads.items()}
-        got = peak_fillet_stresses(unit_solutions, fields)
-        if any(n in (unit_solutions.mesh.boundaries or {}) for n in COUNTERWEIGHT_FILLETS):
-            cw = peak_fillet_stresses(unit_solutions, fields, COUNTERWEIGHT_FILLETS)
-            got.update({COUNTERWEIGHT_PREFIX + name: v for name, v in cw.items()})
-        if OIL_BORE[0] in (unit_solutions.mesh.boundaries or {}):
-            bore = peak_fillet_stresses(unit_solutions, fields, OIL_BORE)
-            got.update({OIL_BORE_PREFIX + name: v for name, v in bore.items()})
+        got = level_peaks(unit_solutions, fields)
         peaks = {name: v[0] for name, v in got.items()}
         where = {name: v[1] for name, v in got.items()}
         levels.append(
@@ -259,6 +191,7 @@ def check_studies(
     *,
     cache_dir=None,
     unit_solutions: dict[str, UnitSolutions] | None = None,
+    method: str = "zones",
 ) -> dict[str, ConvergenceStudy]:
     """The check stage's study for each distinct throw mesh (``meshes``: key -> ThrowMesh).
 
@@ -266,7 +199,9 @@ def check_studies(
     name, else all of them) at the speed of ``dynamics``; the first level uses the
     check's own mesh options, and with ``unit_solutions`` (key -> the check's
     ``UnitSolutions``) the check's own solution on that mesh (one mesh and one
-    factorisation fewer).
+    factorisation fewer).  ``method``: "zones" (``fe.zone_study``: only the hot spots
+    re-meshed, driven by the check's solution; where ``zones_apply``), else "full" (the
+    whole throw re-meshed and re-solved per level, ``fillet_convergence``).
     """
     out: dict[str, ConvergenceStudy] = {}
     done: dict[str, ConvergenceStudy] = {}
@@ -276,18 +211,34 @@ def check_studies(
             continue
         tls = [dynamics.throws[key]] if key in dynamics.throws else list(dynamics.throws.values())
         first = (tm, unit_solutions[key]) if unit_solutions and key in unit_solutions else None
+        loads = check_loads(tls, dynamics.speed)
+        if method == "zones" and zones_apply(geometry, first, loads, fe_options):
+            from fe_crank.fe.zone_study import zone_convergence
+
+            assert first is not None and isinstance(geometry, CrankGeometry)
+            out[key] = done[tm.key] = zone_convergence(geometry, material, first[0], first[1], loads)
+            continue
         study = fillet_convergence(
             geometry,
             material,
             throw=tm.throw,
             base=tm.options,
-            loads=check_loads(tls, dynamics.speed),
+            loads=loads,
             fe_options=fe_options,
             cache_dir=cache_dir,
             first=first,
         )
         out[key] = done[tm.key] = study
     return out
+
+
+def zones_apply(geometry, first, loads: dict[str, dict[str, float]], fe_options: FeOptions) -> bool:
+    """Can the zone study run?  A parametric geometry (the zone is cut from its solid), and
+    the check's own solution holding every unit case of ``loads`` on the whole pin."""
+    if not isinstance(geometry, CrankGeometry) or first is None:
+        return False
+    needed = tuple(sorted({c for w in loads.values() for c in w}))
+    return _reusable(first, first[0].options, dataclasses.replace(fe_options, cases=needed))
 
 
 def richardson(h, s) -> tuple[float, float] | None:

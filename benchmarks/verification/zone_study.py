@@ -1,0 +1,142 @@
+"""Verification: the hot-spot convergence study by zones against the full re-meshed study.
+
+The check's study (``fe.zone_study.zone_convergence``: only the hot spots re-meshed,
+submodels driven by the assessed solution) and the former method
+(``fe.convergence.fillet_convergence``: the whole throw re-meshed and re-solved at each
+fillet size), on one load case's throw at a mesh preset, with the check's own load sets
+(``fe.convergence_loads.check_loads``: the peak pin force with the centrifugal load at
+the operating speed, the peak torque) and support model.  The zones are solved at two
+radii (``--radii``, in fillet radii) to show the cut-boundary error.  Writes a JSON file
+and a Markdown table: per entry (load set, surface family) and level the peak of each
+method and their relative difference, and the Richardson estimate (``estimate``) of each.
+
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/verification/zone_study.py \\
+        loadcases/single_cylinder.toml --preset coarse --out zone_coarse
+
+(the full study at ``coarse`` takes about 10 min and 16 GB; at ``test`` about 1 min).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import resource
+import time
+from pathlib import Path
+
+
+def _cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    return r.ru_utime + r.ru_stime
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("loadcase", type=Path)
+    ap.add_argument("--preset", default="coarse")
+    ap.add_argument("--radii", type=float, nargs="+", default=[3.0, 2.0])
+    ap.add_argument("--cache-dir", type=Path, default=None, help="mesh cache (default: none)")
+    ap.add_argument("--out", type=Path, default=Path("zone_study"), help="output stem (.json, .md)")
+    ap.add_argument("--no-full", action="store_true", help="the zones only (no full re-meshed study)")
+    ap.add_argument("--factors", type=float, nargs="+", default=[1.0, 1.5, 2.0], help="fillet refinement factors")
+    args = ap.parse_args(argv)
+
+    from fe_crank.fe import solve_unit_cases
+    from fe_crank.fe.convergence import estimate, fillet_convergence
+    from fe_crank.fe.convergence_loads import check_loads
+    from fe_crank.fe.zone_study import zone_convergence
+    from fe_crank.io.loadcase import load_loadcase
+    from fe_crank.mechanism.cycles import engine_cycles
+    from fe_crank.mesh import mesh_throw
+
+    lc = load_loadcase(args.loadcase)
+    cycles = engine_cycles(lc.engine, lc.operating)
+    dyn = cycles.operating
+    loads = check_loads(list(dyn.throws.values()), dyn.speed)
+    needed = tuple(sorted({c for w in loads.values() for c in w}))
+    opts = dataclasses.replace(lc.fe, cases=needed)
+    t0 = time.perf_counter()
+    tm = mesh_throw(lc.geometry, size=args.preset, cache_dir=args.cache_dir)
+    units = solve_unit_cases(tm, lc.material, opts)
+    units.system.factorisation.free()
+    times = {"mesh and solve": time.perf_counter() - t0}
+    studies = {}
+    for r in args.radii:
+        t0, c0 = time.perf_counter(), _cpu()
+        studies[f"zones {r:g} r"] = zone_convergence(
+            lc.geometry, lc.material, tm, units, loads, zone_radius=r, factors=tuple(args.factors)
+        )
+        times[f"zones {r:g} r"] = time.perf_counter() - t0
+        times[f"zones {r:g} r CPU"] = _cpu() - c0
+    if not args.no_full:
+        t0, c0 = time.perf_counter(), _cpu()
+        studies["full"] = fillet_convergence(
+            lc.geometry,
+            lc.material,
+            base=tm.options,
+            loads=loads,
+            fe_options=opts,
+            cache_dir=args.cache_dir,
+            first=(tm, units),
+            factors=tuple(args.factors),
+        )
+        times["full"] = time.perf_counter() - t0
+        times["full CPU"] = _cpu() - c0
+    ref_name = "full" if "full" in studies else f"zones {args.radii[0]:g} r"
+    ref = studies[ref_name]
+    rows = []
+    for name in ref.changes:
+        for key, st in studies.items():
+            peaks = [lv.peaks[name] for lv in st.levels]
+            est = estimate(st, name)[0] * peaks[0]
+            ref_peaks = [lv.peaks[name] for lv in ref.levels]
+            ref_est = estimate(ref, name)[0] * ref_peaks[0]
+            rows.append(
+                {
+                    "entry": name,
+                    "method": key,
+                    "peaks_Pa": peaks,
+                    "estimate_Pa": est,
+                    "difference": [a / b - 1 for a, b in zip(peaks, ref_peaks)],
+                    "estimate_difference": est / ref_est - 1,
+                    "where": [lv.where[name] for lv in st.levels],
+                }
+            )
+    result = {
+        "loadcase": str(args.loadcase),
+        "preset": args.preset,
+        "reference": ref_name,
+        "dof": {k: [lv.n_dof for lv in st.levels] for k, st in studies.items()},
+        "seconds": times,
+        "peak_rss_GB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6,
+        "rows": rows,
+    }
+    args.out.with_suffix(".json").write_text(json.dumps(result, indent=1))
+    sizes = ", ".join(f"r/{lv.fillet_divisions:g}" for lv in ref.levels)
+    lines = [
+        f"{args.loadcase} at {args.preset}: peaks (MPa) at {sizes}, the Richardson estimate, and the "
+        f"difference from the {ref_name} study",
+        "",
+        "| entry | method | peaks, MPa | estimate, MPa | difference of the levels | of the estimate |",
+        "| --- | --- | --- | --- | --- | --- |",
+    ]
+    for r in rows:
+        lines.append(
+            f"| {r['entry']} | {r['method']} | {' / '.join(f'{p / 1e6:.2f}' for p in r['peaks_Pa'])} | "
+            f"{r['estimate_Pa'] / 1e6:.2f} | {' / '.join(f'{d * 100:+.2f} %' for d in r['difference'])} | "
+            f"{r['estimate_difference'] * 100:+.2f} % |"
+        )
+    lines += ["", "| study | DOF per level | wall, s | CPU, s |", "| --- | --- | --- | --- |"]
+    for k, st in studies.items():
+        lines.append(
+            f"| {k} | {' / '.join(str(lv.n_dof) for lv in st.levels)} | {times[k]:.1f} | {times[k + ' CPU']:.1f} |"
+        )
+    lines.append(f"\npeak resident memory {result['peak_rss_GB']:.2f} GB")
+    args.out.with_suffix(".md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,211 @@
+"""A submodel of one hot-spot zone, driven by the assessed mesh's solution.
+
+The zone (``mesh.zone``: the throw's solid inside a ball round a hot spot, meshed at a
+finer fillet size) is solved for linear elasticity (P2, the throw model's material and
+integration order) with
+
+* the displacement of the assessed (global) solution prescribed on its cut boundary (the
+  ball's faces) and on the support and end faces inside it (the journals' surfaces, the
+  end faces: where the global model's reactions and couplings act), interpolated from
+  the assessed mesh's P2 field (:func:`interpolate`: the element holding the point, its
+  isoparametric map inverted by Newton's method, the P2 shape functions there);
+* the loads that act inside the zone applied as in the global model: the crankpin's
+  cosine pressure with the global unit case's own peak pressure and arc
+  (``loads.PinPressure``) on the zone's part of the pin surface, the body forces
+  (``loads.BODY_CASES``) on its volume;
+* every other face free (the fillets, the oil bore, the web faces).
+
+Every load set of the study is a right-hand side of one factorisation (the prescribed
+values enter as -K_fd u_d).  This is the classical cut-boundary displacement submodel
+(Cormier, Smallwood, Sinclair & Meda, "Aggressive submodelling of stress
+concentrations", Int. J. Numer. Meth. Engng 46 (1999) 889-909): its error is the
+error of the global displacement on the cut, which decays away from the hot spot, and is
+measured by solving the zone at two radii (docs/fe.md, "Hot-spot convergence").
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.spatial import cKDTree
+from skfem import ElementTetP2
+
+from fe_crank.errors import MeshError
+from fe_crank.fe.core.assembly import assemble_stiffness, assemble_surface_load
+from fe_crank.fe.core.bases import cell_basis, facet_basis
+from fe_crank.fe.throw.options import FeOptions, Material
+from fe_crank.fe.linalg.factorise import factorise
+from fe_crank.fe.core.loads import BODY_CASES, SURFACE_INTORDER, PinPressure
+from fe_crank.fe.throw.pin_directions import pin_direction
+from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
+from fe_crank.mesh.zone import CUT, ZoneMesh
+
+#: candidate elements examined for each point (nearest by centroid)
+CANDIDATES = 24
+#: Newton iterations of the isoparametric inverse map
+NEWTON = 4
+
+
+def boundary_samples(mesh) -> tuple[np.ndarray, list[str]]:
+    """(centroids (n, 3) of the boundary facets of ``mesh``, each one's boundary name, "" unnamed)."""
+    facets = mesh.boundary_facets()
+    label = np.full(mesh.facets.shape[1], -1)
+    names = sorted(mesh.boundaries or {})
+    for i, name in enumerate(names):
+        label[mesh.boundaries[name]] = i
+    x = mesh.p[:, mesh.facets[:, facets]].mean(axis=1).T
+    return x, [names[k] if k >= 0 else "" for k in label[facets]]
+
+
+class Interpolator:
+    """The P2 field of a (curved) tetrahedral mesh at arbitrary points (module docstring)."""
+
+    def __init__(self, mesh, dofs, points: np.ndarray):
+        self.ed = np.asarray(dofs.element_dofs)  # (10, ne)
+        self.x = np.asarray(points)  # (3, n) the P2 nodes (the dofs' locations)
+        self.vert = mesh.p[:, mesh.t[:4]]  # (3, 4, ne)
+        self.tree = cKDTree(self.vert.mean(axis=1).T)
+        self.elem = ElementTetP2()
+
+    def locate(self, pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(element (n,), reference coordinates (3, n)) of points (3, n)."""
+        k = min(CANDIDATES, self.vert.shape[2])
+        _, cand = self.tree.query(pts.T, k=k)
+        cand = np.atleast_2d(cand)
+        v = self.vert[:, :, cand]  # (3, 4, n, k)
+        A = np.stack([v[:, 1] - v[:, 0], v[:, 2] - v[:, 0], v[:, 3] - v[:, 0]], axis=-1)  # (3, n, k, 3)
+        A = np.moveaxis(A, 0, -2)  # (n, k, 3, 3)
+        b = (pts[:, :, None] - v[:, 0]).transpose(1, 2, 0)[..., None]  # (n, k, 3, 1)
+        lam = np.linalg.solve(A, b)[..., 0]  # (n, k, 3)
+        inside = np.minimum(lam.min(axis=-1), 1.0 - lam.sum(axis=-1))
+        best = np.argmax(inside, axis=1)
+        rows = np.arange(pts.shape[1])
+        e = cand[rows, best]
+        X = lam[rows, best].T.copy()  # (3, n) reference coordinates of the straight element
+        P = self.x[:, self.ed[:, e]]  # (3, 10, n)
+        for _ in range(NEWTON):  # the isoparametric map's inverse
+            phi, dphi = self._basis(X)
+            r = np.einsum("ian,an->in", P, phi) - pts
+            J = np.einsum("ian,jan->nij", P, dphi)
+            X = X - np.linalg.solve(J, r.T[..., None])[..., 0].T
+        return e, X
+
+    def _basis(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        out = [self.elem.lbasis(X, a) for a in range(10)]
+        return np.stack([o[0] for o in out]), np.stack([o[1] for o in out], axis=1)  # (10, n), (3, 10, n)
+
+    def values(self, pts: np.ndarray, fields: list[np.ndarray]) -> list[np.ndarray]:
+        """Each interleaved P2 displacement field at points (3, n): (3, n) each."""
+        e, X = self.locate(pts)
+        phi, _ = self._basis(X)
+        d = self.ed[:, e]  # (10, n)
+        return [np.stack([np.einsum("an,an->n", phi, u[3 * d + i]) for i in range(3)]) for u in fields]
+
+
+def driven_boundaries(options: FeOptions) -> tuple[str, ...]:
+    """The zone's faces whose displacement is prescribed: the cut, the supports' surfaces, the end faces."""
+    return (CUT, *options.journals, options.reaction_face, options.torque_face)
+
+
+def _pin_traction(fb, pin: PinPressure):
+    """The traction of a global pin unit case (``loads.pin_pressure_load``) on the zone's pin facets."""
+    x = np.asarray(fb.global_coordinates())
+    n = np.array(fb.normals)
+    n[2] = 0.0
+    nr = np.sqrt(n[0] ** 2 + n[1] ** 2)
+    n = np.where(nr > 1e-6, n / np.maximum(nr, 1e-300), 0.0)
+    c = pin.centre
+    ang = np.arctan2(x[0] - c[0], x[1] - c[1])
+    psi = np.angle(np.exp(1j * (ang - pin.arc_centre)))
+    sh = np.where(np.abs(psi) < pin.half_angle, np.cos(0.5 * np.pi * psi / pin.half_angle), 0.0)
+    return lambda xq, nq: -pin.peak_pressure * sh[None] * n
+
+
+def solve_zone(
+    zone: ZoneMesh,
+    material: Material,
+    options: FeOptions,
+    pins: dict[str, PinPressure],
+    loads: dict[str, dict[str, float]],
+    driven: dict[str, np.ndarray],
+    interpolator: Interpolator,
+):
+    """Zone displacements {load set: interleaved vector} and the zone's scalar basis.
+
+    ``loads``: {load set: {unit case: weight}}; ``driven``: {load set: the assessed
+    solution of that load set} (interleaved, on the interpolator's mesh); ``pins``: the
+    global pin unit cases' pressures."""
+    mesh = zone.mesh
+    basis = cell_basis(mesh, options.intorder)
+    K = assemble_stiffness(basis, material.youngs_modulus, material.poisson_ratio)
+    n = 3 * basis.N
+    held_facets = [mesh.boundaries[b] for b in dict.fromkeys(driven_boundaries(options)) if b in mesh.boundaries]
+    nodes = np.unique(basis.get_dofs(np.concatenate(held_facets)).all())
+    held = (3 * nodes[:, None] + np.arange(3)).ravel()
+    free = np.setdiff1d(np.arange(n), held)
+    names = list(loads)
+    pts = basis.doflocs[:, nodes]
+    g = interpolator.values(pts, [driven[k] for k in names])
+    F = np.zeros((n, len(names)))
+    pin_fb = None
+    body: dict[str, np.ndarray] = {}
+    for j, name in enumerate(names):
+        for case, w in loads[name].items():
+            if case in BODY_CASES:
+                if case not in body:
+                    body[case] = BODY_CASES[case][0](basis, material.density)
+                F[:, j] += w * body[case]
+            elif pin_direction(case) is not None:
+                if options.pin_boundary not in (mesh.boundaries or {}):
+                    continue  # no pin surface in the zone
+                if pin_fb is None:
+                    pin_fb = facet_basis(
+                        mesh, basis.elem, mesh.boundaries[options.pin_boundary], SURFACE_INTORDER, "the zone's pin load"
+                    )
+                F[:, j] += w * assemble_surface_load(pin_fb, _pin_traction(pin_fb, pins[case]))
+            elif case != "torque":  # the torque enters at an end face: driven where the zone holds it
+                raise MeshError(f"the hot-spot zone cannot apply the unit case {case!r}")
+    U = np.zeros((n, len(names)))
+    for j in range(len(names)):
+        U[held, j] = g[j].T.ravel()
+    K = sp.csr_matrix(K)
+    Kff = K[free][:, free]
+    rhs = F[free] - K[free][:, held] @ U[held]
+    fac = factorise(Kff, "auto")
+    try:
+        U[free] = fac.solve(rhs)
+    finally:
+        fac.free()
+    return {name: U[:, j] for j, name in enumerate(names)}, basis
+
+
+def zone_peaks(
+    zone: ZoneMesh, basis, material: Material, fields: dict[str, np.ndarray], surfaces, reach: float
+) -> dict[str, dict[str, float]]:
+    """{load set: {surface: peak averaged nodal von Mises, Pa}} on the zone's ``surfaces``
+    at the nodes within ``reach`` x a ball's radius of its centre (away from the cut)."""
+    mesh = zone.mesh
+    x = basis.doflocs
+    groups = {}
+    for name in surfaces:
+        if name in (mesh.boundaries or {}):
+            nodes = basis.get_dofs(mesh.boundaries[name]).all()
+            near = np.zeros(nodes.size, bool)
+            for c, r in zip(zone.centres, zone.radii):
+                near |= np.linalg.norm(x[:, nodes] - np.asarray(c)[:, None], axis=0) <= reach * r
+            if near.any():
+                groups[name] = nodes[near]
+    if not groups:
+        return {k: {} for k in fields}
+    ids = np.unique(np.concatenate(list(groups.values())))
+    s = stress_at_selected_nodes(
+        mesh, list(fields.values()), material.youngs_modulus, material.poisson_ratio, ids, dofs=basis.dofs
+    )
+    out = {}
+    for j, key in enumerate(fields):
+        vm = von_mises(s[j])
+        out[key] = {name: float(vm[np.searchsorted(ids, nodes)].max()) for name, nodes in groups.items()}
+    return out
+
+
+__all__ = ["Interpolator", "boundary_samples", "driven_boundaries", "solve_zone", "zone_peaks"]

@@ -1,0 +1,234 @@
+"""The hot-spot convergence study by zones: only the hot spots are refined.
+
+``fe.convergence.fillet_convergence`` re-meshes and re-solves the whole throw at each
+finer fillet size.  ``zone_convergence`` gives the same levels from submodels
+(``fe.zone``): the first level is the assessed mesh's own solution, as there; for each
+finer level, every hot spot is meshed again inside a ball of radius
+``ZONE_RADIUS`` x its fillet radius (the oil bore: its diameter) round the assessed mesh's
+peak (``mesh.zone``, the throw mesher's size fields at that level's fillet size), driven
+on its cut by the assessed solution of every load set (all zones of a level in one
+mesh and one factorisation), and its peak read at the hot-spot surface's nodes within ``REACH`` x the zone
+radius of the centre.
+
+Hot spots: for each hot-spot family (shaft fillets; counterweight fillets; oil bore) and
+each load set, the peak node of every surface of the family whose assessed peak is at
+least ``CANDIDATE`` x the family's peak (so a surface that refinement could lift above the
+governing one by up to 1/CANDIDATE - 1 = 18 % is followed too); centres closer than half
+a zone radius to an earlier one are merged.  The level's value of a family and load set
+is the largest over the zones, as the full study's is over the surfaces.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import time
+
+import numpy as np
+
+from fe_crank.errors import MeshError
+from fe_crank.fe.convergence_levels import (
+    COUNTERWEIGHT_PREFIX,
+    FACTORS,
+    OIL_BORE_PREFIX,
+    TOLERANCE,
+    ConvergenceLevel,
+    ConvergenceStudy,
+    level_peaks,
+)
+from fe_crank.fe.throw.options import Material
+from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
+from fe_crank.fe.throw.surface_peaks import COUNTERWEIGHT_FILLETS, FILLETS, OIL_BORE
+from fe_crank.fe.throw.unit_cases import UnitSolutions
+from fe_crank.fe.zone import Interpolator, boundary_samples, solve_zone, zone_peaks
+from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.mesh.sizing import counterweight_fillet_radius
+from fe_crank.mesh.types import ThrowMesh
+from fe_crank.mesh.zone import ZoneMesh, mesh_zone
+
+log = logging.getLogger(__name__)
+
+#: zone radius / the hot spot's fillet radius (docs/fe.md: the cut-boundary error at 2 and 3 radii)
+ZONE_RADIUS = 3.0
+#: the zone's peak is read within REACH x its radius of the centre
+REACH = 0.5
+#: surfaces followed: assessed peak >= CANDIDATE x the family's assessed peak
+CANDIDATE = 0.85
+FAMILIES = (("", FILLETS), (COUNTERWEIGHT_PREFIX, COUNTERWEIGHT_FILLETS), (OIL_BORE_PREFIX, OIL_BORE))
+
+
+@dataclasses.dataclass(frozen=True)
+class HotSpot:
+    """A zone's centre (m), radius (m) and the surface whose assessed peak it is."""
+
+    centre: tuple[float, float, float]
+    radius: float
+    surface: str
+
+
+def hot_spot_radius(geometry: CrankGeometry, throw_mesh: ThrowMesh, surface: str) -> float:
+    """The length the zone radius is measured in: the fillet's radius, the oil bore's diameter."""
+    if surface in throw_mesh.fillet_radii:
+        return throw_mesh.fillet_radii[surface]
+    if surface.startswith("counterweight_fillet_"):
+        return counterweight_fillet_radius(geometry, int(surface.rsplit("_", 1)[1]))
+    assert geometry.oil_bore is not None
+    return geometry.oil_bore.diameter  # its outlet's stress field reaches further than a fillet's
+
+
+def hot_spots(
+    geometry: CrankGeometry,
+    throw_mesh: ThrowMesh,
+    unit_solutions: UnitSolutions,
+    fields: dict[str, np.ndarray],
+    *,
+    zone_radius: float = ZONE_RADIUS,
+) -> list[HotSpot]:
+    """The zones of the study (module docstring), largest assessed peak first."""
+    mesh, basis = unit_solutions.mesh, unit_solutions.system.basis
+    groups = {
+        name: basis.get_dofs(mesh.boundaries[name]).all()
+        for _, names in FAMILIES
+        for name in names
+        if name in (mesh.boundaries or {})
+    }
+    ids = np.unique(np.concatenate(list(groups.values())))
+    mat = unit_solutions.material
+    s = stress_at_selected_nodes(
+        mesh, list(fields.values()), mat.youngs_modulus, mat.poisson_ratio, ids, dofs=basis.dofs
+    )
+    found: list[tuple[float, HotSpot]] = []
+    for j in range(len(fields)):
+        vm = von_mises(s[j])
+        for _, names in FAMILIES:
+            peaks = {}
+            for name in names:
+                if name in groups:
+                    v = vm[np.searchsorted(ids, groups[name])]
+                    peaks[name] = (float(v.max()), int(groups[name][int(np.argmax(v))]))
+            if not peaks:
+                continue
+            top = max(v for v, _ in peaks.values())
+            for name, (v, node) in peaks.items():
+                if v >= CANDIDATE * top:
+                    x = unit_solutions.points[:, node]
+                    r = zone_radius * hot_spot_radius(geometry, throw_mesh, name)
+                    found.append((v, HotSpot((float(x[0]), float(x[1]), float(x[2])), r, name)))
+    found.sort(key=lambda t: -t[0])
+    out: list[HotSpot] = []
+    for _, h in found:
+        if all(np.linalg.norm(np.subtract(h.centre, o.centre)) > 0.5 * min(h.radius, o.radius) for o in out):
+            out.append(h)
+    return out
+
+
+#: a ball whose zone gmsh cannot mesh is tried again this much larger (a ball that grazes an
+#: edge of the solid leaves sliver faces)
+RETRY_GROWTH = 1.07
+
+
+def mesh_zones(geometry: CrankGeometry, spec, options, spots: list[HotSpot], samples) -> list[ZoneMesh]:
+    """The zones of one level: every ball in one model (one mesh, one factorisation), or,
+    where gmsh cannot mesh that model, the balls split into two halves, each meshed the
+    same way; a single ball that fails is tried again ``RETRY_GROWTH`` larger."""
+    try:
+        return [mesh_zone(geometry, spec, options, [h.centre for h in spots], [h.radius for h in spots], samples)]
+    except MeshError as exc:
+        if len(spots) == 1:
+            h = spots[0]
+            log.info("the hot-spot zone on %s: %s; tried %g x larger", h.surface, exc, RETRY_GROWTH)
+            return [mesh_zone(geometry, spec, options, [h.centre], [RETRY_GROWTH * h.radius], samples)]
+    half = len(spots) // 2
+    return mesh_zones(geometry, spec, options, spots[:half], samples) + mesh_zones(
+        geometry, spec, options, spots[half:], samples
+    )
+
+
+def zone_convergence(
+    geometry: CrankGeometry,
+    material: Material,
+    throw_mesh: ThrowMesh,
+    unit_solutions: UnitSolutions,
+    loads: dict[str, dict[str, float]],
+    *,
+    factors=FACTORS,
+    tolerance: float = TOLERANCE,
+    zone_radius: float = ZONE_RADIUS,
+) -> ConvergenceStudy:
+    """The study's levels r/(n f), f in ``factors`` (the first 1: the assessed mesh
+    ``throw_mesh`` and its solution ``unit_solutions``, which must hold every unit case of
+    ``loads``), the finer ones from the hot-spot zones (module docstring)."""
+    if len(factors) < 2 or factors[0] != 1.0:
+        raise ValueError("a zone study starts from the assessed mesh (factor 1) and has at least two levels")
+    loads = {k: dict(v) for k, v in loads.items()}
+    t0 = time.perf_counter()
+    fields = {name: unit_solutions.combine(w) for name, w in loads.items()}
+    first = level_peaks(unit_solutions, fields)
+    base = throw_mesh.options
+    levels = [
+        ConvergenceLevel(
+            fillet_divisions=base.fillet_divisions,
+            n_dof=unit_solutions.n_dof,
+            fillet_max_edge=dict(throw_mesh.stats.fillet_max_edge),
+            peaks={k: v[0] for k, v in first.items()},
+            where={k: v[1] for k, v in first.items()},
+            seconds=time.perf_counter() - t0,
+            reused=True,
+            bore_divisions=base.bore_divisions,
+        )
+    ]
+    spots = hot_spots(geometry, throw_mesh, unit_solutions, fields, zone_radius=zone_radius)
+    spec = geometry.throw(throw_mesh.throw)
+    samples = boundary_samples(unit_solutions.mesh)
+    interp = Interpolator(unit_solutions.mesh, unit_solutions.system.basis.dofs, unit_solutions.points)
+    every = [n for _, names in FAMILIES for n in names]
+    for f in factors[1:]:
+        t0 = time.perf_counter()
+        mopt = dataclasses.replace(
+            base, fillet_divisions=base.fillet_divisions * f, bore_divisions=base.bore_divisions * f
+        )
+        best: dict[str, tuple[float, str]] = {}
+        n_dof, edges = 0, dict[str, float]()
+        for zm in mesh_zones(geometry, spec, mopt, spots, samples):
+            U, basis = solve_zone(zm, material, unit_solutions.options, unit_solutions.pin, loads, fields, interp)
+            n_dof += int(3 * basis.N)
+            for k, v in zm.fillet_max_edge.items():
+                edges[k] = max(edges.get(k, 0.0), v)
+            got = zone_peaks(zm, basis, material, U, every, REACH)
+            for name, per in got.items():
+                for prefix, names in FAMILIES:
+                    for surface in names:
+                        if surface in per and per[surface] > best.get(prefix + name, (-np.inf, ""))[0]:
+                            best[prefix + name] = (per[surface], surface)
+        missing = sorted(set(first) - set(best))
+        if missing:
+            raise RuntimeError(f"the hot-spot zones hold no node of the surfaces of {missing}")
+        levels.append(
+            ConvergenceLevel(
+                fillet_divisions=mopt.fillet_divisions,
+                n_dof=n_dof,
+                fillet_max_edge=edges,
+                peaks={k: best[k][0] for k in first},
+                where={k: best[k][1] for k in first},
+                seconds=time.perf_counter() - t0,
+                bore_divisions=mopt.bore_divisions,
+                zones=len(spots),
+            )
+        )
+        log.info(
+            "convergence level r/%g: %d zones, %d DOF, %.1f s",
+            mopt.fillet_divisions,
+            len(spots),
+            n_dof,
+            levels[-1].seconds,
+        )
+    changes = {
+        name: [abs(b.peaks[name] - a.peaks[name]) / b.peaks[name] for a, b in zip(levels, levels[1:])]
+        for name in levels[0].peaks
+    }
+    return ConvergenceStudy(
+        levels=tuple(levels), loads=loads, tolerance=tolerance, changes=changes, method="zones", zone_radius=zone_radius
+    )
+
+
+__all__ = ["CANDIDATE", "REACH", "ZONE_RADIUS", "HotSpot", "hot_spots", "zone_convergence"]
