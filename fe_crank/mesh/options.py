@@ -11,7 +11,7 @@ import numpy as np
 
 from fe_crank.errors import MeshError
 
-CACHE_FORMAT = 4  # 2: Netgen optimisation and straightening of poorly curved elements (minSJ <= 0.1); 3: mirrored meshes of symmetric throws, `symmetry` in stats; 4: the end-face sectors' edges with one stated master each (the same mesh on every run)
+CACHE_FORMAT = 5  # 2: Netgen optimisation and straightening of poorly curved elements (minSJ <= 0.1); 3: mirrored meshes of symmetric throws, `symmetry` in stats; 4: the end-face sectors' edges with one stated master each (the same mesh on every run); 5: pear webs' arcs broken at the circle's parametric seam (a throw with one counterweight meshes whole)
 DEFAULT_CACHE_DIR = Path(".cache") / "meshes"
 
 #: the gmsh options every throw mesh is generated with (beside the session's single thread,
