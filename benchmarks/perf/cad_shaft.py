@@ -36,11 +36,11 @@ ROOT = Path(__file__).resolve().parents[2]
 
 def write_step(lc_path: Path, path: Path) -> float:
     """The load case's parametric shaft as one STEP solid; returns the geometry's density."""
-    from fe_crank.pipeline.stages import shaft_layout
     from fe_crank.geometry.solid import throw_solid
     from fe_crank.gmsh_io import gmsh_session
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mesh.shaft import throw_angles
+    from fe_crank.pipeline.stages import shaft_layout
 
     lc = load_loadcase(lc_path)
     layout = shaft_layout(lc)

@@ -52,6 +52,7 @@ from fe_crank.geometry.spec import (
     WebOutline,
 )
 from fe_crank.mesh.interface import MAX_SECTORS, sectors_for
+from fe_crank.mesh.shaft import ShaftMesh
 
 #: relative agreement of two drawn throws that one mesh stands for
 SAME_TOL = 1e-9
@@ -327,7 +328,9 @@ def cad_throw_masses(features: CadFeatures, layout: ShaftLayout) -> dict:
     return {t.name: features.throw(t.name).mass for t in layout.throws}
 
 
-def cad_shaft_mesh(cad: CadInput, features: CadFeatures, layout: ShaftLayout, *, size, cache_dir, max_elements=None):
+def cad_shaft_mesh(
+    cad: CadInput, features: CadFeatures, layout: ShaftLayout, *, size, cache_dir, max_elements: int | None = None
+) -> ShaftMesh:
     """The drawn shaft's ``ShaftMesh`` (module doc): each throw's mesh (one for the throws
     that are the same solid, ``shared_meshes``), its end faces split to join."""
     from fe_crank.cad.mesh import mesh_cad_throw

@@ -33,11 +33,11 @@ from skfem import ElementTetP2
 from fe_crank.errors import MeshError
 from fe_crank.fe.core.assembly import assemble_stiffness, assemble_surface_load
 from fe_crank.fe.core.bases import cell_basis, facet_basis
-from fe_crank.fe.throw.options import FeOptions, Material
-from fe_crank.fe.linalg.factorise import factorise
 from fe_crank.fe.core.loads import BODY_CASES, SURFACE_INTORDER, PinPressure
-from fe_crank.fe.throw.pin_directions import pin_direction
 from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
+from fe_crank.fe.linalg.factorise import factorise
+from fe_crank.fe.throw.options import FeOptions, Material
+from fe_crank.fe.throw.pin_directions import pin_direction
 from fe_crank.mesh.zone import CUT, ZoneMesh
 
 #: candidate elements examined for each point (nearest by centroid)

@@ -36,8 +36,8 @@ from fe_crank.fe.convergence_levels import (
     ConvergenceStudy,
     level_peaks,
 )
-from fe_crank.fe.throw.options import Material
 from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
+from fe_crank.fe.throw.options import Material
 from fe_crank.fe.throw.surface_peaks import COUNTERWEIGHT_FILLETS, FILLETS, OIL_BORE
 from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.fe.zone import Interpolator, boundary_samples, solve_zone, zone_peaks

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from fe_crank.assess.cw_joint import JOINT_QUANTITIES
+from fe_crank.assess.joint_criteria import JOINT_QUANTITIES
 from fe_crank.assess.throw_geometry import cad_throws
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad import CadFeatures, CadInput, recognise

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -37,6 +38,8 @@ from fe_crank.fe.shaft.fields import ShaftFields, shaft_fields
 from fe_crank.fe.shaft.model import ShaftFeOptions
 from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
 from fe_crank.io.loadcase import LoadCase
+from fe_crank.mesh.options import MeshOptions
+from fe_crank.mesh.shaft import ShaftMesh
 from fe_crank.outputs import CaseOutputs, GeometryModel
 
 
@@ -56,7 +59,7 @@ def whole_shaft_stage(lc: LoadCase, geo: GeometryModel, out: CaseOutputs, fields
     if features is not None and isinstance(lc.geometry, CadInput):  # the shaft as drawn: its mesh and masses
         cad = lc.geometry
 
-        def mesher(*, size, cache_dir, max_elements):
+        def mesher(*, size: str | MeshOptions, cache_dir: Path, max_elements: int | None) -> ShaftMesh:
             return cad_shaft_mesh(cad, features, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
 
         mass = cad_throw_masses(features, layout)
