@@ -3,18 +3,22 @@ shipped inline-4 (two radial M10 bolts on the counterweights of throws 1 and 4) 
 4500 and 6000 rpm without its full-load gas curve.  Its loads are the inertia forces alone, so the engine torque's excess
 energy and its swing about the mean grow with omega^2: with the one flywheel (sized at
 6000 rpm for delta = 0.01) the speed fluctuation is 0.01 at every speed and the angular
-acceleration grows with omega^2 -- so does each bolt's axial and transverse load."""
+acceleration grows with omega^2 -- so does each bolt's axial and transverse load.
+
+The case's joint criteria are taken out: every bolted joint that exists is still checked,
+with VDI 2230's usual limits, each verdict line saying so."""
 
 from __future__ import annotations
 
 import math
+import re
 import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from fe_crank.assess.cw_joint import JOINT_QUANTITIES, check_joint, check_joints
+from fe_crank.assess.cw_joint import DEFAULT_LIMITS, DEFAULT_WORDS, JOINT_QUANTITIES, check_joint, check_joints
 from fe_crank.report.locations import criterion_location
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -22,7 +26,7 @@ SPEEDS = (3000, 4500, 6000)
 
 
 @pytest.fixture(scope="module")
-def swept_inline4(tmp_path_factory):
+def swept_inline4(tmp_path_factory, mesh_cache):
     from helpers.pipeline import stage_outputs
 
     folder = tmp_path_factory.mktemp("inline4_sweep")
@@ -34,9 +38,12 @@ def swept_inline4(tmp_path_factory):
     # the shipped case without its full-load gas curve: the inertia loads alone
     curve = text[text.index("speed_range = ") : text.index("[material]")]
     text = text.replace(curve, f"speeds = [{rpm}]\n\n", 1)
+    # no joint criteria: the joints are checked with the default limits
+    text = re.sub(r"(?m)^(max|min)_bolt_\w+ = .*\n", "", text)
+    assert "bolt_" not in text
     p = folder / "loadcases" / "inline4_swept.toml"
     p.write_text(text)
-    return stage_outputs(p, folder / "cache")
+    return stage_outputs(p, mesh_cache)
 
 
 @pytest.mark.heavy
@@ -102,6 +109,25 @@ def test_bolt_criteria_at_every_speed(swept_inline4):
             assert p.value == pytest.approx(min(vals) if sense == "min" else max(vals), rel=1e-12)
     for q in ("bolt_fatigue_safety", "bolt_slip_safety"):
         assert crit[q].speed_rpm == pytest.approx(6000) and criterion_location(crit[q]).endswith(
-            "(per bolt); 6000 rpm; friction mu_G 0.10, mu_K 0.10, mu_T 0.10"
+            f"(per bolt); 6000 rpm; friction mu_G 0.10, mu_K 0.10, mu_T 0.10; {DEFAULT_WORDS}"
         )
         assert crit[q].per_speed[0].value > crit[q].per_speed[-1].value
+
+
+@pytest.mark.heavy
+def test_joints_without_criteria_are_checked_with_the_default_limits(swept_inline4):
+    out = swept_inline4
+    a = out.assessment
+    got = {c.quantity: c for c in a.criteria if c.quantity in JOINT_QUANTITIES}
+    assert set(got) == set(DEFAULT_LIMITS)
+    joints = [j for t in a.throws for j in t.joints]
+    assert len(joints) == 4  # two bolted counterweights on each of throws 1 and 4
+    swept = [j for s in a.sweep for t in s.throws for j in t.joints]  # every speed's joints
+    assert len(swept) == 4 * len(SPEEDS)
+    for q, c in got.items():
+        attr, sense = JOINT_QUANTITIES[q]
+        assert c.limit == DEFAULT_LIMITS[q] and c.name == f"criteria.{sense}_{q}"
+        assert criterion_location(c).endswith(f"friction mu_G 0.10, mu_K 0.10, mu_T 0.10; {DEFAULT_WORDS}")
+        vals = [getattr(j, attr) for j in swept]  # the worst speed's worst joint
+        assert c.value == pytest.approx(min(vals) if sense == "min" else max(vals), rel=1e-12)
+    assert any("default limits" in n.text for n in a.notes)
