@@ -101,6 +101,10 @@ def test_every_wrong_value_of_a_load_case_section_gives_one_clean_message(path):
     engine = load_loadcase(path).engine
     with input_root(path, None):
         for where, data in _mutations({k: v for k, v in tree.items() if k not in ("engine", "name", "description")}):
+            if where[:2] == ("operating", "gas") and len(where) > 3 and where[2] > 0:
+                # the full-load curve's later diagrams have the first one's keys and parser:
+                # their leaves are the first's (each parse of [operating] builds every diagram)
+                continue
             try:
                 if where[0] == "operating":
                     parse_operating(data["operating"], engine, path)
