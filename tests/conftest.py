@@ -19,6 +19,15 @@ def root() -> Path:
 
 
 @pytest.fixture(scope="session")
+def mesh_cache(tmp_path_factory) -> Path:
+    """One mesh cache folder for the tests of a process that run the check's stages on
+    the same geometries: a mesh is built once and read back after (the cache key holds
+    everything that changes a mesh, ``fe_crank.mesh.cache``).  Tests of the cache itself
+    use their own folders."""
+    return tmp_path_factory.mktemp("mesh_cache")
+
+
+@pytest.fixture(scope="session")
 def big_fillet(tmp_path_factory):
     """geometry_small with 3.8 mm fillets, outside UR M53 3.1's range, on a coarse mesh
     (``helpers.scf.big_fillet_throw``): the geometry and its ThrowMesh."""

@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.heavy
-def test_inline4_film_follows_the_bearing_loads(tmp_path):
+def test_inline4_film_follows_the_bearing_loads(mesh_cache):
     lc = load_loadcase(ROOT / "loadcases" / "inline4_rated.toml")
     layout = shaft_layout(lc)
     film = FilmSpec(clearance=25e-6, viscosity=7e-3, groove="full", groove_width=3e-3)
@@ -35,7 +35,7 @@ def test_inline4_film_follows_the_bearing_loads(tmp_path):
         bearings=tuple(dataclasses.replace(b, law=dataclasses.replace(b.law, film=film)) for b in layout.bearings),
     )
     dyn = engine_cycles(lc.engine, lc.operating).operating
-    result, cases = analyse_whole_shaft(with_film, lc.material, dyn, size="test", cache_dir=tmp_path)
+    result, cases = analyse_whole_shaft(with_film, lc.material, dyn, size="test", cache_dir=mesh_cache)
     cases.model.free_factors()
     # the film is judged from the loads, not fed back: the structural law is the rigid one
     assert all(b.law.model == "rigid" for b in with_film.bearings)

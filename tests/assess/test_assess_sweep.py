@@ -89,12 +89,12 @@ def _inputs(lc, out) -> AssessInputs:
 
 
 @pytest.fixture(scope="module")
-def swept(tmp_path_factory):
+def swept(tmp_path_factory, mesh_cache):
     from helpers.pipeline import stage_outputs
 
     folder = tmp_path_factory.mktemp("sweep")
     rpm = ", ".join(f'"{w} rpm"' for w in SPEEDS)
-    out = stage_outputs(_case(folder, "swept", f"speeds = [{rpm}]"), folder / "cache")
+    out = stage_outputs(_case(folder, "swept", f"speeds = [{rpm}]"), mesh_cache)
     return folder, out
 
 

@@ -30,14 +30,14 @@ bank_angle = "45 deg"
 
 
 @pytest.fixture(scope="module")
-def v_twin(tmp_path_factory):
+def v_twin(tmp_path_factory, mesh_cache):
     d = tmp_path_factory.mktemp("vtwin")
     text = (DATA / "small_pass.toml").read_text()
     text = text.replace('piston_mass = "0.15 kg"\n', 'piston_mass = "0.15 kg"\nbank_angle = "-45 deg"\n', 1)
     text = text.replace("[material]", V_TWIN + "\n[material]")
     (d / "vtwin.toml").write_text(text)
     (d / "geometry_small.toml").write_text((DATA / "geometry_small.toml").read_text())
-    return stage_outputs(d / "vtwin.toml", d / "cache")
+    return stage_outputs(d / "vtwin.toml", mesh_cache)
 
 
 @pytest.mark.heavy

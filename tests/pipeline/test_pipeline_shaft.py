@@ -32,7 +32,7 @@ DATA = Path(__file__).resolve().parents[1] / "data"
 pytestmark = pytest.mark.heavy
 
 
-def test_a_throw_on_its_two_bearings_is_the_per_throw_model(tmp_path):
+def test_a_throw_on_its_two_bearings_is_the_per_throw_model(tmp_path, mesh_cache):
     """tests/data/small_pass.toml with a [shaft] section whose end journals end at the
     bearing centres: the whole shaft is the throw on its two bearings, the torque leaving
     at the rear face, as the per-throw model; both give the same stress at every assessed
@@ -40,7 +40,7 @@ def test_a_throw_on_its_two_bearings_is_the_per_throw_model(tmp_path):
     shutil.copy(DATA / "small_pass.toml", tmp_path / "case.toml")
     g = (DATA / "geometry_small.toml").read_text() + '\n[shaft]\nend_journal_length = "12 mm"\n'
     (tmp_path / "geometry_small.toml").write_text(g)
-    out = stage_outputs(tmp_path / "case.toml", tmp_path / "cache", render=False, write_vtu=False)
+    out = stage_outputs(tmp_path / "case.toml", mesh_cache, render=False, write_vtu=False)
     assert out.whole_shaft is not None and len(out.whole_shaft.layout.bearings) == 2
     (per,) = out.assessment.throws
     (whole,) = out.assessment.shaft.throws
@@ -57,18 +57,18 @@ def test_a_throw_on_its_two_bearings_is_the_per_throw_model(tmp_path):
     assert values[0].value == pytest.approx(values[1].value, rel=1e-8)
 
 
-def test_every_journal_carries_its_own_torque(tmp_path):
+def test_every_journal_carries_its_own_torque(tmp_path, mesh_cache):
     """tests/data/small_torsion.toml (a twin with a flywheel and a driven machine): the
     torque through every bearing plane of the whole shaft, the moment about the axis of
     the forces its pieces exchange there, is the journal torque the assessment takes (the
     torsional stage's, vibratory part included) at every angle; and the condensed stresses
     at the assessed nodes are those of the whole field solved afresh."""
     lc = load_loadcase(DATA / "small_torsion.toml")
-    out = stage_outputs(DATA / "small_torsion.toml", tmp_path, render=False, write_vtu=False)
+    out = stage_outputs(DATA / "small_torsion.toml", mesh_cache, render=False, write_vtu=False)
     dyn = out.assessed_dynamics
     layout = shaft_layout(lc)
     result, cases = analyse_whole_shaft(
-        layout, lc.material, dyn, size=out.geometry.plan.options, cache_dir=tmp_path, torque_flow=True
+        layout, lc.material, dyn, size=out.geometry.plan.options, cache_dir=mesh_cache, torque_flow=True
     )
     W = result.cycles[0].weights
     sense = layout.sense
@@ -108,14 +108,14 @@ def test_every_journal_carries_its_own_torque(tmp_path):
     np.testing.assert_allclose(combined, direct, rtol=0, atol=1e-8 * np.abs(direct).max())
 
 
-def test_small_shaft_results_and_report(tmp_path):
+def test_small_shaft_results_and_report(tmp_path, mesh_cache):
     """tests/data/small_shaft.toml: results.json valid against its schema with the whole
     shaft's fields, the main-bearing criteria by hand from them, the report's pictures
     and the whole shaft's .vtu (quadratic cells) whose peak at the hot spot is the
     assessed one."""
     import meshio
 
-    out = stage_outputs(DATA / "small_shaft.toml", tmp_path / "cache")
+    out = stage_outputs(DATA / "small_shaft.toml", mesh_cache)
     folder = tmp_path / "report"
     write_report(folder, out)
     doc = json.loads((folder / "results.json").read_text())
@@ -155,7 +155,7 @@ def test_small_shaft_results_and_report(tmp_path):
     assert np.linalg.norm(mesh.points[fields.hotspot_node] - np.asarray(h.point)) < 1e-9
 
 
-def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path):
+def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path, mesh_cache):
     """The small single over two speeds with its misfire case, on its bearings (a [shaft]
     section): the whole shaft's throws in every load state (``ShaftAssessment.states``,
     the per-throw model's pruning: each group's extremes only) have the least static and
@@ -171,7 +171,7 @@ def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path):
     (tmp_path / "case.toml").write_text(SWEPT.format(sweep='speeds = ["2000 rpm", "3000 rpm"]'))
     g = (DATA / "geometry_small.toml").read_text() + '\n[shaft]\nend_journal_length = "12 mm"\n'
     (tmp_path / "geometry_small.toml").write_text(g)
-    out = stage_outputs(tmp_path / "case.toml", tmp_path / "cache", render=False, write_vtu=False)
+    out = stage_outputs(tmp_path / "case.toml", mesh_cache, render=False, write_vtu=False)
     shaft = out.assessment.shaft
     assert [(round(s.speed * 30 / np.pi), s.case) for s in shaft.states] == [
         (2000, "all cylinders firing"),
@@ -187,7 +187,7 @@ def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path):
         lc.material,
         out.assessed_dynamics,
         size=out.geometry.plan.options,
-        cache_dir=tmp_path / "cache",
+        cache_dir=mesh_cache,
         options=options,
     )
     sweep = bearing_sweep(out.cycles, cases, layout, result)

@@ -42,7 +42,7 @@ webs = [1, 2]
 
 
 @pytest.fixture(scope="module")
-def case(tmp_path_factory):
+def case(tmp_path_factory, mesh_cache):
     tmp = tmp_path_factory.mktemp("overspeed")
     (tmp / "geometry_small.toml").write_text((DATA / "geometry_small.toml").read_text() + COUNTERWEIGHT)
     text = (DATA / "small_pass.toml").read_text()
@@ -50,7 +50,7 @@ def case(tmp_path_factory):
         "min_overspeed_safety = 1.5", 'min_overspeed_safety = 1.5\nmax_counterweight_overspeed_stress = "200 MPa"'
     )
     (tmp / "case.toml").write_text(text)
-    so = stage_outputs(tmp / "case.toml", tmp / "cache")
+    so = stage_outputs(tmp / "case.toml", mesh_cache)
     out = tmp / "out"
     write_report(out, so)
     assert so.loadcase is not None and so.cycles is not None and so.assessment is not None

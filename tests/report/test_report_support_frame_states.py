@@ -21,8 +21,8 @@ DATA = Path(__file__).resolve().parents[1] / "data"
 
 
 @pytest.mark.heavy
-def test_drawn_states_are_in_the_support_frame_and_written_as_such(tmp_path):
-    out = stage_outputs(DATA / "small_pass.toml", tmp_path / "cache", render=False, write_vtu=True)
+def test_drawn_states_are_in_the_support_frame_and_written_as_such(tmp_path, mesh_cache):
+    out = stage_outputs(DATA / "small_pass.toml", mesh_cache, render=False, write_vtu=True)
     units = next(iter(out.fe.unit_solutions.values()))
     sup = units.system.determinate
     (st,) = out.assessment.states

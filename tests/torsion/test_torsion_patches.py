@@ -84,11 +84,11 @@ def test_shares_follow_the_cylinders_inertias(tmp_path):
 
 
 @pytest.fixture(scope="module")
-def v4_torsion(tmp_path_factory):
+def v4_torsion(tmp_path_factory, mesh_cache):
     from helpers.pipeline import stage_outputs
 
     folder = tmp_path_factory.mktemp("v4_torsion")
-    return stage_outputs(_v4_case(folder), folder / "cache")
+    return stage_outputs(_v4_case(folder), mesh_cache)
 
 
 @pytest.mark.heavy

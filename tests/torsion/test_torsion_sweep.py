@@ -32,12 +32,12 @@ def _torsion_case(folder: Path, speed: str, sweep: str) -> Path:
 
 
 @pytest.fixture(scope="module")
-def torsion_swept(tmp_path_factory):
+def torsion_swept(tmp_path_factory, mesh_cache):
     from helpers.pipeline import stage_outputs
 
     folder = tmp_path_factory.mktemp("torsion_sweep")
     p = _torsion_case(folder, "3000 rpm", 'speeds = ["1500 rpm", "2400 rpm"]\n')
-    return folder, stage_outputs(p, folder / "cache")
+    return folder, stage_outputs(p, mesh_cache)
 
 
 @pytest.mark.heavy
