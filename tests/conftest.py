@@ -19,10 +19,28 @@ def root() -> Path:
 
 
 @pytest.fixture(scope="session")
+def mesh_cache(tmp_path_factory) -> Path:
+    """One mesh cache folder for the tests of a process that run the check's stages on
+    the same geometries: a mesh is built once and read back after (the cache key holds
+    everything that changes a mesh, ``fe_crank.mesh.cache``).  Tests of the cache itself
+    use their own folders."""
+    return tmp_path_factory.mktemp("mesh_cache")
+
+
+@pytest.fixture(scope="session")
+def big_fillet(tmp_path_factory):
+    """geometry_small with 3.8 mm fillets, outside UR M53 3.1's range, on a coarse mesh
+    (``helpers.scf.big_fillet_throw``): the geometry and its ThrowMesh."""
+    from helpers.scf import big_fillet_throw
+
+    return big_fillet_throw(tmp_path_factory.mktemp("big_fillet_cache"))
+
+
+@pytest.fixture(scope="session")
 def filleted_throw():
     """The FE stage's unit solutions of ``simple_throw`` with 4 mm fillets (real gmsh mesh,
     12 mm elements, 4 mm at the fillets; SuperLU): centrifugal, four pin directions, torque."""
-    from verification_meshes import Steel, as_throw_mesh, simple_throw
+    from helpers.verification_meshes import Steel, as_throw_mesh, simple_throw
 
     from fe_crank.fe import FeOptions, solve_unit_cases
 
@@ -52,8 +70,8 @@ def filleted_throw_cycle(filleted_throw):
 def _refusals_without_library_internals(monkeypatch):
     """Every ``InputError`` any test provokes (the whole bad-input set of the suite) is
     checked: its message names no pydantic union member and no input class
-    (``tests/messages.py``)."""
-    from messages import internals
+    (``tests/helpers/messages.py``)."""
+    from helpers.messages import internals
 
     from fe_crank.errors import InputError
 

@@ -43,7 +43,7 @@ class Mutant:
     what: str
 
 
-_SHAFT_TESTS = ("tests/test_shaft_frames.py", "tests/test_shaft_throws.py")
+_SHAFT_TESTS = ("tests/fe/test_fe_shaft_frames.py", "tests/fe/test_fe_shaft_throws.py")
 
 MUTANTS = (
     Mutant(
@@ -83,7 +83,7 @@ MUTANTS = (
         "fe_crank/fe/shaft/whole_shaft.py",
         "return spin, -sense * np.asarray(dynamics.throws[first].torque_front, float)",
         "return spin, -np.asarray(dynamics.throws[first].torque_front, float)",
-        ("tests/test_shaft_frames.py",),
+        ("tests/fe/test_fe_shaft_frames.py",),
         "the journal torque entering at the front without the shaft's sense of rotation",
     ),
     Mutant(
@@ -91,7 +91,7 @@ MUTANTS = (
         "fe_crank/fe/shaft/whole_shaft.py",
         "spin[pp.throw] = -sense * rest / jz",
         "spin[pp.throw] = -rest / jz",
-        ("tests/test_shaft_frames.py",),
+        ("tests/fe/test_fe_shaft_frames.py",),
         "a throw's inertia torque (torque flow) without the shaft's sense of rotation",
     ),
     Mutant(
@@ -99,7 +99,7 @@ MUTANTS = (
         "fe_crank/fe/shaft/whole_shaft.py",
         "alpha = layout.sense * (a1 + e.unbalance_angle)",
         "alpha = a1 + e.unbalance_angle",
-        ("tests/test_shaft_frames.py",),
+        ("tests/fe/test_fe_shaft_frames.py",),
         "a flywheel's or pulley's unbalance placed without the shaft's sense of rotation",
     ),
     Mutant(
@@ -107,7 +107,7 @@ MUTANTS = (
         "fe_crank/fe/shaft/whole_shaft.py",
         "c = model.coupling(e.name, z + sign * e.offset, [(k, face)])",
         "c = model.coupling(e.name, z, [(k, face)])",
-        ("tests/test_shaft_frames.py",),
+        ("tests/fe/test_fe_shaft_frames.py",),
         "an overhung flywheel's or pulley's load put on the end face (its lever lost)",
     ),
     Mutant(
@@ -115,7 +115,7 @@ MUTANTS = (
         "fe_crank/fe/shaft/whole_shaft.py",
         "return tuple(max(loads, key=lambda b: b.peak_n) for loads in zip(*per_law))",
         "return tuple(min(loads, key=lambda b: b.peak_n) for loads in zip(*per_law))",
-        ("tests/test_shaft_throws.py",),
+        ("tests/fe/test_fe_shaft_throws.py",),
         "the main-bearing envelope taking the least loaded law instead of the most",
     ),
     Mutant(
@@ -123,7 +123,7 @@ MUTANTS = (
         "fe_crank/fe/shaft/bearings.py",
         "F = -k * np.where(on, r - c, 0.0)[:, None] * e",
         "F = -k * np.where(on, r, 0.0)[:, None] * e",
-        ("tests/test_shaft_beam.py",),
+        ("tests/fe/test_fe_shaft_beam.py",),
         "the clearance law without its gap (the contact force on the whole displacement)",
     ),
     Mutant(
@@ -131,7 +131,7 @@ MUTANTS = (
         "fe_crank/assess/cw_joint.py",
         "mu_t = joint.interface_friction",
         "mu_t = joint.thread_friction",
-        ("tests/test_bolt_eccentric.py", "tests/test_assess_cw_joint.py"),
+        ("tests/assess/test_assess_bolt_eccentric.py", "tests/assess/test_assess_cw_joint.py"),
         "the VDI 2230 slip safety (R12) with the thread friction instead of the joint interface friction",
     ),
 )

@@ -31,48 +31,48 @@ ROOT = Path(__file__).resolve().parents[1]
 #: for each mutant only those of the selected tests that execute the mutated function, so a
 #: wide selection costs little and no survivor is left to tests outside the selection.
 _MECHANISM_TESTS = [
-    "tests/test_kinematics.py",
-    "tests/test_kinematics_coefficients.py",
-    "tests/test_kinetostatics.py",
-    "tests/test_dynamics.py",
-    "tests/test_dynamics_inputs.py",
-    "tests/test_geared_shaft.py",
-    "tests/test_balance_harmonics.py",
-    "tests/test_balance_hodograph.py",
-    "tests/test_balance_layouts.py",
-    "tests/test_balance_seed000.py",
-    "tests/test_balance_seed003.py",
-    "tests/test_balance_crosscheck.py",
-    "tests/test_balance_counterweights.py",
-    "tests/test_balance_inputs.py",
-    "tests/test_balance_forces_terms.py",
-    "tests/test_balance_roundoff.py",
-    "tests/test_balance_counterweight_planes.py",
-    "tests/test_balance_yoke_terms.py",
-    "tests/test_dynamics_excess_work.py",
-    "tests/test_balance_sector_limits.py",
-    "tests/test_kinetostatics_reactions.py",
-    "tests/test_balance_mechanism_exact.py",
+    "tests/mechanism/test_mechanism_kinematics.py",
+    "tests/mechanism/test_mechanism_kinematics_coefficients.py",
+    "tests/mechanism/test_mechanism_kinetostatics.py",
+    "tests/mechanism/test_mechanism_dynamics.py",
+    "tests/mechanism/test_mechanism_dynamics_inputs.py",
+    "tests/mechanism/test_mechanism_geared_shaft.py",
+    "tests/balance/test_balance_harmonics.py",
+    "tests/balance/test_balance_hodograph.py",
+    "tests/balance/test_balance_layouts.py",
+    "tests/balance/test_balance_seed000.py",
+    "tests/balance/test_balance_seed003.py",
+    "tests/balance/test_balance_crosscheck.py",
+    "tests/balance/test_balance_counterweights.py",
+    "tests/balance/test_balance_inputs.py",
+    "tests/balance/test_balance_forces_terms.py",
+    "tests/balance/test_balance_roundoff.py",
+    "tests/balance/test_balance_counterweight_planes.py",
+    "tests/balance/test_balance_yoke_terms.py",
+    "tests/mechanism/test_mechanism_dynamics_excess_work.py",
+    "tests/balance/test_balance_sector_limits.py",
+    "tests/mechanism/test_mechanism_kinetostatics_reactions.py",
+    "tests/balance/test_balance_mechanism_exact.py",
 ]
 
 #: the balance stage's whole call and its balance shafts: the mechanism selection plus the
 #: tests that design balance shafts (the `fe-crank balance` command, free placement)
 _BALANCE_SHAFT_TESTS = _MECHANISM_TESTS + [
-    "tests/test_balance_cli.py",
-    "tests/test_torsion_balance_shafts.py",
-    "tests/test_balance_shafts_design.py",
-    "tests/test_balance_analysis_record.py",
+    "tests/balance/test_balance_cli.py",
+    "tests/torsion/test_torsion_balance_shafts.py",
+    "tests/balance/test_balance_shafts_design.py",
+    "tests/balance/test_balance_analysis_record.py",
 ]
 
 #: the torsional-vibration physics: closed forms of the free and forced chain, Carter's
 #: stiffness, the harmonics of the cylinder torques, and the stage on the shipped case
 _TORSION_TESTS = [
-    "tests/test_torsion_free.py",
-    "tests/test_torsion_forced.py",
-    "tests/test_torsion_excitation.py",
-    "tests/test_torsion_stiffness.py",
-    "tests/test_torsion_analysis.py",
-    "tests/test_torsion_holzer_table.py",
+    "tests/torsion/test_torsion_free.py",
+    "tests/torsion/test_torsion_forced.py",
+    "tests/torsion/test_torsion_excitation.py",
+    "tests/torsion/test_torsion_stiffness.py",
+    "tests/torsion/test_torsion_analysis.py",
+    "tests/torsion/test_torsion_holzer_table.py",
 ]
 
 #: the fast tests of the cycle assessment (hand-built unit stresses, closed-form cycles, the
@@ -80,16 +80,16 @@ _TORSION_TESTS = [
 #: about 30 s in all): shared by superpose, stress, peak, overspeed and case as above.  The
 #: tests on the gmsh throw (marked heavy: 20 s of meshing and solving) are left out.
 _ASSESS_TESTS = [
-    "tests/test_assess_superpose.py",
-    "tests/test_assess_stress.py",
-    "tests/test_assess_amplitude.py",
-    "tests/test_assess_peak.py",
-    "tests/test_assess_overspeed.py",
-    "tests/test_assess_case.py",
-    "tests/test_assess_throw.py",
-    "tests/test_stress_layouts.py",
-    "tests/test_assess_group.py",
-    "tests/test_assess_fatigue.py::test_max_and_first_is_max_and_argmax",
+    "tests/assess/test_assess_superpose.py",
+    "tests/assess/test_assess_stress.py",
+    "tests/assess/test_assess_amplitude.py",
+    "tests/assess/test_assess_peak.py",
+    "tests/assess/test_assess_overspeed.py",
+    "tests/assess/test_assess_case.py",
+    "tests/assess/test_assess_throw.py",
+    "tests/assess/test_assess_stress_layouts.py",
+    "tests/assess/test_assess_group.py",
+    "tests/assess/test_assess_fatigue.py::test_max_and_first_is_max_and_argmax",
 ]
 
 #: module -> (file to mutate, its fast tests)
@@ -115,38 +115,42 @@ MODULES: dict[str, tuple[str, list[str]]] = {
     "rules.m53.calculation": (
         "fe_crank/rules/m53/calculation.py",
         [
-            "tests/test_assess_m53.py",
-            "tests/test_assess_m53_oil_bore.py",
-            "tests/test_assess_adapters.py",
-            "tests/test_assess_m53_bores.py",
-            "tests/test_assess_m53_sections.py",
+            "tests/assess/test_assess_m53.py",
+            "tests/assess/test_assess_m53_oil_bore.py",
+            "tests/assess/test_assess_adapters.py",
+            "tests/assess/test_assess_m53_bores.py",
+            "tests/assess/test_assess_m53_sections.py",
         ],
     ),
     "rules.m53.oil_bore": (
         "fe_crank/rules/m53/oil_bore.py",
         [
-            "tests/test_assess_m53_oil_bore.py",
-            "tests/test_assess_m53.py",
-            "tests/test_assess_adapters.py",
-            "tests/test_assess_m53_oil_bore_limits.py",
+            "tests/assess/test_assess_m53_oil_bore.py",
+            "tests/assess/test_assess_m53.py",
+            "tests/assess/test_assess_adapters.py",
+            "tests/assess/test_assess_m53_oil_bore_limits.py",
         ],
     ),
     "assess.fatigue": (
         "fe_crank/assess/fatigue.py",
-        ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py", "tests/test_assess_amplitude.py"],
+        [
+            "tests/assess/test_assess_fatigue.py",
+            "tests/assess/test_assess_fatigue_means.py",
+            "tests/assess/test_assess_amplitude.py",
+        ],
     ),
     "assess.factors": (
         "fe_crank/assess/factors.py",
         [
-            "tests/test_assess_factors.py",
-            "tests/test_assess_factors_edges.py",
-            "tests/test_assess_fatigue.py",
-            "tests/test_assess_fatigue_means.py",
+            "tests/assess/test_assess_factors.py",
+            "tests/assess/test_assess_factors_edges.py",
+            "tests/assess/test_assess_fatigue.py",
+            "tests/assess/test_assess_fatigue_means.py",
         ],
     ),
     "assess.criteria.verdict": (
         "fe_crank/assess/criteria/verdict.py",
-        ["tests/test_assess_verdict.py", "tests/test_assess_fatigue.py"],
+        ["tests/assess/test_assess_verdict.py", "tests/assess/test_assess_fatigue.py"],
     ),
     "assess.superpose": ("fe_crank/assess/superpose.py", _ASSESS_TESTS),
     "assess.stress": ("fe_crank/assess/stress.py", _ASSESS_TESTS),
@@ -156,46 +160,53 @@ MODULES: dict[str, tuple[str, list[str]]] = {
         "fe_crank/assess/throw.py",
         _ASSESS_TESTS
         + [
-            "tests/test_assess_verdict.py",
-            "tests/test_assess_fatigue.py",
-            "tests/test_assess_fatigue_means.py",
-            "tests/test_assess_m53_oil_bore.py",
+            "tests/assess/test_assess_verdict.py",
+            "tests/assess/test_assess_fatigue.py",
+            "tests/assess/test_assess_fatigue_means.py",
+            "tests/assess/test_assess_m53_oil_bore.py",
         ],
     ),
     "assess.group.assessment": (
         "fe_crank/assess/group/assessment.py",
-        _ASSESS_TESTS + ["tests/test_assess_fatigue.py", "tests/test_assess_fatigue_means.py"],
+        _ASSESS_TESTS + ["tests/assess/test_assess_fatigue.py", "tests/assess/test_assess_fatigue_means.py"],
     ),
     "assess.group.nodes": (
         "fe_crank/assess/group/nodes.py",
-        ["tests/test_assess_groups.py", "tests/test_assess_case.py", "tests/test_assess_superpose.py"],
+        [
+            "tests/assess/test_assess_groups.py",
+            "tests/assess/test_assess_case.py",
+            "tests/assess/test_assess_superpose.py",
+        ],
     ),
     "assess.recovery": (
         "fe_crank/assess/recovery.py",
-        ["tests/test_assess_groups.py", "tests/test_assess_case.py"],
+        ["tests/assess/test_assess_groups.py", "tests/assess/test_assess_case.py"],
     ),
     # the FE load and support modules: tiny meshes only (a few seconds per test file); the
-    # unit-case tests on the seed throw (tests/test_fe_unit_cases.py, test_fe_determinate*.py
+    # unit-case tests on the seed throw (tests/fe/test_fe_unit_cases.py, test_fe_determinate*.py
     # of the throw, test_assess_superpose.py) solve FE models for tens of seconds a mutant
     "fe.core.loads": (
         "fe_crank/fe/core/loads.py",
         [
-            "tests/test_fe_loads_closed_form.py",
-            "tests/test_fe_determinate_statics.py",
-            "tests/test_fe_loads_boundaries.py",
-            "tests/test_fe_assembly.py",
-            "tests/test_fe_verification.py",
+            "tests/fe/test_fe_loads_closed_form.py",
+            "tests/fe/test_fe_determinate_statics.py",
+            "tests/fe/test_fe_loads_boundaries.py",
+            "tests/fe/test_fe_assembly.py",
+            "tests/fe/test_fe_verification.py",
         ],
     ),
     "fe.core.determinate": (
         "fe_crank/fe/core/determinate.py",
-        ["tests/test_fe_determinate_statics.py", "tests/test_fe_loads_boundaries.py"],
+        ["tests/fe/test_fe_determinate_statics.py", "tests/fe/test_fe_loads_boundaries.py"],
     ),
     "fe.throw.pin_directions": (
         "fe_crank/fe/throw/pin_directions.py",
-        ["tests/test_fe_loads_pin_directions.py", "tests/test_fe_loads_closed_form.py"],
+        ["tests/fe/test_fe_loads_pin_directions.py", "tests/fe/test_fe_loads_closed_form.py"],
     ),
-    "fe.core.forms": ("fe_crank/fe/core/forms.py", ["tests/test_fe_assembly.py", "tests/test_fe_verification.py"]),
+    "fe.core.forms": (
+        "fe_crank/fe/core/forms.py",
+        ["tests/fe/test_fe_assembly.py", "tests/fe/test_fe_verification.py"],
+    ),
 }
 
 

@@ -61,7 +61,7 @@ def run(args) -> dict:
             e = load_engine(args.engine)
     else:
         sys.path.insert(0, str(ROOT / "tests"))
-        from shaft_helpers import small_engine, small_geometry
+        from helpers.shaft import small_engine, small_geometry
 
         from fe_crank.io.material import load_material
 

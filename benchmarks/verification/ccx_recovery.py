@@ -5,7 +5,7 @@ a fillet's edge).
 The recovery itself (CalculiX 2.20's ``extrapolate.f`` for C3D10: the stress at the 4
 integration points, extrapolated linearly to the corners, mid-edge nodes the mean of
 their edge's corners, every node the mean over its elements) is
-``tests/calculix_recovery.py``, where the test suite checks it against a closed form,
+``tests/helpers/calculix_recovery.py``, where the test suite checks it against a closed form,
 CalculiX's tabulated coefficients and fe-crank's own recovery.  The two recoveries agree
 on straight-sided elements and differ only where a curved (isoparametric) element shares
 the node; ``curvature`` measures that per node.
@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests"))
-from calculix_recovery import EDGES, calculix_recovery
+from helpers.calculix_recovery import EDGES, calculix_recovery
 
 
 def calculix_nodal_stress(units, displacements, nodes) -> np.ndarray:

@@ -100,7 +100,7 @@ MAX_CYCLES = 40
 NEWTON_TOL = 1e-7  # the last Newton step's size in eps (the error after it is its square)
 MAX_NEWTON = 60
 #: the finite-length factor R_fit's coefficients (g0, g1, g2, b, m; module doc), fitted to
-#: finite-difference solutions of Reynolds' equation (tests/test_oil_film_finite.py checks them)
+#: finite-difference solutions of Reynolds' equation (tests/fe/test_fe_oil_film_finite.py checks them)
 FINITE_FIT = (0.5421836, 0.3076249, 0.6811412, 89.30971, 0.1208412)
 #: the largest land width / diameter the finite-length factor is fitted for
 MAX_LAND_ASPECT = 0.5

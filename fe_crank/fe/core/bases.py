@@ -17,7 +17,7 @@ The tables are therefore keyed by the mesh's identity, which cannot be reused wh
 entry (holding the mesh) is alive.
 
 Every number is bit for bit that of the basis scikit-fem builds from scratch on the same
-mapping (tests/test_fe_mapping.py).
+mapping (tests/fe/test_fe_mapping.py).
 """
 
 from __future__ import annotations

@@ -1,0 +1,95 @@
+"""The hot-spot convergence study by zones (``fe.zone_study``) against the full re-meshed study.
+
+Real gmsh meshes of the shipped single-cylinder throw at the ``test`` preset and real
+solves.  Checks: the interpolation of a P2 field at arbitrary points reproduces a linear
+field exactly (isoparametric P2 elements represent it exactly, curved or not); the study's
+refined level equals the full refinement's (the whole throw re-meshed and re-solved at the
+same fillet size) within ``NOISE_TOL``.
+
+``NOISE_TOL`` = 4 %: at ``test`` (fillet edge about r, r/2 at the refined level, size
+growing by 2 m per m) two meshes of the same fillet size differ in their peaks by the
+mesh's own noise: the full study's own levels r/1, r/1.5, r/2 on this throw move the
+peaks non-monotonically by up to 2 % (docs/performance.md, "The hot-spot convergence
+study", the ``test`` table), and the zone and the full meshes at r/1.5 and r/2 differed by
+0.3-2.6 % over twelve entries; 4 % is twice that noise.  The 0.5 % agreement the method
+is held to is at ``coarse`` (benchmarks/verification/zone_study.py).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from helpers.paths import ROOT
+from helpers.verification_meshes import Steel
+
+from fe_crank.fe import FeOptions, solve_unit_cases
+from fe_crank.fe.convergence import fillet_convergence
+from fe_crank.fe.zone import Interpolator
+from fe_crank.fe.zone_study import zone_convergence
+from fe_crank.io.geometry import load_geometry
+from fe_crank.mesh import PRESETS, mesh_throw
+
+NOISE_TOL = 0.04
+LOADS = {"pin force": {"pin_-y": 1.0e5, "centrifugal": 250.0**2}, "torque": {"torque": 5.0e3}}
+
+
+@pytest.fixture(scope="module")
+def check_solution(tmp_path_factory):
+    geometry = load_geometry(ROOT / "geometry" / "single_cylinder.toml")
+    cache = tmp_path_factory.mktemp("meshes")
+    tm = mesh_throw(geometry, size="test", cache_dir=cache)
+    units = solve_unit_cases(tm, Steel(), FeOptions(cases=("centrifugal", "pin_-y", "torque")))
+    units.system.factorisation.free()
+    return geometry, cache, tm, units
+
+
+def test_interpolation_reproduces_a_linear_field(check_solution):
+    _, _, _, units = check_solution
+    x = units.points
+    A = np.array([[1.0, -2.0, 0.5], [0.3, 0.7, -1.1], [2.0, 0.1, 0.4]]) * 1e-3
+    b = np.array([1e-5, -2e-5, 3e-5])
+    u = (A @ x + b[:, None]).T.ravel()  # interleaved
+    rng = np.random.default_rng(1)
+    mesh = units.mesh
+    e = rng.integers(0, mesh.t.shape[1], 200)
+    w = rng.dirichlet(np.ones(4), 200).T  # points inside the straight tetrahedra of the vertices
+    pts = np.einsum("ijn,jn->in", mesh.p[:, mesh.t[:4, e]], w)
+    interp = Interpolator(mesh, units.system.basis.dofs, units.points)
+    got = interp.values(pts, [u])[0]
+    want = A @ pts + b[:, None]
+    assert np.abs(got - want).max() <= 1e-9 * np.abs(want).max()
+
+
+@pytest.mark.heavy  # the zones meshed at r/2, and the whole throw at r/2 for the comparison
+def test_zone_study_equals_full_refinement_within_mesh_noise(check_solution):
+    geometry, cache, tm, units = check_solution
+    zones = zone_convergence(geometry, Steel(), tm, units, LOADS, factors=(1.0, 2.0))
+    full = fillet_convergence(
+        geometry,
+        Steel(),
+        base=PRESETS["test"],
+        loads=LOADS,
+        fe_options=FeOptions(cases=("centrifugal", "pin_-y", "torque")),
+        factors=(1.0, 2.0),
+        cache_dir=cache,
+        first=(tm, units),
+    )
+    assert zones.method == "zones" and zones.levels[1].zones > 0
+    assert zones.levels[1].n_dof < full.levels[1].n_dof
+    for name in full.changes:  # shaft fillets, counterweight fillets, oil bore under each load set
+        assert zones.levels[0].peaks[name] == full.levels[0].peaks[name]  # the assessed mesh's own
+        assert zones.levels[1].peaks[name] == pytest.approx(full.levels[1].peaks[name], rel=NOISE_TOL), name
+
+
+def test_a_zone_must_cut_the_throw(check_solution):
+    """A ball holding the whole throw has no cut to drive, one outside it no solid: both refused."""
+    from fe_crank.errors import MeshError
+    from fe_crank.fe.zone import boundary_samples
+    from fe_crank.mesh.zone import mesh_zone
+
+    geometry, _, tm, units = check_solution
+    spec, samples = geometry.throw(tm.throw), boundary_samples(units.mesh)
+    with pytest.raises(MeshError, match="hold the whole throw"):
+        mesh_zone(geometry, spec, PRESETS["test"], [(0.0, 0.0, 0.0)], [1.0], samples)
+    with pytest.raises(MeshError, match="hold no part of throw"):
+        mesh_zone(geometry, spec, PRESETS["test"], [(2.0, 2.0, 2.0)], [0.01], samples)

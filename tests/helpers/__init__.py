@@ -1,0 +1,1 @@
+"""Builders and independent methods the tests share (imported as ``helpers.<module>``)."""

@@ -1,0 +1,55 @@
+"""``fe-crank validate`` on a study file refuses what ``fe-crank study`` refuses, before
+any meshing, with one message naming the file and the key; candidates that cannot be
+built inside a valid range are counted, never refused."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from fe_crank.cli import main
+
+CASE = Path(__file__).resolve().parents[1] / "data" / "small_shaft.toml"
+
+BAD = [
+    ("rotating_rate_percent = []", "study.rotating_rate_percent"),  # no candidate
+    ("rotating_rate_percent = [50, 130]", "study.rotating_rate_percent[1]"),  # above 120 %
+    ("rotating_rate_percent = [-5]", "study.rotating_rate_percent[0]"),
+    (
+        'rotating_rate_percent = [50]\n[study.limits]\nmax_counterweight_mass = "-1 kg"',
+        "study.limits.max_counterweight_mass",
+    ),
+    ('rotating_rate_percent = [50]\nenvelope = "30 mm"', "study.envelope"),  # drawn r_outer 40 mm
+    (  # rigid bearings: no film to judge
+        'rotating_rate_percent = [50]\n[study.limits]\nmin_oil_film = "1 um"',
+        "study.limits.min_oil_film",
+    ),
+    ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.3"]', "study.placements[0].webs[0]"),
+    ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.1"]', "study.placements[0].webs"),
+]
+
+
+@pytest.mark.parametrize("body, key", BAD)
+def test_validate_refuses_a_bad_study_with_file_and_key(tmp_path, capsys, body, key):
+    f = tmp_path / "bad.toml"
+    f.write_text("[study]\n" + body + "\n")
+    rc = main(["validate", str(f), "--loadcase", str(CASE)])
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert str(f) in err and key in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_validate_counts_the_candidates_that_cannot_be_built(tmp_path, capsys):
+    """120 % on four webs needs a 40 mm envelope's sector thicker than the 12 mm web:
+    reported, and the file is valid (exit 0)."""
+    f = tmp_path / "study.toml"
+    f.write_text(
+        '[study]\nrotating_rate_percent = [0, 120]\nenvelope = "40 mm"\nfree = ["thickness"]\n'
+        '[[study.placements]]\nname = "4"\nwebs = ["1.1", "2.2", "3.1", "4.2"]\n'
+    )
+    rc = main(["validate", str(CASE), str(f)])  # the load case among the files
+    out = capsys.readouterr().out
+    assert rc == 0
+    assert "2 candidates on" in out and "1 cannot be built (#1" in out
