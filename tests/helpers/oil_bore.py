@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from fe_crank.assess import m53
+from fe_crank.rules.m53 import calculation as m53
 
 GEO = m53.M53Geometry(
     pin_diameter=0.050,

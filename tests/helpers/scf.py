@@ -5,9 +5,9 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from fe_crank.assess import m53
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import MeshOptions, mesh_throw
+from fe_crank.rules.m53 import calculation as m53
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 

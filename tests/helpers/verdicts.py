@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 
 from fe_crank.assess.counterweight import CounterweightCheck
-from fe_crank.assess.group import Extreme, GroupResult
-from fe_crank.assess.m53 import M53Fillet
+from fe_crank.assess.group.assessment import Extreme, GroupResult
 from fe_crank.assess.throw import ThrowAssessment
+from fe_crank.rules.m53.calculation import M53Fillet
 
 
 def extreme(value, group, node, angle=None):
