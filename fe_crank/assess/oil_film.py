@@ -30,7 +30,14 @@ import numpy as np
 
 from fe_crank.assess.shaft import BearingState
 from fe_crank.assess.speeds import Found, over_states
-from fe_crank.fe.oil_film import ORBIT_TOL, JournalBearing, finite_factor, peak_pressure_factor, periodic_orbits
+from fe_crank.fe.oil_film import (
+    ORBIT_TOL,
+    JournalBearing,
+    Orbits,
+    finite_factor,
+    peak_pressure_factor,
+    periodic_orbits,
+)
 from fe_crank.results import Location, Sense
 
 #: how the film is modelled, for the report and results.json
@@ -112,11 +119,32 @@ def journal_bearing(spec, width: float, journal_diameter: float | None) -> Journ
     )
 
 
+def film_pressure(b: JournalBearing, eps: np.ndarray, squeeze: np.ndarray, omega: float) -> np.ndarray:
+    """The peak film pressure (Pa) at each angle of a journal orbit ``eps`` (n, 2) with its
+    squeeze velocities, the shaft at ``omega`` (rad/s): the short bearing's peak over the
+    finite-length factor of ``b``'s land (``fe.oil_film.finite_factor``)."""
+    e = np.minimum(np.hypot(eps[:, 0], eps[:, 1]), 1.0 - 1e-12)
+    return np.asarray(
+        b.pressure_scale() * omega * peak_pressure_factor(eps, squeeze) / finite_factor(e, b.land_aspect)[0]
+    )
+
+
+def journal_orbits(
+    bearings: list[JournalBearing], loads: list[np.ndarray], speeds: list[float], turns: float, sense: int
+) -> Orbits:
+    """The periodic orbits (``fe.oil_film.periodic_orbits``, every one at once) of journals
+    in ``bearings`` under ``loads`` (each (n, 2), N, engine frame) at shaft ``speeds``
+    (rad/s), ``turns`` journal revolutions per cycle, the journal turning in the shaft's
+    ``sense`` (+1 turns from +y towards +x, negative about +z)."""
+    stack = np.stack([np.asarray(f, float) / (b.k0 * w) for b, f, w in zip(bearings, loads, speeds)])
+    aspect = np.asarray([b.land_aspect for b in bearings])
+    return periodic_orbits(stack, turns, mean_speed=-0.5 * sense, tol=ORBIT_TOL, aspect=aspect)
+
+
 def _orbit(b: JournalBearing, eps, squeeze, omega, deg, slope, conv, cycles, change) -> FilmOrbit:
     r = np.hypot(eps[:, 0], eps[:, 1])
     k = int(np.argmax(r))
-    e = np.minimum(r, 1.0 - 1e-12)
-    p = b.pressure_scale() * omega * peak_pressure_factor(eps, squeeze) / finite_factor(e, b.land_aspect)[0]
+    p = film_pressure(b, eps, squeeze, omega)
     kp = int(np.argmax(p))
     ms = mis = edge = None
     if slope is not None:
@@ -155,19 +183,17 @@ def film_sweep(layout, states: tuple[BearingState, ...], crank_angle_deg) -> tup
     turns = (deg[1] - deg[0]) * n / 360.0  # journal revolutions per cycle
     d_j = layout.geometry.journal_diameter if layout.geometry is not None else None
     jb = {j: journal_bearing(b.law.film, b.width, d_j) for j, b in films}
-    rows, loads, aspect = [], [], []
+    rows, loads, bearings, speeds = [], [], [], []
     for si, st in enumerate(states):
         by_name = {r.name: r for r in st.bearings}
         for j, b in films:
             res = by_name[b.name]
             for cw, loads_of in ((True, res.with_counterweights), (False, res.without_counterweights)):
                 rows.append((si, j, cw, loads_of.slope))
-                loads.append(np.asarray(loads_of.load_n, float) / (jb[j].k0 * st.speed))
-                aspect.append(jb[j].land_aspect)
-    # the journal turns in the shaft's sense: sense +1 turns from +y towards +x, negative about +z
-    orbits = periodic_orbits(
-        np.stack(loads), turns, mean_speed=-0.5 * layout.sense, tol=ORBIT_TOL, aspect=np.asarray(aspect)
-    )
+                loads.append(np.asarray(loads_of.load_n, float))
+                bearings.append(jb[j])
+                speeds.append(float(st.speed))
+    orbits = journal_orbits(bearings, loads, speeds, turns, layout.sense)
     done: dict[tuple[int, int, bool], FilmOrbit] = {}
     for i, (si, j, cw, slope) in enumerate(rows):
         done[(si, j, cw)] = _orbit(
