@@ -44,7 +44,7 @@ from fe_crank.fe.zone import Interpolator, boundary_samples, solve_zone, zone_pe
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.mesh.sizing import counterweight_fillet_radius
 from fe_crank.mesh.types import ThrowMesh
-from fe_crank.mesh.zone import ZoneMesh, mesh_zone
+from fe_crank.mesh.zone import ZoneMesh, mesh_zone_levels
 
 log = logging.getLogger(__name__)
 
@@ -125,23 +125,59 @@ def hot_spots(
 #: a ball whose zone gmsh cannot mesh is tried again this much larger (a ball that grazes an
 #: edge of the solid leaves sliver faces)
 RETRY_GROWTH = 1.07
+#: a level's zones are solved in groups of connected pieces of at most this fraction of the
+#: assessed model's nodes each (a larger piece alone): the largest factorisation of the
+#: study is a group's, not the level's (docs/fe.md, "Only the hot spots refined")
+GROUP_FRACTION = 0.5
 
 
-def mesh_zones(geometry: CrankGeometry, spec, options, spots: list[HotSpot], samples) -> list[ZoneMesh]:
-    """The zones of one level: every ball in one model (one mesh, one factorisation), or,
-    where gmsh cannot mesh that model, the balls split into two halves, each meshed the
-    same way; a single ball that fails is tried again ``RETRY_GROWTH`` larger."""
+def mesh_zones(
+    geometry: CrankGeometry, spec, options, spots: list[HotSpot], samples, group_nodes=None
+) -> list[ZoneMesh]:
+    """The zones of one level, each ``mesh.zone.mesh_zone_levels`` group a model: every
+    ball in one gmsh model, or, where gmsh cannot mesh that model, the balls split into two
+    halves, each meshed the same way; a single ball that fails is tried again
+    ``RETRY_GROWTH`` larger."""
     try:
-        return [mesh_zone(geometry, spec, options, [h.centre for h in spots], [h.radius for h in spots], samples)]
+        return mesh_zone_levels(
+            geometry,
+            spec,
+            [options],
+            [h.centre for h in spots],
+            [h.radius for h in spots],
+            samples,
+            group_nodes=group_nodes,
+        )[0]
     except MeshError as exc:
         if len(spots) == 1:
             h = spots[0]
             log.info("the hot-spot zone on %s: %s; tried %g x larger", h.surface, exc, RETRY_GROWTH)
-            return [mesh_zone(geometry, spec, options, [h.centre], [RETRY_GROWTH * h.radius], samples)]
+            return mesh_zone_levels(
+                geometry, spec, [options], [h.centre], [RETRY_GROWTH * h.radius], samples, group_nodes=group_nodes
+            )[0]
     half = len(spots) // 2
-    return mesh_zones(geometry, spec, options, spots[:half], samples) + mesh_zones(
-        geometry, spec, options, spots[half:], samples
+    return mesh_zones(geometry, spec, options, spots[:half], samples, group_nodes) + mesh_zones(
+        geometry, spec, options, spots[half:], samples, group_nodes
     )
+
+
+def level_meshes(geometry: CrankGeometry, spec, levels, spots: list[HotSpot], samples, group_nodes):
+    """The zones of every level (``levels``: their mesh options): the balls cut from the
+    throw once and re-meshed per level; where gmsh cannot mesh that model at some level,
+    each level as :func:`mesh_zones`."""
+    try:
+        return mesh_zone_levels(
+            geometry,
+            spec,
+            levels,
+            [h.centre for h in spots],
+            [h.radius for h in spots],
+            samples,
+            group_nodes=group_nodes,
+        )
+    except MeshError as exc:
+        log.info("the hot-spot zones in one model: %s; meshed level by level, split", exc)
+        return [mesh_zones(geometry, spec, o, spots, samples, group_nodes) for o in levels]
 
 
 def zone_convergence(
@@ -182,14 +218,19 @@ def zone_convergence(
     samples = boundary_samples(unit_solutions.mesh)
     interp = Interpolator(unit_solutions.mesh, unit_solutions.system.basis.dofs, unit_solutions.points)
     every = [n for _, names in FAMILIES for n in names]
-    for f in factors[1:]:
-        t0 = time.perf_counter()
-        mopt = dataclasses.replace(
-            base, fillet_divisions=base.fillet_divisions * f, bore_divisions=base.bore_divisions * f
-        )
+    t0 = time.perf_counter()
+    options = [
+        dataclasses.replace(base, fillet_divisions=base.fillet_divisions * f, bore_divisions=base.bore_divisions * f)
+        for f in factors[1:]
+    ]
+    group_nodes = GROUP_FRACTION * unit_solutions.n_dof / 3
+    meshes = level_meshes(geometry, spec, options, spots, samples, group_nodes)
+    meshing = (time.perf_counter() - t0) / len(options)  # the cut shared by the levels
+    for mopt, zones in zip(options, meshes):
+        t0 = time.perf_counter() - meshing
         best: dict[str, tuple[float, str]] = {}
         n_dof, edges = 0, dict[str, float]()
-        for zm in mesh_zones(geometry, spec, mopt, spots, samples):
+        for zm in zones:
             U, basis = solve_zone(zm, material, unit_solutions.options, unit_solutions.pin, loads, fields, interp)
             n_dof += int(3 * basis.N)
             for k, v in zm.fillet_max_edge.items():
