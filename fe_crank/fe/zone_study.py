@@ -131,40 +131,14 @@ RETRY_GROWTH = 1.07
 GROUP_FRACTION = 0.5
 
 
-def mesh_zones(
-    geometry: CrankGeometry, spec, options, spots: list[HotSpot], samples, group_nodes=None
-) -> list[ZoneMesh]:
-    """The zones of one level, each ``mesh.zone.mesh_zone_levels`` group a model: every
-    ball in one gmsh model, or, where gmsh cannot mesh that model, the balls split into two
-    halves, each meshed the same way; a single ball that fails is tried again
+def level_meshes(
+    geometry: CrankGeometry, spec, levels, spots: list[HotSpot], samples, group_nodes=None
+) -> list[list[ZoneMesh]]:
+    """The zones of every level (``levels``: their mesh options), in groups
+    (``mesh.zone.mesh_zone_levels``): every ball cut from the throw in one gmsh model, once,
+    and re-meshed per level; where gmsh cannot mesh that model at some level, the balls split
+    into two halves, each done the same way; a single ball that fails is tried again
     ``RETRY_GROWTH`` larger."""
-    try:
-        return mesh_zone_levels(
-            geometry,
-            spec,
-            [options],
-            [h.centre for h in spots],
-            [h.radius for h in spots],
-            samples,
-            group_nodes=group_nodes,
-        )[0]
-    except MeshError as exc:
-        if len(spots) == 1:
-            h = spots[0]
-            log.info("the hot-spot zone on %s: %s; tried %g x larger", h.surface, exc, RETRY_GROWTH)
-            return mesh_zone_levels(
-                geometry, spec, [options], [h.centre], [RETRY_GROWTH * h.radius], samples, group_nodes=group_nodes
-            )[0]
-    half = len(spots) // 2
-    return mesh_zones(geometry, spec, options, spots[:half], samples, group_nodes) + mesh_zones(
-        geometry, spec, options, spots[half:], samples, group_nodes
-    )
-
-
-def level_meshes(geometry: CrankGeometry, spec, levels, spots: list[HotSpot], samples, group_nodes):
-    """The zones of every level (``levels``: their mesh options): the balls cut from the
-    throw once and re-meshed per level; where gmsh cannot mesh that model at some level,
-    each level as :func:`mesh_zones`."""
     try:
         return mesh_zone_levels(
             geometry,
@@ -176,8 +150,16 @@ def level_meshes(geometry: CrankGeometry, spec, levels, spots: list[HotSpot], sa
             group_nodes=group_nodes,
         )
     except MeshError as exc:
-        log.info("the hot-spot zones in one model: %s; meshed level by level, split", exc)
-        return [mesh_zones(geometry, spec, o, spots, samples, group_nodes) for o in levels]
+        if len(spots) == 1:
+            h = spots[0]
+            log.info("the hot-spot zone on %s: %s; tried %g x larger", h.surface, exc, RETRY_GROWTH)
+            return mesh_zone_levels(
+                geometry, spec, levels, [h.centre], [RETRY_GROWTH * h.radius], samples, group_nodes=group_nodes
+            )
+    half = len(spots) // 2
+    first = level_meshes(geometry, spec, levels, spots[:half], samples, group_nodes)
+    second = level_meshes(geometry, spec, levels, spots[half:], samples, group_nodes)
+    return [a + b for a, b in zip(first, second)]
 
 
 def zone_convergence(

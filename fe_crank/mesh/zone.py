@@ -162,6 +162,8 @@ def _convert(gmsh, model, volumes, surfaces, vols: list[int], cs, rs, options, t
 
     chosen = set(vols)
     own = {abs(f) for _, f in gmsh.model.getBoundary([(3, t) for t in vols], combined=True, oriented=False)}
+    for dim, tag in gmsh.model.getPhysicalGroups():  # the previous group's names, then its groups
+        gmsh.model.removePhysicalName(gmsh.model.getPhysicalName(dim, tag))
     gmsh.model.removePhysicalGroups()
     for name, tags in volumes.items():
         if got := [t for t in tags if t in chosen]:
