@@ -6,9 +6,11 @@ finer fillet size.  ``zone_convergence`` gives the same levels from submodels
 finer level, every hot spot is meshed again inside a ball of radius
 ``ZONE_RADIUS`` x its fillet radius (the oil bore: its diameter) round the assessed mesh's
 peak (``mesh.zone``, the throw mesher's size fields at that level's fillet size), driven
-on its cut by the assessed solution of every load set (all zones of a level in one
-mesh and one factorisation), and its peak read at the hot-spot surface's nodes within ``REACH`` x the zone
-radius of the centre.
+on its cut by the assessed solution of every load set (the balls cut from the throw
+once, every level meshed in that one model, its connected pieces solved in groups of at
+most ``GROUP_FRACTION`` x the assessed model's nodes, one factorisation a group, each freed
+before the next), and its peak read at the hot-spot surface's nodes within ``REACH`` x
+the zone radius of the centre.
 
 Hot spots: for each hot-spot family (shaft fillets; counterweight fillets; oil bore) and
 each load set, the peak node of every surface of the family whose assessed peak is at
