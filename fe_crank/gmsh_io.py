@@ -129,7 +129,7 @@ def _elements_of(gmsh, dim: int, entity: int, wanted: tuple[int, ...]) -> list[t
     return out
 
 
-def model_to_skfem(*, dim: int = 3, orient: bool = True):
+def model_to_skfem(*, dim: int = 3, orient: bool = True, volumes=None):
     """Convert the current gmsh model's quadratic tetrahedra to a scikit-fem ``MeshTet2``.
 
     The model must be meshed with element order 2 (``gmsh.model.mesh.setOrder(2)``).
@@ -146,6 +146,10 @@ def model_to_skfem(*, dim: int = 3, orient: bool = True):
     orient
         Renumber negatively oriented tetrahedra (corner Jacobian determinant < 0)
         so that every element has a positive Jacobian at its corners.
+    volumes
+        The volume tags to convert (default: every volume); the physical groups must then
+        lie on them.  The nodes are those of their tetrahedra, numbered in the same order
+        as in the whole model's conversion.
 
     Returns
     -------
@@ -176,7 +180,9 @@ def model_to_skfem(*, dim: int = 3, orient: bool = True):
     tets = []
     elem_tags = []
     linear_found = False
-    for _, vol in gmsh.model.getEntities(3):
+    wanted = None if volumes is None else {int(v) for v in volumes}
+    chosen = [vol for _, vol in gmsh.model.getEntities(3) if wanted is None or vol in wanted]
+    for vol in chosen:
         for etype, etags, enodes in _elements_of(gmsh, 3, vol, (_TET4, _TET10)):
             if etype == _TET4:
                 linear_found = True

@@ -6,9 +6,11 @@ finer fillet size.  ``zone_convergence`` gives the same levels from submodels
 finer level, every hot spot is meshed again inside a ball of radius
 ``ZONE_RADIUS`` x its fillet radius (the oil bore: its diameter) round the assessed mesh's
 peak (``mesh.zone``, the throw mesher's size fields at that level's fillet size), driven
-on its cut by the assessed solution of every load set (all zones of a level in one
-mesh and one factorisation), and its peak read at the hot-spot surface's nodes within ``REACH`` x the zone
-radius of the centre.
+on its cut by the assessed solution of every load set (the balls cut from the throw
+once, every level meshed in that one model, its connected pieces solved in groups of at
+most ``GROUP_FRACTION`` x the assessed model's nodes, one factorisation a group, each freed
+before the next), and its peak read at the hot-spot surface's nodes within ``REACH`` x
+the zone radius of the centre.
 
 Hot spots: for each hot-spot family (shaft fillets; counterweight fillets; oil bore) and
 each load set, the peak node of every surface of the family whose assessed peak is at
@@ -44,7 +46,7 @@ from fe_crank.fe.zone import Interpolator, boundary_samples, solve_zone, zone_pe
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.mesh.sizing import counterweight_fillet_radius
 from fe_crank.mesh.types import ThrowMesh
-from fe_crank.mesh.zone import ZoneMesh, mesh_zone
+from fe_crank.mesh.zone import ZoneMesh, mesh_zone_levels
 
 log = logging.getLogger(__name__)
 
@@ -125,23 +127,41 @@ def hot_spots(
 #: a ball whose zone gmsh cannot mesh is tried again this much larger (a ball that grazes an
 #: edge of the solid leaves sliver faces)
 RETRY_GROWTH = 1.07
+#: a level's zones are solved in groups of connected pieces of at most this fraction of the
+#: assessed model's nodes each (a larger piece alone): the largest factorisation of the
+#: study is a group's, not the level's (docs/fe.md, "Only the hot spots refined")
+GROUP_FRACTION = 0.5
 
 
-def mesh_zones(geometry: CrankGeometry, spec, options, spots: list[HotSpot], samples) -> list[ZoneMesh]:
-    """The zones of one level: every ball in one model (one mesh, one factorisation), or,
-    where gmsh cannot mesh that model, the balls split into two halves, each meshed the
-    same way; a single ball that fails is tried again ``RETRY_GROWTH`` larger."""
+def level_meshes(
+    geometry: CrankGeometry, spec, levels, spots: list[HotSpot], samples, group_nodes=None
+) -> list[list[ZoneMesh]]:
+    """The zones of every level (``levels``: their mesh options), in groups
+    (``mesh.zone.mesh_zone_levels``): every ball cut from the throw in one gmsh model, once,
+    and re-meshed per level; where gmsh cannot mesh that model at some level, the balls split
+    into two halves, each done the same way; a single ball that fails is tried again
+    ``RETRY_GROWTH`` larger."""
     try:
-        return [mesh_zone(geometry, spec, options, [h.centre for h in spots], [h.radius for h in spots], samples)]
+        return mesh_zone_levels(
+            geometry,
+            spec,
+            levels,
+            [h.centre for h in spots],
+            [h.radius for h in spots],
+            samples,
+            group_nodes=group_nodes,
+        )
     except MeshError as exc:
         if len(spots) == 1:
             h = spots[0]
             log.info("the hot-spot zone on %s: %s; tried %g x larger", h.surface, exc, RETRY_GROWTH)
-            return [mesh_zone(geometry, spec, options, [h.centre], [RETRY_GROWTH * h.radius], samples)]
+            return mesh_zone_levels(
+                geometry, spec, levels, [h.centre], [RETRY_GROWTH * h.radius], samples, group_nodes=group_nodes
+            )
     half = len(spots) // 2
-    return mesh_zones(geometry, spec, options, spots[:half], samples) + mesh_zones(
-        geometry, spec, options, spots[half:], samples
-    )
+    first = level_meshes(geometry, spec, levels, spots[:half], samples, group_nodes)
+    second = level_meshes(geometry, spec, levels, spots[half:], samples, group_nodes)
+    return [a + b for a, b in zip(first, second)]
 
 
 def zone_convergence(
@@ -182,14 +202,19 @@ def zone_convergence(
     samples = boundary_samples(unit_solutions.mesh)
     interp = Interpolator(unit_solutions.mesh, unit_solutions.system.basis.dofs, unit_solutions.points)
     every = [n for _, names in FAMILIES for n in names]
-    for f in factors[1:]:
-        t0 = time.perf_counter()
-        mopt = dataclasses.replace(
-            base, fillet_divisions=base.fillet_divisions * f, bore_divisions=base.bore_divisions * f
-        )
+    t0 = time.perf_counter()
+    options = [
+        dataclasses.replace(base, fillet_divisions=base.fillet_divisions * f, bore_divisions=base.bore_divisions * f)
+        for f in factors[1:]
+    ]
+    group_nodes = GROUP_FRACTION * unit_solutions.n_dof / 3
+    meshes = level_meshes(geometry, spec, options, spots, samples, group_nodes)
+    meshing = (time.perf_counter() - t0) / len(options)  # the cut shared by the levels
+    for mopt, zones in zip(options, meshes):
+        t0 = time.perf_counter() - meshing
         best: dict[str, tuple[float, str]] = {}
         n_dof, edges = 0, dict[str, float]()
-        for zm in mesh_zones(geometry, spec, mopt, spots, samples):
+        for zm in zones:
             U, basis = solve_zone(zm, material, unit_solutions.options, unit_solutions.pin, loads, fields, interp)
             n_dof += int(3 * basis.N)
             for k, v in zm.fillet_max_edge.items():

@@ -26,6 +26,8 @@ from pydantic import Field
 from fe_crank import model
 from fe_crank.cad.config import CadInput
 from fe_crank.errors import InputError
+from fe_crank.fe.convergence import wanted
+from fe_crank.fe.convergence_levels import FACTORS
 from fe_crank.fe.input import check_torque_reaction
 from fe_crank.fe.throw.options import FeOptions
 from fe_crank.geometry.engine_fit import throw_at_bearings
@@ -44,7 +46,9 @@ from fe_crank.io.sections import SECTION_KEYS, parse_sections
 from fe_crank.io.shaft import require_bearing_widths
 from fe_crank.io.torsion import TorsionSettings
 from fe_crank.io.torsion_engine import check_torsion_engine
-from fe_crank.mesh.options import MeshSection
+from fe_crank.mesh.options import PRESETS, MeshSection
+from fe_crank.mesh.plan import preset_of
+from fe_crank.mesh.study_bounds import check_study_edges
 
 
 @dataclass(frozen=True)
@@ -148,6 +152,7 @@ def _load(path: Path) -> LoadCase:
         _check_whole_shaft_criteria(criteria, geometry, engine, path)
     if isinstance(geometry, CrankGeometry):
         _check_counterweight_clearance(geometry, engine, engine_file)
+        check_study_fillets(geometry, sections.mesh or MeshSection(), None, None, str(path))
     if sections.fe is not None:
         check_torque_reaction(sections.fe, engine, path, torsion=sections.torsion is not None)
     if criteria is not None:
@@ -167,6 +172,18 @@ def _load(path: Path) -> LoadCase:
         torsion=sections.torsion,
         engine_file=engine_file,
     )
+
+
+def check_study_fillets(
+    geometry: CrankGeometry, section: MeshSection, size: str | None, convergence: bool | None, file: str
+) -> None:
+    """Refuse a fillet or oil bore too small for the hot-spot convergence study's finest
+    level (``mesh.study_bounds``) when the study runs: at the mesh size ``size`` (the
+    command line's) or the section's, the study ``convergence`` (the command line's) or
+    the section's."""
+    preset = preset_of(section, size)
+    if wanted(convergence if convergence is not None else section.convergence, preset):
+        check_study_edges(geometry, PRESETS[preset], max(FACTORS), preset, file)
 
 
 def _check_torsion_range(torsion: TorsionSettings, operating: model.OperatingPoint, path: Path) -> None:

@@ -48,79 +48,130 @@ class ZoneMesh:
     seconds: float
 
 
-def mesh_zone(
-    geometry: CrankGeometry,
-    spec: ThrowSpec,
-    options: MeshOptions,
-    centres,
-    radii,
-    names: tuple[np.ndarray, list[str]],
-) -> ZoneMesh:
-    """Mesh the throw ``spec`` of ``geometry`` inside the balls (``centres`` (k, 3),
-    ``radii`` (k,), m; overlapping balls make one zone of their union) at ``options``, in
-    one model; ``names``: (points (n, 3) on the assessed mesh's boundary, the boundary name
-    of each) to name the zone's faces (module docstring)."""
+def _build(gmsh, geometry: CrankGeometry, spec: ThrowSpec, cs: np.ndarray, rs: np.ndarray, names):
+    """The throw inside the balls in the open session: (the throw model, {subdomain: volume
+    tags}, {boundary name: face tags}), its faces named (module docstring)."""
     from fe_crank.geometry.throw import add_throw
-    from fe_crank.gmsh_io import gmsh_session, model_to_skfem
 
-    t0 = time.perf_counter()
-    cs = np.atleast_2d(np.asarray(centres, float))
-    rs = np.asarray(radii, float)
     pts, labels = names
     tree = cKDTree(np.asarray(pts, float))
-    with gmsh_session() as gmsh:
-        model = add_throw(geometry, spec)
-        occ = gmsh.model.occ
-        for name in (*model.volumes, *model.surfaces):  # the throw's groups: the zone names its own
-            gmsh.model.removePhysicalName(name)
-        gmsh.model.removePhysicalGroups()
-        vols = [(3, t) for _, t in gmsh.model.getEntities(3)]
-        balls = []
-        for c, r in zip(cs, rs):
-            ball = occ.addSphere(float(c[0]), float(c[1]), float(c[2]), float(r))
-            # the sphere's poles and seam turned off the throw's planes of symmetry and axes,
-            # where they would cut its edges at a point (a degenerate loop for the mesher)
-            occ.rotate([(3, ball)], float(c[0]), float(c[1]), float(c[2]), *TILT_AXIS, TILT)
-            balls.append((3, ball))
-        if len(balls) > 1:  # their union: no faces of one ball inside another
-            balls, _ = occ.fuse(balls[:1], balls[1:])
-        _, out_map = occ.fragment(vols, balls)
-        occ.synchronize()
-        in_ball = {t for m in out_map[len(vols) :] for d, t in m if d == 3}
-        volumes: dict[str, list[int]] = {}
-        keep: set[int] = set()
-        for (_, old), pieces in zip(vols, out_map[: len(vols)]):
-            name = next(n for n, tags in model.volumes.items() if old in tags)
-            got = sorted(t for d, t in pieces if d == 3 and t in in_ball)
-            volumes.setdefault(name, []).extend(got)
-            keep |= set(got)
-        if not keep:
-            raise MeshError(f"the hot-spot zones hold no part of throw {spec.name!r}")
-        drop = [(3, t) for _, t in gmsh.model.getEntities(3) if t not in keep]
-        occ.remove(drop, recursive=True)
-        occ.synchronize()
-        volumes = {k: v for k, v in volumes.items() if v}
-        surfaces: dict[str, list[int]] = {}
-        faces = gmsh.model.getBoundary([(3, t) for t in sorted(keep)], combined=True, oriented=False)
-        for _, s in faces:
-            s = abs(s)
-            com = np.asarray(occ.getCenterOfMass(2, s))
-            p = np.asarray(gmsh.model.getClosestPoint(2, s, com.tolist())[0])
-            on_ball = np.abs(np.linalg.norm(p[None] - cs, axis=1) - rs) < 1e-6 * rs
-            if gmsh.model.getType(2, s) == "Sphere" and on_ball.any():
-                name = CUT
+    model = add_throw(geometry, spec)
+    occ = gmsh.model.occ
+    for name in (*model.volumes, *model.surfaces):  # the throw's groups: the zone names its own
+        gmsh.model.removePhysicalName(name)
+    gmsh.model.removePhysicalGroups()
+    vols = [(3, t) for _, t in gmsh.model.getEntities(3)]
+    balls = []
+    for c, r in zip(cs, rs):
+        ball = occ.addSphere(float(c[0]), float(c[1]), float(c[2]), float(r))
+        # the sphere's poles and seam turned off the throw's planes of symmetry and axes,
+        # where they would cut its edges at a point (a degenerate loop for the mesher)
+        occ.rotate([(3, ball)], float(c[0]), float(c[1]), float(c[2]), *TILT_AXIS, TILT)
+        balls.append((3, ball))
+    if len(balls) > 1:  # their union: no faces of one ball inside another
+        balls, _ = occ.fuse(balls[:1], balls[1:])
+    _, out_map = occ.fragment(vols, balls)
+    occ.synchronize()
+    in_ball = {t for m in out_map[len(vols) :] for d, t in m if d == 3}
+    volumes: dict[str, list[int]] = {}
+    keep: set[int] = set()
+    for (_, old), pieces in zip(vols, out_map[: len(vols)]):
+        name = next(n for n, tags in model.volumes.items() if old in tags)
+        got = sorted(t for d, t in pieces if d == 3 and t in in_ball)
+        volumes.setdefault(name, []).extend(got)
+        keep |= set(got)
+    if not keep:
+        raise MeshError(f"the hot-spot zones hold no part of throw {spec.name!r}")
+    drop = [(3, t) for _, t in gmsh.model.getEntities(3) if t not in keep]
+    occ.remove(drop, recursive=True)
+    occ.synchronize()
+    volumes = {k: v for k, v in volumes.items() if v}
+    surfaces: dict[str, list[int]] = {}
+    faces = gmsh.model.getBoundary([(3, t) for t in sorted(keep)], combined=True, oriented=False)
+    for _, s in faces:
+        s = abs(s)
+        com = np.asarray(occ.getCenterOfMass(2, s))
+        p = np.asarray(gmsh.model.getClosestPoint(2, s, com.tolist())[0])
+        on_ball = np.abs(np.linalg.norm(p[None] - cs, axis=1) - rs) < 1e-6 * rs
+        if gmsh.model.getType(2, s) == "Sphere" and on_ball.any():
+            name = CUT
+        else:
+            name = labels[int(tree.query(p)[1])]
+        surfaces.setdefault(name or "free", []).append(s)
+    surfaces = {k: sorted(set(v)) for k, v in surfaces.items()}
+    if CUT not in surfaces:
+        raise MeshError(f"the hot-spot zones hold the whole throw {spec.name!r}")
+    return model, volumes, surfaces
+
+
+def _pieces(gmsh, volumes: dict[str, list[int]]) -> list[list[int]]:
+    """The zone's connected pieces (volume tags sharing a face), each sorted, in the order of
+    their smallest tag."""
+    tags = sorted(t for v in volumes.values() for t in v)
+    parent = {t: t for t in tags}
+
+    def root(t):
+        while parent[t] != t:
+            parent[t] = parent[parent[t]]
+            t = parent[t]
+        return t
+
+    owner: dict[int, int] = {}
+    for t in tags:
+        for _, f in gmsh.model.getBoundary([(3, t)], oriented=False):
+            f = abs(f)
+            if f in owner:
+                parent[root(t)] = root(owner[f])
             else:
-                name = labels[int(tree.query(p)[1])]
-            surfaces.setdefault(name or "free", []).append(s)
-        for name, tags in volumes.items():
-            gmsh.model.addPhysicalGroup(3, tags, name=name)
-        for name, tags in surfaces.items():
-            gmsh.model.addPhysicalGroup(2, sorted(set(tags)), name=name)
-        if CUT not in surfaces:
-            raise MeshError(f"the hot-spot zones hold the whole throw {spec.name!r}")
-        set_size_fields(gmsh, geometry, surfaces, model.fillet_radii, options, volumes)
-        generate(gmsh, spec.name, geometry.name, options)
-        mesh = model_to_skfem()
+                owner[f] = t
+    out: dict[int, list[int]] = {}
+    for t in tags:
+        out.setdefault(root(t), []).append(t)
+    return sorted(out.values(), key=lambda v: v[0])
+
+
+def _node_count(gmsh, vols: list[int]) -> int:
+    """The number of (quadratic) mesh nodes of the volumes ``vols``."""
+    nodes = [np.asarray(gmsh.model.mesh.getElements(3, t)[2][0]) for t in vols]
+    return int(np.unique(np.concatenate(nodes)).size) if nodes else 0
+
+
+def _groups(counts: list[int], budget: float | None) -> list[list[int]]:
+    """The pieces (their node counts ``counts``) packed into groups of at most ``budget``
+    nodes (first fit, largest first; a larger piece alone), each group's pieces in order."""
+    if budget is None:
+        return [list(range(len(counts)))]
+    order = sorted(range(len(counts)), key=lambda i: (-counts[i], i))
+    groups: list[list[int]] = []
+    load: list[int] = []
+    for i in order:
+        for g, n in enumerate(load):
+            if n + counts[i] <= budget:
+                groups[g].append(i)
+                load[g] += counts[i]
+                break
+        else:
+            groups.append([i])
+            load.append(counts[i])
+    return sorted((sorted(g) for g in groups), key=lambda g: g[0])
+
+
+def _convert(gmsh, model, volumes, surfaces, vols: list[int], cs, rs, options, t0) -> ZoneMesh:
+    """The zone mesh of the volumes ``vols`` of the meshed model, its groups named as the zone's."""
+    from fe_crank.gmsh_io import model_to_skfem
+
+    chosen = set(vols)
+    own = {abs(f) for _, f in gmsh.model.getBoundary([(3, t) for t in vols], combined=True, oriented=False)}
+    for dim, tag in gmsh.model.getPhysicalGroups():  # the previous group's names, then its groups
+        gmsh.model.removePhysicalName(gmsh.model.getPhysicalName(dim, tag))
+    gmsh.model.removePhysicalGroups()
+    for name, tags in volumes.items():
+        if got := [t for t in tags if t in chosen]:
+            gmsh.model.addPhysicalGroup(3, got, name=name)
+    for name, tags in surfaces.items():
+        if got := [t for t in tags if t in own]:
+            gmsh.model.addPhysicalGroup(2, got, name=name)
+    mesh = model_to_skfem(volumes=vols)
     fillets = [n for n in model.fillet_radii if n in (mesh.boundaries or {})]
     return ZoneMesh(
         mesh=mesh,
@@ -132,4 +183,63 @@ def mesh_zone(
     )
 
 
-__all__ = ["CUT", "ZoneMesh", "mesh_zone"]
+def mesh_zone_levels(
+    geometry: CrankGeometry,
+    spec: ThrowSpec,
+    levels: list[MeshOptions],
+    centres,
+    radii,
+    names: tuple[np.ndarray, list[str]],
+    *,
+    group_nodes: float | None = None,
+) -> list[list[ZoneMesh]]:
+    """Mesh the throw ``spec`` of ``geometry`` inside the balls (``centres`` (k, 3),
+    ``radii`` (k,), m; overlapping balls make one zone of their union) at each of the
+    mesh options ``levels``: the solid is cut once, and only the size fields change from one
+    level to the next.  ``names``: (points (n, 3) on the assessed mesh's boundary, the
+    boundary name of each) to name the zone's faces (module docstring).
+
+    Each level's mesh is returned in groups of its connected pieces (the union of a set of
+    overlapping balls is a piece), each group of at most ``group_nodes`` mesh nodes (a
+    larger piece alone; None: one group), so that each group can be solved as its own
+    model: the pieces share no node, so their systems are independent and the groups'
+    solutions are the whole mesh's."""
+    from fe_crank.gmsh_io import gmsh_session
+
+    cs = np.atleast_2d(np.asarray(centres, float))
+    rs = np.asarray(radii, float)
+    out: list[list[ZoneMesh]] = []
+    with gmsh_session() as gmsh:
+        model, volumes, surfaces = _build(gmsh, geometry, spec, cs, rs, names)
+        pieces = _pieces(gmsh, volumes)
+        for options in levels:
+            t0 = time.perf_counter()
+            gmsh.model.mesh.clear()
+            for tag in gmsh.model.mesh.field.list():
+                gmsh.model.mesh.field.remove(tag)
+            set_size_fields(gmsh, geometry, surfaces, model.fillet_radii, options, volumes)
+            generate(gmsh, spec.name, geometry.name, options)
+            counts = [_node_count(gmsh, p) for p in pieces]
+            level = []
+            for g in _groups(counts, group_nodes):
+                vols = sorted(t for i in g for t in pieces[i])
+                level.append(_convert(gmsh, model, volumes, surfaces, vols, cs, rs, options, t0))
+            out.append(level)
+    return out
+
+
+def mesh_zone(
+    geometry: CrankGeometry,
+    spec: ThrowSpec,
+    options: MeshOptions,
+    centres,
+    radii,
+    names: tuple[np.ndarray, list[str]],
+) -> ZoneMesh:
+    """Mesh the throw ``spec`` of ``geometry`` inside the balls (``centres`` (k, 3),
+    ``radii`` (k,), m; overlapping balls make one zone of their union) at ``options``, in
+    one model and one mesh; ``names`` as for :func:`mesh_zone_levels`."""
+    return mesh_zone_levels(geometry, spec, [options], centres, radii, names)[0][0]
+
+
+__all__ = ["CUT", "ZoneMesh", "mesh_zone", "mesh_zone_levels"]

@@ -36,7 +36,7 @@ from fe_crank.geometry.mass import throw_solids
 from fe_crank.geometry.shaft import ShaftLayout, engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.base import InputFile
-from fe_crank.io.loadcase import LoadCase, load_loadcase
+from fe_crank.io.loadcase import LoadCase, check_study_fillets, load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.mesh.plan import plan_meshes
 from fe_crank.mesh.types import ThrowMesh
@@ -184,6 +184,8 @@ def geometry_stage(lc: LoadCase, options: CheckOptions, balance: BalanceResult |
         file=lc.source_file,
         shaft=layout,
     )
+    # the study's finest level at the command line's size (validate: at the load case's)
+    check_study_fillets(g, lc.mesh, plan.preset, options.convergence, lc.source_file)
     wanted = tuple(sorted({t.name for t in g.throws if t.counterweights}))
     if lc.torsion is not None:
         wanted = tuple(t.name for t in g.throws)

@@ -93,3 +93,30 @@ def test_a_zone_must_cut_the_throw(check_solution):
         mesh_zone(geometry, spec, PRESETS["test"], [(0.0, 0.0, 0.0)], [1.0], samples)
     with pytest.raises(MeshError, match="hold no part of throw"):
         mesh_zone(geometry, spec, PRESETS["test"], [(2.0, 2.0, 2.0)], [0.01], samples)
+
+
+def test_levels_meshed_from_one_cut_in_groups_of_pieces(check_solution):
+    """Two disjoint balls meshed at two levels from one cut, each piece its own group: every
+    group's boundaries named as the throw's and the cut, at every level; the groups'
+    nodes are those of the whole mesh of the level."""
+    import dataclasses
+
+    from fe_crank.fe.zone import boundary_samples
+    from fe_crank.mesh.zone import CUT, mesh_zone, mesh_zone_levels
+
+    geometry, _, tm, units = check_solution
+    spec, samples = geometry.throw(tm.throw), boundary_samples(units.mesh)
+    r = 3 * geometry.crankpin_fillet
+    z = 0.5 * geometry.crankpin_length
+    centres = [(0.0, geometry.crank_radius - 0.5 * geometry.crankpin_diameter, s * z) for s in (-1.0, 1.0)]
+    base = PRESETS["test"]
+    levels = [base, dataclasses.replace(base, fillet_divisions=1.5, bore_divisions=1.5 * base.bore_divisions)]
+    got = mesh_zone_levels(geometry, spec, levels, centres, [r, r], samples, group_nodes=1)
+    assert len(got) == 2
+    for level in got:
+        assert len(level) == 2  # the two balls, apart: two pieces
+        for zm in level:
+            assert CUT in zm.mesh.boundaries and "crankpin" in zm.mesh.boundaries, sorted(zm.mesh.boundaries)
+            assert any(n.startswith("crankpin_fillet_") for n in zm.mesh.boundaries)
+    whole = mesh_zone(geometry, spec, levels[1], centres, [r, r], samples)
+    assert sum(zm.mesh.p.shape[1] for zm in got[1]) == whole.mesh.p.shape[1]

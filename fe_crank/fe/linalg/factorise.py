@@ -237,12 +237,11 @@ def factorise(
         matrix=K, method=chosen, setup_time=0.0, residual_tol=residual_tol, amg_rtol=amg_rtol, note=note
     )
     if chosen in ("pardiso", "pardiso_ooc"):
-        import pypardiso
         from pypardiso.pardiso_wrapper import PyPardisoError
 
         tri = K if upper else sp.triu(K, format="csr")
         tri.sort_indices()
-        solver = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
+        solver = new_pardiso()
         if chosen == "pardiso_ooc":
             fac._ooc_dir = out_of_core(solver)
         try:
@@ -438,17 +437,30 @@ def _memory_bytes() -> int:
 _TEMPLATE: dict[str, Any] = {}
 
 
-def pardiso_solver() -> Any:
-    """A fresh PyPardisoSolver (SPD) with MKL's defaults for a real SPD matrix stated (MKL reads
-    user iparm values only with iparm(1) = 1; as :func:`out_of_core`).  Typed ``Any``:
-    pypardiso has no type information."""
+def new_pardiso() -> Any:
+    """A PyPardisoSolver as ``PyPardisoSolver(mtype=2, size_limit_storage=0)`` constructs it
+    (a handle and iparm of its own, all zero), the MKL library found and loaded once per
+    process: pypardiso's constructor searches the Python prefix for ``mkl_rt`` with a
+    recursive glob each time (about 1 s).  Typed ``Any``: pypardiso has no type information."""
     import pypardiso
 
-    if "solver" not in _TEMPLATE:  # finding and loading mkl_rt takes ~0.6 s: once per process
+    if "solver" not in _TEMPLATE:  # never called itself: only copied
         _TEMPLATE["solver"] = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
     solver = copy.copy(_TEMPLATE["solver"])
     solver.pt = np.zeros_like(solver.pt)  # a handle of its own
     solver.iparm = np.zeros_like(solver.iparm)
+    solver.perm = np.zeros(0, dtype=np.int32)
+    solver.mtype, solver.phase, solver.msglvl = 2, 13, False
+    solver.factorized_A = sp.csr_matrix((0, 0))
+    solver._solve_transposed = False
+    return solver
+
+
+def pardiso_solver() -> Any:
+    """A fresh PyPardisoSolver (SPD) with MKL's defaults for a real SPD matrix stated (MKL reads
+    user iparm values only with iparm(1) = 1; as :func:`out_of_core`).  Typed ``Any``:
+    pypardiso has no type information."""
+    solver = new_pardiso()
     solver.iparm[0] = 1
     solver.iparm[1] = 2  # METIS nested dissection
     solver.iparm[9] = 8
