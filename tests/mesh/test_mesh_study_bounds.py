@@ -14,7 +14,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from conftest import ROOT
+from helpers.paths import ROOT
 
 from fe_crank.cli import main
 from fe_crank.io.geometry import load_geometry
