@@ -30,7 +30,6 @@ oneMKL reference, ``pardiso`` parameters ``maxfct``/``mnum``).
 
 from __future__ import annotations
 
-import copy
 import logging
 import os
 import shutil
@@ -433,26 +432,20 @@ def _memory_bytes() -> int:
 
 # -- the components of a symmetric throw on one PARDISO handle --
 
+
 #: a loaded PyPardisoSolver to copy (``Any``: pypardiso has no type information)
-_TEMPLATE: dict[str, Any] = {}
-
-
 def new_pardiso() -> Any:
-    """A PyPardisoSolver as ``PyPardisoSolver(mtype=2, size_limit_storage=0)`` constructs it
-    (a handle and iparm of its own, all zero), the MKL library found and loaded once per
-    process: pypardiso's constructor searches the Python prefix for ``mkl_rt`` with a
-    recursive glob each time (about 1 s).  Typed ``Any``: pypardiso has no type information."""
+    """``PyPardisoSolver(mtype=2, size_limit_storage=0)`` (a handle and iparm of its own), with
+    the MKL library pypardiso found for the first solver of the process named for the next
+    ones by pypardiso's own setting ``PYPARDISO_MKL_RT``: without it pypardiso's constructor
+    searches the Python prefix for ``mkl_rt`` with a recursive glob each time (about 1 s).
+    A path the user set is kept.  Typed ``Any``: pypardiso has no type information."""
     import pypardiso
 
-    if "solver" not in _TEMPLATE:  # never called itself: only copied
-        _TEMPLATE["solver"] = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
-    solver = copy.copy(_TEMPLATE["solver"])
-    solver.pt = np.zeros_like(solver.pt)  # a handle of its own
-    solver.iparm = np.zeros_like(solver.iparm)
-    solver.perm = np.zeros(0, dtype=np.int32)
-    solver.mtype, solver.phase, solver.msglvl = 2, 13, False
-    solver.factorized_A = sp.csr_matrix((0, 0))
-    solver._solve_transposed = False
+    solver = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
+    found = getattr(solver.libmkl, "_name", None)
+    if "PYPARDISO_MKL_RT" not in os.environ and isinstance(found, str) and os.path.isfile(found):
+        os.environ["PYPARDISO_MKL_RT"] = found
     return solver
 
 
