@@ -15,6 +15,7 @@ from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import engine_cycles
+from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.candidates import (
     Candidate,
     DrawnWeb,
@@ -27,7 +28,15 @@ from fe_crank.study.candidates import (
     written_mass,
 )
 from fe_crank.study.film import FilmMetrics, film_metrics
-from fe_crank.study.screen import StudyShaft, candidate_loads, engine_states, state_base, study_shaft
+from fe_crank.study.screen import (
+    StressScreen,
+    StudyShaft,
+    candidate_loads,
+    candidate_stresses,
+    engine_states,
+    state_base,
+    study_shaft,
+)
 from fe_crank.study.spec import StudySpec
 
 
@@ -52,6 +61,8 @@ class CandidateResult:
     failed: tuple[str, ...]  # limits not met (with the values)
     written: WrittenMass | None = None  # the written shaft's mass properties and load factors
     film: FilmMetrics | None = None  # the hydrodynamic bearings' film; None without one
+    #: the shaft's fillet and counterweight-junction stresses over every state (``study.screen``)
+    stresses: StressScreen | None = None
 
     @property
     def meets_limits(self) -> bool:
@@ -116,6 +127,7 @@ def _metrics(
     spec: StudySpec,
     w_max: float,
     written: WrittenMass,
+    stresses: StressScreen | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -189,6 +201,7 @@ def _metrics(
         failed,
         written,
         film,
+        stresses,
     )
 
 
@@ -226,11 +239,18 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     bases = [state_base(shaft, s) for s in states]
     w_max = max(s.speed for s in states)
     solids = ThrowSolidCache(layout)
+    add = m53_basis(
+        lc.engine, lc.material, lc.criteria.m53_additional_bending if lc.criteria else None, file=lc.source_file
+    ).additional
+    g = layout.geometry
     results = []
     for c in cands:
         wm = written_mass(layout, c, drawn, shaft.mass, solids)
         loads = [candidate_loads(shaft, b, wm.load_factors, drawn) for b in bases]
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm))
+        st = candidate_stresses(
+            shaft, loads, lc.material, additional_bending=add, diameters=(g.crankpin_diameter, g.journal_diameter)
+        )
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:
