@@ -47,6 +47,7 @@ rotating_rate_percent = [0, 50, 100]
 envelope = "45 mm"
 [study.limits]
 max_main_bearing_load = "20 kN"
+min_fillet_static_safety = 1.0
 [[study.placements]]
 name = "8"
 webs = "all"
@@ -275,6 +276,9 @@ def test_table_plot_and_recommendation_written(study, tmp_path):
     assert (tmp_path / "p.png").stat().st_size > 0
     text = paths["csv"].read_text().splitlines()
     assert len(text) == 1 + len(res.results)  # every candidate, the ones that cannot be built too
+    for col in ("fillet_static_safety", "fillet_fatigue_safety", "fillet_peak_von_mises_mpa"):
+        assert col in text[0].split(",")
+    assert all(r.stresses is not None and r.stresses.fatigue_safety is not None for r in res.results)
     assert res.recommended is not None and res.recommended.meets_limits
     ok = [r for r in res.results if r.meets_limits]
     assert res.recommended.counterweight_mass == min(r.counterweight_mass for r in ok)
@@ -289,6 +293,14 @@ BAD = [
         "study.limits.max_counterweight_mass",
     ),
     ('rotating_rate_percent = [50]\nenvelope = "30 mm"', "study.envelope"),
+    (
+        'rotating_rate_percent = [50]\n[study.limits]\nmin_fillet_fatigue_safety = "2"',
+        "study.limits.min_fillet_fatigue_safety",
+    ),
+    (
+        "rotating_rate_percent = [50]\n[study.limits]\nmin_fillet_static_safety = -1",
+        "study.limits.min_fillet_static_safety",
+    ),
     ('rotating_rate_percent = [50]\noffset = ["10 deg"]', "study.offset[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.3"]', "study.placements[0].webs[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.1"]', "study.placements[0].webs"),

@@ -217,7 +217,10 @@ def pareto_plot(res: StudyResult, path: Path) -> Path:
         zorder=3,
     )
     if ok:
-        fig.colorbar(sc, ax=ax, label=label)
+        bar = fig.colorbar(sc, ax=ax, label=label)
+        key = "min_fillet_fatigue_safety" if "fatigue" in label else "min_fillet_static_safety"
+        if "safety" in label and key in res.spec.limits:
+            bar.ax.axhline(res.spec.limits[key], color="r", lw=1.5)  # the limit on the colour scale
     if bad:
         ax.scatter(
             [r.counterweight_mass for r in bad],

@@ -115,6 +115,21 @@ def prepare(lc: LoadCase, spec: StudySpec):
                     file=spec.file,
                     key=f"study.limits.{k}",
                 )
+    m = lc.material
+    if "min_fillet_fatigue_safety" in spec.limits and (
+        m is None or m.fatigue_limit_bending is None or m.tensile_strength is None
+    ):
+        raise InputError(
+            "a fatigue-safety limit needs the material's fatigue limit in bending and tensile strength",
+            file=spec.file,
+            key="study.limits.min_fillet_fatigue_safety",
+        )
+    if "min_fillet_static_safety" in spec.limits and (m is None or m.yield_strength is None):
+        raise InputError(
+            "a static-safety limit needs the material's yield strength",
+            file=spec.file,
+            key="study.limits.min_fillet_static_safety",
+        )
     return layout, drawn, candidates(spec, drawn, layout, lc.engine)
 
 
@@ -179,6 +194,16 @@ def _metrics(
         for k, lim in spec.limits.items()
         if k in values and values[k][0] > lim
     )
+    if stresses is not None:
+        lim = spec.limits
+        if "max_fillet_stress" in lim and stresses.shaft_peak > lim["max_fillet_stress"]:
+            failed += (f"max_fillet_stress {stresses.shaft_peak / 1e6:.4g} > {lim['max_fillet_stress'] / 1e6:.4g} MPa",)
+        for k, v in (
+            ("min_fillet_static_safety", stresses.static_safety),
+            ("min_fillet_fatigue_safety", stresses.fatigue_safety),
+        ):
+            if k in lim and v is not None and v < lim[k]:
+                failed += (f"{k} {v:.4g} < {lim[k]:.4g}",)
     if "min_oil_film" in spec.limits and film is not None and film.min_film < spec.limits["min_oil_film"]:
         failed += (f"min_oil_film {film.min_film * 1e6:.4g} < {spec.limits['min_oil_film'] * 1e6:.4g} um",)
     return CandidateResult(

@@ -20,6 +20,9 @@ A study TOML beside the load case (``fe-crank study LOADCASE STUDY``)::
     max_counterweight_mass = "6 kg"                    # the shaft's counterweights together
     min_oil_film = "1 um"                              # hydrodynamic bearings only
     max_film_pressure = "300 MPa"                      # hydrodynamic bearings only
+    max_fillet_stress = "400 MPa"                      # the fillets' peak von Mises
+    min_fillet_static_safety = 2.0                     # a plain number
+    min_fillet_fatigue_safety = 1.5                    # a plain number
 
     [[study.placements]]
     name = "8 counterweights"
@@ -55,6 +58,9 @@ LIMITS = {
     "max_counterweight_mass": "mass",
     "min_oil_film": "length",  # hydrodynamic bearings: the least h_min (docs/study.md)
     "max_film_pressure": "pressure",  # hydrodynamic bearings: the peak film pressure
+    "max_fillet_stress": "pressure",  # the fillets' screened peak von Mises (docs/study.md)
+    "min_fillet_static_safety": "number",  # yield over that peak
+    "min_fillet_fatigue_safety": "number",  # the fillets' least screened Goodman safety
 }
 KEYS = (
     "name",
@@ -201,7 +207,12 @@ def parse_study(path: str | Path) -> StudySpec:
     for k, v in limits_raw.items():
         if k not in LIMITS:
             raise InputError(f"unknown limit; pick from {', '.join(LIMITS)}", file=file, key=f"study.limits.{k}")
-        x = _quantity(v, LIMITS[k], file, f"study.limits.{k}")
+        if LIMITS[k] == "number":
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                raise InputError(f"must be a plain number (got {v!r})", file=file, key=f"study.limits.{k}")
+            x = float(v)
+        else:
+            x = _quantity(v, LIMITS[k], file, f"study.limits.{k}")
         if not x > 0.0:
             raise InputError(f"must be positive (got {v})", file=file, key=f"study.limits.{k}")
         limits[k] = x
