@@ -251,6 +251,10 @@ def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[Candidat
             f"the least peak main-bearing load ({best.peak_bearing_load / 1e3:.2f} kN) of the {len(ok)} buildable "
             f"candidates meeting every limit; counterweight mass {best.counterweight_mass:.3f} kg"
         )
+    st = best.stresses
+    if st is not None:
+        why += f"; fillet peak {st.shaft_peak / 1e6:.1f} MPa (static safety {st.static_safety:.2f}"
+        why += ")" if st.fatigue_safety is None else f", fatigue safety {st.fatigue_safety:.2f})"
     return best, why
 
 
@@ -260,7 +264,15 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     assert lc.material is not None
     cycles = engine_cycles(lc.engine, lc.operating, file=lc.source_file)
     states = engine_states(lc.engine, lc.operating, cycles)
-    shaft = study_shaft(layout, lc.material, lc.fe, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    shaft = study_shaft(
+        layout,
+        lc.material,
+        lc.fe,
+        size=size,
+        cache_dir=cache_dir,
+        max_elements=max_elements,
+        stresses=spec.stresses != "off",
+    )
     bases = [state_base(shaft, s) for s in states]
     w_max = max(s.speed for s in states)
     solids = ThrowSolidCache(layout)
@@ -272,8 +284,17 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     for c in cands:
         wm = written_mass(layout, c, drawn, shaft.mass, solids)
         loads = [candidate_loads(shaft, b, wm.load_factors, drawn) for b in bases]
-        st = candidate_stresses(
-            shaft, loads, lc.material, additional_bending=add, diameters=(g.crankpin_diameter, g.journal_diameter)
+        st = (
+            None
+            if spec.stresses == "off"
+            else candidate_stresses(
+                shaft,
+                loads,
+                lc.material,
+                additional_bending=add,
+                diameters=(g.crankpin_diameter, g.journal_diameter),
+                fatigue=spec.stresses == "fatigue",
+            )
         )
         results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st))
     best, why = recommend(tuple(results), spec.rule)

@@ -95,9 +95,12 @@ def web_case(web: Web) -> str:
     return f"cw_{web[1]}@{web[0]}"
 
 
-def study_shaft(layout: ShaftLayout, material, fe, *, size, cache_dir, max_elements=None) -> StudyShaft:
+def study_shaft(
+    layout: ShaftLayout, material, fe, *, size, cache_dir, max_elements=None, stresses: bool = True
+) -> StudyShaft:
     """Mesh, condense and solve the unit cases once (module doc); ``fe``: the load case's
-    ``[fe]`` options (solver, pin half-angle, symmetry)."""
+    ``[fe]`` options (solver, pin half-angle, symmetry); ``stresses``: keep each throw's
+    unit stresses for the stress screening."""
     sm = mesh_shaft(layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
     opt = ShaftFeOptions(
         solver=fe.solver, pin_half_angle=fe.pin_half_angle, symmetry=fe.symmetry, counterweight_webs=True
@@ -110,16 +113,14 @@ def study_shaft(layout: ShaftLayout, material, fe, *, size, cache_dir, max_eleme
         for w in (1, 2)
     }
     cases = solve_cases(model, extra)
-    stresses = tuple(
+    units = tuple(
         (str(pp.throw), piece_unit_stresses(cases, k, material))
         for k, pp in enumerate(model.pieces)
-        if pp.kind == "throw"
+        if pp.kind == "throw" and stresses
     )
     model.release_recovery()  # the unit stresses taken: the largest arrays go
     laws = [b.law for b in layout.bearings]
-    return StudyShaft(
-        layout, cases, throw_masses(layout), laws, sm.n_dof, envelope_laws(layout, laws), stresses=stresses
-    )
+    return StudyShaft(layout, cases, throw_masses(layout), laws, sm.n_dof, envelope_laws(layout, laws), stresses=units)
 
 
 def engine_states(engine, operating, cycles: EngineCycles) -> tuple[EngineState, ...]:
@@ -251,12 +252,14 @@ def candidate_stresses(
     *,
     additional_bending: float = 0.0,
     diameters: tuple[float | None, float | None] = (None, None),
+    fatigue: bool = True,
 ) -> StressScreen:
     """The candidate's stresses in every state (``loads``, their ``weights``):
     sigma(theta) = sum_c W_c(theta) S_c at each throw's assessed nodes, each group's
     extremes by the check's own search (``group_extremes``: the static peak, the least
     Goodman safety with the size and surface factors of ``diameters`` (pin, journal) and
-    UR M53's sigma_add on the shaft fillets, as ``assess.shaft.assess_shaft_throws``)."""
+    UR M53's sigma_add on the shaft fillets, as ``assess.shaft.assess_shaft_throws``;
+    ``fatigue`` False: the static peaks alone, ``fatigue_safety`` None)."""
     crank_radius = shaft.layout.geometry.crank_radius
     best = {"shaft": (0.0, ""), "cw": (0.0, "")}
     static = math.inf
@@ -280,7 +283,7 @@ def candidate_stresses(
                     material,
                     crank_radius=crank_radius,
                     diameter=section_diameter(g, *diameters),
-                    wanted=Wanted(fatigue=shaft_group, gough_pollard=False),
+                    wanted=Wanted(fatigue=fatigue and shaft_group, gough_pollard=False),
                     running=running,
                     additional_bending=additional_bending if sigma_add_applies(g) else 0.0,
                 )

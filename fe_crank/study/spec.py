@@ -10,6 +10,7 @@ A study TOML beside the load case (``fe-crank study LOADCASE STUDY``)::
     free = ["thickness", "angle", "r_outer"]           # sector dimension solved for each mass, in order
     envelope = "95 mm"                                 # largest outer radius a counterweight may have
     rule = "least_mass"                                # or "least_bearing_load"
+    stresses = "fatigue"                               # or "static", "off": the stress screening
 
     [study.limits]                                     # all optional
     max_main_bearing_load = "25 kN"
@@ -47,6 +48,9 @@ from fe_crank.io.base import read_toml
 from fe_crank.io.units import to_si
 
 RULES = ("least_mass", "least_bearing_load")
+#: what the stress screening evaluates (docs/study.md): the static peaks and the least
+#: Goodman safety, the static peaks alone, nothing
+STRESSES = ("fatigue", "static", "off")
 FREE = ("thickness", "angle", "r_outer", "r_inner")
 MAX_ROTATING_PERCENT = 120.0
 LIMITS = {
@@ -70,6 +74,7 @@ KEYS = (
     "free",
     "envelope",
     "rule",
+    "stresses",
     "limits",
     "placements",
 )
@@ -93,6 +98,7 @@ class StudySpec:
     rule: str
     limits: dict[str, float]  # SI
     placements: tuple[Placement, ...]
+    stresses: str = "fatigue"  # one of STRESSES
 
 
 def _numbers(value, file: str, key: str, lo: float, hi: float) -> tuple[float, ...]:
@@ -216,9 +222,31 @@ def parse_study(path: str | Path) -> StudySpec:
         if not x > 0.0:
             raise InputError(f"must be positive (got {v})", file=file, key=f"study.limits.{k}")
         limits[k] = x
+    stresses = st.get("stresses", "fatigue")
+    if stresses not in STRESSES:
+        raise InputError(f"{stresses!r} is not one of {', '.join(STRESSES)}", file=file, key="study.stresses")
+    wants = {"min_fillet_fatigue_safety": ("fatigue",), "min_fillet_static_safety": ("fatigue", "static")}
+    wants["max_fillet_stress"] = wants["min_fillet_static_safety"]
+    for k, modes in wants.items():
+        if k in limits and stresses not in modes:
+            raise InputError(
+                f'the limit needs stresses = "{modes[0]}" (the study says "{stresses}")',
+                file=file,
+                key=f"study.limits.{k}",
+            )
     name = st.get("name", Path(file).stem)
     if not isinstance(name, str):
         raise InputError("must be a string", file=file, key="study.name")
     return StudySpec(
-        file, name, rot, rec, offsets, tuple(free_raw), envelope, rule, limits, _placements(st.get("placements"), file)
+        file,
+        name,
+        rot,
+        rec,
+        offsets,
+        tuple(free_raw),
+        envelope,
+        rule,
+        limits,
+        _placements(st.get("placements"), file),
+        stresses,
     )
