@@ -31,6 +31,10 @@ COLUMNS = (
     ("max_web_bending_moment_nm", "max web moment N m"),
     ("min_oil_film_um", "min oil film um"),
     ("peak_film_pressure_mpa", "peak film pressure MPa"),
+    ("fillet_peak_von_mises_mpa", "fillet peak von Mises MPa"),
+    ("fillet_static_safety", "fillet static safety"),
+    ("fillet_fatigue_safety", "fillet fatigue safety"),
+    ("counterweight_junction_peak_mpa", "cw junction peak MPa"),
     ("free_force_first_order_n", "free force 1st N"),
     ("free_moment_first_order_nm", "free moment 1st N m"),
     ("buildable", "buildable"),
@@ -41,6 +45,7 @@ COLUMNS = (
 
 def row(r: CandidateResult, recommended: bool) -> dict:
     c = r.candidate
+    st = r.stresses
     return {
         "index": c.index,
         "placement": c.placement,
@@ -54,6 +59,10 @@ def row(r: CandidateResult, recommended: bool) -> dict:
         "max_web_bending_moment_nm": r.max_web_moment,
         "min_oil_film_um": None if r.film is None else r.film.min_film * 1e6,
         "peak_film_pressure_mpa": None if r.film is None else r.film.peak_pressure / 1e6,
+        "fillet_peak_von_mises_mpa": None if st is None else st.shaft_peak / 1e6,
+        "fillet_static_safety": None if st is None else st.static_safety,
+        "fillet_fatigue_safety": None if st is None else st.fatigue_safety,
+        "counterweight_junction_peak_mpa": None if st is None else st.counterweight_peak / 1e6,
         "free_force_first_order_n": r.free_force,
         "free_moment_first_order_nm": r.free_moment,
         "buildable": c.buildable,
@@ -68,6 +77,13 @@ def detail(r: CandidateResult) -> dict:
         **row(r, False),
         "peak_where": r.peak_where,
         "web_moment_where": r.web_where,
+        "stresses_where": None
+        if r.stresses is None
+        else {
+            "fillet_peak": r.stresses.shaft_peak_where,
+            "fillet_fatigue": r.stresses.fatigue_where,
+            "counterweight_junction_peak": r.stresses.counterweight_where,
+        },
         "oil_film": None
         if r.film is None
         else {
@@ -165,9 +181,23 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
     return paths
 
 
+def _colour(rs: list[CandidateResult]) -> tuple[list[float], str]:
+    """The Pareto plot's colour: the least screened fillet fatigue safety, else the least
+    static safety, else (no stresses screened) the largest web bending moment."""
+    st = [r.stresses for r in rs]
+    fat = [s.fatigue_safety for s in st if s is not None and s.fatigue_safety is not None]
+    if rs and len(fat) == len(rs):
+        return fat, "least fillet fatigue safety (screened)"
+    static = [s.static_safety for s in st if s is not None and math.isfinite(s.static_safety)]
+    if rs and len(static) == len(rs):
+        return static, "least fillet static safety (screened)"
+    return [r.max_web_moment for r in rs], "largest web bending moment (N m)"
+
+
 def pareto_plot(res: StudyResult, path: Path) -> Path:
-    """Peak main-bearing load against counterweight mass, coloured by the largest web
-    bending moment; the not-buildable candidates hollow; the limits drawn."""
+    """Peak main-bearing load against counterweight mass, coloured by the least screened
+    fillet fatigue safety (``_colour``); the not-buildable candidates hollow; the limits
+    drawn."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -177,16 +207,20 @@ def pareto_plot(res: StudyResult, path: Path) -> Path:
     rs = res.results
     ok = [r for r in rs if r.candidate.buildable]
     bad = [r for r in rs if not r.candidate.buildable]
+    colour, label = _colour(ok)
     sc = ax.scatter(
         [r.counterweight_mass for r in ok],
         [r.peak_bearing_load / 1e3 for r in ok],
-        c=[r.max_web_moment for r in ok],
+        c=colour,
         cmap="viridis",
         s=36,
         zorder=3,
     )
     if ok:
-        fig.colorbar(sc, ax=ax, label="largest web bending moment (N m)")
+        bar = fig.colorbar(sc, ax=ax, label=label)
+        key = "min_fillet_fatigue_safety" if "fatigue" in label else "min_fillet_static_safety"
+        if "safety" in label and key in res.spec.limits:
+            bar.ax.axhline(res.spec.limits[key], color="r", lw=1.5)  # the limit on the colour scale
     if bad:
         ax.scatter(
             [r.counterweight_mass for r in bad],

@@ -15,6 +15,7 @@ from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import engine_cycles
+from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.candidates import (
     Candidate,
     DrawnWeb,
@@ -27,7 +28,15 @@ from fe_crank.study.candidates import (
     written_mass,
 )
 from fe_crank.study.film import FilmMetrics, film_metrics
-from fe_crank.study.screen import StudyShaft, candidate_loads, engine_states, state_base, study_shaft
+from fe_crank.study.screen import (
+    StressScreen,
+    StudyShaft,
+    candidate_loads,
+    candidate_stresses,
+    engine_states,
+    state_base,
+    study_shaft,
+)
 from fe_crank.study.spec import StudySpec
 
 
@@ -52,6 +61,8 @@ class CandidateResult:
     failed: tuple[str, ...]  # limits not met (with the values)
     written: WrittenMass | None = None  # the written shaft's mass properties and load factors
     film: FilmMetrics | None = None  # the hydrodynamic bearings' film; None without one
+    #: the shaft's fillet and counterweight-junction stresses over every state (``study.screen``)
+    stresses: StressScreen | None = None
 
     @property
     def meets_limits(self) -> bool:
@@ -104,6 +115,21 @@ def prepare(lc: LoadCase, spec: StudySpec):
                     file=spec.file,
                     key=f"study.limits.{k}",
                 )
+    m = lc.material
+    if "min_fillet_fatigue_safety" in spec.limits and (
+        m is None or m.fatigue_limit_bending is None or m.tensile_strength is None
+    ):
+        raise InputError(
+            "a fatigue-safety limit needs the material's fatigue limit in bending and tensile strength",
+            file=spec.file,
+            key="study.limits.min_fillet_fatigue_safety",
+        )
+    if "min_fillet_static_safety" in spec.limits and (m is None or m.yield_strength is None):
+        raise InputError(
+            "a static-safety limit needs the material's yield strength",
+            file=spec.file,
+            key="study.limits.min_fillet_static_safety",
+        )
     return layout, drawn, candidates(spec, drawn, layout, lc.engine)
 
 
@@ -116,6 +142,7 @@ def _metrics(
     spec: StudySpec,
     w_max: float,
     written: WrittenMass,
+    stresses: StressScreen | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -167,6 +194,16 @@ def _metrics(
         for k, lim in spec.limits.items()
         if k in values and values[k][0] > lim
     )
+    if stresses is not None:
+        lim = spec.limits
+        if "max_fillet_stress" in lim and stresses.shaft_peak > lim["max_fillet_stress"]:
+            failed += (f"max_fillet_stress {stresses.shaft_peak / 1e6:.4g} > {lim['max_fillet_stress'] / 1e6:.4g} MPa",)
+        for k, v in (
+            ("min_fillet_static_safety", stresses.static_safety),
+            ("min_fillet_fatigue_safety", stresses.fatigue_safety),
+        ):
+            if k in lim and v is not None and v < lim[k]:
+                failed += (f"{k} {v:.4g} < {lim[k]:.4g}",)
     if "min_oil_film" in spec.limits and film is not None and film.min_film < spec.limits["min_oil_film"]:
         failed += (f"min_oil_film {film.min_film * 1e6:.4g} < {spec.limits['min_oil_film'] * 1e6:.4g} um",)
     return CandidateResult(
@@ -189,6 +226,7 @@ def _metrics(
         failed,
         written,
         film,
+        stresses,
     )
 
 
@@ -213,6 +251,10 @@ def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[Candidat
             f"the least peak main-bearing load ({best.peak_bearing_load / 1e3:.2f} kN) of the {len(ok)} buildable "
             f"candidates meeting every limit; counterweight mass {best.counterweight_mass:.3f} kg"
         )
+    st = best.stresses
+    if st is not None:
+        why += f"; fillet peak {st.shaft_peak / 1e6:.1f} MPa (static safety {st.static_safety:.2f}"
+        why += ")" if st.fatigue_safety is None else f", fatigue safety {st.fatigue_safety:.2f})"
     return best, why
 
 
@@ -222,15 +264,39 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     assert lc.material is not None
     cycles = engine_cycles(lc.engine, lc.operating, file=lc.source_file)
     states = engine_states(lc.engine, lc.operating, cycles)
-    shaft = study_shaft(layout, lc.material, lc.fe, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    shaft = study_shaft(
+        layout,
+        lc.material,
+        lc.fe,
+        size=size,
+        cache_dir=cache_dir,
+        max_elements=max_elements,
+        stresses=spec.stresses != "off",
+    )
     bases = [state_base(shaft, s) for s in states]
     w_max = max(s.speed for s in states)
     solids = ThrowSolidCache(layout)
+    add = m53_basis(
+        lc.engine, lc.material, lc.criteria.m53_additional_bending if lc.criteria else None, file=lc.source_file
+    ).additional
+    g = layout.geometry
     results = []
     for c in cands:
         wm = written_mass(layout, c, drawn, shaft.mass, solids)
         loads = [candidate_loads(shaft, b, wm.load_factors, drawn) for b in bases]
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm))
+        st = (
+            None
+            if spec.stresses == "off"
+            else candidate_stresses(
+                shaft,
+                loads,
+                lc.material,
+                additional_bending=add,
+                diameters=(g.crankpin_diameter, g.journal_diameter),
+                fatigue=spec.stresses == "fatigue",
+            )
+        )
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:

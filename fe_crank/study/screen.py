@@ -18,6 +18,12 @@ forces, plus k_w times each counterweight's centrifugal force (a prism along z f
 with its web's outer face: the share of it in front of the mid-plane is its share of the
 thickness).
 
+Stresses (``candidate_stresses``): each throw's unit stresses at its assessed nodes
+(``assess.shaft.piece_unit_stresses``, the per-web counterweight cases among them) are
+taken once; a candidate's history in a state is sum_c W_c(theta) S_c with its weights W
+(the per-web cases at k_w omega^2, the redundant bearings' forces solved again), each
+node group's extremes by the check's own search (``assess.group.extremes``).
+
 Screened on the drawn shape's mesh: a counterweight of another shape or thickness (the
 sector the candidate writes) changes the web's stiffness and the load's spread over the
 web, which the full check of the written geometry takes (docs/study.md).
@@ -26,14 +32,20 @@ web, which the full check of the written geometry takes (docs/study.md).
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from fe_crank.assess.group.assessment import section_diameter, sigma_add_applies
+from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
+from fe_crank.assess.shaft import piece_unit_stresses
+from fe_crank.assess.superpose import UnitStresses
 from fe_crank.fe.shaft.cases import ShaftCases, solve_cases
 from fe_crank.fe.shaft.cycle import solve_cycle
 from fe_crank.fe.shaft.model import ShaftFeOptions, build_shaft_model
 from fe_crank.fe.shaft.whole_shaft import envelope_laws, shaft_cycle_of, throw_masses
+from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult, analyse
@@ -59,6 +71,9 @@ class StudyShaft:
     #: the law sets the main-bearing loads are enveloped over, the stated one first
     #: (``fe.shaft.whole_shaft.envelope_laws``: the check's main-bearing criteria take the same)
     law_sets: tuple = ()
+    #: per throw (name, the unit stresses of every case at its assessed nodes:
+    #: ``assess.shaft.piece_unit_stresses``, the check's own), for the stress screening
+    stresses: tuple[tuple[str, UnitStresses], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -71,15 +86,21 @@ class StateLoads:
     webs: np.ndarray  # (n, n_webs, 2), the stated bearing law
     #: (sets, n, nb, 2): every law set of ``StudyShaft.law_sets`` (the stated one first)
     bearing_sets: np.ndarray | None = None
+    #: (n, n_cases) the shaft's case weights of the stated law, the redundant bearings'
+    #: forces filled in (``fe.shaft.cycle.solve_cycle``): the stresses by superposition
+    weights: np.ndarray | None = None
 
 
 def web_case(web: Web) -> str:
     return f"cw_{web[1]}@{web[0]}"
 
 
-def study_shaft(layout: ShaftLayout, material, fe, *, size, cache_dir, max_elements=None) -> StudyShaft:
+def study_shaft(
+    layout: ShaftLayout, material, fe, *, size, cache_dir, max_elements=None, stresses: bool = True
+) -> StudyShaft:
     """Mesh, condense and solve the unit cases once (module doc); ``fe``: the load case's
-    ``[fe]`` options (solver, pin half-angle, symmetry)."""
+    ``[fe]`` options (solver, pin half-angle, symmetry); ``stresses``: keep each throw's
+    unit stresses for the stress screening."""
     sm = mesh_shaft(layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
     opt = ShaftFeOptions(
         solver=fe.solver, pin_half_angle=fe.pin_half_angle, symmetry=fe.symmetry, counterweight_webs=True
@@ -92,9 +113,14 @@ def study_shaft(layout: ShaftLayout, material, fe, *, size, cache_dir, max_eleme
         for w in (1, 2)
     }
     cases = solve_cases(model, extra)
-    model.release_recovery()  # the study takes no stresses: the largest arrays go
+    units = tuple(
+        (str(pp.throw), piece_unit_stresses(cases, k, material))
+        for k, pp in enumerate(model.pieces)
+        if pp.kind == "throw" and stresses
+    )
+    model.release_recovery()  # the unit stresses taken: the largest arrays go
     laws = [b.law for b in layout.bearings]
-    return StudyShaft(layout, cases, throw_masses(layout), laws, sm.n_dof, envelope_laws(layout, laws))
+    return StudyShaft(layout, cases, throw_masses(layout), laws, sm.n_dof, envelope_laws(layout, laws), stresses=units)
 
 
 def engine_states(engine, operating, cycles: EngineCycles) -> tuple[EngineState, ...]:
@@ -159,7 +185,7 @@ def candidate_loads(
     W = base.W.copy()
     for web, k in factors.items():
         W[:, cases.index(web_case(web))] = k * w2
-    f, _, _ = solve_cycle(cases, W, shaft.laws)
+    f, _, W_full = solve_cycle(cases, W, shaft.laws)
     bearings = _to_engine(-f, base.psi[:, None])
     sets = [bearings] + [_to_engine(-solve_cycle(cases, W, laws)[0], base.psi[:, None]) for laws in shaft.law_sets[1:]]
     # web moments: the change of the bearing forces and the counterweights' forces
@@ -194,4 +220,87 @@ def candidate_loads(
                 continue
             M += _moment(0.5 * (z0 + b_) - zc, (b_ - z0) / (z1 - z0) * F)
         webs[:, i] += M
-    return StateLoads(base.state, bearings, webs, np.stack(sets))
+    return StateLoads(base.state, bearings, webs, np.stack(sets), W_full)
+
+
+#: the node groups of the shaft's own surfaces (their stress: the fillets' static and
+#: fatigue safeties) and of the counterweight's transition to its web
+SHAFT_KINDS = ("crankpin_fillet", "journal_fillet", "oil_bore", "crankpin")
+COUNTERWEIGHT_KINDS = ("counterweight_fillet", "junction")
+
+
+@dataclass(frozen=True)
+class StressScreen:
+    """One candidate's stresses over every screened state (Pa; safeties against the
+    check's criteria, ``assess.group.extremes.group_extremes``): the shaft's surfaces
+    (fillets, oil bore, crankpin) and the counterweights' fillets and junctions with
+    their webs; ``*_where``: the throw, group, state and speed of the extreme."""
+
+    shaft_peak: float  # largest von Mises over the cycle
+    shaft_peak_where: str
+    static_safety: float  # least yield / peak of the shaft's surfaces
+    fatigue_safety: float | None  # least Goodman safety (None: no fatigue data)
+    fatigue_where: str
+    counterweight_peak: float  # largest von Mises at a counterweight's fillet or junction
+    counterweight_where: str
+
+
+def candidate_stresses(
+    shaft: StudyShaft,
+    loads: list[StateLoads],
+    material,
+    *,
+    additional_bending: float = 0.0,
+    diameters: tuple[float | None, float | None] = (None, None),
+    fatigue: bool = True,
+) -> StressScreen:
+    """The candidate's stresses in every state (``loads``, their ``weights``):
+    sigma(theta) = sum_c W_c(theta) S_c at each throw's assessed nodes, each group's
+    extremes by the check's own search (``group_extremes``: the static peak, the least
+    Goodman safety with the size and surface factors of ``diameters`` (pin, journal) and
+    UR M53's sigma_add on the shaft fillets, as ``assess.shaft.assess_shaft_throws``;
+    ``fatigue`` False: the static peaks alone, ``fatigue_safety`` None)."""
+    crank_radius = shaft.layout.geometry.crank_radius
+    best = {"shaft": (0.0, ""), "cw": (0.0, "")}
+    static = math.inf
+    fat: tuple[float, str] | None = None
+    for sl in loads:
+        assert sl.weights is not None
+        theta = np.asarray(sl.state.dynamics.theta, float)
+        running = Running()
+        at = f"{sl.state.label} at {sl.state.speed * 30 / math.pi:.0f} rpm"
+        for name, unit in shaft.stresses:
+            for g in sorted(unit.groups):
+                kind = group_kind(g)
+                if not len(unit.groups[g]) or kind not in SHAFT_KINDS + COUNTERWEIGHT_KINDS:
+                    continue
+                shaft_group = kind in SHAFT_KINDS
+                r = group_extremes(
+                    unit,
+                    g,
+                    sl.weights,
+                    theta,
+                    material,
+                    crank_radius=crank_radius,
+                    diameter=section_diameter(g, *diameters),
+                    wanted=Wanted(fatigue=fatigue and shaft_group, gough_pollard=False),
+                    running=running,
+                    additional_bending=additional_bending if sigma_add_applies(g) else 0.0,
+                )
+                key = "shaft" if shaft_group else "cw"
+                v = r.max_von_mises.value
+                if v > best[key][0]:
+                    best[key] = (v, f"throw {name} {g}, {at}")
+                if shaft_group:
+                    static = min(static, r.static_safety)
+                    if r.fatigue_safety is not None and (fat is None or r.fatigue_safety.value < fat[0]):
+                        fat = (r.fatigue_safety.value, f"throw {name} {g}, {at}")
+    return StressScreen(
+        best["shaft"][0],
+        best["shaft"][1],
+        static,
+        None if fat is None else fat[0],
+        "" if fat is None else fat[1],
+        best["cw"][0],
+        best["cw"][1],
+    )

@@ -10,6 +10,7 @@ A study TOML beside the load case (``fe-crank study LOADCASE STUDY``)::
     free = ["thickness", "angle", "r_outer"]           # sector dimension solved for each mass, in order
     envelope = "95 mm"                                 # largest outer radius a counterweight may have
     rule = "least_mass"                                # or "least_bearing_load"
+    stresses = "fatigue"                               # or "static", "off": the stress screening
 
     [study.limits]                                     # all optional
     max_main_bearing_load = "25 kN"
@@ -20,6 +21,9 @@ A study TOML beside the load case (``fe-crank study LOADCASE STUDY``)::
     max_counterweight_mass = "6 kg"                    # the shaft's counterweights together
     min_oil_film = "1 um"                              # hydrodynamic bearings only
     max_film_pressure = "300 MPa"                      # hydrodynamic bearings only
+    max_fillet_stress = "400 MPa"                      # the fillets' peak von Mises
+    min_fillet_static_safety = 2.0                     # a plain number
+    min_fillet_fatigue_safety = 1.5                    # a plain number
 
     [[study.placements]]
     name = "8 counterweights"
@@ -44,6 +48,9 @@ from fe_crank.io.base import read_toml
 from fe_crank.io.units import to_si
 
 RULES = ("least_mass", "least_bearing_load")
+#: what the stress screening evaluates (docs/study.md): the static peaks and the least
+#: Goodman safety, the static peaks alone, nothing
+STRESSES = ("fatigue", "static", "off")
 FREE = ("thickness", "angle", "r_outer", "r_inner")
 MAX_ROTATING_PERCENT = 120.0
 LIMITS = {
@@ -55,6 +62,9 @@ LIMITS = {
     "max_counterweight_mass": "mass",
     "min_oil_film": "length",  # hydrodynamic bearings: the least h_min (docs/study.md)
     "max_film_pressure": "pressure",  # hydrodynamic bearings: the peak film pressure
+    "max_fillet_stress": "pressure",  # the fillets' screened peak von Mises (docs/study.md)
+    "min_fillet_static_safety": "number",  # yield over that peak
+    "min_fillet_fatigue_safety": "number",  # the fillets' least screened Goodman safety
 }
 KEYS = (
     "name",
@@ -64,6 +74,7 @@ KEYS = (
     "free",
     "envelope",
     "rule",
+    "stresses",
     "limits",
     "placements",
 )
@@ -87,6 +98,7 @@ class StudySpec:
     rule: str
     limits: dict[str, float]  # SI
     placements: tuple[Placement, ...]
+    stresses: str = "fatigue"  # one of STRESSES
 
 
 def _numbers(value, file: str, key: str, lo: float, hi: float) -> tuple[float, ...]:
@@ -201,13 +213,40 @@ def parse_study(path: str | Path) -> StudySpec:
     for k, v in limits_raw.items():
         if k not in LIMITS:
             raise InputError(f"unknown limit; pick from {', '.join(LIMITS)}", file=file, key=f"study.limits.{k}")
-        x = _quantity(v, LIMITS[k], file, f"study.limits.{k}")
+        if LIMITS[k] == "number":
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                raise InputError(f"must be a plain number (got {v!r})", file=file, key=f"study.limits.{k}")
+            x = float(v)
+        else:
+            x = _quantity(v, LIMITS[k], file, f"study.limits.{k}")
         if not x > 0.0:
             raise InputError(f"must be positive (got {v})", file=file, key=f"study.limits.{k}")
         limits[k] = x
+    stresses = st.get("stresses", "fatigue")
+    if stresses not in STRESSES:
+        raise InputError(f"{stresses!r} is not one of {', '.join(STRESSES)}", file=file, key="study.stresses")
+    wants = {"min_fillet_fatigue_safety": ("fatigue",), "min_fillet_static_safety": ("fatigue", "static")}
+    wants["max_fillet_stress"] = wants["min_fillet_static_safety"]
+    for k, modes in wants.items():
+        if k in limits and stresses not in modes:
+            raise InputError(
+                f'the limit needs stresses = "{modes[0]}" (the study says "{stresses}")',
+                file=file,
+                key=f"study.limits.{k}",
+            )
     name = st.get("name", Path(file).stem)
     if not isinstance(name, str):
         raise InputError("must be a string", file=file, key="study.name")
     return StudySpec(
-        file, name, rot, rec, offsets, tuple(free_raw), envelope, rule, limits, _placements(st.get("placements"), file)
+        file,
+        name,
+        rot,
+        rec,
+        offsets,
+        tuple(free_raw),
+        envelope,
+        rule,
+        limits,
+        _placements(st.get("placements"), file),
+        stresses,
     )

@@ -15,18 +15,27 @@ from skfem import Basis, ElementTetP2, Functional
 
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.oil_film import film_sweep
-from fe_crank.assess.shaft import BearingState
+from fe_crank.assess.shaft import BearingState, assess_shaft_throws, piece_unit_stresses
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
+from fe_crank.fe.core.stress import von_mises
 from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.geometry.oil import FilmSpec
 from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
 from fe_crank.study.film import film_metrics
 from fe_crank.study.outputs import write_candidate
 from fe_crank.study.run import run_study
-from fe_crank.study.screen import candidate_loads, state_base
+from fe_crank.study.screen import (
+    COUNTERWEIGHT_KINDS,
+    SHAFT_KINDS,
+    candidate_loads,
+    candidate_stresses,
+    state_base,
+)
 from fe_crank.study.spec import parse_study
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -38,6 +47,7 @@ rotating_rate_percent = [0, 50, 100]
 envelope = "45 mm"
 [study.limits]
 max_main_bearing_load = "20 kN"
+min_fillet_static_safety = 1.0
 [[study.placements]]
 name = "8"
 webs = "all"
@@ -60,12 +70,29 @@ def study(tmp_path_factory):
     return res, d, cache
 
 
+@pytest.fixture(scope="module")
+def full_solve(study):
+    """A full whole-shaft solve (same mesh) of the geometry the study writes for every drawn
+    counterweight at mass factor 1 (the drawn geometry): its result and unit cases."""
+    res, d, cache = study
+    drawn = res.drawn
+    shapes = tuple(
+        web_shape(w, 1.0, drawn[w], res.shaft.layout, res.spec, res.shaft.layout.geometry.density) for w in drawn
+    )
+    cand = Candidate(99, "all at 1", math.nan, 0.0, 0.0, dict.fromkeys(drawn, 1.0), shapes)
+    r = dataclasses.replace(res.results[0], candidate=cand)  # write_candidate takes the candidate's shapes
+    _, lc_path = write_candidate(res, r, d / "written")
+    lc2 = load_loadcase(lc_path)
+    layout2 = engine_shaft_layout(lc2.geometry, lc2.engine, geometry_file="g", engine_file="e")
+    return analyse_whole_shaft(layout2, lc2.material, res.states[0].dynamics, size="test", cache_dir=cache)
+
+
 def _u(psi):
     return np.stack([np.sin(psi), np.cos(psi)], axis=-1)
 
 
 @pytest.mark.heavy
-def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
+def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study, full_solve):
     """Every drawn counterweight at mass factor 1: the candidate's geometry file is the
     drawn one; a full whole-shaft solve of it (same mesh) gives the same bearing loads and
     web moments to 1e-9, its cycle without counterweights the factor-0 candidate's, and,
@@ -79,12 +106,7 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
     cand = Candidate(99, "all at 1", math.nan, 0.0, 0.0, ones, shapes)
     wm = written_mass(res.shaft.layout, cand, drawn, res.shaft.mass, ThrowSolidCache(res.shaft.layout))
     assert all(abs(k - 1.0) <= 1e-12 for k in wm.load_factors.values())  # the written shaft is the drawn one
-    r = dataclasses.replace(res.results[0], candidate=cand)  # write_candidate takes the candidate's shapes
-    _, lc_path = write_candidate(res, r, d / "written")
-    lc2 = load_loadcase(lc_path)
-    layout2 = engine_shaft_layout(lc2.geometry, lc2.engine, geometry_file="g", engine_file="e")
-    dyn = res.states[0].dynamics
-    full, _ = analyse_whole_shaft(layout2, lc2.material, dyn, size="test", cache_dir=cache)
+    full, _ = full_solve
     base = state_base(res.shaft, res.states[0])
     on = candidate_loads(res.shaft, base, ones, drawn)
     off = candidate_loads(res.shaft, base, dict.fromkeys(drawn, 0.0), drawn)
@@ -122,6 +144,67 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study):
     k = 0.37
     mid = candidate_loads(res.shaft, base, dict.fromkeys(drawn, k), drawn)
     assert np.abs(mid.bearings - (ref_off + k * (ref_on - ref_off))).max() <= 1e-9 * scale
+
+
+def _brute_peaks(units, weights, kinds):
+    """The largest von Mises stress over the cycle at every node of the given group kinds
+    of every throw: the full history sum_c W_c(theta) S_c evaluated at every node and angle."""
+    peak = 0.0
+    for unit in units:
+        ids = np.unique(np.concatenate([v for g, v in unit.groups.items() if group_kind(g) in kinds]))
+        s = unit.stress[:, :, ids]
+        hist = (weights @ s.reshape(s.shape[0], -1)).reshape(weights.shape[0], 6, ids.size)
+        peak = max(peak, float(von_mises(hist.transpose(1, 0, 2)).max()))
+    return peak
+
+
+@pytest.mark.heavy
+def test_screened_stresses_equal_a_full_solve(study, full_solve):
+    """Fillet and counterweight-junction stresses: the screening (``candidate_stresses``) of
+    every drawn counterweight at factor 1 and 0, and at 0.37, against a full whole-shaft
+    solve of the drawn geometry (same mesh): its cycles with and without counterweights
+    (the latter the shaft with massless counterweights) and, the bearings rigid (linear),
+    the history of 0.37 times the counterweights' density, (1 - k) off + k on at every
+    angle; the largest von Mises over every node and angle to 1e-9, the static safety the
+    yield strength over it; the least fatigue safety the check's own assessment of the full
+    solve (``assess_shaft_throws``, every node evaluated)."""
+    res, _, _ = study
+    full, cases = full_solve
+    mat = res.loadcase.material
+    base = state_base(res.shaft, res.states[0])
+    g = res.shaft.layout.geometry
+    add = m53_basis(res.loadcase.engine, mat, None).additional
+    dia = (g.crankpin_diameter, g.journal_diameter)
+    on_w, off_w = full.cycles[0].weights, full.cycles[1].weights
+    units = [piece_unit_stresses(cases, i, mat) for i, pp in enumerate(cases.model.pieces) if pp.kind == "throw"]
+    for k, W in ((1.0, on_w), (0.0, off_w), (0.37, (1 - 0.37) * off_w + 0.37 * on_w)):
+        loads = candidate_loads(res.shaft, base, dict.fromkeys(res.drawn, k), res.drawn)
+        st = candidate_stresses(res.shaft, [loads], mat, additional_bending=add, diameters=dia)
+        ref = _brute_peaks(units, W, SHAFT_KINDS)
+        assert st.shaft_peak == pytest.approx(ref, rel=1e-9)
+        assert st.static_safety == pytest.approx(mat.yield_strength / ref, rel=1e-9)
+        ref_cw = _brute_peaks(units, W, COUNTERWEIGHT_KINDS)
+        assert st.counterweight_peak == pytest.approx(ref_cw, rel=1e-9)
+        if k != 1.0:
+            continue
+        result = dataclasses.replace(full, cycles=(full.cycles[0 if k == 1.0 else 1],))
+        throws, _ = assess_shaft_throws(
+            cases,
+            result,
+            res.states[0].dynamics.theta,
+            mat,
+            crank_radius=g.crank_radius,
+            overspeed=None,
+            diameters={t.name: dia for t in res.shaft.layout.throws},
+            additional_bending=add,
+        )
+        least = min(
+            gr.fatigue_safety.value
+            for t in throws
+            for gr in t.groups
+            if gr.fatigue_safety is not None and group_kind(gr.group) in SHAFT_KINDS
+        )
+        assert st.fatigue_safety == pytest.approx(least, rel=1e-9)
 
 
 @pytest.mark.heavy
@@ -193,6 +276,9 @@ def test_table_plot_and_recommendation_written(study, tmp_path):
     assert (tmp_path / "p.png").stat().st_size > 0
     text = paths["csv"].read_text().splitlines()
     assert len(text) == 1 + len(res.results)  # every candidate, the ones that cannot be built too
+    for col in ("fillet_static_safety", "fillet_fatigue_safety", "fillet_peak_von_mises_mpa"):
+        assert col in text[0].split(",")
+    assert all(r.stresses is not None and r.stresses.fatigue_safety is not None for r in res.results)
     assert res.recommended is not None and res.recommended.meets_limits
     ok = [r for r in res.results if r.meets_limits]
     assert res.recommended.counterweight_mass == min(r.counterweight_mass for r in ok)
@@ -207,6 +293,19 @@ BAD = [
         "study.limits.max_counterweight_mass",
     ),
     ('rotating_rate_percent = [50]\nenvelope = "30 mm"', "study.envelope"),
+    (
+        'rotating_rate_percent = [50]\n[study.limits]\nmin_fillet_fatigue_safety = "2"',
+        "study.limits.min_fillet_fatigue_safety",
+    ),
+    (
+        "rotating_rate_percent = [50]\n[study.limits]\nmin_fillet_static_safety = -1",
+        "study.limits.min_fillet_static_safety",
+    ),
+    ('rotating_rate_percent = [50]\nstresses = "some"', "study.stresses"),
+    (
+        'rotating_rate_percent = [50]\nstresses = "static"\n[study.limits]\nmin_fillet_fatigue_safety = 2',
+        "study.limits.min_fillet_fatigue_safety",
+    ),
     ('rotating_rate_percent = [50]\noffset = ["10 deg"]', "study.offset[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.3"]', "study.placements[0].webs[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.1"]', "study.placements[0].webs"),
