@@ -84,8 +84,10 @@ def test_bolt_criteria_at_every_speed(swept_inline4):
             for got, exp in zip(t.joints, want):
                 # the speed's delta and alpha: the transverse load (the web's deformation adds none)
                 assert got.loads.transverse_max == pytest.approx(exp.loads.transverse_max, rel=1e-12)
-                # the web's deformation (the FE section) adds to the centrifugal axial load and brings a moment
-                assert got.loads.web_model.startswith("FE") and got.loads.moment_max > 0 > got.loads.moment_min
+                # the web's deformation (the FE section) adds to the centrifugal axial load and brings a
+                # moment that varies over the cycle (its sign at the least is the mesh's: near zero)
+                assert got.loads.web_model.startswith("FE") and got.loads.moment_max > 0
+                assert got.loads.moment_max > got.loads.moment_min
                 assert got.loads.axial_max >= exp.loads.axial_max
                 again = check_joint(got.name, joints[got.name], got.loads, material.youngs_modulus)
                 assert got.fatigue_safety == pytest.approx(again.fatigue_safety, rel=1e-12)
