@@ -8,6 +8,7 @@ import dataclasses
 import pytest
 
 from fe_crank.assess.factors import factors, material_rows, reliability_factor, size_factor, surface_factor
+from fe_crank.assess.fatigue import fatigue_limits
 from fe_crank.io.material import load_material
 
 
@@ -87,3 +88,19 @@ def test_report_rows():
         ["treatment factor", "1.200"],
     ]
     assert material_rows(None) == [] and material_rows(object()) == []
+
+
+def test_fatigue_limits_present_or_none():
+    """The fatigue criteria run on a material that gives sigma_W and R_m (tau_W optional:
+    Gough-Pollard); without either no fatigue criterion is evaluated."""
+    mat = load_material("42CrMo4")
+    limits = fatigue_limits(mat)
+    assert limits is not None
+    assert (limits.bending, limits.tensile, limits.torsion) == (
+        mat.fatigue_limit_bending,
+        mat.tensile_strength,
+        mat.fatigue_limit_torsion,
+    )
+    assert fatigue_limits(dataclasses.replace(mat, fatigue_limit_torsion=None)).torsion is None
+    assert fatigue_limits(dataclasses.replace(mat, fatigue_limit_bending=None)) is None
+    assert fatigue_limits(dataclasses.replace(mat, tensile_strength=None)) is None
