@@ -9,7 +9,7 @@ import pytest
 
 from fe_crank.assess.factors import factors, material_rows, reliability_factor, size_factor, surface_factor
 from fe_crank.assess.fatigue import fatigue_limits
-from fe_crank.io.material import load_material
+from fe_crank.io.material import Surface, load_material
 
 
 def test_size_factor_at_the_range_ends():
@@ -104,3 +104,13 @@ def test_fatigue_limits_present_or_none():
     assert fatigue_limits(dataclasses.replace(mat, fatigue_limit_torsion=None)).torsion is None
     assert fatigue_limits(dataclasses.replace(mat, fatigue_limit_bending=None)) is None
     assert fatigue_limits(dataclasses.replace(mat, tensile_strength=None)) is None
+
+
+def test_a_surface_without_finish_or_factor_is_refused():
+    """A surface entry gives a finish or a factor (``io.material``); one built without either
+    is an error naming the material and the location, not a lookup of no finish."""
+    mat = dataclasses.replace(load_material("42CrMo4"), surfaces=(Surface("oil_bore"),))
+    with pytest.raises(
+        ValueError, match="material 42CrMo4: the surface at oil_bore gives neither a finish nor a factor"
+    ):
+        factors(mat, None, "oil_bore")
