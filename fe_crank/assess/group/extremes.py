@@ -222,8 +222,9 @@ def group_extremes(
             j = int(np.argmin(good))
             amp, mean = float(sa[j]), float(sm[j])
             running.fatigue = min(start, least)
-    # fro_h and fro_c: the directional bounds, which coefficient_box gives with do_gp
-    if limits is not None and torsion is not None and axis is not None and fro_h is not None and fro_c is not None:
+    if limits is not None and torsion is not None and axis is not None:
+        if fro_h is None or fro_c is None:
+            raise RuntimeError("coefficient_box gave no directional bounds for the Gough-Pollard search")
         eb, et, rm = k * limits.bending, k * torsion, limits.tensile
         gp = np.full(nodes.size, np.inf)
         gp_done = np.zeros(nodes.size, bool)
