@@ -24,7 +24,7 @@ from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData
 from fe_crank.assess.cw_joint import yield_point
 from fe_crank.balance.counterweights import CounterweightDesign
 from fe_crank.geometry.mass import MassProperties
-from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
+from fe_crank.geometry.spec import CounterweightSpec, CrankGeometry, ThrowSpec
 from fe_crank.rules.m53.calculation import M53Geometry
 
 #: ISO 898-1 tensile stress area (mm^2) of coarse-pitch metric threads by nominal d (mm)
@@ -79,7 +79,7 @@ def stress_area(diameter: float) -> float:
     return math.pi / 4.0 * (0.88 * diameter) ** 2
 
 
-def joint_geometry(g: CrankGeometry, cw) -> JointGeometry:
+def joint_geometry(g: CrankGeometry, cw: CounterweightSpec) -> JointGeometry:
     """Where the bolted counterweight ``cw`` (``CounterweightSpec``) of ``g`` bears on its web
     (``assess.cw_joint``: the joint's eccentric model)."""
     t = g.web_thickness

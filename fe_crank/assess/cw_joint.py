@@ -76,14 +76,29 @@ with VDI 2230's usual limits, each verdict line saying the limit is a default.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from fe_crank.assess.counterweight import JointGeometry
+from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry
+from fe_crank.assess.superpose import UnitStresses
+from fe_crank.geometry.spec import BoltedJoint
+from fe_crank.mechanism.results import DynamicsResult
 from fe_crank.rules import vdi2230 as v
+from fe_crank.rules.m53.calculation import RodLoads
 
 E_BOLT = 205e9  # Pa, steel bolts (VDI 2230)
+
+
+def stated(value: float | None, name: str, key: str) -> float:
+    """A joint datum the VDI 2230 check cannot do without (``BoltedJoint.vdi_missing``):
+    ``value``, or a ValueError naming the joint ``name`` and the missing ``key``."""
+    if value is None:
+        raise ValueError(f"{name}: the VDI 2230 bolt check needs {key}")
+    return value
 
 
 @dataclass(frozen=True)
@@ -190,7 +205,14 @@ def _pin_cases(cases: tuple[str, ...]) -> np.ndarray:
     return np.array([c not in ("centrifugal", "angular_acceleration") for c in cases])
 
 
-def fe_section_loads(unit, group: str, geo: JointGeometry, joint, coeffs, coeffs_os=None) -> SectionLoads | None:
+def fe_section_loads(
+    unit: UnitStresses,
+    group: str,
+    geo: JointGeometry,
+    joint: BoltedJoint,
+    coeffs: np.ndarray,
+    coeffs_os: np.ndarray | None = None,
+) -> SectionLoads | None:
     """The normal stress sigma_yy across the radial joint's plane y = -r_J in the FE model
     (the counterweight fused to the web: the joint bonded, as stiff as the solid), from the
     pin and torque unit cases over the cycle: fitted over the counterweight's nodes in a thin
@@ -224,11 +246,11 @@ def fe_section_loads(unit, group: str, geo: JointGeometry, joint, coeffs, coeffs
     syy = np.asarray(unit.stress)[:, 1, :][:, idx][:, sel]  # (n_cases, m)
     per_case = syy @ fit.T  # (n_cases, 4)
     per_case[~mask] = 0.0
-    d_a = joint.clamped_diameter
+    d_a = stated(joint.clamped_diameter, group, "clamped_diameter")
     area, inertia = d_a * c_t, d_a * c_t**3 / 12.0
     x = bolt_offsets(joint, geo)
 
-    def loads(c):
+    def loads(c: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         cyc = np.asarray(c, float) @ per_case  # (n, 4)
         force = (cyc[:, :1] + cyc[:, 2:3] * x[None, :]) * area
         return cyc[:, 1] * inertia, force
@@ -241,7 +263,7 @@ def fe_section_loads(unit, group: str, geo: JointGeometry, joint, coeffs, coeffs
     return SectionLoads(m, f, m_os, f_os, int(sel.sum()))
 
 
-def bearing_reaction(pin_force, rod_loads, geo: JointGeometry) -> np.ndarray:
+def bearing_reaction(pin_force: ArrayLike, rod_loads: RodLoads | None, geo: JointGeometry) -> np.ndarray:
     """(n, 2) reaction of the main bearing on the side of the web ``geo.web`` to the pin
     force (statically determinate throw, bearings at the journals' end faces): each rod's
     force at its place e on the pin (``rod_loads``: (force (n, 2), e)), else the summed
@@ -249,10 +271,16 @@ def bearing_reaction(pin_force, rod_loads, geo: JointGeometry) -> np.ndarray:
     span = geo.bearing_span
     loads = rod_loads if rod_loads else ((pin_force, 0.0),)
     sign = -1.0 if geo.web == 1 else 1.0
-    return np.sum([np.asarray(f, float) * (0.5 * span + sign * e) / span for f, e in loads], axis=0)
+    reaction: np.ndarray = np.sum([np.asarray(f, float) * (0.5 * span + sign * e) / span for f, e in loads], axis=0)
+    return reaction
 
 
-def web_moments(geo: JointGeometry, pin_force, rod_loads=None, overspeed_loads=()) -> WebMoments:
+def web_moments(
+    geo: JointGeometry,
+    pin_force: ArrayLike,
+    rod_loads: RodLoads | None = None,
+    overspeed_loads: Sequence[tuple[Any, ...]] = (),
+) -> WebMoments:
     """The web's bending moment at its mid-plane, M_w = R (L_j + t/2) (module docstring), over
     the working cycle and the overspeed cycles (``overspeed_loads``: (pin force, torque[,
     rod loads]) each)."""
@@ -266,19 +294,20 @@ def web_moments(geo: JointGeometry, pin_force, rod_loads=None, overspeed_loads=(
     return WebMoments(m[:, 1].copy(), float(np.max(np.hypot(m[:, 0], m[:, 1]))), largest_os)
 
 
-def bolt_offsets(joint, geo: JointGeometry) -> np.ndarray:
+def bolt_offsets(joint: BoltedJoint, geo: JointGeometry) -> np.ndarray:
     """x_i (m) of the bolts across the joint: on the pitch circle at angles spread evenly
     over the counterweight's angle, phi_i = -A/2 + (i + 1/2) A/n."""
     n = joint.count
     phi = -0.5 * geo.angle + (np.arange(n) + 0.5) * geo.angle / n
-    return joint.pitch_radius * np.sin(phi)
+    x: np.ndarray = joint.pitch_radius * np.sin(phi)
+    return x
 
 
 LEVER_MODEL = "lever: the web's moment R (L_j + t/2) whole onto the joint (upper bound)"
 
 
 def joint_loads(
-    b,
+    b: BoltedCounterweight,
     *,
     omega: float,
     overspeed: float | None,
@@ -305,11 +334,12 @@ def joint_loads(
     if geo is None:
         return base
     n = joint.count
+    d_a = stated(joint.clamped_diameter, b.name, "clamped_diameter")
     mr = b.mass * b.radius
     f_t = mr * abs(angular_acceleration)  # the tangential inertia, whole counterweight
     if joint.direction == "radial":
         c_t = min(geo.web_thickness, geo.thickness)
-        ecc = v.Eccentric(width=c_t, length=joint.clamped_diameter, s_sym=0.0, a=0.5 * (geo.thickness - c_t))
+        ecc = v.Eccentric(width=c_t, length=d_a, s_sym=0.0, a=0.5 * (geo.thickness - c_t))
         x = bolt_offsets(joint, geo)
         lever = max(b.radius - geo.seat_radius, 0.0)  # prying lever of the tangential inertia
         pry_force = pry_moment = 0.0
@@ -346,7 +376,7 @@ def joint_loads(
     r_t = 0.5 * (geo.outer_radius + geo.inner_radius)
     ecc = v.Eccentric(
         width=geo.outer_radius - geo.inner_radius,
-        length=joint.clamped_diameter,
+        length=d_a,
         s_sym=r_t - joint.pitch_radius,
         a=0.0,
     )
@@ -370,10 +400,12 @@ def joint_loads(
     )
 
 
-def yield_point(joint) -> float:
+def yield_point(joint: BoltedJoint) -> float:
     """R_p0.2 of the bolt: given, or by its ISO 898-1 property class."""
     if joint.yield_strength is not None:
         return joint.yield_strength
+    if joint.property_class is None:
+        raise ValueError("the VDI 2230 bolt check needs the bolt's yield_strength or property_class")
     lo, hi = v.PROPERTY_CLASS_RP02[joint.property_class]
     return lo if joint.diameter <= 0.016 + 1e-12 else hi
 
@@ -385,21 +417,23 @@ def _corners(loads: JointLoads) -> tuple[list[tuple[float, float]], list[tuple[f
     return work, over
 
 
-def check_joint(name: str, joint, loads: JointLoads, e_clamped: float) -> JointCheck:
+def check_joint(name: str, joint: BoltedJoint, loads: JointLoads, e_clamped: float) -> JointCheck:
     """VDI 2230 checks of one bolt of ``joint`` (``geometry.spec.BoltedJoint``) under ``loads``;
     ``e_clamped``: Young's modulus of the counterweight and web (and of the tapped thread).
     With ``loads.eccentric`` VDI 2230's eccentric clamping and loading (R2, R3, R5, R9),
     without it the centric joint (module docstring)."""
-    d, p, lk = joint.diameter, joint.thread_pitch, joint.clamp_length
+    d, p, lk = joint.diameter, joint.thread_pitch, stated(joint.clamp_length, name, "clamp_length")
+    d_w = stated(joint.bearing_diameter, name, "bearing_diameter")
+    d_h = stated(joint.hole_diameter, name, "hole_diameter")
+    d_a = stated(joint.clamped_diameter, name, "clamped_diameter")
+    alpha_a = stated(joint.tightening_factor, name, "tightening_factor")
     tapped = joint.tapped
     rp = yield_point(joint)
     t = v.thread(d, p)
     ds = v.bolt_resilience(
         d, p, lk, E_BOLT, e_clamped, tapped=tapped, shank_length=joint.shank_length, shank_diameter=joint.shank_diameter
     )
-    dp = v.plate_resilience(
-        lk, joint.bearing_diameter, joint.hole_diameter, joint.clamped_diameter, e_clamped, tapped=tapped
-    )
+    dp = v.plate_resilience(lk, d_w, d_h, d_a, e_clamped, tapped=tapped)
     phi_k = dp / (ds + dp)
     n = joint.load_introduction
     n_bolt, n_clamp = (1.0, 0.0) if n is None else (n, n)
@@ -410,7 +444,7 @@ def check_joint(name: str, joint, loads: JointLoads, e_clamped: float) -> JointC
         k_f, k_m, b_f, b_m = phi_en / t["As"], 0.0, 0.0, 0.0
         i_bt = a_d = math.nan
     else:
-        i_bt, a_d = v.interface_section(ecc, joint.hole_diameter)
+        i_bt, a_d = v.interface_section(ecc, d_h)
         if not (i_bt > 0 and a_d > 0):
             raise ValueError(f"{name}: the joint's interface is smaller than its bolt hole")
         phi_en, phi_m = v.eccentric_load_factors(ds, dp, ecc, lk, e_clamped, i_bt, n_bolt)
@@ -422,7 +456,7 @@ def check_joint(name: str, joint, loads: JointLoads, e_clamped: float) -> JointC
     f_z = v.embedding(joint.roughness, loading, tapped=tapped) / (ds + dp)
     mu_g = joint.thread_friction
     f_m_max = joint.preload if joint.preload is not None else v.permissible_preload(d, p, rp, mu_g)
-    f_m_min = f_m_max / joint.tightening_factor
+    f_m_min = f_m_max / alpha_a
     red_m = v.assembly_stress(d, p, f_m_max, mu_g)[2]
     # R8 at the overspeed: the largest bolt stress, axial + bending on the safe side
     fibres = ((k_f + b_f, k_m + b_m), (k_f - b_f, k_m - b_m))
@@ -448,7 +482,7 @@ def check_joint(name: str, joint, loads: JointLoads, e_clamped: float) -> JointC
         need = relief + f_kab
         worst_sep = min(worst_sep, avail / need if need > 0 else math.inf)
     f_kr = avail - worst_relief
-    d_km = 0.5 * (joint.bearing_diameter + joint.hole_diameter)
+    d_km = 0.5 * (d_w + d_h)
     mu_t = joint.interface_friction
     return JointCheck(
         name=name,
@@ -474,7 +508,7 @@ def check_joint(name: str, joint, loads: JointLoads, e_clamped: float) -> JointC
     )
 
 
-def cycle_speed_data(dynamics, flywheel_inertia: float | None = None) -> tuple[float, float]:
+def cycle_speed_data(dynamics: DynamicsResult, flywheel_inertia: float | None = None) -> tuple[float, float]:
     """(delta, max |alpha|) of a cycle from the dynamics stage, the largest angular
     acceleration alpha = (T - T_mean) / J (torque reduced to the reference shaft).
 
@@ -494,7 +528,7 @@ def cycle_speed_data(dynamics, flywheel_inertia: float | None = None) -> tuple[f
 
 
 def check_joints(
-    cw,
+    cw: CounterweightData,
     *,
     omega: float,
     overspeed: float | None,
@@ -502,10 +536,10 @@ def check_joints(
     speed_fluctuation: float = 0.0,
     angular_acceleration: float = 0.0,
     file: str = "",
-    pin_force=None,
-    rod_loads=None,
-    overspeed_loads=(),
-    fe=None,
+    pin_force: ArrayLike | None = None,
+    rod_loads: RodLoads | None = None,
+    overspeed_loads: Sequence[tuple[Any, ...]] = (),
+    fe: tuple[UnitStresses, np.ndarray, np.ndarray | None] | None = None,
 ) -> tuple[JointCheck, ...]:
     """VDI 2230 checks of every bolted counterweight of ``cw`` (``CounterweightData``); a
     joint without the data the check needs is an InputError naming the missing keys.

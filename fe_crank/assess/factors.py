@@ -29,6 +29,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from statistics import NormalDist
 
+from fe_crank.io.material import Material
+
 #: Shigley table 6-2: surface finish -> (a [MPa], b)
 SURFACE = {
     "ground": (1.58, -0.085),
@@ -44,7 +46,7 @@ SIZE_FALLBACK_DIAMETER = 0.254
 def surface_factor(finish: str, tensile: float) -> float:
     """k_a = a R_m^b (Shigley eq. 6-19, table 6-2), R_m in Pa, not above 1."""
     a, b = SURFACE[finish]
-    return min(1.0, a * (tensile / 1e6) ** b)
+    return min(1.0, float(a * (tensile / 1e6) ** b))
 
 
 def size_factor(diameter: float | None) -> float:
@@ -54,8 +56,8 @@ def size_factor(diameter: float | None) -> float:
     if d < 2.79:
         return 1.0
     if d <= 51.0:
-        return 1.24 * d**-0.107
-    return 1.51 * d**-0.157
+        return float(1.24 * d**-0.107)
+    return float(1.51 * d**-0.157)
 
 
 def reliability_factor(reliability: float) -> float:
@@ -91,7 +93,7 @@ def location_of(group: str) -> str | None:
     return None
 
 
-def factors(material, diameter: float | None = None, location: str | None = None) -> FatigueFactors:
+def factors(material: Material, diameter: float | None = None, location: str | None = None) -> FatigueFactors:
     """The factors of ``material`` (``fe_crank.io.material.Material``) for a section of
     ``diameter`` at ``location`` (``location_of``; None: the shaft fillets' common surface):
     given values win over the computed ones (surface from the location's finish and R_m,
@@ -100,6 +102,8 @@ def factors(material, diameter: float | None = None, location: str | None = None
     if surf.factor is not None:
         ks, basis = surf.factor, f"given {surf.factor:g}: {surf.reason}"
     elif material.tensile_strength is not None:
+        if surf.finish is None:  # a Surface gives a finish or a factor (io.material)
+            raise ValueError(f"material {material.name}: the surface at {location} gives neither a finish nor a factor")
         ks, basis = surface_factor(surf.finish, material.tensile_strength), surf.finish
     else:
         ks, basis = 1.0, "no tensile strength: none"
@@ -127,9 +131,10 @@ __all__ = [
 ]
 
 
-def material_rows(material) -> list[list[str]]:
-    """Rows (name, value and source) of the factors for the report's material table."""
-    if material is None or not hasattr(material, "reliability"):
+def material_rows(material: object) -> list[list[str]]:
+    """Rows (name, value and source) of the factors for the report's material table (none
+    for anything but a ``Material``)."""
+    if not isinstance(material, Material):
         return []
     ff = factors(material, None)
     ka = []

@@ -30,13 +30,36 @@ tau_e = k tau_W.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from fe_crank.assess.stress import cylindrical, principal, von_mises, von_mises_planes
+from fe_crank.io.material import Material
 
 #: nodes per block of ``amplitude_mean`` (a block's path, 720 x 6 x 128 x 8 B = 4.4 MB, and
 #: its scratch arrays stay in the processor's cache)
 NODE_BLOCK = 128
+
+
+@dataclass(frozen=True)
+class FatigueLimits:
+    """The material properties the fatigue criteria take, Pa: the specimen's fully reversed
+    bending fatigue limit sigma_W and the tensile strength R_m (both criteria), the torsional
+    fatigue limit tau_W (Gough-Pollard; None: the material gives none)."""
+
+    bending: float
+    tensile: float
+    torsion: float | None
+
+
+def fatigue_limits(material: Material) -> FatigueLimits | None:
+    """The fatigue properties of ``material``; None when it lacks sigma_W or R_m (no
+    fatigue criterion is evaluated then)."""
+    if material.fatigue_limit_bending is None or material.tensile_strength is None:
+        return None
+    return FatigueLimits(material.fatigue_limit_bending, material.tensile_strength, material.fatigue_limit_torsion)
 
 
 def half_range(history: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -99,6 +122,9 @@ def amplitude_mean(
     planes = history.transpose(1, 0, 2)  # (6, n_t, n) view
     if n <= block:
         return _amplitude_block(np.ascontiguousarray(planes), iterations, stride)
+    amp: np.ndarray
+    mean: np.ndarray
+    lower: np.ndarray
     amp, mean, lower = np.empty(n), np.empty((6, n)), np.empty(n)
     for s in range(0, n, block):
         sl = slice(s, s + block)
@@ -106,7 +132,7 @@ def amplitude_mean(
     return amp, mean, lower
 
 
-def _amplitude_block(planes: np.ndarray, iterations: int, stride: int):
+def _amplitude_block(planes: np.ndarray, iterations: int, stride: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``amplitude_mean`` of one block of nodes given as contiguous planes (6, n_t, n)."""
     lo, hi = planes.min(axis=1), planes.max(axis=1)
     c = 0.5 * (lo + hi)
@@ -171,26 +197,34 @@ def goodman_safety(sigma_a: np.ndarray, sigma_m: np.ndarray, endurance: float, t
 
 
 def gough_pollard_safety(
-    sigma_a, sigma_m, tau_a, tau_m, endurance_bending: float, endurance_torsion: float, tensile: float
+    sigma_a: ArrayLike,
+    sigma_m: ArrayLike,
+    tau_a: ArrayLike,
+    tau_m: ArrayLike,
+    endurance_bending: float,
+    endurance_torsion: float,
+    tensile: float,
 ) -> np.ndarray:
     """n from (sigma_a/sigma_e')^2 + (tau_a/tau_e')^2 = 1/n^2 with Goodman-corrected limits.
 
     sigma_e' = sigma_e (1 - max(sigma_m, 0)/R_m), tau_e' = tau_e (1 - |tau_m|/tau_u),
     tau_u = R_m/sqrt(3).  A mean stress at or beyond the ultimate gives n = 0.
     """
-    sigma_a, sigma_m, tau_a, tau_m = (np.asarray(v, float) for v in (sigma_a, sigma_m, tau_a, tau_m))
-    fb = 1.0 - np.maximum(sigma_m, 0.0) / tensile
-    ft = 1.0 - np.abs(tau_m) / (tensile / np.sqrt(3.0))
+    s_a, s_m, t_a, t_m = (np.asarray(v, float) for v in (sigma_a, sigma_m, tau_a, tau_m))
+    fb = 1.0 - np.maximum(s_m, 0.0) / tensile
+    ft = 1.0 - np.abs(t_m) / (tensile / np.sqrt(3.0))
     ok = (fb > 0) & (ft > 0)
     se = endurance_bending * np.where(ok, fb, 1.0)
     te = endurance_torsion * np.where(ok, ft, 1.0)
-    demand = np.sqrt((sigma_a / se) ** 2 + (tau_a / te) ** 2)
+    demand = np.sqrt((s_a / se) ** 2 + (t_a / te) ** 2)
     with np.errstate(divide="ignore"):
         n = np.where(demand > 0, 1.0 / np.where(demand > 0, demand, 1.0), np.inf)
     return np.where(ok, n, 0.0)
 
 
-def bending_torsion(history: np.ndarray, points: np.ndarray, axis_point: tuple[float, float]):
+def bending_torsion(
+    history: np.ndarray, points: np.ndarray, axis_point: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray]:
     """Bending normal stress and torsional shear histories at surface nodes near an axis.
 
     In the cylindrical frame of the local axis (parallel to z through ``axis_point``),

@@ -25,11 +25,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from fe_crank.assess.shaft import BearingState
-from fe_crank.assess.speeds import Found, over_states
+from fe_crank.assess.speeds import Found, Located, over_states
 from fe_crank.fe.oil_film import (
     ORBIT_TOL,
     JournalBearing,
@@ -38,6 +40,8 @@ from fe_crank.fe.oil_film import (
     peak_pressure_factor,
     periodic_orbits,
 )
+from fe_crank.geometry.oil import FilmSpec
+from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.results import Location, Sense
 
 #: how the film is modelled, for the report and results.json
@@ -71,7 +75,7 @@ class FilmOrbit:
         """h_min for the criterion: 0 when the orbit did not repeat (module doc)."""
         return self.min_film_m if self.converged else 0.0
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, float | bool | int | None]:
         return {
             "min_film_m": self.min_film_m,
             "min_film_angle_deg": self.min_film_angle_deg,
@@ -104,11 +108,12 @@ class FilmState:
     bearings: tuple[BearingFilm, ...]
 
 
-def journal_bearing(spec, width: float, journal_diameter: float | None) -> JournalBearing:
+def journal_bearing(spec: FilmSpec, width: float, journal_diameter: float | None) -> JournalBearing:
     """The film model of a main bearing of ``width`` with film ``spec`` (``FilmSpec``; its
     diameter, else ``journal_diameter``)."""
     diameter = spec.diameter or journal_diameter
-    assert diameter is not None
+    if diameter is None:
+        raise ValueError("a hydrodynamic main bearing needs its diameter: the film's or the journal's")
     return JournalBearing(
         diameter=diameter,
         width=width,
@@ -141,7 +146,17 @@ def journal_orbits(
     return periodic_orbits(stack, turns, mean_speed=-0.5 * sense, tol=ORBIT_TOL, aspect=aspect)
 
 
-def _orbit(b: JournalBearing, eps, squeeze, omega, deg, slope, conv, cycles, change) -> FilmOrbit:
+def _orbit(
+    b: JournalBearing,
+    eps: np.ndarray,
+    squeeze: np.ndarray,
+    omega: float,
+    deg: np.ndarray,
+    slope: np.ndarray | None,
+    conv: bool,
+    cycles: int,
+    change: float,
+) -> FilmOrbit:
     r = np.hypot(eps[:, 0], eps[:, 1])
     k = int(np.argmax(r))
     p = film_pressure(b, eps, squeeze, omega)
@@ -171,22 +186,27 @@ def _orbit(b: JournalBearing, eps, squeeze, omega, deg, slope, conv, cycles, cha
     )
 
 
-def film_sweep(layout, states: tuple[BearingState, ...], crank_angle_deg) -> tuple[FilmState, ...]:
+def film_sweep(
+    layout: ShaftLayout, states: tuple[BearingState, ...], crank_angle_deg: ArrayLike
+) -> tuple[FilmState, ...]:
     """The films (module doc) of ``layout``'s hydrodynamic bearings (``ShaftLayout``) in
     every state; () when none has a film.  ``crank_angle_deg``: the cycle's angles (equally
     spaced over the cycle)."""
-    films = [(j, b) for j, b in enumerate(layout.bearings) if b.law.film is not None]
+    films = [(j, b, b.law.film) for j, b in enumerate(layout.bearings) if b.law.film is not None]
     if not films or not states:
         return ()
     deg = np.asarray(crank_angle_deg, float)
     n = deg.size
     turns = (deg[1] - deg[0]) * n / 360.0  # journal revolutions per cycle
     d_j = layout.geometry.journal_diameter if layout.geometry is not None else None
-    jb = {j: journal_bearing(b.law.film, b.width, d_j) for j, b in films}
-    rows, loads, bearings, speeds = [], [], [], []
+    jb = {j: journal_bearing(film, b.width, d_j) for j, b, film in films}
+    rows: list[tuple[int, int, bool, ArrayLike | None]] = []
+    loads: list[np.ndarray] = []
+    bearings: list[JournalBearing] = []
+    speeds: list[float] = []
     for si, st in enumerate(states):
         by_name = {r.name: r for r in st.bearings}
-        for j, b in films:
+        for j, b, _ in films:
             res = by_name[b.name]
             for cw, loads_of in ((True, res.with_counterweights), (False, res.without_counterweights)):
                 rows.append((si, j, cw, loads_of.slope))
@@ -212,7 +232,7 @@ def film_sweep(layout, states: tuple[BearingState, ...], crank_angle_deg) -> tup
             st.speed,
             st.case,
             tuple(
-                BearingFilm(b.name, jb[j], b.law.film.oil, done[(si, j, True)], done[(si, j, False)]) for j, b in films
+                BearingFilm(b.name, jb[j], film.oil, done[(si, j, True)], done[(si, j, False)]) for j, b, film in films
             ),
         )
         for si, st in enumerate(states)
@@ -247,7 +267,7 @@ def _peak_pressure(bearings: tuple[BearingFilm, ...]) -> Found:
 FILM_FINDERS = {"oil_film_thickness": _thinnest, "oil_film_pressure": _peak_pressure}
 
 
-def film_criterion(quantity: str, sense: Sense, states: tuple[FilmState, ...]):
+def film_criterion(quantity: str, sense: Sense, states: tuple[FilmState, ...]) -> Located | None:
     """The worst value of a film quantity over every state (``speeds.over_states``: each
     speed's worst load state, the worst speed governing), with the counterweights as built."""
     return over_states(FILM_FINDERS[quantity], sense, [(s.speed, s.case, s.bearings) for s in states])
@@ -259,7 +279,7 @@ def governing_state(states: tuple[FilmState, ...], k: int) -> FilmState:
     return min(states, key=lambda s: s.bearings[k].with_counterweights.judged_min_film_m)
 
 
-def _governing_orbit(states: tuple[FilmState, ...], k: int) -> dict:
+def _governing_orbit(states: tuple[FilmState, ...], k: int) -> dict[str, Any]:
     st = governing_state(states, k)
     b = st.bearings[k]
     return {
@@ -271,7 +291,7 @@ def _governing_orbit(states: tuple[FilmState, ...], k: int) -> dict:
     }
 
 
-def film_json(states: tuple[FilmState, ...]) -> dict:
+def film_json(states: tuple[FilmState, ...]) -> dict[str, Any]:
     """The ``oil_film`` object of results.json's ``whole_shaft``: the model, each
     hydrodynamic bearing's data and its film at every speed and load state."""
     if not states:

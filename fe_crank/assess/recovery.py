@@ -25,7 +25,7 @@ RATIO_LIMIT = 1.25
 def recovery_ratios(
     unit_solutions: UnitSolutions,
     groups: dict[str, np.ndarray],
-    cases=("pin_y", "torque"),
+    cases: tuple[str, ...] = ("pin_y", "torque"),
     *,
     unit: UnitStresses | None = None,
 ) -> dict[str, float]:
@@ -51,15 +51,15 @@ def recovery_ratios(
     if not present:
         return out
     # a model loaded per rod place (patch cases pin_y@k) is checked on each place's pin_y
-    cases = [c for c in cases if c in unit_solutions.cases] + [
+    checked = [c for c in cases if c in unit_solutions.cases] + [
         k for c in cases for k in unit_solutions.cases if c not in unit_solutions.cases and k.startswith(c + "@")
     ]
-    if not cases:
+    if not checked:
         return out
     if (
         unit is not None
         and unit.node_ids is not None
-        and all(c in unit.cases for c in cases)
+        and all(c in unit.cases for c in checked)
         and all(
             name in unit.groups and np.array_equal(unit.node_ids[unit.groups[name]], nodes)
             for name, (nodes, _) in present.items()
@@ -67,14 +67,14 @@ def recovery_ratios(
     ):
         nodal = {
             (case, name): unit.stress[unit.cases.index(case)][:, unit.groups[name]]
-            for case in cases
+            for case in checked
             for name in present
         }
     else:
         ids = np.unique(np.concatenate([nodes for nodes, _ in present.values()]))
         nodal_all = stress_at_selected_nodes(
             mesh,
-            [unit_solutions.displacement(c) for c in cases],
+            [unit_solutions.displacement(c) for c in checked],
             mat.youngs_modulus,
             mat.poisson_ratio,
             ids,
@@ -82,10 +82,10 @@ def recovery_ratios(
         )
         nodal = {
             (case, name): nodal_all[j][:, np.searchsorted(ids, nodes)]
-            for j, case in enumerate(cases)
+            for j, case in enumerate(checked)
             for name, (nodes, _) in present.items()
         }
-    for case in cases:
+    for case in checked:
         u = unit_solutions.displacement(case)
         for name, (_nodes, facets) in present.items():
             els = np.unique(mesh.f2t[0, facets])

@@ -33,7 +33,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from fe_crank.fe.convergence import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceStudy, estimate
+from fe_crank.fe.convergence import estimate
+from fe_crank.fe.convergence_levels import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceStudy
 from fe_crank.results import CriterionResult, Location
 from fe_crank.throw_scope import ALL_THROWS
 

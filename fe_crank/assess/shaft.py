@@ -37,6 +37,7 @@ from fe_crank.fe.shaft.cases import ShaftCases
 from fe_crank.fe.shaft.whole_shaft import BearingResult, WholeShaftResult, bearing_state_of
 from fe_crank.fe.throw.node_groups import node_groups
 from fe_crank.geometry.shaft import ShaftLayout
+from fe_crank.io.material import Material
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.mesh.shaft import place
@@ -126,7 +127,7 @@ def bearing_sweep(
     counterweights for the stresses (``fe.shaft.whole_shaft.bearing_state_of``: the stated
     law solved once for both)."""
 
-    def state(speed: float, case: str, dynamics) -> BearingState:
+    def state(speed: float, case: str, dynamics: DynamicsResult) -> BearingState:
         bearings, weights = bearing_state_of(cases, layout, dynamics)
         return BearingState(speed, case, bearings, weights)
 
@@ -162,7 +163,7 @@ def governing(throws: tuple[ThrowAssessment, ...], layout: ShaftLayout) -> Shaft
     )
 
 
-def piece_unit_stresses(cases: ShaftCases, piece: int, material) -> UnitStresses:
+def piece_unit_stresses(cases: ShaftCases, piece: int, material: Material) -> UnitStresses:
     """Nodal stresses of every shaft case at the assessed nodes of throw piece ``piece``
     (its own frame; module doc)."""
     pp = cases.model.pieces[piece]
@@ -200,7 +201,7 @@ def assess_shaft_throws(
     cases: ShaftCases,
     result: WholeShaftResult,
     theta: np.ndarray,
-    material,
+    material: Material,
     *,
     crank_radius: float,
     overspeed: float | None,
@@ -254,7 +255,14 @@ def assess_shaft_throws(
         for i in own:
             per_state[i].append(t)
 
-        def one(i: int, _scratch: Scratch, unit=unit, name=str(pp.throw), dp=pin_diameter, dj=journal_diameter) -> None:
+        def one(
+            i: int,
+            _scratch: Scratch,
+            unit: UnitStresses = unit,
+            name: str = str(pp.throw),
+            dp: float | None = pin_diameter,
+            dj: float | None = journal_diameter,
+        ) -> None:
             w = sweep[i].weights
             assert w is not None
             extremes = tuple(

@@ -7,6 +7,8 @@ axis: shape ``(..., 6, n)``.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from fe_crank.fe.core.stress import principal as _principal
@@ -73,7 +75,8 @@ def von_mises_planes(
     sq += shear[2]
     sq *= 3.0
     acc += sq
-    return np.sqrt(acc, out=acc)
+    vm: np.ndarray = np.sqrt(acc, out=acc)
+    return vm
 
 
 def to_matrix(s: np.ndarray) -> np.ndarray:
@@ -109,7 +112,7 @@ def cylindrical(
     c = np.where(rad > 0, dx / np.where(rad > 0, rad, 1.0), 1.0)
     sn = np.where(rad > 0, dy / np.where(rad > 0, rad, 1.0), 0.0)
     xx, yy, zz, xy, yz, xz = (s[..., i, :] for i in range(6))
-    formulas = {
+    formulas: dict[str, Callable[[], np.ndarray]] = {
         "rr": lambda: c * c * xx + sn * sn * yy + 2 * c * sn * xy,
         "tt": lambda: sn * sn * xx + c * c * yy - 2 * c * sn * xy,
         "zz": lambda: zz,

@@ -19,16 +19,17 @@ journal is the torsional stage's (``fe_crank.torsion.flow``).
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from fe_crank.fe.core.stress import stress_at_selected_nodes
+from fe_crank.fe.throw.options import CASES as UNIT_CASES  # the FE stage's default unit cases
 from fe_crank.fe.throw.pin_directions import patch_case, pin_case_weights, pin_direction
 from fe_crank.fe.throw.pin_patches import patch_forces
-from fe_crank.fe.throw.unit_cases import CASES as UNIT_CASES  # the FE stage's default unit cases
 from fe_crank.fe.throw.unit_cases import UnitSolutions
+from fe_crank.rules.m53.calculation import RodLoads
 
 
 @dataclass(frozen=True)
@@ -51,10 +52,11 @@ class UnitStresses:
 
     @property
     def n_nodes(self) -> int:
-        return self.stress.shape[-1]
+        n: int = self.stress.shape[-1]
+        return n
 
 
-def unit_nodal_stress(unit_solutions: UnitSolutions, cases, node_ids) -> np.ndarray:
+def unit_nodal_stress(unit_solutions: UnitSolutions, cases: Sequence[str], node_ids: np.ndarray) -> np.ndarray:
     """Averaged nodal stresses (n_cases, 6, n) of the unit cases ``cases`` of ``unit_solutions`` (the FE
     stage's ``UnitSolutions``) at the mesh nodes ``node_ids``, Voigt xx yy zz xy yz zx, Pa.
 
@@ -145,15 +147,15 @@ def load_coefficients(
 
 def cycle_coefficients(
     unit: UnitStresses,
-    pin_force,
-    torque,
+    pin_force: np.ndarray,
+    torque: np.ndarray,
     omega: float,
     *,
     sense: int = 1,
-    rod_loads=None,
-    angular_acceleration=None,
+    rod_loads: RodLoads | None = None,
+    angular_acceleration: np.ndarray | None = None,
     vibration: bool = False,
-):
+) -> np.ndarray:
     """``load_coefficients`` of ``unit``'s cases; with patch cases, the rods' forces go to the
     bands of their places (``rod_loads``: (force (n, 2), place m) per rod, ``fe.throw.pin_patches``).
     ``angular_acceleration`` and ``vibration`` (``pin_force`` then carries the cylinders'
@@ -192,7 +194,7 @@ def combine(unit: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
     return np.tensordot(c, unit, axes=(1, 0))
 
 
-def stress_history(unit: UnitStresses, coefficients: np.ndarray, nodes=slice(None)) -> np.ndarray:
+def stress_history(unit: UnitStresses, coefficients: np.ndarray, nodes: slice | np.ndarray = slice(None)) -> np.ndarray:
     """Stress tensors (n_t, 6, n_selected) over the cycle at ``nodes``."""
     return combine(unit.stress[:, :, nodes], coefficients)
 

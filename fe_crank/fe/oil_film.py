@@ -144,7 +144,7 @@ class JournalBearing:
         return self.land_width / self.diameter
 
 
-def finite_factor(eps, lam):
+def finite_factor(eps: np.ndarray, lam: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
     """R_fit(eps, lam) and dR_fit/d eps (module doc): the short bearing's film force over
     the finite bearing's, at eccentricity ratios ``eps`` (< 1) and land width / diameter
     ``lam`` (arrays of one shape)."""
@@ -357,8 +357,8 @@ def _newton_step(x, e1, e2, w, a, wb, lam=None):
     # the orbits whose last Newton step was not small: their step is redone (``_step``)
     ux, uy = _squeeze(x, e1, e2, a, wb)
     fx, fy = film_terms(x[0], x[1], ux, uy, derivatives=False)[:2]
-    f = 1.0 if lam is None else finite_factor(np.hypot(x[0], x[1]), lam)[0]
-    bad = np.hypot(fx - f * w[0], fy - f * w[1]) / scale > 1e-9
+    factor = 1.0 if lam is None else finite_factor(np.hypot(x[0], x[1]), lam)[0]
+    bad = np.hypot(fx - factor * w[0], fy - factor * w[1]) / scale > 1e-9
     return x, np.stack([ux, uy]), bad
 
 

@@ -35,6 +35,7 @@ n = 0.5 stated: S_F = 1.15012, S_D = 10.541, F_KR = 21421.6, S_sep = 2.3429, S_G
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import pytest
@@ -211,3 +212,14 @@ def test_joints_from_the_geometry_and_the_cycle(tmp_path):
     with pytest.raises(InputError) as e:
         check_joints(cw0, omega=300.0, overspeed=None, e_clamped=210e9, file="g.toml")
     assert e.value.key == "counterweight.bolted" and "clamp_length" in str(e.value)
+
+
+def test_a_joint_without_the_data_the_check_needs_is_refused_by_name():
+    """A joint built by hand without a datum VDI 2230 needs (``BoltedJoint.vdi_missing``), or
+    with neither a yield strength nor a property class, is an error naming what is missing."""
+    loads = _loads()
+    for key in ("clamp_length", "bearing_diameter", "hole_diameter", "clamped_diameter", "tightening_factor"):
+        with pytest.raises(ValueError, match=f"cw1: the VDI 2230 bolt check needs {key}"):
+            check_joint("cw1", dataclasses.replace(JOINT, **{key: None}), loads, 210e9)
+    with pytest.raises(ValueError, match="needs the bolt's yield_strength or property_class"):
+        check_joint("cw1", dataclasses.replace(JOINT, property_class=None), loads, 210e9)

@@ -8,7 +8,8 @@ import dataclasses
 import pytest
 
 from fe_crank.assess.factors import factors, material_rows, reliability_factor, size_factor, surface_factor
-from fe_crank.io.material import load_material
+from fe_crank.assess.fatigue import fatigue_limits
+from fe_crank.io.material import Surface, load_material
 
 
 def test_size_factor_at_the_range_ends():
@@ -87,3 +88,29 @@ def test_report_rows():
         ["treatment factor", "1.200"],
     ]
     assert material_rows(None) == [] and material_rows(object()) == []
+
+
+def test_fatigue_limits_present_or_none():
+    """The fatigue criteria run on a material that gives sigma_W and R_m (tau_W optional:
+    Gough-Pollard); without either no fatigue criterion is evaluated."""
+    mat = load_material("42CrMo4")
+    limits = fatigue_limits(mat)
+    assert limits is not None
+    assert (limits.bending, limits.tensile, limits.torsion) == (
+        mat.fatigue_limit_bending,
+        mat.tensile_strength,
+        mat.fatigue_limit_torsion,
+    )
+    assert fatigue_limits(dataclasses.replace(mat, fatigue_limit_torsion=None)).torsion is None
+    assert fatigue_limits(dataclasses.replace(mat, fatigue_limit_bending=None)) is None
+    assert fatigue_limits(dataclasses.replace(mat, tensile_strength=None)) is None
+
+
+def test_a_surface_without_finish_or_factor_is_refused():
+    """A surface entry gives a finish or a factor (``io.material``); one built without either
+    is an error naming the material and the location, not a lookup of no finish."""
+    mat = dataclasses.replace(load_material("42CrMo4"), surfaces=(Surface("oil_bore"),))
+    with pytest.raises(
+        ValueError, match="material 42CrMo4: the surface at oil_bore gives neither a finish nor a factor"
+    ):
+        factors(mat, None, "oil_bore")

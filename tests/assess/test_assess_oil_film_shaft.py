@@ -8,15 +8,17 @@ load rises has a thinner film.  And the film does not change the shaft's bearing
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from fe_crank.assess.loads import FIRING
-from fe_crank.assess.oil_film import film_sweep
+from fe_crank.assess.oil_film import film_sweep, journal_bearing
 from fe_crank.assess.shaft import BearingState
 from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+from fe_crank.geometry.oil import FilmSpec
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.pipeline.stages import shaft_layout
@@ -48,3 +50,11 @@ def test_inline4_film_follows_the_bearing_loads(mesh_cache):
     for _b, f in rising:
         assert f.without_counterweights.min_film_m < f.with_counterweights.min_film_m
         assert f.with_counterweights.max_slope is not None and f.with_counterweights.max_slope > 0
+
+
+def test_the_film_takes_its_diameter_or_the_journals_and_without_either_is_refused():
+    spec = FilmSpec(clearance=50e-6, viscosity=0.01)
+    assert journal_bearing(spec, 0.03, 0.08).diameter == 0.08
+    assert journal_bearing(dataclasses.replace(spec, diameter=0.07), 0.03, 0.08).diameter == 0.07
+    with pytest.raises(ValueError, match="a hydrodynamic main bearing needs its diameter"):
+        journal_bearing(spec, 0.03, None)

@@ -20,6 +20,7 @@ from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
 from fe_crank.assess.workers import Scratch, run_blocks, scratch_array
 from fe_crank.fe.throw.node_groups import GroupKind, group_kind
+from fe_crank.io.material import Material
 
 #: groups assessed for fatigue with Gough-Pollard need a local axis: these kinds lie on
 #: the crankpin, axis (x, y) = (0, R); the journal fillets on the crank axis (0, 0)
@@ -102,7 +103,8 @@ def first_extreme(values: np.ndarray, worst: str = "max", axis: int = 0) -> np.n
     e = v.max(axis=axis, keepdims=True) if worst == "max" else v.min(axis=axis, keepdims=True)
     tol = TIE_RTOL * np.abs(e)
     near = v >= e - tol if worst == "max" else v <= e + tol
-    return np.argmax(near, axis=axis)
+    first: np.ndarray = np.argmax(near, axis=axis)
+    return first
 
 
 def section_diameter(group: str, pin_diameter: float | None, journal_diameter: float | None) -> float | None:
@@ -138,7 +140,7 @@ def assess_group(
     group: str,
     coefficients: np.ndarray,
     theta: np.ndarray,
-    material,
+    material: Material,
     *,
     crank_radius: float,
     overspeed: float | None,
@@ -162,11 +164,11 @@ def assess_group(
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
-    do_fatigue = (
-        fatigue_assessed(group) and material.fatigue_limit_bending is not None and material.tensile_strength is not None
-    )
+    limits = fatigue.fatigue_limits(material) if fatigue_assessed(group) else None
+    do_fatigue = limits is not None
     axis = axis_for(group, crank_radius)
-    do_gp = do_fatigue and axis is not None and material.fatigue_limit_torsion is not None
+    torsion = limits.torsion if limits is not None and axis is not None else None
+    do_gp = torsion is not None
     ff = factors(material, diameter, location_of(group)) if do_fatigue else None
     k = ff.product if ff is not None else 1.0
     vm_max = np.empty(nodes.size)
@@ -186,13 +188,11 @@ def assess_group(
         buf = scratch_array(scratch, "buf", planes.shape)
         hist = planes.transpose(1, 0, 2)  # (n_t, 6, k) view
         vm_max[sl], vm_arg[sl] = max_over_cycle(von_mises_planes(planes, buf=buf))  # over (n_t, k)
-        if do_fatigue:
+        if limits is not None:
             a, m = fatigue.equivalent_amplitude_mean(hist)
             sa_eq[sl], sm_eq[sl] = a, m
-            good[sl] = fatigue.goodman_safety(
-                a + additional_bending, m, k * material.fatigue_limit_bending, material.tensile_strength
-            )
-        if do_gp and axis is not None:
+            good[sl] = fatigue.goodman_safety(a + additional_bending, m, k * limits.bending, limits.tensile)
+        if limits is not None and torsion is not None and axis is not None:
             sig, tau = fatigue.bending_torsion(hist, unit.points[:, idx], axis)
             s_a, s_m = fatigue.half_range(sig)
             t_a, t_m = fatigue.half_range(tau)
@@ -201,9 +201,9 @@ def assess_group(
                 s_m,
                 t_a,
                 t_m,
-                k * material.fatigue_limit_bending,
-                k * material.fatigue_limit_torsion,
-                material.tensile_strength,
+                k * limits.bending,
+                k * torsion,
+                limits.tensile,
             )
 
     run_blocks(block, range(0, nodes.size, chunk))
@@ -255,8 +255,8 @@ def assess_group(
 def assess_groups(
     unit: UnitStresses,
     coefficients: np.ndarray,
-    theta,
-    material,
+    theta: np.ndarray,
+    material: Material,
     *,
     crank_radius: float,
     overspeed: float | None,

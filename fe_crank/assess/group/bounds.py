@@ -103,7 +103,7 @@ def _runs(coefficients: np.ndarray) -> np.ndarray:
 
 def coefficient_box(
     unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, *, runs: bool = True, directional: bool = False
-):
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None]:
     """(half widths, largest magnitudes (6, n) of the box of the path; with
     ``directional`` also bounds of the half range and of the magnitude of any component
     of the tensor in a unit direction (n,), else None) of ``nodes`` (module docstring).

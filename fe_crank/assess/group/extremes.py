@@ -44,6 +44,7 @@ largest box bounds.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -51,6 +52,7 @@ import numpy as np
 from fe_crank.assess import fatigue
 from fe_crank.assess.factors import factors, location_of
 from fe_crank.assess.group.assessment import (
+    Extreme,
     GroupResult,
     axis_for,
     fatigue_assessed,
@@ -67,6 +69,7 @@ from fe_crank.assess.group.bounds import (
 from fe_crank.assess.group.peak import BOUND_RTOL, TIE_RTOL, group_peak, max_over_cycle
 from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
+from fe_crank.io.material import Material
 
 #: nodes of one exact fatigue evaluation within a block: the least value found narrows
 #: the band for the next ones
@@ -92,7 +95,9 @@ class Running:
     gough_pollard: float = np.inf
 
 
-def _search(lower: np.ndarray, block: int, evaluate, start: float = np.inf) -> float:
+def _search(
+    lower: np.ndarray, block: int, evaluate: Callable[[np.ndarray, float], float], start: float = np.inf
+) -> float:
     """Evaluate blocks of positions in increasing ``lower`` (``evaluate(positions,
     threshold)`` evaluates those whose bound can reach ``threshold`` and returns the least
     value it found, or inf) until every bound left exceeds the threshold: the tie band of
@@ -113,7 +118,9 @@ def _band(best: float) -> float:
     return best + TIE_RTOL * abs(best) if np.isfinite(best) else np.inf
 
 
-def _static_peak(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, bound: np.ndarray, block: int):
+def _static_peak(
+    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, bound: np.ndarray, block: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``peak.group_peak`` on the nodes whose box bound ``bound`` of the peak can reach the
     tie band of the largest peak of the ``block`` nodes of the largest bounds (the
     others can neither hold the group's peak nor tie with it); positions into ``nodes``."""
@@ -126,7 +133,7 @@ def _static_peak(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray
     return keep[pos], vm, arg
 
 
-def _least(values: np.ndarray, done: np.ndarray, nodes: np.ndarray, unit: UnitStresses, group: str):
+def _least(values: np.ndarray, done: np.ndarray, nodes: np.ndarray, unit: UnitStresses, group: str) -> Extreme:
     """The group's least value and its node among the evaluated positions ``done``: every
     node of the tie band is among them, so it is the one of an evaluation of all."""
     return node_extreme(values[done], nodes[done], unit, group, worst="min")
@@ -137,7 +144,7 @@ def group_extremes(
     group: str,
     coefficients: np.ndarray,
     theta: np.ndarray,
-    material,
+    material: Material,
     *,
     crank_radius: float,
     diameter: float | None = None,
@@ -158,22 +165,13 @@ def group_extremes(
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
         raise ValueError(f"node group {group!r} is empty")
-    fatigue_group = fatigue_assessed(group)
-    do_fatigue = (
-        wanted.fatigue
-        and fatigue_group
-        and material.fatigue_limit_bending is not None
-        and material.tensile_strength is not None
-    )
+    limits = fatigue.fatigue_limits(material) if fatigue_assessed(group) else None
     axis = axis_for(group, crank_radius)
-    do_gp = (
-        wanted.gough_pollard
-        and fatigue_group
-        and material.fatigue_limit_bending is not None
-        and material.tensile_strength is not None
-        and axis is not None
-        and material.fatigue_limit_torsion is not None
-    )
+    # the limits of each criterion wanted and evaluable here (None: not evaluated)
+    goodman = limits if wanted.fatigue else None
+    torsion = limits.torsion if limits is not None and wanted.gough_pollard and axis is not None else None
+    do_fatigue = goodman is not None
+    do_gp = torsion is not None
     # the fatigue groups' box of the runs (the fatigue search's first bound); the static
     # groups' one box of the whole cycle (only the peak's prefilter)
     rho, big, fro_h, fro_c = coefficient_box(unit, coefficients, nodes, runs=do_fatigue or do_gp, directional=do_gp)
@@ -185,8 +183,8 @@ def group_extremes(
     k = ff.product if ff is not None else 1.0
     fat = gpe = None
     amp = mean = None
-    if do_fatigue:
-        se, rm = k * material.fatigue_limit_bending, material.tensile_strength
+    if goodman is not None:
+        se, rm = k * goodman.bending, goodman.tensile
         good = np.full(nodes.size, np.inf)
         sa, sm = np.zeros(nodes.size), np.zeros(nodes.size)
         done = np.zeros(nodes.size, bool)
@@ -224,9 +222,10 @@ def group_extremes(
             j = int(np.argmin(good))
             amp, mean = float(sa[j]), float(sm[j])
             running.fatigue = min(start, least)
-    if do_gp:
-        assert axis is not None and material.fatigue_limit_torsion is not None  # do_gp says so
-        eb, et, rm = k * material.fatigue_limit_bending, k * material.fatigue_limit_torsion, material.tensile_strength
+    if limits is not None and torsion is not None and axis is not None:
+        if fro_h is None or fro_c is None:
+            raise RuntimeError("coefficient_box gave no directional bounds for the Gough-Pollard search")
+        eb, et, rm = k * limits.bending, k * torsion, limits.tensile
         gp = np.full(nodes.size, np.inf)
         gp_done = np.zeros(nodes.size, bool)
 

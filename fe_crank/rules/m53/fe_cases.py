@@ -45,8 +45,9 @@ from skfem import Basis, ElementTetP2, Mesh
 
 from fe_crank.errors import MeshError, SolverError
 from fe_crank.fe.core.assembly import assemble_surface_load
+from fe_crank.fe.core.bases import facet_basis
 from fe_crank.fe.core.stress import element_nodal_stress, nodal_average, principal, von_mises
-from fe_crank.fe.core.supports import Coupling, boundary_facets, facet_basis
+from fe_crank.fe.core.supports import Coupling, boundary_facets
 from fe_crank.fe.core.system import EQUILIBRIUM_TOL, System, build_system
 from fe_crank.fe.throw.options import Material
 from fe_crank.mesh.types import ThrowMesh
