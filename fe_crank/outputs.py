@@ -17,7 +17,7 @@ from fe_crank.assess.shaft import ShaftHotSpot, WholeShaftOutput
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad.features import CadFeatures
-from fe_crank.fe.convergence import ConvergenceStudy
+from fe_crank.fe.refinement.convergence import ConvergenceStudy
 from fe_crank.fe.shaft.fields import ShaftFields
 from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.geometry.mass import ThrowSolids

@@ -1,10 +1,10 @@
 """Verification: the hot-spot convergence study by zones against the full re-meshed study.
 
-The check's study (``fe.zone_study.zone_convergence``: only the hot spots re-meshed,
+The check's study (``fe.refinement.zone_study.zone_convergence``: only the hot spots re-meshed,
 submodels driven by the assessed solution) and the former method
-(``fe.convergence.fillet_convergence``: the whole throw re-meshed and re-solved at each
+(``fe.refinement.convergence.fillet_convergence``: the whole throw re-meshed and re-solved at each
 fillet size), on one load case's throw at a mesh preset, with the check's own load sets
-(``fe.convergence_loads.check_loads``: the peak pin force with the centrifugal load at
+(``fe.refinement.loads.check_loads``: the peak pin force with the centrifugal load at
 the operating speed, the peak torque) and support model.  The zones are solved at two
 radii (``--radii``, in fillet radii) to show the cut-boundary error.  Writes a JSON file
 and a Markdown table: per entry (load set, surface family) and level the peak of each
@@ -43,9 +43,9 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     from fe_crank.fe import solve_unit_cases
-    from fe_crank.fe.convergence import estimate, fillet_convergence
-    from fe_crank.fe.convergence_loads import check_loads
-    from fe_crank.fe.zone_study import zone_convergence
+    from fe_crank.fe.refinement.convergence import estimate, fillet_convergence
+    from fe_crank.fe.refinement.loads import check_loads
+    from fe_crank.fe.refinement.zone_study import zone_convergence
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mechanism.cycles import engine_cycles
     from fe_crank.mesh import mesh_throw

@@ -10,7 +10,7 @@ from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.shaft import WholeShaftOutput
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
-from fe_crank.fe.convergence_levels import ConvergenceStudy
+from fe_crank.fe.refinement.levels import ConvergenceStudy
 from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.io.criteria import Criteria
 from fe_crank.io.material import Material

@@ -1,6 +1,6 @@
 """The hot-spot convergence study's factors on the FE stress criteria, and its own criterion.
 
-When the study ran (``fe_crank.fe.convergence``), the assessment does not keep the
+When the study ran (``fe_crank.fe.refinement.convergence``), the assessment does not keep the
 assessed mesh's hot-spot values: on every surface the study follows -- the shaft fillets,
 the counterweights' transition fillets, the oil-bore outlet -- the FE stress criteria are
 evaluated over the groups (``assess.criteria.finders.over_groups``) with each group's stresses taken
@@ -9,7 +9,7 @@ at the study's best estimate of the converged peak,
     sigma_criterion = k sigma_assessed,   k = max(1, sigma_est / sigma_assessed),
 
 with sigma_est and sigma_assessed the study's peaks on that surface (the throw's model, the
-load set with the largest k) at its best estimate (``fe.convergence.estimate``: the finest
+load set with the largest k) at its best estimate (``fe.refinement.convergence.estimate``: the finest
 level or the Richardson extrapolation) and on the assessed mesh (the study's first level).
 No credit is taken when the peak falls with refinement (k >= 1): the study's load sets are
 the peak pin force and the peak torque, not every state of the cycle.  A safety factor
@@ -33,8 +33,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from fe_crank.fe.convergence import estimate
-from fe_crank.fe.convergence_levels import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceStudy
+from fe_crank.fe.refinement.convergence import estimate
+from fe_crank.fe.refinement.levels import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceStudy
 from fe_crank.results import CriterionResult, Location
 from fe_crank.throw_scope import ALL_THROWS
 

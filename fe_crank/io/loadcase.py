@@ -26,9 +26,9 @@ from pydantic import Field
 from fe_crank import model
 from fe_crank.cad.config import CadInput
 from fe_crank.errors import InputError
-from fe_crank.fe.convergence import wanted
-from fe_crank.fe.convergence_levels import FACTORS
 from fe_crank.fe.input import check_torque_reaction
+from fe_crank.fe.refinement.convergence import wanted
+from fe_crank.fe.refinement.levels import FACTORS
 from fe_crank.fe.throw.options import FeOptions
 from fe_crank.geometry.engine_fit import throw_at_bearings
 from fe_crank.geometry.shaft import engine_shaft_layout, require_film, whole_shaft_wanted

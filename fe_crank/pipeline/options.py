@@ -17,7 +17,7 @@ class CheckOptions:
     ``allow_outside_paths`` lets include paths leave the load case's folder tree;
     ``max_elements`` overrides the estimated-element-count limit (docs/limits.md);
     ``convergence`` the hot-spot convergence study (None: the load case's ``[mesh]
-    convergence``, by default on unless the mesh is ``test``; ``fe_crank.fe.convergence``).
+    convergence``, by default on unless the mesh is ``test``; ``fe_crank.fe.refinement.convergence``).
     """
 
     mesh_size: str | None = None

@@ -28,7 +28,8 @@ from fe_crank.balance.analysis import BalanceResult, analyse_balance
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.source import GeometrySource, mesh_source_throw
 from fe_crank.errors import InputError
-from fe_crank.fe import convergence, solve_unit_cases
+from fe_crank.fe import solve_unit_cases
+from fe_crank.fe.refinement import convergence
 from fe_crank.fe.throw.options import FeOptions
 from fe_crank.fe.throw.pin_patches import pin_patch_options
 from fe_crank.fe.throw.unit_cases import UnitSolutions

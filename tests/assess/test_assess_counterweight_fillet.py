@@ -180,7 +180,7 @@ def test_convergence_study_follows_the_counterweight_fillets():
     its own (name prefix ``COUNTERWEIGHT_PREFIX``), with its change and its place, and the
     study's change covers it; its peaks equal a direct recovery on the same meshes
     (``_cw_peak`` over the fillet faces is the same averaged nodal stress)."""
-    from fe_crank.fe.convergence import COUNTERWEIGHT_PREFIX, fillet_convergence
+    from fe_crank.fe.refinement.convergence import COUNTERWEIGHT_PREFIX, fillet_convergence
     from fe_crank.io.material import load_material
     from fe_crank.mesh import MeshOptions
 

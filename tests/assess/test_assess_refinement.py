@@ -19,7 +19,7 @@ from fe_crank.assess.loads import FIRING
 from fe_crank.assess.refinement import StudyFactors, criterion, surface_factor
 from fe_crank.assess.speeds import StateResults
 from fe_crank.assess.throw import ThrowAssessment
-from fe_crank.fe.convergence import (
+from fe_crank.fe.refinement.convergence import (
     COUNTERWEIGHT_PREFIX,
     OIL_BORE_PREFIX,
     ConvergenceLevel,
@@ -161,7 +161,7 @@ def test_the_oil_bore_outlet_is_refined_and_followed_by_the_study(tmp_path):
     of its own, which the verdict's oil-bore criteria are taken at."""
     from pathlib import Path
 
-    from fe_crank.fe.convergence import fillet_convergence
+    from fe_crank.fe.refinement.convergence import fillet_convergence
     from fe_crank.io.geometry import load_geometry
     from fe_crank.io.material import load_material as mat
     from fe_crank.mesh import MeshOptions

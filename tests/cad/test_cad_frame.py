@@ -65,7 +65,7 @@ def test_the_scf_mode_and_the_convergence_study_mesh_a_cad_throw(tmp_path):
     from fe_crank import model
     from fe_crank.assess.throw_geometry import cad_throws
     from fe_crank.cad import recognise
-    from fe_crank.fe.convergence import fillet_convergence
+    from fe_crank.fe.refinement.convergence import fillet_convergence
     from fe_crank.io.material import load_material
     from fe_crank.rules.m53.scf_mode import scf_mesh, web_centres_of
 

@@ -1,4 +1,4 @@
-"""Load sets of the check-stage convergence study (``fe_crank.fe.convergence.check_loads``)."""
+"""Load sets of the check-stage convergence study (``fe_crank.fe.refinement.convergence.check_loads``)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from fe_crank.fe.convergence import check_loads
+from fe_crank.fe.refinement.convergence import check_loads
 
 
 @dataclass(frozen=True)

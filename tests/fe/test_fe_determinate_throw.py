@@ -11,12 +11,12 @@ from helpers.verification_meshes import Steel
 
 from fe_crank.assess.adapters import m53_geometry_of
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.convergence import (
+from fe_crank.fe.core.supports import boundary_facets
+from fe_crank.fe.refinement.convergence import (
     FILLETS,  # the four shaft fillets of a throw
     fillet_convergence,
     peak_fillet_stress,
 )
-from fe_crank.fe.core.supports import boundary_facets
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS, mesh_throw
 from fe_crank.rules.m53 import calculation as m53

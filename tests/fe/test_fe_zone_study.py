@@ -1,4 +1,4 @@
-"""The hot-spot convergence study by zones (``fe.zone_study``) against the full re-meshed study.
+"""The hot-spot convergence study by zones (``fe.refinement.zone_study``) against the full re-meshed study.
 
 Real gmsh meshes of the shipped single-cylinder throw at the ``test`` preset and real
 solves.  Checks: the interpolation of a P2 field at arbitrary points reproduces a linear
@@ -23,9 +23,9 @@ from helpers.paths import ROOT
 from helpers.verification_meshes import Steel
 
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.convergence import fillet_convergence
-from fe_crank.fe.zone import Interpolator
-from fe_crank.fe.zone_study import zone_convergence
+from fe_crank.fe.refinement.convergence import fillet_convergence
+from fe_crank.fe.refinement.zone import Interpolator
+from fe_crank.fe.refinement.zone_study import zone_convergence
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS, mesh_throw
 
@@ -84,7 +84,7 @@ def test_zone_study_equals_full_refinement_within_mesh_noise(check_solution):
 def test_a_zone_must_cut_the_throw(check_solution):
     """A ball holding the whole throw has no cut to drive, one outside it no solid: both refused."""
     from fe_crank.errors import MeshError
-    from fe_crank.fe.zone import boundary_samples
+    from fe_crank.fe.refinement.zone import boundary_samples
     from fe_crank.mesh.zone import mesh_zone
 
     geometry, _, tm, units = check_solution
@@ -101,7 +101,7 @@ def test_levels_meshed_from_one_cut_in_groups_of_pieces(check_solution):
     nodes are those of the whole mesh of the level."""
     import dataclasses
 
-    from fe_crank.fe.zone import boundary_samples
+    from fe_crank.fe.refinement.zone import boundary_samples
     from fe_crank.mesh.zone import CUT, mesh_zone, mesh_zone_levels
 
     geometry, _, tm, units = check_solution

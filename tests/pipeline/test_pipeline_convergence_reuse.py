@@ -18,13 +18,13 @@ from helpers.paths import ROOT
 from helpers.verification_meshes import Steel
 
 from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.convergence import (  # FILLETS: the four shaft fillets of a throw
+from fe_crank.fe.core.supports import boundary_facets
+from fe_crank.fe.refinement.convergence import (  # FILLETS: the four shaft fillets of a throw
     FILLETS,
     _reusable,
     fillet_convergence,
     peak_fillet_stress,
 )
-from fe_crank.fe.core.supports import boundary_facets
 from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS, mesh_throw
 

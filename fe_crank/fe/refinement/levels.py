@@ -1,7 +1,7 @@
 """The hot-spot convergence study's levels and result (``ConvergenceLevel``,
 ``ConvergenceStudy``), its constants, and the peaks of one level (``level_peaks``): shared
-by the full re-meshed study (``fe.convergence``) and the study by zones
-(``fe.zone_study``).  The method and its criteria: ``fe.convergence``'s docstring."""
+by the full re-meshed study (``fe.refinement.convergence``) and the study by zones
+(``fe.refinement.zone_study``).  The method and its criteria: ``fe.refinement.convergence``'s docstring."""
 
 from __future__ import annotations
 
@@ -35,7 +35,7 @@ class ConvergenceLevel:
     seconds: float
     reused: bool = False  # the check's own mesh and solution (no mesh, no solve)
     bore_divisions: float = 6.0  # oil-bore elements: pi d / (2 bore_divisions) round its circumference
-    zones: int = 0  # hot-spot zones solved for this level (``fe.zone_study``); 0: the whole throw
+    zones: int = 0  # hot-spot zones solved for this level (``fe.refinement.zone_study``); 0: the whole throw
 
 
 @dataclass(frozen=True)

@@ -1,8 +1,8 @@
 """The hot-spot convergence study by zones: only the hot spots are refined.
 
-``fe.convergence.fillet_convergence`` re-meshes and re-solves the whole throw at each
+``fe.refinement.convergence.fillet_convergence`` re-meshes and re-solves the whole throw at each
 finer fillet size.  ``zone_convergence`` gives the same levels from submodels
-(``fe.zone``): the first level is the assessed mesh's own solution, as there; for each
+(``fe.refinement.zone``): the first level is the assessed mesh's own solution, as there; for each
 finer level, every hot spot is meshed again inside a ball of radius
 ``ZONE_RADIUS`` x its fillet radius (the oil bore: its diameter) round the assessed mesh's
 peak (``mesh.zone``, the throw mesher's size fields at that level's fillet size), driven
@@ -29,7 +29,8 @@ import time
 import numpy as np
 
 from fe_crank.errors import MeshError
-from fe_crank.fe.convergence_levels import (
+from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
+from fe_crank.fe.refinement.levels import (
     COUNTERWEIGHT_PREFIX,
     FACTORS,
     OIL_BORE_PREFIX,
@@ -38,11 +39,10 @@ from fe_crank.fe.convergence_levels import (
     ConvergenceStudy,
     level_peaks,
 )
-from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
+from fe_crank.fe.refinement.zone import Interpolator, boundary_samples, solve_zone, zone_peaks
 from fe_crank.fe.throw.options import Material
 from fe_crank.fe.throw.surface_peaks import COUNTERWEIGHT_FILLETS, FILLETS, OIL_BORE
 from fe_crank.fe.throw.unit_cases import UnitSolutions
-from fe_crank.fe.zone import Interpolator, boundary_samples, solve_zone, zone_peaks
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.mesh.sizing import counterweight_fillet_radius
 from fe_crank.mesh.types import ThrowMesh

@@ -1,4 +1,4 @@
-"""The load sets of the hot-spot convergence study (``fe_crank.fe.convergence``): unit-case
+"""The load sets of the hot-spot convergence study (``fe_crank.fe.refinement.convergence``): unit-case
 weights {load set: {unit case: weight}} applied on every level."""
 
 from __future__ import annotations

@@ -42,7 +42,7 @@ import logging
 import time
 
 from fe_crank.cad.config import CadInput
-from fe_crank.fe.convergence_levels import (  # noqa: F401 (the study's types and constants, named here too)
+from fe_crank.fe.refinement.levels import (  # noqa: F401 (the study's types and constants, named here too)
     COUNTERWEIGHT_PREFIX,
     FACTORS,
     OIL_BORE_PREFIX,
@@ -53,7 +53,7 @@ from fe_crank.fe.convergence_levels import (  # noqa: F401 (the study's types an
     ConvergenceStudy,
     level_peaks,
 )
-from fe_crank.fe.convergence_loads import DEFAULT_LOADS, check_loads
+from fe_crank.fe.refinement.loads import DEFAULT_LOADS, check_loads
 from fe_crank.fe.throw.options import Material
 from fe_crank.fe.throw.surface_peaks import (  # noqa: F401 (FILLETS, peak_fillet_stress: the study's measures, named here too)
     COUNTERWEIGHT_FILLETS,
@@ -199,7 +199,7 @@ def check_studies(
     name, else all of them) at the speed of ``dynamics``; the first level uses the
     check's own mesh options, and with ``unit_solutions`` (key -> the check's
     ``UnitSolutions``) the check's own solution on that mesh (one mesh and one
-    factorisation fewer).  ``method``: "zones" (``fe.zone_study``: only the hot spots
+    factorisation fewer).  ``method``: "zones" (``fe.refinement.zone_study``: only the hot spots
     re-meshed, driven by the check's solution; where ``zones_apply``), else "full" (the
     whole throw re-meshed and re-solved per level, ``fillet_convergence``).
     """
@@ -213,7 +213,7 @@ def check_studies(
         first = (tm, unit_solutions[key]) if unit_solutions and key in unit_solutions else None
         loads = check_loads(tls, dynamics.speed)
         if method == "zones" and zones_apply(geometry, first, loads, fe_options):
-            from fe_crank.fe.zone_study import zone_convergence
+            from fe_crank.fe.refinement.zone_study import zone_convergence
 
             assert first is not None and isinstance(geometry, CrankGeometry)
             out[key] = done[tm.key] = zone_convergence(geometry, material, first[0], first[1], loads)
