@@ -17,6 +17,7 @@ from fe_crank.assess.shaft import ShaftHotSpot, WholeShaftOutput
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.balance.analysis import BalanceResult
 from fe_crank.cad.features import CadFeatures
+from fe_crank.cad.source import Meshes
 from fe_crank.fe.refinement.convergence import ConvergenceStudy
 from fe_crank.fe.shaft.fields import ShaftFields
 from fe_crank.fe.throw.unit_cases import UnitSolutions
@@ -26,7 +27,6 @@ from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.mesh.plan import MeshPlan
-from fe_crank.mesh.types import ThrowMesh
 from fe_crank.rules.m53.calculation import M53Geometry
 from fe_crank.rules.m53.scf_mode import ScfResult
 from fe_crank.throw_scope import throws_of
@@ -40,15 +40,18 @@ class GeometryModel:
     throw, meshed how), each engine throw's geometry as the assessment reads it (UR M53
     dimensions, counterweights, rods' places, ``assess.throw_geometry``), the B-rep mass
     properties of the parametric throws whose inertias the torsional stage needs (None:
-    none needed), for a CAD geometry everything recognised in the file, and the whole
-    shaft placed by the engine when it is modelled too (``shaft``; None: the per-throw model
-    alone, ``pipeline.stages.shaft_layout``)."""
+    none needed) and for a CAD geometry everything recognised in the file."""
 
     plan: MeshPlan
     throws: dict[str, ThrowGeometry]
     solids: ThrowSolids | None = None
     cad: CadFeatures | None = None
-    shaft: ShaftLayout | None = None
+
+    @property
+    def shaft(self) -> ShaftLayout | None:
+        """The whole shaft placed by the engine when it is modelled too (the plan's; None:
+        the per-throw model alone, ``pipeline.stages.shaft_layout``)."""
+        return self.plan.shaft
 
     def of_model(self, key: str) -> ThrowGeometry | None:
         """The geometry of the throw model ``key`` (of the plan): that of the first
@@ -94,7 +97,7 @@ class CaseOutputs:
     cycles: EngineCycles | None = None
     balance: BalanceResult | None = None
     geometry: GeometryModel | None = None
-    meshes: dict[str, ThrowMesh] | None = None
+    meshes: Meshes | None = None
     fe: FeModels | None = None
     torsion: TorsionOutput | None = None
     whole_shaft: WholeShaftOutput | None = None

@@ -38,10 +38,11 @@ def main() -> None:
     from fe_crank.assess.oil_film import film_sweep
     from fe_crank.assess.shaft import BearingState
     from fe_crank.fe.shaft.cycle import BearingLoads
-    from fe_crank.fe.shaft.whole_shaft import BearingResult, analyse_whole_shaft
+    from fe_crank.fe.shaft.whole_shaft import BearingResult, analyse_whole_shaft, throw_masses
     from fe_crank.geometry.oil import FilmSpec
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mechanism.cycles import engine_cycles
+    from fe_crank.mesh.shaft import mesh_shaft
     from fe_crank.pipeline.stages import shaft_layout
 
     lc = load_loadcase(a.loadcase)
@@ -56,7 +57,7 @@ def main() -> None:
         ),
     )
     dyn = engine_cycles(lc.engine, lc.operating).operating
-    result, cases = analyse_whole_shaft(layout, lc.material, dyn, size="test")
+    result, cases = analyse_whole_shaft(mesh_shaft(layout, size="test"), lc.material, dyn, mass=throw_masses(layout))
     cases.model.free_factors()
     w0 = float(dyn.speed)
     states = []

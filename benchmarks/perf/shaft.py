@@ -16,6 +16,7 @@ Prints the stage times (wall), the CPU seconds, the peak resident memory and the
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import resource
 import subprocess
@@ -41,9 +42,10 @@ def run(args) -> dict:
     from fe_crank import model
     from fe_crank.assess.shaft import assess_shaft_throws
     from fe_crank.assess.workers import threads
-    from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+    from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
     from fe_crank.geometry.shaft import shaft_layout
     from fe_crank.mechanism.dynamics import analyse
+    from fe_crank.mesh.shaft import mesh_shaft
 
     t0 = time.perf_counter()
     if args.loadcase:
@@ -70,7 +72,11 @@ def run(args) -> dict:
         op = model.OperatingPoint(speed=4000 * 2 * np.pi / 60)
     layout = shaft_layout(g, e, geometry_file=str(g.file), engine_file=str(args.engine or "engine"))
     dyn = analyse(e, op)
-    result, cases = analyse_whole_shaft(layout, material, dyn, size=args.preset, cache_dir=args.cache)
+    t_mesh = time.perf_counter()
+    sm = mesh_shaft(layout, size=args.preset, cache_dir=args.cache)
+    t_mesh = time.perf_counter() - t_mesh
+    result, cases = analyse_whole_shaft(sm, material, dyn, mass=throw_masses(layout))
+    result = dataclasses.replace(result, timings={"mesh": t_mesh, **result.timings})
     t1 = time.perf_counter()
     with threads(2):
         throws, _ = assess_shaft_throws(cases, result, dyn.theta, material, crank_radius=g.crank_radius, overspeed=None)

@@ -2,7 +2,7 @@
 
     .venv/bin/python benchmarks/verification/shaft_calculix.py --loadcase loadcases/inline4_rated.toml --preset test
 
-fe-crank (its own process): the whole-shaft model of the load case (``analyse_whole_shaft``:
+fe-crank (its own process): the whole-shaft model of the load case (``mesh_shaft`` and ``analyse_whole_shaft``:
 mesh, exact condensation, unit cases, the operating cycle of 720 angles with and without
 counterweights) with every main bearing a linear radial spring of ``--stiffness`` N/m,
 and the whole mesh's field at the angle of the largest bearing load (``piece_fields``).
@@ -66,12 +66,12 @@ def fe_worker(args) -> int:
     from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
     from fe_crank.fe.shaft.cases import _terms, applied_loads
     from fe_crank.fe.shaft.fields import piece_fields
-    from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+    from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
     from fe_crank.geometry.shaft import engine_shaft_layout
     from fe_crank.geometry.spec import BearingLaw
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mechanism.cycles import engine_cycles
-    from fe_crank.mesh.shaft import node_maps, tet10
+    from fe_crank.mesh.shaft import mesh_shaft, node_maps, tet10
 
     work = Path(args.work)
     lc = load_loadcase(args.loadcase)
@@ -79,7 +79,8 @@ def fe_worker(args) -> int:
     laws = [BearingLaw("spring", args.stiffness)] * len(layout.bearings)
     dyn = engine_cycles(lc.engine, lc.operating).operating
     t0 = time.perf_counter()
-    result, cases = analyse_whole_shaft(layout, lc.material, dyn, size=args.preset, cache_dir=".cache", laws=laws)
+    sm = mesh_shaft(layout, size=args.preset, cache_dir=".cache")
+    result, cases = analyse_whole_shaft(sm, lc.material, dyn, mass=throw_masses(layout), laws=laws)
     peaks = np.array([np.hypot(*b.with_counterweights.load_n.T) for b in result.bearings])  # (nb, n)
     i = int(np.argmax(peaks.max(axis=0)))
     W = result.cycles[0].weights[i]

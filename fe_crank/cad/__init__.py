@@ -9,7 +9,9 @@
 * :mod:`fe_crank.cad.record` -- the source and features for the provenance and the report;
 * :mod:`fe_crank.cad.engine` -- ``engine_keys``: the recognised throws against the engine's
   (count, names, crank radius, angles), the mesh plan's keys;
-* :mod:`fe_crank.cad.source` -- ``mesh_source_throw``: a parametric or CAD throw meshed alike.
+* :mod:`fe_crank.cad.source` -- ``mesh_models``: the check's one meshing entry point (every model of
+  the mesh plan, throws and whole shaft, parametric or drawn); ``mesh_source_throw``: one throw of
+  either source.
 
 The parser of the ``[cad]`` section and of a load case's CAD geometry is
 ``fe_crank.io.cad``; the UR M53 dimensions and counterweight data for the assessment are

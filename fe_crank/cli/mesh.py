@@ -120,7 +120,8 @@ def _stats(tm, size: str) -> None:
 
 def _cad(cad, args: argparse.Namespace, out: Path) -> int:
     """A CAD file: its recognised features, then the throws asked for meshed."""
-    from fe_crank.cad import feature_lines, mesh_cad_throw, recognise
+    from fe_crank.cad import feature_lines, recognise
+    from fe_crank.cad.source import mesh_source_throw
     from fe_crank.errors import InputError
 
     features = recognise(cad)
@@ -133,7 +134,7 @@ def _cad(cad, args: argparse.Namespace, out: Path) -> int:
             raise InputError(f"no throw named {args.throw!r}; throws are {names}", file=args.geometry, key="--throw")
         names = [args.throw]
     for name in names:
-        tm = mesh_cad_throw(cad, name, size=args.mesh_size, cache_dir=args.cache_dir, max_elements=args.max_elements)
+        tm = mesh_source_throw(cad, name, size=args.mesh_size, cache_dir=args.cache_dir, max_elements=args.max_elements)
         print(f"throw {name} (CAD):")
         _stats(tm, args.mesh_size)
         _keep(tm, out, cad.file.stem, name, f"{cad.file.name}, throw {name}", args.no_render)
@@ -142,8 +143,8 @@ def _cad(cad, args: argparse.Namespace, out: Path) -> int:
 
 def run(args: argparse.Namespace) -> int:
     from fe_crank.cad.config import CadInput
+    from fe_crank.cad.source import mesh_source_throw
     from fe_crank.geometry.mass import mass_properties
-    from fe_crank.mesh import mesh_throw
 
     g = _source(args.geometry)
     out = Path(args.output)
@@ -179,7 +180,9 @@ def run(args: argparse.Namespace) -> int:
                 print(
                     f"  counterweight_{web}: mass {part.mass:.4g} kg at r_c {abs(part.centroid[1]) * 1e3:.4g} mm, m r {part.unbalance * 1e3:.4g} kg mm"
                 )
-        tm = mesh_throw(g, spec, size=args.mesh_size, cache_dir=args.cache_dir, max_elements=args.max_elements)
+        tm = mesh_source_throw(
+            g, spec.name, size=args.mesh_size, cache_dir=args.cache_dir, max_elements=args.max_elements
+        )
         _stats(tm, args.mesh_size)
         _keep(tm, out, stem, spec.name, f"{g.name}, throw {spec.name}", args.no_render)
     return 0

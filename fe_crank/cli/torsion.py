@@ -51,9 +51,9 @@ def fe_stiffness_of(lc: LoadCase, size: str | None, cache_dir) -> float:
     """Torsional stiffness of the load case's first throw on its FE model (N m/rad, FE span)."""
     import dataclasses
 
+    from fe_crank.cad.source import mesh_source_throw
     from fe_crank.fe import solve_unit_cases
     from fe_crank.geometry.spec import CrankGeometry
-    from fe_crank.mesh import mesh_throw
     from fe_crank.mesh.plan import preset_of
     from fe_crank.torsion.stiffness import fe_throw_stiffness
 
@@ -62,7 +62,7 @@ def fe_stiffness_of(lc: LoadCase, size: str | None, cache_dir) -> float:
             "the FE throw stiffness needs a parametric geometry and the [material] section", file=lc.source_file
         )
     throw = lc.geometry.throws[0].name
-    tm = mesh_throw(lc.geometry, throw=throw, size=preset_of(lc.mesh, size), cache_dir=cache_dir)
+    tm = mesh_source_throw(lc.geometry, throw, size=preset_of(lc.mesh, size), cache_dir=cache_dir)
     opts = dataclasses.replace(lc.fe, cases=("centrifugal", "torque"))
     return fe_throw_stiffness(solve_unit_cases(tm, lc.material, opts))
 

@@ -6,9 +6,11 @@ throws that differ only in name and angle; otherwise the geometry's throw names 
 the engine's throw names, so that no throw goes unchecked.  The size is the command
 line's ``--mesh-size``, else the load case's ``[mesh] size`` (``coarse`` by default);
 ``[mesh] symmetric = false`` meshes a mirror-symmetric throw whole.  When the whole
-shaft is modelled too (``shaft``: its layout), the throws are meshed with the whole
-shaft's options (``mesh.shaft.shaft_options``: end faces split into rotated-copy sectors),
-so that both models mesh each throw once (one cached mesh).
+shaft is modelled too (``shaft``: its layout, held by the plan), the plan decides its
+mesh options, and the throws are meshed with them (``mesh.shaft.shaft_options``: end
+faces split into rotated-copy sectors), so that both models mesh each throw once (one
+cached mesh).  The plan's models are meshed by one entry point,
+``fe_crank.cad.source.mesh_models``.
 """
 
 from __future__ import annotations
@@ -31,14 +33,16 @@ SIGN_OFF_RULE = "coarse or finer, fillet elements <= r/4"
 @dataclass(frozen=True)
 class MeshPlan:
     """How a load case is meshed: ``preset`` (its name), the resolved ``options``, the
-    element-count limit, the cache folder and ``throws``: key -> geometry throw name (a
-    key is an engine throw's name, or ``ALL_THROWS``)."""
+    element-count limit, the cache folder, ``throws``: key -> geometry throw name (a
+    key is an engine throw's name, or ``ALL_THROWS``) and ``shaft``: the whole shaft's
+    layout when it is meshed too, with ``options`` (None: the throw models alone)."""
 
     preset: str
     options: MeshOptions
     max_elements: int | None
     cache_dir: str | None
     throws: dict[str, str]
+    shaft: ShaftLayout | None = None
 
     @property
     def sign_off(self) -> bool:
@@ -65,13 +69,8 @@ def plan_meshes(
     """The plan of one load case (module docstring); ``size``/``max_elements`` override the
     section's; ``shaft``: the whole shaft's layout when it is modelled too.  An engine whose
     throws the geometry does not cover is an InputError."""
-    from fe_crank.mesh.shaft import shaft_options
-
     keys = throw_keys(geometry, engine_throws, file=file)
-    plan = mesh_plan(keys, section, size=size, max_elements=max_elements, cache_dir=cache_dir)
-    if shaft is not None:
-        plan = dataclasses.replace(plan, options=shaft_options(shaft, plan.options))
-    return plan
+    return mesh_plan(keys, section, size=size, max_elements=max_elements, cache_dir=cache_dir, shaft=shaft)
 
 
 def mesh_plan(
@@ -81,20 +80,29 @@ def mesh_plan(
     size: str | None = None,
     max_elements: int | None = None,
     cache_dir: str | None = None,
+    shaft: ShaftLayout | None = None,
+    min_sectors: int = 1,
 ) -> MeshPlan:
     """The plan for the keys ``throws`` (key -> the throw model's name; a CAD geometry's
     come from ``fe_crank.cad.engine.engine_keys``) with the section's and the command
-    line's sizes."""
+    line's sizes; with the whole shaft ``shaft``, the options are the shaft's
+    (``mesh.shaft.shaft_options``; ``min_sectors``: its, a drawn shaft's
+    ``fe_crank.cad.whole.MIN_SECTORS``)."""
+    from fe_crank.mesh.shaft import shaft_options
+
     preset = preset_of(section, size)
     options = PRESETS[preset]
     if not section.symmetric:  # [mesh] symmetric = false: mesh a symmetric throw whole (docs/geometry.md)
         options = dataclasses.replace(options, symmetric=False)
+    if shaft is not None:
+        options = shaft_options(shaft, options, min_sectors)
     return MeshPlan(
         preset=preset,
         options=options,
         max_elements=max_elements or section.max_elements,
         cache_dir=cache_dir,
         throws=throws,
+        shaft=shaft,
     )
 
 

@@ -29,7 +29,6 @@ from fe_crank.io.geometry import COUNTERWEIGHT_STRESS_QUANTITIES
 from fe_crank.io.loadcase import WHOLE_SHAFT_QUANTITIES, LoadCase
 from fe_crank.io.shaft import WIDTH_CRITERIA
 from fe_crank.mesh.plan import mesh_plan
-from fe_crank.mesh.shaft import shaft_options
 from fe_crank.outputs import GeometryModel
 from fe_crank.pipeline.options import CheckOptions
 
@@ -151,15 +150,17 @@ def cad_geometry_stage(
     features, keys = recognise_case(lc, cad)
     layout = cad_layout(lc, cad, features)
     plan = mesh_plan(
-        keys, lc.mesh, size=options.mesh_size, max_elements=options.max_elements, cache_dir=options.cache_dir
+        keys,
+        lc.mesh,
+        size=options.mesh_size,
+        max_elements=options.max_elements,
+        cache_dir=options.cache_dir,
+        shaft=layout,
+        min_sectors=MIN_SECTORS,
     )
     design = balance.design if balance is not None else None
     throws = cad_throws(features, cad, plan.throws, lc.engine, design)
     if layout is not None:
         shared = shared_meshes(features)
-        plan = dataclasses.replace(
-            plan,
-            options=shaft_options(layout, plan.options, MIN_SECTORS),
-            throws={k: shared[v] for k, v in plan.throws.items()},
-        )
-    return GeometryModel(plan, throws, None, features, shaft=layout)
+        plan = dataclasses.replace(plan, throws={k: shared[v] for k, v in plan.throws.items()})
+    return GeometryModel(plan, throws, None, features)

@@ -79,7 +79,7 @@ def collect(
     """The provenance of one case; ``files``: the input files read (``LoadCase.inputs``
     or, when the load case was refused, those read before); ``preset``: the mesh preset
     the case was (or would have been) meshed with, None before the load case was read."""
-    meshes = out.meshes or {}
+    meshes = out.meshes.throws if out.meshes is not None else {}
     unit_solutions = out.unit_solutions
     solver = None
     if unit_solutions:

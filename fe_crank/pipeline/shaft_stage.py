@@ -5,9 +5,10 @@ several throws on one shaft, or a single throw whose geometry states its shaft, 
 ``[shaft]`` section), after the FE and torsional stages and before the assessment
 (docs/shaft.md).  It computes the shaft and nothing of its assessment:
 
-* the shaft meshed, condensed and solved on its bearings over the operating cycle, with
-  and without counterweights, and over the overspeed cycles
-  (``fe.shaft.whole_shaft.analyse_whole_shaft``); each journal carries its own torque
+* the shaft (meshed by the mesh stage, ``cad.source.mesh_models``) condensed and solved
+  on its bearings over the operating cycle, with and without counterweights, and over the
+  overspeed cycles (``fe.shaft.whole_shaft.analyse_whole_shaft``, with the masses of the
+  throws' solids, parametric or drawn); each journal carries its own torque
   (``torque_flow``: the journal torques the assessment takes, with the torsional stage's
   vibratory torque when it ran);
 * its main bearings' loads at every speed and load state of the full-load sweep
@@ -25,7 +26,6 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -33,49 +33,38 @@ from fe_crank.assess.loads import FIRING
 from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState, ShaftHotSpot, WholeShaftOutput, bearing_sweep
 from fe_crank.cad.config import CadInput
-from fe_crank.cad.whole import cad_shaft_mesh, cad_throw_masses
+from fe_crank.cad.source import Meshes
+from fe_crank.cad.whole import cad_throw_masses
 from fe_crank.fe.shaft.fields import ShaftFields, shaft_fields
 from fe_crank.fe.shaft.model import ShaftFeOptions
-from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
 from fe_crank.io.loadcase import LoadCase
-from fe_crank.mesh.options import MeshOptions
-from fe_crank.mesh.shaft import ShaftMesh
 from fe_crank.outputs import CaseOutputs, GeometryModel
 
 
-def whole_shaft_stage(lc: LoadCase, geo: GeometryModel, out: CaseOutputs, fields: bool) -> WholeShaftOutput:
-    """The stage (module doc); ``fields``: keep the factorisations for the whole mesh's
-    state the report draws (``shaft_fields_stage``)."""
-    mat, layout = lc.material, geo.shaft
-    assert layout is not None and mat is not None and out.cycles is not None
+def whole_shaft_stage(
+    lc: LoadCase, geo: GeometryModel, meshes: Meshes, out: CaseOutputs, fields: bool
+) -> WholeShaftOutput:
+    """The stage (module doc) on the mesh stage's ``meshes``; ``fields``: keep the
+    factorisations for the whole mesh's state the report draws (``shaft_fields_stage``)."""
+    mat, layout, sm = lc.material, geo.shaft, meshes.shaft
+    assert layout is not None and sm is not None and mat is not None and out.cycles is not None
     dyn = out.assessed_dynamics
     assert dyn is not None
     overspeed = tuple(c.dynamics for c in out.cycles.overspeed) if lc.operating.overspeed is not None else ()
     options = ShaftFeOptions(
         solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry, keep_factors=fields
     )
-    mesher, mass = None, None
     features = geo.cad
-    if features is not None and isinstance(lc.geometry, CadInput):  # the shaft as drawn: its mesh and masses
-        cad = lc.geometry
-
-        def mesher(*, size: str | MeshOptions, cache_dir: Path, max_elements: int | None) -> ShaftMesh:
-            return cad_shaft_mesh(cad, features, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
-
+    if features is not None and isinstance(lc.geometry, CadInput):  # the shaft as drawn: its throws' masses
         mass = cad_throw_masses(features, layout)
+    else:
+        mass = throw_masses(layout)
     result, cases = analyse_whole_shaft(
-        layout,
-        mat,
-        dyn,
-        size=geo.plan.options,
-        cache_dir=geo.plan.cache_dir,
-        options=options,
-        torque_flow=lc.torsion is not None,
-        overspeed=overspeed,
-        max_elements=geo.plan.max_elements,
-        mesher=mesher,
-        mass=mass,
+        sm, mat, dyn, mass=mass, options=options, torque_flow=lc.torsion is not None, overspeed=overspeed
     )
+    # the shaft's mesh time is the mesh stage's, reported with the shaft's own (results.json)
+    result = dataclasses.replace(result, timings={"mesh": meshes.shaft_seconds, **result.timings})
     try:
         t0 = time.perf_counter()
         sweep = bearing_sweep(out.cycles, cases, layout, result)

@@ -1,7 +1,8 @@
 """The stages of one load case, in the order they run (``run_stages``).
 
 load -> dynamics (operating and overspeed cycles) -> balance -> geometry (mesh plan, UR
-M53 dimensions, CAD mass properties, the whole shaft placed) -> mesh (cached) -> FE unit
+M53 dimensions, CAD mass properties, the whole shaft placed) -> mesh (every model of the
+plan, the whole shaft's too: ``cad.source.mesh_models``, cached) -> FE unit
 cases -> SCF mode (only where UR M53's empirical SCFs are out of range) -> torsion (with
 a ``[torsion]`` section) -> hot-spot convergence study (sign-off meshes) -> whole shaft (several throws on one shaft, or a ``[shaft]``
 section: ``pipeline.shaft_stage``) -> assessment (both models, every speed, the study's factors: ``assess.case``) -> the whole
@@ -26,7 +27,7 @@ from fe_crank.assess.throw_geometry import parametric_throws
 from fe_crank.assess.workers import threads
 from fe_crank.balance.analysis import BalanceResult, analyse_balance
 from fe_crank.cad.config import CadInput
-from fe_crank.cad.source import GeometrySource, mesh_source_throw
+from fe_crank.cad.source import GeometrySource, Meshes, mesh_models
 from fe_crank.errors import InputError
 from fe_crank.fe import solve_unit_cases
 from fe_crank.fe.refinement import convergence
@@ -104,10 +105,10 @@ def run_stages(run: Run) -> None:
     run.keep(geometry=geo)
     meshes = run.timed("mesh", mesh_stage, lc, geo)
     run.keep(meshes=meshes)
-    unit_solutions = run.timed("fe", fe_stage, lc, geo, meshes)
+    unit_solutions = run.timed("fe", fe_stage, lc, geo, meshes.throws)
     run.keep(fe=FeModels(unit_solutions))
     if needs_scf(lc, geo):
-        run.keep(fe=FeModels(unit_solutions, run.timed("scf", scf_stage, lc, geo, meshes)))
+        run.keep(fe=FeModels(unit_solutions, run.timed("scf", scf_stage, lc, geo, meshes.throws)))
     cycles = run.out.cycles
     assert cycles is not None
     if lc.torsion is not None:  # torsional vibration (docs/torsion.md): only with a [torsion] section
@@ -120,7 +121,7 @@ def run_stages(run: Run) -> None:
                 lc.geometry,
                 lc.material,
                 lc.fe,
-                meshes,
+                meshes.throws,
                 cycles.operating,
                 cache_dir=geo.plan.cache_dir,
                 unit_solutions=unit_solutions,
@@ -129,7 +130,7 @@ def run_stages(run: Run) -> None:
     fields = opts.render or opts.write_vtu
     if geo.shaft is not None:  # the whole shaft on its bearings (docs/shaft.md)
         with threads(assess_threads_of(opts)):
-            shaft = run.timed("whole_shaft", shaft_stage.whole_shaft_stage, lc, geo, run.out, fields)
+            shaft = run.timed("whole_shaft", shaft_stage.whole_shaft_stage, lc, geo, meshes, run.out, fields)
         run.keep(whole_shaft=shaft)
     with threads(assess_threads_of(opts)):
         assessment = run.timed("assess", assess_stage, lc, run.out, fields)
@@ -144,8 +145,9 @@ def run_stages(run: Run) -> None:
         else:
             assert ws.cases is not None
             ws.cases.model.free_factors()
-        # the shaft's unit cases are read: the record keeps its results, not its working model
-        run.keep(whole_shaft=dataclasses.replace(ws, cases=None))
+        # the shaft's unit cases are read: the record keeps its results, not its working
+        # model (its unit cases and its mesh)
+        run.keep(whole_shaft=dataclasses.replace(ws, cases=None), meshes=dataclasses.replace(meshes, shaft=None))
 
 
 def assess_threads_of(options: CheckOptions) -> int:
@@ -174,7 +176,6 @@ def geometry_stage(lc: LoadCase, options: CheckOptions, balance: BalanceResult |
     g = _require_geometry(lc)
     if isinstance(g, CadInput):
         return cad_geometry_stage(lc, g, options, balance)
-    layout = shaft_layout(lc)
     plan = plan_meshes(
         g,
         tuple(t.name for t in lc.engine.throws),
@@ -183,7 +184,7 @@ def geometry_stage(lc: LoadCase, options: CheckOptions, balance: BalanceResult |
         max_elements=options.max_elements,
         cache_dir=options.cache_dir,
         file=lc.source_file,
-        shaft=layout,
+        shaft=shaft_layout(lc),
     )
     # the study's finest level at the command line's size (validate: at the load case's)
     check_study_fillets(g, lc.mesh, plan.preset, options.convergence, lc.source_file)
@@ -192,7 +193,7 @@ def geometry_stage(lc: LoadCase, options: CheckOptions, balance: BalanceResult |
         wanted = tuple(t.name for t in g.throws)
     solids = throw_solids(g, wanted) if wanted else None
     design = balance.design if balance is not None else None
-    return GeometryModel(plan, parametric_throws(g, plan.throws, lc.engine, solids, design), solids, shaft=layout)
+    return GeometryModel(plan, parametric_throws(g, plan.throws, lc.engine, solids, design), solids)
 
 
 def shaft_layout(lc: LoadCase) -> ShaftLayout | None:
@@ -210,16 +211,11 @@ def shaft_layout(lc: LoadCase) -> ShaftLayout | None:
     )
 
 
-def mesh_stage(lc: LoadCase, geo: GeometryModel) -> dict[str, ThrowMesh]:
-    """Quadratic tetrahedral mesh of each throw model of the plan (``mesh_throw``, or
-    ``mesh_cad_throw`` for a CAD file; cached by the hash of its inputs: equal throws are
-    meshed once)."""
-    g = _require_geometry(lc)
-    p = geo.plan
-    return {
-        key: mesh_source_throw(g, name, size=p.options, cache_dir=p.cache_dir, max_elements=p.max_elements)
-        for key, name in p.throws.items()
-    }
+def mesh_stage(lc: LoadCase, geo: GeometryModel) -> Meshes:
+    """Quadratic tetrahedral meshes of every model of the plan: each throw model and the
+    whole shaft when the plan holds it (``cad.source.mesh_models``, the one entry point;
+    cached by the hash of its inputs: equal throws are meshed once, for both models)."""
+    return mesh_models(_require_geometry(lc), geo.plan, geo.cad)
 
 
 def fe_options(lc: LoadCase) -> FeOptions:

@@ -180,7 +180,7 @@ def assessment_section(folder: Path, so: CaseOutputs, options) -> list[str]:
 def mesh_quality_section(folder: Path, so: CaseOutputs, options) -> list[str]:
     """Mesh statistics and FE quality indicators: DOF, solver, equilibrium error of
     every unit case, averaged vs unaveraged fillet stress (UR M53: within 5 %)."""
-    units_by_key, meshes = so.unit_solutions, so.meshes or {}
+    units_by_key, meshes = so.unit_solutions, so.meshes.throws if so.meshes is not None else {}
     if not units_by_key:
         return []
     averaging = {st.keys[0]: st.averaging for st in (so.assessment.states if so.assessment is not None else ())}

@@ -17,10 +17,11 @@ import pytest
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.oil_film import film_sweep, journal_bearing
 from fe_crank.assess.shaft import BearingState
-from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
 from fe_crank.geometry.oil import FilmSpec
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
+from fe_crank.mesh.shaft import mesh_shaft
 from fe_crank.pipeline.stages import shaft_layout
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,7 +36,8 @@ def test_inline4_film_follows_the_bearing_loads(mesh_cache):
     assert all(b.law.film is not None and b.law.model == "rigid" for b in layout.bearings)
     assert {(b.width, b.law.film.clearance, b.law.film.groove) for b in layout.bearings} == {(0.02, 28e-6, "full")}
     dyn = engine_cycles(lc.engine, lc.operating).operating
-    result, cases = analyse_whole_shaft(layout, lc.material, dyn, size="test", cache_dir=mesh_cache)
+    sm = mesh_shaft(layout, size="test", cache_dir=mesh_cache)
+    result, cases = analyse_whole_shaft(sm, lc.material, dyn, mass=throw_masses(layout))
     cases.model.free_factors()
     (state,) = film_sweep(layout, (BearingState(float(dyn.speed), FIRING, result.bearings),), result.crank_angle_deg)
     films = state.bearings

@@ -20,9 +20,10 @@ from helpers.shaft import Steel, small_engine, small_geometry
 from fe_crank import model
 from fe_crank.cad import CadInput, recognise
 from fe_crank.cad.engine import engine_keys
-from fe_crank.cad.whole import cad_shaft_layout, cad_shaft_mesh, cad_throw_masses
+from fe_crank.cad.source import mesh_source_shaft
+from fe_crank.cad.whole import cad_shaft_layout, cad_throw_masses
 from fe_crank.errors import InputError
-from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
 from fe_crank.geometry.shaft import shaft_layout
 from fe_crank.mechanism.dynamics import analyse
 from fe_crank.mesh.shaft import joints
@@ -72,15 +73,11 @@ def test_main_bearing_loads_equal_the_parametric_models(shaft):
     _, e, par, cad, features, drawn, folder = shaft
     dyn = analyse(e, model.OperatingPoint(speed=SPEED))
     cache = folder / "cache"
-    ref, ref_cases = analyse_whole_shaft(par, Steel(), dyn, size="test", cache_dir=cache)
+    ref_mesh = mesh_source_shaft(par.geometry, par, size="test", cache_dir=cache)
+    ref, ref_cases = analyse_whole_shaft(ref_mesh, Steel(), dyn, mass=throw_masses(par))
     ref_cases.model.free_factors()
-
-    def mesher(*, size, cache_dir, max_elements):
-        return cad_shaft_mesh(cad, features, drawn, size=size, cache_dir=cache_dir, max_elements=max_elements)
-
-    got, cases = analyse_whole_shaft(
-        drawn, Steel(), dyn, size="test", cache_dir=cache, mesher=mesher, mass=cad_throw_masses(features, drawn)
-    )
+    drawn_mesh = mesh_source_shaft(cad, drawn, size="test", cache_dir=cache, features=features)
+    got, cases = analyse_whole_shaft(drawn_mesh, Steel(), dyn, mass=cad_throw_masses(features, drawn))
     cases.model.free_factors()
     sm = cases.model.mesh
     # one drawn throw mesh for both throws, turned by 180 deg: the end faces meet node to node

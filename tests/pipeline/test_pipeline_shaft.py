@@ -24,8 +24,9 @@ from fe_crank.assess.results import schema_path
 from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.fe.core.stress import stress_at_selected_nodes
 from fe_crank.fe.shaft.fields import piece_fields
-from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mesh.shaft import mesh_shaft
 from fe_crank.pipeline.stages import shaft_layout
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -67,9 +68,8 @@ def test_every_journal_carries_its_own_torque(tmp_path, mesh_cache):
     out = stage_outputs(DATA / "small_torsion.toml", mesh_cache, render=False, write_vtu=False)
     dyn = out.assessed_dynamics
     layout = shaft_layout(lc)
-    result, cases = analyse_whole_shaft(
-        layout, lc.material, dyn, size=out.geometry.plan.options, cache_dir=mesh_cache, torque_flow=True
-    )
+    sm = mesh_shaft(layout, size=out.geometry.plan.options, cache_dir=mesh_cache)
+    result, cases = analyse_whole_shaft(sm, lc.material, dyn, mass=throw_masses(layout), torque_flow=True)
     W = result.cycles[0].weights
     sense = layout.sense
     for k, pp in enumerate(cases.model.pieces):
@@ -183,11 +183,10 @@ def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path, mes
     layout = shaft_layout(lc)
     options = ShaftFeOptions(solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry)
     result, cases = analyse_whole_shaft(
-        layout,
+        mesh_shaft(layout, size=out.geometry.plan.options, cache_dir=mesh_cache),
         lc.material,
         out.assessed_dynamics,
-        size=out.geometry.plan.options,
-        cache_dir=mesh_cache,
+        mass=throw_masses(layout),
         options=options,
     )
     sweep = bearing_sweep(out.cycles, cases, layout, result)

@@ -19,11 +19,12 @@ from fe_crank.assess.shaft import BearingState, assess_shaft_throws, piece_unit_
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
 from fe_crank.fe.core.stress import von_mises
-from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft
+from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
 from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.geometry.oil import FilmSpec
 from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mesh.shaft import mesh_shaft
 from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
 from fe_crank.study.film import film_metrics
@@ -84,7 +85,8 @@ def full_solve(study):
     _, lc_path = write_candidate(res, r, d / "written")
     lc2 = load_loadcase(lc_path)
     layout2 = engine_shaft_layout(lc2.geometry, lc2.engine, geometry_file="g", engine_file="e")
-    return analyse_whole_shaft(layout2, lc2.material, res.states[0].dynamics, size="test", cache_dir=cache)
+    sm = mesh_shaft(layout2, size="test", cache_dir=cache)
+    return analyse_whole_shaft(sm, lc2.material, res.states[0].dynamics, mass=throw_masses(layout2))
 
 
 def _u(psi):

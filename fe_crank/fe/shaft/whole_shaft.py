@@ -1,7 +1,8 @@
 """The whole-shaft model's typed entry point: main-bearing loads and web moments over the cycle.
 
-``analyse_whole_shaft(layout, material, dynamics, size=...)`` meshes the shaft
-(``mesh.shaft``), condenses it onto its bearing-centre planes (``fe.shaft.model``), solves
+``analyse_whole_shaft(shaft_mesh, material, dynamics, mass=...)`` takes the shaft's mesh
+(``mesh.shaft.ShaftMesh``, meshed by ``cad.source.mesh_models`` in a check; this module
+meshes nothing), condenses it onto its bearing-centre planes (``fe.shaft.model``), solves
 the unit cases on the determinate base (``fe.shaft.cases``) and superposes them over the
 dynamics stage's cycle with the bearings' laws (``fe.shaft.cycle``), with the
 counterweights as built and without them.  ``dynamics``: the dynamics stage's result
@@ -39,8 +40,7 @@ from fe_crank.fe.shaft.model import ShaftFeOptions, build_shaft_model
 from fe_crank.geometry.mass import mass_properties
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.geometry.spec import BearingLaw
-from fe_crank.mesh.options import DEFAULT_CACHE_DIR, MeshOptions
-from fe_crank.mesh.shaft import mesh_shaft
+from fe_crank.mesh.shaft import ShaftMesh
 
 
 @dataclass(frozen=True)
@@ -364,47 +364,31 @@ def condensed_shaft(sm, material, options: ShaftFeOptions | None = None, *, torq
     return model, cases, time.perf_counter() - t0
 
 
-def mesh_shaft_of(layout: ShaftLayout):
-    """The parametric layout's mesher: ``mesh_shaft`` of ``layout``."""
-
-    def mesher(*, size, cache_dir, max_elements):
-        return mesh_shaft(layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
-
-    return mesher
-
-
 def analyse_whole_shaft(
-    layout: ShaftLayout,
+    sm: ShaftMesh,
     material,
     dynamics,
     *,
-    size: str | MeshOptions = "coarse",
-    cache_dir=DEFAULT_CACHE_DIR,
+    mass: dict,
     options: ShaftFeOptions | None = None,
     laws=None,
     torque_flow: bool = False,
     overspeed=(),
-    max_elements: int | None = None,
-    mesher=None,
-    mass: dict | None = None,
 ) -> tuple[WholeShaftResult, ShaftCases]:
-    """The whole shaft over the cycle (module doc); also returns the unit cases (stresses
-    by superposition: ``ShaftCases.recover`` with ``WholeShaftResult.cycles[i].weights``).
-    ``torque_flow``: every journal carries its own torque (``torque_flow_loads``: the
-    dynamics' journal torques, e.g. with the torsional stage's vibratory torque);
-    ``overspeed``: dynamics results of the overspeed cycles (with counterweights);
-    ``mesher``: ``(size, cache_dir, max_elements) -> ShaftMesh`` and ``mass``: throw name ->
-    mass properties, for a shaft whose throws are not the layout's parametric solids (a
-    drawn shaft, ``fe_crank.cad.whole``); default ``mesh_shaft`` and ``throw_masses``."""
+    """The whole shaft of the mesh ``sm`` (its layout ``sm.layout``) over the cycle (module
+    doc); also returns the unit cases (stresses by superposition: ``ShaftCases.recover``
+    with ``WholeShaftResult.cycles[i].weights``).  ``mass``: throw name -> the mass
+    properties of its solid (``throw_masses`` of a parametric layout; a drawn shaft's,
+    ``fe_crank.cad.whole.cad_throw_masses``); ``torque_flow``: every journal carries its
+    own torque (``torque_flow_loads``: the dynamics' journal torques, e.g. with the
+    torsional stage's vibratory torque); ``overspeed``: dynamics results of the overspeed
+    cycles (with counterweights)."""
+    layout = sm.layout
     t = {}
-    t0 = time.perf_counter()
-    sm = (mesher or mesh_shaft_of(layout))(size=size, cache_dir=cache_dir, max_elements=max_elements)
-    t["mesh"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     model, cases, t["cases"] = condensed_shaft(sm, material, options, torque_flow=torque_flow)
     t["condensation"] = time.perf_counter() - t0 - t["cases"]
     t0 = time.perf_counter()
-    mass = mass if mass is not None else throw_masses(layout)
     on, off = (shaft_cycle_of(cases, layout, mass, dynamics, counterweights=cw, laws=laws) for cw in (True, False))
     os_cycles = tuple(shaft_cycle_of(cases, layout, mass, d, laws=laws) for d in overspeed)
     bearings = bearing_state_of(cases, layout, dynamics, laws=laws, stated=(on, off))[0]
