@@ -10,6 +10,7 @@ from pathlib import Path
 
 from fe_crank.geometry.solid import throw_solid
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.geometry.step import write_shaft_step
 from fe_crank.gmsh_io import gmsh_session
 
 
@@ -306,30 +307,6 @@ def half_disc_throw_step(path: Path, *, rc=0.06, fillet: float | None = None, rw
 
 
 def layout_step(layout, path: Path, *, nose: tuple[float, float] | None = None, flange=None) -> Path:
-    """The whole shaft as ``fe_crank.geometry.shaft`` places it (``ShaftLayout``): each
-    throw's solid (journal stubs to the bearing centres) turned to its angle on the shaft
-    and put at its ``axial_position``, the end journals to their length, fused into one
-    solid; ``nose``/``flange``: (diameter, length) of a plain cylinder beyond the front /
-    rear end journal (so that the end journals end in a shoulder, not a free face)."""
-    from fe_crank.mesh.shaft import throw_angles
-
-    g = layout.geometry
-    with gmsh_session() as gmsh:
-        occ = gmsh.model.occ
-        vols = []
-        for t, a in zip(layout.throws, throw_angles(layout), strict=True):
-            solid, _ = throw_solid(g, t.spec)
-            occ.rotate([(3, solid)], 0, 0, 0, 0, 0, 1, -a)
-            occ.translate([(3, solid)], 0, 0, t.z)
-            vols.append((3, solid))
-        rj = g.journal_diameter / 2
-        first, last = layout.journals[0], layout.journals[-1]
-        vols.append((3, occ.addCylinder(0, 0, first.z0, 0, 0, first.centre - first.z0, rj)))
-        vols.append((3, occ.addCylinder(0, 0, last.centre, 0, 0, last.z1 - last.centre, rj)))
-        if nose is not None:
-            vols.append((3, occ.addCylinder(0, 0, first.z0 - nose[1], 0, 0, nose[1], nose[0] / 2)))
-        if flange is not None:
-            vols.append((3, occ.addCylinder(0, 0, last.z1, 0, 0, flange[1], flange[0] / 2)))
-        out, _ = occ.fuse(vols[:1], vols[1:])
-        assert len(out) == 1
-        return _write(gmsh, path)
+    """The whole shaft as ``fe_crank.geometry.shaft`` places it, one STEP solid
+    (``fe_crank.geometry.step.write_shaft_step``: the owner of the writing)."""
+    return write_shaft_step(layout, path, nose=nose, flange=flange)
