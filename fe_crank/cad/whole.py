@@ -27,14 +27,19 @@ The ``ShaftLayout``'s ``geometry`` carries the drawing's recognised dimensions t
 whole-shaft stage reads (crank radius, journal and pin diameters, pin length, web
 thickness, bearing centre to web, fillet radii; no counterweight specs: the web moments
 take a drawn counterweight over its web's thickness, ``fe.shaft.cycle``); its web outline is the web's recognised side radius
-(no parametric solid is built from it).  The bearings are ``ShaftSpec``'s defaults: one
-rigid main bearing per journal, named ``"1"``, ``"2"``, ... from the front, their widths
-``[cad] bearing_width``, else the drawn journals' flats between the fillets (not stated:
-no specific-load criterion).
+(no parametric solid is built from it).  The bearings are the engine's, not the drawing's:
+``[cad.shaft]`` states them as a geometry's ``[shaft]`` does (``bearing_spec``: widths, laws
+with the oil film, per-bearing entries, the thrust bearing, the stiffness range, the power
+take-off, flywheel and pulley; ``fe_crank.geometry.shaft.main_bearings`` places them on the
+drawn journals), ``[cad] bearing_width`` their default width; where neither states them,
+``ShaftSpec``'s defaults: one rigid main bearing per journal, named ``"1"``, ``"2"``, ...
+from the front, as wide as the drawn journal's flat between its fillets (not stated: no
+specific-load criterion).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -247,6 +252,16 @@ def recognised_geometry(features: CadFeatures, cad: CadInput, angles: dict[str, 
     )
 
 
+def bearing_spec(cad: CadInput) -> ShaftSpec:
+    """The drawn shaft's main bearings as ``[cad.shaft]`` states them (a geometry's
+    ``[shaft]`` without what the drawing gives), ``[cad] bearing_width`` their default width;
+    ``ShaftSpec``'s defaults where neither is given (rigid, one per journal)."""
+    spec = cad.shaft if cad.shaft is not None else ShaftSpec()
+    if cad.bearing_width is not None:
+        spec = dataclasses.replace(spec, bearing_width=cad.bearing_width)
+    return spec
+
+
 def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_file: str) -> ShaftLayout:
     """The drawn shaft placed on its drawn bearings (module doc).  The engine check
     (``fe_crank.cad.engine.engine_keys``) has run: the throws are the engine's, in order."""
@@ -303,9 +318,12 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
     journals.append(
         JournalSpan(len(z), z[-1] + last.webs[1].z_outer, z[-1] + _end_reach(features, last, 1), z[-1] + b2)
     )
-    spec = ShaftSpec(bearing_width=cad.bearing_width)
+    spec = bearing_spec(cad)
     gf, ef = str(cad.file), engine_file
-    bearings = main_bearings(spec, journals, g, gf, ef)
+    try:
+        bearings = main_bearings(spec, journals, g, gf, ef)
+    except InputError as e:  # the keys of [cad.shaft], in the file that states them
+        raise InputError(e.reason, file=cad.toml or gf, key=f"cad.{e.key}" if e.key else "cad.shaft") from None
     return ShaftLayout(
         geometry=g,
         throws=throws,
@@ -319,7 +337,8 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
         power_takeoff=spec.power_takeoff,
         geometry_file=gf,
         engine_file=ef,
-        stiffness_range=DEFAULT_STIFFNESS_RANGE,
+        stiffness_range=spec.stiffness_range or DEFAULT_STIFFNESS_RANGE,
+        end_loads=spec.end_loads,
     )
 
 
@@ -358,6 +377,7 @@ def cad_shaft_mesh(
 __all__ = [
     "MIN_SECTORS",
     "SAME_TOL",
+    "bearing_spec",
     "cad_shaft_layout",
     "cad_shaft_mesh",
     "cad_throw_masses",

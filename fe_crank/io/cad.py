@@ -31,10 +31,15 @@ from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.base import Strict, read_toml, record_file, validate
 from fe_crank.io.geometry import geometry_from_dict, parse_geometry
 from fe_crank.io.includes import read_included, resolve_reference, with_include_context
+from fe_crank.io.shaft import ShaftInput, shaft_spec
 from fe_crank.io.units import Density, Length, to_si
 
 _AXES = {f"{s}{a}": (s, a) for s in "+-" for a in "xyz"}
 FaceList = list[int]
+
+
+#: the ``[shaft]`` keys a drawing gives itself (refused in ``[cad.shaft]``)
+DRAWN_SHAFT_KEYS = ("pitch", "end_journal_length", "nose", "flange")
 
 
 class CadSection(Strict):
@@ -49,6 +54,7 @@ class CadSection(Strict):
     pin_recess: Length | None = None
     journal_recess: Length | None = None
     bearing_width: Length | None = None
+    shaft: ShaftInput | None = None  # the main bearings of a drawn whole shaft (``DRAWN_SHAFT_KEYS`` refused)
     faces: dict[str, FaceList | dict[str, FaceList]] = Field(default_factory=dict, max_length=256)
 
     @field_validator("length_unit")
@@ -81,6 +87,19 @@ class CadSection(Strict):
         if v is not None and (v < 0 or (v == 0 and positive)):
             raise ValueError("must be positive" if positive else "must not be negative")
         return v
+
+    @model_validator(mode="after")
+    def _drawn(self):
+        if self.shaft is not None:
+            drawn = [k for k in DRAWN_SHAFT_KEYS if getattr(self.shaft, k) is not None]
+            if drawn:
+                raise ValueError(
+                    f"shaft.{drawn[0]}: the drawing gives the shaft's pitch, end journals, nose and flange; "
+                    "[cad.shaft] takes the main bearings and what acts on the shaft's ends only"
+                )
+            if self.bearing_width is not None and self.shaft.bearing_width is not None:
+                raise ValueError("bearing_width: give it once, in [cad] or in [cad.shaft]")
+        return self
 
     @model_validator(mode="after")
     def _density(self):
@@ -163,6 +182,7 @@ def cad_from_dict(data: dict, file: str | Path, prefix: str = "cad", *, file_key
         pin_recess=raw.pin_recess,
         journal_recess=raw.journal_recess,
         bearing_width=raw.bearing_width,
+        shaft=shaft_spec(raw.shaft),
         faces=_faces(raw.faces, raw.throws, str(file), prefix),
         toml=str(file),
         file_key=file_key,
