@@ -19,9 +19,11 @@ others are meshed each on its own, with end faces that still meet node to node (
 journal, the same sectors; checked when the shaft is joined).  The journals, pin length,
 webs and bearing centres must be every throw's the same (``COMMON``: one geometry carries
 them for the whole-shaft stage); a drawing whose throws differ there is refused, naming
-the throw and the quantity, as is a drawing with bolted bodies (their forces on the shaft
-are not in the whole-shaft model) or one whose throws are not evenly pitched (the
-bearing centres of neighbours must meet).
+the throw and the quantity, as is one whose throws are not evenly pitched (the bearing
+centres of neighbours must meet).  Bodies bolted to the shaft (``[cad] bodies =
+"bolted"``, ``CadFeatures.bolted``: kept out of the meshes) enter the layout as
+``BoltedMass``es: each one's centrifugal force (its exact m r) on the journal beside its
+web at its centroid's z, with the counterweights (``fe.shaft.whole_shaft``).
 
 The ``ShaftLayout``'s ``geometry`` carries the drawing's recognised dimensions that the
 whole-shaft stage reads (crank radius, journal and pin diameters, pin length, web
@@ -51,6 +53,7 @@ from fe_crank.errors import InputError
 from fe_crank.geometry.shaft import JournalSpan, PlacedThrow, ShaftLayout, main_bearings
 from fe_crank.geometry.spec import (
     DEFAULT_STIFFNESS_RANGE,
+    BoltedMass,
     CrankGeometry,
     ShaftSpec,
     ThrowSpec,
@@ -271,14 +274,6 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
             file=str(cad.file),
             key=cad.file_key,
         )
-    if features.bolted:
-        raise InputError(
-            f"the CAD file's {len(features.bolted)} bolted bodies are kept out of the FE model, and their forces on "
-            "the shaft out of the whole-shaft model: the main-bearing loads would miss them; fuse them to the shaft "
-            f'(bodies = "fuse" in {cad.where}) for the whole-shaft model',
-            file=str(cad.file),
-            key="cad.bodies",
-        )
     require_common_dimensions(features, cad)
     require_round_journals(features, cad)
     first = features.throws[0]
@@ -324,6 +319,10 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
         bearings = main_bearings(spec, journals, g, gf, ef)
     except InputError as e:  # the keys of [cad.shaft], in the file that states them
         raise InputError(e.reason, file=cad.toml or gf, key=f"cad.{e.key}" if e.key else "cad.shaft") from None
+    bolted = tuple(
+        BoltedMass(f"bolted_body_{i}", b.throw, b.web, b.mass.centroid[2], b.mass.unbalance_vector)
+        for i, b in enumerate(features.bolted, start=1)
+    )
     return ShaftLayout(
         geometry=g,
         throws=throws,
@@ -339,6 +338,7 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
         engine_file=ef,
         stiffness_range=spec.stiffness_range or DEFAULT_STIFFNESS_RANGE,
         end_loads=spec.end_loads,
+        bolted=bolted,
     )
 
 

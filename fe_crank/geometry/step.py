@@ -13,7 +13,9 @@ shaft against the parametric one.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.geometry.solid import throw_solid
@@ -26,10 +28,12 @@ def write_shaft_step(
     *,
     nose: tuple[float, float] | None = None,
     flange: tuple[float, float] | None = None,
+    bodies: Callable[[Any], object] | None = None,
 ) -> Path:
     """Write the layout's shaft as one solid (module doc) to ``path`` and return it;
     ``nose``/``flange``: (diameter, length) in m of a plain cylinder beyond the front / rear
-    end journal."""
+    end journal; ``bodies(gmsh)``: adds further solids (e.g. bolted counterweights) after
+    the shaft is fused, written beside it as separate solids."""
     path = Path(path)
     g = layout.geometry
     with gmsh_session() as gmsh:
@@ -54,6 +58,9 @@ def write_shaft_step(
         if len(out) != 1:
             raise RuntimeError(f"the shaft's solids fused into {len(out)} solids, not one")
         occ.synchronize()
+        if bodies is not None:
+            bodies(gmsh)
+            occ.synchronize()
         gmsh.option.setString("Geometry.OCCTargetUnit", "M")  # the model is in m; STEP is written in mm
         gmsh.write(str(path))
     return path

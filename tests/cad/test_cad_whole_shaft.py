@@ -31,10 +31,11 @@ import math
 
 import numpy as np
 import pytest
-from helpers.cad_files import layout_step
+from helpers.cad_files import bolted_shaft_step, layout_step
 from helpers.paths import ROOT
-from helpers.shaft import small_engine, small_geometry
+from helpers.shaft import Steel, small_engine, small_geometry
 
+from fe_crank import model
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState, assess_shaft_throws
@@ -53,6 +54,7 @@ from fe_crank.pipeline.stages import shaft_layout as case_layout
 
 pytestmark = pytest.mark.heavy
 POS = 1e-6  # m
+SPEED = 4000 * 2 * np.pi / 60
 #: the mesh noise at ``test`` (module doc): bearing loads (measured 5.5e-4 on the
 #: parametric model's own two meshes) ...
 LOAD_NOISE = 2e-3
@@ -402,3 +404,71 @@ def test_throw_angles_the_joined_meshes_cannot_take_are_refused(shaft):
     with pytest.raises(InputError, match=r"\(170 deg\) are not multiples of 360/24 deg") as err:
         cad_shaft_layout(features, cad, turned, engine_file="e.toml")
     assert err.value.key == "cad.throws"
+
+
+@pytest.fixture(scope="module")
+def bolted(tmp_path_factory):
+    """A two-throw shaft (throws at 0 and 90 deg, no counterweights of its own) with two
+    counterweights bolted on as separate solids (120 deg annular sectors 20-36 mm against
+    the far side of web 1 of throw 1 and web 2 of throw 2, two 5 mm bolt holes each),
+    written to STEP by fe-crank and read back with ``bodies = "bolted"``."""
+    angles = [0.0, np.pi / 2]
+    g, e = small_geometry(angles, counterweights=False), small_engine(angles, pitch=0.066)
+    par = shaft_layout(g, e, geometry_file="g.toml", engine_file="e.toml")
+    folder = tmp_path_factory.mktemp("bolted")
+    step, exact = bolted_shaft_step(
+        par,
+        folder / "bolted.step",
+        ((0, 1), (1, 2)),
+        r0=0.02,
+        r1=0.036,
+        angle=math.radians(120),
+        nose=(0.024, 0.02),
+        flange=(0.05, 0.01),
+    )
+    cad = CadInput(step, density=g.density, bodies="bolted")
+    features = recognise(cad)
+    engine_keys(features, cad, e, engine_file="e.toml", loadcase="case.toml")
+    return g, e, cad, features, cad_shaft_layout(features, cad, e, engine_file="e.toml"), exact, folder
+
+
+def test_bolted_counterweights_are_recognised_per_web_with_their_exact_mass(bolted):
+    g, _, _, features, drawn, exact, _ = bolted
+    assert [(b.throw, b.web) for b in features.bolted] == [("1", 1), ("2", 2)]
+    for b, placed, (volume, c) in zip(features.bolted, drawn.bolted, exact, strict=True):
+        m = g.density * volume  # OpenCASCADE's exact integrals of the written solid
+        assert b.mass.mass == pytest.approx(m, rel=1e-6)
+        assert math.hypot(*b.mass.unbalance_vector) == pytest.approx(m * math.hypot(c[0], c[1]), rel=1e-6)
+        assert sorted(h.diameter for h in b.holes) == pytest.approx([0.005, 0.005], abs=1e-9)
+        t = next(x for x in drawn.throws if x.name == b.throw)
+        assert (placed.throw, placed.web, t.z + placed.z) == (b.throw, b.web, pytest.approx(c[2], abs=POS))
+
+
+def test_whole_shaft_bearing_loads_carry_the_bolted_counterweights(bolted):
+    """The bearings carry the bolted bodies' centrifugal forces with the counterweights and
+    not without: at every angle the loads' difference adds up to the bodies' exact
+    omega^2 m r (force) and its moment about z = 0, the statics of the written solids."""
+    g, e, cad, features, drawn, exact, folder = bolted
+    dyn = analyse(e, model.OperatingPoint(speed=SPEED))
+
+    def mesher(*, size, cache_dir, max_elements):
+        return cad_shaft_mesh(cad, features, drawn, size=size, cache_dir=cache_dir, max_elements=max_elements)
+
+    result, cases = analyse_whole_shaft(
+        drawn,
+        Steel(),
+        dyn,
+        size="test",
+        cache_dir=folder / "cache",
+        mesher=mesher,
+        mass=cad_throw_masses(features, drawn),
+    )
+    cases.model.free_factors()
+    on, off = result.cycles  # the stated (rigid) bearings' loads, with and without counterweights
+    dF = sum(a.load_n - b.load_n for a, b in zip(on.bearings, off.bearings, strict=True))
+    dM = sum(a.z * (a.load_n - b.load_n) for a, b in zip(on.bearings, off.bearings, strict=True))
+    F = sum(SPEED**2 * g.density * v * np.array(c[:2]) for v, c in exact)  # shaft frame
+    M = sum(SPEED**2 * g.density * v * c[2] * np.array(c[:2]) for v, c in exact)
+    assert np.linalg.norm(F) > 100.0  # N: the two bodies' forces do not cancel
+    assert np.hypot(*dF.T) == pytest.approx(np.full(len(dF), np.linalg.norm(F)), rel=1e-6)
+    assert np.hypot(*dM.T) == pytest.approx(np.full(len(dM), np.linalg.norm(M)), rel=1e-6, abs=1e-9)

@@ -310,3 +310,36 @@ def layout_step(layout, path: Path, *, nose: tuple[float, float] | None = None, 
     """The whole shaft as ``fe_crank.geometry.shaft`` places it, one STEP solid
     (``fe_crank.geometry.step.write_shaft_step``: the owner of the writing)."""
     return write_shaft_step(layout, path, nose=nose, flange=flange)
+
+
+def bolted_shaft_step(
+    layout, path: Path, where, *, r0: float, r1: float, angle: float, holes=(0.005, 0.028), nose=None, flange=None
+) -> tuple:
+    """The whole shaft of ``layout`` (``write_shaft_step``) and, as separate solids, an
+    annular-sector counterweight (``r0`` .. ``r1``, included ``angle``, opposite the pin,
+    as thick as the web, against the web's far side) on each (throw index, web) of
+    ``where``, each with two axial bolt holes (``holes``: diameter, pitch radius; at
+    +-angle/4 from its middle); ``nose``, ``flange`` as ``write_shaft_step``'s.  Returns the path and each body's exact OpenCASCADE mass
+    properties (file frame: volume m^3, centroid (x, y, z) m)."""
+    g = layout.geometry
+    zp, t = g.crankpin_length / 2, g.web_thickness
+    found = []
+
+    def bodies(gmsh):
+        occ = gmsh.model.occ
+        for k, web in where:
+            th = layout.throws[k]
+            z0 = -zp - t if web == 1 else zp
+            body = _sector(occ, r0, r1, angle, z0, t)
+            for s in (-1.0, 1.0):
+                a = s * angle / 4
+                x, y = holes[1] * math.sin(a), -holes[1] * math.cos(a)
+                hole = occ.addCylinder(x, y, z0 - 0.001, 0, 0, t + 0.002, holes[0] / 2)
+                out, _ = occ.cut([(3, body)], [(3, hole)])
+                body = out[0][1]
+            occ.rotate([(3, body)], 0, 0, 0, 0, 0, 1, -layout.sense * th.angle)
+            occ.translate([(3, body)], 0, 0, th.z)
+            occ.synchronize()
+            found.append((occ.getMass(3, body), tuple(occ.getCenterOfMass(3, body))))
+
+    return write_shaft_step(layout, path, nose=nose, flange=flange, bodies=bodies), tuple(found)

@@ -48,6 +48,7 @@ class EndCycleLoad:
     name: str  # its unit cases are ``<name>.x``, ``<name>.y`` (1 N at its reference point)
     z: float  # m, its centre plane
     force: np.ndarray  # (n, 2) N on the shaft, shaft frame
+    counterweight: bool = False  # a bolted counterweight's force: left out of the cycle without counterweights
 
 
 @dataclass(frozen=True)
@@ -201,7 +202,8 @@ def _weights(cases, loads, speed, counterweights, front_torque, ends=()):
     if front_torque is not None:
         extra["torque_front"] = np.asarray(front_torque, float)
     for e in ends:
-        extra[f"{e.name}.x"], extra[f"{e.name}.y"] = e.force[:, 0], e.force[:, 1]
+        F = np.asarray(e.force, float) * (1.0 if counterweights or not e.counterweight else 0.0)
+        extra[f"{e.name}.x"], extra[f"{e.name}.y"] = F[:, 0], F[:, 1]
     return by, case_weights(cases, by, speed, counterweights, extra)
 
 
@@ -301,7 +303,8 @@ def _web_moments(cases, by, f, speed, psi, mass, counterweights, spin=None, ends
     for j, b in enumerate(layout.bearings):
         items.append((b.z, f[:, j]))
     for e in ends:
-        items.append((e.z, np.asarray(e.force, float)))
+        if counterweights or not e.counterweight:
+            items.append((e.z, np.asarray(e.force, float)))
     out = []
     for th in layout.throws:
         for web, zc in ((1, th.z - zp - t / 2), (2, th.z + zp + t / 2)):
