@@ -6,7 +6,10 @@ one of ``density`` and ``material`` (a name of the material library, whose densi
 taken).  ``length_unit`` is a unit of length (``"mm"``, ``"in"``); ``axis`` one of
 ``"+x"`` ... ``"-z"`` or three numbers; ``[cad.faces]`` maps the feature names of
 ``fe_crank.cad.config.THROW_FACE_GROUPS`` and ``axis`` to lists of face numbers, in
-one table per throw name for a file with several throws.
+one table per throw name for a file with several throws.  ``[cad.shaft]``: a drawn whole
+shaft's main bearings, parsed as a geometry's ``[shaft]`` (``fe_crank.io.shaft``), the keys
+the drawing gives (``DRAWN_SHAFT_KEYS``) refused, and ``bearing_width`` in ``[cad]`` or
+there, not both.
 
 In a load case (``parse_geometry_source``): ``geometry = "crank.step"`` (a file with a
 CAD extension) is read as the load case's ``[cad]`` section says, ``file`` then being

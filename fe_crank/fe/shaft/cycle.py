@@ -4,7 +4,8 @@
 ``fe.shaft.cases`` at every crank angle: each throw's pin force (throw frame, N) by the two
 pin cases that bracket it, the centrifugal cases times omega^2, and the bearings' forces
 from their laws (``fe.shaft.bearings``); once with the counterweights as built and once without
-them (their centrifugal case switched off).  Results are frozen and in the engine frame:
+them (their centrifugal case switched off, and the forces of counterweights bolted on and
+not meshed, ``EndCycleLoad.counterweight``, ``ShaftLayout.bolted``).  Results are frozen and in the engine frame:
 the shaft frame turned by the shaft's angle psi(theta) (``model.crank_angle_global`` of
 the reference throw, from +y towards +x).
 

@@ -4,7 +4,9 @@
 (``mesh.shaft``), condenses it onto its bearing-centre planes (``fe.shaft.model``), solves
 the unit cases on the determinate base (``fe.shaft.cases``) and superposes them over the
 dynamics stage's cycle with the bearings' laws (``fe.shaft.cycle``), with the
-counterweights as built and without them.  ``dynamics``: the dynamics stage's result
+counterweights as built and without them (counterweights bolted on and not meshed,
+``ShaftLayout.bolted``: their centrifugal forces at their centroids, coupled to the
+journal beside their web, ``end_load_cases``).  ``dynamics``: the dynamics stage's result
 (``theta``, ``speed`` and per throw ``pin_force`` (n, 2) in the throw frame and
 ``angle_global``).  ``WholeShaftResult.to_dict()`` gives the fields of results.json.
 
