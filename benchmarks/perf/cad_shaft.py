@@ -6,9 +6,9 @@ engine, the end journals to their length) is written to STEP by fe-crank itself 
 throw's solid, ``geometry.solid.throw_solid``, turned and placed, fused, gmsh's
 OpenCASCADE writer), with a nose and a flange beyond the end journals so that these end
 in shoulders and their bearings sit at their middles as the parametric layout puts them.
-A copy of the load case reads that file (``[cad]``, the geometry's density), with the
-criteria a drawing cannot feed dropped (the bearing specific load: a drawing states no
-bearing shell; the bolt criteria: no bolt data).  Both cases run through ``fe-crank check`` in their own process, each
+A copy of the load case reads that file (``[cad]``, the geometry's density, its ``[shaft]``
+bearings as ``[cad.shaft]``), with the criteria a drawing cannot feed dropped (the bolt
+criteria: no bolt data).  Both cases run through ``fe-crank check`` in their own process, each
 with its own empty mesh cache (the meshing is part of the cost), one after the other:
 
     .venv/bin/python benchmarks/perf/cad_shaft.py --preset coarse
@@ -35,47 +35,41 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def write_step(lc_path: Path, path: Path) -> float:
-    """The load case's parametric shaft as one STEP solid; returns the geometry's density."""
-    from fe_crank.geometry.solid import throw_solid
-    from fe_crank.gmsh_io import gmsh_session
+    """The load case's parametric shaft as one STEP solid (``geometry.step.write_shaft_step``,
+    a nose of 0.8 and a flange of 1.6 journal diameters); returns the geometry's density."""
+    from fe_crank.geometry.step import write_shaft_step
     from fe_crank.io.loadcase import load_loadcase
-    from fe_crank.mesh.shaft import throw_angles
     from fe_crank.pipeline.stages import shaft_layout
 
     lc = load_loadcase(lc_path)
     layout = shaft_layout(lc)
     assert layout is not None, "the load case models no whole shaft"
-    g = layout.geometry
-    rj = g.journal_diameter / 2
-    with gmsh_session() as gmsh:
-        occ = gmsh.model.occ
-        vols = []
-        for t, a in zip(layout.throws, throw_angles(layout), strict=True):
-            solid, _ = throw_solid(g, t.spec)
-            occ.rotate([(3, solid)], 0, 0, 0, 0, 0, 1, -a)
-            occ.translate([(3, solid)], 0, 0, t.z)
-            vols.append((3, solid))
-        first, last = layout.journals[0], layout.journals[-1]
-        vols.append((3, occ.addCylinder(0, 0, first.z0, 0, 0, first.centre - first.z0, rj)))
-        vols.append((3, occ.addCylinder(0, 0, last.centre, 0, 0, last.z1 - last.centre, rj)))
-        vols.append((3, occ.addCylinder(0, 0, first.z0 - 0.03, 0, 0, 0.03, 0.8 * rj)))  # nose
-        vols.append((3, occ.addCylinder(0, 0, last.z1, 0, 0, 0.015, 1.6 * rj)))  # flange
-        out, _ = occ.fuse(vols[:1], vols[1:])
-        assert len(out) == 1
-        occ.synchronize()
-        gmsh.option.setString("Geometry.OCCTargetUnit", "M")
-        gmsh.write(str(path))
-    return g.density
+    d = layout.geometry.journal_diameter
+    write_shaft_step(layout, path, nose=(0.8 * d, 0.03), flange=(1.6 * d, 0.015))
+    return layout.geometry.density
 
 
 def cad_case(lc_path: Path, step: Path, density: float, folder: Path) -> Path:
-    """A copy of the load case that reads ``step`` (absolute paths: it lives in ``folder``)."""
+    """A copy of the load case that reads ``step`` (absolute paths: it lives in ``folder``),
+    with the geometry's ``[shaft]`` bearings (widths, law, oil) as ``[cad.shaft]``: the
+    bearings are the engine's, not the drawing's (what the drawing gives, its pitch, end
+    journals, nose and flange, left out)."""
     text = lc_path.read_text()
+    geometry = re.search(r'^geometry = "(.*)"$', text, flags=re.M)
+    assert geometry is not None
+    shaft = re.search(r"^\[shaft\]\n(.*?)(?=^\[|\Z)", (lc_path.parent / geometry[1]).read_text(), flags=re.M | re.S)
+    bearings = ""
+    if shaft is not None:
+        kept = [
+            line
+            for line in shaft[1].splitlines()
+            if not re.match(r"\s*(pitch|end_journal_length|nose|flange)\s*=", line)
+        ]
+        bearings = "\n[cad.shaft]\n" + "\n".join(kept).strip() + "\n"
     text = re.sub(r'^engine = "(.*)"$', lambda m: f'engine = "{(lc_path.parent / m[1]).resolve()}"', text, flags=re.M)
     text = re.sub(r'^geometry = ".*"$', f'geometry = "{step}"', text, flags=re.M)
-    text = re.sub(r"^max_main_bearing_specific_load.*\n", "", text, flags=re.M)
     text = re.sub(r"^(min|max)_bolt_.*\n", "", text, flags=re.M)  # a drawing gives no bolt data
-    text = text.replace("\n[material]", f'\n[cad]\ndensity = "{density} kg/m^3"\n\n[material]', 1)
+    text = text.replace("\n[material]", f'\n[cad]\ndensity = "{density} kg/m^3"\n{bearings}\n[material]', 1)
     out = folder / "case_step.toml"
     out.write_text(text)
     return out

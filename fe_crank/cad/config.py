@@ -18,6 +18,13 @@
     bearing_width = "16 mm"      # optional: the main bearings' shell width on a drawn whole
                                  # shaft (for the bearing specific load)
 
+    [cad.shaft]                  # optional, a drawn whole shaft: its main bearings as a
+    bearing_width = "20 mm"      # geometry's [shaft] states them (widths, laws, oil film,
+    bearing = { model = "hydrodynamic", clearance = "28 um", viscosity = "6 mPa*s" }
+                                 # stiffness range, thrust bearing, power take-off, flywheel,
+                                 # pulley; fe_crank.io.shaft); not pitch, end_journal_length,
+                                 # nose or flange: the drawing gives those
+
     [cad.faces]                  # optional: face numbers fe-crank reports, naming a feature
     axis = [15, 33]              # faces whose common axis is the crank axis
     journal_1 = [15]             # a single-throw file: the throw model's group names
@@ -36,6 +43,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+
+from fe_crank.geometry.spec import ShaftSpec
 
 #: how separate solids in the file are treated
 BODIES = ("one", "fuse", "bolted")
@@ -84,6 +93,9 @@ class CadInput:
     pin_recess: float | None = None  # m, UR M53 T_H
     journal_recess: float | None = None  # m, UR M53 T_G
     bearing_width: float | None = None  # m, every main bearing's shell on a drawn whole shaft
+    shaft: ShaftSpec | None = (
+        None  # ``[cad.shaft]``: a drawn whole shaft's main bearings (no pitch, ends, nose, flange)
+    )
     faces: tuple[FaceOverride, ...] = ()
     toml: str = ""  # the file holding the [cad] section ("" when built in Python)
     file_key: str = "cad.file"  # the key that names the CAD file ("geometry" in a load case)

@@ -19,22 +19,29 @@ others are meshed each on its own, with end faces that still meet node to node (
 journal, the same sectors; checked when the shaft is joined).  The journals, pin length,
 webs and bearing centres must be every throw's the same (``COMMON``: one geometry carries
 them for the whole-shaft stage); a drawing whose throws differ there is refused, naming
-the throw and the quantity, as is a drawing with bolted bodies (their forces on the shaft
-are not in the whole-shaft model) or one whose throws are not evenly pitched (the
-bearing centres of neighbours must meet).
+the throw and the quantity, as is one whose throws are not evenly pitched (the bearing
+centres of neighbours must meet).  Bodies bolted to the shaft (``[cad] bodies =
+"bolted"``, ``CadFeatures.bolted``: kept out of the meshes) enter the layout as
+``BoltedMass``es: each one's centrifugal force (its exact m r) on the journal beside its
+web at its centroid's z, with the counterweights (``fe.shaft.whole_shaft``).
 
 The ``ShaftLayout``'s ``geometry`` carries the drawing's recognised dimensions that the
 whole-shaft stage reads (crank radius, journal and pin diameters, pin length, web
 thickness, bearing centre to web, fillet radii; no counterweight specs: the web moments
 take a drawn counterweight over its web's thickness, ``fe.shaft.cycle``); its web outline is the web's recognised side radius
-(no parametric solid is built from it).  The bearings are ``ShaftSpec``'s defaults: one
-rigid main bearing per journal, named ``"1"``, ``"2"``, ... from the front, their widths
-``[cad] bearing_width``, else the drawn journals' flats between the fillets (not stated:
-no specific-load criterion).
+(no parametric solid is built from it).  The bearings are the engine's, not the drawing's:
+``[cad.shaft]`` states them as a geometry's ``[shaft]`` does (``bearing_spec``: widths, laws
+with the oil film, per-bearing entries, the thrust bearing, the stiffness range, the power
+take-off, flywheel and pulley; ``fe_crank.geometry.shaft.main_bearings`` places them on the
+drawn journals), ``[cad] bearing_width`` their default width; where neither states them,
+``ShaftSpec``'s defaults: one rigid main bearing per journal, named ``"1"``, ``"2"``, ...
+from the front, as wide as the drawn journal's flat between its fillets (not stated: no
+specific-load criterion).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -46,6 +53,7 @@ from fe_crank.errors import InputError
 from fe_crank.geometry.shaft import JournalSpan, PlacedThrow, ShaftLayout, main_bearings
 from fe_crank.geometry.spec import (
     DEFAULT_STIFFNESS_RANGE,
+    BoltedMass,
     CrankGeometry,
     ShaftSpec,
     ThrowSpec,
@@ -247,6 +255,16 @@ def recognised_geometry(features: CadFeatures, cad: CadInput, angles: dict[str, 
     )
 
 
+def bearing_spec(cad: CadInput) -> ShaftSpec:
+    """The drawn shaft's main bearings as ``[cad.shaft]`` states them (a geometry's
+    ``[shaft]`` without what the drawing gives), ``[cad] bearing_width`` their default width;
+    ``ShaftSpec``'s defaults where neither is given (rigid, one per journal)."""
+    spec = cad.shaft if cad.shaft is not None else ShaftSpec()
+    if cad.bearing_width is not None:
+        spec = dataclasses.replace(spec, bearing_width=cad.bearing_width)
+    return spec
+
+
 def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_file: str) -> ShaftLayout:
     """The drawn shaft placed on its drawn bearings (module doc).  The engine check
     (``fe_crank.cad.engine.engine_keys``) has run: the throws are the engine's, in order."""
@@ -255,14 +273,6 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
             "the whole-shaft model needs the whole shaft drawn: the CAD file holds one throw",
             file=str(cad.file),
             key=cad.file_key,
-        )
-    if features.bolted:
-        raise InputError(
-            f"the CAD file's {len(features.bolted)} bolted bodies are kept out of the FE model, and their forces on "
-            "the shaft out of the whole-shaft model: the main-bearing loads would miss them; fuse them to the shaft "
-            f'(bodies = "fuse" in {cad.where}) for the whole-shaft model',
-            file=str(cad.file),
-            key="cad.bodies",
         )
     require_common_dimensions(features, cad)
     require_round_journals(features, cad)
@@ -303,9 +313,16 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
     journals.append(
         JournalSpan(len(z), z[-1] + last.webs[1].z_outer, z[-1] + _end_reach(features, last, 1), z[-1] + b2)
     )
-    spec = ShaftSpec(bearing_width=cad.bearing_width)
+    spec = bearing_spec(cad)
     gf, ef = str(cad.file), engine_file
-    bearings = main_bearings(spec, journals, g, gf, ef)
+    try:
+        bearings = main_bearings(spec, journals, g, gf, ef)
+    except InputError as e:  # the keys of [cad.shaft], in the file that states them
+        raise InputError(e.reason, file=cad.toml or gf, key=f"cad.{e.key}" if e.key else "cad.shaft") from None
+    bolted = tuple(
+        BoltedMass(f"bolted_body_{i}", b.throw, b.web, b.mass.centroid[2], b.mass.unbalance_vector)
+        for i, b in enumerate(features.bolted, start=1)
+    )
     return ShaftLayout(
         geometry=g,
         throws=throws,
@@ -319,7 +336,9 @@ def cad_shaft_layout(features: CadFeatures, cad: CadInput, engine, *, engine_fil
         power_takeoff=spec.power_takeoff,
         geometry_file=gf,
         engine_file=ef,
-        stiffness_range=DEFAULT_STIFFNESS_RANGE,
+        stiffness_range=spec.stiffness_range or DEFAULT_STIFFNESS_RANGE,
+        end_loads=spec.end_loads,
+        bolted=bolted,
     )
 
 
@@ -358,6 +377,7 @@ def cad_shaft_mesh(
 __all__ = [
     "MIN_SECTORS",
     "SAME_TOL",
+    "bearing_spec",
     "cad_shaft_layout",
     "cad_shaft_mesh",
     "cad_throw_masses",

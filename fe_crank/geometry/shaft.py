@@ -40,6 +40,7 @@ from fe_crank.geometry.spec import (
     DEFAULT_STIFFNESS_RANGE,
     BearingInput,
     BearingLaw,
+    BoltedMass,
     CrankGeometry,
     EndLoad,
     PlainCylinder,
@@ -99,6 +100,9 @@ class ShaftLayout:
     #: N/m, the stiffness range the main-bearing loads are enveloped over (``fe.shaft.whole_shaft``)
     stiffness_range: tuple[float, float] = DEFAULT_STIFFNESS_RANGE
     end_loads: tuple[EndLoad, ...] = ()  # flywheel, pulley (``fe.shaft.whole_shaft.end_load_cases``)
+    #: counterweights bolted on and not meshed (a drawn shaft's, ``fe_crank.cad.whole``): their
+    #: centrifugal forces, with the counterweights only (``fe.shaft.whole_shaft.end_load_cases``)
+    bolted: tuple[BoltedMass, ...] = ()
 
     @property
     def thrust_bearing(self) -> MainBearing:

@@ -232,6 +232,20 @@ class ShaftSpec:
 
 
 @dataclass(frozen=True)
+class BoltedMass:
+    """A body bolted to a web of a throw and not meshed (a drawn counterweight given as a
+    separate solid, ``[cad] bodies = "bolted"``): a counterweight's centrifugal force on the
+    shaft, ``omega^2`` times its ``unbalance``, turning with the shaft, at its centroid's
+    ``z``, carried into the throw by the journal beside its web."""
+
+    name: str
+    throw: str
+    web: int  # 1 or 2: the throw's journal_<web> carries it
+    z: float  # m, its centroid along the throw frame's z
+    unbalance: tuple[float, float]  # kg m, its mass times its centroid's (x, y), throw frame
+
+
+@dataclass(frozen=True)
 class ThrowSpec:
     name: str
     angle: float  # rad, position on the shaft (model.Throw.angle)

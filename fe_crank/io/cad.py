@@ -6,7 +6,10 @@ one of ``density`` and ``material`` (a name of the material library, whose densi
 taken).  ``length_unit`` is a unit of length (``"mm"``, ``"in"``); ``axis`` one of
 ``"+x"`` ... ``"-z"`` or three numbers; ``[cad.faces]`` maps the feature names of
 ``fe_crank.cad.config.THROW_FACE_GROUPS`` and ``axis`` to lists of face numbers, in
-one table per throw name for a file with several throws.
+one table per throw name for a file with several throws.  ``[cad.shaft]``: a drawn whole
+shaft's main bearings, parsed as a geometry's ``[shaft]`` (``fe_crank.io.shaft``), the keys
+the drawing gives (``DRAWN_SHAFT_KEYS``) refused, and ``bearing_width`` in ``[cad]`` or
+there, not both.
 
 In a load case (``parse_geometry_source``): ``geometry = "crank.step"`` (a file with a
 CAD extension) is read as the load case's ``[cad]`` section says, ``file`` then being
@@ -31,10 +34,15 @@ from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.base import Strict, read_toml, record_file, validate
 from fe_crank.io.geometry import geometry_from_dict, parse_geometry
 from fe_crank.io.includes import read_included, resolve_reference, with_include_context
+from fe_crank.io.shaft import ShaftInput, shaft_spec
 from fe_crank.io.units import Density, Length, to_si
 
 _AXES = {f"{s}{a}": (s, a) for s in "+-" for a in "xyz"}
 FaceList = list[int]
+
+
+#: the ``[shaft]`` keys a drawing gives itself (refused in ``[cad.shaft]``)
+DRAWN_SHAFT_KEYS = ("pitch", "end_journal_length", "nose", "flange")
 
 
 class CadSection(Strict):
@@ -49,6 +57,7 @@ class CadSection(Strict):
     pin_recess: Length | None = None
     journal_recess: Length | None = None
     bearing_width: Length | None = None
+    shaft: ShaftInput | None = None  # the main bearings of a drawn whole shaft (``DRAWN_SHAFT_KEYS`` refused)
     faces: dict[str, FaceList | dict[str, FaceList]] = Field(default_factory=dict, max_length=256)
 
     @field_validator("length_unit")
@@ -81,6 +90,19 @@ class CadSection(Strict):
         if v is not None and (v < 0 or (v == 0 and positive)):
             raise ValueError("must be positive" if positive else "must not be negative")
         return v
+
+    @model_validator(mode="after")
+    def _drawn(self):
+        if self.shaft is not None:
+            drawn = [k for k in DRAWN_SHAFT_KEYS if getattr(self.shaft, k) is not None]
+            if drawn:
+                raise ValueError(
+                    f"shaft.{drawn[0]}: the drawing gives the shaft's pitch, end journals, nose and flange; "
+                    "[cad.shaft] takes the main bearings and what acts on the shaft's ends only"
+                )
+            if self.bearing_width is not None and self.shaft.bearing_width is not None:
+                raise ValueError("bearing_width: give it once, in [cad] or in [cad.shaft]")
+        return self
 
     @model_validator(mode="after")
     def _density(self):
@@ -163,6 +185,7 @@ def cad_from_dict(data: dict, file: str | Path, prefix: str = "cad", *, file_key
         pin_recess=raw.pin_recess,
         journal_recess=raw.journal_recess,
         bearing_width=raw.bearing_width,
+        shaft=shaft_spec(raw.shaft),
         faces=_faces(raw.faces, raw.throws, str(file), prefix),
         toml=str(file),
         file_key=file_key,

@@ -119,21 +119,24 @@ def cad_layout(lc: LoadCase, cad: CadInput, features: CadFeatures) -> ShaftLayou
             raise
         return None
     film = [lim for lim in (lc.criteria.limits if lc.criteria else ()) if "oil_film" in lim.quantity]
-    if film:  # the drawn shaft's bearings are ShaftSpec's rigid ones: no film to compute
+    if film and not any(b.law.film is not None for b in layout.bearings):
         raise InputError(
-            f"cannot be evaluated: the main bearings of a drawn shaft (the CAD file {cad.file.name}) are rigid, a "
-            "[cad] section states no bearing law, and a rigid bearing has no oil film; drop the criterion, or check "
-            "the film with a parametric geometry's [shaft] section",
+            f"cannot be evaluated: no main bearing of the drawn shaft (the CAD file {cad.file.name}) has an oil "
+            "film; the drawing holds the journals, the bearings are the engine's: state them in [cad.shaft] of "
+            f'{cad.where} as a geometry\'s [shaft] does (bearing = {{ model = "hydrodynamic", clearance = "28 um", '
+            'viscosity = "6 mPa*s" }, bearing_width = "20 mm"), or drop the criterion',
             file=lc.source_file,
             key=film[0].key,
         )
     widths = [lim for lim in (lc.criteria.limits if lc.criteria else ()) if lim.quantity in WIDTH_CRITERIA]
-    if widths and cad.bearing_width is None:  # a drawing holds no bearing shell: the journal's flat would under-state
+    missing = [b for b in layout.bearings if not b.width_stated]
+    if widths and missing:  # a drawing holds no bearing shell: the journal's flat would under-state
         raise InputError(
             f"divides each main bearing's peak load by its projected area (journal diameter x bearing width); the "
-            f"CAD file {cad.file.name} draws the journals, not the bearing shells on them (the journal's flat "
-            f"between its fillets, {layout.bearings[0].width * 1e3:.3g} mm, is not a bearing width): the specific "
-            f'load needs the shells\' width: state it as bearing_width (e.g. "16 mm") in {cad.where}',
+            f"CAD file {cad.file.name} draws the journals, not the bearing shells on them (main bearing "
+            f"{missing[0].name}: the journal's flat between its fillets, {missing[0].width * 1e3:.3g} mm, is not a "
+            f'bearing width): the specific load needs the shells\' width: state it as bearing_width (e.g. "16 mm") '
+            f"in [cad] or [cad.shaft] of {cad.where}",
             file=lc.source_file,
             key=widths[0].key,
         )

@@ -10,6 +10,7 @@ from pathlib import Path
 
 from fe_crank.geometry.solid import throw_solid
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.geometry.step import write_shaft_step
 from fe_crank.gmsh_io import gmsh_session
 
 
@@ -306,30 +307,39 @@ def half_disc_throw_step(path: Path, *, rc=0.06, fillet: float | None = None, rw
 
 
 def layout_step(layout, path: Path, *, nose: tuple[float, float] | None = None, flange=None) -> Path:
-    """The whole shaft as ``fe_crank.geometry.shaft`` places it (``ShaftLayout``): each
-    throw's solid (journal stubs to the bearing centres) turned to its angle on the shaft
-    and put at its ``axial_position``, the end journals to their length, fused into one
-    solid; ``nose``/``flange``: (diameter, length) of a plain cylinder beyond the front /
-    rear end journal (so that the end journals end in a shoulder, not a free face)."""
-    from fe_crank.mesh.shaft import throw_angles
+    """The whole shaft as ``fe_crank.geometry.shaft`` places it, one STEP solid
+    (``fe_crank.geometry.step.write_shaft_step``: the owner of the writing)."""
+    return write_shaft_step(layout, path, nose=nose, flange=flange)
 
+
+def bolted_shaft_step(
+    layout, path: Path, where, *, r0: float, r1: float, angle: float, holes=(0.005, 0.028), nose=None, flange=None
+) -> tuple:
+    """The whole shaft of ``layout`` (``write_shaft_step``) and, as separate solids, an
+    annular-sector counterweight (``r0`` .. ``r1``, included ``angle``, opposite the pin,
+    as thick as the web, against the web's far side) on each (throw index, web) of
+    ``where``, each with two axial bolt holes (``holes``: diameter, pitch radius; at
+    +-angle/4 from its middle); ``nose``, ``flange`` as ``write_shaft_step``'s.  Returns the path and each body's exact OpenCASCADE mass
+    properties (file frame: volume m^3, centroid (x, y, z) m)."""
     g = layout.geometry
-    with gmsh_session() as gmsh:
+    zp, t = g.crankpin_length / 2, g.web_thickness
+    found = []
+
+    def bodies(gmsh):
         occ = gmsh.model.occ
-        vols = []
-        for t, a in zip(layout.throws, throw_angles(layout), strict=True):
-            solid, _ = throw_solid(g, t.spec)
-            occ.rotate([(3, solid)], 0, 0, 0, 0, 0, 1, -a)
-            occ.translate([(3, solid)], 0, 0, t.z)
-            vols.append((3, solid))
-        rj = g.journal_diameter / 2
-        first, last = layout.journals[0], layout.journals[-1]
-        vols.append((3, occ.addCylinder(0, 0, first.z0, 0, 0, first.centre - first.z0, rj)))
-        vols.append((3, occ.addCylinder(0, 0, last.centre, 0, 0, last.z1 - last.centre, rj)))
-        if nose is not None:
-            vols.append((3, occ.addCylinder(0, 0, first.z0 - nose[1], 0, 0, nose[1], nose[0] / 2)))
-        if flange is not None:
-            vols.append((3, occ.addCylinder(0, 0, last.z1, 0, 0, flange[1], flange[0] / 2)))
-        out, _ = occ.fuse(vols[:1], vols[1:])
-        assert len(out) == 1
-        return _write(gmsh, path)
+        for k, web in where:
+            th = layout.throws[k]
+            z0 = -zp - t if web == 1 else zp
+            body = _sector(occ, r0, r1, angle, z0, t)
+            for s in (-1.0, 1.0):
+                a = s * angle / 4
+                x, y = holes[1] * math.sin(a), -holes[1] * math.cos(a)
+                hole = occ.addCylinder(x, y, z0 - 0.001, 0, 0, t + 0.002, holes[0] / 2)
+                out, _ = occ.cut([(3, body)], [(3, hole)])
+                body = out[0][1]
+            occ.rotate([(3, body)], 0, 0, 0, 0, 0, 1, -layout.sense * th.angle)
+            occ.translate([(3, body)], 0, 0, th.z)
+            occ.synchronize()
+            found.append((occ.getMass(3, body), tuple(occ.getCenterOfMass(3, body))))
+
+    return write_shaft_step(layout, path, nose=nose, flange=flange, bodies=bodies), tuple(found)

@@ -4,7 +4,8 @@
 ``fe.shaft.cases`` at every crank angle: each throw's pin force (throw frame, N) by the two
 pin cases that bracket it, the centrifugal cases times omega^2, and the bearings' forces
 from their laws (``fe.shaft.bearings``); once with the counterweights as built and once without
-them (their centrifugal case switched off).  Results are frozen and in the engine frame:
+them (their centrifugal case switched off, and the forces of counterweights bolted on and
+not meshed, ``EndCycleLoad.counterweight``, ``ShaftLayout.bolted``).  Results are frozen and in the engine frame:
 the shaft frame turned by the shaft's angle psi(theta) (``model.crank_angle_global`` of
 the reference throw, from +y towards +x).
 
@@ -48,6 +49,7 @@ class EndCycleLoad:
     name: str  # its unit cases are ``<name>.x``, ``<name>.y`` (1 N at its reference point)
     z: float  # m, its centre plane
     force: np.ndarray  # (n, 2) N on the shaft, shaft frame
+    counterweight: bool = False  # a bolted counterweight's force: left out of the cycle without counterweights
 
 
 @dataclass(frozen=True)
@@ -201,7 +203,8 @@ def _weights(cases, loads, speed, counterweights, front_torque, ends=()):
     if front_torque is not None:
         extra["torque_front"] = np.asarray(front_torque, float)
     for e in ends:
-        extra[f"{e.name}.x"], extra[f"{e.name}.y"] = e.force[:, 0], e.force[:, 1]
+        F = np.asarray(e.force, float) * (1.0 if counterweights or not e.counterweight else 0.0)
+        extra[f"{e.name}.x"], extra[f"{e.name}.y"] = F[:, 0], F[:, 1]
     return by, case_weights(cases, by, speed, counterweights, extra)
 
 
@@ -301,7 +304,8 @@ def _web_moments(cases, by, f, speed, psi, mass, counterweights, spin=None, ends
     for j, b in enumerate(layout.bearings):
         items.append((b.z, f[:, j]))
     for e in ends:
-        items.append((e.z, np.asarray(e.force, float)))
+        if counterweights or not e.counterweight:
+            items.append((e.z, np.asarray(e.force, float)))
     out = []
     for th in layout.throws:
         for web, zc in ((1, th.z - zp - t / 2), (2, th.z + zp + t / 2)):

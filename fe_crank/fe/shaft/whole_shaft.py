@@ -5,7 +5,9 @@
 meshes nothing), condenses it onto its bearing-centre planes (``fe.shaft.model``), solves
 the unit cases on the determinate base (``fe.shaft.cases``) and superposes them over the
 dynamics stage's cycle with the bearings' laws (``fe.shaft.cycle``), with the
-counterweights as built and without them.  ``dynamics``: the dynamics stage's result
+counterweights as built and without them (counterweights bolted on and not meshed,
+``ShaftLayout.bolted``: their centrifugal forces at their centroids, coupled to the
+journal beside their web, ``end_load_cases``).  ``dynamics``: the dynamics stage's result
 (``theta``, ``speed`` and per throw ``pin_force`` (n, 2) in the throw frame and
 ``angle_global``).  ``WholeShaftResult.to_dict()`` gives the fields of results.json.
 
@@ -40,7 +42,7 @@ from fe_crank.fe.shaft.model import ShaftFeOptions, build_shaft_model
 from fe_crank.geometry.mass import mass_properties
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.geometry.spec import BearingLaw
-from fe_crank.mesh.shaft import ShaftMesh
+from fe_crank.mesh.shaft import ShaftMesh, rotation
 
 
 @dataclass(frozen=True)
@@ -188,12 +190,20 @@ def _end_face(layout: ShaftLayout, end: str) -> tuple[int, str, float, int]:
     return -1, "end_2", layout.journals[-1].z1, 1
 
 
+def _bolted_face(sm, b) -> tuple[int, str, float]:
+    """(piece index, surface, shaft-frame z) of a bolted body (``ShaftLayout.bolted``): the
+    journal beside its web, in its throw's piece, at its centroid's z."""
+    k = next(i for i, p in enumerate(sm.pieces) if p.kind == "throw" and p.throw == b.throw)
+    return k, f"journal_{b.web}", sm.pieces[k].z + b.z
+
+
 def end_load_surfaces(sm) -> dict[str, tuple[str, ...]]:
-    """Mesh key -> the end faces whose coupling patterns the loads beyond the ends need
-    (``build_shaft_model``'s ``extra_surfaces``)."""
+    """Mesh key -> the end faces whose coupling patterns the loads beyond the ends need,
+    and the journals that carry bolted bodies (``build_shaft_model``'s ``extra_surfaces``)."""
     out: dict[str, tuple[str, ...]] = {}
-    for e in sm.layout.end_loads:
-        k, face, _, _ = _end_face(sm.layout, e.end)
+    faces = [_end_face(sm.layout, e.end)[:2] for e in sm.layout.end_loads]
+    faces += [_bolted_face(sm, b)[:2] for b in sm.layout.bolted]
+    for k, face in faces:
         key = sm.pieces[k].mesh
         out[key] = tuple(dict.fromkeys(out.get(key, ()) + (face,)))
     return out
@@ -211,6 +221,10 @@ def end_load_cases(model) -> dict[str, dict[tuple[int, str], float]]:
         k = k % len(model.pieces)
         c = model.coupling(e.name, z + sign * e.offset, [(k, face)])
         out[f"{e.name}.x"], out[f"{e.name}.y"] = dict(c.terms[0]), dict(c.terms[1])
+    for b in layout.bolted:  # a bolted body: at its centroid, on the journal beside its web
+        k, face, z = _bolted_face(model.mesh, b)
+        c = model.coupling(b.name, z, [(k, face)])
+        out[f"{b.name}.x"], out[f"{b.name}.y"] = dict(c.terms[0]), dict(c.terms[1])
     return out
 
 
@@ -232,6 +246,12 @@ def end_loads_of(layout: ShaftLayout, speed: float, psi: np.ndarray) -> tuple[En
         F[:, 0] += c * b0 - s * b1
         F[:, 1] += s * b0 + c * b1
         out.append(EndCycleLoad(e.name, z, F))
+    throws = {t.name: t for t in layout.throws}
+    for b in layout.bolted:  # its centrifugal force turns with the shaft: fixed in the shaft frame
+        t = throws[b.throw]
+        R = rotation(layout.sense * t.angle)[:2, :2]
+        F = np.broadcast_to(speed**2 * (R @ np.asarray(b.unbalance, float)), (psi.size, 2)).copy()
+        out.append(EndCycleLoad(b.name, t.z + b.z, F, counterweight=True))
     return tuple(out)
 
 
