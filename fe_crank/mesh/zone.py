@@ -11,7 +11,10 @@ without tracking OpenCASCADE's face numbers through the boolean.  The size field
 ``mesh.sizing.set_size_fields`` of the throw mesher at the options given (fillets at
 ``r / fillet_divisions``, the oil bore at ``bore_divisions``, the counterweights'
 transition fillets, the webs), so an element of the zone near a fillet is the size the
-full refined mesh has there.
+full refined mesh has there.  The tetrahedra are improved by gmsh's own optimiser, not by
+Netgen's (``generate(..., netgen=False)``: four fifths of the zone's 3D meshing time), with
+the throw mesher's checks.  A set of balls gmsh cannot mesh raises ``ZoneMeshError``
+naming the ball nearest the first surface left unmeshed.
 """
 
 from __future__ import annotations
@@ -34,6 +37,28 @@ from fe_crank.mesh.sizing import set_size_fields
 CUT = "zone_cut"
 #: the balls' turn about an oblique axis (rad)
 TILT, TILT_AXIS = 0.7, (0.6, 0.5, 0.2)
+
+
+class ZoneMeshError(MeshError):
+    """gmsh could not mesh a set of balls; ``ball``: the index of the ball nearest the first
+    surface it left unmeshed (the likely cause: a ball grazing an edge of the solid),
+    None when that is not known."""
+
+    def __init__(self, message: str, ball: int | None = None):
+        super().__init__(message)
+        self.ball = ball
+
+
+def _culprit(gmsh, cs: np.ndarray) -> int | None:
+    """After a failed ``generate``: the ball whose centre is nearest the first surface (in
+    gmsh's meshing order, by tag) left without elements (curves are not asked: a sphere's
+    degenerate pole curves have none)."""
+    for _, tag in sorted(gmsh.model.getEntities(2)):
+        if not any(len(t) for t in gmsh.model.mesh.getElements(2, tag)[1]):
+            box = np.asarray(gmsh.model.getBoundingBox(2, tag))
+            mid = 0.5 * (box[:3] + box[3:])
+            return int(np.argmin(np.linalg.norm(cs - mid[None], axis=1)))
+    return None
 
 
 @dataclass(frozen=True)
@@ -218,7 +243,10 @@ def mesh_zone_levels(
             for tag in gmsh.model.mesh.field.list():
                 gmsh.model.mesh.field.remove(tag)
             set_size_fields(gmsh, geometry, surfaces, model.fillet_radii, options, volumes)
-            generate(gmsh, spec.name, geometry.name, options)
+            try:
+                generate(gmsh, spec.name, geometry.name, options, netgen=False)
+            except MeshError as exc:
+                raise ZoneMeshError(str(exc), _culprit(gmsh, cs) if len(cs) > 1 else 0) from None
             counts = [_node_count(gmsh, p) for p in pieces]
             level = []
             for g in _groups(counts, group_nodes):
@@ -242,4 +270,4 @@ def mesh_zone(
     return mesh_zone_levels(geometry, spec, [options], centres, radii, names)[0][0]
 
 
-__all__ = ["CUT", "ZoneMesh", "mesh_zone", "mesh_zone_levels"]
+__all__ = ["CUT", "ZoneMesh", "ZoneMeshError", "mesh_zone", "mesh_zone_levels"]

@@ -11,8 +11,10 @@ growing by 2 m per m) two meshes of the same fillet size differ in their peaks b
 mesh's own noise: the full study's own levels r/1, r/1.5, r/2 on this throw move the
 peaks non-monotonically by up to 2 % (docs/performance.md, "The hot-spot convergence
 study", the ``test`` table), and the zone and the full meshes at r/1.5 and r/2 differed by
-0.3-2.6 % over twelve entries; 4 % is twice that noise.  The 0.5 % agreement the method
-is held to is at ``coarse`` (benchmarks/verification/zone_study.py).
+0.3-2.6 % over twelve entries; 4 % is twice that noise.  At ``coarse`` the fillets agree
+within about 0.5 % and the oil-bore outlet within about 3 %, the scatter of two meshes of
+one element size at its sharp edge; driving the zones by the full refined solution instead
+moves them by at most 0.26 % (docs/performance.md, "Why the oil-bore outlet differs").
 """
 
 from __future__ import annotations
@@ -120,3 +122,34 @@ def test_levels_meshed_from_one_cut_in_groups_of_pieces(check_solution):
             assert any(n.startswith("crankpin_fillet_") for n in zm.mesh.boundaries)
     whole = mesh_zone(geometry, spec, levels[1], centres, [r, r], samples)
     assert sum(zm.mesh.p.shape[1] for zm in got[1]) == whole.mesh.p.shape[1]
+
+
+#: a ball on the second web's counterweight transition fillet that grazes an edge of the
+#: solid: gmsh's 2D meshing fails on a sliver face at the ``test`` preset's r/1.5 (a hot
+#: spot of the study on this throw at ``test``)
+GRAZING = ((-0.03959189077429076, -0.007741472713530775, 0.01976481469504633), 0.015)
+
+
+@pytest.mark.heavy  # a failed cut and mesh, then the grown one
+def test_a_ball_gmsh_cannot_mesh_is_named_and_grown(check_solution):
+    """A set of balls gmsh cannot mesh names the ball that failed (the grazing one, not its
+    sound neighbour); the study's meshing grows that ball and meshes the set in one model."""
+    import dataclasses
+
+    from fe_crank.fe.refinement.zone import boundary_samples
+    from fe_crank.fe.refinement.zone_study import RETRY_GROWTH, HotSpot, level_meshes
+    from fe_crank.mesh.zone import ZoneMeshError, mesh_zone_levels
+
+    geometry, _, tm, units = check_solution
+    spec, samples = geometry.throw(tm.throw), boundary_samples(units.mesh)
+    sound = ((0.0, geometry.crank_radius - 0.5 * geometry.crankpin_diameter, 0.5 * geometry.crankpin_length), 0.012)
+    base = PRESETS["test"]
+    level = dataclasses.replace(base, fillet_divisions=1.5, bore_divisions=1.5 * base.bore_divisions)
+    balls = [sound, GRAZING]
+    with pytest.raises(ZoneMeshError) as err:
+        mesh_zone_levels(geometry, spec, [level], [c for c, _ in balls], [r for _, r in balls], samples)
+    assert err.value.ball == 1
+    spots = [HotSpot(c, r, "s") for c, r in balls]
+    got = level_meshes(geometry, spec, [level], spots, samples)
+    assert len(got) == 1 and len(got[0]) == 1  # one model, one group
+    assert got[0][0].radii == pytest.approx((sound[1], RETRY_GROWTH * GRAZING[1]))

@@ -28,7 +28,6 @@ import time
 
 import numpy as np
 
-from fe_crank.errors import MeshError
 from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.refinement.levels import (
     COUNTERWEIGHT_PREFIX,
@@ -46,7 +45,7 @@ from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.mesh.sizing import counterweight_fillet_radius
 from fe_crank.mesh.types import ThrowMesh
-from fe_crank.mesh.zone import ZoneMesh, mesh_zone_levels
+from fe_crank.mesh.zone import ZoneMesh, ZoneMeshError, mesh_zone_levels
 
 log = logging.getLogger(__name__)
 
@@ -134,33 +133,34 @@ GROUP_FRACTION = 0.5
 
 
 def level_meshes(
-    geometry: CrankGeometry, spec, levels, spots: list[HotSpot], samples, group_nodes=None
+    geometry: CrankGeometry, spec, levels, spots: list[HotSpot], samples, group_nodes=None, grown=frozenset()
 ) -> list[list[ZoneMesh]]:
     """The zones of every level (``levels``: their mesh options), in groups
     (``mesh.zone.mesh_zone_levels``): every ball cut from the throw in one gmsh model, once,
-    and re-meshed per level; where gmsh cannot mesh that model at some level, the balls split
-    into two halves, each done the same way; a single ball that fails is tried again
-    ``RETRY_GROWTH`` larger."""
+    and re-meshed per level.  Where gmsh cannot mesh that model at some level, the ball
+    nearest the first curve or surface it left unmeshed (``ZoneMeshError.ball``) is made
+    ``RETRY_GROWTH`` larger and the model cut and meshed again (once per ball: ``grown``,
+    the indices already grown); failing that, the balls split into two halves, each done
+    the same way."""
+    radii = [h.radius * (RETRY_GROWTH if i in grown else 1.0) for i, h in enumerate(spots)]
     try:
         return mesh_zone_levels(
-            geometry,
-            spec,
-            levels,
-            [h.centre for h in spots],
-            [h.radius for h in spots],
-            samples,
-            group_nodes=group_nodes,
+            geometry, spec, levels, [h.centre for h in spots], radii, samples, group_nodes=group_nodes
         )
-    except MeshError as exc:
+    except ZoneMeshError as exc:
+        log.info("the hot-spot zones on %s: %s", ", ".join(h.surface for h in spots), exc)
+        if exc.ball is not None and exc.ball not in grown:
+            log.info("the zone on %s tried %g x larger", spots[exc.ball].surface, RETRY_GROWTH)
+            return level_meshes(geometry, spec, levels, spots, samples, group_nodes, grown | {exc.ball})
         if len(spots) == 1:
-            h = spots[0]
-            log.info("the hot-spot zone on %s: %s; tried %g x larger", h.surface, exc, RETRY_GROWTH)
-            return mesh_zone_levels(
-                geometry, spec, levels, [h.centre], [RETRY_GROWTH * h.radius], samples, group_nodes=group_nodes
-            )
+            raise
     half = len(spots) // 2
-    first = level_meshes(geometry, spec, levels, spots[:half], samples, group_nodes)
-    second = level_meshes(geometry, spec, levels, spots[half:], samples, group_nodes)
+    first = level_meshes(
+        geometry, spec, levels, spots[:half], samples, group_nodes, frozenset(i for i in grown if i < half)
+    )
+    second = level_meshes(
+        geometry, spec, levels, spots[half:], samples, group_nodes, frozenset(i - half for i in grown if i >= half)
+    )
     return [a + b for a, b in zip(first, second)]
 
 
