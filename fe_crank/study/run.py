@@ -29,9 +29,12 @@ from fe_crank.study.candidates import (
 )
 from fe_crank.study.film import FilmMetrics, film_metrics
 from fe_crank.study.screen import (
+    EngineState,
+    OverspeedScreen,
     StressScreen,
     StudyShaft,
     candidate_loads,
+    candidate_overspeed,
     candidate_stresses,
     engine_states,
     state_base,
@@ -63,6 +66,9 @@ class CandidateResult:
     film: FilmMetrics | None = None  # the hydrodynamic bearings' film; None without one
     #: the shaft's fillet and counterweight-junction stresses over every state (``study.screen``)
     stresses: StressScreen | None = None
+    #: the stresses over the overspeed cycles (``study.screen.candidate_overspeed``; None
+    #: without an overspeed or with ``stresses = "off"``)
+    overspeed: OverspeedScreen | None = None
 
     @property
     def meets_limits(self) -> bool:
@@ -124,6 +130,19 @@ def prepare(lc: LoadCase, spec: StudySpec):
             file=spec.file,
             key="study.limits.min_fillet_fatigue_safety",
         )
+    for k in ("min_overspeed_safety", "max_counterweight_overspeed_stress"):
+        if k in spec.limits and lc.operating.overspeed is None:
+            raise InputError(
+                "an overspeed limit needs the load case's [operating] overspeed",
+                file=spec.file,
+                key=f"study.limits.{k}",
+            )
+    if "min_overspeed_safety" in spec.limits and (m is None or m.yield_strength is None):
+        raise InputError(
+            "an overspeed-safety limit needs the material's yield strength",
+            file=spec.file,
+            key="study.limits.min_overspeed_safety",
+        )
     if "min_fillet_static_safety" in spec.limits and (m is None or m.yield_strength is None):
         raise InputError(
             "a static-safety limit needs the material's yield strength",
@@ -143,6 +162,7 @@ def _metrics(
     w_max: float,
     written: WrittenMass,
     stresses: StressScreen | None = None,
+    overspeed: OverspeedScreen | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -204,6 +224,13 @@ def _metrics(
         ):
             if k in lim and v is not None and v < lim[k]:
                 failed += (f"{k} {v:.4g} < {lim[k]:.4g}",)
+    if overspeed is not None:
+        lim = spec.limits
+        if "min_overspeed_safety" in lim and overspeed.safety < lim["min_overspeed_safety"]:
+            failed += (f"min_overspeed_safety {overspeed.safety:.4g} < {lim['min_overspeed_safety']:.4g}",)
+        k = "max_counterweight_overspeed_stress"
+        if k in lim and overspeed.counterweight_peak > lim[k]:
+            failed += (f"{k} {overspeed.counterweight_peak / 1e6:.4g} > {lim[k] / 1e6:.4g} MPa",)
     if "min_oil_film" in spec.limits and film is not None and film.min_film < spec.limits["min_oil_film"]:
         failed += (f"min_oil_film {film.min_film * 1e6:.4g} < {spec.limits['min_oil_film'] * 1e6:.4g} um",)
     return CandidateResult(
@@ -227,6 +254,7 @@ def _metrics(
         written,
         film,
         stresses,
+        overspeed,
     )
 
 
@@ -274,6 +302,11 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         stresses=spec.stresses != "off",
     )
     bases = [state_base(shaft, s) for s in states]
+    os_bases = (
+        [state_base(shaft, EngineState(f"overspeed ({c.gas})", c.dynamics.speed, c.dynamics)) for c in cycles.overspeed]
+        if spec.stresses != "off"
+        else []
+    )
     w_max = max(s.speed for s in states)
     solids = ThrowSolidCache(layout)
     add = m53_basis(
@@ -296,7 +329,10 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
                 fatigue=spec.stresses == "fatigue",
             )
         )
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st))
+        os = candidate_overspeed(
+            shaft, [candidate_loads(shaft, b, wm.load_factors, drawn, envelope=False) for b in os_bases], lc.material
+        )
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:

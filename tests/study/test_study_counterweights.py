@@ -24,6 +24,7 @@ from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.geometry.oil import FilmSpec
 from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
 from fe_crank.study.film import film_metrics
@@ -32,7 +33,9 @@ from fe_crank.study.run import run_study
 from fe_crank.study.screen import (
     COUNTERWEIGHT_KINDS,
     SHAFT_KINDS,
+    EngineState,
     candidate_loads,
+    candidate_overspeed,
     candidate_stresses,
     state_base,
 )
@@ -84,7 +87,10 @@ def full_solve(study):
     _, lc_path = write_candidate(res, r, d / "written")
     lc2 = load_loadcase(lc_path)
     layout2 = engine_shaft_layout(lc2.geometry, lc2.engine, geometry_file="g", engine_file="e")
-    return analyse_whole_shaft(layout2, lc2.material, res.states[0].dynamics, size="test", cache_dir=cache)
+    os = tuple(c.dynamics for c in engine_cycles(lc2.engine, lc2.operating).overspeed)
+    return analyse_whole_shaft(
+        layout2, lc2.material, res.states[0].dynamics, size="test", cache_dir=cache, overspeed=os
+    )
 
 
 def _u(psi):
@@ -205,6 +211,44 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
             if gr.fatigue_safety is not None and group_kind(gr.group) in SHAFT_KINDS
         )
         assert st.fatigue_safety == pytest.approx(least, rel=1e-9)
+
+
+@pytest.mark.heavy
+def test_screened_overspeed_equals_the_checks_assessment_of_a_full_solve(study, full_solve):
+    """Overspeed: every drawn counterweight at factor 1, the screening
+    (``candidate_overspeed``) against the check's own assessment of a full whole-shaft
+    solve of the drawn geometry with its overspeed cycle (``assess_shaft_throws`` with
+    ``overspeed``, same mesh): the largest overspeed von Mises over every group, the least
+    overspeed safety and the counterweight groups' largest, 1e-9; every candidate of the
+    study has them."""
+    res, _, _ = study
+    full, cases = full_solve
+    lc, mat = res.loadcase, res.loadcase.material
+    assert lc.operating.overspeed is not None and full.overspeed
+    g = res.shaft.layout.geometry
+    cyc = engine_cycles(lc.engine, lc.operating)
+    bases = [state_base(res.shaft, EngineState("overspeed", c.dynamics.speed, c.dynamics)) for c in cyc.overspeed]
+    ones = dict.fromkeys(res.drawn, 1.0)
+    os = candidate_overspeed(
+        res.shaft, [candidate_loads(res.shaft, b, ones, res.drawn, envelope=False) for b in bases], mat
+    )
+    throws, _ = assess_shaft_throws(
+        cases,
+        dataclasses.replace(full, cycles=(full.cycles[0],)),
+        res.states[0].dynamics.theta,
+        mat,
+        crank_radius=g.crank_radius,
+        overspeed=lc.operating.overspeed,
+        diameters={t.name: (g.crankpin_diameter, g.journal_diameter) for t in res.shaft.layout.throws},
+    )
+    groups = [gr for t in throws for gr in t.groups]
+    peak = max(gr.max_von_mises_overspeed.value for gr in groups)
+    cw = max(gr.max_von_mises_overspeed.value for gr in groups if group_kind(gr.group) in COUNTERWEIGHT_KINDS)
+    assert os is not None
+    assert os.peak == pytest.approx(peak, rel=1e-9)
+    assert os.safety == pytest.approx(min(gr.overspeed_safety for gr in groups), rel=1e-9)
+    assert os.counterweight_peak == pytest.approx(cw, rel=1e-9)
+    assert all(r.overspeed is not None and r.overspeed.safety > 0 for r in res.results)
 
 
 @pytest.mark.heavy
