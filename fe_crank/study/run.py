@@ -283,6 +283,8 @@ def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[Candidat
     if st is not None:
         why += f"; fillet peak {st.shaft_peak / 1e6:.1f} MPa (static safety {st.static_safety:.2f}"
         why += ")" if st.fatigue_safety is None else f", fatigue safety {st.fatigue_safety:.2f})"
+    if best.overspeed is not None:
+        why += f"; overspeed safety {best.overspeed.safety:.2f}"
     return best, why
 
 
