@@ -173,7 +173,10 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
     the history of 0.37 times the counterweights' density, (1 - k) off + k on at every
     angle; the largest von Mises over every node and angle to 1e-9, the static safety the
     yield strength over it; the least fatigue safety the check's own assessment of the full
-    solve (``assess_shaft_throws``, every node evaluated)."""
+    solve (``assess_shaft_throws``, every node evaluated), and at factor 1 the overspeed
+    (``candidate_overspeed``) that assessment's with the full solve's overspeed cycle: the
+    largest overspeed von Mises over every group, the least overspeed safety and the
+    counterweight groups' largest."""
     res, _, _ = study
     full, cases = full_solve
     mat = res.loadcase.material
@@ -200,7 +203,7 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
             res.states[0].dynamics.theta,
             mat,
             crank_radius=g.crank_radius,
-            overspeed=None,
+            overspeed=res.loadcase.operating.overspeed,
             diameters={t.name: dia for t in res.shaft.layout.throws},
             additional_bending=add,
         )
@@ -211,43 +214,26 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
             if gr.fatigue_safety is not None and group_kind(gr.group) in SHAFT_KINDS
         )
         assert st.fatigue_safety == pytest.approx(least, rel=1e-9)
-
-
-@pytest.mark.heavy
-def test_screened_overspeed_equals_the_checks_assessment_of_a_full_solve(study, full_solve):
-    """Overspeed: every drawn counterweight at factor 1, the screening
-    (``candidate_overspeed``) against the check's own assessment of a full whole-shaft
-    solve of the drawn geometry with its overspeed cycle (``assess_shaft_throws`` with
-    ``overspeed``, same mesh): the largest overspeed von Mises over every group, the least
-    overspeed safety and the counterweight groups' largest, 1e-9; every candidate of the
-    study has them."""
-    res, _, _ = study
-    full, cases = full_solve
-    lc, mat = res.loadcase, res.loadcase.material
-    assert lc.operating.overspeed is not None and full.overspeed
-    g = res.shaft.layout.geometry
-    cyc = engine_cycles(lc.engine, lc.operating)
-    bases = [state_base(res.shaft, EngineState("overspeed", c.dynamics.speed, c.dynamics)) for c in cyc.overspeed]
-    ones = dict.fromkeys(res.drawn, 1.0)
-    os = candidate_overspeed(
-        res.shaft, [candidate_loads(res.shaft, b, ones, res.drawn, envelope=False) for b in bases], mat
-    )
-    throws, _ = assess_shaft_throws(
-        cases,
-        dataclasses.replace(full, cycles=(full.cycles[0],)),
-        res.states[0].dynamics.theta,
-        mat,
-        crank_radius=g.crank_radius,
-        overspeed=lc.operating.overspeed,
-        diameters={t.name: (g.crankpin_diameter, g.journal_diameter) for t in res.shaft.layout.throws},
-    )
-    groups = [gr for t in throws for gr in t.groups]
-    peak = max(gr.max_von_mises_overspeed.value for gr in groups)
-    cw = max(gr.max_von_mises_overspeed.value for gr in groups if group_kind(gr.group) in COUNTERWEIGHT_KINDS)
-    assert os is not None
-    assert os.peak == pytest.approx(peak, rel=1e-9)
-    assert os.safety == pytest.approx(min(gr.overspeed_safety for gr in groups), rel=1e-9)
-    assert os.counterweight_peak == pytest.approx(cw, rel=1e-9)
+        # the overspeed: the same assessment's overspeed peaks and safety (its overspeed cycle)
+        assert full.overspeed
+        cyc = engine_cycles(res.loadcase.engine, res.loadcase.operating).overspeed
+        os_loads = [
+            candidate_loads(
+                res.shaft,
+                state_base(res.shaft, EngineState("overspeed", c.dynamics.speed, c.dynamics)),
+                dict.fromkeys(res.drawn, 1.0),
+                res.drawn,
+                envelope=False,
+            )
+            for c in cyc
+        ]
+        os = candidate_overspeed(res.shaft, os_loads, mat)
+        groups = [gr for t in throws for gr in t.groups]
+        cw = (gr.max_von_mises_overspeed.value for gr in groups if group_kind(gr.group) in COUNTERWEIGHT_KINDS)
+        assert os is not None
+        assert os.peak == pytest.approx(max(gr.max_von_mises_overspeed.value for gr in groups), rel=1e-9)
+        assert os.safety == pytest.approx(min(gr.overspeed_safety for gr in groups), rel=1e-9)
+        assert os.counterweight_peak == pytest.approx(max(cw), rel=1e-9)
     assert all(r.overspeed is not None and r.overspeed.safety > 0 for r in res.results)
 
 
