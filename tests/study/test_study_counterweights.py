@@ -51,6 +51,7 @@ envelope = "45 mm"
 [study.limits]
 max_main_bearing_load = "20 kN"
 min_fillet_static_safety = 1.0
+min_overspeed_safety = 1.0
 [[study.placements]]
 name = "8"
 webs = "all"
@@ -306,7 +307,14 @@ def test_table_plot_and_recommendation_written(study, tmp_path):
     assert (tmp_path / "p.png").stat().st_size > 0
     text = paths["csv"].read_text().splitlines()
     assert len(text) == 1 + len(res.results)  # every candidate, the ones that cannot be built too
-    for col in ("fillet_static_safety", "fillet_fatigue_safety", "fillet_peak_von_mises_mpa"):
+    for col in (
+        "fillet_static_safety",
+        "fillet_fatigue_safety",
+        "fillet_peak_von_mises_mpa",
+        "overspeed_safety",
+        "overspeed_peak_von_mises_mpa",
+        "counterweight_overspeed_peak_mpa",
+    ):
         assert col in text[0].split(",")
     assert all(r.stresses is not None and r.stresses.fatigue_safety is not None for r in res.results)
     assert res.recommended is not None and res.recommended.meets_limits
