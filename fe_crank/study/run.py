@@ -28,6 +28,8 @@ from fe_crank.study.candidates import (
     written_mass,
 )
 from fe_crank.study.film import FilmMetrics, film_metrics
+from fe_crank.study.m53 import LIMIT as M53_LIMIT
+from fe_crank.study.m53 import M53Screen, refusal, study_m53
 from fe_crank.study.screen import (
     EngineState,
     OverspeedScreen,
@@ -69,6 +71,8 @@ class CandidateResult:
     #: the stresses over the overspeed cycles (``study.screen.candidate_overspeed``; None
     #: without an overspeed or with ``stresses = "off"``)
     overspeed: OverspeedScreen | None = None
+    #: UR M53's least Q, the same for every candidate without [torsion] (``study.m53``)
+    m53: M53Screen | None = None
 
     @property
     def meets_limits(self) -> bool:
@@ -149,6 +153,16 @@ def prepare(lc: LoadCase, spec: StudySpec):
             file=spec.file,
             key="study.limits.min_fillet_static_safety",
         )
+    if M53_LIMIT in spec.limits:
+        why = refusal(lc)
+        if why is None and not (lc.criteria is not None and lc.criteria.m53_quasi_static_torque):
+            why = (
+                "UR M53 2.2 takes the torsional stress from a forced-vibration calculation, which varies with "
+                "the candidate's inertia and the study does not run; to screen Q on the quasi-static journal "
+                "torque (not UR M53-conform), set criteria.m53_quasi_static_torque = true in the load case"
+            )
+        if why is not None:
+            raise InputError(why, file=spec.file, key=f"study.limits.{M53_LIMIT}")
     return layout, drawn, candidates(spec, drawn, layout, lc.engine)
 
 
@@ -163,6 +177,7 @@ def _metrics(
     written: WrittenMass,
     stresses: StressScreen | None = None,
     overspeed: OverspeedScreen | None = None,
+    m53: M53Screen | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -231,6 +246,8 @@ def _metrics(
         k = "max_counterweight_overspeed_stress"
         if k in lim and overspeed.counterweight_peak > lim[k]:
             failed += (f"{k} {overspeed.counterweight_peak / 1e6:.4g} > {lim[k] / 1e6:.4g} MPa",)
+    if M53_LIMIT in spec.limits and m53 is not None and m53.acceptability < spec.limits[M53_LIMIT]:
+        failed += (f"{M53_LIMIT} {m53.acceptability:.4g} < {spec.limits[M53_LIMIT]:.4g}",)
     if "min_oil_film" in spec.limits and film is not None and film.min_film < spec.limits["min_oil_film"]:
         failed += (f"min_oil_film {film.min_film * 1e6:.4g} < {spec.limits['min_oil_film'] * 1e6:.4g} um",)
     return CandidateResult(
@@ -255,6 +272,7 @@ def _metrics(
         film,
         stresses,
         overspeed,
+        m53,
     )
 
 
@@ -315,6 +333,7 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         lc.engine, lc.material, lc.criteria.m53_additional_bending if lc.criteria else None, file=lc.source_file
     ).additional
     g = layout.geometry
+    q = study_m53(lc, cycles)  # the counterweights enter neither UR M53's loads nor its dimensions
     results = []
     for c in cands:
         wm = written_mass(layout, c, drawn, shaft.mass, solids)
@@ -334,11 +353,18 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         os = candidate_overspeed(
             shaft, [candidate_loads(shaft, b, wm.load_factors, drawn, envelope=False) for b in os_bases], lc.material
         )
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os))
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:
         notes.append("the engine has no gas table: full load is the inertia load, no separate no-load state")
     if lc.torsion is not None:
         notes.append("journal torques quasi-static (the torsional stage's vibratory torque enters the full check only)")
+    if q is not None:
+        notes.append(
+            f"UR M53 Q {q.acceptability:.4g} ({q.where}): computed once, every candidate's (the counterweights "
+            "enter neither UR M53's loads nor its dimensions without [torsion]); quasi-static journal torque"
+        )
+    else:
+        notes.append(f"UR M53 Q not screened: {refusal(lc)}")
     return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes))

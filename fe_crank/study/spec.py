@@ -69,6 +69,7 @@ LIMITS = {
     "min_fillet_fatigue_safety": "number",  # the fillets' least screened Goodman safety
     "min_overspeed_safety": "number",  # yield over the screened overspeed peak, any group
     "max_counterweight_overspeed_stress": "pressure",  # the counterweights' fillets and junctions
+    "min_m53_acceptability": "number",  # UR M53's Q, the load case's criterion (``study.m53``)
 }
 KEYS = (
     "name",

@@ -6,7 +6,9 @@ m r sums computed here, and its refusals of bad input."""
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -28,7 +30,8 @@ from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
 from fe_crank.study.film import film_metrics
-from fe_crank.study.outputs import write_candidate
+from fe_crank.study.m53 import refusal
+from fe_crank.study.outputs import to_toml, write_candidate
 from fe_crank.study.run import run_study
 from fe_crank.study.screen import (
     COUNTERWEIGHT_KINDS,
@@ -347,6 +350,8 @@ BAD = [
     ('rotating_rate_percent = [50]\noffset = ["10 deg"]', "study.offset[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.3"]', "study.placements[0].webs[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.1"]', "study.placements[0].webs"),
+    # UR M53 2.2: the load case does not accept the quasi-static journal torque
+    ("rotating_rate_percent = [50]\n[study.limits]\nmin_m53_acceptability = 1.2", "study.limits.min_m53_acceptability"),
 ]
 
 
@@ -394,3 +399,33 @@ def test_screened_mass_properties_are_the_written_shafts(study):
         assert np.abs(got - want).max() <= 1e-9 * np.abs(want).max()
     assert r.mass_change == pytest.approx(dm, rel=1e-9, abs=1e-12)
     assert r.polar_inertia_change == pytest.approx(dj, rel=1e-9, abs=1e-15)
+
+
+def test_m53_limit_refused_with_torsion():
+    """With [torsion] the vibratory journal torque depends on the candidate's inertia: the
+    study gives no Q and refuses its limit (the reason names the section)."""
+    lc = load_loadcase(DATA / "small_torsion.toml")
+    why = refusal(lc)
+    assert why is not None and "[torsion]" in why
+
+
+@pytest.mark.heavy
+def test_m53_q_equals_a_full_check_of_the_written_case(study, tmp_path):
+    """UR M53's Q the study reports for a candidate (computed once, ``study.m53``) against
+    the ``min_m53_acceptability`` criterion of a full ``fe-crank check`` of the load case
+    the study writes for it (quasi-static journal torque accepted), to 1e-9; and the same
+    Q on every candidate."""
+    res, _, cache = study
+    r = next(x for x in res.results if x.candidate.buildable and x.candidate.rotating > 0)
+    assert r.m53 is not None
+    assert {x.m53 for x in res.results} == {r.m53}
+    _, lc_path = write_candidate(res, r, tmp_path / "written")
+    data = tomllib.loads(lc_path.read_text())
+    data["criteria"]["min_m53_acceptability"] = 1.0
+    data["criteria"]["m53_quasi_static_torque"] = True
+    lc_path.write_text(to_toml(data))
+    out = tmp_path / "out"
+    assert main(["check", str(lc_path), "--mesh-size", "test", "-o", str(out), "--cache-dir", str(cache)]) == 0
+    (results,) = out.glob("*/results.json")
+    crit = next(c for c in json.loads(results.read_text())["criteria"] if c["quantity"] == "m53_acceptability")
+    assert r.m53.acceptability == pytest.approx(crit["value"], rel=1e-9, abs=0.0)
