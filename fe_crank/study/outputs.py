@@ -38,6 +38,7 @@ COLUMNS = (
     ("overspeed_peak_von_mises_mpa", "overspeed peak von Mises MPa"),
     ("overspeed_safety", "overspeed safety"),
     ("counterweight_overspeed_peak_mpa", "cw junction overspeed peak MPa"),
+    ("counterweight_body_peak_mpa", "cw peak (per-throw model) MPa"),
     ("m53_acceptability", "UR M53 Q"),
     ("free_force_first_order_n", "free force 1st N"),
     ("free_moment_first_order_nm", "free moment 1st N m"),
@@ -71,6 +72,7 @@ def row(r: CandidateResult, recommended: bool) -> dict:
         "overspeed_peak_von_mises_mpa": None if os is None else os.peak / 1e6,
         "overspeed_safety": None if os is None else os.safety,
         "counterweight_overspeed_peak_mpa": None if os is None else os.counterweight_peak / 1e6,
+        "counterweight_body_peak_mpa": None if r.bodies is None else r.bodies.peak / 1e6,
         "m53_acceptability": None if r.m53 is None else r.m53.acceptability,
         "free_force_first_order_n": r.free_force,
         "free_moment_first_order_nm": r.free_moment,
@@ -97,6 +99,7 @@ def detail(r: CandidateResult) -> dict:
         if r.overspeed is None
         else {"peak": r.overspeed.peak_where, "counterweight_junction_peak": r.overspeed.counterweight_where},
         "m53_where": None if r.m53 is None else r.m53.where,
+        "counterweight_body_peak_where": None if r.bodies is None else r.bodies.where,
         "oil_film": None
         if r.film is None
         else {

@@ -13,9 +13,11 @@ from fe_crank.errors import InputError
 from fe_crank.fe.shaft.whole_shaft import throw_masses
 from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.io.geometry import require_counterweight_fillets
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.rules.m53.basis import m53_basis
+from fe_crank.study.bodies import BodyModel, BodyScreen, body_model, candidate_bodies
 from fe_crank.study.candidates import (
     Candidate,
     DrawnWeb,
@@ -43,6 +45,7 @@ from fe_crank.study.screen import (
     study_shaft,
 )
 from fe_crank.study.spec import StudySpec
+from fe_crank.torsion.loads import assessed_loads
 
 
 @dataclass(frozen=True)
@@ -73,6 +76,9 @@ class CandidateResult:
     overspeed: OverspeedScreen | None = None
     #: UR M53's least Q, the same for every candidate without [torsion] (``study.m53``)
     m53: M53Screen | None = None
+    #: the per-throw model's counterweight groups (bodies, fillets, junctions) over every
+    #: state (``study.bodies``; None with ``stresses = "off"``)
+    bodies: BodyScreen | None = None
 
     @property
     def meets_limits(self) -> bool:
@@ -91,6 +97,8 @@ class StudyResult:
     why: str
     residual_speed: float  # rad/s
     notes: tuple[str, ...] = field(default_factory=tuple)
+    #: the per-throw model of the drawn geometry (``study.bodies``; None with ``stresses = "off"``)
+    body_model: BodyModel | None = None
 
 
 def _layout(lc: LoadCase):
@@ -153,6 +161,8 @@ def prepare(lc: LoadCase, spec: StudySpec):
             file=spec.file,
             key="study.limits.min_fillet_static_safety",
         )
+    if "max_counterweight_stress" in spec.limits:  # a sharp re-entrant edge: a singular stress, as the check
+        require_counterweight_fillets(layout.geometry, ("counterweight_stress",), spec.file)
     if M53_LIMIT in spec.limits:
         why = refusal(lc)
         if why is None and not (lc.criteria is not None and lc.criteria.m53_quasi_static_torque):
@@ -178,6 +188,7 @@ def _metrics(
     stresses: StressScreen | None = None,
     overspeed: OverspeedScreen | None = None,
     m53: M53Screen | None = None,
+    bodies: BodyScreen | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -246,6 +257,9 @@ def _metrics(
         k = "max_counterweight_overspeed_stress"
         if k in lim and overspeed.counterweight_peak > lim[k]:
             failed += (f"{k} {overspeed.counterweight_peak / 1e6:.4g} > {lim[k] / 1e6:.4g} MPa",)
+    k = "max_counterweight_stress"
+    if k in spec.limits and bodies is not None and bodies.peak > spec.limits[k]:
+        failed += (f"{k} {bodies.peak / 1e6:.4g} > {spec.limits[k] / 1e6:.4g} MPa",)
     if M53_LIMIT in spec.limits and m53 is not None and m53.acceptability < spec.limits[M53_LIMIT]:
         failed += (f"{M53_LIMIT} {m53.acceptability:.4g} < {spec.limits[M53_LIMIT]:.4g}",)
     if "min_oil_film" in spec.limits and film is not None and film.min_film < spec.limits["min_oil_film"]:
@@ -273,6 +287,7 @@ def _metrics(
         stresses,
         overspeed,
         m53,
+        bodies,
     )
 
 
@@ -334,6 +349,12 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     ).additional
     g = layout.geometry
     q = study_m53(lc, cycles)  # the counterweights enter neither UR M53's loads nor its dimensions
+    bm = (
+        None
+        if spec.stresses == "off"
+        else body_model(lc, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    )
+    per_throw_loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if bm is not None else None
     results = []
     for c in cands:
         wm = written_mass(layout, c, drawn, shaft.mass, solids)
@@ -353,7 +374,8 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         os = candidate_overspeed(
             shaft, [candidate_loads(shaft, b, wm.load_factors, drawn, envelope=False) for b in os_bases], lc.material
         )
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q))
+        bd = None if bm is None or per_throw_loads is None else candidate_bodies(bm, per_throw_loads, wm.load_factors)
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q, bd))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:
@@ -367,4 +389,4 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         )
     else:
         notes.append(f"UR M53 Q not screened: {refusal(lc)}")
-    return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes))
+    return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm)

@@ -69,6 +69,7 @@ LIMITS = {
     "min_fillet_fatigue_safety": "number",  # the fillets' least screened Goodman safety
     "min_overspeed_safety": "number",  # yield over the screened overspeed peak, any group
     "max_counterweight_overspeed_stress": "pressure",  # the counterweights' fillets and junctions
+    "max_counterweight_stress": "pressure",  # the per-throw model's counterweight groups (``study.bodies``)
     "min_m53_acceptability": "number",  # UR M53's Q, the load case's criterion (``study.m53``)
 }
 KEYS = (
@@ -234,6 +235,7 @@ def parse_study(path: str | Path) -> StudySpec:
     wants["max_fillet_stress"] = wants["min_fillet_static_safety"]
     wants["min_overspeed_safety"] = wants["min_fillet_static_safety"]
     wants["max_counterweight_overspeed_stress"] = wants["min_fillet_static_safety"]
+    wants["max_counterweight_stress"] = wants["min_fillet_static_safety"]
     for k, modes in wants.items():
         if k in limits and stresses not in modes:
             raise InputError(
