@@ -480,3 +480,15 @@ def test_m53_q_and_counterweight_stress_equal_the_checks_of_the_written_case(stu
     screened = candidate_bodies(res.body_model, loads, dict.fromkeys(drawn, 1.0))
     assert screened.peak == pytest.approx(ref, rel=1e-9, abs=0.0)
     assert all(r.bodies is not None and r.bodies.peak > 0 for r in res.results)
+
+
+def test_counterweight_stress_limit_needs_a_counterweight_fillet(tmp_path, capsys):
+    """As the check's criterion: a sharp counterweight-web edge is a stress singularity, so
+    the study's ``max_counterweight_stress`` is refused on the geometry's key, before meshing."""
+    f = tmp_path / "s.toml"
+    f.write_text('[study]\nrotating_rate_percent = [50]\n[study.limits]\nmax_counterweight_stress = "100 MPa"\n')
+    rc = main(["study", str(CASE), str(f), "-o", str(tmp_path / "out"), "--cache-dir", str(tmp_path / "c")])
+    err = capsys.readouterr().err
+    assert rc == 2 and "counterweight.fillet_radius" in err and "max_counterweight_stress" in err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert not (tmp_path / "c").exists()
