@@ -85,6 +85,7 @@ from numpy.typing import ArrayLike
 
 from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry
 from fe_crank.assess.superpose import UnitStresses
+from fe_crank.fe.core.loads import CENTRIFUGAL_PARTS
 from fe_crank.geometry.spec import BoltedJoint
 from fe_crank.mechanism.results import DynamicsResult
 from fe_crank.rules import vdi2230 as v
@@ -202,7 +203,7 @@ class SectionLoads:
 #: the unit cases whose stresses are the web's deformation under the pin force and torque
 #: (not the throw's own inertia: the counterweight's is the joint's resultant, ``joint_loads``)
 def _pin_cases(cases: tuple[str, ...]) -> np.ndarray:
-    return np.array([c not in ("centrifugal", "angular_acceleration") for c in cases])
+    return np.array([c not in ("centrifugal", *CENTRIFUGAL_PARTS, "angular_acceleration") for c in cases])
 
 
 def fe_section_loads(

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from fe_crank.fe.core.loads import CENTRIFUGAL_PARTS
 from fe_crank.fe.core.stress import stress_at_selected_nodes
 from fe_crank.fe.throw.options import CASES as UNIT_CASES  # the FE stage's default unit cases
 from fe_crank.fe.throw.pin_directions import patch_case, pin_case_weights, pin_direction
@@ -127,7 +128,7 @@ def load_coefficients(
         patch.update({c: w[:, i] for i, c in enumerate(names)})
     cols = []
     for name in cases:
-        if name == "centrifugal":
+        if name == "centrifugal" or name in CENTRIFUGAL_PARTS:  # the parts: the drawn counterweights (k = 1)
             cols.append(np.full(n, omega**2))
         elif name == "torque":
             cols.append(-sense * torque / torque_mz)

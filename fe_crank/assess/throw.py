@@ -185,7 +185,7 @@ def assess_throw(ctx: ThrowContext) -> ThrowAssessment:
             journal_diameter=dj,
             additional_bending=ctx.m53_additional,
         )
-    fillets, nominal = _m53(
+    fillets, nominal = m53_fillets(
         ctx.name,
         ctx.m53_geometry,
         ctx.material,
@@ -238,7 +238,7 @@ def assess_throw(ctx: ThrowContext) -> ThrowAssessment:
     return ThrowAssessment(ctx.name, groups, fillets, nominal, cws, int(len(ctx.theta)), joints)
 
 
-def _m53(
+def m53_fillets(
     name: str,
     m53_geometry: m53.M53Geometry | None,
     material: Material,
@@ -251,9 +251,11 @@ def _m53(
     ke: float,
     rod_loads: RodLoads | None = None,
 ) -> tuple[tuple[M53Fillet, ...], NominalStresses | None]:
-    """UR M53 of one throw: the radial pin force's bending and, of the journal torque
-    histories ``torques``, the one with the largest alternating part (the first of
-    equals)."""
+    """UR M53 of one throw (its fillets' and oil-bore outlet's results, and the nominal
+    stresses): the radial pin force's bending and, of the journal torque histories
+    ``torques``, the one with the largest alternating part (the first of equals).
+    ``assess_throw`` calls it with the throw's context; the counterweight study
+    (``fe_crank.study.m53``) with the same loads, without the FE model."""
     fillets: tuple[M53Fillet, ...] = ()
     nominal: NominalStresses | None = None
     m53_additional, m53_ke = additional, ke

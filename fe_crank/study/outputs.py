@@ -35,6 +35,11 @@ COLUMNS = (
     ("fillet_static_safety", "fillet static safety"),
     ("fillet_fatigue_safety", "fillet fatigue safety"),
     ("counterweight_junction_peak_mpa", "cw junction peak MPa"),
+    ("overspeed_peak_von_mises_mpa", "overspeed peak von Mises MPa"),
+    ("overspeed_safety", "overspeed safety"),
+    ("counterweight_overspeed_peak_mpa", "cw junction overspeed peak MPa"),
+    ("counterweight_body_peak_mpa", "cw peak (per-throw model) MPa"),
+    ("m53_acceptability", "UR M53 Q"),
     ("free_force_first_order_n", "free force 1st N"),
     ("free_moment_first_order_nm", "free moment 1st N m"),
     ("buildable", "buildable"),
@@ -46,6 +51,7 @@ COLUMNS = (
 def row(r: CandidateResult, recommended: bool) -> dict:
     c = r.candidate
     st = r.stresses
+    os = r.overspeed
     return {
         "index": c.index,
         "placement": c.placement,
@@ -63,6 +69,11 @@ def row(r: CandidateResult, recommended: bool) -> dict:
         "fillet_static_safety": None if st is None else st.static_safety,
         "fillet_fatigue_safety": None if st is None else st.fatigue_safety,
         "counterweight_junction_peak_mpa": None if st is None else st.counterweight_peak / 1e6,
+        "overspeed_peak_von_mises_mpa": None if os is None else os.peak / 1e6,
+        "overspeed_safety": None if os is None else os.safety,
+        "counterweight_overspeed_peak_mpa": None if os is None else os.counterweight_peak / 1e6,
+        "counterweight_body_peak_mpa": None if r.bodies is None else r.bodies.peak / 1e6,
+        "m53_acceptability": None if r.m53 is None else r.m53.acceptability,
         "free_force_first_order_n": r.free_force,
         "free_moment_first_order_nm": r.free_moment,
         "buildable": c.buildable,
@@ -84,6 +95,11 @@ def detail(r: CandidateResult) -> dict:
             "fillet_fatigue": r.stresses.fatigue_where,
             "counterweight_junction_peak": r.stresses.counterweight_where,
         },
+        "overspeed_where": None
+        if r.overspeed is None
+        else {"peak": r.overspeed.peak_where, "counterweight_junction_peak": r.overspeed.counterweight_where},
+        "m53_where": None if r.m53 is None else r.m53.where,
+        "counterweight_body_peak_where": None if r.bodies is None else r.bodies.where,
         "oil_film": None
         if r.film is None
         else {

@@ -13,9 +13,11 @@ from fe_crank.errors import InputError
 from fe_crank.fe.shaft.whole_shaft import throw_masses
 from fe_crank.geometry.shaft import engine_shaft_layout, whole_shaft_wanted
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.io.geometry import require_counterweight_fillets
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.rules.m53.basis import m53_basis
+from fe_crank.study.bodies import BodyModel, BodyScreen, body_model, candidate_bodies
 from fe_crank.study.candidates import (
     Candidate,
     DrawnWeb,
@@ -28,16 +30,22 @@ from fe_crank.study.candidates import (
     written_mass,
 )
 from fe_crank.study.film import FilmMetrics, film_metrics
+from fe_crank.study.m53 import LIMIT as M53_LIMIT
+from fe_crank.study.m53 import M53Screen, refusal, study_m53
 from fe_crank.study.screen import (
+    EngineState,
+    OverspeedScreen,
     StressScreen,
     StudyShaft,
     candidate_loads,
+    candidate_overspeed,
     candidate_stresses,
     engine_states,
     state_base,
     study_shaft,
 )
 from fe_crank.study.spec import StudySpec
+from fe_crank.torsion.loads import assessed_loads
 
 
 @dataclass(frozen=True)
@@ -63,6 +71,14 @@ class CandidateResult:
     film: FilmMetrics | None = None  # the hydrodynamic bearings' film; None without one
     #: the shaft's fillet and counterweight-junction stresses over every state (``study.screen``)
     stresses: StressScreen | None = None
+    #: the stresses over the overspeed cycles (``study.screen.candidate_overspeed``; None
+    #: without an overspeed or with ``stresses = "off"``)
+    overspeed: OverspeedScreen | None = None
+    #: UR M53's least Q, the same for every candidate without [torsion] (``study.m53``)
+    m53: M53Screen | None = None
+    #: the per-throw model's counterweight groups (bodies, fillets, junctions) over every
+    #: state (``study.bodies``; None with ``stresses = "off"``)
+    bodies: BodyScreen | None = None
 
     @property
     def meets_limits(self) -> bool:
@@ -81,6 +97,8 @@ class StudyResult:
     why: str
     residual_speed: float  # rad/s
     notes: tuple[str, ...] = field(default_factory=tuple)
+    #: the per-throw model of the drawn geometry (``study.bodies``; None with ``stresses = "off"``)
+    body_model: BodyModel | None = None
 
 
 def _layout(lc: LoadCase):
@@ -124,12 +142,37 @@ def prepare(lc: LoadCase, spec: StudySpec):
             file=spec.file,
             key="study.limits.min_fillet_fatigue_safety",
         )
+    for k in ("min_overspeed_safety", "max_counterweight_overspeed_stress"):
+        if k in spec.limits and lc.operating.overspeed is None:
+            raise InputError(
+                "an overspeed limit needs the load case's [operating] overspeed",
+                file=spec.file,
+                key=f"study.limits.{k}",
+            )
+    if "min_overspeed_safety" in spec.limits and (m is None or m.yield_strength is None):
+        raise InputError(
+            "an overspeed-safety limit needs the material's yield strength",
+            file=spec.file,
+            key="study.limits.min_overspeed_safety",
+        )
     if "min_fillet_static_safety" in spec.limits and (m is None or m.yield_strength is None):
         raise InputError(
             "a static-safety limit needs the material's yield strength",
             file=spec.file,
             key="study.limits.min_fillet_static_safety",
         )
+    if "max_counterweight_stress" in spec.limits:  # a sharp re-entrant edge: a singular stress, as the check
+        require_counterweight_fillets(layout.geometry, ("counterweight_stress",), spec.file)
+    if M53_LIMIT in spec.limits:
+        why = refusal(lc)
+        if why is None and not (lc.criteria is not None and lc.criteria.m53_quasi_static_torque):
+            why = (
+                "UR M53 2.2 takes the torsional stress from a forced-vibration calculation, which varies with "
+                "the candidate's inertia and the study does not run; to screen Q on the quasi-static journal "
+                "torque (not UR M53-conform), set criteria.m53_quasi_static_torque = true in the load case"
+            )
+        if why is not None:
+            raise InputError(why, file=spec.file, key=f"study.limits.{M53_LIMIT}")
     return layout, drawn, candidates(spec, drawn, layout, lc.engine)
 
 
@@ -143,6 +186,9 @@ def _metrics(
     w_max: float,
     written: WrittenMass,
     stresses: StressScreen | None = None,
+    overspeed: OverspeedScreen | None = None,
+    m53: M53Screen | None = None,
+    bodies: BodyScreen | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -204,6 +250,18 @@ def _metrics(
         ):
             if k in lim and v is not None and v < lim[k]:
                 failed += (f"{k} {v:.4g} < {lim[k]:.4g}",)
+    if overspeed is not None:
+        lim = spec.limits
+        if "min_overspeed_safety" in lim and overspeed.safety < lim["min_overspeed_safety"]:
+            failed += (f"min_overspeed_safety {overspeed.safety:.4g} < {lim['min_overspeed_safety']:.4g}",)
+        k = "max_counterweight_overspeed_stress"
+        if k in lim and overspeed.counterweight_peak > lim[k]:
+            failed += (f"{k} {overspeed.counterweight_peak / 1e6:.4g} > {lim[k] / 1e6:.4g} MPa",)
+    k = "max_counterweight_stress"
+    if k in spec.limits and bodies is not None and bodies.peak > spec.limits[k]:
+        failed += (f"{k} {bodies.peak / 1e6:.4g} > {spec.limits[k] / 1e6:.4g} MPa",)
+    if M53_LIMIT in spec.limits and m53 is not None and m53.acceptability < spec.limits[M53_LIMIT]:
+        failed += (f"{M53_LIMIT} {m53.acceptability:.4g} < {spec.limits[M53_LIMIT]:.4g}",)
     if "min_oil_film" in spec.limits and film is not None and film.min_film < spec.limits["min_oil_film"]:
         failed += (f"min_oil_film {film.min_film * 1e6:.4g} < {spec.limits['min_oil_film'] * 1e6:.4g} um",)
     return CandidateResult(
@@ -227,6 +285,9 @@ def _metrics(
         written,
         film,
         stresses,
+        overspeed,
+        m53,
+        bodies,
     )
 
 
@@ -255,6 +316,8 @@ def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[Candidat
     if st is not None:
         why += f"; fillet peak {st.shaft_peak / 1e6:.1f} MPa (static safety {st.static_safety:.2f}"
         why += ")" if st.fatigue_safety is None else f", fatigue safety {st.fatigue_safety:.2f})"
+    if best.overspeed is not None:
+        why += f"; overspeed safety {best.overspeed.safety:.2f}"
     return best, why
 
 
@@ -274,12 +337,24 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         stresses=spec.stresses != "off",
     )
     bases = [state_base(shaft, s) for s in states]
+    os_bases = (
+        [state_base(shaft, EngineState(f"overspeed ({c.gas})", c.dynamics.speed, c.dynamics)) for c in cycles.overspeed]
+        if spec.stresses != "off"
+        else []
+    )
     w_max = max(s.speed for s in states)
     solids = ThrowSolidCache(layout)
     add = m53_basis(
         lc.engine, lc.material, lc.criteria.m53_additional_bending if lc.criteria else None, file=lc.source_file
     ).additional
     g = layout.geometry
+    q = study_m53(lc, cycles)  # the counterweights enter neither UR M53's loads nor its dimensions
+    bm = (
+        None
+        if spec.stresses == "off"
+        else body_model(lc, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    )
+    per_throw_loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if bm is not None else None
     results = []
     for c in cands:
         wm = written_mass(layout, c, drawn, shaft.mass, solids)
@@ -296,11 +371,22 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
                 fatigue=spec.stresses == "fatigue",
             )
         )
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st))
+        os = candidate_overspeed(
+            shaft, [candidate_loads(shaft, b, wm.load_factors, drawn, envelope=False) for b in os_bases], lc.material
+        )
+        bd = None if bm is None or per_throw_loads is None else candidate_bodies(bm, per_throw_loads, wm.load_factors)
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q, bd))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:
         notes.append("the engine has no gas table: full load is the inertia load, no separate no-load state")
     if lc.torsion is not None:
         notes.append("journal torques quasi-static (the torsional stage's vibratory torque enters the full check only)")
-    return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes))
+    if q is not None:
+        notes.append(
+            f"UR M53 Q {q.acceptability:.4g} ({q.where}): computed once, every candidate's (the counterweights "
+            "enter neither UR M53's loads nor its dimensions without [torsion]); quasi-static journal torque"
+        )
+    else:
+        notes.append(f"UR M53 Q not screened: {refusal(lc)}")
+    return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm)

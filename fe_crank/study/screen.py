@@ -37,10 +37,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess.group.assessment import section_diameter, sigma_add_applies
+from fe_crank.assess.group.assessment import of_counterweight, section_diameter, sigma_add_applies
 from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
+from fe_crank.assess.group.peak import group_peak
 from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.assess.superpose import UnitStresses
+from fe_crank.cad.source import mesh_source_shaft
 from fe_crank.fe.shaft.cases import ShaftCases, solve_cases
 from fe_crank.fe.shaft.cycle import solve_cycle
 from fe_crank.fe.shaft.model import ShaftFeOptions, build_shaft_model
@@ -49,7 +51,7 @@ from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult, analyse
-from fe_crank.mesh.shaft import mesh_shaft, rotation
+from fe_crank.mesh.shaft import rotation
 from fe_crank.model import OperatingPoint
 from fe_crank.study.candidates import DrawnWeb, Web
 
@@ -101,7 +103,7 @@ def study_shaft(
     """Mesh, condense and solve the unit cases once (module doc); ``fe``: the load case's
     ``[fe]`` options (solver, pin half-angle, symmetry); ``stresses``: keep each throw's
     unit stresses for the stress screening."""
-    sm = mesh_shaft(layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    sm = mesh_source_shaft(layout.geometry, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
     opt = ShaftFeOptions(
         solver=fe.solver, pin_half_angle=fe.pin_half_angle, symmetry=fe.symmetry, counterweight_webs=True
     )
@@ -177,9 +179,15 @@ def state_base(shaft: StudyShaft, state: EngineState) -> StateBase:
 
 
 def candidate_loads(
-    shaft: StudyShaft, base: StateBase, factors: dict[Web, float], drawn: dict[Web, DrawnWeb]
+    shaft: StudyShaft,
+    base: StateBase,
+    factors: dict[Web, float],
+    drawn: dict[Web, DrawnWeb],
+    *,
+    envelope: bool = True,
 ) -> StateLoads:
-    """Bearing loads and web moments of one candidate in one state (module doc)."""
+    """Bearing loads and web moments of one candidate in one state (module doc);
+    ``envelope`` False: the stated law's alone (``bearing_sets`` that one)."""
     cases, layout = shaft.cases, shaft.layout
     w2 = base.state.speed**2
     W = base.W.copy()
@@ -187,7 +195,8 @@ def candidate_loads(
         W[:, cases.index(web_case(web))] = k * w2
     f, _, W_full = solve_cycle(cases, W, shaft.laws)
     bearings = _to_engine(-f, base.psi[:, None])
-    sets = [bearings] + [_to_engine(-solve_cycle(cases, W, laws)[0], base.psi[:, None]) for laws in shaft.law_sets[1:]]
+    others = shaft.law_sets[1:] if envelope else ()
+    sets = [bearings] + [_to_engine(-solve_cycle(cases, W, laws)[0], base.psi[:, None]) for laws in others]
     # web moments: the change of the bearing forces and the counterweights' forces
     dF = -(bearings - base.bearings_off)  # forces on the shaft, engine frame
     g = layout.geometry
@@ -304,3 +313,44 @@ def candidate_stresses(
         best["cw"][0],
         best["cw"][1],
     )
+
+
+@dataclass(frozen=True)
+class OverspeedScreen:
+    """One candidate at the overspeed (Pa): the largest von Mises stress over the
+    overspeed cycles of every assessed group of the shaft's throws, the least overspeed
+    safety (yield over it, the check's ``overspeed_safety``; inf without a yield
+    strength), the counterweights' fillets and junctions' largest (the check's
+    ``counterweight_overspeed_stress``), and where each is."""
+
+    peak: float
+    peak_where: str
+    safety: float
+    counterweight_peak: float
+    counterweight_where: str
+
+
+def candidate_overspeed(shaft: StudyShaft, loads: list[StateLoads], material) -> OverspeedScreen | None:
+    """The candidate's overspeed stresses (module doc) from its ``loads`` in each overspeed
+    cycle (``candidate_loads`` of the overspeed states: their ``weights``); None without
+    any.  Each group's peak is the check's (``group_peak`` over the cycles' weights stacked,
+    ``assess_group``'s overspeed), the safety the yield strength over it."""
+    if not loads or not shaft.stresses:
+        return None
+    W = np.vstack([sl.weights for sl in loads if sl.weights is not None])
+    best = {"all": (0.0, ""), "cw": (0.0, "")}
+    for name, unit in shaft.stresses:
+        for g in sorted(unit.groups):
+            nodes = np.asarray(unit.groups[g])
+            if not nodes.size:
+                continue
+            _, vm, _ = group_peak(unit, W, nodes)
+            v = float(vm.max())
+            keys = ("all", "cw") if of_counterweight(g) else ("all",)
+            for key in keys:
+                if v > best[key][0]:
+                    best[key] = (v, f"throw {name} {g}")
+    ys = material.yield_strength
+    peak = best["all"][0]
+    safety = ys / peak if (ys is not None and peak > 0) else math.inf
+    return OverspeedScreen(peak, best["all"][1], safety, best["cw"][0], best["cw"][1])

@@ -24,6 +24,8 @@ A study TOML beside the load case (``fe-crank study LOADCASE STUDY``)::
     max_fillet_stress = "400 MPa"                      # the fillets' peak von Mises
     min_fillet_static_safety = 2.0                     # a plain number
     min_fillet_fatigue_safety = 1.5                    # a plain number
+    min_overspeed_safety = 1.5                         # a plain number: yield over the overspeed peak
+    max_counterweight_overspeed_stress = "150 MPa"     # counterweight fillets and junctions
 
     [[study.placements]]
     name = "8 counterweights"
@@ -65,6 +67,10 @@ LIMITS = {
     "max_fillet_stress": "pressure",  # the fillets' screened peak von Mises (docs/study.md)
     "min_fillet_static_safety": "number",  # yield over that peak
     "min_fillet_fatigue_safety": "number",  # the fillets' least screened Goodman safety
+    "min_overspeed_safety": "number",  # yield over the screened overspeed peak, any group
+    "max_counterweight_overspeed_stress": "pressure",  # the counterweights' fillets and junctions
+    "max_counterweight_stress": "pressure",  # the per-throw model's counterweight groups (``study.bodies``)
+    "min_m53_acceptability": "number",  # UR M53's Q, the load case's criterion (``study.m53``)
 }
 KEYS = (
     "name",
@@ -227,6 +233,9 @@ def parse_study(path: str | Path) -> StudySpec:
         raise InputError(f"{stresses!r} is not one of {', '.join(STRESSES)}", file=file, key="study.stresses")
     wants = {"min_fillet_fatigue_safety": ("fatigue",), "min_fillet_static_safety": ("fatigue", "static")}
     wants["max_fillet_stress"] = wants["min_fillet_static_safety"]
+    wants["min_overspeed_safety"] = wants["min_fillet_static_safety"]
+    wants["max_counterweight_overspeed_stress"] = wants["min_fillet_static_safety"]
+    wants["max_counterweight_stress"] = wants["min_fillet_static_safety"]
     for k, modes in wants.items():
         if k in limits and stresses not in modes:
             raise InputError(

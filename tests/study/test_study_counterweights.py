@@ -6,7 +6,9 @@ m r sums computed here, and its refusals of bad input."""
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -24,20 +26,26 @@ from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.geometry.oil import FilmSpec
 from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.mesh.shaft import mesh_shaft
 from fe_crank.rules.m53.basis import m53_basis
+from fe_crank.study.bodies import candidate_bodies
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
 from fe_crank.study.film import film_metrics
-from fe_crank.study.outputs import write_candidate
+from fe_crank.study.m53 import refusal
+from fe_crank.study.outputs import to_toml, write_candidate
 from fe_crank.study.run import run_study
 from fe_crank.study.screen import (
     COUNTERWEIGHT_KINDS,
     SHAFT_KINDS,
+    EngineState,
     candidate_loads,
+    candidate_overspeed,
     candidate_stresses,
     state_base,
 )
 from fe_crank.study.spec import parse_study
+from fe_crank.torsion.loads import assessed_loads
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 CASE = DATA / "small_shaft.toml"
@@ -49,6 +57,7 @@ envelope = "45 mm"
 [study.limits]
 max_main_bearing_load = "20 kN"
 min_fillet_static_safety = 1.0
+min_overspeed_safety = 1.0
 [[study.placements]]
 name = "8"
 webs = "all"
@@ -85,8 +94,9 @@ def full_solve(study):
     _, lc_path = write_candidate(res, r, d / "written")
     lc2 = load_loadcase(lc_path)
     layout2 = engine_shaft_layout(lc2.geometry, lc2.engine, geometry_file="g", engine_file="e")
+    os = tuple(c.dynamics for c in engine_cycles(lc2.engine, lc2.operating).overspeed)
     sm = mesh_shaft(layout2, size="test", cache_dir=cache)
-    return analyse_whole_shaft(sm, lc2.material, res.states[0].dynamics, mass=throw_masses(layout2))
+    return analyse_whole_shaft(sm, lc2.material, res.states[0].dynamics, mass=throw_masses(layout2), overspeed=os)
 
 
 def _u(psi):
@@ -169,7 +179,10 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
     the history of 0.37 times the counterweights' density, (1 - k) off + k on at every
     angle; the largest von Mises over every node and angle to 1e-9, the static safety the
     yield strength over it; the least fatigue safety the check's own assessment of the full
-    solve (``assess_shaft_throws``, every node evaluated)."""
+    solve (``assess_shaft_throws``, every node evaluated), and at factor 1 the overspeed
+    (``candidate_overspeed``) that assessment's with the full solve's overspeed cycle: the
+    largest overspeed von Mises over every group, the least overspeed safety and the
+    counterweight groups' largest."""
     res, _, _ = study
     full, cases = full_solve
     mat = res.loadcase.material
@@ -196,7 +209,7 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
             res.states[0].dynamics.theta,
             mat,
             crank_radius=g.crank_radius,
-            overspeed=None,
+            overspeed=res.loadcase.operating.overspeed,
             diameters={t.name: dia for t in res.shaft.layout.throws},
             additional_bending=add,
         )
@@ -207,6 +220,27 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
             if gr.fatigue_safety is not None and group_kind(gr.group) in SHAFT_KINDS
         )
         assert st.fatigue_safety == pytest.approx(least, rel=1e-9)
+        # the overspeed: the same assessment's overspeed peaks and safety (its overspeed cycle)
+        assert full.overspeed
+        cyc = engine_cycles(res.loadcase.engine, res.loadcase.operating).overspeed
+        os_loads = [
+            candidate_loads(
+                res.shaft,
+                state_base(res.shaft, EngineState("overspeed", c.dynamics.speed, c.dynamics)),
+                dict.fromkeys(res.drawn, 1.0),
+                res.drawn,
+                envelope=False,
+            )
+            for c in cyc
+        ]
+        os = candidate_overspeed(res.shaft, os_loads, mat)
+        groups = [gr for t in throws for gr in t.groups]
+        cw = (gr.max_von_mises_overspeed.value for gr in groups if group_kind(gr.group) in COUNTERWEIGHT_KINDS)
+        assert os is not None
+        assert os.peak == pytest.approx(max(gr.max_von_mises_overspeed.value for gr in groups), rel=1e-9)
+        assert os.safety == pytest.approx(min(gr.overspeed_safety for gr in groups), rel=1e-9)
+        assert os.counterweight_peak == pytest.approx(max(cw), rel=1e-9)
+    assert all(r.overspeed is not None and r.overspeed.safety > 0 for r in res.results)
 
 
 @pytest.mark.heavy
@@ -278,7 +312,14 @@ def test_table_plot_and_recommendation_written(study, tmp_path):
     assert (tmp_path / "p.png").stat().st_size > 0
     text = paths["csv"].read_text().splitlines()
     assert len(text) == 1 + len(res.results)  # every candidate, the ones that cannot be built too
-    for col in ("fillet_static_safety", "fillet_fatigue_safety", "fillet_peak_von_mises_mpa"):
+    for col in (
+        "fillet_static_safety",
+        "fillet_fatigue_safety",
+        "fillet_peak_von_mises_mpa",
+        "overspeed_safety",
+        "overspeed_peak_von_mises_mpa",
+        "counterweight_overspeed_peak_mpa",
+    ):
         assert col in text[0].split(",")
     assert all(r.stresses is not None and r.stresses.fatigue_safety is not None for r in res.results)
     assert res.recommended is not None and res.recommended.meets_limits
@@ -311,6 +352,8 @@ BAD = [
     ('rotating_rate_percent = [50]\noffset = ["10 deg"]', "study.offset[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.3"]', "study.placements[0].webs[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.1"]', "study.placements[0].webs"),
+    # UR M53 2.2: the load case does not accept the quasi-static journal torque
+    ("rotating_rate_percent = [50]\n[study.limits]\nmin_m53_acceptability = 1.2", "study.limits.min_m53_acceptability"),
 ]
 
 
@@ -358,3 +401,94 @@ def test_screened_mass_properties_are_the_written_shafts(study):
         assert np.abs(got - want).max() <= 1e-9 * np.abs(want).max()
     assert r.mass_change == pytest.approx(dm, rel=1e-9, abs=1e-12)
     assert r.polar_inertia_change == pytest.approx(dj, rel=1e-9, abs=1e-15)
+
+
+def test_m53_limit_refused_with_torsion():
+    """With [torsion] the vibratory journal torque depends on the candidate's inertia: the
+    study gives no Q and refuses its limit (the reason names the section)."""
+    lc = load_loadcase(DATA / "small_torsion.toml")
+    why = refusal(lc)
+    assert why is not None and "[torsion]" in why
+
+
+@pytest.mark.heavy
+def test_m53_q_and_counterweight_stress_equal_the_checks_of_the_written_case(study, tmp_path):
+    """The load case the study writes with every drawn counterweight at mass factor 1 (the
+    drawn shapes, the same meshes).  UR M53's Q the study reports (computed once, the same
+    on every candidate, ``study.m53``) equals the ``min_m53_acceptability`` of a full
+    ``fe-crank check`` (``test`` mesh) of it, quasi-static journal torque accepted, to
+    1e-9.  The counterweight groups' peak screened at factors 1 (``study.bodies``: the
+    drawn per-throw model with the centrifugal case split per counterweight body) equals,
+    to 1e-9, the largest von Mises over every counterweight node, angle and load state of
+    the check's own per-throw model of that load case (its FE stage, ``pipeline.stages``:
+    the whole centrifugal case; the same cached meshes), its stress histories superposed
+    with the check's coefficients and evaluated at every node here (the check's
+    ``max_counterweight_stress`` criterion needs a counterweight fillet, which this
+    geometry does not draw)."""
+    from fe_crank.assess.group.assessment import of_counterweight
+    from fe_crank.assess.group.nodes import assessed_groups, unit_stresses
+    from fe_crank.assess.superpose import cycle_coefficients
+    from fe_crank.fe.core.stress import von_mises as vm
+    from fe_crank.fe.throw.pin_patches import rod_loads, rod_positions
+    from fe_crank.pipeline.options import CheckOptions
+    from fe_crank.pipeline.stages import fe_stage, geometry_stage, mesh_stage
+    from fe_crank.throw_scope import throws_of
+
+    res, _, cache = study
+    q = res.results[0].m53
+    assert q is not None
+    assert {x.m53 for x in res.results} == {q}
+    drawn = res.drawn
+    shapes = tuple(
+        web_shape(w, 1.0, drawn[w], res.shaft.layout, res.spec, res.shaft.layout.geometry.density) for w in drawn
+    )
+    cand = Candidate(99, "all at 1", math.nan, 0.0, 0.0, dict.fromkeys(drawn, 1.0), shapes)
+    _, lc_path = write_candidate(res, dataclasses.replace(res.results[0], candidate=cand), tmp_path / "written")
+    data = tomllib.loads(lc_path.read_text())
+    data["criteria"]["min_m53_acceptability"] = 1.0
+    data["criteria"]["m53_quasi_static_torque"] = True
+    lc_path.write_text(to_toml(data))
+    out = tmp_path / "out"
+    assert main(["check", str(lc_path), "--mesh-size", "test", "-o", str(out), "--cache-dir", str(cache)]) == 0
+    (results,) = out.glob("*/results.json")
+    got = json.loads(results.read_text())
+    crit = next(c for c in got["criteria"] if c["quantity"] == "m53_acceptability")
+    assert q.acceptability == pytest.approx(crit["value"], rel=1e-9, abs=0.0)
+    # the check's per-throw model of the written load case, brute force over every node
+    lc2 = load_loadcase(lc_path)
+    opts = CheckOptions(mesh_size="test", cache_dir=cache)
+    geo = geometry_stage(lc2, opts)
+    solved = fe_stage(lc2, geo, mesh_stage(lc2, geo).throws)
+    loads = assessed_loads(lc2.engine, engine_cycles(lc2.engine, lc2.operating), reaction=lc2.fe.torque_reaction)
+    names = [t.name for t in lc2.engine.throws]
+    ref = 0.0
+    for key, us in solved.items():
+        unit = unit_stresses(us, {g: n for g, n in assessed_groups(us).items() if of_counterweight(g)})
+        nodes = np.unique(np.concatenate([np.asarray(v) for v in unit.groups.values()]))
+        for t in throws_of(key, names):
+            sense = lc2.engine.shaft(lc2.engine.throw(t).shaft).sense
+            places = rod_positions(lc2.engine, t, lc2.geometry.crankpin_length)
+            for states in loads.speeds:
+                for state in states:
+                    tc = state.throws[t]
+                    C = cycle_coefficients(
+                        unit, tc.pin_force, tc.torque_in, state.speed, sense=sense, rod_loads=rod_loads(tc, places)
+                    )
+                    s = np.einsum("ac,cjn->ajn", C, unit.stress[:, :, nodes])
+                    ref = max(ref, float(vm(np.moveaxis(s, 1, 0)).max()))
+    assert res.body_model is not None
+    screened = candidate_bodies(res.body_model, loads, dict.fromkeys(drawn, 1.0))
+    assert screened.peak == pytest.approx(ref, rel=1e-9, abs=0.0)
+    assert all(r.bodies is not None and r.bodies.peak > 0 for r in res.results)
+
+
+def test_counterweight_stress_limit_needs_a_counterweight_fillet(tmp_path, capsys):
+    """As the check's criterion: a sharp counterweight-web edge is a stress singularity, so
+    the study's ``max_counterweight_stress`` is refused on the geometry's key, before meshing."""
+    f = tmp_path / "s.toml"
+    f.write_text('[study]\nrotating_rate_percent = [50]\n[study.limits]\nmax_counterweight_stress = "100 MPa"\n')
+    rc = main(["study", str(CASE), str(f), "-o", str(tmp_path / "out"), "--cache-dir", str(tmp_path / "c")])
+    err = capsys.readouterr().err
+    assert rc == 2 and "counterweight.fillet_radius" in err and "max_counterweight_stress" in err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert not (tmp_path / "c").exists()

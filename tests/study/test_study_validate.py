@@ -27,6 +27,14 @@ BAD = [
     ),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.3"]', "study.placements[0].webs[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.1"]', "study.placements[0].webs"),
+    (  # the overspeed screened with the stresses only
+        'rotating_rate_percent = [50]\nstresses = "off"\n[study.limits]\nmin_overspeed_safety = 1.5',
+        "study.limits.min_overspeed_safety",
+    ),
+    (
+        "rotating_rate_percent = [50]\n[study.limits]\nmax_counterweight_overspeed_stress = 1.5",
+        "study.limits.max_counterweight_overspeed_stress",
+    ),
 ]
 
 
@@ -53,3 +61,20 @@ def test_validate_counts_the_candidates_that_cannot_be_built(tmp_path, capsys):
     out = capsys.readouterr().out
     assert rc == 0
     assert "2 candidates on" in out and "1 cannot be built (#1" in out
+
+
+def test_validate_refuses_an_overspeed_limit_without_an_overspeed(tmp_path, capsys):
+    """The load case states no overspeed: an overspeed limit cannot be judged."""
+    text = CASE.read_text().replace('overspeed = "4800 rpm"\n', "")
+    text = text.replace(
+        'geometry = "geometry_small_shaft.toml"', f'geometry = "{CASE.parent / "geometry_small_shaft.toml"}"'
+    )
+    lc = tmp_path / "no_overspeed.toml"
+    lc.write_text(text)
+    f = tmp_path / "study.toml"
+    f.write_text("[study]\nrotating_rate_percent = [50]\n[study.limits]\nmin_overspeed_safety = 1.5\n")
+    rc = main(["validate", str(f), "--loadcase", str(lc), "--allow-outside-paths"])
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert str(f) in err and "study.limits.min_overspeed_safety" in err and "overspeed" in err
+    assert len(err.strip().splitlines()) == 1

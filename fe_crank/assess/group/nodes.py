@@ -8,12 +8,13 @@ import numpy as np
 from fe_crank.assess.superpose import UnitStresses, unit_nodal_stress
 from fe_crank.assess.workers import Scratch, run_blocks, thread_count
 from fe_crank.errors import InputError
+from fe_crank.fe.core.loads import CENTRIFUGAL_PARTS
 from fe_crank.fe.throw.node_groups import ASSESSED_BOUNDARIES, COUNTERWEIGHTS, node_groups
 from fe_crank.fe.throw.pin_directions import patch_case, pin_direction
 from fe_crank.fe.throw.unit_cases import UnitSolutions
 
 #: the unit cases besides the pin cases that the superposition takes (``superpose.load_coefficients``)
-SUPERPOSED = ("centrifugal", "torque", "angular_acceleration")
+SUPERPOSED = ("centrifugal", *CENTRIFUGAL_PARTS, "torque", "angular_acceleration")
 
 __all__ = ["ASSESSED_BOUNDARIES", "COUNTERWEIGHTS", "SUPERPOSED", "assessed_groups", "unit_stresses"]
 

@@ -5,10 +5,12 @@ All return full interleaved load vectors (3 per P2 node) on a scalar P2 ``Basis`
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
-from skfem import ElementTetP2, FacetBasis
+from skfem import Basis, ElementTetP2, FacetBasis
 
 from fe_crank.errors import InputError, MeshError
 from fe_crank.fe.core.assembly import assemble_body_load, assemble_surface_load
@@ -195,12 +197,71 @@ def angular_acceleration_load(basis, density: float, alpha: float = 1.0) -> np.n
     return assemble_body_load(basis, f)
 
 
-#: body-force unit cases: name -> (load vector of (basis, density), description)
+#: the counterweight bodies' subdomains of a throw mesh (web 1 front, web 2 rear)
+COUNTERWEIGHT_BODIES = ("counterweight_1", "counterweight_2")
+
+
+def element_basis(basis, elements: np.ndarray) -> Basis:
+    """``basis`` restricted to ``elements`` (same DOFs, quadrature and mapping): its
+    assembled vectors are the whole basis's terms of those elements."""
+    return Basis(
+        basis.mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs, elements=elements
+    )
+
+
+def counterweight_elements(mesh, name: str | None = None) -> np.ndarray:
+    """The elements of the counterweight body ``name`` (a ``COUNTERWEIGHT_BODIES`` name),
+    of both with None; empty where the mesh has none."""
+    sub = mesh.subdomains or {}
+    parts = [np.asarray(sub[n]) for n in COUNTERWEIGHT_BODIES if n in sub and (name is None or n == name)]
+    return np.unique(np.concatenate(parts)).astype(np.int64) if parts else np.zeros(0, np.int64)
+
+
+def centrifugal_part(basis, density: float, *, counterweight: str | None = None, own: bool = False) -> np.ndarray:
+    """The centrifugal load at omega = 1 rad/s (``centrifugal_load``) of part of a throw
+    mesh: ``own``: every element but the counterweight bodies' (the throw's own);
+    otherwise the counterweight body ``counterweight`` alone (zero where the mesh has
+    none).  The throw's own part and each body's sum to the whole throw's load (each
+    element's terms are the same, only the summation's order differs: round-off)."""
+    mesh = basis.mesh
+    cw = counterweight_elements(mesh, None if own else counterweight)
+    elements = np.setdiff1d(np.arange(mesh.nelements), cw) if own else cw
+    if not elements.size:
+        return np.zeros(3 * basis.N)
+    return centrifugal_load(element_basis(basis, elements), density, 1.0)
+
+
+def _body_part(name: str) -> Callable[[Any, float], np.ndarray]:
+    def make(basis, rho: float) -> np.ndarray:
+        return centrifugal_part(basis, rho, counterweight=name)
+
+    return make
+
+
+#: the parts of ``centrifugal`` (``BODY_CASES``)
+CENTRIFUGAL_PARTS = ("centrifugal_throw", *(f"centrifugal_cw_{n[-1]}" for n in COUNTERWEIGHT_BODIES))
+
+#: body-force unit cases: name -> (load vector of (basis, density), description).
+#: ``centrifugal`` is the whole throw's; ``centrifugal_throw`` and ``centrifugal_cw_<web>``
+#: split it into the throw's own and each counterweight body's (their sum is
+#: ``centrifugal`` to round-off), so that a counterweight of fixed shape scaled in mass
+#: by k is k times its own case (the counterweight study).
 BODY_CASES = {
     "centrifugal": (
         lambda basis, rho: centrifugal_load(basis, rho, 1.0),
         "centrifugal body force rho omega^2 r about z, omega = 1 rad/s",
     ),
+    "centrifugal_throw": (
+        lambda basis, rho: centrifugal_part(basis, rho, own=True),
+        "centrifugal body force rho omega^2 r about z, omega = 1 rad/s, on the throw without its counterweights",
+    ),
+    **{
+        f"centrifugal_cw_{name[-1]}": (
+            _body_part(name),
+            f"centrifugal body force rho omega^2 r about z, omega = 1 rad/s, on {name} alone",
+        )
+        for name in COUNTERWEIGHT_BODIES
+    },
     "angular_acceleration": (
         lambda basis, rho: angular_acceleration_load(basis, rho, 1.0),
         "inertia body force of 1 rad/s^2 in the sense of rotation, -rho alpha x r",

@@ -24,21 +24,15 @@ frame (``fe_crank.fe.shaft``):
 from __future__ import annotations
 
 import numpy as np
-from skfem import Basis, ElementTetP2
+from skfem import ElementTetP2
 
 from fe_crank.fe.core.assembly import assemble_body_load, assemble_surface_load
-from fe_crank.fe.core.loads import face_torque_load, pin_pressure_load, pin_surface
+from fe_crank.fe.core.loads import COUNTERWEIGHT_BODIES as COUNTERWEIGHTS
+from fe_crank.fe.core.loads import element_basis, face_torque_load, pin_pressure_load, pin_surface
 from fe_crank.fe.core.supports import boundary_facets, facet_basis
 from fe_crank.fe.throw.pin_directions import pin_cases, unit_force
 
 SURFACE_INTORDER = 4
-COUNTERWEIGHTS = ("counterweight_1", "counterweight_2")
-
-
-def _sub_basis(basis, elements: np.ndarray):
-    return Basis(
-        basis.mesh, basis.elem, mapping=basis.mapping, quadrature=(basis.X, basis.W), dofs=basis.dofs, elements=elements
-    )
 
 
 def body_loads(basis, density: float, per_web: bool = False) -> dict[str, np.ndarray]:
@@ -60,13 +54,13 @@ def body_loads(basis, density: float, per_web: bool = False) -> dict[str, np.nda
     def tangential(x):
         return density * np.stack([-x[1], x[0], np.zeros_like(x[0])])
 
-    out = {"centrifugal": assemble_body_load(_sub_basis(basis, rest), radial)}
-    out["centrifugal_cw"] = assemble_body_load(_sub_basis(basis, cw), radial) if cw.size else np.zeros(3 * basis.N)
+    out = {"centrifugal": assemble_body_load(element_basis(basis, rest), radial)}
+    out["centrifugal_cw"] = assemble_body_load(element_basis(basis, cw), radial) if cw.size else np.zeros(3 * basis.N)
     out["spin_up"] = assemble_body_load(basis, tangential)
     for name in COUNTERWEIGHTS if per_web else ():
         own = np.asarray((mesh.subdomains or {}).get(name, np.zeros(0, int)))
         out[f"centrifugal_cw_{name[-1]}"] = (
-            assemble_body_load(_sub_basis(basis, own), radial) if own.size else np.zeros(3 * basis.N)
+            assemble_body_load(element_basis(basis, own), radial) if own.size else np.zeros(3 * basis.N)
         )
     return out
 

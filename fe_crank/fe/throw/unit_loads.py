@@ -1,7 +1,9 @@
 """The load vectors of the FE stage's unit cases, by case name (``solve_unit_cases``).
 
 * the body-force cases of ``loads.BODY_CASES``: ``centrifugal`` (rho omega^2 r about z at
-  omega = 1 rad/s) and ``angular_acceleration`` (-rho alpha x r at 1 rad/s^2);
+  omega = 1 rad/s), or split into ``centrifugal_throw`` (the throw without its
+  counterweights) and ``centrifugal_cw_1``, ``centrifugal_cw_2`` (each web's counterweight
+  body alone), and ``angular_acceleration`` (-rho alpha x r at 1 rad/s^2);
 * ``torque``: 1 N m in the positive sense of rotation (M_z = -1 N m) on the torque face;
 * pin cases by direction (``pin_directions``): 1 N on the crankpin as a cosine pressure;
   with rod places on the pin (``FeOptions.pin_patches``, ``fe.throw.pin_patches``) the patch
@@ -25,9 +27,16 @@ def check_case_names(options) -> None:
         for c in options.cases
         if c not in (*BODY_CASES, "torque") and pin_direction(c) is None and (patch_case(c) or (n + 1, 0))[0] > n
     ]
+    split = [c for c in options.cases if c in BODY_CASES and c.startswith("centrifugal_")]
+    if split and "centrifugal" in options.cases:
+        raise InputError(
+            f"centrifugal is the sum of {', '.join(split)}: give the whole throw's case or its parts, not both",
+            key="fe.cases",
+        )
     if unknown:
         raise InputError(
-            f"unknown unit cases {sorted(unknown)}; pick from centrifugal, angular_acceleration, torque and pin cases "
+            f"unknown unit cases {sorted(unknown)}; pick from centrifugal (or centrifugal_throw, centrifugal_cw_1, "
+            "centrifugal_cw_2), angular_acceleration, torque and pin cases "
             f"by direction (pin_x, pin_y, pin_-x, pin_-y, pin_<deg> as pin_030; pin_030@k on rod "
             f"place k of {n})",
             key="fe.cases",
