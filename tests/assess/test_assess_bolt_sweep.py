@@ -44,7 +44,8 @@ def swept_inline4(tmp_path_factory, mesh_cache):
     assert "bolt_" not in text
     p = folder / "loadcases" / "inline4_swept.toml"
     p.write_text(text)
-    return stage_outputs(p, mesh_cache)
+    # what is asserted is the assessment's: the drawn states' fields are not computed
+    return stage_outputs(p, mesh_cache, render=False, write_vtu=False)
 
 
 @pytest.mark.heavy

@@ -58,11 +58,11 @@ def peaks(throw_mesh) -> dict[tuple[str, str], float]:
     return out
 
 
-def test_the_cad_mesh_of_an_exported_throw_matches_the_parametric_one(root, tmp_path):
-    g = load_geometry(root / "tests" / "data" / "geometry_small.toml")
-    step = parametric_step(g, tmp_path / "throw.step")
-    param = mesh_throw(g, size="test", cache_dir=tmp_path / "cache")
-    cad = mesh_cad_throw(CadInput(step, density=g.density), size="test", cache_dir=tmp_path / "cache")
+def test_the_cad_mesh_of_an_exported_throw_matches_the_parametric_one(small_throw_step, mesh_cache):
+    g, step = small_throw_step
+    param = mesh_throw(g, size="test", cache_dir=mesh_cache)
+    # throw "1" named, as the check and ``fe-crank mesh`` name it: the same cache entry as theirs
+    cad = mesh_cad_throw(CadInput(step, density=g.density), "1", size="test", cache_dir=mesh_cache)
     assert cad.throw == "1" and cad.symmetry == () and cad.options == param.options
     assert set(cad.mesh.boundaries) == set(param.mesh.boundaries)
     assert set(cad.mesh.subdomains) == set(param.mesh.subdomains)
@@ -71,7 +71,7 @@ def test_the_cad_mesh_of_an_exported_throw_matches_the_parametric_one(root, tmp_
     # the element budget's estimate (fe_crank.geometry.estimate's rule) within a factor 3
     n = estimate_cad_elements(recognise(CadInput(step, density=g.density)).throws[0], cad.options)
     assert cad.stats.elements / 3 <= n <= 3 * cad.stats.elements
-    again = mesh_cad_throw(CadInput(step, density=g.density), size="test", cache_dir=tmp_path / "cache")
+    again = mesh_cad_throw(CadInput(step, density=g.density), "1", size="test", cache_dir=mesh_cache)
     assert again.stats.from_cache and again.key == cad.key
     a, b = peaks(cad), peaks(param)
     for k in b:
@@ -79,11 +79,11 @@ def test_the_cad_mesh_of_an_exported_throw_matches_the_parametric_one(root, tmp_
 
 
 @pytest.mark.parametrize("geometry", ["v4_90_pneumatic", "inline4"])
-def test_the_shipped_throws_fillet_peaks_by_both_routes(root, tmp_path, geometry):
+def test_the_shipped_throws_fillet_peaks_by_both_routes(root, tmp_path, mesh_cache, geometry):
     g = load_geometry(root / "geometry" / f"{geometry}.toml")
     step = parametric_step(g, tmp_path / "throw.step")
-    param = mesh_throw(g, size="test", cache_dir=tmp_path / "cache")
-    cad = mesh_cad_throw(CadInput(step, density=g.density), size="test", cache_dir=tmp_path / "cache")
+    param = mesh_throw(g, size="test", cache_dir=mesh_cache)
+    cad = mesh_cad_throw(CadInput(step, density=g.density), size="test", cache_dir=mesh_cache)
     assert set(cad.mesh.boundaries) == set(param.mesh.boundaries)
     assert cad.fillet_radii == pytest.approx(param.fillet_radii, abs=1e-9)
     a, b = peaks(cad), peaks(param)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from helpers.cad_files import parametric_step, shaft_step
+from helpers.cad_files import shaft_step
 
 from fe_crank.cad import CadInput, mesh_cad_throw
 from fe_crank.cli import main
@@ -42,13 +42,12 @@ def test_the_second_throw_of_a_shaft_is_meshed_in_its_throw_frame(tmp_path):
     assert np.hypot(journal[0], journal[1]) == pytest.approx(g.journal_diameter / 2, abs=1e-6)
 
 
-def test_fe_crank_mesh_takes_a_cad_file(tmp_path, capsys):
-    g = load_geometry(ROOT / "tests" / "data" / "geometry_small.toml")
-    parametric_step(g, tmp_path / "throw.step")
-    toml = tmp_path / "throw_cad.toml"
+def test_fe_crank_mesh_takes_a_cad_file(small_throw_step, mesh_cache, tmp_path, capsys):
+    _, step = small_throw_step
+    toml = step.parent / "throw_cad.toml"  # beside the file it names
     toml.write_text('[cad]\nfile = "throw.step"\ndensity = "7850 kg/m^3"\n')
     out = tmp_path / "out"
-    args = ["mesh", str(toml), "-o", str(out), "--mesh-size", "test", "--no-render", "--cache-dir", str(tmp_path)]
+    args = ["mesh", str(toml), "-o", str(out), "--mesh-size", "test", "--no-render", "--cache-dir", str(mesh_cache)]
     assert main(args) == 0
     text = capsys.readouterr().out
     assert "crankpin_fillet_1: faces " in text and "throw 1 (CAD):" in text and "quadratic tets" in text
@@ -57,7 +56,7 @@ def test_fe_crank_mesh_takes_a_cad_file(tmp_path, capsys):
     assert "--throw: no throw named '7'" in capsys.readouterr().err
 
 
-def test_the_scf_mode_and_the_convergence_study_mesh_a_cad_throw(tmp_path):
+def test_the_scf_mode_and_the_convergence_study_mesh_a_cad_throw(small_throw_step, mesh_cache):
     """UR M53 App. III's SCF mode re-meshes the CAD throw at r/4 through ``mesh_cad_throw``
     and takes the nominal stresses at the recognised webs' mid-planes (those of the
     specification); the convergence study refines the CAD throw's fillets.  (The SCFs of
@@ -69,17 +68,17 @@ def test_the_scf_mode_and_the_convergence_study_mesh_a_cad_throw(tmp_path):
     from fe_crank.io.material import load_material
     from fe_crank.rules.m53.scf_mode import scf_mesh, web_centres_of
 
-    g = load_geometry(ROOT / "tests" / "data" / "geometry_small.toml")
-    cad = CadInput(parametric_step(g, tmp_path / "throw.step"), density=g.density)
+    g, step = small_throw_step
+    cad = CadInput(step, density=g.density)
     engine = model.Engine("e", 4, (model.Shaft("main"),), (model.Throw("1", "main", 0.0, g.crank_radius),), ())
     tg = cad_throws(recognise(cad), cad, {"1": "1"}, engine, None)["1"]
     assert tg.web_centres == pytest.approx(web_centres_of(g), abs=1e-9)
-    tm = mesh_cad_throw(cad, "1", size="test", cache_dir=tmp_path)
+    tm = mesh_cad_throw(cad, "1", size="test", cache_dir=mesh_cache)
     fine = scf_mesh(tm, cad)
     assert fine.options.fillet_divisions == 4.0 and fine.throw == "1" and fine.key != tm.key
     for name, h in fine.stats.fillet_max_edge.items():
         assert h <= fine.fillet_radii[name] / 4 * (1 + 1e-9)
     material = load_material("42CrMo4")
-    study = fillet_convergence(cad, material, throw="1", base=tm.options, factors=(1.0, 1.5), cache_dir=tmp_path)
+    study = fillet_convergence(cad, material, throw="1", base=tm.options, factors=(1.0, 1.5), cache_dir=mesh_cache)
     a, b = study.levels
     assert all(b.fillet_max_edge[k] < a.fillet_max_edge[k] for k in a.fillet_max_edge)

@@ -10,25 +10,22 @@ from __future__ import annotations
 import dataclasses
 
 import pytest
-from helpers.cad_files import parametric_step
 
 from fe_crank.cad import CadInput, mesh_cad_throw
-from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS
 from fe_crank.rules.m53.web_mesh import MIN_ELEMENTS_ACROSS, web_elements_across, web_groups
 
 pytestmark = pytest.mark.heavy
 
 
-def test_cad_webs_meshed_to_six_elements_across(root, tmp_path):
-    g = load_geometry(root / "tests" / "data" / "geometry_small.toml")
-    step = parametric_step(g, tmp_path / "throw.step")
+def test_cad_webs_meshed_to_six_elements_across(small_throw_step, mesh_cache):
+    g, step = small_throw_step
     cad = CadInput(step, density=g.density)
-    plain = mesh_cad_throw(cad, size="test", cache_dir=tmp_path / "cache")
+    plain = mesh_cad_throw(cad, "1", size="test", cache_dir=mesh_cache)
     across = web_elements_across(plain.mesh, web_groups(plain.mesh), g.web_thickness)
     assert len(across) == 2 and min(w.across for w in across) < MIN_ELEMENTS_ACROSS
     opts = dataclasses.replace(PRESETS["test"], web_divisions=6.0)
-    webbed = mesh_cad_throw(cad, size=opts, cache_dir=tmp_path / "cache")
+    webbed = mesh_cad_throw(cad, "1", size=opts, cache_dir=mesh_cache)
     assert webbed.key != plain.key and webbed.options.web_divisions == 6.0
     across = web_elements_across(webbed.mesh, web_groups(webbed.mesh), g.web_thickness)
     assert len(across) == 2 and all(w.across >= MIN_ELEMENTS_ACROSS for w in across)
