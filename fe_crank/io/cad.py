@@ -91,15 +91,20 @@ class CadSection(Strict):
             raise ValueError("must be positive" if positive else "must not be negative")
         return v
 
+    @field_validator("shaft")
+    @classmethod
+    def _drawn_keys(cls, v):
+        drawn = [] if v is None else [k for k in DRAWN_SHAFT_KEYS if getattr(v, k) is not None]
+        if drawn:
+            raise ValueError(
+                f"{drawn[0]}: the drawing gives the shaft's pitch, end journals, nose and flange; "
+                "[cad.shaft] takes the main bearings and what acts on the shaft's ends only"
+            )
+        return v
+
     @model_validator(mode="after")
     def _drawn(self):
         if self.shaft is not None:
-            drawn = [k for k in DRAWN_SHAFT_KEYS if getattr(self.shaft, k) is not None]
-            if drawn:
-                raise ValueError(
-                    f"shaft.{drawn[0]}: the drawing gives the shaft's pitch, end journals, nose and flange; "
-                    "[cad.shaft] takes the main bearings and what acts on the shaft's ends only"
-                )
             if self.bearing_width is not None and self.shaft.bearing_width is not None:
                 raise ValueError("bearing_width: give it once, in [cad] or in [cad.shaft]")
         return self

@@ -327,7 +327,7 @@ def test_validate_takes_an_oil_film_criterion_with_the_engines_bearings(shaft, c
     case.write_text(TWO_THROWS.replace("\n[material]", '\n[cad.shaft]\npitch = "66 mm"\n\n[material]'))
     assert main(["validate", str(case)]) == 2
     err = capsys.readouterr().err.strip()
-    assert "shaft.pitch: the drawing gives the shaft's pitch" in err, err
+    assert "cad.shaft: pitch: the drawing gives the shaft's pitch" in err, err
     assert not (folder / ".cache").exists()
 
 
