@@ -11,7 +11,9 @@ zone's boundary faces are then named after the throw's: a face on the ball is th
 (``CUT``); any other face takes the name of the nearest named boundary facet of the
 assessed mesh (``names``: sample points on it and their boundary names, "" for an unnamed
 face), so that the zone's fillets, oil bore, crankpin and journal surfaces are known
-without tracking OpenCASCADE's face numbers through the boolean.  The size fields are
+without tracking OpenCASCADE's face numbers through the boolean (the point a face is
+named by: its surface's point closest to its centre of mass, or, where that falls off
+the face, into a hole of it, the point of the face farthest from its edges).  The size fields are
 the throw mesher's at the options given (fillets at ``r / fillet_divisions``, the oil
 bore at ``bore_divisions``, the counterweights' transition fillets, the webs), so an element of the zone near a fillet is the size the
 full refined mesh has there.  The tetrahedra are improved by gmsh's own optimiser, not by
@@ -132,6 +134,38 @@ def parametric_solid(geometry: CrankGeometry, spec: ThrowSpec) -> ZoneSolid:
     return ZoneSolid(spec.name, geometry.name, build, size_fields, lengths)
 
 
+#: parameter grid (per direction, the bounds left out) searched for a face's naming point
+NAMING_GRID = 9
+
+
+def _on_face(gmsh, s: int, p: np.ndarray) -> np.ndarray:
+    """The point face ``s`` is named by: ``p``, the point of its surface closest to its
+    centre of mass, where that lies on the face; else (a face round a hole, e.g. the pin's
+    surface round the oil bore's outlet: the point falls in the hole, next to the hole's
+    own faces) the point of a ``NAMING_GRID`` x ``NAMING_GRID`` grid of its parameters that
+    lies on the face farthest from its edges."""
+    if gmsh.model.isInside(2, s, p.tolist()):
+        return p
+    lo, hi = gmsh.model.getParametrizationBounds(2, s)
+    curves = sorted({abs(c) for _, c in gmsh.model.getBoundary([(2, s)], oriented=False)})
+    best, where = -1.0, p
+    for u in np.linspace(lo[0], hi[0], NAMING_GRID + 2)[1:-1]:
+        for v in np.linspace(lo[1], hi[1], NAMING_GRID + 2)[1:-1]:
+            if not gmsh.model.isInside(2, s, [float(u), float(v)], parametric=True):
+                continue
+            x = np.asarray(gmsh.model.getValue(2, s, [float(u), float(v)]))
+            d = min(
+                (
+                    float(np.linalg.norm(np.asarray(gmsh.model.getClosestPoint(1, c, x.tolist())[0]) - x))
+                    for c in curves
+                ),
+                default=0.0,
+            )
+            if d > best:
+                best, where = d, x
+    return where
+
+
 def _build(gmsh, solid: ZoneSolid, cs: np.ndarray, rs: np.ndarray, names) -> SolidParts:
     """The throw inside the balls in the open session, its volumes and faces named (module
     docstring)."""
@@ -175,7 +209,7 @@ def _build(gmsh, solid: ZoneSolid, cs: np.ndarray, rs: np.ndarray, names) -> Sol
         if gmsh.model.getType(2, s) == "Sphere" and on_ball.any():
             name = CUT
         else:
-            name = labels[int(tree.query(p)[1])]
+            name = labels[int(tree.query(_on_face(gmsh, s, p))[1])]
         surfaces.setdefault(name or "free", []).append(s)
     surfaces = {k: sorted(set(v)) for k, v in surfaces.items()}
     if CUT not in surfaces:
