@@ -3,7 +3,8 @@
 The check's study (``fe.refinement.zone_study.zone_convergence``: only the hot spots re-meshed,
 submodels driven by the assessed solution) and the former method
 (``fe.refinement.convergence.fillet_convergence``: the whole throw re-meshed and re-solved at each
-fillet size), on one load case's throw at a mesh preset, with the check's own load sets
+fillet size), on one load case's throw (parametric, or drawn: a load case with a ``[cad]``
+geometry) at a mesh preset, with the check's own load sets
 (``fe.refinement.loads.check_loads``: the peak pin force with the centrifugal load at
 the operating speed, the peak torque) and support model.  The zones are solved at two
 radii (``--radii``, in fillet radii) to show the cut-boundary error.  Writes a JSON file
@@ -38,11 +39,11 @@ def drive_full(lc, tm, units, loads, opts, args) -> float:
     """Print the first refined level's zone peaks driven by the assessed and by the full
     refined solution, and the full mesh's: the zones' difference from the full mesh split
     into the cut's error and the two meshes' own.  Returns the seconds."""
+    from fe_crank.cad.source import mesh_source_throw
     from fe_crank.fe import solve_unit_cases
     from fe_crank.fe.refinement import zone_study as zs
     from fe_crank.fe.refinement.levels import level_peaks
     from fe_crank.fe.refinement.zone import Interpolator, boundary_samples, solve_zone, zone_peaks
-    from fe_crank.mesh import mesh_throw
 
     t0 = time.perf_counter()
     f = args.factors[1]
@@ -50,7 +51,7 @@ def drive_full(lc, tm, units, loads, opts, args) -> float:
     level = dataclasses.replace(
         base, fillet_divisions=base.fillet_divisions * f, bore_divisions=base.bore_divisions * f
     )
-    fine = mesh_throw(lc.geometry, size=level, cache_dir=args.cache_dir)
+    fine = mesh_source_throw(lc.geometry, None, size=level, cache_dir=args.cache_dir)
     fine_units = solve_unit_cases(fine, lc.material, opts)
     fine_units.system.factorisation.free()
     drives = {
@@ -58,8 +59,9 @@ def drive_full(lc, tm, units, loads, opts, args) -> float:
         "full": (fine_units, {k: fine_units.combine(w) for k, w in loads.items()}),
     }
     full = level_peaks(fine_units, drives["full"][1])
-    spots = zs.hot_spots(lc.geometry, tm, units, drives["assessed"][1], zone_radius=args.radii[0])
-    zones = zs.level_meshes(lc.geometry, lc.geometry.throw(tm.throw), [level], spots, boundary_samples(units.mesh))[0]
+    solid = zs.zone_solid(lc.geometry, tm)
+    spots = zs.hot_spots(solid, tm, units, drives["assessed"][1], zone_radius=args.radii[0])
+    zones = zs.level_meshes(solid, [level], spots, boundary_samples(units.mesh))[0]
     every = [n for _, names in zs.FAMILIES for n in names]
     got: dict[str, dict[str, float]] = {}
     for label, (u, fields) in drives.items():
@@ -99,13 +101,13 @@ def main(argv=None) -> int:
     )
     args = ap.parse_args(argv)
 
+    from fe_crank.cad.source import mesh_source_throw
     from fe_crank.fe import solve_unit_cases
     from fe_crank.fe.refinement.convergence import estimate, fillet_convergence
     from fe_crank.fe.refinement.loads import check_loads
     from fe_crank.fe.refinement.zone_study import zone_convergence
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mechanism.cycles import engine_cycles
-    from fe_crank.mesh import mesh_throw
 
     lc = load_loadcase(args.loadcase)
     cycles = engine_cycles(lc.engine, lc.operating)
@@ -114,7 +116,7 @@ def main(argv=None) -> int:
     needed = tuple(sorted({c for w in loads.values() for c in w}))
     opts = dataclasses.replace(lc.fe, cases=needed)
     t0 = time.perf_counter()
-    tm = mesh_throw(lc.geometry, size=args.preset, cache_dir=args.cache_dir)
+    tm = mesh_source_throw(lc.geometry, None, size=args.preset, cache_dir=args.cache_dir)
     units = solve_unit_cases(tm, lc.material, opts)
     units.system.factorisation.free()
     times = {"mesh and solve": time.perf_counter() - t0}

@@ -83,9 +83,12 @@ def cad_cache_key(cad: CadInput, sha256: str, throw: str, opt: MeshOptions) -> s
     return hashlib.sha256(json.dumps(payload, sort_keys=True, default=repr).encode()).hexdigest()[:20]
 
 
-def _size_fields(
+def size_fields(
     gmsh, t: ThrowFeatures, surfaces: dict[str, list[int]], volumes: dict[str, list[int]], opt: MeshOptions
 ) -> dict[str, float]:
+    """Set the size fields of the drawn throw ``t`` (module docstring) on its named
+    ``surfaces`` and ``volumes`` (gmsh tags, throw frame) at ``opt``; returns the fillet
+    radii (m) by fillet surface."""
     size_max = opt.size_max if opt.size_max is not None else t.crankpin.diameter / opt.coarse_divisions
     fields, radii = [], {}
     if opt.web_divisions is not None:  # UR M53 App. III 2.2: elements across each web's thickness
@@ -267,7 +270,7 @@ def _build(cad: CadInput, throw: str | int | None, opt: MeshOptions, folder: Pat
             gmsh.model.addPhysicalGroup(2, tags, name=name)
         if opt.interface_sectors > 1:  # end faces that join the turned neighbours node to node
             surfaces = imprint_sectors(gmsh, _Parts(built.volumes, surfaces, {}), opt.interface_sectors).surfaces
-        radii = _size_fields(gmsh, feats, surfaces, built.volumes, opt)
+        radii = size_fields(gmsh, feats, surfaces, built.volumes, opt)
         min_quality, straightened = generate(gmsh, feats.name, cad.file.name, opt)
         mesh = model_to_skfem()
         if not planes:

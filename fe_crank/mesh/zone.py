@@ -1,16 +1,21 @@
 """The mesh of a hot-spot zone: the throw's solid inside a ball round a hot spot, meshed
 with the throw mesher's own size fields at a given fillet size (``mesh_zone``).
 
-The throw is built as for its own mesh (``geometry.throw.add_throw``: the same solid, the
-same subdomains), fragmented with the ball, and everything outside the ball removed.  The
+The solid comes from a ``ZoneSolid``: how to build the throw in the open gmsh session as
+for its own mesh, and that mesher's size fields.  A parametric throw's
+(``parametric_solid``) is ``geometry.throw.add_throw`` (the same solid, the same
+subdomains) with ``mesh.sizing.set_size_fields``; a drawn throw's is the CAD mesher's
+(``fe_crank.cad.zone.cad_zone_solid``).  The throw is fragmented with the ball, and
+everything outside the ball removed.  The
 zone's boundary faces are then named after the throw's: a face on the ball is the cut
 (``CUT``); any other face takes the name of the nearest named boundary facet of the
 assessed mesh (``names``: sample points on it and their boundary names, "" for an unnamed
 face), so that the zone's fillets, oil bore, crankpin and journal surfaces are known
-without tracking OpenCASCADE's face numbers through the boolean.  The size fields are
-``mesh.sizing.set_size_fields`` of the throw mesher at the options given (fillets at
-``r / fillet_divisions``, the oil bore at ``bore_divisions``, the counterweights'
-transition fillets, the webs), so an element of the zone near a fillet is the size the
+without tracking OpenCASCADE's face numbers through the boolean (the point a face is
+named by: its surface's point closest to its centre of mass, or, where that falls off
+the face, into a hole of it, the point of the face farthest from its edges).  The size fields are
+the throw mesher's at the options given (fillets at ``r / fillet_divisions``, the oil
+bore at ``bore_divisions``, the counterweights' transition fillets, the webs), so an element of the zone near a fillet is the size the
 full refined mesh has there.  The tetrahedra are improved by gmsh's own optimiser, not by
 Netgen's (``generate(..., netgen=False)``: four fifths of the zone's 3D meshing time), with
 the throw mesher's checks.  A set of balls gmsh cannot mesh raises ``ZoneMeshError``
@@ -20,7 +25,9 @@ naming the ball nearest the first surface left unmeshed.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -31,7 +38,7 @@ from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
 from fe_crank.mesh.generate import generate
 from fe_crank.mesh.options import MeshOptions
 from fe_crank.mesh.quality import fillet_max_edge
-from fe_crank.mesh.sizing import set_size_fields
+from fe_crank.mesh.sizing import counterweight_fillet_radius, set_size_fields
 
 #: the name of the zone's cut boundary (its faces on the ball)
 CUT = "zone_cut"
@@ -73,18 +80,99 @@ class ZoneMesh:
     seconds: float
 
 
-def _build(gmsh, geometry: CrankGeometry, spec: ThrowSpec, cs: np.ndarray, rs: np.ndarray, names):
-    """The throw inside the balls in the open session: (the throw model, {subdomain: volume
-    tags}, {boundary name: face tags}), its faces named (module docstring)."""
-    from fe_crank.geometry.throw import add_throw
+@dataclass(frozen=True)
+class SolidParts:
+    """A throw's named gmsh entities: {subdomain: volume tags}, {boundary name: face tags},
+    {fillet surface: radius (m)}."""
 
+    volumes: dict[str, list[int]]
+    surfaces: dict[str, list[int]]
+    fillet_radii: dict[str, float]
+
+
+@dataclass(frozen=True)
+class ZoneSolid:
+    """The solid the zones of a throw are cut from.
+
+    ``build(gmsh)``: builds the whole throw in the open session's OpenCASCADE model, in the
+    throw frame, with nothing else in the model, and returns its ``SolidParts``;
+    ``size_fields(gmsh, parts, options)``: sets the throw mesher's size fields on the
+    zone's ``parts`` at ``options``; ``lengths``: the length a zone radius is measured in
+    on each hot-spot surface that is no shaft fillet (``counterweight_fillet_<web>``: its
+    fillet radius; ``oil_bore``: the bore's diameter), m; ``throw`` and ``label``: the
+    throw's and the model's names in messages."""
+
+    throw: str
+    label: str
+    build: Callable[[Any], SolidParts]
+    size_fields: Callable[[Any, SolidParts, MeshOptions], object]
+    lengths: dict[str, float]
+
+
+def parametric_solid(geometry: CrankGeometry, spec: ThrowSpec) -> ZoneSolid:
+    """The ``ZoneSolid`` of the parametric throw ``spec`` of ``geometry``
+    (``geometry.throw.add_throw``, ``mesh.sizing.set_size_fields``)."""
+
+    def build(gmsh) -> SolidParts:
+        from fe_crank.geometry.throw import add_throw
+
+        model = add_throw(geometry, spec)
+        for name in (*model.volumes, *model.surfaces):  # the throw's groups: the zone names its own
+            gmsh.model.removePhysicalName(name)
+        gmsh.model.removePhysicalGroups()
+        return SolidParts(model.volumes, model.surfaces, model.fillet_radii)
+
+    def size_fields(gmsh, parts: SolidParts, options: MeshOptions) -> float:
+        return set_size_fields(gmsh, geometry, parts.surfaces, parts.fillet_radii, options, parts.volumes)
+
+    lengths = {}
+    for web in (1, 2):
+        if any(cw.web == web and cw.fillet_radius for t in geometry.throws for cw in t.counterweights):
+            lengths[f"counterweight_fillet_{web}"] = counterweight_fillet_radius(geometry, web)
+    if geometry.oil_bore is not None:  # its outlet's stress field reaches further than a fillet's
+        lengths["oil_bore"] = geometry.oil_bore.diameter
+    return ZoneSolid(spec.name, geometry.name, build, size_fields, lengths)
+
+
+#: parameter grid (per direction, the bounds left out) searched for a face's naming point
+NAMING_GRID = 9
+
+
+def _on_face(gmsh, s: int, p: np.ndarray) -> np.ndarray:
+    """The point face ``s`` is named by: ``p``, the point of its surface closest to its
+    centre of mass, where that lies on the face; else (a face round a hole, e.g. the pin's
+    surface round the oil bore's outlet: the point falls in the hole, next to the hole's
+    own faces) the point of a ``NAMING_GRID`` x ``NAMING_GRID`` grid of its parameters that
+    lies on the face farthest from its edges."""
+    if gmsh.model.isInside(2, s, p.tolist()):
+        return p
+    lo, hi = gmsh.model.getParametrizationBounds(2, s)
+    curves = sorted({abs(c) for _, c in gmsh.model.getBoundary([(2, s)], oriented=False)})
+    best, where = -1.0, p
+    for u in np.linspace(lo[0], hi[0], NAMING_GRID + 2)[1:-1]:
+        for v in np.linspace(lo[1], hi[1], NAMING_GRID + 2)[1:-1]:
+            if not gmsh.model.isInside(2, s, [float(u), float(v)], parametric=True):
+                continue
+            x = np.asarray(gmsh.model.getValue(2, s, [float(u), float(v)]))
+            d = min(
+                (
+                    float(np.linalg.norm(np.asarray(gmsh.model.getClosestPoint(1, c, x.tolist())[0]) - x))
+                    for c in curves
+                ),
+                default=0.0,
+            )
+            if d > best:
+                best, where = d, x
+    return where
+
+
+def _build(gmsh, solid: ZoneSolid, cs: np.ndarray, rs: np.ndarray, names) -> SolidParts:
+    """The throw inside the balls in the open session, its volumes and faces named (module
+    docstring)."""
     pts, labels = names
     tree = cKDTree(np.asarray(pts, float))
-    model = add_throw(geometry, spec)
+    model = solid.build(gmsh)
     occ = gmsh.model.occ
-    for name in (*model.volumes, *model.surfaces):  # the throw's groups: the zone names its own
-        gmsh.model.removePhysicalName(name)
-    gmsh.model.removePhysicalGroups()
     vols = [(3, t) for _, t in gmsh.model.getEntities(3)]
     balls = []
     for c, r in zip(cs, rs):
@@ -106,7 +194,7 @@ def _build(gmsh, geometry: CrankGeometry, spec: ThrowSpec, cs: np.ndarray, rs: n
         volumes.setdefault(name, []).extend(got)
         keep |= set(got)
     if not keep:
-        raise MeshError(f"the hot-spot zones hold no part of throw {spec.name!r}")
+        raise MeshError(f"the hot-spot zones hold no part of throw {solid.throw!r}")
     drop = [(3, t) for _, t in gmsh.model.getEntities(3) if t not in keep]
     occ.remove(drop, recursive=True)
     occ.synchronize()
@@ -121,12 +209,12 @@ def _build(gmsh, geometry: CrankGeometry, spec: ThrowSpec, cs: np.ndarray, rs: n
         if gmsh.model.getType(2, s) == "Sphere" and on_ball.any():
             name = CUT
         else:
-            name = labels[int(tree.query(p)[1])]
+            name = labels[int(tree.query(_on_face(gmsh, s, p))[1])]
         surfaces.setdefault(name or "free", []).append(s)
     surfaces = {k: sorted(set(v)) for k, v in surfaces.items()}
     if CUT not in surfaces:
-        raise MeshError(f"the hot-spot zones hold the whole throw {spec.name!r}")
-    return model, volumes, surfaces
+        raise MeshError(f"the hot-spot zones hold the whole throw {solid.throw!r}")
+    return SolidParts(volumes, surfaces, model.fillet_radii)
 
 
 def _pieces(gmsh, volumes: dict[str, list[int]]) -> list[list[int]]:
@@ -181,7 +269,7 @@ def _groups(counts: list[int], budget: float | None) -> list[list[int]]:
     return sorted((sorted(g) for g in groups), key=lambda g: g[0])
 
 
-def _convert(gmsh, model, volumes, surfaces, vols: list[int], cs, rs, options, t0) -> ZoneMesh:
+def _convert(gmsh, parts: SolidParts, vols: list[int], cs, rs, options, t0) -> ZoneMesh:
     """The zone mesh of the volumes ``vols`` of the meshed model, its groups named as the zone's."""
     from fe_crank.gmsh_io import model_to_skfem
 
@@ -190,14 +278,14 @@ def _convert(gmsh, model, volumes, surfaces, vols: list[int], cs, rs, options, t
     for dim, tag in gmsh.model.getPhysicalGroups():  # the previous group's names, then its groups
         gmsh.model.removePhysicalName(gmsh.model.getPhysicalName(dim, tag))
     gmsh.model.removePhysicalGroups()
-    for name, tags in volumes.items():
+    for name, tags in parts.volumes.items():
         if got := [t for t in tags if t in chosen]:
             gmsh.model.addPhysicalGroup(3, got, name=name)
-    for name, tags in surfaces.items():
+    for name, tags in parts.surfaces.items():
         if got := [t for t in tags if t in own]:
             gmsh.model.addPhysicalGroup(2, got, name=name)
     mesh = model_to_skfem(volumes=vols)
-    fillets = [n for n in model.fillet_radii if n in (mesh.boundaries or {})]
+    fillets = [n for n in parts.fillet_radii if n in (mesh.boundaries or {})]
     return ZoneMesh(
         mesh=mesh,
         centres=tuple((float(c[0]), float(c[1]), float(c[2])) for c in cs),
@@ -218,7 +306,22 @@ def mesh_zone_levels(
     *,
     group_nodes: float | None = None,
 ) -> list[list[ZoneMesh]]:
-    """Mesh the throw ``spec`` of ``geometry`` inside the balls (``centres`` (k, 3),
+    """:func:`mesh_solid_zone_levels` of the parametric throw ``spec`` of ``geometry``."""
+    return mesh_solid_zone_levels(
+        parametric_solid(geometry, spec), levels, centres, radii, names, group_nodes=group_nodes
+    )
+
+
+def mesh_solid_zone_levels(
+    solid: ZoneSolid,
+    levels: list[MeshOptions],
+    centres,
+    radii,
+    names: tuple[np.ndarray, list[str]],
+    *,
+    group_nodes: float | None = None,
+) -> list[list[ZoneMesh]]:
+    """Mesh the throw of ``solid`` inside the balls (``centres`` (k, 3),
     ``radii`` (k,), m; overlapping balls make one zone of their union) at each of the
     mesh options ``levels``: the solid is cut once, and only the size fields change from one
     level to the next.  ``names``: (points (n, 3) on the assessed mesh's boundary, the
@@ -235,23 +338,23 @@ def mesh_zone_levels(
     rs = np.asarray(radii, float)
     out: list[list[ZoneMesh]] = []
     with gmsh_session() as gmsh:
-        model, volumes, surfaces = _build(gmsh, geometry, spec, cs, rs, names)
-        pieces = _pieces(gmsh, volumes)
+        parts = _build(gmsh, solid, cs, rs, names)
+        pieces = _pieces(gmsh, parts.volumes)
         for options in levels:
             t0 = time.perf_counter()
             gmsh.model.mesh.clear()
             for tag in gmsh.model.mesh.field.list():
                 gmsh.model.mesh.field.remove(tag)
-            set_size_fields(gmsh, geometry, surfaces, model.fillet_radii, options, volumes)
+            solid.size_fields(gmsh, parts, options)
             try:
-                generate(gmsh, spec.name, geometry.name, options, netgen=False)
+                generate(gmsh, solid.throw, solid.label, options, netgen=False)
             except MeshError as exc:
                 raise ZoneMeshError(str(exc), _culprit(gmsh, cs) if len(cs) > 1 else 0) from None
             counts = [_node_count(gmsh, p) for p in pieces]
             level = []
             for g in _groups(counts, group_nodes):
                 vols = sorted(t for i in g for t in pieces[i])
-                level.append(_convert(gmsh, model, volumes, surfaces, vols, cs, rs, options, t0))
+                level.append(_convert(gmsh, parts, vols, cs, rs, options, t0))
             out.append(level)
     return out
 
@@ -270,4 +373,14 @@ def mesh_zone(
     return mesh_zone_levels(geometry, spec, [options], centres, radii, names)[0][0]
 
 
-__all__ = ["CUT", "ZoneMesh", "ZoneMeshError", "mesh_zone", "mesh_zone_levels"]
+__all__ = [
+    "CUT",
+    "SolidParts",
+    "ZoneMesh",
+    "ZoneMeshError",
+    "ZoneSolid",
+    "mesh_solid_zone_levels",
+    "mesh_zone",
+    "mesh_zone_levels",
+    "parametric_solid",
+]

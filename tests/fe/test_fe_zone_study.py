@@ -138,7 +138,7 @@ def test_a_ball_gmsh_cannot_mesh_is_named_and_grown(check_solution):
 
     from fe_crank.fe.refinement.zone import boundary_samples
     from fe_crank.fe.refinement.zone_study import RETRY_GROWTH, HotSpot, level_meshes
-    from fe_crank.mesh.zone import ZoneMeshError, mesh_zone_levels
+    from fe_crank.mesh.zone import ZoneMeshError, mesh_zone_levels, parametric_solid
 
     geometry, _, tm, units = check_solution
     spec, samples = geometry.throw(tm.throw), boundary_samples(units.mesh)
@@ -153,6 +153,6 @@ def test_a_ball_gmsh_cannot_mesh_is_named_and_grown(check_solution):
     else:  # the failure is gmsh's, not the physics': a gmsh that meshes this ball leaves nothing to name
         pytest.skip("this gmsh meshes the grazing ball: no failed ball to name and grow")
     spots = [HotSpot(c, r, "s") for c, r in balls]
-    got = level_meshes(geometry, spec, [level], spots, samples)
+    got = level_meshes(parametric_solid(geometry, spec), [level], spots, samples)
     assert len(got) == 1 and len(got[0]) == 1  # one model, one group
     assert got[0][0].radii == pytest.approx((sound[1], RETRY_GROWTH * GRAZING[1]))

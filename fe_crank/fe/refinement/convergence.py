@@ -215,7 +215,7 @@ def check_studies(
         if method == "zones" and zones_apply(geometry, first, loads, fe_options):
             from fe_crank.fe.refinement.zone_study import zone_convergence
 
-            assert first is not None and isinstance(geometry, CrankGeometry)
+            assert first is not None
             out[key] = done[tm.key] = zone_convergence(geometry, material, first[0], first[1], loads)
             continue
         study = fillet_convergence(
@@ -233,9 +233,10 @@ def check_studies(
 
 
 def zones_apply(geometry, first, loads: dict[str, dict[str, float]], fe_options: FeOptions) -> bool:
-    """Can the zone study run?  A parametric geometry (the zone is cut from its solid), and
-    the check's own solution holding every unit case of ``loads`` on the whole pin."""
-    if not isinstance(geometry, CrankGeometry) or first is None:
+    """Can the zone study run?  A parametric or a drawn geometry (the zones are cut from its
+    throw's solid, ``fe.refinement.zone_study.zone_solid``), and the check's own solution
+    holding every unit case of ``loads`` on the whole pin."""
+    if not isinstance(geometry, CrankGeometry | CadInput) or first is None:
         return False
     needed = tuple(sorted({c for w in loads.values() for c in w}))
     return _reusable(first, first[0].options, dataclasses.replace(fe_options, cases=needed))

@@ -5,7 +5,8 @@ finer fillet size.  ``zone_convergence`` gives the same levels from submodels
 (``fe.refinement.zone``): the first level is the assessed mesh's own solution, as there; for each
 finer level, every hot spot is meshed again inside a ball of radius
 ``ZONE_RADIUS`` x its fillet radius (the oil bore: its diameter) round the assessed mesh's
-peak (``mesh.zone``, the throw mesher's size fields at that level's fillet size), driven
+peak (``mesh.zone``: cut from the throw's solid, parametric or drawn, ``zone_solid``; the
+throw mesher's size fields at that level's fillet size), driven
 on its cut by the assessed solution of every load set (the balls cut from the throw
 once, every level meshed in that one model, its connected pieces solved in groups of at
 most ``GROUP_FRACTION`` x the assessed model's nodes, one factorisation a group, each freed
@@ -28,6 +29,7 @@ import time
 
 import numpy as np
 
+from fe_crank.cad.config import CadInput
 from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.refinement.levels import (
     COUNTERWEIGHT_PREFIX,
@@ -43,9 +45,8 @@ from fe_crank.fe.throw.options import Material
 from fe_crank.fe.throw.surface_peaks import COUNTERWEIGHT_FILLETS, FILLETS, OIL_BORE
 from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.geometry.spec import CrankGeometry
-from fe_crank.mesh.sizing import counterweight_fillet_radius
 from fe_crank.mesh.types import ThrowMesh
-from fe_crank.mesh.zone import ZoneMesh, ZoneMeshError, mesh_zone_levels
+from fe_crank.mesh.zone import ZoneMesh, ZoneMeshError, ZoneSolid, mesh_solid_zone_levels, parametric_solid
 
 log = logging.getLogger(__name__)
 
@@ -67,18 +68,26 @@ class HotSpot:
     surface: str
 
 
-def hot_spot_radius(geometry: CrankGeometry, throw_mesh: ThrowMesh, surface: str) -> float:
-    """The length the zone radius is measured in: the fillet's radius, the oil bore's diameter."""
+def zone_solid(geometry: CrankGeometry | CadInput, throw_mesh: ThrowMesh) -> ZoneSolid:
+    """The solid the zones of the assessed mesh ``throw_mesh`` are cut from: its parametric
+    throw (``mesh.zone.parametric_solid``) or its drawn one (``cad.zone.cad_zone_solid``)."""
+    if isinstance(geometry, CadInput):
+        from fe_crank.cad.zone import cad_zone_solid
+
+        return cad_zone_solid(geometry, throw_mesh.throw, throw_mesh.options)
+    return parametric_solid(geometry, geometry.throw(throw_mesh.throw))
+
+
+def hot_spot_radius(solid: ZoneSolid, throw_mesh: ThrowMesh, surface: str) -> float:
+    """The length the zone radius is measured in: the fillet's radius, the oil bore's
+    diameter (its outlet's stress field reaches further than a fillet's)."""
     if surface in throw_mesh.fillet_radii:
         return throw_mesh.fillet_radii[surface]
-    if surface.startswith("counterweight_fillet_"):
-        return counterweight_fillet_radius(geometry, int(surface.rsplit("_", 1)[1]))
-    assert geometry.oil_bore is not None
-    return geometry.oil_bore.diameter  # its outlet's stress field reaches further than a fillet's
+    return solid.lengths[surface]
 
 
 def hot_spots(
-    geometry: CrankGeometry,
+    solid: ZoneSolid,
     throw_mesh: ThrowMesh,
     unit_solutions: UnitSolutions,
     fields: dict[str, np.ndarray],
@@ -113,7 +122,7 @@ def hot_spots(
             for name, (v, node) in peaks.items():
                 if v >= CANDIDATE * top:
                     x = unit_solutions.points[:, node]
-                    r = zone_radius * hot_spot_radius(geometry, throw_mesh, name)
+                    r = zone_radius * hot_spot_radius(solid, throw_mesh, name)
                     found.append((v, HotSpot((float(x[0]), float(x[1]), float(x[2])), r, name)))
     found.sort(key=lambda t: -t[0])
     out: list[HotSpot] = []
@@ -133,10 +142,10 @@ GROUP_FRACTION = 0.5
 
 
 def level_meshes(
-    geometry: CrankGeometry, spec, levels, spots: list[HotSpot], samples, group_nodes=None, grown=frozenset()
+    solid: ZoneSolid, levels, spots: list[HotSpot], samples, group_nodes=None, grown=frozenset()
 ) -> list[list[ZoneMesh]]:
     """The zones of every level (``levels``: their mesh options), in groups
-    (``mesh.zone.mesh_zone_levels``): every ball cut from the throw in one gmsh model, once,
+    (``mesh.zone.mesh_solid_zone_levels``): every ball cut from the throw in one gmsh model, once,
     and re-meshed per level.  Where gmsh cannot mesh that model at some level, the ball
     nearest the first curve or surface it left unmeshed (``ZoneMeshError.ball``) is made
     ``RETRY_GROWTH`` larger and the model cut and meshed again (once per ball: ``grown``,
@@ -144,28 +153,24 @@ def level_meshes(
     the same way."""
     radii = [h.radius * (RETRY_GROWTH if i in grown else 1.0) for i, h in enumerate(spots)]
     try:
-        return mesh_zone_levels(
-            geometry, spec, levels, [h.centre for h in spots], radii, samples, group_nodes=group_nodes
-        )
+        return mesh_solid_zone_levels(solid, levels, [h.centre for h in spots], radii, samples, group_nodes=group_nodes)
     except ZoneMeshError as exc:
         log.info("the hot-spot zones on %s: %s", ", ".join(h.surface for h in spots), exc)
         if exc.ball is not None and exc.ball not in grown:
             log.info("the zone on %s tried %g x larger", spots[exc.ball].surface, RETRY_GROWTH)
-            return level_meshes(geometry, spec, levels, spots, samples, group_nodes, grown | {exc.ball})
+            return level_meshes(solid, levels, spots, samples, group_nodes, grown | {exc.ball})
         if len(spots) == 1:
             raise
     half = len(spots) // 2
-    first = level_meshes(
-        geometry, spec, levels, spots[:half], samples, group_nodes, frozenset(i for i in grown if i < half)
-    )
+    first = level_meshes(solid, levels, spots[:half], samples, group_nodes, frozenset(i for i in grown if i < half))
     second = level_meshes(
-        geometry, spec, levels, spots[half:], samples, group_nodes, frozenset(i - half for i in grown if i >= half)
+        solid, levels, spots[half:], samples, group_nodes, frozenset(i - half for i in grown if i >= half)
     )
     return [a + b for a, b in zip(first, second)]
 
 
 def zone_convergence(
-    geometry: CrankGeometry,
+    geometry: CrankGeometry | CadInput,
     material: Material,
     throw_mesh: ThrowMesh,
     unit_solutions: UnitSolutions,
@@ -177,7 +182,8 @@ def zone_convergence(
 ) -> ConvergenceStudy:
     """The study's levels r/(n f), f in ``factors`` (the first 1: the assessed mesh
     ``throw_mesh`` and its solution ``unit_solutions``, which must hold every unit case of
-    ``loads``), the finer ones from the hot-spot zones (module docstring)."""
+    ``loads``), the finer ones from the hot-spot zones (module docstring) of the throw of
+    ``geometry``, parametric or drawn (``zone_solid``)."""
     if len(factors) < 2 or factors[0] != 1.0:
         raise ValueError("a zone study starts from the assessed mesh (factor 1) and has at least two levels")
     loads = {k: dict(v) for k, v in loads.items()}
@@ -197,8 +203,8 @@ def zone_convergence(
             bore_divisions=base.bore_divisions,
         )
     ]
-    spots = hot_spots(geometry, throw_mesh, unit_solutions, fields, zone_radius=zone_radius)
-    spec = geometry.throw(throw_mesh.throw)
+    solid = zone_solid(geometry, throw_mesh)
+    spots = hot_spots(solid, throw_mesh, unit_solutions, fields, zone_radius=zone_radius)
     samples = boundary_samples(unit_solutions.mesh)
     interp = Interpolator(unit_solutions.mesh, unit_solutions.system.basis.dofs, unit_solutions.points)
     every = [n for _, names in FAMILIES for n in names]
@@ -208,7 +214,7 @@ def zone_convergence(
         for f in factors[1:]
     ]
     group_nodes = GROUP_FRACTION * unit_solutions.n_dof / 3
-    meshes = level_meshes(geometry, spec, options, spots, samples, group_nodes)
+    meshes = level_meshes(solid, options, spots, samples, group_nodes)
     meshing = (time.perf_counter() - t0) / len(options)  # the cut shared by the levels
     for mopt, zones in zip(options, meshes):
         t0 = time.perf_counter() - meshing
@@ -256,4 +262,4 @@ def zone_convergence(
     )
 
 
-__all__ = ["CANDIDATE", "REACH", "ZONE_RADIUS", "HotSpot", "hot_spots", "zone_convergence"]
+__all__ = ["CANDIDATE", "REACH", "ZONE_RADIUS", "HotSpot", "hot_spots", "zone_convergence", "zone_solid"]
