@@ -110,6 +110,15 @@ class StudyResult:
     joint_model: JointModel | None = None
 
 
+#: why the study does not screen the bolted joints with a ``[torsion]`` section
+JOINT_TORSION = (
+    "with a [torsion] section the check adds the throw's torsional angular acceleration to each bolted "
+    "counterweight's tangential inertia and the vibratory pin force to the web's deformation, both of which "
+    "the candidate's counterweights change through the shaft's inertia; the study does not run the torsional "
+    "stage per candidate"
+)
+
+
 def _layout(lc: LoadCase):
     g = lc.geometry
     if not isinstance(g, CrankGeometry) or lc.material is None or not whole_shaft_wanted(g, lc.engine):
@@ -177,6 +186,12 @@ def prepare(lc: LoadCase, spec: StudySpec):
             raise InputError(
                 "a bolted-joint limit needs a bolted counterweight (a counterweight's bolted table in the "
                 "geometry); the geometry has none",
+                file=spec.file,
+                key=f"study.limits.{k}",
+            )
+        if k in spec.limits and lc.torsion is not None:
+            raise InputError(
+                JOINT_TORSION + ": judge the joints by the full check of the chosen candidate",
                 file=spec.file,
                 key=f"study.limits.{k}",
             )
@@ -424,7 +439,7 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         else body_model(lc, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
     )
     per_throw_loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if bm is not None else None
-    jm = joint_model(lc, layout, bm, cycles) if bm is not None and has_bolted(layout) else None
+    jm = joint_model(lc, layout, bm, cycles) if bm is not None and has_bolted(layout) and lc.torsion is None else None
     j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if jm is not None else ({}, "")
     results = []
     for c in cands:
@@ -468,5 +483,6 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
             + ", ".join(f"{k} {v:g}" for k, v in j_lims.items())
         )
     elif has_bolted(layout):
-        notes.append('bolted joints not screened (stresses = "off": no per-throw model); judge them by the full check')
+        why_not = JOINT_TORSION if lc.torsion is not None else 'stresses = "off": no per-throw model'
+        notes.append(f"bolted joints not screened ({why_not}); judge them by the full check")
     return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm, j_lims, jm)

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers.bolted_study import bolted_case
 from skfem import Basis, ElementTetP2, Functional
 
 from fe_crank.assess.loads import FIRING
@@ -69,23 +70,6 @@ webs = ["1.1", "2.2", "3.1", "4.2"]
 name = "4 twisted"
 webs = ["1.1", "2.2", "3.2", "4.1"]
 """
-
-
-#: the small shaft's counterweights bolted on (every web: the throws stay one solid, one
-#: mesh): two radial M6 10.9 bolts each, through the counterweight into the web's end face
-BOLTED = (
-    'bolted = { count = 2, diameter = "6 mm", pitch_radius = "30 mm", pitch = "1 mm", property_class = "10.9", '
-    'clamp_length = "20 mm", bearing_diameter = "10 mm", hole_diameter = "6.6 mm", '
-    'clamped_diameter = "12 mm", tightening_factor = 1.6 }'
-)
-
-
-def bolted_case(folder: Path) -> Path:
-    """tests/data/small_shaft.toml on its geometry with the counterweights bolted (``BOLTED``)."""
-    text = (DATA / "geometry_small_shaft.toml").read_text()
-    (folder / "geometry_small_shaft.toml").write_text(text.replace("webs = [1, 2]\n", f"webs = [1, 2]\n{BOLTED}\n", 1))
-    (folder / "small_shaft.toml").write_text(CASE.read_text())
-    return folder / "small_shaft.toml"
 
 
 @pytest.fixture(scope="module")
