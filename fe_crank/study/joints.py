@@ -36,7 +36,7 @@ import numpy as np
 from fe_crank.assess.adapters import counterweights_of
 from fe_crank.assess.counterweight import CounterweightData
 from fe_crank.assess.cw_joint import cycle_speed_data
-from fe_crank.assess.joint_criteria import DEFAULT_LIMITS, JOINT_QUANTITIES
+from fe_crank.assess.joint_criteria import DEFAULT_LIMITS, JOINT_QUANTITIES, with_default_limits
 from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.state_throws import cycle_dynamics
 from fe_crank.assess.superpose import cycle_coefficients
@@ -70,17 +70,12 @@ def joint_limits(stated: dict[str, float], criteria: Criteria | None) -> tuple[d
     own = {k: v for k, v in stated.items() if k in LIMITS}
     if own:
         return own, "the study's"
-    from_case = {
-        f"{lim.sense}_{lim.quantity}": lim.value
-        for lim in (criteria.limits if criteria is not None else ())
-        if lim.quantity in JOINT_QUANTITIES
-    }
-    if from_case:
-        return from_case, "the load case's [criteria] (the study names no joint limit)"
-    return (
-        {f"{JOINT_QUANTITIES[q][1]}_{q}": v for q, v in DEFAULT_LIMITS.items()},
-        "VDI 2230's usual limits (neither the study nor the load case names a joint limit), as the check takes",
-    )
+    default = "VDI 2230's usual limits (neither the study nor the load case names a joint limit), as the check takes"
+    if criteria is None:
+        return {f"{JOINT_QUANTITIES[q][1]}_{q}": v for q, v in DEFAULT_LIMITS.items()}, default
+    judged, added = with_default_limits(criteria)  # the check's own choice of limits
+    limits = {f"{lim.sense}_{lim.quantity}": lim.value for lim in judged.limits if lim.quantity in JOINT_QUANTITIES}
+    return limits, default if added else "the load case's [criteria] (the study names no joint limit)"
 
 
 @dataclass(frozen=True)
