@@ -19,6 +19,7 @@ from skfem import Basis, ElementTetP2, Functional
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState, assess_shaft_throws, piece_unit_stresses
+from fe_crank.assess.throw import throw_joints
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
 from fe_crank.fe.core.stress import von_mises
@@ -33,7 +34,7 @@ from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.bodies import candidate_bodies
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
 from fe_crank.study.film import film_metrics
-from fe_crank.study.joints import candidate_joints
+from fe_crank.study.joints import candidate_counterweights, candidate_joints
 from fe_crank.study.m53 import refusal
 from fe_crank.study.outputs import to_toml, write_candidate
 from fe_crank.study.run import recommend, run_study
@@ -508,6 +509,25 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
     assert res.joint_model is not None
     joints = candidate_joints(res.joint_model, cand, ThrowSolidCache(res.shaft.layout), res.shaft.mass)
     assert joints is not None and joints.refused is None and joints.joints == len(drawn)
+    # the web's deformation onto the joint by the per-throw model's section (not the lever bound)
+    jm = res.joint_model
+    cws = candidate_counterweights(jm, cand, ThrowSolidCache(res.shaft.layout), res.shaft.mass)
+    ts = jm.states[0]
+    checks = throw_joints(
+        jm.body.units[ts.throw],
+        cws[ts.throw],
+        ts.pin_force,
+        ts.torque,
+        omega=ts.omega,
+        sense=ts.sense,
+        overspeed=jm.overspeed,
+        material=jm.material,
+        joint_speed=ts.joint_speed,
+        coeffs=ts.coeffs,
+        rod_loads=ts.rods,
+        overspeed_loads=ts.overspeed_loads,
+    )
+    assert len(checks) == 2 and all(j.loads.web_model.startswith("FE: sigma_yy") for j in checks)
     for key in JOINT_LIMITS:
         quantity = key.split("_", 1)[1]
         crit = next(c for c in got["criteria"] if c["quantity"] == quantity)
