@@ -15,6 +15,7 @@ from fe_crank.assess.loads import FIRING, LoadState, misfire_label
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment, ThrowContext, assess_throw
 from fe_crank.fe.throw.pin_patches import rod_loads, rod_positions
+from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.rules.m53.basis import M53Basis
 from fe_crank.throw_scope import throws_of
@@ -30,9 +31,14 @@ def places_of(a: AssessInputs, throw: str) -> dict[str, float]:
 def state_dynamics(a: AssessInputs) -> dict[tuple[float, str], DynamicsResult]:
     """(speed, case) of a load state (``LoadState.speed``, ``.case``) -> the dynamics
     stage's cycle of it: every speed of the sweep firing and with each misfire case, and
-    the operating cycle."""
-    out = {(a.cycles.operating.speed, FIRING): a.cycles.operating}
-    for sc in a.cycles.sweep:
+    the operating cycle (``cycle_dynamics`` of the case's cycles)."""
+    return cycle_dynamics(a.cycles)
+
+
+def cycle_dynamics(cycles: EngineCycles) -> dict[tuple[float, str], DynamicsResult]:
+    """``state_dynamics`` of the engine's ``cycles`` (``mechanism.cycles.EngineCycles``)."""
+    out = {(cycles.operating.speed, FIRING): cycles.operating}
+    for sc in cycles.sweep:
         out[sc.speed, FIRING] = sc.firing
         out.update({(sc.speed, misfire_label(m.cylinder)): m.dynamics for m in sc.misfire})
     return out
@@ -115,4 +121,4 @@ def assess_state(
     return tuple(out)
 
 
-__all__ = ["places_of", "state_dynamics", "joint_speed", "assess_state"]
+__all__ = ["places_of", "state_dynamics", "cycle_dynamics", "joint_speed", "assess_state"]

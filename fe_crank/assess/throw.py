@@ -200,42 +200,81 @@ def assess_throw(ctx: ThrowContext) -> ThrowAssessment:
     cws = tuple(check_counterweight(c, ctx.omega, ctx.overspeed) for c in ctx.counterweights)
     joints: tuple[JointCheck, ...] = ()
     if ctx.joint_speed is not None:
-        delta, alpha = ctx.joint_speed
-        if overspeed_loads is None:  # the web's moment at the overspeed: the operating loads scaled as above
-            scale = (ctx.overspeed / ctx.omega) ** 2 if ctx.overspeed is not None and ctx.omega > 0 else 1.0
-            rods_os = (
-                None if ctx.rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in ctx.rod_loads)
-            )
-            overspeed_loads = (scale * np.asarray(ctx.pin_force, float), scale * np.asarray(ctx.torque, float), rods_os)
-        web_cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
-        joint_os = coeffs_os
-        if joint_os is None and ctx.overspeed is not None:
-            joint_os = np.vstack(
-                [
-                    cycle_coefficients(
-                        ctx.unit, c[0], c[1], ctx.overspeed, sense=ctx.sense, rod_loads=c[2] if len(c) > 2 else None
-                    )
-                    for c in web_cycles
-                ]
-            )
-        joints = tuple(
-            j
-            for c in ctx.counterweights
-            for j in check_joints(
-                c,
-                omega=ctx.omega,
-                overspeed=ctx.overspeed,
-                e_clamped=ctx.material.youngs_modulus,
-                speed_fluctuation=delta,
-                angular_acceleration=alpha,
-                file=ctx.geometry_file,
-                pin_force=ctx.pin_force,
-                rod_loads=ctx.rod_loads,
-                overspeed_loads=web_cycles,
-                fe=(ctx.unit, coeffs, joint_os),
-            )
+        joints = throw_joints(
+            ctx.unit,
+            ctx.counterweights,
+            ctx.pin_force,
+            ctx.torque,
+            omega=ctx.omega,
+            sense=ctx.sense,
+            overspeed=ctx.overspeed,
+            material=ctx.material,
+            joint_speed=ctx.joint_speed,
+            coeffs=coeffs,
+            coeffs_os=coeffs_os,
+            rod_loads=ctx.rod_loads,
+            overspeed_loads=overspeed_loads,
+            geometry_file=ctx.geometry_file,
         )
     return ThrowAssessment(ctx.name, groups, fillets, nominal, cws, int(len(ctx.theta)), joints)
+
+
+def throw_joints(
+    unit: UnitStresses,
+    counterweights: tuple[CounterweightData, ...],
+    pin_force: np.ndarray,
+    torque: np.ndarray,
+    *,
+    omega: float,
+    sense: int,
+    overspeed: float | None,
+    material: Material,
+    joint_speed: tuple[float, float],
+    coeffs: np.ndarray,
+    coeffs_os: np.ndarray | None = None,
+    rod_loads: RodLoads | None = None,
+    overspeed_loads: OverspeedLoads | list[OverspeedLoads] | None = None,
+    geometry_file: str = "",
+) -> tuple[JointCheck, ...]:
+    """VDI 2230 of the bolted ``counterweights`` of one throw in one load state
+    (``cw_joint.check_joints``), as ``assess_throw`` checks them (``ThrowContext``'s
+    ``joint_speed``): the web's moment from ``pin_force`` (``rod_loads``) and the overspeed
+    cycles (``overspeed_loads``; None: the operating loads scaled by (omega_os/omega)^2),
+    the FE section from ``unit`` with the cycle's ``coeffs`` and the overspeed cycles'
+    ``coeffs_os`` (None: formed here from ``overspeed_loads``).  ``assess_throw`` calls it
+    with the throw's context; the counterweight study (``fe_crank.study.joints``) with a
+    candidate's counterweights."""
+    delta, alpha = joint_speed
+    if overspeed_loads is None:  # the web's moment at the overspeed: the operating loads scaled
+        scale = (overspeed / omega) ** 2 if overspeed is not None and omega > 0 else 1.0
+        rods_os = None if rod_loads is None else tuple((scale * np.asarray(f, float), e) for f, e in rod_loads)
+        overspeed_loads = (scale * np.asarray(pin_force, float), scale * np.asarray(torque, float), rods_os)
+    web_cycles = overspeed_loads if isinstance(overspeed_loads, list) else [overspeed_loads]
+    joint_os = coeffs_os
+    if joint_os is None and overspeed is not None:
+        joint_os = np.vstack(
+            [
+                cycle_coefficients(unit, c[0], c[1], overspeed, sense=sense, rod_loads=c[2] if len(c) > 2 else None)
+                for c in web_cycles
+            ]
+        )
+    return tuple(
+        j
+        for c in counterweights
+        for j in check_joints(
+            c,
+            omega=omega,
+            overspeed=overspeed,
+            e_clamped=material.youngs_modulus,
+            speed_fluctuation=delta,
+            angular_acceleration=alpha,
+            file=geometry_file,
+            pin_force=pin_force,
+            rod_loads=rod_loads,
+            overspeed_loads=web_cycles,
+            fe=(unit, coeffs, joint_os),
+        )
+    )
 
 
 def m53_fillets(

@@ -228,11 +228,34 @@ def _key(prefix: str, key: str) -> str:
     return f"{prefix}.{key}" if prefix else key
 
 
+def bolt_misfit(g: CrankGeometry, cw: CounterweightSpec) -> str | None:
+    """Why the bolts of the bolted counterweight ``cw`` do not pass through it (None: they
+    do, or it is not bolted): each bolt (at ``pitch_radius`` from the crank axis, +- half
+    its ``diameter`` for an axial bolt) must lie outside the journal and within the
+    counterweight's radial extent (``inner_radius`` ... ``outer_radius``)."""
+    b = cw.bolted
+    if b is None:
+        return None
+    half = b.diameter / 2 if b.direction == "axial" else 0.0  # a radial bolt runs along the radius
+    lo, hi = b.pitch_radius - half, b.pitch_radius + half
+    rj = g.journal_diameter / 2
+    if lo < rj:
+        return (
+            f"the bolts ({b.diameter * 1e3:.6g} mm at a pitch radius of {b.pitch_radius * 1e3:.6g} mm) reach "
+            f"into the journal (radius {rj * 1e3:.6g} mm): a bolt must pass through the counterweight into the web"
+        )
+    if lo < cw.inner_radius or hi > cw.outer_radius:
+        return (
+            f"the bolts ({b.diameter * 1e3:.6g} mm at a pitch radius of {b.pitch_radius * 1e3:.6g} mm, "
+            f"{lo * 1e3:.6g}-{hi * 1e3:.6g} mm from the axis) do not lie within the counterweight "
+            f"({cw.inner_radius * 1e3:.6g}-{cw.outer_radius * 1e3:.6g} mm from the axis): a bolt must pass "
+            "through the counterweight into the web"
+        )
+    return None
+
+
 def _check_bolts(g: CrankGeometry, raw: GeometryInput, file: str, prefix: str) -> None:
-    """Refuse a bolted counterweight whose bolts do not pass through it: each bolt
-    (at ``pitch_radius`` from the crank axis, +- half its ``diameter`` for an axial bolt)
-    must lie outside the journal and within the counterweight's radial extent
-    (``inner_radius`` ... ``outer_radius``)."""
+    """Refuse a bolted counterweight whose bolts do not pass through it (``bolt_misfit``)."""
     for i, t in enumerate(g.throws):
         own = (
             raw.throws is not None
@@ -241,30 +264,9 @@ def _check_bolts(g: CrankGeometry, raw: GeometryInput, file: str, prefix: str) -
         )
         where = f"throws[{i}].counterweight" if own else "counterweight"
         for cw in t.counterweights:
-            b = cw.bolted
-            if b is None:
-                continue
-            half = b.diameter / 2 if b.direction == "axial" else 0.0  # a radial bolt runs along the radius
-            lo, hi = b.pitch_radius - half, b.pitch_radius + half
-            rj = g.journal_diameter / 2
-            if lo < rj:
-                reason = (
-                    f"the bolts ({b.diameter * 1e3:.6g} mm at a pitch radius of {b.pitch_radius * 1e3:.6g} mm) reach "
-                    f"into the journal (radius {rj * 1e3:.6g} mm)"
-                )
-            elif lo < cw.inner_radius or hi > cw.outer_radius:
-                reason = (
-                    f"the bolts ({b.diameter * 1e3:.6g} mm at a pitch radius of {b.pitch_radius * 1e3:.6g} mm, "
-                    f"{lo * 1e3:.6g}-{hi * 1e3:.6g} mm from the axis) do not lie within the counterweight "
-                    f"({cw.inner_radius * 1e3:.6g}-{cw.outer_radius * 1e3:.6g} mm from the axis)"
-                )
-            else:
-                continue
-            raise InputError(
-                reason + ": a bolt must pass through the counterweight into the web",
-                file=file,
-                key=_key(prefix, f"{where}.bolted.pitch_radius"),
-            )
+            reason = bolt_misfit(g, cw)
+            if reason is not None:
+                raise InputError(reason, file=file, key=_key(prefix, f"{where}.bolted.pitch_radius"))
 
 
 #: criteria (``io.criteria`` quantities) that judge the counterweights' FE stress

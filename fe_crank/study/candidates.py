@@ -44,6 +44,7 @@ from fe_crank.errors import GeometryError, InputError
 from fe_crank.geometry.checks import check_geometry
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.geometry.spec import CounterweightSpec, ThrowSpec
+from fe_crank.io.geometry import bolt_misfit
 from fe_crank.model import Engine
 from fe_crank.study.spec import StudySpec
 
@@ -188,7 +189,8 @@ def _clash(r1: float, r2: float, angle: float, layout: ShaftLayout, envelope: fl
 
 def _geometry_refuses(layout: ShaftLayout, web: Web, cw: CounterweightSpec, s: SectorProperties) -> str | None:
     """The geometry's own rules (``geometry.checks``: clear of the pin and its fillet,
-    the fillet fits the step to the web's face, ...) on the throw with this sector."""
+    the fillet fits the step to the web's face, ...; ``io.geometry.bolt_misfit``: a bolted
+    counterweight's bolts pass through it) on the throw with this sector."""
     new = dataclasses.replace(cw, outer_radius=s.r_outer, inner_radius=s.r_inner, angle=s.angle, thickness=s.thickness)
     th = next(t for t in layout.throws if t.name == web[0])
     g = dataclasses.replace(layout.geometry, throws=(dataclasses.replace(th.spec, counterweights=(new,)),))
@@ -196,7 +198,7 @@ def _geometry_refuses(layout: ShaftLayout, web: Web, cw: CounterweightSpec, s: S
         check_geometry(g)
     except GeometryError as exc:
         return exc.reason
-    return None
+    return bolt_misfit(g, new)  # the bolts as drawn must still pass through it (the geometry file's rule)
 
 
 def web_shape(web: Web, k: float, d: DrawnWeb, layout: ShaftLayout, spec: StudySpec, density: float) -> WebShape:

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fe_crank.assess.joint_criteria import JOINT_QUANTITIES
 from fe_crank.errors import InputError
 from fe_crank.files import write_atomic
 from fe_crank.io.base import read_toml
@@ -40,6 +41,11 @@ COLUMNS = (
     ("counterweight_overspeed_peak_mpa", "cw junction overspeed peak MPa"),
     ("counterweight_body_peak_mpa", "cw peak (per-throw model) MPa"),
     ("m53_acceptability", "UR M53 Q"),
+    ("bolt_assembly_utilisation", "bolt assembly utilisation nu"),
+    ("bolt_working_safety", "bolt working safety S_F"),
+    ("bolt_fatigue_safety", "bolt fatigue safety S_D"),
+    ("bolt_separation_safety", "bolt separation safety S_sep"),
+    ("bolt_slip_safety", "bolt slip safety S_G"),
     ("free_force_first_order_n", "free force 1st N"),
     ("free_moment_first_order_nm", "free moment 1st N m"),
     ("buildable", "buildable"),
@@ -74,12 +80,26 @@ def row(r: CandidateResult, recommended: bool) -> dict:
         "counterweight_overspeed_peak_mpa": None if os is None else os.counterweight_peak / 1e6,
         "counterweight_body_peak_mpa": None if r.bodies is None else r.bodies.peak / 1e6,
         "m53_acceptability": None if r.m53 is None else r.m53.acceptability,
+        **{k: _joint(r, k) for k in JOINT_COLUMNS},
         "free_force_first_order_n": r.free_force,
         "free_moment_first_order_nm": r.free_moment,
         "buildable": c.buildable,
         "meets_limits": r.meets_limits,
         "recommended": recommended,
     }
+
+
+#: the joint columns: the study's limit key of each (``study.joints.LIMITS``)
+JOINT_COLUMNS = {q: f"{sense}_{q}" for q, (_, sense) in JOINT_QUANTITIES.items()}
+
+
+def _joint(r: CandidateResult, column: str) -> float | None:
+    """A joint column's value: the worst over the candidate's joints and states (None: not
+    screened; a slip or fatigue safety with no load to divide by is infinite, written as None)."""
+    if r.joints is None:
+        return None
+    v = r.joints.values.get(JOINT_COLUMNS[column])
+    return None if v is None or not math.isfinite(v) else v
 
 
 def detail(r: CandidateResult) -> dict:
@@ -100,6 +120,7 @@ def detail(r: CandidateResult) -> dict:
         else {"peak": r.overspeed.peak_where, "counterweight_junction_peak": r.overspeed.counterweight_where},
         "m53_where": None if r.m53 is None else r.m53.where,
         "counterweight_body_peak_where": None if r.bodies is None else r.bodies.where,
+        "bolt_where": None if r.joints is None else dict(r.joints.where),
         "oil_film": None
         if r.film is None
         else {
@@ -159,6 +180,7 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
         "loadcase": res.loadcase.source_file,
         "rule": res.spec.rule,
         "limits": res.spec.limits,
+        "joint_limits": res.joint_limits,
         "states": [{"label": s.label, "speed_rad_s": s.speed} for s in res.states],
         "free_forces_at_rad_s": res.residual_speed,
         "n_dof": res.shaft.n_dof,

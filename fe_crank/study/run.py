@@ -30,6 +30,8 @@ from fe_crank.study.candidates import (
     written_mass,
 )
 from fe_crank.study.film import FilmMetrics, film_metrics
+from fe_crank.study.joints import LIMITS as JOINT_LIMITS
+from fe_crank.study.joints import JointModel, JointScreen, candidate_joints, has_bolted, joint_limits, joint_model
 from fe_crank.study.m53 import LIMIT as M53_LIMIT
 from fe_crank.study.m53 import M53Screen, refusal, study_m53
 from fe_crank.study.screen import (
@@ -79,6 +81,9 @@ class CandidateResult:
     #: the per-throw model's counterweight groups (bodies, fillets, junctions) over every
     #: state (``study.bodies``; None with ``stresses = "off"``)
     bodies: BodyScreen | None = None
+    #: the bolted counterweights' VDI 2230 figures over the check's load states
+    #: (``study.joints``; None without a bolted counterweight or with ``stresses = "off"``)
+    joints: JointScreen | None = None
 
     @property
     def meets_limits(self) -> bool:
@@ -99,6 +104,19 @@ class StudyResult:
     notes: tuple[str, ...] = field(default_factory=tuple)
     #: the per-throw model of the drawn geometry (``study.bodies``; None with ``stresses = "off"``)
     body_model: BodyModel | None = None
+    #: the joint limits judged (``study.joints.joint_limits``), plain numbers; {} when not screened
+    joint_limits: dict[str, float] = field(default_factory=dict)
+    #: the bolted throws' load states (``study.joints``; None when the joints are not screened)
+    joint_model: JointModel | None = None
+
+
+#: why the study does not screen the bolted joints with a ``[torsion]`` section
+JOINT_TORSION = (
+    "with a [torsion] section the check adds the throw's torsional angular acceleration to each bolted "
+    "counterweight's tangential inertia and the vibratory pin force to the web's deformation, both of which "
+    "the candidate's counterweights change through the shaft's inertia; the study does not run the torsional "
+    "stage per candidate"
+)
 
 
 def _layout(lc: LoadCase):
@@ -163,6 +181,20 @@ def prepare(lc: LoadCase, spec: StudySpec):
         )
     if "max_counterweight_stress" in spec.limits:  # a sharp re-entrant edge: a singular stress, as the check
         require_counterweight_fillets(layout.geometry, ("counterweight_stress",), spec.file)
+    for k in JOINT_LIMITS:
+        if k in spec.limits and not has_bolted(layout):
+            raise InputError(
+                "a bolted-joint limit needs a bolted counterweight (a counterweight's bolted table in the "
+                "geometry); the geometry has none",
+                file=spec.file,
+                key=f"study.limits.{k}",
+            )
+        if k in spec.limits and lc.torsion is not None:
+            raise InputError(
+                JOINT_TORSION + ": judge the joints by the full check of the chosen candidate",
+                file=spec.file,
+                key=f"study.limits.{k}",
+            )
     if M53_LIMIT in spec.limits:
         why = refusal(lc)
         if why is None and not (lc.criteria is not None and lc.criteria.m53_quasi_static_torque):
@@ -189,6 +221,8 @@ def _metrics(
     overspeed: OverspeedScreen | None = None,
     m53: M53Screen | None = None,
     bodies: BodyScreen | None = None,
+    joints: JointScreen | None = None,
+    joint_lims: dict[str, float] | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -262,6 +296,14 @@ def _metrics(
         failed += (f"{k} {bodies.peak / 1e6:.4g} > {spec.limits[k] / 1e6:.4g} MPa",)
     if M53_LIMIT in spec.limits and m53 is not None and m53.acceptability < spec.limits[M53_LIMIT]:
         failed += (f"{M53_LIMIT} {m53.acceptability:.4g} < {spec.limits[M53_LIMIT]:.4g}",)
+    if joints is not None and joints.refused is not None:
+        failed += (f"bolted joint: {joints.refused}",)
+    if joints is not None:
+        for k, bound in (joint_lims or {}).items():
+            v = joints.values.get(k)
+            if v is not None and (v > bound if k.startswith("max_") else v < bound):
+                op = ">" if k.startswith("max_") else "<"
+                failed += (f"{k} {v:.4g} {op} {bound:.4g} ({joints.where[k]})",)
     if "min_oil_film" in spec.limits and film is not None and film.min_film < spec.limits["min_oil_film"]:
         failed += (f"min_oil_film {film.min_film * 1e6:.4g} < {spec.limits['min_oil_film'] * 1e6:.4g} um",)
     return CandidateResult(
@@ -288,7 +330,24 @@ def _metrics(
         overspeed,
         m53,
         bodies,
+        joints,
     )
+
+
+def _joint_words(jt: JointScreen) -> str:
+    """The joint figures a recommendation names: each VDI 2230 safety's least value and the
+    joint and state of the least of them."""
+    safeties = {k: v for k, v in jt.values.items() if k.startswith("min_")}
+    if not safeties:
+        return ""
+    least = min(safeties, key=lambda k: safeties[k])
+    figures = ", ".join(f"{k.removeprefix('min_bolt_').removesuffix('_safety')} {v:.2f}" for k, v in safeties.items())
+    return f"; bolted joints' least safeties {figures} (the least: {jt.where[least]})"
+
+
+def _of_joint(failure: str) -> bool:
+    """Whether a failed-limit line (``CandidateResult.failed``) is a bolted joint's."""
+    return failure.split(" ")[0] in JOINT_LIMITS or failure.startswith("bolted joint:")
 
 
 def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[CandidateResult | None, str]:
@@ -296,10 +355,16 @@ def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[Candidat
     ok = [r for r in results if r.meets_limits]
     if not ok:
         n_build = sum(r.candidate.buildable for r in results)
-        return None, (
+        why = (
             f"no candidate meets every limit ({n_build} of {len(results)} buildable; "
             "the table says which limit each misses)"
         )
+        joint_fails = [(r, f) for r in results if r.candidate.buildable for f in r.failed if _of_joint(f)]
+        if joint_fails:
+            n = len({id(r) for r, _ in joint_fails})
+            r0, f0 = joint_fails[0]
+            why += f"; a bolted joint fails on {n} of the buildable ones (#{r0.candidate.index}: {f0})"
+        return None, why
     if rule == "least_mass":
         best = min(ok, key=lambda r: (round(r.counterweight_mass, 9), r.peak_bearing_load, r.candidate.index))
         why = (
@@ -312,12 +377,31 @@ def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[Candidat
             f"the least peak main-bearing load ({best.peak_bearing_load / 1e3:.2f} kN) of the {len(ok)} buildable "
             f"candidates meeting every limit; counterweight mass {best.counterweight_mass:.3f} kg"
         )
+    # a candidate the rule's quantity alone would take (as light, or as little loaded) that a
+    # bolted joint rules out: the reason names it
+    ahead = [
+        r
+        for r in results
+        if r.candidate.buildable
+        and not r.meets_limits
+        and (
+            round(r.counterweight_mass, 9) <= round(best.counterweight_mass, 9)
+            if rule == "least_mass"
+            else round(r.peak_bearing_load, 6) <= round(best.peak_bearing_load, 6)
+        )
+    ]
+    joint_miss = [(r, f) for r in ahead for f in r.failed if _of_joint(f)]
+    if joint_miss:
+        r0, f0 = joint_miss[0]
+        why += f"; #{r0.candidate.index} ({r0.candidate.label}) would do by the rule, but a bolted joint misses: {f0}"
     st = best.stresses
     if st is not None:
         why += f"; fillet peak {st.shaft_peak / 1e6:.1f} MPa (static safety {st.static_safety:.2f}"
         why += ")" if st.fatigue_safety is None else f", fatigue safety {st.fatigue_safety:.2f})"
     if best.overspeed is not None:
         why += f"; overspeed safety {best.overspeed.safety:.2f}"
+    if best.joints is not None:
+        why += _joint_words(best.joints)
     return best, why
 
 
@@ -355,6 +439,8 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         else body_model(lc, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
     )
     per_throw_loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if bm is not None else None
+    jm = joint_model(lc, layout, bm, cycles) if bm is not None and has_bolted(layout) and lc.torsion is None else None
+    j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if jm is not None else ({}, "")
     results = []
     for c in cands:
         wm = written_mass(layout, c, drawn, shaft.mass, solids)
@@ -375,7 +461,8 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
             shaft, [candidate_loads(shaft, b, wm.load_factors, drawn, envelope=False) for b in os_bases], lc.material
         )
         bd = None if bm is None or per_throw_loads is None else candidate_bodies(bm, per_throw_loads, wm.load_factors)
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q, bd))
+        jt = None if jm is None else candidate_joints(jm, c, solids, shaft.mass)
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:
@@ -389,4 +476,13 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         )
     else:
         notes.append(f"UR M53 Q not screened: {refusal(lc)}")
-    return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm)
+    if jm is not None:
+        notes.append(
+            "bolted joints (VDI 2230) screened by the check's own joint check over its load states, the web's "
+            f"deformation from the per-throw model; judged by {j_whose}: "
+            + ", ".join(f"{k} {v:g}" for k, v in j_lims.items())
+        )
+    elif has_bolted(layout):
+        why_not = JOINT_TORSION if lc.torsion is not None else 'stresses = "off": no per-throw model'
+        notes.append(f"bolted joints not screened ({why_not}); judge them by the full check")
+    return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm, j_lims, jm)

@@ -26,6 +26,10 @@ A study TOML beside the load case (``fe-crank study LOADCASE STUDY``)::
     min_fillet_fatigue_safety = 1.5                    # a plain number
     min_overspeed_safety = 1.5                         # a plain number: yield over the overspeed peak
     max_counterweight_overspeed_stress = "150 MPa"     # counterweight fillets and junctions
+    min_bolt_working_safety = 1.0                      # bolted counterweights, VDI 2230 (plain numbers):
+    min_bolt_fatigue_safety = 1.2                      # also max_bolt_assembly_utilisation,
+    min_bolt_separation_safety = 1.0                   # min_bolt_slip_safety; none named: the load
+                                                       # case's joint criteria (``study.joints``)
 
     [[study.placements]]
     name = "8 counterweights"
@@ -45,6 +49,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from fe_crank.assess.joint_criteria import JOINT_QUANTITIES
 from fe_crank.errors import InputError
 from fe_crank.io.base import read_toml
 from fe_crank.io.units import to_si
@@ -72,6 +77,9 @@ LIMITS = {
     "max_counterweight_stress": "pressure",  # the per-throw model's counterweight groups (``study.bodies``)
     "min_m53_acceptability": "number",  # UR M53's Q, the load case's criterion (``study.m53``)
 }
+#: the bolted joints' VDI 2230 limits (``study.joints``): the check's criterion keys, plain numbers
+JOINT_LIMITS = tuple(f"{sense}_{q}" for q, (_, sense) in JOINT_QUANTITIES.items())
+LIMITS.update(dict.fromkeys(JOINT_LIMITS, "number"))
 KEYS = (
     "name",
     "rotating_rate_percent",
@@ -236,6 +244,8 @@ def parse_study(path: str | Path) -> StudySpec:
     wants["min_overspeed_safety"] = wants["min_fillet_static_safety"]
     wants["max_counterweight_overspeed_stress"] = wants["min_fillet_static_safety"]
     wants["max_counterweight_stress"] = wants["min_fillet_static_safety"]
+    # the joints take the web's deformation from the per-throw model's stresses (``study.joints``)
+    wants.update(dict.fromkeys(JOINT_LIMITS, wants["min_fillet_static_safety"]))
     for k, modes in wants.items():
         if k in limits and stresses not in modes:
             raise InputError(

@@ -13,11 +13,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers.bolted_study import bolted_case
 from skfem import Basis, ElementTetP2, Functional
 
 from fe_crank.assess.loads import FIRING
 from fe_crank.assess.oil_film import film_sweep
 from fe_crank.assess.shaft import BearingState, assess_shaft_throws, piece_unit_stresses
+from fe_crank.assess.throw import throw_joints
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
 from fe_crank.fe.core.stress import von_mises
@@ -32,9 +34,10 @@ from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.bodies import candidate_bodies
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
 from fe_crank.study.film import film_metrics
+from fe_crank.study.joints import candidate_counterweights, candidate_joints
 from fe_crank.study.m53 import refusal
 from fe_crank.study.outputs import to_toml, write_candidate
-from fe_crank.study.run import run_study
+from fe_crank.study.run import recommend, run_study
 from fe_crank.study.screen import (
     COUNTERWEIGHT_KINDS,
     SHAFT_KINDS,
@@ -44,7 +47,7 @@ from fe_crank.study.screen import (
     candidate_stresses,
     state_base,
 )
-from fe_crank.study.spec import parse_study
+from fe_crank.study.spec import JOINT_LIMITS, parse_study
 from fe_crank.torsion.loads import assessed_loads
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -74,7 +77,7 @@ webs = ["1.1", "2.2", "3.2", "4.1"]
 def study(tmp_path_factory):
     d = tmp_path_factory.mktemp("study")
     (d / "study.toml").write_text(STUDY)
-    lc = load_loadcase(CASE)
+    lc = load_loadcase(bolted_case(d))
     cache = d / "cache"
     res = run_study(lc, parse_study(d / "study.toml"), size="test", cache_dir=cache)
     return res, d, cache
@@ -319,9 +322,38 @@ def test_table_plot_and_recommendation_written(study, tmp_path):
         "overspeed_safety",
         "overspeed_peak_von_mises_mpa",
         "counterweight_overspeed_peak_mpa",
+        "bolt_working_safety",
+        "bolt_fatigue_safety",
+        "bolt_separation_safety",
+        "bolt_slip_safety",
     ):
         assert col in text[0].split(",")
     assert all(r.stresses is not None and r.stresses.fatigue_safety is not None for r in res.results)
+    # the bolted joints: screened on every candidate with a counterweight, judged by VDI 2230's
+    # usual limits (neither the study nor the load case names one); a thickness solved below
+    # the bolt hole leaves no joint interface: the check's own refusal, reported as a miss
+    assert res.joint_limits["min_bolt_slip_safety"] == 1.8
+    assert all((r.joints is None) == (r.candidate.rotating == 0) for r in res.results)
+    thin = next(r for r in res.results if r.candidate.placement == "8" and r.candidate.rotating == 0.5)
+    assert thin.joints is not None and "smaller than its bolt hole" in (thin.joints.refused or "")
+    assert not thin.meets_limits and any(f.startswith("bolted joint: throw") for f in thin.failed)
+    assert f"#{thin.candidate.index} " in paths["md"].read_text()
+    # the reason names the joint that rules out a candidate the rule would take
+    best, why = recommend(tuple(r for r in res.results if r.candidate.rotating > 0), "least_mass")
+    assert (
+        best is not None
+        and best.joints is not None
+        and best.counterweight_mass == pytest.approx(thin.counterweight_mass, rel=1e-12)
+    )
+    assert f"#{thin.candidate.index} (" in why and "a bolted joint misses: bolted joint: throw" in why
+    assert "bolted joints' least safeties" in why and best.joints.where["min_bolt_working_safety"] in why
+    assert recommend((thin,), "least_mass")[1].endswith(
+        f"a bolted joint fails on 1 of the buildable ones (#{thin.candidate.index}: {thin.failed[0]})"
+    )
+    doc = json.loads(paths["json"].read_text())
+    assert doc["joint_limits"] == res.joint_limits
+    ok_joint = next(c for c in doc["candidates"] if c["bolt_slip_safety"] is not None)
+    assert set(ok_joint["bolt_where"]) == set(JOINT_LIMITS)
     assert res.recommended is not None and res.recommended.meets_limits
     ok = [r for r in res.results if r.meets_limits]
     assert res.recommended.counterweight_mass == min(r.counterweight_mass for r in ok)
@@ -354,6 +386,21 @@ BAD = [
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.1"]', "study.placements[0].webs"),
     # UR M53 2.2: the load case does not accept the quasi-static journal torque
     ("rotating_rate_percent = [50]\n[study.limits]\nmin_m53_acceptability = 1.2", "study.limits.min_m53_acceptability"),
+    # the bolted joints' limits: plain positive numbers, a per-throw model, a bolted counterweight
+    ('rotating_rate_percent = [50]\n[study.limits]\nmin_bolt_slip_safety = "2"', "study.limits.min_bolt_slip_safety"),
+    (
+        "rotating_rate_percent = [50]\n[study.limits]\nmin_bolt_working_safety = 0",
+        "study.limits.min_bolt_working_safety",
+    ),
+    (
+        'rotating_rate_percent = [50]\nstresses = "off"\n[study.limits]\nmin_bolt_fatigue_safety = 1.2',
+        "study.limits.min_bolt_fatigue_safety",
+    ),
+    # small_shaft.toml's counterweights are not bolted
+    (
+        "rotating_rate_percent = [50]\n[study.limits]\nmin_bolt_separation_safety = 1",
+        "study.limits.min_bolt_separation_safety",
+    ),
 ]
 
 
@@ -412,12 +459,15 @@ def test_m53_limit_refused_with_torsion():
 
 
 @pytest.mark.heavy
-def test_m53_q_and_counterweight_stress_equal_the_checks_of_the_written_case(study, tmp_path):
+def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_case(study, tmp_path):
     """The load case the study writes with every drawn counterweight at mass factor 1 (the
     drawn shapes, the same meshes).  UR M53's Q the study reports (computed once, the same
     on every candidate, ``study.m53``) equals the ``min_m53_acceptability`` of a full
     ``fe-crank check`` (``test`` mesh) of it, quasi-static journal torque accepted, to
-    1e-9.  The counterweight groups' peak screened at factors 1 (``study.bodies``: the
+    1e-9; so do the bolted joints' VDI 2230 figures the study screens for that candidate
+    (``study.joints``: the worst assembly utilisation, working, fatigue, separation and
+    slip safety over the joints and load states) and the check's joint criteria, limits
+    set low enough to pass.  The counterweight groups' peak screened at factors 1 (``study.bodies``: the
     drawn per-throw model with the centrifugal case split per counterweight body) equals,
     to 1e-9, the largest von Mises over every counterweight node, angle and load state of
     the check's own per-throw model of that load case (its FE stage, ``pipeline.stages``:
@@ -447,6 +497,8 @@ def test_m53_q_and_counterweight_stress_equal_the_checks_of_the_written_case(stu
     data = tomllib.loads(lc_path.read_text())
     data["criteria"]["min_m53_acceptability"] = 1.0
     data["criteria"]["m53_quasi_static_torque"] = True
+    for key in JOINT_LIMITS:  # judged, not limiting: the check's values are compared
+        data["criteria"][key] = 1.0 if key.startswith("max_") else 0.01
     lc_path.write_text(to_toml(data))
     out = tmp_path / "out"
     assert main(["check", str(lc_path), "--mesh-size", "test", "-o", str(out), "--cache-dir", str(cache)]) == 0
@@ -454,6 +506,32 @@ def test_m53_q_and_counterweight_stress_equal_the_checks_of_the_written_case(stu
     got = json.loads(results.read_text())
     crit = next(c for c in got["criteria"] if c["quantity"] == "m53_acceptability")
     assert q.acceptability == pytest.approx(crit["value"], rel=1e-9, abs=0.0)
+    assert res.joint_model is not None
+    joints = candidate_joints(res.joint_model, cand, ThrowSolidCache(res.shaft.layout), res.shaft.mass)
+    assert joints is not None and joints.refused is None and joints.joints == len(drawn)
+    # the web's deformation onto the joint by the per-throw model's section (not the lever bound)
+    jm = res.joint_model
+    cws = candidate_counterweights(jm, cand, ThrowSolidCache(res.shaft.layout), res.shaft.mass)
+    ts = jm.states[0]
+    checks = throw_joints(
+        jm.body.units[ts.throw],
+        cws[ts.throw],
+        ts.pin_force,
+        ts.torque,
+        omega=ts.omega,
+        sense=ts.sense,
+        overspeed=jm.overspeed,
+        material=jm.material,
+        joint_speed=ts.joint_speed,
+        coeffs=ts.coeffs,
+        rod_loads=ts.rods,
+        overspeed_loads=ts.overspeed_loads,
+    )
+    assert len(checks) == 2 and all(j.loads.web_model.startswith("FE: sigma_yy") for j in checks)
+    for key in JOINT_LIMITS:
+        quantity = key.split("_", 1)[1]
+        crit = next(c for c in got["criteria"] if c["quantity"] == quantity)
+        assert joints.values[key] == pytest.approx(crit["value"], rel=1e-9, abs=0.0), key
     # the check's per-throw model of the written load case, brute force over every node
     lc2 = load_loadcase(lc_path)
     opts = CheckOptions(mesh_size="test", cache_dir=cache)

@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from helpers.bolted_study import bolted_case
 
 from fe_crank.cli import main
 
@@ -34,6 +35,19 @@ BAD = [
     (
         "rotating_rate_percent = [50]\n[study.limits]\nmax_counterweight_overspeed_stress = 1.5",
         "study.limits.max_counterweight_overspeed_stress",
+    ),
+    # the bolted joints' VDI 2230 limits: plain numbers, the per-throw model, a bolted counterweight
+    (
+        'rotating_rate_percent = [50]\n[study.limits]\nmin_bolt_fatigue_safety = "1.2"',
+        "study.limits.min_bolt_fatigue_safety",
+    ),
+    (
+        'rotating_rate_percent = [50]\nstresses = "off"\n[study.limits]\nmax_bolt_assembly_utilisation = 0.9',
+        "study.limits.max_bolt_assembly_utilisation",
+    ),
+    (  # small_shaft.toml's counterweights are not bolted
+        "rotating_rate_percent = [50]\n[study.limits]\nmin_bolt_slip_safety = 1.8",
+        "study.limits.min_bolt_slip_safety",
     ),
 ]
 
@@ -77,4 +91,31 @@ def test_validate_refuses_an_overspeed_limit_without_an_overspeed(tmp_path, caps
     err = capsys.readouterr().err
     assert rc == 2
     assert str(f) in err and "study.limits.min_overspeed_safety" in err and "overspeed" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+TORSION = """
+[torsion]
+speed_range = ["1000 rpm", "4000 rpm"]
+speed_steps = 31
+shaft_loss_factor = 0.025
+cylinder_damping = "0.05 N*m*s/rad"
+
+[torsion.flywheel]
+inertia = "0.02 kg*m^2"
+stiffness = "5e4 N*m/rad"
+"""
+
+
+def test_validate_refuses_a_joint_limit_with_torsion(tmp_path, capsys):
+    """With [torsion] the check's joints take the torsional angular acceleration and the
+    vibratory pin force, which the candidate's inertia changes: a joint limit is refused
+    (the bolted shaft's study, its load case with a [torsion] section)."""
+    lc = bolted_case(tmp_path, TORSION)
+    f = tmp_path / "study.toml"
+    f.write_text("[study]\nrotating_rate_percent = [50]\n[study.limits]\nmin_bolt_slip_safety = 1.8\n")
+    rc = main(["validate", str(f), "--loadcase", str(lc)])
+    err = capsys.readouterr().err
+    assert rc == 2, err
+    assert str(f) in err and "study.limits.min_bolt_slip_safety" in err and "[torsion]" in err
     assert len(err.strip().splitlines()) == 1
