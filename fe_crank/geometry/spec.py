@@ -51,8 +51,12 @@ class WebOutline:
     pin_end_radius: float
 
 
-#: ISO 261 coarse pitch (mm) of the metric threads M8-M36 by nominal diameter (mm)
+#: ISO 261 coarse pitch (mm) of the metric threads M3-M48 by nominal diameter (mm)
 COARSE_PITCH_MM = {
+    3: 0.5,
+    4: 0.7,
+    5: 0.8,
+    6: 1.0,
     8: 1.25,
     10: 1.5,
     12: 1.75,
@@ -66,6 +70,10 @@ COARSE_PITCH_MM = {
     30: 3.5,
     33: 3.5,
     36: 4.0,
+    39: 4.0,
+    42: 4.5,
+    45: 4.5,
+    48: 5.0,
 }
 #: the joint data the VDI 2230 check cannot do without
 VDI_REQUIRED = ("clamp_length", "bearing_diameter", "hole_diameter", "clamped_diameter", "tightening_factor")
@@ -100,21 +108,31 @@ class BoltedJoint:
     shank_length: float = 0.0  # m, unthreaded shank inside the clamp length
     shank_diameter: float | None = None  # m (None: d)
 
+    def _coarse_pitch(self) -> float | None:
+        """The ISO 261 coarse pitch of the diameter (m); None for a diameter off the table."""
+        p = COARSE_PITCH_MM.get(round(self.diameter * 1e3))
+        if p is None or abs(self.diameter * 1e3 - round(self.diameter * 1e3)) > 1e-6:
+            return None
+        return p * 1e-3
+
     @property
     def thread_pitch(self) -> float:
         """P: given, else the ISO coarse pitch of the diameter."""
         if self.pitch is not None:
             return self.pitch
-        p = COARSE_PITCH_MM.get(round(self.diameter * 1e3))
-        if p is None or abs(self.diameter * 1e3 - round(self.diameter * 1e3)) > 1e-6:
+        p = self._coarse_pitch()
+        if p is None:
             raise ValueError(f"no coarse pitch for d = {self.diameter * 1e3:g} mm: state the pitch")
-        return p * 1e-3
+        return p
 
     def vdi_missing(self) -> list[str]:
-        """The keys the VDI 2230 check needs that the joint does not give."""
+        """The keys the VDI 2230 check needs that the joint does not give (``pitch`` for a
+        diameter without an ISO coarse pitch)."""
         miss = [k for k in VDI_REQUIRED if getattr(self, k) is None]
         if self.yield_strength is None and self.property_class is None:
             miss.append("property_class")
+        if self.pitch is None and self._coarse_pitch() is None:
+            miss.append("pitch")
         return miss
 
 

@@ -163,6 +163,39 @@ def test_joint_input_keys_with_units_and_validation():
         assert "counterweight.bolted" in e.value.key and words in str(e.value), (bad, str(e.value))
 
 
+def test_coarse_pitch_from_iso_261_or_the_pitch_required():
+    """ISO 261 coarse pitches (M6 1 mm, M48 5 mm, M12 1.75 mm); a diameter off the coarse
+    series without a stated pitch is a missing VDI 2230 datum, refused before any meshing
+    (``io.bolted.require_joint_data``), not a failure of the check after meshing."""
+    from fe_crank.io.bolted import require_joint_data
+
+    full = {
+        "property_class": "10.9",
+        "clamp_length": "30 mm",
+        "bearing_diameter": "17 mm",
+        "hole_diameter": "13 mm",
+        "clamped_diameter": "30 mm",
+        "tightening_factor": 1.6,
+    }
+    for d, pitch in [("6 mm", 1.0e-3), ("12 mm", 1.75e-3), ("48 mm", 5.0e-3)]:
+        g = _geometry(**full)
+        g["counterweight"]["bolted"]["diameter"] = d
+        g["counterweight"]["bolted"]["hole_diameter"] = "60 mm" if d == "48 mm" else "13 mm"
+        g["counterweight"]["bolted"]["bearing_diameter"] = "70 mm" if d == "48 mm" else "17 mm"
+        g["counterweight"]["bolted"]["clamped_diameter"] = "90 mm" if d == "48 mm" else "30 mm"
+        b = geometry_from_dict(g, "g.toml").throw().counterweights[0].bolted
+        assert b.thread_pitch == pytest.approx(pitch, rel=1e-12) and b.vdi_missing() == []
+    g = _geometry(**full)
+    g["counterweight"]["bolted"]["diameter"] = "11 mm"
+    geometry = geometry_from_dict(g, "g.toml")
+    assert geometry.throw().counterweights[0].bolted.vdi_missing() == ["pitch"]
+    with pytest.raises(InputError) as e:
+        require_joint_data(geometry, "lc.toml")
+    assert "counterweight.bolted" in e.value.key and "pitch" in str(e.value)
+    g["counterweight"]["bolted"]["pitch"] = "1.5 mm"
+    require_joint_data(geometry_from_dict(g, "g.toml"), "lc.toml")
+
+
 def test_joints_from_the_geometry_and_the_cycle(tmp_path):
     """The adapter gives each bolted counterweight its joint, mass and radius (exact B-rep mass
     properties); the cycle's delta and |alpha|max = max |T - T_mean| / J come from the
