@@ -311,7 +311,7 @@ def mesh_cad_throw(
 
     opt = resolve_options(size)
     sha = file_digest(cad)
-    name = throw if isinstance(throw, str) else ("" if throw is None else f"#{throw}")
-    key = cad_cache_key(cad, sha, name, opt)
+    # keyed by the throw's name however it was given (None, its index or its name: one mesh, one entry)
     label = throw if isinstance(throw, str) else (cad.throws[throw or 0] if cad.throws else str((throw or 0) + 1))
+    key = cad_cache_key(cad, sha, label, opt)
     return through_cache(key, cache_dir, lambda folder: _build(cad, throw, opt, folder, max_elements), label, opt)
