@@ -37,6 +37,15 @@ def big_fillet(tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
+def big_fillet_scf(big_fillet):
+    """The SCF mode on ``big_fillet``'s coarse mesh as it is (``helpers.scf.big_fillet_scf``):
+    solved once for the tests of a process that read it."""
+    from helpers.scf import big_fillet_scf
+
+    return big_fillet_scf(*big_fillet)
+
+
+@pytest.fixture(scope="session")
 def filleted_throw():
     """The FE stage's unit solutions of ``simple_throw`` with 4 mm fillets (real gmsh mesh,
     12 mm elements, 4 mm at the fillets; SuperLU): centrifugal, four pin directions, torque."""

@@ -314,7 +314,12 @@ def mesh_cad_throw(
 
     opt = resolve_options(size)
     sha = file_digest(cad)
-    name = throw if isinstance(throw, str) else ("" if throw is None else f"#{throw}")
-    key = cad_cache_key(cad, sha, name, opt)
+    # keyed by the throw's name however it was given (None, its index or its name: one mesh, one entry)
     label = throw if isinstance(throw, str) else (cad.throws[throw or 0] if cad.throws else str((throw or 0) + 1))
-    return through_cache(key, cache_dir, lambda folder: _build(cad, throw, opt, folder, max_elements), label, opt)
+    key = cad_cache_key(cad, sha, label, opt)
+
+    def build(folder: Path | None):
+        assert folder is not None  # needs_folder: through_cache always gives one
+        return _build(cad, throw, opt, folder, max_elements)
+
+    return through_cache(key, cache_dir, build, label, opt, needs_folder=True)

@@ -17,9 +17,12 @@ from fe_crank.mesh.sizing import set_size_fields
 from fe_crank.mesh.types import ThrowMesh
 
 
-def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: Path, planes: tuple[int, ...] = ()):
+def _build(
+    geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: Path | None, planes: tuple[int, ...] = ()
+):
     """Mesh the throw, or with ``planes`` its fundamental part, mirrored across them
-    (``fe_crank.mesh.mirror``); the stats and ``throw.msh`` are of the whole mesh."""
+    (``fe_crank.mesh.mirror``); the stats and ``throw.msh`` (in ``folder``; None: no file)
+    are of the whole mesh."""
     from fe_crank.geometry.throw import add_throw
     from fe_crank.gmsh_io import gmsh_session, model_to_skfem
 
@@ -30,7 +33,7 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
         set_size_fields(gmsh, geometry, model.surfaces, model.fillet_radii, opt, model.volumes)
         min_quality, straightened = generate(gmsh, spec.name, geometry.name, opt)
         mesh = model_to_skfem()
-        if not planes:
+        if not planes and folder is not None:
             write_model(gmsh, folder / "throw.msh")
     surfaces, volumes = set(model.surfaces), set(model.volumes)
     if planes:
@@ -39,7 +42,8 @@ def _build(geometry: CrankGeometry, spec: ThrowSpec, opt: MeshOptions, folder: P
         if 2 in planes:
             surfaces |= {swap_side(n) for n in surfaces}
             volumes |= {swap_side(n) for n in volumes}
-        write_msh(folder / "throw.msh", mesh)
+        if folder is not None:
+            write_msh(folder / "throw.msh", mesh)
     stats = finish(
         mesh,
         (surfaces, volumes),
@@ -76,9 +80,8 @@ def mesh_throw(
         Limit on the element count estimated before meshing
         (``fe_crank.geometry.estimate``; default ``MAX_ELEMENTS``).
     cache_dir
-        Folder of the mesh cache; ``None`` meshes into a temporary folder without caching
-        (the ``.msh``/``.vtu`` paths then point into that folder, which is removed when
-        the process exits: copy the files to keep them).
+        Folder of the mesh cache; ``None`` meshes without caching and writes no file
+        (``.msh_path`` and ``.vtu_path`` are then None).
 
     Returns
     -------

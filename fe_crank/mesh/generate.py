@@ -9,12 +9,12 @@ through the mesh cache.
   ratio, the statistics, and the fillet edge rule (``<= r / fillet_divisions`` on every
   fillet of ``fillet_radii`` for presets with at least 4 divisions: IACS UR M53 App. III);
 * :func:`through_cache`: a ``ThrowMesh`` from the cache entry of ``key`` or built into a
-  temporary folder and renamed into place (``fe_crank.mesh.cache``).
+  temporary folder and renamed into place (``fe_crank.mesh.cache``); without a cache, built
+  in memory (no ``.msh``/``.vtu`` file).
 """
 
 from __future__ import annotations
 
-import atexit
 import json
 import os
 import shutil
@@ -107,13 +107,13 @@ def finish(
     return stats
 
 
-def _throw_mesh(mesh, stats: MeshStats, folder: Path, throw_name: str, key: str, opt: MeshOptions) -> ThrowMesh:
+def _throw_mesh(mesh, stats: MeshStats, folder: Path | None, throw_name: str, key: str, opt: MeshOptions) -> ThrowMesh:
     return ThrowMesh(
         mesh,
         stats,
         dict(stats.fillet_radii),
-        folder / "throw.msh",
-        folder / "throw.vtu",
+        None if folder is None else folder / "throw.msh",
+        None if folder is None else folder / "throw.vtu",
         throw_name,
         key,
         opt,
@@ -124,23 +124,31 @@ def _throw_mesh(mesh, stats: MeshStats, folder: Path, throw_name: str, key: str,
 def through_cache(
     key: str,
     cache_dir: str | Path | None,
-    build: Callable[[Path], tuple[object, MeshStats]],
+    build: Callable[[Path | None], tuple[object, MeshStats]],
     throw_name: str,
     opt: MeshOptions,
+    *,
+    needs_folder: bool = False,
 ) -> ThrowMesh:
     """The cached mesh of ``key``, or ``build(folder)`` (which writes ``throw.msh`` into
     ``folder`` and returns the mesh and its statistics) cached under ``key``.
 
-    ``cache_dir`` None: built into a temporary folder removed when the process exits."""
+    ``cache_dir`` None: nothing is cached and no file is kept; ``build(None)`` writes no file
+    (the ``ThrowMesh``'s ``msh_path`` and ``vtu_path`` are None), or with ``needs_folder``
+    ``build`` gets a temporary folder, removed when it returns."""
     if cache_dir is None:
+        if not needs_folder:
+            mesh, stats = build(None)
+            return _throw_mesh(mesh, stats, None, throw_name, key, opt)
         try:
-            folder = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
+            scratch = Path(tempfile.mkdtemp(prefix="fe-crank-mesh-"))
         except OSError as exc:
             raise environment_fault(exc, "creating a temporary mesh folder", tempfile.gettempdir()) from None
-        atexit.register(shutil.rmtree, folder, True)  # no cache: the files live as long as the process
-        mesh, stats = build(folder)
-        write_vtu(folder / "throw.vtu", mesh)
-        return _throw_mesh(mesh, stats, folder, throw_name, key, opt)
+        try:
+            mesh, stats = build(scratch)
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+        return _throw_mesh(mesh, stats, None, throw_name, key, opt)
     root = Path(cache_dir)
     final = root / key
     hit = load_cache_entry(final)

@@ -32,11 +32,19 @@ class ThrowMesh:
     mesh: Mesh
     stats: MeshStats
     fillet_radii: dict[str, float]
-    msh_path: Path
-    vtu_path: Path
+    msh_path: Path | None  # None: meshed without the cache (``cache_dir=None``): no files written
+    vtu_path: Path | None
     throw: str
     key: str
     options: MeshOptions = field(default_factory=MeshOptions)
     #: axes normal to the planes through the origin across which the mesh is an exact mirror
     #: image of itself (0: x = 0, the crank plane; 2: z = 0, the mid-plane); () when not mirrored
     symmetry: tuple[int, ...] = ()
+
+    @property
+    def cache_dir(self) -> Path | None:
+        """The mesh cache this mesh is an entry of (its folder is ``cache_dir / key``), or None."""
+        if self.msh_path is None:
+            return None
+        folder = Path(self.msh_path).parent
+        return folder.parent if folder.name == self.key else None

@@ -17,16 +17,15 @@ from fe_crank.assess.throw import ThrowContext, assess_throw
 from fe_crank.errors import InputError
 from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
-from fe_crank.rules.m53.scf_mode import compute_scf, web_centres_of
+from fe_crank.rules.m53.scf_mode import web_centres_of
 from fe_crank.rules.m53.scf_refine import FILLET_STEP, accepted_scf, refined_options
 
 GEO = dataclasses.replace(SMALL, pin_fillet_radius=0.0038, journal_fillet_radius=0.0038)
 
 
 @pytest.fixture(scope="module")
-def rejected(big_fillet):
-    g, tm = big_fillet
-    return compute_scf(tm, load_material("42CrMo4"), GEO, web_centres=web_centres_of(g))
+def rejected(big_fillet_scf):
+    return big_fillet_scf
 
 
 def test_the_web_check_is_part_of_the_appendix_verdict(rejected):

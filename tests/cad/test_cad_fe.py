@@ -73,6 +73,10 @@ def test_the_cad_mesh_of_an_exported_throw_matches_the_parametric_one(small_thro
     assert cad.stats.elements / 3 <= n <= 3 * cad.stats.elements
     again = mesh_cad_throw(CadInput(step, density=g.density), "1", size="test", cache_dir=mesh_cache)
     assert again.stats.from_cache and again.key == cad.key
+    # the first throw given as None or by its index: the same throw, the same cache entry
+    for which in (None, 0):
+        same = mesh_cad_throw(CadInput(step, density=g.density), which, size="test", cache_dir=mesh_cache)
+        assert same.stats.from_cache and same.key == cad.key and same.throw == "1"
     a, b = peaks(cad), peaks(param)
     for k in b:
         assert a[k] == pytest.approx(b[k], rel=TOL), k

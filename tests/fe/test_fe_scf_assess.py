@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from helpers.scf import SMALL
+from helpers.scf import BIG_FILLET, SMALL
 
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowContext, assess_throw
@@ -132,7 +132,7 @@ def test_the_verdict_does_not_depend_on_the_beta_b_beta_q_split():
     assert bg[1] == pytest.approx(bg[0], rel=1e-12)
 
 
-def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet):
+def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet, big_fillet_scf):
     """Outside the empirical range the M53 route takes the SCF mode's factors (one SCF mode
     for both fillets, solved by the check's SCF stage) and its scf_source names the appendix, the mesh verdict (this mesh is
     far coarser than r/4: not accepted) and the violated limit; the journal's alternating
@@ -141,7 +141,8 @@ def test_m53_route_outside_the_range_uses_the_scf_mode(big_fillet):
     geo = dataclasses.replace(SMALL, pin_fillet_radius=0.0038, journal_fillet_radius=0.0038)
     assert m53.out_of_range(geo.related("pin")) == ["r = 0.1357 not in [0.03, 0.13]"]
     material = load_material("42CrMo4")
-    r = compute_scf(tm, material, geo, web_centres=web_centres_of(g))  # fast: the coarse mesh as it is
+    r = big_fillet_scf  # the SCF mode on the coarse mesh as it is, of the same geometry and material
+    assert geo == BIG_FILLET  # the fixture's geometry
     theta = np.deg2rad(np.arange(720.0))
     unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     pin = np.column_stack([np.zeros(720), 2e4 * np.cos(theta)])

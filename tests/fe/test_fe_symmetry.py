@@ -204,3 +204,19 @@ def test_other_direct_solvers_on_the_components(method):
     for name in cases:
         u0, u1 = sym.displacement(name), full.displacement(name)
         assert np.abs(u0 - u1).max() <= REL * np.abs(u1).max()
+
+
+def test_a_load_symmetric_about_every_plane_factorises_its_component_alone():
+    """The centrifugal load alone lies in the component symmetric about both planes (its parts
+    in the other three are round-off): only that component is factorised and solved, and the
+    displacement is the full model's; a pin load beside it needs every component."""
+    throw = mirrored_throw((0, 2), size=0.02)
+    spin = solve_unit_cases(throw, Steel(), FeOptions(cases=("centrifugal",)))
+    assert spin.system.symmetric is not None and spin.system.symmetric.factorised == 1
+    full = solve_unit_cases(throw, Steel(), FeOptions(symmetry=False, cases=("centrifugal",)))
+    u0, u1 = spin.displacement("centrifugal"), full.displacement("centrifugal")
+    assert np.abs(u0 - u1).max() <= REL * np.abs(u1).max()
+    both = solve_unit_cases(throw, Steel(), FeOptions(cases=("pin_030", "centrifugal")))
+    assert both.system.symmetric is not None and both.system.symmetric.factorised == 4
+    for sol in (spin, full, both):
+        sol.system.factorisation.free()

@@ -34,3 +34,16 @@ def big_fillet_throw(cache_dir: Path):
         cache_dir=cache_dir,
     )
     return g, tm
+
+
+#: the UR M53 geometry of ``big_fillet_throw``: SMALL with its 3.8 mm fillets
+BIG_FILLET = dataclasses.replace(SMALL, pin_fillet_radius=0.0038, journal_fillet_radius=0.0038)
+
+
+def big_fillet_scf(g, tm):
+    """The SCF mode (42CrMo4) on ``big_fillet_throw``'s coarse mesh as it is: far coarser
+    than UR M53 App. III asks, so not accepted."""
+    from fe_crank.io.material import load_material
+    from fe_crank.rules.m53.scf_mode import compute_scf, web_centres_of
+
+    return compute_scf(tm, load_material("42CrMo4"), BIG_FILLET, web_centres=web_centres_of(g))

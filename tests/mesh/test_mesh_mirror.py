@@ -208,6 +208,7 @@ def test_oblique_bore_gets_only_z():
     )
     tm = mesh_throw(g, size=SYM, cache_dir=None)
     assert tm.symmetry == (2,)
+    assert tm.msh_path is None and tm.vtu_path is None and tm.cache_dir is None  # no cache: no file written
     _check_self_image(tm.mesh, 2, swap_side)
     assert np.any(_image_index(tm.mesh.doflocs.T, 0) < 0)  # not mirrored in x
     assert _volume(tm.mesh) == pytest.approx(mass_properties(g).total.volume, rel=2e-4)

@@ -45,6 +45,16 @@ MKL PARDISO handle holds all their factors (``maxfct`` = 2^k): the analysis (pha
 the METIS reordering and the symbolic factorisation) runs once and each component only
 needs its numerical factorisation (phase 22) (``fe.linalg.factorise.factorise_shared``).
 
+A component is factorised when a load first has a part in it (``ComponentFactors``).
+Loads symmetric about every plane (the centrifugal load of a mirrored throw) have no part
+in the other components but round-off (about 1e-15 of the load: the assembly sums in
+another order on the mirror images): those components are then left out (``ROUND_OFF``;
+their solution would be round-off of the displacement) and only the symmetric one is
+factorised.  Otherwise every component with a part that is not exactly zero is solved for
+all the loads, round-off and all.  The PARDISO analysis runs with the first factorisation, on the first
+component's matrix whichever component that is, so every factor is the one an eager
+factorisation of all components gives.
+
 The System of a throw built on these components: ``fe.core.system.symmetric_system``.
 """
 
@@ -64,7 +74,7 @@ from fe_crank.errors import SolverError
 from fe_crank.fe.core.assembly import part_stiffness, upper_triangle
 from fe_crank.fe.core.supports import rigid_body_modes
 from fe_crank.fe.linalg.choice import DESCRIPTIONS, choose_method
-from fe_crank.fe.linalg.factorise import Factorisation, factorise, factorise_shared
+from fe_crank.fe.linalg.factorise import Factorisation, SharedAnalysis, factorise, pardiso_solver, shared_member
 
 log = logging.getLogger(__name__)
 
@@ -198,6 +208,10 @@ def mesh_mirror(mesh, basis, axes) -> Mirror | None:
 METHODS = ("pardiso", "cholmod", "superlu")
 #: one PARDISO analysis for every component (module doc); False: each its own (for comparison)
 SHARE_ORDERING = True
+#: the parts of the loads outside the symmetric component no larger than this fraction of
+#: each load's largest entry are the round-off of loads symmetric about every plane: only
+#: the symmetric component is then factorised and solved (module doc)
+ROUND_OFF = 1e-12
 
 
 def mode_characters(axes) -> np.ndarray:
@@ -212,12 +226,79 @@ def mode_characters(axes) -> np.ndarray:
     return out
 
 
+class ComponentFactors:
+    """The component matrices (upper triangles of one pattern), each factorised when first
+    asked for: on one PARDISO handle (``share``: one analysis, on the first matrix) or
+    each on its own (``fe.linalg.factorise.factorise``)."""
+
+    def __init__(self, matrices: list[sp.csr_matrix], method: str, share: bool):
+        self.matrices: list[sp.csr_matrix | None] = list(matrices)
+        self.method, self.share = method, share
+        self.factors: list[Factorisation | None] = [None] * len(matrices)
+        self.sizes = [int(2 * A.nnz - A.shape[0]) for A in matrices]  # full symmetric non-zeros
+        self.shared: SharedAnalysis | None = None
+        self.seconds = 0.0  # analysis and numerical factorisations so far
+        self.analysis_time = 0.0
+
+    def done(self, i: int) -> bool:
+        return self.factors[i] is not None
+
+    def get(self, i: int) -> Factorisation:
+        """Component ``i``'s factorisation, made now if it was not yet."""
+        fac = self.factors[i]
+        if fac is not None:
+            return fac
+        A = self.matrices[i]
+        if A is None:
+            raise SolverError(
+                f"{self.method}: the factorisation was released (Factorisation.free); factorise again to solve"
+            )
+        t0 = time.perf_counter()
+        if self.method == "pardiso" and self.share:
+            from pypardiso.pardiso_wrapper import PyPardisoError
+
+            try:
+                if self.shared is None:
+                    first = self.matrices[0]
+                    assert first is not None  # released only all together
+                    self.shared = SharedAnalysis(pardiso_solver(), first, len(self.matrices))
+                    self.analysis_time = self.shared.analysis_time
+                fac = shared_member(self.shared, i, A)
+            except PyPardisoError as exc:
+                raise SolverError(f"PARDISO factorisation of a symmetry component failed: {exc}") from exc
+        else:
+            if self.method == "superlu":  # SuperLU needs the whole matrix
+                A = (A + A.T - sp.diags(A.diagonal())).tocsr()
+            fac = factorise(A, self.method, upper=self.method != "superlu")
+        self.seconds += time.perf_counter() - t0
+        self.factors[i] = fac
+        return fac
+
+    def nnz(self, i: int) -> int:
+        """Stored non-zeros of component ``i``'s full symmetric matrix."""
+        fac = self.factors[i]
+        return self.sizes[i] if fac is None else fac.nnz
+
+    def free(self) -> None:
+        """Release the factorisations made and the matrices; ``get`` raises afterwards."""
+        for fac in self.factors:
+            if fac is not None:
+                fac.free()
+        self.matrices = [None] * len(self.matrices)
+
+
 @dataclass
 class Component:
     chars: dict[int, int]
     constrained: np.ndarray  # (3 n_Q,) bool: plane conditions and held dofs
     held: np.ndarray  # local dofs held against the component's rigid modes
-    factor: Factorisation
+    factors: ComponentFactors = field(repr=False)
+    index: int = 0
+
+    @property
+    def factor(self) -> Factorisation:
+        """The component's factorisation (made when first asked for: ``ComponentFactors``)."""
+        return self.factors.get(self.index)
 
 
 @dataclass
@@ -229,12 +310,14 @@ class SymmetricSolver:
     nodes: np.ndarray  # (n_Q,) full node numbers of the part
     weights: np.ndarray  # (n_Q,) 2^-m, m = planes the node lies on
     components: list[Component]
+    factors: ComponentFactors
     points: np.ndarray  # (3, N) all nodes
     held_full: np.ndarray  # (6,) the full model's point dofs
     method: str
     setup_time: float = 0.0
     note: str | None = None
     timings: dict[str, float] = field(default_factory=dict)
+    released: bool = False
 
     @property
     def description(self) -> str:
@@ -249,24 +332,36 @@ class SymmetricSolver:
 
     @property
     def analysis_time(self) -> float:
-        return self.timings.get("analysis", 0.0)
+        """PARDISO's analysis (phase 11), s; 0 before the first component is factorised."""
+        return self.factors.analysis_time
 
     @property
     def nnz(self) -> int:
-        return int(sum(c.factor.nnz for c in self.components))
+        return int(sum(self.factors.nnz(i) for i in range(len(self.components))))
+
+    @property
+    def factorised(self) -> int:
+        """How many components have been factorised so far (loads with a part in them)."""
+        return sum(self.factors.done(i) for i in range(len(self.components)))
 
     def free(self) -> None:
-        """Release every component's factorisation (``Factorisation.free``)."""
-        for c in self.components:
-            c.factor.free()
+        """Release every component's factorisation (``Factorisation.free``); ``solve``
+        raises ``SolverError`` afterwards."""
+        self.factors.free()
+        self.released = True
 
     def solve(self, F: np.ndarray) -> np.ndarray:
         """Full displacements (3 N, k) of self-equilibrated full loads F (3 N, k)."""
+        if self.released:
+            raise SolverError(
+                f"{self.method}: the factorisation was released (Factorisation.free); factorise again to solve"
+            )
         N = self.points.shape[1]
         k = F.shape[1]
         Fn = F.reshape(N, 3, k)
         Un = np.zeros((N, 3, k))
         group = self.mirror.group
+        rhs = []  # (component, f_e at the part's nodes (3 n_Q, k))
         for comp in self.components:
             bn = np.zeros((self.nodes.size, 3, k))
             for planes, p, s in group:  # f_e at the part's nodes: 2^-k sum_g chi(g) (g f)
@@ -274,6 +369,8 @@ class SymmetricSolver:
             bn *= self.weights[:, None, None] / len(group)
             b = bn.reshape(-1, k)
             b[comp.constrained] = 0.0
+            rhs.append((comp, b))
+        for comp, b in _loaded(rhs, F):
             q = comp.factor.solve(b).reshape(self.nodes.size, 3, k)
             for planes, p, s in group:  # u_e = sum_g chi(g) g q, each image once
                 Un[p[self.nodes]] += (
@@ -282,6 +379,19 @@ class SymmetricSolver:
         U = Un.reshape(3 * N, k)
         _remove_rigid_fit(self.points, self.held_full, U)
         return U
+
+
+def _loaded(rhs: list[tuple[Component, np.ndarray]], F: np.ndarray) -> list[tuple[Component, np.ndarray]]:
+    """The components to solve of ``rhs`` (each component with its part of the loads F):
+    the symmetric one alone when every other one's part is round-off (``ROUND_OFF`` of
+    each load's largest entry: loads symmetric about every plane), else every component
+    with a part that is not exactly zero."""
+    scale = np.abs(F).max(axis=0) if F.size else np.zeros(F.shape[1])
+    sym = [i for i, (c, _) in enumerate(rhs) if all(e == 1 for e in c.chars.values())]
+    rest = [b for i, (_, b) in enumerate(rhs) if i not in sym]
+    if sym and all(not np.any(np.abs(b).max(axis=0) > ROUND_OFF * scale) for b in rest if b.size):
+        return [rhs[i] for i in sym if rhs[i][1].any()]
+    return [(c, b) for c, b in rhs if b.any()]
 
 
 #: nodes per block of the rigid-motion removal (a block's temporaries stay in cache)
@@ -397,22 +507,15 @@ def build_symmetric_solver(
         A.data[diag[cons]] = 1.0
         matrices.append(A)
     del Kq
-    if method == "pardiso" and share:
-        factors = factorise_shared(matrices)
-    else:
-        factors = []
-        for A in matrices:
-            if method == "superlu":  # SuperLU needs the whole matrix
-                A = (A + A.T - sp.diags(A.diagonal())).tocsr()
-            factors.append(factorise(A, method, upper=method != "superlu"))
-    comps = [Component(chars, cons, held, fac) for (chars, cons, held), fac in zip(spaces, factors)]
-    timings["factorisation"] = time.perf_counter() - t0
-    timings["analysis"] = sum(c.factor.analysis_time for c in comps)
+    factors = ComponentFactors(matrices, method, share)
+    comps = [Component(chars, cons, held, factors, i) for i, (chars, cons, held) in enumerate(spaces)]
+    timings["factorisation"] = time.perf_counter() - t0  # the matrices; each factor when first needed
     return SymmetricSolver(
         mirror=mirror,
         nodes=nodes,
         weights=weights,
         components=comps,
+        factors=factors,
         points=x,
         held_full=np.asarray(held_full, int),
         method=method,

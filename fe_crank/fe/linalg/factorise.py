@@ -461,25 +461,28 @@ def pardiso_solver() -> Any:
     return solver
 
 
+def shared_member(shared: SharedAnalysis, k: int, A: sp.csr_matrix) -> Factorisation:
+    """Matrix ``k`` (0-based; ``A``, the common pattern) factorised on the handle ``shared``
+    (phase 22 under number k + 1).  Raises pypardiso's ``PyPardisoError``."""
+    t0 = time.perf_counter()
+    member = shared.factor(k + 1, A)
+    fac = Factorisation(
+        matrix=None,
+        method="pardiso",
+        setup_time=time.perf_counter() - t0,
+        analysis_time=shared.analysis_time if k == 0 else 0.0,
+    )
+    fac._impl, fac._upper, fac._diag = member, A, A.diagonal()
+    fac.own_external()
+    return fac
+
+
 def factorise_shared(matrices: list[sp.csr_matrix]) -> list[Factorisation]:
     """The component matrices (one pattern) factorised on one PARDISO handle: one analysis."""
     from pypardiso.pardiso_wrapper import PyPardisoError
 
-    out = []
     try:
         shared = SharedAnalysis(pardiso_solver(), matrices[0], len(matrices))
-        for k, A in enumerate(matrices):
-            t0 = time.perf_counter()
-            member = shared.factor(k + 1, A)
-            fac = Factorisation(
-                matrix=None,
-                method="pardiso",
-                setup_time=time.perf_counter() - t0,
-                analysis_time=shared.analysis_time if k == 0 else 0.0,
-            )
-            fac._impl, fac._upper, fac._diag = member, A, A.diagonal()
-            fac.own_external()
-            out.append(fac)
+        return [shared_member(shared, k, A) for k, A in enumerate(matrices)]
     except PyPardisoError as exc:
         raise SolverError(f"PARDISO factorisation of a symmetry component failed: {exc}") from exc
-    return out

@@ -29,7 +29,6 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 from fe_crank.cad.config import CadInput
@@ -260,6 +259,4 @@ def scf_mesh(throw_mesh: ThrowMesh, geometry: object) -> ThrowMesh:
     want = scf_mesh_options(opt)
     if want is None or want is opt or not isinstance(geometry, CrankGeometry | CadInput):
         return throw_mesh
-    folder = Path(throw_mesh.msh_path).parent
-    cache = folder.parent if folder.name == throw_mesh.key else None
-    return mesh_source_throw(geometry, throw_mesh.throw, size=want, cache_dir=cache)
+    return mesh_source_throw(geometry, throw_mesh.throw, size=want, cache_dir=throw_mesh.cache_dir)

@@ -20,7 +20,6 @@ refuses the M53 criterion on it (``assess.criteria.judge``).
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.source import mesh_source_throw
@@ -87,9 +86,7 @@ def accepted_scf(
             return dataclasses.replace(result, refinement=tuple(tried))
         new, why = refined_options(opts, result)
         tried.append(f"{_words(opts)}: {why}")
-        folder = Path(mesh.msh_path).parent
-        cache = folder.parent if folder.name == mesh.key else None
-        mesh = mesh_source_throw(geometry, mesh.throw, size=new, cache_dir=cache)
+        mesh = mesh_source_throw(geometry, mesh.throw, size=new, cache_dir=mesh.cache_dir)
 
 
 __all__ = ["MAX_REFINEMENTS", "FILLET_STEP", "refined_options", "accepted_scf"]
