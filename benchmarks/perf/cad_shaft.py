@@ -15,7 +15,7 @@ with its own empty mesh cache (the meshing is part of the cost), one after the o
     .venv/bin/python benchmarks/perf/cad_shaft.py --preset test
 
 Prints per case the CPU seconds (user + system of the process and its children), the
-wall seconds, the verdict and the main-bearing peak loads and whole-shaft fillet peaks of
+wall seconds, the peak resident memory, the verdict and the main-bearing peak loads and whole-shaft fillet peaks of
 both, and the ratio of the CPU seconds (STEP / parametric).
 """
 
@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import re
-import resource
 import subprocess
 import sys
 import tempfile
@@ -76,15 +76,21 @@ def cad_case(lc_path: Path, step: Path, density: float, folder: Path) -> Path:
 
 
 def run_check(case: Path, preset: str, folder: Path, name: str) -> dict:
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    """One ``fe-crank check`` in its own process: its CPU seconds (user + system, its own
+    children included), wall seconds and peak resident memory (``wait4``'s ``ru_maxrss``
+    of that process: the largest of it and its waited-for children)."""
     t0 = time.perf_counter()
     cmd = [sys.executable, "-c", "import sys; from fe_crank.cli import entry; sys.exit(entry())"]
     cmd += ["check", str(case), "--mesh-size", preset, "--no-render", "--no-vtu", "--allow-outside-paths"]
     cmd += ["--cache-dir", str(folder / f"cache_{name}"), "-o", str(folder / f"out_{name}"), "-q"]
-    proc = subprocess.run(cmd, capture_output=True, text=True)
+    err = folder / f"stderr_{name}.txt"
+    with open(err, "w") as stderr:
+        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=stderr)
+        _, status, usage = os.wait4(proc.pid, 0)
+    proc.returncode = os.waitstatus_to_exitcode(status)
     wall = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    cpu = usage.ru_utime + usage.ru_stime
+    stderr_text = err.read_text()
     results = sorted((folder / f"out_{name}").glob("**/results.json"))
     r = json.loads(results[0].read_text()) if results else {}
     ws = r.get("whole_shaft") or {}
@@ -97,9 +103,10 @@ def run_check(case: Path, preset: str, folder: Path, name: str) -> dict:
     return {
         "cpu_s": cpu,
         "wall_s": wall,
+        "peak_gb": usage.ru_maxrss * 1024 / 1e9,
         "returncode": proc.returncode,
         "passed": r.get("passed"),
-        "stderr": proc.stderr[-2000:] if proc.returncode not in (0, 1) else "",
+        "stderr": stderr_text[-2000:] if proc.returncode not in (0, 1) else "",
         "bearings": {
             b["name"]: (b["peak_n"], b["without_counterweights"]["peak_n"]) for b in ws.get("main_bearings", [])
         },
@@ -121,13 +128,21 @@ def main() -> None:
         step = folder / "shaft.step"
         density = write_step(lc_path, step)
         case = cad_case(lc_path, step, density, folder)
-        skip = {"cpu_s": float("nan"), "wall_s": float("nan"), "returncode": None, "passed": None, "stderr": ""}
+        skip = {
+            "cpu_s": float("nan"),
+            "wall_s": float("nan"),
+            "peak_gb": float("nan"),
+            "returncode": None,
+            "passed": None,
+            "stderr": "",
+        }
         skip |= {"bearings": {}, "fillet_peaks": {}}
         par = run_check(lc_path, a.preset, folder, "parametric") if a.only != "step" else skip
         cad = run_check(case, a.preset, folder, "step") if a.only != "parametric" else skip
     for name, r in (("parametric", par), ("STEP", cad)):
         print(
             f"{name:10s} preset {a.preset}: {r['cpu_s']:.1f} CPU s, {r['wall_s']:.1f} s wall, "
+            f"peak {r['peak_gb']:.2f} GB, "
             f"exit {r['returncode']}, passed {r['passed']}"
         )
         if r["stderr"]:
