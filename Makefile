@@ -29,7 +29,7 @@ test: $(STAMP)
 	$(VENV)/bin/ruff check fe_crank tests benchmarks tools
 	$(VENV)/bin/ruff format --check fe_crank tests benchmarks tools
 	$(VENV)/bin/mypy
-	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q -n 2
+	OPENBLAS_NUM_THREADS=1 $(PY) -m pytest -q -n 2 --dist loadfile
 
 # The timings of docs/performance.md (a few minutes): mesh, FE stage, cycle and fatigue at the
 # test and coarse presets, figures and machine in reports/perf.json (benchmarks/README.md; the

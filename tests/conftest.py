@@ -95,3 +95,18 @@ def _refusals_without_library_internals(monkeypatch):
     yield
     bad = [(m, internals(m)) for m in made if internals(m)]
     assert not bad, f"refusal messages with library internals: {bad}"
+
+
+def pytest_collection_modifyitems(session, config, items):
+    """The test files in the order of their count of ``heavy`` tests, most first (the
+    collection order among equals, and within a file, kept): ``make test`` hands whole
+    files to its two workers (``--dist loadfile``, so a file's module fixtures are built
+    once, on one worker), and the longest files started first leave the shortest for the
+    end, where they fill the gap between the workers."""
+    heavy: dict[str, int] = {}
+    first: dict[str, int] = {}
+    for i, item in enumerate(items):
+        path = str(item.path)
+        first.setdefault(path, i)
+        heavy[path] = heavy.get(path, 0) + (item.get_closest_marker("heavy") is not None)
+    items.sort(key=lambda item: (-heavy[str(item.path)], first[str(item.path)]))

@@ -150,6 +150,8 @@ def detail(r: CandidateResult) -> dict:
 
 
 def _fmt(v) -> str:
+    if v is None:
+        return "-"
     if isinstance(v, bool):
         return "yes" if v else "no"
     if isinstance(v, float):
@@ -199,6 +201,10 @@ def write_tables(res: StudyResult, out: Path, achieved: dict | None = None) -> d
     for x in rows:
         lines.append("| " + " | ".join(_fmt(x[k]) for k, _ in cols) + " |")
     lines += [
+        "",
+        "-: not screened for that candidate (nothing to screen, such as a joint where no "
+        "counterweight is bolted or the joint's figure has no load to divide by, or a check "
+        "that could not run: the list below says which and why).",
         "",
         f"**Recommended** ({res.spec.rule}): "
         + (f"#{best.candidate.index}, {best.candidate.label}: " if best else "")
