@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fe_crank.assess.group.assessment import of_counterweight, section_diameter, sigma_add_applies
+from fe_crank.assess.group.bounds import window_peak_bound
 from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.group.peak import group_peak
 from fe_crank.assess.shaft import piece_unit_stresses
@@ -315,6 +316,11 @@ def candidate_stresses(
     )
 
 
+#: more nodes than this in a group: its overspeed peak is searched in decreasing
+#: ``window_peak_bound`` (``group_peak``'s default block of 128, four blocks)
+OVERSPEED_WINDOW_MIN = 512
+
+
 @dataclass(frozen=True)
 class OverspeedScreen:
     """One candidate at the overspeed (Pa): the largest von Mises stress over the
@@ -334,7 +340,8 @@ def candidate_overspeed(shaft: StudyShaft, loads: list[StateLoads], material) ->
     """The candidate's overspeed stresses (module doc) from its ``loads`` in each overspeed
     cycle (``candidate_loads`` of the overspeed states: their ``weights``); None without
     any.  Each group's peak is the check's (``group_peak`` over the cycles' weights stacked,
-    ``assess_group``'s overspeed), the safety the yield strength over it."""
+    ``assess_group``'s overspeed; its nodes searched in decreasing ``window_peak_bound``,
+    the same peak), the safety the yield strength over it."""
     if not loads or not shaft.stresses:
         return None
     W = np.vstack([sl.weights for sl in loads if sl.weights is not None])
@@ -344,7 +351,8 @@ def candidate_overspeed(shaft: StudyShaft, loads: list[StateLoads], material) ->
             nodes = np.asarray(unit.groups[g])
             if not nodes.size:
                 continue
-            _, vm, _ = group_peak(unit, W, nodes)
+            tight = window_peak_bound(unit, W, nodes) if nodes.size > OVERSPEED_WINDOW_MIN else None
+            _, vm, _ = group_peak(unit, W, nodes, bound=tight)
             v = float(vm.max())
             keys = ("all", "cw") if of_counterweight(g) else ("all",)
             for key in keys:

@@ -220,3 +220,39 @@ def test_peak_bound_hand_value():
     assert peak_bound(unit, co, np.array([0]))[0] == pytest.approx(100e6 + 2 * np.sqrt(3) * 50e6, rel=1e-15)
     pos, peak, arg = group_peak(unit, co, np.array([0]))
     assert peak[0] == pytest.approx(200e6, rel=1e-15) and arg[0] == 1
+
+
+def test_window_peak_bound_by_hand():
+    """One uniaxial case of 100 MPa (vM 100 MPa), a(t) = 1 + (t/10)^2 for t = 0..10 (one
+    run), stride 4: samples 0, 4, 8, 10 (a = 1, 1.16, 1.64, 2).  The coefficient's
+    largest departure below its chord: 0.04 at t = 2 and at t = 6, 0.01 at t = 9; the
+    windows give 1.16 + 0.04, 1.64 + 0.04, 2 + 0.01: bound 2.01 x 100 MPa, the peak
+    200 MPa."""
+    from fe_crank.assess.group.bounds import window_peak_bound
+
+    unit = _unit([100e6])
+    co = (1.0 + (np.arange(11.0) / 10.0) ** 2)[:, None]
+    b = window_peak_bound(unit, co, np.array([0]), stride=4)[0]
+    assert b == pytest.approx(201e6, rel=1e-11)
+    pos, peak, _ = group_peak(unit, co, np.array([0]), bound=np.array([b]))
+    assert peak[0] == pytest.approx(200e6, rel=1e-15)
+
+
+@pytest.mark.heavy
+def test_window_peak_bound_holds_and_the_extreme_is_the_full_evaluations(filleted_throw_cycle):
+    """The windowed bound >= every node's evaluated peak (the seminorm's convexity between
+    samples), and the search ordered by it finds the same largest peak, first node of its
+    tie band and first angle as evaluating every node, bit for bit."""
+    from fe_crank.assess.group.bounds import window_peak_bound
+
+    us, co = filleted_throw_cycle
+    for g in ("journal_fillet_1", "crankpin_fillet_2"):
+        nodes = us.groups[g]
+        full, full_arg = max_over_cycle(von_mises(stress_history(us, co, nodes)))
+        for stride in (1, 4, 8):
+            bound = window_peak_bound(us, co, nodes, stride=stride)
+            assert np.all(full <= bound), g
+            pos, peak, arg = group_peak(us, co, nodes, 16, bound)
+            k_full = int(first_extreme(full, "max"))
+            k = int(first_extreme(peak, "max"))
+            assert pos[k] == k_full and peak[k] == full[k_full] and arg[k] == full_arg[k_full], g

@@ -19,7 +19,7 @@ import numpy as np
 from fe_crank.assess import fatigue
 from fe_crank.assess.group.peak import BOUND_RTOL
 from fe_crank.assess.stress import von_mises, von_mises_planes
-from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.superpose import UnitStresses, iter_planes
 
 #: shear components (xy, yz, zx) count twice in a tensor's Frobenius norm
 _WEIGHTS = np.array([1.0, 1.0, 1.0, 2.0, 2.0, 2.0])[:, None]
@@ -141,3 +141,61 @@ def coefficient_box(
 def frobenius(r: np.ndarray) -> np.ndarray:
     """The Frobenius norm of a (6, n) tensor array (shears counted twice)."""
     return _frobenius(r)
+
+
+#: angles between two samples of ``window_peak_bound`` within one run
+WINDOW_STRIDE = 8
+#: rounding allowance of ``window_peak_bound``, relative to sum_c max_t |a_c| |U_c|_F
+#: (each computed component of S(t) is within ~n_cases x 1.1e-16 of that sum)
+_WINDOW_ROUNDING = 1e-12
+
+
+def window_peak_bound(
+    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, stride: int = WINDOW_STRIDE, chunk: int = 2048
+) -> np.ndarray:
+    """An upper bound of each node's computed peak von Mises stress over the cycle,
+    max_t sigma_v(S(t)) (``peak.group_peak``'s value), from the path at sample angles
+    alone: the first and last angle of every run (``_runs``) and every ``stride``-th
+    angle within it.  Between two consecutive samples a < b, S(t) = (1 - l) S(a) +
+    l S(b) + sum_c R_c(t) U_c with l = (t - a)/(b - a) and R_c(t) the coefficient's
+    departure from its chord; von Mises is a seminorm (convex), so sigma_v(S(t)) <=
+    max(sigma_v(S(a)), sigma_v(S(b))) + sum_c max_t |R_c(t)| sigma_v(U_c).  Each node's
+    bound is the largest over the windows plus a rounding allowance (``_WINDOW_ROUNDING``: both the sampled and the evaluated values are sums of
+    rounded products) and widened by ``BOUND_RTOL``."""
+    c = np.atleast_2d(np.asarray(coefficients, float))
+    nodes = np.asarray(nodes)
+    n_t = c.shape[0]
+    run = _runs(c)
+    t = np.arange(n_t)
+    first = np.concatenate([[True], run[1:] != run[:-1]])
+    last = np.concatenate([run[1:] != run[:-1], [True]])
+    run_start = np.maximum.accumulate(np.where(first, t, 0))
+    k = np.flatnonzero(first | last | ((t - run_start) % stride == 0))
+    # each angle's window [k_j, k_{j+1}]: its departure from the chord of the coefficients
+    j = np.clip(np.searchsorted(k, t, side="right") - 1, 0, max(k.size - 2, 0))
+    if k.size > 1:
+        a, b = k[j], k[j + 1]
+        lam = ((t - a) / (b - a))[:, None]
+        dep = np.abs(c - ((1.0 - lam) * c[a] + lam * c[b]))
+        departure = np.maximum.reduceat(dep, k[:-1], axis=0)  # (n_k - 1, n_cases)
+        same = run[k[:-1]] == run[k[1:]]
+    else:
+        departure = np.zeros((0, c.shape[1]))
+        same = np.zeros(0, bool)
+    absmax = np.abs(c).max(axis=0)
+    out = np.empty(nodes.size)
+    for s in range(0, nodes.size, chunk):
+        idx = nodes[s : s + chunk]
+        u = unit.stress[:, :, idx]
+        vmu = von_mises(u)  # (n_cases, k)
+        fro_u = np.sqrt(np.einsum("j,cjn->cn", _WEIGHTS[:, 0], u**2))
+        ((_, planes),) = iter_planes(unit, c[k], idx, idx.size)
+        vs = von_mises_planes(planes)  # (n_k, k)
+        windowed = vs.max(axis=0)
+        if same.any():
+            w = np.maximum(vs[:-1], vs[1:]) + departure @ vmu
+            windowed = np.maximum(windowed, w[same].max(axis=0))
+        # windows across a run boundary hold no angle between their samples (both
+        # samples are a run's last and the next run's first): the samples cover them
+        out[s : s + chunk] = windowed + _WINDOW_ROUNDING * (absmax @ fro_u)
+    return out * (1 + BOUND_RTOL)

@@ -39,7 +39,9 @@ starts from the least value of those searched before (``Running``).  So the grou
 extreme -- value, first node of the tie band -- is the one an evaluation of every node
 gives, wherever it can govern the state's criterion.  The static peak uses
 ``peak.group_peak`` on the nodes whose box bound can reach the peak of the nodes of the
-largest box bounds.
+largest box bounds, searched in decreasing ``bounds.window_peak_bound`` (the path at a
+few sample angles and each coefficient's departure from its chord between them) where
+many are left.
 """
 
 from __future__ import annotations
@@ -65,6 +67,7 @@ from fe_crank.assess.group.bounds import (
     goodman_lower,
     goodman_radius_lower,
     gough_pollard_lower,
+    window_peak_bound,
 )
 from fe_crank.assess.group.peak import BOUND_RTOL, TIE_RTOL, group_peak, max_over_cycle
 from fe_crank.assess.stress import von_mises_planes
@@ -76,6 +79,10 @@ from fe_crank.io.material import Material
 SUB_BLOCK = 32
 #: nodes per exact evaluation of the static peak (its bound is tight: few blocks)
 STATIC_BLOCK = 32
+#: more nodes than this left after the box bound: the peak's search orders them by
+#: ``bounds.window_peak_bound`` (the path at a few sample angles), which rules out most of
+#: them at a fraction of their evaluation
+WINDOW_MIN = 4 * STATIC_BLOCK
 
 
 @dataclass(frozen=True)
@@ -129,7 +136,8 @@ def _static_peak(
     ((_, planes),) = iter_planes(unit, coefficients, nodes[seed], seed.size)
     best = float(max_over_cycle(von_mises_planes(planes))[0].max())
     keep = np.flatnonzero(bound >= best - TIE_RTOL * abs(best)) if np.isfinite(best) else np.arange(nodes.size)
-    pos, vm, arg = group_peak(unit, coefficients, nodes[keep], STATIC_BLOCK)
+    tight = window_peak_bound(unit, coefficients, nodes[keep]) if keep.size > WINDOW_MIN else None
+    pos, vm, arg = group_peak(unit, coefficients, nodes[keep], STATIC_BLOCK, tight)
     return keep[pos], vm, arg
 
 

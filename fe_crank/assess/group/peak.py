@@ -52,13 +52,15 @@ def peak_bound(unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, 
 
 
 def group_peak(
-    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, block: int = 128
+    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, block: int = 128, bound: np.ndarray | None = None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(positions in ``nodes`` evaluated, ascending; their peak sigma_v over the cycle;
     the first angle index within ``TIE_RTOL`` of it) -- every node that can hold the
-    group's largest peak or tie with it (module docstring)."""
+    group's largest peak or tie with it (module docstring).  ``bound``: an upper bound of
+    each node's evaluated peak, rounding included (``bounds.window_peak_bound``), in place
+    of B."""
     nodes = np.asarray(nodes)
-    bound = peak_bound(unit, coefficients, nodes) * (1.0 + BOUND_RTOL)
+    bound = peak_bound(unit, coefficients, nodes) * (1.0 + BOUND_RTOL) if bound is None else np.asarray(bound)
     order = np.argsort(-bound, kind="stable") if np.isfinite(bound).all() else np.arange(nodes.size)
     done, peaks, args = [], [], []
     best = -np.inf
