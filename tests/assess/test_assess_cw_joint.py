@@ -108,6 +108,17 @@ def test_a_lower_stated_preload_opens_the_joint():
     assert c.separation_safety < 1 and c.residual_clamp < 0 and c.slip_safety == 0.0
 
 
+#: the VDI 2230 data of the joint of ``_geometry`` (M12, 10.9, counterbored head)
+VDI_DATA = {
+    "property_class": "10.9",
+    "clamp_length": "30 mm",
+    "bearing_diameter": "17 mm",
+    "hole_diameter": "13 mm",
+    "clamped_diameter": "30 mm",
+    "tightening_factor": 1.6,
+}
+
+
 def _geometry(**bolted):
     bolt = {"count": 2, "diameter": "12 mm", "pitch_radius": "55 mm", **bolted}
     return {
@@ -127,15 +138,7 @@ def _geometry(**bolted):
 
 
 def test_joint_input_keys_with_units_and_validation():
-    full = {
-        "property_class": "10.9",
-        "clamp_length": "30 mm",
-        "bearing_diameter": "17 mm",
-        "hole_diameter": "13 mm",
-        "clamped_diameter": "30 mm",
-        "tightening_factor": 1.6,
-        "thread_friction": 0.12,
-    }
+    full = {**VDI_DATA, "thread_friction": 0.12}
     b = geometry_from_dict(_geometry(**full), "g.toml").throw().counterweights[0].bolted
     got = (b.clamp_length, b.hole_diameter, b.thread_friction, b.thread_pitch)
     assert got == pytest.approx((0.030, 0.013, 0.12, 0.00175), rel=1e-12)
@@ -169,14 +172,7 @@ def test_coarse_pitch_from_iso_261_or_the_pitch_required():
     (``io.bolted.require_joint_data``), not a failure of the check after meshing."""
     from fe_crank.io.bolted import require_joint_data
 
-    full = {
-        "property_class": "10.9",
-        "clamp_length": "30 mm",
-        "bearing_diameter": "17 mm",
-        "hole_diameter": "13 mm",
-        "clamped_diameter": "30 mm",
-        "tightening_factor": 1.6,
-    }
+    full = dict(VDI_DATA)
     for d, pitch in [("6 mm", 1.0e-3), ("12 mm", 1.75e-3), ("48 mm", 5.0e-3)]:
         g = _geometry(**full)
         g["counterweight"]["bolted"]["diameter"] = d
@@ -208,14 +204,7 @@ def test_joints_from_the_geometry_and_the_cycle(tmp_path):
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mechanism import dynamics
 
-    full = {
-        "property_class": "10.9",
-        "clamp_length": "30 mm",
-        "bearing_diameter": "17 mm",
-        "hole_diameter": "13 mm",
-        "clamped_diameter": "30 mm",
-        "tightening_factor": 1.6,
-    }
+    full = dict(VDI_DATA)
     g = geometry_from_dict(_geometry(**full), "g.toml")
     whole = mass_properties(g, g.throw())
     cws = counterweights_of(g.throw(), whole, 0.0, "main", None)  # no balance design: one entry per web
