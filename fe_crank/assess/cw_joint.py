@@ -215,6 +215,7 @@ def fe_section_loads(
     coeffs_os: np.ndarray | None = None,
 ) -> SectionLoads | None:
     """The normal stress sigma_yy across the radial joint's plane y = -r_J in the FE model
+    (in the counterweight's own frame, turned by its offset: its mid-line on -y)
     (the counterweight fused to the web: the joint bonded, as stiff as the solid), from the
     pin and torque unit cases over the cycle: fitted over the counterweight's nodes in a thin
     slab about the plane, sigma = c_0 + c_1 zeta + c_2 x + c_3 (y + r_J) (least squares; zeta
@@ -227,6 +228,13 @@ def fe_section_loads(
     if idx is None or not len(idx):
         return None
     pts = np.asarray(unit.points)[:, idx]
+    stress = np.asarray(unit.stress)[:, :, idx]
+    if geo.offset != 0.0:  # a turned counterweight: its own frame (mid-line on -y), points and stresses
+        c, s = math.cos(geo.offset), math.sin(geo.offset)
+        pts = np.stack([c * pts[0] + s * pts[1], -s * pts[0] + c * pts[1], pts[2]])
+        # sigma_y'y' = e_y'^T sigma e_y', e_y' = (-sin, cos): Voigt (xx, yy, zz, xy, yz, zx)
+        stress = stress.copy()
+        stress[:, 1] = s * s * stress[:, 0] + c * c * stress[:, 1] - 2.0 * s * c * stress[:, 3]
     c_t = min(geo.web_thickness, geo.thickness)
     lever_j = geo.bearing_lever - 0.5 * geo.web_thickness  # L_j
     z_out = 0.5 * geo.bearing_span - lever_j  # the web's outer face, |z|
@@ -244,7 +252,7 @@ def fe_section_loads(
     a = np.column_stack([np.ones(int(sel.sum())), zeta[sel], pts[0][sel], eta[sel]])
     fit = np.linalg.pinv(a)  # (4, m)
     mask = _pin_cases(tuple(unit.cases))
-    syy = np.asarray(unit.stress)[:, 1, :][:, idx][:, sel]  # (n_cases, m)
+    syy = stress[:, 1, :][:, sel]  # (n_cases, m)
     per_case = syy @ fit.T  # (n_cases, 4)
     per_case[~mask] = 0.0
     d_a = stated(joint.clamped_diameter, group, "clamped_diameter")
