@@ -411,7 +411,7 @@ def write_candidate(res: StudyResult, r: CandidateResult, out: Path) -> tuple[Pa
             if drawn.fillet_radius is not None:
                 cw["fillet_radius"] = _mm(drawn.fillet_radius)
             if r.candidate.offset != 0.0:  # turned from opposite the pin (the candidate's offset)
-                cw["offset"] = f"{math.degrees(r.candidate.offset):.17g} deg"
+                cw["offset"] = f"{math.degrees(r.candidate.offset):.12g} deg"
             raw_cw = t_in.get("counterweight") or gdata.get("counterweight") or {}
             if isinstance(raw_cw, dict) and "bolted" in raw_cw:
                 cw["bolted"] = raw_cw["bolted"]

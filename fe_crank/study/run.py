@@ -109,6 +109,9 @@ class StudyResult:
     joint_limits: dict[str, float] = field(default_factory=dict)
     #: the bolted throws' load states (``study.joints``; None when the joints are not screened)
     joint_model: JointModel | None = None
+    #: per screened offset (rad): the shaft with the drawn counterweights turned to it and its
+    #: drawn webs (``study.candidates.turned_view``); ``shaft`` and ``drawn`` are the first's
+    by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = field(default_factory=dict)
 
 
 #: why the study does not screen the bolted joints with a ``[torsion]`` section
@@ -423,6 +426,7 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     )
     results = []
     first = None
+    by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = {}
     # each offset on the drawn counterweights turned to it: its own solids, mesh and unit cases
     for off in dict.fromkeys(c.offset for c in cands):
         layout_o, drawn_o, _ = turned_view(layout, drawn, off, mass={})  # the shaft takes its own
@@ -455,6 +459,7 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if jm is not None else ({}, "")
         if first is None:
             first = (shaft, drawn_o, bm, j_lims, j_whose, jm)
+        by_offset[off] = (shaft, drawn_o)
         for c in cands:
             if c.offset != off:
                 continue
@@ -509,4 +514,6 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     elif has_bolted(layout):
         why_not = JOINT_TORSION if lc.torsion is not None else 'stresses = "off": no per-throw model'
         notes.append(f"bolted joints not screened ({why_not}); judge them by the full check")
-    return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm, j_lims, jm)
+    return StudyResult(
+        spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm, j_lims, jm, by_offset
+    )
