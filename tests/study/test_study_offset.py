@@ -54,7 +54,9 @@ def test_each_offset_is_a_candidate_on_the_counterweights_turned_to_it(study):
         assert d.mass == pytest.approx(plain[w].mass, rel=1e-9)
         c, s = math.cos(TURN), math.sin(TURN)
         ux, uy = plain[w].unbalance_vector
-        assert np.asarray(d.unbalance_vector) == pytest.approx([c * ux - s * uy, s * ux + c * uy], abs=1e-9 * d.unbalance)
+        assert np.asarray(d.unbalance_vector) == pytest.approx(
+            [c * ux - s * uy, s * ux + c * uy], abs=1e-9 * d.unbalance
+        )
     # the turned candidate's mass factors are the plain one's (the same m r to reach)
     a, b = res.results
     assert all(b.candidate.factors[w] == pytest.approx(k, rel=1e-9) for w, k in a.candidate.factors.items())
