@@ -158,3 +158,45 @@ def test_drawn_turned_counterweight_refused_by_the_cad_route(tmp_path, capsys):
     err = capsys.readouterr().err
     assert str(step) in err and "cad.file:" in err and "points 20 deg from opposite its pin" in err
     assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+def test_bolted_joint_section_of_a_turned_counterweight_turns_with_it():
+    """The radial joint's section (``assess.cw_joint.fe_section_loads``): nodes and nodal
+    stresses of a counterweight centred opposite the pin, and the same turned by 35 deg as a
+    rigid body (points turned, stress tensors Q S Q^T), give the same joint loads with the
+    joint's ``offset``; the bolts' positions across the joint (``bolt_offsets``) are in its
+    own frame and do not change."""
+    from fe_crank.assess.counterweight import JointGeometry
+    from fe_crank.assess.cw_joint import bolt_offsets, fe_section_loads
+    from fe_crank.assess.superpose import UnitStresses
+    from fe_crank.geometry.spec import BoltedJoint
+
+    rng = np.random.default_rng(7)
+    n = 400
+    pts = np.stack([rng.uniform(-0.03, 0.03, n), rng.uniform(-0.034, -0.026, n), rng.uniform(-0.03, -0.015, n)])
+    s = rng.normal(size=(2, 6, n)) * 1e6
+    geo = JointGeometry(0.03, 0.015, 0.015, 0.02, 0.075, ANGLE, 0.0275, 0.1, 1)
+    joint = BoltedJoint(count=2, diameter=0.006, pitch_radius=0.05, clamped_diameter=0.012)
+    d = math.radians(35.0)
+    c, sn = math.cos(d), math.sin(d)
+    q = np.array([[c, -sn, 0.0], [sn, c, 0.0], [0.0, 0.0, 1.0]])  # -y turned by d towards +x
+    voigt = ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))
+    full = np.zeros((2, 3, 3, n))
+    for k, (i, j) in enumerate(voigt):
+        full[:, i, j] = full[:, j, i] = s[:, k]
+    turned = np.einsum("ia,cabn,jb->cijn", q, full, q)
+    s_t = np.stack([turned[:, i, j] for i, j in voigt], axis=1)
+    cases = ("pin_x", "pin_y")
+    coeffs = rng.normal(size=(5, 2))
+    a = fe_section_loads(UnitStresses(s, pts, {"cw": np.arange(n)}, cases=cases), "cw", geo, joint, coeffs)
+    b = fe_section_loads(
+        UnitStresses(s_t, q @ pts, {"cw": np.arange(n)}, cases=cases),
+        "cw",
+        dataclasses.replace(geo, offset=d),
+        joint,
+        coeffs,
+    )
+    assert a is not None and b is not None and a.nodes == b.nodes > 12
+    assert b.moment == pytest.approx(a.moment, rel=1e-9, abs=1e-12 * np.abs(a.moment).max())
+    assert b.force == pytest.approx(a.force, rel=1e-9, abs=1e-12 * np.abs(a.force).max())
+    assert bolt_offsets(joint, dataclasses.replace(geo, offset=d)) == pytest.approx(bolt_offsets(joint, geo))
