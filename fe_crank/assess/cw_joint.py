@@ -28,8 +28,9 @@ bound.
 The joint's geometry (``JointGeometry``, from the geometry file) and its eccentricity
 (VDI 2230 5.1.2, ``vdi2230.Eccentric``, one plane per bolt):
 * ``direction = "radial"``: the bolts parallel to the counterweight's symmetry line, screwed
-  through it into the web's end face opposite the pin; the joint plane at the web's end
-  radius r_J (``seat_radius``).  The bolts lie on the pitch circle r_b at angles spread
+  through it into the web's end face opposite the pin (a counterweight turned by its
+  ``offset``: its frame turned with it, the joint plane normal to its symmetry line); the
+  joint plane at the web's end radius r_J (``seat_radius``).  The bolts lie on the pitch circle r_b at angles spread
   evenly over the counterweight's angle, x_i = r_b sin(phi_i) across the joint.  F_A = F_c/n
   axial; the tangential inertia pries with the lever r_c - r_J (the prying lever), carried
   by the bolt row as axial forces +-F_t (r_c - r_J) x_i / sum x_j^2 (one bolt: as a moment);

@@ -9,7 +9,8 @@ stage sizes it per throw (``balance.counterweights``)::
 is split equally over the throw's placed webs.  Each placed web's counterweight is the
 shape drawn on that web scaled in mass by k_w = (U_t / n_t) / U_w (U_w: the drawn
 counterweight's m r from the solid's exact mass properties, ``geometry.mass``), its
-centre of mass opposite the pin; a web left out has k_w = 0.  Mass, m r and polar
+centre of mass where the drawn one's is (opposite the pin, or turned by the offset,
+below); a web left out has k_w = 0.  Mass, m r and polar
 inertia scale with k_w exactly.
 
 The parametric shape that reaches k_w U_w: an annular sector (``balance.sector``) with
