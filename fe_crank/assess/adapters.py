@@ -93,6 +93,7 @@ def joint_geometry(g: CrankGeometry, cw: CounterweightSpec) -> JointGeometry:
         bearing_lever=g.journal_length + 0.5 * t,
         bearing_span=g.crankpin_length + 2.0 * (t + g.journal_length),
         web=cw.web,
+        offset=cw.offset,
     )
 
 
@@ -108,7 +109,7 @@ def counterweights_of(
     ``props``, from the geometry stage), grouped by the balance plane they serve.
 
     Counterweights of the throw that are nearest to the same balance counterweight of
-    ``design`` are summed (their m r add: both hang on -y); ``required_unbalance`` is that
+    ``design`` are summed (their m r vectors add, each at its counterweight's real angle); ``required_unbalance`` is that
     plane's requirement, or None without a balance design.
     """
     if not spec.counterweights:

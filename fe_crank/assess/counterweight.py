@@ -28,6 +28,7 @@ class JointGeometry:
     bearing_lever: float  # L_j + t/2: main-bearing centre to the web's mid-plane
     bearing_span: float  # between the throw's two main-bearing centres
     web: int  # 1 front, 2 rear
+    offset: float = 0.0  # rad, the counterweight turned from -y towards +x (its frame turns with it)
 
 
 @dataclass(frozen=True)

@@ -28,8 +28,9 @@ bound.
 The joint's geometry (``JointGeometry``, from the geometry file) and its eccentricity
 (VDI 2230 5.1.2, ``vdi2230.Eccentric``, one plane per bolt):
 * ``direction = "radial"``: the bolts parallel to the counterweight's symmetry line, screwed
-  through it into the web's end face opposite the pin; the joint plane at the web's end
-  radius r_J (``seat_radius``).  The bolts lie on the pitch circle r_b at angles spread
+  through it into the web's end face opposite the pin (a counterweight turned by its
+  ``offset``: its frame turned with it, the joint plane normal to its symmetry line); the
+  joint plane at the web's end radius r_J (``seat_radius``).  The bolts lie on the pitch circle r_b at angles spread
   evenly over the counterweight's angle, x_i = r_b sin(phi_i) across the joint.  F_A = F_c/n
   axial; the tangential inertia pries with the lever r_c - r_J (the prying lever), carried
   by the bolt row as axial forces +-F_t (r_c - r_J) x_i / sum x_j^2 (one bolt: as a moment);
@@ -215,6 +216,7 @@ def fe_section_loads(
     coeffs_os: np.ndarray | None = None,
 ) -> SectionLoads | None:
     """The normal stress sigma_yy across the radial joint's plane y = -r_J in the FE model
+    (in the counterweight's own frame, turned by its offset: its mid-line on -y)
     (the counterweight fused to the web: the joint bonded, as stiff as the solid), from the
     pin and torque unit cases over the cycle: fitted over the counterweight's nodes in a thin
     slab about the plane, sigma = c_0 + c_1 zeta + c_2 x + c_3 (y + r_J) (least squares; zeta
@@ -227,6 +229,13 @@ def fe_section_loads(
     if idx is None or not len(idx):
         return None
     pts = np.asarray(unit.points)[:, idx]
+    stress = np.asarray(unit.stress)[:, :, idx]
+    if geo.offset != 0.0:  # a turned counterweight: its own frame (mid-line on -y), points and stresses
+        c, s = math.cos(geo.offset), math.sin(geo.offset)
+        pts = np.stack([c * pts[0] + s * pts[1], -s * pts[0] + c * pts[1], pts[2]])
+        # sigma_y'y' = e_y'^T sigma e_y', e_y' = (-sin, cos): Voigt (xx, yy, zz, xy, yz, zx)
+        stress = stress.copy()
+        stress[:, 1] = s * s * stress[:, 0] + c * c * stress[:, 1] - 2.0 * s * c * stress[:, 3]
     c_t = min(geo.web_thickness, geo.thickness)
     lever_j = geo.bearing_lever - 0.5 * geo.web_thickness  # L_j
     z_out = 0.5 * geo.bearing_span - lever_j  # the web's outer face, |z|
@@ -244,7 +253,7 @@ def fe_section_loads(
     a = np.column_stack([np.ones(int(sel.sum())), zeta[sel], pts[0][sel], eta[sel]])
     fit = np.linalg.pinv(a)  # (4, m)
     mask = _pin_cases(tuple(unit.cases))
-    syy = np.asarray(unit.stress)[:, 1, :][:, idx][:, sel]  # (n_cases, m)
+    syy = stress[:, 1, :][:, sel]  # (n_cases, m)
     per_case = syy @ fit.T  # (n_cases, 4)
     per_case[~mask] = 0.0
     d_a = stated(joint.clamped_diameter, group, "clamped_diameter")

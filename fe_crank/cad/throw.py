@@ -118,6 +118,34 @@ def _cw_fillets(faces, frame, radius, z_range, lines, used, tol) -> list[Face]:
 
 #: the journal redrawn at a bearing centre (``cad.model.redraw_ends``) over this fraction
 #: of its cylinder's length from the centre towards the web (``cad.whole.SLAB`` checks it)
+#: deg: a recognised counterweight whose m r points farther than this from opposite its pin is
+#: refused (``turned_counterweight``): the region it is recognised in is centred there
+CW_TURN_TOL_DEG = 1.0
+
+
+def turned_counterweight(cw: Counterweight, throw: str, cad: CadInput) -> None:
+    """Refuse a drawn counterweight turned from opposite its pin (its recognised part's m r
+    more than ``CW_TURN_TOL_DEG`` from ``-y``).  The recognition takes a counterweight as the
+    material beyond its radius on the far side of ``y = 0``: a region centred opposite the
+    pin.  Of a turned one it would take a part and leave the rest to the web (the FE model's
+    loads stay those of the drawn solid; the counterweight's groups, its built m r and its
+    joint would not), so it is refused rather than half recognised."""
+    ux, uy = cw.mass.unbalance_vector
+    if not cw.mass.mass > 0.0 or math.hypot(ux, uy) == 0.0:
+        return
+    turn = math.degrees(math.atan2(ux, -uy))
+    if abs(turn) > CW_TURN_TOL_DEG:
+        raise InputError(
+            f"throw {throw}: counterweight_{cw.web}'s m r points {abs(turn):.3g} deg from opposite its pin "
+            f"(more than {CW_TURN_TOL_DEG:g} deg): a drawn counterweight is recognised only centred opposite "
+            "its pin (the material beyond its radius on the far side of the axis), and one turned from there "
+            "(or drawn asymmetric about the crank plane) would be taken in part; model it as a parametric "
+            "geometry with counterweight.offset (docs/geometry.md)",
+            file=str(cad.file),
+            key="cad.file",
+        )
+
+
 SLAB_FRACTION = 0.25
 
 
@@ -250,6 +278,8 @@ def throw_features(
         for k in (1, 2)
         if f"counterweight_{k}" in built.volumes
     )
+    for cw in cws:
+        turned_counterweight(cw, t.name, cad)
     fillets = tuple(
         f
         for f in (

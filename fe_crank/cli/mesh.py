@@ -10,6 +10,7 @@ first) and the mesh statistics, the cached ``.msh``/``.vtu`` paths, copies them 
 from __future__ import annotations
 
 import argparse
+import math
 import shutil
 from pathlib import Path
 
@@ -177,8 +178,15 @@ def run(args: argparse.Namespace) -> int:
         for web in (1, 2):
             part = mp.parts.get(f"counterweight_{web}")
             if part is not None:
+                ux, uy = part.unbalance_vector
+                turn = (
+                    f", turned {math.degrees(math.atan2(ux, -uy)):.4g} deg"
+                    if ux != 0.0 and abs(ux) > 1e-9 * abs(uy)
+                    else ""
+                )
                 print(
-                    f"  counterweight_{web}: mass {part.mass:.4g} kg at r_c {abs(part.centroid[1]) * 1e3:.4g} mm, m r {part.unbalance * 1e3:.4g} kg mm"
+                    f"  counterweight_{web}: mass {part.mass:.4g} kg at r_c {math.hypot(*part.centroid[:2]) * 1e3:.4g} mm"
+                    f"{turn}, m r {part.unbalance * 1e3:.4g} kg mm"
                 )
         tm = mesh_source_throw(
             g, spec.name, size=args.mesh_size, cache_dir=args.cache_dir, max_elements=args.max_elements

@@ -3,13 +3,14 @@
 Each rule names the key of the geometry file it concerns.  The rules are plain
 geometry of the throw frame (``fe_crank.geometry.spec``):
 
-* every length positive, fillets non-negative, angles in (0, 360) deg;
+* every length positive, fillets non-negative, angles in (0, 360) deg, a counterweight's
+  ``offset`` (its turn from opposite the pin) within (-180, 180) deg;
 * a fillet must land on the web face around its pin or journal and fit the pin /
   journal length: ``r_f < r_end - d/2`` and ``r_f < L/2`` (pin), ``r_f < L`` (journal);
 * the web outline must contain the crankpin and journal sections
   (``r_end >= d/2``);
 * a counterweight must clear the crankpin and its fillet
-  (distance from the pin centre to the sector ``>= d_p/2 + r_f``), touch the web
+  (distance from the pin centre to the sector, turned by its offset, ``>= d_p/2 + r_f``), touch the web
   (``r_inner < journal_end_radius``), not reach the crankpin's mid-plane and add
   material: a sector no thicker than the web that lies wholly inside the web outline
   is refused (its m r would be web material counted again);
@@ -36,10 +37,10 @@ def _fail(g: CrankGeometry, key: str, reason: str) -> GeometryError:
 def distance_to_sector(point: tuple[float, float], cw: CounterweightSpec) -> float:
     """Distance (m) from a point of the xy plane to the counterweight's annular sector.
 
-    The sector is ``inner_radius <= r <= outer_radius`` within ``angle/2`` of ``-y``.
-    Zero when the point lies inside it.
+    The sector is ``inner_radius <= r <= outer_radius`` within ``angle/2`` of its
+    mid-line, ``-y`` turned by ``offset`` towards ``+x``.  Zero when the point lies inside it.
     """
-    x, y = point
+    x, y = sector_frame(point, cw.offset)
     rho = math.hypot(x, y)
     # polar angle from -y, positive towards +x is irrelevant by symmetry: use |.|
     theta = abs(math.atan2(x, -y))
@@ -54,6 +55,17 @@ def distance_to_sector(point: tuple[float, float], cw: CounterweightSpec) -> flo
         t = float(np.clip(np.dot([x, y], d), r2, r1))
         best = min(best, math.hypot(x - t * d[0], y - t * d[1]))
     return best
+
+
+def sector_frame(point: tuple[float, float], offset: float) -> tuple[float, float]:
+    """The point in the frame of a sector turned by ``offset`` (rad, from ``-y`` towards
+    ``+x``): the frame turned with it, so that the sector's mid-line is its ``-y``;
+    the point itself for ``offset = 0``."""
+    if offset == 0.0:
+        return point
+    x, y = point
+    c, s = math.cos(offset), math.sin(offset)
+    return (c * x + s * y, -s * x + c * y)
 
 
 def inside_web_outline(points: np.ndarray, g: CrankGeometry, tol: float = 1e-9) -> np.ndarray:
@@ -72,12 +84,13 @@ def inside_web_outline(points: np.ndarray, g: CrankGeometry, tol: float = 1e-9) 
 def sector_inside_web(g: CrankGeometry, cw: CounterweightSpec, n: int = 181) -> bool:
     """True when the counterweight's annular sector lies wholly inside the web outline
     (a set lies in a convex region when its boundary does: both arcs and both
-    radial edges are sampled)."""
+    radial edges are sampled; angles from ``-y`` towards ``+x``, the sector turned by its
+    ``offset``)."""
     half = cw.angle / 2.0
-    phi = np.linspace(-half, half, n)
+    phi = np.linspace(-half, half, n) + cw.offset
     s = np.linspace(cw.inner_radius, cw.outer_radius, n)
     pts = [np.stack([r * np.sin(phi), -r * np.cos(phi)]) for r in (cw.inner_radius, cw.outer_radius)]
-    pts += [np.stack([s * np.sin(e), -s * np.cos(e)]) for e in (-half, half)]
+    pts += [np.stack([s * np.sin(e), -s * np.cos(e)]) for e in (cw.offset - half, cw.offset + half)]
     return bool(np.all(inside_web_outline(np.concatenate(pts, axis=1), g)))
 
 
@@ -207,6 +220,12 @@ def _check_counterweight(g: CrankGeometry, cw: CounterweightSpec, key: str) -> N
         raise _fail(
             g, f"{key}.angle", f"included angle must be between 0 and 360 deg (got {math.degrees(cw.angle):g} deg)"
         )
+    if not (math.isfinite(cw.offset) and abs(cw.offset) < math.pi):
+        raise _fail(
+            g,
+            f"{key}.offset",
+            f"the turn from opposite the pin must lie between -180 and 180 deg (got {math.degrees(cw.offset):g} deg)",
+        )
     if cw.inner_radius >= cw.outer_radius:
         raise _fail(
             g,
@@ -235,7 +254,8 @@ def _check_counterweight(g: CrankGeometry, cw: CounterweightSpec, key: str) -> N
         raise _fail(
             g,
             key,
-            f"counterweight overlaps the crankpin or its fillet by {-clearance * 1e3:.3g} mm (reduce its angle or outer radius)",
+            f"counterweight overlaps the crankpin or its fillet by {-clearance * 1e3:.3g} mm (reduce its angle, "
+            "outer radius or offset)",
         )
     rc = cw.fillet_radius
     if rc is not None:

@@ -1,7 +1,8 @@
 """The OpenCASCADE solid of one crank throw, before it is split into named parts.
 
 Built in the THROW frame (``fe_crank.geometry.spec``): journal halves, two webs
-(convex hull of two circles), the crankpin, annular-sector counterweights on ``-y``,
+(convex hull of two circles), the crankpin, annular-sector counterweights on ``-y``
+(turned by their ``offset`` from ``-y`` towards ``+x``),
 fused into one solid; real fillets (OCC rolling-ball) on the four circular edges
 where pin and journals meet the webs (undercut fillets as ring-plus-torus booleans),
 the counterweight transition fillets; an optional oil bore cut through the pin.
@@ -82,8 +83,10 @@ def web_prism(occ, g: CrankGeometry, z0: float) -> int:
 
 
 def sector_prism(occ, cw: CounterweightSpec, z0: float) -> int:
-    """Annular sector r2..r1 within angle/2 of -y in the plane z0, extruded by its thickness."""
-    a0, a1 = math.pi - cw.angle / 2, math.pi + cw.angle / 2
+    """Annular sector r2..r1 within angle/2 of its mid-line (-y turned by its offset towards
+    +x: at ``pi - offset`` from +y towards +x) in the plane z0, extruded by its thickness."""
+    mid = math.pi - cw.offset
+    a0, a1 = mid - cw.angle / 2, mid + cw.angle / 2
     c = occ.addPoint(0, 0, z0)
     po = _arc_points(occ, 0, 0, z0, cw.outer_radius, a0, a1)
     pi = _arc_points(occ, 0, 0, z0, cw.inner_radius, a1, a0)

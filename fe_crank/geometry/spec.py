@@ -3,7 +3,8 @@
 All throws of a crankshaft share the journal, pin and web dimensions; each throw has
 its own angle and counterweights.  Dimensions are given in the THROW frame of
 ``docs/contracts.md``: ``z`` the crank axis, crankpin centre on ``+y`` at distance
-``crank_radius``, counterweights centred on ``-y``, index 1 = front (smaller ``z``).
+``crank_radius``, counterweights centred on ``-y`` (opposite the pin) unless turned by
+their ``offset``, index 1 = front (smaller ``z``).
 
 Axial layout of one throw (``zp = crankpin_length / 2``, ``t = web_thickness``,
 ``L = journal_length``)::
@@ -138,7 +139,10 @@ class BoltedJoint:
 
 @dataclass(frozen=True)
 class CounterweightSpec:
-    """Annular-sector counterweight on one web, centred on ``-y`` (opposite the pin)."""
+    """Annular-sector counterweight on one web, centred on ``-y`` (opposite the pin)
+    turned by ``offset``: its mid-line runs along ``(sin offset, -cos offset)``, the
+    angle measured from ``-y`` towards ``+x`` in the throw frame (the sense in which
+    ``OilBore.angle`` is measured from ``+y``), ``|offset| < 180 deg``."""
 
     web: int  # 1 (front) or 2 (rear)
     outer_radius: float  # m, r1
@@ -147,6 +151,7 @@ class CounterweightSpec:
     thickness: float  # m, axial (b)
     bolted: BoltedJoint | None = None
     fillet_radius: float | None = None  # m, transition radius to the web; None: a sharp edge
+    offset: float = 0.0  # rad, the mid-line's angle from -y towards +x (class doc)
 
 
 @dataclass(frozen=True)

@@ -31,6 +31,7 @@
     angle = "180 deg"
     thickness = "19 mm"
     fillet_radius = "5 mm"          # transition radius where the sector meets the web
+    offset = "0 deg"                # optional: turned from opposite the pin, from -y towards +x
     webs = [1, 2]
     bolted = { count = 2, diameter = "10 mm", pitch_radius = "50 mm", property_class = "10.9",
                clamp_length = "30 mm", bearing_diameter = "16 mm", hole_diameter = "11 mm",
@@ -124,6 +125,7 @@ class CounterweightInput(Strict):
     angle: Angle
     thickness: Length | None = None  # default: the web thickness
     fillet_radius: Length | None = None  # None: a sharp edge (its stress cannot be assessed)
+    offset: Angle = 0.0  # its mid-line from -y (opposite the pin) towards +x, |offset| < 180 deg
     webs: list[int] = Field(default_factory=lambda: [1, 2], min_length=1)
     bolted: BoltedInput | None = None
 
@@ -173,6 +175,7 @@ def _counterweights(cw: CounterweightInput | None, web_thickness: float) -> tupl
             thickness=thickness,
             bolted=bolted,
             fillet_radius=cw.fillet_radius,
+            offset=cw.offset,
         )
         for w in cw.webs
     )

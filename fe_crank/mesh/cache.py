@@ -56,6 +56,8 @@ def cache_key(geometry: CrankGeometry, throw: ThrowSpec, options: MeshOptions) -
     th.pop("name", None)
     for cw in th["counterweights"]:
         cw.pop("bolted", None)  # bolt data do not change the solid
+        if cw.get("offset") == 0.0:
+            del cw["offset"]  # a counterweight opposite its pin keeps the key it had before offsets
     opts = dataclasses.asdict(options)
     if opts["web_divisions"] is None:  # the meshes made before the web control keep their keys
         del opts["web_divisions"]

@@ -6,11 +6,13 @@ Throw frame (``fe_crank.geometry.spec``): ``z`` the crank axis, crankpin centre 
 * ``z = 0`` (axis 2), the mid-plane through the crankpin's centre: journals, webs,
   fillets and undercuts are built from one specification for both sides and the oil bore
   lies in ``z = 0``, so the throw is symmetric exactly when its counterweights are: none,
-  or one on each web with equal outer/inner radius, angle, thickness and transition fillet radius.  Bolt data are
+  or one on each web with equal outer/inner radius, angle, thickness, transition fillet radius
+  and offset (the mirror image across ``z = 0`` keeps ``x`` and ``y``).  Bolt data are
   not part of the solid (they feed the bolt check only) and are ignored.
 * ``x = 0`` (axis 0), the crank plane: the web outline (hull of two circles centred on
-  the ``y`` axis), the pin, the journals and the counterweight sectors (centred on ``-y``)
-  are symmetric about it; the oil bore, a through-bore in ``z = 0`` along
+  the ``y`` axis), the pin, the journals and the counterweight sectors centred on ``-y``
+  are symmetric about it; a counterweight turned from ``-y`` (``offset`` not 0) is not, and
+  leaves the plane out (its mirror image is turned the other way); the oil bore, a through-bore in ``z = 0`` along
   ``(sin a, cos a)``, is symmetric only when it runs along ``y`` or along ``x``
   (``a`` a multiple of 90 deg, to within ``ANGLE_TOL``); an oblique bore breaks it.
 
@@ -40,12 +42,13 @@ MESH_PLANES = (2,)
 
 
 def _same_sector(a: CounterweightSpec, b: CounterweightSpec) -> bool:
-    return (a.outer_radius, a.inner_radius, a.angle, a.thickness, a.fillet_radius) == (
+    return (a.outer_radius, a.inner_radius, a.angle, a.thickness, a.fillet_radius, a.offset) == (
         b.outer_radius,
         b.inner_radius,
         b.angle,
         b.thickness,
         b.fillet_radius,
+        b.offset,
     )
 
 
@@ -68,8 +71,11 @@ def bore_axis_aligned(angle: float) -> int | None:
     return n % 2
 
 
-def x_symmetric(geometry: CrankGeometry) -> bool:
-    """No oil bore, or one along ``x`` or ``y`` (every other part is symmetric by construction)."""
+def x_symmetric(geometry: CrankGeometry, spec: ThrowSpec | None = None) -> bool:
+    """No oil bore, or one along ``x`` or ``y``, and no counterweight of ``spec`` turned
+    from ``-y`` (every other part is symmetric by construction)."""
+    if spec is not None and any(cw.offset != 0.0 for cw in spec.counterweights):
+        return False
     return geometry.oil_bore is None or bore_axis_aligned(geometry.oil_bore.angle) is not None
 
 
@@ -78,7 +84,7 @@ def symmetry_planes(geometry: CrankGeometry, throw: ThrowSpec | str | int | None
     0 for ``x = 0``, 2 for ``z = 0``; ``()`` when there is none."""
     spec = throw if isinstance(throw, ThrowSpec) else geometry.throw(throw)
     out = []
-    if x_symmetric(geometry):
+    if x_symmetric(geometry, spec):
         out.append(0)
     if z_symmetric(spec):
         out.append(2)

@@ -9,7 +9,8 @@ stage sizes it per throw (``balance.counterweights``)::
 is split equally over the throw's placed webs.  Each placed web's counterweight is the
 shape drawn on that web scaled in mass by k_w = (U_t / n_t) / U_w (U_w: the drawn
 counterweight's m r from the solid's exact mass properties, ``geometry.mass``), its
-centre of mass opposite the pin; a web left out has k_w = 0.  Mass, m r and polar
+centre of mass where the drawn one's is (opposite the pin, or turned by the offset,
+below); a web left out has k_w = 0.  Mass, m r and polar
 inertia scale with k_w exactly.
 
 The parametric shape that reaches k_w U_w: an annular sector (``balance.sector``) with
@@ -23,9 +24,18 @@ not buildable, with the reason) when it needs a thickness beyond the web's, an o
 radius beyond the envelope, more than a half ring, an inner radius inside the journal,
 or a sector that reaches the crankpin (with its fillet).
 
+The offset (``study.offset``): a candidate's counterweights are the drawn ones turned
+rigidly to the offset from opposite the pin (``CounterweightSpec.offset``; the drawn
+offset when the study states none).  A turned counterweight is another solid: its
+centrifugal load is spread over other elements and its m r points elsewhere, so the
+drawn counterweights turned to each offset (``turned_view``) are a shaft of their own,
+with their exact mass properties, their own mesh and unit cases (``study.run``); the
+mass factors k_w are taken on that shaft's drawn webs.
+
 The balance residual: the free forces of the engine (``balance.forces.free_forces``:
 rotating and reciprocating) with the candidate's counterweights added as rotating
-masses k_w U_w at their planes (the parts' centroids), first order.
+masses k_w U_w at their planes (the parts' centroids) and in the direction of the drawn
+(turned) counterweight's m r, first order.
 """
 
 from __future__ import annotations
@@ -43,7 +53,7 @@ from fe_crank.balance.terms import point_term, rotating_force
 from fe_crank.errors import GeometryError, InputError
 from fe_crank.geometry.checks import check_geometry
 from fe_crank.geometry.shaft import ShaftLayout
-from fe_crank.geometry.spec import CounterweightSpec, ThrowSpec
+from fe_crank.geometry.spec import CounterweightSpec, CrankGeometry, ThrowSpec
 from fe_crank.io.geometry import bolt_misfit
 from fe_crank.model import Engine
 from fe_crank.study.spec import StudySpec
@@ -100,7 +110,8 @@ class Candidate:
     @property
     def label(self) -> str:
         rec = f" + {round(self.reciprocating * 100, 9):g} % recip." if self.reciprocating else ""
-        return f"{self.placement}, {round(self.rotating * 100, 9):g} %{rec}"
+        off = f", turned {round(math.degrees(self.offset), 9):g} deg" if self.offset else ""
+        return f"{self.placement}, {round(self.rotating * 100, 9):g} %{rec}{off}"
 
 
 def drawn_webs(layout: ShaftLayout, mass: dict) -> dict[Web, DrawnWeb]:
@@ -164,7 +175,7 @@ def check_buildable_as_drawn(spec: StudySpec, drawn: dict[Web, DrawnWeb], layout
     """The drawn counterweights are the family's base shape: one beyond the envelope or
     through the crankpin is bad input."""
     for w, d in drawn.items():
-        why = _clash(d.spec.outer_radius, d.spec.inner_radius, d.spec.angle, layout, spec.envelope)
+        why = _clash(d.spec.outer_radius, d.spec.inner_radius, d.spec.angle, layout, spec.envelope, d.spec.offset)
         if why:
             raise InputError(
                 f"the counterweight drawn on web {w[0]}.{w[1]} {why}",
@@ -173,15 +184,21 @@ def check_buildable_as_drawn(spec: StudySpec, drawn: dict[Web, DrawnWeb], layout
             )
 
 
-def _clash(r1: float, r2: float, angle: float, layout: ShaftLayout, envelope: float | None) -> str | None:
+def _clash(
+    r1: float, r2: float, angle: float, layout: ShaftLayout, envelope: float | None, offset: float = 0.0
+) -> str | None:
+    """Beyond the envelope, or reaching the crankpin's direction: the sector's edge nearer
+    the pin lies ``pi - |offset| - angle/2`` from it (the exact clearance is the
+    geometry's own check, ``_geometry_refuses``)."""
     g = layout.geometry
     if envelope is not None and r1 > envelope * (1 + 1e-12):
         return f"reaches {r1 * 1e3:.4g} mm, beyond the envelope of {envelope * 1e3:.4g} mm"
     R, rp = g.crank_radius, g.crankpin_diameter / 2 + g.crankpin_fillet
     half = math.asin(min(1.0, rp / R)) if R > 0 else math.pi
-    if math.pi - angle / 2 < half and r2 < R + rp and r1 > R - rp:
+    if math.pi - abs(offset) - angle / 2 < half and r2 < R + rp and r1 > R - rp:
+        turned = f" turned {math.degrees(offset):.4g} deg" if offset else ""
         return (
-            f"reaches the crankpin: a {math.degrees(angle):.4g} deg sector from {r2 * 1e3:.4g} to {r1 * 1e3:.4g} mm "
+            f"reaches the crankpin: a {math.degrees(angle):.4g} deg sector{turned} from {r2 * 1e3:.4g} to {r1 * 1e3:.4g} mm "
             f"overlaps the pin (radius with fillet {rp * 1e3:.4g} mm at {R * 1e3:.4g} mm)"
         )
     return None
@@ -241,7 +258,9 @@ def web_shape(web: Web, k: float, d: DrawnWeb, layout: ShaftLayout, spec: StudyS
         if s.thickness > t_web * (1 + 1e-12):
             reasons.append(f"thickness: {s.thickness * 1e3:.4g} mm, thicker than the web ({t_web * 1e3:.4g} mm)")
             continue
-        why = _clash(s.r_outer, s.r_inner, s.angle, layout, spec.envelope) or _geometry_refuses(layout, web, cw, s)
+        why = _clash(s.r_outer, s.r_inner, s.angle, layout, spec.envelope, cw.offset) or _geometry_refuses(
+            layout, web, cw, s
+        )
         if why:
             reasons.append(f"{free}: {why}")
             continue
@@ -249,27 +268,95 @@ def web_shape(web: Web, k: float, d: DrawnWeb, layout: ShaftLayout, spec: StudyS
     return WebShape(web, k, None, None, "; ".join(reasons))
 
 
+def drawn_offset(drawn: dict[Web, DrawnWeb], spec: StudySpec) -> float:
+    """The offset every drawn counterweight is turned by (rad): the study's offsets when it
+    states none; drawn counterweights turned differently need the study's (``InputError``)."""
+    offs = sorted({d.spec.offset for d in drawn.values()})
+    if len(offs) > 1:
+        raise InputError(
+            "the drawn counterweights are turned by different offsets ("
+            + ", ".join(f"{math.degrees(o):.6g} deg" for o in offs)
+            + "): state the offsets to screen",
+            file=spec.file,
+            key="study.offset",
+        )
+    return offs[0] if offs else 0.0
+
+
+def study_offsets(spec: StudySpec, drawn: dict[Web, DrawnWeb]) -> tuple[float, ...]:
+    """The offsets the study screens (rad): its stated ones, else the drawn one."""
+    return spec.offsets if spec.offsets is not None else (drawn_offset(drawn, spec),)
+
+
+def turned_geometry(g: CrankGeometry, offset: float) -> CrankGeometry:
+    """The geometry with every counterweight turned to ``offset`` (rad, from opposite the
+    pin towards +x): the same sectors, rigidly turned."""
+    throws = tuple(
+        dataclasses.replace(t, counterweights=tuple(dataclasses.replace(cw, offset=offset) for cw in t.counterweights))
+        for t in g.throws
+    )
+    return dataclasses.replace(g, throws=throws)
+
+
+def turned_view(
+    layout: ShaftLayout, drawn: dict[Web, DrawnWeb], offset: float, mass: dict | None = None
+) -> tuple[ShaftLayout, dict[Web, DrawnWeb], dict]:
+    """The shaft with its drawn counterweights turned to ``offset`` (``turned_geometry``),
+    its drawn webs (their exact mass properties) and its throws' mass properties
+    (``mass``: the drawn shaft's, returned as they are when nothing turns)."""
+    from fe_crank.fe.shaft.whole_shaft import throw_masses
+
+    if all(d.spec.offset == offset for d in drawn.values()):
+        return layout, drawn, mass if mass is not None else throw_masses(layout)
+    g = turned_geometry(layout.geometry, offset)
+    placed = tuple(dataclasses.replace(th, spec=g.throw(th.spec.name)) for th in layout.throws)
+    turned = dataclasses.replace(layout, geometry=g, throws=placed)
+    m = throw_masses(turned)
+    return turned, drawn_webs(turned, m), m
+
+
 def candidates(
     spec: StudySpec, drawn: dict[Web, DrawnWeb], layout: ShaftLayout, engine: Engine
 ) -> tuple[Candidate, ...]:
-    """Every placement x rotating rate x reciprocating share x offset, in that order."""
+    """Every placement x rotating rate x reciprocating share x offset, in that order; the
+    shapes of an offset on the drawn counterweights turned to it (``turned_view``)."""
     webs_of = placed_webs(spec, drawn, layout)
     check_buildable_as_drawn(spec, drawn, layout)
     density = layout.geometry.density
+    views = {}
+    for i, off in enumerate(study_offsets(spec, drawn)):
+        if off not in views:
+            try:  # the geometry's own rules on the turned counterweights, before any solid is built
+                check_geometry(turned_geometry(layout.geometry, off))
+            except GeometryError as exc:
+                raise InputError(
+                    f"the drawn counterweights turned to {math.degrees(off):.6g} deg: {exc.reason}",
+                    file=spec.file,
+                    key=f"study.offset[{i}]",
+                ) from None
+            lay, dr, _ = turned_view(layout, drawn, off, mass={})
+            try:
+                check_buildable_as_drawn(spec, dr, lay)
+            except InputError as exc:
+                raise InputError(
+                    f"turned to {math.degrees(off):.6g} deg, {exc.reason}", file=spec.file, key=f"study.offset[{i}]"
+                ) from None
+            views[off] = (lay, dr)
     out: list[Candidate] = []
     for p in spec.placements:
         webs = webs_of[p.name]
         for f_rot in spec.rotating:
             for f_rec in spec.reciprocating:
                 target = throw_targets(engine, f_rot, f_rec)
-                for off in spec.offsets:
-                    factors = dict.fromkeys(drawn, 0.0)
+                for off in study_offsets(spec, drawn):
+                    lay, dr = views[off]
+                    factors = dict.fromkeys(dr, 0.0)
                     shapes = []
                     for w in webs:
                         n_t = sum(1 for x in webs if x[0] == w[0])
-                        k = (target[w[0]] / n_t) / drawn[w].unbalance
+                        k = (target[w[0]] / n_t) / dr[w].unbalance
                         factors[w] = k
-                        shapes.append(web_shape(w, k, drawn[w], layout, spec, density))
+                        shapes.append(web_shape(w, k, dr[w], lay, spec, density))
                     out.append(Candidate(len(out), p.name, f_rot, f_rec, off, factors, tuple(shapes)))
     return tuple(out)
 
@@ -282,7 +369,9 @@ def residual(
     planes: dict[Web, float] | None = None,
 ) -> FreeForces:
     """The free forces with the candidate's counterweights (module doc; reference z = 0):
-    each web's k_w U_w opposite its pin at ``planes`` (default the drawn part's centroid)."""
+    each web's k_w U_w at ``planes`` (default the drawn part's centroid), in the direction
+    of the drawn counterweight's m r: opposite its pin for one centred there, else the
+    direction of its solid's m r vector (throw frame, from +y towards +x)."""
     before = free_forces(engine, speed)
     terms = []
     for w, k in factors.items():
@@ -292,7 +381,9 @@ def residual(
         z = d.z if planes is None else planes[w]
         t = engine.throw(w[0])
         sh = engine.shaft(t.shaft)
-        psi = sh.phase + sh.sense * t.angle + math.pi  # opposite the pin (a sector centred on -y)
+        # a sector centred on -y: exactly opposite the pin; a turned one: its m r's direction
+        a = math.atan2(*d.unbalance_vector) if d.spec.offset != 0.0 else math.pi
+        psi = sh.phase + sh.sense * t.angle + a
         force = rotating_force(k * d.unbalance * (sh.speed_ratio * speed) ** 2, psi, sh.sense)
         terms.append(point_term("counterweights", sh.speed_ratio, force, (sh.centre[0], sh.centre[1], z)))
     return before.with_terms(terms)

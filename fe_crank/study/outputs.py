@@ -24,6 +24,7 @@ COLUMNS = (
     ("placement", "placement"),
     ("rotating_rate_percent", "rotating rate %"),
     ("reciprocating_share_percent", "recip. share %"),
+    ("offset_deg", "offset deg"),
     ("counterweight_mass_kg", "cw mass kg"),
     ("mass_change_kg", "shaft mass change kg"),
     ("polar_inertia_change_kg_m2", "J change kg m^2"),
@@ -63,6 +64,7 @@ def row(r: CandidateResult, recommended: bool) -> dict:
         "placement": c.placement,
         "rotating_rate_percent": round(c.rotating * 100, 9),
         "reciprocating_share_percent": round(c.reciprocating * 100, 9),
+        "offset_deg": round(math.degrees(c.offset), 9),
         "counterweight_mass_kg": r.counterweight_mass,
         "mass_change_kg": r.mass_change,
         "polar_inertia_change_kg_m2": r.polar_inertia_change,
@@ -408,6 +410,8 @@ def write_candidate(res: StudyResult, r: CandidateResult, out: Path) -> tuple[Pa
             }
             if drawn.fillet_radius is not None:
                 cw["fillet_radius"] = _mm(drawn.fillet_radius)
+            if r.candidate.offset != 0.0:  # turned from opposite the pin (the candidate's offset)
+                cw["offset"] = f"{math.degrees(r.candidate.offset):.12g} deg"
             raw_cw = t_in.get("counterweight") or gdata.get("counterweight") or {}
             if isinstance(raw_cw, dict) and "bolted" in raw_cw:
                 cw["bolted"] = raw_cw["bolted"]

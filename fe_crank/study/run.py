@@ -27,6 +27,7 @@ from fe_crank.study.candidates import (
     drawn_webs,
     first_order,
     residual,
+    turned_view,
     written_mass,
 )
 from fe_crank.study.film import FilmMetrics, film_metrics
@@ -108,6 +109,9 @@ class StudyResult:
     joint_limits: dict[str, float] = field(default_factory=dict)
     #: the bolted throws' load states (``study.joints``; None when the joints are not screened)
     joint_model: JointModel | None = None
+    #: per screened offset (rad): the shaft with the drawn counterweights turned to it and its
+    #: drawn webs (``study.candidates.turned_view``); ``shaft`` and ``drawn`` are the first's
+    by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = field(default_factory=dict)
 
 
 #: why the study does not screen the bolted joints with a ``[torsion]`` section
@@ -411,58 +415,83 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     assert lc.material is not None
     cycles = engine_cycles(lc.engine, lc.operating, file=lc.source_file)
     states = engine_states(lc.engine, lc.operating, cycles)
-    shaft = study_shaft(
-        layout,
-        lc.material,
-        lc.fe,
-        size=size,
-        cache_dir=cache_dir,
-        max_elements=max_elements,
-        stresses=spec.stresses != "off",
-    )
-    bases = [state_base(shaft, s) for s in states]
-    os_bases = (
-        [state_base(shaft, EngineState(f"overspeed ({c.gas})", c.dynamics.speed, c.dynamics)) for c in cycles.overspeed]
-        if spec.stresses != "off"
-        else []
-    )
     w_max = max(s.speed for s in states)
-    solids = ThrowSolidCache(layout)
     add = m53_basis(
         lc.engine, lc.material, lc.criteria.m53_additional_bending if lc.criteria else None, file=lc.source_file
     ).additional
     g = layout.geometry
     q = study_m53(lc, cycles)  # the counterweights enter neither UR M53's loads nor its dimensions
-    bm = (
-        None
-        if spec.stresses == "off"
-        else body_model(lc, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    per_throw_loads = (
+        assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if spec.stresses != "off" else None
     )
-    per_throw_loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if bm is not None else None
-    jm = joint_model(lc, layout, bm, cycles) if bm is not None and has_bolted(layout) and lc.torsion is None else None
-    j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if jm is not None else ({}, "")
     results = []
-    for c in cands:
-        wm = written_mass(layout, c, drawn, shaft.mass, solids)
-        loads = [candidate_loads(shaft, b, wm.load_factors, drawn) for b in bases]
-        st = (
+    first = None
+    by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = {}
+    # each offset on the drawn counterweights turned to it: its own solids, mesh and unit cases
+    for off in dict.fromkeys(c.offset for c in cands):
+        layout_o, drawn_o, _ = turned_view(layout, drawn, off, mass={})  # the shaft takes its own
+        shaft = study_shaft(
+            layout_o,
+            lc.material,
+            lc.fe,
+            size=size,
+            cache_dir=cache_dir,
+            max_elements=max_elements,
+            stresses=spec.stresses != "off",
+        )
+        bases = [state_base(shaft, s) for s in states]
+        os_bases = (
+            [
+                state_base(shaft, EngineState(f"overspeed ({c.gas})", c.dynamics.speed, c.dynamics))
+                for c in cycles.overspeed
+            ]
+            if spec.stresses != "off"
+            else []
+        )
+        solids = ThrowSolidCache(layout_o)
+        bm = (
             None
             if spec.stresses == "off"
-            else candidate_stresses(
-                shaft,
-                loads,
-                lc.material,
-                additional_bending=add,
-                diameters=(g.crankpin_diameter, g.journal_diameter),
-                fatigue=spec.stresses == "fatigue",
+            else body_model(lc, layout_o, size=size, cache_dir=cache_dir, max_elements=max_elements)
+        )
+        has_joints = bm is not None and has_bolted(layout_o) and lc.torsion is None
+        jm = joint_model(lc, layout_o, bm, cycles) if has_joints and bm is not None else None
+        j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if jm is not None else ({}, "")
+        if first is None:
+            first = (shaft, drawn_o, bm, j_lims, j_whose, jm)
+        by_offset[off] = (shaft, drawn_o)
+        for c in cands:
+            if c.offset != off:
+                continue
+            wm = written_mass(layout_o, c, drawn_o, shaft.mass, solids)
+            loads = [candidate_loads(shaft, b, wm.load_factors, drawn_o) for b in bases]
+            st = (
+                None
+                if spec.stresses == "off"
+                else candidate_stresses(
+                    shaft,
+                    loads,
+                    lc.material,
+                    additional_bending=add,
+                    diameters=(g.crankpin_diameter, g.journal_diameter),
+                    fatigue=spec.stresses == "fatigue",
+                )
             )
-        )
-        os = candidate_overspeed(
-            shaft, [candidate_loads(shaft, b, wm.load_factors, drawn, envelope=False) for b in os_bases], lc.material
-        )
-        bd = None if bm is None or per_throw_loads is None else candidate_bodies(bm, per_throw_loads, wm.load_factors)
-        jt = None if jm is None else candidate_joints(jm, c, solids, shaft.mass)
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims))
+            os = candidate_overspeed(
+                shaft,
+                [candidate_loads(shaft, b, wm.load_factors, drawn_o, envelope=False) for b in os_bases],
+                lc.material,
+            )
+            bd = (
+                None
+                if bm is None or per_throw_loads is None
+                else candidate_bodies(bm, per_throw_loads, wm.load_factors)
+            )
+            jt = None if jm is None else candidate_joints(jm, c, solids, shaft.mass)
+            results.append(_metrics(c, loads, shaft, drawn_o, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims))
+    results.sort(key=lambda r: r.candidate.index)
+    assert first is not None
+    shaft, drawn, bm, j_lims, j_whose, jm = first
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:
@@ -485,4 +514,6 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     elif has_bolted(layout):
         why_not = JOINT_TORSION if lc.torsion is not None else 'stresses = "off": no per-throw model'
         notes.append(f"bolted joints not screened ({why_not}); judge them by the full check")
-    return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm, j_lims, jm)
+    return StudyResult(
+        spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm, j_lims, jm, by_offset
+    )

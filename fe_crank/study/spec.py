@@ -6,7 +6,8 @@ A study TOML beside the load case (``fe-crank study LOADCASE STUDY``)::
     name = "inline-4: 4 or 8 counterweights"
     rotating_rate_percent = [0, 20, 40, 60, 80, 100]  # of each throw's rotating m r, 0-120
     reciprocating_share_percent = [0]                  # of its first-order reciprocating m r, 0-100
-    offset = ["0 deg"]                                 # counterweight angle from opposite the pin
+    offset = ["0 deg", "15 deg"]                       # counterweights turned from opposite the pin
+                                                       # towards +x (throw frame); default: as drawn
     free = ["thickness", "angle", "r_outer"]           # sector dimension solved for each mass, in order
     envelope = "95 mm"                                 # largest outer radius a counterweight may have
     rule = "least_mass"                                # or "least_bearing_load"
@@ -106,7 +107,7 @@ class StudySpec:
     name: str
     rotating: tuple[float, ...]  # fractions of the rotating m r
     reciprocating: tuple[float, ...]  # fractions of the first-order reciprocating m r
-    offsets: tuple[float, ...]  # rad
+    offsets: tuple[float, ...] | None  # rad, from opposite the pin towards +x; None: as drawn
     free: tuple[str, ...]
     envelope: float | None  # m
     rule: str
@@ -194,19 +195,21 @@ def parse_study(path: str | Path) -> StudySpec:
         raise InputError("is missing: the balance rates to screen", file=file, key="study.rotating_rate_percent")
     rot = _numbers(st["rotating_rate_percent"], file, "study.rotating_rate_percent", 0.0, MAX_ROTATING_PERCENT)
     rec = _numbers(st.get("reciprocating_share_percent", [0]), file, "study.reciprocating_share_percent", 0.0, 100.0)
-    offsets_raw = st.get("offset", ["0 deg"])
-    if not isinstance(offsets_raw, list) or not offsets_raw:
-        raise InputError('must be a non-empty list of angles, e.g. ["0 deg"]', file=file, key="study.offset")
-    offsets = tuple(_quantity(v, "angle", file, f"study.offset[{i}]") for i, v in enumerate(offsets_raw))
-    for i, o in enumerate(offsets):
-        if o != 0.0:
-            raise InputError(
-                "a counterweight turned from opposite its pin cannot be screened or written: the geometry "
-                "format centres every counterweight sector on the web's anti-pin direction (the mesher's "
-                "mirror plane, the fillet tools and the balance terms rely on it); only 0 deg",
-                file=file,
-                key=f"study.offset[{i}]",
-            )
+    offsets = None
+    if "offset" in st:
+        offsets_raw = st["offset"]
+        if not isinstance(offsets_raw, list) or not offsets_raw:
+            raise InputError('must be a non-empty list of angles, e.g. ["0 deg"]', file=file, key="study.offset")
+        offsets = tuple(_quantity(v, "angle", file, f"study.offset[{i}]") for i, v in enumerate(offsets_raw))
+        for i, o in enumerate(offsets):
+            if not abs(o) < math.pi:
+                raise InputError(
+                    f"the turn from opposite the pin must lie between -180 and 180 deg (got {math.degrees(o):g} deg)",
+                    file=file,
+                    key=f"study.offset[{i}]",
+                )
+        if len(set(offsets)) != len(offsets):
+            raise InputError("names an offset twice", file=file, key="study.offset")
     free_raw = st.get("free", ["thickness", "angle", "r_outer"])
     if isinstance(free_raw, str):
         free_raw = [free_raw]
