@@ -381,7 +381,7 @@ BAD = [
         'rotating_rate_percent = [50]\nstresses = "static"\n[study.limits]\nmin_fillet_fatigue_safety = 2',
         "study.limits.min_fillet_fatigue_safety",
     ),
-    ('rotating_rate_percent = [50]\noffset = ["10 deg"]', "study.offset[0]"),
+    ('rotating_rate_percent = [50]\noffset = ["100 deg"]', "study.offset[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.3"]', "study.placements[0].webs[0]"),
     ('rotating_rate_percent = [50]\n[[study.placements]]\nname = "x"\nwebs = ["1.1"]', "study.placements[0].webs"),
     # UR M53 2.2: the load case does not accept the quasi-static journal torque
