@@ -47,7 +47,10 @@ from fe_crank.study.screen import (
     study_shaft,
 )
 from fe_crank.study.spec import StudySpec
+from fe_crank.study.torsion import candidate_torsion, geometry_inertias
+from fe_crank.study.torsion import refusal as torsion_refusal
 from fe_crank.torsion.loads import assessed_loads
+from fe_crank.torsion.stage import torsional_loads
 
 
 @dataclass(frozen=True)
@@ -84,6 +87,9 @@ class CandidateResult:
     #: the bolted counterweights' VDI 2230 figures over the check's load states
     #: (``study.joints``; None without a bolted counterweight or with ``stresses = "off"``)
     joints: JointScreen | None = None
+    #: the first elastic natural frequency of the candidate's torsional chain, Hz
+    #: (``study.torsion``; None without [torsion] or when not screened)
+    torsional_frequency: float | None = None
 
     @property
     def meets_limits(self) -> bool:
@@ -109,6 +115,13 @@ class StudyResult:
     #: the bolted throws' load states (``study.joints``; None when the joints are not screened)
     joint_model: JointModel | None = None
 
+
+#: what the study screens on the rigid shaft's loads with a ``[torsion]`` section
+TORSION_NOT_SCREENED = (
+    "the bearing loads, web moments, fillet and counterweight stresses take the rigid shaft's journal torques "
+    "and no torsional angular acceleration; the full check adds the vibratory journal torque and the throws' "
+    "vibratory inertia torque to them"
+)
 
 #: why the study does not screen the bolted joints with a ``[torsion]`` section
 JOINT_TORSION = (
@@ -196,11 +209,11 @@ def prepare(lc: LoadCase, spec: StudySpec):
                 key=f"study.limits.{k}",
             )
     if M53_LIMIT in spec.limits:
-        why = refusal(lc)
-        if why is None and not (lc.criteria is not None and lc.criteria.m53_quasi_static_torque):
+        why = refusal(lc) or torsion_refusal(lc)
+        if why is None and lc.torsion is None and not (lc.criteria is not None and lc.criteria.m53_quasi_static_torque):
             why = (
-                "UR M53 2.2 takes the torsional stress from a forced-vibration calculation, which varies with "
-                "the candidate's inertia and the study does not run; to screen Q on the quasi-static journal "
+                "UR M53 2.2 takes the torsional stress from a forced-vibration calculation: give the load case a "
+                "[torsion] section (the study runs it per candidate) or, to screen Q on the quasi-static journal "
                 "torque (not UR M53-conform), set criteria.m53_quasi_static_torque = true in the load case"
             )
         if why is not None:
@@ -223,6 +236,7 @@ def _metrics(
     bodies: BodyScreen | None = None,
     joints: JointScreen | None = None,
     joint_lims: dict[str, float] | None = None,
+    torsional_frequency: float | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -331,6 +345,7 @@ def _metrics(
         m53,
         bodies,
         joints,
+        torsional_frequency,
     )
 
 
@@ -432,7 +447,10 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         lc.engine, lc.material, lc.criteria.m53_additional_bending if lc.criteria else None, file=lc.source_file
     ).additional
     g = layout.geometry
-    q = study_m53(lc, cycles)  # the counterweights enter neither UR M53's loads nor its dimensions
+    # per candidate with [torsion] (its torsional stage, study.torsion), else the counterweights
+    # enter neither UR M53's loads nor its dimensions: once
+    per_candidate = lc.torsion is not None and torsion_refusal(lc) is None
+    q = None if lc.torsion is not None else study_m53(lc, cycles)
     bm = (
         None
         if spec.stresses == "off"
@@ -462,14 +480,39 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         )
         bd = None if bm is None or per_throw_loads is None else candidate_bodies(bm, per_throw_loads, wm.load_factors)
         jt = None if jm is None else candidate_joints(jm, c, solids, shaft.mass)
-        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims))
+        f1 = None
+        if per_candidate:
+            gi = geometry_inertias(layout, c, drawn, shaft.mass, solids)
+            tr = candidate_torsion(lc, cycles, gi)
+            f1 = tr.first_frequency
+            if refusal(lc) is None:
+                # UR M53 reads the dynamics stage's pin force and the journal torques, not the FE
+                # model's vibratory pin force: the throws' CAD J_z stands for the FE inertia
+                tl = torsional_loads(lc.engine, cycles, tr, gi, reaction=lc.fe.torque_reaction)
+                q = study_m53(lc, cycles, tl)
+        results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims, f1))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
     if lc.engine.gas is None:
         notes.append("the engine has no gas table: full load is the inertia load, no separate no-load state")
-    if lc.torsion is not None:
-        notes.append("journal torques quasi-static (the torsional stage's vibratory torque enters the full check only)")
-    if q is not None:
+    if lc.torsion is not None and per_candidate:
+        notes.append(
+            "torsional stage per candidate (the check's, torsion.stage): the chain with the throws' inertias of "
+            "the geometry the candidate writes (exact CAD J_z plus the rods and pistons), every cylinder firing "
+            "and each misfire case; its first natural frequency in the table"
+        )
+        notes.append(TORSION_NOT_SCREENED)
+    elif lc.torsion is not None:
+        notes.append(f"torsional stage not run per candidate ({torsion_refusal(lc)}); " + TORSION_NOT_SCREENED)
+    if lc.torsion is not None and q is not None:
+        notes.append(
+            "UR M53 Q per candidate, computed as the check does: the journal torques of the candidate's own "
+            "torsional stage (vibratory, UR M53 2.2.2's hand-over of the largest alternating torque over the "
+            "speed range and every misfire case)"
+        )
+    elif lc.torsion is not None:
+        notes.append(f"UR M53 Q not screened: {refusal(lc) or torsion_refusal(lc)}")
+    elif q is not None:
         notes.append(
             f"UR M53 Q {q.acceptability:.4g} ({q.where}): computed once, every candidate's (the counterweights "
             "enter neither UR M53's loads nor its dimensions without [torsion]); quasi-static journal torque"
