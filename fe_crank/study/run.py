@@ -47,10 +47,9 @@ from fe_crank.study.screen import (
     study_shaft,
 )
 from fe_crank.study.spec import StudySpec
-from fe_crank.study.torsion import candidate_torsion, geometry_inertias
 from fe_crank.study.torsion import refusal as torsion_refusal
+from fe_crank.study.torsion import screen_torsion
 from fe_crank.torsion.loads import assessed_loads
-from fe_crank.torsion.stage import torsional_loads
 
 
 @dataclass(frozen=True)
@@ -118,17 +117,16 @@ class StudyResult:
 
 #: what the study screens on the rigid shaft's loads with a ``[torsion]`` section
 TORSION_NOT_SCREENED = (
-    "the bearing loads, web moments, fillet and counterweight stresses take the rigid shaft's journal torques "
-    "and no torsional angular acceleration; the full check adds the vibratory journal torque and the throws' "
-    "vibratory inertia torque to them"
+    "the whole shaft's bearing loads, web moments and fillet stresses take the rigid shaft's journal torques "
+    "(the check's whole-shaft model takes the vibratory journal torques at the operating speed's firing "
+    "state, every journal carrying its own torque)"
 )
 
-#: why the study does not screen the bolted joints with a ``[torsion]`` section
+#: why the study does not screen the bolted joints when it cannot run the torsional stage per candidate
 JOINT_TORSION = (
     "with a [torsion] section the check adds the throw's torsional angular acceleration to each bolted "
     "counterweight's tangential inertia and the vibratory pin force to the web's deformation, both of which "
-    "the candidate's counterweights change through the shaft's inertia; the study does not run the torsional "
-    "stage per candidate"
+    "the candidate's counterweights change through the shaft's inertia"
 )
 
 
@@ -202,9 +200,9 @@ def prepare(lc: LoadCase, spec: StudySpec):
                 file=spec.file,
                 key=f"study.limits.{k}",
             )
-        if k in spec.limits and lc.torsion is not None:
+        if k in spec.limits and torsion_refusal(lc) is not None:
             raise InputError(
-                JOINT_TORSION + ": judge the joints by the full check of the chosen candidate",
+                f"{JOINT_TORSION}; {torsion_refusal(lc)}",
                 file=spec.file,
                 key=f"study.limits.{k}",
             )
@@ -456,9 +454,11 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         if spec.stresses == "off"
         else body_model(lc, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
     )
-    per_throw_loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if bm is not None else None
-    jm = joint_model(lc, layout, bm, cycles) if bm is not None and has_bolted(layout) and lc.torsion is None else None
-    j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if jm is not None else ({}, "")
+    rigid = bm is not None and lc.torsion is None  # the per-throw model's loads: the same for every candidate
+    per_throw_loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if rigid else None
+    joints_screened = bm is not None and has_bolted(layout) and (lc.torsion is None or per_candidate)
+    jm = joint_model(lc, layout, bm, cycles) if joints_screened and rigid and bm is not None else None
+    j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if joints_screened else ({}, "")
     results = []
     for c in cands:
         wm = written_mass(layout, c, drawn, shaft.mass, solids)
@@ -478,18 +478,14 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         os = candidate_overspeed(
             shaft, [candidate_loads(shaft, b, wm.load_factors, drawn, envelope=False) for b in os_bases], lc.material
         )
-        bd = None if bm is None or per_throw_loads is None else candidate_bodies(bm, per_throw_loads, wm.load_factors)
-        jt = None if jm is None else candidate_joints(jm, c, solids, shaft.mass)
         f1 = None
+        c_loads, c_jm = per_throw_loads, jm
         if per_candidate:
-            gi = geometry_inertias(layout, c, drawn, shaft.mass, solids)
-            tr = candidate_torsion(lc, cycles, gi)
-            f1 = tr.first_frequency
-            if refusal(lc) is None:
-                # UR M53 reads the dynamics stage's pin force and the journal torques, not the FE
-                # model's vibratory pin force: the throws' CAD J_z stands for the FE inertia
-                tl = torsional_loads(lc.engine, cycles, tr, gi, reaction=lc.fe.torque_reaction)
-                q = study_m53(lc, cycles, tl)
+            ts = screen_torsion(lc, cycles, layout, c, drawn, shaft.mass, solids, bm, joints_screened)
+            f1, q, c_jm = ts.frequency, ts.m53, ts.joints
+            c_loads = ts.loads if bm is not None else None
+        bd = None if bm is None or c_loads is None else candidate_bodies(bm, c_loads, wm.load_factors)
+        jt = None if c_jm is None else candidate_joints(c_jm, c, solids, shaft.mass)
         results.append(_metrics(c, loads, shaft, drawn, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims, f1))
     best, why = recommend(tuple(results), spec.rule)
     notes = []
@@ -519,13 +515,19 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         )
     else:
         notes.append(f"UR M53 Q not screened: {refusal(lc)}")
-    if jm is not None:
+    if joints_screened:
         notes.append(
             "bolted joints (VDI 2230) screened by the check's own joint check over its load states, the web's "
-            f"deformation from the per-throw model; judged by {j_whose}: "
+            "deformation from the per-throw model"
+            + (
+                "; with the candidate's torsional angular acceleration and vibratory pin force"
+                if lc.torsion is not None
+                else ""
+            )
+            + f"; judged by {j_whose}: "
             + ", ".join(f"{k} {v:g}" for k, v in j_lims.items())
         )
     elif has_bolted(layout):
-        why_not = JOINT_TORSION if lc.torsion is not None else 'stresses = "off": no per-throw model'
+        why_not = 'stresses = "off": no per-throw model' if bm is None else f"{JOINT_TORSION}; {torsion_refusal(lc)}"
         notes.append(f"bolted joints not screened ({why_not}); judge them by the full check")
     return StudyResult(spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm, j_lims, jm)

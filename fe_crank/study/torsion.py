@@ -17,15 +17,21 @@ geometry: the same response for every candidate."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import cast
 
+from fe_crank.assess.loads import AssessedLoads
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import EngineCycles
+from fe_crank.study.bodies import BodyModel
 from fe_crank.study.candidates import Candidate, DrawnWeb, ThrowSolidCache, Web, written_throw
+from fe_crank.study.joints import JointModel, joint_model
+from fe_crank.study.m53 import M53Screen, study_m53
+from fe_crank.study.m53 import refusal as m53_refusal
 from fe_crank.torsion.build import with_cylinders
 from fe_crank.torsion.model import TorsionCase
-from fe_crank.torsion.stage import TorsionalResponse, torsional_response
+from fe_crank.torsion.stage import TorsionalResponse, torsional_loads, torsional_response
 
 
 def refusal(lc: LoadCase) -> str | None:
@@ -64,4 +70,42 @@ def candidate_torsion(lc: LoadCase, cycles: EngineCycles, geometry_inertia: dict
     return torsional_response(cast(TorsionCase, lc), cycles, inertias=with_cylinders(lc.engine, geometry_inertia))
 
 
-__all__ = ["candidate_torsion", "geometry_inertias", "refusal"]
+@dataclass(frozen=True)
+class TorsionScreen:
+    """What one candidate's torsional stage gives the study."""
+
+    frequency: float  # Hz, the chain's first elastic natural frequency
+    loads: AssessedLoads  # every speed and state with the candidate's vibration
+    m53: M53Screen | None  # UR M53's least Q on them (None: ``study.m53.refusal``)
+    joints: JointModel | None  # the bolted throws' load states on them (None: not asked for)
+
+
+def screen_torsion(
+    lc: LoadCase,
+    cycles: EngineCycles,
+    layout: ShaftLayout,
+    cand: Candidate,
+    drawn: dict[Web, DrawnWeb],
+    mass: dict,
+    solids: ThrowSolidCache,
+    body: BodyModel | None,
+    joints: bool,
+) -> TorsionScreen:
+    """One candidate's torsional stage (module doc) and what the study screens on its loads
+    as the check does on its torsional stage's: UR M53's Q (``study.m53``) and, with
+    ``joints`` and the per-throw model ``body``, the bolted joints' load states
+    (``study.joints.joint_model``: the throw's torsional angular acceleration and the
+    vibratory pin force).  The loads' FE inertia (``torsion.flow.fe_loads``) is that of the
+    drawn per-throw model's angular-acceleration case (``study.bodies``), the check's for
+    the geometry written with the drawn counterweights; without that model (UR M53 alone,
+    which reads neither the FE pin force nor that case) the CAD J_z stands for it."""
+    gi = geometry_inertias(layout, cand, drawn, mass, solids)
+    response = candidate_torsion(lc, cycles, gi)
+    fe_j = body.fe_inertia if body is not None else gi
+    loads = torsional_loads(lc.engine, cycles, response, fe_j, reaction=lc.fe.torque_reaction)
+    q = study_m53(lc, cycles, loads) if m53_refusal(lc) is None else None
+    jm = joint_model(lc, layout, body, cycles, loads) if joints and body is not None else None
+    return TorsionScreen(response.first_frequency, loads, q, jm)
+
+
+__all__ = ["TorsionScreen", "candidate_torsion", "geometry_inertias", "refusal", "screen_torsion"]
