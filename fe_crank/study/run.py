@@ -117,9 +117,9 @@ class StudyResult:
 
 #: what the study screens on the rigid shaft's loads with a ``[torsion]`` section
 TORSION_NOT_SCREENED = (
-    "the whole shaft's bearing loads, web moments and fillet stresses take the rigid shaft's journal torques "
-    "(the check's whole-shaft model takes the vibratory journal torques at the operating speed's firing "
-    "state, every journal carrying its own torque)"
+    "the whole shaft's bearing loads, web moments and fillet stresses are screened as without [torsion]: "
+    "the check's whole-shaft model with [torsion] has every journal carry its own torque (its torque-flow "
+    "cases) and takes the torsional stage's journal torques at the operating speed's firing state"
 )
 
 #: why the study does not screen the bolted joints when it cannot run the torsional stage per candidate
