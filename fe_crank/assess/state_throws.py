@@ -50,7 +50,12 @@ def joint_speed(a: AssessInputs, dynamics: DynamicsResult, alpha: np.ndarray | N
     (``cw_joint.cycle_speed_data``), plus the largest torsional angular acceleration of the
     throw (``alpha``, None without [torsion]): the sum of the two maxima bounds the
     largest of their sum."""
-    delta, rigid = cycle_speed_data(dynamics, a.cycles.operating.flywheel_inertia)
+    return speed_data(dynamics, a.cycles.operating.flywheel_inertia, alpha)
+
+
+def speed_data(dynamics: DynamicsResult, flywheel_inertia: float, alpha: np.ndarray | None) -> tuple[float, float]:
+    """``joint_speed`` of a cycle with the flywheel inertia ``flywheel_inertia`` (kg m^2)."""
+    delta, rigid = cycle_speed_data(dynamics, flywheel_inertia)
     return delta, rigid + (float(max(abs(alpha))) if alpha is not None else 0.0)
 
 
@@ -121,4 +126,4 @@ def assess_state(
     return tuple(out)
 
 
-__all__ = ["places_of", "state_dynamics", "cycle_dynamics", "joint_speed", "assess_state"]
+__all__ = ["places_of", "state_dynamics", "cycle_dynamics", "joint_speed", "speed_data", "assess_state"]

@@ -122,19 +122,47 @@ class ThrowContext:
     geometry_file: str = ""
 
 
+def fe_coefficients(
+    unit: UnitStresses,
+    pin_force: np.ndarray,
+    torque: np.ndarray,
+    omega: float,
+    *,
+    sense: int,
+    rod_loads: RodLoads | None = None,
+    angular_acceleration: np.ndarray | None = None,
+    fe_pin_force: np.ndarray | None = None,
+    fe_rod_loads: RodLoads | None = None,
+) -> np.ndarray:
+    """The unit cases' coefficients over one cycle of a throw (``superpose
+    .cycle_coefficients``), with the torsional vibration when there is one (``ThrowContext``:
+    ``angular_acceleration``, the FE pin force and the rods' FE loads); ``assess_throw``
+    and the counterweight study (``fe_crank.study``) take them."""
+    return cycle_coefficients(
+        unit,
+        pin_force if fe_pin_force is None else fe_pin_force,
+        torque,
+        omega,
+        sense=sense,
+        rod_loads=rod_loads if fe_rod_loads is None else fe_rod_loads,
+        angular_acceleration=angular_acceleration,
+        vibration=fe_pin_force is not None and fe_rod_loads is None,
+    )
+
+
 def assess_throw(ctx: ThrowContext) -> ThrowAssessment:
     """Assess one throw (``ThrowContext`` says from what)."""
     overspeed_loads = ctx.overspeed_loads
-    fe_pin = ctx.pin_force if ctx.fe_pin_force is None else ctx.fe_pin_force
-    coeffs = cycle_coefficients(
+    coeffs = fe_coefficients(
         ctx.unit,
-        fe_pin,
+        ctx.pin_force,
         ctx.torque,
         ctx.omega,
         sense=ctx.sense,
-        rod_loads=ctx.rod_loads if ctx.fe_rod_loads is None else ctx.fe_rod_loads,
+        rod_loads=ctx.rod_loads,
         angular_acceleration=ctx.angular_acceleration,
-        vibration=ctx.fe_pin_force is not None and ctx.fe_rod_loads is None,
+        fe_pin_force=ctx.fe_pin_force,
+        fe_rod_loads=ctx.fe_rod_loads,
     )
     coeffs_os = None
     if ctx.overspeed is not None and ctx.extremes is None:

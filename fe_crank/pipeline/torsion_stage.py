@@ -13,9 +13,9 @@ from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.outputs import GeometryModel, TorsionOutput
 from fe_crank.torsion.analysis import with_vibratory_torque
 from fe_crank.torsion.build import throw_inertias
-from fe_crank.torsion.loads import assessed_loads, fe_inertias
-from fe_crank.torsion.misfire import analyse_misfire
+from fe_crank.torsion.loads import fe_inertias
 from fe_crank.torsion.model import TorsionCase
+from fe_crank.torsion.stage import torsional_loads, torsional_response
 from fe_crank.torsion.stiffness import fe_throw_stiffness
 
 
@@ -25,11 +25,11 @@ def torsion_stage(
     """The torsional forced response (``torsion.analysis``) excited by the dynamics stage's
     cylinder torques (``cycles.torques``), with the throws' inertias from
     the geometry stage's CAD mass properties, with every cylinder firing and with each
-    misfire case of ``[operating] misfire`` (``torsion.misfire.analyse_misfire``); the FE
+    misfire case of ``[operating] misfire`` (``torsion.stage.torsional_response``); the FE
     throw stiffness is measured from the torque unit case when it is there (the report
     shows it beside Carter's; it is used when ``throw_stiffness = "fe"``).  Hands over the
     loads of every speed of the sweep and state with their vibration
-    (``torsion.loads.assessed_loads``) and UR M53's journal torques (the largest half
+    (``torsion.stage.torsional_loads``) and UR M53's journal torques (the largest half
     range over the speed range and every case, ``torsion.handover``)."""
     settings = lc.torsion
     assert settings is not None
@@ -40,18 +40,16 @@ def torsion_stage(
             "throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file, key="torsion.throw_stiffness"
         )
     # a CAD geometry with [torsion] is refused at input (io.loadcase): the case is a TorsionCase
-    mis = analyse_misfire(
-        lc, cycles.torques, inertias=throw_inertias(cast(TorsionCase, lc), geo.solids), fe_stiffness=k_fe
+    response = torsional_response(
+        cast(TorsionCase, lc), cycles, inertias=throw_inertias(cast(TorsionCase, lc), geo.solids), fe_stiffness=k_fe
     )
-    handed = mis.journal_torques()
-    loads = assessed_loads(
+    mis, handed = response.misfire, response.handed
+    loads = torsional_loads(
         lc.engine,
         cycles,
+        response,
+        fe_inertias(unit_solutions, cycles.operating.throws),
         reaction=lc.fe.torque_reaction,
-        torsion=mis.firing,
-        misfire_torsion={c.cylinder: c.result for c in mis.cases},
-        fe_inertia=fe_inertias(unit_solutions, cycles.operating.throws),
-        handed=handed,
     )
     return TorsionOutput(
         mis.firing,

@@ -14,9 +14,13 @@ throw's exact mass properties, ``geometry.mass``: the written sector's mass, cen
 mass and joint geometry; the bolts as drawn); a candidate that cannot be built keeps the
 drawn counterweight scaled in mass by k_w.  The web's deformation comes from the
 per-throw model of the drawn geometry (``study.bodies``), its coefficients per load state
-as the check's (``assess.superpose.cycle_coefficients``), and each throw's joints in each
+as the check's (``assess.throw.fe_coefficients``), and each throw's joints in each
 load state of the check (every speed of the full-load curve, firing and each misfire
-case) are checked by ``assess.throw.throw_joints``, the check's own call.  The study keeps,
+case) are checked by ``assess.throw.throw_joints``, the check's own call.  With
+``[torsion]`` the load states are the candidate's own torsional stage's (``study.torsion``):
+the throw's torsional angular acceleration added to the rigid one
+(``assess.state_throws.speed_data``) and the vibratory pin force and angular-acceleration
+case in the coefficients, as the check.  The study keeps,
 per VDI 2230 quantity of the check's criteria (``assess.joint_criteria.JOINT_QUANTITIES``),
 the worst over the joints and states, and where.
 
@@ -35,12 +39,10 @@ import numpy as np
 
 from fe_crank.assess.adapters import counterweights_of
 from fe_crank.assess.counterweight import CounterweightData
-from fe_crank.assess.cw_joint import cycle_speed_data
 from fe_crank.assess.joint_criteria import DEFAULT_LIMITS, JOINT_QUANTITIES, with_default_limits
 from fe_crank.assess.loads import AssessedLoads
-from fe_crank.assess.state_throws import cycle_dynamics
-from fe_crank.assess.superpose import cycle_coefficients
-from fe_crank.assess.throw import throw_joints
+from fe_crank.assess.state_throws import cycle_dynamics, speed_data
+from fe_crank.assess.throw import fe_coefficients, throw_joints
 from fe_crank.errors import InputError
 from fe_crank.fe.throw.pin_patches import rod_loads
 from fe_crank.geometry.shaft import ShaftLayout
@@ -119,24 +121,40 @@ class JointScreen:
     refused: str | None = None  # why the check could not check a written joint (its own message)
 
 
-def joint_model(lc: LoadCase, layout: ShaftLayout, body: BodyModel, cycles: EngineCycles) -> JointModel:
-    """Every load state of the check (``loads``: ``torsion.loads.assessed_loads``) of every
-    throw that carries a bolted counterweight as drawn (module doc)."""
-    loads: AssessedLoads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction)
+def joint_model(
+    lc: LoadCase, layout: ShaftLayout, body: BodyModel, cycles: EngineCycles, loads: AssessedLoads | None = None
+) -> JointModel:
+    """Every load state of the check (``loads``: ``torsion.loads.assessed_loads``, by default
+    the rigid shaft's; with [torsion] a candidate's loads with its vibration,
+    ``torsion.stage.torsional_loads``) of every throw that carries a bolted counterweight as
+    drawn (module doc)."""
+    if loads is None:
+        loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction)
     dyn = cycle_dynamics(cycles)
     bolted = {th.name for th in layout.throws if any(cw.bolted is not None for cw in th.spec.counterweights)}
     j_fly = cycles.operating.flywheel_inertia
     out = []
     for states in loads.speeds:
         for state in states:
-            speed_data = cycle_speed_data(dyn[state.speed, state.case], j_fly)
             for name in sorted(bolted):
                 tc = state.throws[name]
                 places = body.places[name]
                 rods = rod_loads(tc, places)
-                coeffs = cycle_coefficients(
-                    body.units[name], tc.pin_force, tc.torque_in, state.speed, sense=body.senses[name], rod_loads=rods
+                # with [torsion]: the throw's vibration, as the check's assess_throw
+                coeffs = fe_coefficients(
+                    body.units[name],
+                    tc.pin_force,
+                    tc.torque_in,
+                    state.speed,
+                    sense=body.senses[name],
+                    rod_loads=rods,
+                    angular_acceleration=tc.angular_acceleration,
+                    fe_pin_force=tc.fe_pin_force,
+                    fe_rod_loads=tc.fe_rod_loads(places) if tc.fe_rods else None,
                 )
+                # the check's ``assess.state_throws.joint_speed``: with [torsion] the throw's
+                # largest torsional angular acceleration added to the rigid one
+                joint_speed = speed_data(dyn[state.speed, state.case], j_fly, tc.angular_acceleration)
                 os_loads = [
                     (s.throws[name].pin_force, s.throws[name].torque_in, rod_loads(s.throws[name], places))
                     for s in loads.overspeed
@@ -151,7 +169,7 @@ def joint_model(lc: LoadCase, layout: ShaftLayout, body: BodyModel, cycles: Engi
                         state.speed,
                         body.senses[name],
                         coeffs,
-                        speed_data,  # without [torsion]: the check's (``assess.state_throws.joint_speed``)
+                        joint_speed,
                         rods,
                         os_loads or None,
                     )

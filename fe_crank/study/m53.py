@@ -11,8 +11,11 @@ each rod at its place on the pin (``fe.throw.pin_patches``), UR M53's sigma_add 
 (``rules.m53.basis``) and, per throw, ``assess.throw.m53_fillets``; the least Q over every
 state, throw and fillet (the check's ``min_m53_acceptability``, ``assess.criteria``).
 
-With a ``[torsion]`` section the vibratory journal torque depends on the shaft's
-inertia, which the counterweights change: not screened (``refusal``)."""
+With a ``[torsion]`` section the journal torques are the torsional stage's (their
+vibratory part, and UR M53's hand-over of the largest alternating torque, depend on the
+shaft's inertia, which the counterweights change): ``study_m53`` then takes the loads of
+the candidate's own torsional stage (``study.torsion``, ``torsion.stage.torsional_loads``),
+as the check takes its torsional stage's; Q is the candidate's."""
 
 from __future__ import annotations
 
@@ -20,6 +23,7 @@ import math
 from dataclasses import dataclass
 
 from fe_crank.assess.adapters import m53_geometry_of
+from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.throw import m53_fillets
 from fe_crank.fe.throw.pin_patches import rod_loads, rod_positions
 from fe_crank.geometry.spec import CrankGeometry
@@ -45,12 +49,6 @@ def refusal(lc: LoadCase) -> str | None:
     """Why the study cannot give the check's Q of its candidates (None: it can)."""
     g = lc.geometry
     m = lc.material
-    if lc.torsion is not None:
-        return (
-            "with a [torsion] section UR M53 takes the vibratory journal torque, which the candidate's "
-            "counterweights change through the shaft's inertia; the study does not run the torsional "
-            "stage per candidate: judge Q by the full check of the chosen candidate"
-        )
     if m is None or m.tensile_strength is None or m.m53_k is None:
         return "UR M53 needs the material's tensile strength and its UR M53 factor K (material.m53_k)"
     m53g = m53_geometry_of(g) if isinstance(g, CrankGeometry) else None
@@ -64,15 +62,18 @@ def refusal(lc: LoadCase) -> str | None:
     return None
 
 
-def study_m53(lc: LoadCase, cycles: EngineCycles) -> M53Screen | None:
-    """Q of every candidate (module doc); None when ``refusal`` says why not."""
+def study_m53(lc: LoadCase, cycles: EngineCycles, loads: AssessedLoads | None = None) -> M53Screen | None:
+    """Q (module doc): without ``[torsion]`` every candidate's, on the rigid shaft's torque
+    flow; ``loads``: a candidate's loads with its torsional vibration
+    (``torsion.stage.torsional_loads``).  None when ``refusal`` says why not."""
     if refusal(lc) is not None:
         return None
     g, mat = lc.geometry, lc.material
     assert isinstance(g, CrankGeometry) and mat is not None
     m53g = m53_geometry_of(g)
     basis = m53_basis(lc.engine, mat, lc.criteria.m53_additional_bending if lc.criteria else None, file=lc.source_file)
-    loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction)
+    if loads is None:
+        loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction)
     places = {t.name: rod_positions(lc.engine, t.name, g.crankpin_length) for t in lc.engine.throws}
     best = M53Screen(math.inf, "", math.nan)
     for states in loads.speeds:

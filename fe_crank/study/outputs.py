@@ -28,6 +28,7 @@ COLUMNS = (
     ("counterweight_mass_kg", "cw mass kg"),
     ("mass_change_kg", "shaft mass change kg"),
     ("polar_inertia_change_kg_m2", "J change kg m^2"),
+    ("first_torsional_frequency_hz", "1st torsional natural frequency Hz"),
     ("peak_main_bearing_load_n", "peak bearing load N"),
     ("peak_specific_load_mpa", "peak specific load MPa"),
     ("max_web_bending_moment_nm", "max web moment N m"),
@@ -68,6 +69,7 @@ def row(r: CandidateResult, recommended: bool) -> dict:
         "counterweight_mass_kg": r.counterweight_mass,
         "mass_change_kg": r.mass_change,
         "polar_inertia_change_kg_m2": r.polar_inertia_change,
+        "first_torsional_frequency_hz": r.torsional_frequency,
         "peak_main_bearing_load_n": r.peak_bearing_load,
         "peak_specific_load_mpa": r.peak_specific_load / 1e6,
         "max_web_bending_moment_nm": r.max_web_moment,
@@ -106,8 +108,11 @@ def _joint(r: CandidateResult, column: str) -> float | None:
 
 def detail(r: CandidateResult) -> dict:
     c = r.candidate
+    own = row(r, False)
+    if r.torsional_frequency is None:  # a column of the study with [torsion] alone
+        del own["first_torsional_frequency_hz"]
     return {
-        **row(r, False),
+        **own,
         "peak_where": r.peak_where,
         "web_moment_where": r.web_where,
         "stresses_where": None

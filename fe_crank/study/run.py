@@ -48,6 +48,8 @@ from fe_crank.study.screen import (
     study_shaft,
 )
 from fe_crank.study.spec import StudySpec
+from fe_crank.study.torsion import refusal as torsion_refusal
+from fe_crank.study.torsion import screen_torsion
 from fe_crank.torsion.loads import assessed_loads
 
 
@@ -85,6 +87,9 @@ class CandidateResult:
     #: the bolted counterweights' VDI 2230 figures over the check's load states
     #: (``study.joints``; None without a bolted counterweight or with ``stresses = "off"``)
     joints: JointScreen | None = None
+    #: the first elastic natural frequency of the candidate's torsional chain, Hz
+    #: (``study.torsion``; None without [torsion] or when not screened)
+    torsional_frequency: float | None = None
 
     @property
     def meets_limits(self) -> bool:
@@ -114,12 +119,18 @@ class StudyResult:
     by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = field(default_factory=dict)
 
 
-#: why the study does not screen the bolted joints with a ``[torsion]`` section
+#: what the study screens on the rigid shaft's loads with a ``[torsion]`` section
+TORSION_NOT_SCREENED = (
+    "the whole shaft's bearing loads, web moments and fillet stresses are screened as without [torsion]: "
+    "the check's whole-shaft model with [torsion] has every journal carry its own torque (its torque-flow "
+    "cases) and takes the torsional stage's journal torques at the operating speed's firing state"
+)
+
+#: why the study does not screen the bolted joints when it cannot run the torsional stage per candidate
 JOINT_TORSION = (
     "with a [torsion] section the check adds the throw's torsional angular acceleration to each bolted "
     "counterweight's tangential inertia and the vibratory pin force to the web's deformation, both of which "
-    "the candidate's counterweights change through the shaft's inertia; the study does not run the torsional "
-    "stage per candidate"
+    "the candidate's counterweights change through the shaft's inertia"
 )
 
 
@@ -193,18 +204,18 @@ def prepare(lc: LoadCase, spec: StudySpec):
                 file=spec.file,
                 key=f"study.limits.{k}",
             )
-        if k in spec.limits and lc.torsion is not None:
+        if k in spec.limits and torsion_refusal(lc) is not None:
             raise InputError(
-                JOINT_TORSION + ": judge the joints by the full check of the chosen candidate",
+                f"{JOINT_TORSION}; {torsion_refusal(lc)}",
                 file=spec.file,
                 key=f"study.limits.{k}",
             )
     if M53_LIMIT in spec.limits:
-        why = refusal(lc)
-        if why is None and not (lc.criteria is not None and lc.criteria.m53_quasi_static_torque):
+        why = refusal(lc) or torsion_refusal(lc)
+        if why is None and lc.torsion is None and not (lc.criteria is not None and lc.criteria.m53_quasi_static_torque):
             why = (
-                "UR M53 2.2 takes the torsional stress from a forced-vibration calculation, which varies with "
-                "the candidate's inertia and the study does not run; to screen Q on the quasi-static journal "
+                "UR M53 2.2 takes the torsional stress from a forced-vibration calculation: give the load case a "
+                "[torsion] section (the study runs it per candidate) or, to screen Q on the quasi-static journal "
                 "torque (not UR M53-conform), set criteria.m53_quasi_static_torque = true in the load case"
             )
         if why is not None:
@@ -227,6 +238,7 @@ def _metrics(
     bodies: BodyScreen | None = None,
     joints: JointScreen | None = None,
     joint_lims: dict[str, float] | None = None,
+    torsional_frequency: float | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -335,6 +347,7 @@ def _metrics(
         m53,
         bodies,
         joints,
+        torsional_frequency,
     )
 
 
@@ -420,10 +433,10 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         lc.engine, lc.material, lc.criteria.m53_additional_bending if lc.criteria else None, file=lc.source_file
     ).additional
     g = layout.geometry
-    q = study_m53(lc, cycles)  # the counterweights enter neither UR M53's loads nor its dimensions
-    per_throw_loads = (
-        assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if spec.stresses != "off" else None
-    )
+    # per candidate with [torsion] (its torsional stage, study.torsion), else the counterweights
+    # enter neither UR M53's loads nor its dimensions: once
+    per_candidate = lc.torsion is not None and torsion_refusal(lc) is None
+    q = None if lc.torsion is not None else study_m53(lc, cycles)
     results = []
     first = None
     by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = {}
@@ -454,9 +467,11 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
             if spec.stresses == "off"
             else body_model(lc, layout_o, size=size, cache_dir=cache_dir, max_elements=max_elements)
         )
-        has_joints = bm is not None and has_bolted(layout_o) and lc.torsion is None
-        jm = joint_model(lc, layout_o, bm, cycles) if has_joints and bm is not None else None
-        j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if jm is not None else ({}, "")
+        rigid = bm is not None and lc.torsion is None  # the per-throw model's loads: the same for every candidate
+        per_throw_loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if rigid else None
+        joints_screened = bm is not None and has_bolted(layout_o) and (lc.torsion is None or per_candidate)
+        jm = joint_model(lc, layout_o, bm, cycles) if joints_screened and rigid and bm is not None else None
+        j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if joints_screened else ({}, "")
         if first is None:
             first = (shaft, drawn_o, bm, j_lims, j_whose, jm)
         by_offset[off] = (shaft, drawn_o)
@@ -482,13 +497,15 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
                 [candidate_loads(shaft, b, wm.load_factors, drawn_o, envelope=False) for b in os_bases],
                 lc.material,
             )
-            bd = (
-                None
-                if bm is None or per_throw_loads is None
-                else candidate_bodies(bm, per_throw_loads, wm.load_factors)
-            )
-            jt = None if jm is None else candidate_joints(jm, c, solids, shaft.mass)
-            results.append(_metrics(c, loads, shaft, drawn_o, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims))
+            f1 = None
+            c_loads, c_jm = per_throw_loads, jm
+            if per_candidate:
+                ts = screen_torsion(lc, cycles, layout_o, c, drawn_o, shaft.mass, solids, bm, joints_screened)
+                f1, q, c_jm = ts.frequency, ts.m53, ts.joints
+                c_loads = ts.loads if bm is not None else None
+            bd = None if bm is None or c_loads is None else candidate_bodies(bm, c_loads, wm.load_factors)
+            jt = None if c_jm is None else candidate_joints(c_jm, c, solids, shaft.mass)
+            results.append(_metrics(c, loads, shaft, drawn_o, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims, f1))
     results.sort(key=lambda r: r.candidate.index)
     assert first is not None
     shaft, drawn, bm, j_lims, j_whose, jm = first
@@ -496,23 +513,44 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     notes = []
     if lc.engine.gas is None:
         notes.append("the engine has no gas table: full load is the inertia load, no separate no-load state")
-    if lc.torsion is not None:
-        notes.append("journal torques quasi-static (the torsional stage's vibratory torque enters the full check only)")
-    if q is not None:
+    if lc.torsion is not None and per_candidate:
+        notes.append(
+            "torsional stage per candidate (the check's, torsion.stage): the chain with the throws' inertias of "
+            "the geometry the candidate writes (exact CAD J_z plus the rods and pistons), every cylinder firing "
+            "and each misfire case; its first natural frequency in the table"
+        )
+        notes.append(TORSION_NOT_SCREENED)
+    elif lc.torsion is not None:
+        notes.append(f"torsional stage not run per candidate ({torsion_refusal(lc)}); " + TORSION_NOT_SCREENED)
+    if lc.torsion is not None and q is not None:
+        notes.append(
+            "UR M53 Q per candidate, computed as the check does: the journal torques of the candidate's own "
+            "torsional stage (vibratory, UR M53 2.2.2's hand-over of the largest alternating torque over the "
+            "speed range and every misfire case)"
+        )
+    elif lc.torsion is not None:
+        notes.append(f"UR M53 Q not screened: {refusal(lc) or torsion_refusal(lc)}")
+    elif q is not None:
         notes.append(
             f"UR M53 Q {q.acceptability:.4g} ({q.where}): computed once, every candidate's (the counterweights "
             "enter neither UR M53's loads nor its dimensions without [torsion]); quasi-static journal torque"
         )
     else:
         notes.append(f"UR M53 Q not screened: {refusal(lc)}")
-    if jm is not None:
+    if joints_screened:
         notes.append(
             "bolted joints (VDI 2230) screened by the check's own joint check over its load states, the web's "
-            f"deformation from the per-throw model; judged by {j_whose}: "
+            "deformation from the per-throw model"
+            + (
+                "; with the candidate's torsional angular acceleration and vibratory pin force"
+                if lc.torsion is not None
+                else ""
+            )
+            + f"; judged by {j_whose}: "
             + ", ".join(f"{k} {v:g}" for k, v in j_lims.items())
         )
     elif has_bolted(layout):
-        why_not = JOINT_TORSION if lc.torsion is not None else 'stresses = "off": no per-throw model'
+        why_not = 'stresses = "off": no per-throw model' if bm is None else f"{JOINT_TORSION}; {torsion_refusal(lc)}"
         notes.append(f"bolted joints not screened ({why_not}); judge them by the full check")
     return StudyResult(
         spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm, j_lims, jm, by_offset

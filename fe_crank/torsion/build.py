@@ -75,9 +75,17 @@ def throw_inertias(loadcase: TorsionCase, solids: ThrowSolids | None = None) -> 
     geometry_throw = {t.name: g.throw(t.name if t.name in names else None).name for t in throws}
     if solids is None:
         solids = throw_solids(g, tuple(sorted(set(geometry_throw.values()))))
+    # J_z does not depend on the throw's angle
+    return with_cylinders(engine, {t.name: solids.of(geometry_throw[t.name]).total.inertia_axis for t in throws})
+
+
+def with_cylinders(engine, geometry_inertia: dict[str, float]) -> dict[str, float]:
+    """Each throw's inertia in the chain (kg m^2): its geometry's about the crank axis
+    (``geometry_inertia``: engine throw -> the meshed throw's CAD J_z) plus its cylinders'
+    rotating and mean reciprocating inertia (module docstring)."""
     out = {}
-    for t in throws:
-        j = solids.of(geometry_throw[t.name]).total.inertia_axis  # J_z does not depend on the throw's angle
+    for t in crank_throws(engine):
+        j = geometry_inertia[t.name]
         for c in engine.cylinders:
             if c.throw == t.name:
                 j += reciprocating_inertia(c, t.crank_radius)

@@ -35,7 +35,6 @@ from fe_crank.study.bodies import candidate_bodies
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
 from fe_crank.study.film import film_metrics
 from fe_crank.study.joints import candidate_counterweights, candidate_joints
-from fe_crank.study.m53 import refusal
 from fe_crank.study.outputs import to_toml, write_candidate
 from fe_crank.study.run import recommend, run_study
 from fe_crank.study.screen import (
@@ -448,14 +447,6 @@ def test_screened_mass_properties_are_the_written_shafts(study):
         assert np.abs(got - want).max() <= 1e-9 * np.abs(want).max()
     assert r.mass_change == pytest.approx(dm, rel=1e-9, abs=1e-12)
     assert r.polar_inertia_change == pytest.approx(dj, rel=1e-9, abs=1e-15)
-
-
-def test_m53_limit_refused_with_torsion():
-    """With [torsion] the vibratory journal torque depends on the candidate's inertia: the
-    study gives no Q and refuses its limit (the reason names the section)."""
-    lc = load_loadcase(DATA / "small_torsion.toml")
-    why = refusal(lc)
-    assert why is not None and "[torsion]" in why
 
 
 @pytest.mark.heavy
