@@ -9,7 +9,6 @@ import dataclasses
 
 import numpy as np
 import pytest
-from helpers.scf import SMALL
 
 from fe_crank.assess.criteria.judge import evaluate_criteria
 from fe_crank.assess.superpose import UnitStresses
@@ -19,8 +18,6 @@ from fe_crank.io.criteria import build_criteria
 from fe_crank.io.material import load_material
 from fe_crank.rules.m53.scf_mode import web_centres_of
 from fe_crank.rules.m53.scf_refine import FILLET_STEP, accepted_scf, refined_options
-
-GEO = dataclasses.replace(SMALL, pin_fillet_radius=0.0038, journal_fillet_radius=0.0038)
 
 
 @pytest.fixture(scope="module")
@@ -53,13 +50,42 @@ def test_next_mesh_options_refine_what_the_appendix_rejected(rejected, big_fille
     assert again.web_divisions == pytest.approx(6.0 * 1.1 * 6.0 / 5.0)
 
 
+@pytest.fixture(scope="module")
+def thick_web(tmp_path_factory):
+    """A throw outside UR M53's range (3.8 mm fillets on the 28 mm pin) with 36 mm webs
+    (one web refinement of a thick web is the cheapest real case: the thicker the web, the
+    longer its W/6 edge and the fewer the elements; about 300 k dofs), meshed at the test
+    size, and the SCF stage on it with no refinement allowed (``max_refinements=0``): the
+    SCF stage's first mesh, the check's at r/4 in the fillets with 2.6 elements across the
+    webs, as the appendix judged it.  The refusal test reads
+    that result; the refinement test continues from it (``accepted_scf(first=...)``), so
+    the first mesh is solved once."""
+    from pathlib import Path
+
+    from fe_crank.assess.adapters import m53_geometry_of
+    from fe_crank.io.geometry import load_geometry
+    from fe_crank.mesh import MeshOptions, mesh_throw
+
+    g = load_geometry(Path(__file__).resolve().parents[1] / "data" / "geometry_small.toml")
+    g = dataclasses.replace(g, crankpin_fillet=0.0038, journal_fillet=0.0038, web_thickness=0.036)
+    tm = mesh_throw(
+        g,
+        size=MeshOptions(coarse_divisions=1.2, fillet_divisions=0.8, grading=2.5),
+        cache_dir=tmp_path_factory.mktemp("thick_web_cache"),
+    )
+    geo = m53_geometry_of(g)
+    r0 = accepted_scf(tm, g, load_material("42CrMo4"), geo, web_centres=web_centres_of(g), max_refinements=0)
+    return g, tm, geo, r0
+
+
 @pytest.mark.heavy
-def test_a_rejected_scf_refuses_the_m53_criterion(big_fillet):
-    g, tm = big_fillet
+def test_a_rejected_scf_refuses_the_m53_criterion(thick_web):
+    _, _, geo, r0 = thick_web
+    assert geo.web_thickness == 0.036 and geo.pin_fillet_radius / geo.pin_diameter > 0.13  # outside UR M53 3.1
     # no refinement allowed: the SCF stage's first mesh (the check's at r/4 in the fillets,
-    # one element across the webs) is returned as the appendix judged it, rejected
-    r0 = accepted_scf(tm, g, load_material("42CrMo4"), GEO, web_centres=web_centres_of(g), max_refinements=0)
+    # 2.6 elements across the webs) is returned as the appendix judged it, rejected
     assert not r0.mesh_ok and r0.size_ok and not r0.web_ok and r0.refinement == ()
+    assert all(w.across < 6 for w in r0.web_elements)
     theta = np.deg2rad(np.arange(0.0, 720.0, 5.0))
     unit = UnitStresses(stress=np.zeros((2, 6, 1)), points=np.zeros((3, 1)), groups={}, cases=("pin_y", "torque"))
     t = assess_throw(
@@ -73,7 +99,7 @@ def test_a_rejected_scf_refuses_the_m53_criterion(big_fillet):
             overspeed=None,
             material=load_material("42CrMo4"),
             crank_radius=0.02,
-            m53_geometry=GEO,
+            m53_geometry=geo,
             scf=r0,
         )
     )
@@ -87,22 +113,14 @@ def test_a_rejected_scf_refuses_the_m53_criterion(big_fillet):
 
 
 @pytest.mark.heavy
-def test_the_check_refines_the_scf_mesh_until_the_appendix_accepts_it(tmp_path):
-    """A throw outside UR M53's range (3.8 mm fillets on the 28 mm pin) with 24 mm webs
-    (one web refinement of a thick web is the cheapest real case: ~3 GB, about a minute):
-    the test-size mesh has 2 elements across the web; the SCF stage re-meshes with the web
-    control and ends accepted, fillets within r/4, >= 6 across, every peak within App.
-    III 2.3, and says which mesh it refined and why."""
-    from pathlib import Path
-
-    from fe_crank.assess.adapters import m53_geometry_of
-    from fe_crank.io.geometry import load_geometry
-    from fe_crank.mesh import MeshOptions, mesh_throw
-
-    g = load_geometry(Path(__file__).resolve().parents[1] / "data" / "geometry_small.toml")
-    g = dataclasses.replace(g, crankpin_fillet=0.0038, journal_fillet=0.0038, web_thickness=0.024)
-    tm = mesh_throw(g, size=MeshOptions(coarse_divisions=1.2, fillet_divisions=0.8, grading=2.5), cache_dir=tmp_path)
-    r = accepted_scf(tm, g, load_material("42CrMo4"), m53_geometry_of(g), web_centres=web_centres_of(g))
+def test_the_check_refines_the_scf_mesh_until_the_appendix_accepts_it(thick_web):
+    """The thick-web throw (``thick_web``): the test-size mesh has 2.6 elements across the
+    web; the SCF stage re-meshes with the web control and ends accepted, fillets within
+    r/4, >= 6 across, every peak within App. III 2.3, and says which mesh it refined and
+    why.  It starts from the first mesh's result the fixture solved (the same call with
+    ``max_refinements=0``) rather than solving that mesh again."""
+    g, tm, geo, r0 = thick_web
+    r = accepted_scf(tm, g, load_material("42CrMo4"), geo, web_centres=web_centres_of(g), first=r0)
     assert r.mesh_ok and r.size_ok and r.web_ok and all(w.across >= 6 for w in r.web_elements)
     assert all(q["mesh_ok"] for q in r.quality.values())
     assert len(r.refinement) >= 1 and "elements across the web" in r.refinement[0]

@@ -94,7 +94,8 @@ def swept(tmp_path_factory, mesh_cache):
 
     folder = tmp_path_factory.mktemp("sweep")
     rpm = ", ".join(f'"{w} rpm"' for w in SPEEDS)
-    out = stage_outputs(_case(folder, "swept", f"speeds = [{rpm}]"), mesh_cache)
+    # what is asserted is the assessment's: the drawn states' fields are not computed
+    out = stage_outputs(_case(folder, "swept", f"speeds = [{rpm}]"), mesh_cache, render=False, write_vtu=False)
     return folder, out
 
 

@@ -64,11 +64,21 @@ def test_every_journal_carries_its_own_torque(tmp_path, mesh_cache):
     the forces its pieces exchange there, is the journal torque the assessment takes (the
     torsional stage's, vibratory part included) at every angle; and the condensed stresses
     at the assessed nodes are those of the whole field solved afresh."""
+    from fe_crank.balance.analysis import analyse_balance
+    from fe_crank.mechanism.cycles import engine_cycles
+    from fe_crank.pipeline.options import CheckOptions
+    from fe_crank.pipeline.stages import fe_stage, geometry_stage, mesh_stage
+    from fe_crank.pipeline.torsion_stage import torsion_stage
+
     lc = load_loadcase(DATA / "small_torsion.toml")
-    out = stage_outputs(DATA / "small_torsion.toml", mesh_cache, render=False, write_vtu=False)
-    dyn = out.assessed_dynamics
+    # the check's stages up to the torsional one (the calls of ``pipeline.stages.run_stages``):
+    # the journal torques the assessment takes; the whole shaft is solved here
+    balance = analyse_balance(lc.engine, lc.operating.speed, lc.balance)
+    geo = geometry_stage(lc, CheckOptions(mesh_size="test", cache_dir=str(mesh_cache)), balance)
+    units = fe_stage(lc, geo, mesh_stage(lc, geo).throws)
+    dyn = torsion_stage(lc, geo, units, engine_cycles(lc.engine, lc.operating)).dynamics
     layout = shaft_layout(lc)
-    sm = mesh_shaft(layout, size=out.geometry.plan.options, cache_dir=mesh_cache)
+    sm = mesh_shaft(layout, size=geo.plan.options, cache_dir=mesh_cache)
     result, cases = analyse_whole_shaft(sm, lc.material, dyn, mass=throw_masses(layout), torque_flow=True)
     W = result.cycles[0].weights
     sense = layout.sense

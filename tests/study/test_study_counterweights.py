@@ -454,8 +454,8 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
     """The load case the study writes with every drawn counterweight at mass factor 1 (the
     drawn shapes, the same meshes).  UR M53's Q the study reports (computed once, the same
     on every candidate, ``study.m53``) equals the ``min_m53_acceptability`` of a full
-    ``fe-crank check`` (``test`` mesh) of it, quasi-static journal torque accepted, to
-    1e-9; so do the bolted joints' VDI 2230 figures the study screens for that candidate
+    check (``test`` mesh; every stage ``fe-crank check`` runs, ``helpers.pipeline``, and
+    its results.json) of it, quasi-static journal torque accepted, to 1e-9; so do the bolted joints' VDI 2230 figures the study screens for that candidate
     (``study.joints``: the worst assembly utilisation, working, fatigue, separation and
     slip safety over the joints and load states) and the check's joint criteria, limits
     set low enough to pass.  The counterweight groups' peak screened at factors 1 (``study.bodies``: the
@@ -466,13 +466,14 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
     with the check's coefficients and evaluated at every node here (the check's
     ``max_counterweight_stress`` criterion needs a counterweight fillet, which this
     geometry does not draw)."""
+    from helpers.pipeline import stage_outputs, write_report
+
     from fe_crank.assess.group.assessment import of_counterweight
     from fe_crank.assess.group.nodes import assessed_groups, unit_stresses
     from fe_crank.assess.superpose import cycle_coefficients
     from fe_crank.fe.core.stress import von_mises as vm
     from fe_crank.fe.throw.pin_patches import rod_loads, rod_positions
     from fe_crank.pipeline.options import CheckOptions
-    from fe_crank.pipeline.stages import fe_stage, geometry_stage, mesh_stage
     from fe_crank.throw_scope import throws_of
 
     res, _, cache = study
@@ -491,10 +492,12 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
     for key in JOINT_LIMITS:  # judged, not limiting: the check's values are compared
         data["criteria"][key] = 1.0 if key.startswith("max_") else 0.01
     lc_path.write_text(to_toml(data))
-    out = tmp_path / "out"
-    assert main(["check", str(lc_path), "--mesh-size", "test", "-o", str(out), "--cache-dir", str(cache)]) == 0
-    (results,) = out.glob("*/results.json")
-    got = json.loads(results.read_text())
+    # the check's stages on it (``fe-crank check``'s calls, the same cache) and its
+    # results.json as the check writes it (figures only: no pictures, no .vtu fields)
+    checked = stage_outputs(lc_path, cache, render=False, write_vtu=False)
+    folder = tmp_path / "out" / "written"
+    assert write_report(folder, checked, CheckOptions(render=False, write_vtu=False)).status == "pass"
+    got = json.loads((folder / "results.json").read_text())
     crit = next(c for c in got["criteria"] if c["quantity"] == "m53_acceptability")
     assert q.acceptability == pytest.approx(crit["value"], rel=1e-9, abs=0.0)
     assert res.joint_model is not None
@@ -523,11 +526,11 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
         quantity = key.split("_", 1)[1]
         crit = next(c for c in got["criteria"] if c["quantity"] == quantity)
         assert joints.values[key] == pytest.approx(crit["value"], rel=1e-9, abs=0.0), key
-    # the check's per-throw model of the written load case, brute force over every node
+    # the check's per-throw model of the written load case (its FE stage's unit solutions),
+    # brute force over every node
     lc2 = load_loadcase(lc_path)
-    opts = CheckOptions(mesh_size="test", cache_dir=cache)
-    geo = geometry_stage(lc2, opts)
-    solved = fe_stage(lc2, geo, mesh_stage(lc2, geo).throws)
+    solved = checked.unit_solutions
+    assert solved
     loads = assessed_loads(lc2.engine, engine_cycles(lc2.engine, lc2.operating), reaction=lc2.fe.torque_reaction)
     names = [t.name for t in lc2.engine.throws]
     ref = 0.0

@@ -88,7 +88,8 @@ def v4_torsion(tmp_path_factory, mesh_cache):
     from helpers.pipeline import stage_outputs
 
     folder = tmp_path_factory.mktemp("v4_torsion")
-    return stage_outputs(_v4_case(folder), mesh_cache)
+    # what is asserted is the assessment's: the drawn states' fields are not computed
+    return stage_outputs(_v4_case(folder), mesh_cache, render=False, write_vtu=False)
 
 
 @pytest.mark.heavy

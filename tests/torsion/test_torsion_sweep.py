@@ -37,7 +37,8 @@ def torsion_swept(tmp_path_factory, mesh_cache):
 
     folder = tmp_path_factory.mktemp("torsion_sweep")
     p = _torsion_case(folder, "3000 rpm", 'speeds = ["1500 rpm", "2400 rpm"]\n')
-    return folder, stage_outputs(p, mesh_cache)
+    # what is asserted is the assessment's: the drawn states' fields are not computed
+    return folder, stage_outputs(p, mesh_cache, render=False, write_vtu=False)
 
 
 @pytest.mark.heavy

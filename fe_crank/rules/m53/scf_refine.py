@@ -73,14 +73,23 @@ def accepted_scf(
     web_centres: tuple[float, float] | None = None,
     solver: str = "auto",
     max_refinements: int = MAX_REFINEMENTS,
+    first: ScfResult | None = None,
 ) -> ScfResult:
     """The SCF mode (``scf.compute_scf``) on the check's ``throw_mesh`` (a ``ThrowMesh`` of
     ``geometry``: a ``CrankGeometry`` or a CAD file's ``CadInput``), refined until UR M53
-    App. III accepts the mesh or ``max_refinements`` new meshes were made (module docstring)."""
+    App. III accepts the mesh or ``max_refinements`` new meshes were made (module docstring).
+
+    ``first``: the SCF mode already solved on the first mesh (``scf_mesh(throw_mesh,
+    geometry)``) with the same material, geometry, web centres and solver, e.g. this
+    function's result with ``max_refinements=0``: taken as the first mesh's result instead
+    of solving that mesh again."""
     mesh = scf_mesh(throw_mesh, geometry)
     tried: list[str] = []
     while True:
-        result = compute_scf(mesh, material, geo, web_centres=web_centres, solver=solver)
+        if first is not None and not tried:
+            result = first
+        else:
+            result = compute_scf(mesh, material, geo, web_centres=web_centres, solver=solver)
         opts = mesh.options
         if result.mesh_ok or len(tried) >= max_refinements or not isinstance(geometry, CrankGeometry | CadInput):
             return dataclasses.replace(result, refinement=tuple(tried))
