@@ -25,10 +25,13 @@ from pathlib import Path
 
 import jsonschema
 import pytest
-from helpers.cad_files import cad_loadcase, lightened_throw_step, parametric_step, recessed_throw_step
+from helpers.cad_files import cad_loadcase, lightened_throw_step, recessed_throw_step
+from helpers.shared import copy_of, locked, shared_file
 
 from fe_crank.assess.results import load_schema
+from fe_crank.cad import CadInput, mesh_cad_throw
 from fe_crank.io.geometry import load_geometry
+from fe_crank.mesh import mesh_throw
 from fe_crank.pipeline import CheckOptions
 from fe_crank.pipeline.case import run_case
 
@@ -47,16 +50,18 @@ def _criteria(folder: Path) -> dict[str, float]:
 
 
 @pytest.fixture(scope="module")
-def shipped(tmp_path_factory):
+def shipped(tmp_path_factory, single_cylinder_step, mesh_cache):
     """loadcases/single_cylinder.toml checked on its parametric geometry and with its
     geometry as a STEP file (the engine and geometry copied beside it, the load case's other
-    sections unchanged but its crank train: both on the quasi-static journal torque)."""
+    sections unchanged but its crank train: both on the quasi-static journal torque).  Both
+    throws meshed first into the run's shared mesh cache (the check reads them back): the
+    meshes other files take of the same solids (``tests/cad/conftest.py``)."""
     tmp = tmp_path_factory.mktemp("shipped")
     for d in ("engines", "geometry", "loadcases"):
         (tmp / d).mkdir()
     (tmp / "engines" / "single_cylinder.toml").write_bytes((ROOT / "engines" / "single_cylinder.toml").read_bytes())
-    g = load_geometry(ROOT / "geometry" / "single_cylinder.toml")
-    step = parametric_step(g, tmp / "geometry" / "single_cylinder.step")
+    g, shared_step = single_cylinder_step
+    step = copy_of(shared_step, tmp / "geometry" / "single_cylinder.step")
     (tmp / "geometry" / "single_cylinder.toml").write_bytes((ROOT / "geometry" / "single_cylinder.toml").read_bytes())
     text = (ROOT / "loadcases" / "single_cylinder.toml").read_text()
     # the torsional model needs a parametric geometry: both routes on the quasi-static torque
@@ -69,9 +74,12 @@ def shipped(tmp_path_factory):
     )
     lc = tmp / "loadcases" / "single_cylinder_cad.toml"
     lc.write_text(text)
-    cache, out = tmp / "cache", tmp / "reports"
-    param = run_case(tmp / "loadcases" / "single_cylinder.toml", out, _options(cache))
-    cad = run_case(lc, out, _options(cache))
+    with locked(tmp_path_factory, "single_cylinder_test_meshes"):
+        mesh_throw(g, size="test", cache_dir=mesh_cache)
+        mesh_cad_throw(CadInput(step, density=g.density), "1", size="test", cache_dir=mesh_cache)
+    out = tmp / "reports"
+    param = run_case(tmp / "loadcases" / "single_cylinder.toml", out, _options(mesh_cache))
+    cad = run_case(lc, out, _options(mesh_cache))
     return param, cad, step
 
 
@@ -117,9 +125,14 @@ def test_results_report_and_provenance_of_a_cad_case(shipped):
 
 
 @pytest.fixture(scope="module")
-def drawn(tmp_path_factory):
+def drawn(tmp_path_factory, mesh_cache):
+    """The lightened and the recessed throw checked at ``test``; the lightened one meshed
+    first into the run's shared mesh cache, from the one export of it that
+    tests/cad/test_cad_shapes.py meshes too (the check reads the mesh back)."""
     tmp = tmp_path_factory.mktemp("drawn")
-    lightened_throw_step(tmp / "lightened.step")
+    step = copy_of(shared_file(tmp_path_factory, "lightened.step", lightened_throw_step), tmp / "lightened.step")
+    with locked(tmp_path_factory, "lightened_test_mesh"):
+        mesh_cad_throw(CadInput(step, density=7850.0), "1", size="test", cache_dir=mesh_cache)
     g = load_geometry(ROOT / "tests" / "data" / "geometry_small.toml")
     g = dataclasses.replace(g, crankpin_undercut=0.0008, journal_undercut=0.0003)
     recessed_throw_step(g, tmp / "recessed.step")
@@ -139,7 +152,7 @@ def drawn(tmp_path_factory):
             name="recessed.toml",
         ),
     )
-    return [run_case(lc, tmp / "reports", _options(tmp / "cache")) for lc in cases]
+    return [run_case(lc, tmp / "reports", _options(mesh_cache)) for lc in cases]
 
 
 def test_two_throws_the_parametric_generator_cannot_make_checked_end_to_end(drawn):

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 from helpers.cad_files import parametric_step
+from helpers.shared import locked
 
 from fe_crank.assess.group.nodes import unit_stresses
 from fe_crank.cad import CadInput, mesh_cad_throw, recognise
@@ -83,10 +84,11 @@ def test_the_cad_mesh_of_an_exported_throw_matches_the_parametric_one(small_thro
 
 
 @pytest.mark.parametrize("geometry", ["v4_90_pneumatic", "inline4"])
-def test_the_shipped_throws_fillet_peaks_by_both_routes(root, tmp_path, mesh_cache, geometry):
+def test_the_shipped_throws_fillet_peaks_by_both_routes(root, tmp_path, tmp_path_factory, mesh_cache, geometry):
     g = load_geometry(root / "geometry" / f"{geometry}.toml")
     step = parametric_step(g, tmp_path / "throw.step")
-    param = mesh_throw(g, size="test", cache_dir=mesh_cache)
+    with locked(tmp_path_factory, f"{geometry}_test_mesh"):  # the run's one mesh of it (tests/mesh/test_mesh_throw.py)
+        param = mesh_throw(g, size="test", cache_dir=mesh_cache)
     cad = mesh_cad_throw(CadInput(step, density=g.density), size="test", cache_dir=mesh_cache)
     assert set(cad.mesh.boundaries) == set(param.mesh.boundaries)
     assert cad.fillet_radii == pytest.approx(param.fillet_radii, abs=1e-9)

@@ -2,7 +2,8 @@
 with ``cad.zone.cad_zone_solid``) against the full re-mesh of the drawn throw.
 
 The shipped single-cylinder throw (shaft fillets, counterweight transition fillets, an
-oil bore) exported to STEP (``helpers.cad_files.parametric_step``), meshed by the CAD
+oil bore) exported to STEP (``helpers.cad_files.parametric_step``, once in the run:
+``tests/cad/conftest.py``), meshed by the CAD
 route at the ``test`` preset and solved for real; the study's refined level r/2 from the
 zones cut from the drawn solid equals the whole drawn throw re-meshed and re-solved at
 r/2 within ``NOISE_TOL``, the tolerance of the parametric throw's zone test on the same
@@ -20,15 +21,13 @@ from __future__ import annotations
 import dataclasses
 
 import pytest
-from helpers.cad_files import parametric_step
-from helpers.paths import ROOT
+from helpers.shared import copy_of, locked
 from helpers.verification_meshes import Steel
 
 from fe_crank.cad import CadInput, mesh_cad_throw
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.refinement.convergence import fillet_convergence, zones_apply
 from fe_crank.fe.refinement.zone_study import zone_convergence, zone_solid
-from fe_crank.io.geometry import load_geometry
 from fe_crank.mesh import PRESETS
 
 NOISE_TOL = 0.04
@@ -37,10 +36,13 @@ CASES = ("centrifugal", "pin_-y", "torque")
 
 
 @pytest.mark.heavy  # the drawn throw's zones at r/2, and the whole drawn throw at r/2 for the comparison
-def test_drawn_throw_zone_study_equals_its_full_refinement(tmp_path, mesh_cache):
-    g = load_geometry(ROOT / "geometry" / "single_cylinder.toml")
-    cad = CadInput(parametric_step(g, tmp_path / "throw.step"), density=g.density)
-    tm = mesh_cad_throw(cad, "1", size="test", cache_dir=mesh_cache)
+def test_drawn_throw_zone_study_equals_its_full_refinement(
+    tmp_path, tmp_path_factory, single_cylinder_step, mesh_cache
+):
+    g, step = single_cylinder_step
+    cad = CadInput(copy_of(step, tmp_path / "throw.step"), density=g.density)
+    with locked(tmp_path_factory, "single_cylinder_test_meshes"):  # the mesh tests/cad/test_cad_check.py takes too
+        tm = mesh_cad_throw(cad, "1", size="test", cache_dir=mesh_cache)
     opts = FeOptions(cases=CASES)
     units = solve_unit_cases(tm, Steel(), opts)
     units.system.factorisation.free()

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers.shared import locked, shared_mesh_cache
 from skfem import Basis, ElementTetP2, FacetBasis, Functional
 
 from fe_crank.errors import MeshError
@@ -36,8 +38,11 @@ ONE = Functional(lambda w: 1.0 + 0.0 * w.x[0])
 
 @pytest.fixture(scope="module")
 def seed001_test_mesh(tmp_path_factory):
+    """The single cylinder's throw at ``test``, in the run's shared mesh cache: the mesh its
+    check takes (tests/cad/test_cad_check.py), built once in the run (``helpers.shared``)."""
     g = load_geometry(SEED001)
-    return g, mesh_throw(g, size="test", cache_dir=tmp_path_factory.mktemp("cache"))
+    with locked(tmp_path_factory, "single_cylinder_test_meshes"):
+        return g, mesh_throw(g, size="test", cache_dir=shared_mesh_cache(tmp_path_factory))
 
 
 def test_named_groups_present_and_non_empty(seed001_test_mesh):
@@ -130,7 +135,12 @@ def test_vtu_round_trip(seed001_test_mesh):
 
 @pytest.mark.heavy
 def test_cache_hit_and_miss(tmp_path):
-    g = load_geometry(SEED003)
+    """On the small test throw, as throws A and B of one solid (B turned: the angle is no
+    part of the throw's solid): what the cache holds and finds does not depend on the
+    throw's size, the small throw's meshes are the quickest to build."""
+    g = load_geometry(ROOT / "tests" / "data" / "geometry_small.toml")
+    one = dataclasses.replace(g.throws[0], name="A", angle=0.0)
+    g = dataclasses.replace(g, throws=(one, dataclasses.replace(one, name="B", angle=math.pi / 2)))
     a = mesh_throw(g, size="test", cache_dir=tmp_path)
     assert not a.stats.from_cache
     b = mesh_throw(g, "B", size="test", cache_dir=tmp_path)  # throw B has the same solid
@@ -140,7 +150,7 @@ def test_cache_hit_and_miss(tmp_path):
         assert np.array_equal(a.mesh.boundaries[k], b.mesh.boundaries[k])
     renamed = dataclasses.replace(g, name="another name", file="elsewhere.toml")
     assert mesh_throw(renamed, size="test", cache_dir=tmp_path).stats.from_cache
-    changed = dataclasses.replace(g, crankpin_fillet=0.0035)
+    changed = dataclasses.replace(g, crankpin_fillet=0.003)
     c = mesh_throw(changed, size="test", cache_dir=tmp_path)
     assert not c.stats.from_cache and c.key != a.key
     other = mesh_throw(g, size=MeshOptions(coarse_divisions=1.6, fillet_divisions=1.0, grading=2.0), cache_dir=tmp_path)
@@ -156,8 +166,11 @@ def test_unknown_preset_refused():
 
 @pytest.mark.heavy
 def test_fillet_elements_at_most_r_over_4(tmp_path):
-    """IACS UR M53 guidance: element edge in every fillet <= r/4 (coarse preset, seed 003)."""
-    g = load_geometry(SEED003)
+    """IACS UR M53 guidance: element edge in every fillet <= r/4 (coarse preset).  On the
+    small test throw (``tests/data/geometry_small.toml``, 92 000 elements at ``coarse``;
+    the V4's throw takes 145 000): the fillet size is set on the fillet's own surface
+    from its radius (``fe_crank.mesh.fields``), whatever the size of the throw around it."""
+    g = load_geometry(ROOT / "tests" / "data" / "geometry_small.toml")
     tm = mesh_throw(g, size="coarse", cache_dir=tmp_path)
     assert set(tm.stats.fillet_max_edge) == {
         "crankpin_fillet_1",
@@ -187,12 +200,12 @@ def test_cli_mesh_bad_geometry_exits_2(tmp_path, capsys):
 
 
 @pytest.mark.heavy
-def test_cli_mesh_writes_statistics_and_picture(tmp_path, capsys):
+def test_cli_mesh_writes_statistics_and_picture(tmp_path, tmp_path_factory, capsys):
     from fe_crank.cli import main
 
-    rc = main(
-        ["mesh", str(SEED003), "-o", str(tmp_path / "out"), "--mesh-size", "test", "--cache-dir", str(tmp_path / "c")]
-    )
+    cache = shared_mesh_cache(tmp_path_factory)  # the V4's throw at test: tests/cad/test_cad_fe.py meshes it too
+    with locked(tmp_path_factory, "v4_90_pneumatic_test_mesh"):
+        rc = main(["mesh", str(SEED003), "-o", str(tmp_path / "out"), "--mesh-size", "test", "--cache-dir", str(cache)])
     assert rc == 0
     out = capsys.readouterr().out
     # the 180-deg sector of seed 003, 0.8872 kg, plus the material of its two 4 mm transition
@@ -264,13 +277,15 @@ def test_nodal_fillet_stress_agrees_with_quadrature_points(seed001_test_mesh):
     assert max(ratios.values()) < RATIO_LIMIT, ratios
 
 
-def test_facet_quadrature_on_curved_journal_maps_back(tmp_path):
+def test_facet_quadrature_on_curved_journal_maps_back(tmp_path_factory):
     """scikit-fem's own inverse map stuck at a unit-cube corner on this mesh (inline-4,
     test preset, journal_2); the robust inverse maps every facet point back exactly:
-    the journal diameter integrated over its surface is the drawing's."""
+    the journal diameter integrated over its surface is the drawing's.  (The mesh from
+    the run's shared cache: tests/cad/test_cad_fe.py meshes the same throw.)"""
     from fe_crank.fe.throw.unit_cases import journal_diameter
 
     g = load_geometry(ROOT / "geometry" / "inline4.toml")
-    tm = mesh_throw(g, size="test", cache_dir=tmp_path)
+    with locked(tmp_path_factory, "inline4_test_mesh"):
+        tm = mesh_throw(g, size="test", cache_dir=shared_mesh_cache(tmp_path_factory))
     for j in ("journal_1", "journal_2"):
         assert journal_diameter(tm.mesh, j) == pytest.approx(g.journal_diameter, rel=2e-3)
