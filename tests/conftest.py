@@ -20,11 +20,14 @@ def root() -> Path:
 
 @pytest.fixture(scope="session")
 def mesh_cache(tmp_path_factory) -> Path:
-    """One mesh cache folder for the tests of a process that run the check's stages on
-    the same geometries: a mesh is built once and read back after (the cache key holds
-    everything that changes a mesh, ``fe_crank.mesh.cache``).  Tests of the cache itself
-    use their own folders."""
-    return tmp_path_factory.mktemp("mesh_cache")
+    """The run's mesh cache for the tests that run the check's stages on the same
+    geometries, shared by the run's processes (``helpers.shared``): a mesh is built once
+    in the run and read back after, whichever process needs it (the cache key holds
+    everything that changes a mesh, and entries are renamed into place whole,
+    ``fe_crank.mesh.cache``).  Tests of the cache itself use their own folders."""
+    from helpers.shared import shared_mesh_cache
+
+    return shared_mesh_cache(tmp_path_factory)
 
 
 @pytest.fixture(scope="session")

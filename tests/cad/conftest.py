@@ -14,17 +14,10 @@ from pathlib import Path
 import pytest
 from helpers.cad_files import parametric_step
 from helpers.paths import ROOT
-from helpers.shared import copy_of, shared_file, shared_mesh_cache
+from helpers.shared import copy_of, shared_file
 
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.geometry import load_geometry
-
-
-@pytest.fixture(scope="session")
-def mesh_cache(tmp_path_factory) -> Path:
-    """The run's mesh cache, shared by its processes (``helpers.shared``): a mesh of the
-    shared CAD files below, or of a shipped geometry, is built once in the run."""
-    return shared_mesh_cache(tmp_path_factory)
 
 
 @pytest.fixture(scope="session")
