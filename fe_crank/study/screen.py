@@ -10,7 +10,11 @@ gas table) the applied weights are those of the shaft without counterweights
 (``fe.shaft.whole_shaft.shaft_cycle_of``, ``counterweights=False``) with the per-web cases
 added, and the bearings' laws are solved again (``fe.shaft.cycle.solve_cycle``).  With
 k_w = 1 on every drawn web this is the whole-shaft model's own "with counterweights"
-cycle (the per-web patterns sum to ``centrifugal_cw``).
+cycle (the per-web patterns sum to ``centrifugal_cw``).  With a ``[torsion]`` section the
+shaft also has the check's torque-flow cases (``study_shaft``'s ``torque_flow``): every
+journal carries its own torque in every state, and a candidate's operating firing state
+takes its own torsional journal torques (``with_operating_dynamics``), as the check's whole
+shaft.
 
 Web bending moments: the moment of every load in front of the web's mid-plane (as
 ``fe.shaft.cycle``): the shaft's without counterweights, plus the change of the bearing
