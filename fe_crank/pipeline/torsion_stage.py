@@ -11,11 +11,10 @@ from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import EngineCycles
 from fe_crank.outputs import GeometryModel, TorsionOutput
-from fe_crank.torsion.analysis import with_vibratory_torque
 from fe_crank.torsion.build import throw_inertias
 from fe_crank.torsion.loads import fe_inertias
 from fe_crank.torsion.model import TorsionCase
-from fe_crank.torsion.stage import torsional_loads, torsional_response
+from fe_crank.torsion.stage import operating_dynamics, torsional_loads, torsional_response
 from fe_crank.torsion.stiffness import fe_throw_stiffness
 
 
@@ -43,7 +42,7 @@ def torsion_stage(
     response = torsional_response(
         cast(TorsionCase, lc), cycles, inertias=throw_inertias(cast(TorsionCase, lc), geo.solids), fe_stiffness=k_fe
     )
-    mis, handed = response.misfire, response.handed
+    mis = response.misfire
     loads = torsional_loads(
         lc.engine,
         cycles,
@@ -53,7 +52,7 @@ def torsion_stage(
     )
     return TorsionOutput(
         mis.firing,
-        with_vibratory_torque(cycles.operating, mis.firing, handed=handed),
+        operating_dynamics(cycles, response),
         misfire=mis if mis.cases else None,
         loads=loads,
     )

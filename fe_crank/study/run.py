@@ -46,6 +46,7 @@ from fe_crank.study.screen import (
     engine_states,
     state_base,
     study_shaft,
+    with_operating_dynamics,
 )
 from fe_crank.study.spec import StudySpec
 from fe_crank.study.torsion import refusal as torsion_refusal
@@ -119,11 +120,17 @@ class StudyResult:
     by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = field(default_factory=dict)
 
 
-#: what the study screens on the rigid shaft's loads with a ``[torsion]`` section
+#: how the study's whole shaft takes a ``[torsion]`` section (the check's whole shaft's way)
+TORSION_SHAFT = (
+    "whole shaft with [torsion] as the check's: every journal carries its own torque in every state (the "
+    "torque-flow cases), the operating speed's firing state with the journal torques of the candidate's own "
+    "torsional stage"
+)
+
+#: what the study cannot screen on the whole shaft when it cannot run the torsional stage per candidate
 TORSION_NOT_SCREENED = (
-    "the whole shaft's bearing loads, web moments and fillet stresses are screened as without [torsion]: "
-    "the check's whole-shaft model with [torsion] has every journal carry its own torque (its torque-flow "
-    "cases) and takes the torsional stage's journal torques at the operating speed's firing state"
+    "the whole shaft's operating firing state is screened on the quasi-static journal torques (every journal "
+    "its own, the torque-flow cases): the check's takes the torsional stage's journal torques there"
 )
 
 #: why the study does not screen the bolted joints when it cannot run the torsional stage per candidate
@@ -451,6 +458,7 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
             cache_dir=cache_dir,
             max_elements=max_elements,
             stresses=spec.stresses != "off",
+            torque_flow=lc.torsion is not None,
         )
         bases = [state_base(shaft, s) for s in states]
         os_bases = (
@@ -479,7 +487,16 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
             if c.offset != off:
                 continue
             wm = written_mass(layout_o, c, drawn_o, shaft.mass, solids)
-            loads = [candidate_loads(shaft, b, wm.load_factors, drawn_o) for b in bases]
+            f1 = None
+            c_loads, c_jm, c_bases = per_throw_loads, jm, bases
+            if per_candidate:
+                ts = screen_torsion(lc, cycles, layout_o, c, drawn_o, shaft.mass, solids, bm, joints_screened)
+                f1, q, c_jm = ts.frequency, ts.m53, ts.joints
+                c_loads = ts.loads if bm is not None else None
+                # the operating speed's firing state with the candidate's own journal torques
+                assert ts.dynamics is not None
+                c_bases = with_operating_dynamics(shaft, bases, cycles.operating, ts.dynamics)
+            loads = [candidate_loads(shaft, b, wm.load_factors, drawn_o) for b in c_bases]
             st = (
                 None
                 if spec.stresses == "off"
@@ -497,12 +514,6 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
                 [candidate_loads(shaft, b, wm.load_factors, drawn_o, envelope=False) for b in os_bases],
                 lc.material,
             )
-            f1 = None
-            c_loads, c_jm = per_throw_loads, jm
-            if per_candidate:
-                ts = screen_torsion(lc, cycles, layout_o, c, drawn_o, shaft.mass, solids, bm, joints_screened)
-                f1, q, c_jm = ts.frequency, ts.m53, ts.joints
-                c_loads = ts.loads if bm is not None else None
             bd = None if bm is None or c_loads is None else candidate_bodies(bm, c_loads, wm.load_factors)
             jt = None if c_jm is None else candidate_joints(c_jm, c, solids, shaft.mass)
             results.append(_metrics(c, loads, shaft, drawn_o, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims, f1))
@@ -519,7 +530,7 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
             "the geometry the candidate writes (exact CAD J_z plus the rods and pistons), every cylinder firing "
             "and each misfire case; its first natural frequency in the table"
         )
-        notes.append(TORSION_NOT_SCREENED)
+        notes.append(TORSION_SHAFT)
     elif lc.torsion is not None:
         notes.append(f"torsional stage not run per candidate ({torsion_refusal(lc)}); " + TORSION_NOT_SCREENED)
     if lc.torsion is not None and q is not None:

@@ -10,7 +10,11 @@ gas table) the applied weights are those of the shaft without counterweights
 (``fe.shaft.whole_shaft.shaft_cycle_of``, ``counterweights=False``) with the per-web cases
 added, and the bearings' laws are solved again (``fe.shaft.cycle.solve_cycle``).  With
 k_w = 1 on every drawn web this is the whole-shaft model's own "with counterweights"
-cycle (the per-web patterns sum to ``centrifugal_cw``).
+cycle (the per-web patterns sum to ``centrifugal_cw``).  With a ``[torsion]`` section the
+shaft also has the check's torque-flow cases (``study_shaft``'s ``torque_flow``): every
+journal carries its own torque in every state, and a candidate's operating firing state
+takes its own torsional journal torques (``with_operating_dynamics``), as the check's whole
+shaft.
 
 Web bending moments: the moment of every load in front of the web's mid-plane (as
 ``fe.shaft.cycle``): the shaft's without counterweights, plus the change of the bearing
@@ -47,7 +51,7 @@ from fe_crank.cad.source import mesh_source_shaft
 from fe_crank.fe.shaft.cases import ShaftCases, solve_cases
 from fe_crank.fe.shaft.cycle import solve_cycle
 from fe_crank.fe.shaft.model import ShaftFeOptions, build_shaft_model
-from fe_crank.fe.shaft.whole_shaft import envelope_laws, shaft_cycle_of, throw_masses
+from fe_crank.fe.shaft.whole_shaft import envelope_laws, shaft_cycle_of, throw_masses, torque_flow_cases
 from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.mechanism.cycles import EngineCycles
@@ -99,11 +103,24 @@ def web_case(web: Web) -> str:
 
 
 def study_shaft(
-    layout: ShaftLayout, material, fe, *, size, cache_dir, max_elements=None, stresses: bool = True
+    layout: ShaftLayout,
+    material,
+    fe,
+    *,
+    size,
+    cache_dir,
+    max_elements=None,
+    stresses: bool = True,
+    torque_flow: bool = False,
 ) -> StudyShaft:
     """Mesh, condense and solve the unit cases once (module doc); ``fe``: the load case's
     ``[fe]`` options (solver, pin half-angle, symmetry); ``stresses``: keep each throw's
-    unit stresses for the stress screening."""
+    unit stresses for the stress screening; ``torque_flow``: with the check's torque-flow
+    cases (``fe.shaft.whole_shaft.torque_flow_cases``, as its whole shaft with [torsion]):
+    every journal carries its own torque in every state (``shaft_cycle_of`` forms their
+    weights from each state's journal torques).  Those cases are the drawn mesh's unit
+    angular accelerations and front-face torque, loads of the mesh alone: the same for
+    every candidate, whose counterweights enter only through the weights."""
     sm = mesh_source_shaft(layout.geometry, layout, size=size, cache_dir=cache_dir, max_elements=max_elements)
     opt = ShaftFeOptions(
         solver=fe.solver, pin_half_angle=fe.pin_half_angle, symmetry=fe.symmetry, counterweight_webs=True
@@ -115,6 +132,8 @@ def study_shaft(
         if pp.kind == "throw" and pp.throw is not None
         for w in (1, 2)
     }
+    if torque_flow:
+        extra |= torque_flow_cases(model)
     cases = solve_cases(model, extra)
     units = tuple(
         (str(pp.throw), piece_unit_stresses(cases, k, material))
@@ -177,6 +196,21 @@ def state_base(shaft: StudyShaft, state: EngineState) -> StateBase:
         np.stack([w.bending_moment_nm for w in off.webs], axis=1),
         tuple(w.z for w in off.webs),
     )
+
+
+def with_operating_dynamics(
+    shaft: StudyShaft, bases: list[StateBase], operating: DynamicsResult, dynamics: DynamicsResult
+) -> list[StateBase]:
+    """``bases`` with the operating speed's firing state (the state whose dynamics is the
+    dynamics stage's ``operating`` cycle) on ``dynamics`` instead: the operating cycle with
+    a candidate's torsional journal torques (``torsion.stage.operating_dynamics``), as the
+    check's whole shaft with [torsion] takes its operating cycle (``outputs.CaseOutputs
+    .assessed_dynamics``)."""
+    own = next(i for i, b in enumerate(bases) if b.state.dynamics is operating)
+    out = list(bases)
+    s = bases[own].state
+    out[own] = state_base(shaft, EngineState(s.label, s.speed, dynamics))
+    return out
 
 
 def candidate_loads(

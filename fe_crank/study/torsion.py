@@ -24,6 +24,7 @@ from fe_crank.assess.loads import AssessedLoads
 from fe_crank.geometry.shaft import ShaftLayout
 from fe_crank.io.loadcase import LoadCase
 from fe_crank.mechanism.cycles import EngineCycles
+from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.study.bodies import BodyModel
 from fe_crank.study.candidates import Candidate, DrawnWeb, ThrowSolidCache, Web, written_throw
 from fe_crank.study.joints import JointModel, joint_model
@@ -31,7 +32,7 @@ from fe_crank.study.m53 import M53Screen, study_m53
 from fe_crank.study.m53 import refusal as m53_refusal
 from fe_crank.torsion.build import with_cylinders
 from fe_crank.torsion.model import TorsionCase
-from fe_crank.torsion.stage import TorsionalResponse, torsional_loads, torsional_response
+from fe_crank.torsion.stage import TorsionalResponse, operating_dynamics, torsional_loads, torsional_response
 
 
 def refusal(lc: LoadCase) -> str | None:
@@ -78,6 +79,9 @@ class TorsionScreen:
     loads: AssessedLoads  # every speed and state with the candidate's vibration
     m53: M53Screen | None  # UR M53's least Q on them (None: ``study.m53.refusal``)
     joints: JointModel | None  # the bolted throws' load states on them (None: not asked for)
+    #: the operating cycle with the journal torques the candidate's torsional stage hands
+    #: over (``torsion.stage.operating_dynamics``): the whole shaft's operating firing state
+    dynamics: DynamicsResult | None = None
 
 
 def screen_torsion(
@@ -105,7 +109,7 @@ def screen_torsion(
     loads = torsional_loads(lc.engine, cycles, response, fe_j, reaction=lc.fe.torque_reaction)
     q = study_m53(lc, cycles, loads) if m53_refusal(lc) is None else None
     jm = joint_model(lc, layout, body, cycles, loads) if joints and body is not None else None
-    return TorsionScreen(response.first_frequency, loads, q, jm)
+    return TorsionScreen(response.first_frequency, loads, q, jm, operating_dynamics(cycles, response))
 
 
 __all__ = ["TorsionScreen", "candidate_torsion", "geometry_inertias", "refusal", "screen_torsion"]

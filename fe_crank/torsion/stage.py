@@ -2,8 +2,10 @@
 and the counterweight study (``study.torsion``): the forced response with every cylinder
 firing and with each misfire case on the chain of the given throw inertias
 (``misfire.analyse_misfire``), UR M53's hand-over of the journal torques (the worst
-history of every case, ``misfire.MisfireTorsion.journal_torques``) and the loads of every
-speed and state of the sweep with their vibration (``loads.assessed_loads``)."""
+history of every case, ``misfire.MisfireTorsion.journal_torques``), the operating cycle
+with those journal torques (``operating_dynamics``: what the whole shaft takes at the
+operating speed's firing state) and the loads of every speed and state of the sweep with
+their vibration (``loads.assessed_loads``)."""
 
 from __future__ import annotations
 
@@ -11,7 +13,9 @@ from dataclasses import dataclass
 
 from fe_crank.assess.loads import AssessedLoads
 from fe_crank.mechanism.cycles import EngineCycles
+from fe_crank.mechanism.dynamics import DynamicsResult
 from fe_crank.model import Engine
+from fe_crank.torsion.analysis import with_vibratory_torque
 from fe_crank.torsion.handover import JournalTorque
 from fe_crank.torsion.loads import assessed_loads
 from fe_crank.torsion.misfire import MisfireTorsion, analyse_misfire
@@ -42,6 +46,13 @@ def torsional_response(
     return TorsionalResponse(mis, mis.journal_torques())
 
 
+def operating_dynamics(cycles: EngineCycles, response: TorsionalResponse) -> DynamicsResult:
+    """The operating cycle (``cycles.operating``) with the journal torques handed over
+    (``response.handed``, ``analysis.with_vibratory_torque``): the operating speed's firing
+    state of the whole shaft and the assessment with a torsional stage."""
+    return with_vibratory_torque(cycles.operating, response.misfire.firing, handed=response.handed)
+
+
 def torsional_loads(
     engine: Engine,
     cycles: EngineCycles,
@@ -66,4 +77,4 @@ def torsional_loads(
     )
 
 
-__all__ = ["TorsionalResponse", "torsional_loads", "torsional_response"]
+__all__ = ["TorsionalResponse", "operating_dynamics", "torsional_loads", "torsional_response"]
