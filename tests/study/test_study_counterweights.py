@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from helpers.bolted_study import bolted_case
+from helpers.cw_peak import counterweight_peak
 from skfem import Basis, ElementTetP2, Functional
 
 from fe_crank.assess.loads import FIRING
@@ -468,13 +469,9 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
     geometry does not draw)."""
     from helpers.pipeline import stage_outputs, write_report
 
-    from fe_crank.assess.group.assessment import of_counterweight
-    from fe_crank.assess.group.nodes import assessed_groups, unit_stresses
     from fe_crank.assess.superpose import cycle_coefficients
-    from fe_crank.fe.core.stress import von_mises as vm
-    from fe_crank.fe.throw.pin_patches import rod_loads, rod_positions
+    from fe_crank.fe.throw.pin_patches import rod_loads
     from fe_crank.pipeline.options import CheckOptions
-    from fe_crank.throw_scope import throws_of
 
     res, _, cache = study
     q = res.results[0].m53
@@ -532,22 +529,14 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
     solved = checked.unit_solutions
     assert solved
     loads = assessed_loads(lc2.engine, engine_cycles(lc2.engine, lc2.operating), reaction=lc2.fe.torque_reaction)
-    names = [t.name for t in lc2.engine.throws]
-    ref = 0.0
-    for key, us in solved.items():
-        unit = unit_stresses(us, {g: n for g, n in assessed_groups(us).items() if of_counterweight(g)})
-        nodes = np.unique(np.concatenate([np.asarray(v) for v in unit.groups.values()]))
-        for t in throws_of(key, names):
-            sense = lc2.engine.shaft(lc2.engine.throw(t).shaft).sense
-            places = rod_positions(lc2.engine, t, lc2.geometry.crankpin_length)
-            for states in loads.speeds:
-                for state in states:
-                    tc = state.throws[t]
-                    C = cycle_coefficients(
-                        unit, tc.pin_force, tc.torque_in, state.speed, sense=sense, rod_loads=rod_loads(tc, places)
-                    )
-                    s = np.einsum("ac,cjn->ajn", C, unit.stress[:, :, nodes])
-                    ref = max(ref, float(vm(np.moveaxis(s, 1, 0)).max()))
+    ref = counterweight_peak(
+        lc2,
+        solved,
+        loads.speeds,
+        lambda unit, tc, state, sense, places: cycle_coefficients(
+            unit, tc.pin_force, tc.torque_in, state.speed, sense=sense, rod_loads=rod_loads(tc, places)
+        ),
+    )
     assert res.body_model is not None
     screened = candidate_bodies(res.body_model, loads, dict.fromkeys(drawn, 1.0))
     assert screened.peak == pytest.approx(ref, rel=1e-9, abs=0.0)

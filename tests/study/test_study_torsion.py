@@ -15,15 +15,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from helpers.bolted_study import bolted_case
+from helpers.bolted_study import bolted_case, torsion_section
+from helpers.cw_peak import counterweight_peak
 from helpers.paths import DATA
 
-from fe_crank.assess.group.assessment import of_counterweight
-from fe_crank.assess.group.nodes import assessed_groups, unit_stresses
 from fe_crank.assess.throw import fe_coefficients
 from fe_crank.cli import main
-from fe_crank.fe.core.stress import von_mises
-from fe_crank.fe.throw.pin_patches import rod_loads, rod_positions
+from fe_crank.fe.throw.pin_patches import rod_loads
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.outputs import CaseOutputs, FeModels
@@ -37,25 +35,8 @@ from fe_crank.study.outputs import to_toml, write_candidate, write_tables
 from fe_crank.study.run import run_study
 from fe_crank.study.spec import JOINT_LIMITS, parse_study
 from fe_crank.study.torsion import screen_torsion
-from fe_crank.throw_scope import throws_of
 
-TORSION = """
-[torsion]
-speed_range = ["2000 rpm", "4800 rpm"]
-speed_steps = 41
-shaft_loss_factor = 0.025
-cylinder_damping = "0.05 N*m*s/rad"
-
-[torsion.flywheel]
-inertia = "0.02 kg*m^2"
-stiffness = "5e4 N*m/rad"
-
-[[torsion.driven]]
-name = "brake"
-inertia = "0.01 kg*m^2"
-stiffness = "2e3 N*m/rad"
-loss_factor = 0.2
-"""
+TORSION = torsion_section(41)
 
 STUDY = """[study]
 name = "small inline-4 with torsion"
@@ -167,30 +148,22 @@ def test_each_candidates_torsional_figures_equal_the_checks_of_the_written_case(
         for key in JOINT_LIMITS:
             assert joints.values[key] == pytest.approx(criteria[key.split("_", 1)[1]], rel=1e-9, abs=0.0), key
         assert torsion.loads is not None
-        ref = 0.0
-        names = [t.name for t in lc2.engine.throws]
-        for key, us in solved.items():
-            unit = unit_stresses(us, {g: n for g, n in assessed_groups(us).items() if of_counterweight(g)})
-            nodes = np.unique(np.concatenate([np.asarray(v) for v in unit.groups.values()]))
-            for t in throws_of(key, names):
-                sense = lc2.engine.shaft(lc2.engine.throw(t).shaft).sense
-                places = rod_positions(lc2.engine, t, lc2.geometry.crankpin_length)
-                for states in torsion.loads.speeds:
-                    for state in states:
-                        tc = state.throws[t]
-                        C = fe_coefficients(
-                            unit,
-                            tc.pin_force,
-                            tc.torque_in,
-                            state.speed,
-                            sense=sense,
-                            rod_loads=rod_loads(tc, places),
-                            angular_acceleration=tc.angular_acceleration,
-                            fe_pin_force=tc.fe_pin_force,
-                            fe_rod_loads=tc.fe_rod_loads(places) if tc.fe_rods else None,
-                        )
-                        s = np.einsum("ac,cjn->ajn", C, unit.stress[:, :, nodes])
-                        ref = max(ref, float(von_mises(np.moveaxis(s, 1, 0)).max()))
+        ref = counterweight_peak(
+            lc2,
+            solved,
+            torsion.loads.speeds,
+            lambda unit, tc, state, sense, places: fe_coefficients(
+                unit,
+                tc.pin_force,
+                tc.torque_in,
+                state.speed,
+                sense=sense,
+                rod_loads=rod_loads(tc, places),
+                angular_acceleration=tc.angular_acceleration,
+                fe_pin_force=tc.fe_pin_force,
+                fe_rod_loads=tc.fe_rod_loads(places) if tc.fe_rods else None,
+            ),
+        )
         assert bodies.peak == pytest.approx(ref, rel=1e-9, abs=0.0)
     names = [t.name for t in layout.throws]
     dj = sum(chains[1].inertia[chains[1].throw_mass[n]] - chains[0].inertia[chains[0].throw_mass[n]] for n in names)

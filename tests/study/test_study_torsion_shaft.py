@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from helpers.bolted_study import bolted_case
+from helpers.bolted_study import bolted_case, torsion_section
 
 from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.fe.core.stress import von_mises
@@ -39,23 +39,7 @@ from fe_crank.study.screen import (
 from fe_crank.study.spec import parse_study
 from fe_crank.study.torsion import screen_torsion
 
-TORSION = """
-[torsion]
-speed_range = ["2000 rpm", "4800 rpm"]
-speed_steps = 11
-shaft_loss_factor = 0.025
-cylinder_damping = "0.05 N*m*s/rad"
-
-[torsion.flywheel]
-inertia = "0.02 kg*m^2"
-stiffness = "5e4 N*m/rad"
-
-[[torsion.driven]]
-name = "brake"
-inertia = "0.01 kg*m^2"
-stiffness = "2e3 N*m/rad"
-loss_factor = 0.2
-"""
+TORSION = torsion_section(11)
 
 STUDY = """[study]
 name = "small inline-4 with torsion, whole shaft"
