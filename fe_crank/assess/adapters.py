@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry
+from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry, direction_error
 from fe_crank.assess.cw_joint import yield_point
 from fe_crank.balance.counterweights import CounterweightDesign
 from fe_crank.geometry.mass import MassProperties
@@ -104,13 +104,16 @@ def counterweights_of(
     shaft: str,
     design: CounterweightDesign | None,
     geometry: CrankGeometry | None = None,
+    frame: tuple[float, int] | None = None,
 ) -> tuple[CounterweightData, ...]:
     """Counterweight data of one throw (its geometry ``spec`` and its CAD mass properties
     ``props``, from the geometry stage), grouped by the balance plane they serve.
 
     Counterweights of the throw that are nearest to the same balance counterweight of
     ``design`` are summed (their m r vectors add, each at its counterweight's real angle); ``required_unbalance`` is that
-    plane's requirement, or None without a balance design.
+    plane's requirement, or None without a balance design; ``frame``: the engine throw's
+    angle and its shaft's sense, to compare the built m r vector's direction with the
+    requirement's (``assess.counterweight.direction_error``; None: magnitudes only).
     """
     if not spec.counterweights:
         return ()
@@ -125,9 +128,9 @@ def counterweights_of(
     out = []
     for items in groups.values():
         mass = sum(p.mass for _, p, _ in items)
-        mr = math.hypot(
-            sum(p.unbalance_vector[0] for _, p, _ in items), sum(p.unbalance_vector[1] for _, p, _ in items)
-        )
+        ux = sum(p.unbalance_vector[0] for _, p, _ in items)
+        uy = sum(p.unbalance_vector[1] for _, p, _ in items)
+        mr = math.hypot(ux, uy)
         plane = items[0][2]
         bolted = [cw.bolted for cw, _, _ in items if cw.bolted is not None]
         capacity = None
@@ -153,6 +156,7 @@ def counterweights_of(
                 bolted=bool(bolted),
                 bolt_capacity=capacity,
                 joints=joints,
+                direction_error=None if plane is None or frame is None else direction_error((ux, uy), plane, *frame),
             )
         )
     return tuple(out)

@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from fe_crank.assess.counterweight import CounterweightData
+from fe_crank.assess.counterweight import CounterweightData, direction_error
 from fe_crank.balance.counterweights import CounterweightDesign
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import BoltedBody, ThrowFeatures
@@ -95,12 +95,13 @@ def counterweights_of_cad(
     shaft: str,
     design: CounterweightDesign | None,
     bolted: tuple[tuple[int, BoltedBody], ...] = (),
+    frame: tuple[float, int] | None = None,
 ) -> tuple[CounterweightData, ...]:
     """Counterweight data of a recognised throw, grouped by the balance plane they serve
     (as ``fe_crank.assess.adapters.counterweights_of``): its drawn counterweights and the
     bodies bolted to it (``bolted``: (number in ``CadFeatures.bolted`` from 1, body) of
     this throw; ``[cad] bodies = "bolted"``), whose m r adds to their plane's and whose
-    centrifugal force is the bolts' load (no bolt data: no utilisation)."""
+    centrifugal force is the bolts' load (no bolt data: no utilisation); ``frame`` as there."""
     parts = [(f"counterweight_{cw.web}", cw.mass, False, cw.web) for cw in throw.counterweights]
     parts += [(f"bolted_body_{i}", b.mass, True, b.web) for i, b in bolted]
     groups: dict[object, list[Any]] = {}
@@ -111,9 +112,9 @@ def counterweights_of_cad(
     out = []
     for items in groups.values():
         mass = sum(m.mass for _, m, _, _ in items)
-        mr = math.hypot(
-            sum(m.unbalance_vector[0] for _, m, _, _ in items), sum(m.unbalance_vector[1] for _, m, _, _ in items)
-        )
+        ux = sum(m.unbalance_vector[0] for _, m, _, _ in items)
+        uy = sum(m.unbalance_vector[1] for _, m, _, _ in items)
+        mr = math.hypot(ux, uy)
         plane = items[0][3]
         out.append(
             CounterweightData(
@@ -122,6 +123,7 @@ def counterweights_of_cad(
                 centroid_radius=mr / mass if mass > 0 else 0.0,
                 required_unbalance=None if plane is None else plane.unbalance,
                 bolted=any(b for _, _, b, _ in items),
+                direction_error=None if plane is None or frame is None else direction_error((ux, uy), plane, *frame),
             )
         )
     return tuple(out)

@@ -8,9 +8,11 @@ Unbalance error: |m r_built - m r_required| / m r_required.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from fe_crank.balance.counterweights import Counterweight
 from fe_crank.geometry.spec import BoltedJoint
 
 
@@ -55,10 +57,26 @@ class CounterweightData:
     bolted: bool = False
     bolt_capacity: float | None = None  # N, total over the counterweight's bolts
     joints: tuple[BoltedCounterweight, ...] = ()  # the bolted ones, for VDI 2230
+    #: rad, 0..pi: the angle between the built m r vector and the required one
+    #: (``direction_error``); None: the magnitudes alone are compared
+    direction_error: float | None = None
 
     @property
     def built_unbalance(self) -> float:
         return self.mass * self.centroid_radius
+
+
+def direction_error(
+    unbalance_xy: tuple[float, float], required: Counterweight, throw_angle: float, sense: int
+) -> float:
+    """The angle (rad, 0..pi) between a throw's built m r vector ``unbalance_xy`` (throw
+    frame: x, y) and its balance plane's requirement ``required``.  The throw frame is the
+    engine frame turned so that its +y is the crankpin (docs/contracts.md), so a direction
+    ``a`` of the throw frame (from +y towards +x) lies on the shaft at
+    ``throw_angle + sense a``, measured from the shaft's reference throw in its sense as
+    ``Counterweight.angle_on_shaft`` is (``throw_angle``: the engine throw's angle)."""
+    a = math.atan2(unbalance_xy[0], unbalance_xy[1])
+    return abs(math.remainder(throw_angle + sense * a - required.angle_on_shaft, 2.0 * math.pi))
 
 
 @dataclass(frozen=True)
@@ -90,7 +108,12 @@ def centrifugal_force(mass: float, radius: float, omega: float) -> float:
 def check_counterweight(cw: CounterweightData, omega: float, overspeed: float | None) -> CounterweightCheck:
     err = None
     if cw.required_unbalance is not None and cw.required_unbalance > 0:
-        err = abs(cw.built_unbalance - cw.required_unbalance) / cw.required_unbalance
+        built, required = cw.built_unbalance, cw.required_unbalance
+        if cw.direction_error is None:
+            err = abs(built - required) / required
+        else:  # |U_built - U_required| of the two vectors, by the law of cosines
+            gap = (built - required) ** 2 + 2.0 * built * required * (1.0 - math.cos(cw.direction_error))
+            err = math.sqrt(gap) / required
     load = util = None
     if cw.bolted:
         load = centrifugal_force(cw.mass, cw.centroid_radius, overspeed if overspeed is not None else omega)

@@ -61,7 +61,15 @@ def parametric_throws(
         for tname in throws_of(key, [t.name for t in engine.throws]):
             throw = engine.throw(tname)
             cws = (
-                counterweights_of(spec, solids.of(spec.name), throw.axial_position, throw.shaft, design, g)
+                counterweights_of(
+                    spec,
+                    solids.of(spec.name),
+                    throw.axial_position,
+                    throw.shaft,
+                    design,
+                    g,
+                    frame=(throw.angle, engine.shaft(throw.shaft).sense),
+                )
                 if spec.counterweights and solids is not None
                 else ()
             )
@@ -90,6 +98,7 @@ def cad_throws(
         bolted = tuple((i, b) for i, b in enumerate(features.bolted, start=1) if b.throw == t.name)
         for tname in throws_of(key, [e.name for e in engine.throws]):
             throw = engine.throw(tname)
-            cws = counterweights_of_cad(t, throw.axial_position, throw.shaft, design, bolted)
+            frame = (throw.angle, engine.shaft(throw.shaft).sense)
+            cws = counterweights_of_cad(t, throw.axial_position, throw.shaft, design, bolted, frame=frame)
             out[tname] = ThrowGeometry(t.pin_length, (centres[0], centres[1]), m53, note, cws)
     return out

@@ -9,7 +9,7 @@ of ``QUANTITIES`` (a misspelt or unknown quantity is an error naming the key)::
     min_gough_pollard_safety = 1.3      # bending/torsion ellipse quadrant + Goodman
     min_m53_acceptability = 1.15        # IACS UR M53 Q
     max_counterweight_stress = "150 MPa"
-    max_unbalance_error = 0.05          # |built m r - required m r| / required
+    max_unbalance_error = 0.05          # |built m r vector - required m r vector| / required
     m53_additional_bending = "20 MPa"   # option: UR M53 sigma_add, not below section 4's value
                                         # (10 MPa trunk piston, 30 MPa crosshead: the engine's construction)
     m53_quasi_static_torque = true      # option: accept the quasi-static journal torque (below)
@@ -77,7 +77,7 @@ QUANTITIES: dict[str, Quantity] = {
         "max", "pressure", (), "max von Mises in a counterweight and its junction over the cycle"
     ),
     "counterweight_overspeed_stress": Quantity("max", "pressure", (), "max von Mises in a counterweight at overspeed"),
-    "unbalance_error": Quantity("max", None, (), "|built m r - required m r| / required m r per counterweight plane"),
+    "unbalance_error": Quantity("max", None, (), "|built m r vector - required m r vector| / required m r per counterweight plane"),
     "bolt_utilisation": Quantity("max", None, (), "counterweight bolt load m r omega^2 at overspeed / bolt capacity"),
     # VDI 2230 Part 1 (2015) of the bolted counterweight (fe_crank/assess/cw_joint.py)
     "main_bearing_load": Quantity(
