@@ -77,7 +77,9 @@ QUANTITIES: dict[str, Quantity] = {
         "max", "pressure", (), "max von Mises in a counterweight and its junction over the cycle"
     ),
     "counterweight_overspeed_stress": Quantity("max", "pressure", (), "max von Mises in a counterweight at overspeed"),
-    "unbalance_error": Quantity("max", None, (), "|built m r vector - required m r vector| / required m r per counterweight plane"),
+    "unbalance_error": Quantity(
+        "max", None, (), "|built m r vector - required m r vector| / required m r per counterweight plane"
+    ),
     "bolt_utilisation": Quantity("max", None, (), "counterweight bolt load m r omega^2 at overspeed / bolt capacity"),
     # VDI 2230 Part 1 (2015) of the bolted counterweight (fe_crank/assess/cw_joint.py)
     "main_bearing_load": Quantity(

@@ -153,17 +153,22 @@ def parse_unit(text: str) -> pint.Unit:
         raise ValueError(f"{_clip(text)} is not a known unit") from None
 
 
+def _a(kind: str) -> str:
+    """``kind`` with its indefinite article ("a length", "an angle")."""
+    return f"{'an' if kind[:1] in 'aeiou' else 'a'} {kind}"
+
+
 def _split(value: str, kind: str, example: str) -> tuple[float, str]:
     text = value.strip()
     if len(text) > MAX_TEXT:
-        raise ValueError(f'a {kind} is at most {MAX_TEXT} characters, e.g. "{example}"')
+        raise ValueError(f'{_a(kind)} is at most {MAX_TEXT} characters, e.g. "{example}"')
     m = _NUMBER.match(text)
     if not m:
-        raise ValueError(f'cannot read {_clip(value)} as a {kind}: it must start with a number, e.g. "{example}"')
+        raise ValueError(f'cannot read {_clip(value)} as {_a(kind)}: it must start with a number, e.g. "{example}"')
     number = float(m.group(0))
     unit = text[m.end() :].strip()
     if not unit:
-        raise ValueError(f'{_clip(value)} has no unit; write a {kind} with its unit, e.g. "{example}"')
+        raise ValueError(f'{_clip(value)} has no unit; write {_a(kind)} with its unit, e.g. "{example}"')
     return number, unit
 
 
