@@ -103,15 +103,20 @@ def test_kill_at_each_stage_then_rerun(tmp_path):
     assert leftovers(out, cache) == [], killed_in_report
 
 
-def test_damaged_cache_entry_is_rebuilt(tmp_path):
+def test_damaged_cache_entry_is_rebuilt(tmp_path, mesh_cache):
     """A truncated mesh.npz, then a garbled stats.json: each is discarded and the
-    mesh rebuilt with the same element count (gmsh is deterministic for one input)."""
+    mesh rebuilt with the same element count (gmsh is deterministic for one input).
+    The first mesh is the run's (``helpers.seeded_cache``): both rebuilds are gmsh's."""
+    from helpers.seeded_cache import seed
+
     from fe_crank.geometry.estimate import estimate_elements
     from fe_crank.io.geometry import load_geometry
     from fe_crank.mesh import mesh_throw, resolve_options
 
     g = load_geometry(GEOM)
+    key = seed(tmp_path, mesh_cache, g)
     first = mesh_throw(g, size="test", cache_dir=tmp_path)
+    assert first.stats.from_cache and first.key == key
     # the pre-meshing estimate against gmsh's real count (independent): within a factor
     # 3, the accuracy docs/limits.md states (the limit must not let a 10x mesh through)
     ratio = estimate_elements(g, g.throw(None), resolve_options("test")) / first.stats.elements
