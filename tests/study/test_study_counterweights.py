@@ -74,11 +74,11 @@ webs = ["1.1", "2.2", "3.2", "4.1"]
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
+def study(tmp_path_factory, mesh_cache):
     d = tmp_path_factory.mktemp("study")
     (d / "study.toml").write_text(STUDY)
     lc = load_loadcase(bolted_case(d))
-    cache = d / "cache"
+    cache = mesh_cache  # the run's meshes: the bolted inline-4's are test_study_torsion's too
     res = run_study(lc, parse_study(d / "study.toml"), size="test", cache_dir=cache)
     return res, d, cache
 

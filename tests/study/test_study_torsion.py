@@ -83,11 +83,11 @@ def torsion_case(folder: Path) -> Path:
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
+def study(tmp_path_factory, mesh_cache):
     """The study of the bolted small inline-4 with [torsion], 0 % and 100 % on every web."""
     d = tmp_path_factory.mktemp("torsion_study")
     (d / "study.toml").write_text(STUDY)
-    cache = d / "cache"
+    cache = mesh_cache  # the run's meshes: the bolted inline-4's are test_study_counterweights' too
     res = run_study(load_loadcase(bolted_case(d, TORSION)), parse_study(d / "study.toml"), size="test", cache_dir=cache)
     return res, d, cache
 
