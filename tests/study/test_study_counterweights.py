@@ -74,11 +74,11 @@ webs = ["1.1", "2.2", "3.2", "4.1"]
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
+def study(tmp_path_factory, mesh_cache):
     d = tmp_path_factory.mktemp("study")
     (d / "study.toml").write_text(STUDY)
     lc = load_loadcase(bolted_case(d))
-    cache = d / "cache"
+    cache = mesh_cache  # the run's meshes: the bolted inline-4's are test_study_torsion's too
     res = run_study(lc, parse_study(d / "study.toml"), size="test", cache_dir=cache)
     return res, d, cache
 
@@ -498,11 +498,12 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
     crit = next(c for c in got["criteria"] if c["quantity"] == "m53_acceptability")
     assert q.acceptability == pytest.approx(crit["value"], rel=1e-9, abs=0.0)
     assert res.joint_model is not None
-    joints = candidate_joints(res.joint_model, cand, ThrowSolidCache(res.shaft.layout), res.shaft.mass)
+    solids = ThrowSolidCache(res.shaft.layout)  # each distinct throw solid built once, for both
+    joints = candidate_joints(res.joint_model, cand, solids, res.shaft.mass)
     assert joints is not None and joints.refused is None and joints.joints == len(drawn)
     # the web's deformation onto the joint by the per-throw model's section (not the lever bound)
     jm = res.joint_model
-    cws = candidate_counterweights(jm, cand, ThrowSolidCache(res.shaft.layout), res.shaft.mass)
+    cws = candidate_counterweights(jm, cand, solids, res.shaft.mass)
     ts = jm.states[0]
     checks = throw_joints(
         jm.body.units[ts.throw],

@@ -35,10 +35,10 @@ stresses = "off"
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
+def study(tmp_path_factory, mesh_cache):
     d = tmp_path_factory.mktemp("study")
     (d / "study.toml").write_text(STUDY)
-    cache = d / "cache"
+    cache = mesh_cache  # the run's mesh cache: a mesh another file of the run built is read back
     res = run_study(load_loadcase(CASE), parse_study(d / "study.toml"), size="test", cache_dir=cache)
     return res, d, cache
 

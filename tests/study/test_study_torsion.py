@@ -4,7 +4,11 @@ frequency, UR M53's Q with its own vibratory journal torques, its bolted joints 
 torsional angular acceleration and its counterweights' stress with the vibratory loads,
 against the check of the load case the study writes for that candidate (two candidates
 of different counterweight mass) and the frequency against Holzer's residual computed
-here; and the refusal, before meshing, of what the study cannot screen."""
+here; the study's whole shaft with [torsion] (every journal its own torque in every state,
+the operating speed's firing state on the candidate's own torsional journal torques)
+against the check's whole-shaft stage of the load case the study writes; and the
+refusal, before meshing, of what the study cannot screen.  One study and one check of the
+written case at mass factor 1 serve every test here."""
 
 from __future__ import annotations
 
@@ -19,29 +23,48 @@ from helpers.bolted_study import bolted_case, torsion_section
 from helpers.cw_peak import counterweight_peak
 from helpers.paths import DATA
 
+from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.assess.throw import fe_coefficients
 from fe_crank.cli import main
+from fe_crank.fe.core.stress import von_mises
+from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.fe.throw.pin_patches import rod_loads
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
 from fe_crank.outputs import CaseOutputs, FeModels
 from fe_crank.pipeline.options import CheckOptions
+from fe_crank.pipeline.shaft_stage import whole_shaft_stage
 from fe_crank.pipeline.stages import assess_stage, fe_stage, geometry_stage, mesh_stage
 from fe_crank.pipeline.torsion_stage import torsion_stage
+from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.bodies import candidate_bodies
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape
 from fe_crank.study.joints import candidate_joints
 from fe_crank.study.outputs import to_toml, write_candidate, write_tables
-from fe_crank.study.run import run_study
+from fe_crank.study.run import TORSION_SHAFT, run_study
+from fe_crank.study.screen import (
+    SHAFT_KINDS,
+    EngineState,
+    candidate_loads,
+    candidate_overspeed,
+    candidate_stresses,
+    engine_states,
+    state_base,
+    with_operating_dynamics,
+)
 from fe_crank.study.spec import JOINT_LIMITS, parse_study
 from fe_crank.study.torsion import screen_torsion
 
-TORSION = torsion_section(41)
+#: 11 speeds over 2000-4800 rpm: every claim here is an equality between the study and the
+#: check of the same load case on the same speed sweep (or a property of the chain, which
+#: does not depend on the speeds), so a shorter sweep checks it as well as a finer one
+TORSION = torsion_section(11)
 
 STUDY = """[study]
 name = "small inline-4 with torsion"
 rotating_rate_percent = [0, 100]
 envelope = "45 mm"
+stresses = "static"
 [study.limits]
 min_m53_acceptability = 1.0
 [[study.placements]]
@@ -60,11 +83,11 @@ def torsion_case(folder: Path) -> Path:
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
+def study(tmp_path_factory, mesh_cache):
     """The study of the bolted small inline-4 with [torsion], 0 % and 100 % on every web."""
     d = tmp_path_factory.mktemp("torsion_study")
     (d / "study.toml").write_text(STUDY)
-    cache = d / "cache"
+    cache = mesh_cache  # the run's meshes: the bolted inline-4's are test_study_counterweights' too
     res = run_study(load_loadcase(bolted_case(d, TORSION)), parse_study(d / "study.toml"), size="test", cache_dir=cache)
     return res, d, cache
 
@@ -83,7 +106,7 @@ def _check(res, r, folder: Path, cache: Path, joints: bool):
     """The check of the load case the study writes for ``r`` (the ``test`` mesh, the study's
     cached meshes): its geometry, mesh, FE and torsional stages and its per-throw assessment,
     judged by UR M53's Q and, with ``joints``, every joint criterion (limits low enough to
-    pass)."""
+    pass); also its geometry and meshes (for its whole-shaft stage)."""
     _, lc_path = write_candidate(res, r, folder)
     data = tomllib.loads(lc_path.read_text())
     data["criteria"] = {"min_m53_acceptability": 1.0}
@@ -93,15 +116,32 @@ def _check(res, r, folder: Path, cache: Path, joints: bool):
     lc = load_loadcase(lc_path)
     geo = geometry_stage(lc, CheckOptions(mesh_size="test", cache_dir=str(cache)))
     cycles = engine_cycles(lc.engine, lc.operating, file=lc.source_file)
-    solved = fe_stage(lc, geo, mesh_stage(lc, geo).throws)
+    meshes = mesh_stage(lc, geo)
+    solved = fe_stage(lc, geo, meshes.throws)
     torsion = torsion_stage(lc, geo, solved, cycles)
     out = CaseOutputs(lc, cycles, None, geo, None, FeModels(solved), torsion)
     criteria = {c.quantity: c.value for c in assess_stage(lc, out, False).criteria}
-    return lc, solved, torsion, criteria
+    return lc, solved, torsion, criteria, geo, meshes, cycles
+
+
+def _all_at_one(res) -> Candidate:
+    """Every drawn counterweight at mass factor 1 (the drawn shapes: the same meshes)."""
+    drawn, layout = res.drawn, res.shaft.layout
+    shapes = tuple(web_shape(w, 1.0, drawn[w], layout, res.spec, layout.geometry.density) for w in drawn)
+    return Candidate(99, "all at 1", math.nan, 0.0, 0.0, dict.fromkeys(drawn, 1.0), shapes)
+
+
+@pytest.fixture(scope="module")
+def written_one(study):
+    """The check (``_check``, joint criteria judged) of the load case the study writes for
+    every drawn counterweight at mass factor 1."""
+    res, d, cache = study
+    r = dataclasses.replace(res.results[0], candidate=_all_at_one(res))
+    return _check(res, r, d / "written_one", cache, True)
 
 
 @pytest.mark.heavy
-def test_each_candidates_torsional_figures_equal_the_checks_of_the_written_case(study):
+def test_each_candidates_torsional_figures_equal_the_checks_of_the_written_case(study, written_one):
     """Two candidates of different counterweight mass: the study's 0 % row (no counterweight)
     and every drawn counterweight at mass factor 1 (the drawn shapes: the same meshes), the
     latter screened by the study's own per-candidate functions (``study.torsion
@@ -117,8 +157,7 @@ def test_each_candidates_torsional_figures_equal_the_checks_of_the_written_case(
     res, d, cache = study
     lc = res.loadcase
     drawn, layout = res.drawn, res.shaft.layout
-    shapes = tuple(web_shape(w, 1.0, drawn[w], layout, res.spec, layout.geometry.density) for w in drawn)
-    cand = Candidate(99, "all at 1", math.nan, 0.0, 0.0, dict.fromkeys(drawn, 1.0), shapes)
+    cand = _all_at_one(res)
     solids = ThrowSolidCache(layout)
     cycles = engine_cycles(lc.engine, lc.operating, file=lc.source_file)
     ts = screen_torsion(lc, cycles, layout, cand, drawn, res.shaft.mass, solids, res.body_model, True)
@@ -133,8 +172,10 @@ def test_each_candidates_torsional_figures_equal_the_checks_of_the_written_case(
         ("zero", zero.torsional_frequency, zero.m53.acceptability),
         ("one", ts.frequency, ts.m53.acceptability),
     ):
-        r = zero if label == "zero" else dataclasses.replace(res.results[0], candidate=cand)
-        lc2, solved, torsion, criteria = _check(res, r, d / f"written_{label}", cache, label == "one")
+        if label == "zero":
+            lc2, solved, torsion, criteria, *_ = _check(res, zero, d / "written_zero", cache, False)
+        else:
+            lc2, solved, torsion, criteria, *_ = written_one
         assert f1 == pytest.approx(float(torsion.result.modes.elastic_hz[0]), rel=1e-9, abs=0.0)
         assert q == pytest.approx(criteria["m53_acceptability"], rel=1e-9, abs=0.0)
         model = torsion.result.model
@@ -170,6 +211,110 @@ def test_each_candidates_torsional_figures_equal_the_checks_of_the_written_case(
     assert dj == pytest.approx(-zero.polar_inertia_change, rel=1e-9)
     assert ts.frequency < zero.torsional_frequency  # heavier throws, lower frequency
     assert all(r.bodies is not None and r.joints is not None for r in res.results[1:])
+
+
+def _brute_peak(units, weights: np.ndarray, kinds) -> float:
+    """The largest von Mises stress of the history sum_c W_c(theta) S_c at every node of the
+    group kinds ``kinds`` (None: every assessed group) of every throw, every angle."""
+    peak = 0.0
+    for unit in units:
+        ids = np.unique(
+            np.concatenate([v for g, v in unit.groups.items() if len(v) and (kinds is None or group_kind(g) in kinds)])
+        )
+        s = unit.stress[:, :, ids]
+        hist = (weights @ s.reshape(s.shape[0], -1)).reshape(weights.shape[0], 6, ids.size)
+        peak = max(peak, float(von_mises(hist.transpose(1, 0, 2)).max()))
+    return peak
+
+
+@pytest.mark.heavy
+def test_whole_shaft_with_torsion_equals_the_checks_whole_shaft_stage(study, written_one):
+    """Every drawn counterweight at mass factor 1 (the geometry the study writes is the drawn
+    one: the same mesh) on the bolted small inline-4 with [torsion]: in every load state
+    of the check's sweep (each speed, every cylinder firing and each misfire case) the
+    study's main-bearing loads (the stated law's, and per bearing the envelope over the
+    stiffness range) and the largest von Mises stress of the shaft's fillets, oil bores and
+    crankpins equal the check's whole-shaft stage's (its torque-flow cases, its operating
+    firing state on the torsional stage's journal torques; its weights evaluated here at
+    every node and angle) to 1e-9, and so do the bearing loads and the peak von Mises stress
+    of its overspeed cycle (quasi-static journal torques, every journal its own); the
+    operating state differs from the quasi-static one (the vibratory journal torques are
+    taken).  The module's study (its 100 % candidate and Q limit do not touch the whole
+    shaft's screening of a given candidate) and its check of the written case (its
+    criteria do not enter the whole-shaft stage)."""
+    res, _, _ = study
+    lc = res.loadcase
+    assert TORSION_SHAFT in res.notes
+    assert "torque_front" in res.shaft.cases.names
+    drawn, layout, mat = res.drawn, res.shaft.layout, lc.material
+    assert mat is not None
+    cand = _all_at_one(res)
+    cycles = engine_cycles(lc.engine, lc.operating, file=lc.source_file)
+    ts = screen_torsion(lc, cycles, layout, cand, drawn, res.shaft.mass, ThrowSolidCache(layout), None, False)
+    assert ts.dynamics is not None
+    states = engine_states(lc.engine, lc.operating, cycles)  # the study's (``run_study``'s) on these cycles
+    assert [s.speed for s in states] == [s.speed for s in res.states]
+    quasi = [state_base(res.shaft, s) for s in states]
+    bases = with_operating_dynamics(res.shaft, quasi, cycles.operating, ts.dynamics)
+    ones = dict.fromkeys(drawn, 1.0)
+    loads = [candidate_loads(res.shaft, b, ones, drawn) for b in bases]
+
+    # the check of the load case the study writes for it: its whole-shaft stage after its
+    # FE and torsional stages
+    lc2, solved, torsion, _, geo, meshes, cycles2 = written_one
+    out = CaseOutputs(lc2, cycles2, None, geo, meshes, FeModels(solved), torsion)
+    ws = whole_shaft_stage(lc2, geo, meshes, out, False)
+    assert ws.cases is not None
+    add = m53_basis(lc2.engine, mat, None).additional
+    try:
+        units = [
+            piece_unit_stresses(ws.cases, k, mat) for k, pp in enumerate(ws.cases.model.pieces) if pp.kind == "throw"
+        ]
+    finally:
+        ws.cases.model.free_factors()
+
+    # the study's states begin with the check's sweep, in its order (then any no-load states)
+    assert len(states) >= len(ws.sweep) >= 1
+    own = [i for i, st in enumerate(ws.sweep) if st.weights is ws.result.cycles[0].weights]
+    assert len(own) == 1 and states[own[0]].dynamics is cycles.operating
+    for i, st in enumerate(ws.sweep):
+        sl = loads[i]
+        assert sl.state.speed == pytest.approx(st.speed, rel=1e-12)
+        assert sl.bearing_sets is not None
+        mags = np.hypot(sl.bearing_sets[..., 0], sl.bearing_sets[..., 1])  # (sets, n, nb)
+        scale = max(float(np.abs(b.with_counterweights.load_n).max()) for b in st.bearings)
+        for j, b in enumerate(st.bearings):
+            s = int(np.argmax(mags[:, :, j].max(axis=1)))  # the envelope: the set of the largest peak
+            assert np.abs(sl.bearing_sets[s, :, j] - b.with_counterweights.load_n).max() <= 1e-9 * scale
+        assert st.weights is not None
+        peak = _brute_peak(units, st.weights, SHAFT_KINDS)
+        st_study = candidate_stresses(res.shaft, [sl], mat, additional_bending=add, fatigue=False)
+        assert st_study.shaft_peak == pytest.approx(peak, rel=1e-9, abs=0.0)
+    # the operating firing state on the stated law: the check's own cycle, not the quasi-static one
+    i = own[0]
+    stated = np.stack([b.load_n for b in ws.result.cycles[0].bearings], axis=1)
+    assert np.abs(loads[i].bearings - stated).max() <= 1e-9 * np.abs(stated).max()
+    rigid = candidate_loads(res.shaft, quasi[i], ones, drawn, envelope=False)
+    assert np.abs(rigid.bearings - stated).max() > 1e-6 * np.abs(stated).max()
+    # the overspeed cycles: every journal its own quasi-static torque, in both
+    assert len(cycles.overspeed) == len(ws.result.overspeed) >= 1
+    os_loads = [
+        candidate_loads(
+            res.shaft,
+            state_base(res.shaft, EngineState("overspeed", c.dynamics.speed, c.dynamics)),
+            ones,
+            drawn,
+            envelope=False,
+        )
+        for c in cycles.overspeed
+    ]
+    for sl, ref_cycle in zip(os_loads, ws.result.overspeed):
+        ref = np.stack([b.load_n for b in ref_cycle.bearings], axis=1)
+        assert np.abs(sl.bearings - ref).max() <= 1e-9 * np.abs(ref).max()
+    os = candidate_overspeed(res.shaft, os_loads, mat)
+    assert os is not None
+    os_weights = np.vstack([c.weights for c in ws.result.overspeed])
+    assert os.peak == pytest.approx(_brute_peak(units, os_weights, None), rel=1e-9, abs=0.0)
 
 
 def test_tables_carry_the_frequency_and_the_notes_say_how(study, tmp_path):
