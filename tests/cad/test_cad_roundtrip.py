@@ -46,10 +46,20 @@ def hull_half_width(a: float, b: float, R: float, y: float) -> float:
     return (a - y * s) / c
 
 
+#: the throws the run exports once for every CAD test (``tests/cad/conftest.py``)
+SHARED_STEPS = {
+    "geometry/single_cylinder.toml": "single_cylinder_step",
+    "tests/data/geometry_small.toml": "small_throw_step",
+}
+
+
 @pytest.fixture(scope="module", params=GEOMETRIES, ids=lambda p: p.rsplit("/", 1)[-1])
 def roundtrip(request, tmp_path_factory):
-    g = load_geometry(ROOT / request.param)
-    path = parametric_step(g, tmp_path_factory.mktemp("cad") / "throw.step")
+    if request.param in SHARED_STEPS:  # the same export of the same file (helpers.cad_files.parametric_step)
+        g, path = request.getfixturevalue(SHARED_STEPS[request.param])
+    else:
+        g = load_geometry(ROOT / request.param)
+        path = parametric_step(g, tmp_path_factory.mktemp("cad") / "throw.step")
     return g, recognise(CadInput(path, density=g.density))
 
 

@@ -99,7 +99,7 @@ def test_the_drawn_layout_is_the_parametric_one(shaft):
 
 
 @pytest.fixture(scope="module")
-def inline4(tmp_path_factory):
+def inline4(tmp_path_factory, mesh_cache):
     """The shipped inline-4 (``loadcases/inline4_rated.toml``) at its rated speed, checked as
     a whole shaft at ``test`` twice: as the parametric model builds it and as drawn (its
     shaft written to STEP by ``write_shaft_step`` with a nose and a flange, read back with
@@ -116,13 +116,12 @@ def inline4(tmp_path_factory):
     engine_keys(features, cad, lc.engine, engine_file="e.toml", loadcase="case.toml")
     drawn = cad_shaft_layout(features, cad, lc.engine, engine_file="e.toml")
     dyn = analyse(lc.engine, dataclasses.replace(lc.operating, full_load=None))
-    cache = folder / "cache"
     routes = {}
     for name, layout, source, kw, mass in (
         ("parametric", par, g, {}, throw_masses(par)),
         ("drawn", drawn, cad, {"features": features}, cad_throw_masses(features, drawn)),
     ):
-        shaft_mesh = mesh_source_shaft(source, layout, size="test", cache_dir=cache, **kw)
+        shaft_mesh = mesh_source_shaft(source, layout, size="test", cache_dir=mesh_cache, **kw)
         result, cases = analyse_whole_shaft(shaft_mesh, lc.material, dyn, mass=mass)
         throws, _ = assess_shaft_throws(
             cases, result, dyn.theta, lc.material, crank_radius=g.crank_radius, overspeed=None
@@ -461,7 +460,7 @@ def test_whole_shaft_bearing_loads_carry_the_bolted_counterweights(bolted):
     assert np.hypot(*dM.T) == pytest.approx(np.full(len(dM), np.linalg.norm(M)), rel=1e-6, abs=1e-9)
 
 
-def test_drawn_throws_of_different_webs_are_one_whole_shaft(tmp_path):
+def test_drawn_throws_of_different_webs_are_one_whole_shaft(tmp_path, mesh_cache):
     """Throws that differ beyond the journals, pin and web faces (here: counterweights on
     throw 1's webs, none on throw 2's) are meshed each on its own and joined node to node;
     the main-bearing loads with and without counterweights equal the parametric model's
@@ -477,7 +476,8 @@ def test_drawn_throws_of_different_webs_are_one_whole_shaft(tmp_path):
     drawn = cad_shaft_layout(features, cad, e, engine_file="e.toml")
     assert [len(t.counterweights) for t in features.throws] == [2, 0]
     dyn = analyse(e, model.OperatingPoint(speed=SPEED))
-    cache = tmp_path / "cache"
+    # the run's mesh cache: throw 1 is the one-throw small shaft's throw (the same key)
+    cache = mesh_cache
     ref_mesh = mesh_source_shaft(g, par, size="test", cache_dir=cache)
     ref, ref_cases = analyse_whole_shaft(ref_mesh, Steel(), dyn, mass=throw_masses(par))
     ref_cases.model.free_factors()

@@ -46,10 +46,9 @@ ENDS = (
 
 
 @pytest.fixture(scope="module")
-def shafts(tmp_path_factory):
+def shafts(mesh_cache):
     """(angle in deg, sense) -> one throw at that angle with ``ENDS``, condensed once each
     (one mesh for every angle: its cache key ignores the angle)."""
-    cache = tmp_path_factory.mktemp("cache")
     built: dict = {}
 
     def get(angle_deg: float, sense: int):
@@ -60,7 +59,7 @@ def shafts(tmp_path_factory):
             e = small_engine([angle], sense=sense)
             layout = shaft_layout(g, e, geometry_file="g.toml", engine_file="e.toml")
             assert layout.sense == sense and layout.end_loads == ENDS
-            _, cases, _ = condensed_shaft(mesh_shaft(layout, size="test", cache_dir=cache), Steel())
+            _, cases, _ = condensed_shaft(mesh_shaft(layout, size="test", cache_dir=mesh_cache), Steel())
             mass = {t.name: mass_properties(layout.geometry, t.spec) for t in layout.throws}
             built[angle_deg, sense] = (layout, cases, mass, e)
         return built[angle_deg, sense]

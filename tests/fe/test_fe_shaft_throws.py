@@ -24,11 +24,11 @@ from fe_crank.mesh.shaft import mesh_shaft, rotation
 SPEED = 4000 * 2 * np.pi / 60
 
 
-def _run(angles, tmp_path_factory, *, counterweights=True):
+def _run(angles, mesh_cache, *, counterweights=True):
     g = small_geometry(angles, counterweights)
     e = small_engine(angles)
     layout = shaft_layout(g, e, geometry_file="g.toml", engine_file="e.toml")
-    sm = mesh_shaft(layout, size="test", cache_dir=tmp_path_factory.mktemp("cache"))
+    sm = mesh_shaft(layout, size="test", cache_dir=mesh_cache)
     cases = solve_cases(build_shaft_model(sm, Steel()))
     dyn = analyse(e, model.OperatingPoint(speed=SPEED))
     mass = {t.name: mass_properties(layout.geometry, t.spec) for t in layout.throws}
@@ -38,8 +38,8 @@ def _run(angles, tmp_path_factory, *, counterweights=True):
 
 
 @pytest.fixture(scope="module")
-def twin(tmp_path_factory):
-    return _run([0.0, np.pi / 2], tmp_path_factory)
+def twin(mesh_cache):
+    return _run([0.0, np.pi / 2], mesh_cache)
 
 
 def _engine(v, psi):
@@ -71,8 +71,8 @@ def test_bearing_loads_balance_the_pin_forces_and_the_centrifugal_force(twin):
 
 
 @pytest.fixture(scope="module")
-def flat4(tmp_path_factory):
-    return _run([0.0, np.pi, np.pi, 0.0], tmp_path_factory)
+def flat4(mesh_cache):
+    return _run([0.0, np.pi, np.pi, 0.0], mesh_cache)
 
 
 def test_a_mirror_symmetric_shaft_has_mirror_symmetric_bearing_loads(flat4):
@@ -100,8 +100,8 @@ def test_springs_and_rigid_bearings_carry_the_same_total(twin):
 
 
 @pytest.fixture(scope="module")
-def single(tmp_path_factory):
-    return _run([0.0], tmp_path_factory)
+def single(mesh_cache):
+    return _run([0.0], mesh_cache)
 
 
 def test_counterweights_change_the_bearing_loads_by_their_centrifugal_shares(single):

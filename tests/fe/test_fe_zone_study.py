@@ -36,9 +36,9 @@ LOADS = {"pin force": {"pin_-y": 1.0e5, "centrifugal": 250.0**2}, "torque": {"to
 
 
 @pytest.fixture(scope="module")
-def check_solution(tmp_path_factory):
+def check_solution(mesh_cache):
     geometry = load_geometry(ROOT / "geometry" / "single_cylinder.toml")
-    cache = tmp_path_factory.mktemp("meshes")
+    cache = mesh_cache
     tm = mesh_throw(geometry, size="test", cache_dir=cache)
     units = solve_unit_cases(tm, Steel(), FeOptions(cases=("centrifugal", "pin_-y", "torque")))
     units.system.factorisation.free()

@@ -23,7 +23,7 @@ DATA = Path(__file__).resolve().parents[1] / "data"
 
 
 @pytest.fixture(scope="module")
-def run(tmp_path_factory):
+def run(tmp_path_factory, mesh_cache):
     tmp = tmp_path_factory.mktemp("outputs")
     # a case that stops after loading (no geometry) but has criteria: JUnit must still list them
     text = (DATA / "early_stop_no_geometry.toml").read_text()
@@ -37,7 +37,7 @@ def run(tmp_path_factory):
             [DATA / "small_pass.toml", stop],
             tmp / "reports",
             mesh_size="test",
-            cache_dir=tmp / "cache",
+            cache_dir=mesh_cache,
             junit=tmp / "junit.xml",
         )
     return tmp, {Path(r.source).stem: r for r in results}, log.getvalue()
