@@ -1,7 +1,8 @@
-"""The counterweights' peak von Mises stress of a check's per-throw model by brute force:
-every counterweight node, crank angle and load state, its stress histories superposed from
-the FE stage's unit solutions with the coefficients a test names (the reference the
-study's screened counterweight stress is compared with)."""
+"""Peak von Mises stresses by brute force, the references the study's screened stresses
+are compared with: the counterweights' peak of a check's per-throw model (every
+counterweight node, crank angle and load state, its stress histories superposed from the
+FE stage's unit solutions with the coefficients a test names), and the peak of a
+whole-shaft history over every node of the chosen group kinds."""
 
 from __future__ import annotations
 
@@ -37,3 +38,20 @@ def counterweight_peak(lc: LoadCase, solved: dict, speeds, coefficients: Callabl
                     s = np.einsum("ac,cjn->ajn", C, unit.stress[:, :, nodes])
                     ref = max(ref, float(von_mises(np.moveaxis(s, 1, 0)).max()))
     return ref
+
+
+def brute_peak(units, weights: np.ndarray, kinds=None) -> float:
+    """The largest von Mises stress (Pa) of the history sum_c W_c(theta) S_c at every node of
+    the group kinds ``kinds`` (None: every assessed group) of every throw's unit stresses
+    ``units``, every angle (``weights``: angles x unit cases)."""
+    from fe_crank.fe.throw.node_groups import group_kind
+
+    peak = 0.0
+    for unit in units:
+        ids = np.unique(
+            np.concatenate([v for g, v in unit.groups.items() if len(v) and (kinds is None or group_kind(g) in kinds)])
+        )
+        s = unit.stress[:, :, ids]
+        hist = (weights @ s.reshape(s.shape[0], -1)).reshape(weights.shape[0], 6, ids.size)
+        peak = max(peak, float(von_mises(hist.transpose(1, 0, 2)).max()))
+    return peak

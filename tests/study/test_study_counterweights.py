@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from helpers.bolted_study import bolted_case
-from helpers.cw_peak import counterweight_peak
+from helpers.cw_peak import brute_peak, counterweight_peak
 from skfem import Basis, ElementTetP2, Functional
 
 from fe_crank.assess.loads import FIRING
@@ -23,7 +23,6 @@ from fe_crank.assess.shaft import BearingState, assess_shaft_throws, piece_unit_
 from fe_crank.assess.throw import throw_joints
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
-from fe_crank.fe.core.stress import von_mises
 from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
 from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.geometry.oil import FilmSpec
@@ -161,18 +160,6 @@ def test_superposition_equals_a_full_solve_of_the_geometry_it_writes(study, full
     assert np.abs(mid.bearings - (ref_off + k * (ref_on - ref_off))).max() <= 1e-9 * scale
 
 
-def _brute_peaks(units, weights, kinds):
-    """The largest von Mises stress over the cycle at every node of the given group kinds
-    of every throw: the full history sum_c W_c(theta) S_c evaluated at every node and angle."""
-    peak = 0.0
-    for unit in units:
-        ids = np.unique(np.concatenate([v for g, v in unit.groups.items() if group_kind(g) in kinds]))
-        s = unit.stress[:, :, ids]
-        hist = (weights @ s.reshape(s.shape[0], -1)).reshape(weights.shape[0], 6, ids.size)
-        peak = max(peak, float(von_mises(hist.transpose(1, 0, 2)).max()))
-    return peak
-
-
 @pytest.mark.heavy
 def test_screened_stresses_equal_a_full_solve(study, full_solve):
     """Fillet and counterweight-junction stresses: the screening (``candidate_stresses``) of
@@ -198,10 +185,10 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
     for k, W in ((1.0, on_w), (0.0, off_w), (0.37, (1 - 0.37) * off_w + 0.37 * on_w)):
         loads = candidate_loads(res.shaft, base, dict.fromkeys(res.drawn, k), res.drawn)
         st = candidate_stresses(res.shaft, [loads], mat, additional_bending=add, diameters=dia)
-        ref = _brute_peaks(units, W, SHAFT_KINDS)
+        ref = brute_peak(units, W, SHAFT_KINDS)
         assert st.shaft_peak == pytest.approx(ref, rel=1e-9)
         assert st.static_safety == pytest.approx(mat.yield_strength / ref, rel=1e-9)
-        ref_cw = _brute_peaks(units, W, COUNTERWEIGHT_KINDS)
+        ref_cw = brute_peak(units, W, COUNTERWEIGHT_KINDS)
         assert st.counterweight_peak == pytest.approx(ref_cw, rel=1e-9)
         if k != 1.0:
             continue

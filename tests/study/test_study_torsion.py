@@ -20,14 +20,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 from helpers.bolted_study import bolted_case, torsion_section
-from helpers.cw_peak import counterweight_peak
+from helpers.cw_peak import brute_peak, counterweight_peak
 from helpers.paths import DATA
 
 from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.assess.throw import fe_coefficients
 from fe_crank.cli import main
-from fe_crank.fe.core.stress import von_mises
-from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.fe.throw.pin_patches import rod_loads
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
@@ -213,20 +211,6 @@ def test_each_candidates_torsional_figures_equal_the_checks_of_the_written_case(
     assert all(r.bodies is not None and r.joints is not None for r in res.results[1:])
 
 
-def _brute_peak(units, weights: np.ndarray, kinds) -> float:
-    """The largest von Mises stress of the history sum_c W_c(theta) S_c at every node of the
-    group kinds ``kinds`` (None: every assessed group) of every throw, every angle."""
-    peak = 0.0
-    for unit in units:
-        ids = np.unique(
-            np.concatenate([v for g, v in unit.groups.items() if len(v) and (kinds is None or group_kind(g) in kinds)])
-        )
-        s = unit.stress[:, :, ids]
-        hist = (weights @ s.reshape(s.shape[0], -1)).reshape(weights.shape[0], 6, ids.size)
-        peak = max(peak, float(von_mises(hist.transpose(1, 0, 2)).max()))
-    return peak
-
-
 @pytest.mark.heavy
 def test_whole_shaft_with_torsion_equals_the_checks_whole_shaft_stage(study, written_one):
     """Every drawn counterweight at mass factor 1 (the geometry the study writes is the drawn
@@ -287,7 +271,7 @@ def test_whole_shaft_with_torsion_equals_the_checks_whole_shaft_stage(study, wri
             s = int(np.argmax(mags[:, :, j].max(axis=1)))  # the envelope: the set of the largest peak
             assert np.abs(sl.bearing_sets[s, :, j] - b.with_counterweights.load_n).max() <= 1e-9 * scale
         assert st.weights is not None
-        peak = _brute_peak(units, st.weights, SHAFT_KINDS)
+        peak = brute_peak(units, st.weights, SHAFT_KINDS)
         st_study = candidate_stresses(res.shaft, [sl], mat, additional_bending=add, fatigue=False)
         assert st_study.shaft_peak == pytest.approx(peak, rel=1e-9, abs=0.0)
     # the operating firing state on the stated law: the check's own cycle, not the quasi-static one
@@ -314,7 +298,7 @@ def test_whole_shaft_with_torsion_equals_the_checks_whole_shaft_stage(study, wri
     os = candidate_overspeed(res.shaft, os_loads, mat)
     assert os is not None
     os_weights = np.vstack([c.weights for c in ws.result.overspeed])
-    assert os.peak == pytest.approx(_brute_peak(units, os_weights, None), rel=1e-9, abs=0.0)
+    assert os.peak == pytest.approx(brute_peak(units, os_weights, None), rel=1e-9, abs=0.0)
 
 
 def test_tables_carry_the_frequency_and_the_notes_say_how(study, tmp_path):
