@@ -116,8 +116,6 @@ def _cw_fillets(faces, frame, radius, z_range, lines, used, tol) -> list[Face]:
     return out
 
 
-#: the journal redrawn at a bearing centre (``cad.model.redraw_ends``) over this fraction
-#: of its cylinder's length from the centre towards the web (``cad.whole.SLAB`` checks it)
 #: deg: a recognised counterweight whose m r points farther than this from opposite its pin is
 #: refused (``turned_counterweight``): the region it is recognised in is centred there
 CW_TURN_TOL_DEG = 1.0
@@ -146,6 +144,8 @@ def turned_counterweight(cw: Counterweight, throw: str, cad: CadInput) -> None:
         )
 
 
+#: the journal redrawn at a bearing centre (``cad.model.redraw_ends``) over this fraction
+#: of its cylinder's length from the centre towards the web (``cad.whole.SLAB`` checks it)
 SLAB_FRACTION = 0.25
 
 

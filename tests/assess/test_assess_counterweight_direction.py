@@ -19,6 +19,7 @@ from fe_crank.balance.analysis import analyse_balance
 from fe_crank.balance.counterweights import Counterweight
 from fe_crank.geometry.mass import throw_solids
 from fe_crank.io.loadcase import load_loadcase
+from fe_crank.study.candidates import turned_geometry
 
 
 def _required(angle_on_shaft: float) -> Counterweight:
@@ -62,15 +63,7 @@ def test_the_v4_turned_counterweights_miss_their_requirement_by_their_turn():
     design = analyse_balance(lc.engine, lc.operating.speed, lc.balance).design
     off = math.radians(15.0)
     for turn in (0.0, off):
-        g = dataclasses.replace(
-            lc.geometry,
-            throws=tuple(
-                dataclasses.replace(
-                    t, counterweights=tuple(dataclasses.replace(c, offset=turn) for c in t.counterweights)
-                )
-                for t in lc.geometry.throws
-            ),
-        )
+        g = turned_geometry(lc.geometry, turn)
         names = tuple(t.name for t in g.throws)
         solids = throw_solids(g, names)
         got = parametric_throws(g, {n: n for n in names}, lc.engine, solids, design)
