@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from fe_crank.assess.cw_joint import cycle_speed_data
 from fe_crank.assess.group.extremes import Running, Wanted
 from fe_crank.assess.inputs import AssessInputs
+from fe_crank.assess.joint_loads import cycle_speed_data
 from fe_crank.assess.loads import FIRING, LoadState, misfire_label
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment, ThrowContext, assess_throw
@@ -47,7 +47,7 @@ def cycle_dynamics(cycles: EngineCycles) -> dict[tuple[float, str], DynamicsResu
 def joint_speed(a: AssessInputs, dynamics: DynamicsResult, alpha: np.ndarray | None) -> tuple[float, float]:
     """(delta, max |alpha|) the bolted joints take in one load state: the cycle's speed
     fluctuation and rigid angular acceleration with the operating cycle's flywheel
-    (``cw_joint.cycle_speed_data``), plus the largest torsional angular acceleration of the
+    (``joint_loads.cycle_speed_data``), plus the largest torsional angular acceleration of the
     throw (``alpha``, None without [torsion]): the sum of the two maxima bounds the
     largest of their sum."""
     return speed_data(dynamics, a.cycles.operating.flywheel_inertia, alpha)

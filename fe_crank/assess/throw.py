@@ -86,7 +86,7 @@ class ThrowContext:
     of the vibratory tangential force, ``assess.loads.ThrowCycle.fe_rods``); without them a
     model loaded per rod place is refused with a vibratory pin force
     (``superpose.cycle_coefficients``).
-    ``joint_speed``: (delta, max |alpha|) of the cycle (``cw_joint.cycle_speed_data``):
+    ``joint_speed``: (delta, max |alpha|) of the cycle (``joint_loads.cycle_speed_data``):
     the bolted counterweights' joints are checked by VDI 2230 at ``omega`` (and the
     overspeed) (``cw_joint.check_joints``, an ``InputError`` naming the keys a joint lacks,
     in ``geometry_file``), with the web's bending moment from ``pin_force`` (or ``rod_loads``)

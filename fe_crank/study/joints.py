@@ -4,9 +4,9 @@ by the check's own code on each candidate's counterweights.
 A bolted counterweight's joint (``assess.cw_joint``) takes its loads from the
 counterweight's own inertia (its mass m and centre-of-mass radius r_c: the centrifugal
 force m r_c omega^2 and the tangential inertia m r_c alpha, with the speed fluctuation and
-angular acceleration of each cycle, ``cw_joint.cycle_speed_data``) and the web's
+angular acceleration of each cycle, ``joint_loads.cycle_speed_data``) and the web's
 deformation under the pin force and the journal torque (the per-throw model's normal
-stress across the joint plane, ``cw_joint.fe_section_loads``: the pin and torque unit
+stress across the joint plane, ``joint_loads.fe_section_loads``: the pin and torque unit
 cases alone, none of the centrifugal ones; the lever model where the section cannot be
 fitted).  Per candidate the counterweight data are those the check builds for the
 geometry the candidate writes (``assess.adapters.counterweights_of`` on the written

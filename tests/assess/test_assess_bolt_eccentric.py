@@ -51,7 +51,7 @@ from helpers.joints import JOINT
 from helpers.joints import joint_loads as _loads
 
 from fe_crank.assess.counterweight import BoltedCounterweight, CounterweightData, JointGeometry
-from fe_crank.assess.cw_joint import check_joint, joint_loads, web_moments
+from fe_crank.assess.cw_joint import check_joint
 from fe_crank.assess.joint_criteria import (
     DEFAULT_LIMITS,
     DEFAULT_WORDS,
@@ -59,6 +59,7 @@ from fe_crank.assess.joint_criteria import (
     joint_qualifiers,
     with_default_limits,
 )
+from fe_crank.assess.joint_loads import joint_loads, web_moments
 from fe_crank.assess.throw_geometry import ThrowGeometry
 from fe_crank.io.criteria import build_criteria
 from fe_crank.rules import vdi2230
@@ -235,7 +236,7 @@ def test_the_fe_section_fit_recovers_a_linear_stress_field():
     towards the throw's middle, +z): each bolt's prism (22 x 17 mm) carries M_B = 2e9 Pa/m x
     22 x 17^3/12 mm^4 = 18.0143 N m and F = (5 MPa + 0.1 MPa/mm x_i) 22 x 17 mm^2, x_i =
     +-58 sin 35 deg; the unit case coefficient scales both, the centrifugal case is left out."""
-    from fe_crank.assess.cw_joint import fe_section_loads
+    from fe_crank.assess.joint_loads import fe_section_loads
     from fe_crank.assess.superpose import UnitStresses
 
     joint = dataclasses.replace(JOINT, count=2, diameter=0.010, pitch_radius=0.058, clamped_diameter=0.022)

@@ -42,7 +42,8 @@ import pytest
 from helpers.joints import JOINT, W_OS, W
 from helpers.joints import joint_loads as _loads
 
-from fe_crank.assess.cw_joint import check_joint, counterweight_loads
+from fe_crank.assess.cw_joint import check_joint
+from fe_crank.assess.joint_loads import counterweight_loads
 from fe_crank.errors import InputError
 from fe_crank.io.geometry import geometry_from_dict
 from fe_crank.rules import vdi2230
@@ -199,7 +200,8 @@ def test_joints_from_the_geometry_and_the_cycle(tmp_path):
     import numpy as np
 
     from fe_crank.assess.adapters import counterweights_of
-    from fe_crank.assess.cw_joint import check_joints, cycle_speed_data
+    from fe_crank.assess.cw_joint import check_joints
+    from fe_crank.assess.joint_loads import cycle_speed_data
     from fe_crank.geometry import mass_properties
     from fe_crank.io.loadcase import load_loadcase
     from fe_crank.mechanism import dynamics

@@ -161,13 +161,13 @@ def test_drawn_turned_counterweight_refused_by_the_cad_route(tmp_path, capsys):
 
 
 def test_bolted_joint_section_of_a_turned_counterweight_turns_with_it():
-    """The radial joint's section (``assess.cw_joint.fe_section_loads``): nodes and nodal
+    """The radial joint's section (``assess.joint_loads.fe_section_loads``): nodes and nodal
     stresses of a counterweight centred opposite the pin, and the same turned by 35 deg as a
     rigid body (points turned, stress tensors Q S Q^T), give the same joint loads with the
     joint's ``offset``; the bolts' positions across the joint (``bolt_offsets``) are in its
     own frame and do not change."""
     from fe_crank.assess.counterweight import JointGeometry
-    from fe_crank.assess.cw_joint import bolt_offsets, fe_section_loads
+    from fe_crank.assess.joint_loads import bolt_offsets, fe_section_loads
     from fe_crank.assess.superpose import UnitStresses
     from fe_crank.geometry.spec import BoltedJoint
 

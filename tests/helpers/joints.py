@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from fe_crank.assess.cw_joint import counterweight_loads
+from fe_crank.assess.joint_loads import counterweight_loads
 from fe_crank.geometry.spec import BoltedJoint
 
 JOINT = BoltedJoint(
