@@ -8,6 +8,8 @@
 * counterweight fillets: the concave curved faces (centre of curvature outside the
   material) wholly in a counterweight's region, other than bores, holes and surfaces
   about the crank or pin axis;
+* a counterweight's offset: the direction of its exact m r, turned from ``-y`` towards
+  ``+x`` (``counterweight_offset``; one turned over ``y = 0`` refused);
 * the named parts (``fe_crank.cad.model``) and their mass properties
   (``fe_crank.geometry.mass``: exact B-rep integrals).
 """
@@ -99,14 +101,17 @@ def _side_radius(
     return float(half), False
 
 
-def _over(
-    gmsh, shaft, frame: Frame, cw: Counterweight, top: list[float], reach: float, R: float
-) -> tuple[float, float]:
-    """How far the solid reaches along ``-x`` and ``+x`` (m) on the line just above the
-    counterweight's region (``1e-3 R`` above its boundary ``y = cw_top``) through the
-    counterweight's centroid's z (``counterweight_offset``)."""
-    lo, hi, _ = chord(gmsh, shaft, frame, top[cw.web - 1] + 1e-3 * R, cw.mass.centroid[2], reach)
+def _over(gmsh, shaft, frame: Frame, cw: Counterweight, top: float, reach: float, R: float) -> tuple[float, float]:
+    """How far the solid reaches along ``-x`` and ``+x`` (m) on the line ``1e-3 R`` above
+    ``top`` (the counterweight region's boundary or its transition fillets, whichever is
+    higher) through the counterweight's centroid's z (``counterweight_offset``)."""
+    lo, hi, _ = chord(gmsh, shaft, frame, top + 1e-3 * R, cw.mass.centroid[2], reach)
     return float(-lo), float(hi)
+
+
+def _top(frame: Frame, faces: list[Face], base: float) -> float:
+    """The highest ``y`` (throw frame) of ``faces`` and ``base``."""
+    return max([base] + [float(frame.to_throw(np.vstack([f.points, f.edge_points]))[:, 1].max()) for f in faces])
 
 
 def _cw_fillets(faces, frame, radius, z_range, lines, used, tol) -> list[Face]:
@@ -155,10 +160,10 @@ def counterweight_offset(
     mass properties are the drawn counterweight's and their m r gives the offset.
 
     ``over()``: how far the solid reaches along ``-x`` and ``+x`` (m) on the line just above
-    the region's boundary through the counterweight's centroid (``cad.frame.chord``).  A
-    counterweight turned more than ``CW_TURN_TOL_DEG`` whose side of the turn reaches
-    farther there than the other (material of it beyond the web's side, above the
-    boundary) would be taken in part and its rest left to the web: refused."""
+    the region's boundary and the counterweight's transition fillets, through its centroid
+    (``cad.frame.chord``).  A counterweight turned more than ``CW_TURN_TOL_DEG`` whose one
+    side reaches farther there than the other (material of it beyond the web's side, above
+    the boundary) would be taken in part and its rest left to the web: refused."""
     ux, uy = cw.mass.unbalance_vector
     if not cw.mass.mass > 0.0 or math.hypot(ux, uy) == 0.0:
         return 0.0
@@ -171,12 +176,13 @@ def counterweight_offset(
     if abs(right - left) > 1e-6 * max(left, right):
         side, far, near = ("+x", right, left) if right > left else ("-x", left, right)
         raise InputError(
-            f"throw {throw}: counterweight_{cw.web}'s m r points {abs(math.degrees(turn)):.3g} deg from opposite "
-            f"its pin and the counterweight reaches over y = 0 towards its pin on its {side} side (the solid "
-            f"reaches {far * 1e3:.4g} mm there just above y = 0, {near * 1e3:.4g} mm on the other side): a drawn "
-            "counterweight is recognised as the material beyond its radius on the far side of y = 0 from its pin, "
-            "and one turned over that line (or drawn asymmetric across it) would be taken in part; model it as a "
-            "parametric geometry with counterweight.offset (docs/geometry.md)",
+            f"throw {throw}: counterweight_{cw.web} is turned from opposite its pin (the m r of its part on the far "
+            f"side of y = 0 points {abs(math.degrees(turn)):.3g} deg from -y) and reaches over y = 0 towards its pin "
+            f"on its {side} side (the solid reaches {far * 1e3:.4g} mm along {side} just above y = 0 and its "
+            f"transition fillets, {near * 1e3:.4g} mm on the other side): a drawn counterweight is recognised as "
+            "the material beyond its radius on the far side of y = 0 from its pin, and one turned over that line "
+            "(or drawn asymmetric across it) would be taken in part; model it as a parametric geometry with "
+            "counterweight.offset (docs/geometry.md)",
             file=str(cad.file),
             key="cad.file",
         )
@@ -321,7 +327,19 @@ def throw_features(
         dataclasses.replace(
             cw,
             offset=counterweight_offset(
-                cw, t.name, cad, functools.partial(_over, gmsh, shaft, frame, cw, cw_top, reach, t.crank_radius)
+                cw,
+                t.name,
+                cad,
+                functools.partial(
+                    _over,
+                    gmsh,
+                    shaft,
+                    frame,
+                    cw,
+                    _top(frame, cw_faces[cw.web], cw_top[cw.web - 1]),
+                    reach,
+                    t.crank_radius,
+                ),
             ),
         )
         for cw in cws

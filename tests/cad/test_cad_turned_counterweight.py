@@ -111,7 +111,10 @@ def test_turned_counterweight_recognised_with_its_offset_and_exact_mass(turned):
             a, b = (np.sum([np.asarray(getattr(x, key)) for x in side], axis=0) for side in both)
             assert a == pytest.approx(b, rel=REL, abs=REL * float(np.abs(b).max()))
     lines = feature_lines(features)
-    assert any("counterweight_1: beyond r = 20 mm" in s and "turned 20 deg from opposite its pin" in s for s in lines)
+    assert any(
+        "counterweight_1: beyond r = 20 mm" in s and "turned 20 deg from opposite its pin (-y towards +x)" in s
+        for s in lines
+    )
 
 
 @dataclasses.dataclass(frozen=True)
