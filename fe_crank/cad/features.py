@@ -107,7 +107,9 @@ class Bearing:
 @dataclass(frozen=True)
 class Counterweight:
     """Material of the throw on the far side of the axis from the pin (y < 0) farther
-    from the axis than ``radius``, between the bearing centre of its side and z = 0."""
+    from the axis than ``radius``, between the bearing centre of its side and z = 0;
+    ``offset``: the direction of its m r, turned from ``-y`` towards ``+x`` (rad, the
+    parametric ``counterweight.offset``; 0 for one centred opposite its pin)."""
 
     web: int
     radius: float  # where it begins (the web's side radius, or [cad] counterweight_radius)
@@ -115,6 +117,7 @@ class Counterweight:
     fillet_radius: float | None  # smallest radius of those (None: none)
     mass: PartProperties
     fillet_area: float = 0.0  # m^2
+    offset: float = 0.0  # rad, from -y towards +x: where its m r points (cad.throw.counterweight_offset)
 
 
 @dataclass(frozen=True)

@@ -171,7 +171,7 @@ def mirror_symmetric(gmsh, t: ThrowFeatures, built, frame) -> bool:
     cws = {cw.web: cw for cw in t.counterweights}
     if set(cws) not in (set(), {1, 2}):
         return False
-    if cws:
+    if cws:  # (a turned counterweight's turn: in the parts' mass properties below)
         pairs.append((cws[1].radius, cws[2].radius))
     if any(abs(a - b) > tol for a, b in pairs) or any(abs(b.point[2]) > tol for b in t.oil_bores):
         return False

@@ -86,10 +86,13 @@ def feature_lines(features: CadFeatures) -> list[str]:
                 continue
             m = cw.mass
             fr = f", fillets {_faces(cw.fillet_faces)} radius {_mm(cw.fillet_radius)}" if cw.fillet_radius else ""
+            turned = (
+                f", turned {math.degrees(cw.offset):.4g} deg from opposite its pin (-y towards +x)" if cw.offset else ""
+            )
             out.append(
                 f"  counterweight_{cw.web}: beyond r = {_mm(cw.radius)}, mass {m.mass:.5g} kg at r "
                 f"{_mm(math.hypot(*m.centroid[:2]))}, m r {m.unbalance * 1e3:.5g} kg mm, J about the axis "
-                f"{m.inertia_axis * 1e6:.5g} kg mm^2{fr}"
+                f"{m.inertia_axis * 1e6:.5g} kg mm^2{turned}{fr}"
             )
     for end in features.ends:
         m = end.mass

@@ -8,13 +8,18 @@
 * counterweight fillets: the concave curved faces (centre of curvature outside the
   material) wholly in a counterweight's region, other than bores, holes and surfaces
   about the crank or pin axis;
+* a counterweight's offset: the direction of its exact m r, turned from ``-y`` towards
+  ``+x`` (``counterweight_offset``; one turned over ``y = 0`` refused);
 * the named parts (``fe_crank.cad.model``) and their mass properties
   (``fe_crank.geometry.mass``: exact B-rep integrals).
 """
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -96,6 +101,19 @@ def _side_radius(
     return float(half), False
 
 
+def _over(gmsh, shaft, frame: Frame, cw: Counterweight, top: float, reach: float, R: float) -> tuple[float, float]:
+    """How far the solid reaches along ``-x`` and ``+x`` (m) on the line ``1e-3 R`` above
+    ``top`` (the counterweight region's boundary or its transition fillets, whichever is
+    higher) through the counterweight's centroid's z (``counterweight_offset``)."""
+    lo, hi, _ = chord(gmsh, shaft, frame, top + 1e-3 * R, cw.mass.centroid[2], reach)
+    return float(-lo), float(hi)
+
+
+def _top(frame: Frame, faces: list[Face], base: float) -> float:
+    """The highest ``y`` (throw frame) of ``faces`` and ``base``."""
+    return max([base] + [float(frame.to_throw(np.vstack([f.points, f.edge_points]))[:, 1].max()) for f in faces])
+
+
 def _cw_fillets(faces, frame, radius, z_range, lines, used, tol) -> list[Face]:
     out = []
     for f in faces.values():
@@ -117,31 +135,58 @@ def _cw_fillets(faces, frame, radius, z_range, lines, used, tol) -> list[Face]:
 
 
 #: deg: a recognised counterweight whose m r points farther than this from opposite its pin is
-#: refused (``turned_counterweight``): the region it is recognised in is centred there
+#: turned (``counterweight_offset``): it must then lie wholly on the far side of the boundary
+#: of the region it is recognised in
 CW_TURN_TOL_DEG = 1.0
 
+#: rad: a recognised counterweight's offset below this is taken as round-off of the B-rep
+#: integrals and of the recognised frame (a counterweight drawn symmetric about the crank
+#: plane shows about 1e-12): recorded as 0
+OFFSET_ROUNDOFF = 1e-6
 
-def turned_counterweight(cw: Counterweight, throw: str, cad: CadInput) -> None:
-    """Refuse a drawn counterweight turned from opposite its pin (its recognised part's m r
-    more than ``CW_TURN_TOL_DEG`` from ``-y``).  The recognition takes a counterweight as the
-    material beyond its radius on the far side of ``y = 0``: a region centred opposite the
-    pin.  Of a turned one it would take a part and leave the rest to the web (the FE model's
-    loads stay those of the drawn solid; the counterweight's groups, its built m r and its
-    joint would not), so it is refused rather than half recognised."""
+
+def counterweight_offset(
+    cw: Counterweight, throw: str, cad: CadInput, over: Callable[[], tuple[float, float]]
+) -> float:
+    """The angle (rad, from ``-y`` towards ``+x``) of a recognised counterweight's m r: the
+    offset of the parametric ``counterweight.offset``, ``Counterweight.offset``.
+
+    The recognition takes a counterweight as the material beyond its radius on the far
+    side of ``y = 0`` (lifted over its transition fillets where they rise above it): a
+    region centred opposite the pin, which holds a turned counterweight whole as long as
+    it stays on that side (an annular sector of angle ``a`` turned by ``d`` with
+    ``|d| + a/2`` up to 90 deg).  There the web has no material beyond the counterweight's
+    radius, so the region is the one centred on the counterweight's own m r; its exact
+    mass properties are the drawn counterweight's and their m r gives the offset.
+
+    ``over()``: how far the solid reaches along ``-x`` and ``+x`` (m) on the line just above
+    the region's boundary and the counterweight's transition fillets, through its centroid
+    (``cad.frame.chord``).  A counterweight turned more than ``CW_TURN_TOL_DEG`` whose one
+    side reaches farther there than the other (material of it beyond the web's side, above
+    the boundary) would be taken in part and its rest left to the web: refused."""
     ux, uy = cw.mass.unbalance_vector
     if not cw.mass.mass > 0.0 or math.hypot(ux, uy) == 0.0:
-        return
-    turn = math.degrees(math.atan2(ux, -uy))
-    if abs(turn) > CW_TURN_TOL_DEG:
+        return 0.0
+    turn = math.atan2(ux, -uy)
+    if abs(turn) <= OFFSET_ROUNDOFF:
+        return 0.0
+    if abs(math.degrees(turn)) <= CW_TURN_TOL_DEG:
+        return float(turn)
+    left, right = over()
+    if abs(right - left) > 1e-6 * max(left, right):
+        side, far, near = ("+x", right, left) if right > left else ("-x", left, right)
         raise InputError(
-            f"throw {throw}: counterweight_{cw.web}'s m r points {abs(turn):.3g} deg from opposite its pin "
-            f"(more than {CW_TURN_TOL_DEG:g} deg): a drawn counterweight is recognised only centred opposite "
-            "its pin (the material beyond its radius on the far side of the axis), and one turned from there "
-            "(or drawn asymmetric about the crank plane) would be taken in part; model it as a parametric "
-            "geometry with counterweight.offset (docs/geometry.md)",
+            f"throw {throw}: counterweight_{cw.web} is turned from opposite its pin (the m r of its part on the far "
+            f"side of y = 0 points {abs(math.degrees(turn)):.3g} deg from -y) and reaches over y = 0 towards its pin "
+            f"on its {side} side (the solid reaches {far * 1e3:.4g} mm along {side} just above y = 0 and its "
+            f"transition fillets, {near * 1e3:.4g} mm on the other side): a drawn counterweight is recognised as "
+            "the material beyond its radius on the far side of y = 0 from its pin, and one turned over that line "
+            "(or drawn asymmetric across it) would be taken in part; model it as a parametric geometry with "
+            "counterweight.offset (docs/geometry.md)",
             file=str(cad.file),
             key="cad.file",
         )
+    return float(turn)
 
 
 #: the journal redrawn at a bearing centre (``cad.model.redraw_ends``) over this fraction
@@ -278,8 +323,27 @@ def throw_features(
         for k in (1, 2)
         if f"counterweight_{k}" in built.volumes
     )
-    for cw in cws:
-        turned_counterweight(cw, t.name, cad)
+    cws = tuple(
+        dataclasses.replace(
+            cw,
+            offset=counterweight_offset(
+                cw,
+                t.name,
+                cad,
+                functools.partial(
+                    _over,
+                    gmsh,
+                    shaft,
+                    frame,
+                    cw,
+                    _top(frame, cw_faces[cw.web], cw_top[cw.web - 1]),
+                    reach,
+                    t.crank_radius,
+                ),
+            ),
+        )
+        for cw in cws
+    )
     fillets = tuple(
         f
         for f in (

@@ -95,6 +95,7 @@ def _dims(t: ThrowFeatures) -> dict[str, float]:
     for cw in t.counterweights:
         out[f"counterweight_{cw.web} radius"] = cw.radius
         out[f"counterweight_{cw.web} fillet radius"] = cw.fillet_radius or 0.0
+        out[f"counterweight_{cw.web} offset (rad x crank radius)"] = cw.offset * t.crank_radius
     return out
 
 

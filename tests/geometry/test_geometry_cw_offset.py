@@ -141,25 +141,6 @@ def test_bad_offset_refused_by_validate_with_file_and_key(tmp_path, capsys, line
     assert len(err.strip().splitlines()) == 1
 
 
-def test_drawn_turned_counterweight_refused_by_the_cad_route(tmp_path, capsys):
-    """The CAD route recognises a counterweight centred opposite its pin only: a drawn one
-    turned 20 deg (the parametric throw with that offset, written as STEP) is refused by
-    ``fe-crank validate`` with the file, the key and the angle its m r points at."""
-    from helpers.cad_files import cad_loadcase, parametric_step
-    from helpers.paths import DATA
-
-    from fe_crank.io.base import read_toml
-
-    raw = {k: v for k, v in read_toml(DATA / "geometry_small_shaft.toml").items() if k not in ("throws", "shaft")}
-    raw["counterweight"] = {**raw["counterweight"], "offset": "20 deg"}
-    step = parametric_step(geometry_from_dict(raw), tmp_path / "turned.step")
-    capsys.readouterr()
-    assert main(["validate", str(cad_loadcase(tmp_path, step.name))]) == 2
-    err = capsys.readouterr().err
-    assert str(step) in err and "cad.file:" in err and "points 20 deg from opposite its pin" in err
-    assert "Traceback" not in err and len(err.strip().splitlines()) == 1
-
-
 def test_bolted_joint_section_of_a_turned_counterweight_turns_with_it():
     """The radial joint's section (``assess.joint_loads.fe_section_loads``): nodes and nodal
     stresses of a counterweight centred opposite the pin, and the same turned by 35 deg as a
