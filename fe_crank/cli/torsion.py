@@ -4,8 +4,8 @@ Needs the load case's ``[torsion]`` section (docs/torsion.md).  Writes into DIR
 ``torsion.json`` (natural frequencies, mode shapes, resonances in the speed range,
 vibratory torque of every shaft segment vs speed, the governing speed of each segment)
 and ``campbell.png``, ``torsion_response.png``, ``torsion_modes.png``; prints a summary.
-``--fe-stiffness`` also meshes one throw and measures its stiffness with the FE model
-(always done when the section says ``throw_stiffness = "fe"``).
+``--fe-stiffness`` also meshes one throw and measures its stiffness with the FE model as
+the check does (always done when the section says ``throw_stiffness = "fe"``).
 """
 
 from __future__ import annotations
@@ -48,23 +48,30 @@ def add_arguments(p) -> None:
 
 
 def fe_stiffness_of(lc: LoadCase, size: str | None, cache_dir) -> float:
-    """Torsional stiffness of the load case's first throw on its FE model (N m/rad, FE span)."""
-    import dataclasses
-
-    from fe_crank.cad.source import mesh_source_throw
-    from fe_crank.fe import solve_unit_cases
+    """The FE throw stiffness the check's chain takes (N m/rad, FE span): the torque unit
+    case of the first throw model of the check's mesh plan at ``size`` (default: the
+    case's ``[mesh]``), ``torsion.stiffness.plan_throw_stiffness``."""
     from fe_crank.geometry.spec import CrankGeometry
-    from fe_crank.mesh.plan import preset_of
-    from fe_crank.torsion.stiffness import fe_throw_stiffness
+    from fe_crank.mesh.plan import plan_meshes
+    from fe_crank.pipeline.stages import shaft_layout
+    from fe_crank.torsion.stiffness import plan_throw_stiffness
 
     if not isinstance(lc.geometry, CrankGeometry) or lc.material is None:
         raise InputError(
             "the FE throw stiffness needs a parametric geometry and the [material] section", file=lc.source_file
         )
-    throw = lc.geometry.throws[0].name
-    tm = mesh_source_throw(lc.geometry, throw, size=preset_of(lc.mesh, size), cache_dir=cache_dir)
-    opts = dataclasses.replace(lc.fe, cases=("centrifugal", "torque"))
-    return fe_throw_stiffness(solve_unit_cases(tm, lc.material, opts))
+    plan = plan_meshes(
+        lc.geometry,
+        tuple(t.name for t in lc.engine.throws),
+        lc.mesh,
+        size=size,
+        cache_dir=str(cache_dir) if cache_dir is not None else None,
+        file=lc.source_file,
+        shaft=shaft_layout(lc),
+    )
+    k = plan_throw_stiffness(lc.geometry, plan, lc.material, lc.fe)
+    assert k is not None  # the [fe] section holds the torque case (fe.input)
+    return k
 
 
 def run(args) -> int:

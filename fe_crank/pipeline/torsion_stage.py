@@ -15,7 +15,7 @@ from fe_crank.torsion.build import throw_inertias
 from fe_crank.torsion.loads import fe_inertias
 from fe_crank.torsion.model import TorsionCase
 from fe_crank.torsion.stage import operating_dynamics, torsional_loads, torsional_response
-from fe_crank.torsion.stiffness import fe_throw_stiffness
+from fe_crank.torsion.stiffness import plan_throw_stiffness
 
 
 def torsion_stage(
@@ -25,15 +25,16 @@ def torsion_stage(
     cylinder torques (``cycles.torques``), with the throws' inertias from
     the geometry stage's CAD mass properties, with every cylinder firing and with each
     misfire case of ``[operating] misfire`` (``torsion.stage.torsional_response``); the FE
-    throw stiffness is measured from the torque unit case when it is there (the report
-    shows it beside Carter's; it is used when ``throw_stiffness = "fe"``).  Hands over the
+    throw stiffness is measured from the torque unit case of the plan's first throw model
+    when it is there (``torsion.stiffness.plan_throw_stiffness``; the report shows it
+    beside Carter's; it is used when ``throw_stiffness = "fe"``).  Hands over the
     loads of every speed of the sweep and state with their vibration
     (``torsion.stage.torsional_loads``) and UR M53's journal torques (the largest half
     range over the speed range and every case, ``torsion.handover``)."""
     settings = lc.torsion
     assert settings is not None
-    first = next(iter(unit_solutions.values()), None)
-    k_fe = fe_throw_stiffness(first) if first is not None and "torque" in first.cases else None
+    assert lc.geometry is not None and lc.material is not None  # the FE stage ran
+    k_fe = plan_throw_stiffness(lc.geometry, geo.plan, lc.material, lc.fe, unit_solutions)
     if settings.throw_stiffness == "fe" and k_fe is None:
         raise InputError(
             "throw_stiffness = 'fe' needs the FE torque unit case", file=lc.source_file, key="torsion.throw_stiffness"

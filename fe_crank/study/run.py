@@ -49,8 +49,7 @@ from fe_crank.study.screen import (
     with_operating_dynamics,
 )
 from fe_crank.study.spec import StudySpec
-from fe_crank.study.torsion import refusal as torsion_refusal
-from fe_crank.study.torsion import screen_torsion
+from fe_crank.study.torsion import ThrowStiffnessCache, screen_torsion
 from fe_crank.torsion.loads import assessed_loads
 
 
@@ -127,19 +126,6 @@ TORSION_SHAFT = (
     "torsional stage"
 )
 
-#: what the study cannot screen on the whole shaft when it cannot run the torsional stage per candidate
-TORSION_NOT_SCREENED = (
-    "the whole shaft's operating firing state is screened on the quasi-static journal torques (every journal "
-    "its own, the torque-flow cases): the check's takes the torsional stage's journal torques there"
-)
-
-#: why the study does not screen the bolted joints when it cannot run the torsional stage per candidate
-JOINT_TORSION = (
-    "with a [torsion] section the check adds the throw's torsional angular acceleration to each bolted "
-    "counterweight's tangential inertia and the vibratory pin force to the web's deformation, both of which "
-    "the candidate's counterweights change through the shaft's inertia"
-)
-
 
 def _layout(lc: LoadCase):
     g = lc.geometry
@@ -211,14 +197,8 @@ def prepare(lc: LoadCase, spec: StudySpec):
                 file=spec.file,
                 key=f"study.limits.{k}",
             )
-        if k in spec.limits and torsion_refusal(lc) is not None:
-            raise InputError(
-                f"{JOINT_TORSION}; {torsion_refusal(lc)}",
-                file=spec.file,
-                key=f"study.limits.{k}",
-            )
     if M53_LIMIT in spec.limits:
-        why = refusal(lc) or torsion_refusal(lc)
+        why = refusal(lc)
         if why is None and lc.torsion is None and not (lc.criteria is not None and lc.criteria.m53_quasi_static_torque):
             why = (
                 "UR M53 2.2 takes the torsional stress from a forced-vibration calculation: give the load case a "
@@ -442,8 +422,11 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     g = layout.geometry
     # per candidate with [torsion] (its torsional stage, study.torsion), else the counterweights
     # enter neither UR M53's loads nor its dimensions: once
-    per_candidate = lc.torsion is not None and torsion_refusal(lc) is None
+    per_candidate = lc.torsion is not None
     q = None if lc.torsion is not None else study_m53(lc, cycles)
+    # the FE throw stiffness of each candidate's written geometry (throw_stiffness = "fe")
+    stiffness = ThrowStiffnessCache(lc, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    k_fe: list[float] = []
     results = []
     first = None
     by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = {}
@@ -477,7 +460,7 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
         )
         rigid = bm is not None and lc.torsion is None  # the per-throw model's loads: the same for every candidate
         per_throw_loads = assessed_loads(lc.engine, cycles, reaction=lc.fe.torque_reaction) if rigid else None
-        joints_screened = bm is not None and has_bolted(layout_o) and (lc.torsion is None or per_candidate)
+        joints_screened = bm is not None and has_bolted(layout_o)
         jm = joint_model(lc, layout_o, bm, cycles) if joints_screened and rigid and bm is not None else None
         j_lims, j_whose = joint_limits(spec.limits, lc.criteria) if joints_screened else ({}, "")
         if first is None:
@@ -490,8 +473,12 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
             f1 = None
             c_loads, c_jm, c_bases = per_throw_loads, jm, bases
             if per_candidate:
-                ts = screen_torsion(lc, cycles, layout_o, c, drawn_o, shaft.mass, solids, bm, joints_screened)
+                ts = screen_torsion(
+                    lc, cycles, layout_o, c, drawn_o, shaft.mass, solids, bm, joints_screened, stiffness
+                )
                 f1, q, c_jm = ts.frequency, ts.m53, ts.joints
+                if ts.fe_stiffness is not None:
+                    k_fe.append(ts.fe_stiffness)
                 c_loads = ts.loads if bm is not None else None
                 # the operating speed's firing state with the candidate's own journal torques
                 assert ts.dynamics is not None
@@ -524,15 +511,22 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     notes = []
     if lc.engine.gas is None:
         notes.append("the engine has no gas table: full load is the inertia load, no separate no-load state")
-    if lc.torsion is not None and per_candidate:
+    if lc.torsion is not None:
         notes.append(
             "torsional stage per candidate (the check's, torsion.stage): the chain with the throws' inertias of "
             "the geometry the candidate writes (exact CAD J_z plus the rods and pistons), every cylinder firing "
             "and each misfire case; its first natural frequency in the table"
         )
         notes.append(TORSION_SHAFT)
-    elif lc.torsion is not None:
-        notes.append(f"torsional stage not run per candidate ({torsion_refusal(lc)}); " + TORSION_NOT_SCREENED)
+    if lc.torsion is not None and lc.torsion.model == "cad" and lc.torsion.throw_stiffness == "carter":
+        notes.append('throw stiffness Carter\'s (throw_stiffness = "carter"), which the counterweights do not change')
+    if k_fe:
+        notes.append(
+            'FE throw stiffness per candidate (throw_stiffness = "fe"), the check\'s (torsion.stiffness'
+            ".plan_throw_stiffness): the torque unit case of the first throw model of the check's mesh plan of "
+            f"the geometry the candidate writes, {len(stiffness.solved)} distinct model(s) meshed and solved, "
+            f"{min(k_fe):.6g} to {max(k_fe):.6g} N m/rad; a candidate that cannot be built takes the drawn throw's"
+        )
     if lc.torsion is not None and q is not None:
         notes.append(
             "UR M53 Q per candidate, computed as the check does: the journal torques of the candidate's own "
@@ -540,7 +534,7 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
             "speed range and every misfire case)"
         )
     elif lc.torsion is not None:
-        notes.append(f"UR M53 Q not screened: {refusal(lc) or torsion_refusal(lc)}")
+        notes.append(f"UR M53 Q not screened: {refusal(lc)}")
     elif q is not None:
         notes.append(
             f"UR M53 Q {q.acceptability:.4g} ({q.where}): computed once, every candidate's (the counterweights "
@@ -561,8 +555,7 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
             + ", ".join(f"{k} {v:g}" for k, v in j_lims.items())
         )
     elif has_bolted(layout):
-        why_not = 'stresses = "off": no per-throw model' if bm is None else f"{JOINT_TORSION}; {torsion_refusal(lc)}"
-        notes.append(f"bolted joints not screened ({why_not}); judge them by the full check")
+        notes.append('bolted joints not screened (stresses = "off": no per-throw model); judge them by the full check')
     return StudyResult(
         spec, lc, shaft, drawn, states, tuple(results), best, why, w_max, tuple(notes), bm, j_lims, jm, by_offset
     )

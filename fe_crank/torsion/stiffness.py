@@ -21,16 +21,28 @@ shear flow on ``end_1`` and holds ``end_2`` (rigidly coupled to the axis in rota
 the radial journal foundation carries no torque.  The rotation of an end face is the
 least-squares rigid rotation of its nodes, ``phi = sum (x u_y - y u_x) / sum (x^2 + y^2)``,
 and ``k = |M_z| / |phi_1 - phi_2|``.
+
+The chain's FE throw stiffness (``throw_stiffness = "fe"``, ``plan_throw_stiffness``):
+that of the mesh plan's first throw model (``mesh.plan.throw_keys``: the engine's first
+throw, or the one model that stands for every throw), for every pitch of the chain; the
+check reads it from its FE stage's unit cases, the counterweight study solves the torque
+case alone on the same model of the geometry each candidate writes (one assembled
+stiffness, the torque a right-hand side of its own: the same displacement).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
+from fe_crank.cad.source import GeometrySource, mesh_source_throw
 from fe_crank.errors import InputError
-from fe_crank.fe.throw.unit_cases import UnitSolutions
+from fe_crank.fe.throw.options import FeOptions, Material
+from fe_crank.fe.throw.unit_cases import UnitSolutions, solve_unit_cases
+from fe_crank.mesh.plan import MeshPlan
 
 
 def carter_equivalent_length(
@@ -121,3 +133,30 @@ def fe_throw_stiffness(unit_solutions: UnitSolutions, faces=("end_1", "end_2")) 
     if not twist * mz > 0:
         raise ValueError(f"FE twist {twist:.3g} rad does not follow the applied torque {mz:.3g} N m")
     return abs(mz) / abs(twist)
+
+
+def plan_throw_stiffness(
+    geometry: GeometrySource,
+    plan: MeshPlan,
+    material: Material,
+    fe: FeOptions,
+    unit_solutions: Mapping[str, UnitSolutions] | None = None,
+) -> float | None:
+    """The FE throw stiffness (N m/rad) the chain takes with ``throw_stiffness = "fe"``
+    (module docstring): ``fe_throw_stiffness`` of the torque unit case of the first
+    throw model of ``plan``.  ``unit_solutions``: the FE stage's (plan key -> the unit
+    cases of its model), read; without them the model is meshed with the plan's options
+    (``cad.source.mesh_source_throw``, cached) and the torque case alone solved on it
+    with the supports of ``fe``.  None: ``fe`` (or the solutions) hold no torque case."""
+    key, throw = next(iter(plan.throws.items()))
+    if unit_solutions is not None:
+        solved = unit_solutions[key]
+        return fe_throw_stiffness(solved) if "torque" in solved.cases else None
+    if "torque" not in fe.cases:
+        return None
+    mesh = mesh_source_throw(
+        geometry, throw, size=plan.options, cache_dir=plan.cache_dir, max_elements=plan.max_elements
+    )
+    solved = solve_unit_cases(mesh, material, dataclasses.replace(fe, cases=("torque",)))
+    solved.system.factorisation.free()
+    return fe_throw_stiffness(solved)
