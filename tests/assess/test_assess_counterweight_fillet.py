@@ -175,7 +175,7 @@ def test_counterweight_stress_bounded_with_the_fillet_growing_when_sharp():
 
 
 @pytest.mark.heavy
-def test_convergence_study_follows_the_counterweight_fillets(mesh_cache):
+def test_convergence_study_follows_the_counterweight_fillets():
     """The hot-spot study reports the peak on the counterweight fillets as a load set of
     its own (name prefix ``COUNTERWEIGHT_PREFIX``), with its change and its place, and the
     study's change covers it; its peaks equal a direct recovery on the same meshes
@@ -193,7 +193,6 @@ def test_convergence_study_follows_the_counterweight_fillets(mesh_cache):
         base=MeshOptions(coarse_divisions=1.5, fillet_divisions=0.5, grading=2.0),
         factors=(1.0, 2.0),
         loads={"spin": {"centrifugal": 1.0}},
-        cache_dir=mesh_cache,  # its second level is the counterweight fatigue test's mesh
     )
     name = COUNTERWEIGHT_PREFIX + "spin"
     assert set(study.changes) == {"spin", name}
