@@ -49,11 +49,11 @@ def test_the_readme_shows_commands_and_each_is_run_or_listed():
 
 
 @pytest.mark.parametrize("cmd", [c for c in readme_commands() if _skipped(c) is None])
-def test_readme_command_runs(cmd, tmp_path, monkeypatch):
+def test_readme_command_runs(cmd, tmp_path, monkeypatch, mesh_cache):
     monkeypatch.chdir(ROOT)  # the README's paths are relative to a clone
     argv = shlex.split(cmd)[1:]
     if argv[0] != "validate" and "-o" not in argv:
         argv += ["-o", str(tmp_path / "out")]  # the default reports/ would land in the clone
     if argv[0] in ("mesh", "check"):
-        argv += ["--cache-dir", str(tmp_path / "cache")]
+        argv += ["--cache-dir", str(mesh_cache)]  # the run's: its meshes are those of the other tests
     assert main(argv) == 0

@@ -34,8 +34,10 @@ from fe_crank.rules.m53 import calculation as m53
 
 
 @pytest.fixture(scope="module")
-def cache(tmp_path_factory):
-    return tmp_path_factory.mktemp("meshes")
+def cache(mesh_cache):
+    """The run's mesh cache: the `test` mesh of the shipped throw and its r/2 level are
+    the ones the zone-study tests mesh too."""
+    return mesh_cache
 
 
 @pytest.fixture(scope="module")

@@ -40,16 +40,17 @@ def test_sample_lines_outside_the_web_and_bad_input():
 
 
 @pytest.mark.heavy
-def test_webs_of_a_real_throw_at_two_presets():
+def test_webs_of_a_real_throw_at_two_presets(mesh_cache):
     """The small test throw (W = 10 mm): the coarse preset meshes its webs with more elements
-    across than the test preset (measured in the report of this change)."""
+    across than the test preset (measured in the report of this change).  Both meshes
+    from the run's cache: they are the small throw's meshes other tests build too."""
     from fe_crank.io.geometry import load_geometry
     from fe_crank.mesh import mesh_throw
 
     g = load_geometry("tests/data/geometry_small.toml")
     found = {}
     for preset in ("test", "coarse"):
-        tm = mesh_throw(g, size=preset, cache_dir=None)
+        tm = mesh_throw(g, size=preset, cache_dir=mesh_cache)
         webs = web_elements_across(tm.mesh, web_groups(tm.mesh), g.web_thickness)
         assert {w.web for w in webs} == {"web_1", "web_2"}
         found[preset] = min(w.across for w in webs)

@@ -25,7 +25,7 @@ def test_mesh_section_convergence_key():
         parse_mesh_section({"convergence": "yes"}, "c.toml")
 
 
-def test_check_with_convergence_study(tmp_path):
+def test_check_with_convergence_study(tmp_path, mesh_cache):
     out = tmp_path / "reports"
     code = main(
         [
@@ -39,7 +39,7 @@ def test_check_with_convergence_study(tmp_path):
             "--no-render",
             "--no-vtu",
             "--cache-dir",
-            str(tmp_path / "cache"),
+            str(mesh_cache),  # the run's: the small throw's test mesh is the other tests' too
         ]
     )
     doc = json.loads((out / "small_pass" / "results.json").read_text())

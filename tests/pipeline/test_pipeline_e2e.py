@@ -20,9 +20,11 @@ CASES = [DATA / "small_pass.toml", DATA / "failing_overspeed.toml", DATA / "brok
 
 
 @pytest.fixture(scope="module")
-def batch(tmp_path_factory):
+def batch(tmp_path_factory, mesh_cache):
+    """The batch run once; its meshes go to the run's cache (the small throws' test meshes
+    are the other tests' too) and serve the later runs here."""
     tmp = tmp_path_factory.mktemp("e2e")
-    out, junit, cache = tmp / "reports", tmp / "junit.xml", tmp / "cache"
+    out, junit, cache = tmp / "reports", tmp / "junit.xml", mesh_cache
     code = main(
         [
             "check",

@@ -31,7 +31,7 @@ def test_report_says_quasi_static_without_a_torsion_section(tmp_path):
 
 
 @pytest.mark.heavy
-def test_check_uses_quasi_static_plus_vibratory_journal_torque(tmp_path):
+def test_check_uses_quasi_static_plus_vibratory_journal_torque(tmp_path, mesh_cache):
     """UR M53 tau_N of the journal = M_TN / W_P with M_TN the half range of the journal
     torque that the check handed to the assessment; here recomputed from the torsional
     stage directly (independent of the assessment code): the larger of the two
@@ -46,7 +46,7 @@ def test_check_uses_quasi_static_plus_vibratory_journal_torque(tmp_path):
             "--mesh-size",
             "test",
             "--cache-dir",
-            str(tmp_path / "cache"),
+            str(mesh_cache),  # the run's: the small twin's throw is meshed by other tests too
             "--no-render",
             "--no-vtu",
         ]
