@@ -91,13 +91,16 @@ def mass_properties(geometry: CrankGeometry, throw: ThrowSpec | str | int | None
     properties are a function of the (frozen) geometry and throw alone: a throw asked for
     again in the same process is not built again (``_built``)."""
     spec = throw if isinstance(throw, ThrowSpec) else geometry.throw(throw)
-    mp = _built(geometry, spec)
-    return dataclasses.replace(mp, parts=dict(mp.parts))  # the caller's own dict
+    # the throw's name and angle do not enter its solid (built in its own frame): throws
+    # that differ in those alone share one build
+    mp = _built(geometry, dataclasses.replace(spec, name="", angle=0.0))
+    return dataclasses.replace(mp, throw=spec.name, parts=dict(mp.parts))  # the caller's own dict
 
 
 @functools.lru_cache(maxsize=64)
 def _built(geometry: CrankGeometry, spec: ThrowSpec) -> MassProperties:
-    """``mass_properties`` of one throw, built once per process for equal inputs."""
+    """``mass_properties`` of one throw (its name left empty), built once per process for
+    equal inputs."""
     from fe_crank.geometry.throw import add_throw
     from fe_crank.gmsh_io import gmsh_session
 
