@@ -22,6 +22,7 @@ geometry of the throw frame (``fe_crank.geometry.spec``):
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -95,7 +96,26 @@ def sector_inside_web(g: CrankGeometry, cw: CounterweightSpec, n: int = 181) -> 
 
 
 def check_geometry(g: CrankGeometry) -> None:
-    """Raise ``GeometryError`` (file, key, reason) for the first impossible input."""
+    """Raise ``GeometryError`` (file, key, reason) for the first impossible input.
+
+    A (frozen) geometry once found possible is not checked again in the same process
+    (``_checked``): its loading, meshing and solid building each ask."""
+    try:
+        hash(g)
+    except TypeError:  # a field that cannot be hashed: checked every time
+        _check(g)
+    else:
+        _checked(g)
+
+
+@functools.lru_cache(maxsize=256)
+def _checked(g: CrankGeometry) -> None:
+    """``_check`` of a hashable geometry; a refusal raises and is not kept."""
+    _check(g)
+
+
+def _check(g: CrankGeometry) -> None:
+    """``check_geometry``'s checks."""
     positive = {
         "density": g.density,
         "crank_radius": g.crank_radius,

@@ -34,16 +34,28 @@ _RING = 16
 _CONCAVE = 0.6
 
 
-def _concave(gmsh, solid: int, curve: int, eps: float) -> tuple[bool, float]:
-    """Is the edge concave (material on more than ``_CONCAVE`` of a small ring round its
-    midpoint, in the plane normal to it)?  Also returns the midpoint's z."""
+#: the ring's points in the order they are tested: spread round the ring first (bit-reversed
+#: indices), so that a few points already show which side of ``_CONCAVE`` the edge is on
+_ORDER = (0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15)
+
+
+def _midpoint(gmsh, curve: int) -> tuple[np.ndarray, float]:
+    """The edge's parametric midpoint and the curve's parameter there."""
     lo, hi = gmsh.model.getParametrizationBounds(1, curve)
     u = 0.5 * (lo[0] + hi[0])
-    p = np.array(gmsh.model.getValue(1, curve, [u]))
+    return np.array(gmsh.model.getValue(1, curve, [u])), u
+
+
+def _concave(gmsh, solid: int, curve: int, eps: float) -> bool:
+    """Is the edge concave (material on more than ``_CONCAVE`` of a small ring round its
+    midpoint, in the plane normal to it)?  The ring's points are classified one by one
+    (``gmsh.model.isInside``, the costly call) until the count decides: the answer is that
+    of classifying all of them."""
+    p, u = _midpoint(gmsh, curve)
     t = np.array(gmsh.model.getDerivative(1, curve, [u]))
     n = np.linalg.norm(t)
     if not n > 0:
-        return False, float(p[2])
+        return False
     t /= n
     a = np.array([1.0, 0.0, 0.0]) if abs(t[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
     e1 = np.cross(t, a)
@@ -51,8 +63,15 @@ def _concave(gmsh, solid: int, curve: int, eps: float) -> tuple[bool, float]:
     e2 = np.cross(t, e1)
     ang = 2 * math.pi * (np.arange(_RING) + 0.5) / _RING
     pts = p[None, :] + eps * (np.cos(ang)[:, None] * e1 + np.sin(ang)[:, None] * e2)
-    inside = gmsh.model.isInside(3, solid, pts.ravel().tolist())
-    return inside / _RING > _CONCAVE, float(p[2])
+    need = math.floor(_CONCAVE * _RING) + 1  # points inside for "more than _CONCAVE"
+    inside = 0
+    for k, i in enumerate(_ORDER):
+        inside += gmsh.model.isInside(3, solid, pts[i].tolist())
+        if inside >= need:
+            return True
+        if inside + (_RING - k - 1) < need:
+            return False
+    return False
 
 
 def junction_edges(
@@ -61,18 +80,19 @@ def junction_edges(
     """(edge, radius) of every concave edge of the fused throw that is not in ``exclude``
     (the pin and journal circles), on the side (z < 0: web 1) of a counterweight with a
     ``fillet_radius``.  Before the shaft fillets the only other concave edges of the
-    fused solid are those circles: webs are convex prisms, pin and journals cylinders."""
-    out = []
+    fused solid are those circles: webs are convex prisms, pin and journals cylinders.
+    An edge on a side without such a counterweight is not tested."""
+    out: list[tuple[int, float]] = []
+    if not any(cw.fillet_radius for cw in cws.values()):
+        return out
     edges = set()
     for _, face in gmsh.model.getBoundary([(3, solid)], combined=False, oriented=False):
         for _, e in gmsh.model.getBoundary([(2, face)], combined=False, oriented=False):
             edges.add(abs(e))
     for e in sorted(edges - set(exclude)):
-        concave, z = _concave(gmsh, solid, e, eps)
-        if not concave:
-            continue
+        z = float(_midpoint(gmsh, e)[0][2])
         cw = cws.get(1 if z < 0 else 2)
-        if cw is not None and cw.fillet_radius:
+        if cw is not None and cw.fillet_radius and _concave(gmsh, solid, e, eps):
             out.append((e, cw.fillet_radius))
     return out
 

@@ -9,6 +9,8 @@ moment of inertia about the crank axis ``J_z = I_zz,c + m (c_x^2 + c_y^2)``
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -85,12 +87,23 @@ def model_mass_properties(volumes: dict[str, list[int]], density: float, throw: 
 def mass_properties(geometry: CrankGeometry, throw: ThrowSpec | str | int | None = None) -> MassProperties:
     """Build the throw in a fresh gmsh session and return its mass properties.
 
-    Uses ``geometry.density``; fillets and the oil bore are included exactly.
-    """
+    Uses ``geometry.density``; fillets and the oil bore are included exactly.  The
+    properties are a function of the (frozen) geometry and throw alone: a throw asked for
+    again in the same process is not built again (``_built``)."""
+    spec = throw if isinstance(throw, ThrowSpec) else geometry.throw(throw)
+    # the throw's name and angle do not enter its solid (built in its own frame): throws
+    # that differ in those alone share one build
+    mp = _built(geometry, dataclasses.replace(spec, name="", angle=0.0))
+    return dataclasses.replace(mp, throw=spec.name, parts=dict(mp.parts))  # the caller's own dict
+
+
+@functools.lru_cache(maxsize=64)
+def _built(geometry: CrankGeometry, spec: ThrowSpec) -> MassProperties:
+    """``mass_properties`` of one throw (its name left empty), built once per process for
+    equal inputs."""
     from fe_crank.geometry.throw import add_throw
     from fe_crank.gmsh_io import gmsh_session
 
-    spec = throw if isinstance(throw, ThrowSpec) else geometry.throw(throw)
     with gmsh_session():
         model = add_throw(geometry, spec)
         return model_mass_properties(model.volumes, geometry.density, spec.name)
@@ -111,8 +124,6 @@ class ThrowSolids:
 def throw_solids(geometry: CrankGeometry, throws: tuple[str, ...] | None = None) -> ThrowSolids:
     """``mass_properties`` of the named geometry throws (all by default), each distinct
     solid built once."""
-    import dataclasses
-
     built: list[tuple[ThrowSpec, MassProperties]] = []
     out = {}
     for name in throws if throws is not None else tuple(t.name for t in geometry.throws):

@@ -347,3 +347,70 @@ def test_undercut_deeper_than_fillet_refused():
 def test_undercut_groove_beyond_web_refused():
     with pytest.raises(GeometryError, match="journal.undercut: the undercut groove reaches"):
         geometry_from_dict(_base(journal={"fillet_radius": "4 mm", "undercut": "2 mm"}))
+
+
+def test_junction_edges_are_those_with_material_on_most_of_a_ring():
+    """``cw_fillet.junction_edges`` classifies each edge's ring of 16 points only until the
+    count decides; the edges it gives are those a classification of every point gives
+    (material on more than 0.6 of the ring, here in the test, ``gmsh.model.isInside`` point
+    by point).  A web block (z from -12 to 0 mm) with a wider, thinner counterweight block
+    (z from -12 to -6 mm) fused on its -y side: by hand, five edges are re-entrant (3/4 of
+    the ring in material): the block's top face against the web's -y face and against its
+    two x faces, and the block's two wings against the web's x faces; every other edge is
+    convex (1/4).  All lie at z < 0: a counterweight on web 2 (z > 0) takes none."""
+    import numpy as np
+
+    from fe_crank.geometry.cw_fillet import junction_edges
+    from fe_crank.gmsh_io import gmsh_session
+
+    cw = CounterweightSpec(
+        web=1, outer_radius=0.08, inner_radius=0.02, angle=math.pi / 2, thickness=0.006, fillet_radius=0.002
+    )
+    eps = 1e-5
+    with gmsh_session() as gmsh:
+        occ = gmsh.model.occ
+        web = occ.addBox(-0.05, -0.03, -0.012, 0.1, 0.06, 0.012)
+        block = occ.addBox(-0.07, -0.08, -0.012, 0.14, 0.06, 0.006)
+        ((_, solid),), _ = occ.fuse([(3, web)], [(3, block)])
+        occ.synchronize()
+        edges = sorted(
+            {
+                abs(e)
+                for _, f in gmsh.model.getBoundary([(3, solid)], oriented=False)
+                for _, e in gmsh.model.getBoundary([(2, f)], oriented=False)
+            }
+        )
+        expected, counts = [], set()
+        for e in edges:
+            lo, hi = gmsh.model.getParametrizationBounds(1, e)
+            u = 0.5 * (lo[0] + hi[0])
+            p = np.array(gmsh.model.getValue(1, e, [u]))
+            t = np.array(gmsh.model.getDerivative(1, e, [u]))
+            t /= np.linalg.norm(t)
+            e1 = np.cross(t, [1.0, 0.0, 0.0] if abs(t[0]) < 0.9 else [0.0, 1.0, 0.0])
+            e1 /= np.linalg.norm(e1)
+            e2 = np.cross(t, e1)
+            ang = 2 * math.pi * (np.arange(16) + 0.5) / 16
+            ring = p + eps * (np.cos(ang)[:, None] * e1 + np.sin(ang)[:, None] * e2)
+            inside = sum(gmsh.model.isInside(3, solid, q.tolist()) for q in ring)
+            counts.add(inside)
+            if inside / 16 > 0.6 and p[2] < 0:
+                expected.append((e, 0.002))
+        got = junction_edges(gmsh, solid, {1: cw}, set(), eps)
+        other_side = junction_edges(gmsh, solid, {2: dataclasses.replace(cw, web=2)}, set(), eps)
+    assert counts == {4, 12}
+    assert len(expected) == 5 and got == expected
+    assert other_side == []
+
+
+def test_mass_properties_asked_again_are_the_callers_own_and_follow_the_geometry():
+    """A throw's properties asked for again in one process (kept, not built again) are
+    equal, each caller's ``parts`` its own; another density doubles the mass exactly as a
+    fresh build does (rho V, the same volume)."""
+    g = load_geometry(ROOT / "tests" / "data" / "geometry_small.toml")
+    a = mass_properties(g)
+    a.parts.clear()
+    b = mass_properties(g)
+    assert b.parts and b == mass_properties(dataclasses.replace(g))
+    heavy = mass_properties(dataclasses.replace(g, density=2 * g.density))
+    assert heavy.total.volume == b.total.volume and heavy.total.mass == pytest.approx(2 * b.total.mass, rel=1e-15)
