@@ -3,9 +3,10 @@ stresses: what a series of load histories that differ little (the counterweight
 candidates of a study in one engine state) searches by, instead of each history's own.
 
 A reference history S_0(t) = sum_c W0_c(t) U_c is evaluated once at every node of a group
-(``reference_path``): its peak von Mises stress P_0, its mid-range tensor mid_0, the
-radius R_0 about it, half the chord L_0 from its point farthest from mid_0 (the
-quantities of ``bounds.goodman_radius_lower``) and its largest hydrostatic stress p_0.
+(``reference_path``): its peak von Mises stress P_0, the von Mises and hydrostatic stress
+of its mid-range tensor mid_0, the radius R_0 about mid_0, half the chord L_0 from its
+point farthest from mid_0 (the quantities of ``bounds.goodman_radius_lower``) and its
+largest hydrostatic stress p_0, kept in single precision rounded outwards.
 Another history W of the same angles differs by D(t) = W(t) - W0(t); with m_c and h_c the
 mid range and the half range of D_c over the cycle, S(t) = S_0(t) + M + V(t) with the
 constant tensor M = sum_c m_c U_c and |V_j(t)| <= r_j = sum_c h_c |U_c,j| per component
@@ -15,11 +16,11 @@ the box, ``bounds.box_von_mises``), von Mises a seminorm:
 * peak: sigma_v(S(t)) <= sigma_v(S_0(t)) + sigma_v(M) + sigma_v(V(t)), so
   max_t sigma_v(S(t)) <= P_0 + sigma_v(M) + v;
 * the mid range of S is mid_0 + M + e with |e_j| <= r_j, so the radius about it
-  R <= R_0 + 2 v, its von Mises stress <= sigma_v(mid_0 + M) + v, and half the distance
+  R <= R_0 + 2 v, its von Mises stress <= sigma_v(mid_0) + sigma_v(M) + v, and half the distance
   between the two points of S at the angles of L_0 is at least L_0 - v: a lower bound
   of the minimum circumscribed ball's radius, as L_0 is of S_0's;
 * the hydrostatic stress of S(t) <= p_0 + p(M) + (r_x + r_y + r_z)/3, of its mid range
-  <= p(mid_0 + M) + (r_x + r_y + r_z)/3;
+  <= p(mid_0) + p(M) + (r_x + r_y + r_z)/3;
 
 and Goodman's safety is at least ``bounds.goodman_radius_lower``'s expression of these
 (its argument, with the bounds in place of the path's own values).  Rounding: r_j is
@@ -45,16 +46,31 @@ from fe_crank.assess.superpose import UnitStresses, iter_planes
 
 @dataclass(frozen=True)
 class ReferencePath:
-    """The reference history's values at the nodes of one group (module docstring), Pa:
-    ``weights`` (n_t, n_cases) its coefficients (not copied: not to be changed); per node ``peak`` P_0, ``mid`` (6, n)
-    mid_0, ``radius`` R_0, ``chord`` L_0, ``hydro`` p_0 (the last three None: peak only)."""
+    """The reference history's values at the nodes of one group (module docstring), Pa,
+    stored in single precision rounded outwards (upper bounds up, the chord down):
+    ``weights`` (n_t, n_cases) its coefficients (not copied: not to be changed); per
+    node ``peak`` P_0, ``mid_vm`` sigma_v(mid_0), ``mid_hydro`` p(mid_0), ``radius`` R_0,
+    ``chord`` L_0, ``hydro`` p_0 (the last five None: peak only)."""
 
     weights: np.ndarray
     peak: np.ndarray
-    mid: np.ndarray | None = None
+    mid_vm: np.ndarray | None = None
+    mid_hydro: np.ndarray | None = None
     radius: np.ndarray | None = None
     chord: np.ndarray | None = None
     hydro: np.ndarray | None = None
+
+
+def _up(x: np.ndarray) -> np.ndarray:
+    """Single precision, at least ``x``."""
+    out: np.ndarray = np.nextafter(x.astype(np.float32), np.float32(np.inf))
+    return out
+
+
+def _down(x: np.ndarray) -> np.ndarray:
+    """Single precision, at most ``x``."""
+    out: np.ndarray = np.nextafter(x.astype(np.float32), np.float32(-np.inf))
+    return out
 
 
 @dataclass(frozen=True)
@@ -85,21 +101,22 @@ def reference_path(
     nodes = np.asarray(nodes)
     n = nodes.size
     peak = np.empty(n)
-    mid = np.empty((6, n)) if fatigue_values else None
-    radius, chord, hydro = (np.empty(n), np.empty(n), np.empty(n)) if fatigue_values else (None, None, None)
+    vals = np.empty((5, n)) if fatigue_values else None  # mid_vm, mid_hydro, radius, chord, hydro
     for s in range(0, n, block):
         ((_, planes),) = iter_planes(unit, c, nodes[s : s + block], block)
         k = slice(s, s + planes.shape[-1])
         peak[k] = von_mises_planes(planes).max(axis=0)
-        if mid is None or radius is None or chord is None or hydro is None:
+        if vals is None:
             continue
         m = 0.5 * (planes.max(axis=1) + planes.min(axis=1))
         r0, far = fatigue.max_and_first(von_mises_planes(planes, m))
         cols = np.arange(planes.shape[-1])
-        mid[:, k], radius[k] = m, r0
-        chord[k] = 0.5 * von_mises_planes(planes, planes[:, far, cols]).max(axis=0)
-        hydro[k] = ((planes[0] + planes[1] + planes[2]) / 3.0).max(axis=0)
-    return ReferencePath(c, peak, mid, radius, chord, hydro)
+        vals[0, k], vals[1, k], vals[2, k] = von_mises(m), (m[0] + m[1] + m[2]) / 3.0, r0
+        vals[3, k] = 0.5 * von_mises_planes(planes, planes[:, far, cols]).max(axis=0)
+        vals[4, k] = ((planes[0] + planes[1] + planes[2]) / 3.0).max(axis=0)
+    if vals is None:
+        return ReferencePath(c, _up(peak))
+    return ReferencePath(c, _up(peak), _up(vals[0]), _up(vals[1]), _up(vals[2]), _down(vals[3]), _up(vals[4]))
 
 
 def abs_sum(unit: UnitStresses) -> np.ndarray:
@@ -142,20 +159,20 @@ def reference_bounds(reference: ReferencePath, shift: np.ndarray, r: np.ndarray)
     """Bounds of a history at the nodes of ``reference`` from the reference's values and
     the history's ``reference_shift`` (M, r) at those nodes (module docstring)."""
     v = box_von_mises(r)
+    vm_shift = von_mises(shift)
     up, down = 1 + BOUND_RTOL, 1 - BOUND_RTOL
-    peak = (reference.peak + von_mises(shift) * up + v) * up
-    if reference.mid is None or reference.radius is None or reference.chord is None or reference.hydro is None:
+    peak = (reference.peak + vm_shift * up + v) * up
+    ref = reference
+    if ref.mid_vm is None or ref.mid_hydro is None or ref.radius is None or ref.chord is None or ref.hydro is None:
         return PathBounds(peak)
-    radius = (reference.radius + 2.0 * v) * up
-    chord = np.maximum(reference.chord - v, 0.0) * down
-    centre = reference.mid + shift
-    vm = (von_mises(centre) + v) * up + 2.0 * np.sqrt(np.maximum(radius**2 - chord**2, 0.0))
+    radius = (ref.radius + 2.0 * v) * up
+    chord = np.maximum(ref.chord - v, 0.0) * down
+    vm = (ref.mid_vm + vm_shift + v) * up + 2.0 * np.sqrt(np.maximum(radius**2 - chord**2, 0.0))
+    p_shift = (shift[0] + shift[1] + shift[2]) / 3.0
     p_r = (r[0] + r[1] + r[2]) / 3.0
-    hydro = np.maximum(
-        (centre[0] + centre[1] + centre[2]) / 3.0, reference.hydro + (shift[0] + shift[1] + shift[2]) / 3.0
-    )
-    hydro = hydro + p_r
-    mean = np.maximum(vm, hydro + np.abs(hydro) * BOUND_RTOL + 2.0 / 3.0 * vm)
+    hydro = np.maximum(ref.mid_hydro, ref.hydro) + p_shift
+    hydro = hydro + np.abs(hydro) * BOUND_RTOL + p_r
+    mean = np.maximum(vm, hydro + 2.0 / 3.0 * vm)
     return PathBounds(peak, radius * up, mean * up)
 
 
