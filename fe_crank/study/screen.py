@@ -26,7 +26,13 @@ Stresses (``candidate_stresses``): each throw's unit stresses at its assessed no
 (``assess.shaft.piece_unit_stresses``, the per-web counterweight cases among them) are
 taken once; a candidate's history in a state is sum_c W_c(theta) S_c with its weights W
 (the per-web cases at k_w omega^2, the redundant bearings' forces solved again), each
-node group's extremes by the check's own search (``assess.group.extremes``).
+node group's extremes by the check's own search (``assess.group.extremes``).  The first
+candidate of a placement screened in a state is the reference there: its stresses at
+every assessed node (``assess.group.reference.reference_path``) bound every later
+candidate's of that placement and state, whose history differs by a constant (its
+counterweights' centrifugal cases) and the change of the redundant bearings' forces
+(``reference_shift``); the searches take those bounds and skip the groups that cannot
+reach the state's extremes found so far: the same values, at a fraction of the cost.
 
 Screened on the drawn shape's mesh: a counterweight of another shape or thickness (the
 sector the candidate writes) changes the web's stiffness and the load's spread over the
@@ -41,10 +47,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_crank.assess.group.assessment import of_counterweight, section_diameter, sigma_add_applies
+from fe_crank.assess.factors import factors, location_of
+from fe_crank.assess.fatigue import NODE_BLOCK, fatigue_limits
+from fe_crank.assess.group.assessment import fatigue_assessed, of_counterweight, section_diameter, sigma_add_applies
 from fe_crank.assess.group.bounds import window_peak_bound
 from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.group.peak import group_peak
+from fe_crank.assess.group.reference import abs_sum, reference_bounds, reference_path, reference_shift
 from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.cad.source import mesh_source_shaft
@@ -81,6 +90,12 @@ class StudyShaft:
     #: per throw (name, the unit stresses of every case at its assessed nodes:
     #: ``assess.shaft.piece_unit_stresses``, the check's own), for the stress screening
     stresses: tuple[tuple[str, UnitStresses], ...] = ()
+    #: per screened state (label, speed, the weights' shape) and (throw, group): the first
+    #: screened candidate's stresses there (``assess.group.reference.reference_path``), what
+    #: the later candidates' searches are bounded by (``candidate_stresses``)
+    references: dict = dataclasses.field(default_factory=dict)
+    #: per throw, sum_c |U_c| at its assessed nodes (``assess.group.reference.abs_sum``)
+    abs_sums: dict = dataclasses.field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -267,6 +282,22 @@ def candidate_loads(
     return StateLoads(base.state, bearings, webs, np.stack(sets), W_full)
 
 
+def _placement(shaft: StudyShaft, weights: np.ndarray) -> tuple[int, ...]:
+    """The per-web counterweight cases a history loads: candidates of one placement share
+    a reference (``candidate_stresses``), the closest."""
+    cols = [i for i, n in enumerate(shaft.cases.names) if n.startswith("cw_")]
+    return tuple(i for i in cols if weights[0, i] != 0.0)
+
+
+def _reference_key(shaft: StudyShaft, sl: StateLoads) -> tuple:
+    assert sl.weights is not None
+    return (sl.state.label, sl.state.speed, sl.weights.shape, _placement(shaft, sl.weights))
+
+
+#: nodes per block of the fatigue search where a reference bounds it (tight bounds: few
+#: nodes to evaluate)
+REFERENCE_BLOCK = 32
+
 #: the node groups of the shaft's own surfaces (their stress: the fillets' static and
 #: fatigue safeties) and of the counterweight's transition to its web
 SHAFT_KINDS = ("crankpin_fillet", "journal_fillet", "oil_bore", "crankpin")
@@ -305,6 +336,7 @@ def candidate_stresses(
     UR M53's sigma_add on the shaft fillets, as ``assess.shaft.assess_shaft_throws``;
     ``fatigue`` False: the static peaks alone, ``fatigue_safety`` None)."""
     crank_radius = shaft.layout.geometry.crank_radius
+    limits = fatigue_limits(material) if fatigue else None
     best = {"shaft": (0.0, ""), "cw": (0.0, "")}
     static = math.inf
     fat: tuple[float, str] | None = None
@@ -313,32 +345,69 @@ def candidate_stresses(
         theta = np.asarray(sl.state.dynamics.theta, float)
         running = Running()
         at = f"{sl.state.label} at {sl.state.speed * 30 / math.pi:.0f} rpm"
+        refs = shaft.references.setdefault(_reference_key(shaft, sl), {})
+        ref_w = refs.setdefault("weights", sl.weights)
+        best_peak = {"shaft": -math.inf, "cw": -math.inf}
+        items = []
         for name, unit in shaft.stresses:
+            if name not in shaft.abs_sums:
+                shaft.abs_sums[name] = abs_sum(unit)
+            shifted = reference_shift(ref_w, unit, sl.weights, shaft.abs_sums[name])
             for g in sorted(unit.groups):
                 kind = group_kind(g)
                 if not len(unit.groups[g]) or kind not in SHAFT_KINDS + COUNTERWEIGHT_KINDS:
                     continue
-                shaft_group = kind in SHAFT_KINDS
-                r = group_extremes(
-                    unit,
-                    g,
-                    sl.weights,
-                    theta,
-                    material,
-                    crank_radius=crank_radius,
-                    diameter=section_diameter(g, *diameters),
-                    wanted=Wanted(fatigue=fatigue and shaft_group, gough_pollard=False),
-                    running=running,
-                    additional_bending=additional_bending if sigma_add_applies(g) else 0.0,
-                )
-                key = "shaft" if shaft_group else "cw"
-                v = r.max_von_mises.value
-                if v > best[key][0]:
-                    best[key] = (v, f"throw {name} {g}, {at}")
-                if shaft_group:
-                    static = min(static, r.static_safety)
-                    if r.fatigue_safety is not None and (fat is None or r.fatigue_safety.value < fat[0]):
-                        fat = (r.fatigue_safety.value, f"throw {name} {g}, {at}")
+                nodes = np.asarray(unit.groups[g])
+                fat_values = limits is not None and kind in SHAFT_KINDS and fatigue_assessed(g)
+                if (name, g) not in refs:
+                    refs[(name, g)] = reference_path(unit, ref_w, nodes, fatigue_values=fat_values)
+                bounds = None if shifted is None else reference_bounds(refs[(name, g)], *(a[:, nodes] for a in shifted))
+                add = additional_bending if sigma_add_applies(g) else 0.0
+                lower = math.inf  # the group's least lower bound of the Goodman safety
+                if fat_values and fatigue and bounds is not None and bounds.amplitude is not None:
+                    assert limits is not None
+                    k = factors(material, section_diameter(g, *diameters), location_of(g)).product
+                    lower = float(bounds.goodman_lower(k * limits.bending, limits.tensile, add).min())
+                top = math.inf if bounds is None else float(bounds.peak.max())
+                items.append((lower, -top, name, unit, g, bounds, add))
+        # the groups in increasing least bound of the fatigue safety, then in decreasing
+        # bound of the peak: the state's extremes are found first, and a group whose bounds
+        # cannot reach them (its peak at most the largest found, its least safety above the
+        # least found) cannot change the screened values and is not searched
+        found = {}
+        for lower, top, name, unit, g, bounds, add in sorted(items, key=lambda it: it[:2]):
+            key = "shaft" if group_kind(g) in SHAFT_KINDS else "cw"
+            if -top <= best_peak[key] and lower > running.fatigue:
+                continue
+            r = group_extremes(
+                unit,
+                g,
+                sl.weights,
+                theta,
+                material,
+                crank_radius=crank_radius,
+                diameter=section_diameter(g, *diameters),
+                wanted=Wanted(fatigue=fatigue and key == "shaft", gough_pollard=False),
+                running=running,
+                additional_bending=add,
+                reference=bounds,
+                block=NODE_BLOCK if bounds is None else REFERENCE_BLOCK,
+            )
+            best_peak[key] = max(best_peak[key], r.max_von_mises.value)
+            found[(name, g)] = r
+        for *_, name, _unit, g, _bounds, _add in items:  # reported in the throws' and groups' order
+            if (name, g) not in found:
+                continue
+            r = found[(name, g)]
+            shaft_group = group_kind(g) in SHAFT_KINDS
+            key = "shaft" if shaft_group else "cw"
+            v = r.max_von_mises.value
+            if v > best[key][0]:
+                best[key] = (v, f"throw {name} {g}, {at}")
+            if shaft_group:
+                static = min(static, r.static_safety)
+                if r.fatigue_safety is not None and (fat is None or r.fatigue_safety.value < fat[0]):
+                    fat = (r.fatigue_safety.value, f"throw {name} {g}, {at}")
     return StressScreen(
         best["shaft"][0],
         best["shaft"][1],
@@ -380,12 +449,21 @@ def candidate_overspeed(shaft: StudyShaft, loads: list[StateLoads], material) ->
         return None
     W = np.vstack([sl.weights for sl in loads if sl.weights is not None])
     best = {"all": (0.0, ""), "cw": (0.0, "")}
+    refs = shaft.references.setdefault(("overspeed", W.shape, _placement(shaft, W)), {})
+    ref_w = refs.setdefault("weights", W)
     for name, unit in shaft.stresses:
+        if name not in shaft.abs_sums:
+            shaft.abs_sums[name] = abs_sum(unit)
+        shifted = reference_shift(ref_w, unit, W, shaft.abs_sums[name])
         for g in sorted(unit.groups):
             nodes = np.asarray(unit.groups[g])
             if not nodes.size:
                 continue
-            tight = window_peak_bound(unit, W, nodes) if nodes.size > OVERSPEED_WINDOW_MIN else None
+            if (name, g) not in refs:
+                refs[(name, g)] = reference_path(unit, ref_w, nodes, fatigue_values=False)
+            tight = None if shifted is None else reference_bounds(refs[(name, g)], *(a[:, nodes] for a in shifted)).peak
+            if tight is None and nodes.size > OVERSPEED_WINDOW_MIN:
+                tight = window_peak_bound(unit, W, nodes)
             _, vm, _ = group_peak(unit, W, nodes, bound=tight)
             v = float(vm.max())
             keys = ("all", "cw") if of_counterweight(g) else ("all",)

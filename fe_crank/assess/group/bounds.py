@@ -145,9 +145,10 @@ def frobenius(r: np.ndarray) -> np.ndarray:
 
 #: angles between two samples of ``window_peak_bound`` within one run
 WINDOW_STRIDE = 8
-#: rounding allowance of ``window_peak_bound``, relative to sum_c max_t |a_c| |U_c|_F
-#: (each computed component of S(t) is within ~n_cases x 1.1e-16 of that sum)
-_WINDOW_ROUNDING = 1e-12
+#: rounding allowance of ``window_peak_bound`` (and ``reference``), relative to
+#: sum_c max_t |a_c| |U_c|_F (each computed component of S(t) is within ~n_cases x 1.1e-16
+#: of that sum)
+ROUNDING = 1e-12
 
 
 def window_peak_bound(
@@ -160,7 +161,7 @@ def window_peak_bound(
     l S(b) + sum_c R_c(t) U_c with l = (t - a)/(b - a) and R_c(t) the coefficient's
     departure from its chord; von Mises is a seminorm (convex), so sigma_v(S(t)) <=
     max(sigma_v(S(a)), sigma_v(S(b))) + sum_c max_t |R_c(t)| sigma_v(U_c).  Each node's
-    bound is the largest over the windows plus a rounding allowance (``_WINDOW_ROUNDING``: both the sampled and the evaluated values are sums of
+    bound is the largest over the windows plus a rounding allowance (``ROUNDING``: both the sampled and the evaluated values are sums of
     rounded products) and widened by ``BOUND_RTOL``."""
     c = np.atleast_2d(np.asarray(coefficients, float))
     nodes = np.asarray(nodes)
@@ -197,5 +198,5 @@ def window_peak_bound(
             windowed = np.maximum(windowed, w[same].max(axis=0))
         # windows across a run boundary hold no angle between their samples (both
         # samples are a run's last and the next run's first): the samples cover them
-        out[s : s + chunk] = windowed + _WINDOW_ROUNDING * (absmax @ fro_u)
+        out[s : s + chunk] = windowed + ROUNDING * (absmax @ fro_u)
     return out * (1 + BOUND_RTOL)

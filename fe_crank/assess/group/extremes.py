@@ -70,6 +70,7 @@ from fe_crank.assess.group.bounds import (
     window_peak_bound,
 )
 from fe_crank.assess.group.peak import BOUND_RTOL, TIE_RTOL, group_peak, max_over_cycle
+from fe_crank.assess.group.reference import PathBounds
 from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
 from fe_crank.io.material import Material
@@ -126,12 +127,21 @@ def _band(best: float) -> float:
 
 
 def _static_peak(
-    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, bound: np.ndarray, block: int
+    unit: UnitStresses,
+    coefficients: np.ndarray,
+    nodes: np.ndarray,
+    bound: np.ndarray,
+    block: int,
+    ordered: bool = False,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``peak.group_peak`` on the nodes whose box bound ``bound`` of the peak can reach the
+    """``peak.group_peak`` on the nodes whose bound ``bound`` of the peak can reach the
     tie band of the largest peak of the ``block`` nodes of the largest bounds (the
-    others can neither hold the group's peak nor tie with it); positions into ``nodes``."""
+    others can neither hold the group's peak nor tie with it); positions into ``nodes``.
+    ``ordered``: ``bound`` is tight (a reference history's, ``reference``): it orders
+    ``group_peak``'s search over every node directly."""
     bound = bound * (1 + BOUND_RTOL)
+    if ordered:
+        return group_peak(unit, coefficients, nodes, STATIC_BLOCK, bound)
     seed = np.argsort(-bound, kind="stable")[:STATIC_BLOCK]
     ((_, planes),) = iter_planes(unit, coefficients, nodes[seed], seed.size)
     best = float(max_over_cycle(von_mises_planes(planes))[0].max())
@@ -160,6 +170,7 @@ def group_extremes(
     running: Running | None = None,
     block: int = fatigue.NODE_BLOCK,
     additional_bending: float = 0.0,
+    reference: PathBounds | None = None,
 ) -> GroupResult:
     """``assess_group``'s extremes of one node group at one speed (static peak, least
     Goodman and Gough-Pollard safety with their nodes; no overspeed, no per-node fields),
@@ -168,7 +179,11 @@ def group_extremes(
     group whose least value cannot reach their tie band has ``fatigue_safety`` (or
     ``gough_pollard_safety``) None: it cannot govern the state's criterion.
     ``additional_bending``: UR M53 4's sigma_add on the alternating bending stress, as in
-    ``assess_group`` (Goodman: sigma_a' + sigma_add; Gough-Pollard: sigma_a + sigma_add)."""
+    ``assess_group`` (Goodman: sigma_a' + sigma_add; Gough-Pollard: sigma_a + sigma_add).
+    ``reference``: bounds of this history at the group's nodes from a reference history's
+    values (``reference.reference_bounds``), searched by in place of the coefficient box
+    (and of the Goodman search's box with it, the larger of the two lower bounds), the
+    same extremes."""
     running = Running() if running is None else running
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
@@ -182,8 +197,16 @@ def group_extremes(
     do_gp = torsion is not None
     # the fatigue groups' box of the runs (the fatigue search's first bound); the static
     # groups' one box of the whole cycle (only the peak's prefilter)
-    rho, big, fro_h, fro_c = coefficient_box(unit, coefficients, nodes, runs=do_fatigue or do_gp, directional=do_gp)
-    pos, vm, arg = _static_peak(unit, coefficients, nodes, box_von_mises(big), block)
+    boxed = reference is None or do_gp or (do_fatigue and reference.amplitude is None)
+    rho = big = fro_h = fro_c = None
+    if boxed:
+        rho, big, fro_h, fro_c = coefficient_box(unit, coefficients, nodes, runs=do_fatigue or do_gp, directional=do_gp)
+    if reference is not None:
+        peak_bound = reference.peak if big is None else np.minimum(reference.peak, box_von_mises(big))
+    else:
+        assert big is not None
+        peak_bound = box_von_mises(big)
+    pos, vm, arg = _static_peak(unit, coefficients, nodes, peak_bound, block, ordered=reference is not None)
     worst = node_extreme(vm, nodes[pos], unit, group, worst="max", angles=np.asarray(theta)[arg])
     ys = material.yield_strength
     static = ys / worst.value if (ys is not None and worst.value > 0) else np.inf
@@ -224,7 +247,14 @@ def group_extremes(
             return found
 
         start = running.fatigue
-        least = _search(goodman_lower(rho, big, se, rm, additional_bending), block, fatigue_block, start)
+        if reference is not None and reference.amplitude is not None:
+            first = reference.goodman_lower(se, rm, additional_bending)
+            if rho is not None and big is not None:
+                first = np.maximum(first, goodman_lower(rho, big, se, rm, additional_bending))
+        else:
+            assert rho is not None and big is not None
+            first = goodman_lower(rho, big, se, rm, additional_bending)
+        least = _search(first, block, fatigue_block, start)
         if least <= _band(start):  # the group can hold the state's least value
             fat = _least(good, done, nodes, unit, group)
             j = int(np.argmin(good))

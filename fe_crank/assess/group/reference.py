@@ -1,0 +1,179 @@
+"""Bounds of a node's stress path from the path of another load history on the same unit
+stresses: what a series of load histories that differ little (the counterweight
+candidates of a study in one engine state) searches by, instead of each history's own.
+
+A reference history S_0(t) = sum_c W0_c(t) U_c is evaluated once at every node of a group
+(``reference_path``): its peak von Mises stress P_0, the von Mises and hydrostatic stress
+of its mid-range tensor mid_0, the radius R_0 about mid_0, half the chord L_0 from its
+point farthest from mid_0 (the quantities of ``bounds.goodman_radius_lower``) and its
+largest hydrostatic stress p_0, kept in single precision rounded outwards.
+Another history W of the same angles differs by D(t) = W(t) - W0(t); with m_c and h_c the
+mid range and the half range of D_c over the cycle, S(t) = S_0(t) + M + V(t) with the
+constant tensor M = sum_c m_c U_c and |V_j(t)| <= r_j = sum_c h_c |U_c,j| per component
+(``reference_bounds``).  With box_von_mises(r) = v (the largest von Mises stress within
+the box, ``bounds.box_von_mises``), von Mises a seminorm:
+
+* peak: sigma_v(S(t)) <= sigma_v(S_0(t)) + sigma_v(M) + sigma_v(V(t)), so
+  max_t sigma_v(S(t)) <= P_0 + sigma_v(M) + v;
+* the mid range of S is mid_0 + M + e with |e_j| <= r_j, so the radius about it
+  R <= R_0 + 2 v, its von Mises stress <= sigma_v(mid_0) + sigma_v(M) + v, and half the distance
+  between the two points of S at the angles of L_0 is at least L_0 - v: a lower bound
+  of the minimum circumscribed ball's radius, as L_0 is of S_0's;
+* the hydrostatic stress of S(t) <= p_0 + p(M) + (r_x + r_y + r_z)/3, of its mid range
+  <= p(mid_0) + p(M) + (r_x + r_y + r_z)/3;
+
+and Goodman's safety is at least ``bounds.goodman_radius_lower``'s expression of these
+(its argument, with the bounds in place of the path's own values).  Rounding: r_j is
+widened by 1e-12 (max_c max_t |W_c| + max_c max_t |W0_c|) sum_c |U_c,j| (``bounds``'s
+allowance; each computed component is within ~n_cases x 1.1e-16 of sum_c |W_c| |U_c,j|),
+every bound by ``peak.BOUND_RTOL``.  The bounds only order and skip nodes of ``extremes``' searches, which
+evaluate the history itself at every node that can govern: the extremes found are those
+of an evaluation of every node, whichever reference is taken (a closer one skips more).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fe_crank.assess import fatigue
+from fe_crank.assess.group.bounds import ROUNDING, box_von_mises
+from fe_crank.assess.group.peak import BOUND_RTOL
+from fe_crank.assess.stress import von_mises, von_mises_planes
+from fe_crank.assess.superpose import UnitStresses, iter_planes
+
+
+@dataclass(frozen=True)
+class ReferencePath:
+    """The reference history's values at the nodes of one group (module docstring), Pa,
+    stored in single precision rounded outwards (upper bounds up, the chord down):
+    ``weights`` (n_t, n_cases) its coefficients (not copied: not to be changed); per
+    node ``peak`` P_0, ``mid_vm`` sigma_v(mid_0), ``mid_hydro`` p(mid_0), ``radius`` R_0,
+    ``chord`` L_0, ``hydro`` p_0 (the last five None: peak only)."""
+
+    weights: np.ndarray
+    peak: np.ndarray
+    mid_vm: np.ndarray | None = None
+    mid_hydro: np.ndarray | None = None
+    radius: np.ndarray | None = None
+    chord: np.ndarray | None = None
+    hydro: np.ndarray | None = None
+
+
+def _up(x: np.ndarray) -> np.ndarray:
+    """Single precision, at least ``x``."""
+    out: np.ndarray = np.nextafter(x.astype(np.float32), np.float32(np.inf))
+    return out
+
+
+def _down(x: np.ndarray) -> np.ndarray:
+    """Single precision, at most ``x``."""
+    out: np.ndarray = np.nextafter(x.astype(np.float32), np.float32(-np.inf))
+    return out
+
+
+@dataclass(frozen=True)
+class PathBounds:
+    """Upper bounds of a history's values at the nodes of one group (module docstring), Pa:
+    ``peak`` of the peak von Mises stress; ``amplitude`` and ``mean`` of Goodman's
+    equivalent amplitude and signed mean (None: peak only)."""
+
+    peak: np.ndarray
+    amplitude: np.ndarray | None = None
+    mean: np.ndarray | None = None
+
+    def goodman_lower(self, endurance: float, tensile: float, additional: float = 0.0) -> np.ndarray:
+        """Goodman's safety is at least this at each node (``additional``: UR M53's
+        sigma_add on the amplitude, as ``bounds.goodman_lower``)."""
+        if self.amplitude is None or self.mean is None:
+            raise ValueError("these bounds hold the peak only")
+        return fatigue.goodman_safety(self.amplitude + additional, self.mean, endurance, tensile)
+
+
+def reference_path(
+    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, *, fatigue_values: bool = True, block: int = 128
+) -> ReferencePath:
+    """The reference history ``coefficients`` evaluated at ``nodes`` (module docstring),
+    on the same history planes as every criterion (``superpose.iter_planes``);
+    ``fatigue_values`` False: the peak alone."""
+    c = np.atleast_2d(np.asarray(coefficients, float))
+    nodes = np.asarray(nodes)
+    n = nodes.size
+    peak = np.empty(n)
+    vals = np.empty((5, n)) if fatigue_values else None  # mid_vm, mid_hydro, radius, chord, hydro
+    for s in range(0, n, block):
+        ((_, planes),) = iter_planes(unit, c, nodes[s : s + block], block)
+        k = slice(s, s + planes.shape[-1])
+        peak[k] = von_mises_planes(planes).max(axis=0)
+        if vals is None:
+            continue
+        m = 0.5 * (planes.max(axis=1) + planes.min(axis=1))
+        r0, far = fatigue.max_and_first(von_mises_planes(planes, m))
+        cols = np.arange(planes.shape[-1])
+        vals[0, k], vals[1, k], vals[2, k] = von_mises(m), (m[0] + m[1] + m[2]) / 3.0, r0
+        vals[3, k] = 0.5 * von_mises_planes(planes, planes[:, far, cols]).max(axis=0)
+        vals[4, k] = ((planes[0] + planes[1] + planes[2]) / 3.0).max(axis=0)
+    if vals is None:
+        return ReferencePath(c, _up(peak))
+    return ReferencePath(c, _up(peak), _up(vals[0]), _up(vals[1]), _up(vals[2]), _down(vals[3]), _up(vals[4]))
+
+
+def abs_sum(unit: UnitStresses) -> np.ndarray:
+    """sum_c |U_c,j| (6, n) at every assessed node of ``unit``: what ``reference_shift``
+    bounds the small terms by."""
+    out: np.ndarray = np.abs(unit.stress).sum(axis=0)
+    return out
+
+
+def reference_shift(
+    weights: np.ndarray, unit: UnitStresses, coefficients: np.ndarray, sums: np.ndarray, small: float = 1e-9
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """(M, r) (6, n) at every assessed node of ``unit`` of the history ``coefficients``
+    against the reference history ``weights`` (module docstring); ``sums``: ``abs_sum``
+    of ``unit``.  The cases whose mid range or half range of D is at most ``small`` times
+    the largest coefficient enter r alone, by max_c (|m_c| + h_c) sum_c |U_c,j| (as the
+    rounding allowance, by max_c (max_t |W_c| + max_t |W0_c|)); None where the histories'
+    angles differ."""
+    c = np.atleast_2d(np.asarray(coefficients, float))
+    if c.shape != weights.shape:
+        return None
+    d = c - weights
+    hi, lo = d.max(axis=0), d.min(axis=0)
+    m, h = 0.5 * (hi + lo), 0.5 * (hi - lo)
+    top = float(np.abs(c).max(initial=0.0)) + float(np.abs(weights).max(initial=0.0))
+    big = (np.abs(m) + h) > small * top
+    u = unit.stress.reshape(unit.stress.shape[0], -1)
+    rest = float((np.abs(m) + h)[~big].max(initial=0.0))
+    r = (rest + ROUNDING * top) * sums
+    if big.any():
+        ub = u[big]
+        shift = (m[big] @ ub).reshape(sums.shape)
+        r += (h[big] @ np.abs(ub)).reshape(sums.shape)
+    else:
+        shift = np.zeros_like(sums)
+    return shift, r
+
+
+def reference_bounds(reference: ReferencePath, shift: np.ndarray, r: np.ndarray) -> PathBounds:
+    """Bounds of a history at the nodes of ``reference`` from the reference's values and
+    the history's ``reference_shift`` (M, r) at those nodes (module docstring)."""
+    v = box_von_mises(r)
+    vm_shift = von_mises(shift)
+    up, down = 1 + BOUND_RTOL, 1 - BOUND_RTOL
+    peak = (reference.peak + vm_shift * up + v) * up
+    ref = reference
+    if ref.mid_vm is None or ref.mid_hydro is None or ref.radius is None or ref.chord is None or ref.hydro is None:
+        return PathBounds(peak)
+    radius = (ref.radius + 2.0 * v) * up
+    chord = np.maximum(ref.chord - v, 0.0) * down
+    vm = (ref.mid_vm + vm_shift + v) * up + 2.0 * np.sqrt(np.maximum(radius**2 - chord**2, 0.0))
+    p_shift = (shift[0] + shift[1] + shift[2]) / 3.0
+    p_r = (r[0] + r[1] + r[2]) / 3.0
+    hydro = np.maximum(ref.mid_hydro, ref.hydro) + p_shift
+    hydro = hydro + np.abs(hydro) * BOUND_RTOL + p_r
+    mean = np.maximum(vm, hydro + 2.0 / 3.0 * vm)
+    return PathBounds(peak, radius * up, mean * up)
+
+
+__all__ = ["ReferencePath", "PathBounds", "abs_sum", "reference_path", "reference_shift", "reference_bounds"]

@@ -1,0 +1,91 @@
+"""``assess.group.reference``: bounds of a history's path from a reference history's.
+
+By hand: one node, uniaxial unit stresses, a history that differs from the reference by
+a constant coefficient: the path is the reference's shifted by M, so the peak bound is
+P_0 + sigma_v(M) (exact here: the shift is along the peak) and the amplitude bound R_0.
+
+Against an independent evaluation: on random unit stresses and histories that differ from
+the reference by constants and a small varying part, every node's peak, Goodman
+amplitude and signed mean (``fatigue.equivalent_amplitude_mean`` on the full history) lie
+under the bounds, and ``group_extremes`` searched by them gives the same result as
+without them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from fe_crank.assess import fatigue
+from fe_crank.assess.group.extremes import Wanted, group_extremes
+from fe_crank.assess.group.reference import abs_sum, reference_bounds, reference_path, reference_shift
+from fe_crank.assess.stress import von_mises
+from fe_crank.assess.superpose import UnitStresses, stress_history
+from fe_crank.io.material import load_material
+
+MAT = load_material("42CrMo4")
+
+
+def _unit(stress: np.ndarray, group: str) -> UnitStresses:
+    n = stress.shape[-1]
+    return UnitStresses(
+        stress=stress,
+        points=np.zeros((3, n)),
+        groups={group: np.arange(n)},
+        cases=tuple(f"c{i}" for i in range(stress.shape[0])),
+        node_ids=np.arange(n),
+    )
+
+
+def test_a_constant_shift_by_hand():
+    """Case 0: sigma_xx 100 MPa per unit, a(t) = cos t (reference); case 1: sigma_xx
+        50 MPa per unit, coefficient 0 in the reference and 0.2 in the history: M = 10 MPa.
+        Reference peak 100 MPa, radius 100 MPa about 0; the history's peak 110 MPa, its
+        amplitude 100 MPa: bounds 110 and 100 MPa (to the single precision of the reference's
+    values)."""
+    s = np.zeros((2, 6, 1))
+    s[0, 0, 0], s[1, 0, 0] = 100e6, 50e6
+    unit = _unit(s, "crankpin_fillet_1")
+    t = np.linspace(0.0, 2 * np.pi, 73)
+    w0 = np.column_stack([np.cos(t), np.zeros_like(t)])
+    w = w0.copy()
+    w[:, 1] = 0.2
+    ref = reference_path(unit, w0, np.array([0]))
+    # kept in single precision, rounded outwards (upper bounds up)
+    assert 100e6 <= ref.peak[0] <= 100e6 * (1 + 2**-22) and 100e6 <= ref.radius[0] <= 100e6 * (1 + 2**-22)
+    shift, r = reference_shift(w0, unit, w, abs_sum(unit))
+    assert shift[0, 0] == pytest.approx(10e6, rel=1e-15) and np.all(r < 1e-3)
+    b = reference_bounds(ref, shift, r)
+    assert 110e6 <= b.peak[0] <= 110e6 * (1 + 2**-22)
+    assert 100e6 <= b.amplitude[0] <= 100e6 * (1 + 2**-22)
+    amp, mean = fatigue.equivalent_amplitude_mean(stress_history(unit, w, np.array([0])))
+    assert amp[0] == pytest.approx(100e6, rel=1e-12) and mean[0] <= b.mean[0]
+    assert reference_shift(w0, unit, w[:-1], abs_sum(unit)) is None  # other angles
+
+
+def test_bounds_hold_and_the_search_by_them_finds_the_same_extremes():
+    rng = np.random.default_rng(7)
+    n_cases, n, n_t = 6, 300, 90
+    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
+    s[:, 0] *= 3.0  # a dominant component, as at a fillet
+    group = "journal_fillet_1"
+    unit = _unit(s, group)
+    t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
+    w0 = np.column_stack([np.cos(t + k) * (1 + k) for k in range(n_cases)])
+    w0[:, -1] = 1.5  # a constant case (centrifugal)
+    nodes = np.arange(n)
+    ref = reference_path(unit, w0, nodes)
+    sums = abs_sum(unit)
+    for shift_const, vary in ((0.0, 0.0), (0.4, 0.0), (-1.2, 0.0), (0.3, 0.05)):
+        w = w0.copy()
+        w[:, -1] += shift_const
+        w[:, 1] += vary * np.sin(3 * t)
+        b = reference_bounds(ref, *reference_shift(w0, unit, w, sums))
+        h = stress_history(unit, w, nodes)
+        assert np.all(von_mises(h).max(axis=0) <= b.peak)
+        amp, mean = fatigue.equivalent_amplitude_mean(h)
+        assert np.all(amp <= b.amplitude) and np.all(mean <= b.mean)
+        kw = dict(crank_radius=0.05, diameter=0.06, wanted=Wanted(gough_pollard=False), block=16)
+        plain = group_extremes(unit, group, w, t, MAT, **kw)
+        bounded = group_extremes(unit, group, w, t, MAT, reference=b, **kw)
+        assert bounded == plain
