@@ -73,9 +73,11 @@ def test_face_rotation_of_an_fe_round_bar_matches_tl_over_gj():
 
 @pytest.mark.heavy
 def test_fe_throw_stiffness_vs_carter(case, tmp_path):
-    """The FE throw of geometry/inline4.toml (test mesh) twists under the torque unit
-    case with k_FE = 5.41e5 N m/rad (determinate support; radial foundation 5.45e5, coarse
-    mesh 5.42e5); Carter gives 4.861e5, about 10 % softer.  The gap is the empirical formula's: docs/torsion.md.
+    """The FE throw of the generating set's load case (geometry/inline4.toml, journals
+    2 x 17 mm; test mesh, the model the chain takes) twists under the torque unit case
+    with k_FE = 4.963e5 N m/rad (determinate support; radial foundation 5.068e5, coarse
+    mesh 4.937e5, measured 2026-11-29); Carter gives 4.523e5, about 9 % softer.  The gap is
+    the empirical formula's: docs/torsion.md.
     Band 5-16 %: outside it either the FE twist measurement or the formula changed."""
     from fe_crank.cli.torsion import fe_stiffness_of
 
