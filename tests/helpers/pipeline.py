@@ -32,33 +32,6 @@ def stage_outputs(path: str | Path, cache_dir: str | Path, *, mesh_size: str = "
     return run.out
 
 
-def per_throw_outputs(path: str | Path, cache_dir: str | Path, *, mesh_size: str = "test") -> CaseOutputs:
-    """The outputs of the check's stages of one load case for its per-throw model alone:
-    the stages of ``pipeline.stages.run_stages`` in its order (load, dynamics, balance,
-    geometry, mesh, FE, SCF when needed, torsion when asked) with the whole shaft left out
-    of the mesh plan, so that neither the whole-shaft stage nor its assessment runs; no
-    hot-spot convergence study, no fields for pictures.  For tests that read the per-throw
-    model only: its assessment does not depend on the whole shaft (the criteria take the
-    worse of the two models, each computed on its own)."""
-    from fe_crank.balance.analysis import analyse_balance
-    from fe_crank.io.loadcase import load_loadcase
-    from fe_crank.pipeline.stages import assess_stage, fe_stage, geometry_stage, mesh_stage, needs_scf, scf_stage
-    from fe_crank.pipeline.torsion_stage import torsion_stage
-
-    opts = CheckOptions(mesh_size=mesh_size, cache_dir=str(cache_dir), render=False, write_vtu=False)
-    lc = load_loadcase(Path(path))
-    cycles = engine_cycles(lc.engine, lc.operating)
-    balance = analyse_balance(lc.engine, lc.operating.speed, lc.balance)
-    geo = geometry_stage(lc, opts, balance)
-    geo = dataclasses.replace(geo, plan=dataclasses.replace(geo.plan, shaft=None))
-    meshes = mesh_stage(lc, geo)
-    units = fe_stage(lc, geo, meshes.throws)
-    fe = FeModels(units, scf_stage(lc, geo, meshes.throws)) if needs_scf(lc, geo) else FeModels(units)
-    torsion = torsion_stage(lc, geo, units, cycles) if lc.torsion is not None else None
-    out = CaseOutputs(loadcase=lc, cycles=cycles, balance=balance, geometry=geo, meshes=meshes, fe=fe, torsion=torsion)
-    return dataclasses.replace(out, assessment=assess_stage(lc, out, False))
-
-
 def write_report(folder: Path, out: CaseOutputs, options: CheckOptions | None = None) -> CaseResult:
     """The case report of ``out`` in ``folder`` as the check writes it; the record returned."""
     assert out.loadcase is not None

@@ -85,7 +85,7 @@ def test_shares_follow_the_cylinders_inertias(tmp_path):
 
 @pytest.fixture(scope="module")
 def v4_torsion(tmp_path_factory, mesh_cache):
-    from helpers.pipeline import per_throw_outputs
+    from helpers.per_throw import per_throw_outputs
 
     folder = tmp_path_factory.mktemp("v4_torsion")
     # what is asserted is the per-throw model's FE loads and its assessment's inputs: the

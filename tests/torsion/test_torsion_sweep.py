@@ -33,7 +33,7 @@ def _torsion_case(folder: Path, speed: str, sweep: str) -> Path:
 
 @pytest.fixture(scope="module")
 def torsion_swept(tmp_path_factory, mesh_cache):
-    from helpers.pipeline import per_throw_outputs
+    from helpers.per_throw import per_throw_outputs
 
     folder = tmp_path_factory.mktemp("torsion_sweep")
     p = _torsion_case(folder, "3000 rpm", 'speeds = ["1500 rpm", "2400 rpm"]\n')
