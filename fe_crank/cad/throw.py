@@ -9,7 +9,9 @@
   material) wholly in a counterweight's region, other than bores, holes and surfaces
   about the crank or pin axis;
 * a counterweight's offset: the direction of its exact m r, turned from ``-y`` towards
-  ``+x`` (``counterweight_offset``; one turned over ``y = 0`` refused);
+  ``+x`` (``counterweight_offset``); one whose outer face reaches over ``y = 0`` towards
+  its pin is recognised by its own sector (``_sector``: its flanks and their transition
+  fillets bound its region in place of ``y = 0``);
 * the named parts (``fe_crank.cad.model``) and their mass properties
   (``fe_crank.geometry.mass``: exact B-rep integrals).
 """
@@ -213,7 +215,7 @@ def _flank_notch(faces, frame, phi, r, zs, pin_r, used, throw, web, side, file, 
     return pts, fil
 
 
-def _sector(faces, frame, axis, s_web, zs, r, t, used, throw, web, file, tol):
+def _sector(faces, frame, axis, s_web, zs, r, r_side, t, used, throw, web, file, tol):
     """A counterweight recognised by its own sector, where its outer face (cylinders about
     the crank axis beyond ``r`` in the web's slab) reaches over ``y = 0`` towards its pin:
     ``(outline, fillet faces)``, the outline of its region in the throw frame's x, y (cut
@@ -221,14 +223,16 @@ def _sector(faces, frame, axis, s_web, zs, r, t, used, throw, web, file, tol):
     towards ``+x``; beyond 90 deg, with its transition fillet's outline) round the far
     side to ``-phi_0`` (the same on the other side; where a flank stays on ``y <= 0`` the
     region is bounded by ``y = 0`` there, as the half plane of an unturned one is).  None:
-    the outer face stays on the far side of ``y = 0`` (the half plane holds it whole)."""
+    the outer face stays on the far side of ``y = 0`` (the half plane holds it whole).
+    Outer faces are looked for beyond the web's side radius ``r_side`` too (a
+    ``counterweight_radius`` inside it would take the web's rounded end for one)."""
     lo, hi = s_web
     outer = [
         f
         for f in faces.values()
         if f.kind == "cylinder"
         and f.convex
-        and f.radius > r + tol
+        and f.radius > max(r, r_side) + tol
         and line_of(f).same(axis, tol)
         and lo - tol <= extent([f], axis)[0]
         and extent([f], axis)[1] <= hi + tol
@@ -242,7 +246,7 @@ def _sector(faces, frame, axis, s_web, zs, r, t, used, throw, web, file, tol):
     phi = np.arctan2(q[:, 0], -q[:, 1])
     p0, p1 = float(phi.min()), float(phi.max())
     # the crankpin and its fillets must stay clear of the region
-    pin = [f for f in t.pin] + [f for e in t.ends for f in e.fillet]
+    pin = list(t.pin) + [f for e in t.ends for f in e.fillet]
     pq = frame.to_throw(np.vstack([np.vstack([f.points, f.edge_points]) for f in pin]))
     pp = np.arctan2(pq[:, 0], -pq[:, 1])
     hit = (np.hypot(pq[:, 0], pq[:, 1]) > r + tol) & (pp >= min(p0, -math.pi / 2)) & (pp <= max(p1, math.pi / 2))
@@ -310,7 +314,9 @@ def counterweight_offset(
     the region's boundary and the counterweight's transition fillets, through its centroid
     (``cad.frame.chord``).  A counterweight turned more than ``CW_TURN_TOL_DEG`` whose one
     side reaches farther there than the other (material of it beyond the web's side, above
-    the boundary) would be taken in part and its rest left to the web: refused."""
+    the boundary) would be taken in part and its rest left to the web: refused.
+    ``over`` None: the region is the counterweight's own sector (``_sector``), which holds
+    it whole by construction; the offset is the direction of its m r."""
     ux, uy = cw.mass.unbalance_vector
     if not cw.mass.mass > 0.0 or math.hypot(ux, uy) == 0.0:
         return 0.0
@@ -442,7 +448,19 @@ def throw_features(
     for k, zr in ((1, zranges[0]), (2, zranges[1])):
         zs = (webs[k - 1].z_outer, webs[k - 1].z_inner)
         sector = _sector(
-            faces, frame, axis, slabs[k - 1], sorted(zs), cw_r[k - 1], t, set(groups), t.name, k, str(cad.file), tol
+            faces,
+            frame,
+            axis,
+            slabs[k - 1],
+            sorted(zs),
+            cw_r[k - 1],
+            side_r[k - 1],
+            t,
+            set(groups),
+            t.name,
+            k,
+            str(cad.file),
+            tol,
         )
         cw_faces[k] = _cw_fillets(faces, frame, cw_r[k - 1], zr, lines, set(groups), tol)
         # the counterweight's region reaches over its fillets where they rise above y = 0
@@ -452,7 +470,8 @@ def throw_features(
             cw_top.append(max([0.0] + ys) if reach_over[k - 1] else 0.0)
         else:
             outline, notch = sector
-            rising = [f.tag for f, y in zip(cw_faces[k], ys, strict=True) if y > tol]
+            mine = {f.tag for f in notch}
+            rising = [f.tag for f, y in zip(cw_faces[k], ys, strict=True) if y > tol and f.tag not in mine]
             if rising:
                 raise InputError(
                     f"throw {t.name}: counterweight_{k} reaches over y = 0 towards its pin and its transition fillets "
@@ -461,7 +480,7 @@ def throw_features(
                     file=str(cad.file),
                     key="cad.file",
                 )
-            cw_faces[k] = sorted(cw_faces[k] + notch, key=lambda f: f.tag)
+            cw_faces[k] = sorted([f for f in cw_faces[k] if f.tag not in mine] + notch, key=lambda f: f.tag)
             outlines.append(outline)
             cw_top.append(0.0)
         for f in cw_faces[k]:
