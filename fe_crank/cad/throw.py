@@ -163,6 +163,13 @@ def _flank_notch(faces, frame, phi, r, zs, pin_r, used, throw, web, side, file, 
             key="cad.file",
         )
 
+    def below_pin(corner: np.ndarray) -> None:
+        if corner[1] >= pin_r:
+            raise refuse(
+                f"its flank meets the web's side {corner[1] * 1e3:.4g} mm from the crank axis towards the pin, "
+                f"beyond the crankpin's centre ({pin_r * 1e3:.4g} mm: where the web's side turns round the pin)"
+            )
+
     def inside(q: np.ndarray) -> bool:
         return bool(np.all((q[:, 2] >= zs[0] - tol) & (q[:, 2] <= zs[1] + tol)))
 
@@ -189,7 +196,9 @@ def _flank_notch(faces, frame, phi, r, zs, pin_r, used, throw, web, side, file, 
         if f.kind != "cylinder" or abs(abs(frame.direction(f.direction)[2]) - 1.0) > 1e-9:
             raise refuse(f"its transition fillet there (face {f.tag}) is no cylinder along the crank axis")
         fil.append(f)
-    if not fil:
+    if not fil:  # a sharp corner: the flank face begins where it leaves the web
+        q = frame.to_throw(np.vstack([f.edge_points for f in flank]))
+        below_pin(q[int(np.argmin(q[:, :2] @ d)), :2])
         return (), []
     c = frame.to_throw(fil[0].origin)[0][:2]
     rf = float(fil[0].radius)
@@ -206,11 +215,7 @@ def _flank_notch(faces, frame, phi, r, zs, pin_r, used, throw, web, side, file, 
     corner = c + rf * (ua + ub) / (1.0 + ua @ ub)
     if np.linalg.norm(corner) <= r + tol or np.linalg.norm(b) <= r + tol:
         raise refuse("its transition fillet there meets the web on its rounded journal end, not on a straight side")
-    if corner[1] >= pin_r:
-        raise refuse(
-            f"its flank meets the web's side {corner[1] * 1e3:.4g} mm from the crank axis towards the pin, "
-            f"beyond the crankpin's centre ({pin_r * 1e3:.4g} mm: where the web's side turns round the pin)"
-        )
+    below_pin(corner)
     pts = tuple((float(p[0]), float(p[1])) for p in (corner, b, c + rf * ua))
     return pts, fil
 
@@ -221,7 +226,7 @@ def _sector(faces, frame, axis, s_web, zs, r, r_side, t, used, throw, web, file,
     ``(outline, fillet faces)``, the outline of its region in the throw frame's x, y (cut
     by the cylinder ``r`` in ``cad.model``): from its flank's angle ``phi_1`` (from ``-y``
     towards ``+x``; beyond 90 deg, with its transition fillet's outline) round the far
-    side to ``-phi_0`` (the same on the other side; where a flank stays on ``y <= 0`` the
+    side to ``phi_0`` (the same on the other side; where a flank stays on ``y <= 0`` the
     region is bounded by ``y = 0`` there, as the half plane of an unturned one is).  None:
     the outer face stays on the far side of ``y = 0`` (the half plane holds it whole).
     Outer faces are looked for beyond the web's side radius ``r_side`` too (a
@@ -444,7 +449,8 @@ def throw_features(
             )
         )
     cw_r = (cad.counterweight_radius,) * 2 if cad.counterweight_radius is not None else tuple(side_r)
-    cw_faces, cw_top, outlines = {}, [], []
+    cw_faces, cw_top = {}, []
+    outlines: list[tuple[tuple[float, float], ...] | None] = []
     for k, zr in ((1, zranges[0]), (2, zranges[1])):
         zs = (webs[k - 1].z_outer, webs[k - 1].z_inner)
         sector = _sector(

@@ -23,7 +23,9 @@ fe-crank's own writer (``helpers.cad_files.parametric_step``) and read back:
 * a counterweight turned over y = 0 (40 deg: its flank 100 deg from opposite the pin) is
   recognised by its own sector: mass and m r vector against an independent OpenCASCADE
   integral of the parametric solid in that sector beyond the side radius (1e-9), web and
-  counterweight together the parametric route's (1e-9), offset the direction of that m r;
+  counterweight together the parametric route's (1e-9), offset the direction of that m r
+  (40.03 deg: the two flanks' fillets differ); without fillets the offset is 40 deg to
+  1e-9 deg;
 * one that still cannot be recognised (a 190 deg sector turned 10 deg, the fillet of its
   other flank rising above y = 0) is refused by ``fe-crank validate`` with the file, the
   key and the reason."""
@@ -61,9 +63,11 @@ SIDE = 0.020  # m: the web's side radius (a 40 mm wide stadium), where the count
 CASES = ("centrifugal", "pin_x", "pin_y", "torque")
 
 
-def geometry(offset_deg: float) -> CrankGeometry:
+def geometry(offset_deg: float, fillet: str | None = "2.5 mm") -> CrankGeometry:
     raw = {k: v for k, v in read_toml(DATA / "geometry_small_shaft.toml").items() if k not in ("throws", "shaft")}
-    raw["counterweight"] = {**raw["counterweight"], "fillet_radius": "2.5 mm", "offset": f"{offset_deg:g} deg"}
+    raw["counterweight"] = {**raw["counterweight"], "offset": f"{offset_deg:g} deg"}
+    if fillet is not None:
+        raw["counterweight"]["fillet_radius"] = fillet
     return geometry_from_dict(raw)
 
 
@@ -227,9 +231,9 @@ def test_counterweight_turned_over_y0_recognised_by_its_sector(over):
     vector those of the parametric solid's material in that sector beyond the side radius
     (with both transition fillets), independently integrated; web and counterweight
     together the parametric route's; its offset the direction of that m r (the fillet on
-    the flank at 100 deg meets the web's flat side, the one at -20 deg its rounded end,
-    and the web's sliver between r = 20 mm and its side lies in the sector: the m r
-    points 0.03 deg past the sector's mid-line)."""
+    the flank at 100 deg meets the web's flat side, the one at -20 deg its rounded end:
+    the m r points 0.03 deg past the sector's mid-line; without fillets it is on it, next
+    test)."""
     g, _, features = over
     t = features.throws[0]
     assert [c.web for c in t.counterweights] == [1, 2]
@@ -248,6 +252,20 @@ def test_counterweight_turned_over_y0_recognised_by_its_sector(over):
         for key in ("mass", "unbalance_vector"):
             a, b = (np.sum([np.asarray(getattr(x, key)) for x in side], axis=0) for side in both)
             assert a == pytest.approx(b, rel=REL, abs=REL * float(np.abs(b).max()))
+
+
+def test_a_sharp_counterweight_turned_over_y0_has_the_sectors_offset(tmp_path):
+    """The same sector without transition fillets: its material beyond the side radius is
+    an annular sector 20 ... 40 mm of 120 deg (the web's sliver between r = 20 mm and its
+    side lies inside it), so its m r points along the sector's mid-line, 40 deg."""
+    g = geometry(OVER, fillet=None)
+    features = recognise(CadInput(parametric_step(g, tmp_path / "sharp.step"), density=g.density))
+    ref = _in_sector(g)
+    for c in features.throws[0].counterweights:
+        m, u = ref[c.web]
+        assert math.degrees(c.offset) == pytest.approx(OVER, abs=TOL_DEG)
+        assert c.fillet_faces == () and c.mass.mass == pytest.approx(m, rel=REL)
+        assert np.asarray(c.mass.unbalance_vector) == pytest.approx(u, abs=REL * np.hypot(*u))
 
 
 def test_a_counterweight_with_a_fillet_over_y0_on_its_other_flank_refused_by_validate(tmp_path, capsys):
