@@ -8,7 +8,8 @@ pin or journal they round); the material on the far side of the axis (``y < 0`` 
 throw frame) farther than a web's counterweight radius, between its bearing centre and
 ``z = 0``, is ``counterweight_<web>`` (absent when there is none); where its transition
 fillets rise over ``y = 0`` (a counterweight of 180 degrees), the region reaches over
-them.  The tools are prisms normal to the crank axis (``Frame.prism``), whose faces lie
+them; a counterweight recognised by its own sector (``cad.throw``) has that outline
+(``Plan.cw_outline``) in place of the half plane.  The tools are prisms normal to the crank axis (``Frame.prism``), whose faces lie
 on the web faces to the last bit when the axis runs along a coordinate axis of the file
 (OpenCASCADE does not split along a plane tangent to a fillet that is off by round-off).
 
@@ -45,6 +46,9 @@ class Plan:
     cw_radius: tuple[float, float]  # counterweight radius per web
     cw_top: tuple[float, float]  # the counterweight's region is y < cw_top (throw frame, >= 0)
     groups: dict[int, str]  # file face -> group name
+    # per web: the counterweight region's outline (x, y of the throw frame) in place of the
+    # half plane y < cw_top, for one recognised by its own sector (cad.throw); None: the half plane
+    cw_outline: tuple[tuple[tuple[float, float], ...] | None, tuple[tuple[float, float], ...] | None] = (None, None)
 
 
 @dataclass(frozen=True, eq=False)
@@ -55,9 +59,10 @@ class Built:
     surfaces: dict[str, list[int]]
 
 
-def _cw_tool(occ, frame: Frame, origin, web: int, r: float, top: float, span: tuple[float, float]) -> int:
+def _cw_tool(occ, frame: Frame, origin, web: int, r: float, top: float, span: tuple[float, float], outline=None) -> int:
     s0, s1 = span
-    half = frame.prism(occ, ((-BIG, -BIG), (BIG, -BIG), (BIG, top), (-BIG, top)), s0, s1, origin)
+    corners = outline if outline is not None else ((-BIG, -BIG), (BIG, -BIG), (BIG, top), (-BIG, top))
+    half = frame.prism(occ, corners, s0, s1, origin)
     base = origin + s0 * frame.rotation[2]
     cyl = occ.addCylinder(*map(float, base), *map(float, (s1 - s0) * frame.rotation[2]), r)
     out, _ = occ.cut([(3, half)], [(3, cyl)])
@@ -200,7 +205,19 @@ def build_throw(
     tools = [frame.prism(occ, _SQUARE, a, b, origin) for a, b in slabs]
     spans = ((-BIG, plan.mid), (plan.mid, BIG))
     cw = [
-        (web, _cw_tool(occ, frame, origin, web, plan.cw_radius[web - 1], plan.cw_top[web - 1], spans[web - 1]))
+        (
+            web,
+            _cw_tool(
+                occ,
+                frame,
+                origin,
+                web,
+                plan.cw_radius[web - 1],
+                plan.cw_top[web - 1],
+                spans[web - 1],
+                plan.cw_outline[web - 1],
+            ),
+        )
         for web in (1, 2)
     ]
     _, out_map = occ.fragment(out, [(3, t) for t in tools] + [(3, t) for _, t in cw])

@@ -9,7 +9,9 @@
   material) wholly in a counterweight's region, other than bores, holes and surfaces
   about the crank or pin axis;
 * a counterweight's offset: the direction of its exact m r, turned from ``-y`` towards
-  ``+x`` (``counterweight_offset``; one turned over ``y = 0`` refused);
+  ``+x`` (``counterweight_offset``); one whose outer face reaches over ``y = 0`` towards
+  its pin is recognised by its own sector (``_sector``: its flanks and their transition
+  fillets bound its region in place of ``y = 0``);
 * the named parts (``fe_crank.cad.model``) and their mass properties
   (``fe_crank.geometry.mass``: exact B-rep integrals).
 """
@@ -134,6 +136,160 @@ def _cw_fillets(faces, frame, radius, z_range, lines, used, tol) -> list[Face]:
     return out
 
 
+def _dir(phi: float) -> np.ndarray:
+    """The unit vector at ``phi`` (rad) from ``-y`` towards ``+x`` (throw frame, x and y)."""
+    return np.array([math.sin(phi), -math.cos(phi)])
+
+
+def _flank_notch(faces, frame, phi, r, zs, pin_r, used, throw, web, side, file, tol):
+    """The flank of a counterweight's sector at ``phi`` (beyond ``y = 0``) and the outline
+    of its transition fillet there: ``(corners, fillet faces)``, the corners from the
+    flank's corner with the web's side ``P``, the fillet's tangent point on the web's side
+    ``B`` and on the flank ``A`` (an empty tuple for a sharp corner).  The fillet's material
+    lies in the triangle ``P B A`` (a rolling-ball fillet of a re-entrant corner between
+    two faces along the crank axis: a circular arc tangent to both, bulging towards ``P``;
+    ``P`` the meeting point of its tangents at ``A`` and ``B``)."""
+    d = _dir(phi)
+    n2 = np.array([-d[1], d[0]])  # the flank line's normal
+
+    def refuse(why: str) -> InputError:
+        return InputError(
+            f"throw {throw}: counterweight_{web} reaches over y = 0 towards its pin on its {side} side and {why}; "
+            "a drawn counterweight turned over y = 0 is recognised by its own sector (a flank along a plane through "
+            "the crank axis, leaving the web's straight side below the crankpin's centre, clear of the crankpin, "
+            "through a sharp corner or a fillet along the crank axis); model it as a parametric geometry with "
+            "counterweight.offset (docs/geometry.md)",
+            file=file,
+            key="cad.file",
+        )
+
+    def below_pin(corner: np.ndarray) -> None:
+        if corner[1] >= pin_r:
+            raise refuse(
+                f"its flank meets the web's side {corner[1] * 1e3:.4g} mm from the crank axis towards the pin, "
+                f"beyond the crankpin's centre ({pin_r * 1e3:.4g} mm: where the web's side turns round the pin)"
+            )
+
+    def inside(q: np.ndarray) -> bool:
+        return bool(np.all((q[:, 2] >= zs[0] - tol) & (q[:, 2] <= zs[1] + tol)))
+
+    def on_flank(q: np.ndarray) -> np.ndarray:
+        return (np.abs(q[:, :2] @ n2) <= tol) & (q[:, :2] @ d > r)
+
+    flank = [
+        f
+        for f in faces.values()
+        if f.kind == "plane"
+        and abs(frame.direction(f.direction)[2]) <= 1e-9
+        and inside(q := frame.to_throw(np.vstack([f.points, f.edge_points])))
+        and np.all(on_flank(q))
+    ]
+    if not flank:
+        raise refuse(f"its outer face ends {math.degrees(abs(phi)):.4g} deg from -y on no plane through the crank axis")
+    fil = []
+    for f in faces.values():
+        if f.tag in used or f.convex or f.kind == "plane":
+            continue
+        q = frame.to_throw(np.vstack([f.points, f.edge_points]))
+        if not inside(q) or not np.any(on_flank(frame.to_throw(f.edge_points))):
+            continue
+        if f.kind != "cylinder" or abs(abs(frame.direction(f.direction)[2]) - 1.0) > 1e-9:
+            raise refuse(f"its transition fillet there (face {f.tag}) is no cylinder along the crank axis")
+        fil.append(f)
+    if not fil:  # a sharp corner: the flank face begins where it leaves the web
+        q = frame.to_throw(np.vstack([f.edge_points for f in flank]))
+        below_pin(q[int(np.argmin(q[:, :2] @ d)), :2])
+        return (), []
+    c = frame.to_throw(fil[0].origin)[0][:2]
+    rf = float(fil[0].radius)
+    if any(np.linalg.norm(frame.to_throw(f.origin)[0][:2] - c) > tol or abs(f.radius - rf) > tol for f in fil):
+        raise refuse(f"its transition fillet there (faces {sorted(f.tag for f in fil)}) is not one cylinder")
+    a = (c @ d) * d  # the fillet's tangent point on the flank line
+    ua = (a - c) / np.linalg.norm(a - c)
+    u = frame.to_throw(np.vstack([f.edge_points for f in fil]))[:, :2] - c
+    ub = u[int(np.argmin(u @ ua))]
+    ub = ub / np.linalg.norm(ub)
+    if 1.0 + ua @ ub <= 1e-6:
+        raise refuse("its transition fillet there turns through half a turn")
+    b = c + rf * ub
+    corner = c + rf * (ua + ub) / (1.0 + ua @ ub)
+    if np.linalg.norm(corner) <= r + tol or np.linalg.norm(b) <= r + tol:
+        raise refuse("its transition fillet there meets the web on its rounded journal end, not on a straight side")
+    below_pin(corner)
+    pts = tuple((float(p[0]), float(p[1])) for p in (corner, b, c + rf * ua))
+    return pts, fil
+
+
+def _sector(faces, frame, axis, s_web, zs, r, r_side, t, used, throw, web, file, tol):
+    """A counterweight recognised by its own sector, where its outer face (cylinders about
+    the crank axis beyond ``r`` in the web's slab) reaches over ``y = 0`` towards its pin:
+    ``(outline, fillet faces)``, the outline of its region in the throw frame's x, y (cut
+    by the cylinder ``r`` in ``cad.model``): from its flank's angle ``phi_1`` (from ``-y``
+    towards ``+x``; beyond 90 deg, with its transition fillet's outline) round the far
+    side to ``phi_0`` (the same on the other side; where a flank stays on ``y <= 0`` the
+    region is bounded by ``y = 0`` there, as the half plane of an unturned one is).  None:
+    the outer face stays on the far side of ``y = 0`` (the half plane holds it whole).
+    Outer faces are looked for beyond the web's side radius ``r_side`` too (a
+    ``counterweight_radius`` inside it would take the web's rounded end for one)."""
+    lo, hi = s_web
+    outer = [
+        f
+        for f in faces.values()
+        if f.kind == "cylinder"
+        and f.convex
+        and f.radius > max(r, r_side) + tol
+        and line_of(f).same(axis, tol)
+        and lo - tol <= extent([f], axis)[0]
+        and extent([f], axis)[1] <= hi + tol
+        and coverage(f.edge_runs, f.origin, f.direction) < 0.99
+    ]
+    if not outer:
+        return None
+    q = frame.to_throw(np.vstack([np.vstack([f.points, f.edge_points]) for f in outer]))
+    if not np.any(q[:, 1] > tol):
+        return None
+    phi = np.arctan2(q[:, 0], -q[:, 1])
+    p0, p1 = float(phi.min()), float(phi.max())
+    # the crankpin and its fillets must stay clear of the region
+    pin = list(t.pin) + [f for e in t.ends for f in e.fillet]
+    pq = frame.to_throw(np.vstack([np.vstack([f.points, f.edge_points]) for f in pin]))
+    pp = np.arctan2(pq[:, 0], -pq[:, 1])
+    hit = (np.hypot(pq[:, 0], pq[:, 1]) > r + tol) & (pp >= min(p0, -math.pi / 2)) & (pp <= max(p1, math.pi / 2))
+    if np.any(hit) or p1 - p0 >= 2 * math.pi - 1e-6:
+        side = "+x" if p1 > -p0 else "-x"
+        raise InputError(
+            f"throw {throw}: counterweight_{web} reaches over y = 0 towards its pin on its {side} side (its outer "
+            f"face from {math.degrees(p0):.4g} to {math.degrees(p1):.4g} deg from -y towards +x) and its sector "
+            "beyond the web's side radius overlaps the crankpin or its fillets: no drawn counterweight is "
+            "recognised there; model it as a parametric geometry with counterweight.offset (docs/geometry.md)",
+            file=file,
+            key="cad.file",
+        )
+    pin_r = float(t.crank_radius)
+    fillets: list[Face] = []
+    hi_pts: tuple = ()
+    lo_pts: tuple = ()
+    if p1 > math.pi / 2 and np.any(q[:, 0] > 0) and np.any(q[(q[:, 0] > 0), 1] > tol):
+        hi_pts, f1 = _flank_notch(faces, frame, p1, r, zs, pin_r, used, throw, web, "+x", file, tol)
+        fillets += f1
+    else:
+        p1 = math.pi / 2
+    if p0 < -math.pi / 2 and np.any(q[(q[:, 0] < 0), 1] > tol):
+        pts, f0 = _flank_notch(faces, frame, p0, r, zs, pin_r, used, throw, web, "-x", file, tol)
+        lo_pts = tuple(reversed(pts))
+        fillets += f0
+    else:
+        p0 = -math.pi / 2
+    steps = max(2, math.ceil((p1 - p0) / (math.pi / 4)))
+    far = [BIG_OUTLINE * _dir(p1 - k * (p1 - p0) / steps) for k in range(steps + 1)]
+    outline = ((0.0, 0.0), *hi_pts, *((float(v[0]), float(v[1])) for v in far), *lo_pts)
+    return outline, fillets
+
+
+#: m: the far corners of a counterweight's sector outline (``_sector``), beyond any crank
+BIG_OUTLINE = 10.0
+
+
 #: deg: a recognised counterweight whose m r points farther than this from opposite its pin is
 #: turned (``counterweight_offset``): it must then lie wholly on the far side of the boundary
 #: of the region it is recognised in
@@ -146,7 +302,7 @@ OFFSET_ROUNDOFF = 1e-6
 
 
 def counterweight_offset(
-    cw: Counterweight, throw: str, cad: CadInput, over: Callable[[], tuple[float, float]]
+    cw: Counterweight, throw: str, cad: CadInput, over: Callable[[], tuple[float, float]] | None
 ) -> float:
     """The angle (rad, from ``-y`` towards ``+x``) of a recognised counterweight's m r: the
     offset of the parametric ``counterweight.offset``, ``Counterweight.offset``.
@@ -163,14 +319,16 @@ def counterweight_offset(
     the region's boundary and the counterweight's transition fillets, through its centroid
     (``cad.frame.chord``).  A counterweight turned more than ``CW_TURN_TOL_DEG`` whose one
     side reaches farther there than the other (material of it beyond the web's side, above
-    the boundary) would be taken in part and its rest left to the web: refused."""
+    the boundary) would be taken in part and its rest left to the web: refused.
+    ``over`` None: the region is the counterweight's own sector (``_sector``), which holds
+    it whole by construction; the offset is the direction of its m r."""
     ux, uy = cw.mass.unbalance_vector
     if not cw.mass.mass > 0.0 or math.hypot(ux, uy) == 0.0:
         return 0.0
     turn = math.atan2(ux, -uy)
     if abs(turn) <= OFFSET_ROUNDOFF:
         return 0.0
-    if abs(math.degrees(turn)) <= CW_TURN_TOL_DEG:
+    if abs(math.degrees(turn)) <= CW_TURN_TOL_DEG or over is None:
         return float(turn)
     left, right = over()
     if abs(right - left) > 1e-6 * max(left, right):
@@ -250,7 +408,7 @@ def throw_features(
             groups[f.tag] = "oil_bore"
     lines = [axis, t.pin_line]
     zranges = ((z["b1"], 0.0), (0.0, z["b2"]))
-    webs, side_r, reach_over = [], [], []
+    webs, side_r, reach_over, slabs = [], [], [], []
     for k, (zo, zi) in enumerate(((z["zo1"], z["zi1"]), (z["zo2"], z["zi2"])), start=1):
         zm = 0.5 * (zo + zi)
         rj = t.journals[k - 1].radius
@@ -258,6 +416,7 @@ def throw_features(
         lo_x, hi_x, solid_width = chord(gmsh, shaft, frame, y_mid, zm, reach)
         width = hi_x - lo_x
         s_web = sorted((zo + mid, zi + mid))
+        slabs.append(s_web)
         r_side, over = _side_radius(
             gmsh,
             shaft,
@@ -291,13 +450,47 @@ def throw_features(
         )
     cw_r = (cad.counterweight_radius,) * 2 if cad.counterweight_radius is not None else tuple(side_r)
     cw_faces, cw_top = {}, []
+    outlines: list[tuple[tuple[float, float], ...] | None] = []
     for k, zr in ((1, zranges[0]), (2, zranges[1])):
+        zs = (webs[k - 1].z_outer, webs[k - 1].z_inner)
+        sector = _sector(
+            faces,
+            frame,
+            axis,
+            slabs[k - 1],
+            sorted(zs),
+            cw_r[k - 1],
+            side_r[k - 1],
+            t,
+            set(groups),
+            t.name,
+            k,
+            str(cad.file),
+            tol,
+        )
         cw_faces[k] = _cw_fillets(faces, frame, cw_r[k - 1], zr, lines, set(groups), tol)
-        for f in cw_faces[k]:
-            groups[f.tag] = f"counterweight_fillet_{k}"
         # the counterweight's region reaches over its fillets where they rise above y = 0
         ys = [float(frame.to_throw(np.vstack([f.points, f.edge_points]))[:, 1].max()) for f in cw_faces[k]]
-        cw_top.append(max([0.0] + ys) if reach_over[k - 1] else 0.0)
+        if sector is None:
+            outlines.append(None)
+            cw_top.append(max([0.0] + ys) if reach_over[k - 1] else 0.0)
+        else:
+            outline, notch = sector
+            mine = {f.tag for f in notch}
+            rising = [f.tag for f, y in zip(cw_faces[k], ys, strict=True) if y > tol and f.tag not in mine]
+            if rising:
+                raise InputError(
+                    f"throw {t.name}: counterweight_{k} reaches over y = 0 towards its pin and its transition fillets "
+                    f"{rising} on its other flank rise above y = 0: its region would cut them; model it as a "
+                    "parametric geometry with counterweight.offset (docs/geometry.md)",
+                    file=str(cad.file),
+                    key="cad.file",
+                )
+            cw_faces[k] = sorted([f for f in cw_faces[k] if f.tag not in mine] + notch, key=lambda f: f.tag)
+            outlines.append(outline)
+            cw_top.append(0.0)
+        for f in cw_faces[k]:
+            groups[f.tag] = f"counterweight_fillet_{k}"
     plan = Plan(
         t.name,
         mid,
@@ -307,6 +500,7 @@ def throw_features(
         (cw_r[0], cw_r[1]),
         (cw_top[0], cw_top[1]),
         groups,
+        (outlines[0], outlines[1]),
     )
     built = build_throw(gmsh, shaft, frame, axis.origin, plan, tol, str(cad.file), end_slabs(t) if joinable else None)
     _check_groups(built, groups, cad, t.name)
@@ -330,7 +524,9 @@ def throw_features(
                 cw,
                 t.name,
                 cad,
-                functools.partial(
+                None
+                if outlines[cw.web - 1] is not None
+                else functools.partial(
                     _over,
                     gmsh,
                     shaft,
