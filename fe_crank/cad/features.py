@@ -106,8 +106,9 @@ class Bearing:
 
 @dataclass(frozen=True)
 class Counterweight:
-    """Material of the throw on the far side of the axis from the pin (y < 0) farther
-    from the axis than ``radius``, between the bearing centre of its side and z = 0;
+    """Material of the throw farther from the axis than ``radius``, between the bearing
+    centre of its side and z = 0, on the far side of the axis from the pin (y < 0) or,
+    for one turned over y = 0, inside its own sector (``cad.throw``);
     ``offset``: the direction of its m r, turned from ``-y`` towards ``+x`` (rad, the
     parametric ``counterweight.offset``; 0 for one centred opposite its pin)."""
 
