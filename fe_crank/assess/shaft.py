@@ -20,6 +20,7 @@ the Gough-Pollard split and the groups' names are the same.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -209,6 +210,7 @@ def assess_shaft_throws(
     additional_bending: float = 0.0,
     sweep: tuple[BearingState, ...] = (),
     wanted: Wanted | None = None,
+    units: Mapping[int, UnitStresses] | None = None,
 ) -> tuple[tuple[ThrowAssessment, ...], tuple[StateResults, ...]]:
     """Every throw of the whole shaft assessed with the per-throw model's group code
     (module doc), with the counterweights as built; ``theta`` the cycle's angles (rad);
@@ -220,7 +222,9 @@ def assess_shaft_throws(
     in every load state at every speed: the operating speed's firing state (the state whose
     weights are the operating cycle's) in full, the others their extremes only
     (``extremes.group_extremes`` with ``wanted``, each state searched with its own
-    ``Running``: the per-throw model's pruning)."""
+    ``Running``: the per-throw model's pruning).  ``units``: throw piece index -> its
+    ``piece_unit_stresses`` of these ``cases`` and ``material`` where already taken (read,
+    not taken again)."""
     coeffs = result.cycles[0].weights
     theta = np.asarray(theta, float)
     coeffs_os = None
@@ -236,7 +240,7 @@ def assess_shaft_throws(
     for k, pp in enumerate(cases.model.pieces):
         if pp.kind != "throw":
             continue
-        unit = piece_unit_stresses(cases, k, material)
+        unit = units[k] if units is not None and k in units else piece_unit_stresses(cases, k, material)
         pin_diameter, journal_diameter = (diameters or {}).get(str(pp.throw), (None, None))
         groups = assess_groups(
             unit,

@@ -409,8 +409,17 @@ def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[Candidat
     return best, why
 
 
-def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=None) -> StudyResult:
-    """The study (module doc)."""
+def _sizes(stiffness: ThrowStiffnessCache) -> tuple:
+    """The size, mesh cache folder and element limit ``stiffness`` meshes with."""
+    return stiffness.size, stiffness.cache_dir, stiffness.max_elements
+
+
+def run_study(
+    lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=None, stiffness: ThrowStiffnessCache | None = None
+) -> StudyResult:
+    """The study (module doc).  ``stiffness``: an empty FE throw stiffness cache of ``lc``
+    with the same size, cache folder and element limit, which the study fills (the caller
+    then holds the stiffness of every written solid it solved); None: the study's own."""
     layout, drawn, cands = prepare(lc, spec)
     assert lc.material is not None
     cycles = engine_cycles(lc.engine, lc.operating, file=lc.source_file)
@@ -425,7 +434,10 @@ def run_study(lc: LoadCase, spec: StudySpec, *, size, cache_dir, max_elements=No
     per_candidate = lc.torsion is not None
     q = None if lc.torsion is not None else study_m53(lc, cycles)
     # the FE throw stiffness of each candidate's written geometry (throw_stiffness = "fe")
-    stiffness = ThrowStiffnessCache(lc, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    if stiffness is None:
+        stiffness = ThrowStiffnessCache(lc, size=size, cache_dir=cache_dir, max_elements=max_elements)
+    elif stiffness.lc is not lc or stiffness.solved or (size, cache_dir, max_elements) != _sizes(stiffness):
+        raise ValueError("run_study: the stiffness cache must be empty and of the same load case, size and cache")
     k_fe: list[float] = []
     results = []
     first = None

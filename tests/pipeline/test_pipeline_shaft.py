@@ -170,18 +170,20 @@ def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path, mes
     section): the whole shaft's throws in every load state (``ShaftAssessment.states``,
     the per-throw model's pruning: each group's extremes only) have the least static and
     fatigue safety an evaluation of every node gives (``assess_groups`` on the state's
-    weights, here); each criterion takes the worse model at each speed."""
+    weights, here); each criterion takes the worse model at each speed.  The states' weights
+    and the unit stresses are the check's own whole-shaft stage's (``helpers.check_shaft``:
+    its unit cases and its sweep over the load states), every node evaluated here."""
+    from helpers.check_shaft import stage_outputs_with_shaft
     from helpers.sweep import SWEPT
 
     from fe_crank.assess.group.assessment import assess_groups
-    from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT, bearing_sweep
-    from fe_crank.fe.shaft.model import ShaftFeOptions
+    from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT
     from fe_crank.rules.m53.basis import m53_basis
 
     (tmp_path / "case.toml").write_text(SWEPT.format(sweep='speeds = ["2000 rpm", "3000 rpm"]'))
     g = (DATA / "geometry_small.toml").read_text() + '\n[shaft]\nend_journal_length = "12 mm"\n'
     (tmp_path / "geometry_small.toml").write_text(g)
-    out = stage_outputs(tmp_path / "case.toml", mesh_cache, render=False, write_vtu=False)
+    out, ws = stage_outputs_with_shaft(tmp_path / "case.toml", mesh_cache)
     shaft = out.assessment.shaft
     assert [(round(s.speed * 30 / np.pi), s.case) for s in shaft.states] == [
         (2000, "all cylinders firing"),
@@ -190,16 +192,9 @@ def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path, mes
         (3000, "cylinder 1 misfiring"),
     ]
     lc = out.loadcase
-    layout = shaft_layout(lc)
-    options = ShaftFeOptions(solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry)
-    result, cases = analyse_whole_shaft(
-        mesh_shaft(layout, size=out.geometry.plan.options, cache_dir=mesh_cache),
-        lc.material,
-        out.assessed_dynamics,
-        mass=throw_masses(layout),
-        options=options,
-    )
-    sweep = bearing_sweep(out.cycles, cases, layout, result)
+    assert ws is not None and ws.cases is not None
+    layout, cases, sweep = ws.layout, ws.cases, ws.sweep
+    assert len(sweep) == len(shaft.states)
     (k,) = [i for i, pp in enumerate(cases.model.pieces) if pp.kind == "throw"]
     unit = piece_unit_stresses(cases, k, lc.material)
     m53 = out.geometry.throws["1"].m53

@@ -23,13 +23,10 @@ from fe_crank.assess.shaft import BearingState, assess_shaft_throws, piece_unit_
 from fe_crank.assess.throw import throw_joints
 from fe_crank.balance.mechanism import rotating_mass
 from fe_crank.cli import main
-from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
 from fe_crank.fe.throw.node_groups import group_kind
 from fe_crank.geometry.oil import FilmSpec
-from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.cycles import engine_cycles
-from fe_crank.mesh.shaft import mesh_shaft
 from fe_crank.rules.m53.basis import m53_basis
 from fe_crank.study.bodies import candidate_bodies
 from fe_crank.study.candidates import Candidate, ThrowSolidCache, web_shape, written_mass
@@ -82,23 +79,50 @@ def study(tmp_path_factory, mesh_cache):
     return res, d, cache
 
 
-@pytest.fixture(scope="module")
-def full_solve(study):
-    """A full whole-shaft solve (same mesh) of the geometry the study writes for every drawn
-    counterweight at mass factor 1 (the drawn geometry): its result and unit cases."""
-    res, d, cache = study
+def _written_path(res, folder: Path) -> Path:
+    """The load case the study writes with every drawn counterweight at mass factor 1 (the
+    drawn shapes, the same meshes), UR M53's Q with the quasi-static journal torque and the
+    joint criteria judged with limits low enough to pass (its check's values are compared)."""
     drawn = res.drawn
     shapes = tuple(
         web_shape(w, 1.0, drawn[w], res.shaft.layout, res.spec, res.shaft.layout.geometry.density) for w in drawn
     )
     cand = Candidate(99, "all at 1", math.nan, 0.0, 0.0, dict.fromkeys(drawn, 1.0), shapes)
-    r = dataclasses.replace(res.results[0], candidate=cand)  # write_candidate takes the candidate's shapes
-    _, lc_path = write_candidate(res, r, d / "written")
-    lc2 = load_loadcase(lc_path)
-    layout2 = engine_shaft_layout(lc2.geometry, lc2.engine, geometry_file="g", engine_file="e")
-    os = tuple(c.dynamics for c in engine_cycles(lc2.engine, lc2.operating).overspeed)
-    sm = mesh_shaft(layout2, size="test", cache_dir=cache)
-    return analyse_whole_shaft(sm, lc2.material, res.states[0].dynamics, mass=throw_masses(layout2), overspeed=os)
+    _, lc_path = write_candidate(res, dataclasses.replace(res.results[0], candidate=cand), folder)
+    data = tomllib.loads(lc_path.read_text())
+    data["criteria"]["min_m53_acceptability"] = 1.0
+    data["criteria"]["m53_quasi_static_torque"] = True
+    for key in JOINT_LIMITS:  # judged, not limiting: the check's values are compared
+        data["criteria"][key] = 1.0 if key.startswith("max_") else 0.01
+    lc_path.write_text(to_toml(data))
+    return lc_path
+
+
+@pytest.fixture(scope="module")
+def written_check(study):
+    """The check of the load case the study writes with every drawn counterweight at mass
+    factor 1 (``_written_path``): the outputs of every stage ``fe-crank check`` runs
+    (``test`` mesh, the study's cached meshes; no pictures, no .vtu fields) and its
+    whole-shaft stage with its unit cases (``helpers.check_shaft``)."""
+    from helpers.check_shaft import stage_outputs_with_shaft
+
+    res, d, cache = study
+    lc_path = _written_path(res, d / "written")
+    checked, ws = stage_outputs_with_shaft(lc_path, cache)
+    assert ws is not None and ws.cases is not None
+    return lc_path, checked, ws
+
+
+@pytest.fixture(scope="module")
+def full_solve(written_check):
+    """A full whole-shaft solve (same mesh) of the geometry the study writes for every drawn
+    counterweight at mass factor 1 (the drawn geometry): its result and unit cases.  The
+    check's whole-shaft stage of the written load case (``written_check``): the shaft
+    meshed from the written geometry file and solved over the operating cycle (the study's
+    first state) with its overspeed cycle, with and without counterweights; the criteria
+    the written case states do not enter it."""
+    _, _, ws = written_check
+    return ws.result, ws.cases
 
 
 def _u(psi):
@@ -181,7 +205,8 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
     add = m53_basis(res.loadcase.engine, mat, None).additional
     dia = (g.crankpin_diameter, g.journal_diameter)
     on_w, off_w = full.cycles[0].weights, full.cycles[1].weights
-    units = [piece_unit_stresses(cases, i, mat) for i, pp in enumerate(cases.model.pieces) if pp.kind == "throw"]
+    by_piece = {i: piece_unit_stresses(cases, i, mat) for i, pp in enumerate(cases.model.pieces) if pp.kind == "throw"}
+    units = list(by_piece.values())
     for k, W in ((1.0, on_w), (0.0, off_w), (0.37, (1 - 0.37) * off_w + 0.37 * on_w)):
         loads = candidate_loads(res.shaft, base, dict.fromkeys(res.drawn, k), res.drawn)
         st = candidate_stresses(res.shaft, [loads], mat, additional_bending=add, diameters=dia)
@@ -202,6 +227,7 @@ def test_screened_stresses_equal_a_full_solve(study, full_solve):
             overspeed=res.loadcase.operating.overspeed,
             diameters={t.name: dia for t in res.shaft.layout.throws},
             additional_bending=add,
+            units=by_piece,  # the unit stresses above, not taken twice
         )
         least = min(
             gr.fatigue_safety.value
@@ -438,7 +464,7 @@ def test_screened_mass_properties_are_the_written_shafts(study):
 
 
 @pytest.mark.heavy
-def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_case(study, tmp_path):
+def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_case(study, written_check, tmp_path):
     """The load case the study writes with every drawn counterweight at mass factor 1 (the
     drawn shapes, the same meshes).  UR M53's Q the study reports (computed once, the same
     on every candidate, ``study.m53``) equals the ``min_m53_acceptability`` of a full
@@ -454,13 +480,13 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
     with the check's coefficients and evaluated at every node here (the check's
     ``max_counterweight_stress`` criterion needs a counterweight fillet, which this
     geometry does not draw)."""
-    from helpers.pipeline import stage_outputs, write_report
+    from helpers.pipeline import write_report
 
     from fe_crank.assess.superpose import cycle_coefficients
     from fe_crank.fe.throw.pin_patches import rod_loads
     from fe_crank.pipeline.options import CheckOptions
 
-    res, _, cache = study
+    res, _, _ = study
     q = res.results[0].m53
     assert q is not None
     assert {x.m53 for x in res.results} == {q}
@@ -469,16 +495,9 @@ def test_m53_q_counterweight_stress_and_joints_equal_the_checks_of_the_written_c
         web_shape(w, 1.0, drawn[w], res.shaft.layout, res.spec, res.shaft.layout.geometry.density) for w in drawn
     )
     cand = Candidate(99, "all at 1", math.nan, 0.0, 0.0, dict.fromkeys(drawn, 1.0), shapes)
-    _, lc_path = write_candidate(res, dataclasses.replace(res.results[0], candidate=cand), tmp_path / "written")
-    data = tomllib.loads(lc_path.read_text())
-    data["criteria"]["min_m53_acceptability"] = 1.0
-    data["criteria"]["m53_quasi_static_torque"] = True
-    for key in JOINT_LIMITS:  # judged, not limiting: the check's values are compared
-        data["criteria"][key] = 1.0 if key.startswith("max_") else 0.01
-    lc_path.write_text(to_toml(data))
-    # the check's stages on it (``fe-crank check``'s calls, the same cache) and its
-    # results.json as the check writes it (figures only: no pictures, no .vtu fields)
-    checked = stage_outputs(lc_path, cache, render=False, write_vtu=False)
+    # the check's stages on it (``fe-crank check``'s calls, the same cache: ``written_check``)
+    # and its results.json as the check writes it (figures only: no pictures, no .vtu fields)
+    lc_path, checked, _ = written_check
     folder = tmp_path / "out" / "written"
     assert write_report(folder, checked, CheckOptions(render=False, write_vtu=False)).status == "pass"
     got = json.loads((folder / "results.json").read_text())
