@@ -200,19 +200,23 @@ def test_convergence_study_follows_the_counterweight_fillets():
     study's change covers it; its peaks equal a direct recovery on the same meshes
     (``_cw_peak`` over the fillet faces is the same averaged nodal stress).  What is checked
     is the study's bookkeeping of that load set, which does not depend on the element size:
-    two coarse levels (r_c/0.5 and r_c/1 in the fillets) stand for the check's finer ones."""
+    two coarse levels (r_c/0.5 and r_c/1 in the fillets) stand for the check's finer ones,
+    each meshed as a quarter of the throw mirrored across both of its planes (as in
+    ``test_counterweight_stress_bounded_with_the_fillet_growing_when_sharp``)."""
     from fe_crank.fe.refinement.convergence import COUNTERWEIGHT_PREFIX, fillet_convergence
     from fe_crank.io.material import load_material
     from fe_crank.mesh import MeshOptions
 
     g = geometry_from_dict(_small("3 mm"), "g.toml")
-    study = fillet_convergence(
-        g,
-        load_material("C45"),
-        base=MeshOptions(coarse_divisions=1.5, fillet_divisions=0.5, grading=2.0),
-        factors=(1.0, 2.0),
-        loads={"spin": {"centrifugal": 1.0}},
-    )
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr("fe_crank.mesh.planes.MESH_PLANES", (0, 2))
+        study = fillet_convergence(
+            g,
+            load_material("C45"),
+            base=MeshOptions(coarse_divisions=1.5, fillet_divisions=0.5, grading=2.0),
+            factors=(1.0, 2.0),
+            loads={"spin": {"centrifugal": 1.0}},
+        )
     name = COUNTERWEIGHT_PREFIX + "spin"
     assert set(study.changes) == {"spin", name}
     assert all(w.startswith("counterweight_fillet_") for w in (lv.where[name] for lv in study.levels))
