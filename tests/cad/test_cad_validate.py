@@ -11,13 +11,13 @@ import re
 from pathlib import Path
 
 import pytest
-from helpers.cad_files import _write, cad_loadcase, layout_step, parametric_step, sector_throw_step
+from helpers.cad_files import _write, cad_loadcase, parametric_step, sector_throw_step
+from helpers.shared import copy_of
 
 from fe_crank.cad import CadInput, recognise
 from fe_crank.cad.engine import engine_keys
 from fe_crank.cli import main
 from fe_crank.errors import InputError
-from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.gmsh_io import gmsh_session
 from fe_crank.io.engine import load_engine
 from fe_crank.io.geometry import load_geometry
@@ -179,13 +179,14 @@ def test_a_counterweight_stress_criterion_on_a_sharp_counterweight(tmp_path, cap
 
 
 @pytest.mark.heavy
-def test_a_whole_shaft_against_the_engines_throws(tmp_path):
+def test_a_whole_shaft_against_the_engines_throws(tmp_path, inline4_drawing):
+    """The run's one drawing of the inline-4 (``tests/cad/conftest.py``: its throws 92 mm
+    apart, as the engine puts them) against its engine and engines that differ."""
     g = load_geometry(ROOT / "geometry" / "inline4.toml")
     engine = load_engine(ROOT / "engines" / "inline4.toml")
-    layout = engine_shaft_layout(g, engine, geometry_file="g", engine_file="e")
-    step = layout_step(layout, tmp_path / "shaft.step")  # the throws 92 mm apart, as the engine puts them
+    _, shared_step, f = inline4_drawing
+    step = copy_of(shared_step, tmp_path / shared_step.name)
     cad = CadInput(step, density=g.density)
-    f = recognise(cad)
     kw = dict(engine_file="engines/inline4.toml", loadcase="loadcases/x.toml")
     assert engine_keys(f, cad, engine, **kw) == {n: n for n in ("1", "2", "3", "4")}
     turned = dataclasses.replace(
