@@ -242,3 +242,20 @@ def test_a_main_bearing_criterion_is_refused_before_meshing(tmp_path, small_step
     (tmp_path / "throw.step").write_bytes(small_step.read_bytes())
     lc = cad_loadcase(tmp_path, "throw.step", criteria='max_main_bearing_load = "20 kN"')
     refused(capsys, lc, lc, "criteria.max_main_bearing_load", "whole-shaft model", "throw.step")
+
+
+def test_a_file_recognised_again_with_the_same_bytes_and_keys_is_not_read_again(small_throw_step, tmp_path):
+    """``validate`` and the check of one load case recognise its drawing once: the same
+    bytes under the same name with the same describing keys give the same features, whatever
+    folder, TOML file or bearings (the whole-shaft stage's) name them; another density or
+    other bytes are recognised anew."""
+    g, step = small_throw_step
+    first = recognise(CadInput(step, density=g.density))
+    moved = copy_of(step, tmp_path / step.name)
+    assert recognise(CadInput(moved, density=g.density, toml=str(tmp_path / "c.toml"), bearing_width=0.02)) is first
+    heavier = recognise(CadInput(step, density=2 * g.density))
+    assert heavier.throws[0].mass.total.mass == pytest.approx(2 * first.throws[0].mass.total.mass, rel=1e-12)
+    moved.write_bytes(step.read_bytes() + b"\n")  # other bytes, the same solid
+    changed = recognise(CadInput(moved, density=g.density))
+    assert changed is not first and changed.source.sha256 != first.source.sha256
+    assert changed.throws == first.throws
