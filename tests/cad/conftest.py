@@ -41,6 +41,13 @@ def single_cylinder_step(tmp_path_factory) -> tuple[CrankGeometry, Path]:
 
 
 @pytest.fixture(scope="session")
+def inline4_throw_step(tmp_path_factory) -> tuple[CrankGeometry, Path]:
+    """``geometry/inline4.toml`` and one throw of it exported to STEP, once in the run."""
+    g = load_geometry(ROOT / "geometry" / "inline4.toml")
+    return g, shared_file(tmp_path_factory, "inline4_throw.step", lambda p: parametric_step(g, p))
+
+
+@pytest.fixture(scope="session")
 def inline4_drawing(tmp_path_factory) -> tuple[ShaftLayout, Path, CadFeatures]:
     """The shipped inline-4's whole shaft (``geometry/inline4.toml`` on the throws of
     ``engines/inline4.toml``, ``engine_shaft_layout``: the solid

@@ -11,7 +11,7 @@ import re
 from pathlib import Path
 
 import pytest
-from helpers.cad_files import _write, cad_loadcase, parametric_step, sector_throw_step
+from helpers.cad_files import _write, cad_loadcase, sector_throw_step
 from helpers.shared import copy_of
 
 from fe_crank.cad import CadInput, recognise
@@ -41,8 +41,9 @@ def refused(capsys, lc: Path, file: Path, key: str, *words: str) -> str:
 
 
 @pytest.fixture(scope="module")
-def small_step(tmp_path_factory) -> Path:
-    return parametric_step(load_geometry(SMALL), tmp_path_factory.mktemp("small") / "throw.step")
+def small_step(small_throw_step) -> Path:
+    """The run's export of ``tests/data/geometry_small.toml``'s throw (``tests/cad/conftest.py``)."""
+    return small_throw_step[1]
 
 
 def test_a_cad_load_case_is_valid(tmp_path, small_step, capsys):
@@ -179,7 +180,7 @@ def test_a_counterweight_stress_criterion_on_a_sharp_counterweight(tmp_path, cap
 
 
 @pytest.mark.heavy
-def test_a_whole_shaft_against_the_engines_throws(tmp_path, inline4_drawing):
+def test_a_whole_shaft_against_the_engines_throws(tmp_path, inline4_drawing, inline4_throw_step):
     """The run's one drawing of the inline-4 (``tests/cad/conftest.py``: its throws 92 mm
     apart, as the engine puts them) against its engine and engines that differ."""
     g = load_geometry(ROOT / "geometry" / "inline4.toml")
@@ -204,7 +205,7 @@ def test_a_whole_shaft_against_the_engines_throws(tmp_path, inline4_drawing):
         engine_keys(f, cad, three, **kw)
     assert e.value.key == "cad.throws"
     # one throw of the file stands for every throw of the engine
-    one = recognise(CadInput(parametric_step(g, tmp_path / "one.step"), density=g.density))
+    one = recognise(CadInput(inline4_throw_step[1], density=g.density))  # the run's export (tests/cad/conftest.py)
     assert engine_keys(one, cad, engine, **kw) == {ALL_THROWS: "1"}
 
 
