@@ -16,7 +16,10 @@ shaft in millimetres read as inches is 25.4 times too large).
 
 from __future__ import annotations
 
+import dataclasses
+from collections import OrderedDict
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -26,7 +29,7 @@ from fe_crank.cad.ends import shaft_ends
 from fe_crank.cad.features import BoltedBody, BoltHole, CadFeatures, CadSource, CrankAxis
 from fe_crank.cad.frame import Frame
 from fe_crank.cad.model import throw_mass
-from fe_crank.cad.read import ReadResult, read_cad
+from fe_crank.cad.read import ReadResult, file_digest, read_cad
 from fe_crank.cad.shaft import RawThrow, find_throws
 from fe_crank.cad.survey import Face, coverage, neighbours, survey
 from fe_crank.cad.throw import throw_features
@@ -152,11 +155,47 @@ def _bolt_holes(gmsh, body: int, frame: Frame, tol: float) -> tuple[BoltHole, ..
     return tuple(sorted(out, key=lambda h: (h.point[0], h.point[1])))
 
 
+#: the last features recognised in this process, by what they depend on (``_memo_key``):
+#: the same file with the same keys is recognised once (``validate`` and then the check
+#: of one load case; the load cases of a batch on one drawing)
+_RECOGNISED: OrderedDict[tuple, CadFeatures] = OrderedDict()
+MEMO_SIZE = 8
+
+
+def _memo_key(cad: CadInput, sha256: str) -> tuple | None:
+    """What recognition depends on: the file's bytes (their SHA-256), its name (the
+    features' ``source.file``) and every ``[cad]`` key but those that only name places in
+    messages (the file's folder, the TOML file, the key naming the file) or that the
+    whole-shaft stage reads after recognition (``bearing_width``, ``[cad.shaft]``:
+    ``whole.bearing_spec``).  None when a key's value is not hashable (no memo)."""
+    plain = dataclasses.replace(cad, file=Path(cad.file.name), toml="", file_key="", bearing_width=None, shaft=None)
+    try:
+        hash(plain)
+    except TypeError:
+        return None
+    return (sha256, plain)
+
+
 def recognise(cad: CadInput) -> CadFeatures:
-    """Read ``cad.file`` and recognise every throw (see the module docstring).
+    """Read ``cad.file`` and recognise every throw (see the module docstring).  A file
+    recognised before in this process with the same bytes and keys (``_memo_key``) gives
+    the same features without being read again.
 
     Raises ``InputError`` naming the file, the key that settles it and the reason when
     the file cannot be read or a feature cannot be recognised."""
+    key = _memo_key(cad, file_digest(cad))  # the checks read_cad makes first
+    if key is not None and key in _RECOGNISED:
+        _RECOGNISED.move_to_end(key)
+        return _RECOGNISED[key]
+    features = _recognise(cad)
+    if key is not None:
+        _RECOGNISED[key] = features
+        while len(_RECOGNISED) > MEMO_SIZE:
+            _RECOGNISED.popitem(last=False)
+    return features
+
+
+def _recognise(cad: CadInput) -> CadFeatures:
     from fe_crank.gmsh_io import gmsh_session
 
     with gmsh_session() as gmsh:

@@ -49,6 +49,7 @@ def hull_half_width(a: float, b: float, R: float, y: float) -> float:
 #: the throws the run exports once for every CAD test (``tests/cad/conftest.py``)
 SHARED_STEPS = {
     "geometry/single_cylinder.toml": "single_cylinder_step",
+    "geometry/inline4.toml": "inline4_throw_step",
     "tests/data/geometry_small.toml": "small_throw_step",
 }
 

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 from helpers.cad_files import layout_step
+from helpers.shared import copy_of
 
 from fe_crank.cad import CadInput, recognise
 from fe_crank.cad.engine import engine_keys
@@ -30,13 +31,14 @@ KW = dict(engine_file="engines/inline4.toml", loadcase="loadcases/x.toml")
 
 
 @pytest.fixture(scope="module")
-def inline4(tmp_path_factory):
-    g = load_geometry(ROOT / "geometry" / "inline4.toml")
+def inline4(tmp_path_factory, inline4_drawing):
+    """The run's one drawing of the inline-4 and its recognition (``tests/cad/conftest.py``:
+    ``geometry/inline4.toml`` on ``engines/inline4.toml``, a nose 40 x 30 mm, a flange
+    100 x 12 mm), the file copied into a folder of this module."""
+    layout, shared_step, features = inline4_drawing
     engine = load_engine(ROOT / "engines" / "inline4.toml")
-    layout = engine_shaft_layout(g, engine, geometry_file="g", engine_file="e")
-    step = layout_step(layout, tmp_path_factory.mktemp("i4") / "inline4.step", nose=(0.04, 0.03), flange=(0.1, 0.012))
-    cad = CadInput(step, density=g.density)
-    return layout, engine, cad, recognise(cad)
+    step = copy_of(shared_step, tmp_path_factory.mktemp("i4") / shared_step.name)
+    return layout, engine, CadInput(step, density=layout.geometry.density), features
 
 
 def test_the_inline4_drawn_whole_is_recognised_throw_by_throw(inline4):

@@ -11,13 +11,13 @@ import re
 from pathlib import Path
 
 import pytest
-from helpers.cad_files import _write, cad_loadcase, layout_step, parametric_step, sector_throw_step
+from helpers.cad_files import _write, cad_loadcase, sector_throw_step
+from helpers.shared import copy_of
 
 from fe_crank.cad import CadInput, recognise
 from fe_crank.cad.engine import engine_keys
 from fe_crank.cli import main
 from fe_crank.errors import InputError
-from fe_crank.geometry.shaft import engine_shaft_layout
 from fe_crank.gmsh_io import gmsh_session
 from fe_crank.io.engine import load_engine
 from fe_crank.io.geometry import load_geometry
@@ -41,8 +41,9 @@ def refused(capsys, lc: Path, file: Path, key: str, *words: str) -> str:
 
 
 @pytest.fixture(scope="module")
-def small_step(tmp_path_factory) -> Path:
-    return parametric_step(load_geometry(SMALL), tmp_path_factory.mktemp("small") / "throw.step")
+def small_step(small_throw_step) -> Path:
+    """The run's export of ``tests/data/geometry_small.toml``'s throw (``tests/cad/conftest.py``)."""
+    return small_throw_step[1]
 
 
 def test_a_cad_load_case_is_valid(tmp_path, small_step, capsys):
@@ -179,13 +180,14 @@ def test_a_counterweight_stress_criterion_on_a_sharp_counterweight(tmp_path, cap
 
 
 @pytest.mark.heavy
-def test_a_whole_shaft_against_the_engines_throws(tmp_path):
+def test_a_whole_shaft_against_the_engines_throws(tmp_path, inline4_drawing, inline4_throw_step):
+    """The run's one drawing of the inline-4 (``tests/cad/conftest.py``: its throws 92 mm
+    apart, as the engine puts them) against its engine and engines that differ."""
     g = load_geometry(ROOT / "geometry" / "inline4.toml")
     engine = load_engine(ROOT / "engines" / "inline4.toml")
-    layout = engine_shaft_layout(g, engine, geometry_file="g", engine_file="e")
-    step = layout_step(layout, tmp_path / "shaft.step")  # the throws 92 mm apart, as the engine puts them
+    _, shared_step, f = inline4_drawing
+    step = copy_of(shared_step, tmp_path / shared_step.name)
     cad = CadInput(step, density=g.density)
-    f = recognise(cad)
     kw = dict(engine_file="engines/inline4.toml", loadcase="loadcases/x.toml")
     assert engine_keys(f, cad, engine, **kw) == {n: n for n in ("1", "2", "3", "4")}
     turned = dataclasses.replace(
@@ -203,7 +205,7 @@ def test_a_whole_shaft_against_the_engines_throws(tmp_path):
         engine_keys(f, cad, three, **kw)
     assert e.value.key == "cad.throws"
     # one throw of the file stands for every throw of the engine
-    one = recognise(CadInput(parametric_step(g, tmp_path / "one.step"), density=g.density))
+    one = recognise(CadInput(inline4_throw_step[1], density=g.density))  # the run's export (tests/cad/conftest.py)
     assert engine_keys(one, cad, engine, **kw) == {ALL_THROWS: "1"}
 
 
@@ -241,3 +243,20 @@ def test_a_main_bearing_criterion_is_refused_before_meshing(tmp_path, small_step
     (tmp_path / "throw.step").write_bytes(small_step.read_bytes())
     lc = cad_loadcase(tmp_path, "throw.step", criteria='max_main_bearing_load = "20 kN"')
     refused(capsys, lc, lc, "criteria.max_main_bearing_load", "whole-shaft model", "throw.step")
+
+
+def test_a_file_recognised_again_with_the_same_bytes_and_keys_is_not_read_again(small_throw_step, tmp_path):
+    """``validate`` and the check of one load case recognise its drawing once: the same
+    bytes under the same name with the same describing keys give the same features, whatever
+    folder, TOML file or bearings (the whole-shaft stage's) name them; another density or
+    other bytes are recognised anew."""
+    g, step = small_throw_step
+    first = recognise(CadInput(step, density=g.density))
+    moved = copy_of(step, tmp_path / step.name)
+    assert recognise(CadInput(moved, density=g.density, toml=str(tmp_path / "c.toml"), bearing_width=0.02)) is first
+    heavier = recognise(CadInput(step, density=2 * g.density))
+    assert heavier.throws[0].mass.total.mass == pytest.approx(2 * first.throws[0].mass.total.mass, rel=1e-12)
+    moved.write_bytes(step.read_bytes() + b"\n")  # other bytes, the same solid
+    changed = recognise(CadInput(moved, density=g.density))
+    assert changed is not first and changed.source.sha256 != first.source.sha256
+    assert changed.throws == first.throws

@@ -34,6 +34,7 @@ import pytest
 from helpers.cad_files import bolted_shaft_step, layout_step
 from helpers.paths import ROOT
 from helpers.shaft import Steel, small_engine, small_geometry
+from helpers.shared import copy_of
 
 from fe_crank import model
 from fe_crank.assess.group.extremes import Wanted, group_extremes
@@ -102,20 +103,22 @@ def test_the_drawn_layout_is_the_parametric_one(shaft):
 
 
 @pytest.fixture(scope="module")
-def inline4(tmp_path_factory, mesh_cache):
+def inline4(tmp_path_factory, mesh_cache, inline4_drawing):
     """The shipped inline-4 (``loadcases/inline4_rated.toml``) at its rated speed, checked as
     a whole shaft at ``test`` twice: as the parametric model builds it and as drawn (its
     shaft written to STEP by ``write_shaft_step`` with a nose and a flange, read back with
-    the geometry's ``[shaft]`` bearings in ``[cad.shaft]``: widths, hydrodynamic law, oil)."""
+    the geometry's ``[shaft]`` bearings in ``[cad.shaft]``: widths, hydrodynamic law, oil).
+    The drawing and its recognition are the run's one (``tests/cad/conftest.py``: the
+    solid of this layout, its dimensions and throws the load case's)."""
     lc = load_loadcase(ROOT / "loadcases" / "inline4_rated.toml")
     par = case_layout(lc)
     g = par.geometry
-    folder = tmp_path_factory.mktemp("inline4")
-    step = write_shaft_step(par, folder / "inline4.step", nose=(0.04, 0.03), flange=(0.1, 0.012))
+    drawing, shared_step, features = inline4_drawing
+    assert dataclasses.replace(drawing.geometry, file=g.file) == g and drawing.throws == par.throws  # the case's
+    step = copy_of(shared_step, tmp_path_factory.mktemp("inline4") / shared_step.name)
     assert g.shaft is not None
     bearings = dataclasses.replace(g.shaft, pitch=None, end_journal_length=None, nose=None, flange=None)
     cad = CadInput(step, density=g.density, shaft=bearings)
-    features = recognise(cad)
     engine_keys(features, cad, lc.engine, engine_file="e.toml", loadcase="case.toml")
     drawn = cad_shaft_layout(features, cad, lc.engine, engine_file="e.toml")
     dyn = analyse(lc.engine, dataclasses.replace(lc.operating, full_load=None))

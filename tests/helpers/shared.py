@@ -20,11 +20,15 @@ from __future__ import annotations
 
 import fcntl
 import os
+import pickle
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TypeVar
 
 import pytest
+
+T = TypeVar("T")
 
 
 def shared_dir(factory: pytest.TempPathFactory) -> Path:
@@ -70,3 +74,10 @@ def shared_mesh_cache(factory: pytest.TempPathFactory) -> Path:
     folder = shared_dir(factory) / "mesh_cache"
     folder.mkdir(exist_ok=True)
     return folder
+
+
+def shared_value(factory: pytest.TempPathFactory, name: str, compute: Callable[[], T]) -> T:
+    """``compute()``'s value, computed once in the run and kept in the shared folder as the
+    pickle ``name`` (``shared_file``): every process reads the same value back, bit for bit."""
+    path = shared_file(factory, name, lambda p: p.write_bytes(pickle.dumps(compute())))
+    return pickle.loads(path.read_bytes())
