@@ -47,9 +47,12 @@ ENDS = (
 
 @pytest.fixture(scope="module")
 def shafts(mesh_cache):
-    """(angle in deg, sense) -> one throw at that angle with ``ENDS``, condensed once each
-    (one mesh for every angle: its cache key ignores the angle)."""
+    """(angle in deg, sense) -> one throw at that angle with ``ENDS``: one mesh for every
+    angle (its cache key ignores the angle), condensed once in its own frame for all of
+    them (``build_shaft_model``'s ``condensed``), each shaft placing it at its angle and in
+    its sense."""
     built: dict = {}
+    condensed: dict = {}
 
     def get(angle_deg: float, sense: int):
         if (angle_deg, sense) not in built:
@@ -59,7 +62,9 @@ def shafts(mesh_cache):
             e = small_engine([angle], sense=sense)
             layout = shaft_layout(g, e, geometry_file="g.toml", engine_file="e.toml")
             assert layout.sense == sense and layout.end_loads == ENDS
-            _, cases, _ = condensed_shaft(mesh_shaft(layout, size="test", cache_dir=mesh_cache), Steel())
+            _, cases, _ = condensed_shaft(
+                mesh_shaft(layout, size="test", cache_dir=mesh_cache), Steel(), condensed=condensed
+            )
             mass = {t.name: mass_properties(layout.geometry, t.spec) for t in layout.throws}
             built[angle_deg, sense] = (layout, cases, mass, e)
         return built[angle_deg, sense]

@@ -90,7 +90,7 @@ def test_vibration_adds_the_throws_inertia_and_damping_torque(genset):
 
 
 @pytest.mark.heavy
-def test_fe_throw_carries_the_torsional_rear_journal_torque(tmp_path):
+def test_fe_throw_carries_the_torsional_rear_journal_torque(mesh_cache):
     """tests/data/small_torsion.toml on its test mesh with the angular-acceleration unit
     case: the unit case's moment about the axis is the mesh's J_z (the B-rep value of the
     geometry stage within 1 %), and the superposed torque reacted at the rear face
@@ -102,7 +102,7 @@ def test_fe_throw_carries_the_torsional_rear_journal_torque(tmp_path):
     from fe_crank.mesh import mesh_throw
 
     lc = load_loadcase(ROOT / "tests" / "data" / "small_torsion.toml")
-    tm = mesh_throw(lc.geometry, size="test", cache_dir=tmp_path)
+    tm = mesh_throw(lc.geometry, size="test", cache_dir=mesh_cache)  # the run's: the check's own small twin mesh
     cases = (*CASES, "angular_acceleration")
     units = solve_unit_cases(tm, lc.material, dataclasses.replace(lc.fe or FeOptions(), cases=cases))
     j_fe = float(units.cases["angular_acceleration"].applied[5])

@@ -72,7 +72,7 @@ def test_face_rotation_of_an_fe_round_bar_matches_tl_over_gj():
 
 
 @pytest.mark.heavy
-def test_fe_throw_stiffness_vs_carter(case, tmp_path):
+def test_fe_throw_stiffness_vs_carter(case, mesh_cache):
     """The FE throw of the generating set's load case (geometry/inline4.toml, journals
     2 x 17 mm; test mesh, the model the chain takes) twists under the torque unit case
     with k_FE = 4.963e5 N m/rad (determinate support; radial foundation 5.068e5, coarse
@@ -82,6 +82,6 @@ def test_fe_throw_stiffness_vs_carter(case, tmp_path):
     from fe_crank.cli.torsion import fe_stiffness_of
 
     G = shear_modulus(case.material)
-    k_fe = fe_stiffness_of(case, "test", tmp_path)
+    k_fe = fe_stiffness_of(case, "test", mesh_cache)  # the run's: the inline-4 throw is meshed by other tests too
     k_c = carter_throw_stiffness(case.geometry, G)
     assert 0.84 < k_c / k_fe < 0.95

@@ -206,11 +206,20 @@ def _coupling(name, z, members, moments) -> BearingCoupling:
 
 
 def build_shaft_model(
-    sm: ShaftMesh, material, options: ShaftFeOptions | None = None, extra_surfaces: dict | None = None
+    sm: ShaftMesh,
+    material,
+    options: ShaftFeOptions | None = None,
+    extra_surfaces: dict | None = None,
+    condensed: dict | None = None,
 ) -> ShaftModel:
     """Condense, place and sum the pieces; couple the bearings (module doc).
     ``extra_surfaces``: mesh key -> further surfaces whose coupling patterns to condense
-    (loads by ``ShaftModel.coupling``)."""
+    (loads by ``ShaftModel.coupling``).  ``condensed``: the throw pieces' condensations
+    shared between models of the same throw mesh (its key, ``mesh.cache.cache_key``, names
+    its content) placed at other angles or in another sense, by the same material and
+    options: read where present, this model's added.  A throw's condensation is made in
+    its own frame and does not depend on where the piece is placed; shared, the models
+    hold the same arrays (``ShaftModel.release_recovery`` releases them for all)."""
     extra_surfaces = extra_surfaces or {}
     opt = options or ShaftFeOptions()
     t0 = time.perf_counter()
@@ -220,13 +229,21 @@ def build_shaft_model(
     pto_face = "end_1" if layout.power_takeoff == "front" else "end_2"  # a single piece has both
     faces = ("end_1", "end_2")  # torque patterns on both end faces of every piece: one condensation per mesh
     done: dict[tuple, tuple] = {}
+    made: list[Condensed] = []  # the condensations made for this model (its timings)
     pieces, moments = [], {}
     for k, p in enumerate(sm.pieces):
         stubs = tuple(s for s, _ in p.bearing_surfaces) + tuple(extra_surfaces.get(p.mesh, ()))
         key = (p.mesh,)
         if key not in done:
             mirrored = opt.symmetry and p.kind == "throw" and 2 in sm.throw_meshes[p.mesh].symmetry
-            done[key] = _condense_piece(sm.meshes[p.mesh], p.kind, stubs, faces, material, opt, mirrored)
+            shared = (p.mesh, stubs, mirrored, material, opt)
+            if condensed is not None and p.kind == "throw" and shared in condensed:
+                done[key] = condensed[shared]
+            else:
+                done[key] = _condense_piece(sm.meshes[p.mesh], p.kind, stubs, faces, material, opt, mirrored)
+                made.append(done[key][0])
+                if condensed is not None and p.kind == "throw":
+                    condensed[shared] = done[key]
         cond, mom = done[key]
         pieces.append(PlacedPiece(k, p.name, p.kind, p.throw, cond, rotation(p.angle), p.z, np.zeros(0, int)))
         for s, m in mom.items():
@@ -272,7 +289,7 @@ def build_shaft_model(
         bearings.append(_coupling(b.name, b.z, members, moments))
     model = ShaftModel(sm, pieces, n, 0.5 * (S + S.T), pts, bearings, (pto, f"torque_{pto_face}"), moments)
     model.timings = {"condensation": t1 - t0, "assembly": time.perf_counter() - t1}
-    for cond, _ in done.values():
+    for cond in made:
         for name, v in cond.timings.items():
             model.timings[name] = model.timings.get(name, 0.0) + v
     return model

@@ -373,11 +373,14 @@ def bearing_state_of(
     return tuple(BearingResult(a, b) for a, b in zip(on, off)), weights
 
 
-def condensed_shaft(sm, material, options: ShaftFeOptions | None = None, *, torque_flow: bool = False):
+def condensed_shaft(
+    sm, material, options: ShaftFeOptions | None = None, *, torque_flow: bool = False, condensed: dict | None = None
+):
     """The condensed shaft, its unit cases (the torque-flow cases when asked, a flywheel's
     and a pulley's, ``end_load_cases``, when the layout has them) and the seconds the
-    cases took."""
-    model = build_shaft_model(sm, material, options, extra_surfaces=end_load_surfaces(sm))
+    cases took.  ``condensed``: throw condensations shared with other models
+    (``build_shaft_model``)."""
+    model = build_shaft_model(sm, material, options, extra_surfaces=end_load_surfaces(sm), condensed=condensed)
     t0 = time.perf_counter()
     extra = {**(torque_flow_cases(model) if torque_flow else {}), **end_load_cases(model)}
     cases = solve_cases(model, extra or None)
