@@ -27,9 +27,10 @@ Stresses (``candidate_stresses``): each throw's unit stresses at its assessed no
 taken once; a candidate's history in a state is sum_c W_c(theta) S_c with its weights W
 (the per-web cases at k_w omega^2, the redundant bearings' forces solved again), each
 node group's extremes by the check's own search (``assess.group.extremes``).  The first
-candidate of a placement screened in a state is the reference there: its stresses at
-every assessed node (``assess.group.reference.reference_path``) bound every later
-candidate's of that placement and state, whose history differs by a constant (its
+candidate of a placement screened in a state is the reference there: bounds of its
+stresses at every assessed node from its history computed in single precision
+(``assess.group.reference.single_reference_path``, the rounding bounded) bound every later candidate's
+of that placement and state, whose history differs by a constant (its
 counterweights' centrifugal cases) and the change of the redundant bearings' forces
 (``reference_shift``); the searches take those bounds and skip the groups that cannot
 reach the state's extremes found so far: the same values, at a fraction of the cost.
@@ -53,7 +54,7 @@ from fe_crank.assess.group.assessment import fatigue_assessed, of_counterweight,
 from fe_crank.assess.group.bounds import window_peak_bound
 from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.group.peak import group_peak
-from fe_crank.assess.group.reference import abs_sum, reference_bounds, reference_path, reference_shift
+from fe_crank.assess.group.reference import abs_sum, reference_bounds, reference_shift, single_reference_path
 from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.cad.source import mesh_source_shaft
@@ -91,7 +92,7 @@ class StudyShaft:
     #: ``assess.shaft.piece_unit_stresses``, the check's own), for the stress screening
     stresses: tuple[tuple[str, UnitStresses], ...] = ()
     #: per screened state (label, speed, the weights' shape) and (throw, group): the first
-    #: screened candidate's stresses there (``assess.group.reference.reference_path``), what
+    #: screened candidate's stresses there (``assess.group.reference.single_reference_path``), what
     #: the later candidates' searches are bounded by (``candidate_stresses``)
     references: dict = dataclasses.field(default_factory=dict)
     #: per throw, sum_c |U_c| at its assessed nodes (``assess.group.reference.abs_sum``)
@@ -360,7 +361,7 @@ def candidate_stresses(
                 nodes = np.asarray(unit.groups[g])
                 fat_values = limits is not None and kind in SHAFT_KINDS and fatigue_assessed(g)
                 if (name, g) not in refs:
-                    refs[(name, g)] = reference_path(unit, ref_w, nodes, fatigue_values=fat_values)
+                    refs[(name, g)] = single_reference_path(unit, ref_w, nodes, fatigue_values=fat_values)
                 bounds = None if shifted is None else reference_bounds(refs[(name, g)], *(a[:, nodes] for a in shifted))
                 add = additional_bending if sigma_add_applies(g) else 0.0
                 lower = math.inf  # the group's least lower bound of the Goodman safety
@@ -460,7 +461,7 @@ def candidate_overspeed(shaft: StudyShaft, loads: list[StateLoads], material) ->
             if not nodes.size:
                 continue
             if (name, g) not in refs:
-                refs[(name, g)] = reference_path(unit, ref_w, nodes, fatigue_values=False)
+                refs[(name, g)] = single_reference_path(unit, ref_w, nodes, fatigue_values=False)
             tight = None if shifted is None else reference_bounds(refs[(name, g)], *(a[:, nodes] for a in shifted)).peak
             if tight is None and nodes.size > OVERSPEED_WINDOW_MIN:
                 tight = window_peak_bound(unit, W, nodes)

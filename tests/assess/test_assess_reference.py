@@ -9,6 +9,11 @@ the reference by constants and a small varying part, every node's peak, Goodman
 amplitude and signed mean (``fatigue.equivalent_amplitude_mean`` on the full history) lie
 under the bounds, and ``group_extremes`` searched by them gives the same result as
 without them.
+
+The reference computed in single precision (``single_reference_path``) against the full
+path's values in double precision: its upper bounds above them, its chord below the
+full path's radius, the bounds of other histories from it holding, the search by them
+the same.
 """
 
 from __future__ import annotations
@@ -18,7 +23,13 @@ import pytest
 
 from fe_crank.assess import fatigue
 from fe_crank.assess.group.extremes import Wanted, group_extremes
-from fe_crank.assess.group.reference import abs_sum, reference_bounds, reference_path, reference_shift
+from fe_crank.assess.group.reference import (
+    abs_sum,
+    reference_bounds,
+    reference_path,
+    reference_shift,
+    single_reference_path,
+)
 from fe_crank.assess.stress import von_mises
 from fe_crank.assess.superpose import UnitStresses, stress_history
 from fe_crank.io.material import load_material
@@ -89,3 +100,39 @@ def test_bounds_hold_and_the_search_by_them_finds_the_same_extremes():
         plain = group_extremes(unit, group, w, t, MAT, **kw)
         bounded = group_extremes(unit, group, w, t, MAT, reference=b, **kw)
         assert bounded == plain
+
+
+def test_the_single_precision_reference_bounds_the_full_paths_values():
+    """The reference computed in single precision against the full path's values in
+    double precision (brute force): its upper bounds above, its chord below the radius,
+    and the bounds of other histories from it holding and searched by as before."""
+    rng = np.random.default_rng(11)
+    n_cases, n, n_t = 24, 200, 360
+    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
+    s[:, 0] *= 3.0
+    group = "journal_fillet_1"
+    unit = _unit(s, group)
+    t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
+    w0 = np.column_stack([np.cos(t + k) * (1 + k % 5) for k in range(n_cases)])
+    w0[:, 2] += 3.0 * np.exp(-(((t - 2.0) / 0.05) ** 2))  # a sharp rise, as the gas force's
+    w0[:, -1] = 1.5
+    nodes = np.arange(n)
+    full = reference_path(unit, w0, nodes)
+    single = single_reference_path(unit, w0, nodes)
+    for f in ("peak", "mid_vm", "mid_hydro", "radius", "hydro"):
+        assert np.all(getattr(single, f) >= getattr(full, f)), f
+        assert np.all(getattr(single, f) <= getattr(full, f) + 1e-2 * full.peak), f  # a few parts in a thousand
+    assert np.all(single.chord <= full.radius) and np.all(single.chord >= 0.99 * full.chord - 1e-2 * full.peak)
+    assert np.all(single_reference_path(unit, w0, nodes, fatigue_values=False).peak == single.peak)
+    sums = abs_sum(unit)
+    for shift_const, vary in ((0.0, 0.0), (0.4, 0.0), (0.3, 0.05)):
+        w = w0.copy()
+        w[:, -1] += shift_const
+        w[:, 3] += vary * np.sin(3 * t)
+        b = reference_bounds(single, *reference_shift(w0, unit, w, sums))
+        h = stress_history(unit, w, nodes)
+        assert np.all(von_mises(h).max(axis=0) <= b.peak)
+        amp, mean = fatigue.equivalent_amplitude_mean(h)
+        assert np.all(amp <= b.amplitude) and np.all(mean <= b.mean)
+        kw = dict(crank_radius=0.05, diameter=0.06, wanted=Wanted(gough_pollard=False), block=16)
+        assert group_extremes(unit, group, w, t, MAT, reference=b, **kw) == group_extremes(unit, group, w, t, MAT, **kw)

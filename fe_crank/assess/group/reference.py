@@ -6,7 +6,9 @@ A reference history S_0(t) = sum_c W0_c(t) U_c is evaluated once at every node o
 (``reference_path``): its peak von Mises stress P_0, the von Mises and hydrostatic stress
 of its mid-range tensor mid_0, the radius R_0 about mid_0, half the chord L_0 from its
 point farthest from mid_0 (the quantities of ``bounds.goodman_radius_lower``) and its
-largest hydrostatic stress p_0, kept in single precision rounded outwards.
+largest hydrostatic stress p_0, kept in single precision rounded outwards; or bounds of
+these from the history computed in single precision (``single_reference_path``, about
+half the cost: every bound below holds with them in place of the path's own values).
 Another history W of the same angles differs by D(t) = W(t) - W0(t); with m_c and h_c the
 mid range and the half range of D_c over the cycle, S(t) = S_0(t) + M + V(t) with the
 constant tensor M = sum_c m_c U_c and |V_j(t)| <= r_j = sum_c h_c |U_c,j| per component
@@ -119,6 +121,83 @@ def reference_path(
     return ReferencePath(c, _up(peak), _up(vals[0]), _up(vals[1]), _up(vals[2]), _down(vals[3]), _up(vals[4]))
 
 
+#: unit roundoff of single precision
+_U32 = float(np.finfo(np.float32).eps) / 2
+
+
+def single_reference_path(
+    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, *, fatigue_values: bool = True, block: int = 128
+) -> ReferencePath:
+    """Bounds of the values of ``reference_path`` from the history computed in single
+    precision (the matrix products and the passes over the path at about half the cost).
+    Each computed component X~_j(t) = fl32(sum_c fl32(a_c) fl32(U_c,j)) is within
+    gamma_n sum_c |a_c U_c,j| (1 + 2u) + 2u |a_c U_c,j| of the exact one (u = 2^-24, n
+    the number of cases: Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed.,
+    section 3.1, in any order of summation), so within a_j = 2 (n + 8) u A_j,
+    A_j = sum_c max_t |a_c(t)| |U_c,j| (a factor 2 kept in hand).  The von Mises stress
+    of a computed tensor (differences, squares, sums of non-negative terms, a square
+    root) is within 16 u of its exact value relatively.  So, with box_von_mises(a) = v_a:
+
+    * peak P_0 <= max_t sigma_v~(X~(t)) (1 + 16 u) + v_a;
+    * the mid range mid_0 of the exact path: the computed range [lo~, hi~] taken to
+      double precision, m = (hi~ + lo~) / 2 is within a_j of mid_0; sigma_v(mid_0) <=
+      sigma_v(m) + v_a, p(mid_0) <= p(m) + (a_x + a_y + a_z) / 3;
+    * the radius R_0 about mid_0 <= the computed largest distance of X~ from m (m
+      rounded to single precision: within u |m_j|) times (1 + 16 u) plus
+      box_von_mises(2 a + u |m|);
+    * the chord: half the computed distance between two computed points of the path,
+      times (1 - 16 u), less v_a (each point within a of the exact one);
+    * the largest hydrostatic stress p_0 <= the computed one + (a_x + a_y + a_z) / 3
+      + 4 u (A_x + A_y + A_z) / 3 (the sum of three and the division rounded).
+
+    A few parts in a million looser than ``reference_path``'s values, kept in single
+    precision rounded outwards as they are."""
+    c = np.atleast_2d(np.asarray(coefficients, float))
+    nodes = np.asarray(nodes)
+    n = nodes.size
+    err = 2.0 * (c.shape[1] + 8) * _U32
+    absmax = np.abs(c).max(axis=0)
+    c32 = c.astype(np.float32)
+    up32 = 1.0 + 16.0 * _U32
+    peak = np.empty(n)
+    vals = np.empty((5, n)) if fatigue_values else None  # mid_vm, mid_hydro, radius, chord, hydro
+    for s in range(0, n, block):
+        idx = nodes[s : s + block]
+        b = idx.size
+        u = unit.stress[:, :, idx]
+        big = (absmax @ np.abs(u).reshape(u.shape[0], -1)).reshape(6, b)  # A_j
+        a = err * big
+        v_a = box_von_mises(a)
+        u32 = u.astype(np.float32)
+        planes = np.empty((6, c.shape[0], b), np.float32)
+        for j in range(6):
+            np.dot(c32, u32[:, j, :], out=planes[j])
+        peak[s : s + b] = von_mises_planes(planes).max(axis=0).astype(float) * up32 + v_a
+        if vals is None:
+            continue
+        hi, lo = planes.max(axis=1).astype(float), planes.min(axis=1).astype(float)
+        m = 0.5 * (hi + lo)
+        r0, far = fatigue.max_and_first(von_mises_planes(planes, m.astype(np.float32)))
+        cols = np.arange(b)
+        chord = 0.5 * von_mises_planes(planes, planes[:, far, cols]).max(axis=0).astype(float)
+        p0 = ((planes[0] + planes[1] + planes[2]) / np.float32(3.0)).max(axis=0).astype(float)
+        p_a = (a[0] + a[1] + a[2]) / 3.0
+        vals[0, s : s + b] = von_mises(m) + v_a
+        vals[1, s : s + b] = (m[0] + m[1] + m[2]) / 3.0 + p_a
+        vals[2, s : s + b] = r0.astype(float) * up32 + box_von_mises(2.0 * a + _U32 * np.abs(m))
+        vals[3, s : s + b] = chord * (1.0 - 16.0 * _U32) - v_a
+        vals[4, s : s + b] = p0 + p_a + 4.0 * _U32 * (big[0] + big[1] + big[2]) / 3.0
+    up, down = 1 + BOUND_RTOL, 1 - BOUND_RTOL
+    if vals is None:
+        return ReferencePath(c, _up(peak * up))
+    mid_hydro = vals[1] + np.abs(vals[1]) * BOUND_RTOL
+    hydro = vals[4] + np.abs(vals[4]) * BOUND_RTOL
+    chord = np.maximum(vals[3], 0.0) * down
+    return ReferencePath(
+        c, _up(peak * up), _up(vals[0] * up), _up(mid_hydro), _up(vals[2] * up), _down(chord), _up(hydro)
+    )
+
+
 def abs_sum(unit: UnitStresses) -> np.ndarray:
     """sum_c |U_c,j| (6, n) at every assessed node of ``unit``: what ``reference_shift``
     bounds the small terms by."""
@@ -176,4 +255,12 @@ def reference_bounds(reference: ReferencePath, shift: np.ndarray, r: np.ndarray)
     return PathBounds(peak, radius * up, mean * up)
 
 
-__all__ = ["ReferencePath", "PathBounds", "abs_sum", "reference_path", "reference_shift", "reference_bounds"]
+__all__ = [
+    "ReferencePath",
+    "PathBounds",
+    "abs_sum",
+    "reference_path",
+    "single_reference_path",
+    "reference_shift",
+    "reference_bounds",
+]
