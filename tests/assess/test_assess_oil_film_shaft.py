@@ -9,37 +9,32 @@ load rises has a thinner film.  And the film does not change the shaft's bearing
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers.inline4_shaft import CASE, parametric_inline4
 
-from fe_crank.assess.loads import FIRING
-from fe_crank.assess.oil_film import film_sweep, journal_bearing
-from fe_crank.assess.shaft import BearingState
-from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
+from fe_crank.assess.oil_film import journal_bearing
 from fe_crank.geometry.oil import FilmSpec
 from fe_crank.io.loadcase import load_loadcase
-from fe_crank.mechanism.cycles import engine_cycles
-from fe_crank.mesh.shaft import mesh_shaft
 from fe_crank.pipeline.stages import shaft_layout
-
-ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.heavy
-def test_inline4_film_follows_the_bearing_loads(mesh_cache):
-    lc = load_loadcase(ROOT / "loadcases" / "inline4_rated.toml")
+def test_inline4_film_follows_the_bearing_loads(tmp_path_factory, mesh_cache):
+    """The parametric whole shaft at ``test``, analysed once in the run
+    (``helpers.inline4_shaft``: tests/cad/test_cad_whole_shaft.py compares the drawn shaft
+    with the same analysis)."""
+    shaft = parametric_inline4(tmp_path_factory, mesh_cache)
+    lc = load_loadcase(CASE)
     layout = shaft_layout(lc)
-    assert layout is not None
+    assert layout is not None and shaft.layout == layout
     # the shipped bearings carry their film; the shaft's static law is the rigid one
     assert all(b.law.film is not None and b.law.model == "rigid" for b in layout.bearings)
     assert {(b.width, b.law.film.clearance, b.law.film.groove) for b in layout.bearings} == {(0.02, 28e-6, "full")}
-    dyn = engine_cycles(lc.engine, lc.operating).operating
-    sm = mesh_shaft(layout, size="test", cache_dir=mesh_cache)
-    result, cases = analyse_whole_shaft(sm, lc.material, dyn, mass=throw_masses(layout))
-    cases.model.free_factors()
-    (state,) = film_sweep(layout, (BearingState(float(dyn.speed), FIRING, result.bearings),), result.crank_angle_deg)
+    result = shaft.result
+    assert result.speed == lc.operating.speed  # the operating speed
+    (state,) = shaft.films
     films = state.bearings
     assert all(f.with_counterweights.converged and f.without_counterweights.converged for f in films)
     peaks = [b.with_counterweights.peak_n for b in result.bearings]

@@ -32,15 +32,11 @@ import math
 import numpy as np
 import pytest
 from helpers.cad_files import bolted_shaft_step, layout_step
-from helpers.paths import ROOT
+from helpers.inline4_shaft import analyse_route, parametric_inline4, rated_inline4
 from helpers.shaft import Steel, small_engine, small_geometry
 from helpers.shared import copy_of
 
 from fe_crank import model
-from fe_crank.assess.group.extremes import Wanted, group_extremes
-from fe_crank.assess.loads import FIRING
-from fe_crank.assess.oil_film import film_sweep
-from fe_crank.assess.shaft import BearingState, piece_unit_stresses
 from fe_crank.cad import CadInput, recognise
 from fe_crank.cad.engine import engine_keys
 from fe_crank.cad.source import mesh_source_shaft
@@ -50,7 +46,6 @@ from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
 from fe_crank.geometry.mass import mass_properties
 from fe_crank.geometry.shaft import shaft_layout
 from fe_crank.geometry.step import write_shaft_step
-from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mechanism.dynamics import analyse
 from fe_crank.mesh.shaft import joints
 from fe_crank.pipeline.stages import shaft_layout as case_layout
@@ -65,8 +60,6 @@ LOAD_NOISE = 2e-3
 PEAK_NOISE, PEAK_BIAS, PEAK_RMS = 0.092, 0.01, 0.025
 #: the film's minimum thickness and peak pressure under loads within ``LOAD_NOISE``
 FILM_NOISE = 1e-2
-#: the fillet peaks alone: no fatigue criterion is read here
-STATIC = Wanted(fatigue=False, gough_pollard=False)
 
 
 @pytest.fixture(scope="module")
@@ -105,12 +98,14 @@ def test_the_drawn_layout_is_the_parametric_one(shaft):
 @pytest.fixture(scope="module")
 def inline4(tmp_path_factory, mesh_cache, inline4_drawing):
     """The shipped inline-4 (``loadcases/inline4_rated.toml``) at its rated speed, checked as
-    a whole shaft at ``test`` twice: as the parametric model builds it and as drawn (its
-    shaft written to STEP by ``write_shaft_step`` with a nose and a flange, read back with
-    the geometry's ``[shaft]`` bearings in ``[cad.shaft]``: widths, hydrodynamic law, oil).
-    The drawing and its recognition are the run's one (``tests/cad/conftest.py``: the
-    solid of this layout, its dimensions and throws the load case's)."""
-    lc = load_loadcase(ROOT / "loadcases" / "inline4_rated.toml")
+    a whole shaft at ``test`` twice: as the parametric model builds it (the run's one
+    analysis of it, ``helpers.inline4_shaft``, which the oil film tests read too) and as
+    drawn (its shaft written to STEP by ``write_shaft_step`` with a nose and a flange, read
+    back with the geometry's ``[shaft]`` bearings in ``[cad.shaft]``: widths, hydrodynamic
+    law, oil).  The drawing and its recognition are the run's one
+    (``tests/cad/conftest.py``: the solid of this layout, its dimensions and throws the load
+    case's)."""
+    lc, dyn = rated_inline4()
     par = case_layout(lc)
     g = par.geometry
     drawing, shared_step, features = inline4_drawing
@@ -121,48 +116,14 @@ def inline4(tmp_path_factory, mesh_cache, inline4_drawing):
     cad = CadInput(step, density=g.density, shaft=bearings)
     engine_keys(features, cad, lc.engine, engine_file="e.toml", loadcase="case.toml")
     drawn = cad_shaft_layout(features, cad, lc.engine, engine_file="e.toml")
-    dyn = analyse(lc.engine, dataclasses.replace(lc.operating, full_load=None))
-    routes = {}
-    for name, layout, source, kw, mass in (
-        ("parametric", par, g, {}, throw_masses(par)),
-        ("drawn", drawn, cad, {"features": features}, cad_throw_masses(features, drawn)),
-    ):
-        shaft_mesh = mesh_source_shaft(source, layout, size="test", cache_dir=mesh_cache, **kw)
-        result, cases = analyse_whole_shaft(shaft_mesh, lc.material, dyn, mass=mass)
-        peaks = _fillet_peaks(cases, result, dyn.theta, lc.material, g.crank_radius)
-        state = (BearingState(dyn.speed, FIRING, result.bearings),)
-        films = film_sweep(layout, state, result.crank_angle_deg)
-        sm = cases.model.mesh
-        cases.model.free_factors()
-        routes[name] = Route(layout, result, peaks, films, sm)
+    parametric = parametric_inline4(tmp_path_factory, mesh_cache)
+    assert parametric.layout == par
+    shaft_mesh = mesh_source_shaft(cad, drawn, size="test", cache_dir=mesh_cache, features=features)
+    routes = {
+        "parametric": parametric,
+        "drawn": analyse_route(shaft_mesh, drawn, lc, dyn, cad_throw_masses(features, drawn)),
+    }
     return g, features, routes
-
-
-def _fillet_peaks(cases, result, theta, material, crank_radius) -> dict[tuple[str, str], float]:
-    """Each throw's fillet peaks (von Mises over the operating cycle, Pa) by (throw, group):
-    ``assess_shaft_throws``'s unit stresses and group code with only the static peak wanted
-    (``group_extremes``: the peak an evaluation of every node gives, without the fatigue
-    criteria these tests do not read)."""
-    coeffs = result.cycles[0].weights
-    out = {}
-    for k, pp in enumerate(cases.model.pieces):
-        if pp.kind != "throw":
-            continue
-        unit = piece_unit_stresses(cases, k, material)
-        for group in sorted(unit.groups):
-            if "fillet" in group and len(unit.groups[group]):
-                x = group_extremes(unit, group, coeffs, theta, material, crank_radius=crank_radius, wanted=STATIC)
-                out[str(pp.throw), group] = x.max_von_mises.value
-    return out
-
-
-@dataclasses.dataclass(frozen=True)
-class Route:
-    layout: object
-    result: object
-    peaks: dict
-    films: tuple
-    mesh: object
 
 
 def test_the_drawn_inline4_is_the_parametric_layout(inline4):

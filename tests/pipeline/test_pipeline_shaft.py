@@ -12,7 +12,6 @@
 from __future__ import annotations
 
 import json
-import shutil
 from pathlib import Path
 
 import jsonschema
@@ -33,15 +32,28 @@ DATA = Path(__file__).resolve().parents[1] / "data"
 pytestmark = pytest.mark.heavy
 
 
-def test_a_throw_on_its_two_bearings_is_the_per_throw_model(tmp_path, mesh_cache):
-    """tests/data/small_pass.toml with a [shaft] section whose end journals end at the
-    bearing centres: the whole shaft is the throw on its two bearings, the torque leaving
-    at the rear face, as the per-throw model; both give the same stress at every assessed
-    node (to the solvers' round-off)."""
-    shutil.copy(DATA / "small_pass.toml", tmp_path / "case.toml")
+@pytest.fixture(scope="module")
+def swept_single(tmp_path_factory, mesh_cache):
+    """The small single (tests/data/geometry_small.toml with a [shaft] section whose end
+    journals end at the bearing centres: the throw on its two bearings) over two speeds
+    with its misfire case, checked at ``test`` (``helpers.check_shaft``): the stages'
+    outputs and the whole-shaft stage's own (its unit cases and its sweep)."""
+    from helpers.check_shaft import stage_outputs_with_shaft
+    from helpers.sweep import SWEPT
+
+    folder = tmp_path_factory.mktemp("swept_single")
+    (folder / "case.toml").write_text(SWEPT.format(sweep='speeds = ["2000 rpm", "3000 rpm"]'))
     g = (DATA / "geometry_small.toml").read_text() + '\n[shaft]\nend_journal_length = "12 mm"\n'
-    (tmp_path / "geometry_small.toml").write_text(g)
-    out = stage_outputs(tmp_path / "case.toml", mesh_cache, render=False, write_vtu=False)
+    (folder / "geometry_small.toml").write_text(g)
+    return stage_outputs_with_shaft(folder / "case.toml", mesh_cache)
+
+
+def test_a_throw_on_its_two_bearings_is_the_per_throw_model(swept_single):
+    """The small single on its two bearings (``swept_single``): the whole shaft is the throw
+    on its two bearings, the torque leaving at the rear face, as the per-throw model; both
+    give the same stress at every assessed node (to the solvers' round-off), at every speed
+    and load state."""
+    out, _ = swept_single
     assert out.whole_shaft is not None and len(out.whole_shaft.layout.bearings) == 2
     (per,) = out.assessment.throws
     (whole,) = out.assessment.shaft.throws
@@ -165,7 +177,7 @@ def test_small_shaft_results_and_report(tmp_path, mesh_cache):
     assert np.linalg.norm(mesh.points[fields.hotspot_node] - np.asarray(h.point)) < 1e-9
 
 
-def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path, mesh_cache):
+def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(swept_single):
     """The small single over two speeds with its misfire case, on its bearings (a [shaft]
     section): the whole shaft's throws in every load state (``ShaftAssessment.states``,
     the per-throw model's pruning: each group's extremes only) have the least static and
@@ -173,17 +185,11 @@ def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(tmp_path, mes
     weights, here); each criterion takes the worse model at each speed.  The states' weights
     and the unit stresses are the check's own whole-shaft stage's (``helpers.check_shaft``:
     its unit cases and its sweep over the load states), every node evaluated here."""
-    from helpers.check_shaft import stage_outputs_with_shaft
-    from helpers.sweep import SWEPT
-
     from fe_crank.assess.group.assessment import assess_groups
     from fe_crank.assess.shaft import PER_THROW, WHOLE_SHAFT
     from fe_crank.rules.m53.basis import m53_basis
 
-    (tmp_path / "case.toml").write_text(SWEPT.format(sweep='speeds = ["2000 rpm", "3000 rpm"]'))
-    g = (DATA / "geometry_small.toml").read_text() + '\n[shaft]\nend_journal_length = "12 mm"\n'
-    (tmp_path / "geometry_small.toml").write_text(g)
-    out, ws = stage_outputs_with_shaft(tmp_path / "case.toml", mesh_cache)
+    out, ws = swept_single
     shaft = out.assessment.shaft
     assert [(round(s.speed * 30 / np.pi), s.case) for s in shaft.states] == [
         (2000, "all cylinders firing"),
