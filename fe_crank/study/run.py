@@ -4,7 +4,8 @@ the table's numbers and the recommendation by the study's rule (docs/study.md)."
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from functools import partial
 
 import numpy as np
 
@@ -30,7 +31,7 @@ from fe_crank.study.candidates import (
     turned_view,
     written_mass,
 )
-from fe_crank.study.film import FilmMetrics, film_metrics
+from fe_crank.study.film import FilmMetrics, film_metrics_of, film_rows
 from fe_crank.study.joints import LIMITS as JOINT_LIMITS
 from fe_crank.study.joints import JointModel, JointScreen, candidate_joints, has_bolted, joint_limits, joint_model
 from fe_crank.study.m53 import LIMIT as M53_LIMIT
@@ -226,6 +227,7 @@ def _metrics(
     joints: JointScreen | None = None,
     joint_lims: dict[str, float] | None = None,
     torsional_frequency: float | None = None,
+    film: FilmMetrics | None = None,
 ) -> CandidateResult:
     layout = shaft.layout
     peak, where = 0.0, ""
@@ -262,7 +264,6 @@ def _metrics(
         mr = rotating_mass(lc.engine, th.name) * t.crank_radius
         own = sum(k * drawn[w].unbalance for w, k in written.load_factors.items() if w[0] == th.name)
         rates[th.name] = own / mr if mr > 0 else math.nan
-    film = film_metrics(layout, loads)
     values = {
         "max_main_bearing_load": (peak, "N"),
         "max_main_bearing_specific_load": (spec_load, "Pa"),
@@ -440,6 +441,8 @@ def run_study(
         raise ValueError("run_study: the stiffness cache must be empty and of the same load case, size and cache")
     k_fe: list[float] = []
     results = []
+    pending: list[partial[CandidateResult]] = []
+    films = []
     first = None
     by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = {}
     # each offset on the drawn counterweights turned to it: its own solids, mesh and unit cases
@@ -515,7 +518,15 @@ def run_study(
             )
             bd = None if bm is None or c_loads is None else candidate_bodies(bm, c_loads, wm.load_factors)
             jt = None if c_jm is None else candidate_joints(c_jm, c, solids, shaft.mass)
-            results.append(_metrics(c, loads, shaft, drawn_o, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims, f1))
+            # the figures once every candidate's film is known (study.film: orbits integrated together);
+            # the stress weights are not needed any more
+            films.append(film_rows(layout_o, loads))
+            loads = [replace(sl, weights=None) for sl in loads]
+            pending.append(
+                partial(_metrics, c, loads, shaft, drawn_o, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims, f1)
+            )
+    for figures, film in zip(pending, film_metrics_of(films)):
+        results.append(figures(film=film))
     results.sort(key=lambda r: r.candidate.index)
     assert first is not None
     shaft, drawn, bm, j_lims, j_whose, jm = first
