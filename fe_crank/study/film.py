@@ -30,8 +30,9 @@ import numpy as np
 
 from fe_crank.assess.oil_film import film_pressure, journal_bearing, journal_orbits
 
-#: orbits integrated together at most: beyond some hundreds one more orbit in a batch
-#: costs its arithmetic only; the bound keeps the batch's arrays (orbits x angles) small
+#: orbits integrated together at most: beyond about a thousand one more orbit in a batch
+#: costs its arithmetic only (docs/study.md); the bound keeps the batch's arrays (orbits x
+#: angles, about 60 kB an orbit at 720 angles) near 60 MB
 BATCH = 1024
 
 
