@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 
@@ -30,7 +31,7 @@ from fe_crank.study.candidates import (
     turned_view,
     written_mass,
 )
-from fe_crank.study.film import FilmMetrics, film_metrics
+from fe_crank.study.film import FilmMetrics, film_metrics_of, film_rows
 from fe_crank.study.joints import LIMITS as JOINT_LIMITS
 from fe_crank.study.joints import JointModel, JointScreen, candidate_joints, has_bolted, joint_limits, joint_model
 from fe_crank.study.m53 import LIMIT as M53_LIMIT
@@ -210,24 +211,22 @@ def prepare(lc: LoadCase, spec: StudySpec):
     return layout, drawn, candidates(spec, drawn, layout, lc.engine)
 
 
-def _metrics(
-    cand: Candidate,
-    loads,
-    shaft: StudyShaft,
-    drawn: dict[tuple, DrawnWeb],
-    lc: LoadCase,
-    spec: StudySpec,
-    w_max: float,
-    written: WrittenMass,
-    stresses: StressScreen | None = None,
-    overspeed: OverspeedScreen | None = None,
-    m53: M53Screen | None = None,
-    bodies: BodyScreen | None = None,
-    joints: JointScreen | None = None,
-    joint_lims: dict[str, float] | None = None,
-    torsional_frequency: float | None = None,
-) -> CandidateResult:
-    layout = shaft.layout
+@dataclass(frozen=True)
+class _LoadPeaks:
+    """A candidate's main-bearing and web figures over the states (``_load_peaks``)."""
+
+    peak: float  # N, the largest main-bearing load
+    where: str
+    peaks: dict[str, float]  # N per bearing
+    means: dict[str, float]  # N per bearing, the largest mean over the states
+    web_peaks: dict[str, float]  # N m per web
+    wmax: float  # N m, the largest web bending moment
+    wwhere: str
+
+
+def _load_peaks(layout, loads) -> _LoadPeaks:
+    """The figures of the candidate's ``loads`` (``screen.StateLoads`` per state) the table
+    takes: per bearing the envelope over the law sets, per web the largest moment."""
     peak, where = 0.0, ""
     peaks: dict[str, float] = {}
     means: dict[str, float] = {}
@@ -253,6 +252,30 @@ def _metrics(
         if float(wm[:, i].max()) > wmax:
             wmax = float(wm[:, i].max())
             wwhere = f"web {web_names[i]}, {sl.state.label} at {sl.state.speed * 30 / math.pi:.0f} rpm"
+    return _LoadPeaks(peak, where, peaks, means, web_peaks, wmax, wwhere)
+
+
+def _metrics(
+    cand: Candidate,
+    lp: _LoadPeaks,
+    shaft: StudyShaft,
+    drawn: dict[tuple, DrawnWeb],
+    lc: LoadCase,
+    spec: StudySpec,
+    w_max: float,
+    written: WrittenMass,
+    stresses: StressScreen | None = None,
+    overspeed: OverspeedScreen | None = None,
+    m53: M53Screen | None = None,
+    bodies: BodyScreen | None = None,
+    joints: JointScreen | None = None,
+    joint_lims: dict[str, float] | None = None,
+    torsional_frequency: float | None = None,
+    film: FilmMetrics | None = None,
+) -> CandidateResult:
+    layout = shaft.layout
+    peak, where, peaks, means, web_peaks = lp.peak, lp.where, lp.peaks, lp.means, lp.web_peaks
+    wmax, wwhere = lp.wmax, lp.wwhere
     dj = layout.geometry.journal_diameter
     spec_load = max(peaks[b.name] / (dj * b.width) for b in layout.bearings)
     f1, m1 = first_order(residual(lc.engine, w_max, drawn, written.load_factors, written.planes))
@@ -262,7 +285,6 @@ def _metrics(
         mr = rotating_mass(lc.engine, th.name) * t.crank_radius
         own = sum(k * drawn[w].unbalance for w, k in written.load_factors.items() if w[0] == th.name)
         rates[th.name] = own / mr if mr > 0 else math.nan
-    film = film_metrics(layout, loads)
     values = {
         "max_main_bearing_load": (peak, "N"),
         "max_main_bearing_specific_load": (spec_load, "Pa"),
@@ -440,6 +462,8 @@ def run_study(
         raise ValueError("run_study: the stiffness cache must be empty and of the same load case, size and cache")
     k_fe: list[float] = []
     results = []
+    pending: list[partial[CandidateResult]] = []
+    films = []
     first = None
     by_offset: dict[float, tuple[StudyShaft, dict[tuple, DrawnWeb]]] = {}
     # each offset on the drawn counterweights turned to it: its own solids, mesh and unit cases
@@ -515,7 +539,30 @@ def run_study(
             )
             bd = None if bm is None or c_loads is None else candidate_bodies(bm, c_loads, wm.load_factors)
             jt = None if c_jm is None else candidate_joints(c_jm, c, solids, shaft.mass)
-            results.append(_metrics(c, loads, shaft, drawn_o, lc, spec, w_max, wm, st, os, q, bd, jt, j_lims, f1))
+            # the figures once every candidate's film is known (study.film: orbits integrated together)
+            films.append(film_rows(shaft.layout, loads))
+            pending.append(
+                partial(
+                    _metrics,
+                    c,
+                    _load_peaks(shaft.layout, loads),
+                    shaft,
+                    drawn_o,
+                    lc,
+                    spec,
+                    w_max,
+                    wm,
+                    st,
+                    os,
+                    q,
+                    bd,
+                    jt,
+                    j_lims,
+                    f1,
+                )
+            )
+    for figures, film in zip(pending, film_metrics_of(films)):
+        results.append(figures(film=film))
     results.sort(key=lambda r: r.candidate.index)
     assert first is not None
     shaft, drawn, bm, j_lims, j_whose, jm = first
