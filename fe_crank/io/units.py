@@ -19,6 +19,7 @@ refused: for a shaft they may mean rev/s or rad/s.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from typing import Annotated
@@ -212,10 +213,17 @@ def to_si(value: object, kind: str) -> float:
     Speeds: ``SPEED_UNITS`` (rpm, 1/min, min^-1, rev/min, r/min -> 2 pi/60 rad/s;
     Hz, rev/s -> 2 pi rad/s; rad/s); ``1/s`` is refused as ambiguous.
     """
-    dim, si_unit, example = KINDS[kind]
+    example = KINDS[kind][2]
     if isinstance(value, bool) or not isinstance(value, str):
         shown = _clip(value) if isinstance(value, (int, float)) else type(value).__name__
         raise ValueError(f'expected a {kind} with its unit as a string, e.g. "{example}"; got {shown} without a unit')
+    return _text_to_si(str(value), kind)
+
+
+@functools.lru_cache(maxsize=4096)
+def _text_to_si(value: str, kind: str) -> float:
+    """``to_si`` of a string: a pure function of (text, kind), remembered (a refusal is not)."""
+    dim, si_unit, example = KINDS[kind]
     number, unit = _split(value, kind, example)
     if not math.isfinite(number):
         raise ValueError(f"{_clip(value)} is not a finite {kind}")

@@ -40,3 +40,18 @@ def test_parses_to_si(text, kind, si):
 def test_refuses_bad_units(value, kind, words):
     with pytest.raises(ValueError, match=words):
         to_si(value, kind)
+
+
+def test_a_repeated_text_gives_the_same_value_and_the_same_refusal():
+    """The parse of a text is remembered: a second reading returns the same float (hand
+    value 66 mm = 0.066 m), and a refused text is refused again with the same message
+    (refusals are not remembered as values)."""
+    assert to_si("66 mm", "length") == to_si("66 mm", "length") == pytest.approx(0.066, rel=1e-15)
+    messages = []
+    for _ in range(2):
+        with pytest.raises(ValueError) as exc:
+            to_si("66 kg", "length")
+        messages.append(str(exc.value))
+    assert messages[0] == messages[1] and "is a mass, not a length" in messages[0]
+    with pytest.raises(ValueError, match="without a unit"):
+        to_si(66, "length")

@@ -255,7 +255,15 @@ def _reduced(K, Ks, P, free, *, direct: bool):
             A = sp.triu(A, format="csr")  # the triangle of a principal submatrix is the submatrix of the triangle
         Kr = A[free][:, free].tocsr()
     else:
-        Kr = (P.T @ (K + Ks) @ P).tocsr()
+        # Both products in CSR: ``P.T`` is CSC, and CSC @ CSR would first convert all of
+        # K + K_s to CSC.  Each entry is the same sum in the same order (ascending inner
+        # index, with P^T's and the intermediate's indices sorted) as the CSC products.
+        PT = P.T.tocsr()
+        PT.sort_indices()
+        M = PT @ (K + Ks)
+        M.sort_indices()
+        Kr = (M @ P).tocsr()
+        del M
         if direct:
             Kr = sp.triu(Kr, format="csr")
     Kr.eliminate_zeros()

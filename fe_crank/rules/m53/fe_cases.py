@@ -181,11 +181,13 @@ def solve_bending_torsion(
 
 
 def solve_three_point(
-    mesh: Mesh, E: float, nu: float, *, solver: str = "auto"
+    mesh: Mesh, E: float, nu: float, *, solver: str = "auto", basis: Basis | None = None
 ) -> tuple[System, np.ndarray, np.ndarray]:
     """App. III 3.3: both master nodes held in ux, uy (``end_1`` also in uz and rz, against
     the rigid slide and spin), a 1 N force towards the axis (-y) distributed over the pin.
 
+    ``basis``: the mesh's cell basis when the caller already has it (that of another
+    ``System`` on the same mesh), else built here.
     Returns the ``System``, the displacement and the load vector.
     """
     system = build_system(
@@ -194,6 +196,7 @@ def solve_three_point(
         nu,
         solver=solver,
         couplings=[Coupling("end_1", fixed=("ux", "uy", "uz", "rz")), Coupling("end_2", fixed=("ux", "uy"))],
+        basis=basis,
     )
     f = _pin_traction_load(system.basis, -1.0)
     return system, system.solve(f), f
@@ -229,9 +232,10 @@ def scf_stresses(
     bending = _peaks(mesh, U[:, 0], E, nu, groups, "von_mises", sys1.basis)
     torsion = _peaks(mesh, U[:, 1], E, nu, groups, "tau_equiv", sys1.basis)
     n_dof = sys1.n_dof
+    basis = sys1.basis  # the same cell basis serves the second system (built once)
     del sys1, U
 
-    sys2, u3, f = solve_three_point(mesh, E, nu, solver=solver)
+    sys2, u3, f = solve_three_point(mesh, E, nu, solver=solver, basis=basis)
     eq["three_point"], reac = sys2.equilibrium_error(u3, f)
     if max(eq.values()) >= EQUILIBRIUM_TOL:
         raise SolverError(f"SCF mode: reactions do not balance the loads ({max(eq.values()):.2e})")
