@@ -80,24 +80,33 @@ def turned(tmp_path_factory):
     return g, step, recognise(CadInput(step, density=g.density))
 
 
-def _beyond_side(g: CrankGeometry) -> dict[int, tuple[float, np.ndarray]]:
-    """Mass and m r of the parametric solid's material beyond r = SIDE on y < 0, per
-    web side (z < 0, z > 0): OpenCASCADE's intersection of ``throw_solid`` with that region."""
+def _beyond_side_in(g: CrankGeometry, corners: list[tuple[float, float]]) -> dict[int, tuple[float, np.ndarray]]:
+    """Mass and m r of the parametric solid's material beyond r = SIDE inside the outline
+    ``corners`` (x, y of the throw frame), per web side (z < 0, z > 0): OpenCASCADE's
+    intersection of ``throw_solid`` with that prism less the cylinder r < SIDE."""
     out = {}
     with gmsh_session() as gmsh:
         occ = gmsh.model.occ
         for web, (z0, z1) in ((1, (-1.0, 0.0)), (2, (0.0, 1.0))):
             solid, _ = throw_solid(g)
-            half = occ.addBox(-1.0, -1.0, z0, 2.0, 1.0, z1 - z0)
+            pts = [occ.addPoint(x, y, z0) for x, y in corners]
+            loop = occ.addCurveLoop([occ.addLine(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))])
+            prism = occ.extrude([(2, occ.addPlaneSurface([loop]))], 0, 0, z1 - z0)
+            (vol,) = [t for d, t in prism if d == 3]
             core = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, SIDE)
-            region, _ = occ.cut([(3, half)], [(3, core)])
+            region, _ = occ.cut([(3, vol)], [(3, core)])
             part, _ = occ.intersect([(3, solid)], region)
             occ.synchronize()
-            vol = sum(occ.getMass(3, t) for _, t in part)
-            c = sum(occ.getMass(3, t) * np.asarray(occ.getCenterOfMass(3, t)) for _, t in part) / vol
-            out[web] = (g.density * vol, g.density * vol * c[:2])
+            v = sum(occ.getMass(3, t) for _, t in part)
+            c = sum(occ.getMass(3, t) * np.asarray(occ.getCenterOfMass(3, t)) for _, t in part) / v
+            out[web] = (g.density * v, g.density * v * c[:2])
             occ.remove(occ.getEntities(3), recursive=True)
     return out
+
+
+def _beyond_side(g: CrankGeometry) -> dict[int, tuple[float, np.ndarray]]:
+    """Mass and m r of the parametric solid's material beyond r = SIDE on y < 0, per web side."""
+    return _beyond_side_in(g, [(-1.0, -1.0), (1.0, -1.0), (1.0, 0.0), (-1.0, 0.0)])
 
 
 def test_turned_counterweight_recognised_with_its_offset_and_exact_mass(turned):
@@ -205,24 +214,7 @@ def _in_sector(g: CrankGeometry) -> dict[int, tuple[float, np.ndarray]]:
     big = 1.0
     corners = [(0.0, 0.0), (-big, 0.0), (-big, -big), (big, -big), (big, PIN_Y), (SIDE, PIN_Y), (SIDE, slope * SIDE)]
     assert 0.0 < slope * SIDE < PIN_Y
-    out = {}
-    with gmsh_session() as gmsh:
-        occ = gmsh.model.occ
-        for web, (z0, z1) in ((1, (-1.0, 0.0)), (2, (0.0, 1.0))):
-            solid, _ = throw_solid(g)
-            pts = [occ.addPoint(x, y, z0) for x, y in corners]
-            loop = occ.addCurveLoop([occ.addLine(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))])
-            prism = occ.extrude([(2, occ.addPlaneSurface([loop]))], 0, 0, z1 - z0)
-            (vol,) = [t for d, t in prism if d == 3]
-            core = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, SIDE)
-            region, _ = occ.cut([(3, vol)], [(3, core)])
-            part, _ = occ.intersect([(3, solid)], region)
-            occ.synchronize()
-            v = sum(occ.getMass(3, t) for _, t in part)
-            c = sum(occ.getMass(3, t) * np.asarray(occ.getCenterOfMass(3, t)) for _, t in part) / v
-            out[web] = (g.density * v, g.density * v * c[:2])
-            occ.remove(occ.getEntities(3), recursive=True)
-    return out
+    return _beyond_side_in(g, corners)
 
 
 def test_counterweight_turned_over_y0_recognised_by_its_sector(over):
