@@ -62,11 +62,19 @@ def test_stress_measures_closed_form():
     assert not Peak("g", 1.0, 0, (0, 0, 0), 0.05, 0.06).mesh_ok
 
 
-def test_end_faces_are_the_bearing_centre_planes(throw):
+@pytest.fixture(scope="module")
+def three_point(throw):
+    """App. III 3.3's simply supported throw solved (``solve_three_point``, E = 210 GPa,
+    nu = 0.3): its system, displacement and load, read by the tests of both its supports
+    and its reactions."""
+    return solve_three_point(throw.mesh, 210e9, 0.3)
+
+
+def test_end_faces_are_the_bearing_centre_planes(throw, three_point):
     """The throw model ends at the main-bearing centre planes (App. III 2.1; a geometry's
     journal length is half a main bearing): the couplings' master nodes sit on the axis
     at z = -+33 mm; the web centres from the mesh's journal fillets agree with +-15 mm."""
-    system, _, _ = solve_three_point(throw.mesh, 210e9, 0.3)
+    system, _, _ = three_point
     assert np.allclose(system.ref_points["end_1"], [0, 0, -Z_END], atol=1e-9)
     assert np.allclose(system.ref_points["end_2"], [0, 0, Z_END], atol=1e-9)
     z1, z2 = web_centres_from_mesh(throw, 0.012)
@@ -105,13 +113,13 @@ def test_pure_bending_and_torsion_reactions_and_section_moments(throw):
         assert moment == pytest.approx(expected[3:] * -1.0, abs=1e-8)
 
 
-def test_three_point_bending_reactions_lever_and_web_moment(throw):
+def test_three_point_bending_reactions_lever_and_web_moment(throw, three_point):
     """App. III 3.3, simply supported throw, F = 1 N at the pin centre (z = 0) towards the
     axis: by hand Q_3P = F/2 = 0.5 N at each master node (symmetric supports at -+33 mm),
     lever to the web centre L = 33 - 15 = 18 mm, web-centre moment Q L = 9.0e-3 N m.  The
     FE reactions, the lever and the FE section moment at the web-1 centre plane agree."""
     E, nu = 210e9, 0.3
-    system, u, f = solve_three_point(throw.mesh, E, nu)
+    system, u, f = three_point
     err, reac = system.equilibrium_error(u, f)
     assert err < 1e-9
     assert f.reshape(-1, 3).sum(axis=0) == pytest.approx([0, -1.0, 0], abs=1e-12)

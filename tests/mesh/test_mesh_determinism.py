@@ -1,11 +1,15 @@
 """The same input gives the same mesh bit for bit, whichever process builds it.
 
-Each mesh is built twice, each time in a fresh Python process (its own memory layout,
-hash seed and gmsh state; each of the two processes builds both meshes), without the cache, and the node coordinates, the element
-arrays and the named groups are compared exactly.  The shipped inline-4's throw is
-meshed as the whole shaft meshes it (end faces split into sectors so the turned throws
-meet node to node: the part whose surface mesh used to depend on the order of objects
-in memory), the single-cylinder throw as its load case meshes it.
+Each mesh is built in a fresh Python process (its own memory layout, hash seed and gmsh
+state), without the cache, and compared exactly (node coordinates, element arrays, named
+groups) with the run's own build of it: the one in the run's shared mesh cache, which the
+test process or another process of the run built (a process that has meshed other
+throws before: another memory layout and gmsh history), or, when no file has taken it
+yet, the test process's build into that cache.  The cache keeps the arrays as built
+(``mesh.npz``), so what is compared is two processes' builds.  The shipped inline-4's
+throw is meshed as the whole shaft meshes it (end faces split into sectors so the turned
+throws meet node to node: the part whose surface mesh used to depend on the order of
+objects in memory), the single-cylinder throw as its load case meshes it.
 """
 
 from __future__ import annotations
@@ -17,49 +21,43 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers.mesh_arrays import mesh_arrays
+from helpers.shared import locked
 
 ROOT = Path(__file__).resolve().parents[2]
 
 BUILD = """
 import sys
 import numpy as np
-from fe_crank.io.loadcase import load_loadcase
-from fe_crank.mesh import mesh_throw
-from fe_crank.mesh.options import resolve_options
+sys.path.insert(0, sys.argv[1])
+from helpers.mesh_arrays import mesh_arrays
 
-for case, out, mode in zip(sys.argv[1::3], sys.argv[2::3], sys.argv[3::3]):
-    lc = load_loadcase(case)
-    g, spec, opt = lc.geometry, lc.geometry.throws[0], resolve_options("test")
-    if mode == "shaft":
-        from fe_crank.geometry.shaft import engine_shaft_layout
-        from fe_crank.mesh.shaft import shaft_options
-
-        layout = engine_shaft_layout(g, lc.engine, geometry_file="g", engine_file="e")
-        g, spec, opt = layout.geometry, layout.throws[0].spec, shaft_options(layout, "test")
-    tm = mesh_throw(g, spec, size=opt, cache_dir=None)
-    m = tm.mesh
-    arrays = {"doflocs": m.doflocs, "t": m.t, "straightened": np.array(tm.stats.straightened)}
-    arrays.update({"b::" + k: v for k, v in m.boundaries.items()})
-    arrays.update({"s::" + k: v for k, v in m.subdomains.items()})
-    np.savez(out, **arrays)
+for case, out, mode in zip(sys.argv[2::3], sys.argv[3::3], sys.argv[4::3]):
+    np.savez(out, **mesh_arrays(case, mode, None))
 """
 
 #: the meshes compared: the inline-4's throw as the whole shaft meshes it, the single
-#: cylinder's as its load case does (both built in each of the two processes)
-MESHES = {"inline4": ("inline4_rated.toml", "shaft"), "single": ("single_cylinder.toml", "throw")}
+#: cylinder's as its load case does; with the run's lock of each mesh in the shared cache
+#: (``None``: none taken, the cache takes concurrent writers)
+MESHES = {
+    "inline4": ("inline4_rated.toml", "shaft", None),
+    "single": ("single_cylinder.toml", "throw", "single_cylinder_test_meshes"),
+}
 
 
 def _build(folder: Path) -> dict[str, dict[str, np.ndarray]]:
-    """Every mesh of ``MESHES`` built in one fresh Python process, by name."""
+    """Every mesh of ``MESHES`` built without the cache in one fresh Python process, by name."""
     env = dict(os.environ, PYTHONPATH=str(ROOT), OPENBLAS_NUM_THREADS="1")
-    env.pop("PYTHONHASHSEED", None)  # each process its own hash seed
+    env.pop("PYTHONHASHSEED", None)  # the process its own hash seed
     folder.mkdir()
     args = [
         a
-        for name, (case, mode) in MESHES.items()
+        for name, (case, mode, _) in MESHES.items()
         for a in (str(ROOT / "loadcases" / case), str(folder / f"{name}.npz"), mode)
     ]
-    subprocess.run([sys.executable, "-c", BUILD, *args], check=True, env=env, cwd=ROOT, timeout=600)
+    subprocess.run(
+        [sys.executable, "-c", BUILD, str(ROOT / "tests"), *args], check=True, env=env, cwd=ROOT, timeout=600
+    )
     out = {}
     for name in MESHES:
         with np.load(folder / f"{name}.npz") as z:
@@ -67,9 +65,23 @@ def _build(folder: Path) -> dict[str, dict[str, np.ndarray]]:
     return out
 
 
+def _run_build(tmp_path_factory, mesh_cache: Path) -> dict[str, dict[str, np.ndarray]]:
+    """Every mesh of ``MESHES`` as the run's shared mesh cache holds it (built here into
+    it when no process of the run has yet), by name."""
+    out = {}
+    for name, (case, mode, lock) in MESHES.items():
+        path = ROOT / "loadcases" / case
+        if lock is None:
+            out[name] = mesh_arrays(path, mode, mesh_cache)
+        else:
+            with locked(tmp_path_factory, lock):
+                out[name] = mesh_arrays(path, mode, mesh_cache)
+    return out
+
+
 @pytest.mark.heavy
-def test_a_mesh_is_the_same_in_two_fresh_processes(tmp_path):
-    first, second = _build(tmp_path / "a"), _build(tmp_path / "b")
+def test_a_mesh_is_the_same_in_two_processes(tmp_path, tmp_path_factory, mesh_cache):
+    first, second = _build(tmp_path / "fresh"), _run_build(tmp_path_factory, mesh_cache)
     for mesh in MESHES:
         a, b = first[mesh], second[mesh]
         assert sorted(a) == sorted(b), mesh
