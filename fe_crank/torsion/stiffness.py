@@ -18,9 +18,19 @@ in docs/torsion.md.
 
 FE: the torque unit case of ``fe_crank.fe.throw.unit_cases`` applies 1 N m as the Saint-Venant
 shear flow on ``end_1`` and holds ``end_2`` (rigidly coupled to the axis in rotation);
-the radial journal foundation carries no torque.  The rotation of an end face is the
-least-squares rigid rotation of its nodes, ``phi = sum (x u_y - y u_x) / sum (x^2 + y^2)``,
-and ``k = |M_z| / |phi_1 - phi_2|``.
+the radial journal foundation carries no torque.  The rotation of an end face is the one
+work-conjugate to that shear flow: with ``f`` the consistent nodal forces of a unit torque
+applied to the face as the same shear flow (``fe.core.loads.face_torque_load``),
+
+    phi = f . u = int (x u_y - y u_x) dA / int (x^2 + y^2) dA,
+
+the face's displacement weighted by its area (the continuum form: the shear flow of a
+round shaft is t = T r e_theta / J).  It is exact for a face that turns rigidly (the
+nodal forces' moment is 1 N m exactly), and on the loaded face ``T phi_1`` is the work
+the torque does, so ``k = |M_z| / |phi_1 - phi_2|`` is the stiffness whose strain energy
+``T^2 / (2 k)`` equals the model's (Castigliano: phi = dU/dT), whatever the face's
+mesh.  A fit over the face's nodes with equal weights is not: it weighs the nodes, not
+the area, and moved the throw's stiffness by 5 % with the end faces' meshing.
 
 The chain's FE throw stiffness (``throw_stiffness = "fe"``, ``plan_throw_stiffness``):
 that of the mesh plan's first throw model (``mesh.plan.throw_keys``: the engine's first
@@ -40,6 +50,7 @@ import numpy as np
 
 from fe_crank.cad.source import GeometrySource, mesh_source_throw
 from fe_crank.errors import InputError
+from fe_crank.fe.core.loads import face_torque_load
 from fe_crank.fe.throw.options import FeOptions, Material
 from fe_crank.fe.throw.unit_cases import UnitSolutions, solve_unit_cases
 from fe_crank.mesh.plan import MeshPlan
@@ -108,12 +119,13 @@ def throw_span(geometry) -> float:
     return geometry.crankpin_length + 2 * geometry.web_thickness + 2 * geometry.journal_length
 
 
-def face_rotation(points: np.ndarray, displacement: np.ndarray, nodes: np.ndarray) -> float:
-    """Least-squares rotation about z (rad, right-handed) of the nodes ``nodes``."""
-    x, y = points[0, nodes], points[1, nodes]
-    u = np.asarray(displacement).reshape(-1, 3)
-    ux, uy = u[nodes, 0], u[nodes, 1]
-    return float(np.sum(x * uy - y * ux) / np.sum(x * x + y * y))
+def face_rotation(basis, displacement: np.ndarray, face: str) -> float:
+    """Rotation about z (rad, right-handed) of the boundary ``face``, work-conjugate to the
+    Saint-Venant shear flow of a torque on it (module docstring): ``f . u`` with ``f`` the
+    nodal forces of 1 N m on the face (``face_torque_load``), ``u`` the displacement vector
+    of ``basis``."""
+    f = face_torque_load(basis, 1.0, boundary=face)
+    return float(f @ np.asarray(displacement, float))
 
 
 def fe_throw_stiffness(unit_solutions: UnitSolutions, faces=("end_1", "end_2")) -> float:
@@ -122,12 +134,8 @@ def fe_throw_stiffness(unit_solutions: UnitSolutions, faces=("end_1", "end_2")) 
     if "torque" not in unit_solutions.cases:
         raise InputError("the FE unit cases lack 'torque'", key="fe.cases")
     case = unit_solutions.cases["torque"]
-    mesh = unit_solutions.mesh
-    pts = np.asarray(unit_solutions.points)
-    rot = []
-    for face in faces:
-        nodes = np.unique(mesh.facets[:, mesh.boundaries[face]])
-        rot.append(face_rotation(pts, case.displacement, nodes))
+    basis = unit_solutions.system.basis
+    rot = [face_rotation(basis, case.displacement, face) for face in faces]
     twist = rot[0] - rot[1]
     mz = float(case.applied[5])
     if not twist * mz > 0:
