@@ -40,13 +40,22 @@ from fe_crank.fe.refinement.levels import (
     ConvergenceStudy,
     level_peaks,
 )
-from fe_crank.fe.refinement.zone import Interpolator, boundary_samples, solve_zone, zone_peaks
+from fe_crank.fe.refinement.zone import Interpolator, ZoneSystem, boundary_samples, zone_peaks
 from fe_crank.fe.throw.options import Material
 from fe_crank.fe.throw.surface_peaks import COUNTERWEIGHT_FILLETS, FILLETS, OIL_BORE
 from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.geometry.spec import CrankGeometry
+from fe_crank.mesh.mirror import swap_side
+from fe_crank.mesh.planes import symmetry_planes
 from fe_crank.mesh.types import ThrowMesh
-from fe_crank.mesh.zone import ZoneMesh, ZoneMeshError, ZoneSolid, mesh_solid_zone_levels, parametric_solid
+from fe_crank.mesh.zone import (
+    ZoneMesh,
+    ZoneMeshError,
+    ZoneSolid,
+    mesh_solid_zone_levels,
+    mirror_zone,
+    parametric_solid,
+)
 
 log = logging.getLogger(__name__)
 
@@ -132,6 +141,79 @@ def hot_spots(
     return out
 
 
+def mirror_symmetric(geometry: CrankGeometry | CadInput, throw_mesh: ThrowMesh) -> bool:
+    """Is the throw's solid its own mirror image across its mid-plane ``z = 0``?  A
+    parametric throw: when its specification makes it so (``mesh.planes.symmetry_planes``);
+    a drawn one: when its own mesh was made as a mirrored half (``ThrowMesh.symmetry``: the
+    CAD mesher mirrors only a throw whose B-rep it found symmetric)."""
+    if isinstance(geometry, CadInput):
+        return 2 in throw_mesh.symmetry
+    return 2 in symmetry_planes(geometry, throw_mesh.throw)
+
+
+#: folded balls (below) whose centres are closer than this x their radius are one ball,
+#: grown to hold both
+FOLD_MERGE = 0.05
+
+
+def _overlap(a: HotSpot, b: HotSpot) -> bool:
+    return float(np.linalg.norm(np.subtract(a.centre, b.centre))) < a.radius + b.radius
+
+
+def _mirror(h: HotSpot) -> HotSpot:
+    return HotSpot((h.centre[0], h.centre[1], -h.centre[2]), h.radius, swap_side(h.surface))
+
+
+def fold_spots(spots: list[HotSpot], symmetric: bool) -> tuple[list[HotSpot], list[bool], list[int]]:
+    """The balls to cut for ``spots`` of a throw that is (``symmetric``) or is not its own
+    mirror image across ``z = 0``: (balls, whether each ball's zone serves its mirror image
+    too, the ball of each spot).
+
+    Not symmetric: the spots' own balls.  Symmetric: a spot whose ball reaches the plane,
+    or whose ball or mirrored ball overlaps such a ball (repeated until none is added), keeps
+    its own ball (``central``); every other spot is folded onto ``z > 0`` (a spot below the
+    plane replaced by its mirror image), and folded balls whose centres lie within
+    ``FOLD_MERGE`` x the radius of each other are one ball, grown to hold both.  Each folded
+    ball's zone is solved for itself and for its mirror image, whose mesh is the zone's
+    mirrored (``mesh.zone.mirror_zone``): every spot lies in its own ball, in the zone or in
+    its image, and no zone overlaps another of the other kind."""
+    if not symmetric:
+        return list(spots), [False] * len(spots), list(range(len(spots)))
+    central = [abs(h.centre[2]) <= h.radius for h in spots]
+    grew = True
+    while grew:
+        grew = False
+        for i, h in enumerate(spots):
+            if not central[i] and any(
+                central[j] and (_overlap(h, spots[j]) or _overlap(_mirror(h), spots[j])) for j in range(len(spots))
+            ):
+                central[i] = grew = True
+    balls = [h for i, h in enumerate(spots) if central[i]]
+    owner = [-1] * len(spots)
+    for k, i in enumerate(i for i in range(len(spots)) if central[i]):
+        owner[i] = k
+    mirrored = [False] * len(balls)
+    for i, h in enumerate(spots):
+        if central[i]:
+            continue
+        f = h if h.centre[2] > 0 else _mirror(h)
+        for k in range(len(balls)):
+            b = balls[k]
+            d = float(np.linalg.norm(np.subtract(b.centre, f.centre)))
+            if mirrored[k] and d <= FOLD_MERGE * min(b.radius, f.radius):
+                balls[k] = dataclasses.replace(b, radius=max(b.radius, f.radius + d))
+                owner[i] = k
+                break
+        else:
+            owner[i] = len(balls)
+            balls.append(f)
+            mirrored.append(True)
+    cut = [b for b, m in zip(balls, mirrored) if not m]
+    if any(_overlap(b, c) or _overlap(_mirror(b), c) for b, m in zip(balls, mirrored) if m for c in cut):
+        return list(spots), [False] * len(spots), list(range(len(spots)))  # a grown ball reached a central one
+    return balls, mirrored, owner
+
+
 #: a ball whose zone gmsh cannot mesh is tried again this much larger (a ball that grazes an
 #: edge of the solid leaves sliver faces)
 RETRY_GROWTH = 1.07
@@ -142,7 +224,7 @@ GROUP_FRACTION = 0.5
 
 
 def level_meshes(
-    solid: ZoneSolid, levels, spots: list[HotSpot], samples, group_nodes=None, grown=frozenset()
+    solid: ZoneSolid, levels, spots: list[HotSpot], samples, group_nodes=None, grown=frozenset(), mirrored=None
 ) -> list[list[ZoneMesh]]:
     """The zones of every level (``levels``: their mesh options), in groups
     (``mesh.zone.mesh_solid_zone_levels``): every ball cut from the throw in one gmsh model, once,
@@ -150,21 +232,25 @@ def level_meshes(
     nearest the first curve or surface it left unmeshed (``ZoneMeshError.ball``) is made
     ``RETRY_GROWTH`` larger and the model cut and meshed again (once per ball: ``grown``,
     the indices already grown); failing that, the balls split into two halves, each done
-    the same way."""
+    the same way.  ``mirrored``: per ball, its zone serves its mirror image too
+    (``fold_spots``; default none)."""
     radii = [h.radius * (RETRY_GROWTH if i in grown else 1.0) for i, h in enumerate(spots)]
     try:
-        return mesh_solid_zone_levels(solid, levels, [h.centre for h in spots], radii, samples, group_nodes=group_nodes)
+        return mesh_solid_zone_levels(
+            solid, levels, [h.centre for h in spots], radii, samples, group_nodes=group_nodes, mirrored=mirrored
+        )
     except ZoneMeshError as exc:
         log.info("the hot-spot zones on %s: %s", ", ".join(h.surface for h in spots), exc)
         if exc.ball is not None and exc.ball not in grown:
             log.info("the zone on %s tried %g x larger", spots[exc.ball].surface, RETRY_GROWTH)
-            return level_meshes(solid, levels, spots, samples, group_nodes, grown | {exc.ball})
+            return level_meshes(solid, levels, spots, samples, group_nodes, grown | {exc.ball}, mirrored)
         if len(spots) == 1:
             raise
     half = len(spots) // 2
-    first = level_meshes(solid, levels, spots[:half], samples, group_nodes, frozenset(i for i in grown if i < half))
+    m1, m2 = (None, None) if mirrored is None else (mirrored[:half], mirrored[half:])
+    first = level_meshes(solid, levels, spots[:half], samples, group_nodes, frozenset(i for i in grown if i < half), m1)
     second = level_meshes(
-        solid, levels, spots[half:], samples, group_nodes, frozenset(i - half for i in grown if i >= half)
+        solid, levels, spots[half:], samples, group_nodes, frozenset(i - half for i in grown if i >= half), m2
     )
     return [a + b for a, b in zip(first, second)]
 
@@ -205,6 +291,13 @@ def zone_convergence(
     ]
     solid = zone_solid(geometry, throw_mesh)
     spots = hot_spots(solid, throw_mesh, unit_solutions, fields, zone_radius=zone_radius)
+    balls, mirrored, owner = fold_spots(spots, mirror_symmetric(geometry, throw_mesh))
+    log.info(
+        "hot-spot zones: %d spots, %d balls cut (%d of them also solved mirrored)",
+        len(spots),
+        len(balls),
+        sum(mirrored),
+    )
     samples = boundary_samples(unit_solutions.mesh)
     interp = Interpolator(unit_solutions.mesh, unit_solutions.system.basis.dofs, unit_solutions.points)
     every = [n for _, names in FAMILIES for n in names]
@@ -214,23 +307,43 @@ def zone_convergence(
         for f in factors[1:]
     ]
     group_nodes = GROUP_FRACTION * unit_solutions.n_dof / 3
-    meshes = level_meshes(solid, options, spots, samples, group_nodes)
+    meshes = level_meshes(solid, options, balls, samples, group_nodes, mirrored=mirrored)
     meshing = (time.perf_counter() - t0) / len(options)  # the cut shared by the levels
     for mopt, zones in zip(options, meshes):
         t0 = time.perf_counter() - meshing
         best: dict[str, tuple[float, str]] = {}
         n_dof, edges = 0, dict[str, float]()
+        # each spot read round its own centre, as far as its ball grew (``level_meshes``)
+        cut = {c: r for zm in zones for c, r in zip(zm.centres, zm.radii)}
+        read = (
+            [h.centre for h in spots],
+            [h.radius * cut.get(balls[k].centre, balls[k].radius) / balls[k].radius for h, k in zip(spots, owner)],
+        )
         for zm in zones:
-            U, basis = solve_zone(zm, material, unit_solutions.options, unit_solutions.pin, loads, fields, interp)
-            n_dof += int(3 * basis.N)
-            for k, v in zm.fillet_max_edge.items():
-                edges[k] = max(edges.get(k, 0.0), v)
-            got = zone_peaks(zm, basis, material, U, every, REACH)
-            for name, per in got.items():
-                for prefix, names in FAMILIES:
-                    for surface in names:
-                        if surface in per and per[surface] > best.get(prefix + name, (-np.inf, ""))[0]:
-                            best[prefix + name] = (per[surface], surface)
+            system = ZoneSystem(zm, material, unit_solutions.options)
+            try:
+                solved = [(zm, system.fields(unit_solutions.pin, loads, fields, interp), system.basis)]
+                if zm.mirrored:
+                    image = mirror_zone(zm)
+                    got = system.mirror_fields(image, unit_solutions.pin, loads, fields, interp)
+                    solved.append((image, *got) if got is not None else (image, None, None))
+            finally:
+                system.release()
+            for z, U, basis in solved:
+                if U is None:  # the image's nodes are not the zone's reflected: solved alone
+                    system = ZoneSystem(z, material, unit_solutions.options)
+                    try:
+                        U, basis = system.fields(unit_solutions.pin, loads, fields, interp), system.basis
+                    finally:
+                        system.release()
+                n_dof += int(3 * basis.N)
+                for k, v in z.fillet_max_edge.items():
+                    edges[k] = max(edges.get(k, 0.0), v)
+                for name, per in zone_peaks(z, basis, material, U, every, REACH, read).items():
+                    for prefix, names in FAMILIES:
+                        for surface in names:
+                            if surface in per and per[surface] > best.get(prefix + name, (-np.inf, ""))[0]:
+                                best[prefix + name] = (per[surface], surface)
         missing = sorted(set(first) - set(best))
         if missing:
             raise RuntimeError(f"the hot-spot zones hold no node of the surfaces of {missing}")
@@ -262,4 +375,14 @@ def zone_convergence(
     )
 
 
-__all__ = ["CANDIDATE", "REACH", "ZONE_RADIUS", "HotSpot", "hot_spots", "zone_convergence", "zone_solid"]
+__all__ = [
+    "CANDIDATE",
+    "REACH",
+    "ZONE_RADIUS",
+    "HotSpot",
+    "fold_spots",
+    "hot_spots",
+    "mirror_symmetric",
+    "zone_convergence",
+    "zone_solid",
+]
