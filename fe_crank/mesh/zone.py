@@ -19,7 +19,8 @@ bore at ``bore_divisions``, the counterweights' transition fillets, the webs), s
 full refined mesh has there.  The tetrahedra are improved by gmsh's own optimiser, not by
 Netgen's (``generate(..., netgen=False)``: four fifths of the zone's 3D meshing time), with
 the throw mesher's checks.  A set of balls gmsh cannot mesh raises ``ZoneMeshError``
-naming the ball nearest the first surface left unmeshed.
+naming the ball nearest the first surface left unmeshed.  ``mirror_zone`` reflects a
+zone mesh across ``z = 0`` (the zone of the mirrored ball of a symmetric throw).
 """
 
 from __future__ import annotations

@@ -16,7 +16,11 @@ integration order) with
 * every other face free (the fillets, the oil bore, the web faces).
 
 Every load set of the study is a right-hand side of one factorisation (the prescribed
-values enter as -K_fd u_d).  This is the classical cut-boundary displacement submodel
+values enter as -K_fd u_d; ``ZoneSystem``).  The mirror image of the zone across ``z = 0``
+(``mesh.zone.mirror_zone``: node i of the image is node i of the zone with ``z`` negated)
+has the stiffness D K D, D the reflection of the ``z`` components, so it is solved with the
+same factorisation (``ZoneSystem.mirror_fields``): D times the zone's solution under D
+times the image's own loads and driven displacements, whatever the load.  This is the classical cut-boundary displacement submodel
 (Cormier, Smallwood, Sinclair & Meda, "Aggressive submodelling of stress
 concentrations", Int. J. Numer. Meth. Engng 46 (1999) 889-909): its error is the
 error of the global displacement on the cut, which decays away from the hot spot, and is
@@ -182,11 +186,7 @@ class ZoneSystem:
 
     def fields(self, pins, loads, driven, interpolator) -> dict[str, np.ndarray]:
         """{load set: the zone's displacement} (``solve_zone``)."""
-        names = list(loads)
-        F = zone_loads(self.zone, self.basis, self.material, self.options, pins, loads)
-        g = interpolator.values(self.basis.doflocs[:, self.nodes], [driven[k] for k in names])
-        U = self.solve(F, np.stack(g, axis=-1))
-        return {name: U[:, j] for j, name in enumerate(names)}
+        return self.fields_and_mirror(None, pins, loads, driven, interpolator)[0]
 
     def mirror_fields(self, image: ZoneMesh, pins, loads, driven, interpolator):
         """({load set: displacement}, basis) of the zone's mirror image ``image``
@@ -195,6 +195,33 @@ class ZoneSystem:
         (z -> -z), so its stiffness is D K D and its solution D times the zone's solution
         under D times its loads and driven displacements.  None when the image's nodes or
         driven nodes are not the zone's reflected (then solve the image as a zone of its own)."""
+        data = self._mirror_data(image, pins, loads, driven, interpolator)
+        if data is None:
+            return None
+        F, g, flip, basis = data
+        U = flip * self.solve(F, g)
+        return {name: U[:, j] for j, name in enumerate(loads)}, basis
+
+    def fields_and_mirror(self, image: ZoneMesh | None, pins, loads, driven, interpolator):
+        """(``fields``, ``mirror_fields(image, ...)`` or None without ``image``), every
+        right-hand side of both in one solve."""
+        names = list(loads)
+        k = len(names)
+        F = zone_loads(self.zone, self.basis, self.material, self.options, pins, loads)
+        g = np.stack(interpolator.values(self.basis.doflocs[:, self.nodes], [driven[n] for n in names]), axis=-1)
+        data = None if image is None else self._mirror_data(image, pins, loads, driven, interpolator)
+        if data is not None:
+            F, g = np.hstack([F, data[0]]), np.concatenate([g, data[1]], axis=-1)
+        U = self.solve(F, g)
+        own = {name: U[:, j] for j, name in enumerate(names)}
+        if data is None:
+            return own, None
+        V = data[2] * U[:, k:]
+        return own, ({name: V[:, j] for j, name in enumerate(names)}, data[3])
+
+    def _mirror_data(self, image: ZoneMesh, pins, loads, driven, interpolator):
+        """(D F, D g, D as a column, basis) of the image's own loads F and driven
+        displacements g, or None (``mirror_fields``)."""
         basis = cell_basis(image.mesh, self.options.intorder)
         x, y = self.basis.doflocs, basis.doflocs
         tol = 1e-12 * float(np.ptp(x, axis=1).max())
@@ -202,16 +229,11 @@ class ZoneSystem:
             return None
         if not np.array_equal(held_nodes(image, basis, self.options), self.nodes):
             return None
-        names = list(loads)
-        F = zone_loads(image, basis, self.material, self.options, pins, loads)
-        g = np.stack(interpolator.values(y[:, self.nodes], [driven[k] for k in names]), axis=-1)
-        F = F.reshape(-1, 3, len(names))
-        F[:, 2] *= -1.0
+        flip = np.tile([1.0, 1.0, -1.0], self.n // 3)[:, None]  # D on interleaved vectors
+        F = flip * zone_loads(image, basis, self.material, self.options, pins, loads)
+        g = np.stack(interpolator.values(y[:, self.nodes], [driven[n] for n in loads]), axis=-1)
         g[2] *= -1.0
-        U = self.solve(F.reshape(self.n, -1), g).reshape(-1, 3, len(names))
-        U[:, 2] *= -1.0
-        U = U.reshape(self.n, -1)
-        return {name: U[:, j] for j, name in enumerate(names)}, basis
+        return F, g, flip, basis
 
     def release(self) -> None:
         self.factor.free()

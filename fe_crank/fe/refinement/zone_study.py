@@ -11,7 +11,10 @@ on its cut by the assessed solution of every load set (the balls cut from the th
 once, every level meshed in that one model, its connected pieces solved in groups of at
 most ``GROUP_FRACTION`` x the assessed model's nodes, one factorisation a group, each freed
 before the next), and its peak read at the hot-spot surface's nodes within ``REACH`` x
-the zone radius of the centre.
+the zone radius of the centre.  On a throw that is its own mirror image across ``z = 0``
+(``mirror_symmetric``) the balls off the plane are folded onto ``z > 0`` (``fold_spots``):
+a mirror pair of hot spots is one zone, meshed and factorised once and solved for itself
+and for its mirror image (``mesh.zone.mirror_zone``, ``fe.refinement.zone.ZoneSystem``).
 
 Hot spots: for each hot-spot family (shaft fillets; counterweight fillets; oil bore) and
 each load set, the peak node of every surface of the family whose assessed peak is at
@@ -312,7 +315,7 @@ def zone_convergence(
     for mopt, zones in zip(options, meshes):
         t0 = time.perf_counter() - meshing
         best: dict[str, tuple[float, str]] = {}
-        n_dof, edges = 0, dict[str, float]()
+        n_dof, images, edges = 0, 0, dict[str, float]()
         # each spot read round its own centre, as far as its ball grew (``level_meshes``)
         cut = {c: r for zm in zones for c, r in zip(zm.centres, zm.radii)}
         read = (
@@ -322,10 +325,10 @@ def zone_convergence(
         for zm in zones:
             system = ZoneSystem(zm, material, unit_solutions.options)
             try:
-                solved = [(zm, system.fields(unit_solutions.pin, loads, fields, interp), system.basis)]
-                if zm.mirrored:
-                    image = mirror_zone(zm)
-                    got = system.mirror_fields(image, unit_solutions.pin, loads, fields, interp)
+                image = mirror_zone(zm) if zm.mirrored else None
+                own, got = system.fields_and_mirror(image, unit_solutions.pin, loads, fields, interp)
+                solved = [(zm, own, system.basis)]
+                if image is not None:
                     solved.append((image, *got) if got is not None else (image, None, None))
             finally:
                 system.release()
@@ -337,6 +340,7 @@ def zone_convergence(
                     finally:
                         system.release()
                 n_dof += int(3 * basis.N)
+                images += int(3 * basis.N) if z is not zm else 0
                 for k, v in z.fillet_max_edge.items():
                     edges[k] = max(edges.get(k, 0.0), v)
                 for name, per in zone_peaks(z, basis, material, U, every, REACH, read).items():
@@ -360,10 +364,11 @@ def zone_convergence(
             )
         )
         log.info(
-            "convergence level r/%g: %d zones, %d DOF, %.1f s",
+            "convergence level r/%g: %d zones, %d DOF (%d of them the mirror images'), %.1f s",
             mopt.fillet_divisions,
             len(spots),
             n_dof,
+            images,
             levels[-1].seconds,
         )
     changes = {
