@@ -198,7 +198,8 @@ def test_mirror_image_zone_solved_with_the_zones_factorisation(check_solution):
 def test_spots_folded_onto_one_side_of_a_symmetric_throw():
     """``fold_spots``: exact and near mirror pairs share one ball (a near pair's grown to hold
     both), a ball reaching the plane and a ball whose mirror image overlaps it keep their
-    own, and a throw that is not symmetric keeps every ball."""
+    own, two balls on either side that the fold would join into one zone keep their own,
+    and a throw that is not symmetric keeps every ball."""
     from fe_crank.fe.refinement.zone_study import FOLD_MERGE, HotSpot, fold_spots
 
     r = 0.01
@@ -209,11 +210,13 @@ def test_spots_folded_onto_one_side_of_a_symmetric_throw():
         HotSpot((0.03, 0.0, -0.021), r, "crankpin_fillet_1"),  # only its mirror overlaps the bore's ball
         HotSpot((-0.04, 0.0, 0.05), r, "counterweight_fillet_2"),
         HotSpot((-0.04, 0.0002, -0.05), r, "counterweight_fillet_1"),  # a near mirror pair
+        HotSpot((0.04, -0.05, 0.05), r, "counterweight_fillet_2"),
+        HotSpot((0.045, -0.05, -0.05), r, "counterweight_fillet_1"),  # folded: 0.5 r from the one above
     ]
     balls, mirrored, owner = fold_spots(spots, True)
-    assert owner[0] == owner[1] and owner[4] == owner[5] and len(balls) == 4
-    assert [mirrored[k] for k in owner] == [True, True, False, False, True, True]
-    assert balls[owner[2]] == spots[2] and balls[owner[3]] == spots[3]
+    assert owner[0] == owner[1] and owner[4] == owner[5] and len(balls) == 6
+    assert [mirrored[k] for k in owner] == [True, True, False, False, True, True, False, False]
+    assert [balls[owner[i]] for i in (2, 3, 6, 7)] == [spots[i] for i in (2, 3, 6, 7)]
     grown = balls[owner[4]]
     assert r < grown.radius <= r * (1 + FOLD_MERGE) and grown.centre[2] > 0
-    assert fold_spots(spots, False) == (spots, [False] * 6, list(range(6)))
+    assert fold_spots(spots, False) == (spots, [False] * 8, list(range(8)))
