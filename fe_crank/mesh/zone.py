@@ -19,7 +19,8 @@ bore at ``bore_divisions``, the counterweights' transition fillets, the webs), s
 full refined mesh has there.  The tetrahedra are improved by gmsh's own optimiser, not by
 Netgen's (``generate(..., netgen=False)``: four fifths of the zone's 3D meshing time), with
 the throw mesher's checks.  A set of balls gmsh cannot mesh raises ``ZoneMeshError``
-naming the ball nearest the first surface left unmeshed.
+naming the ball nearest the first surface left unmeshed.  ``mirror_zone`` reflects a
+zone mesh across ``z = 0`` (the zone of the mirrored ball of a symmetric throw).
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ from skfem import Mesh
 from fe_crank.errors import MeshError
 from fe_crank.geometry.spec import CrankGeometry, ThrowSpec
 from fe_crank.mesh.generate import generate
+from fe_crank.mesh.mirror import FLIP_TET10, swap_side
 from fe_crank.mesh.options import MeshOptions
 from fe_crank.mesh.quality import fillet_max_edge
 from fe_crank.mesh.sizing import counterweight_fillet_radius, set_size_fields
@@ -78,6 +80,9 @@ class ZoneMesh:
     options: MeshOptions
     fillet_max_edge: dict[str, float]  # m, longest edge on each fillet in the zone
     seconds: float
+    #: its mirror image across z = 0 is a zone of the study too (``mirror_zone``): the balls
+    #: of its pieces lie off the plane and the throw is its own mirror image
+    mirrored: bool = False
 
 
 @dataclass(frozen=True)
@@ -269,7 +274,15 @@ def _groups(counts: list[int], budget: float | None) -> list[list[int]]:
     return sorted((sorted(g) for g in groups), key=lambda g: g[0])
 
 
-def _convert(gmsh, parts: SolidParts, vols: list[int], cs, rs, options, t0) -> ZoneMesh:
+def _piece_kind(gmsh, piece: list[int], cs: np.ndarray, rs: np.ndarray, mirrored) -> bool:
+    """The ``mirrored`` flag of the ball a piece lies in: the ball nearest (distance to its
+    sphere, inside negative) the centre of mass of the piece's first volume (a ball of one
+    kind overlaps none of the other, so any point of the piece names its kind)."""
+    com = np.asarray(gmsh.model.occ.getCenterOfMass(3, piece[0]))
+    return bool(mirrored[int(np.argmin(np.linalg.norm(cs - com[None], axis=1) - rs))])
+
+
+def _convert(gmsh, parts: SolidParts, vols: list[int], cs, rs, options, t0, mirrored: bool = False) -> ZoneMesh:
     """The zone mesh of the volumes ``vols`` of the meshed model, its groups named as the zone's."""
     from fe_crank.gmsh_io import model_to_skfem
 
@@ -293,6 +306,57 @@ def _convert(gmsh, parts: SolidParts, vols: list[int], cs, rs, options, t0) -> Z
         options=options,
         fillet_max_edge=fillet_max_edge(mesh, fillets),
         seconds=time.perf_counter() - t0,
+        mirrored=mirrored,
+    )
+
+
+def _facet_keys(mesh, tri: np.ndarray) -> np.ndarray:
+    """One integer key per vertex triple (k, 3) of ``mesh`` (order-free)."""
+    nv = np.int64(mesh.nvertices)
+    t = np.sort(tri, axis=1).astype(np.int64)
+    return (t[:, 0] * nv + t[:, 1]) * nv + t[:, 2]
+
+
+def mirror_zone(zone: ZoneMesh) -> ZoneMesh:
+    """The mirror image across ``z = 0`` of a zone mesh: node ``i`` of the image is node
+    ``i`` of the zone with its ``z`` negated (exactly: the image of the image is the zone
+    bit for bit), each element's nodes in the order that keeps its Jacobian positive
+    (``mesh.mirror.FLIP_TET10``), the named boundaries and subdomains carried over with the
+    front and rear names exchanged (``journal_1 <-> journal_2``, ...: ``mesh.mirror.swap_side``),
+    the balls' centres mirrored.  It is the mesh the mirrored ball of a symmetric throw would
+    have if its own mesh were made as the mirror image of the zone's (as the throw's own
+    mesh is, ``mesh.mirror``)."""
+    from skfem import MeshTet2
+
+    mesh = zone.mesh
+    P = np.array(mesh.doflocs, dtype=float)
+    P[2] = -P[2]
+    T = np.asarray(mesh.dofs.element_dofs, dtype=np.int64)[FLIP_TET10]
+    image = MeshTet2(P, T.astype(np.int32))
+    if image.nvertices != mesh.nvertices or not np.array_equal(image.t, mesh.t[FLIP_TET10[:4]]):
+        raise MeshError("the mirror image of a hot-spot zone does not keep its node numbering")
+    keys = _facet_keys(image, image.facets.T)
+    order = np.argsort(keys)
+    bnd = {}
+    for name, idx in (mesh.boundaries or {}).items():
+        want = _facet_keys(mesh, mesh.facets[:, np.asarray(idx, dtype=np.int64)].T)
+        pos = np.minimum(np.searchsorted(keys[order], want), keys.size - 1)
+        if np.any(keys[order][pos] != want):
+            raise MeshError("the mirror image of a hot-spot zone lost a boundary facet")
+        bnd[swap_side(name)] = np.sort(order[pos]).astype(np.int32)
+    if bnd:
+        image = image.with_boundaries(bnd)
+    sub = {swap_side(name): np.asarray(idx) for name, idx in (mesh.subdomains or {}).items()}
+    if sub:
+        image = image.with_subdomains(sub)
+    return ZoneMesh(
+        mesh=image,
+        centres=tuple((c[0], c[1], -c[2]) for c in zone.centres),
+        radii=zone.radii,
+        options=zone.options,
+        fillet_max_edge={swap_side(k): v for k, v in zone.fillet_max_edge.items()},
+        seconds=0.0,
+        mirrored=False,
     )
 
 
@@ -320,6 +384,7 @@ def mesh_solid_zone_levels(
     names: tuple[np.ndarray, list[str]],
     *,
     group_nodes: float | None = None,
+    mirrored=None,
 ) -> list[list[ZoneMesh]]:
     """Mesh the throw of ``solid`` inside the balls (``centres`` (k, 3),
     ``radii`` (k,), m; overlapping balls make one zone of their union) at each of the
@@ -331,7 +396,11 @@ def mesh_solid_zone_levels(
     overlapping balls is a piece), each group of at most ``group_nodes`` mesh nodes (a
     larger piece alone; None: one group), so that each group can be solved as its own
     model: the pieces share no node, so their systems are independent and the groups'
-    solutions are the whole mesh's."""
+    solutions are the whole mesh's.
+
+    ``mirrored`` (k,) bool, default none: the balls whose zone's mirror image across
+    ``z = 0`` is a zone too (``ZoneMesh.mirrored``, ``mirror_zone``); a ball so marked must
+    overlap no ball that is not, and the groups hold pieces of one kind only."""
     from fe_crank.gmsh_io import gmsh_session
 
     cs = np.atleast_2d(np.asarray(centres, float))
@@ -340,6 +409,7 @@ def mesh_solid_zone_levels(
     with gmsh_session() as gmsh:
         parts = _build(gmsh, solid, cs, rs, names)
         pieces = _pieces(gmsh, parts.volumes)
+        kinds = [False] * len(pieces) if mirrored is None else [_piece_kind(gmsh, p, cs, rs, mirrored) for p in pieces]
         for options in levels:
             t0 = time.perf_counter()
             gmsh.model.mesh.clear()
@@ -352,9 +422,11 @@ def mesh_solid_zone_levels(
                 raise ZoneMeshError(str(exc), _culprit(gmsh, cs) if len(cs) > 1 else 0) from None
             counts = [_node_count(gmsh, p) for p in pieces]
             level = []
-            for g in _groups(counts, group_nodes):
-                vols = sorted(t for i in g for t in pieces[i])
-                level.append(_convert(gmsh, parts, vols, cs, rs, options, t0))
+            for kind in sorted(set(kinds)):  # the pieces of one kind packed together
+                of_kind = [i for i, k in enumerate(kinds) if k == kind]
+                for g in _groups([counts[i] for i in of_kind], group_nodes):
+                    vols = sorted(t for i in g for t in pieces[of_kind[i]])
+                    level.append(_convert(gmsh, parts, vols, cs, rs, options, t0, kind))
             out.append(level)
     return out
 
@@ -382,5 +454,6 @@ __all__ = [
     "mesh_solid_zone_levels",
     "mesh_zone",
     "mesh_zone_levels",
+    "mirror_zone",
     "parametric_solid",
 ]

@@ -156,3 +156,67 @@ def test_a_ball_gmsh_cannot_mesh_is_named_and_grown(check_solution):
     got = level_meshes(parametric_solid(geometry, spec), [level], spots, samples)
     assert len(got) == 1 and len(got[0]) == 1  # one model, one group
     assert got[0][0].radii == pytest.approx((sound[1], RETRY_GROWTH * GRAZING[1]))
+
+
+def test_mirror_image_zone_solved_with_the_zones_factorisation(check_solution):
+    """The mirror image of a zone across z = 0 (``mesh.zone.mirror_zone``) solved with the
+    zone's own factorisation (its stiffness is D K D, D flipping z) under its own loads and
+    its own driven displacements equals the image solved as a zone of its own: the torque's
+    driven field is not symmetric, so the two sides' data differ."""
+    from fe_crank.fe.refinement.zone import ZoneSystem, boundary_samples, solve_zone, zone_peaks
+    from fe_crank.fe.refinement.zone_study import FAMILIES, REACH
+    from fe_crank.mesh.zone import mesh_zone, mirror_zone
+
+    geometry, _, tm, units = check_solution
+    spec, samples = geometry.throw(tm.throw), boundary_samples(units.mesh)
+    r = 3 * geometry.crankpin_fillet
+    centre = (0.0, geometry.crank_radius - 0.5 * geometry.crankpin_diameter, 0.5 * geometry.crankpin_length)
+    zone = mesh_zone(geometry, spec, PRESETS["test"], [centre], [r], samples)
+    image = mirror_zone(zone)
+    assert image.centres == ((centre[0], centre[1], -centre[2]),)
+    assert "crankpin_fillet_2" in zone.mesh.boundaries and "crankpin_fillet_1" in image.mesh.boundaries
+    fields = {k: units.combine(w) for k, w in LOADS.items()}
+    interp = Interpolator(units.mesh, units.system.basis.dofs, units.points)
+    system = ZoneSystem(zone, Steel(), units.options)
+    try:
+        got = system.mirror_fields(image, units.pin, LOADS, fields, interp)
+    finally:
+        system.release()
+    assert got is not None
+    want, basis = solve_zone(image, Steel(), units.options, units.pin, LOADS, fields, interp)
+    for name in LOADS:
+        assert np.abs(got[0][name] - want[name]).max() <= 1e-9 * np.abs(want[name]).max(), name
+    every = [n for _, names in FAMILIES for n in names]
+    a = zone_peaks(image, got[1], Steel(), got[0], every, REACH)
+    b = zone_peaks(image, basis, Steel(), want, every, REACH)
+    assert a.keys() == b.keys() and all(a[k] for k in a)
+    for k in a:
+        for s in a[k]:
+            assert a[k][s] == pytest.approx(b[k][s], rel=1e-9), (k, s)
+
+
+def test_spots_folded_onto_one_side_of_a_symmetric_throw():
+    """``fold_spots``: exact and near mirror pairs share one ball (a near pair's grown to hold
+    both), a ball reaching the plane and a ball whose mirror image overlaps it keep their
+    own, two balls on either side that the fold would join into one zone keep their own,
+    and a throw that is not symmetric keeps every ball."""
+    from fe_crank.fe.refinement.zone_study import FOLD_MERGE, HotSpot, fold_spots
+
+    r = 0.01
+    spots = [
+        HotSpot((0.0, 0.05, 0.04), r, "journal_fillet_2"),
+        HotSpot((0.0, 0.05, -0.04), r, "journal_fillet_1"),  # exact mirror pair
+        HotSpot((0.03, 0.0, 0.008), r, "oil_bore"),  # reaches the plane
+        HotSpot((0.03, 0.0, -0.021), r, "crankpin_fillet_1"),  # only its mirror overlaps the bore's ball
+        HotSpot((-0.04, 0.0, 0.05), r, "counterweight_fillet_2"),
+        HotSpot((-0.04, 0.0002, -0.05), r, "counterweight_fillet_1"),  # a near mirror pair
+        HotSpot((0.04, -0.05, 0.05), r, "counterweight_fillet_2"),
+        HotSpot((0.045, -0.05, -0.05), r, "counterweight_fillet_1"),  # folded: 0.5 r from the one above
+    ]
+    balls, mirrored, owner = fold_spots(spots, True)
+    assert owner[0] == owner[1] and owner[4] == owner[5] and len(balls) == 6
+    assert [mirrored[k] for k in owner] == [True, True, False, False, True, True, False, False]
+    assert [balls[owner[i]] for i in (2, 3, 6, 7)] == [spots[i] for i in (2, 3, 6, 7)]
+    grown = balls[owner[4]]
+    assert r < grown.radius <= r * (1 + FOLD_MERGE) and grown.centre[2] > 0
+    assert fold_spots(spots, False) == (spots, [False] * 8, list(range(8)))

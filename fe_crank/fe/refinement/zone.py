@@ -16,7 +16,11 @@ integration order) with
 * every other face free (the fillets, the oil bore, the web faces).
 
 Every load set of the study is a right-hand side of one factorisation (the prescribed
-values enter as -K_fd u_d).  This is the classical cut-boundary displacement submodel
+values enter as -K_fd u_d; ``ZoneSystem``).  The mirror image of the zone across ``z = 0``
+(``mesh.zone.mirror_zone``: node i of the image is node i of the zone with ``z`` negated)
+has the stiffness D K D, D the reflection of the ``z`` components, so it is solved with the
+same factorisation (``ZoneSystem.mirror_fields``): D times the zone's solution under D
+times the image's own loads and driven displacements, whatever the load.  This is the classical cut-boundary displacement submodel
 (Cormier, Smallwood, Sinclair & Meda, "Aggressive submodelling of stress
 concentrations", Int. J. Numer. Meth. Engng 46 (1999) 889-909): its error is the
 error of the global displacement on the cut, which decays away from the hot spot, and is
@@ -121,32 +125,20 @@ def _pin_traction(fb, pin: PinPressure):
     return lambda xq, nq: -pin.peak_pressure * sh[None] * n
 
 
-def solve_zone(
-    zone: ZoneMesh,
-    material: Material,
-    options: FeOptions,
-    pins: dict[str, PinPressure],
-    loads: dict[str, dict[str, float]],
-    driven: dict[str, np.ndarray],
-    interpolator: Interpolator,
-):
-    """Zone displacements {load set: interleaved vector} and the zone's scalar basis.
-
-    ``loads``: {load set: {unit case: weight}}; ``driven``: {load set: the assessed
-    solution of that load set} (interleaved, on the interpolator's mesh); ``pins``: the
-    global pin unit cases' pressures."""
+def held_nodes(zone: ZoneMesh, basis, options: FeOptions) -> np.ndarray:
+    """The zone's nodes whose displacement is prescribed (``driven_boundaries``), ascending."""
     mesh = zone.mesh
-    basis = cell_basis(mesh, options.intorder)
-    K = assemble_stiffness(basis, material.youngs_modulus, material.poisson_ratio)
-    n = 3 * basis.N
     held_facets = [mesh.boundaries[b] for b in dict.fromkeys(driven_boundaries(options)) if b in mesh.boundaries]
-    nodes = np.unique(basis.get_dofs(np.concatenate(held_facets)).all())
-    held = (3 * nodes[:, None] + np.arange(3)).ravel()
-    free = np.setdiff1d(np.arange(n), held)
+    return np.unique(basis.get_dofs(np.concatenate(held_facets)).all())
+
+
+def zone_loads(
+    zone: ZoneMesh, basis, material: Material, options: FeOptions, pins: dict[str, PinPressure], loads
+) -> np.ndarray:
+    """(3 N, load sets) the loads that act inside the zone (module docstring), interleaved."""
+    mesh = zone.mesh
     names = list(loads)
-    pts = basis.doflocs[:, nodes]
-    g = interpolator.values(pts, [driven[k] for k in names])
-    F = np.zeros((n, len(names)))
+    F = np.zeros((3 * basis.N, len(names)))
     pin_fb = None
     body: dict[str, np.ndarray] = {}
     for j, name in enumerate(names):
@@ -165,33 +157,124 @@ def solve_zone(
                 F[:, j] += w * assemble_surface_load(pin_fb, _pin_traction(pin_fb, pins[case]))
             elif case != "torque":  # the torque enters at an end face: driven where the zone holds it
                 raise MeshError(f"the hot-spot zone cannot apply the unit case {case!r}")
-    U = np.zeros((n, len(names)))
-    for j in range(len(names)):
-        U[held, j] = g[j].T.ravel()
-    K = sp.csr_matrix(K)
-    Kff = K[free][:, free]
-    rhs = F[free] - K[free][:, held] @ U[held]
-    fac = factorise(Kff, "auto")
+    return F
+
+
+class ZoneSystem:
+    """A zone's stiffness split at its driven dofs, the free block factorised once, for any
+    number of load sets (``solve``) and for the zone's mirror image (``solve_mirror``)."""
+
+    def __init__(self, zone: ZoneMesh, material: Material, options: FeOptions):
+        self.zone, self.material, self.options = zone, material, options
+        basis = self.basis = cell_basis(zone.mesh, options.intorder)
+        K = sp.csr_matrix(assemble_stiffness(basis, material.youngs_modulus, material.poisson_ratio))
+        self.n = 3 * basis.N
+        self.nodes = held_nodes(zone, basis, options)
+        self.held = (3 * self.nodes[:, None] + np.arange(3)).ravel()
+        self.free = np.setdiff1d(np.arange(self.n), self.held)
+        rows = K[self.free]
+        self.K_fh = rows[:, self.held]
+        self.factor = factorise(rows[:, self.free], "auto")
+
+    def solve(self, F: np.ndarray, G: np.ndarray) -> np.ndarray:
+        """(3 N, k) displacements under loads F (3 N, k) with the driven nodes' displacements
+        G (3, n_held, k)."""
+        U = np.zeros((self.n, F.shape[1]))
+        U[self.held] = G.transpose(1, 0, 2).reshape(-1, F.shape[1])
+        U[self.free] = self.factor.solve(F[self.free] - self.K_fh @ U[self.held]).reshape(-1, F.shape[1])
+        return U
+
+    def fields(self, pins, loads, driven, interpolator) -> dict[str, np.ndarray]:
+        """{load set: the zone's displacement} (``solve_zone``)."""
+        return self.fields_and_mirror(None, pins, loads, driven, interpolator)[0]
+
+    def mirror_fields(self, image: ZoneMesh, pins, loads, driven, interpolator):
+        """({load set: displacement}, basis) of the zone's mirror image ``image``
+        (``mesh.zone.mirror_zone``) with its own loads and driven displacements, solved with
+        this factorisation: node i of the image is node i of the zone reflected by D
+        (z -> -z), so its stiffness is D K D and its solution D times the zone's solution
+        under D times its loads and driven displacements.  None when the image's nodes or
+        driven nodes are not the zone's reflected (then solve the image as a zone of its own)."""
+        data = self._mirror_data(image, pins, loads, driven, interpolator)
+        if data is None:
+            return None
+        F, g, flip, basis = data
+        U = flip * self.solve(F, g)
+        return {name: U[:, j] for j, name in enumerate(loads)}, basis
+
+    def fields_and_mirror(self, image: ZoneMesh | None, pins, loads, driven, interpolator):
+        """(``fields``, ``mirror_fields(image, ...)`` or None without ``image``), every
+        right-hand side of both in one solve."""
+        names = list(loads)
+        k = len(names)
+        F = zone_loads(self.zone, self.basis, self.material, self.options, pins, loads)
+        g = np.stack(interpolator.values(self.basis.doflocs[:, self.nodes], [driven[n] for n in names]), axis=-1)
+        data = None if image is None else self._mirror_data(image, pins, loads, driven, interpolator)
+        if data is not None:
+            F, g = np.hstack([F, data[0]]), np.concatenate([g, data[1]], axis=-1)
+        U = self.solve(F, g)
+        own = {name: U[:, j] for j, name in enumerate(names)}
+        if data is None:
+            return own, None
+        V = data[2] * U[:, k:]
+        return own, ({name: V[:, j] for j, name in enumerate(names)}, data[3])
+
+    def _mirror_data(self, image: ZoneMesh, pins, loads, driven, interpolator):
+        """(D F, D g, D as a column, basis) of the image's own loads F and driven
+        displacements g, or None (``mirror_fields``)."""
+        basis = cell_basis(image.mesh, self.options.intorder)
+        x, y = self.basis.doflocs, basis.doflocs
+        tol = 1e-12 * float(np.ptp(x, axis=1).max())
+        if x.shape != y.shape or np.abs(x[:2] - y[:2]).max() > tol or np.abs(x[2] + y[2]).max() > tol:
+            return None
+        if not np.array_equal(held_nodes(image, basis, self.options), self.nodes):
+            return None
+        flip = np.tile([1.0, 1.0, -1.0], self.n // 3)[:, None]  # D on interleaved vectors
+        F = flip * zone_loads(image, basis, self.material, self.options, pins, loads)
+        g = np.stack(interpolator.values(y[:, self.nodes], [driven[n] for n in loads]), axis=-1)
+        g[2] *= -1.0
+        return F, g, flip, basis
+
+    def release(self) -> None:
+        self.factor.free()
+
+
+def solve_zone(
+    zone: ZoneMesh,
+    material: Material,
+    options: FeOptions,
+    pins: dict[str, PinPressure],
+    loads: dict[str, dict[str, float]],
+    driven: dict[str, np.ndarray],
+    interpolator: Interpolator,
+):
+    """Zone displacements {load set: interleaved vector} and the zone's scalar basis.
+
+    ``loads``: {load set: {unit case: weight}}; ``driven``: {load set: the assessed
+    solution of that load set} (interleaved, on the interpolator's mesh); ``pins``: the
+    global pin unit cases' pressures."""
+    system = ZoneSystem(zone, material, options)
     try:
-        U[free] = fac.solve(rhs)
+        return system.fields(pins, loads, driven, interpolator), system.basis
     finally:
-        fac.free()
-    return {name: U[:, j] for j, name in enumerate(names)}, basis
+        system.release()
 
 
 def zone_peaks(
-    zone: ZoneMesh, basis, material: Material, fields: dict[str, np.ndarray], surfaces, reach: float
+    zone: ZoneMesh, basis, material: Material, fields: dict[str, np.ndarray], surfaces, reach: float, spots=None
 ) -> dict[str, dict[str, float]]:
     """{load set: {surface: peak averaged nodal von Mises, Pa}} on the zone's ``surfaces``
-    at the nodes within ``reach`` x a ball's radius of its centre (away from the cut)."""
+    at the nodes within ``reach`` x a ball's radius of its centre (away from the cut);
+    ``spots``: (centres, radii) read round instead of the zone's balls."""
     mesh = zone.mesh
     x = basis.doflocs
+    centres, radii = (zone.centres, zone.radii) if spots is None else spots
     groups = {}
     for name in surfaces:
         if name in (mesh.boundaries or {}):
             nodes = basis.get_dofs(mesh.boundaries[name]).all()
             near = np.zeros(nodes.size, bool)
-            for c, r in zip(zone.centres, zone.radii):
+            for c, r in zip(centres, radii):
                 near |= np.linalg.norm(x[:, nodes] - np.asarray(c)[:, None], axis=0) <= reach * r
             if near.any():
                 groups[name] = nodes[near]
@@ -208,4 +291,13 @@ def zone_peaks(
     return out
 
 
-__all__ = ["Interpolator", "boundary_samples", "driven_boundaries", "solve_zone", "zone_peaks"]
+__all__ = [
+    "Interpolator",
+    "ZoneSystem",
+    "boundary_samples",
+    "driven_boundaries",
+    "held_nodes",
+    "solve_zone",
+    "zone_loads",
+    "zone_peaks",
+]
