@@ -172,14 +172,17 @@ def single_reference_path(
         planes = np.empty((6, c.shape[0], b), np.float32)
         for j in range(6):
             np.dot(c32, u32[:, j, :], out=planes[j])
-        peak[s : s + b] = von_mises_planes(planes).max(axis=0).astype(float) * up32 + v_a
+        # about a zero centre: every pass in single precision (the scratch planes too)
+        scratch = np.empty_like(planes)
+        vm0 = von_mises_planes(planes, np.zeros((6, b), np.float32), buf=scratch)
+        peak[s : s + b] = vm0.max(axis=0).astype(float) * up32 + v_a
         if vals is None:
             continue
         hi, lo = planes.max(axis=1).astype(float), planes.min(axis=1).astype(float)
         m = 0.5 * (hi + lo)
-        r0, far = fatigue.max_and_first(von_mises_planes(planes, m.astype(np.float32)))
+        r0, far = fatigue.max_and_first(von_mises_planes(planes, m.astype(np.float32), buf=scratch))
         cols = np.arange(b)
-        chord = 0.5 * von_mises_planes(planes, planes[:, far, cols]).max(axis=0).astype(float)
+        chord = 0.5 * von_mises_planes(planes, planes[:, far, cols], buf=scratch).max(axis=0).astype(float)
         p0 = ((planes[0] + planes[1] + planes[2]) / np.float32(3.0)).max(axis=0).astype(float)
         p_a = (a[0] + a[1] + a[2]) / 3.0
         vals[0, s : s + b] = von_mises(m) + v_a
