@@ -34,6 +34,10 @@ of that placement and state, whose history differs by a constant (its
 counterweights' centrifugal cases) and the change of the redundant bearings' forces
 (``reference_shift``); the searches take those bounds and skip the groups that cannot
 reach the state's extremes found so far: the same values, at a fraction of the cost.
+A group's reference is built only when its turn comes and it can reach them: until then
+it is bounded by another placement's reference of the same state where one is built (the
+same argument for any two histories of the same angles), and a group skipped by that
+bound is never built (``candidate_stresses``, ``candidate_overspeed``).
 
 Screened on the drawn shape's mesh: a counterweight of another shape or thickness (the
 sector the candidate writes) changes the web's stiffness and the load's spread over the

@@ -125,6 +125,33 @@ def reference_path(
 _U32 = float(np.finfo(np.float32).eps) / 2
 
 
+def _peak32(planes: np.ndarray, scratch: np.ndarray) -> np.ndarray:
+    """max_t of von Mises' stress of the single-precision path ``planes`` (6, n_t, n), every
+    operation in single precision, as ``stress.von_mises_planes`` orders them; the square
+    root taken of the largest square (the same value: the rounded square root is
+    monotone); ``scratch`` (>= 4 planes) is overwritten."""
+    x, y, z = planes[0], planes[1], planes[2]
+    acc, tmp, sq = scratch[0], scratch[1], scratch[2]
+    np.subtract(x, y, out=acc)
+    np.multiply(acc, acc, out=acc)
+    np.subtract(y, z, out=tmp)
+    np.multiply(tmp, tmp, out=tmp)
+    acc += tmp
+    np.subtract(z, x, out=tmp)
+    np.multiply(tmp, tmp, out=tmp)
+    acc += tmp
+    acc *= np.float32(0.5)
+    np.multiply(planes[3], planes[3], out=sq)
+    np.multiply(planes[4], planes[4], out=tmp)
+    sq += tmp
+    np.multiply(planes[5], planes[5], out=tmp)
+    sq += tmp
+    sq *= np.float32(3.0)
+    acc += sq
+    out: np.ndarray = np.sqrt(acc.max(axis=0))
+    return out
+
+
 def single_reference_path(
     unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, *, fatigue_values: bool = True, block: int = 128
 ) -> ReferencePath:
@@ -172,10 +199,8 @@ def single_reference_path(
         planes = np.empty((6, c.shape[0], b), np.float32)
         for j in range(6):
             np.dot(c32, u32[:, j, :], out=planes[j])
-        # about a zero centre: every pass in single precision (the scratch planes too)
         scratch = np.empty_like(planes)
-        vm0 = von_mises_planes(planes, np.zeros((6, b), np.float32), buf=scratch)
-        peak[s : s + b] = vm0.max(axis=0).astype(float) * up32 + v_a
+        peak[s : s + b] = _peak32(planes, scratch).astype(float) * up32 + v_a
         if vals is None:
             continue
         hi, lo = planes.max(axis=1).astype(float), planes.min(axis=1).astype(float)
