@@ -31,6 +31,10 @@ allowance; each computed component is within ~n_cases x 1.1e-16 of sum_c |W_c| |
 every bound by ``peak.BOUND_RTOL``.  The bounds only order and skip nodes of ``extremes``' searches, which
 evaluate the history itself at every node that can govern: the extremes found are those
 of an evaluation of every node, whichever reference is taken (a closer one skips more).
+Nothing above asks W0 to be close to W: any history of the same angles bounds any other
+(a study's candidate of another placement, its counterweight cases zero or scaled,
+bounds a group until the group's own reference is built), only less tightly the
+farther it is.
 """
 
 from __future__ import annotations
