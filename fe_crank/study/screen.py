@@ -404,11 +404,15 @@ def candidate_stresses(
     only when needed and kept), else another placement's reference of the same state --
     and a group whose bounds cannot reach the state's extremes found so far (its peak
     bound below the largest peak found, its safety bound above the least safety found:
-    both strictly) is neither built nor searched.  A group holding a reported value, or
+    both strictly; its peak bound alone where its search finds no safety: a counterweight's
+    group, a group not assessed for fatigue, or ``fatigue`` False) is neither built nor
+    searched.  A group holding a reported value, or
     tying with it exactly, has bounds that reach it, so it is searched: each reported value
     and its place (the first of the throws and groups in their order holding it) are those
-    of a search of every group (module doc of ``assess.group.extremes``: a group's own
-    extremes do not depend on the order or the bounds it is searched by)."""
+    of a search of every group: a group searched has its own placement's bounds, the
+    search it has without the skipping, and the order of the groups changes only which
+    of its nodes the search evaluates, not their values nor the group's own extremes
+    (``assess.group.extremes``)."""
     crank_radius = shaft.layout.geometry.crank_radius
     limits = fatigue_limits(material) if fatigue else None
     best = {"shaft": (0.0, ""), "cw": (0.0, "")}
@@ -476,7 +480,7 @@ def candidate_stresses(
             lower, top_, i, own, b = heapq.heappop(heap)
             name, unit, g, add, kf, bd = items[i]
             key = "shaft" if group_kind(g) in SHAFT_KINDS else "cw"
-            if -top_ < best_peak[key] and lower > running.fatigue:
+            if -top_ < best_peak[key] and (not bd.fatigue_values or lower > running.fatigue):
                 continue  # cannot reach the state's extremes found so far (docstring)
             if not own:
                 b = bd.own()

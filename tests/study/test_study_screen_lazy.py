@@ -94,7 +94,9 @@ def _bounds(unit, ref_w, w, g, fatigue_values):
     return reference_bounds(ref, *(a[:, nodes] for a in reference_shift(ref_w, unit, w, abs_sum(unit))))
 
 
-def _every_group(shaft: StudyShaft, loads: list[StateLoads], ref_loads: list[StateLoads]) -> StressScreen:
+def _every_group(
+    shaft: StudyShaft, loads: list[StateLoads], ref_loads: list[StateLoads], fatigue: bool = True
+) -> StressScreen:
     """Each group searched on its own (no state's running value, nothing skipped), by the
     bounds of its placement's first candidate ``ref_loads`` (the search's node blocks as
     the screening's)."""
@@ -105,6 +107,7 @@ def _every_group(shaft: StudyShaft, loads: list[StateLoads], ref_loads: list[Sta
         for name, unit in shaft.stresses:
             for g in sorted(unit.groups):
                 shaft_group = not of_counterweight(g)
+                with_fatigue = shaft_group and fatigue
                 r = group_extremes(
                     unit,
                     g,
@@ -113,9 +116,9 @@ def _every_group(shaft: StudyShaft, loads: list[StateLoads], ref_loads: list[Sta
                     MAT,
                     crank_radius=0.05,
                     diameter=section_diameter(g, *DIAMETERS),
-                    wanted=Wanted(fatigue=shaft_group, gough_pollard=False),
+                    wanted=Wanted(fatigue=with_fatigue, gough_pollard=False),
                     additional_bending=ADD if sigma_add_applies(g) else 0.0,
-                    reference=_bounds(unit, ref.weights, sl.weights, g, shaft_group),
+                    reference=_bounds(unit, ref.weights, sl.weights, g, with_fatigue),
                     block=REFERENCE_BLOCK,
                 )
                 key = "shaft" if shaft_group else "cw"
@@ -123,10 +126,10 @@ def _every_group(shaft: StudyShaft, loads: list[StateLoads], ref_loads: list[Sta
                     best[key] = (r.max_von_mises.value, f"throw {name} {g}, {at}")
                 if shaft_group:
                     static = min(static, r.static_safety)
-                    if fat is None or r.fatigue_safety.value < fat[0]:
+                    if fatigue and (fat is None or r.fatigue_safety.value < fat[0]):
                         fat = (r.fatigue_safety.value, f"throw {name} {g}, {at}")
-    assert fat is not None
-    return StressScreen(best["shaft"][0], best["shaft"][1], static, fat[0], fat[1], best["cw"][0], best["cw"][1])
+    least, where = (None, "") if fat is None else fat
+    return StressScreen(best["shaft"][0], best["shaft"][1], static, least, where, best["cw"][0], best["cw"][1])
 
 
 def test_lazy_references_give_every_groups_values_and_places():
@@ -159,3 +162,17 @@ def test_lazy_references_give_every_groups_values_and_places():
     n_groups = 2 * len(GROUPS)
     own = [len(r) - 1 for k, r in shaft.references.items() if k[0] != "overspeed"]
     assert len(own) == 4 and max(own) == n_groups and min(own) < n_groups
+
+
+def test_lazy_static_screening_gives_every_groups_peaks():
+    """The static peaks alone (``fatigue`` False): groups skipped by their peak bound alone."""
+    shaft = _shaft(np.random.default_rng(8))
+    placements: dict[tuple, list[StateLoads]] = {}
+    for cw in [(1.0, 1.0, 1.0, 1.0), (1.4, 0.0, 1.4, 0.0), (2.0, 2.0, 2.0, 2.0)]:
+        loads = _loads(cw)
+        ref_loads = placements.setdefault(tuple(c != 0.0 for c in cw), loads)
+        got = candidate_stresses(shaft, loads, MAT, additional_bending=ADD, diameters=DIAMETERS, fatigue=False)
+        assert got == _every_group(shaft, loads, ref_loads, fatigue=False) and got.fatigue_safety is None
+        assert got.shaft_peak_where.startswith("throw 1 ")
+    own = [len(r) - 1 for r in shaft.references.values()]
+    assert max(own) == 2 * len(GROUPS) and min(own) < 2 * len(GROUPS)
