@@ -34,6 +34,10 @@ of that placement and state, whose history differs by a constant (its
 counterweights' centrifugal cases) and the change of the redundant bearings' forces
 (``reference_shift``); the searches take those bounds and skip the groups that cannot
 reach the state's extremes found so far: the same values, at a fraction of the cost.
+A group's reference is built only when its turn comes and it can reach them: until then
+it is bounded by another placement's reference of the same state where one is built (the
+same argument for any two histories of the same angles), and a group skipped by that
+bound is never built (``candidate_stresses``, ``candidate_overspeed``).
 
 Screened on the drawn shape's mesh: a counterweight of another shape or thickness (the
 sector the candidate writes) changes the web's stiffness and the load's spread over the
@@ -43,6 +47,7 @@ web, which the full check of the written geometry takes (docs/study.md).
 from __future__ import annotations
 
 import dataclasses
+import heapq
 import math
 from dataclasses import dataclass
 
@@ -54,7 +59,13 @@ from fe_crank.assess.group.assessment import fatigue_assessed, of_counterweight,
 from fe_crank.assess.group.bounds import window_peak_bound
 from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.group.peak import group_peak
-from fe_crank.assess.group.reference import abs_sum, reference_bounds, reference_shift, single_reference_path
+from fe_crank.assess.group.reference import (
+    PathBounds,
+    abs_sum,
+    reference_bounds,
+    reference_shift,
+    single_reference_path,
+)
 from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.assess.superpose import UnitStresses
 from fe_crank.cad.source import mesh_source_shaft
@@ -321,6 +332,56 @@ class StressScreen:
     counterweight_where: str
 
 
+def _other_references(shaft: StudyShaft, key: tuple) -> list[dict]:
+    """The references of the same state (or overspeed cycles) and weights' shape as
+    ``key`` but of another placement: what bounds a group whose own reference is not built
+    (``candidate_stresses``)."""
+    return [r for k, r in shaft.references.items() if k != key and k[:-1] == key[:-1]]
+
+
+class _Bounds:
+    """A history's bounds at one group's nodes from its own placement's reference, built
+    when first needed (``candidate_stresses``): until then from another placement's
+    reference of the same state where one holds the group (``cheap``), each as rigorous
+    as the other (``assess.group.reference``'s argument holds for any two histories of
+    the same angles)."""
+
+    def __init__(self, shaft, refs, others, name, unit, weights, nodes, group, fatigue_values, shifts):
+        self.shaft, self.refs, self.others, self.name, self.unit = shaft, refs, others, name, unit
+        self.weights, self.nodes, self.group, self.fatigue_values, self.shifts = (
+            weights,
+            nodes,
+            group,
+            fatigue_values,
+            shifts,
+        )
+
+    def _shift(self, ref_w: np.ndarray):
+        k = (self.name, id(ref_w))
+        if k not in self.shifts:
+            self.shifts[k] = (ref_w, reference_shift(ref_w, self.unit, self.weights, self.shaft.abs_sums[self.name]))
+        return self.shifts[k][1]
+
+    def cheap(self):
+        """Bounds from another placement's reference of the group, None without one."""
+        for r in self.others:
+            if (self.name, self.group) in r:
+                shifted = self._shift(r["weights"])
+                if shifted is not None:
+                    return reference_bounds(r[(self.name, self.group)], *(a[:, self.nodes] for a in shifted))
+        return None
+
+    def own(self):
+        """Bounds from the group's own reference (built now if not yet: ``shaft.references``
+        keeps it for the later candidates); None where the histories' angles differ."""
+        key = (self.name, self.group)
+        ref_w = self.refs["weights"]
+        if key not in self.refs:
+            self.refs[key] = single_reference_path(self.unit, ref_w, self.nodes, fatigue_values=self.fatigue_values)
+        shifted = self._shift(ref_w)
+        return None if shifted is None else reference_bounds(self.refs[key], *(a[:, self.nodes] for a in shifted))
+
+
 def candidate_stresses(
     shaft: StudyShaft,
     loads: list[StateLoads],
@@ -335,7 +396,23 @@ def candidate_stresses(
     extremes by the check's own search (``group_extremes``: the static peak, the least
     Goodman safety with the size and surface factors of ``diameters`` (pin, journal) and
     UR M53's sigma_add on the shaft fillets, as ``assess.shaft.assess_shaft_throws``;
-    ``fatigue`` False: the static peaks alone, ``fatigue_safety`` None)."""
+    ``fatigue`` False: the static peaks alone, ``fatigue_safety`` None).
+
+    Groups searched lazily: in each state the groups go in increasing lower bound of the
+    least Goodman safety, then in decreasing upper bound of the peak, each by the best
+    bounds at hand -- its own placement's reference (``single_reference_path``, built
+    only when needed and kept), else another placement's reference of the same state --
+    and a group whose bounds cannot reach the state's extremes found so far (its peak
+    bound below the largest peak found, its safety bound above the least safety found:
+    both strictly; its peak bound alone where its search finds no safety: a counterweight's
+    group, a group not assessed for fatigue, or ``fatigue`` False) is neither built nor
+    searched.  A group holding a reported value, or
+    tying with it exactly, has bounds that reach it, so it is searched: each reported value
+    and its place (the first of the throws and groups in their order holding it) are those
+    of a search of every group: a group searched has its own placement's bounds, the
+    search it has without the skipping, and the order of the groups changes only which
+    of its nodes the search evaluates, not their values nor the group's own extremes
+    (``assess.group.extremes``)."""
     crank_radius = shaft.layout.geometry.crank_radius
     limits = fatigue_limits(material) if fatigue else None
     best = {"shaft": (0.0, ""), "cw": (0.0, "")}
@@ -346,39 +423,69 @@ def candidate_stresses(
         theta = np.asarray(sl.state.dynamics.theta, float)
         running = Running()
         at = f"{sl.state.label} at {sl.state.speed * 30 / math.pi:.0f} rpm"
-        refs = shaft.references.setdefault(_reference_key(shaft, sl), {})
-        ref_w = refs.setdefault("weights", sl.weights)
+        key_ = _reference_key(shaft, sl)
+        refs = shaft.references.setdefault(key_, {})
+        refs.setdefault("weights", sl.weights)
+        others = _other_references(shaft, key_)
         best_peak = {"shaft": -math.inf, "cw": -math.inf}
         items = []
+        shifts: dict = {}
         for name, unit in shaft.stresses:
             if name not in shaft.abs_sums:
                 shaft.abs_sums[name] = abs_sum(unit)
-            shifted = reference_shift(ref_w, unit, sl.weights, shaft.abs_sums[name])
             for g in sorted(unit.groups):
                 kind = group_kind(g)
                 if not len(unit.groups[g]) or kind not in SHAFT_KINDS + COUNTERWEIGHT_KINDS:
                     continue
                 nodes = np.asarray(unit.groups[g])
                 fat_values = limits is not None and kind in SHAFT_KINDS and fatigue_assessed(g)
-                if (name, g) not in refs:
-                    refs[(name, g)] = single_reference_path(unit, ref_w, nodes, fatigue_values=fat_values)
-                bounds = None if shifted is None else reference_bounds(refs[(name, g)], *(a[:, nodes] for a in shifted))
                 add = additional_bending if sigma_add_applies(g) else 0.0
-                lower = math.inf  # the group's least lower bound of the Goodman safety
-                if fat_values and fatigue and bounds is not None and bounds.amplitude is not None:
-                    assert limits is not None
-                    k = factors(material, section_diameter(g, *diameters), location_of(g)).product
-                    lower = float(bounds.goodman_lower(k * limits.bending, limits.tensile, add).min())
-                top = math.inf if bounds is None else float(bounds.peak.max())
-                items.append((lower, -top, name, unit, g, bounds, add))
-        # the groups in increasing least bound of the fatigue safety, then in decreasing
-        # bound of the peak: the state's extremes are found first, and a group whose bounds
-        # cannot reach them (its peak at most the largest found, its least safety above the
-        # least found) cannot change the screened values and is not searched
+                kf = (
+                    factors(material, section_diameter(g, *diameters), location_of(g)).product
+                    if fat_values and fatigue
+                    else 1.0
+                )
+                items.append(
+                    (
+                        name,
+                        unit,
+                        g,
+                        add,
+                        kf,
+                        _Bounds(shaft, refs, others, name, unit, sl.weights, nodes, g, fat_values, shifts),
+                    )
+                )
+
+        def reach(b: PathBounds | None, kf: float, add: float) -> tuple[float, float]:
+            """(least lower bound of the Goodman safety, largest upper bound of the peak)."""
+            lower = math.inf
+            if fatigue and b is not None and b.amplitude is not None:
+                assert limits is not None
+                lower = float(b.goodman_lower(kf * limits.bending, limits.tensile, add).min())
+            return lower, (math.inf if b is None else float(b.peak.max()))
+
+        # best first: a group with only another placement's bounds is built when its turn
+        # comes and those bounds can still reach the extremes, then queued again by its own
+        heap = []
+        for i, (name, _unit, g, add, kf, bd) in enumerate(items):
+            own = (name, g) in refs
+            b = bd.own() if own else bd.cheap()
+            if b is None and not own:
+                b, own = bd.own(), True
+            lower, top = reach(b, kf, add)
+            heap.append((lower, -top, i, own, b))
+        heapq.heapify(heap)
         found = {}
-        for lower, top, name, unit, g, bounds, add in sorted(items, key=lambda it: it[:2]):
+        while heap:
+            lower, top_, i, own, b = heapq.heappop(heap)
+            name, unit, g, add, kf, bd = items[i]
             key = "shaft" if group_kind(g) in SHAFT_KINDS else "cw"
-            if -top <= best_peak[key] and lower > running.fatigue:
+            if -top_ < best_peak[key] and (not bd.fatigue_values or lower > running.fatigue):
+                continue  # cannot reach the state's extremes found so far (docstring)
+            if not own:
+                b = bd.own()
+                lo2, top2 = reach(b, kf, add)
+                heapq.heappush(heap, (max(lower, lo2), -min(-top_, top2), i, True, b))
                 continue
             r = group_extremes(
                 unit,
@@ -391,12 +498,12 @@ def candidate_stresses(
                 wanted=Wanted(fatigue=fatigue and key == "shaft", gough_pollard=False),
                 running=running,
                 additional_bending=add,
-                reference=bounds,
-                block=NODE_BLOCK if bounds is None else REFERENCE_BLOCK,
+                reference=b,
+                block=NODE_BLOCK if b is None else REFERENCE_BLOCK,
             )
             best_peak[key] = max(best_peak[key], r.max_von_mises.value)
             found[(name, g)] = r
-        for *_, name, _unit, g, _bounds, _add in items:  # reported in the throws' and groups' order
+        for name, _unit, g, *_ in items:  # reported in the throws' and groups' order
             if (name, g) not in found:
                 continue
             r = found[(name, g)]
@@ -445,32 +552,67 @@ def candidate_overspeed(shaft: StudyShaft, loads: list[StateLoads], material) ->
     cycle (``candidate_loads`` of the overspeed states: their ``weights``); None without
     any.  Each group's peak is the check's (``group_peak`` over the cycles' weights stacked,
     ``assess_group``'s overspeed; its nodes searched in decreasing ``window_peak_bound``,
-    the same peak), the safety the yield strength over it."""
+    the same peak), the safety the yield strength over it.  The groups go in decreasing
+    upper bound of their peak (the best at hand: their own placement's reference, else
+    another placement's, as ``candidate_stresses``); a group whose bound lies strictly
+    below the largest peak found (and, for a counterweight's group, below the largest of
+    the counterweights' groups found) can hold neither value nor tie with it and is
+    neither built nor searched: the values and places are those of every group's peak."""
     if not loads or not shaft.stresses:
         return None
     W = np.vstack([sl.weights for sl in loads if sl.weights is not None])
-    best = {"all": (0.0, ""), "cw": (0.0, "")}
-    refs = shaft.references.setdefault(("overspeed", W.shape, _placement(shaft, W)), {})
-    ref_w = refs.setdefault("weights", W)
+    key_ = ("overspeed", W.shape, _placement(shaft, W))
+    refs = shaft.references.setdefault(key_, {})
+    refs.setdefault("weights", W)
+    others = _other_references(shaft, key_)
+    items = []
+    shifts: dict = {}
     for name, unit in shaft.stresses:
         if name not in shaft.abs_sums:
             shaft.abs_sums[name] = abs_sum(unit)
-        shifted = reference_shift(ref_w, unit, W, shaft.abs_sums[name])
         for g in sorted(unit.groups):
             nodes = np.asarray(unit.groups[g])
-            if not nodes.size:
-                continue
-            if (name, g) not in refs:
-                refs[(name, g)] = single_reference_path(unit, ref_w, nodes, fatigue_values=False)
-            tight = None if shifted is None else reference_bounds(refs[(name, g)], *(a[:, nodes] for a in shifted)).peak
-            if tight is None and nodes.size > OVERSPEED_WINDOW_MIN:
-                tight = window_peak_bound(unit, W, nodes)
-            _, vm, _ = group_peak(unit, W, nodes, bound=tight)
-            v = float(vm.max())
-            keys = ("all", "cw") if of_counterweight(g) else ("all",)
-            for key in keys:
-                if v > best[key][0]:
-                    best[key] = (v, f"throw {name} {g}")
+            if nodes.size:
+                items.append(
+                    (name, unit, g, nodes, _Bounds(shaft, refs, others, name, unit, W, nodes, g, False, shifts))
+                )
+    heap = []
+    for i, (name, _unit, g, _nodes, bd) in enumerate(items):
+        own = (name, g) in refs
+        b = bd.own() if own else bd.cheap()
+        if b is None and not own:
+            b, own = bd.own(), True
+        heap.append((-math.inf if b is None else -float(b.peak.max()), i, own, b))
+    heapq.heapify(heap)
+    peaks: dict = {}
+    top_all = top_cw = -math.inf
+    while heap:
+        top_, i, own, b = heapq.heappop(heap)
+        name, unit, g, nodes, bd = items[i]
+        cw = of_counterweight(g)
+        if -top_ < top_all and (not cw or -top_ < top_cw):
+            continue  # cannot reach the largest peak found (docstring)
+        if not own:
+            b = bd.own()
+            heapq.heappush(heap, (max(top_, -math.inf if b is None else -float(b.peak.max())), i, True, b))
+            continue
+        tight = None if b is None else b.peak
+        if tight is None and nodes.size > OVERSPEED_WINDOW_MIN:
+            tight = window_peak_bound(unit, W, nodes)
+        _, vm, _ = group_peak(unit, W, nodes, bound=tight)
+        v = float(vm.max())
+        peaks[(name, g)] = v
+        top_all = max(top_all, v)
+        if cw:
+            top_cw = max(top_cw, v)
+    best = {"all": (0.0, ""), "cw": (0.0, "")}
+    for name, _unit, g, _nodes, _bd in items:  # reported in the throws' and groups' order
+        if (name, g) not in peaks:
+            continue
+        v = peaks[(name, g)]
+        for key in ("all", "cw") if of_counterweight(g) else ("all",):
+            if v > best[key][0]:
+                best[key] = (v, f"throw {name} {g}")
     ys = material.yield_strength
     peak = best["all"][0]
     safety = ys / peak if (ys is not None and peak > 0) else math.inf

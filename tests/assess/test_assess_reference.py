@@ -130,3 +130,30 @@ def test_the_single_precision_reference_bounds_the_full_paths_values():
     assert np.all(single.chord <= full.radius) and np.all(single.chord >= 0.99 * full.chord - 1e-2 * full.peak)
     assert np.all(single_reference_path(unit, w0, nodes, fatigue_values=False).peak == single.peak)
     _bounds_hold(unit, group, single, w0, t, nodes, ((0.0, 0.0), (0.4, 0.0), (0.3, 0.05)), 3)
+
+
+def test_another_placements_reference_bounds_the_history():
+    """The bound a study's screening takes for a group whose own placement's reference is
+    not built: another placement's reference (counterweight cases left out or scaled,
+    constants here, and the redundant bearing's force changed over the cycle).  Brute
+    force: every node's peak, Goodman amplitude and signed mean lie under the bounds."""
+    rng = np.random.default_rng(3)
+    n_cases, n, n_t = 8, 120, 96
+    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
+    s[:, 0] *= 3.0
+    unit = _unit(s, "crankpin_fillet_1")
+    t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
+    w0 = np.column_stack([np.cos(t + k) * (1 + k % 3) for k in range(n_cases)])
+    w0[:, -3:] = 1.5  # three counterweights' centrifugal cases (constant)
+    w = w0.copy()
+    w[:, -2] = 0.0  # one left out
+    w[:, -1] = 2.4  # one scaled
+    w[:, 1] += 0.2 * np.sin(t)  # the redundant bearing's force changed
+    nodes = np.arange(n)
+    for ref in (reference_path(unit, w0, nodes), single_reference_path(unit, w0, nodes)):
+        b = reference_bounds(ref, *reference_shift(w0, unit, w, abs_sum(unit)))
+        h = stress_history(unit, w, nodes)
+        assert np.all(von_mises(h).max(axis=0) <= b.peak)
+        amp, mean = fatigue.equivalent_amplitude_mean(h)
+        assert np.all(amp <= b.amplitude) and np.all(mean <= b.mean)
+        assert np.all(b.peak <= 3.0 * von_mises(h).max(axis=0))  # and not vacuous here

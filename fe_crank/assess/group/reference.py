@@ -31,6 +31,10 @@ allowance; each computed component is within ~n_cases x 1.1e-16 of sum_c |W_c| |
 every bound by ``peak.BOUND_RTOL``.  The bounds only order and skip nodes of ``extremes``' searches, which
 evaluate the history itself at every node that can govern: the extremes found are those
 of an evaluation of every node, whichever reference is taken (a closer one skips more).
+Nothing above asks W0 to be close to W: any history of the same angles bounds any other
+(a study's candidate of another placement, its counterweight cases zero or scaled,
+bounds a group until the group's own reference is built), only less tightly the
+farther it is.
 """
 
 from __future__ import annotations
@@ -125,6 +129,33 @@ def reference_path(
 _U32 = float(np.finfo(np.float32).eps) / 2
 
 
+def _peak32(planes: np.ndarray, scratch: np.ndarray) -> np.ndarray:
+    """max_t of von Mises' stress of the single-precision path ``planes`` (6, n_t, n), every
+    operation in single precision, as ``stress.von_mises_planes`` orders them; the square
+    root taken of the largest square (the same value: the rounded square root is
+    monotone); ``scratch`` (>= 4 planes) is overwritten."""
+    x, y, z = planes[0], planes[1], planes[2]
+    acc, tmp, sq = scratch[0], scratch[1], scratch[2]
+    np.subtract(x, y, out=acc)
+    np.multiply(acc, acc, out=acc)
+    np.subtract(y, z, out=tmp)
+    np.multiply(tmp, tmp, out=tmp)
+    acc += tmp
+    np.subtract(z, x, out=tmp)
+    np.multiply(tmp, tmp, out=tmp)
+    acc += tmp
+    acc *= np.float32(0.5)
+    np.multiply(planes[3], planes[3], out=sq)
+    np.multiply(planes[4], planes[4], out=tmp)
+    sq += tmp
+    np.multiply(planes[5], planes[5], out=tmp)
+    sq += tmp
+    sq *= np.float32(3.0)
+    acc += sq
+    out: np.ndarray = np.sqrt(acc.max(axis=0))
+    return out
+
+
 def single_reference_path(
     unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, *, fatigue_values: bool = True, block: int = 128
 ) -> ReferencePath:
@@ -172,14 +203,15 @@ def single_reference_path(
         planes = np.empty((6, c.shape[0], b), np.float32)
         for j in range(6):
             np.dot(c32, u32[:, j, :], out=planes[j])
-        peak[s : s + b] = von_mises_planes(planes).max(axis=0).astype(float) * up32 + v_a
+        scratch = np.empty_like(planes)
+        peak[s : s + b] = _peak32(planes, scratch).astype(float) * up32 + v_a
         if vals is None:
             continue
         hi, lo = planes.max(axis=1).astype(float), planes.min(axis=1).astype(float)
         m = 0.5 * (hi + lo)
-        r0, far = fatigue.max_and_first(von_mises_planes(planes, m.astype(np.float32)))
+        r0, far = fatigue.max_and_first(von_mises_planes(planes, m.astype(np.float32), buf=scratch))
         cols = np.arange(b)
-        chord = 0.5 * von_mises_planes(planes, planes[:, far, cols]).max(axis=0).astype(float)
+        chord = 0.5 * von_mises_planes(planes, planes[:, far, cols], buf=scratch).max(axis=0).astype(float)
         p0 = ((planes[0] + planes[1] + planes[2]) / np.float32(3.0)).max(axis=0).astype(float)
         p_a = (a[0] + a[1] + a[2]) / 3.0
         vals[0, s : s + b] = von_mises(m) + v_a
