@@ -36,7 +36,7 @@ from fe_crank.assess.workers import Scratch, run_blocks, thread_count
 from fe_crank.fe.core.stress import stress_at_selected_nodes
 from fe_crank.fe.refinement.levels import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceStudy
 from fe_crank.fe.shaft.cases import ShaftCases
-from fe_crank.fe.shaft.refinement import shaft_throw_study
+from fe_crank.fe.shaft.refinement import shaft_zone_studies
 from fe_crank.fe.shaft.whole_shaft import BearingResult, WholeShaftResult, bearing_state_of
 from fe_crank.fe.throw.node_groups import node_groups
 from fe_crank.geometry.shaft import ShaftLayout
@@ -159,16 +159,13 @@ def shaft_studies(
     material: Material,
 ) -> dict[str, ConvergenceStudy]:
     """The whole shaft's own hot-spot convergence study of each of its throws
-    (``fe.shaft.refinement.shaft_throw_study``) at its governing states
+    (``fe.shaft.refinement.shaft_zone_studies``: throws of one mesh share their zones) at
+    its governing states
     (``governing_states``: the shaft model's own assessment ``throws`` over the operating
     cycle ``theta``, rad, the case weights of ``result``'s operating cycle)."""
     weights = result.cycles[0].weights
-    out = {}
-    for t in throws:
-        states = governing_states(t, theta)
-        if states:
-            out[t.name] = shaft_throw_study(cases, material, t.name, {name: weights[i] for name, i in states.items()})
-    return out
+    states = {t.name: {name: weights[i] for name, i in governing_states(t, theta).items()} for t in throws}
+    return shaft_zone_studies(cases, material, {t: s for t, s in states.items() if s})
 
 
 def bearing_sweep(

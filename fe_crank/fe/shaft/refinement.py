@@ -60,7 +60,7 @@ from fe_crank.fe.shaft.cases import ShaftCases
 from fe_crank.fe.shaft.fields import piece_states
 from fe_crank.fe.throw.options import FeOptions, Material
 from fe_crank.fe.throw.pin_directions import pin_cases, unit_force
-from fe_crank.mesh.zone import ZoneSolid, parametric_solid
+from fe_crank.mesh.zone import parametric_solid
 
 log = logging.getLogger(__name__)
 
@@ -121,10 +121,11 @@ def piece_pins(cases: ShaftCases, piece: int, half_angle: float) -> dict:
     }
 
 
-def surface_peaks(mesh, basis, material: Material, fields: dict[str, np.ndarray]):
-    """{entry: (peak von Mises, Pa, surface, node)} of each load set on each hot-spot family
-    of a throw mesh (entries as ``levels.level_peaks``'s: the family's prefix + load set),
-    and per load set and family {surface: (peak, node)} (the hot spots' candidates)."""
+def surface_peaks(mesh, basis, material: Material, fields: dict[tuple[str, str], np.ndarray]):
+    """{(throw, entry): (peak von Mises, Pa, surface)} of each load set (``fields``' keys:
+    (throw, load set)) on each hot-spot family of a throw mesh (entries as
+    ``levels.level_peaks``'s: the family's prefix + load set), and per load set and family
+    {surface: (peak, node)} (the hot spots' candidates)."""
     groups = {
         name: basis.get_dofs(mesh.boundaries[name]).all()
         for _, names in FAMILIES
@@ -135,8 +136,8 @@ def surface_peaks(mesh, basis, material: Material, fields: dict[str, np.ndarray]
     s = stress_at_selected_nodes(
         mesh, list(fields.values()), material.youngs_modulus, material.poisson_ratio, ids, dofs=basis.dofs
     )
-    best: dict[str, tuple[float, str]] = {}
-    per: dict[tuple[str, str], dict[str, tuple[float, int]]] = {}
+    best: dict[tuple[str, str], tuple[float, str]] = {}
+    per: dict[tuple[tuple[str, str], str], dict[str, tuple[float, int]]] = {}
     for j, key in enumerate(fields):
         vm = von_mises(s[j])
         for prefix, names in FAMILIES:
@@ -148,12 +149,12 @@ def surface_peaks(mesh, basis, material: Material, fields: dict[str, np.ndarray]
             if peaks:
                 per[key, prefix] = peaks
                 top = max(peaks, key=lambda n: peaks[n][0])
-                best[prefix + key] = (peaks[top][0], top)
+                best[key[0], prefix + key[1]] = (peaks[top][0], top)
     return best, per
 
 
 def hot_spots_of(
-    per: dict[tuple[str, str], dict[str, tuple[float, int]]],
+    per: dict,
     points: np.ndarray,
     radius_of,
     zone_radius: float = ZONE_RADIUS,
@@ -176,115 +177,160 @@ def hot_spots_of(
 
 
 def shaft_throw_study(
+    cases: ShaftCases, material: Material, throw: str, states: dict[str, np.ndarray], **kwargs
+) -> ConvergenceStudy:
+    """The study of the one throw ``throw`` (``shaft_zone_studies``'s keywords)."""
+    return shaft_zone_studies(cases, material, {throw: states}, **kwargs)[throw]
+
+
+def shaft_zone_studies(
     cases: ShaftCases,
     material: Material,
-    throw: str,
-    states: dict[str, np.ndarray],
+    states: dict[str, dict[str, np.ndarray]],
     *,
-    solid: ZoneSolid | None = None,
     factors=FACTORS,
     tolerance: float = TOLERANCE,
     zone_radius: float = ZONE_RADIUS,
     solver: str = "auto",
-    displacements: dict[str, np.ndarray] | None = None,
-) -> ConvergenceStudy:
-    """The study (module doc) of throw ``throw`` of the whole shaft under its load sets
-    ``states`` ({name: case weights (n_cases,)}); ``solid``: the throw's solid the zones are
-    cut from (default: the layout's parametric throw); ``displacements``: the piece's
-    displacement of each load set (interleaved, its own frame) where already known
-    (default: ``piece_states``)."""
+) -> dict[str, ConvergenceStudy]:
+    """The study (module doc) of each throw of ``states`` ({throw: {load set: case weights
+    (n_cases,)}}), {throw: its study}.  Throws of one mesh (``ShaftMesh.pieces[k].mesh``:
+    the same throw geometry) share their zones: the union of their hot spots (merged as
+    one throw's, within half a zone radius) cut from the one solid and meshed once per
+    level, each zone factorised once for the load sets of all of them (one right-hand side
+    each), a throw's peaks read over every zone (a level's unknowns and time are the
+    group's, in each throw's record)."""
     if len(factors) < 2 or factors[0] != 1.0:
         raise ValueError("a zone study starts from the assessed mesh (factor 1) and has at least two levels")
-    t0 = time.perf_counter()
-    k = piece_of(cases, throw)
-    pp = cases.model.pieces[k]
     sm = cases.model.mesh
-    tm = sm.throw_meshes[sm.pieces[k].mesh]
-    c = pp.cond
-    names = list(states)
-    W = np.column_stack([np.asarray(states[n], float) for n in names])
-    if displacements is None:
-        U = piece_states(cases, {k: W}, material, solver)[k]
-        displacements = {n: U[:, j] for j, n in enumerate(names)}
-    fields = {n: displacements[n] for n in names}
-    coef = cases.coef[k] @ W
-    loads = {n: zone_loads(c.names, coef[:, j]) for j, n in enumerate(names)}
+    pieces = {throw: piece_of(cases, throw) for throw in states}
+    W = {t: np.column_stack([np.asarray(w, float) for w in states[t].values()]) for t in states}
+    t0 = time.perf_counter()
+    U = piece_states(cases, {pieces[t]: W[t] for t in states}, material, solver)
+    recovered = (time.perf_counter() - t0) / max(1, len(states))
+    by_mesh: dict[str, list[str]] = {}
+    for t in states:
+        by_mesh.setdefault(sm.pieces[pieces[t]].mesh, []).append(t)
     half_angle = cases.model.options.pin_half_angle
-    pins = piece_pins(cases, k, half_angle)
-    first, per = surface_peaks(c.mesh, c.basis, material, fields)
-    base = tm.options
-    levels = [
-        ConvergenceLevel(
-            fillet_divisions=base.fillet_divisions,
-            n_dof=int(3 * c.basis.N),
-            fillet_max_edge=dict(tm.stats.fillet_max_edge),
-            peaks={e: v[0] for e, v in first.items()},
-            where={e: v[1] for e, v in first.items()},
-            seconds=time.perf_counter() - t0,
-            reused=True,
-            bore_divisions=base.bore_divisions,
-        )
-    ]
-    if solid is None:
-        spec = next(t.spec for t in sm.layout.throws if t.name == throw)
+    out: dict[str, ConvergenceStudy] = {}
+    for key, throws in by_mesh.items():
+        t0 = time.perf_counter()
+        k0 = pieces[throws[0]]
+        c, tm = cases.model.pieces[k0].cond, sm.throw_meshes[key]
+        fields: dict[tuple[str, str], np.ndarray] = {}
+        loads: dict[tuple[str, str], dict[str, float]] = {}
+        for t in throws:
+            coef = cases.coef[pieces[t]] @ W[t]
+            for j, name in enumerate(states[t]):
+                fields[t, name] = U[pieces[t]][:, j]
+                loads[t, name] = zone_loads(c.names, coef[:, j])
+        first, per = surface_peaks(c.mesh, c.basis, material, fields)
+        base = tm.options
+        assessed = time.perf_counter() - t0 + recovered
+        spec = next(p.spec for p in sm.layout.throws if p.name == throws[0])
         solid = parametric_solid(sm.layout.geometry, spec)
 
-    def radius_of(surface: str) -> float:
-        return tm.fillet_radii[surface] if surface in tm.fillet_radii else solid.lengths[surface]
+        def radius_of(surface: str, tm=tm, solid=solid) -> float:
+            return tm.fillet_radii[surface] if surface in tm.fillet_radii else solid.lengths[surface]
 
-    spots = hot_spots_of(per, np.asarray(c.basis.doflocs), radius_of, zone_radius)
-    interp = Interpolator(c.mesh, c.basis.dofs, np.asarray(c.basis.doflocs))
-    options = FeOptions(pin_half_angle=half_angle)
-    every = [n for _, ns in FAMILIES for n in ns]
-    t0 = time.perf_counter()
-    mopts = [
-        dataclasses.replace(base, fillet_divisions=base.fillet_divisions * f, bore_divisions=base.bore_divisions * f)
-        for f in factors[1:]
-    ]
-    meshes = level_meshes(solid, mopts, spots, boundary_samples(c.mesh), GROUP_FRACTION * c.basis.N)
-    meshing = (time.perf_counter() - t0) / len(mopts)
-    for mopt, zones in zip(mopts, meshes):
-        t0 = time.perf_counter() - meshing
-        best: dict[str, tuple[float, str]] = {}
-        n_dof, edges = 0, dict[str, float]()
-        for zm in zones:
-            Uz, zb = solve_zone(zm, material, options, pins, loads, fields, interp)
-            n_dof += int(3 * zb.N)
-            for s, v in zm.fillet_max_edge.items():
-                edges[s] = max(edges.get(s, 0.0), v)
-            got = zone_peaks(zm, zb, material, Uz, every, REACH)
-            for name, found in got.items():
-                for prefix, surfaces in FAMILIES:
-                    for s in surfaces:
-                        if s in found and found[s] > best.get(prefix + name, (-np.inf, ""))[0]:
-                            best[prefix + name] = (found[s], s)
-        missing = sorted(set(first) - set(best))
-        if missing:
-            raise RuntimeError(f"the whole shaft's hot-spot zones of throw {throw} hold no node of {missing}")
-        levels.append(
-            ConvergenceLevel(
-                fillet_divisions=mopt.fillet_divisions,
-                n_dof=n_dof,
-                fillet_max_edge=edges,
-                peaks={e: best[e][0] for e in first},
-                where={e: best[e][1] for e in first},
-                seconds=time.perf_counter() - t0,
-                bore_divisions=mopt.bore_divisions,
-                zones=len(spots),
+        spots = hot_spots_of(per, np.asarray(c.basis.doflocs), radius_of, zone_radius)
+        pins = piece_pins(cases, k0, half_angle)
+        interp = Interpolator(c.mesh, c.basis.dofs, np.asarray(c.basis.doflocs))
+        options = FeOptions(pin_half_angle=half_angle)
+        every = [n for _, ns in FAMILIES for n in ns]
+        t0 = time.perf_counter()
+        mopts = [
+            dataclasses.replace(
+                base, fillet_divisions=base.fillet_divisions * f, bore_divisions=base.bore_divisions * f
             )
-        )
-        log.info("whole shaft, throw %s, level r/%g: %d zones, %d DOF", throw, mopt.fillet_divisions, len(spots), n_dof)
-    changes = {
-        e: [abs(b.peaks[e] - a.peaks[e]) / b.peaks[e] for a, b in zip(levels, levels[1:])] for e in levels[0].peaks
-    }
-    return ConvergenceStudy(
-        levels=tuple(levels),
-        loads={n: dict(loads[n]) for n in names},
-        tolerance=tolerance,
-        changes=changes,
-        method="zones",
-        zone_radius=zone_radius,
-    )
+            for f in factors[1:]
+        ]
+        meshes = level_meshes(solid, mopts, spots, boundary_samples(c.mesh), GROUP_FRACTION * c.basis.N)
+        meshing = (time.perf_counter() - t0) / len(mopts)
+        levels: dict[str, list[ConvergenceLevel]] = {
+            t: [
+                ConvergenceLevel(
+                    fillet_divisions=base.fillet_divisions,
+                    n_dof=int(3 * c.basis.N),
+                    fillet_max_edge=dict(tm.stats.fillet_max_edge),
+                    peaks={e[1]: v[0] for e, v in first.items() if e[0] == t},
+                    where={e[1]: v[1] for e, v in first.items() if e[0] == t},
+                    seconds=assessed,
+                    reused=True,
+                    bore_divisions=base.bore_divisions,
+                )
+            ]
+            for t in throws
+        }
+        # the zone solver's load sets by name: one per (throw, load set)
+        label = {e: f"{j}" for j, e in enumerate(loads)}
+        named_loads = {label[e]: v for e, v in loads.items()}
+        named_fields = {label[e]: v for e, v in fields.items()}
+        of_label = {v: e for e, v in label.items()}
+        for mopt, zones in zip(mopts, meshes):
+            t0 = time.perf_counter() - meshing
+            best: dict[tuple[str, str], tuple[float, str]] = {}
+            n_dof, edges = 0, dict[str, float]()
+            for zm in zones:
+                Uz, zb = solve_zone(zm, material, options, pins, named_loads, named_fields, interp)
+                n_dof += int(3 * zb.N)
+                for s, v in zm.fillet_max_edge.items():
+                    edges[s] = max(edges.get(s, 0.0), v)
+                got = zone_peaks(zm, zb, material, Uz, every, REACH)
+                for lab, found in got.items():
+                    t, name = of_label[lab]
+                    for prefix, surfaces in FAMILIES:
+                        for s in surfaces:
+                            e = (t, prefix + name)
+                            if s in found and found[s] > best.get(e, (-np.inf, ""))[0]:
+                                best[e] = (found[s], s)
+            missing = sorted(set(first) - set(best))
+            if missing:
+                raise RuntimeError(f"the whole shaft's hot-spot zones hold no node of {missing}")
+            seconds = time.perf_counter() - t0
+            for t in throws:
+                lv0 = levels[t][0]
+                levels[t].append(
+                    ConvergenceLevel(
+                        fillet_divisions=mopt.fillet_divisions,
+                        n_dof=n_dof,
+                        fillet_max_edge=edges,
+                        peaks={e: best[t, e][0] for e in lv0.peaks},
+                        where={e: best[t, e][1] for e in lv0.peaks},
+                        seconds=seconds,
+                        bore_divisions=mopt.bore_divisions,
+                        zones=len(spots),
+                    )
+                )
+            log.info(
+                "whole shaft, throws %s, level r/%g: %d zones, %d DOF, %.1f s",
+                ", ".join(throws),
+                mopt.fillet_divisions,
+                len(spots),
+                n_dof,
+                seconds,
+            )
+        for t in throws:
+            lv = levels[t]
+            out[t] = ConvergenceStudy(
+                levels=tuple(lv),
+                loads={name: dict(loads[t, name]) for name in states[t]},
+                tolerance=tolerance,
+                changes={
+                    e: [abs(b.peaks[e] - a.peaks[e]) / b.peaks[e] for a, b in zip(lv, lv[1:])] for e in lv[0].peaks
+                },
+                method="zones",
+                zone_radius=zone_radius,
+            )
+    return out
 
 
-__all__ = ["hot_spots_of", "piece_of", "piece_pins", "shaft_throw_study", "surface_peaks", "zone_loads"]
+__all__ = [
+    "hot_spots_of",
+    "piece_of",
+    "piece_pins",
+    "shaft_throw_study",
+    "shaft_zone_studies",
+    "surface_peaks",
+    "zone_loads",
+]
