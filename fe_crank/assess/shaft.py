@@ -16,6 +16,11 @@ the throw's assessed nodes, recovered exactly from the condensed fields
 cycle's weights with the bearings' forces found per angle (``ShaftCycle.weights``; the
 overspeed cycles likewise).  The throw frame is the per-throw model's, so the axes of
 the Gough-Pollard split and the groups' names are the same.
+
+With the hot-spot convergence study, the whole shaft has its own (``shaft_studies``): per
+throw, its governing states (``governing_states``) refined in zones driven by the whole
+shaft's solution (``fe.shaft.refinement``), whose factors its criteria take
+(``assess.refinement.StudyFactors``; docs/fe.md, "The whole shaft's own hot spots").
 """
 
 from __future__ import annotations

@@ -191,21 +191,23 @@ def holds(zones, spot: HotSpot) -> bool:
 
 
 def meshed_zones(solid, levels, spots: list[HotSpot], samples, group_nodes) -> list:
-    """``zone_study.level_meshes`` checked: a ball that the solid's cut left out without an
-    error (OpenCASCADE's fragment of a ball in a degenerate position gives no volume) is
-    made ``RETRY_GROWTH`` larger and the set meshed again, once; a hot spot still not held
-    is an error (its peak would be missed, not refined)."""
+    """``zone_study.level_meshes`` checked: the balls that the solid's cut left out without
+    an error (OpenCASCADE's fragment of a ball in a degenerate position gives no volume) are
+    made ``RETRY_GROWTH`` larger and cut and meshed again on their own, once, their zones
+    added to each level's (a zone solved alone is exact where it overlaps another: each is
+    a submodel of its own); a hot spot still not held is an error (its peak would be
+    missed, not refined)."""
     meshes = level_meshes(solid, levels, spots, samples, group_nodes)
     lost = [i for i, h in enumerate(spots) if not all(holds(zones, h) for zones in meshes)]
     if not lost:
         return meshes
     log.info("the zones on %s left out: tried %g x larger", ", ".join(spots[i].surface for i in lost), RETRY_GROWTH)
-    spots = [dataclasses.replace(h, radius=h.radius * RETRY_GROWTH) if i in lost else h for i, h in enumerate(spots)]
-    meshes = level_meshes(solid, levels, spots, samples, group_nodes)
-    still = [h.surface for h in spots if not all(holds(zones, h) for zones in meshes)]
+    grown = [dataclasses.replace(spots[i], radius=spots[i].radius * RETRY_GROWTH) for i in lost]
+    again = level_meshes(solid, levels, grown, samples, group_nodes)  # zones of their own, beside the others
+    still = [h.surface for h in grown if not all(holds(zones, h) for zones in again)]
     if still:
         raise RuntimeError(f"the whole shaft's hot-spot zones on {', '.join(still)} could not be cut from the throw")
-    return meshes
+    return [a + b for a, b in zip(meshes, again)]
 
 
 def shaft_throw_study(
