@@ -33,6 +33,7 @@ import time
 import numpy as np
 
 from fe_crank.cad.config import CadInput
+from fe_crank.errors import MeshError
 from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.refinement.levels import (
     COUNTERWEIGHT_PREFIX,
@@ -290,6 +291,43 @@ def level_meshes(
     return [a + b for a, b in zip(first, second)]
 
 
+def holds(zones: list[ZoneMesh], spot: HotSpot) -> bool:
+    """Whether a level's zones hold the hot spot ``spot``: a node of its surface within
+    ``REACH`` x its radius of its centre."""
+    for zm in zones:
+        mesh = zm.mesh
+        if spot.surface in (mesh.boundaries or {}):
+            nodes = np.unique(mesh.facets[:, mesh.boundaries[spot.surface]])
+            d = np.linalg.norm(mesh.p[:, nodes] - np.asarray(spot.centre)[:, None], axis=0)
+            if d.size and d.min() <= REACH * spot.radius:
+                return True
+    return False
+
+
+def held_level_meshes(
+    solid: ZoneSolid, levels, spots: list[HotSpot], samples, group_nodes=None, mirrored=None
+) -> list[list[ZoneMesh]]:
+    """``level_meshes`` checked: the balls that the solid's cut left out without an error
+    (OpenCASCADE's fragment of a ball in a degenerate position can give no volume) are made
+    ``RETRY_GROWTH`` larger and cut and meshed again on their own, once, their zones added to
+    each level's (a zone solved alone is exact where it overlaps another: each is a
+    submodel of its own); a hot spot still not held is a ``MeshError`` (its peak would be
+    missed, not refined)."""
+    meshes = level_meshes(solid, levels, spots, samples, group_nodes, mirrored=mirrored)
+    lost = [i for i, h in enumerate(spots) if not all(holds(zones, h) for zones in meshes)]
+    if not lost:
+        return meshes
+    log.info("the zones on %s left out: tried %g x larger", ", ".join(spots[i].surface for i in lost), RETRY_GROWTH)
+    grown = [dataclasses.replace(spots[i], radius=spots[i].radius * RETRY_GROWTH) for i in lost]
+    again = level_meshes(
+        solid, levels, grown, samples, group_nodes, mirrored=None if mirrored is None else [mirrored[i] for i in lost]
+    )
+    still = [h.surface for h in grown if not all(holds(zones, h) for zones in again)]
+    if still:
+        raise MeshError(f"the hot-spot zones on {', '.join(still)} could not be cut from the throw")
+    return [a + b for a, b in zip(meshes, again)]
+
+
 def zone_convergence(
     geometry: CrankGeometry | CadInput,
     material: Material,
@@ -342,7 +380,7 @@ def zone_convergence(
         for f in factors[1:]
     ]
     group_nodes = GROUP_FRACTION * unit_solutions.n_dof / 3
-    meshes = level_meshes(solid, options, balls, samples, group_nodes, mirrored=mirrored)
+    meshes = held_level_meshes(solid, options, balls, samples, group_nodes, mirrored=mirrored)
     meshing = (time.perf_counter() - t0) / len(options)  # the cut shared by the levels
     for mopt, zones in zip(options, meshes):
         t0 = time.perf_counter() - meshing

@@ -52,10 +52,9 @@ from fe_crank.fe.refinement.zone_study import (
     FAMILIES,
     GROUP_FRACTION,
     REACH,
-    RETRY_GROWTH,
     ZONE_RADIUS,
     HotSpot,
-    level_meshes,
+    held_level_meshes,
 )
 from fe_crank.fe.shaft.cases import ShaftCases
 from fe_crank.fe.shaft.fields import piece_states
@@ -177,39 +176,6 @@ def hot_spots_of(
     return out
 
 
-def holds(zones, spot: HotSpot) -> bool:
-    """Whether a level's zones hold the hot spot ``spot``: a node of its surface within
-    ``REACH`` x its radius of its centre."""
-    for zm in zones:
-        mesh = zm.mesh
-        if spot.surface in (mesh.boundaries or {}):
-            nodes = np.unique(mesh.facets[:, mesh.boundaries[spot.surface]])
-            d = np.linalg.norm(mesh.p[:, nodes] - np.asarray(spot.centre)[:, None], axis=0)
-            if d.size and d.min() <= REACH * spot.radius:
-                return True
-    return False
-
-
-def meshed_zones(solid, levels, spots: list[HotSpot], samples, group_nodes) -> list:
-    """``zone_study.level_meshes`` checked: the balls that the solid's cut left out without
-    an error (OpenCASCADE's fragment of a ball in a degenerate position gives no volume) are
-    made ``RETRY_GROWTH`` larger and cut and meshed again on their own, once, their zones
-    added to each level's (a zone solved alone is exact where it overlaps another: each is
-    a submodel of its own); a hot spot still not held is an error (its peak would be
-    missed, not refined)."""
-    meshes = level_meshes(solid, levels, spots, samples, group_nodes)
-    lost = [i for i, h in enumerate(spots) if not all(holds(zones, h) for zones in meshes)]
-    if not lost:
-        return meshes
-    log.info("the zones on %s left out: tried %g x larger", ", ".join(spots[i].surface for i in lost), RETRY_GROWTH)
-    grown = [dataclasses.replace(spots[i], radius=spots[i].radius * RETRY_GROWTH) for i in lost]
-    again = level_meshes(solid, levels, grown, samples, group_nodes)  # zones of their own, beside the others
-    still = [h.surface for h in grown if not all(holds(zones, h) for zones in again)]
-    if still:
-        raise RuntimeError(f"the whole shaft's hot-spot zones on {', '.join(still)} could not be cut from the throw")
-    return [a + b for a, b in zip(meshes, again)]
-
-
 def shaft_throw_study(
     cases: ShaftCases, material: Material, throw: str, states: dict[str, np.ndarray], **kwargs
 ) -> ConvergenceStudy:
@@ -279,7 +245,7 @@ def shaft_zone_studies(
             )
             for f in factors[1:]
         ]
-        meshes = meshed_zones(solid, mopts, spots, boundary_samples(c.mesh), GROUP_FRACTION * c.basis.N)
+        meshes = held_level_meshes(solid, mopts, spots, boundary_samples(c.mesh), GROUP_FRACTION * c.basis.N)
         meshing = (time.perf_counter() - t0) / len(mopts)
         levels: dict[str, list[ConvergenceLevel]] = {
             t: [
