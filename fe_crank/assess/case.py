@@ -32,7 +32,7 @@ from fe_crank.assess.joint_criteria import (
 from fe_crank.assess.loads import AssessedLoads
 from fe_crank.assess.recovery import recovery_notes, recovery_ratios
 from fe_crank.assess.refinement import Refinement, StudyFactors
-from fe_crank.assess.shaft import ShaftAssessment, assess_shaft_throws, governing, shaft_studies
+from fe_crank.assess.shaft import ShaftAssessment, assess_shaft_throws, governing
 from fe_crank.assess.speeds import StateResults, wanted_extremes
 from fe_crank.assess.state_throws import assess_state, places_of, state_dynamics
 from fe_crank.assess.states import ModelStates, model_states
@@ -194,7 +194,7 @@ def assess_case(a: AssessInputs, *, fields: bool = False) -> Assessment:
         notes.append(_assumption(_sweep_note(a.loads, shaft is not None)))
     qualifiers = criterion_qualifiers(basis, a.criteria, torsion=a.loads.torsion)
     qualifiers.update(joint_qualifiers(a.throw_geometry, defaulted) if joints else {})
-    factors = StudyFactors(a.convergence, shaft.convergence if shaft is not None else {}) if a.convergence else None
+    factors = StudyFactors(a.convergence) if a.convergence else None
     judged = judge_criteria(
         lim,
         done,
@@ -242,8 +242,7 @@ def _shaft(a: AssessInputs, basis: M53Basis) -> ShaftAssessment:
     the operating speed and the overspeed, and in every load state at every speed of the
     sweep with the per-throw model's pruning (``wanted_extremes``), with each throw's UR
     M53 diameters (the size factor) and UR M53's sigma_add as the per-throw model; its
-    governing hot spot; its bearings; with the convergence study, the whole shaft's own
-    (``assess.shaft.shaft_studies``), whose factors its criteria take."""
+    governing hot spot; its bearings."""
     ws = a.shaft
     assert ws is not None
     if ws.cases is None:
@@ -267,8 +266,6 @@ def _shaft(a: AssessInputs, basis: M53Basis) -> ShaftAssessment:
     )
     worst = governing(throws, ws.layout)
     seconds = time.perf_counter() - t0
-    # the whole shaft's own hot spots refined where the study runs (its factors on its criteria)
-    studies = shaft_studies(ws.cases, ws.result, throws, ws.dynamics.theta, a.material) if a.convergence else {}
     return ShaftAssessment(
         throws,
         ws.result.bearings,
@@ -278,7 +275,6 @@ def _shaft(a: AssessInputs, basis: M53Basis) -> ShaftAssessment:
         seconds,
         states if len(states) > 1 else (),
         ws.film,
-        studies,
     )
 
 

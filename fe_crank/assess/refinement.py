@@ -18,12 +18,10 @@ conservative for Goodman (UR M53's sigma_add does not grow) -- and a stress limi
 (counterweight stresses) multiplied by it; groups the study does not follow (the
 counterweight bodies, their junctions) keep k = 1.  The worst group may then be another
 than the assessed mesh's; the criterion's remarks name the factor (``Refinement``).  Over
-a full-load curve the factors apply at every speed and load state (a group's k is the same
-at every speed: the study measures the mesh, whose refinement ratio a load's magnitude
-does not change).  The whole-shaft model's criteria take the factors of its own study
-(``shaft``: ``fe.shaft.refinement``, its hot spots found on its own stresses at its
-governing states and refined in zones driven by the whole-shaft solution) where it ran,
-the per-throw study's otherwise; the remark names the model whose study it is.
+a full-load curve the factors apply at every speed and load state and in both models (a
+group's k is the same at every speed: the study measures the mesh, whose refinement ratio
+a load's magnitude does not change; the whole shaft's throws are meshed as the per-throw
+model's).
 
 The study's own criterion, ``mesh_convergence`` (``criterion``): the assessed mesh and the
 finest level must agree within the tolerance (5 %) for every load set, else the sign-off
@@ -35,7 +33,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from fe_crank.assess.shaft import WHOLE_SHAFT
 from fe_crank.fe.refinement.convergence import estimate
 from fe_crank.fe.refinement.levels import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceStudy
 from fe_crank.results import CriterionResult, Location
@@ -63,13 +60,11 @@ class Refinement:
     basis: str  # the estimate in words, e.g. "finest level r/8" or "Richardson extrapolation ..."
     load_set: str
     ratio: float  # sigma_est / sigma_assessed before the floor at 1
-    model: str = ""  # the model whose study it is ("" the per-throw model's, else WHOLE_SHAFT)
 
     @property
     def words(self) -> str:
         fall = "; the peak falls with refinement: no credit taken" if self.ratio < 1.0 else ""
-        whose = f"the {self.model}'s convergence study" if self.model else "the convergence study"
-        return f"x{self.factor:.3f} by {whose} ({self.surface}: {self.basis}, {self.load_set}{fall})"
+        return f"x{self.factor:.3f} by the convergence study ({self.surface}: {self.basis}, {self.load_set}{fall})"
 
 
 def _surface(group: str) -> str | None:
@@ -107,54 +102,37 @@ def surface_factor(
 
 @dataclass
 class StudyFactors:
-    """The study's factor of each (throw, group), each found once (``surface_factor``);
-    ``shaft``: the whole-shaft model's own study by throw name (empty: the whole shaft
-    takes the per-throw study's factors)."""
+    """The study's factor of each (throw, group), each found once (``surface_factor``)."""
 
     studies: dict[str, ConvergenceStudy]
-    shaft: dict[str, ConvergenceStudy] = field(default_factory=dict)
-    _found: dict[tuple[str, str, bool], tuple[float, str, str, float] | None] = field(default_factory=dict)
+    _found: dict[tuple[str, str], tuple[float, str, str, float] | None] = field(default_factory=dict)
 
-    def found(self, throw: str, group: str, whole: bool = False) -> tuple[float, str, str, float] | None:
-        """``surface_factor`` of a group of a throw in the per-throw model, or with ``whole``
-        in the whole-shaft model (its own study where it has one for the throw)."""
-        own = whole and throw in self.shaft
-        if (throw, group, own) not in self._found:
-            self._found[throw, group, own] = surface_factor(self.shaft if own else self.studies, throw, group)
-        return self._found[throw, group, own]
+    def found(self, throw: str, group: str) -> tuple[float, str, str, float] | None:
+        if (throw, group) not in self._found:
+            self._found[throw, group] = surface_factor(self.studies, throw, group)
+        return self._found[throw, group]
 
     def factor(self, throw: str, group: str) -> float:
-        """k of a group of a throw in the per-throw model (1 where the study does not follow its surface)."""
+        """k of a group of a throw (1 where the study does not follow its surface)."""
         f = self.found(throw, group)
-        return 1.0 if f is None else f[0]
-
-    def shaft_factor(self, throw: str, group: str) -> float:
-        """k of a group of a throw in the whole-shaft model (``found``)."""
-        f = self.found(throw, group, whole=True)
         return 1.0 if f is None else f[0]
 
     def refinement(self, criterion: str, where: Location | None) -> Refinement | None:
         """The factor the criterion ``criterion`` is taken at, at its governing group ``where``
-        (its model's: ``Location.model``; None: the study does not follow that group's surface)."""
+        (None: the study does not follow that group's surface)."""
         if where is None or where.kind != "group":
             return None
-        whole = where.model == WHOLE_SHAFT
-        f = self.found(where.throw, where.group, whole)
+        f = self.found(where.throw, where.group)
         if f is None:
             return None
-        model = WHOLE_SHAFT if whole and where.throw in self.shaft else ""
-        return Refinement(criterion, f[0], SURFACES[_surface(where.group) or ""], f[1], f[2], f[3], model)
+        return Refinement(criterion, f[0], SURFACES[_surface(where.group) or ""], f[1], f[2], f[3])
 
 
-def criterion(
-    studies: dict[str, ConvergenceStudy], shaft: dict[str, ConvergenceStudy] | None = None
-) -> CriterionResult:
+def criterion(studies: dict[str, ConvergenceStudy]) -> CriterionResult:
     """The ``mesh_convergence`` criterion: the largest difference of a hot-spot peak between
     the assessed mesh and the finest level, over the load sets and throws, must not exceed
-    the tolerance (a "max" criterion; failing it: not converged); ``shaft``: the whole-shaft
-    model's own study by throw, judged alike (all of them must converge)."""
-    found = [(k, st, "") for k, st in studies.items()] + [(k, st, WHOLE_SHAFT) for k, st in (shaft or {}).items()]
-    key, st, model = max(found, key=lambda x: x[1].assessed_change)
+    the tolerance (a "max" criterion; failing it: not converged)."""
+    key, st = max(studies.items(), key=lambda kv: kv[1].assessed_change)
     name = max(st.assessed_changes, key=lambda n: st.assessed_changes[n])
     a, b = st.levels[0], st.levels[-1]
     tol = st.tolerance
@@ -167,9 +145,7 @@ def criterion(
         unit="",
         quantity="mesh_convergence",
         sense="max",
-        where=Location(
-            "hot_spot", key, b.where[name], detail=name, levels=(a.fillet_divisions, b.fillet_divisions), model=model
-        ),
+        where=Location("hot_spot", key, b.where[name], detail=name, levels=(a.fillet_divisions, b.fillet_divisions)),
         remarks=() if st.converged else ("NOT CONVERGED",),
         description="relative difference of the peak von Mises stress on the hot-spot surfaces (shaft and "
         "counterweight fillets, oil-bore outlet) between the assessed mesh and the finest level of the "

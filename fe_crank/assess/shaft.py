@@ -16,17 +16,12 @@ the throw's assessed nodes, recovered exactly from the condensed fields
 cycle's weights with the bearings' forces found per angle (``ShaftCycle.weights``; the
 overspeed cycles likewise).  The throw frame is the per-throw model's, so the axes of
 the Gough-Pollard split and the groups' names are the same.
-
-With the hot-spot convergence study, the whole shaft has its own (``shaft_studies``): per
-throw, its governing states (``governing_states``) refined in zones driven by the whole
-shaft's solution (``fe.shaft.refinement``), whose factors its criteria take
-(``assess.refinement.StudyFactors``; docs/fe.md, "The whole shaft's own hot spots").
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -39,9 +34,7 @@ from fe_crank.assess.superpose import UnitStresses
 from fe_crank.assess.throw import ThrowAssessment
 from fe_crank.assess.workers import Scratch, run_blocks, thread_count
 from fe_crank.fe.core.stress import stress_at_selected_nodes
-from fe_crank.fe.refinement.levels import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX, ConvergenceStudy
 from fe_crank.fe.shaft.cases import ShaftCases
-from fe_crank.fe.shaft.refinement import shaft_zone_studies
 from fe_crank.fe.shaft.whole_shaft import BearingResult, WholeShaftResult, bearing_state_of
 from fe_crank.fe.throw.node_groups import node_groups
 from fe_crank.geometry.shaft import ShaftLayout
@@ -121,56 +114,6 @@ class ShaftAssessment:
     #: the hydrodynamic bearings' oil film in every state of ``sweep``
     #: (``assess.oil_film.FilmState``; () : no hydrodynamic bearing)
     film: tuple[Any, ...] = ()
-    #: the whole shaft's own hot-spot convergence study, throw name -> its study
-    #: (``shaft_studies``; empty: the study did not run)
-    convergence: dict[str, ConvergenceStudy] = field(default_factory=dict)
-
-
-#: the hot-spot families of the whole shaft's study: (the study's entry prefix, words, the
-#: groups' name prefixes)
-STUDY_FAMILIES = (
-    ("", "shaft fillets", ("crankpin_fillet", "journal_fillet")),
-    (COUNTERWEIGHT_PREFIX, "counterweight fillets", ("counterweight_fillet",)),
-    (OIL_BORE_PREFIX, "oil-bore outlet", ("oil_bore",)),
-)
-
-
-def governing_states(throw: ThrowAssessment, theta: np.ndarray) -> dict[str, int]:
-    """The whole shaft's governing states of one of its throws, {load set: cycle angle
-    index}: for each hot-spot family the state of the family's largest von Mises stress
-    over the operating cycle (the state of the static criteria's peak and of the fatigue
-    cycle's maximum, ``GroupResult.max_von_mises``); families peaking in the same state
-    share it."""
-    out: dict[str, int] = {}
-    theta = np.asarray(theta, float)
-    for _, words, prefixes in STUDY_FAMILIES:
-        found = [g.max_von_mises for g in throw.groups if g.group.startswith(prefixes)]
-        found = [e for e in found if e.angle is not None]
-        if not found:
-            continue
-        e = max(found, key=lambda x: x.value)
-        assert e.angle is not None
-        i = int(np.argmin(np.abs(np.angle(np.exp(1j * (theta - e.angle))))))
-        if i not in out.values():
-            out[f"peak {words} stress, {np.degrees(theta[i]):.1f} deg"] = i
-    return out
-
-
-def shaft_studies(
-    cases: ShaftCases,
-    result: WholeShaftResult,
-    throws: tuple[ThrowAssessment, ...],
-    theta: np.ndarray,
-    material: Material,
-) -> dict[str, ConvergenceStudy]:
-    """The whole shaft's own hot-spot convergence study of each of its throws
-    (``fe.shaft.refinement.shaft_zone_studies``: throws of one mesh share their zones) at
-    its governing states
-    (``governing_states``: the shaft model's own assessment ``throws`` over the operating
-    cycle ``theta``, rad, the case weights of ``result``'s operating cycle)."""
-    weights = result.cycles[0].weights
-    states = {t.name: {name: weights[i] for name, i in governing_states(t, theta).items()} for t in throws}
-    return shaft_zone_studies(cases, material, {t: s for t, s in states.items() if s})
 
 
 def bearing_sweep(

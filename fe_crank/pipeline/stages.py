@@ -5,8 +5,7 @@ M53 dimensions, CAD mass properties, the whole shaft placed) -> mesh (every mode
 plan, the whole shaft's too: ``cad.source.mesh_models``, cached) -> FE unit
 cases -> SCF mode (only where UR M53's empirical SCFs are out of range) -> torsion (with
 a ``[torsion]`` section) -> hot-spot convergence study (sign-off meshes) -> whole shaft (several throws on one shaft, or a ``[shaft]``
-section: ``pipeline.shaft_stage``) -> assessment (both models, every speed, the study's factors; with the study the whole
-shaft's own hot spots refined in zones driven by its solution: ``assess.case``) -> the whole
+section: ``pipeline.shaft_stage``) -> assessment (both models, every speed, the study's factors: ``assess.case``) -> the whole
 shaft's fields at its governing angle (for the report).  Each stage is a plain typed call
 into its package, timed on its own; no stage computes what another owns, and each reads
 only the outputs of the stages before it (``CaseOutputs``).

@@ -114,25 +114,14 @@ def _parts(
     overspeed: float | None,
     factor: Callable[[str, str], float] | None,
     shaft: ShaftAssessment | None,
-    shaft_factor: Callable[[str, str], float] | None = None,
 ) -> tuple[Located | None, Located | None]:
-    """``locate`` in the per-throw model and in the whole shaft (None without it); the whole
-    shaft's groups at ``shaft_factor`` (its own study's, ``StudyFactors.shaft_factor``),
-    else at ``factor``."""
+    """``locate`` in the per-throw model and in the whole shaft (None without it)."""
     ev = EVALUATORS[quantity]
     find = ev.find
     if factor is not None and quantity in GROUP_QUANTITIES:
 
         def find(th: tuple[ThrowAssessment, ...]) -> Found:
             return over_groups(quantity, th, factor)
-
-    if shaft is not None and shaft_factor is not None and quantity in GROUP_QUANTITIES:
-        own, _ = _parts(quantity, sense, throws, sweep, overspeed, factor, None)
-
-        def find_whole(th: tuple[ThrowAssessment, ...]) -> Found:
-            return over_groups(quantity, th, shaft_factor)
-
-        return own, _whole_part(quantity, sense, find_whole, sweep, overspeed, shaft)
 
     per: Located | None
     if ev.speed == SWEEP and sweep:
@@ -147,19 +136,6 @@ def _parts(
             per = got[0], got[1], None, ()
     if shaft is None:
         return per, None
-    return per, _whole_part(quantity, sense, find, sweep, overspeed, shaft)
-
-
-def _whole_part(
-    quantity: str,
-    sense: Sense,
-    find: Callable[[tuple[ThrowAssessment, ...]], Found],
-    sweep: tuple[StateResults, ...],
-    overspeed: float | None,
-    shaft: ShaftAssessment,
-) -> Located | None:
-    """``locate`` in the whole shaft by ``find`` on its throws."""
-    ev = EVALUATORS[quantity]
     # the main bearings' loads and films are the whole shaft's own, over its bearing sweep
     if (
         ev.speed == SWEEP
@@ -168,11 +144,11 @@ def _whole_part(
         and quantity not in BEARING_FINDERS
         and quantity not in FILM_FINDERS
     ):
-        return over_sweep(find, sense, shaft.states)  # the whole shaft at every speed, as the per-throw model
+        return per, over_sweep(find, sense, shaft.states)  # the whole shaft at every speed, as the per-throw model
     at = shaft.speed * RPM if ev.speed == SWEEP and shaft.speed is not None and sweep else None
     if ev.speed == OVERSPEED and overspeed is not None:
         at = overspeed * RPM
-    return whole_shaft(quantity, sense, find, shaft, speed_rpm=at)
+    return per, whole_shaft(quantity, sense, find, shaft, speed_rpm=at)
 
 
 def locate(
@@ -184,26 +160,20 @@ def locate(
     overspeed: float | None = None,
     factor: Callable[[str, str], float] | None = None,
     shaft: ShaftAssessment | None = None,
-    shaft_factor: Callable[[str, str], float] | None = None,
 ) -> Located | None:
     """(worst value, where, its speed in rpm or None, per-speed values) of ``quantity``:
     over the sweep for a speed-dependent quantity (``throws`` then unused), on ``throws``
     (the operating speed's, with the overspeed) otherwise; None when the model gives none.
-    ``factor(throw, group)``: k on the groups' stresses of a group quantity (``over_groups``);
-    ``shaft_factor``: the whole shaft's own k (None: ``factor`` in both models).  ``shaft``:
+    ``factor(throw, group)``: k on the groups' stresses of a group quantity (``over_groups``;
+    the whole shaft's throws are meshed as the per-throw model's, the same k).  ``shaft``:
     the worse of both models, located by model (``shaft_criteria.combined``).  A criterion
     the results must not judge raises ``Refused``."""
-    per, whole = _parts(quantity, sense, throws, sweep, overspeed, factor, shaft, shaft_factor)
+    per, whole = _parts(quantity, sense, throws, sweep, overspeed, factor, shaft)
     return per if shaft is None else combined(per, whole, sense)
 
 
 def _factor_of(quantity: str, factors: StudyFactors | None) -> Callable[[str, str], float] | None:
     return factors.factor if factors is not None and quantity in SCALED else None
-
-
-def _shaft_factor_of(quantity: str, factors: StudyFactors | None) -> Callable[[str, str], float] | None:
-    """The whole shaft's own study's factors (None: it takes the per-throw study's)."""
-    return factors.shaft_factor if factors is not None and factors.shaft and quantity in SCALED else None
 
 
 def model_values(
@@ -222,14 +192,7 @@ def model_values(
     for lim in criteria.limits:
         try:
             per, whole = _parts(
-                lim.quantity,
-                lim.sense,
-                throws,
-                sweep,
-                overspeed,
-                _factor_of(lim.quantity, factors),
-                shaft,
-                _shaft_factor_of(lim.quantity, factors),
+                lim.quantity, lim.sense, throws, sweep, overspeed, _factor_of(lim.quantity, factors), shaft
             )
         except Refused:
             continue
@@ -280,7 +243,6 @@ def judge_criteria(
                 overspeed=overspeed,
                 factor=_factor_of(lim.quantity, factors),
                 shaft=shaft,
-                shaft_factor=_shaft_factor_of(lim.quantity, factors),
             )
         except Refused as exc:
             raise InputError(f"cannot be evaluated: {exc}", file=file, key=lim.key) from None
@@ -312,7 +274,7 @@ def judge_criteria(
             dataclasses.replace(verdict, per_speed=per_speed, speed_rpm=speed_rpm, where=where, remarks=tuple(remarks))
         )
     if factors is not None and factors.studies:
-        out.append(refinement.criterion(factors.studies, factors.shaft))
+        out.append(refinement.criterion(factors.studies))
     return Judged(tuple(out), tuple(made))
 
 

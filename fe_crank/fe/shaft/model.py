@@ -102,7 +102,6 @@ class ShaftModel:
     torque_term: tuple[int, str]  # where the torque leaves
     moments: dict[tuple[int, str], tuple] = field(default_factory=dict)  # (piece, surface) -> (m0, m1, m2), local
     timings: dict[str, float] = field(default_factory=dict)
-    options: ShaftFeOptions = field(default_factory=ShaftFeOptions)  # what it was built with
 
     def coupling(self, name: str, z: float, members: list[tuple[int, str]]) -> BearingCoupling:
         """The distributing coupling of a reference point on the axis at ``z`` to the
@@ -288,7 +287,7 @@ def build_shaft_model(
         if not members:
             raise MeshError(f"bearing {b.name!r}: its journal is not part of the model")
         bearings.append(_coupling(b.name, b.z, members, moments))
-    model = ShaftModel(sm, pieces, n, 0.5 * (S + S.T), pts, bearings, (pto, f"torque_{pto_face}"), moments, options=opt)
+    model = ShaftModel(sm, pieces, n, 0.5 * (S + S.T), pts, bearings, (pto, f"torque_{pto_face}"), moments)
     model.timings = {"condensation": t1 - t0, "assembly": time.perf_counter() - t1}
     for cond in made:
         for name, v in cond.timings.items():
