@@ -414,26 +414,17 @@ CNR_THREADS = 2
 
 
 def out_of_core(solver) -> str:
-    """Switch a PyPardisoSolver to MKL PARDISO's out-of-core mode; returns the folder of its
-    factor files.
-
-    MKL reads user iparm values only when iparm(1) = 1 (otherwise it fills in its
-    defaults and ignores the rest), so the defaults of a real SPD matrix are stated
-    (Intel oneMKL reference, ``pardiso`` iparm): iparm(2) = 2 nested dissection (METIS),
-    iparm(10) = 8 pivot perturbation 1e-8 (unused without pivoting), iparm(18) = -1 report
-    the factor's non-zeros, and iparm(60) = 1: in core when the factor fits
-    ``MKL_PARDISO_OOC_MAX_CORE_SIZE`` MB, else out of core.  ``MKL_PARDISO_OOC_PATH`` is a
-    prefix: it must end with a separator to put the files into the folder.
+    """Switch a PyPardisoSolver made by :func:`pardiso_solver` (its iparm stated) to MKL
+    PARDISO's out-of-core mode; returns the folder of its factor files.  iparm(60) = 1: in
+    core when the factor fits ``MKL_PARDISO_OOC_MAX_CORE_SIZE`` MB, else out of core
+    (Intel oneMKL reference, ``pardiso`` iparm).  ``MKL_PARDISO_OOC_PATH`` is a prefix: it
+    must end with a separator to put the files into the folder.
     """
     folder = tempfile.mkdtemp(prefix="fe-crank-pardiso-", dir=os.environ.get("FE_CRANK_OOC_DIR") or None)
     os.environ["MKL_PARDISO_OOC_PATH"] = os.path.join(folder, "")
     if "MKL_PARDISO_OOC_MAX_CORE_SIZE" not in os.environ:
         os.environ["MKL_PARDISO_OOC_MAX_CORE_SIZE"] = str(int(OOC_CORE_SHARE * _memory_bytes() / 2**20))
     os.environ.setdefault("MKL_PARDISO_OOC_KEEP_FILE", "0")  # files deleted when the factor is released
-    solver.iparm[0] = 1
-    solver.iparm[1] = 2
-    solver.iparm[9] = 8
-    solver.iparm[17] = -1
     solver.iparm[59] = 1
     return folder
 
@@ -463,10 +454,14 @@ def new_pardiso() -> Any:
 
 
 def pardiso_solver() -> Any:
-    """A fresh PyPardisoSolver (SPD) with MKL's defaults for a real SPD matrix stated and its reproducible
-    mode on (module docstring; MKL reads
-    user iparm values only with iparm(1) = 1; as :func:`out_of_core`).  Typed ``Any``:
-    pypardiso has no type information."""
+    """A fresh PyPardisoSolver (SPD) with its iparm stated, in MKL's reproducible mode.
+
+    MKL reads user iparm values only when iparm(1) = 1 (otherwise it fills in its defaults
+    and ignores the rest), so the defaults of a real SPD matrix are stated (Intel oneMKL
+    reference, ``pardiso`` iparm): iparm(2) = 2 nested dissection (METIS), iparm(10) = 8
+    pivot perturbation 1e-8 (unused without pivoting), iparm(18) = -1 report the factor's
+    non-zeros; and iparm(34) = ``CNR_THREADS`` (module docstring).  Typed ``Any``: pypardiso
+    has no type information."""
     solver = new_pardiso()
     solver.iparm[0] = 1
     solver.iparm[1] = 2  # METIS nested dissection
