@@ -21,7 +21,9 @@ than the assessed mesh's; the criterion's remarks name the factor (``Refinement`
 a full-load curve the factors apply at every speed and load state and in both models (a
 group's k is the same at every speed: the study measures the mesh, whose refinement ratio
 a load's magnitude does not change; the whole shaft's throws are meshed as the per-throw
-model's).
+model's, and a throw mesh's study holds both models' load sets -- the whole shaft's own
+states of the largest crankpin force and journal torque, ``fe.shaft.refinement`` -- so k
+is the largest over both).
 
 The study's own criterion, ``mesh_convergence`` (``criterion``): the assessed mesh and the
 finest level must agree within the tolerance (5 %) for every load set, else the sign-off

@@ -43,17 +43,18 @@ from fe_crank.outputs import CaseOutputs, GeometryModel
 
 
 def whole_shaft_stage(
-    lc: LoadCase, geo: GeometryModel, meshes: Meshes, out: CaseOutputs, fields: bool
+    lc: LoadCase, geo: GeometryModel, meshes: Meshes, out: CaseOutputs, keep_factors: bool
 ) -> WholeShaftOutput:
-    """The stage (module doc) on the mesh stage's ``meshes``; ``fields``: keep the
-    factorisations for the whole mesh's state the report draws (``shaft_fields_stage``)."""
+    """The stage (module doc) on the mesh stage's ``meshes``; ``keep_factors``: keep the pieces'
+    factorisations for their whole fields (the state the report draws, ``shaft_fields_stage``;
+    the convergence study's load sets, ``fe.shaft.refinement``)."""
     mat, layout, sm = lc.material, geo.shaft, meshes.shaft
     assert layout is not None and sm is not None and mat is not None and out.cycles is not None
     dyn = out.assessed_dynamics
     assert dyn is not None
     overspeed = tuple(c.dynamics for c in out.cycles.overspeed) if lc.operating.overspeed is not None else ()
     options = ShaftFeOptions(
-        solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry, keep_factors=fields
+        solver=lc.fe.solver, pin_half_angle=lc.fe.pin_half_angle, symmetry=lc.fe.symmetry, keep_factors=keep_factors
     )
     features = geo.cad
     if features is not None and isinstance(lc.geometry, CadInput):  # the shaft as drawn: its throws' masses

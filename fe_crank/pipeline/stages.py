@@ -4,8 +4,10 @@ load -> dynamics (operating and overspeed cycles) -> balance -> geometry (mesh p
 M53 dimensions, CAD mass properties, the whole shaft placed) -> mesh (every model of the
 plan, the whole shaft's too: ``cad.source.mesh_models``, cached) -> FE unit
 cases -> SCF mode (only where UR M53's empirical SCFs are out of range) -> torsion (with
-a ``[torsion]`` section) -> hot-spot convergence study (sign-off meshes) -> whole shaft (several throws on one shaft, or a ``[shaft]``
-section: ``pipeline.shaft_stage``) -> assessment (both models, every speed, the study's factors: ``assess.case``) -> the whole
+a ``[torsion]`` section) -> whole shaft (several throws on one shaft, or a ``[shaft]``
+section: ``pipeline.shaft_stage``) -> hot-spot convergence study (sign-off meshes; both models'
+load sets: ``convergence_stage``) -> assessment (both models, every speed, the study's factors:
+``assess.case``) -> the whole
 shaft's fields at its governing angle (for the report).  Each stage is a plain typed call
 into its package, timed on its own; no stage computes what another owns, and each reads
 only the outputs of the stages before it (``CaseOutputs``).
@@ -23,6 +25,7 @@ from typing import Any, TypeVar
 
 from fe_crank.assess.case import Assessment, assess_case
 from fe_crank.assess.inputs import AssessInputs
+from fe_crank.assess.shaft import WholeShaftOutput
 from fe_crank.assess.throw_geometry import parametric_throws
 from fe_crank.assess.workers import threads
 from fe_crank.balance.analysis import BalanceResult, analyse_balance
@@ -31,6 +34,8 @@ from fe_crank.cad.source import GeometrySource, Meshes, mesh_models
 from fe_crank.errors import InputError
 from fe_crank.fe import solve_unit_cases
 from fe_crank.fe.refinement import convergence
+from fe_crank.fe.refinement.levels import ConvergenceStudy
+from fe_crank.fe.shaft.refinement import shaft_load_sets
 from fe_crank.fe.throw.options import FeOptions
 from fe_crank.fe.throw.pin_patches import pin_patch_options
 from fe_crank.fe.throw.unit_cases import UnitSolutions
@@ -39,7 +44,7 @@ from fe_crank.geometry.shaft import ShaftLayout, engine_shaft_layout, whole_shaf
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.io.base import InputFile
 from fe_crank.io.loadcase import LoadCase, check_study_fillets, load_loadcase
-from fe_crank.mechanism.cycles import engine_cycles
+from fe_crank.mechanism.cycles import EngineCycles, engine_cycles
 from fe_crank.mesh.plan import plan_meshes
 from fe_crank.mesh.types import ThrowMesh
 from fe_crank.outputs import CaseOutputs, FeModels, GeometryModel
@@ -113,25 +118,23 @@ def run_stages(run: Run) -> None:
     assert cycles is not None
     if lc.torsion is not None:  # torsional vibration (docs/torsion.md): only with a [torsion] section
         run.keep(torsion=run.timed("torsion", torsion_stage, lc, geo, unit_solutions, cycles))
-    if convergence.wanted(opts.convergence if opts.convergence is not None else lc.mesh.convergence, geo.plan.preset):
-        run.keep(
-            convergence=run.timed(
-                "convergence",
-                convergence.check_studies,
-                lc.geometry,
-                lc.material,
-                lc.fe,
-                meshes.throws,
-                cycles.operating,
-                cache_dir=geo.plan.cache_dir,
-                unit_solutions=unit_solutions,
-            )
-        )
+    study = convergence.wanted(
+        opts.convergence if opts.convergence is not None else lc.mesh.convergence, geo.plan.preset
+    )
     fields = opts.render or opts.write_vtu
-    if geo.shaft is not None:  # the whole shaft on its bearings (docs/shaft.md)
+    if geo.shaft is not None:  # the whole shaft on its bearings (docs/shaft.md); before the study, which reads it
         with threads(assess_threads_of(opts)):
-            shaft = run.timed("whole_shaft", shaft_stage.whole_shaft_stage, lc, geo, meshes, run.out, fields)
+            shaft = run.timed("whole_shaft", shaft_stage.whole_shaft_stage, lc, geo, meshes, run.out, fields or study)
         run.keep(whole_shaft=shaft)
+    if study:
+        ws = run.out.whole_shaft
+        try:
+            run.keep(
+                convergence=run.timed("convergence", convergence_stage, lc, geo, meshes, unit_solutions, cycles, ws)
+            )
+        finally:
+            if ws is not None and ws.cases is not None and not fields:
+                ws.cases.model.free_factors()  # the study's piece fields read them; the report draws no field
     with threads(assess_threads_of(opts)):
         assessment = run.timed("assess", assess_stage, lc, run.out, fields)
     run.keep(assessment=assessment)
@@ -148,6 +151,36 @@ def run_stages(run: Run) -> None:
         # the shaft's unit cases are read: the record keeps its results, not its working
         # model (its unit cases and its mesh)
         run.keep(whole_shaft=dataclasses.replace(ws, cases=None), meshes=dataclasses.replace(meshes, shaft=None))
+
+
+def convergence_stage(
+    lc: LoadCase,
+    geo: GeometryModel,
+    meshes: Meshes,
+    unit_solutions: dict[str, UnitSolutions],
+    cycles: EngineCycles,
+    ws: WholeShaftOutput | None,
+) -> dict[str, ConvergenceStudy]:
+    """The hot-spot convergence study of every throw mesh (``fe.refinement.convergence.check_studies``)
+    under the per-throw model's load sets and, with the whole shaft (``ws``, the whole-shaft
+    stage's output), the whole shaft's own (``fe.shaft.refinement.shaft_load_sets``: its
+    states of the largest crankpin force and journal torque, read on the throw piece),
+    solved in the same zones."""
+    material = lc.material
+    assert material is not None  # the fe stage ran
+    driven = None
+    if ws is not None and ws.cases is not None:
+        driven = shaft_load_sets(ws.cases, ws.result.cycles[0].weights, ws.dynamics, material, lc.fe.solver)
+    return convergence.check_studies(
+        _require_geometry(lc),
+        material,
+        lc.fe,
+        meshes.throws,
+        cycles.operating,
+        cache_dir=geo.plan.cache_dir,
+        unit_solutions=unit_solutions,
+        driven=driven,
+    )
 
 
 def assess_threads_of(options: CheckOptions) -> int:

@@ -165,7 +165,8 @@ def locate(
     over the sweep for a speed-dependent quantity (``throws`` then unused), on ``throws``
     (the operating speed's, with the overspeed) otherwise; None when the model gives none.
     ``factor(throw, group)``: k on the groups' stresses of a group quantity (``over_groups``;
-    the whole shaft's throws are meshed as the per-throw model's, the same k).  ``shaft``:
+    the whole shaft's throws are meshed as the per-throw model's, the same k, the largest over
+    both models' load sets, ``fe.shaft.refinement``).  ``shaft``:
     the worse of both models, located by model (``shaft_criteria.combined``).  A criterion
     the results must not judge raises ``Refused``."""
     per, whole = _parts(quantity, sense, throws, sweep, overspeed, factor, shaft)

@@ -41,6 +41,8 @@ import dataclasses
 import logging
 import time
 
+import numpy as np
+
 from fe_crank.cad.config import CadInput
 from fe_crank.fe.refinement.levels import (  # noqa: F401 (the study's types and constants, named here too)
     COUNTERWEIGHT_PREFIX,
@@ -192,6 +194,7 @@ def check_studies(
     cache_dir=None,
     unit_solutions: dict[str, UnitSolutions] | None = None,
     method: str = "zones",
+    driven: dict[str, dict[str, tuple[np.ndarray, dict[str, float]]]] | None = None,
 ) -> dict[str, ConvergenceStudy]:
     """The check stage's study for each distinct throw mesh (``meshes``: key -> ThrowMesh).
 
@@ -201,7 +204,10 @@ def check_studies(
     ``UnitSolutions``) the check's own solution on that mesh (one mesh and one
     factorisation fewer).  ``method``: "zones" (``fe.refinement.zone_study``: only the hot spots
     re-meshed, driven by the check's solution; where ``zones_apply``), else "full" (the
-    whole throw re-meshed and re-solved per level, ``fillet_convergence``).
+    whole throw re-meshed and re-solved per level, ``fillet_convergence``).  ``driven``:
+    another model's load sets of a throw mesh, by its ``ThrowMesh.key`` (the whole shaft's,
+    ``fe.shaft.refinement.shaft_load_sets``), solved in the same zones as the check's own
+    (``zone_convergence``); the full method studies the check's own load sets only.
     """
     out: dict[str, ConvergenceStudy] = {}
     done: dict[str, ConvergenceStudy] = {}
@@ -216,8 +222,12 @@ def check_studies(
             from fe_crank.fe.refinement.zone_study import zone_convergence
 
             assert first is not None
-            out[key] = done[tm.key] = zone_convergence(geometry, material, first[0], first[1], loads)
+            out[key] = done[tm.key] = zone_convergence(
+                geometry, material, first[0], first[1], loads, driven=(driven or {}).get(tm.key)
+            )
             continue
+        if driven and tm.key in driven:
+            log.info("the whole throw re-meshed per level: the other model's load sets of %s are not studied", key)
         study = fillet_convergence(
             geometry,
             material,

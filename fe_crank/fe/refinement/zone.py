@@ -35,10 +35,11 @@ from scipy.spatial import cKDTree
 from skfem import ElementTetP2
 
 from fe_crank.errors import MeshError
-from fe_crank.fe.core.assembly import assemble_stiffness, assemble_surface_load
+from fe_crank.fe.core.assembly import assemble_stiffness, assemble_surface_load, upper_triangle
 from fe_crank.fe.core.bases import cell_basis, facet_basis
 from fe_crank.fe.core.loads import BODY_CASES, SURFACE_INTORDER, PinPressure
 from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
+from fe_crank.fe.linalg.choice import choose_method
 from fe_crank.fe.linalg.factorise import factorise
 from fe_crank.fe.throw.options import FeOptions, Material
 from fe_crank.fe.throw.pin_directions import pin_direction
@@ -160,6 +161,17 @@ def zone_loads(
     return F
 
 
+def factorise_free(A: sp.csr_matrix):
+    """``factorise(A, "auto")`` of a zone's free block, handed only its upper triangle where
+    the method reads no more (``fe.core.assembly.upper_triangle``: no whole-matrix
+    ``scipy.sparse.triu``)."""
+    A = sp.csr_matrix(A)
+    A.sort_indices()
+    if choose_method("auto", A.shape[0]) in ("pardiso", "pardiso_ooc", "cholmod"):
+        return factorise(upper_triangle(A), "auto", upper=True)
+    return factorise(A, "auto")
+
+
 class ZoneSystem:
     """A zone's stiffness split at its driven dofs, the free block factorised once, for any
     number of load sets (``solve``) and for the zone's mirror image (``solve_mirror``)."""
@@ -174,7 +186,7 @@ class ZoneSystem:
         self.free = np.setdiff1d(np.arange(self.n), self.held)
         rows = K[self.free]
         self.K_fh = rows[:, self.held]
-        self.factor = factorise(rows[:, self.free], "auto")
+        self.factor = factorise_free(rows[:, self.free])
 
     def solve(self, F: np.ndarray, G: np.ndarray) -> np.ndarray:
         """(3 N, k) displacements under loads F (3 N, k) with the driven nodes' displacements
@@ -296,6 +308,7 @@ __all__ = [
     "ZoneSystem",
     "boundary_samples",
     "driven_boundaries",
+    "factorise_free",
     "held_nodes",
     "solve_zone",
     "zone_loads",

@@ -34,6 +34,7 @@ import numpy as np
 
 from fe_crank.cad.config import CadInput
 from fe_crank.errors import MeshError
+from fe_crank.fe.core.loads import PinPressure, pin_pressure_load, pin_surface
 from fe_crank.fe.core.stress import stress_at_selected_nodes, von_mises
 from fe_crank.fe.refinement.levels import (
     COUNTERWEIGHT_PREFIX,
@@ -46,6 +47,7 @@ from fe_crank.fe.refinement.levels import (
 )
 from fe_crank.fe.refinement.zone import Interpolator, ZoneSystem, boundary_samples, zone_peaks
 from fe_crank.fe.throw.options import Material
+from fe_crank.fe.throw.pin_directions import pin_direction, unit_force
 from fe_crank.fe.throw.surface_peaks import COUNTERWEIGHT_FILLETS, FILLETS, OIL_BORE
 from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.geometry.spec import CrankGeometry
@@ -328,6 +330,22 @@ def held_level_meshes(
     return [a + b for a, b in zip(meshes, again)]
 
 
+def pins_of(unit_solutions: UnitSolutions, loads: dict[str, dict[str, float]]) -> dict[str, PinPressure]:
+    """The pin pressure of every pin unit case of ``loads``: the solved unit cases' own
+    (``UnitSolutions.pin``), the others built alike on the same crankpin surface (a load set
+    of another model, ``zone_convergence``'s ``driven``)."""
+    pins = dict(unit_solutions.pin)
+    missing = sorted({c for w in loads.values() for c in w if pin_direction(c) is not None} - set(pins))
+    if missing:
+        basis, opts = unit_solutions.system.basis, unit_solutions.options
+        surface = pin_surface(basis, opts.pin_boundary)
+        for name in missing:
+            pins[name] = pin_pressure_load(
+                basis, unit_force(name), boundary=opts.pin_boundary, half_angle=opts.pin_half_angle, surface=surface
+            )[1]
+    return pins
+
+
 def zone_convergence(
     geometry: CrankGeometry | CadInput,
     material: Material,
@@ -338,16 +356,24 @@ def zone_convergence(
     factors=FACTORS,
     tolerance: float = TOLERANCE,
     zone_radius: float = ZONE_RADIUS,
+    driven: dict[str, tuple[np.ndarray, dict[str, float]]] | None = None,
 ) -> ConvergenceStudy:
     """The study's levels r/(n f), f in ``factors`` (the first 1: the assessed mesh
     ``throw_mesh`` and its solution ``unit_solutions``, which must hold every unit case of
     ``loads``), the finer ones from the hot-spot zones (module docstring) of the throw of
-    ``geometry``, parametric or drawn (``zone_solid``)."""
+    ``geometry``, parametric or drawn (``zone_solid``).  ``driven``: further load sets
+    {name: (displacement (3 N,) on ``unit_solutions``' dofs, the loads inside a zone as
+    unit cases and weights)}, another model's states of the same throw mesh (the whole
+    shaft's, ``fe.shaft.refinement``): their hot spots are found, cut and solved with the
+    others', in the same zones and factorisations."""
     if len(factors) < 2 or factors[0] != 1.0:
         raise ValueError("a zone study starts from the assessed mesh (factor 1) and has at least two levels")
     loads = {k: dict(v) for k, v in loads.items()}
     t0 = time.perf_counter()
     fields = {name: unit_solutions.combine(w) for name, w in loads.items()}
+    for name, (u, w) in (driven or {}).items():
+        fields[name], loads[name] = np.asarray(u, float), dict(w)
+    pins = pins_of(unit_solutions, loads)
     first = level_peaks(unit_solutions, fields)
     base = throw_mesh.options
     levels = [
@@ -396,7 +422,7 @@ def zone_convergence(
             system = ZoneSystem(zm, material, unit_solutions.options)
             try:
                 image = mirror_zone(zm) if zm.mirrored else None
-                own, got = system.fields_and_mirror(image, unit_solutions.pin, loads, fields, interp)
+                own, got = system.fields_and_mirror(image, pins, loads, fields, interp)
                 solved = [(zm, own, system.basis)]
                 if image is not None:
                     solved.append((image, *got) if got is not None else (image, None, None))
@@ -406,7 +432,7 @@ def zone_convergence(
                 if U is None:  # the image's nodes are not the zone's reflected: solved alone
                     system = ZoneSystem(z, material, unit_solutions.options)
                     try:
-                        U, basis = system.fields(unit_solutions.pin, loads, fields, interp), system.basis
+                        U, basis = system.fields(pins, loads, fields, interp), system.basis
                     finally:
                         system.release()
                 n_dof += int(3 * basis.N)

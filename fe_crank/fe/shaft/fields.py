@@ -77,6 +77,40 @@ def piece_fields(cases: ShaftCases, weights: np.ndarray, material, solver: str =
     return [u for u in out if u is not None]
 
 
+def piece_states(
+    cases: ShaftCases, weights: dict[int, np.ndarray], material, solver: str = "auto"
+) -> dict[int, np.ndarray]:
+    """{piece: its displacements (3 N, m), own frame} for the case weights (n_cases, m) of each
+    piece asked for (module doc), on the whole piece mesh: one factorisation per distinct
+    piece (the condensation's where kept), all the columns of its placed pieces in one solve."""
+    model = cases.model
+    by_cond: dict[int, list[int]] = {}
+    for k in weights:
+        by_cond.setdefault(id(model.pieces[k].cond), []).append(k)
+    out: dict[int, np.ndarray] = {}
+    for ks in by_cond.values():
+        cond = model.pieces[ks[0]].cond
+        W = [np.asarray(weights[k], float).reshape(len(cases.names), -1) for k in ks]
+        V = np.column_stack([cases.V[k] @ w for k, w in zip(ks, W)])
+        if cond.interior is not None:
+            U = cond.interior.solve(np.asarray(-(cond.K_b.T @ V)))
+        else:
+            K_b = stiffness_rows(cond.basis, material.youngs_modulus, material.poisson_ratio, cond.b)
+            interior = _interior(cond, material, solver)
+            try:
+                U = interior.solve(np.asarray(-(K_b.T @ V)))
+            finally:
+                interior.free()
+        j = 0
+        for k, w in zip(ks, W):
+            m = w.shape[1]
+            u = U[:, j : j + m] + cond.L @ (cases.coef[k] @ w)
+            u[cond.b] = V[:, j : j + m]
+            out[k] = u
+            j += m
+    return out
+
+
 def shaft_fields(
     cases: ShaftCases, weights: np.ndarray, material, solver: str = "auto", mark: np.ndarray | None = None
 ) -> ShaftFields:
