@@ -6,7 +6,13 @@
 * every journal of the whole shaft carries its own torque, the torsional stage's;
 * the stresses at the assessed nodes from the condensed fields equal those of the whole
   fields solved afresh at an angle (two routes), and the picture's peak is the assessed one;
-* results.json follows its schema and gives the fields of every main bearing.
+* results.json follows its schema and gives the fields of every main bearing;
+* with the hot-spot convergence study, the whole shaft's own states are studied in the
+  per-throw zones (``fe.shaft.refinement``): on the determinate throw the whole shaft's
+  load set of the per-throw study's pin-force loads gives the per-throw load set's peaks
+  (an independent route: condensation, force method and the piece's interior solve against
+  the throw's direct solve), and the check's study holds the whole shaft's states of its
+  largest crankpin force and journal torque, its factors the largest over both models'.
 """
 
 from __future__ import annotations
@@ -19,10 +25,15 @@ import numpy as np
 import pytest
 from helpers.pipeline import stage_outputs, write_report
 
+from fe_crank.assess.refinement import StudyFactors
 from fe_crank.assess.results import schema_path
 from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.fe.core.stress import stress_at_selected_nodes
-from fe_crank.fe.shaft.fields import piece_fields
+from fe_crank.fe.refinement.convergence import estimate
+from fe_crank.fe.refinement.levels import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX
+from fe_crank.fe.refinement.zone_study import zone_convergence
+from fe_crank.fe.shaft.fields import piece_fields, piece_states
+from fe_crank.fe.shaft.refinement import WHOLE_SHAFT_SET, governing_states, piece_of, zone_loads
 from fe_crank.fe.shaft.whole_shaft import analyse_whole_shaft, throw_masses
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mesh.shaft import mesh_shaft
@@ -36,8 +47,9 @@ pytestmark = pytest.mark.heavy
 def swept_single(tmp_path_factory, mesh_cache):
     """The small single (tests/data/geometry_small.toml with a [shaft] section whose end
     journals end at the bearing centres: the throw on its two bearings) over two speeds
-    with its misfire case, checked at ``test`` (``helpers.check_shaft``): the stages'
-    outputs and the whole-shaft stage's own (its unit cases and its sweep)."""
+    with its misfire case, checked at ``test`` with the hot-spot convergence study
+    (``helpers.check_shaft``): the stages' outputs and the whole-shaft stage's own (its unit
+    cases and its sweep)."""
     from helpers.check_shaft import stage_outputs_with_shaft
     from helpers.sweep import SWEPT
 
@@ -45,7 +57,7 @@ def swept_single(tmp_path_factory, mesh_cache):
     (folder / "case.toml").write_text(SWEPT.format(sweep='speeds = ["2000 rpm", "3000 rpm"]'))
     g = (DATA / "geometry_small.toml").read_text() + '\n[shaft]\nend_journal_length = "12 mm"\n'
     (folder / "geometry_small.toml").write_text(g)
-    return stage_outputs_with_shaft(folder / "case.toml", mesh_cache)
+    return stage_outputs_with_shaft(folder / "case.toml", mesh_cache, convergence=True)
 
 
 def test_a_throw_on_its_two_bearings_is_the_per_throw_model(swept_single):
@@ -223,13 +235,80 @@ def test_the_whole_shaft_is_assessed_at_every_speed_and_load_state(swept_single)
         fat = [x.fatigue_safety.value for x in groups if x.fatigue_safety is not None]
         got_fat = [x.fatigue_safety.value for x in t.groups if x.fatigue_safety is not None]
         assert min(got_fat) == pytest.approx(min(fat), rel=1e-9)
-    # the criteria: the worse model at each of the two speeds; a throw on its two bearings is
-    # statically determinate, so both models agree (to the solvers' round-off) at every speed
+    # the criteria: the worse model at each of the two speeds, at the convergence study's
+    # factors (the same in both models); a throw on its two bearings is statically
+    # determinate, so both models agree (to the solvers' round-off) at every speed
     crit = {c.quantity: c for c in out.assessment.criteria}
-    static = min(x.static_safety for st in shaft.states for x in st.throws[0].groups)
+    k = StudyFactors(out.convergence).factor
+    static = min(x.static_safety / k("1", x.group) for st in shaft.states for x in st.throws[0].groups)
     both = {v.model: v.value for v in out.assessment.by_model if v.criterion == crit["static_safety"].name}
     assert both[WHOLE_SHAFT] == static and both[PER_THROW] == pytest.approx(static, rel=1e-8)
     for q in ("static_safety", "fatigue_safety"):
         assert len(crit[q].per_speed) == 2
         values = {v.model: v.value for v in out.assessment.by_model if v.criterion == crit[q].name}
         assert crit[q].value == min(values.values())
+
+
+def test_the_shafts_load_set_of_a_determinate_throw_is_the_per_throw_models(swept_single):
+    """The per-throw study's pin-force load set (its pin cases and the centrifugal force)
+    as weights of the whole shaft's unit cases (``pin_<deg>@1``, ``centrifugal`` and
+    ``centrifugal_cw`` alike), given to the zone study as the whole shaft's load set beside
+    the per-throw one: the same peaks at the assessed mesh and at a finer level's zones, at
+    the same surfaces."""
+    out, ws = swept_single
+    assert ws is not None and ws.cases is not None
+    (key,) = out.fe.unit_solutions
+    unit_solutions = out.fe.unit_solutions[key]
+    per = dict(out.convergence[key].loads["peak pin force"])
+    assert set(per) <= {*unit_solutions.cases, "centrifugal"} and "torque" not in per
+    names = ws.cases.names
+    w = np.zeros(len(names))
+    for case, v in per.items():
+        for target in ("centrifugal", "centrifugal_cw") if case == "centrifugal" else (f"{case}@1",):
+            w[names.index(target)] += v
+    k = piece_of(ws.cases, "1")
+    u = piece_states(ws.cases, {k: w[:, None]}, out.loadcase.material)[k][:, 0]
+    shaft = (u, zone_loads(ws.cases.model.pieces[k].cond.names, ws.cases.coef[k] @ w))
+    assert shaft[1] == per  # the same loads inside the zones, by another route
+    one = (1.0, 1.5)  # the assessed mesh and one finer level
+    st = zone_convergence(
+        out.loadcase.geometry,
+        out.loadcase.material,
+        out.meshes.throws[key],
+        unit_solutions,
+        {"per-throw": per},
+        factors=one,
+        driven={"shaft": shaft},
+    )
+    assert st.levels[1].zones > 0
+    for lv in st.levels:
+        assert lv.peaks["shaft"] == pytest.approx(lv.peaks["per-throw"], rel=1e-7)
+        assert lv.where["shaft"] == lv.where["per-throw"]
+
+
+def test_the_check_studies_the_whole_shafts_own_states(swept_single):
+    """The throw mesh's study holds the whole shaft's states of its largest crankpin force
+    and journal torque (``governing_states``: named by throw and angle, at the dynamics'
+    own maxima), beside the per-throw model's two load sets; each group's factor is the
+    largest ratio over all of them (>= 1), in both models."""
+    out, ws = swept_single
+    assert ws is not None and ws.cases is not None
+    (key,) = out.convergence
+    st = out.convergence[key]
+    theta = np.asarray(ws.dynamics.theta)
+    tl = ws.dynamics.throws["1"]
+    i = int(np.argmax(np.hypot(*np.asarray(tl.pin_force).T)))
+    j = int(np.argmax(np.maximum(np.abs(tl.torque_front), np.abs(tl.torque_rear))))
+    expected = {
+        f"{WHOLE_SHAFT_SET}peak pin force (throw 1, {np.degrees(theta[i]):.1f} deg)": ("1", i),
+        f"{WHOLE_SHAFT_SET}peak torque (throw 1, {np.degrees(theta[j]):.1f} deg)": ("1", j),
+    }
+    assert governing_states(ws.cases, ws.dynamics, ["1"]) == expected
+    assert set(st.loads) == {"peak pin force", "peak torque", *expected}
+    assert st.method == "zones" and all(lv.zones > 0 for lv in st.levels[1:])
+    assert set(st.levels[-1].peaks) == set(st.levels[0].peaks) >= set(expected)
+    factors = StudyFactors(out.convergence)
+    fillets = [e for e in st.changes if not e.startswith((COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX))]
+    assert set(fillets) == set(st.loads)
+    k = max(1.0, max(estimate(st, e)[0] for e in fillets))
+    assert factors.factor("1", "crankpin_fillet_1") == pytest.approx(k, rel=1e-12)
