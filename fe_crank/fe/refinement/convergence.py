@@ -211,6 +211,10 @@ def check_studies(
     """
     out: dict[str, ConvergenceStudy] = {}
     done: dict[str, ConvergenceStudy] = {}
+    for other in sorted(set(driven or {}) - {tm.key for tm in meshes.values()}):
+        log.info(
+            "the other model's load sets of the throw mesh %s: no throw model of that mesh to study them on", other
+        )
     for key, tm in meshes.items():
         if tm.key in done:
             out[key] = done[tm.key]
