@@ -52,29 +52,10 @@ def _interior(cond, material, solver: str):
 
 def piece_fields(cases: ShaftCases, weights: np.ndarray, material, solver: str = "auto") -> list[np.ndarray]:
     """Per piece its displacement (3 N,) in its own frame for the case weights (n_cases,)
-    (module doc): one factorisation per distinct piece, freed after its solves."""
-    model = cases.model
-    out: list[np.ndarray | None] = [None] * len(model.pieces)
-    by_cond: dict[int, list[int]] = {}
-    for k, pp in enumerate(model.pieces):
-        by_cond.setdefault(id(pp.cond), []).append(k)
-    for ks in by_cond.values():
-        cond = model.pieces[ks[0]].cond
-        V = np.column_stack([cases.V[k] @ weights for k in ks])
-        if cond.interior is not None:  # kept from the condensation
-            U = cond.interior.solve(np.asarray(-(cond.K_b.T @ V)))
-        else:
-            K_b = stiffness_rows(cond.basis, material.youngs_modulus, material.poisson_ratio, cond.b)
-            interior = _interior(cond, material, solver)
-            try:
-                U = interior.solve(np.asarray(-(K_b.T @ V)))
-            finally:
-                interior.free()
-        for j, k in enumerate(ks):
-            u = U[:, j] + cond.L @ (cases.coef[k] @ weights)
-            u[cond.b] = V[:, j]
-            out[k] = u
-    return [u for u in out if u is not None]
+    (module doc): ``piece_states`` of every piece for the one state."""
+    w = np.asarray(weights, float).reshape(-1, 1)
+    got = piece_states(cases, dict.fromkeys(range(len(cases.model.pieces)), w), material, solver)
+    return [got[k][:, 0] for k in range(len(cases.model.pieces))]
 
 
 def piece_states(
