@@ -105,7 +105,7 @@ def body_model(lc: LoadCase, layout: ShaftLayout, *, size, cache_dir, max_elemen
 
 
 @dataclass(frozen=True)
-class _StateBase:
+class BodyBase:
     """One load state of one throw, for every candidate (``candidate_bodies``): the
     coefficients with each counterweight's column as drawn (k_w = 1), the columns of the
     counterweights, and per group the part of ``peak.peak_bound``'s sum that no
@@ -118,19 +118,9 @@ class _StateBase:
     vm_cw: dict[str, dict[int, np.ndarray]]  # group -> web -> (n,) Pa per unit coefficient
 
 
-def _state_base(model: BodyModel, name: str, state, tc) -> _StateBase:
-    unit = model.units[name]
-    C = fe_coefficients(  # with [torsion]: the throw's vibration, as the check's assess_throw
-        unit,
-        tc.pin_force,
-        tc.torque_in,
-        state.speed,
-        sense=model.senses[name],
-        rod_loads=rod_loads(tc, model.places[name]),
-        angular_acceleration=tc.angular_acceleration,
-        fe_pin_force=tc.fe_pin_force,
-        fe_rod_loads=tc.fe_rod_loads(model.places[name]) if tc.fe_rods else None,
-    )
+def body_base(unit: UnitStresses, coefficients: np.ndarray) -> BodyBase:
+    """``BodyBase`` of the coefficients ``coefficients`` (every counterweight as drawn)."""
+    C = np.asarray(coefficients, float)
     columns = {w: unit.cases.index(f"centrifugal_cw_{w}") for w in (1, 2)}
     other = np.ones(C.shape[1], bool)
     other[list(columns.values())] = False
@@ -142,7 +132,24 @@ def _state_base(model: BodyModel, name: str, state, tc) -> _StateBase:
         v = von_mises(unit.stress[:, :, nodes])  # (n_cases, n)
         free[grp] = (np.abs(C[:, other]) @ v[other]).max(axis=0)
         vm_cw[grp] = {w: v[k] for w, k in columns.items()}
-    return _StateBase(C, columns, free, vm_cw)
+    return BodyBase(C, columns, free, vm_cw)
+
+
+def body_bound(base: BodyBase, group: str, coefficients: np.ndarray) -> np.ndarray | None:
+    """An upper bound of each node's computed peak over the cycle of ``coefficients`` (the
+    base's with the counterweights' columns scaled): ``peak.peak_bound``'s B, the
+    counterweight-free part kept plus sum_w |a_w| sigma_v(U_w) (the columns constant, a_w
+    their value: the same sum), widened by ``peak.BOUND_RTOL`` for the rounding of both
+    sums; None where a counterweight's column varies over the cycle."""
+    b = base.free[group].copy()
+    for w, k in base.columns.items():
+        col = coefficients[:, k]
+        if not np.all(col == col[0]):
+            return None
+        if col[0] != 0.0:
+            b += abs(float(col[0])) * base.vm_cw[group][w]
+    out: np.ndarray = b * (1.0 + BOUND_RTOL)
+    return out
 
 
 def candidate_bodies(model: BodyModel, loads: AssessedLoads, factors: dict[tuple[str, int], float]) -> BodyScreen:
@@ -150,15 +157,12 @@ def candidate_bodies(model: BodyModel, loads: AssessedLoads, factors: dict[tuple
     -> the mass factor k_w of that web's drawn counterweight (0: none).
 
     Each state's coefficients and the counterweight-free part of each node's bound are
-    taken once for every candidate of the same ``loads`` (``_StateBase``).  The
-    counterweights' columns are constant over the cycle (omega^2 k_w), so a node's bound
-    ``peak.peak_bound``, max_t sum_c |a_c(t)| sigma_v(U_c), is that part plus
-    sum_w |k_w a_w| sigma_v(U_w) (the same value; widened by ``peak.BOUND_RTOL`` for the
-    rounding of both sums, as ``group_peak`` widens its own).  ``group_peak`` searches by
-    it; a group whose largest bound does not exceed the largest peak found before (in
-    the order of the states, throws and groups) cannot hold a larger one, which alone
-    would change the value or its place: it is not searched.  The value and place are
-    those of every group's search."""
+    taken once for every candidate of the same ``loads`` (``body_base``), the bound of
+    the candidate's coefficients formed from them (``body_bound``), what ``group_peak``
+    searches by.  A group whose largest bound does not exceed the largest peak found
+    before (in the order of the states, throws and groups) cannot hold a larger one,
+    which alone would change the value or its place: it is not searched.  The value and
+    place are those of every group's search."""
     if model.cache.get("loads") is not loads:  # the bases of one loads object at a time
         model.cache.clear()
         model.cache["loads"] = loads
@@ -171,28 +175,30 @@ def candidate_bodies(model: BodyModel, loads: AssessedLoads, factors: dict[tuple
                     continue
                 key = (i, j, name)
                 if key not in model.cache:
-                    model.cache[key] = _state_base(model, name, state, tc)
-                base: _StateBase = model.cache[key]
+                    places = model.places[name]
+                    C0 = fe_coefficients(  # with [torsion]: the throw's vibration, as the check's assess_throw
+                        unit,
+                        tc.pin_force,
+                        tc.torque_in,
+                        state.speed,
+                        sense=model.senses[name],
+                        rod_loads=rod_loads(tc, places),
+                        angular_acceleration=tc.angular_acceleration,
+                        fe_pin_force=tc.fe_pin_force,
+                        fe_rod_loads=tc.fe_rod_loads(places) if tc.fe_rods else None,
+                    )
+                    model.cache[key] = body_base(unit, C0)
+                base: BodyBase = model.cache[key]
                 C = base.coefficients.copy()
-                scale = {}
                 for w, k in base.columns.items():
                     C[:, k] *= factors.get((name, w), 0.0)
-                    col = C[:, k]
-                    scale[w] = float(np.abs(col[0])) if np.all(col == col[0]) else None
                 for grp in sorted(unit.groups):
                     nodes = np.asarray(unit.groups[grp])
                     if not nodes.size:
                         continue
-                    if any(a is None for a in scale.values()):
-                        bound = None  # a counterweight's column varies: group_peak's own bound
-                    else:
-                        b = base.free[grp].copy()
-                        for w, a in scale.items():
-                            if a:
-                                b += a * base.vm_cw[grp][w]
-                        bound = b * (1.0 + BOUND_RTOL)
-                        if float(bound.max()) <= best:
-                            continue  # cannot exceed the largest peak found (docstring)
+                    bound = body_bound(base, grp, C)
+                    if bound is not None and float(bound.max()) <= best:
+                        continue  # cannot exceed the largest peak found (docstring)
                     v = float(group_peak(unit, C, nodes, bound=bound)[1].max())
                     if v > best:
                         rpm = state.speed * 30 / math.pi
@@ -200,4 +206,4 @@ def candidate_bodies(model: BodyModel, loads: AssessedLoads, factors: dict[tuple
     return BodyScreen(best, where)
 
 
-__all__ = ["BodyModel", "BodyScreen", "body_model", "candidate_bodies"]
+__all__ = ["BodyModel", "BodyScreen", "BodyBase", "body_model", "body_base", "body_bound", "candidate_bodies"]
