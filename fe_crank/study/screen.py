@@ -26,10 +26,11 @@ Stresses (``candidate_stresses``): each throw's unit stresses at its assessed no
 (``assess.shaft.piece_unit_stresses``, the per-web counterweight cases among them) are
 taken once; a candidate's history in a state is sum_c W_c(theta) S_c with its weights W
 (the per-web cases at k_w omega^2, the redundant bearings' forces solved again), each
-node group's extremes by the check's own search (``assess.group.extremes``).  The first
-candidate of a placement screened in a state is the reference there: bounds of its
+node group's extremes by the check's own search (``assess.group.extremes``).  One
+candidate of a placement is the reference in each state (the placement's middle balance
+rate, ``seed_references``; else the first candidate screened there): bounds of its
 stresses at every assessed node from its history computed in single precision
-(``assess.group.reference.single_reference_path``, the rounding bounded) bound every later candidate's
+(``assess.group.reference.single_reference_path``, the rounding bounded) bound every other candidate's
 of that placement and state, whose history differs by a constant (its
 counterweights' centrifugal cases) and the change of the redundant bearings' forces
 (``reference_shift``); the searches take those bounds and skip the groups that cannot
