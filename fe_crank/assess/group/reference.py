@@ -19,7 +19,7 @@ the box, ``bounds.box_von_mises``), von Mises a seminorm:
   is at most P_0 + sigma_v(M) and at most sqrt(P_0^2 + 2 max_box (Q M) . S_0 +
   sigma_v(M)^2), with Q von Mises' quadratic form and the box one of S_0's path kept with
   the reference (``single_reference_path``: its computed mid range m and half widths,
-  ``_shifted_peak``): the shift's own direction against the path's, tighter where the
+  ``_shifted``): the shift's own direction against the path's, tighter where the
   shift lowers the stress;
 * the mid range of S is mid_0 + M + e with |e_j| <= r_j, so the radius about it
   R <= R_0 + 2 v, its von Mises stress <= sigma_v(mid_0) + sigma_v(M) + v (and, with the
@@ -76,6 +76,9 @@ class ReferencePath:
     box_mid: np.ndarray | None = None
     box_half: np.ndarray | None = None
     mid_slack: np.ndarray | None = None
+    #: (n,) sigma_v(m)^2 of ``box_mid`` and the magnitudes of its terms (double precision)
+    box_mid_vm2: np.ndarray | None = None
+    box_mid_mag: np.ndarray | None = None
 
 
 def _up(x: np.ndarray) -> np.ndarray:
@@ -135,6 +138,21 @@ def reference_path(
         return ReferencePath(c, _up(peak))
     return ReferencePath(c, _up(peak), _up(vals[0]), _up(vals[1]), _up(vals[2]), _down(vals[3]), _up(vals[4]))
 
+
+#: von Mises' quadratic form on (xx, yy, zz, xy, yz, xz): sigma_v(X)^2 = X . Q X
+_Q = np.array(
+    [
+        [1.0, -0.5, -0.5, 0.0, 0.0, 0.0],
+        [-0.5, 1.0, -0.5, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 3.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0, 3.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0, 0.0, 3.0],
+    ]
+)
+
+
+_ABS_Q = np.abs(_Q)
 
 #: unit roundoff of single precision
 _U32 = float(np.finfo(np.float32).eps) / 2
@@ -292,7 +310,15 @@ def single_reference_path(
         vals[3, s : s + b] = chord * (1.0 - 16.0 * _U32) - v_a
         vals[4, s : s + b] = p0 + p_a + 4.0 * _U32 * (big[0] + big[1] + big[2]) / 3.0
     up, down = 1 + BOUND_RTOL, 1 - BOUND_RTOL
-    kept = {"box_mid": box[0].astype(np.float32), "box_half": _up(box[1] * up), "mid_slack": _up(slack * up)}
+    mid32 = box[0].astype(np.float32)
+    m = mid32.astype(float)
+    kept = {
+        "box_mid": mid32,
+        "box_half": _up(box[1] * up),
+        "mid_slack": _up(slack * up),
+        "box_mid_vm2": np.einsum("jn,jn->n", _Q @ m, m),
+        "box_mid_mag": 2.0 * np.einsum("j,jn->n", np.diag(_Q), m * m),
+    }
     if vals is None:
         return ReferencePath(c, _up(peak * up), **kept)
     mid_hydro = vals[1] + np.abs(vals[1]) * BOUND_RTOL
@@ -339,35 +365,29 @@ def reference_shift(
     return shift, r
 
 
-#: von Mises' quadratic form on (xx, yy, zz, xy, yz, xz): sigma_v(X)^2 = X . Q X
-_Q = np.array(
-    [
-        [1.0, -0.5, -0.5, 0.0, 0.0, 0.0],
-        [-0.5, 1.0, -0.5, 0.0, 0.0, 0.0],
-        [-0.5, -0.5, 1.0, 0.0, 0.0, 0.0],
-        [0.0, 0.0, 0.0, 3.0, 0.0, 0.0],
-        [0.0, 0.0, 0.0, 0.0, 3.0, 0.0],
-        [0.0, 0.0, 0.0, 0.0, 0.0, 3.0],
-    ]
-)
-
-
-def _shifted_peak(peak: np.ndarray, mid: np.ndarray, half: np.ndarray, shift: np.ndarray) -> np.ndarray:
-    """A bound of max_t sigma_v(S_0(t) + M) from the reference's peak P_0 and its box
-    (|S_0,j(t) - m_j| <= h_j, ``ReferencePath.box_mid``, ``box_half``): von Mises' form is
-    a positive semi-definite quadratic form Q, so sigma_v(S_0 + M)^2 = sigma_v(S_0)^2 +
-    2 (Q M) . S_0 + sigma_v(M)^2, and the linear term is largest over the box at
-    (Q M) . m + |Q M| . h.  The sum widened by 1e-12 of its terms' magnitudes for its
-    rounding (a few dozen operations of ~1.1e-16 each)."""
+def _shifted(ref: ReferencePath, shift: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Bounds of max_t sigma_v(S_0(t) + M) and of sigma_v(m + M) from the reference's peak
+    P_0 and its box (|S_0,j(t) - m_j| <= h_j, ``ReferencePath.box_mid``, ``box_half``).
+    Von Mises' stress is the root of a positive semi-definite quadratic form Q, so
+    sigma_v(S_0 + M)^2 = sigma_v(S_0)^2 + 2 (Q M) . S_0 + sigma_v(M)^2, whose linear term
+    is largest over the box at (Q M) . m + |Q M| . h, and sigma_v(m + M)^2 =
+    sigma_v(m)^2 + 2 (Q M) . m + sigma_v(M)^2 (``box_mid_vm2``: sigma_v(m)^2).  Each sum
+    widened by 1e-12 of its terms' magnitudes (``box_mid_mag``: those of sigma_v(m)^2) for
+    its rounding (a few dozen operations of ~1.1e-16 each)."""
+    assert ref.box_mid is not None and ref.box_half is not None
+    assert ref.box_mid_vm2 is not None and ref.box_mid_mag is not None
     q = _Q @ shift
-    m = mid.astype(float)
-    cross = (q * m).sum(axis=0) + (np.abs(q) * half).sum(axis=0)
-    p2 = peak.astype(float) ** 2
-    s2 = (shift * q).sum(axis=0)  # sigma_v(M)^2
-    total = p2 + 2.0 * cross + s2
-    mag = p2 + 2.0 * ((np.abs(q * m)).sum(axis=0) + (np.abs(q) * half).sum(axis=0)) + np.abs(s2)
-    out: np.ndarray = np.sqrt(np.maximum(total + 1e-12 * mag, 0.0))
-    return out
+    big = _ABS_Q @ np.abs(shift)  # >= |Q M| and the magnitudes of its terms
+    m = ref.box_mid
+    qm = np.einsum("jn,jn->n", q, m)
+    qh = np.einsum("jn,jn->n", np.abs(q), ref.box_half)
+    lin = np.einsum("jn,jn->n", big, np.abs(m) + ref.box_half)  # the magnitudes of both terms
+    s2 = np.einsum("jn,jn->n", q, shift)  # sigma_v(M)^2
+    s2_mag = np.einsum("jn,jn->n", big, np.abs(shift))
+    p2 = ref.peak.astype(float) ** 2
+    peak = np.sqrt(np.maximum(p2 + 2.0 * (qm + qh) + s2 + 1e-12 * (p2 + 2.0 * lin + s2_mag), 0.0))
+    mid = ref.box_mid_vm2 + 2.0 * qm + s2 + 1e-12 * (ref.box_mid_mag + 2.0 * lin + s2_mag)
+    return peak, np.sqrt(np.maximum(mid, 0.0))
 
 
 def reference_bounds(reference: ReferencePath, shift: np.ndarray, r: np.ndarray) -> PathBounds:
@@ -379,10 +399,10 @@ def reference_bounds(reference: ReferencePath, shift: np.ndarray, r: np.ndarray)
     ref = reference
     peak = ref.peak + vm_shift * up
     mid_vm = None
-    if ref.box_mid is not None and ref.box_half is not None and ref.mid_slack is not None:
-        peak = np.minimum(peak, _shifted_peak(ref.peak, ref.box_mid, ref.box_half, shift))
-        m = ref.box_mid.astype(float)
-        mid_vm = von_mises(m + shift) * up + ref.mid_slack + box_von_mises(1e-12 * (np.abs(m) + np.abs(shift)))
+    if ref.box_mid is not None and ref.mid_slack is not None:
+        shifted, mid_shifted = _shifted(ref, shift)
+        peak = np.minimum(peak, shifted)
+        mid_vm = mid_shifted * up + ref.mid_slack
     peak = (peak + v) * up
     if ref.mid_vm is None or ref.mid_hydro is None or ref.radius is None or ref.chord is None or ref.hydro is None:
         return PathBounds(peak)
