@@ -365,7 +365,7 @@ def reference_shift(
     return shift, r
 
 
-def _shifted(ref: ReferencePath, shift: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _shifted(ref: ReferencePath, shift: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Bounds of max_t sigma_v(S_0(t) + M) and of sigma_v(m + M) from the reference's peak
     P_0 and its box (|S_0,j(t) - m_j| <= h_j, ``ReferencePath.box_mid``, ``box_half``).
     Von Mises' stress is the root of a positive semi-definite quadratic form Q, so
@@ -373,7 +373,8 @@ def _shifted(ref: ReferencePath, shift: np.ndarray) -> tuple[np.ndarray, np.ndar
     is largest over the box at (Q M) . m + |Q M| . h, and sigma_v(m + M)^2 =
     sigma_v(m)^2 + 2 (Q M) . m + sigma_v(M)^2 (``box_mid_vm2``: sigma_v(m)^2).  Each sum
     widened by 1e-12 of its terms' magnitudes (``box_mid_mag``: those of sigma_v(m)^2) for
-    its rounding (a few dozen operations of ~1.1e-16 each)."""
+    its rounding (a few dozen operations of ~1.1e-16 each).  Returns the two bounds and
+    one of sigma_v(M)."""
     assert ref.box_mid is not None and ref.box_half is not None
     assert ref.box_mid_vm2 is not None and ref.box_mid_mag is not None
     q = _Q @ shift
@@ -387,22 +388,23 @@ def _shifted(ref: ReferencePath, shift: np.ndarray) -> tuple[np.ndarray, np.ndar
     p2 = ref.peak.astype(float) ** 2
     peak = np.sqrt(np.maximum(p2 + 2.0 * (qm + qh) + s2 + 1e-12 * (p2 + 2.0 * lin + s2_mag), 0.0))
     mid = ref.box_mid_vm2 + 2.0 * qm + s2 + 1e-12 * (ref.box_mid_mag + 2.0 * lin + s2_mag)
-    return peak, np.sqrt(np.maximum(mid, 0.0))
+    return peak, np.sqrt(np.maximum(mid, 0.0)), np.sqrt(np.maximum(s2 + 1e-12 * s2_mag, 0.0))
 
 
 def reference_bounds(reference: ReferencePath, shift: np.ndarray, r: np.ndarray) -> PathBounds:
     """Bounds of a history at the nodes of ``reference`` from the reference's values and
     the history's ``reference_shift`` (M, r) at those nodes (module docstring)."""
     v = box_von_mises(r)
-    vm_shift = von_mises(shift)
     up, down = 1 + BOUND_RTOL, 1 - BOUND_RTOL
     ref = reference
-    peak = ref.peak + vm_shift * up
     mid_vm = None
     if ref.box_mid is not None and ref.mid_slack is not None:
-        shifted, mid_shifted = _shifted(ref, shift)
-        peak = np.minimum(peak, shifted)
+        shifted, mid_shifted, vm_shift = _shifted(ref, shift)
+        peak = np.minimum(ref.peak + vm_shift * up, shifted)
         mid_vm = mid_shifted * up + ref.mid_slack
+    else:
+        vm_shift = von_mises(shift)
+        peak = ref.peak + vm_shift * up
     peak = (peak + v) * up
     if ref.mid_vm is None or ref.mid_hydro is None or ref.radius is None or ref.chord is None or ref.hydro is None:
         return PathBounds(peak)
