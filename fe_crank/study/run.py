@@ -45,6 +45,7 @@ from fe_crank.study.screen import (
     candidate_overspeed,
     candidate_stresses,
     engine_states,
+    seed_references,
     state_base,
     study_shaft,
     with_operating_dynamics,
@@ -431,6 +432,21 @@ def recommend(results: tuple[CandidateResult, ...], rule: str) -> tuple[Candidat
     return best, why
 
 
+def _middle_candidates(cands: list[Candidate]) -> list[Candidate]:
+    """Per placement (in the order of first appearance) the candidate of the middle
+    balance rate: the lower median of its candidates' (rotating, reciprocating) rates, the
+    first of them in the candidates' order."""
+    by: dict[str, list[Candidate]] = {}
+    for c in cands:
+        by.setdefault(c.placement, []).append(c)
+    out = []
+    for group in by.values():
+        rates = sorted((c.rotating, c.reciprocating) for c in group)
+        mid = rates[(len(rates) - 1) // 2]
+        out.append(next(c for c in group if (c.rotating, c.reciprocating) == mid))
+    return out
+
+
 def _sizes(stiffness: ThrowStiffnessCache) -> tuple:
     """The size, mesh cache folder and element limit ``stiffness`` meshes with."""
     return stiffness.size, stiffness.cache_dir, stiffness.max_elements
@@ -502,10 +518,23 @@ def run_study(
         if first is None:
             first = (shaft, drawn_o, bm, j_lims, j_whose, jm)
         by_offset[off] = (shaft, drawn_o)
+        masses: dict[int, WrittenMass] = {}
+        if spec.stresses != "off":
+            # each placement's middle balance rate first: its history the references of the
+            # placement's stresses in every state (screen.seed_references: the same values,
+            # tighter bounds than the first candidate's for the rates on either side)
+            for c in _middle_candidates([c for c in cands if c.offset == off]):
+                masses[c.index] = wm = written_mass(layout_o, c, drawn_o, shaft.mass, solids)
+                seed_references(
+                    shaft,
+                    [candidate_loads(shaft, b, wm.load_factors, drawn_o, envelope=False) for b in bases],
+                    [candidate_loads(shaft, b, wm.load_factors, drawn_o, envelope=False) for b in os_bases],
+                )
         for c in cands:
             if c.offset != off:
                 continue
-            wm = written_mass(layout_o, c, drawn_o, shaft.mass, solids)
+            seeded = masses.pop(c.index, None)
+            wm = seeded if seeded is not None else written_mass(layout_o, c, drawn_o, shaft.mass, solids)
             f1 = None
             c_loads, c_jm, c_bases = per_throw_loads, jm, bases
             if per_candidate:

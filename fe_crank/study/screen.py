@@ -26,10 +26,11 @@ Stresses (``candidate_stresses``): each throw's unit stresses at its assessed no
 (``assess.shaft.piece_unit_stresses``, the per-web counterweight cases among them) are
 taken once; a candidate's history in a state is sum_c W_c(theta) S_c with its weights W
 (the per-web cases at k_w omega^2, the redundant bearings' forces solved again), each
-node group's extremes by the check's own search (``assess.group.extremes``).  The first
-candidate of a placement screened in a state is the reference there: bounds of its
+node group's extremes by the check's own search (``assess.group.extremes``).  One
+candidate of a placement is the reference in each state (the placement's middle balance
+rate, ``seed_references``; else the first candidate screened there): bounds of its
 stresses at every assessed node from its history computed in single precision
-(``assess.group.reference.single_reference_path``, the rounding bounded) bound every later candidate's
+(``assess.group.reference.single_reference_path``, the rounding bounded) bound every other candidate's
 of that placement and state, whose history differs by a constant (its
 counterweights' centrifugal cases) and the change of the redundant bearings' forces
 (``reference_shift``); the searches take those bounds and skip the groups that cannot
@@ -62,6 +63,7 @@ from fe_crank.assess.group.peak import group_peak
 from fe_crank.assess.group.reference import (
     PathBounds,
     abs_sum,
+    group_units,
     reference_bounds,
     reference_shift,
     single_reference_path,
@@ -108,6 +110,9 @@ class StudyShaft:
     references: dict = dataclasses.field(default_factory=dict)
     #: per throw, sum_c |U_c| at its assessed nodes (``assess.group.reference.abs_sum``)
     abs_sums: dict = dataclasses.field(default_factory=dict)
+    #: per (throw, group), its unit stresses in single precision
+    #: (``assess.group.reference.group_units``), taken by its first reference for the others
+    group_units: dict = dataclasses.field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -332,6 +337,24 @@ class StressScreen:
     counterweight_where: str
 
 
+def seed_references(shaft: StudyShaft, loads: list[StateLoads], overspeed: list[StateLoads] | None = None) -> None:
+    """Take the history of ``loads`` (one candidate in every state; ``overspeed``: its
+    overspeed cycles) as the reference of its placement in each state where none is set
+    yet, in place of the first candidate screened there (``candidate_stresses``,
+    ``candidate_overspeed``).  Any history of the same angles bounds any other
+    (``assess.group.reference``), so the screened values are the same whichever history
+    is the reference; the bounds are the tighter, and the searches the cheaper, the
+    closer the reference lies to each candidate: the study takes the middle one of a
+    placement's balance rates (``study.run``)."""
+    for sl in loads:
+        assert sl.weights is not None
+        shaft.references.setdefault(_reference_key(shaft, sl), {}).setdefault("weights", sl.weights)
+    if overspeed and shaft.stresses:
+        W = np.vstack([sl.weights for sl in overspeed if sl.weights is not None])
+        key = ("overspeed", W.shape, _placement(shaft, W))
+        shaft.references.setdefault(key, {}).setdefault("weights", W)
+
+
 def _other_references(shaft: StudyShaft, key: tuple) -> list[dict]:
     """The references of the same state (or overspeed cycles) and weights' shape as
     ``key`` but of another placement: what bounds a group whose own reference is not built
@@ -377,7 +400,12 @@ class _Bounds:
         key = (self.name, self.group)
         ref_w = self.refs["weights"]
         if key not in self.refs:
-            self.refs[key] = single_reference_path(self.unit, ref_w, self.nodes, fatigue_values=self.fatigue_values)
+            units = self.shaft.group_units.get(key)
+            if units is None:
+                units = self.shaft.group_units[key] = group_units(self.unit, self.nodes)
+            self.refs[key] = single_reference_path(
+                self.unit, ref_w, self.nodes, fatigue_values=self.fatigue_values, units=units
+            )
         shifted = self._shift(ref_w)
         return None if shifted is None else reference_bounds(self.refs[key], *(a[:, self.nodes] for a in shifted))
 

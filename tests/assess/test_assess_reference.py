@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 from fe_crank.assess import fatigue
+from fe_crank.assess.group.bounds import box_von_mises
 from fe_crank.assess.group.extremes import Wanted, group_extremes
 from fe_crank.assess.group.reference import (
     abs_sum,
@@ -157,3 +158,48 @@ def test_another_placements_reference_bounds_the_history():
         amp, mean = fatigue.equivalent_amplitude_mean(h)
         assert np.all(amp <= b.amplitude) and np.all(mean <= b.mean)
         assert np.all(b.peak <= 3.0 * von_mises(h).max(axis=0))  # and not vacuous here
+
+
+def test_the_kept_box_bounds_a_shift_by_its_direction():
+    """The single-precision reference keeps a box of its path (``box_mid``, ``box_half``):
+    brute force, the exact path lies in it at every angle.  A history shifted by large
+    constants (a counterweight's case scaled up and down, as a study's balance rates, and
+    one left out) has its peak, Goodman amplitude and signed mean under the bounds from
+    it; the peak bound is never above the one without the box (P_0 + sigma_v(M) + v) and
+    well below it where the shift lowers the stress; the search by the bounds finds the
+    same extremes as without any."""
+    rng = np.random.default_rng(19)
+    n_cases, n, n_t = 8, 150, 120
+    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
+    s[:, 0] *= 3.0
+    s[-1] = 0.8 * s[0]  # the counterweight's stress along the pin's: a shift can lower the peak
+    group = "crankpin_fillet_1"
+    unit = _unit(s, group)
+    t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
+    w0 = np.column_stack([np.cos(t + k) * (1 + k % 3) for k in range(n_cases)])
+    w0[:, 0] += 2.0  # a mean along the counterweight's stress
+    w0[:, -2:] = 1.0  # two counterweights' centrifugal cases (constant)
+    nodes = np.arange(n)
+    ref = single_reference_path(unit, w0, nodes)
+    assert ref.box_mid is not None and ref.box_half is not None and ref.mid_slack is not None
+    h0 = stress_history(unit, w0, nodes)  # (n_t, 6, n)
+    assert np.all(np.abs(h0 - ref.box_mid.astype(float)) <= ref.box_half)
+    sums = abs_sum(unit)
+    kw = dict(crank_radius=0.05, diameter=0.06, wanted=Wanted(gough_pollard=False), block=16)
+    lower = False
+    for k_cw in (-2.5, -1.0, 0.0, 0.6, 2.0):
+        w = w0.copy()
+        w[:, -1] = k_cw
+        w[:, 1] += 0.05 * np.sin(t)  # a redundant bearing's force changed a little
+        shift, r = reference_shift(w0, unit, w, sums)
+        b = reference_bounds(ref, shift, r)
+        h = stress_history(unit, w, nodes)
+        peak = von_mises(h).max(axis=0)
+        assert np.all(peak <= b.peak)
+        amp, mean = fatigue.equivalent_amplitude_mean(h)
+        assert np.all(amp <= b.amplitude) and np.all(mean <= b.mean)
+        plain = (ref.peak + von_mises(shift) + box_von_mises(r)) * (1 + 1e-9)
+        assert np.all(b.peak <= plain)
+        lower |= bool(np.any(b.peak < 0.8 * plain))
+        assert group_extremes(unit, group, w, t, MAT, reference=b, **kw) == group_extremes(unit, group, w, t, MAT, **kw)
+    assert lower

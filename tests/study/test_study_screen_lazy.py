@@ -22,10 +22,12 @@ import numpy as np
 
 from fe_crank.assess.group.assessment import of_counterweight, section_diameter, sigma_add_applies
 from fe_crank.assess.group.extremes import Wanted, group_extremes
-from fe_crank.assess.group.peak import group_peak
+from fe_crank.assess.group.peak import group_peak, peak_bound
 from fe_crank.assess.group.reference import abs_sum, reference_bounds, reference_shift, single_reference_path
-from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.stress import von_mises
+from fe_crank.assess.superpose import UnitStresses, stress_history
 from fe_crank.io.material import load_material
+from fe_crank.study.bodies import body_base, body_bound
 from fe_crank.study.screen import (
     REFERENCE_BLOCK,
     EngineState,
@@ -34,6 +36,7 @@ from fe_crank.study.screen import (
     StudyShaft,
     candidate_overspeed,
     candidate_stresses,
+    seed_references,
 )
 
 MAT = load_material("42CrMo4")
@@ -176,3 +179,63 @@ def test_lazy_static_screening_gives_every_groups_peaks():
         assert got.shaft_peak_where.startswith("throw 1 ")
     own = [len(r) - 1 for r in shaft.references.values()]
     assert max(own) == 2 * len(GROUPS) and min(own) < 2 * len(GROUPS)
+
+
+def test_a_seeded_reference_gives_the_same_values_and_places():
+    """The references of a placement seeded with its middle candidate's history
+    (``seed_references``) before any candidate is screened: every candidate's values and
+    places equal those of every group's own search and of the screening without the seed,
+    and the references built are the middle candidate's."""
+    candidates = [(0.6, 0.6, 0.6, 0.6), (1.3, 1.3, 1.3, 1.3), (2.2, 2.2, 2.2, 2.2)]
+    plain, seeded = _shaft(np.random.default_rng(13)), _shaft(np.random.default_rng(13))
+    middle = _loads(candidates[1])
+    seed_references(seeded, middle, middle)
+    for cw in candidates:
+        loads = _loads(cw)
+        got = candidate_stresses(seeded, loads, MAT, additional_bending=ADD, diameters=DIAMETERS)
+        assert got == candidate_stresses(plain, loads, MAT, additional_bending=ADD, diameters=DIAMETERS)
+        assert got == _every_group(seeded, loads, middle)
+        assert candidate_overspeed(seeded, loads, MAT) == candidate_overspeed(plain, loads, MAT)
+    expected = {sl.state.label: sl.weights for sl in middle}
+    for key, refs in seeded.references.items():
+        if key[0] == "overspeed":
+            assert np.array_equal(refs["weights"], np.vstack(list(expected.values())))
+        else:
+            assert refs["weights"] is expected[key[0]]
+
+
+def test_the_counterweight_bodies_bound_holds_and_searches_alike():
+    """``study.bodies``: the bound of a candidate's coefficients formed from the state's
+    counterweight-free part (``body_base``, ``body_bound``) lies above every node's peak
+    (brute force: the whole history), equals ``peak.peak_bound``'s to rounding, and
+    ``group_peak`` searched by it finds the same peak; a counterweight's column that
+    varies over the cycle gives no bound."""
+    rng = np.random.default_rng(23)
+    cases = ("pin_x", "pin_y", "torque", "centrifugal", "centrifugal_cw_1", "centrifugal_cw_2")
+    n, n_t = 90, 72
+    s = rng.normal(0.0, 30e6, (len(cases), 6, n))
+    unit = UnitStresses(
+        stress=s,
+        points=np.zeros((3, n)),
+        groups={"counterweight_1": np.arange(60), "junction_2": np.arange(60, n)},
+        cases=cases,
+        node_ids=np.arange(n),
+    )
+    t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
+    C0 = np.column_stack(
+        [np.cos(t), np.sin(2 * t), 0.3 + np.sin(t), np.full(n_t, 2.0), np.full(n_t, 2.0), np.full(n_t, 2.0)]
+    )
+    base = body_base(unit, C0)
+    for k1, k2 in ((1.0, 1.0), (0.0, 2.5), (-0.7, 0.3)):
+        C = C0.copy()
+        C[:, 4] *= k1
+        C[:, 5] *= k2
+        for g, nodes in unit.groups.items():
+            bound = body_bound(base, g, C)
+            brute = von_mises(stress_history(unit, C, nodes)).max(axis=0)
+            assert bound is not None and np.all(brute <= bound)
+            assert np.allclose(bound, peak_bound(unit, C, nodes), rtol=1e-11, atol=0.0)
+            assert group_peak(unit, C, nodes, bound=bound)[1].max() == group_peak(unit, C, nodes)[1].max()
+    C = C0.copy()
+    C[:, 4] = np.cos(t)
+    assert body_bound(base, "junction_2", C) is None

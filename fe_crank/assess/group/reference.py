@@ -15,10 +15,15 @@ constant tensor M = sum_c m_c U_c and |V_j(t)| <= r_j = sum_c h_c |U_c,j| per co
 (``reference_bounds``).  With box_von_mises(r) = v (the largest von Mises stress within
 the box, ``bounds.box_von_mises``), von Mises a seminorm:
 
-* peak: sigma_v(S(t)) <= sigma_v(S_0(t)) + sigma_v(M) + sigma_v(V(t)), so
-  max_t sigma_v(S(t)) <= P_0 + sigma_v(M) + v;
+* peak: sigma_v(S(t)) <= sigma_v(S_0(t) + M) + sigma_v(V(t)), and sigma_v(S_0(t) + M)
+  is at most P_0 + sigma_v(M) and at most sqrt(P_0^2 + 2 max_box (Q M) . S_0 +
+  sigma_v(M)^2), with Q von Mises' quadratic form and the box one of S_0's path kept with
+  the reference (``single_reference_path``: its computed mid range m and half widths,
+  ``_shifted``): the shift's own direction against the path's, tighter where the
+  shift lowers the stress;
 * the mid range of S is mid_0 + M + e with |e_j| <= r_j, so the radius about it
-  R <= R_0 + 2 v, its von Mises stress <= sigma_v(mid_0) + sigma_v(M) + v, and half the distance
+  R <= R_0 + 2 v, its von Mises stress <= sigma_v(mid_0) + sigma_v(M) + v (and, with the
+  box, <= sigma_v(m + M) + sigma_v's bound of mid_0 - m + v), and half the distance
   between the two points of S at the angles of L_0 is at least L_0 - v: a lower bound
   of the minimum circumscribed ball's radius, as L_0 is of S_0's;
 * the hydrostatic stress of S(t) <= p_0 + p(M) + (r_x + r_y + r_z)/3, of its mid range
@@ -65,6 +70,15 @@ class ReferencePath:
     radius: np.ndarray | None = None
     chord: np.ndarray | None = None
     hydro: np.ndarray | None = None
+    #: (6, n) a tensor m and (6, n) half widths h with |S_0,j(t) - m_j| <= h_j at every
+    #: angle, and (n,) box_von_mises of the bound of |mid_0 - m| (``single_reference_path``;
+    #: None: not kept): what ``reference_bounds`` takes the shift's direction into account by
+    box_mid: np.ndarray | None = None
+    box_half: np.ndarray | None = None
+    mid_slack: np.ndarray | None = None
+    #: (n,) sigma_v(m)^2 of ``box_mid`` and the magnitudes of its terms (double precision)
+    box_mid_vm2: np.ndarray | None = None
+    box_mid_mag: np.ndarray | None = None
 
 
 def _up(x: np.ndarray) -> np.ndarray:
@@ -125,6 +139,21 @@ def reference_path(
     return ReferencePath(c, _up(peak), _up(vals[0]), _up(vals[1]), _up(vals[2]), _down(vals[3]), _up(vals[4]))
 
 
+#: von Mises' quadratic form on (xx, yy, zz, xy, yz, xz): sigma_v(X)^2 = X . Q X
+_Q = np.array(
+    [
+        [1.0, -0.5, -0.5, 0.0, 0.0, 0.0],
+        [-0.5, 1.0, -0.5, 0.0, 0.0, 0.0],
+        [-0.5, -0.5, 1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 3.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0, 3.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0, 0.0, 3.0],
+    ]
+)
+
+
+_ABS_Q = np.abs(_Q)
+
 #: unit roundoff of single precision
 _U32 = float(np.finfo(np.float32).eps) / 2
 
@@ -156,8 +185,30 @@ def _peak32(planes: np.ndarray, scratch: np.ndarray) -> np.ndarray:
     return out
 
 
+@dataclass(frozen=True)
+class GroupUnits:
+    """The unit stresses of one group's nodes in single precision, contiguous
+    (``group_units``): what ``single_reference_path`` multiplies, taken once for every
+    reference of the group (each reference otherwise gathers and converts them anew)."""
+
+    nodes: np.ndarray
+    stress32: np.ndarray  # (n_cases, 6, n) float32
+
+
+def group_units(unit: UnitStresses, nodes: np.ndarray) -> GroupUnits:
+    """``unit``'s stresses at ``nodes`` rounded to single precision (``GroupUnits``)."""
+    nodes = np.asarray(nodes)
+    return GroupUnits(nodes, np.ascontiguousarray(unit.stress[:, :, nodes], dtype=np.float32))
+
+
 def single_reference_path(
-    unit: UnitStresses, coefficients: np.ndarray, nodes: np.ndarray, *, fatigue_values: bool = True, block: int = 128
+    unit: UnitStresses,
+    coefficients: np.ndarray,
+    nodes: np.ndarray,
+    *,
+    fatigue_values: bool = True,
+    block: int = 128,
+    units: GroupUnits | None = None,
 ) -> ReferencePath:
     """Bounds of the values of ``reference_path`` from the history computed in single
     precision (the matrix products and the passes over the path at about half the cost).
@@ -177,38 +228,77 @@ def single_reference_path(
       rounded to single precision: within u |m_j|) times (1 + 16 u) plus
       box_von_mises(2 a + u |m|);
     * the chord: half the computed distance between two computed points of the path,
-      times (1 - 16 u), less v_a (each point within a of the exact one);
+      times (1 - 16 u), less v_a (each point within a of the exact one);;
     * the largest hydrostatic stress p_0 <= the computed one + (a_x + a_y + a_z) / 3
       + 4 u (A_x + A_y + A_z) / 3 (the sum of three and the division rounded).
 
     A few parts in a million looser than ``reference_path``'s values, kept in single
-    precision rounded outwards as they are."""
+    precision rounded outwards as they are.
+
+    The product takes only the cases that vary over the cycle, and the constant ones
+    summed beforehand into one term: K_j = sum_c a_c fl32(U_c,j) over the constant cases
+    in double precision (within 1e-15 relatively of its exact value), rounded to single
+    precision (within u |K_j|), enters with the coefficient 1.  That is the sum of n' <= n
+    computed terms whose magnitudes sum to at most A_j (1 + 2u), each within 2u of its
+    exact value, so the computed component is again within gamma_n' A_j (1 + 2u)^2 +
+    2u A_j <= a_j of the exact one; a case of coefficient zero throughout adds exactly
+    nothing and is left out.
+
+    Kept besides (``ReferencePath.box_mid`` ...): the computed mid range m (exact in
+    double precision) in single precision, m' = fl32(m), and the half widths
+    (hi~ - lo~) / 2 + a_j + u |m_j| rounded up: every component of the exact path lies
+    within them of m' (the computed range within a_j of the exact one); and
+    box_von_mises(a + u |m|) rounded up, a bound of sigma_v(mid_0 - m') (mid_0 within a_j
+    of m).  ``units``: the group's stresses in single precision
+    (``group_units``, at ``nodes``), else taken here; A_j then summed in single precision
+    from them (within (n + 2) u relatively, widened by 2 (n + 4) u)."""
     c = np.atleast_2d(np.asarray(coefficients, float))
     nodes = np.asarray(nodes)
+    if units is None:
+        units = group_units(unit, nodes)
+    elif units.stress32.shape[-1] != nodes.size:
+        raise ValueError("single_reference_path: units are not of these nodes")
+    u_all = units.stress32
     n = nodes.size
-    err = 2.0 * (c.shape[1] + 8) * _U32
+    n_cases = c.shape[1]
+    err = 2.0 * (n_cases + 8) * _U32
     absmax = np.abs(c).max(axis=0)
-    c32 = c.astype(np.float32)
+    absmax32 = _up(absmax)
+    used = absmax > 0.0
+    const = used & (c.max(axis=0) == c.min(axis=0))
+    var = np.flatnonzero(used & ~const)
+    kc = np.flatnonzero(const)
+    c32 = np.ascontiguousarray(c[:, var], dtype=np.float32)
+    if kc.size:
+        c32 = np.hstack([c32, np.ones((c.shape[0], 1), np.float32)])
+    widen = 1.0 + 2.0 * (n_cases + 4) * _U32
     up32 = 1.0 + 16.0 * _U32
     peak = np.empty(n)
     vals = np.empty((5, n)) if fatigue_values else None  # mid_vm, mid_hydro, radius, chord, hydro
+    box = np.empty((2, 6, n))  # the computed mid range m, the half widths about fl32(m)
+    slack = np.empty(n)
     for s in range(0, n, block):
-        idx = nodes[s : s + block]
-        b = idx.size
-        u = unit.stress[:, :, idx]
-        big = (absmax @ np.abs(u).reshape(u.shape[0], -1)).reshape(6, b)  # A_j
+        u32 = u_all[:, :, s : s + block]
+        b = u32.shape[-1]
+        big = (absmax32 @ np.abs(u32).reshape(n_cases, -1)).reshape(6, b).astype(float) * widen  # >= A_j
         a = err * big
         v_a = box_von_mises(a)
-        u32 = u.astype(np.float32)
+        terms = u32[var]
+        if kc.size:
+            k = np.einsum("c,cjn->jn", c[0, kc], u32[kc].astype(float)).astype(np.float32)
+            terms = np.concatenate([terms, k[None]], axis=0)
         planes = np.empty((6, c.shape[0], b), np.float32)
         for j in range(6):
-            np.dot(c32, u32[:, j, :], out=planes[j])
+            np.dot(c32, terms[:, j, :], out=planes[j])
         scratch = np.empty_like(planes)
         peak[s : s + b] = _peak32(planes, scratch).astype(float) * up32 + v_a
+        hi, lo = planes.max(axis=1).astype(float), planes.min(axis=1).astype(float)
+        m = 0.5 * (hi + lo)  # exact: sums and halves of single-precision values
+        box[0, :, s : s + b] = m
+        box[1, :, s : s + b] = 0.5 * (hi - lo) + a + _U32 * np.abs(m)
+        slack[s : s + b] = box_von_mises(a + _U32 * np.abs(m))
         if vals is None:
             continue
-        hi, lo = planes.max(axis=1).astype(float), planes.min(axis=1).astype(float)
-        m = 0.5 * (hi + lo)
         r0, far = fatigue.max_and_first(von_mises_planes(planes, m.astype(np.float32), buf=scratch))
         cols = np.arange(b)
         chord = 0.5 * von_mises_planes(planes, planes[:, far, cols], buf=scratch).max(axis=0).astype(float)
@@ -220,13 +310,22 @@ def single_reference_path(
         vals[3, s : s + b] = chord * (1.0 - 16.0 * _U32) - v_a
         vals[4, s : s + b] = p0 + p_a + 4.0 * _U32 * (big[0] + big[1] + big[2]) / 3.0
     up, down = 1 + BOUND_RTOL, 1 - BOUND_RTOL
+    mid32 = box[0].astype(np.float32)
+    m = mid32.astype(float)
+    kept = {
+        "box_mid": mid32,
+        "box_half": _up(box[1] * up),
+        "mid_slack": _up(slack * up),
+        "box_mid_vm2": np.einsum("jn,jn->n", _Q @ m, m),
+        "box_mid_mag": 2.0 * np.einsum("j,jn->n", np.diag(_Q), m * m),
+    }
     if vals is None:
-        return ReferencePath(c, _up(peak * up))
+        return ReferencePath(c, _up(peak * up), **kept)
     mid_hydro = vals[1] + np.abs(vals[1]) * BOUND_RTOL
     hydro = vals[4] + np.abs(vals[4]) * BOUND_RTOL
     chord = np.maximum(vals[3], 0.0) * down
     return ReferencePath(
-        c, _up(peak * up), _up(vals[0] * up), _up(mid_hydro), _up(vals[2] * up), _down(chord), _up(hydro)
+        c, _up(peak * up), _up(vals[0] * up), _up(mid_hydro), _up(vals[2] * up), _down(chord), _up(hydro), **kept
     )
 
 
@@ -266,19 +365,53 @@ def reference_shift(
     return shift, r
 
 
+def _shifted(ref: ReferencePath, shift: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Bounds of max_t sigma_v(S_0(t) + M) and of sigma_v(m + M) from the reference's peak
+    P_0 and its box (|S_0,j(t) - m_j| <= h_j, ``ReferencePath.box_mid``, ``box_half``).
+    Von Mises' stress is the root of a positive semi-definite quadratic form Q, so
+    sigma_v(S_0 + M)^2 = sigma_v(S_0)^2 + 2 (Q M) . S_0 + sigma_v(M)^2, whose linear term
+    is largest over the box at (Q M) . m + |Q M| . h, and sigma_v(m + M)^2 =
+    sigma_v(m)^2 + 2 (Q M) . m + sigma_v(M)^2 (``box_mid_vm2``: sigma_v(m)^2).  Each sum
+    widened by 1e-12 of its terms' magnitudes (``box_mid_mag``: those of sigma_v(m)^2) for
+    its rounding (a few dozen operations of ~1.1e-16 each).  Returns the two bounds and
+    one of sigma_v(M)."""
+    assert ref.box_mid is not None and ref.box_half is not None
+    assert ref.box_mid_vm2 is not None and ref.box_mid_mag is not None
+    q = _Q @ shift
+    big = _ABS_Q @ np.abs(shift)  # >= |Q M| and the magnitudes of its terms
+    m = ref.box_mid
+    qm = np.einsum("jn,jn->n", q, m)
+    qh = np.einsum("jn,jn->n", np.abs(q), ref.box_half)
+    lin = np.einsum("jn,jn->n", big, np.abs(m) + ref.box_half)  # the magnitudes of both terms
+    s2 = np.einsum("jn,jn->n", q, shift)  # sigma_v(M)^2
+    s2_mag = np.einsum("jn,jn->n", big, np.abs(shift))
+    p2 = ref.peak.astype(float) ** 2
+    peak = np.sqrt(np.maximum(p2 + 2.0 * (qm + qh) + s2 + 1e-12 * (p2 + 2.0 * lin + s2_mag), 0.0))
+    mid = ref.box_mid_vm2 + 2.0 * qm + s2 + 1e-12 * (ref.box_mid_mag + 2.0 * lin + s2_mag)
+    return peak, np.sqrt(np.maximum(mid, 0.0)), np.sqrt(np.maximum(s2 + 1e-12 * s2_mag, 0.0))
+
+
 def reference_bounds(reference: ReferencePath, shift: np.ndarray, r: np.ndarray) -> PathBounds:
     """Bounds of a history at the nodes of ``reference`` from the reference's values and
     the history's ``reference_shift`` (M, r) at those nodes (module docstring)."""
     v = box_von_mises(r)
-    vm_shift = von_mises(shift)
     up, down = 1 + BOUND_RTOL, 1 - BOUND_RTOL
-    peak = (reference.peak + vm_shift * up + v) * up
     ref = reference
+    mid_vm = None
+    if ref.box_mid is not None and ref.mid_slack is not None:
+        shifted, mid_shifted, vm_shift = _shifted(ref, shift)
+        peak = np.minimum(ref.peak + vm_shift * up, shifted)
+        mid_vm = mid_shifted * up + ref.mid_slack
+    else:
+        vm_shift = von_mises(shift)
+        peak = ref.peak + vm_shift * up
+    peak = (peak + v) * up
     if ref.mid_vm is None or ref.mid_hydro is None or ref.radius is None or ref.chord is None or ref.hydro is None:
         return PathBounds(peak)
     radius = (ref.radius + 2.0 * v) * up
     chord = np.maximum(ref.chord - v, 0.0) * down
-    vm = (ref.mid_vm + vm_shift + v) * up + 2.0 * np.sqrt(np.maximum(radius**2 - chord**2, 0.0))
+    mid_vm = ref.mid_vm + vm_shift if mid_vm is None else np.minimum(mid_vm, ref.mid_vm + vm_shift)
+    vm = (mid_vm + v) * up + 2.0 * np.sqrt(np.maximum(radius**2 - chord**2, 0.0))
     p_shift = (shift[0] + shift[1] + shift[2]) / 3.0
     p_r = (r[0] + r[1] + r[2]) / 3.0
     hydro = np.maximum(ref.mid_hydro, ref.hydro) + p_shift
@@ -290,6 +423,8 @@ def reference_bounds(reference: ReferencePath, shift: np.ndarray, r: np.ndarray)
 __all__ = [
     "ReferencePath",
     "PathBounds",
+    "GroupUnits",
+    "group_units",
     "abs_sum",
     "reference_path",
     "single_reference_path",
