@@ -372,7 +372,7 @@ def zone_convergence(
     t0 = time.perf_counter()
     fields = {name: unit_solutions.combine(w) for name, w in loads.items()}
     for name, (u, w) in (driven or {}).items():
-        if np.shape(u) != (unit_solutions.n_dof,):
+        if np.shape(u) != (3 * unit_solutions.points.shape[1],):
             raise ValueError(f"the load set {name!r} is not a displacement of the assessed throw mesh")
         fields[name], loads[name] = np.asarray(u, float), dict(w)
     pins = pins_of(unit_solutions, loads)
