@@ -303,7 +303,7 @@ def test_the_check_studies_the_whole_shafts_own_states(swept_single):
         f"{WHOLE_SHAFT_SET}peak pin force (throw 1, {np.degrees(theta[i]):.1f} deg)": ("1", i),
         f"{WHOLE_SHAFT_SET}peak torque (throw 1, {np.degrees(theta[j]):.1f} deg)": ("1", j),
     }
-    assert governing_states(ws.cases, ws.dynamics, ["1"]) == expected
+    assert governing_states(ws.dynamics, ["1"]) == expected
     assert set(st.loads) == {"peak pin force", "peak torque", *expected}
     assert st.method == "zones" and all(lv.zones > 0 for lv in st.levels[1:])
     assert set(st.levels[-1].peaks) == set(st.levels[0].peaks) >= set(expected)

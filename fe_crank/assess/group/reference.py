@@ -228,7 +228,7 @@ def single_reference_path(
       rounded to single precision: within u |m_j|) times (1 + 16 u) plus
       box_von_mises(2 a + u |m|);
     * the chord: half the computed distance between two computed points of the path,
-      times (1 - 16 u), less v_a (each point within a of the exact one);;
+      times (1 - 16 u), less v_a (each point within a of the exact one);
     * the largest hydrostatic stress p_0 <= the computed one + (a_x + a_y + a_z) / 3
       + 4 u (A_x + A_y + A_z) / 3 (the sum of three and the division rounded).
 

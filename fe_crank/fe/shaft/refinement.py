@@ -34,6 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from fe_crank.fe.core.loads import COUNTERWEIGHT_BODIES
+from fe_crank.fe.refinement.loads import peak_states
 from fe_crank.fe.shaft.cases import ShaftCases
 from fe_crank.fe.shaft.fields import piece_states
 from fe_crank.fe.throw.pin_directions import pin_cases
@@ -90,29 +91,18 @@ def zone_loads(names: tuple[str, ...], coef: np.ndarray) -> dict[str, float]:
     return out
 
 
-def governing_states(cases: ShaftCases, dynamics: DynamicsResult, throws: list[str]) -> dict[str, tuple[str, int]]:
+def governing_states(dynamics: DynamicsResult, throws: list[str]) -> dict[str, tuple[str, int]]:
     """{load set name: (throw, cycle angle index)} of the throws ``throws`` (module doc):
-    the largest crankpin force and the largest journal torque over them and the cycle;
-    the torque's set is left out when no torque passes (a state already taken is not
-    repeated)."""
+    the per-throw study's two states (``fe.refinement.loads.peak_states``: the largest
+    crankpin force and the largest journal torque over them and the cycle); the torque's
+    set is left out when no torque passes, a state already taken is not repeated."""
     theta = np.asarray(dynamics.theta, float)
-    best_f: tuple[float, str, int] | None = None
-    best_t: tuple[float, str, int] | None = None
-    for t in throws:
-        tl = dynamics.throws[t]
-        f = np.hypot(*np.asarray(tl.pin_force, float).T)
-        i = int(np.argmax(f))
-        if best_f is None or f[i] > best_f[0]:
-            best_f = (float(f[i]), t, i)
-        tq = np.maximum(np.abs(np.asarray(tl.torque_front, float)), np.abs(np.asarray(tl.torque_rear, float)))
-        j = int(np.argmax(tq))
-        if tq[j] > 0.0 and (best_t is None or tq[j] > best_t[0]):
-            best_t = (float(tq[j]), t, j)
+    force, torque = peak_states({t: dynamics.throws[t] for t in throws})
     out: dict[str, tuple[str, int]] = {}
-    for words, found in (("peak pin force", best_f), ("peak torque", best_t)):
-        if found is None or (found[1], found[2]) in out.values():
+    for words, found in (("peak pin force", force), ("peak torque", torque)):
+        if found is None or (str(found[0]), found[1]) in out.values():
             continue
-        _, t, i = found
+        t, i = str(found[0]), found[1]
         out[f"{WHOLE_SHAFT_SET}{words} (throw {t}, {np.degrees(theta[i]):.1f} deg)"] = (t, i)
     return out
 
@@ -129,7 +119,7 @@ def shaft_load_sets(
     for k, pp in enumerate(cases.model.pieces):
         if pp.kind == "throw" and str(pp.throw) in dynamics.throws:
             by_mesh.setdefault(sm.pieces[k].mesh, []).append(str(pp.throw))
-    chosen = {key: governing_states(cases, dynamics, throws) for key, throws in by_mesh.items()}
+    chosen = {key: governing_states(dynamics, throws) for key, throws in by_mesh.items()}
     columns: dict[int, list[tuple[str, str, int]]] = {}
     for key, states in chosen.items():
         for name, (t, i) in states.items():
