@@ -13,9 +13,11 @@ import logging
 import time
 from pathlib import Path
 
+from fe_crank.assess.workers import threads
 from fe_crank.errors import InputError
 from fe_crank.io.loadcase import load_loadcase
 from fe_crank.mesh.options import DEFAULT_CACHE_DIR, PRESETS
+from fe_crank.pipeline.options import cores_available
 from fe_crank.study.candidates import achieved_unbalance
 from fe_crank.study.outputs import leaves_tree, pareto_plot, write_candidate, write_tables
 from fe_crank.study.run import run_study
@@ -51,7 +53,8 @@ def run(args) -> int:
     spec = parse_study(args.study)
     t0 = time.perf_counter()
     size = args.mesh_size or lc.mesh.size
-    res = run_study(lc, spec, size=size, cache_dir=Path(args.cache_dir), max_elements=lc.mesh.max_elements)
+    with threads(cores_available()):  # the screening's states and the unit-stress recovery
+        res = run_study(lc, spec, size=size, cache_dir=Path(args.cache_dir), max_elements=lc.mesh.max_elements)
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
     chosen = res.recommended

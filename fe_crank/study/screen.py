@@ -62,14 +62,17 @@ from fe_crank.assess.group.extremes import Running, Wanted, group_extremes
 from fe_crank.assess.group.peak import group_peak
 from fe_crank.assess.group.reference import (
     PathBounds,
+    ReferenceBalls,
     abs_sum,
     group_units,
+    is_translation,
     reference_bounds,
     reference_shift,
     single_reference_path,
 )
 from fe_crank.assess.shaft import piece_unit_stresses
 from fe_crank.assess.superpose import UnitStresses
+from fe_crank.assess.workers import run_blocks
 from fe_crank.cad.source import mesh_source_shaft
 from fe_crank.fe.shaft.cases import ShaftCases, solve_cases
 from fe_crank.fe.shaft.cycle import solve_cycle
@@ -113,6 +116,10 @@ class StudyShaft:
     #: per (throw, group), its unit stresses in single precision
     #: (``assess.group.reference.group_units``), taken by its first reference for the others
     group_units: dict = dataclasses.field(default_factory=dict)
+    #: per (reference weights, throw, group), the reference's Goodman balls
+    #: (``assess.group.reference.ReferenceBalls``), kept for the candidates that are it
+    #: translated (``_Bounds.translated``)
+    balls: dict = dataclasses.field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -382,8 +389,26 @@ class _Bounds:
     def _shift(self, ref_w: np.ndarray):
         k = (self.name, id(ref_w))
         if k not in self.shifts:
-            self.shifts[k] = (ref_w, reference_shift(ref_w, self.unit, self.weights, self.shaft.abs_sums[self.name]))
+            # a translation's M takes every case that departs (``small`` 0): its exact shift
+            small = 0.0 if is_translation(ref_w, self.weights) else 1e-9
+            shifted = reference_shift(ref_w, self.unit, self.weights, self.shaft.abs_sums[self.name], small)
+            self.shifts[k] = (ref_w, shifted)
         return self.shifts[k][1]
+
+    def translated(self) -> tuple[ReferenceBalls, np.ndarray] | None:
+        """(the own reference's Goodman balls at the group's nodes, kept for the later
+        candidates; M at the nodes) where this history is the reference's translated by a
+        constant (``assess.group.reference.is_translation``), else None."""
+        ref_w = self.refs["weights"]
+        if not self.fatigue_values or not is_translation(ref_w, self.weights):
+            return None
+        shifted = self._shift(ref_w)
+        if shifted is None:
+            return None
+        key = (id(ref_w), self.name, self.group)  # ref_w: kept by ``shaft.references``
+        if key not in self.shaft.balls:
+            self.shaft.balls[key] = ReferenceBalls(self.unit, ref_w, self.nodes)
+        return self.shaft.balls[key], shifted[0][:, self.nodes]
 
     def cheap(self):
         """Bounds from another placement's reference of the group, None without one."""
@@ -446,7 +471,10 @@ def candidate_stresses(
     best = {"shaft": (0.0, ""), "cw": (0.0, "")}
     static = math.inf
     fat: tuple[float, str] | None = None
-    for sl in loads:
+
+    def screen_state(sl: StateLoads) -> tuple[str, list[tuple[str, str]], dict]:
+        """One state's searched groups: (its place text, the groups in the throws' and
+        groups' order, their extremes)."""
         assert sl.weights is not None
         theta = np.asarray(sl.state.dynamics.theta, float)
         running = Running()
@@ -528,10 +556,22 @@ def candidate_stresses(
                 additional_bending=add,
                 reference=b,
                 block=NODE_BLOCK if b is None else REFERENCE_BLOCK,
+                translated=bd.translated(),
             )
             best_peak[key] = max(best_peak[key], r.max_von_mises.value)
             found[(name, g)] = r
-        for name, _unit, g, *_ in items:  # reported in the throws' and groups' order
+        return at, [(name, g) for name, _unit, g, *_ in items], found
+
+    # the states on the assessment's threads (``assess.workers``): each its own references,
+    # bounds and searches; reported in their order, as one after the other
+    per_state: list = [None] * len(loads)
+
+    def one(i: int, _scratch) -> None:
+        per_state[i] = screen_state(loads[i])
+
+    run_blocks(one, range(len(loads)))
+    for at, order, found in per_state:
+        for name, g in order:  # reported in the throws' and groups' order
             if (name, g) not in found:
                 continue
             r = found[(name, g)]

@@ -14,6 +14,9 @@ The reference computed in single precision (``single_reference_path``) against t
 path's values in double precision: its upper bounds above them, its chord below the
 full path's radius, the bounds of other histories from it holding, the search by them
 the same.
+
+A history that differs from the reference by constants alone is the reference's path
+translated: its Goodman balls are the reference's moved by M, against each history's own.
 """
 
 from __future__ import annotations
@@ -25,7 +28,9 @@ from fe_crank.assess import fatigue
 from fe_crank.assess.group.bounds import box_von_mises
 from fe_crank.assess.group.extremes import Wanted, group_extremes
 from fe_crank.assess.group.reference import (
+    ReferenceBalls,
     abs_sum,
+    is_translation,
     reference_bounds,
     reference_path,
     reference_shift,
@@ -203,3 +208,50 @@ def test_the_kept_box_bounds_a_shift_by_its_direction():
         lower |= bool(np.any(b.peak < 0.8 * plain))
         assert group_extremes(unit, group, w, t, MAT, reference=b, **kw) == group_extremes(unit, group, w, t, MAT, **kw)
     assert lower
+
+
+def test_a_translated_history_takes_the_references_balls():
+    """Histories that differ from the reference by constants alone (a study's candidates of
+    one placement and state on linear bearing laws) are the reference's path translated by
+    M: ``ReferenceBalls`` moved by M give every node's Goodman amplitude and mean tensor of
+    ``fatigue.amplitude_mean`` on the history's own path to rounding, and the search by them
+    (one set of balls kept across the histories, as the study keeps it across its
+    candidates) the same extremes as the search on each history's own path."""
+    rng = np.random.default_rng(5)
+    n_cases, n, n_t = 8, 250, 120
+    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
+    s[:, 0] *= 3.0
+    group = "crankpin_fillet_1"
+    unit = _unit(s, group)
+    t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
+    w0 = np.column_stack([np.cos(t + k) * (1 + k % 3) for k in range(n_cases)])
+    w0[:, -2:] = 1.5  # two constant cases (counterweights' centrifugal)
+    nodes = np.arange(n)
+    ref = single_reference_path(unit, w0, nodes)
+    balls = ReferenceBalls(unit, w0, nodes)
+    sums = abs_sum(unit)
+    kw = dict(crank_radius=0.05, diameter=0.06, wanted=Wanted(gough_pollard=False), block=16)
+    ripple = w0.copy()
+    ripple[:, 1] += 1e-6 * np.sin(3 * t)
+    assert not is_translation(w0, ripple) and not is_translation(w0, w0[:-1])
+    for d in ((0.0, 0.0, 0.0), (0.4, -0.3, 0.0), (-1.2, 0.5, 0.02), (0.7, 0.7, -0.01)):
+        w = w0.copy()
+        w[:, -2] += d[0]
+        w[:, -1] += d[1]
+        w[:, 0] += d[2]  # a varying case moved by a constant (a redundant bearing force)
+        assert is_translation(w0, w)
+        shift, r = reference_shift(w0, unit, w, sums, 0.0)
+        own = group_extremes(unit, group, w, t, MAT, reference=reference_bounds(ref, shift, r), **kw)
+        moved = group_extremes(
+            unit, group, w, t, MAT, reference=reference_bounds(ref, shift, r), translated=(balls, shift), **kw
+        )
+        assert moved.max_von_mises == own.max_von_mises  # the peak: from the history itself
+        assert moved.fatigue_safety.value == pytest.approx(own.fatigue_safety.value, rel=1e-12)
+        assert moved.fatigue_safety.node == own.fatigue_safety.node
+        assert moved.amplitude_at_critical == pytest.approx(own.amplitude_at_critical, rel=1e-12)
+        assert moved.mean_at_critical == pytest.approx(own.mean_at_critical, rel=1e-12)
+        radius, centre = balls.balls(nodes)
+        amp, mean, _ = fatigue.amplitude_mean(stress_history(unit, w, nodes))
+        scale = np.abs(stress_history(unit, w, nodes)).max()
+        assert np.allclose(radius, amp, rtol=1e-12, atol=1e-12 * scale)
+        assert np.allclose(centre + shift, mean, rtol=0, atol=1e-12 * scale)

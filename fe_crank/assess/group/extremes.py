@@ -70,7 +70,7 @@ from fe_crank.assess.group.bounds import (
     window_peak_bound,
 )
 from fe_crank.assess.group.peak import BOUND_RTOL, TIE_RTOL, group_peak, max_over_cycle
-from fe_crank.assess.group.reference import PathBounds
+from fe_crank.assess.group.reference import PathBounds, ReferenceBalls
 from fe_crank.assess.stress import von_mises_planes
 from fe_crank.assess.superpose import UnitStresses, iter_planes
 from fe_crank.io.material import Material
@@ -171,6 +171,7 @@ def group_extremes(
     block: int = fatigue.NODE_BLOCK,
     additional_bending: float = 0.0,
     reference: PathBounds | None = None,
+    translated: tuple[ReferenceBalls, np.ndarray] | None = None,
 ) -> GroupResult:
     """``assess_group``'s extremes of one node group at one speed (static peak, least
     Goodman and Gough-Pollard safety with their nodes; no overspeed, no per-node fields),
@@ -183,7 +184,11 @@ def group_extremes(
     ``reference``: bounds of this history at the group's nodes from a reference history's
     values (``reference.reference_bounds``), searched by in place of the coefficient box
     (and of the Goodman search's box with it, the larger of the two lower bounds), the
-    same extremes."""
+    same extremes.  ``translated``: (the reference's balls at the group's nodes, M (6, n)):
+    this history is that reference's translated by the constant tensor M
+    (``reference.is_translation``), so its Goodman values at a node are the reference's
+    ball moved by M (``reference.ReferenceBalls``: computed once per node, at the first
+    history that needs it, and kept for the others), the same values to rounding."""
     running = Running() if running is None else running
     nodes = np.asarray(unit.groups[group])
     if nodes.size == 0:
@@ -220,7 +225,35 @@ def group_extremes(
         sa, sm = np.zeros(nodes.size), np.zeros(nodes.size)
         done = np.zeros(nodes.size, bool)
 
+        def translated_block(p: np.ndarray, band: float) -> float:
+            assert translated is not None
+            balls, shift = translated
+            new = p[~balls.known(p)]
+            if new.size:  # the reference's path there, moved by M, filtered as below
+                ((_, planes0),) = iter_planes(unit, balls.weights, nodes[new], new.size)
+                planes = planes0 + shift[:, None, new]
+                hi, lo = planes.max(axis=1), planes.min(axis=1)
+                big2 = np.maximum(np.abs(hi), np.abs(lo))
+                keep = goodman_lower(0.5 * (hi - lo), big2, se, rm, additional_bending) <= band
+                if keep.any():
+                    k = np.flatnonzero(keep)
+                    lower = goodman_radius_lower(planes[:, :, k], 0.5 * (hi + lo)[:, k], se, rm, additional_bending)
+                    keep[k[lower > band]] = False
+                if keep.any():
+                    balls.balls(new[keep], planes0[:, :, keep])
+            q = p[balls.known(p)]
+            if q.size == 0:
+                return np.inf
+            radius, centre = balls.balls(q)
+            a, m = radius, fatigue.signed_mean(centre + shift[:, q])
+            sa[q], sm[q] = a, m
+            good[q] = fatigue.goodman_safety(a + additional_bending, m, se, rm)
+            done[q] = True
+            return float(good[q].min())
+
         def fatigue_block(p: np.ndarray, band: float) -> float:
+            if translated is not None:
+                return translated_block(p, band)
             ((_, planes),) = iter_planes(unit, coefficients, nodes[p], p.size)
             hi, lo = planes.max(axis=1), planes.min(axis=1)
             big2 = np.maximum(np.abs(hi), np.abs(lo))

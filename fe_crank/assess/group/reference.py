@@ -329,6 +329,73 @@ def single_reference_path(
     )
 
 
+#: the largest half range over the cycle of a history's departure from the reference,
+#: relative to the largest coefficient of either, for which the history is taken as the
+#: reference's translated by a constant tensor (``is_translation``): the departure's
+#: variation then moves each stress component by at most this times sum_c |U_c,j|, the
+#: order of ``bounds.ROUNDING``'s allowance for the rounding of the sums themselves
+TRANSLATION_RTOL = 1e-12
+
+
+def is_translation(weights: np.ndarray, coefficients: np.ndarray) -> bool:
+    """Whether the history ``coefficients`` is the reference ``weights`` plus a constant
+    (per case, over the cycle; ``TRANSLATION_RTOL``): then S(t) = S_0(t) + M at every
+    node, with M = sum_c D_c U_c (``reference_shift`` with ``small`` 0), as for the
+    counterweight candidates of one engine state on linear bearing laws (their
+    counterweights' centrifugal cases constant in the shaft's frame, the redundant
+    bearing forces changed by a constant)."""
+    c = np.atleast_2d(np.asarray(coefficients, float))
+    if c.shape != weights.shape:
+        return False
+    d = c - weights
+    top = float(np.abs(c).max(initial=0.0)) + float(np.abs(weights).max(initial=0.0))
+    return bool((0.5 * (d.max(axis=0) - d.min(axis=0))).max(initial=0.0) <= TRANSLATION_RTOL * top)
+
+
+class ReferenceBalls:
+    """The reference history's Goodman ball at each node of one group -- the radius and
+    centre ``fatigue.amplitude_mean`` returns, computed from the reference's own path (the
+    same history planes as every criterion) when first asked for and kept.
+
+    A history that is the reference's translated by a constant tensor M
+    (``is_translation``) has the same balls translated by M: ``amplitude_mean`` starts at
+    the component-wise mid range (which moves by M), measures distances between points
+    of the path or from a centre (unchanged), and moves its centres towards points of the
+    path (by M with them); so its amplitude is the reference's radius and its mean tensor
+    the reference's centre plus M, to rounding (the sums of the two histories are rounded
+    apart, as the study's superposition and a full solve of the same shaft are).  One
+    reference's balls thus give every candidate of its placement and state its Goodman
+    values at the nodes evaluated before, at the cost of a tensor sum."""
+
+    def __init__(self, unit: UnitStresses, weights: np.ndarray, nodes: np.ndarray):
+        self.unit, self.weights, self.nodes = unit, weights, np.asarray(nodes)
+        self._slot = np.full(self.nodes.size, -1, dtype=np.int64)
+        self._radius = np.empty(0)
+        self._centre = np.empty((6, 0))
+
+    def known(self, positions: np.ndarray) -> np.ndarray:
+        """Which of ``positions`` (into the group's nodes) hold a ball already."""
+        out: np.ndarray = self._slot[positions] >= 0
+        return out
+
+    def balls(self, positions: np.ndarray, planes: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """(radius (k,), centre (6, k)) at ``positions``, those not yet known computed now
+        from the reference's path (``planes`` (6, n_t, k'): that path at the unknown
+        positions, in their order, where the caller has it)."""
+        positions = np.asarray(positions)
+        missing = positions[self._slot[positions] < 0]  # positions are distinct
+        if missing.size:
+            if planes is None or planes.shape[-1] != missing.size:
+                ((_, planes),) = iter_planes(self.unit, self.weights, self.nodes[missing], missing.size)
+            assert planes is not None
+            radius, centre, _ = fatigue.amplitude_mean(planes.transpose(1, 0, 2))
+            self._slot[missing] = self._radius.size + np.arange(missing.size)
+            self._radius = np.concatenate([self._radius, radius])
+            self._centre = np.concatenate([self._centre, centre], axis=1)
+        s = self._slot[positions]
+        return self._radius[s], self._centre[:, s]
+
+
 def abs_sum(unit: UnitStresses) -> np.ndarray:
     """sum_c |U_c,j| (6, n) at every assessed node of ``unit``: what ``reference_shift``
     bounds the small terms by."""
@@ -430,4 +497,7 @@ __all__ = [
     "single_reference_path",
     "reference_shift",
     "reference_bounds",
+    "TRANSLATION_RTOL",
+    "is_translation",
+    "ReferenceBalls",
 ]
