@@ -27,7 +27,7 @@ zone mesh across ``z = 0`` (the zone of the mirrored ball of a symmetric throw).
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -392,6 +392,22 @@ def mesh_solid_zone_levels(
     group_nodes: float | None = None,
     mirrored=None,
 ) -> list[list[ZoneMesh]]:
+    """Every level of :func:`iter_solid_zone_levels`, in a list."""
+    return list(
+        iter_solid_zone_levels(solid, levels, centres, radii, names, group_nodes=group_nodes, mirrored=mirrored)
+    )
+
+
+def iter_solid_zone_levels(
+    solid: ZoneSolid,
+    levels: list[MeshOptions],
+    centres,
+    radii,
+    names: tuple[np.ndarray, list[str]],
+    *,
+    group_nodes: float | None = None,
+    mirrored=None,
+) -> Iterator[list[ZoneMesh]]:
     """Mesh the throw of ``solid`` inside the balls (``centres`` (k, 3),
     ``radii`` (k,), m; overlapping balls make one zone of their union) at each of the
     mesh options ``levels``: the solid is cut once, and only the size fields change from one
@@ -406,12 +422,14 @@ def mesh_solid_zone_levels(
 
     ``mirrored`` (k,) bool, default none: the balls whose zone's mirror image across
     ``z = 0`` is a zone too (``ZoneMesh.mirrored``, ``mirror_zone``); a ball so marked must
-    overlap no ball that is not, and the groups hold pieces of one kind only."""
+    overlap no ball that is not, and the groups hold pieces of one kind only.
+
+    Each level is yielded as soon as it is meshed, the gmsh session held open (by the
+    thread iterating) until the last."""
     from fe_crank.gmsh_io import gmsh_session
 
     cs = np.atleast_2d(np.asarray(centres, float))
     rs = np.asarray(radii, float)
-    out: list[list[ZoneMesh]] = []
     with gmsh_session() as gmsh:
         gmsh.option.setNumber("Mesh.LcIntegrationPrecision", LC_INTEGRATION_PRECISION)
         parts = _build(gmsh, solid, cs, rs, names)
@@ -434,8 +452,7 @@ def mesh_solid_zone_levels(
                 for g in _groups([counts[i] for i in of_kind], group_nodes):
                     vols = sorted(t for i in g for t in pieces[of_kind[i]])
                     level.append(_convert(gmsh, parts, vols, cs, rs, options, t0, kind))
-            out.append(level)
-    return out
+            yield level
 
 
 def mesh_zone(
@@ -458,6 +475,7 @@ __all__ = [
     "ZoneMesh",
     "ZoneMeshError",
     "ZoneSolid",
+    "iter_solid_zone_levels",
     "mesh_solid_zone_levels",
     "mesh_zone",
     "mesh_zone_levels",

@@ -220,3 +220,24 @@ def test_spots_folded_onto_one_side_of_a_symmetric_throw():
     grown = balls[owner[4]]
     assert r < grown.radius <= r * (1 + FOLD_MERGE) and grown.centre[2] > 0
     assert fold_spots(spots, False) == (spots, [False] * 8, list(range(8)))
+
+
+@pytest.mark.heavy  # two zone studies at r/1.5
+def test_levels_solved_while_the_next_is_meshed_equal_the_levels_meshed_first(check_solution, monkeypatch):
+    """``pipelined_levels`` (a level solved while gmsh meshes the next, in a thread of its
+    own) gives the study of the levels meshed first (``held_level_meshes``, its fallback):
+    the same meshes, so the same unknowns and peaks, exactly."""
+    from fe_crank.fe.refinement import zone_study
+
+    geometry, _, tm, units = check_solution
+    piped = zone_convergence(geometry, Steel(), tm, units, LOADS, factors=(1.0, 1.5, 2.0))
+
+    def refuse(*_args, **_kw):
+        raise zone_study.Unpipelined
+        yield  # a generator, as the pipelined one
+
+    monkeypatch.setattr(zone_study, "pipelined_levels", refuse)
+    first = zone_convergence(geometry, Steel(), tm, units, LOADS, factors=(1.0, 1.5, 2.0))
+    assert len(piped.levels) == len(first.levels) == 3
+    for a, b in zip(piped.levels, first.levels):
+        assert (a.n_dof, a.peaks, a.where, a.fillet_max_edge) == (b.n_dof, b.peaks, b.where, b.fillet_max_edge)

@@ -28,7 +28,10 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import queue
+import threading
 import time
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -52,12 +55,14 @@ from fe_crank.fe.throw.surface_peaks import COUNTERWEIGHT_FILLETS, FILLETS, OIL_
 from fe_crank.fe.throw.unit_cases import UnitSolutions
 from fe_crank.geometry.spec import CrankGeometry
 from fe_crank.mesh.mirror import swap_side
+from fe_crank.mesh.options import MeshOptions
 from fe_crank.mesh.planes import symmetry_planes
 from fe_crank.mesh.types import ThrowMesh
 from fe_crank.mesh.zone import (
     ZoneMesh,
     ZoneMeshError,
     ZoneSolid,
+    iter_solid_zone_levels,
     mesh_solid_zone_levels,
     mirror_zone,
     parametric_solid,
@@ -330,6 +335,60 @@ def held_level_meshes(
     return [a + b for a, b in zip(meshes, again)]
 
 
+class Unpipelined(Exception):
+    """``pipelined_levels`` could not give every level from its one cut (a ball gmsh could
+    not mesh or that the cut left out): the levels are to be meshed by ``held_level_meshes``."""
+
+
+def pipelined_levels(
+    solid: ZoneSolid, levels, spots: list[HotSpot], samples, group_nodes=None, mirrored=None
+) -> Iterator[list[ZoneMesh]]:
+    """The zones of every level as ``held_level_meshes`` gives them where its first cut
+    meshes every level and holds every spot -- the same gmsh calls in the same order, so
+    the same meshes -- each level yielded as soon as gmsh has meshed it: gmsh runs in a
+    thread of its own (its calls release the interpreter's lock), so that the caller
+    solves a level while the next is meshed.  Raises ``Unpipelined`` where that cut does
+    not do (the caller then meshes by ``held_level_meshes``, its retries included)."""
+    out: queue.Queue = queue.Queue()
+
+    def produce() -> None:
+        try:
+            for zones in iter_solid_zone_levels(
+                solid,
+                levels,
+                [h.centre for h in spots],
+                [h.radius for h in spots],
+                samples,
+                group_nodes=group_nodes,
+                mirrored=mirrored,
+            ):
+                out.put(("level", zones))
+        except ZoneMeshError as exc:
+            out.put(("retry", exc))
+        except BaseException as exc:  # raised again in the caller's thread
+            out.put(("error", exc))
+        else:
+            out.put(("done", None))
+
+    worker = threading.Thread(target=produce, name="fe-crank-zone-mesh", daemon=True)
+    worker.start()
+    try:
+        while True:
+            kind, value = out.get()
+            if kind == "done":
+                return
+            if kind == "error":
+                raise value
+            if kind == "retry":
+                log.info("the hot-spot zones on %s: %s", ", ".join(h.surface for h in spots), value)
+                raise Unpipelined
+            if not all(holds(value, h) for h in spots):
+                raise Unpipelined
+            yield value
+    finally:
+        worker.join()
+
+
 def pins_of(unit_solutions: UnitSolutions, loads: dict[str, dict[str, float]]) -> dict[str, PinPressure]:
     """The pin pressure of every pin unit case of ``loads``: the solved unit cases' own
     (``UnitSolutions.pin``), the others built alike on the same crankpin surface (a load set
@@ -402,15 +461,15 @@ def zone_convergence(
     samples = boundary_samples(unit_solutions.mesh)
     interp = Interpolator(unit_solutions.mesh, unit_solutions.system.basis.dofs, unit_solutions.points)
     every = [n for _, names in FAMILIES for n in names]
-    t0 = time.perf_counter()
     options = [
         dataclasses.replace(base, fillet_divisions=base.fillet_divisions * f, bore_divisions=base.bore_divisions * f)
         for f in factors[1:]
     ]
     group_nodes = GROUP_FRACTION * unit_solutions.n_dof / 3
-    meshes = held_level_meshes(solid, options, balls, samples, group_nodes, mirrored=mirrored)
-    meshing = (time.perf_counter() - t0) / len(options)  # the cut shared by the levels
-    for mopt, zones in zip(options, meshes):
+
+    def solve_level(mopt: MeshOptions, zones: list[ZoneMesh], meshing: float) -> ConvergenceLevel:
+        """One level's zones solved for every load set and their peaks read; ``meshing``: the
+        seconds of its meshing, counted in its time."""
         t0 = time.perf_counter() - meshing
         best: dict[str, tuple[float, str]] = {}
         n_dof, images, edges = 0, 0, dict[str, float]()
@@ -449,17 +508,15 @@ def zone_convergence(
         missing = sorted(set(first) - set(best))
         if missing:
             raise RuntimeError(f"the hot-spot zones hold no node of the surfaces of {missing}")
-        levels.append(
-            ConvergenceLevel(
-                fillet_divisions=mopt.fillet_divisions,
-                n_dof=n_dof,
-                fillet_max_edge=edges,
-                peaks={k: best[k][0] for k in first},
-                where={k: best[k][1] for k in first},
-                seconds=time.perf_counter() - t0,
-                bore_divisions=mopt.bore_divisions,
-                zones=len(spots),
-            )
+        level = ConvergenceLevel(
+            fillet_divisions=mopt.fillet_divisions,
+            n_dof=n_dof,
+            fillet_max_edge=edges,
+            peaks={k: best[k][0] for k in first},
+            where={k: best[k][1] for k in first},
+            seconds=time.perf_counter() - t0,
+            bore_divisions=mopt.bore_divisions,
+            zones=len(spots),
         )
         log.info(
             "convergence level r/%g: %d zones, %d DOF (%d of them the mirror images'), %.1f s",
@@ -467,8 +524,21 @@ def zone_convergence(
             len(spots),
             n_dof,
             images,
-            levels[-1].seconds,
+            level.seconds,
         )
+        return level
+
+    # each level solved while gmsh meshes the next (``pipelined_levels``), else all meshed first
+    refined: list[ConvergenceLevel] = []
+    try:
+        for zones in pipelined_levels(solid, options, balls, samples, group_nodes, mirrored):
+            refined.append(solve_level(options[len(refined)], zones, max(zm.seconds for zm in zones)))
+    except Unpipelined:
+        t0 = time.perf_counter()
+        meshes = held_level_meshes(solid, options, balls, samples, group_nodes, mirrored=mirrored)
+        meshing = (time.perf_counter() - t0) / len(options)  # the cut shared by the levels
+        refined = [solve_level(mopt, zones, meshing) for mopt, zones in zip(options, meshes)]
+    levels.extend(refined)
     changes = {
         name: [abs(b.peaks[name] - a.peaks[name]) / b.peaks[name] for a, b in zip(levels, levels[1:])]
         for name in levels[0].peaks
