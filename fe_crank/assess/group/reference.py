@@ -410,8 +410,10 @@ def reference_shift(
     against the reference history ``weights`` (module docstring); ``sums``: ``abs_sum``
     of ``unit``.  The cases whose mid range or half range of D is at most ``small`` times
     the largest coefficient enter r alone, by max_c (|m_c| + h_c) sum_c |U_c,j| (as the
-    rounding allowance, by max_c (max_t |W_c| + max_t |W0_c|)); None where the histories'
-    angles differ."""
+    rounding allowance, by max_c (max_t |W_c| + max_t |W0_c|)), and so do the half ranges
+    of the others that are at most ``TRANSLATION_RTOL`` times it (a translation's, whose
+    product with |U_c| would cost as much as M's); None where the histories' angles
+    differ."""
     c = np.atleast_2d(np.asarray(coefficients, float))
     if c.shape != weights.shape:
         return None
@@ -420,15 +422,15 @@ def reference_shift(
     m, h = 0.5 * (hi + lo), 0.5 * (hi - lo)
     top = float(np.abs(c).max(initial=0.0)) + float(np.abs(weights).max(initial=0.0))
     big = (np.abs(m) + h) > small * top
+    # the cases that vary by more than a translation's allowance enter r one by one, the
+    # others by their largest half range times sum_c |U_c,j|
+    varied = big & (h > TRANSLATION_RTOL * top)
     u = unit.stress.reshape(unit.stress.shape[0], -1)
-    rest = float((np.abs(m) + h)[~big].max(initial=0.0))
+    rest = float((np.abs(m) + h)[~big].max(initial=0.0)) + float(h[big & ~varied].max(initial=0.0))
     r = (rest + ROUNDING * top) * sums
-    if big.any():
-        ub = u[big]
-        shift = (m[big] @ ub).reshape(sums.shape)
-        r += (h[big] @ np.abs(ub)).reshape(sums.shape)
-    else:
-        shift = np.zeros_like(sums)
+    shift = (m[big] @ u[big]).reshape(sums.shape) if big.any() else np.zeros_like(sums)
+    if varied.any():
+        r += (h[varied] @ np.abs(u[varied])).reshape(sums.shape)
     return shift, r
 
 
