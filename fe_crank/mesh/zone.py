@@ -376,25 +376,9 @@ def mesh_zone_levels(
     *,
     group_nodes: float | None = None,
 ) -> list[list[ZoneMesh]]:
-    """:func:`mesh_solid_zone_levels` of the parametric throw ``spec`` of ``geometry``."""
-    return mesh_solid_zone_levels(
-        parametric_solid(geometry, spec), levels, centres, radii, names, group_nodes=group_nodes
-    )
-
-
-def mesh_solid_zone_levels(
-    solid: ZoneSolid,
-    levels: list[MeshOptions],
-    centres,
-    radii,
-    names: tuple[np.ndarray, list[str]],
-    *,
-    group_nodes: float | None = None,
-    mirrored=None,
-) -> list[list[ZoneMesh]]:
-    """Every level of :func:`iter_solid_zone_levels`, in a list."""
+    """Every level of :func:`iter_solid_zone_levels` of the parametric throw ``spec`` of ``geometry``."""
     return list(
-        iter_solid_zone_levels(solid, levels, centres, radii, names, group_nodes=group_nodes, mirrored=mirrored)
+        iter_solid_zone_levels(parametric_solid(geometry, spec), levels, centres, radii, names, group_nodes=group_nodes)
     )
 
 
@@ -476,7 +460,6 @@ __all__ = [
     "ZoneMeshError",
     "ZoneSolid",
     "iter_solid_zone_levels",
-    "mesh_solid_zone_levels",
     "mesh_zone",
     "mesh_zone_levels",
     "mirror_zone",

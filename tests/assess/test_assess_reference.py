@@ -54,6 +54,13 @@ def _unit(stress: np.ndarray, group: str) -> UnitStresses:
     )
 
 
+def _fillet_stress(rng: np.random.Generator, n_cases: int, n: int) -> np.ndarray:
+    """Random unit stresses (n_cases, 6, n) with a dominant component, as at a fillet."""
+    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
+    s[:, 0] *= 3.0
+    return s
+
+
 def test_a_constant_shift_by_hand():
     """Case 0: sigma_xx 100 MPa per unit, a(t) = cos t (reference); case 1: sigma_xx
         50 MPa per unit, coefficient 0 in the reference and 0.2 in the history: M = 10 MPa.
@@ -101,8 +108,7 @@ def _bounds_hold(unit, group, ref, w0, t, nodes, changes, varied: int) -> None:
 def test_bounds_hold_and_the_search_by_them_finds_the_same_extremes():
     rng = np.random.default_rng(7)
     n_cases, n, n_t = 6, 300, 90
-    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
-    s[:, 0] *= 3.0  # a dominant component, as at a fillet
+    s = _fillet_stress(rng, n_cases, n)
     group = "journal_fillet_1"
     unit = _unit(s, group)
     t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
@@ -119,8 +125,7 @@ def test_the_single_precision_reference_bounds_the_full_paths_values():
     and the bounds of other histories from it holding and searched by as before."""
     rng = np.random.default_rng(11)
     n_cases, n, n_t = 24, 200, 360
-    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
-    s[:, 0] *= 3.0
+    s = _fillet_stress(rng, n_cases, n)
     group = "journal_fillet_1"
     unit = _unit(s, group)
     t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
@@ -145,8 +150,7 @@ def test_another_placements_reference_bounds_the_history():
     force: every node's peak, Goodman amplitude and signed mean lie under the bounds."""
     rng = np.random.default_rng(3)
     n_cases, n, n_t = 8, 120, 96
-    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
-    s[:, 0] *= 3.0
+    s = _fillet_stress(rng, n_cases, n)
     unit = _unit(s, "crankpin_fillet_1")
     t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
     w0 = np.column_stack([np.cos(t + k) * (1 + k % 3) for k in range(n_cases)])
@@ -175,8 +179,7 @@ def test_the_kept_box_bounds_a_shift_by_its_direction():
     same extremes as without any."""
     rng = np.random.default_rng(19)
     n_cases, n, n_t = 8, 150, 120
-    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
-    s[:, 0] *= 3.0
+    s = _fillet_stress(rng, n_cases, n)
     s[-1] = 0.8 * s[0]  # the counterweight's stress along the pin's: a shift can lower the peak
     group = "crankpin_fillet_1"
     unit = _unit(s, group)
@@ -217,16 +220,11 @@ def test_a_translated_history_takes_the_references_balls():
     ``fatigue.amplitude_mean`` on the history's own path to rounding, and the search by them
     (one set of balls kept across the histories, as the study keeps it across its
     candidates) the same extremes as the search on each history's own path."""
-    rng = np.random.default_rng(5)
-    n_cases, n, n_t = 8, 250, 120
-    s = rng.normal(0.0, 30e6, (n_cases, 6, n))
-    s[:, 0] *= 3.0
-    group = "crankpin_fillet_1"
-    unit = _unit(s, group)
-    t = np.linspace(0.0, 4 * np.pi, n_t, endpoint=False)
+    group, n_cases, nodes = "crankpin_fillet_1", 8, np.arange(250)
+    unit = _unit(_fillet_stress(np.random.default_rng(5), n_cases, nodes.size), group)
+    t = np.linspace(0.0, 4 * np.pi, 120, endpoint=False)
     w0 = np.column_stack([np.cos(t + k) * (1 + k % 3) for k in range(n_cases)])
     w0[:, -2:] = 1.5  # two constant cases (counterweights' centrifugal)
-    nodes = np.arange(n)
     ref = single_reference_path(unit, w0, nodes)
     balls = ReferenceBalls(unit, w0, nodes)
     sums = abs_sum(unit)

@@ -63,7 +63,6 @@ from fe_crank.mesh.zone import (
     ZoneMeshError,
     ZoneSolid,
     iter_solid_zone_levels,
-    mesh_solid_zone_levels,
     mirror_zone,
     parametric_solid,
 )
@@ -270,7 +269,7 @@ def level_meshes(
     solid: ZoneSolid, levels, spots: list[HotSpot], samples, group_nodes=None, grown=frozenset(), mirrored=None
 ) -> list[list[ZoneMesh]]:
     """The zones of every level (``levels``: their mesh options), in groups
-    (``mesh.zone.mesh_solid_zone_levels``): every ball cut from the throw in one gmsh model, once,
+    (``mesh.zone.iter_solid_zone_levels``): every ball cut from the throw in one gmsh model, once,
     and re-meshed per level.  Where gmsh cannot mesh that model at some level, the ball
     nearest the first curve or surface it left unmeshed (``ZoneMeshError.ball``) is made
     ``RETRY_GROWTH`` larger and the model cut and meshed again (once per ball: ``grown``,
@@ -279,8 +278,10 @@ def level_meshes(
     (``fold_spots``; default none)."""
     radii = [h.radius * (RETRY_GROWTH if i in grown else 1.0) for i, h in enumerate(spots)]
     try:
-        return mesh_solid_zone_levels(
-            solid, levels, [h.centre for h in spots], radii, samples, group_nodes=group_nodes, mirrored=mirrored
+        return list(
+            iter_solid_zone_levels(
+                solid, levels, [h.centre for h in spots], radii, samples, group_nodes=group_nodes, mirrored=mirrored
+            )
         )
     except ZoneMeshError as exc:
         log.info("the hot-spot zones on %s: %s", ", ".join(h.surface for h in spots), exc)
