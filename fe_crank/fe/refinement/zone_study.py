@@ -380,9 +380,8 @@ def pipelined_levels(
                 return
             if kind == "error":
                 raise value
-            if kind == "retry":
-                log.info("the hot-spot zones on %s: %s", ", ".join(h.surface for h in spots), value)
-                raise Unpipelined
+            if kind == "retry":  # logged where ``held_level_meshes`` meets it again
+                raise Unpipelined from value
             if not all(holds(value, h) for h in spots):
                 raise Unpipelined
             yield value
