@@ -390,17 +390,25 @@ class _Bounds:
         k = (self.name, id(ref_w))
         if k not in self.shifts:
             # a translation's M takes every case that departs (``small`` 0): its exact shift
-            small = 0.0 if is_translation(ref_w, self.weights) else 1e-9
+            small = 0.0 if self._translation(ref_w) else 1e-9
             shifted = reference_shift(ref_w, self.unit, self.weights, self.shaft.abs_sums[self.name], small)
             self.shifts[k] = (ref_w, shifted)
         return self.shifts[k][1]
+
+    def _translation(self, ref_w: np.ndarray) -> bool:
+        """``is_translation`` of this history against ``ref_w``, once per state (every
+        group and throw of the state shares both)."""
+        k = ("translation", id(ref_w))
+        if k not in self.shifts:
+            self.shifts[k] = (ref_w, is_translation(ref_w, self.weights))
+        return bool(self.shifts[k][1])
 
     def translated(self) -> tuple[ReferenceBalls, np.ndarray] | None:
         """(the own reference's Goodman balls at the group's nodes, kept for the later
         candidates; M at the nodes) where this history is the reference's translated by a
         constant (``assess.group.reference.is_translation``), else None."""
         ref_w = self.refs["weights"]
-        if not self.fatigue_values or not is_translation(ref_w, self.weights):
+        if not self.fatigue_values or not self._translation(ref_w):
             return None
         shifted = self._shift(ref_w)
         if shifted is None:
