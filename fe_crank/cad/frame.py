@@ -4,6 +4,10 @@
 centre, ``x = y x z`` (right-handed: the direction the pin moves in the positive
 sense of rotation), origin on the axis midway between the webs' inner faces;
 ``p_throw = R (p_file - o)`` with the rows of ``R`` the frame's x, y, z axes.
+
+The frame's products are written out term by term (``turn``), not left to a BLAS
+kernel, whose order of summation, and so whose last bits, depends on the processor:
+from the same fitted axes the same frame places the same cuts on every machine.
 """
 
 from __future__ import annotations
@@ -24,6 +28,12 @@ def turn_angle(a: float, period: float = 2 * math.pi) -> float:
     return 0.0 if a <= ANGLE_SNAP or period - a <= ANGLE_SNAP else a
 
 
+def turn(m: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """``p @ m.T`` for points ``p`` (n, 3) or (3,) and a 3 x 3 ``m``, summed in a fixed order."""
+    p = np.asarray(p, dtype=float)
+    return p[..., 0, None] * m[:, 0] + p[..., 1, None] * m[:, 1] + p[..., 2, None] * m[:, 2]
+
+
 @dataclass(frozen=True, eq=False)
 class Frame:
     origin: np.ndarray  # (3,) file frame
@@ -31,19 +41,19 @@ class Frame:
 
     @classmethod
     def of(cls, axis_origin: np.ndarray, e: np.ndarray, u: np.ndarray, s_mid: float) -> Frame:
-        y = u - (u @ e) * e
-        y /= np.linalg.norm(y)
+        y = u - float(turn(e[None, :], u)[0]) * e
+        y = y / math.sqrt(math.fsum(float(c) * float(c) for c in y))
         x = np.cross(y, e)
         return cls(axis_origin + s_mid * e, np.vstack([x, y, e]))
 
     def to_throw(self, p: np.ndarray) -> np.ndarray:
-        return (np.atleast_2d(p) - self.origin) @ self.rotation.T
+        return turn(self.rotation, np.atleast_2d(p) - self.origin)
 
     def to_file(self, q: np.ndarray) -> np.ndarray:
-        return np.atleast_2d(q) @ self.rotation + self.origin
+        return turn(self.rotation.T, np.atleast_2d(q)) + self.origin
 
     def direction(self, d: np.ndarray) -> np.ndarray:
-        return self.rotation @ d
+        return turn(self.rotation, d)
 
     def prism(self, occ, corners, s0: float, s1: float, axis_origin: np.ndarray) -> int:
         """A prism in the file frame: the polygon ``corners`` (x, y of this frame) in the

@@ -33,6 +33,7 @@ import numpy as np
 
 from fe_crank.cad.config import CadInput
 from fe_crank.cad.features import ThrowFeatures
+from fe_crank.cad.survey import DIRECTION_QUANTUM_DECIMALS, LENGTH_QUANTUM_DECIMALS
 from fe_crank.errors import GeometryError
 from fe_crank.mesh.cache import mesher_key
 from fe_crank.mesh.fields import apply_fields, bore_field, surface_field, torus_distance, torus_field, web_field
@@ -72,6 +73,9 @@ def cad_cache_key(cad: CadInput, sha256: str, throw: str, opt: MeshOptions) -> s
             "counterweight_radius": cad.counterweight_radius,
             "faces": [dataclasses.asdict(f) for f in cad.faces],
         },
+        # the fitted radii and axes rounded (``survey.snap_length``, ``snap_direction``):
+        # meshes made from the unrounded fits do not stand for these
+        "fits": {"length_decimals": LENGTH_QUANTUM_DECIMALS, "direction_decimals": DIRECTION_QUANTUM_DECIMALS},
         "throw": throw,
         "options": opts,
         "mesher": mesher_key(),

@@ -17,6 +17,16 @@ solid).  Fits, each accepted when every sample lies within ``tol`` of the surfac
   spine circle fitted to ``p - s rho n`` (``s = +1``: tube convex, ``-1``: concave);
 * anything else: "other", with its smallest radius of curvature.
 
+The fitted numbers (radii, axis points, axis directions) are rounded to ``LENGTH_QUANTUM``
+and ``DIRECTION_QUANTUM`` (``snap_length``, ``snap_direction``): their last bits depend on
+the kernels the linear-algebra library picks for the machine's processor (OpenBLAS's
+Haswell and Sandybridge kernels give a fillet's spine radius and an oil bore's direction
+that differ in the last bit), and gmsh turns a last-bit change of a size field or a cut
+into another mesh.  Rounded, a drawing gives the same features, the same mesh and the
+same verdict on every machine; a dimension drawn in millimetres or inches is a multiple
+of the quantum, so it is recognised as its decimal value (a 56 mm journal as 0.056 m).
+Measured positions (a plane's point, the sample points) are the file's own, unrounded.
+
 Convexity (``convex``): the centre of curvature lies inside the material (a shaft's
 outside, a web's rounded edge) rather than outside it (a bore, a fillet of a re-entrant
 edge).
@@ -24,10 +34,16 @@ edge).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
+#: fitted lengths are rounded to this (m): far below any drawing's resolution, far above
+#: the round-off of a fit (1e-16 of the size)
+LENGTH_QUANTUM_DECIMALS = 9  # 1 nm
+#: fitted unit vectors: each direction cosine rounded to this many decimals, then renormalised
+DIRECTION_QUANTUM_DECIMALS = 12
 _GRID = (6, 16)  # parameter grids tried (n x n), the finer one for narrow faces
 _MIN_POINTS = 6
 _CURVE_SAMPLES = 9
@@ -93,6 +109,29 @@ def circle_fit(q: np.ndarray) -> tuple[np.ndarray, float]:
     sol, *_ = np.linalg.lstsq(A, b, rcond=None)
     c = sol[:2]
     return c, float(np.sqrt(max(sol[2] + c @ c, 0.0)))
+
+
+def snap_length(x: float) -> float:
+    """A fitted length (m) rounded to 1 nm (the module doc)."""
+    return float(round(float(x), LENGTH_QUANTUM_DECIMALS))
+
+
+def snap_point(p: np.ndarray) -> np.ndarray:
+    """A fitted point (m), each coordinate rounded to 1 nm."""
+    return np.array([snap_length(c) for c in p])
+
+
+def snap_direction(e: np.ndarray) -> np.ndarray:
+    """A fitted axis, its direction cosines rounded (the module doc) and the result
+    renormalised in scalar arithmetic (correctly rounded sums, no BLAS): an axis along a
+    coordinate axis becomes exactly that axis.  An axis has no sense of its own (an
+    eigenvector's sign is the solver's choice, and differs between kernels): its first
+    non-zero cosine is made positive."""
+    c = [float(round(float(v), DIRECTION_QUANTUM_DECIMALS)) for v in e]
+    if next(v for v in c if v != 0.0) < 0.0:
+        c = [-v for v in c]
+    n = math.sqrt(math.fsum(v * v for v in c))
+    return np.array([v / n for v in c])
 
 
 def _basis(e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -178,11 +217,13 @@ def survey(gmsh, tags: list[int], tol: float) -> dict[int, Face]:
         cyl = _fit_cylinder(p, n, tol) if len(p) >= 3 else None
         if cyl is not None:
             o, e, r, convex = cyl
+            o, e, r = snap_point(o), snap_direction(e), snap_length(r)
             out[tag] = Face(kind="cylinder", origin=o, direction=e, radius=r, convex=convex, min_radius=r, **base)
             continue
         tor = _fit_torus(p, n, kmax, tol) if len(p) >= 4 and np.all(kmax > 0) else None
         if tor is not None:
             c, e, a, rho, convex = tor
+            c, e, a, rho = snap_point(c), snap_direction(e), snap_length(a), snap_length(rho)
             out[tag] = Face(
                 kind="torus", origin=c, direction=e, radius=a, minor=rho, convex=convex, min_radius=rho, **base
             )
