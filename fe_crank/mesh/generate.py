@@ -29,17 +29,20 @@ from fe_crank.errors import MeshError, environment_fault
 from fe_crank.mesh.cache import TMP_MARK, clean_stale_cache_temps, load_cache_entry, save_npz, stats_to_json
 from fe_crank.mesh.export import write_vtu
 from fe_crank.mesh.options import GENERATE_OPTIONS, MeshOptions
-from fe_crank.mesh.quality import fillet_max_edge, jacobian_ratio, straighten_poor, tet_tags
+from fe_crank.mesh.quality import STRAIGHTEN_BELOW, fillet_max_edge, jacobian_ratio, straighten_poor, tet_tags
 from fe_crank.mesh.types import MeshStats, ThrowMesh
 
 
-def generate(gmsh, throw_name: str, label: str, opt: MeshOptions, *, netgen: bool = True) -> tuple[float, int]:
+def generate(
+    gmsh, throw_name: str, label: str, opt: MeshOptions, *, netgen: bool = True, straighten: float = STRAIGHTEN_BELOW
+) -> tuple[float, int]:
     """Mesh the current model (its size fields set) with quadratic tetrahedra.
 
     Returns gmsh's smallest minSICN of the linear tetrahedra and the number of quadratic
     elements made straight-sided.  ``label`` names the model in messages.  ``netgen``
     False: gmsh's own optimiser only, without Netgen's (which is about four fifths of
-    the 3D meshing's time; the checks below are the same)."""
+    the 3D meshing's time; the checks below are the same).  ``straighten``: the quadratic
+    elements of gmsh ``minSJ`` at or below it are made straight-sided (``straighten_poor``)."""
     for name, value in GENERATE_OPTIONS.items():
         gmsh.option.setNumber(name, value)
     if not netgen:
@@ -63,7 +66,7 @@ def generate(gmsh, throw_name: str, label: str, opt: MeshOptions, *, netgen: boo
         raise
     except Exception as exc:  # gmsh raises bare Exception
         raise MeshError(f"gmsh could not mesh throw {throw_name!r} of {label!r}: {exc}") from None
-    straightened = straighten_poor(gmsh, throw_name)
+    straightened = straighten_poor(gmsh, throw_name, straighten)
     return min_quality, straightened
 
 
