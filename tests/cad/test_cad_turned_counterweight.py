@@ -5,7 +5,8 @@ The throw of ``tests/data/geometry_small_shaft.toml`` (sector 14..40 mm, 120 deg
 transition fillets) turned 20 deg (``counterweight.offset``), written to STEP by
 fe-crank's own writer (``helpers.cad_files.parametric_step``) and read back:
 
-* the recognised offset is the drawn one to 1e-9 deg (the direction of the exact m r);
+* the recognised offset is the drawn one to 1e-9 rad (the direction of an m r vector
+  known to 1e-9 relative);
 * the recognised counterweight is the parametric solid's material beyond the web's side
   radius (20 mm) on the far side of y = 0, integrated independently on the parametric
   solid by OpenCASCADE (mass and m r vector to 1e-9 relative; measured 3e-13); web and
@@ -24,8 +25,8 @@ fe-crank's own writer (``helpers.cad_files.parametric_step``) and read back:
   recognised by its own sector: mass and m r vector against an independent OpenCASCADE
   integral of the parametric solid in that sector beyond the side radius (1e-9), web and
   counterweight together the parametric route's (1e-9), offset the direction of that m r
-  (40.03 deg: the two flanks' fillets differ); without fillets the offset is 40 deg to
-  1e-9 deg;
+  (40.03 deg: the two flanks' fillets differ; measured 3.4e-10 rad apart); without
+  fillets the offset is 40 deg to 1e-9 rad;
 * one that still cannot be recognised (a 190 deg sector turned 10 deg, the fillet of its
   other flank rising above y = 0) is refused by ``fe-crank validate`` with the file, the
   key and the reason."""
@@ -57,7 +58,8 @@ from fe_crank.mesh import mesh_throw
 
 OFFSET = 20.0  # deg
 REL = 1e-9  # OpenCASCADE's B-rep integrals of one solid along two routes
-TOL_DEG = 1e-9
+#: the direction of an m r vector known to REL (relative) is known to REL rad
+TOL_DEG = math.degrees(REL)
 TOL_PEAK = 0.10  # two test-preset meshes of one solid (module doc)
 SIDE = 0.020  # m: the web's side radius (a 40 mm wide stadium), where the counterweight begins
 CASES = ("centrifugal", "pin_x", "pin_y", "torque")

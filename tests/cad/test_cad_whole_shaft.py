@@ -20,12 +20,16 @@ The mesh noise: the two routes mesh the same solid with the same size fields, bu
 into different parts (the counterweight: the parametric route's annular sector from its
 inner radius, the drawn one all beyond the web's rounded journal end; the drawn journal
 redrawn as a round bar next to each bearing centre), so gmsh's meshes differ
-(docs/geometry.md).  Measured on the parametric model itself, between two equally fine
-meshes of its throw (its half meshed and mirrored, the default, against the whole throw
-meshed, ``MeshOptions(symmetric=False)``, both at ``test``): main-bearing peak loads
-within 0.055 %; the 24 whole-shaft fillet peaks move by up to 9.2 % (mean +0.99 %, rms
-2.5 %).  The drawn route's differences lie within that (measured: loads 0.041 %, fillet
-peaks up to 3.7 %, mean +0.07 %, rms 2.0 %).
+(docs/geometry.md); at ``test`` a fillet is about one element across.  Measured over
+round-off realisations of each route (``benchmarks/verification/mesh_scatter.py --only
+shaft``: the drawing translated along the axis by k x 10 nm, the parametric crank radius
+times 1 + k 1e-12, k = 0..4, k = 0 the files and layout this test reads; each
+realisation another mesh of the same solid), the 25 pairs of a drawn and a parametric
+realisation differ in their main-bearing peak loads by at most 0.058 %, in the film by at
+most 0.10 %, and in the 24 whole-shaft fillet peaks by at most 12.7 % (a pair's mean
+-0.80 % to +2.62 %, its rms 3.4 % to 5.8 %); two parametric realisations alone by up to
+7.4 % (mean -1.6 % to +2.1 %, rms 1.2 % to 3.0 %).  The tolerances below are the largest
+of the 25 pairs, rounded up.
 """
 
 from __future__ import annotations
@@ -57,11 +61,10 @@ from fe_crank.pipeline.stages import shaft_layout as case_layout
 pytestmark = pytest.mark.heavy
 POS = 1e-6  # m
 SPEED = 4000 * 2 * np.pi / 60
-#: the mesh noise at ``test`` (module doc): bearing loads (measured 5.5e-4 on the
-#: parametric model's own two meshes) ...
+#: the mesh noise at ``test`` (module doc): bearing loads (measured 5.8e-4) ...
 LOAD_NOISE = 2e-3
-#: ... each whole-shaft fillet peak (measured 9.2 %), their mean and rms change (0.99 %, 2.5 %)
-PEAK_NOISE, PEAK_BIAS, PEAK_RMS = 0.092, 0.01, 0.025
+#: ... each whole-shaft fillet peak (measured 12.7 %), their mean and rms change (2.62 %, 5.8 %)
+PEAK_NOISE, PEAK_BIAS, PEAK_RMS = 0.13, 0.03, 0.06
 #: the film's minimum thickness and peak pressure under loads within ``LOAD_NOISE``
 FILM_NOISE = 1e-2
 

@@ -3,17 +3,29 @@ with ``cad.zone.cad_zone_solid``) against the full re-mesh of the drawn throw.
 
 The shipped single-cylinder throw (shaft fillets, counterweight transition fillets, an
 oil bore) exported to STEP (``helpers.cad_files.parametric_step``, once in the run:
-``tests/cad/conftest.py``), meshed by the CAD
-route at the ``test`` preset and solved for real; the study's refined level r/2 from the
-zones cut from the drawn solid equals the whole drawn throw re-meshed and re-solved at
-r/2 within ``NOISE_TOL``, the tolerance of the parametric throw's zone test on the same
-throw (tests/fe/test_fe_zone_study.py: at ``test`` two meshes of one fillet size differ in
-their peaks by the mesh's own noise, up to 2.6 % measured there; 4 % is about twice
-that), the same physics on the same kind of mesh.  Measured here: -2.5 % to +0.2 % over
-the six entries (the oil-bore outlet -0.9 / -0.3 %).  The refined level is r/2, as in the
-parametric test: at r/1.5 the drawn throw's full mesh is the noisier one (its oil-bore
-outlet under the torque 795.5 MPa between 722.8 at r/1 and 721.7 at r/2, the zones'
-722.8 / 722.8 / 719.3), and the two differ by up to 9 %.
+``tests/cad/conftest.py``), meshed by the CAD route at the ``test`` preset and solved for
+real; the study's refined level r/2 from the zones cut from the drawn solid equals the
+whole drawn throw re-meshed and re-solved at r/2 within ``NOISE_TOL`` of its family.
+
+The tolerances are the zones' difference from the full re-mesh at ``test``, measured over
+five round-off realisations of the drawing (``benchmarks/verification/mesh_scatter.py
+--only zones``: the file translated along the crank axis by k x 10 nm, k = 0 the file
+this test meshes; each realisation is another pair of meshes of the same solid), twice
+the largest, rounded up to a whole per cent:
+
+* shaft fillets: -0.7 % to +0.4 % under the pin force, -2.0 % to -0.6 % under the torque: 4 %;
+* counterweight fillets: -4.8 % to -1.6 % and -0.5 % to +2.0 %: 10 %;
+* the oil-bore outlet, a sharp edge where the averaged nodal stress has no converged value:
+  -9.7 % to -0.3 % and -8.3 % to -2.9 %: 20 %.
+
+At ``test`` a fillet is about one element across at r/1, and the zones are driven by that
+solution: the counterweight fillets and the outlet read low here, by more than at
+``coarse``, where the zones are within about 1 % of the full re-mesh at the fillets and a
+few per cent at the outlet (docs/performance.md, "The hot-spot convergence study").  This
+test holds the drawn route's zones to the full re-mesh at the test mesh's scatter; the
+accuracy claim is the coarse benchmark's.  The refined level is r/2, as in the parametric test
+(tests/fe/test_fe_zone_study.py): at r/1.5 the drawn throw's full mesh is the noisier
+one.
 """
 
 from __future__ import annotations
@@ -27,10 +39,12 @@ from helpers.verification_meshes import Steel
 from fe_crank.cad import CadInput, mesh_cad_throw
 from fe_crank.fe import FeOptions, solve_unit_cases
 from fe_crank.fe.refinement.convergence import fillet_convergence, zones_apply
+from fe_crank.fe.refinement.levels import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX
 from fe_crank.fe.refinement.zone_study import zone_convergence, zone_solid
 from fe_crank.mesh import PRESETS
 
-NOISE_TOL = 0.04
+#: by the entry's family (module doc): shaft fillets, counterweight fillets, the oil-bore outlet
+NOISE_TOL = {"": 0.04, COUNTERWEIGHT_PREFIX: 0.10, OIL_BORE_PREFIX: 0.20}
 LOADS = {"pin force": {"pin_-y": 1.0e5, "centrifugal": 250.0**2}, "torque": {"torque": 5.0e3}}
 CASES = ("centrifugal", "pin_-y", "torque")
 
@@ -71,4 +85,5 @@ def test_drawn_throw_zone_study_equals_its_full_refinement(
     assert len(full.changes) == 6  # shaft fillets, counterweight fillets, oil bore under each load set
     for name in full.changes:
         assert zones.levels[0].peaks[name] == full.levels[0].peaks[name]  # the assessed mesh's own
-        assert zones.levels[1].peaks[name] == pytest.approx(full.levels[1].peaks[name], rel=NOISE_TOL), name
+        family = next((p for p in (COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX) if name.startswith(p)), "")
+        assert zones.levels[1].peaks[name] == pytest.approx(full.levels[1].peaks[name], rel=NOISE_TOL[family]), name
