@@ -287,13 +287,13 @@ def markdown(out: dict) -> str:
             "",
             f"{name}: drawn - parametric over the {n} x {n} pairs of realisations, per fillet pair and unit case",
             "",
-            "| entry | parametric, MPa | smallest | largest |",
+            "| entry | parametric realisation 0, Pa per unit load | smallest | largest |",
             "| --- | --- | --- | --- |",
         ]
         for key in runs["parametric0"]:
             d = [runs[f"drawn{i}"][key] / runs[f"parametric{j}"][key] - 1 for i in range(n) for j in range(n)]
             lines.append(
-                f"| {key} | {runs['parametric0'][key] / 1e6:.2f} | {100 * min(d):+.1f} % | {100 * max(d):+.1f} % |"
+                f"| {key} | {runs['parametric0'][key]:.4g} | {100 * min(d):+.1f} % | {100 * max(d):+.1f} % |"
             )
     return "\n".join(lines) + "\n"
 

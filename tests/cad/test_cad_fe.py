@@ -12,9 +12,16 @@ share their surface mesh); with fillet edges of r/3 the two routes agree within 
 (docs/geometry.md, "Geometry from CAD").
 
 The shipped throws (the single cylinder's through the check, tests/cad/test_cad_check.py):
-at the ``test`` preset the two routes' peaks lie up to 13.6 % apart on the V4's crankpin
-fillet (7.1 % on the inline-4's), and within 0.6 % on the V4 with fillet edges of r/3:
-the scatter of meshes with fillet edges about r, asserted 15 %."""
+at the ``test`` preset the two routes' peaks scatter with the meshes, and within 0.6 % on
+the V4 with fillet edges of r/3.  The scatter measured over round-off realisations of
+each route (``benchmarks/verification/mesh_scatter.py --only throws``: the drawing
+translated along the axis by k x 10 nm, the parametric crank radius times 1 + k 1e-12,
+k = 0..4, k = 0 the files this test meshes; each realisation another mesh of the same
+solid): over the 25 pairs, drawn against parametric, the V4's crankpin fillets under the
+pin force in y -5.0 % to +24.0 % (the drawn meshes alone 6351-7796 Pa per unit load, the
+parametric 6289-6683), its journal fillets -10.8 % to +1.4 %, the inline-4's -11.4 % to
++13.6 %; asserted the largest, rounded up: 25 %.  (One pair of meshes, measured before
+on another machine, had put it at 13.6 %.)"""
 
 from __future__ import annotations
 
@@ -35,7 +42,7 @@ from fe_crank.mesh import mesh_throw
 
 pytestmark = pytest.mark.heavy
 TOL = 0.06
-TOL_SHIPPED = 0.15
+TOL_SHIPPED = 0.25  # the shipped throws' scatter at ``test`` (module doc)
 CASES = ("centrifugal", "pin_x", "pin_y", "torque")
 PAIRS = (("crankpin_fillet_1", "crankpin_fillet_2"), ("journal_fillet_1", "journal_fillet_2"))
 
