@@ -292,9 +292,7 @@ def markdown(out: dict) -> str:
         ]
         for key in runs["parametric0"]:
             d = [runs[f"drawn{i}"][key] / runs[f"parametric{j}"][key] - 1 for i in range(n) for j in range(n)]
-            lines.append(
-                f"| {key} | {runs['parametric0'][key]:.4g} | {100 * min(d):+.1f} % | {100 * max(d):+.1f} % |"
-            )
+            lines.append(f"| {key} | {runs['parametric0'][key]:.4g} | {100 * min(d):+.1f} % | {100 * max(d):+.1f} % |")
     return "\n".join(lines) + "\n"
 
 
