@@ -47,9 +47,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests"))
 
-#: the zone test's load sets and unit cases (tests/cad/test_cad_zone_study.py)
-LOADS = {"pin force": {"pin_-y": 1.0e5, "centrifugal": 250.0**2}, "torque": {"torque": 5.0e3}}
-CASES = ("centrifugal", "pin_-y", "torque")
 SHIFT = 1e-8  # m, the drawn realisations' step along the axis
 STRETCH = 1e-12  # the parametric realisations' step of the crank radius, relative
 
@@ -74,31 +71,17 @@ def translated(src: Path, dst: Path, dz: float) -> Path:
 
 def zone_realisation(step: Path, density: float, cache: Path) -> dict:
     """The zone test's comparison on one drawn throw: r/1 and r/2 peaks of both methods."""
+    from helpers.drawn_zones import OPTIONS, zones_and_full
     from helpers.verification_meshes import Steel
 
     from fe_crank.cad import CadInput, mesh_cad_throw
-    from fe_crank.fe import FeOptions, solve_unit_cases
-    from fe_crank.fe.refinement.convergence import fillet_convergence
-    from fe_crank.fe.refinement.zone_study import zone_convergence
-    from fe_crank.mesh import PRESETS
+    from fe_crank.fe import solve_unit_cases
 
     cad = CadInput(step, density=density)
     tm = mesh_cad_throw(cad, "1", size="test", cache_dir=cache)
-    opts = FeOptions(cases=CASES)
-    units = solve_unit_cases(tm, Steel(), opts)
+    units = solve_unit_cases(tm, Steel(), OPTIONS)
     units.system.factorisation.free()
-    zones = zone_convergence(cad, Steel(), tm, units, LOADS, factors=(1.0, 2.0))
-    full = fillet_convergence(
-        cad,
-        Steel(),
-        throw=tm.throw,
-        base=PRESETS["test"],
-        loads=LOADS,
-        fe_options=opts,
-        factors=(1.0, 2.0),
-        cache_dir=cache,
-        first=(tm, units),
-    )
+    zones, full = zones_and_full(cad, tm, units, cache)
     return {
         "nodes": int(tm.mesh.p.shape[1]),
         "assessed": dict(full.levels[0].peaks),

@@ -33,20 +33,18 @@ from __future__ import annotations
 import dataclasses
 
 import pytest
+from helpers.drawn_zones import LOADS, OPTIONS, zones_and_full
 from helpers.shared import copy_of, locked
 from helpers.verification_meshes import Steel
 
 from fe_crank.cad import CadInput, mesh_cad_throw
-from fe_crank.fe import FeOptions, solve_unit_cases
-from fe_crank.fe.refinement.convergence import fillet_convergence, zones_apply
+from fe_crank.fe import solve_unit_cases
+from fe_crank.fe.refinement.convergence import zones_apply
 from fe_crank.fe.refinement.levels import COUNTERWEIGHT_PREFIX, OIL_BORE_PREFIX
-from fe_crank.fe.refinement.zone_study import zone_convergence, zone_solid
-from fe_crank.mesh import PRESETS
+from fe_crank.fe.refinement.zone_study import zone_solid
 
 #: by the entry's family (module doc): shaft fillets, counterweight fillets, the oil-bore outlet
 NOISE_TOL = {"": 0.04, COUNTERWEIGHT_PREFIX: 0.10, OIL_BORE_PREFIX: 0.20}
-LOADS = {"pin force": {"pin_-y": 1.0e5, "centrifugal": 250.0**2}, "torque": {"torque": 5.0e3}}
-CASES = ("centrifugal", "pin_-y", "torque")
 
 
 @pytest.mark.heavy  # the drawn throw's zones at r/2, and the whole drawn throw at r/2 for the comparison
@@ -57,7 +55,7 @@ def test_drawn_throw_zone_study_equals_its_full_refinement(
     cad = CadInput(copy_of(step, tmp_path / "throw.step"), density=g.density)
     with locked(tmp_path_factory, "single_cylinder_test_meshes"):  # the mesh tests/cad/test_cad_check.py takes too
         tm = mesh_cad_throw(cad, "1", size="test", cache_dir=mesh_cache)
-    opts = FeOptions(cases=CASES)
+    opts = OPTIONS
     units = solve_unit_cases(tm, Steel(), opts)
     units.system.factorisation.free()
     # the check's study takes the zones for a drawn throw, not the whole-throw re-mesh
@@ -67,18 +65,7 @@ def test_drawn_throw_zone_study_equals_its_full_refinement(
     assert solid.lengths == pytest.approx(
         {"counterweight_fillet_1": 0.005, "counterweight_fillet_2": 0.005, "oil_bore": g.oil_bore.diameter}
     )
-    zones = zone_convergence(cad, Steel(), tm, units, LOADS, factors=(1.0, 2.0))
-    full = fillet_convergence(
-        cad,
-        Steel(),
-        throw=tm.throw,
-        base=PRESETS["test"],
-        loads=LOADS,
-        fe_options=opts,
-        factors=(1.0, 2.0),
-        cache_dir=mesh_cache,
-        first=(tm, units),
-    )
+    zones, full = zones_and_full(cad, tm, units, mesh_cache)
     assert zones.method == "zones" and zones.levels[1].zones > 0 and full.method == "full"
     assert zones.levels[1].n_dof < full.levels[1].n_dof
     assert set(zones.changes) == set(full.changes)
