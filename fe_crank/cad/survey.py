@@ -17,8 +17,9 @@ solid).  Fits, each accepted when every sample lies within ``tol`` of the surfac
   spine circle fitted to ``p - s rho n`` (``s = +1``: tube convex, ``-1``: concave);
 * anything else: "other", with its smallest radius of curvature.
 
-The fitted numbers (radii, axis points, axis directions) are rounded to ``LENGTH_QUANTUM``
-and ``DIRECTION_QUANTUM`` (``snap_length``, ``snap_direction``): their last bits depend on
+The fitted numbers (radii, axis points, axis directions) are rounded, lengths to 1 nm and
+direction cosines to 1e-12 (``LENGTH_QUANTUM_DECIMALS``, ``DIRECTION_QUANTUM_DECIMALS``;
+``snap_length``, ``snap_point``, ``snap_direction``): their last bits depend on
 the kernels the linear-algebra library picks for the machine's processor (OpenBLAS's
 Haswell and Sandybridge kernels give a fillet's spine radius and an oil bore's direction
 that differ in the last bit), and gmsh turns a last-bit change of a size field or a cut

@@ -54,11 +54,13 @@ CUT = "zone_cut"
 #: throw, its zones at r/8: 2.2 s -> 0.35 s of CPU), the zones' node counts within 0.3 %
 LC_INTEGRATION_PRECISION = 1e-6
 #: a zone's quadratic elements of gmsh minSJ at or below this are made straight-sided.  Measured
-#: on the drawn single-cylinder throw (benchmarks/verification/mesh_scatter.py): at ``test``,
-#: at the throw mesher's 0.1, two of five round-off realisations of the drawing gave the shaft
+#: on the drawn single-cylinder throw at ``test`` (benchmarks/verification/mesh_scatter.py): at
+#: the throw mesher's 0.1, two of five round-off realisations of the drawing gave the shaft
 #: fillets' r/2 peak 5.0 % and 5.7 % above the whole throw re-meshed (a poorly curved element
-#: at the fillet), at 0.3 both within 0.5 %; at ``coarse`` r/8 only the counterweight fillets'
-#: peak moved (59.9 -> 58.7 MPa, the zones meshed with Netgen's optimiser 58.7), no meshing time
+#: at the fillet), at 0.3 both within 0.5 %.  At ``coarse`` r/8 only the counterweight fillets'
+#: peak moved (drawn throw 59.9 -> 58.7 MPa, its zones meshed with Netgen's optimiser 58.7; the
+#: parametric throw under torque at r/6 13.03 -> 12.96 MPa, the full re-mesh 12.95), at no
+#: meshing time (docs/performance.md)
 ZONE_STRAIGHTEN_BELOW = 0.3
 #: the balls' turn about an oblique axis (rad)
 TILT, TILT_AXIS = 0.7, (0.6, 0.5, 0.2)
