@@ -79,12 +79,13 @@ class ZoneMeshError(MeshError):
 def _culprit(gmsh, cs: np.ndarray) -> int | None:
     """After a failed ``generate``: the ball whose centre is nearest the first surface (in
     gmsh's meshing order, by tag) left without elements (curves are not asked: a sphere's
-    degenerate pole curves have none)."""
-    for _, tag in sorted(gmsh.model.getEntities(2)):
-        if not any(len(t) for t in gmsh.model.mesh.getElements(2, tag)[1]):
-            box = np.asarray(gmsh.model.getBoundingBox(2, tag))
-            mid = 0.5 * (box[:3] + box[3:])
-            return int(np.argmin(np.linalg.norm(cs - mid[None], axis=1)))
+    degenerate pole curves have none), else the first volume left without elements."""
+    for dim in (2, 3):
+        for _, tag in sorted(gmsh.model.getEntities(dim)):
+            if not len(gmsh.model.mesh.getElementTypes(dim, tag)):
+                box = np.asarray(gmsh.model.getBoundingBox(dim, tag))
+                mid = 0.5 * (box[:3] + box[3:])
+                return int(np.argmin(np.linalg.norm(cs - mid[None], axis=1)))
     return None
 
 
