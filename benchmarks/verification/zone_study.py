@@ -17,7 +17,10 @@ method and their relative difference, and the Richardson estimate (``estimate``)
 (the full study at ``coarse`` takes about 10 min and 16 GB; at ``test`` about 1 min).
 ``--drive-full`` also solves the first refined level's zones driven by the full refined
 solution: the zones' difference from the full mesh split into the cut's error and the two
-meshes' own.
+meshes' own.  ``--stretch K`` (a parametric throw) multiplies its crank radius by
+``1 + K x 1e-12``: another mesh of the same solid, whose peaks differ from ``K = 0``'s by
+the meshes' own scatter (benchmarks/verification/mesh_scatter.py), so repeated runs show
+whether the zones' difference from the full study is a bias or that scatter.
 """
 
 from __future__ import annotations
@@ -28,6 +31,9 @@ import json
 import resource
 import time
 from pathlib import Path
+
+#: the relative step of the crank radius between realisations (``--stretch``)
+STRETCH = 1e-12
 
 
 def _cpu() -> float:
@@ -92,6 +98,12 @@ def main(argv=None) -> int:
     ap.add_argument("--radii", type=float, nargs="+", default=[3.0, 2.0])
     ap.add_argument("--cache-dir", type=Path, default=None, help="mesh cache (default: none)")
     ap.add_argument("--out", type=Path, default=Path("zone_study"), help="output stem (.json, .md)")
+    ap.add_argument(
+        "--stretch",
+        type=int,
+        default=0,
+        help="a parametric throw's crank radius times 1 + K x 1e-12 (another mesh of the same solid)",
+    )
     ap.add_argument("--no-full", action="store_true", help="the zones only (no full re-meshed study)")
     ap.add_argument("--factors", type=float, nargs="+", default=[1.0, 1.5, 2.0], help="fillet refinement factors")
     ap.add_argument(
@@ -110,6 +122,15 @@ def main(argv=None) -> int:
     from fe_crank.mechanism.cycles import engine_cycles
 
     lc = load_loadcase(args.loadcase)
+    if args.stretch:
+        from fe_crank.geometry.spec import CrankGeometry
+
+        if not isinstance(lc.geometry, CrankGeometry):
+            ap.error("--stretch needs a parametric geometry")
+        g = lc.geometry
+        lc = dataclasses.replace(
+            lc, geometry=dataclasses.replace(g, crank_radius=g.crank_radius * (1 + args.stretch * STRETCH))
+        )
     cycles = engine_cycles(lc.engine, lc.operating)
     dyn = cycles.operating
     loads = check_loads(list(dyn.throws.values()), dyn.speed)
@@ -167,6 +188,7 @@ def main(argv=None) -> int:
     result = {
         "loadcase": str(args.loadcase),
         "preset": args.preset,
+        "stretch": args.stretch,
         "reference": ref_name,
         "dof": {k: [lv.n_dof for lv in st.levels] for k, st in studies.items()},
         "seconds": times,
