@@ -8,8 +8,9 @@ so one pair cannot tell the method's error from that scatter.  This script runs
 ``zone_study.py --stretch K`` for ``K = 0 .. N-1``, each in its own process (the crank
 radius times ``1 + K x 1e-12``), and summarises per entry (load set, hot-spot family) and
 method: the finest level's and the estimate's difference from the full study in each
-realisation, their mean (the method's bias) and the full study's own spread over the
-realisations (its finest peak's largest minus smallest, over their mean).
+realisation, their mean (the method's bias) and standard deviation, and the full study's
+own spread over the realisations (its finest peak's largest minus smallest, over their
+mean).
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/verification/zone_scatter.py \\
         loadcases/single_cylinder.toml --preset coarse --realisations 3 --radii 3 4 --out zone_scatter
@@ -62,6 +63,8 @@ def summary(runs: list[dict]) -> dict:
             "estimate_difference": est,
             "finest_mean": statistics.fmean(finest),
             "estimate_mean": statistics.fmean(est),
+            "finest_sd": statistics.stdev(finest),
+            "estimate_sd": statistics.stdev(est),
             "finest_spread": (max(peaks) - min(peaks)) / statistics.fmean(peaks),
             "estimate_spread": (max(estimates) - min(estimates)) / statistics.fmean(estimates),
         }
@@ -76,21 +79,23 @@ def markdown(s: dict, runs: list[dict]) -> str:
         f"{runs[0]['loadcase']} at {runs[0]['preset']}, {len(runs)} realisations: the finest level "
         "(and the estimate) against the full study in each, their mean, and the full study's own spread",
         "",
-        "| entry | method | finest level - full, each | mean | estimate - full, each | mean |",
+        "| entry | method | finest level - full, each | mean, sd | estimate - full, each | mean, sd |",
         "| --- | --- | --- | --- | --- | --- |",
     ]
     for entry, methods in s.items():
         for method, m in methods.items():
             if method == "full":
                 lines.append(
-                    f"| {entry} | full: spread | {', '.join(f'{p / 1e6:.2f}' for p in m['finest_Pa'])} MPa | "
-                    f"{100 * m['finest_spread']:.2f} % | "
+                    f"| {entry} | full: its peaks, their spread | "
+                    f"{', '.join(f'{p / 1e6:.2f}' for p in m['finest_Pa'])} MPa | {100 * m['finest_spread']:.2f} % | "
                     f"{', '.join(f'{p / 1e6:.2f}' for p in m['estimate_Pa'])} MPa | {100 * m['estimate_spread']:.2f} % |"
                 )
             else:
                 lines.append(
-                    f"| {entry} | {method} | {', '.join(map(pct, m['finest_difference']))} | {pct(m['finest_mean'])} | "
-                    f"{', '.join(map(pct, m['estimate_difference']))} | {pct(m['estimate_mean'])} |"
+                    f"| {entry} | {method} | {', '.join(map(pct, m['finest_difference']))} | "
+                    f"{pct(m['finest_mean'])}, {100 * m['finest_sd']:.2f} % | "
+                    f"{', '.join(map(pct, m['estimate_difference']))} | "
+                    f"{pct(m['estimate_mean'])}, {100 * m['estimate_sd']:.2f} % |"
                 )
     lines += ["", "| realisation | study | DOF per level | wall, s | CPU, s |", "| --- | --- | --- | --- | --- |"]
     for r in runs:
