@@ -13,12 +13,13 @@ the crank axis lies along; a crank axis along none of them needs ``[cad] axis``.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from fe_crank.cad.config import CadInput
-from fe_crank.cad.survey import Face
+from fe_crank.cad.survey import Face, unit_vector
 from fe_crank.errors import InputError
 
 #: rad: axes this close to parallel are parallel
@@ -43,7 +44,9 @@ class Line:
 
 
 def line_of(face: Face) -> Line:
-    return Line(face.origin, face.direction / np.linalg.norm(face.direction))
+    """The axis of a cylindrical face, its direction made a unit vector without a BLAS
+    kernel (``cad.survey.unit_vector``: the same last bits on every processor)."""
+    return Line(face.origin, unit_vector(face.direction))
 
 
 def coaxial_sets(faces: list[Face], tol: float) -> list[list[Face]]:
@@ -123,5 +126,6 @@ def find_axis(faces: dict[int, Face], cad: CadInput, tol: float) -> tuple[Line, 
         best = sets[0]
     line = line_of(best[0])
     e = _direction(cad, line.e)
-    origin = line.origin - (line.origin @ e) * e
+    along = math.fsum(float(a) * float(b) for a, b in zip(line.origin, e))  # scalar: no BLAS kernel
+    origin = line.origin - along * e
     return Line(origin, e), tuple(sorted(f.tag for f in best))

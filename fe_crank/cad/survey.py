@@ -131,8 +131,15 @@ def snap_direction(e: np.ndarray) -> np.ndarray:
     c = [float(round(float(v), DIRECTION_QUANTUM_DECIMALS)) for v in e]
     if next(v for v in c if v != 0.0) < 0.0:
         c = [-v for v in c]
-    n = math.sqrt(math.fsum(v * v for v in c))
-    return np.array([v / n for v in c])
+    return unit_vector(c)
+
+
+def unit_vector(v) -> np.ndarray:
+    """``v`` scaled to unit length in scalar arithmetic (a correctly rounded sum, no BLAS
+    kernel): the same last bits on every processor."""
+    c = [float(x) for x in v]
+    n = math.sqrt(math.fsum(x * x for x in c))
+    return np.array([x / n for x in c])
 
 
 def _basis(e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
