@@ -51,6 +51,12 @@ SHIFT = 1e-8  # m, the drawn realisations' step along the axis
 STRETCH = 1e-12  # the parametric realisations' step of the crank radius, relative
 
 
+def stretched(g, k: int):
+    """Realisation ``k`` of the parametric geometry ``g``: its crank radius times
+    ``1 + k STRETCH`` (``k = 0``: ``g`` itself)."""
+    return dataclasses.replace(g, crank_radius=g.crank_radius * (1 + k * STRETCH))
+
+
 def translated(src: Path, dst: Path, dz: float) -> Path:
     """``src`` read, moved by ``dz`` along z and written to ``dst`` (gmsh's OpenCASCADE
     writer, millimetres, as ``fe_crank.geometry.step`` writes); ``dz = 0``: ``src`` itself,
@@ -105,7 +111,7 @@ def shaft_realisation(route: str, k: int, drawing: Path, cache: Path) -> dict:
     lc, dyn = rated_inline4()
     if route == "parametric":
         g = lc.geometry
-        lc = dataclasses.replace(lc, geometry=dataclasses.replace(g, crank_radius=g.crank_radius * (1 + k * STRETCH)))
+        lc = dataclasses.replace(lc, geometry=stretched(g, k))
         layout = shaft_layout(lc)
         sm = mesh_shaft(layout, size="test", cache_dir=cache)
         run = analyse_route(sm, layout, lc, dyn, throw_masses(layout))
@@ -172,8 +178,7 @@ def throw_scatter(n: int, folder: Path, cache: Path) -> dict:
             runs[f"drawn{k}"] = throw_realisation(
                 mesh_cad_throw(CadInput(drawn, density=g.density), size="test", cache_dir=cache)
             )
-            stretched = dataclasses.replace(g, crank_radius=g.crank_radius * (1 + k * STRETCH))
-            runs[f"parametric{k}"] = throw_realisation(mesh_throw(stretched, size="test", cache_dir=cache))
+            runs[f"parametric{k}"] = throw_realisation(mesh_throw(stretched(g, k), size="test", cache_dir=cache))
         out[name] = runs
     return out
 

@@ -18,9 +18,10 @@ method and their relative difference, and the Richardson estimate (``estimate``)
 ``--drive-full`` also solves the first refined level's zones driven by the full refined
 solution: the zones' difference from the full mesh split into the cut's error and the two
 meshes' own.  ``--stretch K`` (a parametric throw) multiplies its crank radius by
-``1 + K x 1e-12``: another mesh of the same solid, whose peaks differ from ``K = 0``'s by
-the meshes' own scatter (benchmarks/verification/mesh_scatter.py), so repeated runs show
-whether the zones' difference from the full study is a bias or that scatter.
+``1 + K x 1e-12`` (``mesh_scatter.stretched``): another mesh of the same solid, whose
+peaks differ from ``K = 0``'s by the meshes' own scatter, so repeated runs
+(``zone_scatter.py``) show whether the zones' difference from the full study is a bias
+or that scatter.
 """
 
 from __future__ import annotations
@@ -31,9 +32,6 @@ import json
 import resource
 import time
 from pathlib import Path
-
-#: the relative step of the crank radius between realisations (``--stretch``)
-STRETCH = 1e-12
 
 
 def _cpu() -> float:
@@ -123,14 +121,13 @@ def main(argv=None) -> int:
 
     lc = load_loadcase(args.loadcase)
     if args.stretch:
+        from mesh_scatter import stretched  # this folder: the realisations' one definition
+
         from fe_crank.geometry.spec import CrankGeometry
 
         if not isinstance(lc.geometry, CrankGeometry):
             ap.error("--stretch needs a parametric geometry")
-        g = lc.geometry
-        lc = dataclasses.replace(
-            lc, geometry=dataclasses.replace(g, crank_radius=g.crank_radius * (1 + args.stretch * STRETCH))
-        )
+        lc = dataclasses.replace(lc, geometry=stretched(lc.geometry, args.stretch))
     cycles = engine_cycles(lc.engine, lc.operating)
     dyn = cycles.operating
     loads = check_loads(list(dyn.throws.values()), dyn.speed)

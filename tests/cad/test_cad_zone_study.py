@@ -15,7 +15,8 @@ the largest, rounded up to a whole per cent:
 
 * shaft fillets: -0.7 % to +0.4 % under the pin force, -2.0 % to -0.6 % under the torque: 4 %;
 * counterweight fillets: -4.8 % to -1.6 % and -0.5 % to +2.0 %: 10 %;
-* the oil-bore outlet, a sharp edge where the averaged nodal stress has no converged value:
+* the oil bore, whose peak is the largest of a plateau of averaged nodal stresses on its
+  wall, each mesh picking another node (docs/fe.md):
   -9.7 % to -0.3 % and -8.3 % to -2.9 %: 20 %.
 
 At ``test`` a fillet is about one element across at r/1, and the zones are driven by that
